@@ -1,0 +1,192 @@
+//! The syntax tree of an L-system file, after words have been split into modules.
+
+use super::source::Span;
+
+/// A unary operator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnaryOp {
+    /// `-x`
+    Neg,
+    /// `!x` (1 if x is 0, else 0)
+    Not,
+}
+
+/// A binary operator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinaryOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `%` (remainder with the sign of the dividend)
+    Rem,
+    /// `^` (power, right-associative)
+    Pow,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+    /// `==`
+    Eq,
+    /// `!=`
+    Ne,
+    /// `&&` (short-circuit)
+    And,
+    /// `||` (short-circuit)
+    Or,
+}
+
+/// An expression over parameters, constants and functions.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Expr {
+    /// A number literal.
+    Number(f64, Span),
+    /// A parameter, constant, `pi` or `e`.
+    Name(String, Span),
+    /// A unary operation.
+    Unary {
+        /// The operator.
+        op: UnaryOp,
+        /// Its operand.
+        operand: Box<Expr>,
+        /// The whole expression.
+        span: Span,
+    },
+    /// A binary operation.
+    Binary {
+        /// The operator.
+        op: BinaryOp,
+        /// Left operand.
+        lhs: Box<Expr>,
+        /// Right operand.
+        rhs: Box<Expr>,
+        /// The whole expression.
+        span: Span,
+    },
+    /// A function call such as `sin(x)` or `uniform(0, 1)`.
+    Call {
+        /// The function's name.
+        name: String,
+        /// The arguments.
+        args: Vec<Expr>,
+        /// The whole call.
+        span: Span,
+    },
+}
+
+impl Expr {
+    /// Where the expression stands in the source.
+    pub fn span(&self) -> Span {
+        match self {
+            Expr::Number(_, span) | Expr::Name(_, span) => *span,
+            Expr::Unary { span, .. } | Expr::Binary { span, .. } | Expr::Call { span, .. } => *span,
+        }
+    }
+
+    /// Calls `f` on every name this expression refers to (not function names).
+    pub fn visit_names(&self, f: &mut impl FnMut(&str, Span)) {
+        match self {
+            Expr::Number(..) => {}
+            Expr::Name(name, span) => f(name, *span),
+            Expr::Unary { operand, .. } => operand.visit_names(f),
+            Expr::Binary { lhs, rhs, .. } => {
+                lhs.visit_names(f);
+                rhs.visit_names(f);
+            }
+            Expr::Call { args, .. } => args.iter().for_each(|a| a.visit_names(f)),
+        }
+    }
+}
+
+/// A module in a predecessor or context: a name and formal parameter names.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatternModule {
+    /// The module's name (`A`, `forward`, `[`, ...).
+    pub name: String,
+    /// Formal parameter names with their places.
+    pub params: Vec<(String, Span)>,
+    /// The module as written (for a split word: the part of the word it came from).
+    pub span: Span,
+}
+
+/// A module in an axiom or successor: a name and parameter expressions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModuleCall {
+    /// The module's name.
+    pub name: String,
+    /// Parameter expressions.
+    pub args: Vec<Expr>,
+    /// The module as written.
+    pub span: Span,
+}
+
+/// Which part of the file a rule sits in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Section {
+    /// Productions rewrite the string at every derivation step.
+    Productions,
+    /// Interpretation rules (a homomorphism) rewrite the string only for the builder and
+    /// renderer, never feeding back into derivation.
+    Interpretation,
+}
+
+/// A production or interpretation rule.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rule {
+    /// Left context, in string order (`B C` in `BC < S`).
+    pub left: Vec<PatternModule>,
+    /// The module the rule rewrites.
+    pub predecessor: PatternModule,
+    /// Right context, in string order; may contain `[` and `]`.
+    pub right: Vec<PatternModule>,
+    /// The condition after `:`.
+    pub guard: Option<Expr>,
+    /// What the predecessor becomes.
+    pub successor: Vec<ModuleCall>,
+    /// The weight after the successor (stochastic rules).
+    pub probability: Option<Expr>,
+    /// The section the rule is in.
+    pub section: Section,
+    /// The whole rule.
+    pub span: Span,
+}
+
+/// `define NAME = expr`
+#[derive(Clone, Debug, PartialEq)]
+pub struct Define {
+    /// The constant's name.
+    pub name: String,
+    /// Where the name stands.
+    pub name_span: Span,
+    /// Its value.
+    pub value: Expr,
+}
+
+/// A whole L-system file.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LsysFile {
+    /// Named constants, in file order.
+    pub defines: Vec<Define>,
+    /// Names declared with `module`.
+    pub declared_modules: Vec<(String, Span)>,
+    /// `seed: N`
+    pub seed: Option<(u64, Span)>,
+    /// `axiom: ...`
+    pub axiom: Option<(Vec<ModuleCall>, Span)>,
+    /// `derivation length: expr`
+    pub derivation_length: Option<Expr>,
+    /// `ignore: ...` (all such lines together)
+    pub ignore: Vec<(String, Span)>,
+    /// Rules in file order, productions and interpretation rules together.
+    pub rules: Vec<Rule>,
+    /// Words that were split into several modules: (word, the modules, place).
+    pub split_words: Vec<(String, Vec<String>, Span)>,
+}

@@ -1,0 +1,272 @@
+//! The L-system language: parsing text (`*.lsys`) into a syntax tree, with source-located
+//! errors.
+//!
+//! # Tokenising words
+//!
+//! In axioms, successors and contexts a *word* (letters, digits and `_`, starting with a
+//! letter) may stand for one module or for several written together, as in the classic
+//! one-letter notation `F-F+F+FF-F-F+F`. A word is split like this:
+//!
+//! 1. If the whole word is a **known name**, it is one module. Known names are the names
+//!    declared with `module`, every rule's predecessor, and the built-in commands
+//!    ([`BUILTIN_COMMANDS`] and their maturing twins prefixed `m`).
+//! 2. Otherwise it is cut from the left: at each place take the **longest known name** that
+//!    starts there; if none does, take **one character** as a module of its own.
+//! 3. A parameter list written after the word belongs to the last module of the split.
+//!
+//! White space always separates modules, and a predecessor is always one module. So with
+//! predecessors `a` and `b`, `ab` is `a b`; with `module forward`, `forward(1)` is one module;
+//! and `F2` with no known name `F2` is the two modules `F` and `2`.
+
+pub mod ast;
+mod parser;
+pub mod source;
+
+use std::collections::HashSet;
+
+pub use ast::LsysFile;
+pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
+
+use ast::{ModuleCall, PatternModule, Rule};
+use parser::{RawCall, RawPattern};
+
+/// The builder's commands (Hornby & Pollack; Matos & Arita), known names for word splitting.
+/// Each also has a maturing twin prefixed `m` (`mforward`, `mrevolute1`, ...).
+pub const BUILTIN_COMMANDS: &[&str] = &[
+    "forward",
+    "backward",
+    "left",
+    "right",
+    "up",
+    "down",
+    "clockwise",
+    "counterclockwise",
+    "revolute1",
+    "revolute2",
+    "twist90",
+    "twist180",
+    "width",
+    "thickness",
+    "split",
+    "duplicate",
+    "loop",
+    "merge",
+    "next",
+    "parent",
+    "output",
+    "reverse",
+    "setfunc",
+    "cut",
+    "weight",
+    "increase",
+    "decrease",
+    "touch",
+    "angle",
+    "chem",
+    "target",
+    "secrete",
+    "release",
+];
+
+/// Whether `name` is a built-in command or its maturing twin.
+pub fn is_builtin_command(name: &str) -> bool {
+    BUILTIN_COMMANDS.contains(&name)
+        || name
+            .strip_prefix('m')
+            .is_some_and(|rest| BUILTIN_COMMANDS.contains(&rest))
+}
+
+/// Parses an L-system file into its syntax tree, splitting words into modules.
+pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
+    let raw = parser::parse_raw(source)?;
+    let mut file = raw.file;
+
+    let mut known: HashSet<String> = file
+        .declared_modules
+        .iter()
+        .map(|(n, _)| n.clone())
+        .collect();
+    known.extend(raw.rules.iter().map(|r| r.predecessor.name.clone()));
+    let splitter = Splitter { known: &known };
+
+    if let Some((calls, span)) = raw.axiom {
+        let modules = splitter.calls(calls, &mut file.split_words);
+        file.axiom = Some((modules, span));
+    }
+    for rule in raw.rules {
+        let left = splitter.patterns(rule.left, &mut file.split_words);
+        let right = splitter.patterns(rule.right, &mut file.split_words);
+        let successor = splitter.calls(rule.successor, &mut file.split_words);
+        file.rules.push(Rule {
+            left,
+            predecessor: rule.predecessor,
+            right,
+            guard: rule.guard,
+            successor,
+            probability: rule.probability,
+            section: rule.section,
+            span: rule.span,
+        });
+    }
+    Ok(file)
+}
+
+struct Splitter<'k> {
+    known: &'k HashSet<String>,
+}
+
+impl Splitter<'_> {
+    fn is_known(&self, name: &str) -> bool {
+        self.known.contains(name) || is_builtin_command(name)
+    }
+
+    /// Cuts `word` into module names (byte ranges into the word).
+    fn split(&self, word: &str) -> Vec<(usize, usize)> {
+        if self.is_known(word) {
+            return vec![(0, word.len())];
+        }
+        let mut pieces = Vec::new();
+        let mut start = 0;
+        while start < word.len() {
+            let rest = &word[start..];
+            let longest = (1..=rest.len())
+                .rev()
+                .find(|&len| rest.is_char_boundary(len) && self.is_known(&rest[..len]))
+                .unwrap_or_else(|| rest.chars().next().map_or(1, char::len_utf8));
+            pieces.push((start, start + longest));
+            start += longest;
+        }
+        pieces
+    }
+
+    fn calls(
+        &self,
+        calls: Vec<RawCall>,
+        split_words: &mut Vec<(String, Vec<String>, Span)>,
+    ) -> Vec<ModuleCall> {
+        let mut out = Vec::with_capacity(calls.len());
+        for raw in calls {
+            if !raw.is_word {
+                out.push(raw.call);
+                continue;
+            }
+            let pieces = self.split(&raw.call.name);
+            if pieces.len() == 1 {
+                out.push(raw.call);
+                continue;
+            }
+            let word = raw.call.name.clone();
+            split_words.push((
+                word.clone(),
+                pieces.iter().map(|&(a, b)| word[a..b].to_string()).collect(),
+                raw.name_span,
+            ));
+            let last = pieces.len() - 1;
+            let mut args = Some(raw.call.args);
+            for (i, &(a, b)) in pieces.iter().enumerate() {
+                let start = raw.name_span.start + a;
+                let end = if i == last {
+                    raw.call.span.end
+                } else {
+                    raw.name_span.start + b
+                };
+                out.push(ModuleCall {
+                    name: word[a..b].to_string(),
+                    args: if i == last {
+                        args.take().unwrap_or_default()
+                    } else {
+                        Vec::new()
+                    },
+                    span: Span::new(start, end),
+                });
+            }
+        }
+        out
+    }
+
+    fn patterns(
+        &self,
+        patterns: Vec<RawPattern>,
+        split_words: &mut Vec<(String, Vec<String>, Span)>,
+    ) -> Vec<PatternModule> {
+        let mut out = Vec::with_capacity(patterns.len());
+        for raw in patterns {
+            if !raw.is_word {
+                out.push(raw.pattern);
+                continue;
+            }
+            let pieces = self.split(&raw.pattern.name);
+            if pieces.len() == 1 {
+                out.push(raw.pattern);
+                continue;
+            }
+            let word = raw.pattern.name.clone();
+            split_words.push((
+                word.clone(),
+                pieces.iter().map(|&(a, b)| word[a..b].to_string()).collect(),
+                raw.name_span,
+            ));
+            let last = pieces.len() - 1;
+            let mut params = Some(raw.pattern.params);
+            for (i, &(a, b)) in pieces.iter().enumerate() {
+                let start = raw.name_span.start + a;
+                let end = if i == last {
+                    raw.pattern.span.end
+                } else {
+                    raw.name_span.start + b
+                };
+                out.push(PatternModule {
+                    name: word[a..b].to_string(),
+                    params: if i == last {
+                        params.take().unwrap_or_default()
+                    } else {
+                        Vec::new()
+                    },
+                    span: Span::new(start, end),
+                });
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(calls: &[ModuleCall]) -> Vec<&str> {
+        calls.iter().map(|c| c.name.as_str()).collect()
+    }
+
+    #[test]
+    fn one_letter_notation_splits_into_fourteen_modules() {
+        let src = Source::new("t", "axiom: F\nF --> F-F+F+FF-F-F+F\n");
+        let file = parse(&src).unwrap();
+        assert_eq!(file.rules[0].successor.len(), 14);
+    }
+
+    #[test]
+    fn known_words_are_one_module_and_others_split_by_longest_prefix() {
+        let src = Source::new(
+            "t",
+            "module ar, al\naxiom: forward(1) revolute2 aral Fx(2)\nF --> F\n",
+        );
+        let file = parse(&src).unwrap();
+        let (axiom, _) = file.axiom.unwrap();
+        assert_eq!(
+            names(&axiom),
+            ["forward", "revolute2", "ar", "al", "F", "x"]
+        );
+        assert!(axiom[5].args.len() == 1 && axiom[4].args.is_empty());
+    }
+
+    #[test]
+    fn syntax_error_points_at_line_and_column() {
+        let src = Source::new("bad.lsys", "axiom: A\nA --> B(1,\n");
+        let err = parse(&src).unwrap_err();
+        let loc = err.location.clone().unwrap();
+        assert_eq!((loc.file.as_str(), loc.line), ("bad.lsys", 2));
+        assert!(err.to_string().contains("bad.lsys:2:"), "{err}");
+        assert!(err.to_string().contains("expected"), "{err}");
+    }
+}

@@ -1,0 +1,493 @@
+//! From text to [`LsysFile`] with pest: the grammar lives in `grammar/lsystem.pest`.
+
+use std::sync::OnceLock;
+
+use pest::Parser;
+use pest::iterators::{Pair, Pairs};
+use pest::pratt_parser::{Assoc, Op, PrattParser};
+
+use super::ast::{
+    BinaryOp, Define, Expr, LsysFile, ModuleCall, PatternModule, Section, UnaryOp,
+};
+use super::source::{Diagnostic, DiagnosticKind, Source, Span};
+
+#[derive(pest_derive::Parser)]
+#[grammar = "../grammar/lsystem.pest"]
+struct LsysParser;
+
+/// Most operators one expression may hold.
+const MAX_OPERATORS: usize = 1000;
+/// Deepest an expression tree may be (keeps evaluation's recursion bounded).
+const MAX_EXPR_DEPTH: usize = 256;
+
+/// A module in an axiom or successor before its word is split.
+pub(super) struct RawCall {
+    pub call: ModuleCall,
+    /// Where the name alone stands.
+    pub name_span: Span,
+    /// Whether the name is a word (splittable) rather than a special character.
+    pub is_word: bool,
+}
+
+/// A module in a pattern before its word is split.
+pub(super) struct RawPattern {
+    pub pattern: PatternModule,
+    pub name_span: Span,
+    pub is_word: bool,
+}
+
+/// A rule whose module lists are still raw words.
+pub(super) struct RawRule {
+    pub left: Vec<RawPattern>,
+    pub predecessor: PatternModule,
+    pub right: Vec<RawPattern>,
+    pub guard: Option<Expr>,
+    pub successor: Vec<RawCall>,
+    pub probability: Option<Expr>,
+    pub section: Section,
+    pub span: Span,
+}
+
+/// The file before words are split.
+#[derive(Default)]
+pub(super) struct RawFile {
+    pub file: LsysFile,
+    pub axiom: Option<(Vec<RawCall>, Span)>,
+    pub rules: Vec<RawRule>,
+}
+
+fn human_rule_name(grammar_rule: &Rule) -> String {
+    match grammar_rule {
+        Rule::EOI => "end of file",
+        Rule::file | Rule::statement | Rule::section => "a statement",
+        Rule::define => "'define NAME = value'",
+        Rule::module_decl => "'module' and names",
+        Rule::seed_stmt => "'seed: N'",
+        Rule::axiom_stmt => "'axiom: ...'",
+        Rule::length_stmt => "'derivation length: N'",
+        Rule::ignore_stmt => "'ignore: ...'",
+        Rule::productions_header => "'productions:'",
+        Rule::interpretation_header => "'interpretation:'",
+        Rule::rule => "a rule ('predecessor --> successor')",
+        Rule::arrow => "'-->'",
+        Rule::left_context | Rule::right_context => "a context module",
+        Rule::predecessor => "a predecessor module",
+        Rule::guard => "a condition",
+        Rule::probability => "a probability",
+        Rule::successor => "successor modules",
+        Rule::pattern_module => "a module",
+        Rule::formal_params => "parameter names in parentheses",
+        Rule::module_list => "modules",
+        Rule::module_call => "a module",
+        Rule::actual_params => "parameter values in parentheses",
+        Rule::symbol_name | Rule::word | Rule::query | Rule::special => "a module name",
+        Rule::expr => "an expression",
+        Rule::infix => "an operator",
+        Rule::or => "'||'",
+        Rule::and => "'&&'",
+        Rule::eq => "'=='",
+        Rule::ne => "'!='",
+        Rule::le => "'<='",
+        Rule::ge => "'>='",
+        Rule::lt => "'<'",
+        Rule::gt => "'>'",
+        Rule::add => "'+'",
+        Rule::sub => "'-'",
+        Rule::mul => "'*'",
+        Rule::div => "'/'",
+        Rule::rem => "'%'",
+        Rule::pow => "'^'",
+        Rule::prefix | Rule::neg | Rule::not => "a sign",
+        Rule::primary => "a value",
+        Rule::call => "a function call",
+        Rule::name => "a name",
+        Rule::number => "a number",
+        Rule::integer => "a whole number",
+        Rule::eol => "end of line",
+        Rule::kw_define => "'define'",
+        Rule::kw_module => "'module'",
+        Rule::ident_char => "a letter, digit or '_'",
+        Rule::WHITESPACE => "white space",
+        Rule::COMMENT => "a comment",
+    }
+    .to_string()
+}
+
+fn pratt() -> &'static PrattParser<Rule> {
+    static PRATT: OnceLock<PrattParser<Rule>> = OnceLock::new();
+    PRATT.get_or_init(|| {
+        PrattParser::new()
+            .op(Op::infix(Rule::or, Assoc::Left))
+            .op(Op::infix(Rule::and, Assoc::Left))
+            .op(Op::infix(Rule::eq, Assoc::Left) | Op::infix(Rule::ne, Assoc::Left))
+            .op(Op::infix(Rule::lt, Assoc::Left)
+                | Op::infix(Rule::le, Assoc::Left)
+                | Op::infix(Rule::gt, Assoc::Left)
+                | Op::infix(Rule::ge, Assoc::Left))
+            .op(Op::infix(Rule::add, Assoc::Left) | Op::infix(Rule::sub, Assoc::Left))
+            .op(Op::infix(Rule::mul, Assoc::Left)
+                | Op::infix(Rule::div, Assoc::Left)
+                | Op::infix(Rule::rem, Assoc::Left))
+            .op(Op::prefix(Rule::neg) | Op::prefix(Rule::not))
+            .op(Op::infix(Rule::pow, Assoc::Right))
+    })
+}
+
+fn span_of(pair: &Pair<'_, Rule>) -> Span {
+    let s = pair.as_span();
+    Span::new(s.start(), s.end())
+}
+
+/// Parses `source` into the raw file, before word splitting.
+pub(super) fn parse_raw(source: &Source) -> Result<RawFile, Diagnostic> {
+    let pairs = LsysParser::parse(Rule::file, source.text())
+        .map_err(|e| syntax_error(source, e))?;
+    let mut builder = Builder {
+        source,
+        raw: RawFile::default(),
+        section: Section::Productions,
+    };
+    for pair in pairs.flatten().filter(|p| p.as_rule() == Rule::file) {
+        for statement in pair.into_inner() {
+            builder.statement(statement)?;
+        }
+    }
+    Ok(builder.raw)
+}
+
+fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic {
+    let error = error.renamed_rules(human_rule_name);
+    let (start, end) = match error.location {
+        pest::error::InputLocation::Pos(p) => (p, p),
+        pest::error::InputLocation::Span((s, e)) => (s, e),
+    };
+    let message = error.variant.message().into_owned();
+    let at_end = start >= source.text().trim_end().len();
+    let found = if at_end {
+        "end of file".to_string()
+    } else {
+        let rest = &source.text()[start..];
+        match rest.chars().next() {
+            Some('\n') | Some('\r') => "end of line".to_string(),
+            Some(c) => format!("'{c}'"),
+            None => "end of file".to_string(),
+        }
+    };
+    Diagnostic::at(
+        DiagnosticKind::Syntax,
+        source,
+        Span::new(start, end),
+        format!("{message}, found {found}"),
+    )
+}
+
+struct Builder<'s> {
+    source: &'s Source,
+    raw: RawFile,
+    section: Section,
+}
+
+impl Builder<'_> {
+    fn error(&self, span: Span, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::at(DiagnosticKind::Semantic, self.source, span, message)
+    }
+
+    fn statement(&mut self, pair: Pair<'_, Rule>) -> Result<(), Diagnostic> {
+        let span = span_of(&pair);
+        match pair.as_rule() {
+            Rule::define => {
+                let mut inner = pair.into_inner();
+                inner.next(); // keyword
+                let name = inner.next().expect("grammar: define has a name");
+                let value = self.expr(inner.next().expect("grammar: define has a value"), 0)?;
+                self.raw.file.defines.push(Define {
+                    name: name.as_str().to_string(),
+                    name_span: span_of(&name),
+                    value,
+                });
+            }
+            Rule::module_decl => {
+                for word in pair.into_inner().filter(|p| p.as_rule() == Rule::word) {
+                    self.raw
+                        .file
+                        .declared_modules
+                        .push((word.as_str().to_string(), span_of(&word)));
+                }
+            }
+            Rule::seed_stmt => {
+                let digits = pair.into_inner().next().expect("grammar: seed has digits");
+                let seed: u64 = digits.as_str().parse().map_err(|_| {
+                    self.error(span_of(&digits), "the seed must fit in 64 bits (0 to 18446744073709551615)")
+                })?;
+                if let Some((_, first)) = self.raw.file.seed {
+                    return Err(self.twice("seed", span, first));
+                }
+                self.raw.file.seed = Some((seed, span));
+            }
+            Rule::axiom_stmt => {
+                if let Some((_, first)) = &self.raw.axiom {
+                    return Err(self.twice("axiom", span, *first));
+                }
+                let list = pair.into_inner().next().expect("grammar: axiom has modules");
+                let calls = self.module_list(list.into_inner())?;
+                self.raw.axiom = Some((calls, span));
+            }
+            Rule::length_stmt => {
+                if let Some(first) = &self.raw.file.derivation_length {
+                    return Err(self.twice("derivation length", span, first.span()));
+                }
+                let value = self.expr(pair.into_inner().next().expect("grammar: length"), 0)?;
+                self.raw.file.derivation_length = Some(value);
+            }
+            Rule::ignore_stmt => {
+                for sym in pair.into_inner() {
+                    self.raw
+                        .file
+                        .ignore
+                        .push((sym.as_str().to_string(), span_of(&sym)));
+                }
+            }
+            Rule::productions_header => self.section = Section::Productions,
+            Rule::interpretation_header => self.section = Section::Interpretation,
+            Rule::rule => {
+                let rule = self.rule(pair)?;
+                self.raw.rules.push(rule);
+            }
+            Rule::EOI => {}
+            other => unreachable!("grammar: unexpected statement {other:?}"),
+        }
+        Ok(())
+    }
+
+    fn twice(&self, what: &str, span: Span, first: Span) -> Diagnostic {
+        let (line, _) = self.source.line_col(first.start);
+        self.error(span, format!("'{what}' is given twice (first on line {line})"))
+    }
+
+    fn rule(&self, pair: Pair<'_, Rule>) -> Result<RawRule, Diagnostic> {
+        let span = span_of(&pair);
+        let mut rule = RawRule {
+            left: Vec::new(),
+            predecessor: PatternModule {
+                name: String::new(),
+                params: Vec::new(),
+                span,
+            },
+            right: Vec::new(),
+            guard: None,
+            successor: Vec::new(),
+            probability: None,
+            section: self.section,
+            span,
+        };
+        for part in pair.into_inner() {
+            match part.as_rule() {
+                Rule::left_context => {
+                    rule.left = part.into_inner().map(|p| self.pattern(p)).collect()
+                }
+                Rule::predecessor => {
+                    let p = part.into_inner().next().expect("grammar: predecessor module");
+                    rule.predecessor = self.pattern(p).pattern;
+                }
+                Rule::right_context => {
+                    rule.right = part.into_inner().map(|p| self.pattern(p)).collect()
+                }
+                Rule::guard => {
+                    rule.guard = Some(self.expr(part.into_inner().next().expect("guard"), 0)?)
+                }
+                Rule::successor => rule.successor = self.module_list(part.into_inner())?,
+                Rule::probability => {
+                    rule.probability =
+                        Some(self.expr(part.into_inner().next().expect("probability"), 0)?)
+                }
+                Rule::arrow => {}
+                other => unreachable!("grammar: unexpected rule part {other:?}"),
+            }
+        }
+        Ok(rule)
+    }
+
+    fn pattern(&self, pair: Pair<'_, Rule>) -> RawPattern {
+        let span = span_of(&pair);
+        let mut inner = pair.into_inner();
+        let name = inner.next().expect("grammar: pattern has a name");
+        let is_word = name.as_rule() == Rule::word;
+        let name_span = span_of(&name);
+        let params = inner
+            .next()
+            .map(|formal| {
+                formal
+                    .into_inner()
+                    .map(|n| (n.as_str().to_string(), span_of(&n)))
+                    .collect()
+            })
+            .unwrap_or_default();
+        RawPattern {
+            pattern: PatternModule {
+                name: name.as_str().to_string(),
+                params,
+                span,
+            },
+            name_span,
+            is_word,
+        }
+    }
+
+    fn module_list(&self, pairs: Pairs<'_, Rule>) -> Result<Vec<RawCall>, Diagnostic> {
+        pairs.map(|p| self.module_call(p)).collect()
+    }
+
+    fn module_call(&self, pair: Pair<'_, Rule>) -> Result<RawCall, Diagnostic> {
+        let span = span_of(&pair);
+        let mut inner = pair.into_inner();
+        let name = inner.next().expect("grammar: module has a name");
+        let is_word = name.as_rule() == Rule::word;
+        let name_span = span_of(&name);
+        let args = match inner.next() {
+            Some(actual) => actual
+                .into_inner()
+                .map(|e| self.expr(e, 0))
+                .collect::<Result<_, _>>()?,
+            None => Vec::new(),
+        };
+        Ok(RawCall {
+            call: ModuleCall {
+                name: name.as_str().to_string(),
+                args,
+                span,
+            },
+            name_span,
+            is_word,
+        })
+    }
+
+    /// Builds an expression; `nesting` counts enclosing parentheses and calls.
+    fn expr(&self, pair: Pair<'_, Rule>, nesting: usize) -> Result<Expr, Diagnostic> {
+        let span = span_of(&pair);
+        if nesting > 64 {
+            return Err(self.error(span, "expression nested too deeply (more than 64 levels)"));
+        }
+        let operators = pair
+            .clone()
+            .into_inner()
+            .filter(|p| !matches!(p.as_rule(), Rule::number | Rule::name | Rule::call | Rule::expr))
+            .count();
+        if operators > MAX_OPERATORS {
+            return Err(self.error(
+                span,
+                format!("expression too long (more than {MAX_OPERATORS} operators)"),
+            ));
+        }
+        let (expr, depth) = pratt()
+            .map_primary(|p| self.primary(p, nesting))
+            .map_prefix(|op, operand| {
+                let (operand, depth) = operand?;
+                let op_span = span_of(&op);
+                let span = op_span.join(operand.span());
+                let op = if op.as_rule() == Rule::neg {
+                    UnaryOp::Neg
+                } else {
+                    UnaryOp::Not
+                };
+                Ok((
+                    Expr::Unary {
+                        op,
+                        operand: Box::new(operand),
+                        span,
+                    },
+                    depth + 1,
+                ))
+            })
+            .map_infix(|lhs, op, rhs| {
+                let (lhs, dl) = lhs?;
+                let (rhs, dr) = rhs?;
+                let op = match op.as_rule() {
+                    Rule::or => BinaryOp::Or,
+                    Rule::and => BinaryOp::And,
+                    Rule::eq => BinaryOp::Eq,
+                    Rule::ne => BinaryOp::Ne,
+                    Rule::le => BinaryOp::Le,
+                    Rule::ge => BinaryOp::Ge,
+                    Rule::lt => BinaryOp::Lt,
+                    Rule::gt => BinaryOp::Gt,
+                    Rule::add => BinaryOp::Add,
+                    Rule::sub => BinaryOp::Sub,
+                    Rule::mul => BinaryOp::Mul,
+                    Rule::div => BinaryOp::Div,
+                    Rule::rem => BinaryOp::Rem,
+                    Rule::pow => BinaryOp::Pow,
+                    other => unreachable!("grammar: unexpected operator {other:?}"),
+                };
+                let span = lhs.span().join(rhs.span());
+                Ok((
+                    Expr::Binary {
+                        op,
+                        lhs: Box::new(lhs),
+                        rhs: Box::new(rhs),
+                        span,
+                    },
+                    dl.max(dr) + 1,
+                ))
+            })
+            .parse(pair.into_inner())?;
+        if depth > MAX_EXPR_DEPTH {
+            return Err(self.error(
+                span,
+                format!("expression nested too deeply (more than {MAX_EXPR_DEPTH} levels)"),
+            ));
+        }
+        Ok(expr)
+    }
+
+    fn primary(
+        &self,
+        pair: Pair<'_, Rule>,
+        nesting: usize,
+    ) -> Result<(Expr, usize), Diagnostic> {
+        let span = span_of(&pair);
+        match pair.as_rule() {
+            Rule::number => {
+                let value: f64 = pair.as_str().parse().map_err(|_| {
+                    self.error(span, format!("'{}' is not a number", pair.as_str()))
+                })?;
+                if !value.is_finite() {
+                    return Err(self.error(span, "number too large for a 64-bit float"));
+                }
+                Ok((Expr::Number(value, span), 1))
+            }
+            Rule::name => Ok((Expr::Name(pair.as_str().to_string(), span), 1)),
+            Rule::call => {
+                let mut inner = pair.into_inner();
+                let name = inner.next().expect("grammar: call has a name");
+                let args = inner
+                    .map(|a| self.expr(a, nesting + 1))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let depth = 1 + args.iter().map(expr_depth).max().unwrap_or(0);
+                Ok((
+                    Expr::Call {
+                        name: name.as_str().to_string(),
+                        args,
+                        span,
+                    },
+                    depth,
+                ))
+            }
+            Rule::expr => {
+                let e = self.expr(pair, nesting + 1)?;
+                let depth = expr_depth(&e);
+                Ok((e, depth))
+            }
+            other => unreachable!("grammar: unexpected primary {other:?}"),
+        }
+    }
+}
+
+/// Depth of an expression tree (already bounded by the builder, so recursion is safe).
+fn expr_depth(e: &Expr) -> usize {
+    match e {
+        Expr::Number(..) | Expr::Name(..) => 1,
+        Expr::Unary { operand, .. } => 1 + expr_depth(operand),
+        Expr::Binary { lhs, rhs, .. } => 1 + expr_depth(lhs).max(expr_depth(rhs)),
+        Expr::Call { args, .. } => 1 + args.iter().map(expr_depth).max().unwrap_or(0),
+    }
+}
