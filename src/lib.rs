@@ -4,3 +4,4 @@
 //! derives module strings from it.
 
 pub mod lang;
+pub mod lsystem;

@@ -158,7 +158,10 @@ impl Splitter<'_> {
             let word = raw.call.name.clone();
             split_words.push((
                 word.clone(),
-                pieces.iter().map(|&(a, b)| word[a..b].to_string()).collect(),
+                pieces
+                    .iter()
+                    .map(|&(a, b)| word[a..b].to_string())
+                    .collect(),
                 raw.name_span,
             ));
             let last = pieces.len() - 1;
@@ -203,7 +206,10 @@ impl Splitter<'_> {
             let word = raw.pattern.name.clone();
             split_words.push((
                 word.clone(),
-                pieces.iter().map(|&(a, b)| word[a..b].to_string()).collect(),
+                pieces
+                    .iter()
+                    .map(|&(a, b)| word[a..b].to_string())
+                    .collect(),
                 raw.name_span,
             ));
             let last = pieces.len() - 1;

@@ -6,9 +6,7 @@ use pest::Parser;
 use pest::iterators::{Pair, Pairs};
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 
-use super::ast::{
-    BinaryOp, Define, Expr, LsysFile, ModuleCall, PatternModule, Section, UnaryOp,
-};
+use super::ast::{BinaryOp, Define, Expr, LsysFile, ModuleCall, PatternModule, Section, UnaryOp};
 use super::source::{Diagnostic, DiagnosticKind, Source, Span};
 
 #[derive(pest_derive::Parser)]
@@ -140,8 +138,8 @@ fn span_of(pair: &Pair<'_, Rule>) -> Span {
 
 /// Parses `source` into the raw file, before word splitting.
 pub(super) fn parse_raw(source: &Source) -> Result<RawFile, Diagnostic> {
-    let pairs = LsysParser::parse(Rule::file, source.text())
-        .map_err(|e| syntax_error(source, e))?;
+    let pairs =
+        LsysParser::parse(Rule::file, source.text()).map_err(|e| syntax_error(source, e))?;
     let mut builder = Builder {
         source,
         raw: RawFile::default(),
@@ -217,7 +215,10 @@ impl Builder<'_> {
             Rule::seed_stmt => {
                 let digits = pair.into_inner().next().expect("grammar: seed has digits");
                 let seed: u64 = digits.as_str().parse().map_err(|_| {
-                    self.error(span_of(&digits), "the seed must fit in 64 bits (0 to 18446744073709551615)")
+                    self.error(
+                        span_of(&digits),
+                        "the seed must fit in 64 bits (0 to 18446744073709551615)",
+                    )
                 })?;
                 if let Some((_, first)) = self.raw.file.seed {
                     return Err(self.twice("seed", span, first));
@@ -228,7 +229,10 @@ impl Builder<'_> {
                 if let Some((_, first)) = &self.raw.axiom {
                     return Err(self.twice("axiom", span, *first));
                 }
-                let list = pair.into_inner().next().expect("grammar: axiom has modules");
+                let list = pair
+                    .into_inner()
+                    .next()
+                    .expect("grammar: axiom has modules");
                 let calls = self.module_list(list.into_inner())?;
                 self.raw.axiom = Some((calls, span));
             }
@@ -261,7 +265,10 @@ impl Builder<'_> {
 
     fn twice(&self, what: &str, span: Span, first: Span) -> Diagnostic {
         let (line, _) = self.source.line_col(first.start);
-        self.error(span, format!("'{what}' is given twice (first on line {line})"))
+        self.error(
+            span,
+            format!("'{what}' is given twice (first on line {line})"),
+        )
     }
 
     fn rule(&self, pair: Pair<'_, Rule>) -> Result<RawRule, Diagnostic> {
@@ -286,7 +293,10 @@ impl Builder<'_> {
                     rule.left = part.into_inner().map(|p| self.pattern(p)).collect()
                 }
                 Rule::predecessor => {
-                    let p = part.into_inner().next().expect("grammar: predecessor module");
+                    let p = part
+                        .into_inner()
+                        .next()
+                        .expect("grammar: predecessor module");
                     rule.predecessor = self.pattern(p).pattern;
                 }
                 Rule::right_context => {
@@ -370,7 +380,12 @@ impl Builder<'_> {
         let operators = pair
             .clone()
             .into_inner()
-            .filter(|p| !matches!(p.as_rule(), Rule::number | Rule::name | Rule::call | Rule::expr))
+            .filter(|p| {
+                !matches!(
+                    p.as_rule(),
+                    Rule::number | Rule::name | Rule::call | Rule::expr
+                )
+            })
             .count();
         if operators > MAX_OPERATORS {
             return Err(self.error(
@@ -439,11 +454,7 @@ impl Builder<'_> {
         Ok(expr)
     }
 
-    fn primary(
-        &self,
-        pair: Pair<'_, Rule>,
-        nesting: usize,
-    ) -> Result<(Expr, usize), Diagnostic> {
+    fn primary(&self, pair: Pair<'_, Rule>, nesting: usize) -> Result<(Expr, usize), Diagnostic> {
         let span = span_of(&pair);
         match pair.as_rule() {
             Rule::number => {

@@ -144,7 +144,7 @@ pub struct Diagnostic {
     /// What is wrong, in words.
     pub message: String,
     /// Where, when there is a place in a source to point at.
-    pub location: Option<Location>,
+    pub location: Option<Box<Location>>,
     /// Extra lines of explanation.
     pub notes: Vec<String>,
 }
@@ -168,13 +168,13 @@ impl Diagnostic {
         Diagnostic {
             kind,
             message: message.into(),
-            location: Some(Location {
+            location: Some(Box::new(Location {
                 file: source.name().to_string(),
                 line,
                 column,
                 line_text,
                 width,
-            }),
+            })),
             notes: Vec::new(),
         }
     }

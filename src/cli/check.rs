@@ -1,0 +1,86 @@
+//! `ontogeny check`
+
+use std::path::PathBuf;
+
+use clap::Args;
+use ontogeny::lsystem::LSystem;
+
+/// Flags of `ontogeny check`.
+#[derive(Args)]
+pub struct CheckArgs {
+    /// The L-system file (`.lsys`).
+    file: PathBuf,
+    /// Print the report as one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Checks the file and prints the report.
+pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
+    let lsys = LSystem::from_path(&args.file)?;
+    let report = lsys.check();
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
+    println!("{}: ok", report.file);
+    println!("axiom: {}", report.axiom);
+    match report.derivation_length {
+        Some(n) => println!("derivation length: {n}"),
+        None => {
+            println!("derivation length: not given (derive prints the axiom only unless --steps)")
+        }
+    }
+    let symbols: Vec<String> = report
+        .symbols
+        .iter()
+        .map(|s| {
+            let arity = match s.arities.as_slice() {
+                [0] => String::new(),
+                [n] => format!("({n})"),
+                many => format!(
+                    "({})",
+                    many.iter()
+                        .map(usize::to_string)
+                        .collect::<Vec<_>>()
+                        .join("|")
+                ),
+            };
+            let mark = if s.rewritten { "*" } else { "" };
+            format!("{}{arity}{mark}", s.name)
+        })
+        .collect();
+    println!(
+        "symbols ({}, * = rewritten by a production): {}",
+        symbols.len(),
+        symbols.join(" ")
+    );
+    println!(
+        "rules: {} production{}, {} interpretation rule{}",
+        report.productions,
+        if report.productions == 1 { "" } else { "s" },
+        report.interpretation_rules,
+        if report.interpretation_rules == 1 {
+            ""
+        } else {
+            "s"
+        }
+    );
+    if !report.constants.is_empty() {
+        let constants: Vec<String> = report
+            .constants
+            .iter()
+            .map(|(n, v)| format!("{n} = {v}"))
+            .collect();
+        println!("constants: {}", constants.join(", "));
+    }
+    if report.findings.is_empty() {
+        println!("findings: none");
+    } else {
+        println!("findings ({}):", report.findings.len());
+        for f in &report.findings {
+            println!("  {}:{}:{}: {}", report.file, f.line, f.column, f.message);
+        }
+    }
+    Ok(())
+}

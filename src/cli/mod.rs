@@ -1,0 +1,55 @@
+//! Command-line verbs. Exit codes: 0 success, 2 bad input, 1 internal failure.
+
+mod check;
+mod derive;
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use ontogeny::lang::Diagnostic;
+
+/// Grow virtual creatures from L-systems and evolve them in physics.
+#[derive(Parser)]
+#[command(name = "ontogeny", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    verb: Verb,
+}
+
+#[derive(Subcommand)]
+enum Verb {
+    /// Derive an L-system and print every step, axiom first.
+    Derive(derive::DeriveArgs),
+    /// Parse and validate an L-system; summarise its symbols and rules, and point out rules
+    /// that can never fire and parameters never used.
+    Check(check::CheckArgs),
+}
+
+/// Runs the command line and turns the outcome into an exit code.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.verb {
+        Verb::Derive(args) => derive::run(&args),
+        Verb::Check(args) => check::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => report(error),
+    }
+}
+
+fn report(error: anyhow::Error) -> ExitCode {
+    if let Some(diagnostic) = error.downcast_ref::<Diagnostic>() {
+        eprintln!("{diagnostic}");
+        return ExitCode::from(2);
+    }
+    if let Some(io) = error.downcast_ref::<std::io::Error>()
+        && io.kind() == std::io::ErrorKind::BrokenPipe
+    {
+        // The reader (e.g. `head`) has had enough: not a failure.
+        return ExitCode::SUCCESS;
+    }
+    let _ = writeln!(std::io::stderr(), "error: {error:#}");
+    ExitCode::from(1)
+}
