@@ -87,7 +87,16 @@ pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
         .map(|(n, _)| n.clone())
         .collect();
     known.extend(raw.rules.iter().map(|r| r.predecessor.name.clone()));
-    let splitter = Splitter { known: &known };
+    let longest_known = known
+        .iter()
+        .map(String::len)
+        .chain(BUILTIN_COMMANDS.iter().map(|c| c.len() + 1))
+        .max()
+        .unwrap_or(1);
+    let splitter = Splitter {
+        known: &known,
+        longest_known,
+    };
 
     if let Some((calls, span)) = raw.axiom {
         let modules = splitter.calls(calls, &mut file.split_words);
@@ -113,6 +122,8 @@ pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
 
 struct Splitter<'k> {
     known: &'k HashSet<String>,
+    /// Length in bytes of the longest known name: no longer prefix need be tried.
+    longest_known: usize,
 }
 
 impl Splitter<'_> {
@@ -129,7 +140,7 @@ impl Splitter<'_> {
         let mut start = 0;
         while start < word.len() {
             let rest = &word[start..];
-            let longest = (1..=rest.len())
+            let longest = (1..=rest.len().min(self.longest_known))
                 .rev()
                 .find(|&len| rest.is_char_boundary(len) && self.is_known(&rest[..len]))
                 .unwrap_or_else(|| rest.chars().next().map_or(1, char::len_utf8));

@@ -171,12 +171,21 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
             None => "end of file".to_string(),
         }
     };
-    Diagnostic::at(
+    let diagnostic = Diagnostic::at(
         DiagnosticKind::Syntax,
         source,
         Span::new(start, end),
         format!("{message}, found {found}"),
-    )
+    );
+    let line = diagnostic
+        .location
+        .as_ref()
+        .map_or("", |l| l.line_text.as_str());
+    if line.contains("->") && !line.contains("-->") {
+        diagnostic.with_note("a rule's arrow is '-->'")
+    } else {
+        diagnostic
+    }
 }
 
 struct Builder<'s> {

@@ -1,0 +1,31 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use ontogeny::lsystem::{DeriveOptions, LSystem};
+
+/// Compiles `text`, panicking with the rendered diagnostic on failure.
+pub fn lsystem(text: &str) -> LSystem {
+    LSystem::from_text("test.lsys", text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The readable strings of steps 0..=steps, with spaces removed.
+pub fn derive(text: &str, steps: usize) -> Vec<String> {
+    derive_with(text, steps, &DeriveOptions::default())
+}
+
+/// As [`derive`], with options.
+pub fn derive_with(text: &str, steps: usize, options: &DeriveOptions) -> Vec<String> {
+    let lsys = lsystem(text);
+    let mut d = lsys.derivation(options);
+    let mut out = vec![squash(&lsys.display(d.current()))];
+    for _ in 0..steps {
+        let s = d.step().unwrap_or_else(|e| panic!("{e}"));
+        out.push(squash(&lsys.display(s)));
+    }
+    out
+}
+
+/// Removes white space, so that expected strings can be written either way.
+pub fn squash(s: &str) -> String {
+    s.chars().filter(|c| !c.is_whitespace()).collect()
+}

@@ -1,0 +1,264 @@
+//! Derivations checked against The Algorithmic Beauty of Plants (ABOP) and hand calculation.
+
+mod common;
+
+use common::{derive, derive_with, lsystem, squash};
+use ontogeny::lsystem::DeriveOptions;
+
+#[test]
+fn algae_lengths_follow_fibonacci() {
+    let steps = derive("axiom: a\na --> ab\nb --> a\n", 20);
+    let (mut a, mut b) = (1usize, 2usize);
+    for s in &steps {
+        assert_eq!(s.len(), a);
+        (a, b) = (b, a + b);
+    }
+    assert_eq!(steps[4], "abaababa");
+}
+
+#[test]
+fn quadratic_koch_island_has_four_times_eight_to_the_n_segments() {
+    let steps = derive("axiom: F-F-F-F\nF --> F-F+F+FF-F-F+F\n", 3);
+    for (n, s) in steps.iter().enumerate() {
+        let f = s.chars().filter(|&c| c == 'F').count();
+        assert_eq!(f, 4 * 8usize.pow(n as u32), "step {n}");
+    }
+    assert_eq!(
+        steps[1],
+        "F-F+F+FF-F-F+F-F-F+F+FF-F-F+F-F-F+F+FF-F-F+F-F-F+F+FF-F-F+F"
+    );
+}
+
+const PARAMETRIC: &str = "\
+axiom: B(2) A(4, 4)
+A(x, y) : y <= 3 --> A(x * 2, x + y)
+A(x, y) : y > 3  --> B(x) A(x / y, 0)
+B(x) : x < 1  --> C
+B(x) : x >= 1 --> B(x - 1)
+";
+
+#[test]
+fn parametric_example_of_abop_section_1_10() {
+    let steps = derive(PARAMETRIC, 4);
+    assert_eq!(
+        steps,
+        [
+            "B(2)A(4,4)",
+            "B(1)B(4)A(1,0)",
+            "B(0)B(3)A(2,1)",
+            "CB(2)A(4,3)",
+            "CB(1)A(8,7)"
+        ]
+    );
+}
+
+#[test]
+fn the_issue_syntax_tour_parses_and_derives_the_parametric_steps() {
+    let text = std::fs::read_to_string("examples/syntax-tour.lsys").unwrap();
+    let steps = derive(&text, 4);
+    assert_eq!(steps[4], "CB(1)A(8,7)");
+}
+
+#[test]
+fn acropetal_signal_moves_from_base_to_tips() {
+    // ABOP figure 1.31a.
+    let text = "ignore: + - F\naxiom: Fb[+Fa]Fa[-Fa]Fa[+Fa]Fa\nb < a --> b\n";
+    let steps = derive(text, 3);
+    assert_eq!(steps[1], "Fb[+Fb]Fb[-Fa]Fa[+Fa]Fa");
+    assert_eq!(steps[2], "Fb[+Fb]Fb[-Fb]Fb[+Fa]Fa");
+    assert_eq!(steps[3], "Fb[+Fb]Fb[-Fb]Fb[+Fb]Fb");
+}
+
+#[test]
+fn basipetal_signal_moves_down_the_main_axis() {
+    // ABOP figure 1.31b: the right context skips branches, so the signal runs down the
+    // main axis; apices of branches end their branch and see nothing.
+    let text = "ignore: + - F\naxiom: Fa[+Fa]Fa[-Fa]Fa[+Fa]Fb\na > b --> b\n";
+    let steps = derive(text, 3);
+    assert_eq!(steps[1], "Fa[+Fa]Fa[-Fa]Fb[+Fa]Fb");
+    assert_eq!(steps[2], "Fa[+Fa]Fb[-Fa]Fb[+Fa]Fb");
+    assert_eq!(steps[3], "Fb[+Fa]Fb[-Fa]Fb[+Fa]Fb");
+}
+
+#[test]
+fn branch_aware_context_rewrites_only_s() {
+    // ABOP section 1.8: BC < S > G[H]M on ABC[DE][SG[HI[JK]L]MNO].
+    let rule = "BC < S > G[H]M --> Z\n";
+    let steps = derive(&format!("axiom: ABC[DE][SG[HI[JK]L]MNO]\n{rule}"), 1);
+    assert_eq!(steps[1], "ABC[DE][ZG[HI[JK]L]MNO]");
+    // Without M after the branch, the right context fails.
+    let steps = derive(&format!("axiom: ABC[DE][SG[HI[JK]L]NO]\n{rule}"), 1);
+    assert_eq!(steps[1], "ABC[DE][SG[HI[JK]L]NO]");
+    // With C inside the skipped branch instead, the left context fails.
+    let steps = derive(&format!("axiom: AB[C][SG[H]M]\n{rule}"), 1);
+    assert_eq!(steps[1], "AB[C][SG[H]M]");
+}
+
+#[test]
+fn context_modules_bind_their_parameters() {
+    let text = "axiom: L(1) S(5) R\nL(u) < S(x) > R : x > u --> S(x + u)\n";
+    assert_eq!(derive(text, 2)[1..], ["L(1)S(6)R", "L(1)S(7)R"]);
+    let text = "axiom: L(9) S(5) R\nL(u) < S(x) > R : x > u --> S(x + u)\n";
+    assert_eq!(derive(text, 1)[1], "L(9)S(5)R");
+    let text = "axiom: A(1) B(2) C(3)\nA(a) < B(b) > C(c) --> B(a * 100 + b * 10 + c)\n";
+    assert_eq!(derive(text, 1)[1], "A(1)B(123)C(3)");
+}
+
+#[test]
+fn ignored_modules_are_skipped_on_both_sides() {
+    let rules = "b < a --> b\na > c --> c\n";
+    let with = derive(&format!("ignore: + -\naxiom: b+-a-+a+c\n{rules}"), 1);
+    assert_eq!(with[1], "b+-b-+c+c");
+    let without = derive(&format!("axiom: b+-a-+a+c\n{rules}"), 1);
+    assert_eq!(without[1], "b+-a-+a+c");
+}
+
+#[test]
+fn right_context_stops_at_the_end_of_its_branch() {
+    let steps = derive("axiom: [A]B\nA > B --> X\n", 1);
+    assert_eq!(steps[1], "[A]B");
+    let steps = derive("axiom: A[C]B\nA > B --> X\n", 1);
+    assert_eq!(steps[1], "X[C]B", "lateral branches are skipped");
+    let steps = derive("axiom: A[C]B\nA > [C] B --> X\n", 1);
+    assert_eq!(steps[1], "X[C]B", "a branch asked for is entered");
+}
+
+#[test]
+fn first_matching_rule_wins_and_unmatched_modules_are_copied() {
+    let text = "axiom: A(1) A(5) Q\nA(x) : x > 3 --> B\nA(x) --> C\nA(x) --> D\n";
+    assert_eq!(derive(text, 1)[1], "CBQ");
+}
+
+#[test]
+fn rewriting_is_parallel() {
+    // Each module sees the old string: a --> b and b --> a swap, they do not cascade.
+    assert_eq!(derive("axiom: ab\na --> b\nb --> a\n", 1)[1], "ba");
+}
+
+#[test]
+fn stochastic_rules_repeat_with_the_same_seed() {
+    let text = "axiom: F\nF --> F[+F]F : 0.33\nF --> F[-F]F : 0.33\nF --> F : 0.34\n";
+    let opts = |seed| DeriveOptions {
+        seed: Some(seed),
+        ..DeriveOptions::default()
+    };
+    let a = derive_with(text, 5, &opts(11));
+    let b = derive_with(text, 5, &opts(11));
+    assert_eq!(a, b);
+    let c = derive_with(text, 5, &opts(12));
+    assert_ne!(a[5], c[5], "another seed gives another plant");
+    // The file's seed is used when none is given.
+    let with_seed_line = format!("seed: 11\n{text}");
+    assert_eq!(derive(&with_seed_line, 5), a);
+}
+
+#[test]
+fn stochastic_weights_are_respected_over_many_draws() {
+    let axiom = "F".repeat(20_000);
+    // Weights need not sum to one: they are normalised among the matching rules.
+    let text = format!("axiom: {axiom}\nF --> A : 0.1\nF --> B : 0.3\n");
+    let s = &derive(&text, 1)[1];
+    let a = s.chars().filter(|&c| c == 'A').count() as f64;
+    let expected = 20_000.0 * 0.25;
+    let sd = (20_000.0f64 * 0.25 * 0.75).sqrt();
+    assert!(
+        (a - expected).abs() < 4.0 * sd,
+        "{a} A's, expected {expected} ± {sd}"
+    );
+}
+
+#[test]
+fn stochastic_choice_is_among_rules_whose_guards_hold() {
+    let text =
+        "axiom: A(1) A(5)\nA(x) : x < 3 --> L : 0.5\nA(x) : x >= 3 --> R : 0.5\nA(x) --> N : 0.5\n";
+    for seed in 0..20 {
+        let s = &derive_with(
+            text,
+            1,
+            &DeriveOptions {
+                seed: Some(seed),
+                ..DeriveOptions::default()
+            },
+        )[1];
+        let first = &s[..1];
+        let second = &s[1..];
+        assert!(first == "L" || first == "N", "{s}");
+        assert!(second == "R" || second == "N", "{s}");
+    }
+}
+
+#[test]
+fn interpretation_rules_rewrite_for_the_builder_only() {
+    let text = "axiom: A\nA --> AB\ninterpretation:\nB --> forward(2) revolute1\n";
+    let lsys = lsystem(text);
+    let options = DeriveOptions::default();
+    let mut d = lsys.derivation(&options);
+    d.step().unwrap();
+    d.step().unwrap();
+    assert_eq!(
+        lsys.display(d.current()),
+        "ABB",
+        "derivation never sees interpretation"
+    );
+    let shown = lsys.interpret(d.current(), 2.0, &options).unwrap();
+    assert_eq!(
+        squash(&lsys.display(&shown)),
+        "Aforward(2)revolute1forward(2)revolute1"
+    );
+}
+
+#[test]
+fn constants_and_functions_evaluate_as_written() {
+    let text = "\
+define G = 1.5
+define H = G * 2
+axiom: X(0)
+X(z) --> Y(H, 2 + 3 * 4 ^ 2, -2 ^ 2, 2 ^ 3 ^ 2, 7 % 3, min(4, 2, 3), clamp(9, 0, 5), round(2.5), log(1000), ln(e), atan2(1, 1) * 4 / pi)
+";
+    assert_eq!(derive(text, 1)[1], "Y(3,50,-4,512,1,2,5,3,3,1,1)");
+    let text = "axiom: X(0)\nX(z) --> Y(1 < 2, 2 <= 1, 1 == 1, 1 != 1, !0, 1 && 0, 0 || 2, sqrt(16), abs(-3), floor(-1.5), ceil(1.2))\n";
+    assert_eq!(derive(text, 1)[1], "Y(1,0,1,0,1,0,1,4,3,-2,2)");
+}
+
+#[test]
+fn and_or_short_circuit() {
+    // The right side would divide by zero if evaluated.
+    let text = "axiom: A(0)\nA(x) : x != 0 && 1 / x > 0 --> B\nA(x) : x == 0 || 1 / x > 0 --> C\n";
+    assert_eq!(derive(text, 1)[1], "C");
+}
+
+#[test]
+fn time_is_the_step_number_in_discrete_mode() {
+    let text = "axiom: A(0)\nA(x) --> A(t)\n";
+    assert_eq!(derive(text, 3)[3], "A(2)");
+}
+
+#[test]
+fn random_functions_are_seeded_and_in_range() {
+    let text = "axiom: A(0)\nA(x) --> A(uniform(2, 3)) N(normal(10, 0.001))\n";
+    let a = derive(text, 1);
+    assert_eq!(a, derive(text, 1));
+    let lsys = lsystem(text);
+    let mut d = lsys.derivation(&DeriveOptions::default());
+    let s = d.step().unwrap();
+    let u = s.params(0)[0];
+    let n = s.params(1)[0];
+    assert!((2.0..3.0).contains(&u), "{u}");
+    assert!((n - 10.0).abs() < 0.01, "{n}");
+}
+
+#[test]
+fn every_shipped_example_parses_and_derives() {
+    for entry in std::fs::read_dir("examples").unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "lsys") {
+            let lsys = ontogeny::lsystem::LSystem::from_path(&path)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let mut d = lsys.derivation(&DeriveOptions::default());
+            for _ in 0..lsys.derivation_length().unwrap_or(1) {
+                d.step()
+                    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            }
+        }
+    }
+}

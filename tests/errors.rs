@@ -1,0 +1,207 @@
+//! Every kind of bad input gets one clear, located diagnostic, never a panic.
+
+use ontogeny::lang::DiagnosticKind;
+use ontogeny::lsystem::{DeriveOptions, LSystem};
+
+/// Compiles `text` and expects an error; returns it rendered, after checking its kind and
+/// that it points at `line`.
+fn compile_error(text: &str, kind: DiagnosticKind, line: usize) -> String {
+    let err = LSystem::from_text("bad.lsys", text).expect_err("should not compile");
+    assert_eq!(err.kind, kind, "{err}");
+    let loc = err.location.as_ref().expect("a location");
+    assert_eq!(loc.line, line, "{err}");
+    let shown = err.to_string();
+    assert!(
+        shown.contains(&format!("bad.lsys:{line}:{}", loc.column)),
+        "{shown}"
+    );
+    assert!(shown.contains('^'), "a caret: {shown}");
+    shown
+}
+
+/// Derives `steps` steps and expects a run-time error.
+fn derive_error(text: &str, steps: usize, max_modules: usize) -> String {
+    let lsys = LSystem::from_text("bad.lsys", text).unwrap_or_else(|e| panic!("{e}"));
+    let mut d = lsys.derivation(&DeriveOptions {
+        seed: None,
+        max_modules,
+    });
+    for _ in 0..steps {
+        if let Err(e) = d.step() {
+            assert_eq!(e.kind, DiagnosticKind::Runtime);
+            assert!(e.location.is_some(), "{e}");
+            return e.to_string();
+        }
+    }
+    panic!("derivation should have failed");
+}
+
+#[test]
+fn syntax_error_names_what_was_expected() {
+    let shown = compile_error("axiom: A\nA --> B(1,\n", DiagnosticKind::Syntax, 2);
+    assert!(shown.contains("expected an expression"), "{shown}");
+    let shown = compile_error("axiom: A\nA B --> C\n", DiagnosticKind::Syntax, 2);
+    assert!(shown.contains("expected"), "{shown}");
+    let shown = compile_error("axiom: A\nA -> B\n", DiagnosticKind::Syntax, 2);
+    assert!(shown.contains("'-->'"), "{shown}");
+}
+
+#[test]
+fn syntax_error_column_is_exact() {
+    let err = LSystem::from_text("bad.lsys", "axiom: A\nA(x) --> A(x +)\n").unwrap_err();
+    let loc = err.location.unwrap();
+    assert_eq!((loc.line, loc.column), (2, 15));
+}
+
+#[test]
+fn unknown_constant() {
+    let shown = compile_error(
+        "define GROWTH = 2\naxiom: A(1)\nA(x) --> A(x * GROWHT)\n",
+        DiagnosticKind::Semantic,
+        3,
+    );
+    assert!(shown.contains("unknown name 'GROWHT'"), "{shown}");
+    assert!(shown.contains("bad.lsys:3:16"), "{shown}");
+}
+
+#[test]
+fn wrong_number_of_parameters_against_a_predecessor() {
+    let shown = compile_error(
+        "axiom: A(1)\nA(x, y) --> A(x, y)\n",
+        DiagnosticKind::Semantic,
+        1,
+    );
+    assert!(shown.contains("takes 2"), "{shown}");
+    compile_error(
+        "axiom: A(1, 2)\nA(x, y) --> A(x)\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+    compile_error(
+        "axiom: A(1)\nA(x) --> A(x)\nA(x, y) --> A(x)\n",
+        DiagnosticKind::Semantic,
+        3,
+    );
+    compile_error(
+        "axiom: A(1)\nA(x) --> A(x)\nB < A(x) > A --> A(x)\n",
+        DiagnosticKind::Semantic,
+        3,
+    );
+}
+
+#[test]
+fn probability_outside_zero_to_one() {
+    let shown = compile_error("axiom: F\nF --> F : 1.5\n", DiagnosticKind::Semantic, 2);
+    assert!(shown.contains("not in (0, 1]"), "{shown}");
+    compile_error("axiom: F\nF --> F : 0\n", DiagnosticKind::Semantic, 2);
+    compile_error("axiom: F\nF --> F : -0.5\n", DiagnosticKind::Semantic, 2);
+    compile_error(
+        "axiom: F(1)\nF(x) --> F(x) : x\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+}
+
+#[test]
+fn division_by_zero_during_derivation() {
+    // A(3) -> A(2)B(0.5) -> A(1)B(1) -> A(0)B(1/0): the third step fails.
+    let shown = derive_error("axiom: A(3)\nA(x) --> A(x - 1) B(1 / (x - 1))\n", 5, 1000);
+    assert!(shown.contains("division by zero"), "{shown}");
+    assert!(shown.contains("step 3"), "{shown}");
+    assert!(shown.contains("bad.lsys:2:"), "{shown}");
+}
+
+#[test]
+fn nan_during_derivation() {
+    let shown = derive_error("axiom: A(-1)\nA(x) --> A(sqrt(x))\n", 1, 1000);
+    assert!(shown.contains("NaN"), "{shown}");
+    let shown = derive_error("axiom: A(2)\nA(x) --> A(x ^ 1000)\n", 5, 1000);
+    assert!(shown.contains("infinity"), "{shown}");
+}
+
+#[test]
+fn runaway_growth_past_max_modules() {
+    let shown = derive_error("axiom: a\na --> ab\nb --> a\n", 30, 100);
+    assert!(shown.contains("grew past 100 modules"), "{shown}");
+    assert!(shown.contains("--max-modules"), "{shown}");
+}
+
+#[test]
+fn constant_division_by_zero_is_found_before_deriving() {
+    compile_error("axiom: A\nA --> B(1 / 0)\n", DiagnosticKind::Semantic, 2);
+    compile_error(
+        "define Z = 0\ndefine W = 1 % Z\naxiom: A\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+}
+
+#[test]
+fn unknown_function_and_wrong_argument_count() {
+    let shown = compile_error("axiom: A(sinh(1))\n", DiagnosticKind::Semantic, 1);
+    assert!(shown.contains("unknown function 'sinh'"), "{shown}");
+    let shown = compile_error("axiom: A(atan2(1))\n", DiagnosticKind::Semantic, 1);
+    assert!(shown.contains("takes 2 arguments"), "{shown}");
+}
+
+#[test]
+fn other_semantic_errors() {
+    compile_error(
+        "axiom: A(1)\nA(x) < A(x) --> A\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+    compile_error("axiom: A\nA [ < B --> C\n", DiagnosticKind::Semantic, 2);
+    compile_error(
+        "define X = 1\ndefine X = 2\naxiom: A\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+    compile_error("axiom: A\naxiom: B\n", DiagnosticKind::Semantic, 2);
+    compile_error("axiom: A\nseed: 1\nseed: 2\n", DiagnosticKind::Semantic, 3);
+    compile_error(
+        "axiom: A\nderivation length: 2.5\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+    compile_error(
+        "axiom: A\nderivation length: -1\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+    compile_error("axiom: [(1)\n", DiagnosticKind::Semantic, 1);
+    compile_error("axiom: A\nignore: [\n", DiagnosticKind::Semantic, 2);
+    compile_error(
+        "axiom: A\nseed: 99999999999999999999999\n",
+        DiagnosticKind::Semantic,
+        2,
+    );
+}
+
+#[test]
+fn missing_axiom_is_reported_with_the_file_name() {
+    let err = LSystem::from_text("bad.lsys", "A --> B\n").unwrap_err();
+    assert!(
+        err.to_string().contains("bad.lsys: no 'axiom:' line"),
+        "{err}"
+    );
+}
+
+#[test]
+fn deep_nesting_is_an_error_not_a_stack_overflow() {
+    let deep = format!("axiom: A({}1{})\n", "(".repeat(500), ")".repeat(500));
+    assert!(LSystem::from_text("bad.lsys", &deep).is_err());
+    let long = format!("axiom: A({})\n", vec!["1"; 5000].join("^"));
+    assert!(LSystem::from_text("bad.lsys", &long).is_err());
+    let negs = format!("axiom: A({}1)\n", "-".repeat(5000));
+    assert!(LSystem::from_text("bad.lsys", &negs).is_err());
+}
+
+#[test]
+fn missing_file_is_a_clear_error() {
+    let err = LSystem::from_path(std::path::Path::new("no/such/file.lsys")).unwrap_err();
+    assert!(
+        err.to_string().contains("cannot read no/such/file.lsys"),
+        "{err}"
+    );
+}
