@@ -135,13 +135,25 @@ impl LSystem {
 
     /// Starts a derivation at the axiom.
     pub fn derivation(&self, options: &DeriveOptions) -> Derivation<'_> {
+        self.derivation_from(self.axiom.clone(), 0, options)
+    }
+
+    /// Starts a derivation at `start`, taken to be the string after `step` steps (its
+    /// symbols must come from this system's [`symbols`](Self::symbols)). The random stream
+    /// starts afresh from the seed.
+    pub fn derivation_from(
+        &self,
+        start: ModuleString,
+        step: u64,
+        options: &DeriveOptions,
+    ) -> Derivation<'_> {
         let mut rng = ChaCha8Rng::seed_from_u64(options.seed.unwrap_or(self.seed));
         rng.set_stream(0);
         Derivation {
             lsys: self,
-            current: self.axiom.clone(),
+            current: start,
             next: ModuleString::new(),
-            step: 0,
+            step,
             rng,
             workspace: Workspace::default(),
             max_modules: options.max_modules,

@@ -1,0 +1,151 @@
+//! The `ontogeny` command as a user runs it: output formats and exit codes.
+
+use std::process::{Command, Output};
+
+fn ontogeny(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("ontogeny-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn derive_json_lines_have_exactly_the_documented_fields() {
+    let out = ontogeny(&["derive", "examples/parametric.lsys", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let lines: Vec<serde_json::Value> = stdout(&out)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 5, "axiom and four steps");
+    let first = &lines[0];
+    assert_eq!(
+        first,
+        &serde_json::json!({
+            "step": 0, "t": 0.0,
+            "modules": [{"sym": "B", "params": [2.0]}, {"sym": "A", "params": [4.0, 4.0]}],
+            "env": []
+        })
+    );
+    assert_eq!(lines[4]["step"], 4);
+    assert_eq!(lines[4]["t"], 4.0);
+    assert_eq!(
+        lines[4]["modules"],
+        serde_json::json!([
+            {"sym": "C", "params": []},
+            {"sym": "B", "params": [1.0]},
+            {"sym": "A", "params": [8.0, 7.0]}
+        ])
+    );
+}
+
+#[test]
+fn derive_text_prints_a_line_per_step_and_steps_override_the_file() {
+    let out = ontogeny(&["derive", "examples/algae.lsys", "--steps", "3"]);
+    assert!(out.status.success());
+    assert_eq!(stdout(&out), "0: a\n1: ab\n2: aba\n3: abaab\n");
+    let out = ontogeny(&["derive", "examples/algae.lsys", "--steps", "3", "--last"]);
+    assert_eq!(stdout(&out), "3: abaab\n");
+}
+
+#[test]
+fn derive_seed_flag_changes_stochastic_results_reproducibly() {
+    let run = |seed: &str| {
+        stdout(&ontogeny(&[
+            "derive",
+            "examples/stochastic-plant.lsys",
+            "--seed",
+            seed,
+            "--last",
+        ]))
+    };
+    assert_eq!(run("3"), run("3"));
+    assert_ne!(run("3"), run("4"));
+}
+
+#[test]
+fn bad_grammar_exits_2_with_a_located_message_and_no_panic() {
+    let path = temp_file("bad.lsys", "axiom: A\nA(x) --> A(x +)\n");
+    let out = ontogeny(&["derive", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(err.contains(&format!("{}:2:15", path.display())), "{err}");
+    assert!(err.contains('^') && err.contains("expected"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(stdout(&out).is_empty());
+}
+
+#[test]
+fn runaway_growth_exits_2() {
+    let out = ontogeny(&[
+        "derive",
+        "examples/algae.lsys",
+        "--steps",
+        "40",
+        "--max-modules",
+        "1000",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("grew past 1000 modules"), "{}", stderr(&out));
+}
+
+#[test]
+fn missing_file_exits_2() {
+    let out = ontogeny(&["derive", "no-such-file.lsys"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("cannot read no-such-file.lsys"));
+}
+
+#[test]
+fn check_reports_rules_that_never_fire_and_unused_parameters() {
+    let path = temp_file(
+        "check.lsys",
+        "define UNUSED = 3\naxiom: A(1)\nA(x) --> A(1)\nA(x) : x > 2 --> B\nZ --> A(2)\n",
+    );
+    let out = ontogeny(&["check", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains(":4:1: rule never fires: the rule on line 3"), "{text}");
+    assert!(text.contains(":5:1: rule never fires: 'Z' never appears"), "{text}");
+    assert!(text.contains(":3:3: parameter 'x' is never used"), "{text}");
+    assert!(text.contains(":1:8: constant 'UNUSED' is never used"), "{text}");
+    assert!(text.contains("rules: 3 productions, 0 interpretation rules"), "{text}");
+
+    let out = ontogeny(&["check", path.to_str().unwrap(), "--json"]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let kinds: Vec<&str> = report["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        kinds,
+        ["unused-constant", "unused-parameter", "never-fires", "never-fires"]
+    );
+}
+
+#[test]
+fn help_describes_every_verb() {
+    let out = ontogeny(&["--help"]);
+    let text = stdout(&out);
+    assert!(text.contains("derive") && text.contains("check"), "{text}");
+    let out = ontogeny(&["derive", "--help"]);
+    assert!(stdout(&out).contains("--max-modules"));
+}
