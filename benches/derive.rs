@@ -43,7 +43,10 @@ fn bench_step(c: &mut Criterion, name: &str, lsys: &LSystem, start: &ModuleStrin
         )
     });
     group.finish();
-    println!("{name}: one step from {} to {produced} modules", start.len());
+    println!(
+        "{name}: one step from {} to {produced} modules",
+        start.len()
+    );
 }
 
 fn algae(c: &mut Criterion) {

@@ -102,7 +102,11 @@ fn runaway_growth_exits_2() {
         "1000",
     ]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains("grew past 1000 modules"), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("grew past 1000 modules"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]
@@ -121,11 +125,23 @@ fn check_reports_rules_that_never_fire_and_unused_parameters() {
     let out = ontogeny(&["check", path.to_str().unwrap()]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = stdout(&out);
-    assert!(text.contains(":4:1: rule never fires: the rule on line 3"), "{text}");
-    assert!(text.contains(":5:1: rule never fires: 'Z' never appears"), "{text}");
+    assert!(
+        text.contains(":4:1: rule never fires: the rule on line 3"),
+        "{text}"
+    );
+    assert!(
+        text.contains(":5:1: rule never fires: 'Z' never appears"),
+        "{text}"
+    );
     assert!(text.contains(":3:3: parameter 'x' is never used"), "{text}");
-    assert!(text.contains(":1:8: constant 'UNUSED' is never used"), "{text}");
-    assert!(text.contains("rules: 3 productions, 0 interpretation rules"), "{text}");
+    assert!(
+        text.contains(":1:8: constant 'UNUSED' is never used"),
+        "{text}"
+    );
+    assert!(
+        text.contains("rules: 3 productions, 0 interpretation rules"),
+        "{text}"
+    );
 
     let out = ontogeny(&["check", path.to_str().unwrap(), "--json"]);
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
@@ -137,7 +153,12 @@ fn check_reports_rules_that_never_fire_and_unused_parameters() {
         .collect();
     assert_eq!(
         kinds,
-        ["unused-constant", "unused-parameter", "never-fires", "never-fires"]
+        [
+            "unused-constant",
+            "unused-parameter",
+            "never-fires",
+            "never-fires"
+        ]
     );
 }
 
