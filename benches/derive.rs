@@ -10,10 +10,10 @@ use ontogeny::lsystem::{DeriveOptions, LSystem, ModuleString};
 /// Derives until the string holds at least `target` modules; returns it and its step.
 fn grow(lsys: &LSystem, target: usize) -> (ModuleString, u64) {
     let options = DeriveOptions {
-        seed: None,
         max_modules: usize::MAX,
+        ..DeriveOptions::default()
     };
-    let mut d = lsys.derivation(&options);
+    let mut d = lsys.derivation(&options).expect("starts");
     while d.current().len() < target {
         d.step().expect("derives");
     }
@@ -22,8 +22,8 @@ fn grow(lsys: &LSystem, target: usize) -> (ModuleString, u64) {
 
 fn bench_step(c: &mut Criterion, name: &str, lsys: &LSystem, start: &ModuleString, step: u64) {
     let options = DeriveOptions {
-        seed: None,
         max_modules: usize::MAX,
+        ..DeriveOptions::default()
     };
     let produced = {
         let mut d = lsys.derivation_from(start.clone(), step, &options);

@@ -22,10 +22,12 @@ fn compile_error(text: &str, kind: DiagnosticKind, line: usize) -> String {
 /// Derives `steps` steps and expects a run-time error.
 fn derive_error(text: &str, steps: usize, max_modules: usize) -> String {
     let lsys = LSystem::from_text("bad.lsys", text).unwrap_or_else(|e| panic!("{e}"));
-    let mut d = lsys.derivation(&DeriveOptions {
-        seed: None,
-        max_modules,
-    });
+    let mut d = lsys
+        .derivation(&DeriveOptions {
+            max_modules,
+            ..DeriveOptions::default()
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
     for _ in 0..steps {
         if let Err(e) = d.step() {
             assert_eq!(e.kind, DiagnosticKind::Runtime);

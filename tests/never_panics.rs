@@ -12,8 +12,11 @@ fn exercise(text: &str) {
     let options = DeriveOptions {
         seed: Some(1),
         max_modules: 2_000,
+        ..DeriveOptions::default()
     };
-    let mut d = lsys.derivation(&options);
+    let Ok(mut d) = lsys.derivation(&options) else {
+        return;
+    };
     for _ in 0..4 {
         if let Err(e) = d.step() {
             let _ = e.to_string();

@@ -3,8 +3,13 @@
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
-use clap::Args;
-use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions, LSystem, ModuleString};
+use anyhow::bail;
+use clap::{Args, ValueEnum};
+use ontogeny::environment::Environment;
+use ontogeny::lang::{Diagnostic, DiagnosticKind};
+use ontogeny::lsystem::{
+    DEFAULT_MAX_MODULES, DeriveOptions, Event, LSystem, ModuleString, NamedModule, Timing,
+};
 use serde::Serialize;
 
 /// Flags of `ontogeny derive`.
@@ -12,9 +17,27 @@ use serde::Serialize;
 pub struct DeriveArgs {
     /// The L-system file (`.lsys`).
     file: PathBuf,
-    /// Number of derivation steps (default: the file's `derivation length:`).
+    /// Number of discrete derivation steps (default: the file's `derivation length:`).
     #[arg(long)]
     steps: Option<u64>,
+    /// Develop in continuous time from 0 to T (default: the file's `time:`; giving either
+    /// switches to continuous mode).
+    #[arg(long, value_name = "T")]
+    time: Option<f64>,
+    /// Observation step in continuous mode: a frame every D time units (default: the file's
+    /// `dt:`, else 1).
+    #[arg(long, value_name = "D")]
+    dt: Option<f64>,
+    /// How continuous development rewrites at events (default: the file's `timing:`, else
+    /// exact).
+    #[arg(long, value_enum)]
+    timing: Option<TimingArg>,
+    /// Override an initial environment value, e.g. `--env 0=1` (repeatable).
+    #[arg(long = "env", value_name = "INDEX=VALUE", value_parser = parse_env)]
+    env: Vec<(usize, f64)>,
+    /// Also print a line for every event (time, module, rule line) in continuous mode.
+    #[arg(long)]
+    events: bool,
     /// Seed for stochastic rules and random functions (default: the file's `seed:`, else 0).
     #[arg(long)]
     seed: Option<u64>,
@@ -32,72 +55,211 @@ pub struct DeriveArgs {
     last: bool,
 }
 
+/// `--timing` values.
+#[derive(Clone, Copy, ValueEnum)]
+enum TimingArg {
+    /// Settle at every event: development does not depend on dt.
+    Exact,
+    /// One rewriting pass per observation step and per event (Matos & Arita's listing).
+    Iterative,
+}
+
+fn parse_env(text: &str) -> Result<(usize, f64), String> {
+    let (index, value) = text
+        .split_once('=')
+        .ok_or_else(|| format!("'{text}' is not INDEX=VALUE"))?;
+    let index = index
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{index}' is not an index (0, 1, 2, ...)"))?;
+    let value: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{value}' is not a number"))?;
+    if !value.is_finite() {
+        return Err(format!("'{value}' is not a finite number"));
+    }
+    Ok((index, value))
+}
+
 #[derive(Serialize)]
 struct Frame<'a> {
     step: u64,
     t: f64,
-    modules: Vec<ontogeny::lsystem::NamedModule<'a>>,
-    env: [f64; 0],
+    modules: Vec<NamedModule<'a>>,
+    env: &'a [f64],
+}
+
+#[derive(Serialize)]
+struct EventLine<'a> {
+    event: &'a Event,
 }
 
 /// Derives the file and prints the steps.
 pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
     let lsys = LSystem::from_path(&args.file)?;
-    let steps = match (args.steps, lsys.derivation_length()) {
+    let options = DeriveOptions {
+        seed: args.seed,
+        max_modules: args.max_modules,
+        env: args.env.clone(),
+        time: args.time,
+        dt: args.dt,
+        timing: args.timing.map(|t| match t {
+            TimingArg::Exact => Timing::Exact,
+            TimingArg::Iterative => Timing::Iterative,
+        }),
+    };
+    let stdout = std::io::stdout();
+    let mut out = Printer {
+        out: BufWriter::new(stdout.lock()),
+        lsys: &lsys,
+        args,
+        options: &options,
+    };
+    if args.time.is_some() || lsys.is_continuous() {
+        if args.steps.is_some() {
+            bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                "--steps counts discrete steps; in continuous time use --time and --dt",
+            ));
+        }
+        develop(&lsys, &options, &mut out)?;
+    } else {
+        if args.dt.is_some() || args.timing.is_some() {
+            bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!(
+                    "--dt and --timing are for continuous time: give --time T (or 'time:' in {})",
+                    args.file.display()
+                ),
+            ));
+        }
+        derive(&lsys, &options, &mut out)?;
+    }
+    out.out.flush()?;
+    Ok(())
+}
+
+fn derive(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
+    let steps = match (out.args.steps, lsys.derivation_length()) {
         (Some(n), _) | (None, Some(n)) => n,
         (None, None) => {
             eprintln!(
                 "note: {} has no 'derivation length:' and no --steps was given: printing the axiom only",
-                args.file.display()
+                out.args.file.display()
             );
             0
         }
     };
-    let options = DeriveOptions {
-        seed: args.seed,
-        max_modules: args.max_modules,
-    };
-    let stdout = std::io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
-    let mut derivation = lsys.derivation(&options);
+    let mut derivation = lsys.derivation(options)?;
     for step in 0..=steps {
         if step > 0 {
             derivation.step()?;
         }
-        if !args.last || step == steps {
-            let t = step as f64;
-            let interpreted;
-            let string = if args.interpret {
-                interpreted = lsys.interpret(derivation.current(), t, &options)?;
-                &interpreted
-            } else {
-                derivation.current()
-            };
-            print_step(&mut out, &lsys, step, t, string, args.json)?;
+        if !out.args.last || step == steps {
+            out.frame(
+                step,
+                step as f64,
+                derivation.current(),
+                derivation.environment(),
+            )?;
         }
     }
-    out.flush()?;
     Ok(())
 }
 
-fn print_step(
-    out: &mut impl Write,
-    lsys: &LSystem,
-    step: u64,
-    t: f64,
-    string: &ModuleString,
-    json: bool,
-) -> std::io::Result<()> {
-    if json {
-        let frame = Frame {
-            step,
-            t,
-            modules: string.to_modules(lsys.symbols()),
-            env: [],
+fn develop(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
+    let mut dev = lsys.development(options)?;
+    loop {
+        let events = dev.take_events();
+        if out.args.events {
+            for event in &events {
+                out.event(event)?;
+            }
+        }
+        let last = dev.frame_number() == dev.frame_count();
+        if !out.args.last || last {
+            out.frame(
+                dev.frame_number(),
+                dev.time(),
+                dev.current(),
+                dev.environment(),
+            )?;
+        }
+        if !dev.advance()? {
+            return Ok(());
+        }
+    }
+}
+
+struct Printer<'a> {
+    out: BufWriter<std::io::StdoutLock<'a>>,
+    lsys: &'a LSystem,
+    args: &'a DeriveArgs,
+    options: &'a DeriveOptions,
+}
+
+impl Printer<'_> {
+    fn frame(
+        &mut self,
+        step: u64,
+        t: f64,
+        string: &ModuleString,
+        env: &Environment,
+    ) -> anyhow::Result<()> {
+        let interpreted;
+        let string = if self.args.interpret {
+            interpreted = self.lsys.interpret(string, t, self.options)?;
+            &interpreted
+        } else {
+            string
         };
-        serde_json::to_writer(&mut *out, &frame)?;
-        writeln!(out)
-    } else {
-        writeln!(out, "{step}: {}", lsys.display(string))
+        if self.args.json {
+            let frame = Frame {
+                step,
+                t,
+                modules: string.to_modules(self.lsys.symbols()),
+                env: env.values(),
+            };
+            serde_json::to_writer(&mut self.out, &frame)?;
+            writeln!(self.out)?;
+        } else {
+            let env_text = if env.is_empty() {
+                String::new()
+            } else {
+                let values: Vec<String> = env.values().iter().map(|v| format!("{v}")).collect();
+                format!("  env [{}]", values.join(" "))
+            };
+            if self.lsys.is_continuous() || self.args.time.is_some() {
+                writeln!(
+                    self.out,
+                    "t={}: {}{env_text}",
+                    ontogeny::lsystem::format_number(t),
+                    self.lsys.display(string)
+                )?;
+            } else {
+                writeln!(self.out, "{step}: {}{env_text}", self.lsys.display(string))?;
+            }
+        }
+        Ok(())
+    }
+
+    fn event(&mut self, event: &Event) -> anyhow::Result<()> {
+        if self.args.json {
+            serde_json::to_writer(&mut self.out, &EventLine { event })?;
+            writeln!(self.out)?;
+        } else {
+            let rule = match event.rule_line {
+                Some(line) => format!("the rule on line {line} applies"),
+                None => "no rule applies".to_string(),
+            };
+            writeln!(
+                self.out,
+                "  event t={}: {}: {rule}",
+                ontogeny::lsystem::format_number(event.t),
+                event.module
+            )?;
+        }
+        Ok(())
     }
 }

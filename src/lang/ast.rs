@@ -138,6 +138,28 @@ pub enum Section {
     Interpretation,
 }
 
+/// One ODE of a `solve` successor: `d<param>/dt = rhs`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Derivative {
+    /// The parameter that changes.
+    pub param: String,
+    /// Where `d<param>` stands.
+    pub span: Span,
+    /// Its rate of change.
+    pub rhs: Expr,
+}
+
+/// How continuous development rewrites modules at events (see the README).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Timing {
+    /// Settle at every event and at t = 0: development does not depend on `dt`.
+    #[default]
+    Exact,
+    /// One rewriting pass at the start of every observation step and at every event, as in
+    /// Matos & Arita's listing for their Figure 1.
+    Iterative,
+}
+
 /// A production or interpretation rule.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rule {
@@ -149,8 +171,10 @@ pub struct Rule {
     pub right: Vec<PatternModule>,
     /// The condition after `:`.
     pub guard: Option<Expr>,
-    /// What the predecessor becomes.
+    /// What the predecessor becomes (empty for a `solve` rule).
     pub successor: Vec<ModuleCall>,
+    /// For a differential rule, its ODEs: the module stays and its parameters grow.
+    pub solve: Option<Vec<Derivative>>,
     /// The weight after the successor (stochastic rules).
     pub probability: Option<Expr>,
     /// The section the rule is in.
@@ -183,6 +207,14 @@ pub struct LsysFile {
     pub axiom: Option<(Vec<ModuleCall>, Span)>,
     /// `derivation length: expr`
     pub derivation_length: Option<Expr>,
+    /// `time: expr`: develop in continuous time from 0 to this.
+    pub time: Option<Expr>,
+    /// `dt: expr`: the observation step.
+    pub dt: Option<Expr>,
+    /// `timing: exact | iterative`
+    pub timing: Option<(Timing, Span)>,
+    /// `environment: v0 v1 ...`: the chemical array's initial values.
+    pub environment: Option<(Vec<f64>, Span)>,
     /// `ignore: ...` (all such lines together)
     pub ignore: Vec<(String, Span)>,
     /// Rules in file order, productions and interpretation rules together.

@@ -112,6 +112,7 @@ pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
             right,
             guard: rule.guard,
             successor,
+            solve: rule.solve,
             probability: rule.probability,
             section: rule.section,
             span: rule.span,

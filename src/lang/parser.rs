@@ -3,10 +3,13 @@
 use std::sync::OnceLock;
 
 use pest::Parser;
-use pest::iterators::{Pair, Pairs};
+use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 
-use super::ast::{BinaryOp, Define, Expr, LsysFile, ModuleCall, PatternModule, Section, UnaryOp};
+use super::ast::{
+    BinaryOp, Define, Derivative, Expr, LsysFile, ModuleCall, PatternModule, Section, Timing,
+    UnaryOp,
+};
 use super::source::{Diagnostic, DiagnosticKind, Source, Span};
 
 #[derive(pest_derive::Parser)]
@@ -41,6 +44,7 @@ pub(super) struct RawRule {
     pub right: Vec<RawPattern>,
     pub guard: Option<Expr>,
     pub successor: Vec<RawCall>,
+    pub solve: Option<Vec<Derivative>>,
     pub probability: Option<Expr>,
     pub section: Section,
     pub span: Span,
@@ -102,6 +106,16 @@ fn human_rule_name(grammar_rule: &Rule) -> String {
         Rule::number => "a number",
         Rule::integer => "a whole number",
         Rule::eol => "end of line",
+        Rule::time_stmt => "'time: T'",
+        Rule::dt_stmt => "'dt: D'",
+        Rule::timing_stmt => "'timing: exact' or 'timing: iterative'",
+        Rule::timing_mode => "'exact' or 'iterative'",
+        Rule::environment_stmt => "'environment:' and numbers",
+        Rule::signed_number => "a number",
+        Rule::solve => "'solve' and ODEs",
+        Rule::kw_solve => "'solve'",
+        Rule::derivative => "an ODE 'dx/dt = expr'",
+        Rule::d_name => "'d' and a parameter name, as in 'dx/dt'",
         Rule::kw_define => "'define'",
         Rule::kw_module => "'module'",
         Rule::ident_char => "a letter, digit or '_'",
@@ -252,6 +266,51 @@ impl Builder<'_> {
                 let value = self.expr(pair.into_inner().next().expect("grammar: length"), 0)?;
                 self.raw.file.derivation_length = Some(value);
             }
+            Rule::time_stmt | Rule::dt_stmt => {
+                let is_time = pair.as_rule() == Rule::time_stmt;
+                let value = self.expr(pair.into_inner().next().expect("grammar: value"), 0)?;
+                let (slot, what) = if is_time {
+                    (&mut self.raw.file.time, "time")
+                } else {
+                    (&mut self.raw.file.dt, "dt")
+                };
+                if let Some(first) = slot {
+                    let first = first.span();
+                    return Err(self.twice(what, span, first));
+                }
+                *slot = Some(value);
+            }
+            Rule::timing_stmt => {
+                if let Some((_, first)) = self.raw.file.timing {
+                    return Err(self.twice("timing", span, first));
+                }
+                let mode = pair.into_inner().next().expect("grammar: timing mode");
+                let timing = if mode.as_str() == "exact" {
+                    Timing::Exact
+                } else {
+                    Timing::Iterative
+                };
+                self.raw.file.timing = Some((timing, span));
+            }
+            Rule::environment_stmt => {
+                if let Some((_, first)) = &self.raw.file.environment {
+                    return Err(self.twice("environment", span, *first));
+                }
+                let mut values = Vec::new();
+                for number in pair.into_inner() {
+                    let v: f64 = number
+                        .as_str()
+                        .parse()
+                        .map_err(|_| self.error(span_of(&number), "not a number"))?;
+                    if !v.is_finite() {
+                        return Err(
+                            self.error(span_of(&number), "number too large for a 64-bit float")
+                        );
+                    }
+                    values.push(v);
+                }
+                self.raw.file.environment = Some((values, span));
+            }
             Rule::ignore_stmt => {
                 for sym in pair.into_inner() {
                     self.raw
@@ -292,6 +351,7 @@ impl Builder<'_> {
             right: Vec::new(),
             guard: None,
             successor: Vec::new(),
+            solve: None,
             probability: None,
             section: self.section,
             span,
@@ -314,7 +374,29 @@ impl Builder<'_> {
                 Rule::guard => {
                     rule.guard = Some(self.expr(part.into_inner().next().expect("guard"), 0)?)
                 }
-                Rule::successor => rule.successor = self.module_list(part.into_inner())?,
+                Rule::successor => {
+                    let mut inner = part.into_inner().peekable();
+                    if inner.peek().is_some_and(|p| p.as_rule() == Rule::solve) {
+                        let solve = inner.next().expect("peeked");
+                        let mut odes = Vec::new();
+                        for d in solve
+                            .into_inner()
+                            .filter(|p| p.as_rule() == Rule::derivative)
+                        {
+                            let mut parts = d.into_inner();
+                            let name = parts.next().expect("grammar: d_name");
+                            let rhs = self.expr(parts.next().expect("grammar: rhs"), 0)?;
+                            odes.push(Derivative {
+                                param: name.as_str()[1..].to_string(),
+                                span: span_of(&name),
+                                rhs,
+                            });
+                        }
+                        rule.solve = Some(odes);
+                    } else {
+                        rule.successor = self.module_list(inner)?;
+                    }
+                }
                 Rule::probability => {
                     rule.probability =
                         Some(self.expr(part.into_inner().next().expect("probability"), 0)?)
@@ -352,7 +434,10 @@ impl Builder<'_> {
         }
     }
 
-    fn module_list(&self, pairs: Pairs<'_, Rule>) -> Result<Vec<RawCall>, Diagnostic> {
+    fn module_list<'i>(
+        &self,
+        pairs: impl Iterator<Item = Pair<'i, Rule>>,
+    ) -> Result<Vec<RawCall>, Diagnostic> {
         pairs.map(|p| self.module_call(p)).collect()
     }
 

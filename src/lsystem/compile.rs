@@ -10,7 +10,8 @@ use rand_chacha::ChaCha8Rng;
 use super::LSystem;
 use super::expr::{self, CExpr, EvalEnv, ExprError, Resolved};
 use super::string::{ModuleString, POP, PUSH, SymbolId, SymbolTable};
-use crate::lang::ast::{Expr, LsysFile, ModuleCall, PatternModule, Rule, Section};
+use crate::environment::Environment;
+use crate::lang::ast::{Expr, LsysFile, ModuleCall, PatternModule, Rule, Section, Timing};
 use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
 
 /// One element of a context pattern.
@@ -39,6 +40,10 @@ pub(crate) struct CompiledRule {
     pub slots: usize,
     pub guard: Option<CExpr>,
     pub successor: Vec<(SymbolId, Vec<CExpr>)>,
+    /// For a differential rule: (parameter index, rate) for each ODE.
+    pub solve: Option<Vec<(usize, CExpr)>>,
+    /// Whether the successor holds `?E` modules.
+    pub emits_query: bool,
     /// The successor, when none of its parameters depends on the match.
     pub constant: Option<ModuleString>,
     pub probability: Option<f64>,
@@ -69,6 +74,8 @@ pub(crate) struct RuleSet {
     pub always: Vec<Option<u32>>,
     /// Whether any rule has a context (then derivation needs the bracket table).
     pub has_context: bool,
+    /// The id of `?E`, if the system has it.
+    pub query: Option<SymbolId>,
 }
 
 impl RuleSet {
@@ -83,7 +90,8 @@ impl RuleSet {
             .map(|ids| {
                 let &first = ids.first()?;
                 let rule = &self.rules[first as usize];
-                (rule.unconditional() && rule.constant.is_some()).then_some(first)
+                (rule.unconditional() && rule.constant.is_some() && rule.solve.is_none())
+                    .then_some(first)
             })
             .collect();
         self.has_context = self
@@ -99,6 +107,7 @@ pub(crate) fn compile(source: Arc<Source>, file: LsysFile) -> Result<LSystem, Di
         symbols: SymbolTable::default(),
         constants: Vec::new(),
         arity: HashMap::new(),
+        environment_len: 0,
     };
     let seed = file.seed.map_or(0, |(s, _)| s);
 
@@ -169,6 +178,36 @@ pub(crate) fn compile(source: Arc<Source>, file: LsysFile) -> Result<LSystem, Di
         None => None,
     };
 
+    let environment = Environment::new(
+        file.environment
+            .as_ref()
+            .map_or_else(Vec::new, |(values, _)| values.clone()),
+    );
+    let mut settings_rng = ChaCha8Rng::seed_from_u64(seed);
+    let time = match &file.time {
+        Some(e) => {
+            let v = c.constant_expr(e, &mut settings_rng)?;
+            if v < 0.0 {
+                return Err(c.error(e.span(), format!("time must be 0 or more, not {v}")));
+            }
+            Some(v)
+        }
+        None => None,
+    };
+    let dt = match &file.dt {
+        Some(e) => {
+            let v = c.constant_expr(e, &mut settings_rng)?;
+            if v <= 0.0 {
+                return Err(c.error(e.span(), format!("dt must be more than 0, not {v}")));
+            }
+            Some(v)
+        }
+        None => None,
+    };
+    let timing = file.timing.map(|(t, _)| t).unwrap_or(Timing::Exact);
+    c.environment_len = environment.len();
+    c.check_queries(axiom_calls(&file))?;
+
     let mut ignored = Vec::new();
     for (name, span) in &file.ignore {
         if name == "[" || name == "]" {
@@ -189,11 +228,14 @@ pub(crate) fn compile(source: Arc<Source>, file: LsysFile) -> Result<LSystem, Di
     let n = c.symbols.len();
     productions.index(n);
     interpretation.index(n);
+    productions.query = c.symbols.id(QUERY);
+    interpretation.query = productions.query;
     let mut ignored_by_symbol = vec![false; n];
     for id in ignored {
         ignored_by_symbol[id as usize] = true;
     }
 
+    let query = c.symbols.id(QUERY);
     Ok(LSystem {
         symbols: c.symbols,
         constants: c.constants,
@@ -204,9 +246,23 @@ pub(crate) fn compile(source: Arc<Source>, file: LsysFile) -> Result<LSystem, Di
         productions,
         interpretation,
         ignored: ignored_by_symbol,
+        query,
+        environment,
+        time,
+        dt,
+        timing,
         file,
         source,
     })
+}
+
+/// The name of the open L-system's environment module.
+pub(crate) const QUERY: &str = "?E";
+
+fn axiom_calls(file: &LsysFile) -> &[ModuleCall] {
+    file.axiom
+        .as_ref()
+        .map_or(&[], |(calls, _)| calls.as_slice())
 }
 
 struct Compiler<'s> {
@@ -215,6 +271,8 @@ struct Compiler<'s> {
     constants: Vec<(String, f64, Span)>,
     /// Arity of every predecessor symbol, with the place that fixed it.
     arity: HashMap<String, (usize, Span)>,
+    /// Size of the environment array.
+    environment_len: usize,
 }
 
 impl Compiler<'_> {
@@ -244,6 +302,55 @@ impl Compiler<'_> {
             rng,
         };
         compiled.eval(&mut env).map_err(|err| self.expr_error(err))
+    }
+
+    /// `?E(mode, index, value)` modules: three parameters; constant modes and indices are
+    /// checked against the environment now.
+    fn check_queries(&self, calls: &[ModuleCall]) -> Result<(), Diagnostic> {
+        for call in calls.iter().filter(|c| c.name == QUERY) {
+            if call.args.len() != 3 {
+                return Err(self.error(
+                    call.span,
+                    format!(
+                        "?E takes 3 parameters (mode, index, value), not {}",
+                        call.args.len()
+                    ),
+                ));
+            }
+            let constant = |e: &Expr| match e {
+                Expr::Number(v, _) => Some(*v),
+                Expr::Unary {
+                    op: crate::lang::ast::UnaryOp::Neg,
+                    operand,
+                    ..
+                } => match **operand {
+                    Expr::Number(v, _) => Some(-v),
+                    _ => None,
+                },
+                _ => None,
+            };
+            if let Some(mode) = constant(&call.args[0])
+                && mode != 0.0
+                && mode != 1.0
+            {
+                return Err(self.error(
+                    call.args[0].span(),
+                    format!("?E's mode is 0 (write) or 1 (read), not {mode}"),
+                ));
+            }
+            if let Some(index) = constant(&call.args[1])
+                && (index < 0.0 || index.fract() != 0.0 || index >= self.environment_len as f64)
+            {
+                return Err(self.error(
+                    call.args[1].span(),
+                    format!(
+                        "?E's index {index} is outside the environment of {} slot(s) (see 'environment:')",
+                        self.environment_len
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn check_arity(&mut self, name: &str, arity: usize, span: Span) -> Result<(), Diagnostic> {
@@ -289,6 +396,15 @@ impl Compiler<'_> {
     }
 
     fn pattern_symbol(&mut self, p: &PatternModule) -> Result<SymbolId, Diagnostic> {
+        if p.name == QUERY && p.params.len() != 3 {
+            return Err(self.error(
+                p.span,
+                format!(
+                    "?E takes 3 parameters (mode, index, value), not {}",
+                    p.params.len()
+                ),
+            ));
+        }
         let call = ModuleCall {
             name: p.name.clone(),
             args: vec![Expr::Number(0.0, p.span); p.params.len()],
@@ -369,6 +485,69 @@ impl Compiler<'_> {
         let compile = |e: &Expr| expr::compile(e, &resolve).map_err(|err| self.expr_error(err));
 
         let guard = rule.guard.as_ref().map(compile).transpose()?;
+        let solve = match &rule.solve {
+            None => None,
+            Some(odes) => {
+                if rule.section == Section::Interpretation {
+                    return Err(self.error(
+                        rule.span,
+                        "interpretation rules cannot 'solve': they only rewrite for the builder",
+                    ));
+                }
+                if arity == 0 {
+                    return Err(self.error(
+                        rule.predecessor.span,
+                        format!(
+                            "'solve' needs parameters to change, but '{}' has none",
+                            rule.predecessor.name
+                        ),
+                    ));
+                }
+                if let Some(p) = &rule.probability {
+                    return Err(self.error(p.span(), "a 'solve' rule cannot be stochastic"));
+                }
+                let mut compiled = Vec::with_capacity(odes.len());
+                for ode in odes {
+                    let Some(index) = rule
+                        .predecessor
+                        .params
+                        .iter()
+                        .position(|(n, _)| *n == ode.param)
+                    else {
+                        let params: Vec<&str> = rule
+                            .predecessor
+                            .params
+                            .iter()
+                            .map(|(n, _)| n.as_str())
+                            .collect();
+                        return Err(self.error(
+                            ode.span,
+                            format!(
+                                "'{}' is not a parameter of the predecessor {}({})",
+                                ode.param,
+                                rule.predecessor.name,
+                                params.join(", ")
+                            ),
+                        ));
+                    };
+                    if compiled.iter().any(|(i, _)| *i == index) {
+                        return Err(
+                            self.error(ode.span, format!("d{}/dt is given twice", ode.param))
+                        );
+                    }
+                    let rate = compile(&ode.rhs)?;
+                    if rate.uses_random() {
+                        return Err(self.error(
+                            ode.rhs.span(),
+                            "random functions cannot be used in an ODE (its value must not depend on the solver's steps)",
+                        ));
+                    }
+                    compiled.push((index, rate));
+                }
+                Some(compiled)
+            }
+        };
+        self.check_queries(&rule.successor)?;
         let mut successor = Vec::with_capacity(rule.successor.len());
         for call in &rule.successor {
             let args = call
@@ -417,7 +596,11 @@ impl Compiler<'_> {
             right,
             slots,
             guard,
+            emits_query: resolved
+                .iter()
+                .any(|(sym, _)| self.symbols.name(*sym) == QUERY),
             successor: resolved,
+            solve,
             constant,
             probability,
             span: rule.span,

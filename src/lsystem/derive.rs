@@ -17,6 +17,21 @@ pub(crate) enum Failure {
     Expr(ExprError),
     /// The string grew past the module limit; the span is the rule that crossed it.
     TooLong { span: Option<Span>, limit: usize },
+    /// A `solve` rule matched in discrete mode.
+    SolveInDiscreteMode { span: Span },
+    /// An `?E` module could not be processed; the span is the rule that made it, if known.
+    Query { span: Option<Span>, message: String },
+    /// A module kept being rewritten at one instant of continuous time.
+    NoSettling { span: Option<Span>, passes: usize },
+}
+
+/// What a pass did.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PassStats {
+    /// How many modules a discrete rule rewrote.
+    pub rewritten: usize,
+    /// The last discrete rule applied.
+    pub last_rule: Option<Span>,
 }
 
 impl From<ExprError> for Failure {
@@ -32,6 +47,13 @@ pub(crate) struct Workspace {
     /// For each bracket, the index of its partner (or `NO_MATCH`).
     brackets: Vec<u32>,
     candidates: Vec<(u32, f64)>,
+    open: Vec<usize>,
+    /// Output indices of `?E` modules made by the last pass, with the rule that made them.
+    pub query_origins: Vec<(u32, Span)>,
+    /// The context modules bound by the last successful match: (first slot, module index).
+    pub bound: Vec<(u32, u32)>,
+    /// Arguments for evaluating ODE right-hand sides.
+    pub scratch_args: Vec<f64>,
 }
 
 /// What one pass reads besides the string.
@@ -40,6 +62,9 @@ pub(crate) struct Pass<'a> {
     pub ignored: &'a [bool],
     pub t: f64,
     pub max_modules: usize,
+    /// In continuous mode a `solve` rule keeps its module (the ODE grows it); in discrete
+    /// mode it is an error.
+    pub continuous: bool,
 }
 
 impl Pass<'_> {
@@ -51,10 +76,12 @@ impl Pass<'_> {
         out: &mut ModuleString,
         ws: &mut Workspace,
         rng: &mut ChaCha8Rng,
-    ) -> Result<(), Failure> {
+    ) -> Result<PassStats, Failure> {
         out.clear();
+        ws.query_origins.clear();
+        let mut stats = PassStats::default();
         if self.rules.has_context {
-            match_brackets(&input.syms, &mut ws.brackets);
+            match_brackets(&input.syms, &mut ws.brackets, &mut ws.open);
         }
         let limit = self.max_modules;
         for i in 0..input.len() {
@@ -85,7 +112,20 @@ impl Pass<'_> {
                 } else {
                     rule
                 };
-                self.apply(chosen, out, ws, rng)?;
+                if chosen.solve.is_some() {
+                    if !self.continuous {
+                        return Err(Failure::SolveInDiscreteMode { span: chosen.span });
+                    }
+                    out.push_from(input, i);
+                } else {
+                    let start = out.len();
+                    self.apply(chosen, out, ws, rng)?;
+                    stats.rewritten += 1;
+                    stats.last_rule = Some(chosen.span);
+                    if chosen.emits_query {
+                        self.note_queries(out, start, chosen.span, ws);
+                    }
+                }
                 applied = Some(chosen.span);
                 break;
             }
@@ -99,7 +139,45 @@ impl Pass<'_> {
                 });
             }
         }
-        Ok(())
+        Ok(stats)
+    }
+
+    /// Records where the `?E` modules just appended from `start` came from.
+    fn note_queries(&self, out: &ModuleString, start: usize, span: Span, ws: &mut Workspace) {
+        for j in start..out.len() {
+            if self.rules.query == Some(out.syms[j]) {
+                ws.query_origins.push((j as u32, span));
+            }
+        }
+    }
+
+    /// The index of the first rule that matches module `i`, if any (for continuous time:
+    /// which rule a module lives under). Binds nothing the caller may use.
+    pub fn first_match(
+        &self,
+        input: &ModuleString,
+        i: usize,
+        ws: &mut Workspace,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<Option<u32>, Failure> {
+        let sym = input.syms[i] as usize;
+        if let Some(Some(r)) = self.rules.always.get(sym) {
+            return Ok(Some(*r));
+        }
+        let ids = self.rules.by_symbol.get(sym).map_or(&[][..], |v| &v[..]);
+        for &r in ids {
+            if self.matches(&self.rules.rules[r as usize], input, i, ws, rng)? {
+                return Ok(Some(r));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Prepares the bracket table for [`first_match`](Self::first_match) on `input`.
+    pub fn prepare(&self, input: &ModuleString, ws: &mut Workspace) {
+        if self.rules.has_context {
+            match_brackets(&input.syms, &mut ws.brackets, &mut ws.open);
+        }
     }
 
     /// Draws one of the stochastic rules in `ids` that match, by weight, and binds its
@@ -153,6 +231,7 @@ impl Pass<'_> {
         }
         ws.args.clear();
         ws.args.resize(rule.slots, 0.0);
+        ws.bound.clear();
         ws.args[..rule.arity].copy_from_slice(params);
         if !rule.left.is_empty() && !self.match_left(rule, input, i, ws) {
             return Ok(false);
@@ -212,6 +291,7 @@ impl Pass<'_> {
                 return false;
             }
             ws.args[slot..slot + arity].copy_from_slice(params);
+            ws.bound.push((slot as u32, (j - 1) as u32));
             j -= 1;
         }
         true
@@ -286,6 +366,7 @@ impl Pass<'_> {
                         return false;
                     }
                     ws.args[slot..slot + arity].copy_from_slice(params);
+                    ws.bound.push((slot as u32, j as u32));
                     j += 1;
                 }
             }
@@ -336,10 +417,10 @@ fn append(out: &mut ModuleString, tail: &ModuleString) {
 }
 
 /// Pairs every bracket with its partner; unmatched ones get `NO_MATCH`.
-fn match_brackets(syms: &[u32], table: &mut Vec<u32>) {
+fn match_brackets(syms: &[u32], table: &mut Vec<u32>, open: &mut Vec<usize>) {
     table.clear();
     table.resize(syms.len(), NO_MATCH);
-    let mut open = Vec::new();
+    open.clear();
     for (i, &s) in syms.iter().enumerate() {
         if s == PUSH {
             open.push(i);

@@ -219,6 +219,16 @@ impl CExpr {
         }
     }
 
+    /// Whether evaluating the expression draws random numbers.
+    pub fn uses_random(&self) -> bool {
+        match self {
+            CExpr::Const(_) | CExpr::Arg(_) | CExpr::Time => false,
+            CExpr::Unary(_, a, _) => a.uses_random(),
+            CExpr::Binary(_, a, b, _) => a.uses_random() || b.uses_random(),
+            CExpr::Call(f, args, _) => f.is_random() || args.iter().any(CExpr::uses_random),
+        }
+    }
+
     /// Evaluates the expression. Division by zero and any NaN or infinite result are errors.
     pub fn eval(&self, env: &mut EvalEnv<'_>) -> Result<f64, ExprError> {
         let (value, span) = match self {

@@ -4,8 +4,8 @@
 //! use ontogeny::lsystem::{DeriveOptions, LSystem};
 //!
 //! let lsys = LSystem::from_text("algae", "axiom: a\na --> ab\nb --> a\n").unwrap();
-//! let mut derivation = lsys.derivation(&DeriveOptions::default());
-//! for _ in 0..4 {
+//! let mut derivation = lsys.derivation(&DeriveOptions::default()).unwrap();
+//! for _ in 0..3 {
 //!     derivation.step().unwrap();
 //! }
 //! assert_eq!(lsys.display(derivation.current()), "abaab");
@@ -13,17 +13,25 @@
 
 pub mod check;
 mod compile;
+mod continuous;
 mod derive;
 pub mod expr;
+mod open;
 mod string;
+
+pub use crate::lang::ast::Timing;
+pub use continuous::{Development, Event, MAX_PASSES_PER_INSTANT};
 
 use std::sync::Arc;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-pub use string::{Module, ModuleString, NamedModule, POP, PUSH, SymbolId, SymbolTable};
+pub use string::{
+    Module, ModuleString, NamedModule, POP, PUSH, SymbolId, SymbolTable, format_number,
+};
 
+use crate::environment::Environment;
 use crate::lang::{self, Diagnostic, DiagnosticKind, LsysFile, Source, Span};
 use compile::RuleSet;
 use derive::{Failure, Pass, Workspace};
@@ -45,15 +53,29 @@ pub struct LSystem {
     productions: RuleSet,
     interpretation: RuleSet,
     ignored: Vec<bool>,
+    /// The id of `?E`, if the system uses it.
+    query: Option<SymbolId>,
+    environment: Environment,
+    time: Option<f64>,
+    dt: Option<f64>,
+    timing: Timing,
 }
 
-/// Settings of one derivation.
+/// Settings of one derivation. `None` fields fall back to the file's headers.
 #[derive(Clone, Debug)]
 pub struct DeriveOptions {
     /// Overrides the file's `seed:`.
     pub seed: Option<u64>,
     /// A string longer than this is an error.
     pub max_modules: usize,
+    /// Overrides initial environment values: (index, value).
+    pub env: Vec<(usize, f64)>,
+    /// Overrides the file's `time:` (continuous development from 0 to this).
+    pub time: Option<f64>,
+    /// Overrides the file's `dt:` (the observation step; default 1).
+    pub dt: Option<f64>,
+    /// Overrides the file's `timing:`.
+    pub timing: Option<Timing>,
 }
 
 impl Default for DeriveOptions {
@@ -61,6 +83,10 @@ impl Default for DeriveOptions {
         DeriveOptions {
             seed: None,
             max_modules: DEFAULT_MAX_MODULES,
+            env: Vec::new(),
+            time: None,
+            dt: None,
+            timing: None,
         }
     }
 }
@@ -128,14 +154,93 @@ impl LSystem {
         !self.interpretation.rules.is_empty()
     }
 
+    /// Whether the file develops in continuous time (it has `time:`).
+    pub fn is_continuous(&self) -> bool {
+        self.time.is_some()
+    }
+
+    /// The file's `time:`, if any.
+    pub fn time(&self) -> Option<f64> {
+        self.time
+    }
+
+    /// The file's `dt:` (1 if absent).
+    pub fn dt(&self) -> f64 {
+        self.dt.unwrap_or(1.0)
+    }
+
+    /// The file's `timing:` (exact if absent).
+    pub fn timing(&self) -> Timing {
+        self.timing
+    }
+
+    /// The initial environment the file declares.
+    pub fn environment(&self) -> &Environment {
+        &self.environment
+    }
+
+    /// The initial environment with `options.env` applied.
+    pub fn initial_environment(&self, options: &DeriveOptions) -> Result<Environment, Diagnostic> {
+        let mut env = self.environment.clone();
+        for &(index, value) in &options.env {
+            env.set(index, value).map_err(|e| {
+                Diagnostic::without_location(
+                    DiagnosticKind::Semantic,
+                    format!("--env {index}={value}: {e} (the file's 'environment:' sets its size)"),
+                )
+            })?;
+        }
+        Ok(env)
+    }
+
+    /// Starts continuous development (dL-system) at t = 0. `options.time`, `dt` and `timing`
+    /// override the file's headers; `time` must be given one way or the other.
+    pub fn development(&self, options: &DeriveOptions) -> Result<Development<'_>, Diagnostic> {
+        let time = options.time.or(self.time).ok_or_else(|| {
+            Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!(
+                    "{}: continuous development needs 'time: T' in the file or --time",
+                    self.source.name()
+                ),
+            )
+        })?;
+        let dt = options.dt.or(self.dt).unwrap_or(1.0);
+        if !(dt > 0.0 && dt.is_finite()) {
+            return Err(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("dt must be more than 0, not {dt}"),
+            ));
+        }
+        if !(time >= 0.0 && time.is_finite()) {
+            return Err(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("time must be 0 or more, not {time}"),
+            ));
+        }
+        if time / dt > 1e9 {
+            return Err(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("time / dt = {} observation steps is too many", time / dt),
+            ));
+        }
+        let env = self.initial_environment(options)?;
+        let timing = options.timing.unwrap_or(self.timing);
+        Development::new(self, options, env, time, dt, timing)
+    }
+
     /// A string written readably (see [`ModuleString::display`]).
     pub fn display(&self, s: &ModuleString) -> String {
         s.display(&self.symbols)
     }
 
-    /// Starts a derivation at the axiom.
-    pub fn derivation(&self, options: &DeriveOptions) -> Derivation<'_> {
-        self.derivation_from(self.axiom.clone(), 0, options)
+    /// Starts a discrete derivation at the axiom (its `?E` modules already processed).
+    pub fn derivation(&self, options: &DeriveOptions) -> Result<Derivation<'_>, Diagnostic> {
+        let env = self.initial_environment(options)?;
+        let mut d = self.derivation_from(self.axiom.clone(), 0, options);
+        d.env = env;
+        d.exchange()?;
+        Ok(d)
     }
 
     /// Starts a derivation at `start`, taken to be the string after `step` steps (its
@@ -151,6 +256,7 @@ impl LSystem {
         rng.set_stream(0);
         Derivation {
             lsys: self,
+            env: self.environment.clone(),
             current: start,
             next: ModuleString::new(),
             step,
@@ -180,6 +286,7 @@ impl LSystem {
             ignored: &self.ignored,
             t,
             max_modules: options.max_modules,
+            continuous: false,
         };
         pass.rewrite(s, &mut out, &mut Workspace::default(), &mut rng)
             .map_err(|f| self.failure(f, &format!("interpreting the string at t = {t}")))?;
@@ -201,6 +308,26 @@ impl LSystem {
                 format!("the string grew past {limit} modules while {when}"),
             )
             .with_note("raise the limit with --max-modules, or check for a runaway rule"),
+            Failure::SolveInDiscreteMode { span } => Diagnostic::at(
+                DiagnosticKind::Runtime,
+                &self.source,
+                span,
+                format!("a 'solve' rule matched while {when} in discrete steps"),
+            )
+            .with_note("differential rules grow in continuous time: add 'time: T' to the file or pass --time"),
+            Failure::Query { span, message } => Diagnostic::at(
+                DiagnosticKind::Runtime,
+                &self.source,
+                span.unwrap_or(self.axiom_span),
+                format!("{message} while {when}"),
+            ),
+            Failure::NoSettling { span, passes } => Diagnostic::at(
+                DiagnosticKind::Runtime,
+                &self.source,
+                span.unwrap_or(self.axiom_span),
+                format!("this rule keeps firing: more than {passes} rewriting passes at one instant while {when}"),
+            )
+            .with_note("in continuous time a discrete rule must change its module so that it stops matching"),
         }
     }
 }
@@ -208,6 +335,7 @@ impl LSystem {
 /// A derivation in progress: the current string and the means to rewrite it.
 pub struct Derivation<'l> {
     lsys: &'l LSystem,
+    env: Environment,
     current: ModuleString,
     next: ModuleString,
     step: u64,
@@ -222,6 +350,27 @@ impl Derivation<'_> {
         &self.current
     }
 
+    /// The environment after the current step's `?E` modules were processed.
+    pub fn environment(&self) -> &Environment {
+        &self.env
+    }
+
+    fn exchange(&mut self) -> Result<(), Diagnostic> {
+        let Some(query) = self.lsys.query else {
+            return Ok(());
+        };
+        open::exchange(
+            &mut self.current,
+            query,
+            &mut self.env,
+            &self.workspace.query_origins,
+        )
+        .map_err(|f| {
+            let when = format!("processing ?E after step {}", self.step);
+            self.lsys.failure(f, &when)
+        })
+    }
+
     /// How many steps have been taken.
     pub fn step_number(&self) -> u64 {
         self.step
@@ -234,6 +383,7 @@ impl Derivation<'_> {
             ignored: &self.lsys.ignored,
             t: self.step as f64,
             max_modules: self.max_modules,
+            continuous: false,
         };
         if let Err(f) = pass.rewrite(
             &self.current,
@@ -246,6 +396,7 @@ impl Derivation<'_> {
         }
         std::mem::swap(&mut self.current, &mut self.next);
         self.step += 1;
+        self.exchange()?;
         Ok(&self.current)
     }
 }

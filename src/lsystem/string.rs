@@ -1,7 +1,6 @@
 //! Module strings: the symbols and parameters an L-system derives, stored flat.
 
 use std::collections::HashMap;
-use std::fmt::Write as _;
 
 use serde::Serialize;
 
@@ -195,7 +194,7 @@ impl ModuleString {
                     if k > 0 {
                         out.push(',');
                     }
-                    let _ = write!(out, "{p}");
+                    out.push_str(&format_number(*p));
                 }
                 out.push(')');
             }
@@ -222,4 +221,16 @@ pub struct NamedModule<'a> {
     pub sym: &'a str,
     /// Its parameters.
     pub params: &'a [f64],
+}
+
+/// A number for people to read: exact values as Rust prints them, values that differ from a
+/// short decimal only by rounding error (`1.9999999999999998`) as that decimal (`2`).
+pub fn format_number(v: f64) -> String {
+    let short = format!("{v:.9}");
+    let short = short.trim_end_matches('0').trim_end_matches('.');
+    let short = if short == "-0" { "0" } else { short };
+    match short.parse::<f64>() {
+        Ok(s) if (s - v).abs() <= 1e-12 * v.abs().max(1.0) => short.to_string(),
+        _ => format!("{v}"),
+    }
 }

@@ -16,7 +16,7 @@ pub fn derive(text: &str, steps: usize) -> Vec<String> {
 /// As [`derive`], with options.
 pub fn derive_with(text: &str, steps: usize, options: &DeriveOptions) -> Vec<String> {
     let lsys = lsystem(text);
-    let mut d = lsys.derivation(options);
+    let mut d = lsys.derivation(options).unwrap_or_else(|e| panic!("{e}"));
     let mut out = vec![squash(&lsys.display(d.current()))];
     for _ in 0..steps {
         let s = d.step().unwrap_or_else(|e| panic!("{e}"));

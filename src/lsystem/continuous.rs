@@ -1,0 +1,526 @@
+//! Continuous developmental time (differential L-systems): modules under a `solve` rule grow
+//! by their ODEs, integrated together with `ode_solvers`' Dopri5; the moments at which a
+//! module's first matching rule changes (events) are located by bisection on the solver's
+//! dense output, and the string is rewritten there.
+
+use std::cell::{Cell, RefCell};
+
+use ode_solvers::dop_shared::IntegrationError;
+use ode_solvers::{DVector, Dopri5, System};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use super::derive::{Failure, Pass, Workspace};
+use super::expr::{EvalEnv, ExprError};
+use super::open::exchange;
+use super::string::ModuleString;
+use super::{DeriveOptions, LSystem};
+use crate::environment::Environment;
+use crate::lang::ast::Timing;
+use crate::lang::{Diagnostic, DiagnosticKind};
+
+/// Relative tolerance of the ODE solver.
+const RTOL: f64 = 1e-11;
+/// Absolute tolerance of the ODE solver.
+const ATOL: f64 = 1e-12;
+/// An event this close after an observation time (as a fraction of `dt`) is taken to belong
+/// to it, so that a guard flipping exactly at a frame is seen at that frame whatever the
+/// round-off.
+const EVENT_WINDOW: f64 = 1e-9;
+/// Most rewriting passes at one instant before settling is declared impossible.
+pub const MAX_PASSES_PER_INSTANT: usize = 1000;
+/// Most events within one observation step.
+const MAX_EVENTS_PER_STEP: usize = 100_000;
+const NO_RULE: u32 = u32::MAX;
+
+/// A moment at which a module's first matching rule changed.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Event {
+    /// When, in developmental time.
+    pub t: f64,
+    /// The module, written readably, as it was at that moment.
+    pub module: String,
+    /// The line of the rule that matches it from then on (`None`: no rule matches).
+    pub rule_line: Option<usize>,
+}
+
+/// Development in continuous time: the string at the latest observation time.
+pub struct Development<'l> {
+    lsys: &'l LSystem,
+    string: ModuleString,
+    scratch: ModuleString,
+    env: Environment,
+    t: f64,
+    frame: u64,
+    frames: u64,
+    dt: f64,
+    timing: Timing,
+    max_modules: usize,
+    rng: ChaCha8Rng,
+    /// Guards are evaluated many times while locating events: their random draws, if any,
+    /// come from this stream so that they do not disturb the rewriting stream.
+    classify_rng: ChaCha8Rng,
+    ws: Workspace,
+    events: Vec<Event>,
+}
+
+/// A module growing by a `solve` rule during one integration.
+struct Growing {
+    module: usize,
+    rule: u32,
+    /// Where its parameters start in the state vector.
+    offset: usize,
+    /// Context modules bound by its rule: (first argument slot, module index).
+    bound: Vec<(u32, u32)>,
+}
+
+impl<'l> Development<'l> {
+    pub(crate) fn new(
+        lsys: &'l LSystem,
+        options: &DeriveOptions,
+        env: Environment,
+        time: f64,
+        dt: f64,
+        timing: Timing,
+    ) -> Result<Self, Diagnostic> {
+        let seed = options.seed.unwrap_or(lsys.seed);
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(0);
+        let mut classify_rng = ChaCha8Rng::seed_from_u64(seed);
+        classify_rng.set_stream(4);
+        let frames = (time / dt + 1e-9).floor() as u64;
+        let mut dev = Development {
+            lsys,
+            string: lsys.axiom.clone(),
+            scratch: ModuleString::new(),
+            env,
+            t: 0.0,
+            frame: 0,
+            frames,
+            dt,
+            timing,
+            max_modules: options.max_modules,
+            rng,
+            classify_rng,
+            ws: Workspace::default(),
+            events: Vec::new(),
+        };
+        dev.exchange()?;
+        if timing == Timing::Exact {
+            dev.settle()?;
+        }
+        Ok(dev)
+    }
+
+    /// The string at the current observation time.
+    pub fn current(&self) -> &ModuleString {
+        &self.string
+    }
+
+    /// The environment at the current observation time.
+    pub fn environment(&self) -> &Environment {
+        &self.env
+    }
+
+    /// The index of the current observation (0 for t = 0).
+    pub fn frame_number(&self) -> u64 {
+        self.frame
+    }
+
+    /// The current observation time, `frame_number() * dt`.
+    pub fn time(&self) -> f64 {
+        self.frame as f64 * self.dt
+    }
+
+    /// How many observation steps development takes (`floor(time / dt)`).
+    pub fn frame_count(&self) -> u64 {
+        self.frames
+    }
+
+    /// Events since the last call, in time order.
+    pub fn take_events(&mut self) -> Vec<Event> {
+        std::mem::take(&mut self.events)
+    }
+
+    /// Develops to the next observation time. Returns false when development is over.
+    pub fn advance(&mut self) -> Result<bool, Diagnostic> {
+        if self.frame >= self.frames {
+            return Ok(false);
+        }
+        let target = (self.frame + 1) as f64 * self.dt;
+        if self.timing == Timing::Iterative {
+            self.pass()?;
+            self.exchange()?;
+        }
+        self.integrate_to(target)?;
+        self.exchange()?;
+        if self.timing == Timing::Exact {
+            self.settle()?;
+        }
+        self.frame += 1;
+        Ok(true)
+    }
+
+    fn pass_rules(&self) -> Pass<'l> {
+        Pass {
+            rules: &self.lsys.productions,
+            ignored: &self.lsys.ignored,
+            t: self.t,
+            max_modules: self.max_modules,
+            continuous: true,
+        }
+    }
+
+    fn fail(&self, failure: Failure) -> Diagnostic {
+        self.lsys
+            .failure(failure, &format!("developing at t = {}", self.t))
+    }
+
+    /// One parallel pass: modules whose first matching rule is discrete are rewritten.
+    /// Returns how many were.
+    fn pass(&mut self) -> Result<super::derive::PassStats, Diagnostic> {
+        let pass = self.pass_rules();
+        let stats = pass
+            .rewrite(&self.string, &mut self.scratch, &mut self.ws, &mut self.rng)
+            .map_err(|f| self.fail(f))?;
+        if stats.rewritten > 0 {
+            std::mem::swap(&mut self.string, &mut self.scratch);
+        }
+        Ok(stats)
+    }
+
+    /// Rewrites at this instant until no module's first matching rule is discrete.
+    fn settle(&mut self) -> Result<(), Diagnostic> {
+        for _ in 0..MAX_PASSES_PER_INSTANT {
+            let stats = self.pass()?;
+            if stats.rewritten == 0 {
+                return Ok(());
+            }
+            self.exchange()?;
+        }
+        let stats = self.pass()?;
+        if stats.rewritten == 0 {
+            return Ok(());
+        }
+        Err(self.fail(Failure::NoSettling {
+            span: stats.last_rule,
+            passes: MAX_PASSES_PER_INSTANT,
+        }))
+    }
+
+    /// Processes the `?E` modules (after a pass, at events and at frames).
+    fn exchange(&mut self) -> Result<(), Diagnostic> {
+        let Some(query) = self.lsys.query else {
+            return Ok(());
+        };
+        exchange(
+            &mut self.string,
+            query,
+            &mut self.env,
+            &self.ws.query_origins,
+        )
+        .map_err(|f| self.fail(f))
+    }
+
+    /// The first matching rule of every module of `string` at time `t`.
+    fn classify(
+        &mut self,
+        string_is_scratch: bool,
+        t: f64,
+        out: &mut Vec<u32>,
+    ) -> Result<(), Failure> {
+        let mut pass = self.pass_rules();
+        pass.t = t;
+        let string = if string_is_scratch {
+            &self.scratch
+        } else {
+            &self.string
+        };
+        pass.prepare(string, &mut self.ws);
+        out.clear();
+        for i in 0..string.len() {
+            let rule = pass.first_match(string, i, &mut self.ws, &mut self.classify_rng)?;
+            out.push(rule.unwrap_or(NO_RULE));
+        }
+        Ok(())
+    }
+
+    /// Integrates the growing modules up to `target`, handling every event on the way.
+    fn integrate_to(&mut self, target: f64) -> Result<(), Diagnostic> {
+        let lsys = self.lsys;
+        let window = EVENT_WINDOW * self.dt;
+        let mut events = 0;
+        let mut baseline = Vec::new();
+        let mut probe = Vec::new();
+        while self.t < target {
+            let t0 = self.t;
+            self.classify(false, t0, &mut baseline)
+                .map_err(|f| self.fail(f))?;
+            let rules = &lsys.productions.rules;
+            let mut growing = Vec::new();
+            let mut offset = 1; // y[0] is time itself, so the state is never empty
+            let mut offsets = vec![u32::MAX; self.string.len()];
+            for (m, &r) in baseline.iter().enumerate() {
+                if r != NO_RULE && rules[r as usize].solve.is_some() {
+                    // Bind again to learn which context modules the rule reads.
+                    let pass = self.pass_rules();
+                    pass.prepare(&self.string, &mut self.ws);
+                    pass.first_match(&self.string, m, &mut self.ws, &mut self.classify_rng)
+                        .map_err(|f| self.fail(f))?;
+                    offsets[m] = offset as u32;
+                    growing.push(Growing {
+                        module: m,
+                        rule: r,
+                        offset,
+                        bound: self.ws.bound.clone(),
+                    });
+                    offset += self.string.params(m).len();
+                }
+            }
+            let end = target + window;
+            if end - t0 <= 1e-13 * t0.abs().max(1.0) {
+                self.t = target;
+                break;
+            }
+            let mut y0 = DVector::zeros(offset);
+            y0[0] = t0;
+            for g in &growing {
+                let p = self.string.params(g.module);
+                y0.rows_mut(g.offset, p.len()).copy_from_slice(p);
+            }
+
+            let system = GrowthSystem {
+                dev: RefCell::new(self),
+                growing: &growing,
+                offsets: &offsets,
+                baseline: &baseline,
+                last_same: Cell::new(t0),
+                stop: Cell::new(None),
+                error: RefCell::new(None),
+                probe: RefCell::new(std::mem::take(&mut probe)),
+            };
+            let mut model = ode_solvers::continuous_output_model::ContinuousOutputModel::default();
+            let outcome = {
+                let mut solver = Dopri5::new(&system, t0, end, 0.0, y0.clone(), RTOL, ATOL);
+                solver.integrate_with_continuous_output_model(&mut model)
+            };
+            let stop = system.stop.get();
+            let error = system.error.borrow_mut().take();
+            probe = system.probe.take();
+            drop(system);
+
+            if let Some(e) = error {
+                return Err(self.runtime_error(e));
+            }
+            if let Err(e) = outcome {
+                return Err(self.integration_error(e, &growing));
+            }
+            let state_at = |t: f64| model.evaluate(t).unwrap_or_else(|| y0.clone());
+            match stop {
+                None => {
+                    let y = state_at(target);
+                    self.write_state(&growing, &y);
+                    self.t = target;
+                }
+                Some((mut lo, mut hi)) => {
+                    // Bisection: the first matching rules are as at t0 at `lo`, not at `hi`.
+                    // Located to a few units of round-off, far inside 1e-9 of dt.
+                    while hi - lo > 4.0 * f64::EPSILON * hi.abs().max(1.0) {
+                        let mid = 0.5 * (lo + hi);
+                        let y = state_at(mid);
+                        if self
+                            .differs(&growing, &y, mid, &baseline, &mut probe)
+                            .map_err(|f| self.fail(f))?
+                        {
+                            hi = mid;
+                        } else {
+                            lo = mid;
+                        }
+                    }
+                    let y = state_at(hi);
+                    self.write_state(&growing, &y);
+                    self.t = hi;
+                    self.record_events(&baseline, &mut probe)?;
+                    match self.timing {
+                        Timing::Exact => self.settle()?,
+                        Timing::Iterative => {
+                            self.pass()?;
+                        }
+                    }
+                    self.exchange()?;
+                    events += 1;
+                    if events > MAX_EVENTS_PER_STEP {
+                        let span = growing.first().map(|g| rules[g.rule as usize].span);
+                        return Err(self.fail(Failure::Expr(ExprError {
+                            span: span.unwrap_or_default(),
+                            message: format!(
+                                "more than {MAX_EVENTS_PER_STEP} events in one observation step (do guards flip back and forth?)"
+                            ),
+                        })));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Copies the growing parameters of state `y` into the string.
+    fn write_state(&mut self, growing: &[Growing], y: &DVector<f64>) {
+        for g in growing {
+            let start = self.string.bounds[g.module] as usize;
+            let n = self.string.params(g.module).len();
+            for k in 0..n {
+                self.string.params[start + k] = y[g.offset + k];
+            }
+        }
+    }
+
+    /// Whether, at state `y` and time `t`, some module's first matching rule differs from
+    /// `baseline`.
+    fn differs(
+        &mut self,
+        growing: &[Growing],
+        y: &DVector<f64>,
+        t: f64,
+        baseline: &[u32],
+        probe: &mut Vec<u32>,
+    ) -> Result<bool, Failure> {
+        self.scratch.clone_from(&self.string);
+        for g in growing {
+            let start = self.scratch.bounds[g.module] as usize;
+            let n = self.scratch.params(g.module).len();
+            for k in 0..n {
+                self.scratch.params[start + k] = y[g.offset + k];
+            }
+        }
+        self.classify(true, t, probe)?;
+        Ok(probe.as_slice() != baseline)
+    }
+
+    fn record_events(&mut self, baseline: &[u32], probe: &mut Vec<u32>) -> Result<(), Diagnostic> {
+        let t = self.t;
+        self.classify(false, t, probe).map_err(|f| self.fail(f))?;
+        let rules = &self.lsys.productions.rules;
+        for (m, (&before, &after)) in baseline.iter().zip(probe.iter()).enumerate() {
+            if before != after {
+                let mut one = ModuleString::new();
+                one.push_from(&self.string, m);
+                self.events.push(Event {
+                    t,
+                    module: self.lsys.display(&one),
+                    rule_line: (after != NO_RULE).then(|| {
+                        self.lsys
+                            .source
+                            .line_col(rules[after as usize].span.start)
+                            .0
+                    }),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn runtime_error(&self, (t, e): (f64, ExprError)) -> Diagnostic {
+        Diagnostic::at(
+            DiagnosticKind::Runtime,
+            &self.lsys.source,
+            e.span,
+            format!("{} in an ODE at t = {t}", e.message),
+        )
+    }
+
+    fn integration_error(&self, e: IntegrationError, growing: &[Growing]) -> Diagnostic {
+        let message = format!("the ODEs could not be integrated: {e}");
+        match growing.first() {
+            Some(g) => Diagnostic::at(
+                DiagnosticKind::Runtime,
+                &self.lsys.source,
+                self.lsys.productions.rules[g.rule as usize].span,
+                message,
+            ),
+            None => Diagnostic::without_location(DiagnosticKind::Runtime, message),
+        }
+    }
+}
+
+/// The ODE system of one integration, as `ode_solvers` sees it.
+struct GrowthSystem<'a, 'd, 'l> {
+    dev: RefCell<&'d mut Development<'l>>,
+    growing: &'a [Growing],
+    offsets: &'a [u32],
+    baseline: &'a [u32],
+    /// The last solver time at which every module's first matching rule was as at the start.
+    last_same: Cell<f64>,
+    /// Set when an event is bracketed: (last time without it, first time with it).
+    stop: Cell<Option<(f64, f64)>>,
+    error: RefCell<Option<(f64, ExprError)>>,
+    probe: RefCell<Vec<u32>>,
+}
+
+impl System<f64, DVector<f64>> for &GrowthSystem<'_, '_, '_> {
+    fn system(&self, t: f64, y: &DVector<f64>, dy: &mut DVector<f64>) {
+        dy.fill(0.0);
+        dy[0] = 1.0;
+        if self.error.borrow().is_some() {
+            return;
+        }
+        let mut dev = self.dev.borrow_mut();
+        let dev = &mut **dev;
+        let rules = &dev.lsys.productions.rules;
+        let string = &dev.string;
+        let args = &mut dev.ws.scratch_args;
+        for g in self.growing {
+            let rule = &rules[g.rule as usize];
+            args.clear();
+            args.resize(rule.slots, 0.0);
+            args[..rule.arity].copy_from_slice(y.rows(g.offset, rule.arity).as_slice());
+            for &(slot, m) in &g.bound {
+                let (slot, m) = (slot as usize, m as usize);
+                let n = string.params(m).len();
+                let at = self.offsets[m];
+                if at == u32::MAX {
+                    args[slot..slot + n].copy_from_slice(string.params(m));
+                } else {
+                    args[slot..slot + n].copy_from_slice(y.rows(at as usize, n).as_slice());
+                }
+            }
+            let mut env = EvalEnv {
+                args,
+                t,
+                rng: &mut dev.classify_rng,
+            };
+            for (index, rate) in rule.solve.as_ref().expect("growing rules solve") {
+                match rate.eval(&mut env) {
+                    Ok(v) => dy[g.offset + index] = v,
+                    Err(e) => {
+                        *self.error.borrow_mut() = Some((t, e));
+                        return;
+                    }
+                }
+            }
+        }
+    }
+
+    fn solout(&mut self, t: f64, y: &DVector<f64>, _dy: &DVector<f64>) -> bool {
+        if self.error.borrow().is_some() {
+            return true;
+        }
+        let mut dev = self.dev.borrow_mut();
+        let mut probe = self.probe.borrow_mut();
+        match dev.differs(self.growing, y, t, self.baseline, &mut probe) {
+            Ok(false) => {
+                self.last_same.set(t);
+                false
+            }
+            Ok(true) => {
+                self.stop.set(Some((self.last_same.get(), t)));
+                true
+            }
+            Err(Failure::Expr(e)) => {
+                *self.error.borrow_mut() = Some((t, e));
+                true
+            }
+            Err(_) => true,
+        }
+    }
+}
