@@ -51,6 +51,8 @@ pub struct Development<'l> {
     scratch: ModuleString,
     env: Environment,
     t: f64,
+    /// The time of frame 0.
+    start: f64,
     frame: u64,
     frames: u64,
     dt: f64,
@@ -75,9 +77,12 @@ struct Growing {
 }
 
 impl<'l> Development<'l> {
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         lsys: &'l LSystem,
         options: &DeriveOptions,
+        start_string: ModuleString,
+        start: f64,
         env: Environment,
         time: f64,
         dt: f64,
@@ -91,10 +96,11 @@ impl<'l> Development<'l> {
         let frames = (time / dt + 1e-9).floor() as u64;
         let mut dev = Development {
             lsys,
-            string: lsys.axiom.clone(),
+            string: start_string,
             scratch: ModuleString::new(),
             env,
-            t: 0.0,
+            t: start,
+            start,
             frame: 0,
             frames,
             dt,
@@ -127,9 +133,9 @@ impl<'l> Development<'l> {
         self.frame
     }
 
-    /// The current observation time, `frame_number() * dt`.
+    /// The current observation time, `start + frame_number() * dt`.
     pub fn time(&self) -> f64 {
-        self.frame as f64 * self.dt
+        self.start + self.frame as f64 * self.dt
     }
 
     /// How many observation steps development takes (`floor(time / dt)`).
@@ -147,7 +153,7 @@ impl<'l> Development<'l> {
         if self.frame >= self.frames {
             return Ok(false);
         }
-        let target = (self.frame + 1) as f64 * self.dt;
+        let target = self.start + (self.frame + 1) as f64 * self.dt;
         if self.timing == Timing::Iterative {
             self.pass()?;
             self.exchange()?;

@@ -196,6 +196,20 @@ impl LSystem {
     /// Starts continuous development (dL-system) at t = 0. `options.time`, `dt` and `timing`
     /// override the file's headers; `time` must be given one way or the other.
     pub fn development(&self, options: &DeriveOptions) -> Result<Development<'_>, Diagnostic> {
+        let env = self.initial_environment(options)?;
+        self.development_from(self.axiom.clone(), 0.0, env, options)
+    }
+
+    /// Continues development from `start` (a string of this system's symbols) at time
+    /// `start_time` in environment `env`, for the duration `options.time` (or the file's
+    /// `time:`), with frames at `start_time + k·dt`.
+    pub fn development_from(
+        &self,
+        start: ModuleString,
+        start_time: f64,
+        env: Environment,
+        options: &DeriveOptions,
+    ) -> Result<Development<'_>, Diagnostic> {
         let time = options.time.or(self.time).ok_or_else(|| {
             Diagnostic::without_location(
                 DiagnosticKind::Semantic,
@@ -224,9 +238,8 @@ impl LSystem {
                 format!("time / dt = {} observation steps is too many", time / dt),
             ));
         }
-        let env = self.initial_environment(options)?;
         let timing = options.timing.unwrap_or(self.timing);
-        Development::new(self, options, env, time, dt, timing)
+        Development::new(self, options, start, start_time, env, time, dt, timing)
     }
 
     /// A string written readably (see [`ModuleString::display`]).
