@@ -226,7 +226,7 @@ fn rules_read_the_environment_through_context_and_write_it() {
     let text = "\
 environment: 0 0.5 0 0
 axiom: A(1) ?E(1, 1, 0) S
-A(x) > ?E(m, i, c) : c > 0.3 --> forward(x) A(x)
+A(x) > ?E(1, 1, c) : c > 0.3 --> forward(x) A(x)
 S --> ?E(0, 2, 0.8) S
 ";
     let lsys = LSystem::from_text("env.lsys", text).unwrap();

@@ -273,3 +273,11 @@ fn every_shipped_example_parses_and_derives() {
         }
     }
 }
+
+#[test]
+fn numbers_in_patterns_must_match() {
+    let text = "axiom: A(1) A(2) B(0) C(1, 5) C(2, 5)\nA(1) --> X\nB(z) > C(2, y) --> B(y)\n";
+    assert_eq!(derive(text, 1)[1], "XA(2)B(0)C(1,5)C(2,5)");
+    let text = "axiom: B(0) C(2, 5)\nB(z) > C(2, y) --> B(y)\nA(-1.5) --> Y\n";
+    assert_eq!(derive(text, 1)[1], "B(5)C(2,5)");
+}

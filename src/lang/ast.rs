@@ -111,10 +111,19 @@ impl Expr {
 pub struct PatternModule {
     /// The module's name (`A`, `forward`, `[`, ...).
     pub name: String,
-    /// Formal parameter names with their places.
+    /// Formal parameters with their places: a name binds the value; a number (written as
+    /// such, e.g. `1` or `-0.5`) is a value the module's parameter must equal.
     pub params: Vec<(String, Span)>,
     /// The module as written (for a split word: the part of the word it came from).
     pub span: Span,
+}
+
+/// Whether a formal parameter is a number to match rather than a name to bind.
+pub fn is_constant_formal(param: &str) -> bool {
+    param
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_digit() || c == '-' || c == '+' || c == '.')
 }
 
 /// A module in an axiom or successor: a name and parameter expressions.

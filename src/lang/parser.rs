@@ -79,6 +79,7 @@ fn human_rule_name(grammar_rule: &Rule) -> String {
         Rule::successor => "successor modules",
         Rule::pattern_module => "a module",
         Rule::formal_params => "parameter names in parentheses",
+        Rule::formal => "a parameter name or a number",
         Rule::module_list => "modules",
         Rule::module_call => "a module",
         Rule::actual_params => "parameter values in parentheses",

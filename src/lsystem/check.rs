@@ -162,7 +162,7 @@ impl LSystem {
                     .chain(&ast.right)
                     .flat_map(|p| &p.params);
                 for (param, span) in formals {
-                    if !used.contains(param) {
+                    if !used.contains(param) && !crate::lang::ast::is_constant_formal(param) {
                         push(
                             FindingKind::UnusedParameter,
                             *span,

@@ -11,7 +11,9 @@ use super::LSystem;
 use super::expr::{self, CExpr, EvalEnv, ExprError, Resolved};
 use super::string::{ModuleString, POP, PUSH, SymbolId, SymbolTable};
 use crate::environment::Environment;
-use crate::lang::ast::{Expr, LsysFile, ModuleCall, PatternModule, Rule, Section, Timing};
+use crate::lang::ast::{
+    Expr, LsysFile, ModuleCall, PatternModule, Rule, Section, Timing, is_constant_formal,
+};
 use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
 
 /// One element of a context pattern.
@@ -47,6 +49,8 @@ pub(crate) struct CompiledRule {
     /// The successor, when none of its parameters depends on the match.
     pub constant: Option<ModuleString>,
     pub probability: Option<f64>,
+    /// Argument slots that must hold a given value (numbers written in a pattern).
+    pub constraints: Vec<(usize, f64)>,
     pub span: Span,
 }
 
@@ -55,6 +59,7 @@ impl CompiledRule {
     pub fn unconditional(&self) -> bool {
         self.left.is_empty()
             && self.right.is_empty()
+            && self.constraints.is_empty()
             && self.probability.is_none()
             && self
                 .guard
@@ -416,9 +421,19 @@ impl Compiler<'_> {
     fn rule(&mut self, rule: &Rule) -> Result<CompiledRule, Diagnostic> {
         // Formal parameters: predecessor, then left context, then right context.
         let mut names: Vec<(String, Span)> = Vec::new();
+        let mut constraints = Vec::new();
         let mut bind = |params: &[(String, Span)], c: &Compiler<'_>| -> Result<usize, Diagnostic> {
             let slot = names.len();
             for (name, span) in params {
+                if is_constant_formal(name) {
+                    let value: f64 = name
+                        .parse()
+                        .map_err(|_| c.error(*span, format!("'{name}' is not a number")))?;
+                    constraints.push((names.len(), value));
+                    // A slot no expression can name.
+                    names.push((format!("#{}", names.len()), *span));
+                    continue;
+                }
                 if names.iter().any(|(n, _)| n == name) {
                     return Err(c.error(
                         *span,
@@ -603,6 +618,7 @@ impl Compiler<'_> {
             solve,
             constant,
             probability,
+            constraints,
             span: rule.span,
         })
     }

@@ -239,6 +239,13 @@ impl Pass<'_> {
         if !rule.right.is_empty() && !self.match_right(rule, input, i, ws) {
             return Ok(false);
         }
+        if rule
+            .constraints
+            .iter()
+            .any(|&(slot, value)| ws.args[slot] != value)
+        {
+            return Ok(false);
+        }
         match &rule.guard {
             None => Ok(true),
             Some(guard) => {
