@@ -81,6 +81,9 @@ pub(crate) struct RuleSet {
     pub has_context: bool,
     /// The id of `?E`, if the system has it.
     pub query: Option<SymbolId>,
+    /// Whether some rule's choice can depend on other modules or on the time (context, or
+    /// a guard that reads `t`): continuous time must then watch every module for events.
+    pub guards_see_outside: bool,
 }
 
 impl RuleSet {
@@ -103,6 +106,12 @@ impl RuleSet {
             .rules
             .iter()
             .any(|r| !r.left.is_empty() || !r.right.is_empty());
+        self.guards_see_outside = self.has_context
+            || self.rules.iter().any(|r| {
+                r.guard
+                    .as_ref()
+                    .is_some_and(|g| g.uses_time() || g.uses_random())
+            });
     }
 }
 

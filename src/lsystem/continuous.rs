@@ -64,6 +64,19 @@ pub struct Development<'l> {
     classify_rng: ChaCha8Rng,
     ws: Workspace,
     events: Vec<Event>,
+    /// The first matching rule of every module, and the growing modules, as of the last
+    /// change to the string; rebuilt after every rewrite (or every interval when guards can
+    /// see other modules or the time).
+    cache: Cache,
+}
+
+#[derive(Default)]
+struct Cache {
+    valid: bool,
+    classes: Vec<u32>,
+    growing: Vec<Growing>,
+    offsets: Vec<u32>,
+    state_len: usize,
 }
 
 /// A module growing by a `solve` rule during one integration.
@@ -110,6 +123,7 @@ impl<'l> Development<'l> {
             classify_rng,
             ws: Workspace::default(),
             events: Vec::new(),
+            cache: Cache::default(),
         };
         dev.exchange()?;
         if timing == Timing::Exact {
@@ -191,6 +205,7 @@ impl<'l> Development<'l> {
             .map_err(|f| self.fail(f))?;
         if stats.rewritten > 0 {
             std::mem::swap(&mut self.string, &mut self.scratch);
+            self.cache.valid = false;
         }
         Ok(stats)
     }
@@ -228,20 +243,11 @@ impl<'l> Development<'l> {
         .map_err(|f| self.fail(f))
     }
 
-    /// The first matching rule of every module of `string` at time `t`.
-    fn classify(
-        &mut self,
-        string_is_scratch: bool,
-        t: f64,
-        out: &mut Vec<u32>,
-    ) -> Result<(), Failure> {
+    /// The first matching rule of every module of the string at time `t`.
+    fn classify(&mut self, t: f64, out: &mut Vec<u32>) -> Result<(), Failure> {
         let mut pass = self.pass_rules();
         pass.t = t;
-        let string = if string_is_scratch {
-            &self.scratch
-        } else {
-            &self.string
-        };
+        let string = &self.string;
         pass.prepare(string, &mut self.ws);
         out.clear();
         for i in 0..string.len() {
@@ -251,123 +257,179 @@ impl<'l> Development<'l> {
         Ok(())
     }
 
+    /// Rebuilds the classification and the list of growing modules if the string changed
+    /// (or always, when guards can see other modules or the time).
+    fn refresh(&mut self) -> Result<(), Diagnostic> {
+        if self.cache.valid && !self.lsys.productions.guards_see_outside {
+            return Ok(());
+        }
+        let mut cache = std::mem::take(&mut self.cache);
+        let t = self.t;
+        self.classify(t, &mut cache.classes)
+            .map_err(|f| self.fail(f))?;
+        let rules = &self.lsys.productions.rules;
+        cache.growing.clear();
+        cache.offsets.clear();
+        cache.offsets.resize(self.string.len(), u32::MAX);
+        let mut offset = 1; // y[0] is time itself, so the state is never empty
+        let pass = self.pass_rules();
+        pass.prepare(&self.string, &mut self.ws);
+        for (m, &r) in cache.classes.iter().enumerate() {
+            if r != NO_RULE && rules[r as usize].solve.is_some() {
+                let rule = &rules[r as usize];
+                let bound = if rule.left.is_empty() && rule.right.is_empty() {
+                    Vec::new()
+                } else {
+                    // Bind again to learn which context modules the rule reads.
+                    pass.first_match(&self.string, m, &mut self.ws, &mut self.classify_rng)
+                        .map_err(|f| self.fail(f))?;
+                    self.ws.bound.clone()
+                };
+                cache.offsets[m] = offset as u32;
+                cache.growing.push(Growing {
+                    module: m,
+                    rule: r,
+                    offset,
+                    bound,
+                });
+                offset += self.string.params(m).len();
+            }
+        }
+        cache.state_len = offset;
+        cache.valid = true;
+        self.cache = cache;
+        Ok(())
+    }
+
     /// Integrates the growing modules up to `target`, handling every event on the way.
     fn integrate_to(&mut self, target: f64) -> Result<(), Diagnostic> {
-        let lsys = self.lsys;
         let window = EVENT_WINDOW * self.dt;
         let mut events = 0;
-        let mut baseline = Vec::new();
         let mut probe = Vec::new();
         while self.t < target {
             let t0 = self.t;
-            self.classify(false, t0, &mut baseline)
-                .map_err(|f| self.fail(f))?;
-            let rules = &lsys.productions.rules;
-            let mut growing = Vec::new();
-            let mut offset = 1; // y[0] is time itself, so the state is never empty
-            let mut offsets = vec![u32::MAX; self.string.len()];
-            for (m, &r) in baseline.iter().enumerate() {
-                if r != NO_RULE && rules[r as usize].solve.is_some() {
-                    // Bind again to learn which context modules the rule reads.
-                    let pass = self.pass_rules();
-                    pass.prepare(&self.string, &mut self.ws);
-                    pass.first_match(&self.string, m, &mut self.ws, &mut self.classify_rng)
-                        .map_err(|f| self.fail(f))?;
-                    offsets[m] = offset as u32;
-                    growing.push(Growing {
-                        module: m,
-                        rule: r,
-                        offset,
-                        bound: self.ws.bound.clone(),
-                    });
-                    offset += self.string.params(m).len();
+            self.refresh()?;
+            let cache = std::mem::take(&mut self.cache);
+            let result = self.integrate_once(t0, target, window, &cache, &mut probe);
+            let event = match result {
+                Ok(event) => event,
+                Err(e) => {
+                    self.cache = cache;
+                    return Err(e);
                 }
-            }
-            let end = target + window;
-            if end - t0 <= 1e-13 * t0.abs().max(1.0) {
-                self.t = target;
-                break;
-            }
-            let mut y0 = DVector::zeros(offset);
-            y0[0] = t0;
-            for g in &growing {
-                let p = self.string.params(g.module);
-                y0.rows_mut(g.offset, p.len()).copy_from_slice(p);
-            }
-
-            let system = GrowthSystem {
-                dev: RefCell::new(self),
-                growing: &growing,
-                offsets: &offsets,
-                baseline: &baseline,
-                last_same: Cell::new(t0),
-                stop: Cell::new(None),
-                error: RefCell::new(None),
-                probe: RefCell::new(std::mem::take(&mut probe)),
             };
-            let mut model = ode_solvers::continuous_output_model::ContinuousOutputModel::default();
-            let outcome = {
-                let mut solver = Dopri5::new(&system, t0, end, 0.0, y0.clone(), RTOL, ATOL);
-                solver.integrate_with_continuous_output_model(&mut model)
-            };
-            let stop = system.stop.get();
-            let error = system.error.borrow_mut().take();
-            probe = system.probe.take();
-            drop(system);
-
-            if let Some(e) = error {
-                return Err(self.runtime_error(e));
+            self.cache = cache;
+            if !event {
+                continue;
             }
-            if let Err(e) = outcome {
-                return Err(self.integration_error(e, &growing));
+            match self.timing {
+                Timing::Exact => self.settle()?,
+                Timing::Iterative => {
+                    self.pass()?;
+                }
             }
-            let state_at = |t: f64| model.evaluate(t).unwrap_or_else(|| y0.clone());
-            match stop {
-                None => {
-                    let y = state_at(target);
-                    self.write_state(&growing, &y);
-                    self.t = target;
-                }
-                Some((mut lo, mut hi)) => {
-                    // Bisection: the first matching rules are as at t0 at `lo`, not at `hi`.
-                    // Located to a few units of round-off, far inside 1e-9 of dt.
-                    while hi - lo > 4.0 * f64::EPSILON * hi.abs().max(1.0) {
-                        let mid = 0.5 * (lo + hi);
-                        let y = state_at(mid);
-                        if self
-                            .differs(&growing, &y, mid, &baseline, &mut probe)
-                            .map_err(|f| self.fail(f))?
-                        {
-                            hi = mid;
-                        } else {
-                            lo = mid;
-                        }
-                    }
-                    let y = state_at(hi);
-                    self.write_state(&growing, &y);
-                    self.t = hi;
-                    self.record_events(&baseline, &mut probe)?;
-                    match self.timing {
-                        Timing::Exact => self.settle()?,
-                        Timing::Iterative => {
-                            self.pass()?;
-                        }
-                    }
-                    self.exchange()?;
-                    events += 1;
-                    if events > MAX_EVENTS_PER_STEP {
-                        let span = growing.first().map(|g| rules[g.rule as usize].span);
-                        return Err(self.fail(Failure::Expr(ExprError {
-                            span: span.unwrap_or_default(),
-                            message: format!(
-                                "more than {MAX_EVENTS_PER_STEP} events in one observation step (do guards flip back and forth?)"
-                            ),
-                        })));
-                    }
-                }
+            self.exchange()?;
+            events += 1;
+            if events > MAX_EVENTS_PER_STEP {
+                let rules = &self.lsys.productions.rules;
+                let span = self
+                    .cache
+                    .growing
+                    .first()
+                    .map(|g| rules[g.rule as usize].span);
+                return Err(self.fail(Failure::Expr(ExprError {
+                    span: span.unwrap_or_default(),
+                    message: format!(
+                        "more than {MAX_EVENTS_PER_STEP} events in one observation step (do guards flip back and forth?)"
+                    ),
+                })));
             }
         }
         Ok(())
+    }
+
+    /// Integrates from `t0` towards `target`; stops at the first event. Returns whether one
+    /// happened (the string then holds the state at the event, not yet rewritten).
+    fn integrate_once(
+        &mut self,
+        t0: f64,
+        target: f64,
+        window: f64,
+        cache: &Cache,
+        probe: &mut Vec<u32>,
+    ) -> Result<bool, Diagnostic> {
+        let growing = &cache.growing;
+        let baseline = &cache.classes;
+        let offsets = &cache.offsets;
+        let offset = cache.state_len;
+        let end = target + window;
+        if end - t0 <= 1e-13 * t0.abs().max(1.0) {
+            self.t = target;
+            return Ok(false);
+        }
+        let mut y0 = DVector::zeros(offset);
+        y0[0] = t0;
+        for g in growing {
+            let p = self.string.params(g.module);
+            y0.rows_mut(g.offset, p.len()).copy_from_slice(p);
+        }
+
+        let system = GrowthSystem {
+            dev: RefCell::new(self),
+            growing,
+            offsets,
+            baseline,
+            last_same: Cell::new(t0),
+            stop: Cell::new(None),
+            error: RefCell::new(None),
+            probe: RefCell::new(std::mem::take(probe)),
+        };
+        let mut model = ode_solvers::continuous_output_model::ContinuousOutputModel::default();
+        let outcome = {
+            let mut solver = Dopri5::new(&system, t0, end, 0.0, y0.clone(), RTOL, ATOL);
+            solver.integrate_with_continuous_output_model(&mut model)
+        };
+        let stop = system.stop.get();
+        let error = system.error.borrow_mut().take();
+        *probe = system.probe.take();
+        drop(system);
+
+        if let Some(e) = error {
+            return Err(self.runtime_error(e));
+        }
+        if let Err(e) = outcome {
+            return Err(self.integration_error(e, growing));
+        }
+        let state_at = |t: f64| model.evaluate(t).unwrap_or_else(|| y0.clone());
+        match stop {
+            None => {
+                let y = state_at(target);
+                self.write_state(growing, &y);
+                self.t = target;
+                Ok(false)
+            }
+            Some((mut lo, mut hi)) => {
+                // Bisection: the first matching rules are as at t0 at `lo`, not at `hi`.
+                // Located to a few units of round-off, far inside 1e-9 of dt.
+                while hi - lo > 4.0 * f64::EPSILON * hi.abs().max(1.0) {
+                    let mid = 0.5 * (lo + hi);
+                    let y = state_at(mid);
+                    if self
+                        .differs(growing, &y, mid, baseline, probe)
+                        .map_err(|f| self.fail(f))?
+                    {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                let y = state_at(hi);
+                self.write_state(growing, &y);
+                self.t = hi;
+                self.record_events(baseline, probe)?;
+                Ok(true)
+            }
+        }
     }
 
     /// Copies the growing parameters of state `y` into the string.
@@ -382,7 +444,7 @@ impl<'l> Development<'l> {
     }
 
     /// Whether, at state `y` and time `t`, some module's first matching rule differs from
-    /// `baseline`.
+    /// `baseline`. Leaves state `y` in the string.
     fn differs(
         &mut self,
         growing: &[Growing],
@@ -391,21 +453,27 @@ impl<'l> Development<'l> {
         baseline: &[u32],
         probe: &mut Vec<u32>,
     ) -> Result<bool, Failure> {
-        self.scratch.clone_from(&self.string);
+        self.write_state(growing, y);
+        if self.lsys.productions.guards_see_outside {
+            self.classify(t, probe)?;
+            return Ok(probe.as_slice() != baseline);
+        }
+        // Guards read only their own module's parameters: only growing modules can change.
+        let mut pass = self.pass_rules();
+        pass.t = t;
         for g in growing {
-            let start = self.scratch.bounds[g.module] as usize;
-            let n = self.scratch.params(g.module).len();
-            for k in 0..n {
-                self.scratch.params[start + k] = y[g.offset + k];
+            let rule =
+                pass.first_match(&self.string, g.module, &mut self.ws, &mut self.classify_rng)?;
+            if rule.unwrap_or(NO_RULE) != baseline[g.module] {
+                return Ok(true);
             }
         }
-        self.classify(true, t, probe)?;
-        Ok(probe.as_slice() != baseline)
+        Ok(false)
     }
 
     fn record_events(&mut self, baseline: &[u32], probe: &mut Vec<u32>) -> Result<(), Diagnostic> {
         let t = self.t;
-        self.classify(false, t, probe).map_err(|f| self.fail(f))?;
+        self.classify(t, probe).map_err(|f| self.fail(f))?;
         let rules = &self.lsys.productions.rules;
         for (m, (&before, &after)) in baseline.iter().zip(probe.iter()).enumerate() {
             if before != after {

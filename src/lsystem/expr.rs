@@ -219,6 +219,17 @@ impl CExpr {
         }
     }
 
+    /// Whether the expression reads the time `t`.
+    pub fn uses_time(&self) -> bool {
+        match self {
+            CExpr::Time => true,
+            CExpr::Const(_) | CExpr::Arg(_) => false,
+            CExpr::Unary(_, a, _) => a.uses_time(),
+            CExpr::Binary(_, a, b, _) => a.uses_time() || b.uses_time(),
+            CExpr::Call(_, args, _) => args.iter().any(CExpr::uses_time),
+        }
+    }
+
     /// Whether evaluating the expression draws random numbers.
     pub fn uses_random(&self) -> bool {
         match self {
