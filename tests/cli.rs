@@ -170,3 +170,82 @@ fn help_describes_every_verb() {
     let out = ontogeny(&["derive", "--help"]);
     assert!(stdout(&out).contains("--max-modules"));
 }
+
+#[test]
+fn derive_in_continuous_time_prints_frames_events_and_environment() {
+    let out = ontogeny(&["derive", "examples/dl-figure1.lsys", "--json", "--events"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let lines: Vec<serde_json::Value> = stdout(&out)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let frames: Vec<&serde_json::Value> =
+        lines.iter().filter(|l| l.get("step").is_some()).collect();
+    let events: Vec<&serde_json::Value> =
+        lines.iter().filter(|l| l.get("event").is_some()).collect();
+    assert_eq!(frames.len(), 4, "t = 0, 1, 2, 3");
+    assert_eq!(frames[2]["t"], 2.0);
+    assert_eq!(
+        frames[2]["modules"].as_array().unwrap().len(),
+        3,
+        "B(3)B(4)C(2)"
+    );
+    assert_eq!(events.len(), 2);
+    assert!((events[0]["event"]["t"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    assert_eq!(events[0]["event"]["rule_line"], 11);
+    assert_eq!(events[0]["event"]["module"], "A(4,2)");
+
+    let out = ontogeny(&[
+        "derive",
+        "examples/dl-figure1.lsys",
+        "--dt",
+        "0.5",
+        "--timing",
+        "exact",
+        "--last",
+    ]);
+    assert!(out.status.success());
+    assert_eq!(stdout(&out), "t=3: B(2)C(2)B(1)B(3)C(2)B(2)C(2)\n");
+}
+
+#[test]
+fn env_flag_grows_the_plastic_example_two_ways() {
+    let grow = |value: &str| {
+        let out = ontogeny(&[
+            "derive",
+            "examples/plastic.lsys",
+            "--env",
+            value,
+            "--last",
+            "--json",
+        ]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let frame: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        frame
+    };
+    let poor = grow("0=0");
+    let rich = grow("0=1");
+    assert_eq!(poor["env"], serde_json::json!([0.0]));
+    assert_eq!(rich["env"], serde_json::json!([1.0]));
+    assert_ne!(poor["modules"], rich["modules"]);
+}
+
+#[test]
+fn bad_continuous_flags_exit_2() {
+    for args in [
+        &["derive", "examples/dl-figure1.lsys", "--dt", "0"][..],
+        &["derive", "examples/dl-figure1.lsys", "--steps", "3"][..],
+        &["derive", "examples/plastic.lsys", "--env", "5=1"][..],
+        &["derive", "examples/algae.lsys", "--dt", "0.5"][..],
+    ] {
+        let out = ontogeny(args);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
+        assert!(stderr(&out).starts_with("error: "), "{}", stderr(&out));
+    }
+    let out = ontogeny(&["derive", "examples/plastic.lsys", "--env", "x"]);
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "clap's own errors exit 2 as well"
+    );
+}

@@ -25,11 +25,32 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     }
     println!("{}: ok", report.file);
     println!("axiom: {}", report.axiom);
-    match report.derivation_length {
-        Some(n) => println!("derivation length: {n}"),
-        None => {
+    match (report.time, report.derivation_length) {
+        (Some(time), _) => println!(
+            "continuous time: 0 to {time}, dt = {}, timing {}, {} differential rule{}",
+            report.dt,
+            report.timing,
+            report.differential_rules,
+            if report.differential_rules == 1 {
+                ""
+            } else {
+                "s"
+            }
+        ),
+        (None, Some(n)) => println!("derivation length: {n}"),
+        (None, None) => {
             println!("derivation length: not given (derive prints the axiom only unless --steps)")
         }
+    }
+    if report.time.is_none() && report.differential_rules > 0 {
+        println!(
+            "note: {} differential rule(s) but no 'time:': derive them with --time T",
+            report.differential_rules
+        );
+    }
+    if !report.environment.is_empty() {
+        let values: Vec<String> = report.environment.iter().map(|v| v.to_string()).collect();
+        println!("environment: {}", values.join(" "));
     }
     let symbols: Vec<String> = report
         .symbols

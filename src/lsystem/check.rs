@@ -65,6 +65,16 @@ pub struct Report {
     pub axiom: String,
     /// The file's derivation length.
     pub derivation_length: Option<u64>,
+    /// Continuous development's end time, when the file has `time:`.
+    pub time: Option<f64>,
+    /// The observation step.
+    pub dt: f64,
+    /// `exact` or `iterative`.
+    pub timing: String,
+    /// Number of differential (`solve`) rules.
+    pub differential_rules: usize,
+    /// The environment's initial values.
+    pub environment: Vec<f64>,
     /// Rules that never fire, unused parameters and constants, split words.
     pub findings: Vec<Finding>,
 }
@@ -223,6 +233,19 @@ impl LSystem {
             constants: self.constants().map(|(n, v)| (n.to_string(), v)).collect(),
             axiom: self.display(&self.axiom),
             derivation_length: self.derivation_length,
+            time: self.time,
+            dt: self.dt(),
+            timing: match self.timing {
+                crate::lang::ast::Timing::Exact => "exact".to_string(),
+                crate::lang::ast::Timing::Iterative => "iterative".to_string(),
+            },
+            differential_rules: self
+                .productions
+                .rules
+                .iter()
+                .filter(|r| r.solve.is_some())
+                .count(),
+            environment: self.environment.values().to_vec(),
             findings,
         }
     }
