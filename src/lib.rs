@@ -5,6 +5,8 @@
 //! in discrete steps or continuous developmental time, exchanging chemicals with an
 //! [`environment`].
 
+pub mod creature;
+pub mod develop;
 pub mod environment;
 pub mod lang;
 pub mod lsystem;

@@ -1,0 +1,271 @@
+//! Creatures: plain, serialisable data that every encoding produces and every task consumes.
+//!
+//! A [`Creature`] is a body — box [`Part`]s joined by [`Joint`]s of zero to three degrees of
+//! freedom — and a [`Brain`], a directed graph of [`Neuron`]s joined by weighted [`Link`]s,
+//! some of which read sensors and some of which drive actuators. Positions and orientations
+//! are in world coordinates: Y is up, the ground is the plane y = 0, lengths are in metres.
+
+use nalgebra::{UnitQuaternion, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// A creature: body, brain, and what development had to say about it.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Creature {
+    /// Box parts; part 0 is the root.
+    pub parts: Vec<Part>,
+    /// Joints, each joining a parent part to a child part.
+    pub joints: Vec<Joint>,
+    /// The neural controller.
+    pub brain: Brain,
+    /// The chemical environment the creature grew in (its controller reads and writes it).
+    pub environment: Vec<f64>,
+    /// Problems found while building it; a creature with an error-level problem is invalid.
+    pub problems: Vec<Problem>,
+}
+
+/// A rigid box.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Part {
+    /// Edge lengths along the part's own axes: x is its length (the direction it grew in),
+    /// y its thickness, z its width.
+    pub size: Vector3<f64>,
+    /// The centre, in world coordinates.
+    pub position: Vector3<f64>,
+    /// Rotation from the part's axes to the world's.
+    pub orientation: UnitQuaternion<f64>,
+    /// Density (kg/m³ in the simulator's units; 1 by default).
+    pub density: f64,
+    /// Whether the part is still growing (made by a maturing command such as `mforward`).
+    pub growing: bool,
+}
+
+impl Part {
+    /// The volume.
+    pub fn volume(&self) -> f64 {
+        self.size.x * self.size.y * self.size.z
+    }
+
+    /// The mass (volume × density).
+    pub fn mass(&self) -> f64 {
+        self.volume() * self.density
+    }
+
+    /// The eight corners in world coordinates.
+    pub fn corners(&self) -> [Vector3<f64>; 8] {
+        let h = self.size / 2.0;
+        let mut out = [Vector3::zeros(); 8];
+        for (i, c) in out.iter_mut().enumerate() {
+            let local = Vector3::new(
+                if i & 1 == 0 { -h.x } else { h.x },
+                if i & 2 == 0 { -h.y } else { h.y },
+                if i & 4 == 0 { -h.z } else { h.z },
+            );
+            *c = self.position + self.orientation * local;
+        }
+        out
+    }
+}
+
+/// The kinds of joint, by their degrees of freedom (Sims 1994; Chaumont et al. 2007).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum JointKind {
+    /// No freedom: the parts are fused.
+    Rigid,
+    /// One hinge axis perpendicular to the parent's length (Hornby's `revolute`).
+    Revolute,
+    /// One axis along the length (Hornby's `twist`).
+    Twist,
+    /// Two perpendicular hinge axes.
+    Universal,
+    /// A bend axis, then a twist axis.
+    BendTwist,
+    /// A twist axis, then a bend axis.
+    TwistBend,
+    /// Three axes.
+    Spherical,
+}
+
+impl JointKind {
+    /// Degrees of freedom.
+    pub fn dof(self) -> usize {
+        match self {
+            JointKind::Rigid => 0,
+            JointKind::Revolute | JointKind::Twist => 1,
+            JointKind::Universal | JointKind::BendTwist | JointKind::TwistBend => 2,
+            JointKind::Spherical => 3,
+        }
+    }
+}
+
+/// A joint between a parent part and a child part.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Joint {
+    /// The parent part's index.
+    pub parent: usize,
+    /// The child part's index.
+    pub child: usize,
+    /// The kind of joint.
+    pub kind: JointKind,
+    /// Where the parts are joined, in world coordinates.
+    pub anchor: Vector3<f64>,
+    /// One unit axis per degree of freedom, in world coordinates.
+    pub axes: Vec<Vector3<f64>>,
+    /// Angle limits (radians) per degree of freedom: (lower, upper).
+    pub limits: Vec<(f64, f64)>,
+    /// Strength of the joint's motor (scaled by the simulator, e.g. by cross-section).
+    pub strength: f64,
+    /// Whether the joint is still growing (made by a maturing command).
+    pub growing: bool,
+}
+
+/// A neuron's transfer function.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NeuronFunction {
+    /// The weighted input sum.
+    Linear,
+    /// tanh of the weighted input sum.
+    Sigmoid,
+    /// A sine oscillator whose frequency is the weighted input sum mapped into [0, 2π]
+    /// (Matos & Arita section 2).
+    Oscillator,
+}
+
+/// What a neuron is for.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "kind")]
+pub enum Role {
+    /// An internal neuron.
+    Hidden,
+    /// Reads a sensor.
+    Sensor {
+        /// Which sensor.
+        sensor: Sensor,
+    },
+    /// Drives an actuator.
+    Actuator {
+        /// Which actuator.
+        actuator: Actuator,
+    },
+}
+
+/// A sensor a neuron reads.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "type")]
+pub enum Sensor {
+    /// Contact of a part with anything: 1 touching, −1 not.
+    Touch {
+        /// The part.
+        part: usize,
+    },
+    /// A joint's angle, scaled to [−1, 1] over its limits.
+    Angle {
+        /// The joint.
+        joint: usize,
+        /// Which degree of freedom.
+        dof: usize,
+    },
+    /// An environment slot's concentration.
+    Chemical {
+        /// The slot.
+        slot: usize,
+    },
+    /// The direction to the task's target, when it has one.
+    Target,
+}
+
+/// An actuator a neuron drives.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "type")]
+pub enum Actuator {
+    /// A joint's motor on one degree of freedom.
+    Joint {
+        /// The joint.
+        joint: usize,
+        /// Which degree of freedom.
+        dof: usize,
+    },
+    /// Writes an environment slot.
+    Secrete {
+        /// The slot.
+        slot: usize,
+    },
+    /// The catapult task's early-release signal.
+    Release,
+}
+
+/// A neuron.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Neuron {
+    /// Its transfer function.
+    pub function: NeuronFunction,
+    /// What it is for.
+    pub role: Role,
+    /// The part it belongs to (Sims' local neurons), or `None` for the whole creature.
+    pub part: Option<usize>,
+}
+
+/// A weighted connection from one neuron's output to another's input.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Link {
+    /// The source neuron.
+    pub from: usize,
+    /// The destination neuron.
+    pub to: usize,
+    /// The weight.
+    pub weight: f64,
+}
+
+/// The neural controller.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Brain {
+    /// The neurons.
+    pub neurons: Vec<Neuron>,
+    /// The links.
+    pub links: Vec<Link>,
+}
+
+/// How serious a [`Problem`] is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Severity {
+    /// Worth knowing; the creature can still be evaluated.
+    Warning,
+    /// The creature is invalid: the evaluator will not simulate it.
+    Error,
+}
+
+/// Something development found wrong with the creature.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Problem {
+    /// How serious.
+    pub severity: Severity,
+    /// In words.
+    pub message: String,
+    /// The module it concerns, written readably, if any.
+    pub module: Option<String>,
+    /// The developmental time, if any.
+    pub t: Option<f64>,
+}
+
+impl Creature {
+    /// Whether the evaluator may simulate it (no error-level problem, at least one part).
+    pub fn is_valid(&self) -> bool {
+        !self.parts.is_empty() && self.problems.iter().all(|p| p.severity != Severity::Error)
+    }
+
+    /// Total mass of the parts.
+    pub fn mass(&self) -> f64 {
+        self.parts.iter().map(Part::mass).sum()
+    }
+
+    /// The axis-aligned bounding box of all parts: (min, max); zeros for no parts.
+    pub fn bounding_box(&self) -> (Vector3<f64>, Vector3<f64>) {
+        let mut corners = self.parts.iter().flat_map(|p| p.corners());
+        let Some(first) = corners.next() else {
+            return (Vector3::zeros(), Vector3::zeros());
+        };
+        corners.fold((first, first), |(lo, hi), c| (lo.inf(&c), hi.sup(&c)))
+    }
+}

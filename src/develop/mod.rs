@@ -1,0 +1,425 @@
+//! Development: interpreting a module string as building commands — a 3D turtle that builds
+//! the body (Hornby & Pollack's command set with Matos & Arita's maturing `m` twins) and an
+//! edge-encoding builder that wires the brain — into a [`Creature`].
+//!
+//! The turtle carries a frame: its heading is its local x axis, its up its local y, and its
+//! right-hand side its local z. A turn of 1 is 90°.
+
+mod brain;
+mod command;
+
+use nalgebra::{Unit, UnitQuaternion, Vector3};
+
+use crate::creature::{Creature, Joint, JointKind, Part, Problem, Severity};
+use crate::environment::Environment;
+use crate::lsystem::{ModuleString, SymbolTable, format_number};
+pub use command::{Command, command_of};
+
+use brain::BrainBuilder;
+
+/// Builder settings.
+#[derive(Clone, Debug)]
+pub struct BuildOptions {
+    /// More parts than this is an error (the creature is invalid).
+    pub max_parts: usize,
+    /// Width of parts before any `width` command (their local z size).
+    pub default_width: f64,
+    /// Thickness of parts before any `thickness` command (their local y size).
+    pub default_thickness: f64,
+    /// Length made by `forward` with no parameter.
+    pub default_length: f64,
+    /// Most repetitions of one `{ ... }(n)` block.
+    pub max_repeat: usize,
+}
+
+impl Default for BuildOptions {
+    fn default() -> Self {
+        BuildOptions {
+            max_parts: 200,
+            default_width: 0.25,
+            default_thickness: 0.25,
+            default_length: 1.0,
+            max_repeat: 100,
+        }
+    }
+}
+
+/// The joint the next `forward` makes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PendingJoint {
+    kind: JointKind,
+    /// Limits of the single degree of freedom.
+    limits: (f64, f64),
+    growing: bool,
+}
+
+/// Everything `[` saves and `]` restores.
+#[derive(Clone, Debug)]
+struct TurtleState {
+    position: Vector3<f64>,
+    orientation: UnitQuaternion<f64>,
+    part: Option<usize>,
+    pending: Option<PendingJoint>,
+    width: f64,
+    thickness: f64,
+    link: brain::CurrentLink,
+}
+
+/// Builds a creature from a module string.
+pub struct Builder<'a> {
+    symbols: &'a SymbolTable,
+    options: &'a BuildOptions,
+    /// Developmental time of the string, for problem reports.
+    t: Option<f64>,
+    creature: Creature,
+    /// For each part, the part it grew from.
+    parents: Vec<Option<usize>>,
+    /// For each part, the point where the turtle left it (its far end).
+    ends: Vec<Vector3<f64>>,
+    /// For each part, the joint that attaches it to its parent.
+    joint_of: Vec<Option<usize>>,
+    state: TurtleState,
+    stack: Vec<TurtleState>,
+    brain: BrainBuilder,
+    commands: Vec<Option<Command>>,
+}
+
+/// Builds the creature a module string describes. `t` is its developmental time (for
+/// reports), `env` the environment it grew in.
+pub fn build(
+    string: &ModuleString,
+    symbols: &SymbolTable,
+    env: &Environment,
+    t: Option<f64>,
+    options: &BuildOptions,
+) -> Creature {
+    let mut builder = Builder::new(symbols, options, t, env.len());
+    builder.run(string, 0, string.len(), 0);
+    let mut creature = builder.finish();
+    creature.environment = env.values().to_vec();
+    creature
+}
+
+impl<'a> Builder<'a> {
+    fn new(
+        symbols: &'a SymbolTable,
+        options: &'a BuildOptions,
+        t: Option<f64>,
+        environment_len: usize,
+    ) -> Self {
+        let brain = BrainBuilder::new(environment_len);
+        let commands = (0..symbols.len() as u32)
+            .map(|id| command_of(symbols.name(id)))
+            .collect();
+        Builder {
+            symbols,
+            options,
+            t,
+            creature: Creature::default(),
+            parents: Vec::new(),
+            ends: Vec::new(),
+            joint_of: Vec::new(),
+            state: TurtleState {
+                position: Vector3::zeros(),
+                orientation: UnitQuaternion::identity(),
+                part: None,
+                pending: None,
+                width: options.default_width,
+                thickness: options.default_thickness,
+                link: brain.initial_link(),
+            },
+            stack: Vec::new(),
+            brain,
+            commands,
+        }
+    }
+
+    fn problem(&mut self, severity: Severity, string: &ModuleString, i: usize, message: String) {
+        let mut one = ModuleString::new();
+        one.push(string.sym(i), string.params(i));
+        self.creature.problems.push(Problem {
+            severity,
+            message,
+            module: Some(one.display(self.symbols)),
+            t: self.t,
+        });
+    }
+
+    /// Interprets modules `from..to`; `depth` counts enclosing repeat blocks.
+    fn run(&mut self, string: &ModuleString, from: usize, to: usize, depth: usize) {
+        let mut i = from;
+        while i < to {
+            let Some(command) = self.commands[string.sym(i) as usize] else {
+                i += 1;
+                continue; // control tokens build nothing
+            };
+            let params = string.params(i);
+            let arg = |default: f64| params.first().copied().unwrap_or(default);
+            match command {
+                Command::RepeatStart => {
+                    let close = matching_close(string, i, to, self.commands.as_slice());
+                    let Some(close) = close else {
+                        self.problem(
+                            Severity::Warning,
+                            string,
+                            i,
+                            "'{' has no matching '}': ignored".to_string(),
+                        );
+                        i += 1;
+                        continue;
+                    };
+                    let n = string.params(close).first().copied().unwrap_or(1.0);
+                    let times = if n.is_finite() && n > 0.0 {
+                        n.floor() as usize
+                    } else {
+                        0
+                    };
+                    let times = if times > self.options.max_repeat || depth >= 8 {
+                        self.problem(
+                            Severity::Warning,
+                            string,
+                            close,
+                            format!(
+                                "repeat count {} is more than the {} allowed (or blocks nest more than 8 deep): capped",
+                                format_number(n),
+                                self.options.max_repeat
+                            ),
+                        );
+                        if depth >= 8 {
+                            1
+                        } else {
+                            self.options.max_repeat
+                        }
+                    } else {
+                        times
+                    };
+                    for _ in 0..times {
+                        self.run(string, i + 1, close, depth + 1);
+                        if self.creature.parts.len() > self.options.max_parts {
+                            break;
+                        }
+                    }
+                    i = close + 1;
+                    continue;
+                }
+                Command::RepeatEnd => {
+                    self.problem(
+                        Severity::Warning,
+                        string,
+                        i,
+                        "'}' has no matching '{': ignored".to_string(),
+                    );
+                }
+                Command::Push => self.stack.push(self.state.clone()),
+                Command::Pop => match self.stack.pop() {
+                    Some(state) => self.state = state,
+                    None => self.problem(
+                        Severity::Warning,
+                        string,
+                        i,
+                        "']' with nothing to pop: ignored".to_string(),
+                    ),
+                },
+                Command::Forward { maturing } => {
+                    let length = arg(self.options.default_length);
+                    self.forward(string, i, length, maturing);
+                }
+                Command::Backward => self.backward(string, i),
+                Command::Turn { axis, sign } => {
+                    let angle = sign * arg(1.0) * std::f64::consts::FRAC_PI_2;
+                    if !angle.is_finite() {
+                        self.problem(
+                            Severity::Warning,
+                            string,
+                            i,
+                            "turn by a non-finite angle: ignored".into(),
+                        );
+                    } else {
+                        let axis = Unit::new_normalize(axis);
+                        self.state.orientation *= UnitQuaternion::from_axis_angle(&axis, angle);
+                    }
+                }
+                Command::Joint {
+                    kind,
+                    limits,
+                    maturing,
+                } => {
+                    self.state.pending = Some(PendingJoint {
+                        kind,
+                        limits,
+                        growing: maturing,
+                    })
+                }
+                Command::Width | Command::Thickness => {
+                    let v = arg(f64::NAN);
+                    if !(v.is_finite() && v > 0.0) {
+                        self.problem(
+                            Severity::Warning,
+                            string,
+                            i,
+                            "width and thickness need a positive parameter: ignored".into(),
+                        );
+                    } else if command == Command::Width {
+                        self.state.width = v;
+                    } else {
+                        self.state.thickness = v;
+                    }
+                }
+                Command::Brain(op) => {
+                    let joint = self.state.part.and_then(|p| self.joint_of[p]);
+                    let joint_info = joint.map(|j| (j, self.creature.joints[j].kind.dof()));
+                    let outcome = self.brain.apply(
+                        op,
+                        params,
+                        &mut self.state.link,
+                        self.state.part,
+                        joint_info,
+                    );
+                    if let Err(message) = outcome {
+                        self.problem(Severity::Warning, string, i, message);
+                    }
+                }
+            }
+            i += 1;
+        }
+    }
+
+    fn forward(&mut self, string: &ModuleString, i: usize, length: f64, maturing: bool) {
+        if !(length.is_finite() && length > 0.0) {
+            self.problem(
+                Severity::Warning,
+                string,
+                i,
+                format!(
+                    "forward needs a positive length, not {}: ignored",
+                    format_number(length)
+                ),
+            );
+            return;
+        }
+        let heading = self.state.orientation * Vector3::x();
+        let start = self.state.position;
+        let size = Vector3::new(length, self.state.thickness, self.state.width);
+        let centre = start + heading * (length / 2.0);
+        let parent = self.state.part.or(if self.creature.parts.is_empty() {
+            None
+        } else {
+            Some(0)
+        });
+
+        // An identical part already there: move onto it (Hornby).
+        if let Some(existing) = (0..self.creature.parts.len()).find(|&k| {
+            let p = &self.creature.parts[k];
+            self.parents[k] == parent
+                && (p.position - centre).norm() < 1e-9
+                && (p.size - size).norm() < 1e-9
+                && p.orientation.angle_to(&self.state.orientation) < 1e-9
+        }) {
+            self.state.part = Some(existing);
+            self.state.position = self.ends[existing];
+            self.state.pending = None;
+            return;
+        }
+
+        let index = self.creature.parts.len();
+        self.creature.parts.push(Part {
+            size,
+            position: centre,
+            orientation: self.state.orientation,
+            density: 1.0,
+            growing: maturing,
+        });
+        self.parents.push(parent);
+        self.ends.push(start + heading * length);
+        self.joint_of.push(None);
+        if index == self.options.max_parts {
+            self.problem(
+                Severity::Error,
+                string,
+                i,
+                format!("more than {} parts (--max-parts)", self.options.max_parts),
+            );
+        }
+        if let Some(parent) = parent {
+            let pending = self.state.pending.take();
+            let (kind, axes, limits, growing) = match pending {
+                Some(p) => {
+                    let local = if p.kind == JointKind::Twist {
+                        Vector3::x()
+                    } else {
+                        Vector3::z()
+                    };
+                    (
+                        p.kind,
+                        vec![self.state.orientation * local],
+                        vec![p.limits],
+                        p.growing,
+                    )
+                }
+                None => (JointKind::Rigid, Vec::new(), Vec::new(), false),
+            };
+            self.joint_of[index] = Some(self.creature.joints.len());
+            self.creature.joints.push(Joint {
+                parent,
+                child: index,
+                kind,
+                anchor: start,
+                axes,
+                limits,
+                strength: 1.0,
+                growing: growing || maturing,
+            });
+        } else if self.state.pending.take().is_some() {
+            self.problem(
+                Severity::Warning,
+                string,
+                i,
+                "the first part has nothing to be jointed to: its joint command is ignored".into(),
+            );
+        }
+        self.state.part = Some(index);
+        self.state.position = start + heading * length;
+    }
+
+    fn backward(&mut self, string: &ModuleString, i: usize) {
+        match self.state.part.and_then(|p| self.parents[p]) {
+            Some(parent) => {
+                self.state.part = Some(parent);
+                self.state.position = self.ends[parent];
+            }
+            None => self.problem(
+                Severity::Warning,
+                string,
+                i,
+                "backward on the root part: ignored".into(),
+            ),
+        }
+    }
+
+    fn finish(mut self) -> Creature {
+        self.creature.brain = self.brain.finish();
+        overlap::report(&mut self.creature, self.t);
+        self.creature
+    }
+}
+
+/// The index of the `}` closing the `{` at `open`, before `to`.
+fn matching_close(
+    string: &ModuleString,
+    open: usize,
+    to: usize,
+    commands: &[Option<Command>],
+) -> Option<usize> {
+    let mut depth = 0usize;
+    for k in open + 1..to {
+        match commands[string.sym(k) as usize] {
+            Some(Command::RepeatStart) => depth += 1,
+            Some(Command::RepeatEnd) if depth == 0 => return Some(k),
+            Some(Command::RepeatEnd) => depth -= 1,
+            _ => {}
+        }
+    }
+    None
+}
+
+mod overlap;

@@ -1,0 +1,392 @@
+//! The builder: bodies from turtle commands and brains from edge-encoding commands, checked
+//! against hand calculation.
+
+use std::f64::consts::FRAC_PI_2;
+
+use nalgebra::Vector3;
+use ontogeny::creature::{
+    Actuator, Creature, JointKind, Link, NeuronFunction, Role, Sensor, Severity,
+};
+use ontogeny::develop::{BuildOptions, build};
+use ontogeny::environment::Environment;
+use ontogeny::lsystem::LSystem;
+
+/// Builds the axiom of a one-line L-system.
+fn creature(axiom: &str) -> Creature {
+    creature_in(axiom, Environment::default())
+}
+
+fn creature_in(axiom: &str, env: Environment) -> Creature {
+    let lsys = LSystem::from_text("t.lsys", &format!("axiom: {axiom}\n")).unwrap();
+    build(
+        lsys.axiom(),
+        lsys.symbols(),
+        &env,
+        None,
+        &BuildOptions::default(),
+    )
+}
+
+fn close(a: Vector3<f64>, b: [f64; 3]) -> bool {
+    (a - Vector3::from(b)).norm() < 1e-9
+}
+
+fn links(c: &Creature) -> Vec<(usize, usize, f64)> {
+    c.brain
+        .links
+        .iter()
+        .map(|Link { from, to, weight }| (*from, *to, *weight))
+        .collect()
+}
+
+#[test]
+fn forward_makes_a_box_along_the_heading() {
+    let c = creature("forward(2)");
+    assert_eq!(c.parts.len(), 1);
+    let p = &c.parts[0];
+    assert!(close(p.size, [2.0, 0.25, 0.25]));
+    assert!(close(p.position, [1.0, 0.0, 0.0]));
+    assert!(p.orientation.angle() < 1e-12);
+    assert!(!p.growing);
+    assert!((c.mass() - 2.0 * 0.25 * 0.25).abs() < 1e-12);
+    assert!(c.joints.is_empty() && c.is_valid());
+}
+
+#[test]
+fn width_and_thickness_set_the_next_parts_size() {
+    let c = creature("width(0.5) thickness(0.1) forward(2) forward");
+    assert!(close(c.parts[0].size, [2.0, 0.1, 0.5]));
+    assert!(close(c.parts[1].size, [1.0, 0.1, 0.5]));
+    assert!(close(c.parts[1].position, [2.5, 0.0, 0.0]));
+}
+
+#[test]
+fn revolute_joints_hinge_about_the_turtles_z_axis() {
+    let c = creature("forward(1) revolute1 forward(1) revolute2 forward(1)");
+    assert_eq!(c.parts.len(), 3);
+    assert!(close(c.parts[1].position, [1.5, 0.0, 0.0]));
+    let j = &c.joints[0];
+    assert_eq!((j.parent, j.child, j.kind), (0, 1, JointKind::Revolute));
+    assert!(close(j.anchor, [1.0, 0.0, 0.0]));
+    assert!(close(j.axes[0], [0.0, 0.0, 1.0]));
+    assert_eq!(j.limits, vec![(0.0, FRAC_PI_2)]);
+    assert_eq!(c.joints[1].limits, vec![(-FRAC_PI_2, FRAC_PI_2)]);
+    assert!(close(c.joints[1].anchor, [2.0, 0.0, 0.0]));
+}
+
+#[test]
+fn twist_joints_turn_about_the_heading_and_no_joint_command_fuses() {
+    let c = creature("forward twist90 forward twist180 forward forward");
+    assert_eq!(c.joints[0].kind, JointKind::Twist);
+    assert!(close(c.joints[0].axes[0], [1.0, 0.0, 0.0]));
+    assert_eq!(c.joints[0].limits, vec![(0.0, FRAC_PI_2)]);
+    assert_eq!(c.joints[1].limits, vec![(-FRAC_PI_2, FRAC_PI_2)]);
+    assert_eq!(c.joints[2].kind, JointKind::Rigid);
+    assert!(c.joints[2].axes.is_empty());
+}
+
+#[test]
+fn turns_are_quarter_turns_about_the_turtles_axes() {
+    // left: about up (y), heading x -> -z; up: about z, x -> +y; clockwise: about x.
+    let c = creature("forward(1) left(1) forward(1)");
+    assert!(close(c.parts[1].position, [1.0, 0.0, -0.5]));
+    let c = creature("forward(1) right(1) forward(1)");
+    assert!(close(c.parts[1].position, [1.0, 0.0, 0.5]));
+    let c = creature("forward(1) up(1) forward(1)");
+    assert!(close(c.parts[1].position, [1.0, 0.5, 0.0]));
+    let c = creature("forward(1) down(0.5) forward(2)");
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    assert!(close(c.parts[1].position, [1.0 + h, -h, 0.0]));
+    // A roll changes the hinge axis: clockwise(1) turns the turtle about its heading, taking
+    // its z (right) axis to world -y.
+    let c = creature("forward(1) clockwise(1) revolute1 forward(1)");
+    assert!(close(c.joints[0].axes[0], [0.0, -1.0, 0.0]));
+    assert!(close(c.parts[1].position, [1.5, 0.0, 0.0]));
+}
+
+#[test]
+fn brackets_restore_the_turtle_and_the_current_part() {
+    let c = creature("forward(1) [ left(1) forward(1) ] right(1) forward(1)");
+    assert_eq!(c.parts.len(), 3);
+    assert!(close(c.parts[1].position, [1.0, 0.0, -0.5]));
+    assert!(close(c.parts[2].position, [1.0, 0.0, 0.5]));
+    assert_eq!((c.joints[1].parent, c.joints[1].child), (0, 2));
+    assert!(
+        c.is_valid(),
+        "branches leaving one point may overlap there: {:?}",
+        c.problems
+    );
+    // The pending joint kind is saved and restored too.
+    let c = creature("forward revolute1 [ left(1) forward ] forward");
+    assert_eq!(c.joints[0].kind, JointKind::Revolute);
+    assert_eq!(c.joints[1].kind, JointKind::Revolute);
+    // Forward onto the same place after the branch moves onto the branch's part.
+    let c = creature("forward revolute1 [ forward ] forward");
+    assert_eq!((c.parts.len(), c.joints.len()), (2, 1));
+}
+
+#[test]
+fn repeat_blocks_repeat() {
+    let c = creature("{ forward(1) revolute2 }(3) forward(1)");
+    assert_eq!(c.parts.len(), 4);
+    for (k, x) in [0.5, 1.5, 2.5, 3.5].iter().enumerate() {
+        assert!(close(c.parts[k].position, [*x, 0.0, 0.0]), "part {k}");
+    }
+    assert_eq!(
+        c.joints
+            .iter()
+            .filter(|j| j.kind == JointKind::Revolute)
+            .count(),
+        3
+    );
+    let c = creature("{ forward { left(1) }(2) }(2)");
+    // forward, half turn, forward back over the first part's parent... two parts.
+    assert_eq!(c.parts.len(), 2);
+}
+
+#[test]
+fn forward_onto_an_identical_part_traverses_it() {
+    let c = creature("forward forward backward forward");
+    assert_eq!(c.parts.len(), 2, "the last forward moves onto part 1");
+    let c = creature("forward forward backward forward(2)");
+    assert_eq!(c.parts.len(), 3, "a different length is a new part");
+    // backward on the root does nothing (a warning); the forwards then walk along part 1.
+    let c = creature("forward forward backward backward forward forward");
+    assert_eq!(c.parts.len(), 3);
+    assert_eq!(c.problems.len(), 1);
+}
+
+#[test]
+fn maturing_commands_mark_growing_parts_and_joints() {
+    let c = creature("forward mrevolute1 mforward(0.5)");
+    assert!(!c.parts[0].growing && c.parts[1].growing);
+    assert!(c.joints[0].growing);
+    assert_eq!(c.joints[0].kind, JointKind::Revolute);
+}
+
+#[test]
+fn control_tokens_build_nothing() {
+    let c = creature("A B(2) forward C");
+    assert_eq!(c.parts.len(), 1);
+    assert!(c.problems.is_empty());
+}
+
+#[test]
+fn interpenetrating_parts_make_the_creature_invalid() {
+    let c = creature("forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)");
+    assert!(!c.is_valid());
+    assert!(
+        c.problems
+            .iter()
+            .any(|p| p.message == "parts 0 and 3 interpenetrate"),
+        "{:?}",
+        c.problems
+    );
+    let square = creature("forward(1) left(1) forward(1) left(1) forward(1)");
+    assert!(square.is_valid(), "{:?}", square.problems);
+}
+
+#[test]
+fn out_of_range_arguments_are_warnings_with_the_module() {
+    let c = creature("forward(-1) width(0) forward(1) backward");
+    let warnings: Vec<_> = c
+        .problems
+        .iter()
+        .filter(|p| p.severity == Severity::Warning)
+        .collect();
+    assert_eq!(warnings.len(), 3, "{:?}", c.problems);
+    assert_eq!(warnings[0].module.as_deref(), Some("forward(-1)"));
+    assert!(c.is_valid());
+}
+
+#[test]
+fn too_many_parts_is_an_error() {
+    let lsys = LSystem::from_text("t.lsys", "axiom: { forward }(50)\n").unwrap();
+    let options = BuildOptions {
+        max_parts: 10,
+        ..BuildOptions::default()
+    };
+    let c = build(
+        lsys.axiom(),
+        lsys.symbols(),
+        &Environment::default(),
+        Some(2.0),
+        &options,
+    );
+    assert!(!c.is_valid());
+    let p = c
+        .problems
+        .iter()
+        .find(|p| p.severity == Severity::Error)
+        .unwrap();
+    assert!(p.message.contains("more than 10 parts"), "{}", p.message);
+    assert_eq!(p.t, Some(2.0));
+}
+
+// ---- brains ----------------------------------------------------------------------------
+
+#[test]
+fn the_network_starts_with_one_oscillator_and_a_link_into_it() {
+    let c = creature("A");
+    assert_eq!(c.brain.neurons.len(), 1);
+    assert_eq!(c.brain.neurons[0].function, NeuronFunction::Oscillator);
+    assert_eq!(links(&c), [(0, 0, 1.0)]);
+}
+
+#[test]
+fn split_inserts_a_sigmoid_neuron_into_the_current_link() {
+    let c = creature("split(0.5)");
+    assert_eq!(c.brain.neurons[1].function, NeuronFunction::Sigmoid);
+    assert_eq!(links(&c), [(0, 1, 1.0), (1, 0, 0.5)]);
+    // The current link is now 1 -> 0: duplicate and weight act on it.
+    let c = creature("split(0.5) duplicate(2) weight(0.25)");
+    assert_eq!(links(&c), [(0, 1, 1.0), (1, 0, 0.75), (1, 0, 2.0)]);
+}
+
+#[test]
+fn loop_reverse_cut_and_weights() {
+    assert_eq!(
+        links(&creature("split loop(3)")),
+        [(0, 1, 1.0), (1, 0, 1.0), (0, 0, 3.0)]
+    );
+    assert_eq!(
+        links(&creature("split reverse")),
+        [(0, 1, 1.0), (0, 1, 1.0)]
+    );
+    assert_eq!(links(&creature("split cut")), [(0, 1, 1.0)]);
+    // After a cut the current link is virtual: weight creates it again.
+    assert_eq!(
+        links(&creature("split cut increase(0.4)")),
+        [(0, 1, 1.0), (1, 0, 0.4)]
+    );
+    assert_eq!(links(&creature("decrease(2)")), [(0, 0, -1.0)]);
+    assert_eq!(links(&creature("weight(0.5)")), [(0, 0, 1.5)]);
+}
+
+#[test]
+fn next_and_parent_move_the_current_link() {
+    // Inputs of neuron 0 after split duplicate(2): links 1 (w 1) and 2 (w 2). next -> link 2.
+    let c = creature("split duplicate(2) next weight(10)");
+    assert_eq!(links(&c), [(0, 1, 1.0), (1, 0, 1.0), (1, 0, 12.0)]);
+    // parent: from 1 -> 0 up to the input of neuron 1, which is 0 -> 1.
+    let c = creature("split parent weight(10)");
+    assert_eq!(links(&c), [(0, 1, 11.0), (1, 0, 1.0)]);
+}
+
+#[test]
+fn merge_folds_the_source_neuron_into_the_target() {
+    let c = creature("split merge");
+    assert_eq!(c.brain.neurons.len(), 1);
+    assert_eq!(links(&c), [(0, 0, 1.0), (0, 0, 1.0)]);
+    let c = creature("split split setfunc(0) merge");
+    // split split: 0 -> 1 -> 2 -> 0 (neurons 1, 2 sigmoid), current 2 -> 0.
+    // setfunc(0): neuron 0 linear. merge: neuron 2 into 0.
+    assert_eq!(c.brain.neurons.len(), 2);
+    assert_eq!(c.brain.neurons[0].function, NeuronFunction::Linear);
+    assert_eq!(links(&c), [(0, 1, 1.0), (1, 0, 1.0), (0, 0, 1.0)]);
+}
+
+#[test]
+fn setfunc_changes_the_target_neurons_function() {
+    assert_eq!(
+        creature("setfunc(1)").brain.neurons[0].function,
+        NeuronFunction::Sigmoid
+    );
+    assert_eq!(
+        creature("setfunc(0)").brain.neurons[0].function,
+        NeuronFunction::Linear
+    );
+    assert_eq!(
+        creature("setfunc(2)").brain.neurons[0].function,
+        NeuronFunction::Oscillator
+    );
+}
+
+#[test]
+fn outputs_drive_the_current_parts_joint() {
+    let c = creature("forward revolute1 forward output(0.7) output");
+    let o = &c.brain.neurons[1];
+    assert_eq!(
+        o.role,
+        Role::Actuator {
+            actuator: Actuator::Joint { joint: 0, dof: 0 }
+        }
+    );
+    assert_eq!(o.part, Some(1));
+    assert_eq!(links(&c), [(0, 0, 1.0), (0, 1, 0.7)]);
+    assert_eq!(c.brain.neurons.len(), 2, "a 1-DOF joint takes one output");
+    assert_eq!(c.problems.len(), 1);
+    // A rigid joint or the root part has nothing to drive.
+    let c = creature("forward forward output");
+    assert_eq!(c.brain.neurons.len(), 1);
+    assert_eq!(c.problems.len(), 1);
+}
+
+#[test]
+fn sensors_feed_the_current_links_target_and_effectors_read_it() {
+    let env = Environment::new(vec![0.0, 0.0]);
+    let c = creature_in(
+        "forward revolute2 forward touch angle chem(1) target secrete(0) release chem(7)",
+        env,
+    );
+    let roles: Vec<Role> = c.brain.neurons.iter().map(|n| n.role).collect();
+    assert_eq!(
+        roles[1..],
+        [
+            Role::Sensor {
+                sensor: Sensor::Touch { part: 1 }
+            },
+            Role::Sensor {
+                sensor: Sensor::Angle { joint: 0, dof: 0 }
+            },
+            Role::Sensor {
+                sensor: Sensor::Chemical { slot: 1 }
+            },
+            Role::Sensor {
+                sensor: Sensor::Target
+            },
+            Role::Actuator {
+                actuator: Actuator::Secrete { slot: 0 }
+            },
+            Role::Actuator {
+                actuator: Actuator::Release
+            },
+        ]
+    );
+    assert_eq!(
+        links(&c)[1..],
+        [
+            (1, 0, 1.0),
+            (2, 0, 1.0),
+            (3, 0, 1.0),
+            (4, 0, 1.0),
+            (0, 5, 1.0),
+            (0, 6, 1.0)
+        ]
+    );
+    assert!(
+        c.problems.iter().any(|p| p.message.contains("slot 7")),
+        "{:?}",
+        c.problems
+    );
+    assert_eq!(c.environment, vec![0.0, 0.0]);
+}
+
+#[test]
+fn brackets_restore_the_current_link() {
+    let c = creature("[ split(2) ] weight(5)");
+    // After ], the current link is the original one (now 0 -> 1 after the split moved it).
+    assert_eq!(links(&c), [(0, 1, 6.0), (1, 0, 2.0)]);
+}
+
+#[test]
+fn creature_json_round_trips() {
+    let env = Environment::new(vec![0.5]);
+    let c = creature_in(
+        "forward revolute1 forward split output touch chem(0) mforward",
+        env,
+    );
+    let text = serde_json::to_string(&c).unwrap();
+    let back: Creature = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, c);
+}
