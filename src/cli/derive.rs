@@ -12,14 +12,9 @@ use ontogeny::lsystem::{
 };
 use serde::Serialize;
 
-/// Flags of `ontogeny derive`.
+/// Flags shared by the verbs that develop an L-system.
 #[derive(Args)]
-pub struct DeriveArgs {
-    /// The L-system file (`.lsys`).
-    file: PathBuf,
-    /// Number of discrete derivation steps (default: the file's `derivation length:`).
-    #[arg(long)]
-    steps: Option<u64>,
+pub struct DevelopmentArgs {
     /// Develop in continuous time from 0 to T (default: the file's `time:`; giving either
     /// switches to continuous mode).
     #[arg(long, value_name = "T")]
@@ -35,6 +30,37 @@ pub struct DeriveArgs {
     /// Override an initial environment value, e.g. `--env 0=1` (repeatable).
     #[arg(long = "env", value_name = "INDEX=VALUE", value_parser = parse_env)]
     env: Vec<(usize, f64)>,
+}
+
+/// The derivation options the flags ask for.
+pub fn derive_options(
+    args: &DevelopmentArgs,
+    seed: Option<u64>,
+    max_modules: usize,
+) -> DeriveOptions {
+    DeriveOptions {
+        seed,
+        max_modules,
+        env: args.env.clone(),
+        time: args.time,
+        dt: args.dt,
+        timing: args.timing.map(|t| match t {
+            TimingArg::Exact => Timing::Exact,
+            TimingArg::Iterative => Timing::Iterative,
+        }),
+    }
+}
+
+/// Flags of `ontogeny derive`.
+#[derive(Args)]
+pub struct DeriveArgs {
+    /// The L-system file (`.lsys`).
+    file: PathBuf,
+    /// Number of discrete derivation steps (default: the file's `derivation length:`).
+    #[arg(long)]
+    steps: Option<u64>,
+    #[command(flatten)]
+    development: DevelopmentArgs,
     /// Also print a line for every event (time, module, rule line) in continuous mode.
     #[arg(long)]
     events: bool,
@@ -98,17 +124,7 @@ struct EventLine<'a> {
 /// Derives the file and prints the steps.
 pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
     let lsys = LSystem::from_path(&args.file)?;
-    let options = DeriveOptions {
-        seed: args.seed,
-        max_modules: args.max_modules,
-        env: args.env.clone(),
-        time: args.time,
-        dt: args.dt,
-        timing: args.timing.map(|t| match t {
-            TimingArg::Exact => Timing::Exact,
-            TimingArg::Iterative => Timing::Iterative,
-        }),
-    };
+    let options = derive_options(&args.development, args.seed, args.max_modules);
     let stdout = std::io::stdout();
     let mut out = Printer {
         out: BufWriter::new(stdout.lock()),
@@ -116,7 +132,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
         args,
         options: &options,
     };
-    if args.time.is_some() || lsys.is_continuous() {
+    if options.time.is_some() || lsys.is_continuous() {
         if args.steps.is_some() {
             bail!(Diagnostic::without_location(
                 DiagnosticKind::Semantic,
@@ -125,7 +141,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
         }
         develop(&lsys, &options, &mut out)?;
     } else {
-        if args.dt.is_some() || args.timing.is_some() {
+        if options.dt.is_some() || options.timing.is_some() {
             bail!(Diagnostic::without_location(
                 DiagnosticKind::Semantic,
                 format!(
@@ -230,7 +246,7 @@ impl Printer<'_> {
                 let values: Vec<String> = env.values().iter().map(|v| format!("{v}")).collect();
                 format!("  env [{}]", values.join(" "))
             };
-            if self.lsys.is_continuous() || self.args.time.is_some() {
+            if self.lsys.is_continuous() || self.options.time.is_some() {
                 writeln!(
                     self.out,
                     "t={}: {}{env_text}",

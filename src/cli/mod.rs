@@ -2,6 +2,7 @@
 
 mod check;
 mod derive;
+mod grow;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -24,6 +25,9 @@ enum Verb {
     /// Parse and validate an L-system; summarise its symbols and rules, and point out rules
     /// that can never fire and parameters never used.
     Check(check::CheckArgs),
+    /// Grow creatures: build the body and brain the derived strings describe, at every
+    /// frame, and summarise the last one (parts, joints, brain, mass, size, validity).
+    Grow(grow::GrowArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code.
@@ -32,6 +36,7 @@ pub fn main() -> ExitCode {
     let result = match cli.verb {
         Verb::Derive(args) => derive::run(&args),
         Verb::Check(args) => check::run(&args),
+        Verb::Grow(args) => grow::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

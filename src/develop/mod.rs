@@ -285,6 +285,9 @@ impl<'a> Builder<'a> {
     }
 
     fn forward(&mut self, string: &ModuleString, i: usize, length: f64, maturing: bool) {
+        if maturing && length == 0.0 {
+            return; // a bud that has not started to grow
+        }
         if !(length.is_finite() && length > 0.0) {
             self.problem(
                 Severity::Warning,
@@ -423,3 +426,59 @@ fn matching_close(
 }
 
 mod overlap;
+
+/// One frame of growth: the creature built from the string at one observation time.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct GrowthFrame {
+    /// The derivation step or observation index.
+    pub step: u64,
+    /// Developmental time (the step number in discrete mode).
+    pub t: f64,
+    /// The creature at that time.
+    pub creature: Creature,
+}
+
+/// Grows `lsys` and builds one creature per frame: every derivation step in discrete mode
+/// (`steps`, default the file's derivation length), every observation time in continuous
+/// mode (a file with `time:`, or `options.time`). The interpretation rules are applied before
+/// building.
+pub fn grow(
+    lsys: &crate::lsystem::LSystem,
+    options: &crate::lsystem::DeriveOptions,
+    steps: Option<u64>,
+    build_options: &BuildOptions,
+) -> Result<Vec<GrowthFrame>, crate::lang::Diagnostic> {
+    let mut frames = Vec::new();
+    let mut add = |step: u64, t: f64, string: &ModuleString, env: &Environment| {
+        let shown = lsys.interpret(string, t, options)?;
+        frames.push(GrowthFrame {
+            step,
+            t,
+            creature: build(&shown, lsys.symbols(), env, Some(t), build_options),
+        });
+        Ok::<(), crate::lang::Diagnostic>(())
+    };
+    if options.time.is_some() || lsys.is_continuous() {
+        let mut dev = lsys.development(options)?;
+        loop {
+            add(
+                dev.frame_number(),
+                dev.time(),
+                dev.current(),
+                dev.environment(),
+            )?;
+            if !dev.advance()? {
+                break;
+            }
+        }
+    } else {
+        let steps = steps.or(lsys.derivation_length()).unwrap_or(0);
+        let mut d = lsys.derivation(options)?;
+        add(0, 0.0, d.current(), d.environment())?;
+        for step in 1..=steps {
+            d.step()?;
+            add(step, step as f64, d.current(), d.environment())?;
+        }
+    }
+    Ok(frames)
+}

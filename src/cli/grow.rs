@@ -1,0 +1,185 @@
+//! `ontogeny grow`
+
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use ontogeny::creature::{Creature, Role, Severity};
+use ontogeny::develop::{BuildOptions, grow};
+use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
+use serde::Serialize;
+
+use super::derive::{DevelopmentArgs, derive_options};
+
+/// Flags of `ontogeny grow`.
+#[derive(Args)]
+pub struct GrowArgs {
+    /// The L-system file (`.lsys`).
+    file: PathBuf,
+    #[command(flatten)]
+    development: DevelopmentArgs,
+    /// Number of discrete derivation steps (default: the file's `derivation length:`).
+    #[arg(long)]
+    steps: Option<u64>,
+    /// Seed for stochastic rules and random functions (default: the file's `seed:`, else 0).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Stop with an error when the string grows longer than this.
+    #[arg(long, default_value_t = DEFAULT_MAX_MODULES)]
+    max_modules: usize,
+    /// A creature with more parts than this is invalid.
+    #[arg(long, default_value_t = BuildOptions::default().max_parts)]
+    max_parts: usize,
+    /// Write creature.json (the final creature) and frames.jsonl (one creature per frame)
+    /// into this directory.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// What `grow` says about the final creature.
+#[derive(Serialize)]
+struct Summary {
+    file: String,
+    t: f64,
+    frames: usize,
+    parts: usize,
+    joints: BTreeMap<String, usize>,
+    neurons: usize,
+    links: usize,
+    sensors: usize,
+    actuators: usize,
+    mass: f64,
+    bounding_box: [[f64; 3]; 2],
+    valid: bool,
+    problems: Vec<String>,
+}
+
+fn summarise(file: &str, t: f64, frames: usize, c: &Creature) -> Summary {
+    let mut joints = BTreeMap::new();
+    for j in &c.joints {
+        let name = serde_json::to_value(j.kind)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default();
+        *joints.entry(name).or_insert(0) += 1;
+    }
+    let (lo, hi) = c.bounding_box();
+    Summary {
+        file: file.to_string(),
+        t,
+        frames,
+        parts: c.parts.len(),
+        joints,
+        neurons: c.brain.neurons.len(),
+        links: c.brain.links.len(),
+        sensors: c
+            .brain
+            .neurons
+            .iter()
+            .filter(|n| matches!(n.role, Role::Sensor { .. }))
+            .count(),
+        actuators: c
+            .brain
+            .neurons
+            .iter()
+            .filter(|n| matches!(n.role, Role::Actuator { .. }))
+            .count(),
+        mass: c.mass(),
+        bounding_box: [[lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]],
+        valid: c.is_valid(),
+        problems: c
+            .problems
+            .iter()
+            .map(|p| {
+                let level = match p.severity {
+                    Severity::Warning => "warning",
+                    Severity::Error => "error",
+                };
+                let module = p
+                    .module
+                    .as_deref()
+                    .map(|m| format!(" [{m}]"))
+                    .unwrap_or_default();
+                let t = p.t.map(|t| format!(" at t = {t}")).unwrap_or_default();
+                format!("{level}: {}{module}{t}", p.message)
+            })
+            .collect(),
+    }
+}
+
+/// Grows the file into creatures and reports on the last one.
+pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
+    let lsys = LSystem::from_path(&args.file)?;
+    let options = derive_options(&args.development, args.seed, args.max_modules);
+    let build_options = BuildOptions {
+        max_parts: args.max_parts,
+        ..BuildOptions::default()
+    };
+    let frames = grow(&lsys, &options, args.steps, &build_options)?;
+    let last = frames.last().expect("at least the first frame");
+    let summary = summarise(
+        &args.file.display().to_string(),
+        last.t,
+        frames.len(),
+        &last.creature,
+    );
+    if let Some(dir) = &args.out {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        let path = dir.join("creature.json");
+        std::fs::write(&path, serde_json::to_string_pretty(&last.creature)?)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        let path = dir.join("frames.jsonl");
+        let mut out = std::io::BufWriter::new(
+            std::fs::File::create(&path)
+                .with_context(|| format!("cannot write {}", path.display()))?,
+        );
+        for frame in &frames {
+            serde_json::to_writer(&mut out, frame)?;
+            writeln!(out)?;
+        }
+        out.flush()?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+        return Ok(());
+    }
+    let s = &summary;
+    println!(
+        "{}: grown to t = {} in {} frame(s)",
+        s.file,
+        ontogeny::lsystem::format_number(s.t),
+        s.frames
+    );
+    let joints: Vec<String> = s.joints.iter().map(|(k, n)| format!("{n} {k}")).collect();
+    println!(
+        "parts: {}   joints: {}",
+        s.parts,
+        if joints.is_empty() {
+            "none".to_string()
+        } else {
+            joints.join(", ")
+        }
+    );
+    println!(
+        "brain: {} neurons ({} sensors, {} actuators), {} links",
+        s.neurons, s.sensors, s.actuators, s.links
+    );
+    let [lo, hi] = s.bounding_box;
+    println!(
+        "mass: {:.4}   bounding box: ({:.3}, {:.3}, {:.3}) to ({:.3}, {:.3}, {:.3})",
+        s.mass, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+    );
+    println!("valid: {}", if s.valid { "yes" } else { "no" });
+    for p in &s.problems {
+        println!("  {p}");
+    }
+    if let Some(dir) = &args.out {
+        println!("wrote {}/creature.json and frames.jsonl", dir.display());
+    }
+    Ok(())
+}
