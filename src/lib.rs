@@ -10,3 +10,4 @@ pub mod develop;
 pub mod environment;
 pub mod lang;
 pub mod lsystem;
+pub mod render;

@@ -381,3 +381,30 @@ fn bad_continuous_input_is_reported() {
     );
     assert!(e.to_string().contains("random functions cannot"), "{e}");
 }
+
+#[test]
+fn a_rule_change_without_a_rewrite_is_one_event() {
+    // Found by fuzzing: the module stops matching its solve rule (or moves to another solve
+    // rule) at y = 1, which rewrites nothing; that must be one event, not an endless storm.
+    let text = "time: 3\naxiom: A(0)\nA(y) : y < 1 --> solve dy/dt = 0.7\n";
+    let lsys = LSystem::from_text("t.lsys", text).unwrap();
+    let frames = develop(&lsys, &options(1.0, Timing::Exact));
+    assert!(
+        (frames[3].params[0][0] - 1.0).abs() < 1e-9,
+        "{}",
+        frames[3].text
+    );
+    let text =
+        "time: 3\naxiom: A(0)\nA(y) : y < 1 --> solve dy/dt = 0.7\nA(y) --> solve dy/dt = 5\n";
+    let lsys = LSystem::from_text("t.lsys", text).unwrap();
+    for timing in [Timing::Exact, Timing::Iterative] {
+        let frames = develop(&lsys, &options(1.0, timing));
+        // y reaches 1 at t = 1/0.7, then grows at 5 to t = 3.
+        let expected = 1.0 + 5.0 * (3.0 - 1.0 / 0.7);
+        assert!(
+            (frames[3].params[0][0] - expected).abs() < 1e-6,
+            "{}",
+            frames[3].text
+        );
+    }
+}

@@ -32,8 +32,9 @@ pub struct GrowArgs {
     /// A creature with more parts than this is invalid.
     #[arg(long, default_value_t = BuildOptions::default().max_parts)]
     max_parts: usize,
-    /// Write creature.json (the final creature) and frames.jsonl (one creature per frame)
-    /// into this directory.
+    /// Write creature.json (the final creature), frames.jsonl (one creature per frame),
+    /// creature.png (a 3/4 view of the body and a drawing of the brain) and growth.gif (the
+    /// frames as an animation) into this directory.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Print the summary as JSON.
@@ -143,6 +144,12 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
             writeln!(out)?;
         }
         out.flush()?;
+        let path = dir.join("creature.png");
+        ontogeny::render::write_png(&last.creature, &path, 960, 600)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        let path = dir.join("growth.gif");
+        ontogeny::render::write_gif(frames.iter().map(|f| &f.creature), &path, 480, 300, 25)
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
@@ -179,7 +186,10 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         println!("  {p}");
     }
     if let Some(dir) = &args.out {
-        println!("wrote {}/creature.json and frames.jsonl", dir.display());
+        println!(
+            "wrote {0}/creature.json, {0}/frames.jsonl, {0}/creature.png and {0}/growth.gif",
+            dir.display()
+        );
     }
     Ok(())
 }

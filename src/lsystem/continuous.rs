@@ -322,6 +322,8 @@ impl<'l> Development<'l> {
             if !event {
                 continue;
             }
+            // Even when nothing is rewritten, some module's rule changed.
+            self.cache.valid = false;
             match self.timing {
                 Timing::Exact => self.settle()?,
                 Timing::Iterative => {

@@ -1,0 +1,115 @@
+//! Pictures: the PNG shows the body where the camera says it is, and the GIF has a frame per
+//! growth frame.
+
+use ontogeny::creature::Creature;
+use ontogeny::develop::{BuildOptions, build, grow};
+use ontogeny::environment::Environment;
+use ontogeny::lsystem::{DeriveOptions, LSystem};
+use ontogeny::render::{View, picture, write_gif};
+
+fn creature(axiom: &str) -> Creature {
+    let lsys = LSystem::from_text("t.lsys", &format!("axiom: {axiom}\n")).unwrap();
+    build(
+        lsys.axiom(),
+        lsys.symbols(),
+        &Environment::default(),
+        None,
+        &BuildOptions::default(),
+    )
+}
+
+/// Pixels of the body panel (the left 70% of a `width`-wide picture) whose colour is the
+/// parts' blue (bluer than red and green by a margin).
+fn blue_pixels(data: &[u8], width: usize) -> usize {
+    data.chunks(4)
+        .enumerate()
+        .filter(|(i, p)| {
+            i % width < width * 7 / 10
+                && p[2] as i32 > p[0] as i32 + 40
+                && p[2] as i32 > p[1] as i32 + 20
+        })
+        .count()
+}
+
+#[test]
+fn a_picture_shows_the_body_and_grows_with_it() {
+    let one = creature("forward(1)");
+    let four = creature("forward(1) forward(1) left(1) forward(1) forward(1)");
+    let view = View::framing(&four);
+    let small = picture(&one, &view, 400, 300).unwrap();
+    let large = picture(&four, &view, 400, 300).unwrap();
+    assert_eq!((small.width(), small.height()), (400, 300));
+    let (a, b) = (
+        blue_pixels(small.data(), 400),
+        blue_pixels(large.data(), 400),
+    );
+    assert!(a > 200, "one part is visible: {a} blue pixels");
+    assert!(
+        b > 2 * a,
+        "four parts cover more of the same view: {b} vs {a}"
+    );
+    // Same creature, same picture.
+    assert_eq!(
+        picture(&four, &view, 400, 300).unwrap().data(),
+        large.data()
+    );
+}
+
+#[test]
+fn an_empty_creature_still_draws_and_bad_sizes_are_errors() {
+    let empty = creature("A");
+    let pic = picture(&empty, &View::framing(&empty), 200, 100).unwrap();
+    assert_eq!(blue_pixels(pic.data(), 200), 0);
+    assert!(picture(&empty, &View::framing(&empty), 0, 100).is_err());
+}
+
+#[test]
+fn the_growth_gif_has_a_frame_per_growth_frame() {
+    let lsys = LSystem::from_path(std::path::Path::new("examples/snake.lsys")).unwrap();
+    let options = DeriveOptions {
+        time: Some(2.0),
+        dt: Some(0.5),
+        ..DeriveOptions::default()
+    };
+    let frames = grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
+    assert_eq!(frames.len(), 5);
+    let dir = std::env::temp_dir().join(format!("ontogeny-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("growth.gif");
+    write_gif(frames.iter().map(|f| &f.creature), &path, 160, 100, 20).unwrap();
+    let mut decoder = gif::DecodeOptions::new()
+        .read_info(std::fs::File::open(&path).unwrap())
+        .unwrap();
+    let mut count = 0;
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        assert_eq!((frame.width, frame.height, frame.delay), (160, 100, 20));
+        count += 1;
+    }
+    assert_eq!(count, 5);
+}
+
+#[test]
+fn growth_builds_a_creature_per_frame_with_parts_appearing() {
+    let lsys = LSystem::from_path(std::path::Path::new("examples/snake.lsys")).unwrap();
+    let frames = grow(
+        &lsys,
+        &DeriveOptions::default(),
+        None,
+        &BuildOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(frames.len(), 21, "t = 0, 0.25, ..., 5");
+    let parts: Vec<usize> = frames.iter().map(|f| f.creature.parts.len()).collect();
+    assert!(parts.windows(2).all(|w| w[0] <= w[1]), "{parts:?}");
+    assert_eq!(parts[0], 1, "the buds have no length yet");
+    assert_eq!(*parts.last().unwrap(), 9);
+    // A growing limb is marked as such and lengthens.
+    let growing: Vec<f64> = frames[1..4]
+        .iter()
+        .map(|f| f.creature.parts.iter().find(|p| p.growing).unwrap().size.x)
+        .collect();
+    assert!(
+        (growing[0] - 0.125).abs() < 1e-9 && (growing[2] - 0.375).abs() < 1e-9,
+        "{growing:?}"
+    );
+}
