@@ -249,3 +249,47 @@ fn bad_continuous_flags_exit_2() {
         "clap's own errors exit 2 as well"
     );
 }
+
+#[test]
+fn grow_writes_the_creature_its_frames_and_pictures() {
+    let dir = std::env::temp_dir().join(format!("ontogeny-grow-{}", std::process::id()));
+    let out = ontogeny(&[
+        "grow",
+        "examples/quadruped.lsys",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(summary["parts"], 11);
+    assert_eq!(summary["joints"]["revolute"], 4);
+    assert_eq!(summary["actuators"], 4);
+    assert_eq!(summary["sensors"], 4);
+    assert_eq!(summary["valid"], true);
+    let creature: ontogeny::creature::Creature =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("creature.json")).unwrap()).unwrap();
+    assert_eq!(creature.parts.len(), 11);
+    let frames = std::fs::read_to_string(dir.join("frames.jsonl")).unwrap();
+    assert_eq!(frames.lines().count(), 4, "axiom and three steps");
+    let png = std::fs::read(dir.join("creature.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    let gif = std::fs::read(dir.join("growth.gif")).unwrap();
+    assert_eq!(&gif[..3], b"GIF");
+}
+
+#[test]
+fn grow_reports_an_invalid_creature() {
+    let path = temp_file(
+        "crossing.lsys",
+        "axiom: forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)\n",
+    );
+    let out = ontogeny(&["grow", path.to_str().unwrap()]);
+    assert!(out.status.success());
+    let text = stdout(&out);
+    assert!(text.contains("valid: no"), "{text}");
+    assert!(
+        text.contains("error: parts 0 and 3 interpenetrate"),
+        "{text}"
+    );
+}
