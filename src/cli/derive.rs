@@ -139,7 +139,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
                 "--steps counts discrete steps; in continuous time use --time and --dt",
             ));
         }
-        develop(&lsys, &options, &mut out)?;
+        frames(&lsys, &options, &mut out)?;
     } else {
         if options.dt.is_some() || options.timing.is_some() {
             bail!(Diagnostic::without_location(
@@ -157,55 +157,27 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
 }
 
 fn derive(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
-    let steps = match (out.args.steps, lsys.derivation_length()) {
-        (Some(n), _) | (None, Some(n)) => n,
-        (None, None) => {
-            eprintln!(
-                "note: {} has no 'derivation length:' and no --steps was given: printing the axiom only",
-                out.args.file.display()
-            );
-            0
-        }
-    };
-    let mut derivation = lsys.derivation(options)?;
-    for step in 0..=steps {
-        if step > 0 {
-            derivation.step()?;
-        }
-        if !out.args.last || step == steps {
-            out.frame(
-                step,
-                step as f64,
-                derivation.current(),
-                derivation.environment(),
-            )?;
-        }
+    if out.args.steps.is_none() && lsys.derivation_length().is_none() {
+        eprintln!(
+            "note: {} has no 'derivation length:' and no --steps was given: printing the axiom only",
+            out.args.file.display()
+        );
     }
-    Ok(())
+    frames(lsys, options, out)
 }
 
-fn develop(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
-    let mut dev = lsys.development(options)?;
-    loop {
-        let events = dev.take_events();
+fn frames(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
+    lsys.for_each_frame(options, out.args.steps, |frame| {
         if out.args.events {
-            for event in &events {
+            for event in &frame.events {
                 out.event(event)?;
             }
         }
-        let last = dev.frame_number() == dev.frame_count();
-        if !out.args.last || last {
-            out.frame(
-                dev.frame_number(),
-                dev.time(),
-                dev.current(),
-                dev.environment(),
-            )?;
+        if !out.args.last || frame.last {
+            out.frame(frame.step, frame.t, frame.string, frame.env)?;
         }
-        if !dev.advance()? {
-            return Ok(());
-        }
-    }
+        Ok::<(), anyhow::Error>(())
+    })
 }
 
 struct Printer<'a> {

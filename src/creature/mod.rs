@@ -200,6 +200,9 @@ pub enum Actuator {
 pub struct Neuron {
     /// Its transfer function.
     pub function: NeuronFunction,
+    /// The function's parameters (a threshold, a delay, ...), empty when it has none.
+    #[serde(default)]
+    pub params: Vec<f64>,
     /// What it is for.
     pub role: Role,
     /// The part it belongs to (Sims' local neurons), or `None` for the whole creature.

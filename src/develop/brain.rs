@@ -31,6 +31,7 @@ impl BrainBuilder {
         BrainBuilder {
             neurons: vec![Neuron {
                 function: NeuronFunction::Oscillator,
+                params: Vec::new(),
                 role: Role::Hidden,
                 part: None,
             }],
@@ -56,6 +57,7 @@ impl BrainBuilder {
     fn add_neuron(&mut self, function: NeuronFunction, role: Role, part: Option<usize>) -> usize {
         self.neurons.push(Neuron {
             function,
+            params: Vec::new(),
             role,
             part,
         });

@@ -449,36 +449,20 @@ pub fn grow(
     build_options: &BuildOptions,
 ) -> Result<Vec<GrowthFrame>, crate::lang::Diagnostic> {
     let mut frames = Vec::new();
-    let mut add = |step: u64, t: f64, string: &ModuleString, env: &Environment| {
-        let shown = lsys.interpret(string, t, options)?;
+    lsys.for_each_frame(options, steps, |frame| {
+        let shown = lsys.interpret(frame.string, frame.t, options)?;
         frames.push(GrowthFrame {
-            step,
-            t,
-            creature: build(&shown, lsys.symbols(), env, Some(t), build_options),
+            step: frame.step,
+            t: frame.t,
+            creature: build(
+                &shown,
+                lsys.symbols(),
+                frame.env,
+                Some(frame.t),
+                build_options,
+            ),
         });
         Ok::<(), crate::lang::Diagnostic>(())
-    };
-    if options.time.is_some() || lsys.is_continuous() {
-        let mut dev = lsys.development(options)?;
-        loop {
-            add(
-                dev.frame_number(),
-                dev.time(),
-                dev.current(),
-                dev.environment(),
-            )?;
-            if !dev.advance()? {
-                break;
-            }
-        }
-    } else {
-        let steps = steps.or(lsys.derivation_length()).unwrap_or(0);
-        let mut d = lsys.derivation(options)?;
-        add(0, 0.0, d.current(), d.environment())?;
-        for step in 1..=steps {
-            d.step()?;
-            add(step, step as f64, d.current(), d.environment())?;
-        }
-    }
+    })?;
     Ok(frames)
 }

@@ -151,6 +151,51 @@ impl Splitter<'_> {
         pieces
     }
 
+    /// Splits one written module (a word with its parameter list) into modules. `make`
+    /// builds a module from a name, its span and the parameters (the last piece gets them).
+    /// Returns `None` when the module stays whole.
+    fn split_module<T, P>(
+        &self,
+        word: &str,
+        name_span: Span,
+        end: usize,
+        params: P,
+        split_words: &mut Vec<(String, Vec<String>, Span)>,
+        make: impl Fn(String, Span, P) -> T,
+    ) -> Result<Vec<T>, P>
+    where
+        P: Default,
+    {
+        let pieces = self.split(word);
+        if pieces.len() == 1 {
+            return Err(params);
+        }
+        split_words.push((
+            word.to_string(),
+            pieces
+                .iter()
+                .map(|&(a, b)| word[a..b].to_string())
+                .collect(),
+            name_span,
+        ));
+        let last = pieces.len() - 1;
+        let mut params = Some(params);
+        Ok(pieces
+            .iter()
+            .enumerate()
+            .map(|(i, &(a, b))| {
+                let stop = if i == last { end } else { name_span.start + b };
+                let span = Span::new(name_span.start + a, stop);
+                let own = if i == last {
+                    params.take().unwrap_or_default()
+                } else {
+                    P::default()
+                };
+                make(word[a..b].to_string(), span, own)
+            })
+            .collect())
+    }
+
     fn calls(
         &self,
         calls: Vec<RawCall>,
@@ -162,38 +207,11 @@ impl Splitter<'_> {
                 out.push(raw.call);
                 continue;
             }
-            let pieces = self.split(&raw.call.name);
-            if pieces.len() == 1 {
-                out.push(raw.call);
-                continue;
-            }
-            let word = raw.call.name.clone();
-            split_words.push((
-                word.clone(),
-                pieces
-                    .iter()
-                    .map(|&(a, b)| word[a..b].to_string())
-                    .collect(),
-                raw.name_span,
-            ));
-            let last = pieces.len() - 1;
-            let mut args = Some(raw.call.args);
-            for (i, &(a, b)) in pieces.iter().enumerate() {
-                let start = raw.name_span.start + a;
-                let end = if i == last {
-                    raw.call.span.end
-                } else {
-                    raw.name_span.start + b
-                };
-                out.push(ModuleCall {
-                    name: word[a..b].to_string(),
-                    args: if i == last {
-                        args.take().unwrap_or_default()
-                    } else {
-                        Vec::new()
-                    },
-                    span: Span::new(start, end),
-                });
+            let ModuleCall { name, args, span } = raw.call;
+            let make = |name, span, args| ModuleCall { name, args, span };
+            match self.split_module(&name, raw.name_span, span.end, args, split_words, make) {
+                Ok(pieces) => out.extend(pieces),
+                Err(args) => out.push(ModuleCall { name, args, span }),
             }
         }
         out
@@ -210,38 +228,11 @@ impl Splitter<'_> {
                 out.push(raw.pattern);
                 continue;
             }
-            let pieces = self.split(&raw.pattern.name);
-            if pieces.len() == 1 {
-                out.push(raw.pattern);
-                continue;
-            }
-            let word = raw.pattern.name.clone();
-            split_words.push((
-                word.clone(),
-                pieces
-                    .iter()
-                    .map(|&(a, b)| word[a..b].to_string())
-                    .collect(),
-                raw.name_span,
-            ));
-            let last = pieces.len() - 1;
-            let mut params = Some(raw.pattern.params);
-            for (i, &(a, b)) in pieces.iter().enumerate() {
-                let start = raw.name_span.start + a;
-                let end = if i == last {
-                    raw.pattern.span.end
-                } else {
-                    raw.name_span.start + b
-                };
-                out.push(PatternModule {
-                    name: word[a..b].to_string(),
-                    params: if i == last {
-                        params.take().unwrap_or_default()
-                    } else {
-                        Vec::new()
-                    },
-                    span: Span::new(start, end),
-                });
+            let PatternModule { name, params, span } = raw.pattern;
+            let make = |name, span, params| PatternModule { name, params, span };
+            match self.split_module(&name, raw.name_span, span.end, params, split_words, make) {
+                Ok(pieces) => out.extend(pieces),
+                Err(params) => out.push(PatternModule { name, params, span }),
             }
         }
         out

@@ -345,6 +345,67 @@ impl LSystem {
     }
 }
 
+/// One observation of a derivation or development, as [`LSystem::for_each_frame`] shows it.
+pub struct Frame<'a> {
+    /// The step (discrete) or observation index (continuous).
+    pub step: u64,
+    /// Developmental time: the step number in discrete mode, `step · dt` in continuous mode.
+    pub t: f64,
+    /// The string.
+    pub string: &'a ModuleString,
+    /// The environment.
+    pub env: &'a Environment,
+    /// Events since the previous frame (continuous mode).
+    pub events: Vec<Event>,
+    /// Whether this is the last frame.
+    pub last: bool,
+}
+
+impl LSystem {
+    /// Runs the system and shows every frame to `visit`: every derivation step in discrete
+    /// mode (`steps`, else the file's derivation length, else 0), every observation time in
+    /// continuous mode (a file with `time:`, or `options.time`).
+    pub fn for_each_frame<E: From<Diagnostic>>(
+        &self,
+        options: &DeriveOptions,
+        steps: Option<u64>,
+        mut visit: impl FnMut(Frame<'_>) -> Result<(), E>,
+    ) -> Result<(), E> {
+        if options.time.is_some() || self.is_continuous() {
+            let mut dev = self.development(options)?;
+            loop {
+                visit(Frame {
+                    step: dev.frame_number(),
+                    t: dev.time(),
+                    events: dev.take_events(),
+                    string: dev.current(),
+                    env: dev.environment(),
+                    last: dev.frame_number() == dev.frame_count(),
+                })?;
+                if !dev.advance()? {
+                    return Ok(());
+                }
+            }
+        }
+        let steps = steps.or(self.derivation_length).unwrap_or(0);
+        let mut d = self.derivation(options)?;
+        for step in 0..=steps {
+            if step > 0 {
+                d.step()?;
+            }
+            visit(Frame {
+                step,
+                t: step as f64,
+                string: d.current(),
+                env: d.environment(),
+                events: Vec::new(),
+                last: step == steps,
+            })?;
+        }
+        Ok(())
+    }
+}
+
 /// A derivation in progress: the current string and the means to rewrite it.
 pub struct Derivation<'l> {
     lsys: &'l LSystem,

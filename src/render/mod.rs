@@ -186,17 +186,14 @@ fn draw_body(pixmap: &mut Pixmap, creature: &Creature, view: &View, region: (f32
         ((view.min.z - pad) / step).floor() * step,
         ((view.max.z + pad) / step).ceil() * step,
     );
-    let mut floor = PathBuilder::new();
-    for (i, c) in [(x0, z0), (x1, z0), (x1, z1), (x0, z1)].iter().enumerate() {
-        let (sx, sy, _) = camera.project(&Vector3::new(c.0, ground, c.1));
-        if i == 0 {
-            floor.move_to(sx, sy);
-        } else {
-            floor.line_to(sx, sy);
-        }
-    }
-    floor.close();
-    if let Some(path) = floor.finish() {
+    let floor: Vec<(f32, f32)> = [(x0, z0), (x1, z0), (x1, z1), (x0, z1)]
+        .iter()
+        .map(|c| {
+            let (sx, sy, _) = camera.project(&Vector3::new(c.0, ground, c.1));
+            (sx, sy)
+        })
+        .collect();
+    if let Some(path) = polygon(&floor) {
         pixmap.fill_path(
             &path,
             &paint(232, 234, 228, 255),
@@ -292,17 +289,14 @@ fn draw_body(pixmap: &mut Pixmap, creature: &Creature, view: &View, region: (f32
             (base.2 * shade) as u8,
             255,
         );
-        let mut pb = PathBuilder::new();
-        for (i, &k) in face.iter().enumerate() {
-            let (sx, sy, _) = camera.project(&corners[k]);
-            if i == 0 {
-                pb.move_to(sx, sy);
-            } else {
-                pb.line_to(sx, sy);
-            }
-        }
-        pb.close();
-        if let Some(path) = pb.finish() {
+        let points: Vec<(f32, f32)> = face
+            .iter()
+            .map(|&k| {
+                let (sx, sy, _) = camera.project(&corners[k]);
+                (sx, sy)
+            })
+            .collect();
+        if let Some(path) = polygon(&points) {
             pixmap.fill_path(&path, &fill, FillRule::Winding, shift, None);
             pixmap.stroke_path(&path, &paint(30, 40, 60, 200), &outline, shift, None);
         }
@@ -350,9 +344,15 @@ fn convex_hull_path(pts: &mut [(f32, f32)]) -> Option<tiny_skia::Path> {
     if hull.len() < 3 {
         return None;
     }
+    polygon(&hull)
+}
+
+/// A closed polygon through `points`.
+fn polygon(points: &[(f32, f32)]) -> Option<tiny_skia::Path> {
+    let (first, rest) = points.split_first()?;
     let mut pb = PathBuilder::new();
-    pb.move_to(hull[0].0, hull[0].1);
-    for p in &hull[1..] {
+    pb.move_to(first.0, first.1);
+    for p in rest {
         pb.line_to(p.0, p.1);
     }
     pb.close();
