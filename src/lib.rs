@@ -11,3 +11,4 @@ pub mod environment;
 pub mod lang;
 pub mod lsystem;
 pub mod render;
+pub mod sim;

@@ -119,17 +119,65 @@ pub struct Joint {
     pub growing: bool,
 }
 
-/// A neuron's transfer function.
+/// A neuron's transfer function. `x` is the weighted sum of its inputs; `a, b, c` are its
+/// first three weighted inputs, in link order (missing ones are 0, or whatever leaves the
+/// result unchanged). Outputs are clipped to [−1, 1].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum NeuronFunction {
-    /// The weighted input sum.
+    /// `x` (Hornby & Pollack; Matos & Arita).
     Linear,
-    /// tanh of the weighted input sum.
+    /// tanh(`x`) (Hornby & Pollack; Matos & Arita).
     Sigmoid,
-    /// A sine oscillator whose frequency is the weighted input sum mapped into [0, 2π]
-    /// (Matos & Arita section 2).
+    /// sin(phase), the phase advancing at a frequency of π(1 + clamp(`x`, −1, 1)), i.e. the
+    /// weighted input sum mapped into [0, 2π] rad/s (Matos & Arita section 2).
     Oscillator,
+    /// Chaumont's `sumT`: `a + b` if it is at least the threshold `params[0]`, else 0.
+    Threshold,
+    /// Chaumont's `div`: 1 if `b` ≤ ε (1e-6), else `a / b`.
+    Divide,
+    /// Chaumont's `mem`: `a` as it was `params[0]` steps ago.
+    Memory,
+    /// Chaumont's `wav`: `b · sin(a · t + c)`, t the simulated time.
+    Wave,
+    /// WWD `sum`: `a + b`.
+    Sum,
+    /// WWD `product`: `a · b`.
+    Product,
+    /// WWD `divide`: `a / b` (0 when `b` is 0).
+    Quotient,
+    /// WWD `sum threshold`: 1 if `a + b > c`, else 0.
+    SumGreater,
+    /// WWD `greater than`: 1 if `a > b`, else 0.
+    GreaterThan,
+    /// WWD `sign of`: the sign of `a` (0 for 0).
+    Sign,
+    /// WWD `minimum` of `a, b, c`.
+    Min,
+    /// WWD `maximum` of `a, b, c`.
+    Max,
+    /// WWD `absolute value` of `a`.
+    Abs,
+    /// WWD `if`: `a` if `b` ≠ 0, else 0.
+    If,
+    /// WWD `interpolate`: the mean of `a, b, c`.
+    Interpolate,
+    /// WWD `sine` of `a`.
+    Sin,
+    /// WWD `cosine` of `a`.
+    Cos,
+    /// WWD `inverse tangent` of `a`.
+    Atan,
+    /// WWD `logarithmic`: ln `a` if `a` > 0, else `a`.
+    Log,
+    /// WWD `exponential`: `a` to the power `b`.
+    Power,
+    /// WWD `sigmoidal`: 1 / (1 + e^(−`a`)).
+    Logistic,
+    /// WWD `wave`: sin(steps · 2π / 360), steps counting this neuron's updates.
+    StepWave,
+    /// WWD `saw`: sin(steps · 2π / 4).
+    Saw,
 }
 
 /// What a neuron is for.
