@@ -293,3 +293,14 @@ fn grow_reports_an_invalid_creature() {
         "{text}"
     );
 }
+
+#[test]
+fn check_counts_names_used_in_odes_and_time_headers() {
+    let path = temp_file(
+        "ode.lsys",
+        "define RATE = 2\ndefine T = 3\ndefine STEP = 0.5\ntime: T\ndt: STEP\naxiom: A(1) B(0)\nA(x) --> solve dx/dt = RATE * x\nA(a) < B(y) : y < 100 --> solve dy/dt = a\n",
+    );
+    let out = ontogeny(&["check", path.to_str().unwrap()]);
+    let text = stdout(&out);
+    assert!(text.contains("findings: none"), "{text}");
+}

@@ -408,3 +408,59 @@ fn a_rule_change_without_a_rewrite_is_one_event() {
         );
     }
 }
+
+#[test]
+fn an_environment_read_at_an_event_settles_at_that_instant() {
+    // A reaches 1 at t = 0.6 and writes env[0] = 1; the read ?E then sees 1 at once, and G is
+    // born at 0.6 whatever dt is.
+    let text = "\
+time: 3
+environment: 0
+axiom: ?E(1, 0, 0) A(0.4)
+A(x) : x < 1 --> solve dx/dt = 1
+A(x) : x >= 1 --> ?E(0, 0, 1)
+?E(1, 0, c) : c > 0.5 --> G(0)
+G(x) : x < 10 --> solve dx/dt = 1
+";
+    let lsys = LSystem::from_text("t.lsys", text).unwrap();
+    for dt in [1.0, 0.25, 0.1] {
+        let frames = develop(&lsys, &options(dt, Timing::Exact));
+        let last = frames.last().unwrap();
+        assert_eq!(last.syms, ["G", "?E"], "dt {dt}: {}", last.text);
+        assert!(
+            (last.params[0][0] - 2.4).abs() < 1e-9,
+            "dt {dt}: {}",
+            last.text
+        );
+    }
+}
+
+#[test]
+fn constant_unconditional_rules_fire_in_continuous_time() {
+    let lsys = LSystem::from_text("t.lsys", "time: 1\naxiom: A\nA --> B\n").unwrap();
+    assert_eq!(
+        texts(&develop(&lsys, &options(1.0, Timing::Exact))),
+        ["B", "B"]
+    );
+    let lsys = LSystem::from_text("t.lsys", "time: 1\naxiom: A\nA --> B\n").unwrap();
+    assert_eq!(
+        texts(&develop(&lsys, &options(1.0, Timing::Iterative))),
+        ["A", "B"]
+    );
+    // A rule that fires forever at one instant is an error naming it.
+    let lsys = LSystem::from_text("t.lsys", "time: 1\naxiom: B\nB --> C\nC --> B\n").unwrap();
+    let err = match lsys.development(&options(1.0, Timing::Exact)) {
+        Ok(_) => panic!("should not settle"),
+        Err(e) => e,
+    };
+    assert!(
+        err.to_string().contains("more than 1000 rewriting passes"),
+        "{err}"
+    );
+    // Whether an unrelated module is rewritten makes no difference.
+    let text =
+        "time: 2\naxiom: A(0) X\nA(x) : x < 1 --> solve dx/dt = 1\nA(x) --> F A(0)\nX --> Y\n";
+    let lsys = LSystem::from_text("t.lsys", text).unwrap();
+    let frames = develop(&lsys, &options(1.0, Timing::Exact));
+    assert_eq!(texts(&frames), ["A(0)Y", "FA(0)Y", "FFA(0)Y"]);
+}

@@ -207,3 +207,36 @@ fn missing_file_is_a_clear_error() {
         "{err}"
     );
 }
+
+#[test]
+fn constant_query_indices_are_checked_before_deriving_and_runtime_errors_name_the_rule() {
+    let text = "environment: 0 0\naxiom: S\nderivation length: 2\nS --> ?E(0, 1+4, 0.8) S\n";
+    let shown = compile_error(text, DiagnosticKind::Semantic, 4);
+    assert!(shown.contains("outside the environment"), "{shown}");
+    let text = "define IDX = 7\nenvironment: 0\naxiom: ?E(0, IDX, 1)\n";
+    compile_error(text, DiagnosticKind::Semantic, 3);
+    // Made by a constant rule, found while deriving: the message points at that rule.
+    let text = "environment: 0 0\naxiom: S(5)\nS(i) --> ?E(0, i, 0.8)\n";
+    let shown = derive_error(text, 2, 1000);
+    assert!(shown.contains("bad.lsys:3:1"), "{shown}");
+}
+
+#[test]
+fn and_or_with_a_constant_side_short_circuit_when_compiled() {
+    let text = "define K = 0\naxiom: A(2)\nA(x) : K != 0 && x > 1/K --> B\n";
+    let lsys = LSystem::from_text("ok.lsys", text).unwrap_or_else(|e| panic!("{e}"));
+    let mut d = lsys.derivation(&DeriveOptions::default()).unwrap();
+    assert_eq!(lsys.display(d.step().unwrap()), "A(2)");
+    assert!(LSystem::from_text("ok.lsys", "axiom: A(1 || 1/0)\n").is_ok());
+    // The dead side's names must still exist.
+    compile_error("axiom: A(0 && NOPE)\n", DiagnosticKind::Semantic, 1);
+}
+
+#[test]
+fn lone_carriage_returns_end_lines_in_error_positions() {
+    let err = LSystem::from_text("cr.lsys", "axiom: A\rA --> B(1/0)\rderivation length: 1\r")
+        .unwrap_err();
+    let loc = err.location.unwrap();
+    assert_eq!((loc.line, loc.column), (2, 9));
+    assert_eq!(loc.line_text, "A --> B(1/0)");
+}

@@ -36,8 +36,14 @@ impl Source {
     /// Wraps `text`, reported in diagnostics as coming from `name` (usually its path).
     pub fn new(name: impl Into<String>, text: impl Into<String>) -> Arc<Source> {
         let text = text.into();
+        // Lines end at "\n", "\r\n" or a lone "\r", as the grammar's NEWLINE does.
+        let bytes = text.as_bytes();
         let line_starts = std::iter::once(0)
-            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .chain(bytes.iter().enumerate().filter_map(|(i, &b)| match b {
+                b'\n' => Some(i + 1),
+                b'\r' if bytes.get(i + 1) != Some(&b'\n') => Some(i + 1),
+                _ => None,
+            }))
             .collect();
         Arc::new(Source {
             name: name.into(),
@@ -88,8 +94,8 @@ impl Source {
         let end = self
             .line_starts
             .get(line)
-            .map_or(self.text.len(), |&next| next - 1);
-        self.text[start..end].trim_end_matches('\r')
+            .map_or(self.text.len(), |&next| next);
+        self.text[start..end].trim_end_matches(['\r', '\n'])
     }
 
     fn floor_char_boundary(&self, mut offset: usize) -> usize {

@@ -165,6 +165,9 @@ impl LSystem {
                 for call in &ast.successor {
                     call.args.iter().for_each(|a| a.visit_names(&mut note));
                 }
+                for ode in ast.solve.iter().flatten() {
+                    ode.rhs.visit_names(&mut note);
+                }
                 let formals = ast
                     .left
                     .iter()
@@ -194,6 +197,8 @@ impl LSystem {
             .iter()
             .map(|d| &d.value)
             .chain(&file.derivation_length)
+            .chain(&file.time)
+            .chain(&file.dt)
             .chain(
                 file.axiom
                     .iter()
@@ -204,6 +209,7 @@ impl LSystem {
                     .iter()
                     .chain(&r.probability)
                     .chain(r.successor.iter().flat_map(|c| &c.args))
+                    .chain(r.solve.iter().flatten().map(|ode| &ode.rhs))
             }));
         exprs.for_each(|e: &Expr| e.visit_names(&mut note));
         for (name, _, span) in &self.constants {

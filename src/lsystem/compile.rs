@@ -331,17 +331,10 @@ impl Compiler<'_> {
                     ),
                 ));
             }
-            let constant = |e: &Expr| match e {
-                Expr::Number(v, _) => Some(*v),
-                Expr::Unary {
-                    op: crate::lang::ast::UnaryOp::Neg,
-                    operand,
-                    ..
-                } => match **operand {
-                    Expr::Number(v, _) => Some(-v),
-                    _ => None,
-                },
-                _ => None,
+            // A value known before deriving: literals, constants and what folds from them.
+            let constant = |e: &Expr| {
+                let resolve = |name: &str| self.constant(name).map(Resolved::Const);
+                expr::compile(e, &resolve).ok().and_then(|c| c.as_const())
             };
             if let Some(mode) = constant(&call.args[0])
                 && mode != 0.0

@@ -125,9 +125,11 @@ impl<'l> Development<'l> {
             events: Vec::new(),
             cache: Cache::default(),
         };
-        dev.exchange()?;
-        if timing == Timing::Exact {
-            dev.settle()?;
+        match timing {
+            Timing::Exact => dev.settle()?,
+            Timing::Iterative => {
+                dev.exchange()?;
+            }
         }
         Ok(dev)
     }
@@ -173,9 +175,11 @@ impl<'l> Development<'l> {
             self.exchange()?;
         }
         self.integrate_to(target)?;
-        self.exchange()?;
-        if self.timing == Timing::Exact {
-            self.settle()?;
+        match self.timing {
+            Timing::Exact => self.settle()?,
+            Timing::Iterative => {
+                self.exchange()?;
+            }
         }
         self.frame += 1;
         Ok(true)
@@ -210,37 +214,41 @@ impl<'l> Development<'l> {
         Ok(stats)
     }
 
-    /// Rewrites at this instant until no module's first matching rule is discrete.
+    /// Processes the environment and rewrites at this instant, again and again, until an
+    /// exchange changes nothing and a pass rewrites nothing.
     fn settle(&mut self) -> Result<(), Diagnostic> {
-        for _ in 0..MAX_PASSES_PER_INSTANT {
+        let mut last_rule = None;
+        for _ in 0..=MAX_PASSES_PER_INSTANT {
+            let changed = self.exchange()?;
             let stats = self.pass()?;
-            if stats.rewritten == 0 {
+            if stats.rewritten == 0 && !changed {
                 return Ok(());
             }
-            self.exchange()?;
-        }
-        let stats = self.pass()?;
-        if stats.rewritten == 0 {
-            return Ok(());
+            last_rule = stats.last_rule.or(last_rule);
         }
         Err(self.fail(Failure::NoSettling {
-            span: stats.last_rule,
+            span: last_rule,
             passes: MAX_PASSES_PER_INSTANT,
         }))
     }
 
-    /// Processes the `?E` modules (after a pass, at events and at frames).
-    fn exchange(&mut self) -> Result<(), Diagnostic> {
+    /// Processes the `?E` modules (after a pass, at events and at frames); returns whether
+    /// anything changed.
+    fn exchange(&mut self) -> Result<bool, Diagnostic> {
         let Some(query) = self.lsys.query else {
-            return Ok(());
+            return Ok(false);
         };
-        exchange(
+        let changed = exchange(
             &mut self.string,
             query,
             &mut self.env,
             &self.ws.query_origins,
         )
-        .map_err(|f| self.fail(f))
+        .map_err(|f| self.fail(f))?;
+        if changed {
+            self.cache.valid = false;
+        }
+        Ok(changed)
     }
 
     /// The first matching rule of every module of the string at time `t`.
@@ -328,9 +336,9 @@ impl<'l> Development<'l> {
                 Timing::Exact => self.settle()?,
                 Timing::Iterative => {
                     self.pass()?;
+                    self.exchange()?;
                 }
             }
-            self.exchange()?;
             events += 1;
             if events > MAX_EVENTS_PER_STEP {
                 let rules = &self.lsys.productions.rules;

@@ -88,10 +88,16 @@ impl Pass<'_> {
             let sym = input.syms[i] as usize;
             if let Some(Some(r)) = self.rules.always.get(sym) {
                 let rule = &self.rules.rules[*r as usize];
+                let start = out.len();
                 append(
                     out,
                     rule.constant.as_ref().expect("'always' rules are constant"),
                 );
+                stats.rewritten += 1;
+                stats.last_rule = Some(rule.span);
+                if rule.emits_query {
+                    self.note_queries(out, start, rule.span, ws);
+                }
                 if out.len() > limit {
                     return Err(Failure::TooLong {
                         span: Some(rule.span),

@@ -122,6 +122,18 @@ pub(crate) fn compile(
     expr: &Expr,
     resolve: &dyn Fn(&str) -> Option<Resolved>,
 ) -> Result<CExpr, ExprError> {
+    compile_folding(expr, resolve, true)
+}
+
+/// Compiles `expr`; with `folding` off, constant parts are left unevaluated (for the side of
+/// `&&` or `||` that a constant left side makes dead: its names must still resolve, but its
+/// value — say a division by zero — never matters).
+fn compile_folding(
+    expr: &Expr,
+    resolve: &dyn Fn(&str) -> Option<Resolved>,
+    folding: bool,
+) -> Result<CExpr, ExprError> {
+    let compile = |e: &Expr| compile_folding(e, resolve, folding);
     let compiled = match expr {
         Expr::Number(v, _) => CExpr::Const(*v),
         Expr::Name(name, span) => match resolve(name) {
@@ -139,15 +151,28 @@ pub(crate) fn compile(
                 }
             },
         },
-        Expr::Unary { op, operand, span } => {
-            CExpr::Unary(*op, Box::new(compile(operand, resolve)?), *span)
+        Expr::Unary { op, operand, span } => CExpr::Unary(*op, Box::new(compile(operand)?), *span),
+        Expr::Binary {
+            op: op @ (BinaryOp::And | BinaryOp::Or),
+            lhs,
+            rhs,
+            span,
+        } => {
+            let left = compile(lhs)?;
+            let decided = match (op, left.as_const()) {
+                (BinaryOp::And, Some(v)) if v == 0.0 => Some(0.0),
+                (BinaryOp::Or, Some(v)) if v != 0.0 => Some(1.0),
+                _ => None,
+            };
+            if let Some(value) = decided {
+                compile_folding(rhs, resolve, false)?;
+                return Ok(CExpr::Const(value));
+            }
+            CExpr::Binary(*op, Box::new(left), Box::new(compile(rhs)?), *span)
         }
-        Expr::Binary { op, lhs, rhs, span } => CExpr::Binary(
-            *op,
-            Box::new(compile(lhs, resolve)?),
-            Box::new(compile(rhs, resolve)?),
-            *span,
-        ),
+        Expr::Binary { op, lhs, rhs, span } => {
+            CExpr::Binary(*op, Box::new(compile(lhs)?), Box::new(compile(rhs)?), *span)
+        }
         Expr::Call { name, args, span } => {
             let Some(&(_, func, least, most)) = FUNCTIONS.iter().find(|(n, ..)| n == name) else {
                 let known: Vec<&str> = FUNCTIONS.iter().map(|(n, ..)| *n).collect();
@@ -171,14 +196,15 @@ pub(crate) fn compile(
                     ),
                 });
             }
-            let args = args
-                .iter()
-                .map(|a| compile(a, resolve))
-                .collect::<Result<Vec<_>, _>>()?;
+            let args = args.iter().map(compile).collect::<Result<Vec<_>, _>>()?;
             CExpr::Call(func, args, *span)
         }
     };
-    fold(compiled)
+    if folding {
+        fold(compiled)
+    } else {
+        Ok(compiled)
+    }
 }
 
 /// Evaluates a node now if it is constant and not random.

@@ -439,6 +439,7 @@ impl Derivation<'_> {
             &mut self.env,
             &self.workspace.query_origins,
         )
+        .map(|_| ())
         .map_err(|f| {
             let when = format!("processing ?E after step {}", self.step);
             self.lsys.failure(f, &when)

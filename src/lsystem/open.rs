@@ -7,13 +7,15 @@ use crate::lang::Span;
 
 /// Processes the `?E` modules of `string` in string order: mode 0 writes `value` into
 /// `env[index]`; mode 1 replaces the module's `value` with `env[index]`. `origins` says which
-/// rule made which module (sorted by index), for error messages.
+/// rule made which module (sorted by index), for error messages. Returns whether anything
+/// changed (a value read or a slot written).
 pub(crate) fn exchange(
     string: &mut ModuleString,
     query: SymbolId,
     env: &mut Environment,
     origins: &[(u32, Span)],
-) -> Result<(), Failure> {
+) -> Result<bool, Failure> {
+    let mut changed = false;
     for i in 0..string.len() {
         if string.syms[i] != query {
             continue;
@@ -39,14 +41,17 @@ pub(crate) fn exchange(
         }
         let index = index as usize;
         if mode == 0.0 {
+            changed |= env.get(index).expect("index checked") != value;
             env.set(index, value).expect("index checked");
         } else if mode == 1.0 {
-            string.params[start + 2] = env.get(index).expect("index checked");
+            let read = env.get(index).expect("index checked");
+            changed |= string.params[start + 2] != read;
+            string.params[start + 2] = read;
         } else {
             return Err(fail(format!(
                 "?E({mode}, {index}, {value}): mode must be 0 (write) or 1 (read)"
             )));
         }
     }
-    Ok(())
+    Ok(changed)
 }
