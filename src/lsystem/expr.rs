@@ -160,8 +160,8 @@ fn compile_folding(
         } => {
             let left = compile(lhs)?;
             let decided = match (op, left.as_const()) {
-                (BinaryOp::And, Some(v)) if v == 0.0 => Some(0.0),
-                (BinaryOp::Or, Some(v)) if v != 0.0 => Some(1.0),
+                (BinaryOp::And, Some(v)) => (v == 0.0).then_some(0.0),
+                (BinaryOp::Or, Some(v)) => (v != 0.0).then_some(1.0),
                 _ => None,
             };
             if let Some(value) = decided {
