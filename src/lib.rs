@@ -12,3 +12,4 @@ pub mod lang;
 pub mod lsystem;
 pub mod render;
 pub mod sim;
+pub mod task;

@@ -2,6 +2,7 @@
 
 mod check;
 mod derive;
+mod eval;
 mod grow;
 
 use std::io::Write;
@@ -28,6 +29,9 @@ enum Verb {
     /// Grow creatures: build the body and brain the derived strings describe, at every
     /// frame, and summarise the last one (parts, joints, brain, mass, size, validity).
     Grow(grow::GrowArgs),
+    /// Evaluate a creature in physics on a task (walker or jump) and print its fitness, the
+    /// terms behind it and its status.
+    Eval(eval::EvalArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code.
@@ -37,6 +41,7 @@ pub fn main() -> ExitCode {
         Verb::Derive(args) => derive::run(&args),
         Verb::Check(args) => check::run(&args),
         Verb::Grow(args) => grow::run(&args),
+        Verb::Eval(args) => eval::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,219 @@
+//! `ontogeny eval`
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use ontogeny::creature::Creature;
+use ontogeny::develop::{BuildOptions, grow};
+use ontogeny::lang::{Diagnostic, DiagnosticKind};
+use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
+use ontogeny::sim::{ActuatorModel, JointModel, SimOptions};
+use ontogeny::task::{self, Evaluation, JumpOptions, WalkerFitness, WalkerOptions};
+
+use super::derive::{DevelopmentArgs, derive_options};
+
+/// The tasks.
+#[derive(Clone, Copy, ValueEnum)]
+enum TaskArg {
+    /// Chaumont et al.'s walker: distance of the root part, normalised by size (eq. 1).
+    Walker,
+    /// Walking with Dinosaurs' jump: best height of the lowest point.
+    Jump,
+}
+
+/// Joint models.
+#[derive(Clone, Copy, ValueEnum)]
+enum JointsArg {
+    /// Impulse joints (the default: faster).
+    Impulse,
+    /// Multibody (reduced-coordinate) joints.
+    Multibody,
+}
+
+/// Actuator models.
+#[derive(Clone, Copy, ValueEnum)]
+enum ActuatorArg {
+    /// Chaumont's muscle: saturated motor, torque scaled by |signal|.
+    Muscle,
+    /// Hornby's: the signal sets the target angle.
+    Angle,
+    /// Matos's: the signal sets the target speed.
+    Velocity,
+}
+
+/// Walker fitness formulas.
+#[derive(Clone, Copy, ValueEnum)]
+enum FitnessArg {
+    /// Equation (1): D_w · C_v / (C_s · C_l) · κ^N.
+    Normalised,
+    /// The raw distance D_w.
+    Distance,
+}
+
+/// Flags of `ontogeny eval`.
+#[derive(Args)]
+pub struct EvalArgs {
+    /// An L-system file (`.lsys`, grown to its last frame) or a `creature.json`.
+    file: PathBuf,
+    /// The task.
+    #[arg(long, value_enum)]
+    task: TaskArg,
+    /// Seconds of evaluation (walker: measured walking, default 20; jump: default 10).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// Seed for growing the creature from an L-system.
+    #[arg(long)]
+    seed: Option<u64>,
+    #[command(flatten)]
+    development: DevelopmentArgs,
+    /// Joint model.
+    #[arg(long, value_enum, default_value = "impulse")]
+    joints: JointsArg,
+    /// Actuator model.
+    #[arg(long, value_enum, default_value = "muscle")]
+    actuator: ActuatorArg,
+    /// Walker fitness formula.
+    #[arg(long, value_enum, default_value = "normalised")]
+    fitness: FitnessArg,
+    /// Physics and control time step in seconds.
+    #[arg(long, default_value_t = 1.0 / 60.0)]
+    time_step: f64,
+    /// Write recording.json (every part's pose per step) and behaviour.gif into DIR.
+    #[arg(long, value_name = "DIR")]
+    record: Option<PathBuf>,
+    /// Print the evaluation as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Loads a creature from an L-system (its last frame) or a creature.json.
+fn load(args: &EvalArgs) -> anyhow::Result<Creature> {
+    if args.file.extension().is_some_and(|e| e == "json") {
+        let text = std::fs::read_to_string(&args.file)
+            .with_context(|| format!("cannot read {}", args.file.display()))?;
+        return serde_json::from_str(&text).map_err(|e| {
+            anyhow::Error::new(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("{}: not a creature: {e}", args.file.display()),
+            ))
+        });
+    }
+    let lsys = LSystem::from_path(&args.file)?;
+    let options = derive_options(&args.development, args.seed, DEFAULT_MAX_MODULES);
+    let frames = grow(&lsys, &options, None, &BuildOptions::default())?;
+    Ok(frames.into_iter().last().expect("a first frame").creature)
+}
+
+/// Evaluates the creature and prints the result.
+pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
+    let creature = load(args)?;
+    if !(args.time_step > 0.0 && args.time_step <= 0.1) {
+        anyhow::bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!(
+                "--time-step must be in (0, 0.1] seconds, not {}",
+                args.time_step
+            ),
+        ));
+    }
+    let sim = SimOptions {
+        dt: args.time_step,
+        joints: match args.joints {
+            JointsArg::Impulse => JointModel::Impulse,
+            JointsArg::Multibody => JointModel::Multibody,
+        },
+        actuator: match args.actuator {
+            ActuatorArg::Muscle => ActuatorModel::Muscle,
+            ActuatorArg::Angle => ActuatorModel::Angle,
+            ActuatorArg::Velocity => ActuatorModel::Velocity,
+        },
+        ..SimOptions::default()
+    };
+    let record = args.record.is_some();
+    let evaluation = match args.task {
+        TaskArg::Walker => {
+            let mut options = WalkerOptions {
+                fitness: match args.fitness {
+                    FitnessArg::Normalised => WalkerFitness::Normalised,
+                    FitnessArg::Distance => WalkerFitness::Distance,
+                },
+                ..WalkerOptions::default()
+            };
+            if let Some(s) = args.seconds {
+                options.seconds = s;
+            }
+            task::walker(&creature, &sim, &options, record)
+        }
+        TaskArg::Jump => {
+            let mut options = JumpOptions::default();
+            if let Some(s) = args.seconds {
+                options.seconds = s;
+            }
+            task::jump(&creature, &sim, &options, record)
+        }
+    };
+    if let Some(dir) = &args.record {
+        write_recording(dir, &creature, &evaluation)?;
+    }
+    if args.json {
+        let mut shown = evaluation.clone();
+        shown.recording.clear();
+        println!("{}", serde_json::to_string_pretty(&shown)?);
+        return Ok(());
+    }
+    let status = serde_json::to_value(evaluation.status)?;
+    println!(
+        "{}: {} fitness {:.6} ({})",
+        args.file.display(),
+        evaluation.task,
+        evaluation.fitness,
+        status.as_str().unwrap_or("?")
+    );
+    for (name, value) in &evaluation.terms {
+        println!("  {name} = {value:.6}");
+    }
+    if let Some(message) = &evaluation.message {
+        println!("  {message}");
+    }
+    if let Some(dir) = &args.record {
+        println!(
+            "wrote {0}/recording.json and {0}/behaviour.gif",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let path = dir.join("recording.json");
+    std::fs::write(
+        &path,
+        serde_json::to_string(&serde_json::json!({
+            "creature": creature,
+            "frames": evaluation.recording,
+        }))?,
+    )
+    .with_context(|| format!("cannot write {}", path.display()))?;
+    // One picture every 1/10 s of simulated time.
+    let every = (evaluation.recording.len() / 300).max(6);
+    let posed: Vec<Creature> = evaluation
+        .recording
+        .iter()
+        .step_by(every)
+        .map(|frame| {
+            let mut c = creature.clone();
+            for (part, (position, orientation)) in c.parts.iter_mut().zip(&frame.parts) {
+                part.position = *position;
+                part.orientation = *orientation;
+            }
+            c.joints.clear();
+            c
+        })
+        .collect();
+    let path = dir.join("behaviour.gif");
+    ontogeny::render::write_gif(posed.iter(), &path, 480, 300, 10)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
+}

@@ -1,0 +1,531 @@
+//! A rapier3d world built from a [`Creature`]: box bodies on a flat high-friction ground,
+//! joints, motors driven by the brain, sensors read back every control step.
+
+use ::nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use rapier3d::math::{Pose, Real, Rotation, Vector};
+use rapier3d::prelude::*;
+
+use super::brain::BrainRuntime;
+use crate::creature::{Actuator, Creature, Role, Sensor};
+
+/// How joints are simulated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum JointModel {
+    /// Impulse-based constraints between free bodies (rapier's `ImpulseJointSet`).
+    Impulse,
+    /// Reduced coordinates (rapier's `MultibodyJointSet`).
+    Multibody,
+}
+
+/// How an actuator neuron's signal s ∈ [−1, 1] drives its joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ActuatorModel {
+    /// Chaumont et al. 5.3: the motor runs at saturation, its target velocity fixed high in
+    /// the signal's sign, its maximum torque |s| × the joint's strength.
+    Muscle,
+    /// Hornby & Pollack: s sets the target angle inside the joint's range.
+    Angle,
+    /// Matos & Arita: s sets the target angular velocity (s × `max_speed`).
+    Velocity,
+}
+
+/// World settings.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct SimOptions {
+    /// Control (and physics) step in seconds.
+    pub dt: f64,
+    /// Physics substeps per control step.
+    pub substeps: usize,
+    /// Solver iterations per substep.
+    pub solver_iterations: usize,
+    /// Joint model.
+    pub joints: JointModel,
+    /// Whether parts of one creature that are not joint neighbours collide.
+    pub self_collision: bool,
+    /// Friction coefficient of the ground and the parts.
+    pub friction: f64,
+    /// Actuator model.
+    pub actuator: ActuatorModel,
+    /// Maximum joint torque per square metre of the smaller part's cross-section (N·m/m²),
+    /// multiplied by the joint's own strength.
+    pub strength: f64,
+    /// Target speed (rad/s) of the muscle model, and the velocity model's top speed.
+    pub max_speed: f64,
+    /// Height of the creature's lowest point above the ground when it is dropped.
+    pub drop_height: f64,
+    /// A part moving farther than this in one control step means the world exploded.
+    pub explosion_distance: f64,
+    /// A part faster than this (m/s) means the world exploded.
+    pub speed_limit: f64,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        SimOptions {
+            dt: 1.0 / 60.0,
+            // Two substeps keep light creatures at rest within Chaumont's Δx = 1/300 per
+            // 1/60 s (one substep leaves them vibrating at about 5 mm per step).
+            substeps: 2,
+            solver_iterations: 4,
+            joints: JointModel::Impulse,
+            self_collision: true,
+            friction: 1.0,
+            actuator: ActuatorModel::Muscle,
+            strength: 50.0,
+            max_speed: 5.0,
+            drop_height: 0.05,
+            explosion_distance: 2.0,
+            speed_limit: 100.0,
+        }
+    }
+}
+
+/// A joint handle of either model.
+#[derive(Clone, Copy, Debug)]
+enum JointHandle {
+    Impulse(ImpulseJointHandle),
+    Multibody(MultibodyJointHandle),
+}
+
+/// Why a world could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum BuildError {
+    /// The creature has no parts.
+    #[error("the creature has no parts")]
+    NoParts,
+    /// A multibody joint would close a loop.
+    #[error("joint {0} closes a loop, which multibody joints cannot simulate")]
+    Loop(usize),
+}
+
+const ANGULAR: [JointAxis; 3] = [JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ];
+
+/// What the motors need to know of a joint.
+struct JointInfo {
+    limits: Vec<(f64, f64)>,
+    max_torque: f64,
+}
+
+/// A creature in a physics world, with its brain.
+pub struct World {
+    options: SimOptions,
+    gravity: Vector,
+    params: IntegrationParameters,
+    pipeline: PhysicsPipeline,
+    islands: IslandManager,
+    broad_phase: BroadPhaseBvh,
+    narrow_phase: NarrowPhase,
+    bodies: RigidBodySet,
+    colliders: ColliderSet,
+    impulse_joints: ImpulseJointSet,
+    multibody_joints: MultibodyJointSet,
+    soft_bodies: SoftBodySet,
+    ccd: CCDSolver,
+    parts: Vec<(RigidBodyHandle, ColliderHandle)>,
+    joints: Vec<JointHandle>,
+    /// Per joint: the parent's and the child's bodies.
+    joint_ends: Vec<(RigidBodyHandle, RigidBodyHandle)>,
+    /// Per joint: its limits and maximum torque.
+    joint_info: Vec<JointInfo>,
+    brain: BrainRuntime,
+    roles: Vec<Role>,
+    environment: Vec<f64>,
+    /// Early-release signal seen (a `release` effector above 0).
+    released: bool,
+    time: f64,
+    previous: Vec<Vector>,
+}
+
+fn vector(v: &Vector3<f64>) -> Vector {
+    Vector::new(v.x as Real, v.y as Real, v.z as Real)
+}
+
+fn rotation(q: &UnitQuaternion<f64>) -> Rotation {
+    Rotation::from_xyzw(q.i as Real, q.j as Real, q.k as Real, q.w as Real).normalize()
+}
+
+/// A world vector back in the project's nalgebra.
+pub fn to_na(v: Vector) -> Vector3<f64> {
+    Vector3::new(v.x as f64, v.y as f64, v.z as f64)
+}
+
+impl World {
+    /// Builds the world: the creature lifted so that its lowest point is `drop_height` above
+    /// the ground, at rest.
+    pub fn new(creature: &Creature, options: &SimOptions) -> Result<World, BuildError> {
+        if creature.parts.is_empty() {
+            return Err(BuildError::NoParts);
+        }
+        let params = IntegrationParameters {
+            dt: (options.dt / options.substeps.max(1) as f64) as Real,
+            num_solver_iterations: options.solver_iterations.max(1),
+            ..IntegrationParameters::default()
+        };
+        let mut world = World {
+            options: options.clone(),
+            gravity: Vector::new(0.0, -9.81, 0.0),
+            params,
+            pipeline: PhysicsPipeline::new(),
+            islands: IslandManager::new(),
+            broad_phase: BroadPhaseBvh::new(),
+            narrow_phase: NarrowPhase::new(),
+            bodies: RigidBodySet::new(),
+            colliders: ColliderSet::new(),
+            impulse_joints: ImpulseJointSet::new(),
+            multibody_joints: MultibodyJointSet::new(),
+            soft_bodies: SoftBodySet::new(),
+            ccd: CCDSolver::new(),
+            parts: Vec::new(),
+            joints: Vec::new(),
+            joint_ends: Vec::new(),
+            joint_info: Vec::new(),
+            brain: BrainRuntime::new(&creature.brain),
+            roles: creature.brain.neurons.iter().map(|n| n.role).collect(),
+            environment: creature.environment.clone(),
+            released: false,
+            time: 0.0,
+            previous: Vec::new(),
+        };
+        let ground = world.bodies.insert(RigidBodyBuilder::fixed());
+        world.colliders.insert_with_parent(
+            ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y))
+                .friction(options.friction as Real),
+            ground,
+            &mut world.bodies,
+        );
+
+        let (lo, _) = creature.bounding_box();
+        let lift = Vector3::new(0.0, options.drop_height - lo.y, 0.0);
+        let groups = if options.self_collision {
+            InteractionGroups::all()
+        } else {
+            // Parts collide with the ground only.
+            InteractionGroups::new(Group::GROUP_2, Group::GROUP_1, InteractionTestMode::And)
+        };
+        for part in &creature.parts {
+            let pose =
+                Pose::from_parts(vector(&(part.position + lift)), rotation(&part.orientation));
+            let body = world
+                .bodies
+                .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
+            let half = part.size / 2.0;
+            let collider = ColliderBuilder::cuboid(half.x as Real, half.y as Real, half.z as Real)
+                .density(part.density as Real)
+                .friction(options.friction as Real)
+                .collision_groups(groups);
+            let collider = world
+                .colliders
+                .insert_with_parent(collider, body, &mut world.bodies);
+            world.parts.push((body, collider));
+        }
+
+        for (index, joint) in creature.joints.iter().enumerate() {
+            let (b1, _) = world.parts[joint.parent];
+            let (b2, _) = world.parts[joint.child];
+            let pose1 = *world.bodies[b1].position();
+            let pose2 = *world.bodies[b2].position();
+            let anchor = vector(&(joint.anchor + lift));
+            // The joint frame: x along the first axis (if any), at the anchor.
+            let frame_rotation = match joint.axes.first() {
+                Some(axis) => Rotation::from_rotation_arc(Vector::X, vector(axis).normalize()),
+                None => Rotation::IDENTITY,
+            };
+            let world_frame = Pose::from_parts(anchor, frame_rotation);
+            let mask = match joint.kind.dof() {
+                0 => JointAxesMask::LOCKED_FIXED_AXES,
+                1 => JointAxesMask::LOCKED_REVOLUTE_AXES,
+                2 => JointAxesMask::LOCKED_SPHERICAL_AXES | JointAxesMask::ANG_Z,
+                _ => JointAxesMask::LOCKED_SPHERICAL_AXES,
+            };
+            let mut data = GenericJointBuilder::new(mask)
+                .contacts_enabled(false)
+                .build();
+            data.set_local_frame1(pose1.inverse() * world_frame);
+            data.set_local_frame2(pose2.inverse() * world_frame);
+            let parent = &creature.parts[joint.parent];
+            let child = &creature.parts[joint.child];
+            let section = (parent.size.y * parent.size.z).min(child.size.y * child.size.z);
+            let max_torque = options.strength * joint.strength * section;
+            for (k, &(lo, hi)) in joint.limits.iter().enumerate().take(joint.kind.dof()) {
+                data.set_limits(ANGULAR[k], [lo as Real, hi as Real]);
+                data.set_motor_model(ANGULAR[k], MotorModel::ForceBased);
+                data.set_motor_max_force(ANGULAR[k], 0.0);
+            }
+            let handle = match options.joints {
+                JointModel::Impulse => {
+                    JointHandle::Impulse(world.impulse_joints.insert(b1, b2, data, true))
+                }
+                JointModel::Multibody => JointHandle::Multibody(
+                    world
+                        .multibody_joints
+                        .insert(b1, b2, data, true)
+                        .ok_or(BuildError::Loop(index))?,
+                ),
+            };
+            world.joints.push(handle);
+            world.joint_ends.push((b1, b2));
+            world.joint_info.push(JointInfo {
+                limits: joint.limits.clone(),
+                max_torque,
+            });
+        }
+        world.previous = world
+            .parts
+            .iter()
+            .map(|(b, _)| world.bodies[*b].translation())
+            .collect();
+        Ok(world)
+    }
+
+    /// Simulated time so far.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The environment array (secreting neurons write it).
+    pub fn environment(&self) -> &[f64] {
+        &self.environment
+    }
+
+    /// Whether a `release` effector has fired.
+    pub fn release_signalled(&self) -> bool {
+        self.released
+    }
+
+    /// The centre of part `i`.
+    pub fn part_position(&self, i: usize) -> Vector3<f64> {
+        to_na(self.bodies[self.parts[i].0].translation())
+    }
+
+    /// The pose of part `i`: centre and orientation.
+    pub fn part_pose(&self, i: usize) -> (Vector3<f64>, UnitQuaternion<f64>) {
+        let body = &self.bodies[self.parts[i].0];
+        let q = body.rotation();
+        (
+            to_na(body.translation()),
+            UnitQuaternion::from_quaternion(Quaternion::new(
+                q.w as f64, q.x as f64, q.y as f64, q.z as f64,
+            )),
+        )
+    }
+
+    /// Number of parts.
+    pub fn part_count(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// The lowest point of any part's box.
+    pub fn lowest_point(&self) -> f64 {
+        self.parts
+            .iter()
+            .map(|(_, c)| self.colliders[*c].compute_aabb().mins.y as f64)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The highest point of any part's box.
+    pub fn highest_point(&self) -> f64 {
+        self.parts
+            .iter()
+            .map(|(_, c)| self.colliders[*c].compute_aabb().maxs.y as f64)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Angle of degree of freedom `dof` of joint `j` (radians), from the bodies' poses.
+    fn joint_angle(&self, j: usize, dof: usize) -> f64 {
+        let data = match self.joints[j] {
+            JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
+                Some(joint) => &joint.data,
+                None => return 0.0,
+            },
+            JointHandle::Multibody(h) => match self.multibody_joints.get(h) {
+                Some((mb, link)) => &mb.link(link).expect("link exists").joint.data,
+                None => return 0.0,
+            },
+        };
+        let (b1, b2) = self.joint_bodies(j);
+        let r1 = *self.bodies[b1].rotation() * data.local_frame1.rotation;
+        let r2 = *self.bodies[b2].rotation() * data.local_frame2.rotation;
+        let relative = r1.inverse() * r2;
+        let (x, y, z) = relative.to_euler(rapier3d::glamx::EulerRot::XYZ);
+        [x, y, z][dof.min(2)] as f64
+    }
+
+    fn joint_bodies(&self, j: usize) -> (RigidBodyHandle, RigidBodyHandle) {
+        self.joint_ends[j]
+    }
+
+    /// Sets every sensor neuron from the world.
+    fn read_sensors(&mut self) {
+        for i in 0..self.roles.len() {
+            let Role::Sensor { sensor } = self.roles[i] else {
+                continue;
+            };
+            let value = match sensor {
+                Sensor::Touch { part } => {
+                    let collider = self.parts[part].1;
+                    let touching = self.narrow_phase.contact_pairs_with(collider).any(|p| {
+                        p.manifolds()
+                            .iter()
+                            .any(|m| m.points.iter().any(|pt| pt.dist <= 1e-3))
+                    });
+                    if touching { 1.0 } else { -1.0 }
+                }
+                Sensor::Angle { joint, dof } => {
+                    let limits = &self.joint_info[joint].limits;
+                    let (lo, hi) = limits.get(dof).copied().unwrap_or((-1.0, 1.0));
+                    let a = self.joint_angle(joint, dof);
+                    if hi > lo {
+                        2.0 * (a - lo) / (hi - lo) - 1.0
+                    } else {
+                        0.0
+                    }
+                }
+                Sensor::Chemical { slot } => self.environment.get(slot).copied().unwrap_or(0.0),
+                Sensor::Target => 0.0,
+            };
+            self.brain.set_sensor(i, value);
+        }
+    }
+
+    /// Drives every actuator from the brain's outputs (or switches the motors off).
+    fn drive(&mut self, on: bool) {
+        for i in 0..self.roles.len() {
+            let Role::Actuator { actuator } = self.roles[i] else {
+                continue;
+            };
+            let s = self.brain.outputs()[i];
+            match actuator {
+                Actuator::Joint { joint, dof } => {
+                    let info = &self.joint_info[joint];
+                    let (lo, hi) = info.limits.get(dof).copied().unwrap_or((0.0, 0.0));
+                    let max_torque = info.max_torque;
+                    let speed = self.options.max_speed;
+                    let model = self.options.actuator;
+                    let axis = ANGULAR[dof.min(2)];
+                    self.with_joint(joint, |data| {
+                        if !on {
+                            data.set_motor_max_force(axis, 0.0);
+                            return;
+                        }
+                        match model {
+                            ActuatorModel::Muscle => {
+                                data.set_motor_velocity(axis, (speed * s.signum()) as Real, 1.0);
+                                data.set_motor_max_force(axis, (s.abs() * max_torque) as Real);
+                            }
+                            ActuatorModel::Angle => {
+                                let target = lo + (s + 1.0) / 2.0 * (hi - lo);
+                                data.set_motor_position(
+                                    axis,
+                                    target as Real,
+                                    (max_torque * 20.0) as Real,
+                                    (max_torque * 2.0) as Real,
+                                );
+                                data.set_motor_max_force(axis, max_torque as Real);
+                            }
+                            ActuatorModel::Velocity => {
+                                data.set_motor_velocity(axis, (speed * s) as Real, 1.0);
+                                data.set_motor_max_force(axis, max_torque as Real);
+                            }
+                        }
+                    });
+                }
+                Actuator::Secrete { slot } => {
+                    if on && let Some(v) = self.environment.get_mut(slot) {
+                        *v = s;
+                    }
+                }
+                Actuator::Release => {
+                    if on && s > 0.0 {
+                        self.released = true;
+                    }
+                }
+            }
+        }
+    }
+
+    fn with_joint(&mut self, j: usize, f: impl FnOnce(&mut GenericJoint)) {
+        match self.joints[j] {
+            JointHandle::Impulse(h) => {
+                if let Some(joint) = self.impulse_joints.get_mut(h, false) {
+                    f(&mut joint.data);
+                }
+            }
+            JointHandle::Multibody(h) => {
+                if let Some((mb, link)) = self.multibody_joints.get_mut(h)
+                    && let Some(link) = mb.link_mut(link)
+                {
+                    f(&mut link.joint.data);
+                }
+            }
+        }
+    }
+
+    /// One control step: sensors, brain (when `controller` is on), actuators, physics.
+    /// Returns the largest displacement of any part's centre, or an error when the world
+    /// exploded (NaN, a jump past `explosion_distance`, a speed past `speed_limit`).
+    pub fn step(&mut self, controller: bool) -> Result<f64, Exploded> {
+        if controller {
+            self.read_sensors();
+            if !self.brain.step(self.time, self.options.dt) {
+                return Err(Exploded::Brain);
+            }
+        }
+        self.drive(controller);
+        for _ in 0..self.options.substeps.max(1) {
+            self.pipeline.step(
+                self.gravity,
+                &self.params,
+                &mut self.islands,
+                &mut self.broad_phase,
+                &mut self.narrow_phase,
+                &mut self.bodies,
+                &mut self.colliders,
+                &mut self.impulse_joints,
+                &mut self.multibody_joints,
+                &mut self.soft_bodies,
+                &mut self.ccd,
+                &(),
+                &(),
+            );
+        }
+        self.time += self.options.dt;
+        let mut largest: f64 = 0.0;
+        for (k, (body, _)) in self.parts.iter().enumerate() {
+            let body = &self.bodies[*body];
+            let p = body.translation();
+            let v = body.linvel();
+            if !p.is_finite() || !v.is_finite() {
+                return Err(Exploded::NotANumber);
+            }
+            let moved = (p - self.previous[k]).length() as f64;
+            if moved > self.options.explosion_distance {
+                return Err(Exploded::Jump(moved));
+            }
+            if v.length() as f64 > self.options.speed_limit {
+                return Err(Exploded::Speed(v.length() as f64));
+            }
+            largest = largest.max(moved);
+            self.previous[k] = p;
+        }
+        Ok(largest)
+    }
+}
+
+/// How a world exploded.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum Exploded {
+    /// A position or velocity became NaN or infinite.
+    #[error("a part's position or velocity is not a number")]
+    NotANumber,
+    /// A neuron's output became NaN.
+    #[error("a neuron's output is not a number")]
+    Brain,
+    /// A part moved too far in one step.
+    #[error("a part moved {0:.2} m in one step")]
+    Jump(f64),
+    /// A part moved too fast.
+    #[error("a part reached {0:.1} m/s")]
+    Speed(f64),
+}

@@ -1,0 +1,367 @@
+//! Tasks: the seed papers' protocols and fitness formulas, with the guards against cheating
+//! and numerical explosion. Every task takes a [`Creature`] and gives an [`Evaluation`].
+
+use std::collections::BTreeMap;
+
+use nalgebra::{UnitQuaternion, Vector3};
+use serde::{Deserialize, Serialize};
+
+use crate::creature::{Creature, Severity};
+use crate::sim::{SimOptions, World};
+
+/// How an evaluation ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    /// Evaluated normally.
+    Ok,
+    /// Never came to rest before the controller was to start (fitness 0).
+    Unstable,
+    /// NaN, a part jumping too far in one step, or moving too fast (fitness 0).
+    Exploded,
+    /// Parts interpenetrate from the start (Chaumont 5.5): not simulated.
+    SelfIntersecting,
+    /// Taller than the height limit (Walking with Dinosaurs' height test): not simulated.
+    TooTall,
+    /// Development reported an error, or there is nothing to simulate.
+    Invalid,
+}
+
+/// The walker's fitness formula.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WalkerFitness {
+    /// Chaumont et al.'s equation (1): D_w · C_v / (C_s · C_l) · κ^N.
+    Normalised,
+    /// The raw distance D_w.
+    Distance,
+}
+
+/// Settings of the walker task (Chaumont et al. sections 3.3–3.5).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct WalkerOptions {
+    /// Seconds of measured walking (section 3.5: 20).
+    pub seconds: f64,
+    /// κ of the block-count bonus κ^N.
+    pub kappa: f64,
+    /// Which formula.
+    pub fitness: WalkerFitness,
+    /// Rest means every part moves less than this per 1/60 s ...
+    pub rest_distance: f64,
+    /// ... for this many consecutive steps.
+    pub rest_steps: usize,
+    /// A creature not at rest after this many seconds is unstable.
+    pub settle_limit: f64,
+    /// The first activation of the controller (s).
+    pub activation: f64,
+    /// The second stabilisation, controller off (s).
+    pub second_settle: f64,
+    /// Creatures taller than this (m) are not simulated.
+    pub max_height: f64,
+}
+
+impl Default for WalkerOptions {
+    fn default() -> Self {
+        WalkerOptions {
+            seconds: 20.0,
+            kappa: 1.02,
+            fitness: WalkerFitness::Normalised,
+            rest_distance: 1.0 / 300.0,
+            rest_steps: 30,
+            settle_limit: 10.0,
+            activation: 1.0,
+            second_settle: 0.5,
+            max_height: 15.0,
+        }
+    }
+}
+
+/// The poses of every part at one moment.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RecordedFrame {
+    /// Simulated time.
+    pub t: f64,
+    /// Each part's centre and orientation.
+    pub parts: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
+}
+
+/// The outcome of one evaluation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Evaluation {
+    /// The task's name.
+    pub task: String,
+    /// The fitness (0 unless the status is `ok`).
+    pub fitness: f64,
+    /// How it ended.
+    pub status: Status,
+    /// The terms behind the fitness (D_w, C_l, C_s, C_v, N, ...).
+    pub terms: BTreeMap<String, f64>,
+    /// What went wrong, when something did.
+    pub message: Option<String>,
+    /// Poses per recorded frame, when recording was asked for.
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub recording: Vec<RecordedFrame>,
+}
+
+impl Evaluation {
+    fn failed(task: &str, status: Status, message: String) -> Evaluation {
+        Evaluation {
+            task: task.to_string(),
+            fitness: 0.0,
+            status,
+            terms: BTreeMap::new(),
+            message: Some(message),
+            recording: Vec::new(),
+        }
+    }
+}
+
+/// Chaumont's size coefficients over the N parts: C_l (mean of B_x + B_y + B_z), C_s (mean
+/// surface area) and C_v (mean volume).
+pub fn size_coefficients(creature: &Creature) -> (f64, f64, f64) {
+    let n = creature.parts.len().max(1) as f64;
+    let (mut l, mut s, mut v) = (0.0, 0.0, 0.0);
+    for p in &creature.parts {
+        let b = p.size;
+        l += b.x + b.y + b.z;
+        s += 2.0 * (b.x * b.y + b.x * b.z + b.y * b.z);
+        v += b.x * b.y * b.z;
+    }
+    (l / n, s / n, v / n)
+}
+
+/// Checks that apply to every task before simulating.
+fn screen(task: &str, creature: &Creature, max_height: f64) -> Option<Evaluation> {
+    if creature.parts.is_empty() {
+        return Some(Evaluation::failed(
+            task,
+            Status::Invalid,
+            "the creature has no parts".into(),
+        ));
+    }
+    let errors: Vec<&str> = creature
+        .problems
+        .iter()
+        .filter(|p| p.severity == Severity::Error)
+        .map(|p| p.message.as_str())
+        .collect();
+    if errors.iter().any(|m| m.contains("interpenetrate")) {
+        return Some(Evaluation::failed(
+            task,
+            Status::SelfIntersecting,
+            errors.join("; "),
+        ));
+    }
+    if !errors.is_empty() {
+        return Some(Evaluation::failed(task, Status::Invalid, errors.join("; ")));
+    }
+    let (lo, hi) = creature.bounding_box();
+    if hi.y - lo.y > max_height {
+        return Some(Evaluation::failed(
+            task,
+            Status::TooTall,
+            format!("{:.2} m tall, more than {max_height} m", hi.y - lo.y),
+        ));
+    }
+    None
+}
+
+/// A running evaluation: the world plus the bookkeeping every protocol needs.
+struct Run {
+    world: World,
+    record: bool,
+    recording: Vec<RecordedFrame>,
+    task: &'static str,
+}
+
+impl Run {
+    fn step(&mut self, controller: bool) -> Result<f64, Evaluation> {
+        let moved = self.world.step(controller).map_err(|e| {
+            Evaluation::failed(
+                self.task,
+                Status::Exploded,
+                format!("{e} at t = {:.3} s", self.world.time()),
+            )
+        })?;
+        if self.record {
+            self.recording.push(RecordedFrame {
+                t: self.world.time(),
+                parts: (0..self.world.part_count())
+                    .map(|i| self.world.part_pose(i))
+                    .collect(),
+            });
+        }
+        Ok(moved)
+    }
+
+    /// Steps with the controller off until every part moves less than `rest` per step for
+    /// `steps` steps in a row; `Unstable` if that takes longer than `limit` seconds.
+    fn settle(&mut self, rest: f64, steps: usize, limit: f64, dt: f64) -> Result<(), Evaluation> {
+        let threshold = rest * dt * 60.0; // Δx is given per 1/60 s
+        let start = self.world.time();
+        let mut calm = 0;
+        while calm < steps {
+            if self.world.time() - start > limit {
+                return Err(Evaluation::failed(
+                    self.task,
+                    Status::Unstable,
+                    format!("not at rest after {limit} s"),
+                ));
+            }
+            let moved = self.step(false)?;
+            calm = if moved < threshold { calm + 1 } else { 0 };
+        }
+        Ok(())
+    }
+
+    fn run_for(&mut self, seconds: f64, controller: bool, dt: f64) -> Result<(), Evaluation> {
+        let steps = (seconds / dt).round() as usize;
+        for _ in 0..steps {
+            self.step(controller)?;
+        }
+        Ok(())
+    }
+}
+
+fn start(
+    task: &'static str,
+    creature: &Creature,
+    sim: &SimOptions,
+    record: bool,
+) -> Result<Run, Evaluation> {
+    let world = World::new(creature, sim)
+        .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
+    Ok(Run {
+        world,
+        record,
+        recording: Vec::new(),
+        task,
+    })
+}
+
+/// The walker (Chaumont et al. 3.3–3.5): stabilise with the controller off until at rest,
+/// activate the controller for 1 s, stabilise again for 0.5 s, then walk with the controller
+/// on for `seconds`; D_w is the horizontal distance the root part's centre of mass travels.
+pub fn walker(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &WalkerOptions,
+    record: bool,
+) -> Evaluation {
+    const TASK: &str = "walker";
+    if let Some(rejected) = screen(TASK, creature, options.max_height) {
+        return rejected;
+    }
+    let outcome = (|| {
+        let mut run = start(TASK, creature, sim, record)?;
+        run.settle(
+            options.rest_distance,
+            options.rest_steps,
+            options.settle_limit,
+            sim.dt,
+        )?;
+        let settled_at = run.world.time();
+        run.run_for(options.activation, true, sim.dt)?;
+        run.run_for(options.second_settle, false, sim.dt)?;
+        let measure_from = run.world.time();
+        let from = run.world.part_position(0);
+        run.run_for(options.seconds, true, sim.dt)?;
+        let to = run.world.part_position(0);
+        let d = to - from;
+        let distance = (d.x * d.x + d.z * d.z).sqrt();
+        let (c_l, c_s, c_v) = size_coefficients(creature);
+        let n = creature.parts.len() as f64;
+        let fitness = match options.fitness {
+            WalkerFitness::Normalised => distance * (c_v / (c_s * c_l)) * options.kappa.powf(n),
+            WalkerFitness::Distance => distance,
+        };
+        let terms = BTreeMap::from([
+            ("D_w".to_string(), distance),
+            ("C_l".to_string(), c_l),
+            ("C_s".to_string(), c_s),
+            ("C_v".to_string(), c_v),
+            ("N".to_string(), n),
+            ("kappa".to_string(), options.kappa),
+            ("settled_at".to_string(), settled_at),
+            ("measured_from".to_string(), measure_from),
+        ]);
+        Ok(Evaluation {
+            task: TASK.to_string(),
+            fitness,
+            status: Status::Ok,
+            terms,
+            message: None,
+            recording: run.recording,
+        })
+    })();
+    outcome.unwrap_or_else(|e| e)
+}
+
+/// Settings of the jump task.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct JumpOptions {
+    /// Seconds with the controller on, after the creature has come to rest.
+    pub seconds: f64,
+    /// Creatures taller than this (m) are not simulated.
+    pub max_height: f64,
+    /// Rest detection, as for the walker.
+    pub rest_distance: f64,
+    /// Rest detection, as for the walker.
+    pub rest_steps: usize,
+    /// Rest detection, as for the walker.
+    pub settle_limit: f64,
+}
+
+impl Default for JumpOptions {
+    fn default() -> Self {
+        JumpOptions {
+            seconds: 10.0,
+            max_height: 15.0,
+            rest_distance: 1.0 / 300.0,
+            rest_steps: 30,
+            settle_limit: 10.0,
+        }
+    }
+}
+
+/// Jump (Walking with Dinosaurs 3.3.3): after coming to rest, the controller runs for
+/// `seconds`; the fitness is the best height of the creature's lowest point above the ground.
+pub fn jump(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &JumpOptions,
+    record: bool,
+) -> Evaluation {
+    const TASK: &str = "jump";
+    if let Some(rejected) = screen(TASK, creature, options.max_height) {
+        return rejected;
+    }
+    let outcome = (|| {
+        let mut run = start(TASK, creature, sim, record)?;
+        run.settle(
+            options.rest_distance,
+            options.rest_steps,
+            options.settle_limit,
+            sim.dt,
+        )?;
+        let resting = run.world.lowest_point().max(0.0);
+        let mut best: f64 = 0.0;
+        let steps = (options.seconds / sim.dt).round() as usize;
+        for _ in 0..steps {
+            run.step(true)?;
+            best = best.max(run.world.lowest_point());
+        }
+        Ok(Evaluation {
+            task: TASK.to_string(),
+            fitness: best,
+            status: Status::Ok,
+            terms: BTreeMap::from([
+                ("height".to_string(), best),
+                ("resting_lowest_point".to_string(), resting),
+            ]),
+            message: None,
+            recording: run.recording,
+        })
+    })();
+    outcome.unwrap_or_else(|e| e)
+}

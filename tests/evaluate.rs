@@ -1,0 +1,152 @@
+//! The evaluator and the tasks: fitness terms by hand, the activation sequence, explosions,
+//! statuses, determinism across thread counts.
+
+use ontogeny::creature::Creature;
+use ontogeny::develop::{BuildOptions, build, grow};
+use ontogeny::environment::Environment;
+use ontogeny::lsystem::{DeriveOptions, LSystem};
+use ontogeny::sim::{ActuatorModel, SimOptions};
+use ontogeny::task::{self, JumpOptions, Status, WalkerOptions, size_coefficients};
+use rayon::prelude::*;
+
+fn creature(axiom: &str) -> Creature {
+    let lsys = LSystem::from_text("t.lsys", &format!("axiom: {axiom}\n")).unwrap();
+    build(
+        lsys.axiom(),
+        lsys.symbols(),
+        &Environment::default(),
+        None,
+        &BuildOptions::default(),
+    )
+}
+
+fn grown(path: &str) -> Creature {
+    let lsys = LSystem::from_path(std::path::Path::new(path)).unwrap();
+    let frames = grow(
+        &lsys,
+        &DeriveOptions::default(),
+        None,
+        &BuildOptions::default(),
+    )
+    .unwrap();
+    frames.into_iter().last().unwrap().creature
+}
+
+fn short_walk() -> WalkerOptions {
+    WalkerOptions {
+        seconds: 2.0,
+        ..WalkerOptions::default()
+    }
+}
+
+#[test]
+fn size_coefficients_by_hand() {
+    // Two parts: 1 x 0.25 x 0.25 and 2 x 0.5 x 0.25.
+    let c = creature("forward(1) width(0.25) thickness(0.5) forward(2)");
+    let (c_l, c_s, c_v) = size_coefficients(&c);
+    assert!((c_l - (1.5 + 2.75) / 2.0).abs() < 1e-12);
+    let s1 = 2.0 * (0.25 + 0.25 + 0.0625);
+    let s2 = 2.0 * (1.0 + 0.5 + 0.125);
+    assert!((c_s - (s1 + s2) / 2.0).abs() < 1e-12);
+    assert!((c_v - (0.0625 + 0.25) / 2.0).abs() < 1e-12);
+}
+
+#[test]
+fn a_passive_creature_scores_near_zero_and_its_terms_follow_equation_1() {
+    let c = creature("forward(1) revolute2 forward(1)");
+    let e = task::walker(&c, &SimOptions::default(), &short_walk(), false);
+    assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+    let d = e.terms["D_w"];
+    assert!(d < 0.01, "a passive creature does not walk: D_w = {d}");
+    let expected = d * e.terms["C_v"] / (e.terms["C_s"] * e.terms["C_l"]) * 1.02f64.powi(2);
+    assert!((e.fitness - expected).abs() < 1e-15);
+    assert_eq!(e.terms["N"], 2.0);
+}
+
+#[test]
+fn the_activation_sequence_happens_at_the_right_times() {
+    let c = grown("examples/snake.lsys");
+    let options = short_walk();
+    let sim = SimOptions::default();
+    let e = task::walker(&c, &sim, &options, true);
+    assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+    let settled = e.terms["settled_at"];
+    // At rest takes at least the 30 calm steps.
+    assert!(settled >= 30.0 * sim.dt - 1e-9, "{settled}");
+    // Measuring starts after 1 s of controller and 0.5 s of rest.
+    assert!((e.terms["measured_from"] - settled - 1.5).abs() < 1e-9);
+    // The recording covers every step to the end of the measured walk.
+    let last = e.recording.last().unwrap().t;
+    assert!(
+        (last - (e.terms["measured_from"] + 2.0)).abs() < 1e-9,
+        "{last}"
+    );
+    assert!(e.terms["D_w"] > 0.05, "the snake moves: {}", e.terms["D_w"]);
+}
+
+#[test]
+fn an_exploding_creature_is_caught() {
+    let c = grown("examples/snake.lsys");
+    let sim = SimOptions {
+        actuator: ActuatorModel::Velocity,
+        strength: 1e9,
+        max_speed: 1e6,
+        ..SimOptions::default()
+    };
+    let e = task::walker(&c, &sim, &short_walk(), false);
+    assert_eq!(e.status, Status::Exploded, "{e:?}");
+    assert_eq!(e.fitness, 0.0);
+}
+
+#[test]
+fn rejected_creatures_are_not_simulated() {
+    let crossing = creature("forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)");
+    let e = task::walker(&crossing, &SimOptions::default(), &short_walk(), false);
+    assert_eq!(e.status, Status::SelfIntersecting);
+    let tall = creature("up(1) { forward(1) }(20)");
+    let e = task::walker(&tall, &SimOptions::default(), &short_walk(), false);
+    assert_eq!(e.status, Status::TooTall);
+    let empty = creature("A");
+    assert_eq!(
+        task::jump(
+            &empty,
+            &SimOptions::default(),
+            &JumpOptions::default(),
+            false
+        )
+        .status,
+        Status::Invalid
+    );
+}
+
+#[test]
+fn a_passive_creature_does_not_jump() {
+    let c = creature("forward(1) revolute2 forward(1)");
+    let options = JumpOptions {
+        seconds: 1.0,
+        ..JumpOptions::default()
+    };
+    let e = task::jump(&c, &SimOptions::default(), &options, false);
+    assert_eq!(e.status, Status::Ok);
+    assert!(e.fitness < 0.01, "{}", e.fitness);
+}
+
+#[test]
+fn fitness_is_bit_identical_across_thread_counts() {
+    let creatures: Vec<Creature> = ["examples/snake.lsys", "examples/quadruped.lsys"]
+        .iter()
+        .map(|p| grown(p))
+        .collect();
+    let sim = SimOptions::default();
+    let options = short_walk();
+    let evaluate = |c: &Creature| task::walker(c, &sim, &options, false).fitness.to_bits();
+    let sequential: Vec<u64> = creatures.iter().map(evaluate).collect();
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let parallel: Vec<u64> = pool.install(|| creatures.par_iter().map(evaluate).collect());
+        assert_eq!(parallel, sequential, "{threads} threads");
+    }
+}
