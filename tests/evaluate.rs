@@ -150,3 +150,61 @@ fn fitness_is_bit_identical_across_thread_counts() {
         assert_eq!(parallel, sequential, "{threads} threads");
     }
 }
+
+#[test]
+fn the_release_fires_at_step_30_without_a_signal_and_earlier_with_one() {
+    let options = task::CatapultOptions {
+        max_seconds: 2.0,
+        ..task::CatapultOptions::default()
+    };
+    let plain = creature("forward(1) revolute2 forward(1) output(1)");
+    let e = task::catapult(&plain, &SimOptions::default(), &options, false);
+    assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+    assert_eq!(e.terms["release_step"], 30.0);
+    // The release neuron reads the oscillator, positive from the first update; updates are
+    // synchronous, so the release neuron is positive after the second step.
+    let signalled = creature("forward(1) revolute2 forward(1) output(1) release");
+    let e = task::catapult(&signalled, &SimOptions::default(), &options, false);
+    assert_eq!(e.terms["release_step"], 2.0);
+}
+
+#[test]
+fn distance_to_a_known_trajectory() {
+    use nalgebra::Vector3;
+    let path = [
+        Vector3::new(0.0, 0.0, 0.0),
+        Vector3::new(2.0, 2.0, 0.0),
+        Vector3::new(4.0, 0.0, 0.0),
+    ];
+    // The closest point to (2, 0, 0) is on either segment, at (1, 1, 0): √2 away.
+    let d = task::distance_to_trajectory(&path, &Vector3::new(2.0, 0.0, 0.0));
+    assert!((d - 2f64.sqrt()).abs() < 1e-12);
+    // Beyond the end along the last segment, the end point is closest: 2√2 away.
+    let d = task::distance_to_trajectory(&path, &Vector3::new(6.0, -2.0, 0.0));
+    assert!((d - 8f64.sqrt()).abs() < 1e-12);
+    // A point on the trajectory.
+    assert!(task::distance_to_trajectory(&path, &Vector3::new(3.0, 1.0, 0.0)) < 1e-12);
+}
+
+#[test]
+fn the_thrower_throws_and_aiming_subtracts_the_miss() {
+    let c = grown("examples/thrower.lsys");
+    let e = task::catapult(
+        &c,
+        &SimOptions::default(),
+        &task::CatapultOptions::default(),
+        false,
+    );
+    assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+    assert!(e.fitness > 3.0, "D_p = {}", e.fitness);
+    let aim = task::CatapultOptions {
+        target: Some(nalgebra::Vector3::new(5.0, 0.0, 0.0)),
+        ..task::CatapultOptions::default()
+    };
+    let a = task::catapult(&c, &SimOptions::default(), &aim, false);
+    assert!((a.fitness - (a.terms["D_p"] - a.terms["D_t"])).abs() < 1e-12);
+    assert!(
+        (a.terms["D_p"] - e.terms["D_p"]).abs() < 1e-12,
+        "the target does not change the throw"
+    );
+}

@@ -20,13 +20,13 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let lsys = LSystem::from_path(&args.file)?;
     let report = lsys.check();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        say!("{}", serde_json::to_string_pretty(&report)?);
         return Ok(());
     }
-    println!("{}: ok", report.file);
-    println!("axiom: {}", report.axiom);
+    say!("{}: ok", report.file);
+    say!("axiom: {}", report.axiom);
     match (report.time, report.derivation_length) {
-        (Some(time), _) => println!(
+        (Some(time), _) => say!(
             "continuous time: 0 to {time}, dt = {}, timing {}, {} differential rule{}",
             report.dt,
             report.timing,
@@ -37,20 +37,20 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
                 "s"
             }
         ),
-        (None, Some(n)) => println!("derivation length: {n}"),
+        (None, Some(n)) => say!("derivation length: {n}"),
         (None, None) => {
-            println!("derivation length: not given (derive prints the axiom only unless --steps)")
+            say!("derivation length: not given (derive prints the axiom only unless --steps)")
         }
     }
     if report.time.is_none() && report.differential_rules > 0 {
-        println!(
+        say!(
             "note: {} differential rule(s) but no 'time:': derive them with --time T",
             report.differential_rules
         );
     }
     if !report.environment.is_empty() {
         let values: Vec<String> = report.environment.iter().map(|v| v.to_string()).collect();
-        println!("environment: {}", values.join(" "));
+        say!("environment: {}", values.join(" "));
     }
     let symbols: Vec<String> = report
         .symbols
@@ -71,12 +71,12 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
             format!("{}{arity}{mark}", s.name)
         })
         .collect();
-    println!(
+    say!(
         "symbols ({}, * = rewritten by a production): {}",
         symbols.len(),
         symbols.join(" ")
     );
-    println!(
+    say!(
         "rules: {} production{}, {} interpretation rule{}",
         report.productions,
         if report.productions == 1 { "" } else { "s" },
@@ -93,14 +93,14 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
             .iter()
             .map(|(n, v)| format!("{n} = {v}"))
             .collect();
-        println!("constants: {}", constants.join(", "));
+        say!("constants: {}", constants.join(", "));
     }
     if report.findings.is_empty() {
-        println!("findings: none");
+        say!("findings: none");
     } else {
-        println!("findings ({}):", report.findings.len());
+        say!("findings ({}):", report.findings.len());
         for f in &report.findings {
-            println!("  {}:{}:{}: {}", report.file, f.line, f.column, f.message);
+            say!("  {}:{}:{}: {}", report.file, f.line, f.column, f.message);
         }
     }
     Ok(())

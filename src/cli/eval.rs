@@ -9,7 +9,9 @@ use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use ontogeny::sim::{ActuatorModel, JointModel, SimOptions};
-use ontogeny::task::{self, Evaluation, JumpOptions, WalkerFitness, WalkerOptions};
+use ontogeny::task::{
+    self, CatapultOptions, Evaluation, JumpOptions, WalkerFitness, WalkerOptions,
+};
 
 use super::derive::{DevelopmentArgs, derive_options};
 
@@ -20,6 +22,10 @@ enum TaskArg {
     Walker,
     /// Walking with Dinosaurs' jump: best height of the lowest point.
     Jump,
+    /// Chaumont et al.'s catapult: distance the projectile travels (eq. 2).
+    Catapult,
+    /// Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3).
+    Aim,
 }
 
 /// Joint models.
@@ -76,6 +82,9 @@ pub struct EvalArgs {
     /// Walker fitness formula.
     #[arg(long, value_enum, default_value = "normalised")]
     fitness: FitnessArg,
+    /// The aim task's target relative to the projectile's start, as X,Y,Z metres.
+    #[arg(long, value_name = "X,Y,Z", default_value = "5,0,0", value_parser = parse_point)]
+    target: [f64; 3],
     /// Physics and control time step in seconds.
     #[arg(long, default_value_t = 1.0 / 60.0)]
     time_step: f64,
@@ -85,6 +94,21 @@ pub struct EvalArgs {
     /// Print the evaluation as JSON.
     #[arg(long)]
     json: bool,
+}
+
+fn parse_point(text: &str) -> Result<[f64; 3], String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|v| {
+            v.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("'{v}' is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    match values.as_slice() {
+        [x, y, z] if values.iter().all(|v| v.is_finite()) => Ok([*x, *y, *z]),
+        _ => Err(format!("'{text}' is not X,Y,Z")),
+    }
 }
 
 /// Loads a creature from an L-system (its last frame) or a creature.json.
@@ -152,6 +176,17 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             }
             task::jump(&creature, &sim, &options, record)
         }
+        TaskArg::Catapult | TaskArg::Aim => {
+            let mut options = CatapultOptions::default();
+            if let Some(s) = args.seconds {
+                options.max_seconds = s;
+            }
+            if matches!(args.task, TaskArg::Aim) {
+                let [x, y, z] = args.target;
+                options.target = Some(nalgebra::Vector3::new(x, y, z));
+            }
+            task::catapult(&creature, &sim, &options, record)
+        }
     };
     if let Some(dir) = &args.record {
         write_recording(dir, &creature, &evaluation)?;
@@ -159,11 +194,11 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     if args.json {
         let mut shown = evaluation.clone();
         shown.recording.clear();
-        println!("{}", serde_json::to_string_pretty(&shown)?);
+        say!("{}", serde_json::to_string_pretty(&shown)?);
         return Ok(());
     }
     let status = serde_json::to_value(evaluation.status)?;
-    println!(
+    say!(
         "{}: {} fitness {:.6} ({})",
         args.file.display(),
         evaluation.task,
@@ -171,13 +206,13 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         status.as_str().unwrap_or("?")
     );
     for (name, value) in &evaluation.terms {
-        println!("  {name} = {value:.6}");
+        say!("  {name} = {value:.6}");
     }
     if let Some(message) = &evaluation.message {
-        println!("  {message}");
+        say!("  {message}");
     }
     if let Some(dir) = &args.record {
-        println!(
+        say!(
             "wrote {0}/recording.json and {0}/behaviour.gif",
             dir.display()
         );
@@ -207,6 +242,16 @@ fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> 
             for (part, (position, orientation)) in c.parts.iter_mut().zip(&frame.parts) {
                 part.position = *position;
                 part.orientation = *orientation;
+            }
+            if let Some(p) = frame.projectile {
+                // The projectile, drawn orange like a growing part.
+                c.parts.push(ontogeny::creature::Part {
+                    size: nalgebra::Vector3::new(0.2, 0.2, 0.2),
+                    position: p,
+                    orientation: nalgebra::UnitQuaternion::identity(),
+                    density: 1.0,
+                    growing: true,
+                });
             }
             c.joints.clear();
             c

@@ -152,18 +152,18 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        say!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());
     }
     let s = &summary;
-    println!(
+    say!(
         "{}: grown to t = {} in {} frame(s)",
         s.file,
         ontogeny::lsystem::format_number(s.t),
         s.frames
     );
     let joints: Vec<String> = s.joints.iter().map(|(k, n)| format!("{n} {k}")).collect();
-    println!(
+    say!(
         "parts: {}   joints: {}",
         s.parts,
         if joints.is_empty() {
@@ -172,21 +172,30 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
             joints.join(", ")
         }
     );
-    println!(
+    say!(
         "brain: {} neurons ({} sensors, {} actuators), {} links",
-        s.neurons, s.sensors, s.actuators, s.links
+        s.neurons,
+        s.sensors,
+        s.actuators,
+        s.links
     );
     let [lo, hi] = s.bounding_box;
-    println!(
+    say!(
         "mass: {:.4}   bounding box: ({:.3}, {:.3}, {:.3}) to ({:.3}, {:.3}, {:.3})",
-        s.mass, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+        s.mass,
+        lo[0],
+        lo[1],
+        lo[2],
+        hi[0],
+        hi[1],
+        hi[2]
     );
-    println!("valid: {}", if s.valid { "yes" } else { "no" });
+    say!("valid: {}", if s.valid { "yes" } else { "no" });
     for p in &s.problems {
-        println!("  {p}");
+        say!("  {p}");
     }
     if let Some(dir) = &args.out {
-        println!(
+        say!(
             "wrote {0}/creature.json, {0}/frames.jsonl, {0}/creature.png and {0}/growth.gif",
             dir.display()
         );

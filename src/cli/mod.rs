@@ -1,5 +1,14 @@
 //! Command-line verbs. Exit codes: 0 success, 2 bad input, 1 internal failure.
 
+/// Like `println!`, but a closed standard output (`ontogeny ... | head`) is an error the
+/// caller returns (and `main` treats as success), never a panic.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*)?;
+    }};
+}
+
 mod check;
 mod derive;
 mod eval;

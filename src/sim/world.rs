@@ -134,6 +134,10 @@ pub struct World {
     environment: Vec<f64>,
     /// Early-release signal seen (a `release` effector above 0).
     released: bool,
+    /// The catapult's projectile and the joint holding it, when there is one.
+    projectile: Option<(RigidBodyHandle, Option<JointHandle>)>,
+    /// The aiming task's target, for the target sensor.
+    target: Option<Vector3<f64>>,
     time: f64,
     previous: Vec<Vector>,
 }
@@ -185,6 +189,8 @@ impl World {
             roles: creature.brain.neurons.iter().map(|n| n.role).collect(),
             environment: creature.environment.clone(),
             released: false,
+            projectile: None,
+            target: None,
             time: 0.0,
             previous: Vec::new(),
         };
@@ -294,6 +300,76 @@ impl World {
         self.released
     }
 
+    /// Attaches a projectile box of `size` and `density` to the root part's near end (its local
+    /// −x face, where the turtle started and nothing else grows), held by a fixed joint until
+    /// [`release`](Self::release) (Chaumont 4.1: the root part is the arm).
+    pub fn attach_projectile(&mut self, size: Vector3<f64>, density: f64) {
+        let (root, root_collider) = self.parts[0];
+        let root_pose = *self.bodies[root].position();
+        let root_half = self.colliders[root_collider]
+            .shape()
+            .as_cuboid()
+            .map_or(Vector::ZERO, |c| c.half_extents);
+        let half = size / 2.0;
+        let grip_local = Vector::new(-root_half.x, 0.0, 0.0);
+        let centre_local = Vector::new(-(root_half.x + half.x as Real), 0.0, 0.0);
+        let pose = root_pose * Pose::from_translation(centre_local);
+        let body = self
+            .bodies
+            .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
+        let collider = ColliderBuilder::cuboid(half.x as Real, half.y as Real, half.z as Real)
+            .density(density as Real)
+            .friction(self.options.friction as Real);
+        self.colliders
+            .insert_with_parent(collider, body, &mut self.bodies);
+        let mut grip = GenericJointBuilder::new(JointAxesMask::LOCKED_FIXED_AXES)
+            .contacts_enabled(false)
+            .build();
+        grip.set_local_frame1(Pose::from_translation(grip_local));
+        grip.set_local_frame2(Pose::from_translation(Vector::new(
+            half.x as Real,
+            0.0,
+            0.0,
+        )));
+        let handle = match self.options.joints {
+            JointModel::Impulse => {
+                JointHandle::Impulse(self.impulse_joints.insert(root, body, grip, true))
+            }
+            JointModel::Multibody => match self.multibody_joints.insert(root, body, grip, true) {
+                Some(h) => JointHandle::Multibody(h),
+                None => JointHandle::Impulse(self.impulse_joints.insert(root, body, grip, true)),
+            },
+        };
+        self.projectile = Some((body, Some(handle)));
+    }
+
+    /// Breaks the joint holding the projectile.
+    pub fn release(&mut self) {
+        if let Some((_, joint)) = &mut self.projectile
+            && let Some(handle) = joint.take()
+        {
+            match handle {
+                JointHandle::Impulse(h) => {
+                    self.impulse_joints.remove(h, true);
+                }
+                JointHandle::Multibody(h) => self.multibody_joints.remove(h, true),
+            }
+        }
+    }
+
+    /// The projectile's centre and speed, when there is one.
+    pub fn projectile_state(&self) -> Option<(Vector3<f64>, f64)> {
+        self.projectile.map(|(body, _)| {
+            let b = &self.bodies[body];
+            (to_na(b.translation()), b.linvel().length() as f64)
+        })
+    }
+
+    /// Sets the point the target sensor points to.
+    pub fn set_target(&mut self, target: Option<Vector3<f64>>) {
+        self.target = target;
+    }
+
     /// The centre of part `i`.
     pub fn part_position(&self, i: usize) -> Vector3<f64> {
         to_na(self.bodies[self.parts[i].0].translation())
@@ -383,7 +459,19 @@ impl World {
                     }
                 }
                 Sensor::Chemical { slot } => self.environment.get(slot).copied().unwrap_or(0.0),
-                Sensor::Target => 0.0,
+                Sensor::Target => match self.target {
+                    // The horizontal angle from the root's heading to the target, over π.
+                    Some(target) => {
+                        let (position, orientation) = self.part_pose(0);
+                        let heading = orientation * Vector3::x();
+                        let to = target - position;
+                        let a = heading.z.atan2(heading.x) - to.z.atan2(to.x);
+                        let a = (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                            - std::f64::consts::PI;
+                        a / std::f64::consts::PI
+                    }
+                    None => 0.0,
+                },
             };
             self.brain.set_sensor(i, value);
         }
@@ -508,6 +596,11 @@ impl World {
             }
             largest = largest.max(moved);
             self.previous[k] = p;
+        }
+        if let Some((position, speed)) = self.projectile_state()
+            && (!position.iter().all(|v| v.is_finite()) || speed > self.options.speed_limit)
+        {
+            return Err(Exploded::Speed(speed));
         }
         Ok(largest)
     }

@@ -83,6 +83,9 @@ pub struct RecordedFrame {
     pub t: f64,
     /// Each part's centre and orientation.
     pub parts: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
+    /// The projectile's centre, in the catapult and aim tasks.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub projectile: Option<Vector3<f64>>,
 }
 
 /// The outcome of one evaluation.
@@ -189,6 +192,7 @@ impl Run {
                 parts: (0..self.world.part_count())
                     .map(|i| self.world.part_pose(i))
                     .collect(),
+                projectile: self.world.projectile_state().map(|(p, _)| p),
             });
         }
         Ok(moved)
@@ -359,6 +363,150 @@ pub fn jump(
                 ("height".to_string(), best),
                 ("resting_lowest_point".to_string(), resting),
             ]),
+            message: None,
+            recording: run.recording,
+        })
+    })();
+    outcome.unwrap_or_else(|e| e)
+}
+
+/// Settings of the catapult and aim tasks (Chaumont et al. section 4).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CatapultOptions {
+    /// The projectile's size (m).
+    pub projectile_size: Vector3<f64>,
+    /// The projectile's density.
+    pub projectile_density: f64,
+    /// Control steps after which the release mechanism fires without a signal (Figure 4).
+    pub release_delay: usize,
+    /// The projectile is at rest when slower than this (m/s) ...
+    pub rest_speed: f64,
+    /// ... for this many consecutive steps after release.
+    pub rest_steps: usize,
+    /// The simulation ends after this many seconds whatever happens.
+    pub max_seconds: f64,
+    /// Creatures taller than this (m) are not simulated.
+    pub max_height: f64,
+    /// The aim task's target, relative to where the projectile starts (metres; y is up).
+    pub target: Option<Vector3<f64>>,
+}
+
+impl Default for CatapultOptions {
+    fn default() -> Self {
+        CatapultOptions {
+            projectile_size: Vector3::new(0.2, 0.2, 0.2),
+            projectile_density: 1.0,
+            release_delay: 30,
+            rest_speed: 0.01,
+            rest_steps: 30,
+            max_seconds: 10.0,
+            max_height: 15.0,
+            target: None,
+        }
+    }
+}
+
+/// The minimum distance between the polyline `trajectory` and `target` (D_t of equation 3).
+pub fn distance_to_trajectory(trajectory: &[Vector3<f64>], target: &Vector3<f64>) -> f64 {
+    match trajectory {
+        [] => f64::INFINITY,
+        [only] => (only - target).norm(),
+        _ => trajectory
+            .windows(2)
+            .map(|w| {
+                let (a, b) = (w[0], w[1]);
+                let ab = b - a;
+                let len2 = ab.norm_squared();
+                let s = if len2 > 0.0 {
+                    ((target - a).dot(&ab) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                (a + ab * s - target).norm()
+            })
+            .fold(f64::INFINITY, f64::min),
+    }
+}
+
+/// Catapult (`options.target` = None, equation 2: F_D = D_p) or aim (equation 3:
+/// F_a = D_p − D_t). The creature's root part is the arm; a projectile is held at its near
+/// end and released after `release_delay` control steps, or earlier when the brain's first
+/// `release` effector fires. D_p is the horizontal distance of the projectile's centre from
+/// release to rest; the simulation ends when the projectile comes to rest.
+pub fn catapult(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &CatapultOptions,
+    record: bool,
+) -> Evaluation {
+    let task: &'static str = if options.target.is_some() {
+        "aim"
+    } else {
+        "catapult"
+    };
+    if let Some(rejected) = screen(task, creature, options.max_height) {
+        return rejected;
+    }
+    let outcome = (|| {
+        let mut run = start(task, creature, sim, record)?;
+        run.world
+            .attach_projectile(options.projectile_size, options.projectile_density);
+        let (start_position, _) = run.world.projectile_state().expect("attached");
+        let target = options.target.map(|t| start_position + t);
+        run.world.set_target(target);
+        let mut released_at = None;
+        let mut release_point = start_position;
+        let mut trajectory = Vec::new();
+        let mut calm = 0;
+        let mut step = 0usize;
+        let limit = (options.max_seconds / sim.dt).round() as usize;
+        while step < limit {
+            run.step(true)?;
+            step += 1;
+            let (position, speed) = run.world.projectile_state().expect("attached");
+            if released_at.is_none()
+                && (step >= options.release_delay || run.world.release_signalled())
+            {
+                run.world.release();
+                released_at = Some(step);
+                release_point = position;
+            }
+            if released_at.is_some() {
+                trajectory.push(position);
+                calm = if speed < options.rest_speed {
+                    calm + 1
+                } else {
+                    0
+                };
+                if calm >= options.rest_steps {
+                    break;
+                }
+            }
+        }
+        let (rest_point, _) = run.world.projectile_state().expect("attached");
+        let d = rest_point - release_point;
+        let distance = (d.x * d.x + d.z * d.z).sqrt();
+        let mut terms = BTreeMap::from([
+            ("D_p".to_string(), distance),
+            ("release_step".to_string(), released_at.unwrap_or(0) as f64),
+            ("seconds".to_string(), run.world.time()),
+        ]);
+        let fitness = match target {
+            Some(target) => {
+                terms.insert("target_x".to_string(), target.x);
+                terms.insert("target_y".to_string(), target.y);
+                terms.insert("target_z".to_string(), target.z);
+                let d_t = distance_to_trajectory(&trajectory, &target);
+                terms.insert("D_t".to_string(), d_t);
+                distance - d_t
+            }
+            None => distance,
+        };
+        Ok(Evaluation {
+            task: task.to_string(),
+            fitness,
+            status: Status::Ok,
+            terms,
             message: None,
             recording: run.recording,
         })
