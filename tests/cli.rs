@@ -304,3 +304,66 @@ fn check_counts_names_used_in_odes_and_time_headers() {
     let text = stdout(&out);
     assert!(text.contains("findings: none"), "{text}");
 }
+
+#[test]
+fn eval_prints_fitness_terms_and_records() {
+    let dir = std::env::temp_dir().join(format!("ontogeny-eval-{}", std::process::id()));
+    let out = ontogeny(&[
+        "eval",
+        "examples/thrower.lsys",
+        "--task",
+        "catapult",
+        "--json",
+        "--record",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let e: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(e["status"], "ok");
+    assert_eq!(e["task"], "catapult");
+    assert!(e["terms"]["D_p"].as_f64().unwrap() > 3.0);
+    assert!(dir.join("recording.json").exists() && dir.join("behaviour.gif").exists());
+    std::fs::remove_file(dir.join("behaviour.gif")).unwrap();
+    let out = ontogeny(&["replay", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(dir.join("behaviour.gif").exists());
+
+    // A creature.json works as well as an L-system.
+    let grown = std::env::temp_dir().join(format!("ontogeny-eval-grown-{}", std::process::id()));
+    assert!(
+        ontogeny(&[
+            "grow",
+            "examples/snake.lsys",
+            "--out",
+            grown.to_str().unwrap()
+        ])
+        .status
+        .success()
+    );
+    let out = ontogeny(&[
+        "eval",
+        grown.join("creature.json").to_str().unwrap(),
+        "--task",
+        "walker",
+        "--seconds",
+        "2",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stdout(&out).contains("walker fitness"), "{}", stdout(&out));
+    assert!(stdout(&out).contains("D_w = "), "{}", stdout(&out));
+}
+
+#[test]
+fn eval_rejects_bad_input_with_exit_2() {
+    let path = temp_file("not-a-creature.json", "{\"parts\": 3}");
+    let out = ontogeny(&["eval", path.to_str().unwrap(), "--task", "walker"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("not a creature"), "{}", stderr(&out));
+    let out = ontogeny(&["replay", "/no/such/dir"]);
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "a missing file is reported: {}",
+        stderr(&out)
+    );
+}

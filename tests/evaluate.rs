@@ -208,3 +208,32 @@ fn the_thrower_throws_and_aiming_subtracts_the_miss() {
         "the target does not change the throw"
     );
 }
+
+#[test]
+fn walking_with_dinosaurs_fitness_variants() {
+    use ontogeny::task::WalkerFitness;
+    let c = grown("examples/snake.lsys");
+    let run = |fitness| {
+        let options = WalkerOptions {
+            fitness,
+            ..short_walk()
+        };
+        task::walker(&c, &SimOptions::default(), &options, false)
+    };
+    let iterative = run(WalkerFitness::IterativeMove);
+    let i = iterative.terms["iterative_move"];
+    assert_eq!(iterative.fitness, i);
+    assert!(i > 0.0);
+    assert!((run(WalkerFitness::BoxLover).fitness - i * 9.0).abs() < 1e-12);
+    assert!((run(WalkerFitness::FatLover).fitness - i * c.mass()).abs() < 1e-12);
+    assert_eq!(run(WalkerFitness::DwarfSlayer).fitness, i);
+    let small = creature("forward(1) revolute2 forward(1) output(1)");
+    let options = WalkerOptions {
+        fitness: WalkerFitness::DwarfSlayer,
+        ..short_walk()
+    };
+    assert_eq!(
+        task::walker(&small, &SimOptions::default(), &options, false).fitness,
+        0.0
+    );
+}

@@ -55,6 +55,14 @@ enum FitnessArg {
     Normalised,
     /// The raw distance D_w.
     Distance,
+    /// Walking with Dinosaurs' iterative move (later distance counts more).
+    IterativeMove,
+    /// Iterative move × number of parts.
+    BoxLover,
+    /// Iterative move × mass.
+    FatLover,
+    /// Iterative move, 0 below 3 parts.
+    DwarfSlayer,
 }
 
 /// Flags of `ontogeny eval`.
@@ -161,6 +169,10 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
                 fitness: match args.fitness {
                     FitnessArg::Normalised => WalkerFitness::Normalised,
                     FitnessArg::Distance => WalkerFitness::Distance,
+                    FitnessArg::IterativeMove => WalkerFitness::IterativeMove,
+                    FitnessArg::BoxLover => WalkerFitness::BoxLover,
+                    FitnessArg::FatLover => WalkerFitness::FatLover,
+                    FitnessArg::DwarfSlayer => WalkerFitness::DwarfSlayer,
                 },
                 ..WalkerOptions::default()
             };
@@ -231,10 +243,28 @@ fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> 
         }))?,
     )
     .with_context(|| format!("cannot write {}", path.display()))?;
-    // One picture every 1/10 s of simulated time.
-    let every = (evaluation.recording.len() / 300).max(6);
-    let posed: Vec<Creature> = evaluation
-        .recording
+    render_recording(
+        creature,
+        &evaluation.recording,
+        &dir.join("behaviour.gif"),
+        10.0,
+    )?;
+    Ok(())
+}
+
+/// Renders recorded frames as an animation, `fps` pictures per second of simulated time.
+pub fn render_recording(
+    creature: &Creature,
+    frames: &[ontogeny::task::RecordedFrame],
+    path: &Path,
+    fps: f64,
+) -> anyhow::Result<()> {
+    let dt = match frames {
+        [a, b, ..] => (b.t - a.t).max(1e-6),
+        _ => 1.0 / 60.0,
+    };
+    let every = ((1.0 / fps / dt).round() as usize).max(1);
+    let posed: Vec<Creature> = frames
         .iter()
         .step_by(every)
         .map(|frame| {
@@ -257,8 +287,8 @@ fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> 
             c
         })
         .collect();
-    let path = dir.join("behaviour.gif");
-    ontogeny::render::write_gif(posed.iter(), &path, 480, 300, 10)
+    let delay = (100.0 / fps).round().clamp(2.0, 1000.0) as u16;
+    ontogeny::render::write_gif(posed.iter(), path, 480, 300, delay)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }

@@ -13,6 +13,7 @@ mod check;
 mod derive;
 mod eval;
 mod grow;
+mod replay;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -41,6 +42,8 @@ enum Verb {
     /// Evaluate a creature in physics on a task (walker or jump) and print its fitness, the
     /// terms behind it and its status.
     Eval(eval::EvalArgs),
+    /// Re-render a recording written by `eval --record DIR` into DIR/behaviour.gif.
+    Replay(replay::ReplayArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code.
@@ -51,6 +54,7 @@ pub fn main() -> ExitCode {
         Verb::Check(args) => check::run(&args),
         Verb::Grow(args) => grow::run(&args),
         Verb::Eval(args) => eval::run(&args),
+        Verb::Replay(args) => replay::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -63,12 +67,14 @@ fn report(error: anyhow::Error) -> ExitCode {
         eprintln!("{diagnostic}");
         return ExitCode::from(2);
     }
-    if let Some(io) = error.downcast_ref::<std::io::Error>()
-        && io.kind() == std::io::ErrorKind::BrokenPipe
-    {
+    let io = error
+        .chain()
+        .find_map(|cause| cause.downcast_ref::<std::io::Error>());
+    if io.is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
         // The reader (e.g. `head`) has had enough: not a failure.
         return ExitCode::SUCCESS;
     }
     let _ = writeln!(std::io::stderr(), "error: {error:#}");
-    ExitCode::from(1)
+    // A file that cannot be read or written is the user's to fix; anything else is ours.
+    ExitCode::from(if io.is_some() { 2 } else { 1 })
 }

@@ -35,6 +35,17 @@ pub enum WalkerFitness {
     Normalised,
     /// The raw distance D_w.
     Distance,
+    /// Walking with Dinosaurs' iterative move: distance counted later counts more. Our
+    /// reading of 3.3.3: the mean over each second k = 1..K of the measured walk of
+    /// (k / K) × the horizontal distance of the creature's centre of mass from where it
+    /// started.
+    IterativeMove,
+    /// Iterative move × the number of parts.
+    BoxLover,
+    /// Iterative move × the creature's mass.
+    FatLover,
+    /// Iterative move, but 0 for creatures of fewer than 3 parts.
+    DwarfSlayer,
 }
 
 /// Settings of the walker task (Chaumont et al. sections 3.3–3.5).
@@ -269,7 +280,25 @@ pub fn walker(
         run.run_for(options.second_settle, false, sim.dt)?;
         let measure_from = run.world.time();
         let from = run.world.part_position(0);
-        run.run_for(options.seconds, true, sim.dt)?;
+        let centre_from = centre_of_mass(&run.world, creature);
+        // Iterative move: the centre of mass's distance from its start at every second.
+        let mut seconds = Vec::new();
+        let steps_per_second = (1.0 / sim.dt).round().max(1.0) as usize;
+        let steps = (options.seconds / sim.dt).round() as usize;
+        for k in 1..=steps {
+            run.step(true)?;
+            if k % steps_per_second == 0 {
+                let d = centre_of_mass(&run.world, creature) - centre_from;
+                seconds.push((d.x * d.x + d.z * d.z).sqrt());
+            }
+        }
+        let count = seconds.len().max(1) as f64;
+        let iterative = seconds
+            .iter()
+            .enumerate()
+            .map(|(k, d)| (k + 1) as f64 / count * d)
+            .sum::<f64>()
+            / count;
         let to = run.world.part_position(0);
         let d = to - from;
         let distance = (d.x * d.x + d.z * d.z).sqrt();
@@ -278,6 +307,16 @@ pub fn walker(
         let fitness = match options.fitness {
             WalkerFitness::Normalised => distance * (c_v / (c_s * c_l)) * options.kappa.powf(n),
             WalkerFitness::Distance => distance,
+            WalkerFitness::IterativeMove => iterative,
+            WalkerFitness::BoxLover => iterative * n,
+            WalkerFitness::FatLover => iterative * creature.mass(),
+            WalkerFitness::DwarfSlayer => {
+                if n < 3.0 {
+                    0.0
+                } else {
+                    iterative
+                }
+            }
         };
         let terms = BTreeMap::from([
             ("D_w".to_string(), distance),
@@ -287,6 +326,8 @@ pub fn walker(
             ("N".to_string(), n),
             ("kappa".to_string(), options.kappa),
             ("settled_at".to_string(), settled_at),
+            ("iterative_move".to_string(), iterative),
+            ("mass".to_string(), creature.mass()),
             ("measured_from".to_string(), measure_from),
         ]);
         Ok(Evaluation {
@@ -299,6 +340,15 @@ pub fn walker(
         })
     })();
     outcome.unwrap_or_else(|e| e)
+}
+
+/// The mass-weighted centre of the creature's parts in `world`.
+fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64> {
+    let total = creature.mass().max(f64::MIN_POSITIVE);
+    (0..world.part_count())
+        .map(|i| world.part_position(i) * creature.parts[i].mass())
+        .sum::<Vector3<f64>>()
+        / total
 }
 
 /// Settings of the jump task.

@@ -1,0 +1,52 @@
+//! `ontogeny replay`
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use ontogeny::creature::Creature;
+use ontogeny::lang::{Diagnostic, DiagnosticKind};
+use ontogeny::task::RecordedFrame;
+
+/// Flags of `ontogeny replay`.
+#[derive(Args)]
+pub struct ReplayArgs {
+    /// A directory written by `ontogeny eval --record DIR`.
+    dir: PathBuf,
+    /// Frames per second of simulated time in the animation.
+    #[arg(long, default_value_t = 10.0)]
+    fps: f64,
+}
+
+#[derive(serde::Deserialize)]
+struct Recording {
+    creature: Creature,
+    frames: Vec<RecordedFrame>,
+}
+
+/// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
+pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
+    let path = args.dir.join("recording.json");
+    let text = std::fs::read_to_string(&path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    let recording: Recording = serde_json::from_str(&text).map_err(|e| {
+        anyhow::Error::new(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("{}: not a recording: {e}", path.display()),
+        ))
+    })?;
+    if !(args.fps > 0.0 && args.fps <= 100.0) {
+        anyhow::bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("--fps must be in (0, 100], not {}", args.fps),
+        ));
+    }
+    let gif = args.dir.join("behaviour.gif");
+    super::eval::render_recording(&recording.creature, &recording.frames, &gif, args.fps)?;
+    say!(
+        "wrote {} ({} frames recorded)",
+        gif.display(),
+        recording.frames.len()
+    );
+    Ok(())
+}
