@@ -362,8 +362,9 @@ fn eval_rejects_bad_input_with_exit_2() {
     let out = ontogeny(&["replay", "/no/such/dir"]);
     assert_eq!(
         out.status.code(),
-        Some(1),
-        "a missing file is reported: {}",
+        Some(2),
+        "a missing file is bad input: {}",
         stderr(&out)
     );
+    assert!(stderr(&out).contains("cannot read /no/such/dir/recording.json"));
 }
