@@ -9,6 +9,7 @@ macro_rules! say {
     }};
 }
 
+mod bench;
 mod check;
 mod derive;
 mod eval;
@@ -44,6 +45,9 @@ enum Verb {
     Eval(eval::EvalArgs),
     /// Re-render a recording written by `eval --record DIR` into DIR/behaviour.gif.
     Replay(replay::ReplayArgs),
+    /// Measure the evaluator on this machine: evaluations per second on one core and on all
+    /// cores, its overhead over rapier's own stepping, and impulse against multibody joints.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the command line and turns the outcome into an exit code.
@@ -55,6 +59,7 @@ pub fn main() -> ExitCode {
         Verb::Grow(args) => grow::run(&args),
         Verb::Eval(args) => eval::run(&args),
         Verb::Replay(args) => replay::run(&args),
+        Verb::Bench(args) => bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -140,6 +140,8 @@ pub struct World {
     target: Option<Vector3<f64>>,
     time: f64,
     previous: Vec<Vector>,
+    /// Wall-clock time spent inside rapier's pipeline, for measuring the evaluator's overhead.
+    physics_time: std::time::Duration,
 }
 
 fn vector(v: &Vector3<f64>) -> Vector {
@@ -193,6 +195,7 @@ impl World {
             target: None,
             time: 0.0,
             previous: Vec::new(),
+            physics_time: std::time::Duration::ZERO,
         };
         let ground = world.bodies.insert(RigidBodyBuilder::fixed());
         world.colliders.insert_with_parent(
@@ -283,6 +286,12 @@ impl World {
             .map(|(b, _)| world.bodies[*b].translation())
             .collect();
         Ok(world)
+    }
+
+    /// Wall-clock time spent inside rapier's physics pipeline so far (the rest of a step —
+    /// sensors, brain, motors, checks — is the evaluator's overhead).
+    pub fn physics_time(&self) -> std::time::Duration {
+        self.physics_time
     }
 
     /// Simulated time so far.
@@ -561,6 +570,7 @@ impl World {
             }
         }
         self.drive(controller);
+        let started = std::time::Instant::now();
         for _ in 0..self.options.substeps.max(1) {
             self.pipeline.step(
                 self.gravity,
@@ -578,6 +588,7 @@ impl World {
                 &(),
             );
         }
+        self.physics_time += started.elapsed();
         self.time += self.options.dt;
         let mut largest: f64 = 0.0;
         for (k, (body, _)) in self.parts.iter().enumerate() {
