@@ -237,3 +237,50 @@ fn walking_with_dinosaurs_fitness_variants() {
         0.0
     );
 }
+
+#[test]
+fn joints_of_two_and_three_degrees_of_freedom_simulate() {
+    use nalgebra::Vector3;
+    use ontogeny::creature::{Actuator, JointKind, Link, Neuron, NeuronFunction, Role, Sensor};
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    for (kind, dof) in [(JointKind::Universal, 2), (JointKind::Spherical, 3)] {
+        let mut c = creature("forward(1) forward(1)");
+        let joint = &mut c.joints[0];
+        joint.kind = kind;
+        joint.axes = vec![Vector3::z(), Vector3::y(), Vector3::x()][..dof].to_vec();
+        joint.limits = vec![(-half_pi, half_pi); dof];
+        for d in 0..dof {
+            let output = c.brain.neurons.len();
+            c.brain.neurons.push(Neuron {
+                function: NeuronFunction::Linear,
+                params: vec![],
+                role: Role::Actuator {
+                    actuator: Actuator::Joint { joint: 0, dof: d },
+                },
+                part: Some(1),
+            });
+            c.brain.links.push(Link {
+                from: 0,
+                to: output,
+                weight: 1.0,
+            });
+            let sensor = c.brain.neurons.len();
+            c.brain.neurons.push(Neuron {
+                function: NeuronFunction::Linear,
+                params: vec![],
+                role: Role::Sensor {
+                    sensor: Sensor::Angle { joint: 0, dof: d },
+                },
+                part: Some(1),
+            });
+            c.brain.links.push(Link {
+                from: sensor,
+                to: 0,
+                weight: 0.1,
+            });
+        }
+        let e = task::walker(&c, &SimOptions::default(), &short_walk(), false);
+        assert_eq!(e.status, Status::Ok, "{kind:?}: {:?}", e.message);
+        assert!(e.terms["D_w"].is_finite());
+    }
+}

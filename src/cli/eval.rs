@@ -96,6 +96,21 @@ pub struct EvalArgs {
     /// Physics and control time step in seconds.
     #[arg(long, default_value_t = 1.0 / 60.0)]
     time_step: f64,
+    /// Physics substeps per control step.
+    #[arg(long, default_value_t = SimOptions::default().substeps)]
+    substeps: usize,
+    /// Solver iterations per substep.
+    #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
+    solver_iterations: usize,
+    /// Let parts of one creature pass through each other (joint neighbours never collide).
+    #[arg(long)]
+    no_self_collision: bool,
+    /// The catapult's projectile: edge length of the cube (m).
+    #[arg(long, default_value_t = 0.2)]
+    projectile_size: f64,
+    /// The catapult's projectile: density.
+    #[arg(long, default_value_t = 1.0)]
+    projectile_density: f64,
     /// Write recording.json (every part's pose per step) and behaviour.gif into DIR.
     #[arg(long, value_name = "DIR")]
     record: Option<PathBuf>,
@@ -149,8 +164,23 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             ),
         ));
     }
+    if !(1..=64).contains(&args.substeps) || !(1..=256).contains(&args.solver_iterations) {
+        anyhow::bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            "--substeps must be 1 to 64 and --solver-iterations 1 to 256",
+        ));
+    }
+    if !(args.projectile_size > 0.0 && args.projectile_density > 0.0) {
+        anyhow::bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            "--projectile-size and --projectile-density must be positive",
+        ));
+    }
     let sim = SimOptions {
         dt: args.time_step,
+        substeps: args.substeps,
+        solver_iterations: args.solver_iterations,
+        self_collision: !args.no_self_collision,
         joints: match args.joints {
             JointsArg::Impulse => JointModel::Impulse,
             JointsArg::Multibody => JointModel::Multibody,
@@ -189,7 +219,11 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             task::jump(&creature, &sim, &options, record)
         }
         TaskArg::Catapult | TaskArg::Aim => {
-            let mut options = CatapultOptions::default();
+            let mut options = CatapultOptions {
+                projectile_size: nalgebra::Vector3::repeat(args.projectile_size),
+                projectile_density: args.projectile_density,
+                ..CatapultOptions::default()
+            };
             if let Some(s) = args.seconds {
                 options.max_seconds = s;
             }
@@ -276,7 +310,9 @@ pub fn render_recording(
             if let Some(p) = frame.projectile {
                 // The projectile, drawn orange like a growing part.
                 c.parts.push(ontogeny::creature::Part {
-                    size: nalgebra::Vector3::new(0.2, 0.2, 0.2),
+                    size: frame
+                        .projectile_size
+                        .unwrap_or(nalgebra::Vector3::repeat(0.2)),
                     position: p,
                     orientation: nalgebra::UnitQuaternion::identity(),
                     density: 1.0,

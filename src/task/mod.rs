@@ -97,6 +97,9 @@ pub struct RecordedFrame {
     /// The projectile's centre, in the catapult and aim tasks.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub projectile: Option<Vector3<f64>>,
+    /// The projectile's size, in the catapult and aim tasks.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub projectile_size: Option<Vector3<f64>>,
 }
 
 /// The outcome of one evaluation.
@@ -183,6 +186,7 @@ fn screen(task: &str, creature: &Creature, max_height: f64) -> Option<Evaluation
 /// A running evaluation: the world plus the bookkeeping every protocol needs.
 struct Run {
     world: World,
+    projectile_size: Option<Vector3<f64>>,
     record: bool,
     recording: Vec<RecordedFrame>,
     task: &'static str,
@@ -204,6 +208,7 @@ impl Run {
                     .map(|i| self.world.part_pose(i))
                     .collect(),
                 projectile: self.world.projectile_state().map(|(p, _)| p),
+                projectile_size: self.projectile_size,
             });
         }
         Ok(moved)
@@ -248,6 +253,7 @@ fn start(
         .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
     Ok(Run {
         world,
+        projectile_size: None,
         record,
         recording: Vec::new(),
         task,
@@ -501,6 +507,7 @@ pub fn catapult(
         let mut run = start(task, creature, sim, record)?;
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
+        run.projectile_size = Some(options.projectile_size);
         let (start_position, _) = run.world.projectile_state().expect("attached");
         let target = options.target.map(|t| start_position + t);
         run.world.set_target(target);
