@@ -2,22 +2,14 @@
 //! statuses, determinism across thread counts.
 
 use ontogeny::creature::Creature;
-use ontogeny::develop::{BuildOptions, build, grow};
-use ontogeny::environment::Environment;
+use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::sim::{ActuatorModel, SimOptions};
 use ontogeny::task::{self, JumpOptions, Status, WalkerOptions, size_coefficients};
 use rayon::prelude::*;
 
 fn creature(axiom: &str) -> Creature {
-    let lsys = LSystem::from_text("t.lsys", &format!("axiom: {axiom}\n")).unwrap();
-    build(
-        lsys.axiom(),
-        lsys.symbols(),
-        &Environment::default(),
-        None,
-        &BuildOptions::default(),
-    )
+    ontogeny::develop::creature_from_commands(axiom).unwrap()
 }
 
 fn grown(path: &str) -> Creature {

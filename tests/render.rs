@@ -2,20 +2,12 @@
 //! growth frame.
 
 use ontogeny::creature::Creature;
-use ontogeny::develop::{BuildOptions, build, grow};
-use ontogeny::environment::Environment;
+use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::render::{View, picture, write_gif};
 
 fn creature(axiom: &str) -> Creature {
-    let lsys = LSystem::from_text("t.lsys", &format!("axiom: {axiom}\n")).unwrap();
-    build(
-        lsys.axiom(),
-        lsys.symbols(),
-        &Environment::default(),
-        None,
-        &BuildOptions::default(),
-    )
+    ontogeny::develop::creature_from_commands(axiom).unwrap()
 }
 
 /// Pixels of the body panel (the left 70% of a `width`-wide picture) whose colour is the

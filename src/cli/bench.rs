@@ -4,9 +4,7 @@ use std::time::Instant;
 
 use clap::Args;
 use ontogeny::creature::Creature;
-use ontogeny::develop::{BuildOptions, build};
-use ontogeny::environment::Environment;
-use ontogeny::lsystem::LSystem;
+use ontogeny::develop::creature_from_commands;
 use ontogeny::sim::{JointModel, SimOptions, World};
 use rayon::prelude::*;
 
@@ -25,17 +23,10 @@ pub struct BenchArgs {
 /// oscillator: a walker-like creature of known size.
 fn chain(parts: usize) -> Creature {
     let text = format!(
-        "axiom: width(0.3) thickness(0.2) forward(0.5) {{ revolute2 forward(0.5) output(1) }}({})\n",
+        "width(0.3) thickness(0.2) forward(0.5) {{ revolute2 forward(0.5) output(1) }}({})",
         parts.saturating_sub(1)
     );
-    let lsys = LSystem::from_text("bench", &text).expect("the bench creature compiles");
-    build(
-        lsys.axiom(),
-        lsys.symbols(),
-        &Environment::default(),
-        None,
-        &BuildOptions::default(),
-    )
+    creature_from_commands(&text).expect("the bench creature compiles")
 }
 
 /// Runs one evaluation: `seconds` of controller-on stepping. Returns (total, physics) seconds.

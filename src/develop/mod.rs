@@ -427,6 +427,19 @@ fn matching_close(
 
 mod overlap;
 
+/// Builds the creature a string of commands describes (written as an axiom would be, e.g.
+/// `"forward(1) revolute2 forward(1) output(1)"`), with default options.
+pub fn creature_from_commands(commands: &str) -> Result<Creature, crate::lang::Diagnostic> {
+    let lsys = crate::lsystem::LSystem::from_text("commands", &format!("axiom: {commands}\n"))?;
+    Ok(build(
+        lsys.axiom(),
+        lsys.symbols(),
+        &Environment::default(),
+        None,
+        &BuildOptions::default(),
+    ))
+}
+
 /// One frame of growth: the creature built from the string at one observation time.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct GrowthFrame {

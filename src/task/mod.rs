@@ -48,6 +48,28 @@ pub enum WalkerFitness {
     DwarfSlayer,
 }
 
+/// When a creature counts as at rest (Chaumont et al. 3.3): every part's centre moves less
+/// than `distance` per 1/60 s for `steps` steps in a row, within `limit` seconds.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Rest {
+    /// Δx, per 1/60 s.
+    pub distance: f64,
+    /// Consecutive calm steps.
+    pub steps: usize,
+    /// A creature not at rest after this many seconds is unstable.
+    pub limit: f64,
+}
+
+impl Default for Rest {
+    fn default() -> Self {
+        Rest {
+            distance: 1.0 / 300.0,
+            steps: 30,
+            limit: 10.0,
+        }
+    }
+}
+
 /// Settings of the walker task (Chaumont et al. sections 3.3–3.5).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct WalkerOptions {
@@ -57,12 +79,8 @@ pub struct WalkerOptions {
     pub kappa: f64,
     /// Which formula.
     pub fitness: WalkerFitness,
-    /// Rest means every part moves less than this per 1/60 s ...
-    pub rest_distance: f64,
-    /// ... for this many consecutive steps.
-    pub rest_steps: usize,
-    /// A creature not at rest after this many seconds is unstable.
-    pub settle_limit: f64,
+    /// When the creature is at rest.
+    pub rest: Rest,
     /// The first activation of the controller (s).
     pub activation: f64,
     /// The second stabilisation, controller off (s).
@@ -77,9 +95,7 @@ impl Default for WalkerOptions {
             seconds: 20.0,
             kappa: 1.02,
             fitness: WalkerFitness::Normalised,
-            rest_distance: 1.0 / 300.0,
-            rest_steps: 30,
-            settle_limit: 10.0,
+            rest: Rest::default(),
             activation: 1.0,
             second_settle: 0.5,
             max_height: 15.0,
@@ -214,18 +230,18 @@ impl Run {
         Ok(moved)
     }
 
-    /// Steps with the controller off until every part moves less than `rest` per step for
-    /// `steps` steps in a row; `Unstable` if that takes longer than `limit` seconds.
-    fn settle(&mut self, rest: f64, steps: usize, limit: f64, dt: f64) -> Result<(), Evaluation> {
-        let threshold = rest * dt * 60.0; // Δx is given per 1/60 s
+    /// Steps with the controller off until the creature is at rest; `Unstable` if it is not
+    /// within the time limit.
+    fn settle(&mut self, rest: &Rest, dt: f64) -> Result<(), Evaluation> {
+        let threshold = rest.distance * dt * 60.0; // Δx is given per 1/60 s
         let start = self.world.time();
         let mut calm = 0;
-        while calm < steps {
-            if self.world.time() - start > limit {
+        while calm < rest.steps {
+            if self.world.time() - start > rest.limit {
                 return Err(Evaluation::failed(
                     self.task,
                     Status::Unstable,
-                    format!("not at rest after {limit} s"),
+                    format!("not at rest after {} s", rest.limit),
                 ));
             }
             let moved = self.step(false)?;
@@ -275,12 +291,7 @@ pub fn walker(
     }
     let outcome = (|| {
         let mut run = start(TASK, creature, sim, record)?;
-        run.settle(
-            options.rest_distance,
-            options.rest_steps,
-            options.settle_limit,
-            sim.dt,
-        )?;
+        run.settle(&options.rest, sim.dt)?;
         let settled_at = run.world.time();
         run.run_for(options.activation, true, sim.dt)?;
         run.run_for(options.second_settle, false, sim.dt)?;
@@ -364,12 +375,8 @@ pub struct JumpOptions {
     pub seconds: f64,
     /// Creatures taller than this (m) are not simulated.
     pub max_height: f64,
-    /// Rest detection, as for the walker.
-    pub rest_distance: f64,
-    /// Rest detection, as for the walker.
-    pub rest_steps: usize,
-    /// Rest detection, as for the walker.
-    pub settle_limit: f64,
+    /// When the creature is at rest, before jumping.
+    pub rest: Rest,
 }
 
 impl Default for JumpOptions {
@@ -377,9 +384,7 @@ impl Default for JumpOptions {
         JumpOptions {
             seconds: 10.0,
             max_height: 15.0,
-            rest_distance: 1.0 / 300.0,
-            rest_steps: 30,
-            settle_limit: 10.0,
+            rest: Rest::default(),
         }
     }
 }
@@ -398,12 +403,7 @@ pub fn jump(
     }
     let outcome = (|| {
         let mut run = start(TASK, creature, sim, record)?;
-        run.settle(
-            options.rest_distance,
-            options.rest_steps,
-            options.settle_limit,
-            sim.dt,
-        )?;
+        run.settle(&options.rest, sim.dt)?;
         let resting = run.world.lowest_point().max(0.0);
         let mut best: f64 = 0.0;
         let steps = (options.seconds / sim.dt).round() as usize;
