@@ -359,6 +359,36 @@ fn eval_rejects_bad_input_with_exit_2() {
     let out = ontogeny(&["eval", path.to_str().unwrap(), "--task", "walker"]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("not a creature"), "{}", stderr(&out));
+    // Well-formed JSON, but a joint to a part that does not exist, and a negative size.
+    let grown = std::env::temp_dir().join(format!("ontogeny-bad-{}", std::process::id()));
+    assert!(
+        ontogeny(&[
+            "grow",
+            "examples/snake.lsys",
+            "--out",
+            grown.to_str().unwrap()
+        ])
+        .status
+        .success()
+    );
+    let text = std::fs::read_to_string(grown.join("creature.json")).unwrap();
+    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    value["joints"][0]["child"] = serde_json::json!(99);
+    let bad = temp_file("bad-joint.json", &value.to_string());
+    let out = ontogeny(&["eval", bad.to_str().unwrap(), "--task", "walker"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("joint 0 does not join two of the 9 parts"),
+        "{}",
+        stderr(&out)
+    );
+    let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    value["parts"][0]["size"] = serde_json::json!([-1.0, 1.0, 1.0]);
+    let bad = temp_file("bad-size.json", &value.to_string());
+    let out = ontogeny(&["eval", bad.to_str().unwrap(), "--task", "jump"]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(!stderr(&out).contains("panicked"));
+
     let out = ontogeny(&["replay", "/no/such/dir"]);
     assert_eq!(
         out.status.code(),

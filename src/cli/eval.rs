@@ -139,12 +139,19 @@ fn load(args: &EvalArgs) -> anyhow::Result<Creature> {
     if args.file.extension().is_some_and(|e| e == "json") {
         let text = std::fs::read_to_string(&args.file)
             .with_context(|| format!("cannot read {}", args.file.display()))?;
-        return serde_json::from_str(&text).map_err(|e| {
+        let creature: Creature = serde_json::from_str(&text).map_err(|e| {
             anyhow::Error::new(Diagnostic::without_location(
                 DiagnosticKind::Semantic,
                 format!("{}: not a creature: {e}", args.file.display()),
             ))
-        });
+        })?;
+        creature.check_consistency().map_err(|problem| {
+            anyhow::Error::new(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("{}: not a usable creature: {problem}", args.file.display()),
+            ))
+        })?;
+        return Ok(creature);
     }
     let lsys = LSystem::from_path(&args.file)?;
     let options = derive_options(&args.development, args.seed, DEFAULT_MAX_MODULES);

@@ -35,6 +35,12 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
             format!("{}: not a recording: {e}", path.display()),
         ))
     })?;
+    recording.creature.check_consistency().map_err(|problem| {
+        anyhow::Error::new(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("{}: not a usable creature: {problem}", path.display()),
+        ))
+    })?;
     if !(args.fps > 0.0 && args.fps <= 100.0) {
         anyhow::bail!(Diagnostic::without_location(
             DiagnosticKind::Semantic,

@@ -301,6 +301,95 @@ pub struct Problem {
 }
 
 impl Creature {
+    /// Checks that the creature is well formed: finite, positive sizes; finite poses and
+    /// densities; joints, links, sensors and actuators that point at parts, joints and
+    /// neurons that exist; limits in order. Creatures read from files must pass this before
+    /// anything uses them.
+    pub fn check_consistency(&self) -> Result<(), String> {
+        let finite3 = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+        for (i, p) in self.parts.iter().enumerate() {
+            if !p.size.iter().all(|x| x.is_finite() && *x > 0.0) {
+                return Err(format!(
+                    "part {i} has a size that is not positive and finite"
+                ));
+            }
+            if !finite3(&p.position) || !p.orientation.coords.iter().all(|x| x.is_finite()) {
+                return Err(format!(
+                    "part {i} has a position or orientation that is not finite"
+                ));
+            }
+            if !(p.density.is_finite() && p.density > 0.0) {
+                return Err(format!(
+                    "part {i} has a density that is not positive and finite"
+                ));
+            }
+        }
+        let n = self.parts.len();
+        for (j, joint) in self.joints.iter().enumerate() {
+            if joint.parent >= n || joint.child >= n || joint.parent == joint.child {
+                return Err(format!("joint {j} does not join two of the {n} parts"));
+            }
+            if joint.axes.len() < joint.kind.dof() || joint.limits.len() < joint.kind.dof() {
+                return Err(format!(
+                    "joint {j} needs an axis and limits per degree of freedom"
+                ));
+            }
+            if !finite3(&joint.anchor)
+                || joint.axes.iter().any(|a| !finite3(a) || a.norm() < 1e-9)
+                || joint
+                    .limits
+                    .iter()
+                    .any(|(lo, hi)| !(lo.is_finite() && hi.is_finite() && lo <= hi))
+                || !(joint.strength.is_finite() && joint.strength >= 0.0)
+            {
+                return Err(format!(
+                    "joint {j} has a non-finite anchor, axis, limit or strength, or limits out of order"
+                ));
+            }
+        }
+        let neurons = self.brain.neurons.len();
+        for (k, link) in self.brain.links.iter().enumerate() {
+            if link.from >= neurons || link.to >= neurons || !link.weight.is_finite() {
+                return Err(format!(
+                    "link {k} does not join two of the {neurons} neurons with a finite weight"
+                ));
+            }
+        }
+        for (k, neuron) in self.brain.neurons.iter().enumerate() {
+            if neuron.params.iter().any(|p| !p.is_finite()) || neuron.part.is_some_and(|p| p >= n) {
+                return Err(format!(
+                    "neuron {k} has a non-finite parameter or belongs to no part"
+                ));
+            }
+            let joint_ok = |joint: usize, dof: usize| {
+                self.joints.get(joint).is_some_and(|j| dof < j.kind.dof())
+            };
+            let ok = match neuron.role {
+                Role::Hidden => true,
+                Role::Sensor { sensor } => match sensor {
+                    Sensor::Touch { part } => part < n,
+                    Sensor::Angle { joint, dof } => joint_ok(joint, dof),
+                    Sensor::Chemical { slot } => slot < self.environment.len(),
+                    Sensor::Target => true,
+                },
+                Role::Actuator { actuator } => match actuator {
+                    Actuator::Joint { joint, dof } => joint_ok(joint, dof),
+                    Actuator::Secrete { slot } => slot < self.environment.len(),
+                    Actuator::Release => true,
+                },
+            };
+            if !ok {
+                return Err(format!(
+                    "neuron {k} senses or drives something the creature does not have"
+                ));
+            }
+        }
+        if self.environment.iter().any(|v| !v.is_finite()) {
+            return Err("the environment holds a value that is not finite".to_string());
+        }
+        Ok(())
+    }
+
     /// Whether the evaluator may simulate it (no error-level problem, at least one part).
     pub fn is_valid(&self) -> bool {
         !self.parts.is_empty() && self.problems.iter().all(|p| p.severity != Severity::Error)

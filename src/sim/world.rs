@@ -95,6 +95,9 @@ pub enum BuildError {
     /// The creature has no parts.
     #[error("the creature has no parts")]
     NoParts,
+    /// The creature is malformed (see `Creature::check_consistency`).
+    #[error("malformed creature: {0}")]
+    Malformed(String),
     /// A multibody joint would close a loop.
     #[error("joint {0} closes a loop, which multibody joints cannot simulate")]
     Loop(usize),
@@ -164,6 +167,9 @@ impl World {
         if creature.parts.is_empty() {
             return Err(BuildError::NoParts);
         }
+        creature
+            .check_consistency()
+            .map_err(BuildError::Malformed)?;
         let params = IntegrationParameters {
             dt: (options.dt / options.substeps.max(1) as f64) as Real,
             num_solver_iterations: options.solver_iterations.max(1),
