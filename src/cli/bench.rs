@@ -17,6 +17,12 @@ pub struct BenchArgs {
     /// Simulated seconds per evaluation.
     #[arg(long, default_value_t = 20.0)]
     seconds: f64,
+    /// Physics substeps per control step.
+    #[arg(long, default_value_t = SimOptions::default().substeps)]
+    substeps: usize,
+    /// Solver iterations per substep.
+    #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
+    solver_iterations: usize,
 }
 
 /// A chain of `parts` parts on revolute2 hinges, each driven by an output from the
@@ -47,7 +53,11 @@ fn evaluate(creature: &Creature, sim: &SimOptions, seconds: f64) -> (f64, f64) {
 
 /// Measures and prints the figures the README reports.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
-    let sim = SimOptions::default();
+    let sim = SimOptions {
+        substeps: args.substeps.clamp(1, 64),
+        solver_iterations: args.solver_iterations.clamp(1, 256),
+        ..SimOptions::default()
+    };
     let walker = chain(10);
     let n = args.evaluations.max(1);
     let steps = (args.seconds / sim.dt).round();
@@ -96,7 +106,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         for joints in [JointModel::Impulse, JointModel::Multibody] {
             let sim = SimOptions {
                 joints,
-                ..SimOptions::default()
+                ..sim.clone()
             };
             let (t, _) = evaluate(&creature, &sim, 5.0);
             row.push(t / (5.0 / sim.dt) * 1e6);
