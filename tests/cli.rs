@@ -323,6 +323,17 @@ fn eval_prints_fitness_terms_and_records() {
     assert_eq!(e["task"], "catapult");
     assert!(e["terms"]["D_p"].as_f64().unwrap() > 3.0);
     assert!(dir.join("recording.json").exists() && dir.join("behaviour.gif").exists());
+    let recording: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("recording.json")).unwrap())
+            .unwrap();
+    let frames = recording["frames"].as_array().unwrap();
+    assert!(frames.len() > 30);
+    assert_eq!(frames[0]["parts"].as_array().unwrap().len(), 2);
+    assert!(
+        frames[0]["projectile"].is_array(),
+        "the projectile is recorded"
+    );
+    assert!(recording["target"].is_null(), "the catapult has no target");
     std::fs::remove_file(dir.join("behaviour.gif")).unwrap();
     let out = ontogeny(&["replay", dir.to_str().unwrap()]);
     assert!(out.status.success(), "{}", stderr(&out));

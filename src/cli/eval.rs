@@ -280,6 +280,11 @@ fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> 
         &path,
         serde_json::to_string(&serde_json::json!({
             "creature": creature,
+            "task": evaluation.task,
+            "target": ["target_x", "target_y", "target_z"]
+                .iter()
+                .map(|k| evaluation.terms.get(*k).copied())
+                .collect::<Option<Vec<f64>>>(),
             "frames": evaluation.recording,
         }))?,
     )
