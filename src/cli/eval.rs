@@ -276,15 +276,16 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
 fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let path = dir.join("recording.json");
+    let target: Option<Vec<f64>> = ["target_x", "target_y", "target_z"]
+        .iter()
+        .map(|k| evaluation.terms.get(*k).copied())
+        .collect();
     std::fs::write(
         &path,
         serde_json::to_string(&serde_json::json!({
             "creature": creature,
             "task": evaluation.task,
-            "target": ["target_x", "target_y", "target_z"]
-                .iter()
-                .map(|k| evaluation.terms.get(*k).copied())
-                .collect::<Option<Vec<f64>>>(),
+            "target": target,
             "frames": evaluation.recording,
         }))?,
     )
