@@ -390,3 +390,59 @@ fn creature_json_round_trips() {
     let back: Creature = serde_json::from_str(&text).unwrap();
     assert_eq!(back, c);
 }
+
+#[test]
+fn a_merge_inside_a_branch_leaves_no_link_to_a_removed_neuron() {
+    for axiom in [
+        "forward revolute2 forward split(0.5) [ merge ] duplicate output",
+        "split(0.5) [ merge ] cut split",
+    ] {
+        let c = creature(axiom);
+        assert!(
+            c.check_consistency().is_ok(),
+            "{axiom}: {:?}",
+            c.check_consistency()
+        );
+        let n = c.brain.neurons.len();
+        assert!(
+            c.brain.links.iter().all(|l| l.from < n && l.to < n),
+            "{axiom}"
+        );
+    }
+    // split(0.5): 0 -> 1 -> 0, current 1 -> 0. [ merge ]: 1 folds into 0. After ], the saved
+    // current link (1 -> 0) is now 0 -> 0; duplicate copies it.
+    let c = creature("split(0.5) [ merge ] duplicate(3)");
+    assert_eq!(links(&c), [(0, 0, 1.0), (0, 0, 0.5), (0, 0, 3.0)]);
+}
+
+#[test]
+fn a_joint_command_lost_to_traversal_is_a_warning() {
+    let c = creature("forward forward backward revolute2 forward");
+    assert_eq!(c.parts.len(), 2);
+    assert!(
+        c.problems
+            .iter()
+            .any(|p| p.message.contains("joint command")),
+        "{:?}",
+        c.problems
+    );
+}
+
+#[test]
+fn overlap_away_from_the_joint_is_caught_even_between_joined_parts_and_siblings() {
+    for axiom in [
+        "forward [ forward ] up(2) forward",
+        "forward [ left(0.1) forward ] left(0.15) forward",
+        "[ forward ] forward",
+    ] {
+        assert!(!creature(axiom).is_valid(), "{axiom}");
+    }
+    for axiom in [
+        "forward(1) [ left(1) forward(1) ] right(1) forward(1)",
+        "forward(1) up(0.5) forward(1)",
+        "forward(1) [ left(0.5) forward(1) ] right(0.5) forward(1)",
+    ] {
+        let c = creature(axiom);
+        assert!(c.is_valid(), "{axiom}: {:?}", c.problems);
+    }
+}

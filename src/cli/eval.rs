@@ -171,6 +171,14 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             ),
         ));
     }
+    if let Some(seconds) = args.seconds
+        && !(seconds > 0.0 && seconds <= 3600.0)
+    {
+        anyhow::bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("--seconds must be in (0, 3600], not {seconds}"),
+        ));
+    }
     if !(1..=64).contains(&args.substeps) || !(1..=256).contains(&args.solver_iterations) {
         anyhow::bail!(Diagnostic::without_location(
             DiagnosticKind::Semantic,

@@ -5,6 +5,10 @@
 //! some of which read sensors and some of which drive actuators. Positions and orientations
 //! are in world coordinates: Y is up, the ground is the plane y = 0, lengths are in metres.
 
+mod geometry;
+
+pub use geometry::boxes_intersect;
+
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -313,9 +317,12 @@ impl Creature {
                     "part {i} has a size that is not positive and finite"
                 ));
             }
-            if !finite3(&p.position) || !p.orientation.coords.iter().all(|x| x.is_finite()) {
+            if !finite3(&p.position)
+                || !p.orientation.coords.iter().all(|x| x.is_finite())
+                || (p.orientation.coords.norm() - 1.0).abs() > 1e-6
+            {
                 return Err(format!(
-                    "part {i} has a position or orientation that is not finite"
+                    "part {i} has a position that is not finite or an orientation that is not a unit quaternion"
                 ));
             }
             if !(p.density.is_finite() && p.density > 0.0) {

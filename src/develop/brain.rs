@@ -19,6 +19,8 @@ pub(crate) struct CurrentLink {
 pub(crate) struct BrainBuilder {
     neurons: Vec<Neuron>,
     alive: Vec<bool>,
+    /// For a neuron merged away, the neuron it was merged into.
+    merged_into: Vec<Option<usize>>,
     /// Links; `None` once cut or merged away.
     links: Vec<Option<Link>>,
     /// For each joint, how many of its degrees of freedom already have an output neuron.
@@ -36,6 +38,7 @@ impl BrainBuilder {
                 part: None,
             }],
             alive: vec![true],
+            merged_into: vec![None],
             links: vec![Some(Link {
                 from: 0,
                 to: 0,
@@ -62,7 +65,16 @@ impl BrainBuilder {
             part,
         });
         self.alive.push(true);
+        self.merged_into.push(None);
         self.neurons.len() - 1
+    }
+
+    /// The living neuron `n` now is (following merges).
+    fn resolve(&self, mut n: usize) -> usize {
+        while let Some(m) = self.merged_into[n] {
+            n = m;
+        }
+        n
     }
 
     fn add_link(&mut self, from: usize, to: usize, weight: f64) -> usize {
@@ -114,11 +126,20 @@ impl BrainBuilder {
                 Ok(v.round() as usize)
             }
         };
-        // A current link may point at a link that was since removed (through another branch).
-        if let Some(l) = current.link
-            && self.links[l].is_none()
-        {
-            current.link = None;
+        // A current link saved by `[` may name a neuron merged away since, or a link since
+        // changed or removed, in another branch: follow merges, and treat a removed link as
+        // virtual.
+        // The link itself is the current link's identity: its ends are its ends now.
+        current.from = self.resolve(current.from);
+        current.to = self.resolve(current.to);
+        if let Some(l) = current.link {
+            match &self.links[l] {
+                Some(link) => {
+                    current.from = link.from;
+                    current.to = link.to;
+                }
+                None => current.link = None,
+            }
         }
         let (s, t) = (current.from, current.to);
         match op {
@@ -159,6 +180,7 @@ impl BrainBuilder {
                         }
                     }
                     self.alive[s] = false;
+                    self.merged_into[s] = Some(t);
                 }
                 let inputs = self.inputs(t);
                 *current = if inputs.is_empty() {

@@ -320,7 +320,15 @@ impl<'a> Builder<'a> {
         }) {
             self.state.part = Some(existing);
             self.state.position = self.ends[existing];
-            self.state.pending = None;
+            if self.state.pending.take().is_some() {
+                self.problem(
+                    Severity::Warning,
+                    string,
+                    i,
+                    "the turtle moved onto an existing part: the pending joint command is ignored"
+                        .into(),
+                );
+            }
             return;
         }
 

@@ -155,6 +155,31 @@ fn rotation(q: &UnitQuaternion<f64>) -> Rotation {
     Rotation::from_xyzw(q.i as Real, q.j as Real, q.k as Real, q.w as Real).normalize()
 }
 
+/// The joint frame: its x axis along the first axis, its y axis along the second (made
+/// perpendicular to the first), so that AngX, AngY and AngZ are the joint's degrees of
+/// freedom in order.
+fn joint_frame(axes: &[Vector3<f64>]) -> Rotation {
+    let Some(first) = axes.first() else {
+        return Rotation::IDENTITY;
+    };
+    let x = vector(first).normalize();
+    let second = axes
+        .get(1)
+        .map(|a| {
+            let a = vector(a);
+            a - x * a.dot(x)
+        })
+        .filter(|y| y.length() > 1e-6);
+    match second {
+        Some(y) => {
+            let y = y.normalize();
+            let z = x.cross(y);
+            Rotation::from_mat3(&rapier3d::glamx::Mat3::from_cols(x, y, z))
+        }
+        None => Rotation::from_rotation_arc(Vector::X, x),
+    }
+}
+
 /// A world vector back in the project's nalgebra.
 pub fn to_na(v: Vector) -> Vector3<f64> {
     Vector3::new(v.x as f64, v.y as f64, v.z as f64)
@@ -243,10 +268,7 @@ impl World {
             let pose2 = *world.bodies[b2].position();
             let anchor = vector(&(joint.anchor + lift));
             // The joint frame: x along the first axis (if any), at the anchor.
-            let frame_rotation = match joint.axes.first() {
-                Some(axis) => Rotation::from_rotation_arc(Vector::X, vector(axis).normalize()),
-                None => Rotation::IDENTITY,
-            };
+            let frame_rotation = joint_frame(&joint.axes);
             let world_frame = Pose::from_parts(anchor, frame_rotation);
             let mask = match joint.kind.dof() {
                 0 => JointAxesMask::LOCKED_FIXED_AXES,
@@ -328,7 +350,23 @@ impl World {
         let half = size / 2.0;
         let grip_local = Vector::new(-root_half.x, 0.0, 0.0);
         let centre_local = Vector::new(-(root_half.x + half.x as Real), 0.0, 0.0);
-        let pose = root_pose * Pose::from_translation(centre_local);
+        let mut pose = root_pose * Pose::from_translation(centre_local);
+        // Lift everything if the projectile would start below the drop height.
+        let reach = (half.x.abs() + half.y.abs() + half.z.abs()) as Real;
+        let projectile_bottom = pose.translation.y - reach;
+        let lift = (self.options.drop_height as Real - projectile_bottom).max(0.0);
+        if lift > 0.0 {
+            let up = Vector::new(0.0, lift, 0.0);
+            for (body, _) in &self.parts {
+                let b = &mut self.bodies[*body];
+                let t = b.translation() + up;
+                b.set_translation(t, true);
+            }
+            for p in &mut self.previous {
+                *p += up;
+            }
+            pose.translation += up;
+        }
         let body = self
             .bodies
             .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
@@ -512,9 +550,13 @@ impl World {
                             data.set_motor_max_force(axis, 0.0);
                             return;
                         }
+                        // A velocity motor's torque is damping × (target − current speed),
+                        // clamped to the maximum: a damping far above the maximum torque makes
+                        // the motor run at saturation.
+                        let stiff = (max_torque * 1000.0).max(1e-3) as Real;
                         match model {
                             ActuatorModel::Muscle => {
-                                data.set_motor_velocity(axis, (speed * s.signum()) as Real, 1.0);
+                                data.set_motor_velocity(axis, (speed * s.signum()) as Real, stiff);
                                 data.set_motor_max_force(axis, (s.abs() * max_torque) as Real);
                             }
                             ActuatorModel::Angle => {
@@ -528,7 +570,7 @@ impl World {
                                 data.set_motor_max_force(axis, max_torque as Real);
                             }
                             ActuatorModel::Velocity => {
-                                data.set_motor_velocity(axis, (speed * s) as Real, 1.0);
+                                data.set_motor_velocity(axis, (speed * s) as Real, stiff);
                                 data.set_motor_max_force(axis, max_torque as Real);
                             }
                         }
@@ -614,10 +656,13 @@ impl World {
             largest = largest.max(moved);
             self.previous[k] = p;
         }
-        if let Some((position, speed)) = self.projectile_state()
-            && (!position.iter().all(|v| v.is_finite()) || speed > self.options.speed_limit)
-        {
-            return Err(Exploded::Speed(speed));
+        if let Some((position, speed)) = self.projectile_state() {
+            if !position.iter().all(|v| v.is_finite()) || !speed.is_finite() {
+                return Err(Exploded::NotANumber);
+            }
+            if speed > self.options.speed_limit {
+                return Err(Exploded::Speed(speed));
+            }
         }
         Ok(largest)
     }

@@ -163,8 +163,15 @@ pub fn size_coefficients(creature: &Creature) -> (f64, f64, f64) {
     (l / n, s / n, v / n)
 }
 
-/// Checks that apply to every task before simulating.
-fn screen(task: &str, creature: &Creature, max_height: f64) -> Option<Evaluation> {
+/// Checks that apply to every task before simulating. `seconds` is the task's duration.
+fn screen(task: &str, creature: &Creature, max_height: f64, seconds: f64) -> Option<Evaluation> {
+    if !(seconds.is_finite() && (0.0..=1e6).contains(&seconds)) {
+        return Some(Evaluation::failed(
+            task,
+            Status::Invalid,
+            format!("the task's duration must be 0 to 10^6 s, not {seconds}"),
+        ));
+    }
     if creature.parts.is_empty() {
         return Some(Evaluation::failed(
             task,
@@ -178,12 +185,20 @@ fn screen(task: &str, creature: &Creature, max_height: f64) -> Option<Evaluation
         .filter(|p| p.severity == Severity::Error)
         .map(|p| p.message.as_str())
         .collect();
-    if errors.iter().any(|m| m.contains("interpenetrate")) {
-        return Some(Evaluation::failed(
-            task,
-            Status::SelfIntersecting,
-            errors.join("; "),
-        ));
+    // Checked on the creature itself, not only trusted from its list of problems (a
+    // creature.json may come from anywhere).
+    let pairs = creature.interpenetrating_pairs();
+    if !pairs.is_empty() || errors.iter().any(|m| m.contains("interpenetrate")) {
+        let listed: Vec<String> = pairs
+            .iter()
+            .map(|(a, b)| format!("parts {a} and {b} interpenetrate"))
+            .collect();
+        let message = if listed.is_empty() {
+            errors.join("; ")
+        } else {
+            listed.join("; ")
+        };
+        return Some(Evaluation::failed(task, Status::SelfIntersecting, message));
     }
     if !errors.is_empty() {
         return Some(Evaluation::failed(task, Status::Invalid, errors.join("; ")));
@@ -286,7 +301,7 @@ pub fn walker(
     record: bool,
 ) -> Evaluation {
     const TASK: &str = "walker";
-    if let Some(rejected) = screen(TASK, creature, options.max_height) {
+    if let Some(rejected) = screen(TASK, creature, options.max_height, options.seconds) {
         return rejected;
     }
     let outcome = (|| {
@@ -398,7 +413,7 @@ pub fn jump(
     record: bool,
 ) -> Evaluation {
     const TASK: &str = "jump";
-    if let Some(rejected) = screen(TASK, creature, options.max_height) {
+    if let Some(rejected) = screen(TASK, creature, options.max_height, options.seconds) {
         return rejected;
     }
     let outcome = (|| {
@@ -500,7 +515,7 @@ pub fn catapult(
     } else {
         "catapult"
     };
-    if let Some(rejected) = screen(task, creature, options.max_height) {
+    if let Some(rejected) = screen(task, creature, options.max_height, options.max_seconds) {
         return rejected;
     }
     let outcome = (|| {
@@ -540,12 +555,22 @@ pub fn catapult(
                 }
             }
         }
+        let Some(released_at) = released_at else {
+            return Err(Evaluation::failed(
+                task,
+                Status::Invalid,
+                format!(
+                    "the run ended after {step} steps, before the projectile was released (step {})",
+                    options.release_delay
+                ),
+            ));
+        };
         let (rest_point, _) = run.world.projectile_state().expect("attached");
         let d = rest_point - release_point;
         let distance = (d.x * d.x + d.z * d.z).sqrt();
         let mut terms = BTreeMap::from([
             ("D_p".to_string(), distance),
-            ("release_step".to_string(), released_at.unwrap_or(0) as f64),
+            ("release_step".to_string(), released_at as f64),
             ("seconds".to_string(), run.world.time()),
         ]);
         let fitness = match target {
