@@ -1,9 +1,12 @@
 //! Ontogeny: grow virtual creatures from L-systems and evolve them in physics.
 //!
-//! The pipeline runs one way (see `DESIGN.md`): [`lang`] parses `.lsys` text, [`lsystem`]
-//! derives module strings from it
-//! in discrete steps or continuous developmental time, exchanging chemicals with an
-//! [`environment`].
+//! The pipeline runs one way (see `DESIGN.md`): [`lang`] parses `.lsys` text; [`lsystem`]
+//! derives module strings from it in discrete steps or continuous developmental time,
+//! exchanging chemicals with an [`environment`]; [`develop`] builds a [`creature`] (body and
+//! brain) from each string; [`render`] draws it; [`sim`] runs it in a rapier3d world; and
+//! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks.
+
+#![warn(missing_docs)]
 
 pub mod creature;
 pub mod develop;
