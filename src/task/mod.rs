@@ -291,6 +291,36 @@ fn start(
     })
 }
 
+/// Screens the creature, builds its world and runs `protocol`, which returns the fitness and
+/// its terms (or a failed evaluation).
+fn evaluate(
+    task: &'static str,
+    creature: &Creature,
+    sim: &SimOptions,
+    record: bool,
+    (max_height, seconds): (f64, f64),
+    protocol: impl FnOnce(&mut Run) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
+) -> Evaluation {
+    if let Some(rejected) = screen(task, creature, max_height, seconds) {
+        return rejected;
+    }
+    let mut run = match start(task, creature, sim, record) {
+        Ok(run) => run,
+        Err(failed) => return failed,
+    };
+    match protocol(&mut run) {
+        Ok((fitness, terms)) => Evaluation {
+            task: task.to_string(),
+            fitness,
+            status: Status::Ok,
+            terms,
+            message: None,
+            recording: std::mem::take(&mut run.recording),
+        },
+        Err(failed) => failed,
+    }
+}
+
 /// The walker (Chaumont et al. 3.3–3.5): stabilise with the controller off until at rest,
 /// activate the controller for 1 s, stabilise again for 0.5 s, then walk with the controller
 /// on for `seconds`; D_w is the horizontal distance the root part's centre of mass travels.
@@ -300,12 +330,8 @@ pub fn walker(
     options: &WalkerOptions,
     record: bool,
 ) -> Evaluation {
-    const TASK: &str = "walker";
-    if let Some(rejected) = screen(TASK, creature, options.max_height, options.seconds) {
-        return rejected;
-    }
-    let outcome = (|| {
-        let mut run = start(TASK, creature, sim, record)?;
+    let limits = (options.max_height, options.seconds);
+    evaluate("walker", creature, sim, record, limits, |run| {
         run.settle(&options.rest, sim.dt)?;
         let settled_at = run.world.time();
         run.run_for(options.activation, true, sim.dt)?;
@@ -362,16 +388,8 @@ pub fn walker(
             ("mass".to_string(), creature.mass()),
             ("measured_from".to_string(), measure_from),
         ]);
-        Ok(Evaluation {
-            task: TASK.to_string(),
-            fitness,
-            status: Status::Ok,
-            terms,
-            message: None,
-            recording: run.recording,
-        })
-    })();
-    outcome.unwrap_or_else(|e| e)
+        Ok((fitness, terms))
+    })
 }
 
 /// The mass-weighted centre of the creature's parts in `world`.
@@ -412,12 +430,8 @@ pub fn jump(
     options: &JumpOptions,
     record: bool,
 ) -> Evaluation {
-    const TASK: &str = "jump";
-    if let Some(rejected) = screen(TASK, creature, options.max_height, options.seconds) {
-        return rejected;
-    }
-    let outcome = (|| {
-        let mut run = start(TASK, creature, sim, record)?;
+    let limits = (options.max_height, options.seconds);
+    evaluate("jump", creature, sim, record, limits, |run| {
         run.settle(&options.rest, sim.dt)?;
         let resting = run.world.lowest_point().max(0.0);
         let mut best: f64 = 0.0;
@@ -426,19 +440,12 @@ pub fn jump(
             run.step(true)?;
             best = best.max(run.world.lowest_point());
         }
-        Ok(Evaluation {
-            task: TASK.to_string(),
-            fitness: best,
-            status: Status::Ok,
-            terms: BTreeMap::from([
-                ("height".to_string(), best),
-                ("resting_lowest_point".to_string(), resting),
-            ]),
-            message: None,
-            recording: run.recording,
-        })
-    })();
-    outcome.unwrap_or_else(|e| e)
+        let terms = BTreeMap::from([
+            ("height".to_string(), best),
+            ("resting_lowest_point".to_string(), resting),
+        ]);
+        Ok((best, terms))
+    })
 }
 
 /// Settings of the catapult and aim tasks (Chaumont et al. section 4).
@@ -515,11 +522,8 @@ pub fn catapult(
     } else {
         "catapult"
     };
-    if let Some(rejected) = screen(task, creature, options.max_height, options.max_seconds) {
-        return rejected;
-    }
-    let outcome = (|| {
-        let mut run = start(task, creature, sim, record)?;
+    let limits = (options.max_height, options.max_seconds);
+    evaluate(task, creature, sim, record, limits, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);
@@ -584,14 +588,6 @@ pub fn catapult(
             }
             None => distance,
         };
-        Ok(Evaluation {
-            task: task.to_string(),
-            fitness,
-            status: Status::Ok,
-            terms,
-            message: None,
-            recording: run.recording,
-        })
-    })();
-    outcome.unwrap_or_else(|e| e)
+        Ok((fitness, terms))
+    })
 }
