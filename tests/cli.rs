@@ -17,6 +17,19 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// Grows the snake example into a fresh directory and returns it.
+fn grown_snake(tag: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("ontogeny-{tag}-{}", std::process::id()));
+    let out = ontogeny(&[
+        "grow",
+        "examples/snake.lsys",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    dir
+}
+
 fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("ontogeny-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -340,17 +353,7 @@ fn eval_prints_fitness_terms_and_records() {
     assert!(dir.join("behaviour.gif").exists());
 
     // A creature.json works as well as an L-system.
-    let grown = std::env::temp_dir().join(format!("ontogeny-eval-grown-{}", std::process::id()));
-    assert!(
-        ontogeny(&[
-            "grow",
-            "examples/snake.lsys",
-            "--out",
-            grown.to_str().unwrap()
-        ])
-        .status
-        .success()
-    );
+    let grown = grown_snake("eval-grown");
     let out = ontogeny(&[
         "eval",
         grown.join("creature.json").to_str().unwrap(),
@@ -371,17 +374,7 @@ fn eval_rejects_bad_input_with_exit_2() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains("not a creature"), "{}", stderr(&out));
     // Well-formed JSON, but a joint to a part that does not exist, and a negative size.
-    let grown = std::env::temp_dir().join(format!("ontogeny-bad-{}", std::process::id()));
-    assert!(
-        ontogeny(&[
-            "grow",
-            "examples/snake.lsys",
-            "--out",
-            grown.to_str().unwrap()
-        ])
-        .status
-        .success()
-    );
+    let grown = grown_snake("bad");
     let text = std::fs::read_to_string(grown.join("creature.json")).unwrap();
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value["joints"][0]["child"] = serde_json::json!(99);
