@@ -428,3 +428,26 @@ fn overlapping_parts_in_a_loaded_creature_are_caught() {
         nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(0.0, 0.0, 0.0, 0.0));
     assert!(zero.check_consistency().is_err());
 }
+
+#[test]
+fn strength_follows_the_smaller_or_the_bigger_section() {
+    use ontogeny::sim::{StrengthFrom, World};
+    // A thin 2 kg child (0.1 m² section) on the 1 m² root: lifting it takes about 9.8 N·m.
+    // Strength 20 N·m/m² gives 2 N·m from the smaller section, 20 N·m from the bigger.
+    let mut c = lifter();
+    c.parts[1].size = nalgebra::Vector3::new(1.0, 0.1, 1.0);
+    c.parts[1].density = 20.0;
+    let lift = |from| {
+        let sim = SimOptions {
+            strength_from: from,
+            strength: 20.0,
+            ..SimOptions::default()
+        };
+        let mut world = World::new(&c, &sim).unwrap();
+        for _ in 0..240 {
+            world.step(true).unwrap();
+        }
+        world.part_position(1).y
+    };
+    assert!(lift(StrengthFrom::Bigger) > lift(StrengthFrom::Smaller) + 0.2);
+}

@@ -8,7 +8,7 @@ use ontogeny::creature::Creature;
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
-use ontogeny::sim::{ActuatorModel, JointModel, SimOptions};
+use ontogeny::sim::{ActuatorModel, JointModel, SimOptions, StrengthFrom};
 use ontogeny::task::{
     self, CatapultOptions, Evaluation, JumpOptions, WalkerFitness, WalkerOptions,
 };
@@ -46,6 +46,15 @@ enum ActuatorArg {
     Angle,
     /// Matos's: the signal sets the target speed.
     Velocity,
+}
+
+/// Whose cross-section sets a joint's strength.
+#[derive(Clone, Copy, ValueEnum)]
+enum StrengthArg {
+    /// The smaller part's (after Sims; the default).
+    Smaller,
+    /// The bigger part's (Chaumont et al. 3.4).
+    Bigger,
 }
 
 /// Walker fitness formulas.
@@ -102,6 +111,9 @@ pub struct EvalArgs {
     /// Solver iterations per substep.
     #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
     solver_iterations: usize,
+    /// Whose cross-section sets a joint's strength.
+    #[arg(long, value_enum, default_value = "smaller")]
+    strength_from: StrengthArg,
     /// Let parts of one creature pass through each other (joint neighbours never collide).
     #[arg(long)]
     no_self_collision: bool,
@@ -196,6 +208,10 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         substeps: args.substeps,
         solver_iterations: args.solver_iterations,
         self_collision: !args.no_self_collision,
+        strength_from: match args.strength_from {
+            StrengthArg::Smaller => StrengthFrom::Smaller,
+            StrengthArg::Bigger => StrengthFrom::Bigger,
+        },
         joints: match args.joints {
             JointsArg::Impulse => JointModel::Impulse,
             JointsArg::Multibody => JointModel::Multibody,

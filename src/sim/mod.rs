@@ -4,4 +4,4 @@ pub mod brain;
 pub mod world;
 
 pub use brain::BrainRuntime;
-pub use world::{ActuatorModel, BuildError, Exploded, JointModel, SimOptions, World};
+pub use world::{ActuatorModel, BuildError, Exploded, JointModel, SimOptions, StrengthFrom, World};

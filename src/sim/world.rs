@@ -31,6 +31,16 @@ pub enum ActuatorModel {
     Velocity,
 }
 
+/// Which part's cross-section sets a joint's strength.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StrengthFrom {
+    /// The smaller of the two parts (the default, as issue 5 specifies after Sims).
+    Smaller,
+    /// The bigger of the two parts (Chaumont et al. 3.4).
+    Bigger,
+}
+
 /// World settings.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct SimOptions {
@@ -48,9 +58,11 @@ pub struct SimOptions {
     pub friction: f64,
     /// Actuator model.
     pub actuator: ActuatorModel,
-    /// Maximum joint torque per square metre of the smaller part's cross-section (N·m/m²),
-    /// multiplied by the joint's own strength.
+    /// Maximum joint torque per square metre of cross-section (N·m/m²), multiplied by the
+    /// joint's own strength.
     pub strength: f64,
+    /// Whose cross-section: the smaller or the bigger of the two parts.
+    pub strength_from: StrengthFrom,
     /// Target speed (rad/s) of the muscle model, and the velocity model's top speed.
     pub max_speed: f64,
     /// Height of the creature's lowest point above the ground when it is dropped.
@@ -74,6 +86,7 @@ impl Default for SimOptions {
             friction: 1.0,
             actuator: ActuatorModel::Muscle,
             strength: 50.0,
+            strength_from: StrengthFrom::Smaller,
             max_speed: 5.0,
             drop_height: 0.05,
             explosion_distance: 2.0,
@@ -283,7 +296,11 @@ impl World {
             data.set_local_frame2(pose2.inverse() * world_frame);
             let parent = &creature.parts[joint.parent];
             let child = &creature.parts[joint.child];
-            let section = (parent.size.y * parent.size.z).min(child.size.y * child.size.z);
+            let (a, b) = (parent.size.y * parent.size.z, child.size.y * child.size.z);
+            let section = match options.strength_from {
+                StrengthFrom::Smaller => a.min(b),
+                StrengthFrom::Bigger => a.max(b),
+            };
             let max_torque = options.strength * joint.strength * section;
             for (k, &(lo, hi)) in joint.limits.iter().enumerate().take(joint.kind.dof()) {
                 data.set_limits(ANGULAR[k], [lo as Real, hi as Real]);
