@@ -203,20 +203,20 @@ fn draw_body(pixmap: &mut Pixmap, creature: &Creature, view: &View, region: (f32
         );
     }
     let mut grid = PathBuilder::new();
-    let mut x = x0;
-    while x <= x1 + 1e-9 {
-        let (ax, ay, _) = camera.project(&Vector3::new(x, ground, z0));
-        let (bx, by, _) = camera.project(&Vector3::new(x, ground, z1));
+    let mut segment = |from: (f64, f64), to: (f64, f64)| {
+        let (ax, ay, _) = camera.project(&Vector3::new(from.0, ground, from.1));
+        let (bx, by, _) = camera.project(&Vector3::new(to.0, ground, to.1));
         grid.move_to(ax, ay);
         grid.line_to(bx, by);
+    };
+    let mut x = x0;
+    while x <= x1 + 1e-9 {
+        segment((x, z0), (x, z1));
         x += step;
     }
     let mut z = z0;
     while z <= z1 + 1e-9 {
-        let (ax, ay, _) = camera.project(&Vector3::new(x0, ground, z));
-        let (bx, by, _) = camera.project(&Vector3::new(x1, ground, z));
-        grid.move_to(ax, ay);
-        grid.line_to(bx, by);
+        segment((x0, z), (x1, z));
         z += step;
     }
     if let Some(path) = grid.finish() {
