@@ -4,13 +4,15 @@
 //! derives module strings from it in discrete steps or continuous developmental time,
 //! exchanging chemicals with an [`environment`]; [`develop`] builds a [`creature`] (body and
 //! brain) from each string; [`render`] draws it; [`sim`] runs it in a rapier3d world; and
-//! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks.
+//! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks; [`evolve`]
+//! holds the statistics that compare settings (and, to come, the genetic algorithm).
 
 #![warn(missing_docs)]
 
 pub mod creature;
 pub mod develop;
 pub mod environment;
+pub mod evolve;
 pub mod lang;
 pub mod lsystem;
 pub mod render;

@@ -334,7 +334,10 @@ fn sensors_feed_the_current_links_target_and_effectors_read_it() {
         roles[1..],
         [
             Role::Sensor {
-                sensor: Sensor::Touch { part: 1 }
+                sensor: Sensor::Touch {
+                    part: 1,
+                    face: None
+                }
             },
             Role::Sensor {
                 sensor: Sensor::Angle { joint: 0, dof: 0 }

@@ -1,11 +1,17 @@
-//! `ontogeny bench`: the evaluator's speed on this machine.
+//! `ontogeny bench`: the evaluator's speed on this machine, and whether the fast default
+//! setting ranks creatures as a fine reference setting does.
 
 use std::time::Instant;
 
 use clap::Args;
 use ontogeny::creature::Creature;
-use ontogeny::develop::creature_from_commands;
+use ontogeny::develop::{BuildOptions, creature_from_commands, grow};
+use ontogeny::evolve::stats::spearman;
+use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::sim::{JointModel, SimOptions, World};
+use ontogeny::task::{self, Status, WalkerOptions};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 /// Flags of `ontogeny bench`.
@@ -17,12 +23,24 @@ pub struct BenchArgs {
     /// Simulated seconds per evaluation.
     #[arg(long, default_value_t = 20.0)]
     seconds: f64,
-    /// Physics substeps per control step.
+    /// Physics substeps per control step of the setting measured (default: the evaluator's).
     #[arg(long, default_value_t = SimOptions::default().substeps)]
     substeps: usize,
-    /// Solver iterations per substep.
+    /// Solver iterations per substep of the setting measured (default: the evaluator's).
     #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
     solver_iterations: usize,
+    /// Also measure fidelity: walk this many creatures (the shipped examples, then random
+    /// command strings) with the setting and with a fine reference (1/240 s physics, 8 solver
+    /// iterations), and print the Spearman rank correlation of their fitness and how many
+    /// creatures each setting brings to rest. 0 skips it.
+    #[arg(long, default_value_t = 0)]
+    fidelity: usize,
+    /// Seed of the random creatures of `--fidelity`.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// With `--fidelity`: print every creature's figures.
+    #[arg(long)]
+    verbose: bool,
 }
 
 /// A chain of `parts` parts on revolute2 hinges, each driven by an output from the
@@ -51,41 +69,73 @@ fn evaluate(creature: &Creature, sim: &SimOptions, seconds: f64) -> (f64, f64) {
     )
 }
 
+/// One core's figures for one setting: evaluations per second, µs per control step, and the
+/// share of time outside rapier's pipeline (%).
+fn one_core(creature: &Creature, sim: &SimOptions, n: usize, seconds: f64) -> (f64, f64, f64) {
+    evaluate(creature, sim, 1.0); // warm up
+    let started = Instant::now();
+    let (mut total, mut physics) = (0.0, 0.0);
+    for _ in 0..n {
+        let (t, p) = evaluate(creature, sim, seconds);
+        total += t;
+        physics += p;
+    }
+    let rate = n as f64 / started.elapsed().as_secs_f64();
+    let steps = (seconds / sim.dt).round();
+    (
+        rate,
+        total / n as f64 / steps * 1e6,
+        (total - physics) / total * 100.0,
+    )
+}
+
 /// Measures and prints the figures the README reports.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    if !(args.seconds.is_finite() && args.seconds > 0.0 && args.seconds <= 3600.0) {
+        anyhow::bail!(ontogeny::lang::Diagnostic::without_location(
+            ontogeny::lang::DiagnosticKind::Semantic,
+            format!("--seconds must be in (0, 3600], not {}", args.seconds),
+        ));
+    }
     let sim = SimOptions {
         substeps: args.substeps.clamp(1, 64),
         solver_iterations: args.solver_iterations.clamp(1, 256),
         ..SimOptions::default()
     };
+    let reference = SimOptions {
+        substeps: 2,
+        solver_iterations: 4,
+        ..SimOptions::default()
+    };
     let walker = chain(10);
     let n = args.evaluations.max(1);
-    let steps = (args.seconds / sim.dt).round();
     say!(
-        "10-part walker, {} s at 1/60 s ({} substeps), {} evaluations; {} threads available",
+        "10-part walker, {} s at 1/60 s, {} evaluations per row; {} threads available",
         args.seconds,
-        sim.substeps,
         n,
         rayon::current_num_threads()
     );
-
-    evaluate(&walker, &sim, 1.0); // warm up
-    let started = Instant::now();
-    let (mut total, mut physics) = (0.0, 0.0);
-    for _ in 0..n {
-        let (t, p) = evaluate(&walker, &sim, args.seconds);
-        total += t;
-        physics += p;
-    }
-    let one_core = n as f64 / started.elapsed().as_secs_f64();
-    let overhead = (total - physics) / physics * 100.0;
     say!(
-        "one core:  {one_core:.1} evaluations/s ({:.1} µs per step)",
-        total / n as f64 / steps * 1e6
+        "{:<44} {:>12} {:>10} {:>10}",
+        "setting (one core)",
+        "evaluations/s",
+        "µs/step",
+        "overhead"
     );
+    let (fast, fast_step, fast_overhead) = one_core(&walker, &sim, n, args.seconds);
     say!(
-        "overhead:  {overhead:.1}% of the time is outside rapier's pipeline (sensors, brain, motors, checks, setup)"
+        "{:<44} {fast:>12.1} {fast_step:>10.1} {fast_overhead:>9.1}%",
+        format!(
+            "measured: {} substep(s), {} iterations",
+            sim.substeps, sim.solver_iterations
+        )
     );
+    let (slow, slow_step, slow_overhead) = one_core(&walker, &reference, n, args.seconds);
+    say!(
+        "{:<44} {slow:>12.1} {slow_step:>10.1} {slow_overhead:>9.1}%",
+        "reference: 2 substeps, 4 iterations (issue 5)"
+    );
+    say!("ratio:     {:.2}× the reference's evaluations/s", fast / slow);
 
     let started = Instant::now();
     (0..n).into_par_iter().for_each(|_| {
@@ -94,7 +144,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let all_cores = n as f64 / started.elapsed().as_secs_f64();
     say!(
         "all cores: {all_cores:.1} evaluations/s (speed-up {:.2} on {} threads)",
-        all_cores / one_core,
+        all_cores / fast,
         rayon::current_num_threads()
     );
 
@@ -113,5 +163,150 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         }
         say!("{parts:>6} {:>10.1} {:>10.1}", row[0], row[1]);
     }
+    if args.fidelity > 0 {
+        fidelity(args, &sim)?;
+    }
     Ok(())
+}
+
+/// The shipped examples that grow into creatures, as (name, text).
+const SHIPPED: [(&str, &str); 4] = [
+    ("snake", include_str!("../../examples/snake.lsys")),
+    ("quadruped", include_str!("../../examples/quadruped.lsys")),
+    ("thrower", include_str!("../../examples/thrower.lsys")),
+    ("plastic", include_str!("../../examples/plastic.lsys")),
+];
+
+/// A random string of body and brain commands: a walker-like creature of 2 to 8 parts.
+fn random_commands(rng: &mut ChaCha8Rng) -> String {
+    let mut out = format!(
+        "width({:.2}) thickness({:.2}) forward({:.2})",
+        rng.random_range(0.2..0.6),
+        rng.random_range(0.1..0.3),
+        rng.random_range(0.3..1.0)
+    );
+    let parts = rng.random_range(1..8);
+    let mut open = 0;
+    for _ in 0..parts {
+        if rng.random_bool(0.3) {
+            out.push_str(" [");
+            open += 1;
+        }
+        let turn = ["left", "right", "up", "down", "clockwise"][rng.random_range(0..5)];
+        if rng.random_bool(0.6) {
+            out.push_str(&format!(" {turn}(1)"));
+        }
+        let joint = ["revolute1", "revolute2", "twist90", "revolute2"][rng.random_range(0..4)];
+        out.push_str(&format!(
+            " {joint} width({:.2}) thickness({:.2}) forward({:.2})",
+            rng.random_range(0.1..0.4),
+            rng.random_range(0.1..0.3),
+            rng.random_range(0.2..0.8)
+        ));
+        if rng.random_bool(0.5) {
+            out.push_str(&format!(" split({:.2})", rng.random_range(-1.0..1.0)));
+        }
+        out.push_str(&format!(" output({:.2})", rng.random_range(-1.0..1.0)));
+        if open > 0 && rng.random_bool(0.4) {
+            out.push_str(" ]");
+            open -= 1;
+        }
+    }
+    out.push_str(&" ]".repeat(open));
+    out
+}
+
+/// The creatures of the fidelity measurement: the shipped examples, then valid random ones.
+fn fidelity_creatures(count: usize, seed: u64) -> anyhow::Result<Vec<(String, Creature)>> {
+    let mut creatures = Vec::new();
+    for (name, text) in SHIPPED {
+        let lsys = LSystem::from_text(&format!("examples/{name}.lsys"), text)?;
+        let frames = grow(
+            &lsys,
+            &DeriveOptions::default(),
+            None,
+            &BuildOptions::default(),
+        )?;
+        if let Some(last) = frames.into_iter().last() {
+            creatures.push((name.to_string(), last.creature));
+        }
+    }
+    creatures.truncate(count);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut tries = 0;
+    while creatures.len() < count && tries < 100 * count {
+        tries += 1;
+        let commands = random_commands(&mut rng);
+        let creature = creature_from_commands(&commands)?;
+        if creature.is_valid() && creature.brain.neurons.len() > 1 {
+            creatures.push((commands, creature));
+        }
+    }
+    Ok(creatures)
+}
+
+/// Walks every fidelity creature with `sim` and with the fine reference; prints the rank
+/// correlation of their fitness and how many each brings to rest.
+fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
+    let fine = SimOptions {
+        substeps: 4,
+        solver_iterations: 8,
+        drop_height: std::env::var("X_FINEDROP").ok().and_then(|v| v.parse().ok()).unwrap_or(0.05),
+        ..SimOptions::default()
+    };
+    let creatures = fidelity_creatures(args.fidelity, args.seed)?;
+    let options = WalkerOptions {
+        seconds: args.seconds,
+        ..WalkerOptions::default()
+    };
+    say!(
+        "\nfidelity: {} creatures walked {} s with the measured setting and with a fine reference (1/240 s physics, 8 iterations)",
+        creatures.len(),
+        args.seconds
+    );
+    let results: Vec<(task::Evaluation, task::Evaluation)> = creatures
+        .par_iter()
+        .map(|(_, c)| {
+            (
+                task::walker(c, sim, &options, false),
+                task::walker(c, &fine, &options, false),
+            )
+        })
+        .collect();
+    if args.verbose {
+        say!("{:>12} {:>12} {:>10} {:>10}  creature", "measured", "fine", "", "");
+        for ((name, _), (a, b)) in creatures.iter().zip(&results) {
+            say!(
+                "{:>12.6} {:>12.6} {:>10} {:>10}  {name}",
+                a.fitness,
+                b.fitness,
+                status_name(a.status),
+                status_name(b.status)
+            );
+        }
+    }
+    let measured: Vec<f64> = results.iter().map(|(a, _)| a.fitness).collect();
+    let reference: Vec<f64> = results.iter().map(|(_, b)| b.fitness).collect();
+    let rested = |e: &task::Evaluation| e.status != Status::Unstable;
+    let fine_rested = results.iter().filter(|(_, b)| rested(b)).count();
+    let both_rested = results
+        .iter()
+        .filter(|(a, b)| rested(b) && rested(a))
+        .count();
+    say!(
+        "Spearman rank correlation of walker fitness: {:.3}",
+        spearman(&measured, &reference)
+    );
+    say!(
+        "at rest: the fine reference brings {fine_rested} of {} to rest; the measured setting brings {both_rested} of those {fine_rested} to rest",
+        results.len()
+    );
+    Ok(())
+}
+
+fn status_name(status: Status) -> String {
+    serde_json::to_value(status)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
 }

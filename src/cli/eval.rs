@@ -51,9 +51,9 @@ enum ActuatorArg {
 /// Whose cross-section sets a joint's strength.
 #[derive(Clone, Copy, ValueEnum)]
 enum StrengthArg {
-    /// The smaller part's (after Sims; the default).
+    /// The smaller part's (Walking with Dinosaurs 3.4.4).
     Smaller,
-    /// The bigger part's (Chaumont et al. 3.4).
+    /// The bigger part's (Chaumont et al. 3.4, after Sims; the default).
     Bigger,
 }
 
@@ -112,16 +112,23 @@ pub struct EvalArgs {
     #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
     solver_iterations: usize,
     /// Whose cross-section sets a joint's strength.
-    #[arg(long, value_enum, default_value = "smaller")]
+    #[arg(long, value_enum, default_value = "bigger")]
     strength_from: StrengthArg,
+    /// Joint strength: maximum torque per square metre of cross-section (N·m/m²).
+    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_STRENGTH)]
+    strength: f64,
+    /// The muscle model's target speed V_des (rad/s), high so that muscles are
+    /// torque-limited (Chaumont et al. 5.3).
+    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_MUSCLE_SPEED)]
+    muscle_speed: f64,
     /// Let parts of one creature pass through each other (joint neighbours never collide).
     #[arg(long)]
     no_self_collision: bool,
     /// The catapult's projectile: edge length of the cube (m).
     #[arg(long, default_value_t = 0.2)]
     projectile_size: f64,
-    /// The catapult's projectile: density.
-    #[arg(long, default_value_t = 1.0)]
+    /// The catapult's projectile: density (kg/m³).
+    #[arg(long, default_value_t = ontogeny::creature::DEFAULT_DENSITY)]
     projectile_density: f64,
     /// Write recording.json (every part's pose per step) and behaviour.gif into DIR.
     #[arg(long, value_name = "DIR")]
@@ -197,7 +204,19 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             "--substeps must be 1 to 64 and --solver-iterations 1 to 256",
         ));
     }
-    if !(args.projectile_size > 0.0 && args.projectile_density > 0.0) {
+    if !(args.strength.is_finite() && args.strength >= 0.0)
+        || !(args.muscle_speed.is_finite() && args.muscle_speed > 0.0)
+    {
+        anyhow::bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            "--strength must be finite and not negative, --muscle-speed finite and positive",
+        ));
+    }
+    if !(args.projectile_size.is_finite()
+        && args.projectile_size > 0.0
+        && args.projectile_density.is_finite()
+        && args.projectile_density > 0.0)
+    {
         anyhow::bail!(Diagnostic::without_location(
             DiagnosticKind::Semantic,
             "--projectile-size and --projectile-density must be positive",
@@ -208,6 +227,8 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         substeps: args.substeps,
         solver_iterations: args.solver_iterations,
         self_collision: !args.no_self_collision,
+        strength: args.strength,
+        muscle_speed: args.muscle_speed,
         strength_from: match args.strength_from {
             StrengthArg::Smaller => StrengthFrom::Smaller,
             StrengthArg::Bigger => StrengthFrom::Bigger,

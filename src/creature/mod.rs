@@ -12,6 +12,9 @@ pub use geometry::boxes_intersect;
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
+/// The default density of a part (kg/m³): water's, and MuJoCo's default.
+pub const DEFAULT_DENSITY: f64 = 1000.0;
+
 /// A creature: body, brain, and what development had to say about it.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Creature {
@@ -37,7 +40,7 @@ pub struct Part {
     pub position: Vector3<f64>,
     /// Rotation from the part's axes to the world's.
     pub orientation: UnitQuaternion<f64>,
-    /// Density (kg/m³ in the simulator's units; 1 by default).
+    /// Density (kg/m³; [`DEFAULT_DENSITY`] unless an encoding says otherwise).
     pub density: f64,
     /// Whether the part is still growing (made by a maturing command such as `mforward`).
     pub growing: bool,
@@ -206,10 +209,15 @@ pub enum Role {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", tag = "type")]
 pub enum Sensor {
-    /// Contact of a part with anything: 1 touching, −1 not.
+    /// Contact of a part with anything: 1 touching, −1 not. With a `face`, only contacts on
+    /// that face count (Chaumont et al.'s Table I: "the block's face the sensor is attached
+    /// to"); without, any face does (the turtle's `touch`, Hornby & Pollack's per-part sensor).
     Touch {
         /// The part.
         part: usize,
+        /// The face, if the sensor is on one face only.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        face: Option<Face>,
     },
     /// A joint's angle, scaled to [−1, 1] over its limits.
     Angle {
@@ -225,6 +233,40 @@ pub enum Sensor {
     },
     /// The direction to the task's target, when it has one.
     Target,
+}
+
+/// A face of a box part, named in the part's own axes: x is its length (the direction it
+/// grew in), y its thickness (the turtle's up), z its width (the turtle's right).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Face {
+    /// +x: the far end.
+    Front,
+    /// −x: the near end.
+    Back,
+    /// +y.
+    Top,
+    /// −y.
+    Bottom,
+    /// +z.
+    Right,
+    /// −z.
+    Left,
+}
+
+impl Face {
+    /// The face whose outward normal is closest to `normal` (in the part's axes).
+    pub fn facing(normal: &Vector3<f64>) -> Face {
+        let k = normal.iamax();
+        match (k, normal[k] >= 0.0) {
+            (0, true) => Face::Front,
+            (0, false) => Face::Back,
+            (1, true) => Face::Top,
+            (1, false) => Face::Bottom,
+            (_, true) => Face::Right,
+            (_, false) => Face::Left,
+        }
+    }
 }
 
 /// An actuator a neuron drives.
@@ -374,7 +416,7 @@ impl Creature {
             let ok = match neuron.role {
                 Role::Hidden => true,
                 Role::Sensor { sensor } => match sensor {
-                    Sensor::Touch { part } => part < n,
+                    Sensor::Touch { part, .. } => part < n,
                     Sensor::Angle { joint, dof } => joint_ok(joint, dof),
                     Sensor::Chemical { slot } => slot < self.environment.len(),
                     Sensor::Target => true,

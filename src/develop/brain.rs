@@ -281,6 +281,7 @@ impl BrainBuilder {
                 let sensor = match op {
                     BrainOp::Touch => Sensor::Touch {
                         part: part.ok_or("touch needs a part to sense: ignored")?,
+                        face: None,
                     },
                     BrainOp::Angle => {
                         let (joint, _) = joint

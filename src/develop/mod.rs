@@ -337,7 +337,7 @@ impl<'a> Builder<'a> {
             size,
             position: centre,
             orientation: self.state.orientation,
-            density: 1.0,
+            density: crate::creature::DEFAULT_DENSITY,
             growing: maturing,
         });
         self.parents.push(parent);

@@ -4,4 +4,7 @@ pub mod brain;
 pub mod world;
 
 pub use brain::BrainRuntime;
-pub use world::{ActuatorModel, BuildError, Exploded, JointModel, SimOptions, StrengthFrom, World};
+pub use world::{
+    ActuatorModel, BuildError, DEFAULT_MUSCLE_SPEED, DEFAULT_STRENGTH, Exploded, JointModel,
+    SimOptions, StrengthFrom, World,
+};

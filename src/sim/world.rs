@@ -6,7 +6,7 @@ use rapier3d::math::{Pose, Real, Rotation, Vector};
 use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
-use crate::creature::{Actuator, Creature, Role, Sensor};
+use crate::creature::{Actuator, Creature, Face, Role, Sensor};
 
 /// How joints are simulated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -35,11 +35,25 @@ pub enum ActuatorModel {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum StrengthFrom {
-    /// The smaller of the two parts (the default, as issue 5 specifies after Sims).
+    /// The smaller of the two parts (Walking with Dinosaurs 3.4.4: "the smallest contact
+    /// area").
     Smaller,
-    /// The bigger of the two parts (Chaumont et al. 3.4).
+    /// The bigger of the two parts (the default: Chaumont et al. 3.4, after Sims 1994, and
+    /// the assumption behind the size normalisation of their walker fitness, equation 1).
     Bigger,
 }
+
+/// The default joint strength: maximum torque per square metre of cross-section (N·m/m²).
+///
+/// Calibrated so that a joint can hold a horizontal one-part limb of its own cross-section
+/// and the default density against gravity up to a length of
+/// L = √(2 · strength / (ρ g)) = √(2 · 10⁴ / (1000 · 9.81)) ≈ 1.43 m: a 1 m limb with a
+/// margin of 2.04 (the torque needed is ρ g A L² / 2).
+pub const DEFAULT_STRENGTH: f64 = 1.0e4;
+
+/// The muscle model's target speed V_des (rad/s), "fixed and high" (Chaumont et al. 5.3) so
+/// that a muscle is torque-limited, never speed-limited, in every shipped creature.
+pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 
 /// World settings.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
@@ -63,7 +77,10 @@ pub struct SimOptions {
     pub strength: f64,
     /// Whose cross-section: the smaller or the bigger of the two parts.
     pub strength_from: StrengthFrom,
-    /// Target speed (rad/s) of the muscle model, and the velocity model's top speed.
+    /// The muscle model's target speed V_des (rad/s), fixed and high so that the motor runs
+    /// at saturation (torque-limited).
+    pub muscle_speed: f64,
+    /// The velocity model's top speed (rad/s): a signal s asks for s × `max_speed`.
     pub max_speed: f64,
     /// Height of the creature's lowest point above the ground when it is dropped.
     pub drop_height: f64,
@@ -85,8 +102,9 @@ impl Default for SimOptions {
             self_collision: true,
             friction: 1.0,
             actuator: ActuatorModel::Muscle,
-            strength: 50.0,
-            strength_from: StrengthFrom::Smaller,
+            strength: DEFAULT_STRENGTH,
+            strength_from: StrengthFrom::Bigger,
+            muscle_speed: DEFAULT_MUSCLE_SPEED,
             max_speed: 5.0,
             drop_height: 0.05,
             explosion_distance: 2.0,
@@ -208,11 +226,26 @@ impl World {
         creature
             .check_consistency()
             .map_err(BuildError::Malformed)?;
-        let params = IntegrationParameters {
+        let mut params = IntegrationParameters {
             dt: (options.dt / options.substeps.max(1) as f64) as Real,
             num_solver_iterations: options.solver_iterations.max(1),
             ..IntegrationParameters::default()
         };
+        // EXPERIMENT (temporary)
+        let env = |k: &str| if options.substeps >= 4 { None } else { std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok()) };
+        if let Some(v) = env("X_WARMJ") { params.warmstart_joints = v > 0.0; }
+        if let Some(v) = env("X_STAB") { params.num_internal_stabilization_iterations = v as usize; }
+        if let Some(v) = env("X_PGS") { params.num_internal_pgs_iterations = v as usize; }
+        if let Some(v) = env("X_RECYCLE") { params.contact_recycling = v > 0.0; }
+        if let Some(v) = env("X_CCD") { params.max_ccd_substeps = v as usize; }
+        if let Some(v) = env("X_CLUSTER") { params.contact_clustering = v > 0.0; }
+        if let Some(v) = env("X_CNF") { params.contact_softness.natural_frequency = v as Real; }
+        if let Some(v) = env("X_CDR") { params.contact_softness.damping_ratio = v as Real; }
+        if let Some(v) = env("X_SNF") { params.static_contact_softness.natural_frequency = v as Real; }
+        let genv = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok());
+        let angular_damping = genv("G_ANGDAMP").unwrap_or(0.0) as Real;
+        let linear_damping = genv("G_LINDAMP").unwrap_or(0.0) as Real;
+        let options = &SimOptions { friction: genv("G_FRIC").unwrap_or(options.friction), ..options.clone() };
         let mut world = World {
             options: options.clone(),
             gravity: Vector::new(0.0, -9.81, 0.0),
@@ -262,7 +295,7 @@ impl World {
                 Pose::from_parts(vector(&(part.position + lift)), rotation(&part.orientation));
             let body = world
                 .bodies
-                .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
+                .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false).angular_damping(angular_damping).linear_damping(linear_damping));
             let half = part.size / 2.0;
             let collider = ColliderBuilder::cuboid(half.x as Real, half.y as Real, half.z as Real)
                 .density(part.density as Real)
@@ -347,6 +380,11 @@ impl World {
     /// The environment array (secreting neurons write it).
     pub fn environment(&self) -> &[f64] {
         &self.environment
+    }
+
+    /// Neuron `i`'s current output: for a sensor neuron, its last reading.
+    pub fn sensor_reading(&self, i: usize) -> f64 {
+        self.brain.outputs()[i]
     }
 
     /// Whether a `release` effector has fired.
@@ -498,6 +536,25 @@ impl World {
         [x, y, z][dof.min(2)] as f64
     }
 
+    /// Angular speed of joint `j` about its first axis (rad/s): the child's angular velocity
+    /// relative to the parent's, projected on the axis.
+    pub fn joint_speed(&self, j: usize) -> f64 {
+        let data = match self.joints[j] {
+            JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
+                Some(joint) => joint.data,
+                None => return 0.0,
+            },
+            JointHandle::Multibody(h) => match self.multibody_joints.get(h) {
+                Some((mb, link)) => mb.link(link).expect("link exists").joint.data,
+                None => return 0.0,
+            },
+        };
+        let (b1, b2) = self.joint_bodies(j);
+        let axis = *self.bodies[b1].rotation() * data.local_frame1.rotation * Vector::X;
+        let relative = self.bodies[b2].angvel() - self.bodies[b1].angvel();
+        relative.dot(axis) as f64
+    }
+
     fn joint_bodies(&self, j: usize) -> (RigidBodyHandle, RigidBodyHandle) {
         self.joint_ends[j]
     }
@@ -509,12 +566,18 @@ impl World {
                 continue;
             };
             let value = match sensor {
-                Sensor::Touch { part } => {
+                Sensor::Touch { part, face } => {
                     let collider = self.parts[part].1;
                     let touching = self.narrow_phase.contact_pairs_with(collider).any(|p| {
-                        p.manifolds()
-                            .iter()
-                            .any(|m| m.points.iter().any(|pt| pt.dist <= 1e-3))
+                        let ours_first = p.collider1 == collider;
+                        p.manifolds().iter().any(|m| {
+                            m.points.iter().any(|pt| pt.dist <= 1e-3)
+                                && face.is_none_or(|face| {
+                                    // The contact normal, outward from this part, in its axes.
+                                    let n = if ours_first { m.local_n1 } else { m.local_n2 };
+                                    Face::facing(&to_na(n)) == face
+                                })
+                        })
                     });
                     if touching { 1.0 } else { -1.0 }
                 }
@@ -559,7 +622,7 @@ impl World {
                     let info = &self.joint_info[joint];
                     let (lo, hi) = info.limits.get(dof).copied().unwrap_or((0.0, 0.0));
                     let max_torque = info.max_torque;
-                    let speed = self.options.max_speed;
+                    let (muscle_speed, speed) = (self.options.muscle_speed, self.options.max_speed);
                     let model = self.options.actuator;
                     let axis = ANGULAR[dof.min(2)];
                     self.with_joint(joint, |data| {
@@ -573,7 +636,11 @@ impl World {
                         let stiff = (max_torque * 1000.0).max(1e-3) as Real;
                         match model {
                             ActuatorModel::Muscle => {
-                                data.set_motor_velocity(axis, (speed * s.signum()) as Real, stiff);
+                                data.set_motor_velocity(
+                                    axis,
+                                    (muscle_speed * s.signum()) as Real,
+                                    stiff,
+                                );
                                 data.set_motor_max_force(axis, (s.abs() * max_torque) as Real);
                             }
                             ActuatorModel::Angle => {

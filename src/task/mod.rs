@@ -9,15 +9,26 @@ use serde::{Deserialize, Serialize};
 use crate::creature::{Creature, Severity};
 use crate::sim::{SimOptions, World};
 
+/// The fitness of every failed evaluation, whatever the task: Walking with Dinosaurs' value
+/// for illegal creatures (3.5.1), and Chaumont et al.'s "arbitrary low value" (5.4). Every
+/// valid score of every task is above it: walker, catapult and jump scores are never
+/// negative, and an aim score D_p − D_t is at least −D_t ≥ −|target| > −[`MAX_TARGET_DISTANCE`].
+pub const FAILURE_FITNESS: f64 = -999_999.0;
+
+/// The farthest an aim task's target may be from the projectile's start (m), so that every
+/// aim score stays above [`FAILURE_FITNESS`].
+pub const MAX_TARGET_DISTANCE: f64 = 100_000.0;
+
 /// How an evaluation ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Status {
     /// Evaluated normally.
     Ok,
-    /// Never came to rest before the controller was to start (fitness 0).
+    /// Never came to rest when the protocol needed it to.
     Unstable,
-    /// NaN, a part jumping too far in one step, or moving too fast (fitness 0).
+    /// The physics blew up: NaN in a body, a part jumping too far in one step, or moving
+    /// too fast.
     Exploded,
     /// Parts interpenetrate from the start (Chaumont 5.5): not simulated.
     SelfIntersecting,
@@ -35,10 +46,12 @@ pub enum WalkerFitness {
     Normalised,
     /// The raw distance D_w.
     Distance,
-    /// Walking with Dinosaurs' iterative move: distance counted later counts more. Our
-    /// reading of 3.3.3: the mean over each second k = 1..K of the measured walk of
-    /// (k / K) × the horizontal distance of the creature's centre of mass from where it
-    /// started.
+    /// Walking with Dinosaurs' iterative move: "distance gained late in the process" counts
+    /// more, which "favour[s] creatures that move a certain distance continuous but slow
+    /// compared to one doing the same distance fast and then stopping" (3.3.3). The gain g_k
+    /// of second k = 1..K of the measured walk is the horizontal distance the creature's centre
+    /// of mass moves during that second; the fitness is Σ_k w_k · g_k with w_k = 2k / (K + 1),
+    /// weights that average 1, so a steady walk scores the distance it covers.
     IterativeMove,
     /// Iterative move × the number of parts.
     BoxLover,
@@ -48,14 +61,18 @@ pub enum WalkerFitness {
     DwarfSlayer,
 }
 
-/// When a creature counts as at rest (Chaumont et al. 3.3): every part's centre moves less
-/// than `distance` per 1/60 s for `steps` steps in a row, within `limit` seconds.
+/// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
+/// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
+/// same at any time step) and drifts less than `distance` in all (so that a slowly toppling
+/// tower, whose parts creep below the speed threshold, is not at rest); within `limit`
+/// seconds.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Rest {
-    /// Δx, per 1/60 s.
+    /// Δx, per 1/60 s (Chaumont: 1/300 m).
     pub distance: f64,
-    /// Consecutive calm steps.
-    pub steps: usize,
+    /// How long every part must stay calm (s): 0.5 s, the 30 steps of 1/60 s of the first
+    /// implementation.
+    pub duration: f64,
     /// A creature not at rest after this many seconds is unstable.
     pub limit: f64,
 }
@@ -64,10 +81,16 @@ impl Default for Rest {
     fn default() -> Self {
         Rest {
             distance: 1.0 / 300.0,
-            steps: 30,
+            duration: 0.5,
             limit: 10.0,
         }
     }
+}
+
+/// Whole control steps in `seconds` at time step `dt` (at least one when `seconds` > 0).
+fn steps_in(seconds: f64, dt: f64) -> usize {
+    let steps = (seconds / dt - 1e-9).ceil().max(0.0) as usize;
+    if seconds > 0.0 { steps.max(1) } else { 0 }
 }
 
 /// Settings of the walker task (Chaumont et al. sections 3.3–3.5).
@@ -81,9 +104,11 @@ pub struct WalkerOptions {
     pub fitness: WalkerFitness,
     /// When the creature is at rest.
     pub rest: Rest,
-    /// The first activation of the controller (s).
+    /// The first activation of the controller (s): "less than 10 time steps" of 1/60 s
+    /// (Chaumont et al. 3.3), so 9/60 s.
     pub activation: f64,
-    /// The second stabilisation, controller off (s).
+    /// The second stabilisation, controller off: at least this long (s), and until the
+    /// creature is at rest by the same criterion as the first.
     pub second_settle: f64,
     /// Creatures taller than this (m) are not simulated.
     pub max_height: f64,
@@ -96,7 +121,7 @@ impl Default for WalkerOptions {
             kappa: 1.02,
             fitness: WalkerFitness::Normalised,
             rest: Rest::default(),
-            activation: 1.0,
+            activation: 9.0 / 60.0,
             second_settle: 0.5,
             max_height: 15.0,
         }
@@ -123,7 +148,7 @@ pub struct RecordedFrame {
 pub struct Evaluation {
     /// The task's name.
     pub task: String,
-    /// The fitness (0 unless the status is `ok`).
+    /// The fitness; [`FAILURE_FITNESS`] unless the status is `ok`.
     pub fitness: f64,
     /// How it ended.
     pub status: Status,
@@ -140,7 +165,7 @@ impl Evaluation {
     fn failed(task: &str, status: Status, message: String) -> Evaluation {
         Evaluation {
             task: task.to_string(),
-            fitness: 0.0,
+            fitness: FAILURE_FITNESS,
             status,
             terms: BTreeMap::new(),
             message: Some(message),
@@ -204,14 +229,18 @@ fn screen(task: &str, creature: &Creature, max_height: f64, seconds: f64) -> Opt
         return Some(Evaluation::failed(task, Status::Invalid, errors.join("; ")));
     }
     let (lo, hi) = creature.bounding_box();
-    if hi.y - lo.y > max_height {
-        return Some(Evaluation::failed(
+    too_tall(task, hi.y - lo.y, max_height, "")
+}
+
+/// Walking with Dinosaurs' height test, before simulating and again after settling.
+fn too_tall(task: &str, height: f64, max_height: f64, when: &str) -> Option<Evaluation> {
+    (height > max_height).then(|| {
+        Evaluation::failed(
             task,
             Status::TooTall,
-            format!("{:.2} m tall, more than {max_height} m", hi.y - lo.y),
-        ));
-    }
-    None
+            format!("{height:.2} m tall{when}, more than {max_height} m"),
+        )
+    })
 }
 
 /// A running evaluation: the world plus the bookkeeping every protocol needs.
@@ -245,32 +274,62 @@ impl Run {
         Ok(moved)
     }
 
-    /// Steps with the controller off until the creature is at rest; `Unstable` if it is not
-    /// within the time limit.
-    fn settle(&mut self, rest: &Rest, dt: f64) -> Result<(), Evaluation> {
+    /// Steps with the controller off for at least `at_least` seconds and until the creature
+    /// is at rest; `Unstable` if it is not within the time limit.
+    fn settle(&mut self, rest: &Rest, at_least: f64, dt: f64) -> Result<(), Evaluation> {
         let threshold = rest.distance * dt * 60.0; // Δx is given per 1/60 s
-        let start = self.world.time();
+        let calm_needed = steps_in(rest.duration, dt);
+        let minimum = steps_in(at_least, dt);
         let mut calm = 0;
-        while calm < rest.steps {
-            if self.world.time() - start > rest.limit {
+        let mut taken = 0;
+        let mut window: Vec<Vector3<f64>> = Vec::with_capacity(self.world.part_count());
+        while calm < calm_needed || taken < minimum {
+            if taken as f64 * dt > rest.limit + 1e-9 {
                 return Err(Evaluation::failed(
                     self.task,
                     Status::Unstable,
-                    format!("not at rest after {} s", rest.limit),
+                    format!(
+                        "not at rest after {} s (from t = {:.3} s)",
+                        rest.limit,
+                        self.world.time() - taken as f64 * dt
+                    ),
                 ));
             }
+            if calm == 0 {
+                // A new calm window starts here.
+                window.clear();
+                window.extend((0..self.world.part_count()).map(|i| self.world.part_position(i)));
+            }
             let moved = self.step(false)?;
-            calm = if moved < threshold { calm + 1 } else { 0 };
+            taken += 1;
+            // Calm: every part moves less than Δx per 1/60 s (Chaumont), and none has drifted
+            // more than Δx since the window began (a slowly toppling tower is not at rest).
+            let drift_limit = rest.distance * std::env::var("X_DRIFT").ok().and_then(|v| v.parse::<f64>().ok()).unwrap_or(1.0);
+            let drifted = (0..window.len())
+                .any(|i| (self.world.part_position(i) - window[i]).norm() >= drift_limit);
+            calm = if moved < threshold && !drifted {
+                calm + 1
+            } else {
+                0
+            };
         }
         Ok(())
     }
 
     fn run_for(&mut self, seconds: f64, controller: bool, dt: f64) -> Result<(), Evaluation> {
-        let steps = (seconds / dt).round() as usize;
-        for _ in 0..steps {
+        for _ in 0..steps_in(seconds, dt) {
             self.step(controller)?;
         }
         Ok(())
+    }
+
+    /// The height test again, on the settled creature.
+    fn check_height(&self, max_height: f64) -> Result<(), Evaluation> {
+        let height = self.world.highest_point() - self.world.lowest_point();
+        match too_tall(self.task, height, max_height, " after settling") {
+            Some(failed) => Err(failed),
+            None => Ok(()),
+        }
     }
 }
 
@@ -309,21 +368,42 @@ fn evaluate(
         Err(failed) => return failed,
     };
     match protocol(&mut run) {
-        Ok((fitness, terms)) => Evaluation {
-            task: task.to_string(),
-            fitness,
-            status: Status::Ok,
-            terms,
-            message: None,
-            recording: std::mem::take(&mut run.recording),
-        },
+        Ok((fitness, terms)) => {
+            // No NaN or infinity leaves an evaluation: JSON cannot hold them.
+            if let Some((name, _)) = terms.iter().find(|(_, v)| !v.is_finite()) {
+                return Evaluation::failed(task, Status::Invalid, format!("{name} is not finite"));
+            }
+            if !fitness.is_finite() {
+                return Evaluation::failed(task, Status::Invalid, "fitness is not finite".into());
+            }
+            Evaluation {
+                task: task.to_string(),
+                fitness,
+                status: Status::Ok,
+                terms,
+                message: None,
+                recording: std::mem::take(&mut run.recording),
+            }
+        }
         Err(failed) => failed,
     }
 }
 
+/// WWD's iterative move over per-second gains `gains` (g_1 .. g_K): Σ_k 2k / (K + 1) · g_k.
+pub fn iterative_move(gains: &[f64]) -> f64 {
+    let k_total = gains.len() as f64;
+    gains
+        .iter()
+        .enumerate()
+        .map(|(k, g)| 2.0 * (k + 1) as f64 / (k_total + 1.0) * g)
+        .sum()
+}
+
 /// The walker (Chaumont et al. 3.3–3.5): stabilise with the controller off until at rest,
-/// activate the controller for 1 s, stabilise again for 0.5 s, then walk with the controller
-/// on for `seconds`; D_w is the horizontal distance the root part's centre of mass travels.
+/// check the height again, activate the controller for `activation` (9 steps of 1/60 s),
+/// stabilise again (at least `second_settle`, and until at rest), then walk with the
+/// controller on for `seconds`; D_w is the horizontal distance the root part's centre of mass
+/// travels.
 pub fn walker(
     creature: &Creature,
     sim: &SimOptions,
@@ -332,31 +412,29 @@ pub fn walker(
 ) -> Evaluation {
     let limits = (options.max_height, options.seconds);
     evaluate("walker", creature, sim, record, limits, |run| {
-        run.settle(&options.rest, sim.dt)?;
+        run.settle(&options.rest, 0.0, sim.dt)?;
         let settled_at = run.world.time();
+        run.check_height(options.max_height)?;
         run.run_for(options.activation, true, sim.dt)?;
-        run.run_for(options.second_settle, false, sim.dt)?;
+        run.settle(&options.rest, options.second_settle, sim.dt)?;
         let measure_from = run.world.time();
         let from = run.world.part_position(0);
-        let centre_from = centre_of_mass(&run.world, creature);
-        // Iterative move: the centre of mass's distance from its start at every second.
-        let mut seconds = Vec::new();
-        let steps_per_second = (1.0 / sim.dt).round().max(1.0) as usize;
-        let steps = (options.seconds / sim.dt).round() as usize;
-        for k in 1..=steps {
+        // Iterative move: the centre of mass's horizontal gain over every whole second.
+        let mut gains = Vec::new();
+        let mut last_second = centre_of_mass(&run.world, creature);
+        let steps = steps_in(options.seconds, sim.dt);
+        let start_time = run.world.time();
+        for _ in 0..steps {
             run.step(true)?;
-            if k % steps_per_second == 0 {
-                let d = centre_of_mass(&run.world, creature) - centre_from;
-                seconds.push((d.x * d.x + d.z * d.z).sqrt());
+            let elapsed = run.world.time() - start_time;
+            if elapsed + 1e-9 >= (gains.len() + 1) as f64 {
+                let centre = centre_of_mass(&run.world, creature);
+                let d = centre - last_second;
+                gains.push((d.x * d.x + d.z * d.z).sqrt());
+                last_second = centre;
             }
         }
-        let count = seconds.len().max(1) as f64;
-        let iterative = seconds
-            .iter()
-            .enumerate()
-            .map(|(k, d)| (k + 1) as f64 / count * d)
-            .sum::<f64>()
-            / count;
+        let iterative = iterative_move(&gains);
         let to = run.world.part_position(0);
         let d = to - from;
         let distance = (d.x * d.x + d.z * d.z).sqrt();
@@ -422,8 +500,9 @@ impl Default for JumpOptions {
     }
 }
 
-/// Jump (Walking with Dinosaurs 3.3.3): after coming to rest, the controller runs for
-/// `seconds`; the fitness is the best height of the creature's lowest point above the ground.
+/// Jump (Walking with Dinosaurs 3.3.3): after coming to rest (and passing the height test
+/// again), the controller runs for `seconds`; the fitness is the best height of the
+/// creature's lowest point above the ground.
 pub fn jump(
     creature: &Creature,
     sim: &SimOptions,
@@ -432,11 +511,11 @@ pub fn jump(
 ) -> Evaluation {
     let limits = (options.max_height, options.seconds);
     evaluate("jump", creature, sim, record, limits, |run| {
-        run.settle(&options.rest, sim.dt)?;
+        run.settle(&options.rest, 0.0, sim.dt)?;
+        run.check_height(options.max_height)?;
         let resting = run.world.lowest_point().max(0.0);
         let mut best: f64 = 0.0;
-        let steps = (options.seconds / sim.dt).round() as usize;
-        for _ in 0..steps {
+        for _ in 0..steps_in(options.seconds, sim.dt) {
             run.step(true)?;
             best = best.max(run.world.lowest_point());
         }
@@ -453,15 +532,17 @@ pub fn jump(
 pub struct CatapultOptions {
     /// The projectile's size (m).
     pub projectile_size: Vector3<f64>,
-    /// The projectile's density.
+    /// The projectile's density (kg/m³).
     pub projectile_density: f64,
-    /// Control steps after which the release mechanism fires without a signal (Figure 4).
-    pub release_delay: usize,
+    /// Seconds after which the release mechanism fires without a signal (Figure 4: 30
+    /// steps of 1/60 s).
+    pub release_delay: f64,
     /// The projectile is at rest when slower than this (m/s) ...
     pub rest_speed: f64,
-    /// ... for this many consecutive steps after release.
-    pub rest_steps: usize,
-    /// The simulation ends after this many seconds whatever happens.
+    /// ... for this long (s) after release.
+    pub rest_duration: f64,
+    /// A projectile not at rest this many seconds after the start is `unstable` (Chaumont's
+    /// blocks "roll for almost 20 seconds").
     pub max_seconds: f64,
     /// Creatures taller than this (m) are not simulated.
     pub max_height: f64,
@@ -473,11 +554,11 @@ impl Default for CatapultOptions {
     fn default() -> Self {
         CatapultOptions {
             projectile_size: Vector3::new(0.2, 0.2, 0.2),
-            projectile_density: 1.0,
-            release_delay: 30,
+            projectile_density: crate::creature::DEFAULT_DENSITY,
+            release_delay: 0.5,
             rest_speed: 0.01,
-            rest_steps: 30,
-            max_seconds: 10.0,
+            rest_duration: 0.5,
+            max_seconds: 60.0,
             max_height: 15.0,
             target: None,
         }
@@ -508,9 +589,10 @@ pub fn distance_to_trajectory(trajectory: &[Vector3<f64>], target: &Vector3<f64>
 
 /// Catapult (`options.target` = None, equation 2: F_D = D_p) or aim (equation 3:
 /// F_a = D_p − D_t). The creature's root part is the arm; a projectile is held at its near
-/// end and released after `release_delay` control steps, or earlier when the brain's first
+/// end and released after `release_delay` seconds, or earlier when the brain's first
 /// `release` effector fires. D_p is the horizontal distance of the projectile's centre from
-/// release to rest; the simulation ends when the projectile comes to rest.
+/// release to rest; the simulation ends when the projectile comes to rest, and a projectile
+/// still moving after `max_seconds` is `unstable`.
 pub fn catapult(
     creature: &Creature,
     sim: &SimOptions,
@@ -523,6 +605,15 @@ pub fn catapult(
         "catapult"
     };
     let limits = (options.max_height, options.max_seconds);
+    if let Some(target) = options.target
+        && !(target.iter().all(|v| v.is_finite()) && target.norm() <= MAX_TARGET_DISTANCE)
+    {
+        return Evaluation::failed(
+            task,
+            Status::Invalid,
+            format!("the target must be within {MAX_TARGET_DISTANCE} m of the projectile"),
+        );
+    }
     evaluate(task, creature, sim, record, limits, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
@@ -535,14 +626,15 @@ pub fn catapult(
         let mut trajectory = Vec::new();
         let mut calm = 0;
         let mut step = 0usize;
-        let limit = (options.max_seconds / sim.dt).round() as usize;
+        let limit = steps_in(options.max_seconds, sim.dt);
+        let release_step = steps_in(options.release_delay, sim.dt);
+        let calm_needed = steps_in(options.rest_duration, sim.dt);
+        let mut at_rest = false;
         while step < limit {
             run.step(true)?;
             step += 1;
             let (position, speed) = run.world.projectile_state().expect("attached");
-            if released_at.is_none()
-                && (step >= options.release_delay || run.world.release_signalled())
-            {
+            if released_at.is_none() && (step >= release_step || run.world.release_signalled()) {
                 run.world.release();
                 released_at = Some(step);
                 release_point = position;
@@ -554,7 +646,8 @@ pub fn catapult(
                 } else {
                     0
                 };
-                if calm >= options.rest_steps {
+                if calm >= calm_needed {
+                    at_rest = true;
                     break;
                 }
             }
@@ -564,17 +657,27 @@ pub fn catapult(
                 task,
                 Status::Invalid,
                 format!(
-                    "the run ended after {step} steps, before the projectile was released (step {})",
-                    options.release_delay
+                    "the run ended after {step} steps, before the projectile was released (step {release_step})"
                 ),
             ));
         };
+        if !at_rest {
+            return Err(Evaluation::failed(
+                task,
+                Status::Unstable,
+                format!(
+                    "the projectile was still moving after {} s",
+                    options.max_seconds
+                ),
+            ));
+        }
         let (rest_point, _) = run.world.projectile_state().expect("attached");
         let d = rest_point - release_point;
         let distance = (d.x * d.x + d.z * d.z).sqrt();
         let mut terms = BTreeMap::from([
             ("D_p".to_string(), distance),
             ("release_step".to_string(), released_at as f64),
+            ("release_time".to_string(), released_at as f64 * sim.dt),
             ("seconds".to_string(), run.world.time()),
         ]);
         let fitness = match target {
