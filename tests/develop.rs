@@ -165,6 +165,51 @@ fn maturing_commands_mark_growing_parts_and_joints() {
 }
 
 #[test]
+fn parts_shorter_than_the_minimum_length_are_not_built() {
+    use ontogeny::develop::MIN_PART_LENGTH;
+    assert_eq!(MIN_PART_LENGTH, 1e-6);
+    // A maturing forward that short is a bud: nothing is built, the turtle stays, no warning
+    // (mforward(0) included, and round-off either side of it).
+    for bud in [
+        "mforward(0)",
+        "mforward(5e-14)",
+        "mforward(-5e-14)",
+        "mforward(9e-7)",
+    ] {
+        let c = creature(&format!("forward(1) {bud} revolute1 forward(1)"));
+        assert_eq!(c.parts.len(), 2, "{bud}");
+        assert!(close(c.parts[1].position, [1.5, 0.0, 0.0]), "{bud}");
+        assert_eq!(
+            c.joints[0].kind,
+            JointKind::Revolute,
+            "{bud}: the joint waits"
+        );
+        assert!(c.problems.is_empty(), "{bud}: {:?}", c.problems);
+    }
+    // Just over the minimum: a part.
+    let c = creature("forward(1) mforward(2e-6)");
+    assert_eq!(c.parts.len(), 2);
+    assert!((c.parts[1].size.x - 2e-6).abs() < 1e-18);
+    // A plain forward that short is ignored with a warning naming it.
+    let c = creature("forward(1) forward(5e-7) forward(1)");
+    assert_eq!(c.parts.len(), 2);
+    assert!(close(c.parts[1].position, [1.5, 0.0, 0.0]));
+    assert_eq!(c.problems.len(), 1, "{:?}", c.problems);
+    assert_eq!(c.problems[0].severity, Severity::Warning);
+    assert!(
+        c.problems[0]
+            .message
+            .contains("shorter than the shortest part, 1e-6"),
+        "{}",
+        c.problems[0].message
+    );
+    // A negative maturing length beyond round-off is still a mistake.
+    let c = creature("forward(1) mforward(-1)");
+    assert_eq!(c.parts.len(), 1);
+    assert_eq!(c.problems.len(), 1, "{:?}", c.problems);
+}
+
+#[test]
 fn control_tokens_build_nothing() {
     let c = creature("A B(2) forward C");
     assert_eq!(c.parts.len(), 1);
