@@ -165,6 +165,51 @@ fn maturing_commands_mark_growing_parts_and_joints() {
 }
 
 #[test]
+fn parts_shorter_than_the_minimum_length_are_not_built() {
+    use ontogeny::develop::MIN_PART_LENGTH;
+    assert_eq!(MIN_PART_LENGTH, 1e-6);
+    // A maturing forward that short is a bud: nothing is built, the turtle stays, no warning
+    // (mforward(0) included, and round-off either side of it).
+    for bud in [
+        "mforward(0)",
+        "mforward(5e-14)",
+        "mforward(-5e-14)",
+        "mforward(9e-7)",
+    ] {
+        let c = creature(&format!("forward(1) {bud} revolute1 forward(1)"));
+        assert_eq!(c.parts.len(), 2, "{bud}");
+        assert!(close(c.parts[1].position, [1.5, 0.0, 0.0]), "{bud}");
+        assert_eq!(
+            c.joints[0].kind,
+            JointKind::Revolute,
+            "{bud}: the joint waits"
+        );
+        assert!(c.problems.is_empty(), "{bud}: {:?}", c.problems);
+    }
+    // Just over the minimum: a part.
+    let c = creature("forward(1) mforward(2e-6)");
+    assert_eq!(c.parts.len(), 2);
+    assert!((c.parts[1].size.x - 2e-6).abs() < 1e-18);
+    // A plain forward that short is ignored with a warning naming it.
+    let c = creature("forward(1) forward(5e-7) forward(1)");
+    assert_eq!(c.parts.len(), 2);
+    assert!(close(c.parts[1].position, [1.5, 0.0, 0.0]));
+    assert_eq!(c.problems.len(), 1, "{:?}", c.problems);
+    assert_eq!(c.problems[0].severity, Severity::Warning);
+    assert!(
+        c.problems[0]
+            .message
+            .contains("shorter than the shortest part, 1e-6"),
+        "{}",
+        c.problems[0].message
+    );
+    // A negative maturing length beyond round-off is still a mistake.
+    let c = creature("forward(1) mforward(-1)");
+    assert_eq!(c.parts.len(), 1);
+    assert_eq!(c.problems.len(), 1, "{:?}", c.problems);
+}
+
+#[test]
 fn control_tokens_build_nothing() {
     let c = creature("A B(2) forward C");
     assert_eq!(c.parts.len(), 1);
@@ -264,13 +309,79 @@ fn loop_reverse_cut_and_weights() {
 }
 
 #[test]
-fn next_and_parent_move_the_current_link() {
+fn next_moves_the_current_link_to_another_input_of_the_target() {
     // Inputs of neuron 0 after split duplicate(2): links 1 (w 1) and 2 (w 2). next -> link 2.
     let c = creature("split duplicate(2) next weight(10)");
     assert_eq!(links(&c), [(0, 1, 1.0), (1, 0, 1.0), (1, 0, 12.0)]);
-    // parent: from 1 -> 0 up to the input of neuron 1, which is 0 -> 1.
-    let c = creature("split parent weight(10)");
-    assert_eq!(links(&c), [(0, 1, 11.0), (1, 0, 1.0)]);
+}
+
+/// `split split(2) reverse target reverse`: links 0 -> 1 (w 1), 1 -> 2 (w 1), 2 -> 0 (w 2) and
+/// the sensor 3 -> 2 (w 1); the current link is 2 -> 0, and its source, neuron 2, has two
+/// inputs: from neuron 1 (input 0) and from the sensor 3 (input 1).
+const TWO_PARENTS: &str = "split split(2) reverse target reverse";
+
+#[test]
+fn parent_moves_the_source_up_to_its_nth_input_and_keeps_the_target() {
+    let base = [(0, 1, 1.0), (1, 2, 1.0), (2, 0, 2.0), (3, 2, 1.0)];
+    assert_eq!(links(&creature(TWO_PARENTS)), base);
+    // parent(0): the source becomes neuron 1; there is no link 1 -> 0, so the current link is
+    // virtual and parent itself makes nothing; weight(5) makes it with weight 5.
+    assert_eq!(links(&creature(&format!("{TWO_PARENTS} parent(0)"))), base);
+    let c = creature(&format!("{TWO_PARENTS} parent(0) weight(5)"));
+    assert_eq!(links(&c)[..4], base);
+    assert_eq!(links(&c)[4..], [(1, 0, 5.0)]);
+    // parent(1): the sensor; increase materialises 3 -> 0 with its weight.
+    let c = creature(&format!("{TWO_PARENTS} parent(1) increase(0.25)"));
+    assert_eq!(links(&c)[4..], [(3, 0, 0.25)]);
+    // n counts from 0 modulo the number of inputs: parent(3) is parent(1), parent(2) parent(0).
+    let c = creature(&format!("{TWO_PARENTS} parent(3) decrease(0.5)"));
+    assert_eq!(links(&c)[4..], [(3, 0, -0.5)]);
+    let c = creature(&format!("{TWO_PARENTS} parent(2) weight(5)"));
+    assert_eq!(links(&c)[4..], [(1, 0, 5.0)]);
+    // The default is parent(0); twice climbs two neurons: 2 -> 1 -> 0, still into neuron 0.
+    let c = creature(&format!("{TWO_PARENTS} parent parent weight(7)"));
+    assert_eq!(links(&c)[4..], [(0, 0, 7.0)]);
+    assert!(c.problems.is_empty(), "{:?}", c.problems);
+}
+
+#[test]
+fn parent_lands_on_an_actual_link_when_one_exists() {
+    // split: 0 -> 1, 1 -> 0 (current). loop(3): 0 -> 0 (w 3). parent: the source 1's input is
+    // neuron 0, and 0 -> 0 exists: it becomes the current link, so weight adds to it.
+    assert_eq!(
+        links(&creature("split loop(3) parent weight(0.5)")),
+        [(0, 1, 1.0), (1, 0, 1.0), (0, 0, 3.5)]
+    );
+    // Two links 0 -> 0: the first made is the current link.
+    assert_eq!(
+        links(&creature("split loop(3) loop(4) parent weight(0.5)")),
+        [(0, 1, 1.0), (1, 0, 1.0), (0, 0, 3.5), (0, 0, 4.0)]
+    );
+    // The first network's self-link: neuron 0's parent is itself, and the link stays current.
+    assert_eq!(links(&creature("parent weight(2)")), [(0, 0, 3.0)]);
+}
+
+#[test]
+fn parent_of_a_neuron_without_inputs_does_nothing() {
+    // parent(1) moves the source to the sensor 3, which has no inputs: the second parent is
+    // ignored with a warning, and the (virtual) current link 3 -> 0 stays.
+    let c = creature(&format!("{TWO_PARENTS} parent(1) parent weight(1)"));
+    assert_eq!(links(&c)[4..], [(3, 0, 1.0)]);
+    assert_eq!(c.problems.len(), 1, "{:?}", c.problems);
+    assert_eq!(c.problems[0].severity, Severity::Warning);
+    assert!(
+        c.problems[0].message.contains("no input links"),
+        "{}",
+        c.problems[0].message
+    );
+    assert_eq!(c.problems[0].module.as_deref(), Some("parent"));
+}
+
+#[test]
+fn a_virtual_link_from_parent_survives_push_and_pop() {
+    // The virtual link 1 -> 0 is saved by '[' and restored by ']'; then weight makes it.
+    let c = creature(&format!("{TWO_PARENTS} parent [ reverse ] weight(5)"));
+    assert_eq!(links(&c)[4..], [(1, 0, 5.0)]);
 }
 
 #[test]

@@ -19,8 +19,8 @@ pub struct DevelopmentArgs {
     /// switches to continuous mode).
     #[arg(long, value_name = "T")]
     time: Option<f64>,
-    /// Observation step in continuous mode: a frame every D time units (default: the file's
-    /// `dt:`, else 1).
+    /// Observation step in continuous mode: a frame every D time units, the last one at the
+    /// final time (default: the file's `dt:`, else 1).
     #[arg(long, value_name = "D")]
     dt: Option<f64>,
     /// How continuous development rewrites at events (default: the file's `timing:`, else

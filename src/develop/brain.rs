@@ -1,9 +1,11 @@
 //! The edge-encoding brain builder (Hornby & Pollack; Matos & Arita, Table 1).
 //!
-//! Commands act on the **current link**, which runs from a *source* neuron to a *target*
-//! neuron. It is *actual* when such a link exists in the network and *virtual* when it was
-//! cut. The network starts with one oscillator neuron and one link into it: a self-link of
-//! weight 1, which is the first current link.
+//! Commands act on the **current link**, which runs from a *source* neuron (Hornby & Pollack's
+//! "from-neuron", Matos & Arita's "head") to a *target* neuron (the "to-neuron", the "tail").
+//! It is *actual* when such a link exists in the network and *virtual* when it does not (after
+//! a `cut`, or a `parent(n)` to a neuron with no link to the target). The network starts with
+//! one oscillator neuron and one link into it: a self-link of weight 1, which is the first
+//! current link.
 
 use super::command::BrainOp;
 use crate::creature::{Actuator, Brain, Link, Neuron, NeuronFunction, Role, Sensor};
@@ -89,6 +91,13 @@ impl BrainBuilder {
             .enumerate()
             .filter_map(|(i, l)| l.as_ref().filter(|l| l.to == neuron).map(|_| i))
             .collect()
+    }
+
+    /// The first actual link `from` → `to`, in order of creation.
+    fn first_link(&self, from: usize, to: usize) -> Option<usize> {
+        self.links
+            .iter()
+            .position(|l| l.as_ref().is_some_and(|l| l.from == from && l.to == to))
     }
 
     fn current_of(&self, link: usize) -> CurrentLink {
@@ -206,12 +215,29 @@ impl BrainBuilder {
                 *current = self.current_of(inputs[at % inputs.len()]);
             }
             BrainOp::Parent => {
+                // Hornby & Pollack: the from-neuron becomes the nth input neuron of the current
+                // from-neuron, the to-neuron stays, and when no link joins them the current
+                // link is virtual (Matos & Arita, Table 1: "changes the head neuron to its nth
+                // parent, if it exists").
                 let n = index(0.0)?;
                 let inputs = self.inputs(s);
                 if inputs.is_empty() {
                     return Err("the source neuron has no input links: ignored".into());
                 }
-                *current = self.current_of(inputs[n % inputs.len()]);
+                let p = self.links[inputs[n % inputs.len()]]
+                    .as_ref()
+                    .expect("an actual link")
+                    .from;
+                if p != s {
+                    *current = match self.first_link(p, t) {
+                        Some(l) => self.current_of(l),
+                        None => CurrentLink {
+                            from: p,
+                            to: t,
+                            link: None,
+                        },
+                    };
+                }
             }
             BrainOp::Output => {
                 let w = arg(1.0)?;

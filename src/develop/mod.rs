@@ -17,6 +17,12 @@ pub use command::{Command, command_of};
 
 use brain::BrainBuilder;
 
+/// Parts shorter than this (in metres) are not built: an `mforward` this short is a bud, a
+/// `forward` this short is ignored with a warning. Far above the round-off of continuous
+/// development (a bud born at an event a few units of round-off before a frame has grown
+/// about 1e-13 by then) and far below any part the simulator can use.
+pub const MIN_PART_LENGTH: f64 = 1e-6;
+
 /// Builder settings.
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -285,8 +291,8 @@ impl<'a> Builder<'a> {
     }
 
     fn forward(&mut self, string: &ModuleString, i: usize, length: f64, maturing: bool) {
-        if maturing && length == 0.0 {
-            return; // a bud that has not started to grow
+        if maturing && length.abs() < MIN_PART_LENGTH {
+            return; // a bud that has not started to grow (or has grown only round-off)
         }
         if !(length.is_finite() && length > 0.0) {
             self.problem(
@@ -295,6 +301,18 @@ impl<'a> Builder<'a> {
                 i,
                 format!(
                     "forward needs a positive length, not {}: ignored",
+                    format_number(length)
+                ),
+            );
+            return;
+        }
+        if length < MIN_PART_LENGTH {
+            self.problem(
+                Severity::Warning,
+                string,
+                i,
+                format!(
+                    "forward({}) is shorter than the shortest part, {MIN_PART_LENGTH:e} m: ignored",
                     format_number(length)
                 ),
             );

@@ -23,10 +23,15 @@ use crate::lang::{Diagnostic, DiagnosticKind};
 const RTOL: f64 = 1e-11;
 /// Absolute tolerance of the ODE solver.
 const ATOL: f64 = 1e-12;
-/// An event this close after an observation time (as a fraction of `dt`) is taken to belong
-/// to it, so that a guard flipping exactly at a frame is seen at that frame whatever the
-/// round-off.
+/// An event this close after an observation time t (in time units, times max(1, |t|)) is taken
+/// to belong to it, so that a guard flipping exactly at a frame — the final time included — is
+/// seen at that frame whatever the round-off. Restarting the integrator at every frame adds
+/// up round-off: about 1e-12 at t = 4 after 40,000 frames of dt = 1e-4, far inside this
+/// window, which is in turn far below any meaningful time.
 const EVENT_WINDOW: f64 = 1e-9;
+/// A remainder of `time / dt` smaller than this is round-off: `time` is taken to be a whole
+/// number of steps, and no extra short step is added before the final time.
+const WHOLE_STEPS: f64 = 1e-6;
 /// Most rewriting passes at one instant before settling is declared impossible.
 pub const MAX_PASSES_PER_INSTANT: usize = 1000;
 /// Most events within one observation step.
@@ -53,6 +58,8 @@ pub struct Development<'l> {
     t: f64,
     /// The time of frame 0.
     start: f64,
+    /// How long development lasts: the last frame is at `start + duration`.
+    duration: f64,
     frame: u64,
     frames: u64,
     dt: f64,
@@ -106,7 +113,7 @@ impl<'l> Development<'l> {
         rng.set_stream(0);
         let mut classify_rng = ChaCha8Rng::seed_from_u64(seed);
         classify_rng.set_stream(4);
-        let frames = (time / dt + 1e-9).floor() as u64;
+        let frames = frame_count(time, dt);
         let mut dev = Development {
             lsys,
             string: start_string,
@@ -114,6 +121,7 @@ impl<'l> Development<'l> {
             env,
             t: start,
             start,
+            duration: time,
             frame: 0,
             frames,
             dt,
@@ -149,12 +157,24 @@ impl<'l> Development<'l> {
         self.frame
     }
 
-    /// The current observation time, `start + frame_number() * dt`.
+    /// The current observation time: `start + frame_number() * dt`, except the last frame,
+    /// which is at the final time `start + time` (see [`frame_count`](Self::frame_count)).
     pub fn time(&self) -> f64 {
-        self.start + self.frame as f64 * self.dt
+        self.frame_time(self.frame)
     }
 
-    /// How many observation steps development takes (`floor(time / dt)`).
+    /// The time of frame `k`.
+    fn frame_time(&self, k: u64) -> f64 {
+        if k >= self.frames {
+            self.start + self.duration
+        } else {
+            self.start + k as f64 * self.dt
+        }
+    }
+
+    /// How many observation steps development takes: `time / dt` when dt divides the time
+    /// (up to round-off, a remainder below 1e-6 steps), else `ceil(time / dt)`, the last step
+    /// being shorter. Either way the last frame is at the final time.
     pub fn frame_count(&self) -> u64 {
         self.frames
     }
@@ -169,7 +189,7 @@ impl<'l> Development<'l> {
         if self.frame >= self.frames {
             return Ok(false);
         }
-        let target = self.start + (self.frame + 1) as f64 * self.dt;
+        let target = self.frame_time(self.frame + 1);
         if self.timing == Timing::Iterative {
             self.pass()?;
             self.exchange()?;
@@ -311,7 +331,13 @@ impl<'l> Development<'l> {
 
     /// Integrates the growing modules up to `target`, handling every event on the way.
     fn integrate_to(&mut self, target: f64) -> Result<(), Diagnostic> {
-        let window = EVENT_WINDOW * self.dt;
+        // The window ends less than half-way to the next frame; after the last frame, nothing
+        // follows.
+        let next = self.frame_time(self.frame + 2);
+        let mut window = EVENT_WINDOW * target.abs().max(1.0);
+        if self.frame + 1 < self.frames {
+            window = window.min(0.5 * (next - target));
+        }
         let mut events = 0;
         let mut probe = Vec::new();
         while self.t < target {
@@ -420,7 +446,7 @@ impl<'l> Development<'l> {
             }
             Some((mut lo, mut hi)) => {
                 // Bisection: the first matching rules are as at t0 at `lo`, not at `hi`.
-                // Located to a few units of round-off, far inside 1e-9 of dt.
+                // Located to a few units of round-off, far inside EVENT_WINDOW.
                 while hi - lo > 4.0 * f64::EPSILON * hi.abs().max(1.0) {
                     let mid = 0.5 * (lo + hi);
                     let y = state_at(mid);
@@ -524,6 +550,17 @@ impl<'l> Development<'l> {
             ),
             None => Diagnostic::without_location(DiagnosticKind::Runtime, message),
         }
+    }
+}
+
+/// How many observation steps develop `time` in steps of `dt` (the last one possibly shorter).
+fn frame_count(time: f64, dt: f64) -> u64 {
+    let steps = time / dt;
+    let whole = steps.round();
+    if (steps - whole).abs() < WHOLE_STEPS {
+        whole as u64
+    } else {
+        steps.ceil() as u64
     }
 }
 

@@ -349,7 +349,8 @@ impl LSystem {
 pub struct Frame<'a> {
     /// The step (discrete) or observation index (continuous).
     pub step: u64,
-    /// Developmental time: the step number in discrete mode, `step · dt` in continuous mode.
+    /// Developmental time: the step number in discrete mode, `step · dt` in continuous mode
+    /// (the last frame is at the final time, even when dt does not divide it).
     pub t: f64,
     /// The string.
     pub string: &'a ModuleString,
