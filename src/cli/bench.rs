@@ -251,7 +251,6 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     let fine = SimOptions {
         substeps: 4,
         solver_iterations: 8,
-        drop_height: std::env::var("X_FINEDROP").ok().and_then(|v| v.parse().ok()).unwrap_or(0.05),
         ..SimOptions::default()
     };
     let creatures = fidelity_creatures(args.fidelity, args.seed)?;
@@ -264,18 +263,25 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
         creatures.len(),
         args.seconds
     );
-    let results: Vec<(task::Evaluation, task::Evaluation)> = creatures
+    // The noise floor: the fine reference against itself, every creature dropped 0.1 mm
+    // higher. No setting can rank creatures more alike than the reference does itself.
+    let nudged = SimOptions {
+        drop_height: fine.drop_height + 1e-4,
+        ..fine.clone()
+    };
+    let results: Vec<(task::Evaluation, task::Evaluation, f64)> = creatures
         .par_iter()
         .map(|(_, c)| {
             (
                 task::walker(c, sim, &options, false),
                 task::walker(c, &fine, &options, false),
+                task::walker(c, &nudged, &options, false).fitness,
             )
         })
         .collect();
     if args.verbose {
         say!("{:>12} {:>12} {:>10} {:>10}  creature", "measured", "fine", "", "");
-        for ((name, _), (a, b)) in creatures.iter().zip(&results) {
+        for ((name, _), (a, b, _)) in creatures.iter().zip(&results) {
             say!(
                 "{:>12.6} {:>12.6} {:>10} {:>10}  {name}",
                 a.fitness,
@@ -285,17 +291,22 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
             );
         }
     }
-    let measured: Vec<f64> = results.iter().map(|(a, _)| a.fitness).collect();
-    let reference: Vec<f64> = results.iter().map(|(_, b)| b.fitness).collect();
+    let measured: Vec<f64> = results.iter().map(|(a, _, _)| a.fitness).collect();
+    let reference: Vec<f64> = results.iter().map(|(_, b, _)| b.fitness).collect();
+    let floor: Vec<f64> = results.iter().map(|(_, _, c)| *c).collect();
     let rested = |e: &task::Evaluation| e.status != Status::Unstable;
-    let fine_rested = results.iter().filter(|(_, b)| rested(b)).count();
+    let fine_rested = results.iter().filter(|(_, b, _)| rested(b)).count();
     let both_rested = results
         .iter()
-        .filter(|(a, b)| rested(b) && rested(a))
+        .filter(|(a, b, _)| rested(b) && rested(a))
         .count();
     say!(
-        "Spearman rank correlation of walker fitness: {:.3}",
+        "Spearman rank correlation of walker fitness, measured against fine: {:.3}",
         spearman(&measured, &reference)
+    );
+    say!(
+        "noise floor, fine against fine with every creature dropped 0.1 mm higher: {:.3}",
+        spearman(&floor, &reference)
     );
     say!(
         "at rest: the fine reference brings {fine_rested} of {} to rest; the measured setting brings {both_rested} of those {fine_rested} to rest",

@@ -94,9 +94,10 @@ impl Default for SimOptions {
     fn default() -> Self {
         SimOptions {
             dt: 1.0 / 60.0,
-            // Two substeps keep light creatures at rest within Chaumont's Δx = 1/300 per
-            // 1/60 s (one substep leaves them vibrating at about 5 mm per step).
-            substeps: 2,
+            // One substep: twice as fast as two, and with parts of realistic density (1000
+            // kg/m³) creatures come to rest within Chaumont's Δx as they do with finer steps
+            // (see `ontogeny bench --fidelity`).
+            substeps: 1,
             solver_iterations: 4,
             joints: JointModel::Impulse,
             self_collision: true,
@@ -226,26 +227,12 @@ impl World {
         creature
             .check_consistency()
             .map_err(BuildError::Malformed)?;
-        let mut params = IntegrationParameters {
+        let params = IntegrationParameters {
             dt: (options.dt / options.substeps.max(1) as f64) as Real,
             num_solver_iterations: options.solver_iterations.max(1),
+            warmstart_joints: std::env::var("X_WJ").is_ok(),
             ..IntegrationParameters::default()
         };
-        // EXPERIMENT (temporary)
-        let env = |k: &str| if options.substeps >= 4 { None } else { std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok()) };
-        if let Some(v) = env("X_WARMJ") { params.warmstart_joints = v > 0.0; }
-        if let Some(v) = env("X_STAB") { params.num_internal_stabilization_iterations = v as usize; }
-        if let Some(v) = env("X_PGS") { params.num_internal_pgs_iterations = v as usize; }
-        if let Some(v) = env("X_RECYCLE") { params.contact_recycling = v > 0.0; }
-        if let Some(v) = env("X_CCD") { params.max_ccd_substeps = v as usize; }
-        if let Some(v) = env("X_CLUSTER") { params.contact_clustering = v > 0.0; }
-        if let Some(v) = env("X_CNF") { params.contact_softness.natural_frequency = v as Real; }
-        if let Some(v) = env("X_CDR") { params.contact_softness.damping_ratio = v as Real; }
-        if let Some(v) = env("X_SNF") { params.static_contact_softness.natural_frequency = v as Real; }
-        let genv = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok());
-        let angular_damping = genv("G_ANGDAMP").unwrap_or(0.0) as Real;
-        let linear_damping = genv("G_LINDAMP").unwrap_or(0.0) as Real;
-        let options = &SimOptions { friction: genv("G_FRIC").unwrap_or(options.friction), ..options.clone() };
         let mut world = World {
             options: options.clone(),
             gravity: Vector::new(0.0, -9.81, 0.0),
@@ -295,7 +282,7 @@ impl World {
                 Pose::from_parts(vector(&(part.position + lift)), rotation(&part.orientation));
             let body = world
                 .bodies
-                .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false).angular_damping(angular_damping).linear_damping(linear_damping));
+                .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
             let half = part.size / 2.0;
             let collider = ColliderBuilder::cuboid(half.x as Real, half.y as Real, half.z as Real)
                 .density(part.density as Real)

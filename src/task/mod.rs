@@ -63,9 +63,9 @@ pub enum WalkerFitness {
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
 /// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
-/// same at any time step) and drifts less than `distance` in all (so that a slowly toppling
-/// tower, whose parts creep below the speed threshold, is not at rest); within `limit`
-/// seconds.
+/// same at any time step) and drifts less than `drift` in all (Ontogeny's addition, so that
+/// a slowly toppling tower, whose parts creep below the speed threshold, is not at rest);
+/// within `limit` seconds.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Rest {
     /// Δx, per 1/60 s (Chaumont: 1/300 m).
@@ -73,6 +73,8 @@ pub struct Rest {
     /// How long every part must stay calm (s): 0.5 s, the 30 steps of 1/60 s of the first
     /// implementation.
     pub duration: f64,
+    /// The most any part's centre may drift over the calm window (m): 1 cm, three times Δx.
+    pub drift: f64,
     /// A creature not at rest after this many seconds is unstable.
     pub limit: f64,
 }
@@ -82,6 +84,7 @@ impl Default for Rest {
         Rest {
             distance: 1.0 / 300.0,
             duration: 0.5,
+            drift: 0.01,
             limit: 10.0,
         }
     }
@@ -303,10 +306,9 @@ impl Run {
             let moved = self.step(false)?;
             taken += 1;
             // Calm: every part moves less than Δx per 1/60 s (Chaumont), and none has drifted
-            // more than Δx since the window began (a slowly toppling tower is not at rest).
-            let drift_limit = rest.distance * std::env::var("X_DRIFT").ok().and_then(|v| v.parse::<f64>().ok()).unwrap_or(1.0);
+            // more than `drift` since the window began (a slowly toppling tower is not at rest).
             let drifted = (0..window.len())
-                .any(|i| (self.world.part_position(i) - window[i]).norm() >= drift_limit);
+                .any(|i| (self.world.part_position(i) - window[i]).norm() >= rest.drift);
             calm = if moved < threshold && !drifted {
                 calm + 1
             } else {
@@ -385,7 +387,11 @@ fn evaluate(
                 recording: std::mem::take(&mut run.recording),
             }
         }
-        Err(failed) => failed,
+        Err(mut failed) => {
+            // What was recorded up to the failure shows why it failed.
+            failed.recording = std::mem::take(&mut run.recording);
+            failed
+        }
     }
 }
 
