@@ -300,6 +300,45 @@ fn setfunc_changes_the_target_neurons_function() {
         creature("setfunc(2)").brain.neurons[0].function,
         NeuronFunction::Oscillator
     );
+    assert_eq!(
+        creature("setfunc(4)").brain.neurons[0].function,
+        NeuronFunction::Sigmoid,
+        "modulo 3"
+    );
+}
+
+#[test]
+fn bias_sets_the_target_neurons_bias() {
+    let biases = |c: &Creature| c.brain.neurons.iter().map(|n| n.bias).collect::<Vec<_>>();
+    assert_eq!(biases(&creature("A")), [0.0]);
+    assert_eq!(biases(&creature("bias(0.4)")), [0.4]);
+    assert_eq!(
+        biases(&creature("bias")),
+        [1.0],
+        "defaults to 1, like a weight"
+    );
+    // It sets, it does not add.
+    assert_eq!(biases(&creature("bias(0.4) bias(-0.25)")), [-0.25]);
+    // After split the current link is 1 -> 0: the target is neuron 0; reversed, neuron 1.
+    assert_eq!(biases(&creature("split(0.5) bias(0.3)")), [0.3, 0.0]);
+    assert_eq!(
+        biases(&creature("split(0.5) reverse bias(0.3)")),
+        [0.0, 0.3]
+    );
+    // The bias survives a cut (the target is still there).
+    assert_eq!(biases(&creature("split cut bias(0.2)")), [0.2, 0.0]);
+    // A sensor's output is its reading: no bias, and a warning.
+    let c = creature("forward touch next(1) reverse bias(0.5)");
+    assert!(matches!(c.brain.neurons[1].role, Role::Sensor { .. }));
+    assert_eq!(biases(&c), [0.0, 0.0]);
+    assert!(
+        c.problems
+            .iter()
+            .any(|p| p.severity == Severity::Warning && p.message.contains("bias ignored")),
+        "{:?}",
+        c.problems
+    );
+    assert!(c.is_valid());
 }
 
 #[test]

@@ -246,6 +246,7 @@ fn joints_of_two_and_three_degrees_of_freedom_simulate() {
             c.brain.neurons.push(Neuron {
                 function: NeuronFunction::Linear,
                 params: vec![],
+                bias: 0.0,
                 role: Role::Actuator {
                     actuator: Actuator::Joint { joint: 0, dof: d },
                 },
@@ -260,6 +261,7 @@ fn joints_of_two_and_three_degrees_of_freedom_simulate() {
             c.brain.neurons.push(Neuron {
                 function: NeuronFunction::Linear,
                 params: vec![],
+                bias: 0.0,
                 role: Role::Sensor {
                     sensor: Sensor::Angle { joint: 0, dof: d },
                 },
@@ -288,6 +290,7 @@ fn lifter() -> Creature {
     let neuron = |role| Neuron {
         function: NeuronFunction::Linear,
         params: vec![],
+        bias: 0.0,
         role,
         part: None,
     };

@@ -34,6 +34,7 @@ impl BrainBuilder {
             neurons: vec![Neuron {
                 function: NeuronFunction::Oscillator,
                 params: Vec::new(),
+                bias: 0.0,
                 role: Role::Hidden,
                 part: None,
             }],
@@ -61,6 +62,7 @@ impl BrainBuilder {
         self.neurons.push(Neuron {
             function,
             params: Vec::new(),
+            bias: 0.0,
             role,
             part,
         });
@@ -253,11 +255,15 @@ impl BrainBuilder {
                 if matches!(self.neurons[t].role, Role::Sensor { .. }) {
                     return Err("a sensor neuron's output is its reading: setfunc ignored".into());
                 }
-                self.neurons[t].function = match n % 3 {
-                    0 => NeuronFunction::Linear,
-                    1 => NeuronFunction::Sigmoid,
-                    _ => NeuronFunction::Oscillator,
-                };
+                let choices = NeuronFunction::SETFUNC;
+                self.neurons[t].function = choices[n % choices.len()];
+            }
+            BrainOp::Bias => {
+                let b = arg(1.0)?;
+                if matches!(self.neurons[t].role, Role::Sensor { .. }) {
+                    return Err("a sensor neuron's output is its reading: bias ignored".into());
+                }
+                self.neurons[t].bias = b;
             }
             BrainOp::Cut => {
                 if let Some(l) = current.link.take() {
