@@ -325,6 +325,13 @@ fn divisions_logarithms_and_overflows_give_numbers() {
         weighted_output(Divide, &[], 0.0, &[-1.0, 1.0], &[huge, 1e-5]),
         -1.0
     );
+    // A delay that is not a number counts as 1 (one step late), rather than panicking.
+    let b = brain(Memory, &[f64::NAN], &[1.0]);
+    let mut run = BrainRuntime::new(&b);
+    run.set_sensor(0, 0.5);
+    run.step(0.0, DT);
+    run.step(0.0, DT);
+    assert_eq!(run.outputs()[1], 0.5);
     // A reading that is not a number counts as 0.
     let b = brain(Linear, &[], &[1.0]);
     let mut run = BrainRuntime::new(&b);

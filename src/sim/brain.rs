@@ -51,9 +51,9 @@ impl BrainRuntime {
                         .params
                         .first()
                         .copied()
+                        .filter(|d| !d.is_nan()) // a NaN delay counts as 1
                         .unwrap_or(1.0)
-                        .max(1.0) // a NaN delay counts as 1
-                        .min(10_000.0) as usize
+                        .clamp(1.0, 10_000.0) as usize
                 } else {
                     0
                 };
