@@ -231,6 +231,106 @@ fn interpenetrating_parts_make_the_creature_invalid() {
     assert!(square.is_valid(), "{:?}", square.problems);
 }
 
+/// Every frame of every shipped example that builds a body, grown as `ontogeny grow` does
+/// (continuous ones to their final time), with the plastic one also in a rich environment.
+#[test]
+fn every_shipped_example_stays_valid() {
+    use ontogeny::develop::grow;
+    use ontogeny::lsystem::DeriveOptions;
+    let mut paths: Vec<_> = std::fs::read_dir("examples")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "lsys"))
+        .collect();
+    paths.sort();
+    let mut bodies = Vec::new();
+    for path in &paths {
+        let lsys = LSystem::from_path(path).unwrap();
+        let mut runs = vec![DeriveOptions::default()];
+        if path.ends_with("plastic.lsys") {
+            runs.push(DeriveOptions {
+                env: vec![(0, 1.0)],
+                ..DeriveOptions::default()
+            });
+        }
+        for options in runs {
+            let frames = grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
+            for f in frames.iter().filter(|f| !f.creature.parts.is_empty()) {
+                assert!(
+                    f.creature.is_valid(),
+                    "{} at t = {}: {:?}",
+                    path.display(),
+                    f.t,
+                    f.creature.problems
+                );
+            }
+            let last = &frames.last().unwrap().creature;
+            bodies.push((path.clone(), last.parts.len()));
+        }
+    }
+    let parts = |name: &str| {
+        bodies
+            .iter()
+            .filter(|(p, _)| p.ends_with(name))
+            .map(|(_, n)| *n)
+            .collect::<Vec<_>>()
+    };
+    // The examples the test is about really build bodies (and branch at joints).
+    assert_eq!(parts("snake.lsys"), [9]);
+    assert_eq!(parts("quadruped.lsys"), [11]);
+    assert_eq!(parts("thrower.lsys"), [2]);
+    assert_eq!(parts("plastic.lsys"), [4, 15]);
+}
+
+#[test]
+fn legitimate_turtle_shapes_do_not_interpenetrate() {
+    for commands in [
+        // A leg at 90 degrees from the end of a wide body, the body going on.
+        "width(0.6) thickness(0.2) forward(0.8) [ left(1) width(0.15) thickness(0.15) forward(0.4) ] forward(0.8)",
+        // Legs on both sides of one joint point.
+        "width(0.6) thickness(0.2) forward(0.8) [ left(1) forward(0.4) ] [ right(1) forward(0.4) ] forward(0.8)",
+        // A chain with revolute2 hinges at 90 degrees.
+        "forward(1) revolute2 down(1) forward(1) revolute2 up(1) forward(1)",
+        // A thin part on a thick one, straight and at 90 degrees (shorter than the thick
+        // part's half height), and a thick part hanging from a thin one.
+        "width(1) thickness(1) forward(1) width(0.1) thickness(0.1) forward(1)",
+        "width(1) thickness(1) forward(1) width(0.1) thickness(0.1) up(1) forward(0.3)",
+        "width(0.15) thickness(0.15) forward(1.2) down(1) revolute2 width(1) thickness(1) forward(0.4)",
+        // Turns of 45 and 60 degrees, and a 90-degree turn whose part is then rolled 45 degrees
+        // (its corner reaches deepest into its parent).
+        "forward(1) left(0.5) forward(1)",
+        "width(0.6) forward(1) up(0.6667) forward(1)",
+        "forward(1) left(1) clockwise(0.5) forward(1)",
+        // Two branches at 90 degrees to each other, each at 45 degrees to the parent.
+        "forward(1) [ left(0.5) forward(1) ] right(0.5) forward(1)",
+    ] {
+        let c = creature(commands);
+        assert!(c.parts.len() >= 2, "{commands}");
+        assert_eq!(c.interpenetrating_pairs(), [], "{commands}");
+        assert!(c.is_valid(), "{commands}: {:?}", c.problems);
+    }
+}
+
+#[test]
+fn a_branch_folding_back_onto_its_parent_interpenetrates() {
+    // 180 degrees: the branch lies along its parent.
+    let c = creature("forward(1) [ left(2) forward(1) ]");
+    assert_eq!(c.interpenetrating_pairs(), [(0, 1)]);
+    assert!(!c.is_valid());
+    // 135 degrees: folded back far beyond the joint's contact region.
+    let c = creature("forward(1) left(1.5) forward(1)");
+    assert_eq!(c.interpenetrating_pairs(), [(0, 1)]);
+    // A short branch folded into a fat parent lies inside it, within the contact radius of
+    // the joint point: its centre inside the parent gives it away.
+    let c = creature(
+        "width(1) thickness(1) forward(1) [ left(2) width(0.25) thickness(0.25) forward(0.5) ]",
+    );
+    assert_eq!(c.interpenetrating_pairs(), [(0, 1)]);
+    // Two branches 45 degrees apart from one point overlap beyond the contact region.
+    let c = creature("forward(1) [ left(0.5) forward(1) ] forward(1)");
+    assert_eq!(c.interpenetrating_pairs(), [(1, 2)]);
+}
+
 #[test]
 fn out_of_range_arguments_are_warnings_with_the_module() {
     let c = creature("forward(-1) width(0) forward(1) backward");
@@ -411,6 +511,45 @@ fn setfunc_changes_the_target_neurons_function() {
         creature("setfunc(2)").brain.neurons[0].function,
         NeuronFunction::Oscillator
     );
+    assert_eq!(
+        creature("setfunc(4)").brain.neurons[0].function,
+        NeuronFunction::Sigmoid,
+        "modulo 3"
+    );
+}
+
+#[test]
+fn bias_sets_the_target_neurons_bias() {
+    let biases = |c: &Creature| c.brain.neurons.iter().map(|n| n.bias).collect::<Vec<_>>();
+    assert_eq!(biases(&creature("A")), [0.0]);
+    assert_eq!(biases(&creature("bias(0.4)")), [0.4]);
+    assert_eq!(
+        biases(&creature("bias")),
+        [1.0],
+        "defaults to 1, like a weight"
+    );
+    // It sets, it does not add.
+    assert_eq!(biases(&creature("bias(0.4) bias(-0.25)")), [-0.25]);
+    // After split the current link is 1 -> 0: the target is neuron 0; reversed, neuron 1.
+    assert_eq!(biases(&creature("split(0.5) bias(0.3)")), [0.3, 0.0]);
+    assert_eq!(
+        biases(&creature("split(0.5) reverse bias(0.3)")),
+        [0.0, 0.3]
+    );
+    // The bias survives a cut (the target is still there).
+    assert_eq!(biases(&creature("split cut bias(0.2)")), [0.2, 0.0]);
+    // A sensor's output is its reading: no bias, and a warning.
+    let c = creature("forward touch next(1) reverse bias(0.5)");
+    assert!(matches!(c.brain.neurons[1].role, Role::Sensor { .. }));
+    assert_eq!(biases(&c), [0.0, 0.0]);
+    assert!(
+        c.problems
+            .iter()
+            .any(|p| p.severity == Severity::Warning && p.message.contains("bias ignored")),
+        "{:?}",
+        c.problems
+    );
+    assert!(c.is_valid());
 }
 
 #[test]

@@ -247,6 +247,7 @@ fn joints_of_two_and_three_degrees_of_freedom_simulate() {
             c.brain.neurons.push(Neuron {
                 function: NeuronFunction::Linear,
                 params: vec![],
+                bias: 0.0,
                 role: Role::Actuator {
                     actuator: Actuator::Joint { joint: 0, dof: d },
                 },
@@ -261,6 +262,7 @@ fn joints_of_two_and_three_degrees_of_freedom_simulate() {
             c.brain.neurons.push(Neuron {
                 function: NeuronFunction::Linear,
                 params: vec![],
+                bias: 0.0,
                 role: Role::Sensor {
                     sensor: Sensor::Angle { joint: 0, dof: d },
                 },
@@ -289,6 +291,7 @@ fn lifter() -> Creature {
     let neuron = |role| Neuron {
         function: NeuronFunction::Linear,
         params: vec![],
+        bias: 0.0,
         role,
         part: None,
     };
@@ -430,6 +433,61 @@ fn overlapping_parts_in_a_loaded_creature_are_caught() {
     zero.parts[0].orientation =
         nalgebra::UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(0.0, 0.0, 0.0, 0.0));
     assert!(zero.check_consistency().is_err());
+}
+
+/// The snake with part 1 (the first segment of its left limb) shrunk and moved inside the
+/// root, as a hand-edited creature.json could have it; `anchor` places its joint.
+fn snake_with_a_buried_part(anchor: impl Fn(&Creature) -> nalgebra::Vector3<f64>) -> Creature {
+    let mut c = grown("examples/snake.lsys");
+    let root = c.parts[0].clone();
+    let joint = c.joints.iter().position(|j| j.child == 1).unwrap();
+    assert_eq!(c.joints[joint].parent, 0);
+    c.parts[1].size = nalgebra::Vector3::new(0.1, 0.1, 0.1);
+    c.parts[1].position = root.position;
+    c.parts[1].orientation = root.orientation;
+    c.joints[joint].anchor = anchor(&c);
+    c.problems.clear();
+    assert_eq!(c.check_consistency(), Ok(()));
+    c
+}
+
+#[test]
+fn a_part_buried_in_the_root_is_self_intersecting() {
+    // The joint anchor at the root's centre, inside it.
+    let inside = snake_with_a_buried_part(|c| c.parts[0].position);
+    // The joint anchor on the root's surface (the centre of its far end face), the part
+    // inside, centred or with its near end at the anchor.
+    let far_end = |c: &Creature| {
+        let root = &c.parts[0];
+        root.position + root.orientation * nalgebra::Vector3::new(root.size.x / 2.0, 0.0, 0.0)
+    };
+    let on_surface = snake_with_a_buried_part(far_end);
+    let mut touching = on_surface.clone();
+    touching.parts[1].position =
+        far_end(&touching) - touching.parts[0].orientation * nalgebra::Vector3::new(0.05, 0.0, 0.0);
+    for (name, c) in [
+        ("anchor inside", inside),
+        ("anchor on the surface", on_surface),
+        ("near end at the anchor", touching),
+    ] {
+        assert!(c.interpenetrating_pairs().contains(&(0, 1)), "{name}");
+        let e = task::walker(&c, &SimOptions::default(), &short_walk(), false);
+        assert_eq!(
+            e.status,
+            Status::SelfIntersecting,
+            "{name}: {:?}",
+            e.message
+        );
+        assert_eq!(e.fitness, 0.0);
+        assert!(
+            e.message
+                .as_deref()
+                .unwrap_or("")
+                .contains("parts 0 and 1 interpenetrate"),
+            "{name}: {:?}",
+            e.message
+        );
+    }
 }
 
 #[test]

@@ -1,4 +1,5 @@
-//! Geometry of a creature's boxes: interpenetration (separating-axis test on oriented boxes).
+//! Geometry of a creature's boxes: interpenetration (separating-axis test on oriented boxes,
+//! and the corners of two boxes' overlap to tell a joint's contact region from the rest).
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -9,10 +10,19 @@ use super::{Creature, Part};
 const MARGIN: f64 = 1e-6;
 
 impl Creature {
-    /// The pairs of parts that interpenetrate other than at a joint. Near a point where the
-    /// two parts meet — a joint between them, or one joint point both hang from — each part's
-    /// length is cut back by the joint region's radius (the sum of the two parts' largest half
-    /// cross-sections) before testing; everywhere else they must not overlap.
+    /// The pairs of parts that interpenetrate other than in a joint's own contact region.
+    ///
+    /// Two parts may overlap only where they meet at a **joint point** — the anchor of a joint
+    /// between them, or an anchor both hang from (siblings) — and only there: the whole of
+    /// their overlap must lie within the contact radius √(r_a² + r_b²) of that point, r being
+    /// a part's cross-section half-diagonal (½√(thickness² + width²)). That is the farthest two
+    /// boxes can overlap when each leaves the point from an end face, centred on its axis, at
+    /// up to 90° from the other (a point of one inside the other lies within r_b of the second's
+    /// axis and within r_a of its face), so every turn up to 90° is allowed and a branch that
+    /// folds back onto its parent is not. The exemption also requires that the point lies on
+    /// the surface of both parts, not inside either, and that neither part's centre lies
+    /// inside the other: a part buried in its neighbour, or more than half sunk into it,
+    /// always counts. Faces that merely touch never count (the boxes are shrunk by 1 µm).
     pub fn interpenetrating_pairs(&self) -> Vec<(usize, usize)> {
         let n = self.parts.len();
         let mut anchors: Vec<Vec<Vector3<f64>>> = vec![Vec::new(); n];
@@ -25,19 +35,15 @@ impl Creature {
         let mut pairs = Vec::new();
         for a in 0..n {
             for b in a + 1..n {
-                let shared: Vec<Vector3<f64>> = anchors[a]
+                let (pa, pb) = (&self.parts[a], &self.parts[b]);
+                if !boxes_intersect(pa, pb) {
+                    continue;
+                }
+                let at_a_joint = anchors[a]
                     .iter()
                     .filter(|p| anchors[b].iter().any(|q| (*p - q).norm() < 1e-9))
-                    .copied()
-                    .collect();
-                let (pa, pb) = (&self.parts[a], &self.parts[b]);
-                let radius = half_section(pa) + half_section(pb);
-                let pieces_a = trimmed(pa, &shared, radius);
-                let pieces_b = trimmed(pb, &shared, radius);
-                if pieces_a
-                    .iter()
-                    .any(|x| pieces_b.iter().any(|y| boxes_intersect(x, y)))
-                {
+                    .any(|p| contact_only(pa, pb, p));
+                if !at_a_joint {
                     pairs.push((a, b));
                 }
             }
@@ -46,43 +52,72 @@ impl Creature {
     }
 }
 
-/// The larger half of a part's cross-section (thickness or width).
-fn half_section(p: &Part) -> f64 {
-    p.size.y.max(p.size.z) / 2.0
+/// Half the diagonal of a part's cross-section: how far its sides reach from its axis.
+fn section_radius(p: &Part) -> f64 {
+    0.5 * p.size.y.hypot(p.size.z)
 }
 
-/// The part with the stretch of its length within `radius` of each point in `points` cut
-/// out: zero, one or more boxes.
-fn trimmed(part: &Part, points: &[Vector3<f64>], radius: f64) -> Vec<Part> {
-    let axis = part.orientation * Vector3::x();
-    let h = part.size.x / 2.0;
-    let mut intervals = vec![(-h, h)];
-    for p in points {
-        let s = (p - part.position).dot(&axis);
-        let (cut_lo, cut_hi) = (s - radius, s + radius);
-        intervals = intervals
-            .into_iter()
-            .flat_map(|(lo, hi)| {
-                let mut keep = Vec::new();
-                if cut_lo > lo {
-                    keep.push((lo, cut_lo.min(hi)));
-                }
-                if cut_hi < hi {
-                    keep.push((cut_hi.max(lo), hi));
-                }
-                keep
-            })
-            .filter(|(lo, hi)| hi - lo > 2.0 * MARGIN)
-            .collect();
+/// Whether the overlap of two intersecting parts is only the contact region of a joint at
+/// `point` (see [`Creature::interpenetrating_pairs`]).
+fn contact_only(a: &Part, b: &Part, point: &Vector3<f64>) -> bool {
+    if inside(a, point) || inside(b, point) || inside(a, &b.position) || inside(b, &a.position) {
+        return false;
     }
-    intervals
-        .into_iter()
-        .map(|(lo, hi)| Part {
-            size: Vector3::new(hi - lo, part.size.y, part.size.z),
-            position: part.position + axis * ((lo + hi) / 2.0),
-            ..part.clone()
-        })
-        .collect()
+    let radius = section_radius(a).hypot(section_radius(b));
+    let corners = overlap_corners(a, b);
+    !corners.is_empty()
+        && corners
+            .iter()
+            .all(|c| (c - point).norm() <= radius + TOLERANCE)
+}
+
+/// Slack (metres) for round-off in the overlap's corners.
+const TOLERANCE: f64 = 1e-9;
+
+/// Whether `point` lies strictly inside the part (inside its box shrunk by [`MARGIN`]): not
+/// on its surface.
+fn inside(part: &Part, point: &Vector3<f64>) -> bool {
+    let local = part.orientation.inverse() * (point - part.position);
+    (0..3).all(|k| local[k].abs() < part.size[k] / 2.0 - MARGIN)
+}
+
+/// The corners of the overlap of two boxes (each shrunk by [`MARGIN`]), a convex polyhedron:
+/// the points where three of the twelve face planes meet that lie inside both boxes.
+fn overlap_corners(a: &Part, b: &Part) -> Vec<Vector3<f64>> {
+    // Faces as half-spaces n · x <= d.
+    let mut planes: Vec<(Vector3<f64>, f64)> = Vec::with_capacity(12);
+    for part in [a, b] {
+        for k in 0..3 {
+            let axis = part.orientation * Vector3::ith(k, 1.0);
+            let half = (part.size[k] / 2.0 - MARGIN).max(0.0);
+            let centre = axis.dot(&part.position);
+            planes.push((axis, centre + half));
+            planes.push((-axis, -centre + half));
+        }
+    }
+    let mut corners = Vec::new();
+    for i in 0..planes.len() {
+        for j in i + 1..planes.len() {
+            for k in j + 1..planes.len() {
+                let m = Matrix3::from_rows(&[
+                    planes[i].0.transpose(),
+                    planes[j].0.transpose(),
+                    planes[k].0.transpose(),
+                ]);
+                if m.determinant().abs() < 1e-9 {
+                    continue; // two of the planes are (nearly) parallel
+                }
+                let Some(inverse) = m.try_inverse() else {
+                    continue;
+                };
+                let x = inverse * Vector3::new(planes[i].1, planes[j].1, planes[k].1);
+                if planes.iter().all(|(n, d)| n.dot(&x) <= d + TOLERANCE) {
+                    corners.push(x);
+                }
+            }
+        }
+    }
+    corners
 }
 
 /// Whether two oriented boxes overlap (separating-axis test, 15 axes), each shrunk by a

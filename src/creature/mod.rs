@@ -126,9 +126,19 @@ pub struct Joint {
     pub growing: bool,
 }
 
-/// A neuron's transfer function. `x` is the weighted sum of its inputs; `a, b, c` are its
-/// first three weighted inputs, in link order (missing ones are 0, or whatever leaves the
-/// result unchanged). Outputs are clipped to [−1, 1].
+/// A neuron's transfer function.
+///
+/// `x` is the neuron's **bias** plus the weighted sum of its inputs (Σ wᵢ·oᵢ + bias);
+/// `a, b, c` are its first three weighted inputs, in link order, with the bias added to `a`
+/// (`a` = w₀·o₀ + bias, or the bias alone when the neuron has no input); a missing `b` or `c`
+/// takes the value that leaves the result unchanged, given with each function. Functions
+/// that ignore their inputs (`constant`, `step-wave`, `saw`) ignore the bias too, and a
+/// sensor's output is its reading.
+///
+/// Every function gives a number for every finite input: sums saturate at ±`f64::MAX`
+/// instead of overflowing, the power function has a real fallback for a negative base, and
+/// the output is clipped to [−1, 1] — so an overflow to ±∞ becomes ±1 — and any result that is
+/// still not a number becomes 0 (a safety net: no function above produces one).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum NeuronFunction {
@@ -139,35 +149,39 @@ pub enum NeuronFunction {
     /// sin(phase), the phase advancing at a frequency of π(1 + clamp(`x`, −1, 1)), i.e. the
     /// weighted input sum mapped into [0, 2π] rad/s (Matos & Arita section 2).
     Oscillator,
-    /// Chaumont's `sumT`: `a + b` if it is at least the threshold `params[0]`, else 0.
+    /// Chaumont's `sumT`: `a + b` if it is at least the threshold `params[0]` (default 0),
+    /// else 0 (missing `b`: 0).
     Threshold,
-    /// Chaumont's `div`: 1 if `b` ≤ ε (1e-6), else `a / b`.
+    /// Chaumont's `div`: 1 if `b` ≤ ε (1e-6), else `a / b` (missing `b`: 1).
     Divide,
-    /// Chaumont's `mem`: `a` as it was `params[0]` steps ago.
+    /// Chaumont's `mem`: `a` as it was `params[0]` steps ago (default 1, at most 10,000).
     Memory,
-    /// Chaumont's `wav`: `b · sin(a · t + c)`, t the simulated time.
+    /// Chaumont's `wav`: `b · sin(a · t + c)`, t the simulated time (missing `b`: 1, `c`: 0).
     Wave,
-    /// WWD `sum`: `a + b`.
+    /// Chaumont's `cst`: the constant V = `params[0]` (0 when absent), whatever the inputs;
+    /// also Walking with Dinosaurs' "constant value node".
+    Constant,
+    /// WWD `sum`: `a + b` (missing `b`: 0).
     Sum,
-    /// WWD `product`: `a · b`.
+    /// WWD `product`: `a · b` (missing `b`: 1).
     Product,
-    /// WWD `divide`: `a / b` (0 when `b` is 0).
+    /// WWD `divide`: `a / b`, 0 when `b` is 0 (missing `b`: 1).
     Quotient,
-    /// WWD `sum threshold`: 1 if `a + b > c`, else 0.
+    /// WWD `sum threshold`: 1 if `a + b > c`, else 0 (missing `b`, `c`: 0).
     SumGreater,
-    /// WWD `greater than`: 1 if `a > b`, else 0.
+    /// WWD `greater than`: 1 if `a > b`, else 0 (missing `b`: 0).
     GreaterThan,
     /// WWD `sign of`: the sign of `a` (0 for 0).
     Sign,
-    /// WWD `minimum` of `a, b, c`.
+    /// WWD `minimum` of `a` and the `b, c` present.
     Min,
-    /// WWD `maximum` of `a, b, c`.
+    /// WWD `maximum` of `a` and the `b, c` present.
     Max,
     /// WWD `absolute value` of `a`.
     Abs,
-    /// WWD `if`: `a` if `b` ≠ 0, else 0.
+    /// WWD `if`: `a` if `b` ≠ 0, else 0 (missing `b`: 1).
     If,
-    /// WWD `interpolate`: the mean of `a, b, c`.
+    /// WWD `interpolate`: the mean of `a` and the `b, c` present.
     Interpolate,
     /// WWD `sine` of `a`.
     Sin,
@@ -177,7 +191,10 @@ pub enum NeuronFunction {
     Atan,
     /// WWD `logarithmic`: ln `a` if `a` > 0, else `a`.
     Log,
-    /// WWD `exponential`: `a` to the power `b`.
+    /// WWD `exponential`: `a` to the power `b` (missing `b`: 1). Where `a^b` is not a real
+    /// number — a negative `a` with a non-integer `b` — it is −|`a`|^`b` (the signed power: the
+    /// real root for odd roots such as `b` = 1/3, and continuous in `a`); 0 to a negative
+    /// power is +∞, so 1 after clipping.
     Power,
     /// WWD `sigmoidal`: 1 / (1 + e^(−`a`)).
     Logistic,
@@ -185,6 +202,47 @@ pub enum NeuronFunction {
     StepWave,
     /// WWD `saw`: sin(steps · 2π / 4).
     Saw,
+}
+
+impl NeuronFunction {
+    /// Every neuron function, in the order of the enum.
+    pub const ALL: [NeuronFunction; 27] = [
+        NeuronFunction::Linear,
+        NeuronFunction::Sigmoid,
+        NeuronFunction::Oscillator,
+        NeuronFunction::Threshold,
+        NeuronFunction::Divide,
+        NeuronFunction::Memory,
+        NeuronFunction::Wave,
+        NeuronFunction::Constant,
+        NeuronFunction::Sum,
+        NeuronFunction::Product,
+        NeuronFunction::Quotient,
+        NeuronFunction::SumGreater,
+        NeuronFunction::GreaterThan,
+        NeuronFunction::Sign,
+        NeuronFunction::Min,
+        NeuronFunction::Max,
+        NeuronFunction::Abs,
+        NeuronFunction::If,
+        NeuronFunction::Interpolate,
+        NeuronFunction::Sin,
+        NeuronFunction::Cos,
+        NeuronFunction::Atan,
+        NeuronFunction::Log,
+        NeuronFunction::Power,
+        NeuronFunction::Logistic,
+        NeuronFunction::StepWave,
+        NeuronFunction::Saw,
+    ];
+
+    /// The functions the edge encoding's `setfunc(n)` chooses from, by n (rounded, modulo
+    /// their number): Hornby & Pollack's and Matos & Arita's three.
+    pub const SETFUNC: [NeuronFunction; 3] = [
+        NeuronFunction::Linear,
+        NeuronFunction::Sigmoid,
+        NeuronFunction::Oscillator,
+    ];
 }
 
 /// What a neuron is for.
@@ -294,9 +352,14 @@ pub enum Actuator {
 pub struct Neuron {
     /// Its transfer function.
     pub function: NeuronFunction,
-    /// The function's parameters (a threshold, a delay, ...), empty when it has none.
+    /// The function's parameters (a threshold, a delay, a constant, ...), empty when it has
+    /// none.
     #[serde(default)]
     pub params: Vec<f64>,
+    /// Added to the weighted input sum `x` and to the first input `a` (see
+    /// [`NeuronFunction`]); 0 by default.
+    #[serde(default)]
+    pub bias: f64,
     /// What it is for.
     pub role: Role,
     /// The part it belongs to (Sims' local neurons), or `None` for the whole creature.
@@ -348,9 +411,9 @@ pub struct Problem {
 
 impl Creature {
     /// Checks that the creature is well formed: finite, positive sizes; finite poses and
-    /// densities; joints, links, sensors and actuators that point at parts, joints and
-    /// neurons that exist; limits in order. Creatures read from files must pass this before
-    /// anything uses them.
+    /// densities; finite weights, neuron parameters and biases; joints, links, sensors and
+    /// actuators that point at parts, joints and neurons that exist; limits in order.
+    /// Creatures read from files must pass this before anything uses them.
     pub fn check_consistency(&self) -> Result<(), String> {
         let finite3 = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
         for (i, p) in self.parts.iter().enumerate() {
@@ -405,9 +468,12 @@ impl Creature {
             }
         }
         for (k, neuron) in self.brain.neurons.iter().enumerate() {
-            if neuron.params.iter().any(|p| !p.is_finite()) || neuron.part.is_some_and(|p| p >= n) {
+            if neuron.params.iter().any(|p| !p.is_finite()) || !neuron.bias.is_finite() {
+                return Err(format!("neuron {k} has a non-finite parameter or bias"));
+            }
+            if neuron.part.is_some_and(|p| p >= n) {
                 return Err(format!(
-                    "neuron {k} has a non-finite parameter or belongs to no part"
+                    "neuron {k} belongs to a part the creature does not have"
                 ));
             }
             let joint_ok = |joint: usize, dof: usize| {
@@ -456,5 +522,81 @@ impl Creature {
             return (Vector3::zeros(), Vector3::zeros());
         };
         corners.fold((first, first), |(lo, hi), c| (lo.inf(&c), hi.sup(&c)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The variant names serde's derive knows, caught by a deserializer that only records
+    /// them: the enum itself, not a hand-written list.
+    fn serde_variants() -> &'static [&'static str] {
+        use serde::de::{self, Deserializer, Visitor};
+        struct Catch(Option<&'static [&'static str]>);
+        impl<'de> Deserializer<'de> for &mut Catch {
+            type Error = de::value::Error;
+            fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+                Err(de::Error::custom("only enums"))
+            }
+            fn deserialize_enum<V: Visitor<'de>>(
+                self,
+                _: &'static str,
+                variants: &'static [&'static str],
+                _: V,
+            ) -> Result<V::Value, Self::Error> {
+                self.0 = Some(variants);
+                Err(de::Error::custom("caught"))
+            }
+            serde::forward_to_deserialize_any! {
+                bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes
+                byte_buf option unit unit_struct newtype_struct seq tuple tuple_struct map
+                struct identifier ignored_any
+            }
+        }
+        let mut catch = Catch(None);
+        let _ = NeuronFunction::deserialize(&mut catch);
+        catch.0.expect("NeuronFunction deserialises as an enum")
+    }
+
+    #[test]
+    fn all_lists_every_neuron_function_in_order() {
+        let names: Vec<String> = NeuronFunction::ALL
+            .iter()
+            .map(|f| {
+                serde_json::to_value(f)
+                    .unwrap()
+                    .as_str()
+                    .unwrap()
+                    .to_string()
+            })
+            .collect();
+        assert_eq!(names, serde_variants());
+        assert!(
+            NeuronFunction::SETFUNC
+                .iter()
+                .all(|f| NeuronFunction::ALL.contains(f))
+        );
+    }
+
+    #[test]
+    fn a_non_finite_bias_is_rejected_and_a_missing_one_is_zero() {
+        let json = r#"{"function":"linear","role":{"kind":"hidden"},"part":null}"#;
+        let neuron: Neuron = serde_json::from_str(json).unwrap();
+        assert_eq!(neuron.bias, 0.0);
+        assert!(neuron.params.is_empty());
+        let mut c = Creature {
+            brain: Brain {
+                neurons: vec![neuron],
+                links: vec![],
+            },
+            ..Creature::default()
+        };
+        assert_eq!(c.check_consistency(), Ok(()));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            c.brain.neurons[0].bias = bad;
+            let err = c.check_consistency().unwrap_err();
+            assert!(err.contains("neuron 0") && err.contains("bias"), "{err}");
+        }
     }
 }

@@ -36,6 +36,7 @@ impl BrainBuilder {
             neurons: vec![Neuron {
                 function: NeuronFunction::Oscillator,
                 params: Vec::new(),
+                bias: 0.0,
                 role: Role::Hidden,
                 part: None,
             }],
@@ -63,6 +64,7 @@ impl BrainBuilder {
         self.neurons.push(Neuron {
             function,
             params: Vec::new(),
+            bias: 0.0,
             role,
             part,
         });
@@ -279,11 +281,15 @@ impl BrainBuilder {
                 if matches!(self.neurons[t].role, Role::Sensor { .. }) {
                     return Err("a sensor neuron's output is its reading: setfunc ignored".into());
                 }
-                self.neurons[t].function = match n % 3 {
-                    0 => NeuronFunction::Linear,
-                    1 => NeuronFunction::Sigmoid,
-                    _ => NeuronFunction::Oscillator,
-                };
+                let choices = NeuronFunction::SETFUNC;
+                self.neurons[t].function = choices[n % choices.len()];
+            }
+            BrainOp::Bias => {
+                let b = arg(1.0)?;
+                if matches!(self.neurons[t].role, Role::Sensor { .. }) {
+                    return Err("a sensor neuron's output is its reading: bias ignored".into());
+                }
+                self.neurons[t].bias = b;
             }
             BrainOp::Cut => {
                 if let Some(l) = current.link.take() {

@@ -25,8 +25,13 @@ pub enum BrainOp {
     Output,
     /// `reverse`
     Reverse,
-    /// `setfunc(n)`
+    /// `setfunc(n)`: the target's function, from [`NeuronFunction::SETFUNC`]
+    ///
+    /// [`NeuronFunction::SETFUNC`]: crate::creature::NeuronFunction::SETFUNC
     SetFunc,
+    /// `bias(b)`: sets the target's bias (Ontogeny's addition; neither Hornby & Pollack nor
+    /// Matos & Arita have one)
+    Bias,
     /// `cut`
     Cut,
     /// `weight(n)`: adds n to the weight (Matos & Arita's offset-weight)
@@ -141,6 +146,7 @@ fn plain(name: &str, maturing: bool) -> Option<Command> {
         "output" => brain(BrainOp::Output),
         "reverse" => brain(BrainOp::Reverse),
         "setfunc" => brain(BrainOp::SetFunc),
+        "bias" => brain(BrainOp::Bias),
         "cut" => brain(BrainOp::Cut),
         "weight" => brain(BrainOp::Weight),
         "increase" => brain(BrainOp::Increase),

@@ -56,6 +56,7 @@ pub const BUILTIN_COMMANDS: &[&str] = &[
     "output",
     "reverse",
     "setfunc",
+    "bias",
     "cut",
     "weight",
     "increase",

@@ -11,6 +11,7 @@ const EPSILON: f64 = 1e-6;
 pub struct BrainRuntime {
     functions: Vec<NeuronFunction>,
     params: Vec<Vec<f64>>,
+    biases: Vec<f64>,
     sensor: Vec<bool>,
     /// Inputs of neuron i are `sources[starts[i]..starts[i + 1]]` with `weights[...]`.
     starts: Vec<usize>,
@@ -50,6 +51,7 @@ impl BrainRuntime {
                         .params
                         .first()
                         .copied()
+                        .filter(|d| !d.is_nan()) // a NaN delay counts as 1
                         .unwrap_or(1.0)
                         .clamp(1.0, 10_000.0) as usize
                 } else {
@@ -63,6 +65,7 @@ impl BrainRuntime {
         BrainRuntime {
             functions: brain.neurons.iter().map(|n| n.function).collect(),
             params: brain.neurons.iter().map(|n| n.params.clone()).collect(),
+            biases: brain.neurons.iter().map(|n| n.bias).collect(),
             sensor: brain
                 .neurons
                 .iter()
@@ -85,15 +88,21 @@ impl BrainRuntime {
         &self.outputs
     }
 
-    /// Sets a sensor neuron's output (its reading) for the next update.
+    /// Sets a sensor neuron's output (its reading) for the next update, clipped to [−1, 1]
+    /// (a reading that is not a number counts as 0).
     pub fn set_sensor(&mut self, neuron: usize, value: f64) {
-        self.outputs[neuron] = value.clamp(-1.0, 1.0);
+        self.outputs[neuron] = if value.is_nan() {
+            0.0
+        } else {
+            value.clamp(-1.0, 1.0)
+        };
     }
 
     /// Updates every non-sensor neuron at once from the previous outputs. `t` is the
-    /// simulated time and `dt` the control step. Returns false if any output was not a
-    /// number (the outputs are then left as they were).
-    pub fn step(&mut self, t: f64, dt: f64) -> bool {
+    /// simulated time and `dt` the control step. Every output is a number in [−1, 1]: sums
+    /// saturate at ±`f64::MAX`, the output is clipped (±∞ gives ±1), and a result that is not a
+    /// number gives 0 (see [`NeuronFunction`]).
+    pub fn step(&mut self, t: f64, dt: f64) {
         self.steps += 1;
         for i in 0..self.outputs.len() {
             if self.sensor[i] {
@@ -105,22 +114,27 @@ impl BrainRuntime {
                 let j = self.starts[i] + k;
                 (j < self.starts[i + 1]).then(|| self.weights[j] * self.outputs[self.sources[j]])
             };
-            let sum: f64 = range
-                .clone()
-                .map(|j| self.weights[j] * self.outputs[self.sources[j]])
-                .sum();
-            let a = input(0).unwrap_or(0.0);
+            let bias = self.biases[i];
+            let x = add(
+                range
+                    .map(|j| self.weights[j] * self.outputs[self.sources[j]])
+                    .fold(0.0, add),
+                bias,
+            );
+            let a = add(input(0).unwrap_or(0.0), bias);
+            // a and the b, c present: for min, max and interpolate.
+            let present = || std::iter::once(a).chain((1..3).filter_map(input));
             let param = |k: usize, default: f64| self.params[i].get(k).copied().unwrap_or(default);
             let value = match self.functions[i] {
-                NeuronFunction::Linear => sum,
-                NeuronFunction::Sigmoid => sum.tanh(),
+                NeuronFunction::Linear => x,
+                NeuronFunction::Sigmoid => x.tanh(),
                 NeuronFunction::Oscillator => {
-                    let frequency = std::f64::consts::PI * (1.0 + sum.clamp(-1.0, 1.0));
+                    let frequency = std::f64::consts::PI * (1.0 + x.clamp(-1.0, 1.0));
                     self.phases[i] += frequency * dt;
                     self.phases[i].sin()
                 }
                 NeuronFunction::Threshold => {
-                    let s = a + input(1).unwrap_or(0.0);
+                    let s = add(a, input(1).unwrap_or(0.0));
                     if s >= param(0, 0.0) { s } else { 0.0 }
                 }
                 NeuronFunction::Divide => {
@@ -137,17 +151,17 @@ impl BrainRuntime {
                 NeuronFunction::Wave => {
                     let b = input(1).unwrap_or(1.0);
                     let c = input(2).unwrap_or(0.0);
-                    b * (a * t + c).sin()
+                    b * add(saturate(a * t), c).sin()
                 }
-                NeuronFunction::Sum => a + input(1).unwrap_or(0.0),
+                NeuronFunction::Constant => param(0, 0.0),
+                NeuronFunction::Sum => add(a, input(1).unwrap_or(0.0)),
                 NeuronFunction::Product => a * input(1).unwrap_or(1.0),
                 NeuronFunction::Quotient => {
                     let b = input(1).unwrap_or(1.0);
                     if b == 0.0 { 0.0 } else { a / b }
                 }
                 NeuronFunction::SumGreater => {
-                    let s = a + input(1).unwrap_or(0.0);
-                    if s > input(2).unwrap_or(0.0) {
+                    if add(a, input(1).unwrap_or(0.0)) > input(2).unwrap_or(0.0) {
                         1.0
                     } else {
                         0.0
@@ -169,8 +183,8 @@ impl BrainRuntime {
                         0.0
                     }
                 }
-                NeuronFunction::Min => (0..3).filter_map(input).fold(f64::INFINITY, f64::min),
-                NeuronFunction::Max => (0..3).filter_map(input).fold(f64::NEG_INFINITY, f64::max),
+                NeuronFunction::Min => present().fold(f64::INFINITY, f64::min),
+                NeuronFunction::Max => present().fold(f64::NEG_INFINITY, f64::max),
                 NeuronFunction::Abs => a.abs(),
                 NeuronFunction::If => {
                     if input(1).unwrap_or(1.0) != 0.0 {
@@ -180,10 +194,8 @@ impl BrainRuntime {
                     }
                 }
                 NeuronFunction::Interpolate => {
-                    let (n, total) = (0..3)
-                        .filter_map(input)
-                        .fold((0.0, 0.0), |(n, s), v| (n + 1.0, s + v));
-                    if n > 0.0 { total / n } else { 0.0 }
+                    let (n, total) = present().fold((0.0, 0.0), |(n, s), v| (n + 1.0, add(s, v)));
+                    total / n
                 }
                 NeuronFunction::Sin => a.sin(),
                 NeuronFunction::Cos => a.cos(),
@@ -195,25 +207,43 @@ impl BrainRuntime {
                         a
                     }
                 }
-                NeuronFunction::Power => a.powf(input(1).unwrap_or(1.0)),
+                NeuronFunction::Power => power(a, input(1).unwrap_or(1.0)),
                 NeuronFunction::Logistic => 1.0 / (1.0 + (-a).exp()),
                 NeuronFunction::StepWave => {
                     (self.steps as f64 * std::f64::consts::TAU / 360.0).sin()
                 }
                 NeuronFunction::Saw => (self.steps as f64 * std::f64::consts::TAU / 4.0).sin(),
             };
-            // Min and Max of no inputs give infinities: a neuron with no input outputs 0.
-            let value = if value.is_infinite() && range.is_empty() {
+            // The safety net: ±∞ clips to ±1, and nothing that is not a number gets through.
+            self.next[i] = if value.is_nan() {
                 0.0
             } else {
-                value
+                value.clamp(-1.0, 1.0)
             };
-            if value.is_nan() {
-                return false;
-            }
-            self.next[i] = value.clamp(-1.0, 1.0);
         }
         std::mem::swap(&mut self.outputs, &mut self.next);
-        true
+    }
+}
+
+/// `x` clamped to the finite range (±∞ become ±`f64::MAX`).
+fn saturate(x: f64) -> f64 {
+    x.clamp(-f64::MAX, f64::MAX)
+}
+
+/// `x + y` for finite `x` and `y`, saturating at ±`f64::MAX` instead of overflowing (so it
+/// is never ±∞, and never ∞ − ∞ = NaN further on).
+fn add(x: f64, y: f64) -> f64 {
+    saturate(x + y)
+}
+
+/// `a` to the power `b` as a real number: `a^b` where that is real; −|`a`|^`b` for a negative
+/// `a` and a non-integer `b` (the signed power); +∞ for 0 to a negative power.
+fn power(a: f64, b: f64) -> f64 {
+    if a == 0.0 && b < 0.0 {
+        f64::INFINITY
+    } else if a < 0.0 && b.fract() != 0.0 {
+        -(-a).powf(b)
+    } else {
+        a.powf(b)
     }
 }

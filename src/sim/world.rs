@@ -684,9 +684,7 @@ impl World {
     pub fn step(&mut self, controller: bool) -> Result<f64, Exploded> {
         if controller {
             self.read_sensors();
-            if !self.brain.step(self.time, self.options.dt) {
-                return Err(Exploded::Brain);
-            }
+            self.brain.step(self.time, self.options.dt);
         }
         self.drive(controller);
         let started = std::time::Instant::now();
@@ -745,9 +743,6 @@ pub enum Exploded {
     /// A position or velocity became NaN or infinite.
     #[error("a part's position or velocity is not a number")]
     NotANumber,
-    /// A neuron's output became NaN.
-    #[error("a neuron's output is not a number")]
-    Brain,
     /// A part moved too far in one step.
     #[error("a part moved {0:.2} m in one step")]
     Jump(f64),
