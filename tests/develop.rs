@@ -48,7 +48,7 @@ fn forward_makes_a_box_along_the_heading() {
     assert!(close(p.position, [1.0, 0.0, 0.0]));
     assert!(p.orientation.angle() < 1e-12);
     assert!(!p.growing);
-    assert!((c.mass() - 2.0 * 0.25 * 0.25).abs() < 1e-12);
+    assert!((c.mass() - 2.0 * 0.25 * 0.25 * 1000.0).abs() < 1e-9);
     assert!(c.joints.is_empty() && c.is_valid());
 }
 

@@ -135,7 +135,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "{:<44} {slow:>12.1} {slow_step:>10.1} {slow_overhead:>9.1}%",
         "reference: 2 substeps, 4 iterations (issue 5)"
     );
-    say!("ratio:     {:.2}× the reference's evaluations/s", fast / slow);
+    say!(
+        "ratio:     {:.2}× the reference's evaluations/s",
+        fast / slow
+    );
 
     let started = Instant::now();
     (0..n).into_par_iter().for_each(|_| {
@@ -280,7 +283,13 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
         })
         .collect();
     if args.verbose {
-        say!("{:>12} {:>12} {:>10} {:>10}  creature", "measured", "fine", "", "");
+        say!(
+            "{:>12} {:>12} {:>10} {:>10}  creature",
+            "measured",
+            "fine",
+            "",
+            ""
+        );
         for ((name, _), (a, b, _)) in creatures.iter().zip(&results) {
             say!(
                 "{:>12.6} {:>12.6} {:>10} {:>10}  {name}",
