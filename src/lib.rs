@@ -4,13 +4,16 @@
 //! derives module strings from it in discrete steps or continuous developmental time,
 //! exchanging chemicals with an [`environment`]; [`develop`] builds a [`creature`] (body and
 //! brain) from each string; [`render`] draws it; [`sim`] runs it in a rapier3d world; and
-//! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks.
+//! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks. [`export`]
+//! writes a creature with the simulator's settings in other simulators' formats (MuJoCo's
+//! MJCF).
 
 #![warn(missing_docs)]
 
 pub mod creature;
 pub mod develop;
 pub mod environment;
+pub mod export;
 pub mod lang;
 pub mod lsystem;
 pub mod render;

@@ -4,4 +4,7 @@ pub mod brain;
 pub mod world;
 
 pub use brain::BrainRuntime;
-pub use world::{ActuatorModel, BuildError, Exploded, JointModel, SimOptions, StrengthFrom, World};
+pub use world::{
+    ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, BuildError, Exploded, GRAVITY, JointModel,
+    SATURATION_DAMPING, SimOptions, StrengthFrom, World, max_torque,
+};
