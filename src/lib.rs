@@ -6,6 +6,8 @@
 //! brain) from each string; [`render`] draws it; [`sim`] runs it in a rapier3d world; and
 //! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks; [`evolve`]
 //! holds the statistics that compare settings (and, to come, the genetic algorithm).
+//! [`export`] writes a creature with the simulator's settings in other simulators' formats
+//! (MuJoCo's MJCF).
 
 #![warn(missing_docs)]
 
@@ -13,6 +15,7 @@ pub mod creature;
 pub mod develop;
 pub mod environment;
 pub mod evolve;
+pub mod export;
 pub mod lang;
 pub mod lsystem;
 pub mod render;

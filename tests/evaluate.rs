@@ -527,7 +527,7 @@ fn every_failure_ranks_below_every_success() {
     assert!(aim.fitness < 0.0 && aim.fitness > FAILURE_FITNESS);
     // D_t is at most the target's distance from the start, so an aim score is at least
     // −|target| > −MAX_TARGET_DISTANCE > FAILURE_FITNESS.
-    assert!(-task::MAX_TARGET_DISTANCE > FAILURE_FITNESS);
+    const { assert!(-task::MAX_TARGET_DISTANCE > FAILURE_FITNESS) };
     let beyond = task::CatapultOptions {
         target: Some(nalgebra::Vector3::new(
             2.0 * task::MAX_TARGET_DISTANCE,

@@ -41,6 +41,10 @@ pub struct BenchArgs {
     /// With `--fidelity`: print every creature's figures.
     #[arg(long)]
     verbose: bool,
+    /// Measure only this creature (an `.lsys` grown to its last frame, or a
+    /// `creature.json`) on one core, instead of the chains.
+    #[arg(long, value_name = "FILE")]
+    creature: Option<std::path::PathBuf>,
 }
 
 /// A chain of `parts` parts on revolute2 hinges, each driven by an output from the
@@ -102,13 +106,39 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         solver_iterations: args.solver_iterations.clamp(1, 256),
         ..SimOptions::default()
     };
+    let n = args.evaluations.max(1);
+    let steps = (args.seconds / sim.dt).round();
+    if let Some(file) = &args.creature {
+        let creature = super::eval::load_creature(file, &Default::default(), None)?;
+        World::new(&creature, &sim).map_err(|e| {
+            ontogeny::lang::Diagnostic::without_location(
+                ontogeny::lang::DiagnosticKind::Semantic,
+                format!("{}: cannot simulate: {e}", file.display()),
+            )
+        })?;
+        evaluate(&creature, &sim, 1.0); // warm up
+        let started = Instant::now();
+        for _ in 0..n {
+            evaluate(&creature, &sim, args.seconds);
+        }
+        let seconds = started.elapsed().as_secs_f64();
+        say!(
+            "{}: {} s at {} s ({} substeps), {n} evaluations, one core: {:.2} evaluations/s ({:.1} µs per step)",
+            file.display(),
+            args.seconds,
+            sim.dt,
+            sim.substeps,
+            n as f64 / seconds,
+            seconds / n as f64 / steps * 1e6
+        );
+        return Ok(());
+    }
     let reference = SimOptions {
         substeps: 2,
         solver_iterations: 4,
         ..SimOptions::default()
     };
     let walker = chain(10);
-    let n = args.evaluations.max(1);
     say!(
         "10-part walker, {} s at 1/60 s, {} evaluations per row; {} threads available",
         args.seconds,

@@ -12,8 +12,8 @@ use ontogeny::lsystem::{
 };
 use serde::Serialize;
 
-/// Flags shared by the verbs that develop an L-system.
-#[derive(Args)]
+/// Flags shared by the verbs that develop an L-system (the default: the file's own settings).
+#[derive(Args, Default)]
 pub struct DevelopmentArgs {
     /// Develop in continuous time from 0 to T (default: the file's `time:`; giving either
     /// switches to continuous mode).

@@ -57,6 +57,84 @@ enum StrengthArg {
     Bigger,
 }
 
+/// The flags that set the simulated model: shared by `eval`, `export` and `bench`.
+#[derive(Args)]
+pub struct PhysicsArgs {
+    /// Actuator model.
+    #[arg(long, value_enum, default_value = "muscle")]
+    actuator: ActuatorArg,
+    /// Physics and control time step in seconds.
+    #[arg(long, default_value_t = SimOptions::default().dt)]
+    time_step: f64,
+    /// Physics substeps per control step.
+    #[arg(long, default_value_t = SimOptions::default().substeps)]
+    substeps: usize,
+    /// Solver iterations per substep.
+    #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
+    solver_iterations: usize,
+    /// Whose cross-section sets a joint's strength.
+    #[arg(long, value_enum, default_value = "bigger")]
+    strength_from: StrengthArg,
+    /// Joint strength: maximum torque per square metre of cross-section (N·m/m²).
+    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_STRENGTH)]
+    strength: f64,
+    /// The muscle model's target speed V_des (rad/s), high so that muscles are
+    /// torque-limited (Chaumont et al. 5.3).
+    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_MUSCLE_SPEED)]
+    muscle_speed: f64,
+    /// Let parts of one creature pass through each other (joint neighbours never collide).
+    #[arg(long)]
+    no_self_collision: bool,
+}
+
+impl PhysicsArgs {
+    /// The simulator settings the flags ask for (the rest at their defaults), or an error
+    /// naming the flag that is out of range.
+    pub fn sim_options(&self) -> anyhow::Result<SimOptions> {
+        if !(self.time_step > 0.0 && self.time_step <= 0.1) {
+            anyhow::bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!(
+                    "--time-step must be in (0, 0.1] seconds, not {}",
+                    self.time_step
+                ),
+            ));
+        }
+        if !(1..=64).contains(&self.substeps) || !(1..=256).contains(&self.solver_iterations) {
+            anyhow::bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                "--substeps must be 1 to 64 and --solver-iterations 1 to 256",
+            ));
+        }
+        let strength_ok = self.strength.is_finite() && self.strength >= 0.0;
+        let speed_ok = self.muscle_speed.is_finite() && self.muscle_speed > 0.0;
+        if !(strength_ok && speed_ok) {
+            anyhow::bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                "--strength must be finite and not negative, --muscle-speed finite and positive",
+            ));
+        }
+        Ok(SimOptions {
+            dt: self.time_step,
+            strength: self.strength,
+            muscle_speed: self.muscle_speed,
+            substeps: self.substeps,
+            solver_iterations: self.solver_iterations,
+            self_collision: !self.no_self_collision,
+            strength_from: match self.strength_from {
+                StrengthArg::Smaller => StrengthFrom::Smaller,
+                StrengthArg::Bigger => StrengthFrom::Bigger,
+            },
+            actuator: match self.actuator {
+                ActuatorArg::Muscle => ActuatorModel::Muscle,
+                ActuatorArg::Angle => ActuatorModel::Angle,
+                ActuatorArg::Velocity => ActuatorModel::Velocity,
+            },
+            ..SimOptions::default()
+        })
+    }
+}
+
 /// Walker fitness formulas.
 #[derive(Clone, Copy, ValueEnum)]
 enum FitnessArg {
@@ -93,37 +171,14 @@ pub struct EvalArgs {
     /// Joint model.
     #[arg(long, value_enum, default_value = "impulse")]
     joints: JointsArg,
-    /// Actuator model.
-    #[arg(long, value_enum, default_value = "muscle")]
-    actuator: ActuatorArg,
+    #[command(flatten)]
+    physics: PhysicsArgs,
     /// Walker fitness formula.
     #[arg(long, value_enum, default_value = "normalised")]
     fitness: FitnessArg,
     /// The aim task's target relative to the projectile's start, as X,Y,Z metres.
     #[arg(long, value_name = "X,Y,Z", default_value = "5,0,0", value_parser = parse_point)]
     target: [f64; 3],
-    /// Physics and control time step in seconds.
-    #[arg(long, default_value_t = 1.0 / 60.0)]
-    time_step: f64,
-    /// Physics substeps per control step.
-    #[arg(long, default_value_t = SimOptions::default().substeps)]
-    substeps: usize,
-    /// Solver iterations per substep.
-    #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
-    solver_iterations: usize,
-    /// Whose cross-section sets a joint's strength.
-    #[arg(long, value_enum, default_value = "bigger")]
-    strength_from: StrengthArg,
-    /// Joint strength: maximum torque per square metre of cross-section (N·m/m²).
-    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_STRENGTH)]
-    strength: f64,
-    /// The muscle model's target speed V_des (rad/s), high so that muscles are
-    /// torque-limited (Chaumont et al. 5.3).
-    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_MUSCLE_SPEED)]
-    muscle_speed: f64,
-    /// Let parts of one creature pass through each other (joint neighbours never collide).
-    #[arg(long)]
-    no_self_collision: bool,
     /// The catapult's projectile: edge length of the cube (m).
     #[arg(long, default_value_t = 0.2)]
     projectile_size: f64,
@@ -153,63 +208,46 @@ fn parse_point(text: &str) -> Result<[f64; 3], String> {
     }
 }
 
-/// Loads a creature from an L-system (its last frame) or a creature.json.
-fn load(args: &EvalArgs) -> anyhow::Result<Creature> {
-    if args.file.extension().is_some_and(|e| e == "json") {
-        let text = std::fs::read_to_string(&args.file)
-            .with_context(|| format!("cannot read {}", args.file.display()))?;
+/// Loads a creature from `file`: an L-system (`.lsys`, grown to its last frame with the
+/// development flags and seed) or a `creature.json`, which must be well formed.
+pub(super) fn load_creature(
+    file: &Path,
+    development: &DevelopmentArgs,
+    seed: Option<u64>,
+) -> anyhow::Result<Creature> {
+    if file.extension().is_some_and(|e| e == "json") {
+        let text = std::fs::read_to_string(file)
+            .with_context(|| format!("cannot read {}", file.display()))?;
         let creature: Creature = serde_json::from_str(&text).map_err(|e| {
             anyhow::Error::new(Diagnostic::without_location(
                 DiagnosticKind::Semantic,
-                format!("{}: not a creature: {e}", args.file.display()),
+                format!("{}: not a creature: {e}", file.display()),
             ))
         })?;
         creature.check_consistency().map_err(|problem| {
             anyhow::Error::new(Diagnostic::without_location(
                 DiagnosticKind::Semantic,
-                format!("{}: not a usable creature: {problem}", args.file.display()),
+                format!("{}: not a usable creature: {problem}", file.display()),
             ))
         })?;
         return Ok(creature);
     }
-    let lsys = LSystem::from_path(&args.file)?;
-    let options = derive_options(&args.development, args.seed, DEFAULT_MAX_MODULES);
+    let lsys = LSystem::from_path(file)?;
+    let options = derive_options(development, seed, DEFAULT_MAX_MODULES);
     let frames = grow(&lsys, &options, None, &BuildOptions::default())?;
     Ok(frames.into_iter().last().expect("a first frame").creature)
 }
 
 /// Evaluates the creature and prints the result.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
-    let creature = load(args)?;
-    if !(args.time_step > 0.0 && args.time_step <= 0.1) {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!(
-                "--time-step must be in (0, 0.1] seconds, not {}",
-                args.time_step
-            ),
-        ));
-    }
+    let creature = load_creature(&args.file, &args.development, args.seed)?;
+    let physics = args.physics.sim_options()?;
     if let Some(seconds) = args.seconds
         && !(seconds > 0.0 && seconds <= 3600.0)
     {
         anyhow::bail!(Diagnostic::without_location(
             DiagnosticKind::Semantic,
             format!("--seconds must be in (0, 3600], not {seconds}"),
-        ));
-    }
-    if !(1..=64).contains(&args.substeps) || !(1..=256).contains(&args.solver_iterations) {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            "--substeps must be 1 to 64 and --solver-iterations 1 to 256",
-        ));
-    }
-    if !(args.strength.is_finite() && args.strength >= 0.0)
-        || !(args.muscle_speed.is_finite() && args.muscle_speed > 0.0)
-    {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            "--strength must be finite and not negative, --muscle-speed finite and positive",
         ));
     }
     if !(args.projectile_size.is_finite()
@@ -223,26 +261,11 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         ));
     }
     let sim = SimOptions {
-        dt: args.time_step,
-        substeps: args.substeps,
-        solver_iterations: args.solver_iterations,
-        self_collision: !args.no_self_collision,
-        strength: args.strength,
-        muscle_speed: args.muscle_speed,
-        strength_from: match args.strength_from {
-            StrengthArg::Smaller => StrengthFrom::Smaller,
-            StrengthArg::Bigger => StrengthFrom::Bigger,
-        },
         joints: match args.joints {
             JointsArg::Impulse => JointModel::Impulse,
             JointsArg::Multibody => JointModel::Multibody,
         },
-        actuator: match args.actuator {
-            ActuatorArg::Muscle => ActuatorModel::Muscle,
-            ActuatorArg::Angle => ActuatorModel::Angle,
-            ActuatorArg::Velocity => ActuatorModel::Velocity,
-        },
-        ..SimOptions::default()
+        ..physics
     };
     let record = args.record.is_some();
     let evaluation = match args.task {

@@ -13,6 +13,7 @@ mod bench;
 mod check;
 mod derive;
 mod eval;
+mod export;
 mod grow;
 mod replay;
 
@@ -43,6 +44,9 @@ enum Verb {
     /// Evaluate a creature in physics on a task (walker or jump) and print its fitness, the
     /// terms behind it and its status.
     Eval(eval::EvalArgs),
+    /// Write a creature (an `.lsys` grown to its last frame, or a `creature.json`) with the
+    /// simulator's settings as a MuJoCo MJCF model.
+    Export(export::ExportArgs),
     /// Re-render a recording written by `eval --record DIR` into DIR/behaviour.gif.
     Replay(replay::ReplayArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core and on all
@@ -58,6 +62,7 @@ pub fn main() -> ExitCode {
         Verb::Check(args) => check::run(&args),
         Verb::Grow(args) => grow::run(&args),
         Verb::Eval(args) => eval::run(&args),
+        Verb::Export(args) => export::run(&args),
         Verb::Replay(args) => replay::run(&args),
         Verb::Bench(args) => bench::run(&args),
     };

@@ -5,6 +5,7 @@ pub mod world;
 
 pub use brain::BrainRuntime;
 pub use world::{
-    ActuatorModel, BuildError, DEFAULT_MUSCLE_SPEED, DEFAULT_STRENGTH, Exploded, JointModel,
-    SimOptions, StrengthFrom, World,
+    ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, BuildError, DEFAULT_MUSCLE_SPEED,
+    DEFAULT_STRENGTH, Exploded, GRAVITY, JointModel, SATURATION_DAMPING, SimOptions, StrengthFrom,
+    World, max_torque,
 };

@@ -6,7 +6,32 @@ use rapier3d::math::{Pose, Real, Rotation, Vector};
 use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
-use crate::creature::{Actuator, Creature, Face, Role, Sensor};
+use crate::creature::{Actuator, Creature, Face, Joint, Role, Sensor};
+
+/// Gravity's acceleration (m/s²), pulling along −Y.
+pub const GRAVITY: f64 = 9.81;
+
+/// Motor gains per N·m of a joint's maximum torque. A velocity motor's torque is damping ×
+/// (target − current speed), clamped to the maximum: a damping of `SATURATION_DAMPING` ×
+/// the maximum torque makes the muscle and velocity models run at saturation.
+pub const SATURATION_DAMPING: f64 = 1000.0;
+/// The angle model's stiffness (N·m/rad) per N·m of maximum torque.
+pub const ANGLE_STIFFNESS: f64 = 20.0;
+/// The angle model's damping (N·m·s/rad) per N·m of maximum torque.
+pub const ANGLE_DAMPING: f64 = 2.0;
+
+/// The maximum torque (N·m) of `joint`'s motor in `creature`: `options.strength` × the
+/// joint's own strength × the cross-section (y × z) of the smaller or bigger of its two parts.
+pub fn max_torque(creature: &Creature, joint: &Joint, options: &SimOptions) -> f64 {
+    let parent = &creature.parts[joint.parent];
+    let child = &creature.parts[joint.child];
+    let (a, b) = (parent.size.y * parent.size.z, child.size.y * child.size.z);
+    let section = match options.strength_from {
+        StrengthFrom::Smaller => a.min(b),
+        StrengthFrom::Bigger => a.max(b),
+    };
+    options.strength * joint.strength * section
+}
 
 /// How joints are simulated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -235,7 +260,7 @@ impl World {
         };
         let mut world = World {
             options: options.clone(),
-            gravity: Vector::new(0.0, -9.81, 0.0),
+            gravity: Vector::new(0.0, -GRAVITY as Real, 0.0),
             params,
             pipeline: PhysicsPipeline::new(),
             islands: IslandManager::new(),
@@ -314,14 +339,7 @@ impl World {
                 .build();
             data.set_local_frame1(pose1.inverse() * world_frame);
             data.set_local_frame2(pose2.inverse() * world_frame);
-            let parent = &creature.parts[joint.parent];
-            let child = &creature.parts[joint.child];
-            let (a, b) = (parent.size.y * parent.size.z, child.size.y * child.size.z);
-            let section = match options.strength_from {
-                StrengthFrom::Smaller => a.min(b),
-                StrengthFrom::Bigger => a.max(b),
-            };
-            let max_torque = options.strength * joint.strength * section;
+            let max_torque = max_torque(creature, joint, options);
             for (k, &(lo, hi)) in joint.limits.iter().enumerate().take(joint.kind.dof()) {
                 data.set_limits(ANGULAR[k], [lo as Real, hi as Real]);
                 data.set_motor_model(ANGULAR[k], MotorModel::ForceBased);
@@ -617,10 +635,7 @@ impl World {
                             data.set_motor_max_force(axis, 0.0);
                             return;
                         }
-                        // A velocity motor's torque is damping × (target − current speed),
-                        // clamped to the maximum: a damping far above the maximum torque makes
-                        // the motor run at saturation.
-                        let stiff = (max_torque * 1000.0).max(1e-3) as Real;
+                        let stiff = (max_torque * SATURATION_DAMPING).max(1e-3) as Real;
                         match model {
                             ActuatorModel::Muscle => {
                                 data.set_motor_velocity(
@@ -635,8 +650,8 @@ impl World {
                                 data.set_motor_position(
                                     axis,
                                     target as Real,
-                                    (max_torque * 20.0) as Real,
-                                    (max_torque * 2.0) as Real,
+                                    (max_torque * ANGLE_STIFFNESS) as Real,
+                                    (max_torque * ANGLE_DAMPING) as Real,
                                 );
                                 data.set_motor_max_force(axis, max_torque as Real);
                             }

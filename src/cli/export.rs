@@ -1,0 +1,80 @@
+//! `ontogeny export`
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use ontogeny::export::to_mjcf;
+use ontogeny::lang::{Diagnostic, DiagnosticKind};
+
+use super::derive::DevelopmentArgs;
+use super::eval::{PhysicsArgs, load_creature};
+
+/// Export formats.
+#[derive(Clone, Copy, ValueEnum)]
+enum FormatArg {
+    /// MuJoCo's MJCF (XML), Z up.
+    Mjcf,
+}
+
+/// Flags of `ontogeny export`.
+#[derive(Args)]
+#[command(after_long_help = "\
+Writes the creature as a MuJoCo MJCF model: the body tree from the root part with a free \
+joint, one box geom per part (sizes are half-extents), the joints as hinges with their ranges \
+(radians; a joint of 2 or 3 degrees of freedom is 2 or 3 hinges), one actuator per driven \
+degree of freedom matching --actuator, contact exclusions between jointed parts, and the \
+density, friction and time step of the simulator. Ontogeny's Y-up world is rotated so that Z \
+is up. The README's \"Export to MuJoCo\" section details every mapping.
+
+Examples:
+  ontogeny export examples/quadruped.lsys --out quadruped.xml
+  ontogeny export out/snake/creature.json --actuator angle > snake.xml")]
+pub struct ExportArgs {
+    /// An L-system file (`.lsys`, grown to its last frame) or a `creature.json`.
+    file: PathBuf,
+    /// The format to write.
+    #[arg(long, value_enum, default_value = "mjcf")]
+    format: FormatArg,
+    /// Write the model to this file (default: standard output).
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Seed for growing the creature from an L-system.
+    #[arg(long)]
+    seed: Option<u64>,
+    #[command(flatten)]
+    development: DevelopmentArgs,
+    #[command(flatten)]
+    physics: PhysicsArgs,
+}
+
+/// Exports the creature.
+pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
+    let creature = load_creature(&args.file, &args.development, args.seed)?;
+    let sim = args.physics.sim_options()?;
+    let name = args
+        .file
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "creature".to_string());
+    let text = match args.format {
+        FormatArg::Mjcf => to_mjcf(&creature, &sim, &name),
+    }
+    .map_err(|e| {
+        Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("{}: cannot export: {e}", args.file.display()),
+        )
+    })?;
+    match &args.out {
+        Some(path) => {
+            std::fs::write(path, &text)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+        }
+        None => {
+            use std::io::Write as _;
+            std::io::stdout().lock().write_all(text.as_bytes())?;
+        }
+    }
+    Ok(())
+}
