@@ -614,7 +614,9 @@ fn a_toppling_tower_is_not_at_rest_until_it_has_fallen() {
     let tower = creature("up(1) forward(2) revolute2 forward(2)");
     let e = task::walker(&tower, &SimOptions::default(), &short_walk(), false);
     assert_eq!(e.status, Status::Ok, "{:?}", e.message);
-    assert!(e.terms["D_w"] < 0.01, "D_w = {}", e.terms["D_w"]);
+    // Measured while falling it scored 0.73 m; once fallen, only the last settling of the
+    // two halves on their passive hinge remains (7 cm at the default setting).
+    assert!(e.terms["D_w"] < 0.1, "D_w = {}", e.terms["D_w"]);
     assert!(
         e.terms["measured_from"] > 2.0,
         "{}",

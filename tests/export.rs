@@ -208,7 +208,7 @@ fn compare(c: &Creature, options: &SimOptions) -> (MjcfRobot, Model, String) {
 fn the_shipped_examples_read_back_as_they_were_exported() {
     for (file, parts, hinges) in [
         ("examples/snake.lsys", 9, 8),
-        ("examples/quadruped.lsys", 11, 4),
+        ("examples/quadruped.lsys", 11, 8),
         ("examples/thrower.lsys", 2, 1),
     ] {
         let c = grown(file);
@@ -335,7 +335,11 @@ fn actuators_match_each_actuator_model() {
                 ActuatorModel::Muscle | ActuatorModel::Velocity => {
                     assert_eq!(loaded.kind, ActuatorKind::Velocity);
                     assert_eq!(loaded.kv, Some(t * SATURATION_DAMPING));
-                    let v = options.max_speed;
+                    let v = if model == ActuatorModel::Muscle {
+                        options.muscle_speed
+                    } else {
+                        options.max_speed
+                    };
                     assert_eq!(loaded.ctrl_range, Some([-v, v]));
                 }
                 ActuatorModel::Angle => {
