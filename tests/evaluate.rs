@@ -1,27 +1,16 @@
 //! The evaluator and the tasks: fitness terms by hand, the activation sequence, explosions,
 //! statuses, determinism across thread counts.
 
+mod common;
+use common::grown;
+
 use ontogeny::creature::Creature;
-use ontogeny::develop::{BuildOptions, grow};
-use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::sim::{ActuatorModel, SimOptions};
 use ontogeny::task::{self, JumpOptions, Status, WalkerOptions, size_coefficients};
 use rayon::prelude::*;
 
 fn creature(axiom: &str) -> Creature {
     ontogeny::develop::creature_from_commands(axiom).unwrap()
-}
-
-fn grown(path: &str) -> Creature {
-    let lsys = LSystem::from_path(std::path::Path::new(path)).unwrap();
-    let frames = grow(
-        &lsys,
-        &DeriveOptions::default(),
-        None,
-        &BuildOptions::default(),
-    )
-    .unwrap();
-    frames.into_iter().last().unwrap().creature
 }
 
 fn short_walk() -> WalkerOptions {

@@ -2,14 +2,16 @@
 //! `rapier3d-mjcf` and compared with the creature — bodies, poses, joints, limits, masses,
 //! contacts, actuators and settings — plus the errors and the command line.
 
+mod common;
+use common::grown;
+
 use std::process::{Command, Output};
 
 use nalgebra::{UnitQuaternion, Vector3};
 use ontogeny::creature::{Actuator, Creature, JointKind, NeuronFunction, Role};
-use ontogeny::develop::{BuildOptions, creature_from_commands, grow};
+use ontogeny::develop::creature_from_commands;
 use ontogeny::export::mjcf::z_up;
 use ontogeny::export::{ExportError, mjcf_actuators, to_mjcf};
-use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::sim::{
     ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, GRAVITY, SATURATION_DAMPING, SimOptions,
     StrengthFrom, max_torque,
@@ -19,18 +21,6 @@ use rapier3d::math::Vector;
 use rapier3d_mjcf::mjcf_rs::Model;
 use rapier3d_mjcf::mjcf_rs::extras::ActuatorKind;
 use rapier3d_mjcf::{MjcfLoaderOptions, MjcfRobot};
-
-fn grown(path: &str) -> Creature {
-    let lsys = LSystem::from_path(std::path::Path::new(path)).unwrap();
-    let frames = grow(
-        &lsys,
-        &DeriveOptions::default(),
-        None,
-        &BuildOptions::default(),
-    )
-    .unwrap();
-    frames.into_iter().last().unwrap().creature
-}
 
 fn load(xml: &str) -> (MjcfRobot, Model) {
     MjcfRobot::from_str(xml, MjcfLoaderOptions::default(), ".")

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use ontogeny::creature::Creature;
+use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 
 /// Compiles `text`, panicking with the rendered diagnostic on failure.
@@ -28,4 +30,17 @@ pub fn derive_with(text: &str, steps: usize, options: &DeriveOptions) -> Vec<Str
 /// Removes white space, so that expected strings can be written either way.
 pub fn squash(s: &str) -> String {
     s.chars().filter(|c| !c.is_whitespace()).collect()
+}
+
+/// The creature a shipped example grows into (its last frame).
+pub fn grown(path: &str) -> Creature {
+    let lsys = LSystem::from_path(std::path::Path::new(path)).unwrap();
+    let frames = grow(
+        &lsys,
+        &DeriveOptions::default(),
+        None,
+        &BuildOptions::default(),
+    )
+    .unwrap();
+    frames.into_iter().last().unwrap().creature
 }
