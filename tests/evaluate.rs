@@ -731,3 +731,47 @@ fn a_touch_sensor_on_one_face_senses_only_that_face() {
     let json = serde_json::to_string(&c.brain.neurons[sensor].role).unwrap();
     assert!(json.contains("\"face\":\"left\""), "{json}");
 }
+
+#[test]
+fn the_rest_setting_steps_as_a_world_built_with_it_does() {
+    // A world switched to its rest setting (2 substeps of 4 iterations by default) moves
+    // exactly as a world built with that stepping, and switching back restores the walking
+    // setting.
+    use ontogeny::sim::World;
+    let c = grown("examples/snake.lsys");
+    let fast = SimOptions::default();
+    assert_ne!(
+        (fast.substeps, fast.solver_iterations, fast.pgs_iterations),
+        (fast.rest_substeps, fast.rest_solver_iterations, 1),
+        "the default rest setting differs from the walking one"
+    );
+    let steady = SimOptions {
+        substeps: fast.rest_substeps,
+        solver_iterations: fast.rest_solver_iterations,
+        pgs_iterations: 1,
+        ..fast.clone()
+    };
+    let run = |world: &mut World, steps: usize| {
+        for _ in 0..steps {
+            world.step(false).unwrap();
+        }
+        (0..world.part_count())
+            .map(|i| world.part_position(i))
+            .collect::<Vec<_>>()
+    };
+    let mut switched = World::new(&c, &fast).unwrap();
+    switched.set_resting(true);
+    let mut reference = World::new(&c, &steady).unwrap();
+    assert_eq!(run(&mut switched, 40), run(&mut reference, 40));
+    let mut fast_world = World::new(&c, &fast).unwrap();
+    let mut steady_world = World::new(&c, &steady).unwrap();
+    let (a, b) = (run(&mut fast_world, 40), run(&mut steady_world, 40));
+    assert_ne!(a, b, "the two settings move the snake differently");
+    // Switching to rest and back leaves the walking setting as it was.
+    let falling = creature("forward(1)");
+    let mut w = World::new(&falling, &fast).unwrap();
+    w.set_resting(true);
+    w.set_resting(false);
+    let mut plain = World::new(&falling, &fast).unwrap();
+    assert_eq!(run(&mut w, 10), run(&mut plain, 10));
+}

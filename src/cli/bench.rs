@@ -29,12 +29,20 @@ pub struct BenchArgs {
     /// Solver iterations per substep of the setting measured (default: the evaluator's).
     #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
     solver_iterations: usize,
+    /// Gauss-Seidel passes per solver iteration of the setting measured (default: the
+    /// evaluator's).
+    #[arg(long, default_value_t = SimOptions::default().pgs_iterations)]
+    pgs_iterations: usize,
     /// Also measure fidelity: walk this many creatures (the shipped examples, then random
-    /// command strings) with the setting and with a fine reference (1/240 s physics, 8 solver
-    /// iterations), and print the Spearman rank correlation of their fitness and how many
-    /// creatures each setting brings to rest. 0 skips it.
+    /// command strings) `--runs` times with the setting and with a fine reference (1/240 s
+    /// physics, 8 solver iterations), and print the Spearman rank correlation of their median
+    /// fitness, a noise floor, and how many walks each setting brings to rest. 0 skips it.
     #[arg(long, default_value_t = 0)]
     fidelity: usize,
+    /// With `--fidelity`: walks per creature and setting, from drop heights 0.1 mm apart;
+    /// the median fitness ranks the creatures.
+    #[arg(long, default_value_t = 5)]
+    runs: usize,
     /// Seed of the random creatures of `--fidelity`.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -104,6 +112,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let sim = SimOptions {
         substeps: args.substeps.clamp(1, 64),
         solver_iterations: args.solver_iterations.clamp(1, 256),
+        pgs_iterations: args.pgs_iterations.clamp(1, 256),
         ..SimOptions::default()
     };
     let n = args.evaluations.max(1);
@@ -136,6 +145,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let reference = SimOptions {
         substeps: 2,
         solver_iterations: 4,
+        pgs_iterations: 1,
         ..SimOptions::default()
     };
     let walker = chain(10);
@@ -156,8 +166,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     say!(
         "{:<44} {fast:>12.1} {fast_step:>10.1} {fast_overhead:>9.1}%",
         format!(
-            "measured: {} substep(s), {} iterations",
-            sim.substeps, sim.solver_iterations
+            "measured: {} substep(s), {} iterations × {} PGS",
+            sim.substeps, sim.solver_iterations, sim.pgs_iterations
         )
     );
     let (slow, slow_step, slow_overhead) = one_core(&walker, &reference, n, args.seconds);
@@ -278,12 +288,51 @@ fn fidelity_creatures(count: usize, seed: u64) -> anyhow::Result<Vec<(String, Cr
     Ok(creatures)
 }
 
-/// Walks every fidelity creature with `sim` and with the fine reference; prints the rank
-/// correlation of their fitness and how many each brings to rest.
+/// The median of `values` (which must not be empty).
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        (values[n / 2 - 1] + values[n / 2]) / 2.0
+    }
+}
+
+/// One creature's walks with one setting, dropped from `runs` heights: the drop height plus
+/// `first + k` × 0.1 mm for k in 0..runs. Returns the median fitness and how many walks ended
+/// at rest (any status but `unstable`).
+fn ensemble(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &WalkerOptions,
+    first: usize,
+    runs: usize,
+) -> (f64, usize, Vec<task::Evaluation>) {
+    let walks: Vec<task::Evaluation> = (first..first + runs)
+        .map(|k| {
+            let nudged = SimOptions {
+                drop_height: sim.drop_height + 1e-4 * k as f64,
+                ..sim.clone()
+            };
+            task::walker(creature, &nudged, options, false)
+        })
+        .collect();
+    let mut fitness: Vec<f64> = walks.iter().map(|e| e.fitness).collect();
+    let rested = walks.iter().filter(|e| e.status != Status::Unstable).count();
+    (median(&mut fitness), rested, walks)
+}
+
+/// Walks every fidelity creature with `sim` and with the fine reference, each `--runs` times
+/// from drop heights 0.1 mm apart; prints the rank correlation of their median fitness, a
+/// noise floor, and how many walks each setting brings to rest.
 fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     let fine = SimOptions {
         substeps: 4,
         solver_iterations: 8,
+        pgs_iterations: 1,
+        rest_substeps: 4,
+        rest_solver_iterations: 8,
         ..SimOptions::default()
     };
     let creatures = fidelity_creatures(args.fidelity, args.seed)?;
@@ -291,72 +340,77 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
         seconds: args.seconds,
         ..WalkerOptions::default()
     };
+    let runs = args.runs.max(1);
     say!(
-        "\nfidelity: {} creatures walked {} s with the measured setting and with a fine reference (1/240 s physics, 8 iterations)",
+        "\nfidelity: {} creatures walked {} s, {runs} times each from drop heights 0.1 mm apart, with the measured setting and with a fine reference (1/240 s physics, 8 iterations)",
         creatures.len(),
         args.seconds
     );
-    // The noise floor: the fine reference against itself, every creature dropped 0.1 mm
-    // higher. No setting can rank creatures more alike than the reference does itself.
-    let nudged = SimOptions {
-        drop_height: fine.drop_height + 1e-4,
-        ..fine.clone()
-    };
-    let results: Vec<(task::Evaluation, task::Evaluation, f64)> = creatures
+    // The noise floor: the fine reference against itself, from other drop heights. No
+    // setting can rank creatures more alike than the reference does itself.
+    type Ensemble = (f64, usize, Vec<task::Evaluation>);
+    let results: Vec<(Ensemble, Ensemble, Ensemble)> = creatures
         .par_iter()
         .map(|(_, c)| {
             (
-                task::walker(c, sim, &options, false),
-                task::walker(c, &fine, &options, false),
-                task::walker(c, &nudged, &options, false).fitness,
+                ensemble(c, sim, &options, 0, runs),
+                ensemble(c, &fine, &options, 0, runs),
+                ensemble(c, &fine, &options, runs, runs),
             )
         })
         .collect();
     if args.verbose {
         say!(
-            "{:>12} {:>12} {:>10} {:>10}  creature",
+            "{:>14} {:>14} {:>8} {:>8}  creature",
             "measured",
             "fine",
-            "",
-            ""
+            "at rest",
+            "at rest"
         );
         for ((name, _), (a, b, _)) in creatures.iter().zip(&results) {
             say!(
-                "{:>12.6} {:>12.6} {:>10} {:>10}  {name}",
-                a.fitness,
-                b.fitness,
-                status_name(a.status),
-                status_name(b.status)
+                "{:>14.6} {:>14.6} {:>8} {:>8}  {name}",
+                a.0,
+                b.0,
+                format!("{}/{runs}", a.1),
+                format!("{}/{runs}", b.1),
             );
         }
     }
-    let measured: Vec<f64> = results.iter().map(|(a, _, _)| a.fitness).collect();
-    let reference: Vec<f64> = results.iter().map(|(_, b, _)| b.fitness).collect();
-    let floor: Vec<f64> = results.iter().map(|(_, _, c)| *c).collect();
+    let measured: Vec<f64> = results.iter().map(|(a, _, _)| a.0).collect();
+    let reference: Vec<f64> = results.iter().map(|(_, b, _)| b.0).collect();
+    let floor: Vec<f64> = results.iter().map(|(_, _, c)| c.0).collect();
     let rested = |e: &task::Evaluation| e.status != Status::Unstable;
-    let fine_rested = results.iter().filter(|(_, b, _)| rested(b)).count();
-    let both_rested = results
-        .iter()
-        .filter(|(a, b, _)| rested(b) && rested(a))
-        .count();
+    let (mut fine_rested, mut both_rested) = (0, 0);
+    for (a, b, _) in &results {
+        for (x, y) in a.2.iter().zip(&b.2) {
+            if rested(y) {
+                fine_rested += 1;
+                if rested(x) {
+                    both_rested += 1;
+                }
+            }
+        }
+    }
+    let first_measured: Vec<f64> = results.iter().map(|(a, _, _)| a.2[0].fitness).collect();
+    let first_fine: Vec<f64> = results.iter().map(|(_, b, _)| b.2[0].fitness).collect();
+    let first_floor: Vec<f64> = results.iter().map(|(_, _, c)| c.2[0].fitness).collect();
     say!(
-        "Spearman rank correlation of walker fitness, measured against fine: {:.3}",
+        "Spearman rank correlation of median walker fitness, measured against fine: {:.3}",
         spearman(&measured, &reference)
     );
     say!(
-        "noise floor, fine against fine with every creature dropped 0.1 mm higher: {:.3}",
+        "noise floor, fine against fine from other drop heights: {:.3}",
         spearman(&floor, &reference)
     );
     say!(
-        "at rest: the fine reference brings {fine_rested} of {} to rest; the measured setting brings {both_rested} of those {fine_rested} to rest",
-        results.len()
+        "single walks (the first drop height): measured against fine {:.3}, noise floor {:.3}",
+        spearman(&first_measured, &first_fine),
+        spearman(&first_floor, &first_fine)
+    );
+    say!(
+        "at rest: the fine reference brings {fine_rested} of {} walks to rest; the measured setting brings {both_rested} of those {fine_rested} to rest",
+        results.len() * runs
     );
     Ok(())
-}
-
-fn status_name(status: Status) -> String {
-    serde_json::to_value(status)
-        .ok()
-        .and_then(|v| v.as_str().map(str::to_string))
-        .unwrap_or_default()
 }

@@ -72,6 +72,15 @@ pub struct PhysicsArgs {
     /// Solver iterations per substep.
     #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
     solver_iterations: usize,
+    /// Gauss-Seidel passes inside each solver iteration.
+    #[arg(long, default_value_t = SimOptions::default().pgs_iterations)]
+    pgs_iterations: usize,
+    /// Substeps per control step while waiting for the creature to come to rest.
+    #[arg(long, default_value_t = SimOptions::default().rest_substeps)]
+    rest_substeps: usize,
+    /// Solver iterations per substep while waiting for the creature to come to rest.
+    #[arg(long, default_value_t = SimOptions::default().rest_solver_iterations)]
+    rest_solver_iterations: usize,
     /// Whose cross-section sets a joint's strength.
     #[arg(long, value_enum, default_value = "bigger")]
     strength_from: StrengthArg,
@@ -100,10 +109,16 @@ impl PhysicsArgs {
                 ),
             ));
         }
-        if !(1..=64).contains(&self.substeps) || !(1..=256).contains(&self.solver_iterations) {
+        let counts_ok = (1..=64).contains(&self.substeps)
+            && (1..=64).contains(&self.rest_substeps)
+            && (1..=256).contains(&self.solver_iterations)
+            && (1..=256).contains(&self.rest_solver_iterations)
+            && (1..=256).contains(&self.pgs_iterations);
+        if !counts_ok {
             anyhow::bail!(Diagnostic::without_location(
                 DiagnosticKind::Semantic,
-                "--substeps must be 1 to 64 and --solver-iterations 1 to 256",
+                "--substeps and --rest-substeps must be 1 to 64, --solver-iterations, \
+                 --rest-solver-iterations and --pgs-iterations 1 to 256",
             ));
         }
         let strength_ok = self.strength.is_finite() && self.strength >= 0.0;
@@ -120,6 +135,9 @@ impl PhysicsArgs {
             muscle_speed: self.muscle_speed,
             substeps: self.substeps,
             solver_iterations: self.solver_iterations,
+            pgs_iterations: self.pgs_iterations,
+            rest_substeps: self.rest_substeps,
+            rest_solver_iterations: self.rest_solver_iterations,
             self_collision: !self.no_self_collision,
             strength_from: match self.strength_from {
                 StrengthArg::Smaller => StrengthFrom::Smaller,

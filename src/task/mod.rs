@@ -280,6 +280,13 @@ impl Run {
     /// Steps with the controller off for at least `at_least` seconds and until the creature
     /// is at rest; `Unstable` if it is not within the time limit.
     fn settle(&mut self, rest: &Rest, at_least: f64, dt: f64) -> Result<(), Evaluation> {
+        self.world.set_resting(true);
+        let settled = self.wait_for_rest(rest, at_least, dt);
+        self.world.set_resting(false);
+        settled
+    }
+
+    fn wait_for_rest(&mut self, rest: &Rest, at_least: f64, dt: f64) -> Result<(), Evaluation> {
         let threshold = rest.distance * dt * 60.0; // Δx is given per 1/60 s
         let calm_needed = steps_in(rest.duration, dt);
         let minimum = steps_in(at_least, dt);
