@@ -319,7 +319,10 @@ fn ensemble(
         })
         .collect();
     let mut fitness: Vec<f64> = walks.iter().map(|e| e.fitness).collect();
-    let rested = walks.iter().filter(|e| e.status != Status::Unstable).count();
+    let rested = walks
+        .iter()
+        .filter(|e| e.status != Status::Unstable)
+        .count();
     (median(&mut fitness), rested, walks)
 }
 
