@@ -13,6 +13,7 @@
 
 pub mod creature;
 pub mod develop;
+pub mod encoding;
 pub mod environment;
 pub mod evolve;
 pub mod export;

@@ -82,6 +82,7 @@ pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 
 /// World settings.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct SimOptions {
     /// Control (and physics) step in seconds.
     pub dt: f64,

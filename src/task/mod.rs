@@ -6,6 +6,9 @@ use std::collections::BTreeMap;
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
+mod spec;
+pub use spec::{TaskKind, TaskSpec};
+
 use crate::creature::{Creature, Severity};
 use crate::sim::{SimOptions, World};
 
@@ -67,6 +70,7 @@ pub enum WalkerFitness {
 /// a slowly toppling tower, whose parts creep below the speed threshold, is not at rest);
 /// within `limit` seconds.
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct Rest {
     /// Δx, per 1/60 s (Chaumont: 1/300 m).
     pub distance: f64,
@@ -98,6 +102,7 @@ fn steps_in(seconds: f64, dt: f64) -> usize {
 
 /// Settings of the walker task (Chaumont et al. sections 3.3–3.5).
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct WalkerOptions {
     /// Seconds of measured walking (section 3.5: 20).
     pub seconds: f64,
@@ -494,6 +499,7 @@ fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64> {
 
 /// Settings of the jump task.
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct JumpOptions {
     /// Seconds with the controller on, after the creature has come to rest.
     pub seconds: f64,
@@ -542,6 +548,7 @@ pub fn jump(
 
 /// Settings of the catapult and aim tasks (Chaumont et al. section 4).
 #[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct CatapultOptions {
     /// The projectile's size (m).
     pub projectile_size: Vector3<f64>,

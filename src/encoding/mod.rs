@@ -1,0 +1,76 @@
+//! Genomes: the encodings that evolution searches, each developing into the one
+//! [`Creature`] type that every task takes.
+//!
+//! This room owns the [`Genome`] trait and its encodings: random genomes within limits,
+//! mutation, crossover, grafting and development. It knows nothing of physics or of the
+//! genetic algorithm that calls it (`crate::evolve`).
+
+use rand_chacha::ChaCha8Rng;
+use serde::{Serialize, de::DeserializeOwned};
+
+use crate::creature::Creature;
+
+/// The random source every operator draws from: portable and explicitly seeded, split per
+/// individual by the genetic algorithm.
+pub type Rng = ChaCha8Rng;
+
+/// Why a genome did not develop into a creature (an evaluation with status `invalid`).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct DevelopError(pub String);
+
+/// A genome of one encoding.
+///
+/// Every operator respects `Limits` by construction: a result never exceeds them, and no
+/// operator loops until a random draw happens to fit. Development never panics: a genome that
+/// does not develop gives a [`DevelopError`].
+pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned {
+    /// The encoding's limits and settings (serialisable: they are part of a run's config).
+    type Limits: Clone
+        + std::fmt::Debug
+        + Default
+        + Send
+        + Sync
+        + Serialize
+        + DeserializeOwned;
+
+    /// The encoding's name, as the CLI and the run store spell it.
+    const NAME: &'static str;
+
+    /// A random genome within `limits`.
+    fn random(limits: &Self::Limits, rng: &mut Rng) -> Self;
+
+    /// A mutant: every mutation site changes with probability `rate`.
+    fn mutate(&self, limits: &Self::Limits, rate: f64, rng: &mut Rng) -> Self;
+
+    /// A child of `self` and `other` by crossover, or `None` when the encoding has none.
+    fn crossover(&self, other: &Self, limits: &Self::Limits, rng: &mut Rng) -> Option<Self> {
+        let _ = (other, limits, rng);
+        None
+    }
+
+    /// A child of `self` with a piece of `other` grafted on, or `None` when the encoding has
+    /// no grafting.
+    fn graft(&self, other: &Self, limits: &Self::Limits, rng: &mut Rng) -> Option<Self> {
+        let _ = (other, limits, rng);
+        None
+    }
+
+    /// Develops the genome into a creature; `seed` drives any randomness of development
+    /// (stochastic rules).
+    fn develop(&self, limits: &Self::Limits, seed: u64) -> Result<Creature, DevelopError>;
+
+    /// The genome as text for people (for L-system genomes, a valid `.lsys` file).
+    fn to_text(&self) -> String;
+
+    /// A genome read from a hand-written `.lsys` file, to seed a first generation with its
+    /// mutants; `Err` when the encoding cannot start from a grammar or the file does not fit
+    /// the limits.
+    fn from_lsys(text: &str, limits: &Self::Limits) -> Result<Self, DevelopError> {
+        let _ = (text, limits);
+        Err(DevelopError(format!(
+            "the {} encoding cannot start from a grammar",
+            Self::NAME
+        )))
+    }
+}
