@@ -2,4 +2,5 @@
 //! come here (see `DESIGN.md`); today the room holds the statistics that compare settings
 //! and, later, encodings.
 
+pub mod ga;
 pub mod stats;

@@ -170,6 +170,12 @@ pub struct Evaluation {
 }
 
 impl Evaluation {
+    /// The evaluation of something that never became a creature (a developmental error):
+    /// status `invalid`, the failure floor.
+    pub fn invalid(task: &str, message: String) -> Evaluation {
+        Evaluation::failed(task, Status::Invalid, message)
+    }
+
     fn failed(task: &str, status: Status, message: String) -> Evaluation {
         Evaluation {
             task: task.to_string(),

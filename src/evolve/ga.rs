@@ -1,0 +1,578 @@
+//! The genetic algorithm: generational, elitist, with the operators' schedule of Chaumont et
+//! al. 5.7 or of Walking with Dinosaurs 3.3 (presets as data), over any [`Genome`].
+//!
+//! Every individual's randomness comes from (run seed, generation, index) through a portable
+//! generator, and evaluations run in parallel with rayon, so a run is bit-identical on any
+//! number of threads and after a resume from any complete generation.
+
+use rand::{RngExt, SeedableRng};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::encoding::{Genome, Rng};
+use crate::task::{Evaluation, Status, TaskSpec};
+
+/// The operators' schedule of a published genetic algorithm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Preset {
+    /// Chaumont, Egli & Adami 2007, 5.7: the best 20% survive unchanged; every new creature
+    /// comes 40% from mutation alone, 30% from crossover and 30% from grafting of survivors.
+    Chaumont,
+    /// Walking with Dinosaurs 3.3: elites 20% survive, breeders the next 30%, the worst 50%
+    /// are waste; each new creature is a breeder crossed with an elite, then mutated at a rate
+    /// that rises as the fitness deviation falls.
+    Wwd,
+}
+
+/// The genetic algorithm's settings (the `[ga]` table of a run's `config.toml`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaSettings {
+    /// The schedule.
+    pub preset: Preset,
+    /// Individuals per generation.
+    pub population: usize,
+    /// Generations, the first (random) one included.
+    pub generations: usize,
+    /// The fraction kept unchanged, and not evaluated again, from one generation to the next.
+    pub elite: f64,
+    /// Walking with Dinosaurs: the fraction after the elite that breeds (the rest is waste).
+    pub breeders: f64,
+    /// Chaumont: the fraction of new individuals made by mutation alone.
+    pub asexual: f64,
+    /// Chaumont: the fraction of new individuals made by crossover (grafting makes the rest).
+    pub crossover: f64,
+    /// Per-site mutation probability of an asexual child (Chaumont: 10%), and the base rate
+    /// of Walking with Dinosaurs' adaptive mutation.
+    pub mutation_rate: f64,
+    /// Chaumont: the chance that a child of crossover or grafting is mutated (10%) ...
+    pub mutation_chance_after_mating: f64,
+    /// ... and its per-site mutation probability then (5%).
+    pub mutation_rate_after_mating: f64,
+}
+
+impl GaSettings {
+    /// The preset's published settings.
+    pub fn preset(preset: Preset) -> GaSettings {
+        match preset {
+            Preset::Chaumont => GaSettings {
+                preset,
+                population: 300,
+                generations: 100,
+                elite: 0.2,
+                breeders: 0.0,
+                asexual: 0.4,
+                crossover: 0.3,
+                mutation_rate: 0.1,
+                mutation_chance_after_mating: 0.1,
+                mutation_rate_after_mating: 0.05,
+            },
+            Preset::Wwd => GaSettings {
+                preset,
+                population: 300,
+                generations: 100,
+                elite: 0.2,
+                breeders: 0.3,
+                asexual: 0.0,
+                crossover: 1.0,
+                mutation_rate: 0.05,
+                mutation_chance_after_mating: 1.0,
+                mutation_rate_after_mating: 0.05,
+            },
+        }
+    }
+
+    /// Checks every value; the message names the setting.
+    pub fn check(&self) -> Result<(), String> {
+        let fraction = |name: &str, v: f64| {
+            if (0.0..=1.0).contains(&v) {
+                Ok(())
+            } else {
+                Err(format!("{name} must be between 0 and 1, not {v}"))
+            }
+        };
+        if !(2..=100_000).contains(&self.population) {
+            return Err(format!(
+                "population must be 2 to 100000, not {}",
+                self.population
+            ));
+        }
+        if !(1..=100_000).contains(&self.generations) {
+            return Err(format!(
+                "generations must be 1 to 100000, not {}",
+                self.generations
+            ));
+        }
+        fraction("elite", self.elite)?;
+        fraction("breeders", self.breeders)?;
+        fraction("asexual", self.asexual)?;
+        fraction("crossover", self.crossover)?;
+        fraction("mutation_rate", self.mutation_rate)?;
+        fraction(
+            "mutation_chance_after_mating",
+            self.mutation_chance_after_mating,
+        )?;
+        fraction("mutation_rate_after_mating", self.mutation_rate_after_mating)?;
+        if self.asexual + self.crossover > 1.0 + 1e-12 {
+            return Err(format!(
+                "asexual + crossover must be at most 1, not {}",
+                self.asexual + self.crossover
+            ));
+        }
+        if self.elite + self.breeders > 1.0 + 1e-12 {
+            return Err("elite + breeders must be at most 1".into());
+        }
+        if self.survivors() == 0 {
+            return Err(format!(
+                "elite {} of a population of {} keeps nobody to breed from",
+                self.elite, self.population
+            ));
+        }
+        Ok(())
+    }
+
+    /// How many individuals survive unchanged (at least one).
+    pub fn survivors(&self) -> usize {
+        ((self.elite * self.population as f64).round() as usize).clamp(1, self.population)
+    }
+
+    /// Walking with Dinosaurs: how many breeders follow the elite (at least one).
+    pub fn breeder_count(&self) -> usize {
+        ((self.breeders * self.population as f64).round() as usize)
+            .clamp(1, self.population - self.survivors().min(self.population - 1))
+    }
+}
+
+/// How an individual was made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Operator {
+    /// A random genome of the first generation.
+    Random,
+    /// A mutant of a hand-written grammar (`--init`), in the first generation.
+    Init,
+    /// Kept unchanged from the previous generation.
+    Elite,
+    /// Mutation alone.
+    Mutation,
+    /// Crossover (then perhaps mutation).
+    Crossover,
+    /// Grafting (then perhaps mutation).
+    Graft,
+}
+
+impl Operator {
+    /// The name the run store uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            Operator::Random => "random",
+            Operator::Init => "init",
+            Operator::Elite => "elite",
+            Operator::Mutation => "mutation",
+            Operator::Crossover => "crossover",
+            Operator::Graft => "graft",
+        }
+    }
+}
+
+/// One member of a generation: its genome, how it was made, and its evaluation.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Individual<G> {
+    /// The genome.
+    pub genome: G,
+    /// The seed of its development (stochastic rules), kept with it for life.
+    pub develop_seed: u64,
+    /// Its parents' indices in the previous generation.
+    pub parents: Vec<u32>,
+    /// How it was made.
+    pub operator: Operator,
+    /// Its evaluation (no recording).
+    pub evaluation: Evaluation,
+    /// Parts, joints and neurons of the creature it developed into (0 when it did not).
+    pub size: (u32, u32, u32),
+}
+
+/// One generation's figures. Mean, median and standard deviation are over the individuals
+/// whose status is `ok` (0 when there are none); the failure floor would swamp them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GenerationStats {
+    /// The best fitness (of any individual).
+    pub best: f64,
+    /// The mean fitness of valid individuals.
+    pub mean: f64,
+    /// The median fitness of valid individuals.
+    pub median: f64,
+    /// The standard deviation of valid individuals' fitness.
+    pub sd: f64,
+    /// The fraction of individuals whose status is `ok`.
+    pub valid_fraction: f64,
+    /// Evaluations made in this generation (the elite is not evaluated again).
+    pub evaluations: u64,
+}
+
+impl GenerationStats {
+    /// The figures of `population`, `evaluations` of whom were evaluated this generation.
+    pub fn of<G>(population: &[Individual<G>], evaluations: u64) -> GenerationStats {
+        let best = population
+            .iter()
+            .map(|i| i.evaluation.fitness)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let mut valid: Vec<f64> = population
+            .iter()
+            .filter(|i| i.evaluation.status == Status::Ok)
+            .map(|i| i.evaluation.fitness)
+            .collect();
+        valid.sort_by(f64::total_cmp);
+        let n = valid.len();
+        let (mean, median, sd) = if n == 0 {
+            (0.0, 0.0, 0.0)
+        } else {
+            let mean = valid.iter().sum::<f64>() / n as f64;
+            let median = if n % 2 == 1 {
+                valid[n / 2]
+            } else {
+                (valid[n / 2 - 1] + valid[n / 2]) / 2.0
+            };
+            let var = valid.iter().map(|f| (f - mean).powi(2)).sum::<f64>() / n as f64;
+            (mean, median, var.sqrt())
+        };
+        GenerationStats {
+            best,
+            mean,
+            median,
+            sd,
+            valid_fraction: n as f64 / population.len().max(1) as f64,
+            evaluations,
+        }
+    }
+}
+
+/// SplitMix64: mixes (seed, generation, index, stream) into one well-spread seed.
+fn mix(mut x: u64) -> u64 {
+    x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^ (x >> 31)
+}
+
+/// The random source of individual `index` of generation `generation` in run `seed`;
+/// `stream` separates independent uses (0: operators, 1: development).
+pub fn individual_rng(seed: u64, generation: u32, index: u32, stream: u64) -> Rng {
+    let s = mix(mix(mix(mix(seed) ^ generation as u64) ^ index as u64) ^ stream);
+    Rng::seed_from_u64(s)
+}
+
+/// What the genetic algorithm needs to run: the settings, the encoding's limits and the task.
+#[derive(Clone, Debug)]
+pub struct Evolution<G: Genome> {
+    /// The schedule and sizes.
+    pub settings: GaSettings,
+    /// The encoding's limits.
+    pub limits: G::Limits,
+    /// The task every individual is evaluated on.
+    pub task: TaskSpec,
+    /// The run's seed.
+    pub seed: u64,
+    /// A genome whose mutants seed the first generation (`--init`).
+    pub init: Option<G>,
+}
+
+/// A new individual before evaluation.
+struct Unborn<G> {
+    genome: G,
+    develop_seed: u64,
+    parents: Vec<u32>,
+    operator: Operator,
+}
+
+impl<G: Genome> Evolution<G> {
+    /// Develops and evaluates one genome.
+    fn evaluate(&self, unborn: Unborn<G>) -> Individual<G> {
+        let (evaluation, size) = match unborn.genome.develop(&self.limits, unborn.develop_seed) {
+            Ok(creature) => {
+                let size = (
+                    creature.parts.len() as u32,
+                    creature.joints.len() as u32,
+                    creature.brain.neurons.len() as u32,
+                );
+                (self.task.evaluate(&creature, false), size)
+            }
+            Err(e) => (
+                Evaluation::invalid(self.task.task.name(), format!("development: {e}")),
+                (0, 0, 0),
+            ),
+        };
+        Individual {
+            genome: unborn.genome,
+            develop_seed: unborn.develop_seed,
+            parents: unborn.parents,
+            operator: unborn.operator,
+            evaluation,
+            size,
+        }
+    }
+
+    /// Generation 0: random genomes (or mutants of the `init` genome), evaluated in parallel.
+    pub fn first_generation(&self) -> Vec<Individual<G>> {
+        (0..self.settings.population as u32)
+            .into_par_iter()
+            .map(|index| {
+                let mut rng = individual_rng(self.seed, 0, index, 0);
+                let develop_seed = individual_rng(self.seed, 0, index, 1).random();
+                let (genome, operator) = match &self.init {
+                    // The first one is the grammar itself.
+                    Some(init) if index == 0 => (init.clone(), Operator::Init),
+                    Some(init) => (
+                        init.mutate(&self.limits, self.settings.mutation_rate, &mut rng),
+                        Operator::Init,
+                    ),
+                    None => (G::random(&self.limits, &mut rng), Operator::Random),
+                };
+                self.evaluate(Unborn {
+                    genome,
+                    develop_seed,
+                    parents: Vec::new(),
+                    operator,
+                })
+            })
+            .collect()
+    }
+
+    /// The next generation, number `generation`, from `previous` (in any order): the elite
+    /// carried over with their evaluations, the rest made by the preset's operators and
+    /// evaluated in parallel. Returns it, best first among the elite, and the number of
+    /// evaluations made. `fallbacks` counts children made by mutation because the encoding
+    /// lacks the scheduled operator.
+    pub fn next_generation(
+        &self,
+        previous: &[Individual<G>],
+        generation: u32,
+        fallbacks: &mut Fallbacks,
+    ) -> (Vec<Individual<G>>, u64) {
+        let order = ranking(previous);
+        let population = self.settings.population;
+        let survivors = self.settings.survivors().min(previous.len());
+        let mut next: Vec<Individual<G>> = order[..survivors]
+            .iter()
+            .map(|&i| Individual {
+                operator: Operator::Elite,
+                parents: vec![i as u32],
+                ..previous[i].clone()
+            })
+            .collect();
+        let children = population - survivors;
+        let adaptive_rate = self.adaptive_rate(previous);
+        let unborn: Vec<(Unborn<G>, Option<Operator>)> = (0..children)
+            .into_par_iter()
+            .map(|k| {
+                let index = (survivors + k) as u32;
+                let mut rng = individual_rng(self.seed, generation, index, 0);
+                let develop_seed = individual_rng(self.seed, generation, index, 1).random();
+                self.breed(k, children, &order, survivors, previous, adaptive_rate, &mut rng)
+                    .into_unborn(develop_seed)
+            })
+            .collect();
+        for (_, fell_back) in &unborn {
+            if let Some(op) = fell_back {
+                fallbacks.count(*op);
+            }
+        }
+        let born: Vec<Individual<G>> = unborn
+            .into_par_iter()
+            .map(|(u, _)| self.evaluate(u))
+            .collect();
+        let evaluations = born.len() as u64;
+        next.extend(born);
+        (next, evaluations)
+    }
+
+    /// Walking with Dinosaurs' mutation rate: the base rate × 0.25 / σ, clamped to [½, 4] ×
+    /// the base rate, where σ is the standard deviation of the valid individuals' fitness
+    /// normalised to [0, 1] (0.25 is near a uniform spread's 0.29): less diversity, more
+    /// mutation. Chaumont's preset does not adapt.
+    fn adaptive_rate(&self, previous: &[Individual<G>]) -> f64 {
+        let base = self.settings.mutation_rate;
+        if self.settings.preset != Preset::Wwd {
+            return base;
+        }
+        let valid: Vec<f64> = previous
+            .iter()
+            .filter(|i| i.evaluation.status == Status::Ok)
+            .map(|i| i.evaluation.fitness)
+            .collect();
+        let (lo, hi) = valid
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &f| {
+                (a.min(f), b.max(f))
+            });
+        let sigma = if valid.len() < 2 || hi - lo <= 0.0 {
+            0.0
+        } else {
+            let normalised: Vec<f64> = valid.iter().map(|f| (f - lo) / (hi - lo)).collect();
+            let mean = normalised.iter().sum::<f64>() / normalised.len() as f64;
+            (normalised.iter().map(|x| (x - mean).powi(2)).sum::<f64>()
+                / normalised.len() as f64)
+                .sqrt()
+        };
+        let factor = if sigma > 0.0 { 0.25 / sigma } else { 4.0 };
+        (base * factor.clamp(0.5, 4.0)).min(1.0)
+    }
+
+    /// Makes child `k` of `children`.
+    #[allow(clippy::too_many_arguments)]
+    fn breed(
+        &self,
+        k: usize,
+        children: usize,
+        order: &[usize],
+        survivors: usize,
+        previous: &[Individual<G>],
+        adaptive_rate: f64,
+        rng: &mut Rng,
+    ) -> Child<G> {
+        let s = &self.settings;
+        let pick = |rng: &mut Rng, from: &[usize]| from[rng.random_range(0..from.len())];
+        let elite = &order[..survivors];
+        match s.preset {
+            Preset::Chaumont => {
+                let scheduled = schedule(k, children, s.asexual, s.crossover);
+                let a = pick(rng, elite);
+                if scheduled == Operator::Mutation {
+                    return Child::new(
+                        previous[a].genome.mutate(&self.limits, s.mutation_rate, rng),
+                        vec![a],
+                        Operator::Mutation,
+                        None,
+                    );
+                }
+                let b = pick(rng, elite);
+                let (ga, gb) = (&previous[a].genome, &previous[b].genome);
+                let mated = match scheduled {
+                    Operator::Crossover => ga.crossover(gb, &self.limits, rng),
+                    _ => ga.graft(gb, &self.limits, rng),
+                };
+                match mated {
+                    Some(mut child) => {
+                        if rng.random_bool(s.mutation_chance_after_mating) {
+                            child = child.mutate(&self.limits, s.mutation_rate_after_mating, rng);
+                        }
+                        Child::new(child, vec![a, b], scheduled, None)
+                    }
+                    None => Child::new(
+                        ga.mutate(&self.limits, s.mutation_rate, rng),
+                        vec![a],
+                        Operator::Mutation,
+                        Some(scheduled),
+                    ),
+                }
+            }
+            Preset::Wwd => {
+                let breeders_end = (survivors + s.breeder_count()).min(order.len());
+                let breeders = if breeders_end > survivors {
+                    &order[survivors..breeders_end]
+                } else {
+                    elite
+                };
+                let e = pick(rng, elite);
+                let b = pick(rng, breeders);
+                // The breeder receives a part of the elite's genome (WWD 3.3.1), then every
+                // new creature is mutated (3.3.2).
+                match previous[b]
+                    .genome
+                    .crossover(&previous[e].genome, &self.limits, rng)
+                {
+                    Some(child) => Child::new(
+                        child.mutate(&self.limits, adaptive_rate, rng),
+                        vec![b, e],
+                        Operator::Crossover,
+                        None,
+                    ),
+                    None => Child::new(
+                        previous[b].genome.mutate(&self.limits, adaptive_rate, rng),
+                        vec![b],
+                        Operator::Mutation,
+                        Some(Operator::Crossover),
+                    ),
+                }
+            }
+        }
+    }
+}
+
+/// A child genome before evaluation, and the operator it fell back from, if any.
+struct Child<G> {
+    genome: G,
+    parents: Vec<u32>,
+    operator: Operator,
+    fell_back_from: Option<Operator>,
+}
+
+impl<G> Child<G> {
+    fn new(genome: G, parents: Vec<usize>, operator: Operator, fell: Option<Operator>) -> Self {
+        Child {
+            genome,
+            parents: parents.into_iter().map(|p| p as u32).collect(),
+            operator,
+            fell_back_from: fell,
+        }
+    }
+
+    fn into_unborn(self, develop_seed: u64) -> (Unborn<G>, Option<Operator>) {
+        (
+            Unborn {
+                genome: self.genome,
+                develop_seed,
+                parents: self.parents,
+                operator: self.operator,
+            },
+            self.fell_back_from,
+        )
+    }
+}
+
+/// Children made by mutation because the encoding lacks the scheduled operator.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Fallbacks {
+    /// Instead of crossover.
+    pub crossover: u64,
+    /// Instead of grafting.
+    pub graft: u64,
+}
+
+impl Fallbacks {
+    fn count(&mut self, op: Operator) {
+        match op {
+            Operator::Crossover => self.crossover += 1,
+            _ => self.graft += 1,
+        }
+    }
+}
+
+/// Chaumont's operator for child `k` of `children`: the first round(asexual × children) by
+/// mutation, the next round(crossover × children) by crossover, the rest by grafting (exact
+/// proportions rather than a draw per child, so every generation has the preset's mix).
+pub fn schedule(k: usize, children: usize, asexual: f64, crossover: f64) -> Operator {
+    let by_mutation = (asexual * children as f64).round() as usize;
+    let by_crossover = (crossover * children as f64).round() as usize;
+    if k < by_mutation {
+        Operator::Mutation
+    } else if k < by_mutation + by_crossover {
+        Operator::Crossover
+    } else {
+        Operator::Graft
+    }
+}
+
+/// Indices of `population` from best to worst fitness (ties: lower index first).
+pub fn ranking<G>(population: &[Individual<G>]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..population.len()).collect();
+    order.sort_by(|&a, &b| {
+        population[b]
+            .evaluation
+            .fitness
+            .total_cmp(&population[a].evaluation.fitness)
+            .then(a.cmp(&b))
+    });
+    order
+}
