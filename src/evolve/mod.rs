@@ -2,5 +2,6 @@
 //! come here (see `DESIGN.md`); today the room holds the statistics that compare settings
 //! and, later, encodings.
 
+pub mod config;
 pub mod ga;
 pub mod stats;

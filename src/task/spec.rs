@@ -8,10 +8,11 @@ use crate::creature::Creature;
 use crate::sim::SimOptions;
 
 /// The four tasks.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum TaskKind {
     /// Chaumont et al.'s walker (equation 1).
+    #[default]
     Walker,
     /// Walking with Dinosaurs' jump.
     Jump,
@@ -38,6 +39,7 @@ impl TaskKind {
 #[serde(deny_unknown_fields)]
 pub struct TaskSpec {
     /// The task.
+    #[serde(default)]
     pub task: TaskKind,
     /// The simulator's settings.
     #[serde(default)]

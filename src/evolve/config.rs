@@ -1,0 +1,177 @@
+//! A run's configuration: the encoding, the seed, the genetic algorithm's settings, the task
+//! and the encoding's limits, read from a `config.toml` (unknown keys and out-of-range values
+//! are errors that name the file, line and key) and written back in full at the start of a
+//! run.
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize, de::DeserializeOwned};
+
+use super::ga::{GaSettings, Preset};
+use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
+use crate::task::{TaskKind, TaskSpec};
+
+/// Every setting of a run, resolved: what `config.toml` holds in a run directory.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunConfig<L> {
+    /// The encoding's name (`lsystem`, `lsystem-continuous`, ...).
+    pub encoding: String,
+    /// The run's seed.
+    pub seed: u64,
+    /// A grammar whose mutants seed the first generation, relative to the run directory.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub init: Option<PathBuf>,
+    /// The genetic algorithm's settings.
+    pub ga: GaSettings,
+    /// The task.
+    pub task: TaskSpec,
+    /// The encoding's limits.
+    pub limits: L,
+}
+
+/// The `[ga]` table as a person writes it: a preset, and any of its values overridden.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaOverrides {
+    /// The schedule (default `chaumont`).
+    pub preset: Option<Preset>,
+    /// See [`GaSettings`].
+    pub population: Option<usize>,
+    /// See [`GaSettings`].
+    pub generations: Option<usize>,
+    /// See [`GaSettings`].
+    pub elite: Option<f64>,
+    /// See [`GaSettings`].
+    pub breeders: Option<f64>,
+    /// See [`GaSettings`].
+    pub asexual: Option<f64>,
+    /// See [`GaSettings`].
+    pub crossover: Option<f64>,
+    /// See [`GaSettings`].
+    pub mutation_rate: Option<f64>,
+    /// See [`GaSettings`].
+    pub mutation_chance_after_mating: Option<f64>,
+    /// See [`GaSettings`].
+    pub mutation_rate_after_mating: Option<f64>,
+}
+
+impl GaOverrides {
+    /// The preset's settings with these values over them.
+    pub fn resolve(&self) -> GaSettings {
+        let mut s = GaSettings::preset(self.preset.unwrap_or(Preset::Chaumont));
+        macro_rules! over {
+            ($($f:ident),*) => {$(if let Some(v) = self.$f { s.$f = v; })*};
+        }
+        over!(
+            population,
+            generations,
+            elite,
+            breeders,
+            asexual,
+            crossover,
+            mutation_rate,
+            mutation_chance_after_mating,
+            mutation_rate_after_mating
+        );
+        s
+    }
+}
+
+/// A configuration file as a person writes it: everything optional.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[serde(bound(deserialize = "L: DeserializeOwned"))]
+pub struct ConfigFile<L> {
+    /// The encoding's name.
+    pub encoding: Option<String>,
+    /// The run's seed.
+    pub seed: Option<u64>,
+    /// A grammar whose mutants seed the first generation (relative to the config file).
+    pub init: Option<PathBuf>,
+    /// The genetic algorithm.
+    #[serde(default)]
+    pub ga: GaOverrides,
+    /// The task and its settings.
+    pub task: Option<TaskSpec>,
+    /// The encoding's limits.
+    pub limits: Option<L>,
+}
+
+/// A diagnostic for a TOML error in `source`, at its place when it has one.
+fn toml_diagnostic(source: &Source, error: &toml::de::Error) -> Diagnostic {
+    let message = error.message().to_string();
+    match error.span() {
+        Some(span) => Diagnostic::at(
+            DiagnosticKind::Semantic,
+            source,
+            Span::new(span.start, span.end.max(span.start + 1)),
+            message,
+        ),
+        None => Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("{}: {message}", source.name()),
+        ),
+    }
+}
+
+/// The `encoding` a configuration text names, if any (read before the rest, which depends on
+/// it).
+pub fn encoding_of(source: &Source) -> Result<Option<String>, Diagnostic> {
+    let table: toml::Table =
+        toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
+    match table.get("encoding") {
+        None => Ok(None),
+        Some(toml::Value::String(s)) => Ok(Some(s.clone())),
+        Some(_) => Err(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("{}: encoding must be a string", source.name()),
+        )),
+    }
+}
+
+/// Reads a configuration file whose limits are `L`.
+pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>, Diagnostic> {
+    toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))
+}
+
+/// Reads a run directory's full `config.toml`.
+pub fn read_run_config<L: DeserializeOwned>(
+    source: &Source,
+) -> Result<RunConfig<L>, Diagnostic> {
+    toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))
+}
+
+impl<L: Serialize> RunConfig<L> {
+    /// The configuration as TOML text.
+    pub fn to_toml(&self) -> Result<String, String> {
+        toml::to_string(self).map_err(|e| e.to_string())
+    }
+}
+
+/// Checks the values a configuration may get wrong; the message names the setting.
+pub fn check_settings(ga: &GaSettings, task: &TaskSpec) -> Result<(), String> {
+    ga.check().map_err(|e| format!("[ga] {e}"))?;
+    let sim = &task.sim;
+    if !(sim.dt > 0.0 && sim.dt <= 0.1) {
+        return Err(format!(
+            "[task.sim] dt must be in (0, 0.1] seconds, not {}",
+            sim.dt
+        ));
+    }
+    let seconds = match task.task {
+        TaskKind::Walker => task.walker.seconds,
+        TaskKind::Jump => task.jump.seconds,
+        TaskKind::Catapult | TaskKind::Aim => task.catapult.max_seconds,
+    };
+    if !(seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0) {
+        return Err(format!(
+            "the {} task's seconds must be in (0, 3600], not {seconds}",
+            task.task.name()
+        ));
+    }
+    if task.task == TaskKind::Aim && task.catapult.target.is_none() {
+        return Err("the aim task needs [task.catapult] target = [x, y, z]".into());
+    }
+    Ok(())
+}
