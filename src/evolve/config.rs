@@ -136,9 +136,7 @@ pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>
 }
 
 /// Reads a run directory's full `config.toml`.
-pub fn read_run_config<L: DeserializeOwned>(
-    source: &Source,
-) -> Result<RunConfig<L>, Diagnostic> {
+pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
     toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))
 }
 

@@ -113,7 +113,10 @@ impl GaSettings {
             "mutation_chance_after_mating",
             self.mutation_chance_after_mating,
         )?;
-        fraction("mutation_rate_after_mating", self.mutation_rate_after_mating)?;
+        fraction(
+            "mutation_rate_after_mating",
+            self.mutation_rate_after_mating,
+        )?;
         if self.asexual + self.crossover > 1.0 + 1e-12 {
             return Err(format!(
                 "asexual + crossover must be at most 1, not {}",
@@ -139,8 +142,10 @@ impl GaSettings {
 
     /// Walking with Dinosaurs: how many breeders follow the elite (at least one).
     pub fn breeder_count(&self) -> usize {
-        ((self.breeders * self.population as f64).round() as usize)
-            .clamp(1, self.population - self.survivors().min(self.population - 1))
+        ((self.breeders * self.population as f64).round() as usize).clamp(
+            1,
+            self.population - self.survivors().min(self.population - 1),
+        )
     }
 }
 
@@ -369,8 +374,16 @@ impl<G: Genome> Evolution<G> {
                 let index = (survivors + k) as u32;
                 let mut rng = individual_rng(self.seed, generation, index, 0);
                 let develop_seed = individual_rng(self.seed, generation, index, 1).random();
-                self.breed(k, children, &order, survivors, previous, adaptive_rate, &mut rng)
-                    .into_unborn(develop_seed)
+                self.breed(
+                    k,
+                    children,
+                    &order,
+                    survivors,
+                    previous,
+                    adaptive_rate,
+                    &mut rng,
+                )
+                .into_unborn(develop_seed)
             })
             .collect();
         for (_, fell_back) in &unborn {
@@ -411,8 +424,7 @@ impl<G: Genome> Evolution<G> {
         } else {
             let normalised: Vec<f64> = valid.iter().map(|f| (f - lo) / (hi - lo)).collect();
             let mean = normalised.iter().sum::<f64>() / normalised.len() as f64;
-            (normalised.iter().map(|x| (x - mean).powi(2)).sum::<f64>()
-                / normalised.len() as f64)
+            (normalised.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / normalised.len() as f64)
                 .sqrt()
         };
         let factor = if sigma > 0.0 { 0.25 / sigma } else { 4.0 };
@@ -440,7 +452,9 @@ impl<G: Genome> Evolution<G> {
                 let a = pick(rng, elite);
                 if scheduled == Operator::Mutation {
                     return Child::new(
-                        previous[a].genome.mutate(&self.limits, s.mutation_rate, rng),
+                        previous[a]
+                            .genome
+                            .mutate(&self.limits, s.mutation_rate, rng),
                         vec![a],
                         Operator::Mutation,
                         None,

@@ -1,0 +1,400 @@
+//! `ontogeny evolve` and `ontogeny runs`.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use clap::{Args, Subcommand, ValueEnum};
+use ontogeny::encoding::{ContinuousGenome, Genome, LSystemGenome};
+use ontogeny::evolve::config::{
+    ConfigFile, GaOverrides, RunConfig, check_settings, encoding_of, read_config,
+};
+use ontogeny::evolve::ga::Preset;
+use ontogeny::evolve::run::{GenerationReport, Run, RunError};
+use ontogeny::evolve::store::RunStore;
+use ontogeny::lang::{Diagnostic, DiagnosticKind, Source};
+use ontogeny::task::{TaskKind, TaskSpec};
+
+/// The encodings `--encoding` accepts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum EncodingArg {
+    /// Hornby & Pollack's parametric L-system.
+    Lsystem,
+    /// Matos & Arita's continuous (dL) L-system.
+    LsystemContinuous,
+}
+
+impl EncodingArg {
+    fn name(self) -> &'static str {
+        match self {
+            EncodingArg::Lsystem => LSystemGenome::NAME,
+            EncodingArg::LsystemContinuous => ContinuousGenome::NAME,
+        }
+    }
+}
+
+/// The tasks `--task` accepts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TaskArg {
+    /// Chaumont's walker.
+    Walker,
+    /// Walking with Dinosaurs' jump.
+    Jump,
+    /// Chaumont's catapult.
+    Catapult,
+    /// Chaumont's aiming catapult (needs a target in the config).
+    Aim,
+}
+
+/// The presets `--preset` accepts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PresetArg {
+    /// Chaumont et al. 5.7.
+    Chaumont,
+    /// Walking with Dinosaurs 3.3.
+    Wwd,
+}
+
+/// Flags of `ontogeny evolve`.
+#[derive(Args)]
+pub struct EvolveArgs {
+    /// The run directory to create (refused if it holds a run).
+    #[arg(long, value_name = "DIR", required_unless_present = "resume")]
+    out: Option<PathBuf>,
+    /// Continue the run in DIR where it stopped (any other flag but --threads is refused).
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "gens", "seed", "config", "init", "seconds"])]
+    resume: Option<PathBuf>,
+    /// The genome encoding (default: the config's, else lsystem).
+    #[arg(long, value_enum)]
+    encoding: Option<EncodingArg>,
+    /// The task (default: the config's, else walker).
+    #[arg(long, value_enum)]
+    task: Option<TaskArg>,
+    /// The genetic algorithm's schedule (default: the config's, else chaumont).
+    #[arg(long, value_enum)]
+    preset: Option<PresetArg>,
+    /// Individuals per generation (default: the preset's, 300).
+    #[arg(long)]
+    pop: Option<usize>,
+    /// Generations (default: the preset's, 100).
+    #[arg(long)]
+    gens: Option<usize>,
+    /// The run's seed (default: the config's, else 1).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Seconds of the task's measurement (walker: walking, default 20).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// Worker threads (default: every core). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// A TOML file of settings; command-line values override it.
+    #[arg(long, value_name = "FILE.toml")]
+    config: Option<PathBuf>,
+    /// Seed the first generation with mutants of this hand-written grammar.
+    #[arg(long, value_name = "FILE.lsys")]
+    init: Option<PathBuf>,
+}
+
+fn bad(message: impl Into<String>) -> anyhow::Error {
+    anyhow::Error::new(Diagnostic::without_location(
+        DiagnosticKind::Semantic,
+        message.into(),
+    ))
+}
+
+fn run_error(e: RunError) -> anyhow::Error {
+    match e {
+        RunError::Config(d) => anyhow::Error::new(d),
+        RunError::Io { path, source } => {
+            anyhow::Error::new(source).context(format!("{}", path.display()))
+        }
+        other => bad(other.to_string()),
+    }
+}
+
+/// Runs `ontogeny evolve`.
+pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
+    if let Some(threads) = args.threads {
+        if !(1..=1024).contains(&threads) {
+            return Err(bad(format!("--threads must be 1 to 1024, not {threads}")));
+        }
+        // The global pool may already exist in tests; a second build is harmless to refuse.
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build_global();
+    }
+    if let Some(dir) = &args.resume {
+        let config = dir.join("config.toml");
+        let source = Source::read(&config).map_err(|_| {
+            bad(format!(
+                "{} is not a run directory (no readable config.toml)",
+                dir.display()
+            ))
+        })?;
+        let encoding = encoding_of(&source)?.unwrap_or_default();
+        return match encoding.as_str() {
+            n if n == LSystemGenome::NAME => resume::<LSystemGenome>(dir),
+            n if n == ContinuousGenome::NAME => resume::<ContinuousGenome>(dir),
+            other => Err(bad(format!(
+                "{}: unknown encoding '{other}'",
+                config.display()
+            ))),
+        };
+    }
+    let source = match &args.config {
+        Some(path) => Some(
+            Source::read(path).with_context(|| format!("cannot read {}", path.display()))?,
+        ),
+        None => None,
+    };
+    let encoding = match (args.encoding, &source) {
+        (Some(e), _) => e.name().to_string(),
+        (None, Some(s)) => encoding_of(s)?.unwrap_or_else(|| LSystemGenome::NAME.to_string()),
+        (None, None) => LSystemGenome::NAME.to_string(),
+    };
+    match encoding.as_str() {
+        n if n == LSystemGenome::NAME => start::<LSystemGenome>(args, source.as_deref()),
+        n if n == ContinuousGenome::NAME => start::<ContinuousGenome>(args, source.as_deref()),
+        other => Err(bad(format!(
+            "unknown encoding '{other}' (lsystem or lsystem-continuous)"
+        ))),
+    }
+}
+
+/// Resolves the settings (command line over config file over preset) and starts the run.
+fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Result<()> {
+    let out = args.out.as_ref().expect("clap requires --out without --resume");
+    let file: ConfigFile<G::Limits> = match source {
+        Some(s) => read_config(s)?,
+        None => ConfigFile {
+            encoding: None,
+            seed: None,
+            init: None,
+            ga: GaOverrides::default(),
+            task: None,
+            limits: None,
+        },
+    };
+    let mut overrides = file.ga.clone();
+    if let Some(p) = args.preset {
+        overrides.preset = Some(match p {
+            PresetArg::Chaumont => Preset::Chaumont,
+            PresetArg::Wwd => Preset::Wwd,
+        });
+    }
+    if args.pop.is_some() {
+        overrides.population = args.pop;
+    }
+    if args.gens.is_some() {
+        overrides.generations = args.gens;
+    }
+    let ga = overrides.resolve();
+    let mut task = file.task.clone().unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+    if let Some(t) = args.task {
+        task.task = match t {
+            TaskArg::Walker => TaskKind::Walker,
+            TaskArg::Jump => TaskKind::Jump,
+            TaskArg::Catapult => TaskKind::Catapult,
+            TaskArg::Aim => TaskKind::Aim,
+        };
+    }
+    if let Some(s) = args.seconds {
+        match task.task {
+            TaskKind::Walker => task.walker.seconds = s,
+            TaskKind::Jump => task.jump.seconds = s,
+            TaskKind::Catapult | TaskKind::Aim => task.catapult.max_seconds = s,
+        }
+    }
+    let where_from = source.map_or("the command line".to_string(), |s| s.name().to_string());
+    check_settings(&ga, &task).map_err(|e| bad(format!("{where_from}: {e}")))?;
+    // --init on the command line is relative to the working directory; in the config file,
+    // to the file.
+    let init_path = match (&args.init, &file.init, source) {
+        (Some(p), _, _) => Some(p.clone()),
+        (None, Some(p), Some(s)) => Some(
+            Path::new(s.name())
+                .parent()
+                .unwrap_or(Path::new("."))
+                .join(p),
+        ),
+        _ => None,
+    };
+    let init_text = match &init_path {
+        Some(p) => Some(
+            std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?,
+        ),
+        None => None,
+    };
+    if let Some(text) = &init_text {
+        let limits = file.limits.clone().unwrap_or_default();
+        G::from_lsys(text, &limits).map_err(|e| {
+            bad(format!(
+                "{}: cannot seed the {} encoding: {}",
+                init_path.as_ref().map_or(String::new(), |p| p.display().to_string()),
+                G::NAME,
+                e.0
+            ))
+        })?;
+    }
+    let config = RunConfig {
+        encoding: G::NAME.to_string(),
+        seed: args.seed.or(file.seed).unwrap_or(1),
+        init: None,
+        ga,
+        task,
+        limits: file.limits.unwrap_or_default(),
+    };
+    let mut run = Run::<G>::start(out, config, init_text.as_deref()).map_err(run_error)?;
+    go(&mut run, out)
+}
+
+fn resume<G: Genome>(dir: &Path) -> anyhow::Result<()> {
+    let mut run = Run::<G>::resume(dir).map_err(run_error)?;
+    let done = run.last_generation().map_err(run_error)?;
+    let total = run.config().ga.generations as u32;
+    match done {
+        Some(g) if g + 1 >= total => {
+            say!(
+                "{}: complete ({total} generations); nothing to resume",
+                dir.display()
+            );
+            return Ok(());
+        }
+        Some(g) => say!("{}: resuming after generation {g}", dir.display()),
+        None => say!("{}: resuming from the first generation", dir.display()),
+    }
+    go(&mut run, dir)
+}
+
+/// Runs the remaining generations with a progress bar on a terminal, log lines otherwise.
+fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
+    let total = run.config().ga.generations as u64;
+    let first = run.last_generation().map_err(run_error)?.map_or(0, |g| g + 1) as u64;
+    let terminal = std::io::stderr().is_terminal();
+    let bar = if terminal {
+        let bar = indicatif::ProgressBar::new(total);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{bar:30} gen {pos}/{len}  {msg}  [{elapsed_precise}, {eta} left]",
+            )
+            .expect("a valid template"),
+        );
+        bar.set_position(first);
+        Some(bar)
+    } else {
+        None
+    };
+    let started = std::time::Instant::now();
+    let mut evaluations = 0u64;
+    let mut evaluating = 0.0;
+    let mut last: Option<GenerationReport> = None;
+    let mut observer = |r: &GenerationReport| {
+        evaluations += r.stats.evaluations;
+        evaluating += r.evaluation_seconds;
+        let line = format!(
+            "best {:.4}  mean {:.4}  valid {:.0}%  {:.1} evaluations/s",
+            r.stats.best,
+            r.stats.mean,
+            r.stats.valid_fraction * 100.0,
+            r.stats.evaluations as f64 / r.wall_seconds.max(1e-9)
+        );
+        match &bar {
+            Some(bar) => {
+                bar.set_message(line);
+                bar.inc(1);
+            }
+            None => eprintln!("generation {}: {line}", r.generation),
+        }
+        last = Some(r.clone());
+    };
+    run.run(&mut observer).map_err(run_error)?;
+    if let Some(bar) = &bar {
+        bar.finish();
+    }
+    let wall = started.elapsed().as_secs_f64();
+    if let Some(r) = last {
+        if r.fallbacks.crossover + r.fallbacks.graft > 0 {
+            say!(
+                "note: the {} encoding lacks an operator of the schedule; {} children were made by mutation instead (see log.txt)",
+                G::NAME,
+                r.fallbacks.crossover + r.fallbacks.graft
+            );
+        }
+        say!(
+            "{}: generation {} best {:.6}; {evaluations} evaluations in {wall:.1} s ({:.1}/s), {:.1}% of the time outside evaluation",
+            dir.display(),
+            r.generation,
+            r.stats.best,
+            evaluations as f64 / wall.max(1e-9),
+            (wall - evaluating).max(0.0) / wall.max(1e-9) * 100.0
+        );
+        say!(
+            "wrote {0}/run.sqlite, {0}/fitness.svg, {0}/best.lsys and {0}/log.txt",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// Subcommands of `ontogeny runs`.
+#[derive(Subcommand)]
+pub enum RunsVerb {
+    /// Print a run's generation table.
+    Show {
+        /// The run directory.
+        dir: PathBuf,
+    },
+}
+
+/// Flags of `ontogeny runs`.
+#[derive(Args)]
+pub struct RunsArgs {
+    #[command(subcommand)]
+    verb: RunsVerb,
+}
+
+/// Runs `ontogeny runs`.
+pub fn runs(args: &RunsArgs) -> anyhow::Result<()> {
+    match &args.verb {
+        RunsVerb::Show { dir } => {
+            let store = RunStore::open(&dir.join("run.sqlite")).map_err(|e| bad(e.to_string()))?;
+            let run = store.run().map_err(|e| bad(e.to_string()))?;
+            say!(
+                "{}: {} encoding, {} task, seed {}, ontogeny {}",
+                dir.display(),
+                run.encoding,
+                run.task,
+                run.seed,
+                run.version
+            );
+            say!(
+                "{:>5} {:>12} {:>12} {:>12} {:>10} {:>7} {:>6} {:>8} {:>8}",
+                "gen",
+                "best",
+                "mean",
+                "median",
+                "sd",
+                "valid",
+                "evals",
+                "seconds",
+                "evals/s"
+            );
+            for g in store.generations().map_err(|e| bad(e.to_string()))? {
+                say!(
+                    "{:>5} {:>12.6} {:>12.6} {:>12.6} {:>10.6} {:>6.0}% {:>6} {:>8.1} {:>8.1}",
+                    g.index,
+                    g.best,
+                    g.mean,
+                    g.median,
+                    g.sd,
+                    g.valid_fraction * 100.0,
+                    g.evaluations,
+                    g.wall_seconds,
+                    g.evaluations_per_second
+                );
+            }
+            Ok(())
+        }
+    }
+}
