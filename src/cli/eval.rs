@@ -360,6 +360,16 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
 }
 
 fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> anyhow::Result<()> {
+    write_recording_at(dir, creature, evaluation, 10.0)
+}
+
+/// Writes `DIR/recording.json` and `DIR/behaviour.gif` (`fps` pictures per simulated second).
+pub fn write_recording_at(
+    dir: &Path,
+    creature: &Creature,
+    evaluation: &Evaluation,
+    fps: f64,
+) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let path = dir.join("recording.json");
     let target: Option<Vec<f64>> = ["target_x", "target_y", "target_z"]
@@ -380,7 +390,7 @@ fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> 
         creature,
         &evaluation.recording,
         &dir.join("behaviour.gif"),
-        10.0,
+        fps,
     )?;
     Ok(())
 }

@@ -398,3 +398,81 @@ pub fn runs(args: &RunsArgs) -> anyhow::Result<()> {
         }
     }
 }
+
+/// `ontogeny replay RUN [--gen G] [--rank K]`: re-evaluates individual K (1 = best) of
+/// generation G (default: the last) with a recording, and writes its genome, `creature.png`,
+/// `recording.json` and `behaviour.gif` to `RUN/replay/gen-G-rank-K/`.
+pub fn replay_run(dir: &Path, generation: Option<u32>, rank: usize, fps: f64) -> anyhow::Result<()> {
+    let config = dir.join("config.toml");
+    let source = Source::read(&config)
+        .map_err(|_| bad(format!("{} is not a run directory (no config.toml)", dir.display())))?;
+    let encoding = encoding_of(&source)?.unwrap_or_default();
+    match encoding.as_str() {
+        n if n == LSystemGenome::NAME => replay_typed::<LSystemGenome>(dir, generation, rank, fps),
+        n if n == ContinuousGenome::NAME => {
+            replay_typed::<ContinuousGenome>(dir, generation, rank, fps)
+        }
+        other => Err(bad(format!("{}: unknown encoding '{other}'", config.display()))),
+    }
+}
+
+fn replay_typed<G: Genome>(
+    dir: &Path,
+    generation: Option<u32>,
+    rank: usize,
+    fps: f64,
+) -> anyhow::Result<()> {
+    let run = Run::<G>::resume(dir).map_err(run_error)?;
+    let last = run
+        .last_generation()
+        .map_err(run_error)?
+        .ok_or_else(|| bad(format!("{}: no complete generation yet", dir.display())))?;
+    let generation = generation.unwrap_or(last);
+    if generation > last {
+        return Err(bad(format!(
+            "--gen {generation}: {} has generations 0 to {last}",
+            dir.display()
+        )));
+    }
+    let population = run.population(generation).map_err(run_error)?;
+    if rank == 0 || rank > population.len() {
+        return Err(bad(format!(
+            "--rank must be 1 to {}, not {rank}",
+            population.len()
+        )));
+    }
+    let order = ontogeny::evolve::ga::ranking(&population);
+    let individual = &population[order[rank - 1]];
+    let out = dir
+        .join("replay")
+        .join(format!("gen-{generation}-rank-{rank}"));
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let genome_path = out.join("genome.lsys");
+    std::fs::write(&genome_path, individual.genome.to_text())
+        .with_context(|| format!("cannot write {}", genome_path.display()))?;
+    let limits = &run.config().limits;
+    let creature = individual
+        .genome
+        .develop(limits, individual.develop_seed)
+        .map_err(|e| bad(format!("the genome does not develop: {e}")))?;
+    let png = out.join("creature.png");
+    ontogeny::render::write_png(&creature, &png, 960, 600)
+        .with_context(|| format!("cannot write {}", png.display()))?;
+    let evaluation = run.config().task.evaluate(&creature, true);
+    super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
+    let stored = individual.evaluation.fitness;
+    say!(
+        "generation {generation}, rank {rank}: {} fitness {:.6} ({:?}; stored {stored:.6})",
+        evaluation.task,
+        evaluation.fitness,
+        evaluation.status
+    );
+    if evaluation.fitness != stored {
+        say!("warning: the re-evaluation differs from the stored fitness");
+    }
+    say!(
+        "wrote {0}/genome.lsys, {0}/creature.png, {0}/recording.json and {0}/behaviour.gif",
+        out.display()
+    );
+    Ok(())
+}

@@ -13,6 +13,7 @@ mod bench;
 mod check;
 mod derive;
 mod eval;
+mod evolve;
 mod export;
 mod grow;
 mod replay;
@@ -47,8 +48,14 @@ enum Verb {
     /// Write a creature (an `.lsys` grown to its last frame, or a `creature.json`) with the
     /// simulator's settings as a MuJoCo MJCF model.
     Export(export::ExportArgs),
-    /// Re-render a recording written by `eval --record DIR` into DIR/behaviour.gif.
+    /// Re-render a recording written by `eval --record DIR` into DIR/behaviour.gif; or, given
+    /// a run directory, re-evaluate one of its individuals with a recording.
     Replay(replay::ReplayArgs),
+    /// Evolve creatures: a genetic algorithm over an encoding, on a task, into a run directory
+    /// (or `--resume` one).
+    Evolve(evolve::EvolveArgs),
+    /// Inspect run directories.
+    Runs(evolve::RunsArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core and on all
     /// cores, its overhead over rapier's own stepping, and impulse against multibody joints.
     Bench(bench::BenchArgs),
@@ -64,6 +71,8 @@ pub fn main() -> ExitCode {
         Verb::Eval(args) => eval::run(&args),
         Verb::Export(args) => export::run(&args),
         Verb::Replay(args) => replay::run(&args),
+        Verb::Evolve(args) => evolve::run(&args),
+        Verb::Runs(args) => evolve::runs(&args),
         Verb::Bench(args) => bench::run(&args),
     };
     match result {

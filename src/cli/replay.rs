@@ -11,11 +11,18 @@ use ontogeny::task::RecordedFrame;
 /// Flags of `ontogeny replay`.
 #[derive(Args)]
 pub struct ReplayArgs {
-    /// A directory written by `ontogeny eval --record DIR`.
+    /// A directory written by `ontogeny eval --record DIR`, or a run directory written by
+    /// `ontogeny evolve`.
     dir: PathBuf,
     /// Frames per second of simulated time in the animation.
     #[arg(long, default_value_t = 10.0)]
     fps: f64,
+    /// For a run: the generation (default: the last complete one).
+    #[arg(long)]
+    gen: Option<u32>,
+    /// For a run: the individual's rank in its generation, 1 for the best.
+    #[arg(long, default_value_t = 1)]
+    rank: usize,
 }
 
 #[derive(serde::Deserialize)]
@@ -26,6 +33,15 @@ struct Recording {
 
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
 pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
+    if !(args.fps > 0.0 && args.fps <= 100.0) {
+        anyhow::bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("--fps must be in (0, 100], not {}", args.fps),
+        ));
+    }
+    if args.dir.join("config.toml").exists() {
+        return super::evolve::replay_run(&args.dir, args.gen, args.rank, args.fps);
+    }
     let path = args.dir.join("recording.json");
     let text = std::fs::read_to_string(&path)
         .with_context(|| format!("cannot read {}", path.display()))?;
