@@ -1,7 +1,12 @@
-//! Evolution and comparison: the genetic algorithm, parallel evaluation and the run store
-//! come here (see `DESIGN.md`); today the room holds the statistics that compare settings
-//! and, later, encodings.
+//! Evolution and comparison: the genetic algorithm ([`ga`]: presets as data, a generational
+//! loop over any [`crate::encoding::Genome`], parallel evaluation), a run's configuration
+//! ([`config`]), its directory ([`run`]), its database ([`store`], the only code that knows
+//! SQL), its fitness plot ([`plot`]), and the statistics that compare settings and encodings
+//! ([`stats`]).
 
 pub mod config;
 pub mod ga;
+pub mod plot;
+pub mod run;
 pub mod stats;
+pub mod store;
