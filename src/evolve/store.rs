@@ -287,9 +287,7 @@ impl RunStore {
             // The file is ours and holds no committed run: leave no half-made store behind.
             let _ = fs::remove_file(path);
             for suffix in ["-wal", "-shm", "-journal"] {
-                let mut side = path.as_os_str().to_owned();
-                side.push(suffix);
-                let _ = fs::remove_file(PathBuf::from(side));
+                let _ = fs::remove_file(side_file(path, suffix));
             }
         }
         result
@@ -326,13 +324,29 @@ impl RunStore {
     /// Opens an existing store, checking it is a run store of this schema and not corrupt
     /// (`PRAGMA quick_check`); never modifies a file it rejects.
     pub fn open(path: &Path) -> Result<RunStore, StoreError> {
-        check_header(path)?;
+        // A write-ahead log beside the file holds commits not yet copied into it (the last
+        // run was killed, or is still running): then SQLite must read the log too.
+        let wal = side_file(path, "-wal").exists();
+        if !wal {
+            check_header(path)?;
+        }
         {
-            // Every check runs on a read-only connection, so a rejected file is left as it was.
-            let ro = Connection::open_with_flags(
-                path,
-                OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
-            )
+            // Every check runs on a read-only connection, so a rejected file is left as it
+            // was. Without a log, `immutable=1` also keeps SQLite from creating `-shm` and
+            // `-wal` files beside it.
+            let ro = if wal {
+                Connection::open_with_flags(
+                    path,
+                    OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+                )
+            } else {
+                Connection::open_with_flags(
+                    immutable_uri(path),
+                    OpenFlags::SQLITE_OPEN_READ_ONLY
+                        | OpenFlags::SQLITE_OPEN_NO_MUTEX
+                        | OpenFlags::SQLITE_OPEN_URI,
+                )
+            }
             .map_err(|e| classify(path, "cannot open it", e))?;
             check_store(path, &ro)?;
             ro.close()
@@ -426,6 +440,8 @@ impl RunStore {
                 "the store already holds generations up to {last}"
             )));
         }
+        let evaluations = i64::try_from(generation.evaluations)
+            .map_err(|_| invalid(format!("{} evaluations is too many", generation.evaluations)))?;
         let path = self.path.clone();
         let tx = self
             .conn
@@ -442,7 +458,7 @@ impl RunStore {
                 real(generation.median),
                 real(generation.sd),
                 real(generation.valid_fraction),
-                generation.evaluations,
+                evaluations,
                 real(generation.wall_seconds),
                 real(generation.evaluations_per_second),
             ],
@@ -503,7 +519,13 @@ impl RunStore {
                     median: get_real(r, 3)?,
                     sd: get_real(r, 4)?,
                     valid_fraction: get_real(r, 5)?,
-                    evaluations: r.get(6)?,
+                    evaluations: u64::try_from(r.get::<_, i64>(6)?).map_err(|e| {
+                        rusqlite::Error::FromSqlConversionFailure(
+                            6,
+                            rusqlite::types::Type::Integer,
+                            Box::new(e),
+                        )
+                    })?,
                     wall_seconds: get_real(r, 7)?,
                     evaluations_per_second: get_real(r, 8)?,
                 })
@@ -547,6 +569,32 @@ impl RunStore {
             .optional()
             .map_err(|e| classify(&self.path, "cannot read the best individual", e))
     }
+}
+
+/// The file SQLite keeps beside `path` with `suffix` (`-wal`, `-shm`, `-journal`).
+fn side_file(path: &Path, suffix: &str) -> PathBuf {
+    let mut side = path.as_os_str().to_owned();
+    side.push(suffix);
+    PathBuf::from(side)
+}
+
+/// An SQLite URI opening `path` as immutable: read without locks, logs or side files.
+fn immutable_uri(path: &Path) -> String {
+    let mut uri = String::from("file:");
+    let bytes = path.as_os_str().as_encoded_bytes();
+    if bytes.starts_with(b"/") {
+        // An empty authority, so a path starting with "//" is not read as a host.
+        uri.push_str("//");
+    }
+    for &b in bytes {
+        if b.is_ascii_alphanumeric() || b"/-._~".contains(&b) {
+            uri.push(b as char);
+        } else {
+            uri.push_str(&format!("%{b:02X}"));
+        }
+    }
+    uri.push_str("?immutable=1");
+    uri
 }
 
 /// NaN becomes NULL: SQLite has no NaN (it would store NULL anyway, but say so).
@@ -666,6 +714,24 @@ fn check_header(path: &Path) -> Result<(), StoreError> {
             ),
         });
     }
+    // The header's page size and page count (valid when the change counter at 24 matches the
+    // "version valid for" at 92) give the file's length: a shorter file was truncated.
+    let be32 = |at: usize| u32::from_be_bytes(header[at..at + 4].try_into().expect("4 bytes"));
+    let page_size = match u16::from_be_bytes([header[16], header[17]]) {
+        1 => 65536,
+        n => u64::from(n),
+    };
+    let pages = u64::from(be32(28));
+    let length = file.metadata().map(|m| m.len()).unwrap_or(u64::MAX);
+    if be32(24) == be32(92) && pages > 0 && page_size * pages > length {
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail: format!(
+                "the file is truncated ({length} bytes where its header says {})",
+                page_size * pages
+            ),
+        });
+    }
     Ok(())
 }
 
@@ -729,11 +795,25 @@ fn check_store(path: &Path, conn: &Connection) -> Result<(), StoreError> {
             return Err(not(format!("it has no {table} table")));
         }
         if columns != expected {
-            return Err(not(format!(
-                "its {table} table has columns ({}), not ({})",
-                columns.join(", "),
-                expected.join(", ")
-            )));
+            let missing: Vec<&str> = expected
+                .iter()
+                .filter(|c| !columns.iter().any(|have| have == *c))
+                .copied()
+                .collect();
+            let extra: Vec<&str> = columns
+                .iter()
+                .filter(|c| !expected.contains(&c.as_str()))
+                .map(String::as_str)
+                .collect();
+            return Err(not(match (missing.as_slice(), extra.as_slice()) {
+                ([one], []) => format!("its {table} table lacks the column {one}"),
+                ([], []) => format!("its {table} table's columns are in another order"),
+                _ => format!(
+                    "its {table} table lacks the columns ({}) and has others ({})",
+                    missing.join(", "),
+                    extra.join(", ")
+                ),
+            }));
         }
     }
     let runs: i64 = conn
