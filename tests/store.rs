@@ -88,10 +88,16 @@ fn finished_store(dir: &Path) -> PathBuf {
     let path = dir.join("run.sqlite");
     let mut store = RunStore::create(&path, &run_record()).unwrap();
     store
-        .write_generation(&generation(0), &individuals(0, [1.0, 2.0, 0.5, FAILURE_FLOOR]))
+        .write_generation(
+            &generation(0),
+            &individuals(0, [1.0, 2.0, 0.5, FAILURE_FLOOR]),
+        )
         .unwrap();
     store
-        .write_generation(&generation(1), &individuals(1, [4.0, 2.0, 3.0, FAILURE_FLOOR]))
+        .write_generation(
+            &generation(1),
+            &individuals(1, [4.0, 2.0, 3.0, FAILURE_FLOOR]),
+        )
         .unwrap();
     path
 }
@@ -196,7 +202,10 @@ fn a_generation_is_stored_whole_or_not_at_all() {
     bad[2].terms_json = "{distance: 1".into();
     let err = store.write_generation(&generation(1), &bad).unwrap_err();
     let message = err.to_string();
-    assert!(matches!(err, StoreError::InvalidRecord { generation: 1, .. }), "{err:?}");
+    assert!(
+        matches!(err, StoreError::InvalidRecord { generation: 1, .. }),
+        "{err:?}"
+    );
     assert!(message.contains("individual 2"), "{message}");
     assert!(message.contains("nothing of it was stored"), "{message}");
     assert!(message.contains("run.sqlite"), "{message}");
@@ -236,7 +245,8 @@ fn write_generation_refuses_mismatched_or_repeated_generations() {
         .write_generation(&generation(1), &individuals(1, [1.0; 4]))
         .unwrap_err();
     assert!(
-        err.to_string().contains("already holds generations up to 1"),
+        err.to_string()
+            .contains("already holds generations up to 1"),
         "{err}"
     );
     assert_eq!(store.last_generation().unwrap(), Some(1));
@@ -262,7 +272,10 @@ fn create_refuses_an_existing_path() {
     ));
     assert_eq!(fs::read(&store_path).unwrap(), before);
     assert_eq!(
-        RunStore::open(&store_path).unwrap().last_generation().unwrap(),
+        RunStore::open(&store_path)
+            .unwrap()
+            .last_generation()
+            .unwrap(),
         Some(1)
     );
 }
@@ -281,8 +294,16 @@ fn open_rejects(path: &Path) -> StoreError {
     };
     let files = siblings(path);
     let err = RunStore::open(path).unwrap_err();
-    assert_eq!(fs::read(path).unwrap(), before, "open modified a file it rejected");
-    assert_eq!(siblings(path), files, "open left files beside one it rejected");
+    assert_eq!(
+        fs::read(path).unwrap(),
+        before,
+        "open modified a file it rejected"
+    );
+    assert_eq!(
+        siblings(path),
+        files,
+        "open left files beside one it rejected"
+    );
     let message = err.to_string();
     assert!(
         message.contains(&path.display().to_string()),
@@ -307,7 +328,11 @@ fn open_refuses_a_file_that_is_not_a_database() {
 
     fs::write(&path, "").unwrap();
     let err = open_rejects(&path);
-    assert!(err.to_string().ends_with("is not a run database (the file is empty)"), "{err}");
+    assert!(
+        err.to_string()
+            .ends_with("is not a run database (the file is empty)"),
+        "{err}"
+    );
 
     let missing = dir.join("nowhere.sqlite");
     let err = RunStore::open(&missing).unwrap_err();
@@ -357,8 +382,10 @@ fn open_refuses_another_schema() {
     let other = dir.join("other.sqlite");
     {
         let conn = rusqlite::Connection::open(&other).unwrap();
-        conn.execute_batch("CREATE TABLE run (id INTEGER, name TEXT); INSERT INTO run VALUES (1, 'x');")
-            .unwrap();
+        conn.execute_batch(
+            "CREATE TABLE run (id INTEGER, name TEXT); INSERT INTO run VALUES (1, 'x');",
+        )
+        .unwrap();
     }
     let err = open_rejects(&other);
     assert!(matches!(err, StoreError::NotARunStore { .. }), "{err:?}");
@@ -374,7 +401,8 @@ fn open_refuses_another_schema() {
     let err = open_rejects(&newer);
     assert!(matches!(err, StoreError::NewerSchema { .. }), "{err:?}");
     assert!(
-        err.to_string().contains("was written by a newer schema (version 2)"),
+        err.to_string()
+            .contains("was written by a newer schema (version 2)"),
         "{err}"
     );
 
@@ -388,7 +416,8 @@ fn open_refuses_another_schema() {
             .unwrap();
         conn.execute_batch("ALTER TABLE individual DROP COLUMN neurons")
             .unwrap();
-        conn.execute_batch("PRAGMA wal_checkpoint(TRUNCATE)").unwrap();
+        conn.execute_batch("PRAGMA wal_checkpoint(TRUNCATE)")
+            .unwrap();
     }
     let err = open_rejects(&reshaped);
     assert!(

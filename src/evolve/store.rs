@@ -365,9 +365,8 @@ impl RunStore {
         let setup = || -> rusqlite::Result<String> {
             // A reader (sqlite3 in another terminal) must not make a write fail at once.
             conn.busy_timeout(Duration::from_secs(10))?;
-            let mode: String = conn.pragma_update_and_check(None, "journal_mode", "WAL", |r| {
-                r.get(0)
-            })?;
+            let mode: String =
+                conn.pragma_update_and_check(None, "journal_mode", "WAL", |r| r.get(0))?;
             conn.pragma_update(None, "synchronous", "FULL")?;
             conn.pragma_update(None, "foreign_keys", true)?;
             Ok(mode)
@@ -440,8 +439,12 @@ impl RunStore {
                 "the store already holds generations up to {last}"
             )));
         }
-        let evaluations = i64::try_from(generation.evaluations)
-            .map_err(|_| invalid(format!("{} evaluations is too many", generation.evaluations)))?;
+        let evaluations = i64::try_from(generation.evaluations).map_err(|_| {
+            invalid(format!(
+                "{} evaluations is too many",
+                generation.evaluations
+            ))
+        })?;
         let path = self.path.clone();
         let tx = self
             .conn
@@ -542,8 +545,7 @@ impl RunStore {
                 "SELECT {INDIVIDUAL_COLUMNS} FROM individual WHERE generation = ?1 \
                  ORDER BY individual"
             ))?;
-            stmt.query_map([generation], individual_from_row)?
-                .collect()
+            stmt.query_map([generation], individual_from_row)?.collect()
         };
         read().map_err(|e| {
             classify(
@@ -751,7 +753,9 @@ fn check_store(path: &Path, conn: &Connection) -> Result<(), StoreError> {
         return Err(not(if application_id == 0 {
             "it is an SQLite database, but not one ontogeny wrote".into()
         } else {
-            format!("it is an SQLite database of another program (application_id {application_id:#x})")
+            format!(
+                "it is an SQLite database of another program (application_id {application_id:#x})"
+            )
         }));
     }
     let version = pragma("user_version")?;
