@@ -518,3 +518,91 @@ fn the_fitness_plot_names_its_series_and_axes() {
     let err = fitness_svg(&dir.join("no/such/dir/fitness.svg"), &gs, "x").unwrap_err();
     assert!(err.to_string().contains("fitness.svg"), "{err}");
 }
+
+/// The environment variable that turns [`durability_child`] into a writer.
+const CHILD_STORE: &str = "ONTOGENY_STORE_CHILD";
+
+/// Not a test on its own: run by [`kill_9_keeps_every_committed_generation`] in a child
+/// process (with `ONTOGENY_STORE_CHILD` set to a store's path), it resumes the store and
+/// writes generations of 50 individuals for ever, printing `committed N` after each.
+#[test]
+fn durability_child() {
+    use std::io::Write;
+    let Some(path) = std::env::var_os(CHILD_STORE) else {
+        return;
+    };
+    let path = PathBuf::from(path);
+    let mut store = if path.exists() {
+        RunStore::open(&path).unwrap()
+    } else {
+        RunStore::create(&path, &run_record()).unwrap()
+    };
+    let mut g = store.last_generation().unwrap().map_or(0, |last| last + 1);
+    loop {
+        let is: Vec<IndividualRecord> = (0..50)
+            .map(|i| IndividualRecord {
+                index: i,
+                genome_text: "F ".repeat(500),
+                fitness: f64::from(g) + f64::from(i) / 100.0,
+                ..individuals(g, [0.0; 4])[0].clone()
+            })
+            .collect();
+        store.write_generation(&generation(g), &is).unwrap();
+        println!("committed {g}");
+        std::io::stdout().flush().unwrap();
+        g += 1;
+    }
+}
+
+#[test]
+fn kill_9_keeps_every_committed_generation() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let path = scratch("kill").join("run.sqlite");
+    let mut seen = 0;
+    // Three lives: each child resumes the store its killed predecessor left.
+    for life in 0..3 {
+        let mut child = Command::new(std::env::current_exe().unwrap())
+            .args([
+                "--exact",
+                "durability_child",
+                "--nocapture",
+                "--test-threads=1",
+            ])
+            .env(CHILD_STORE, &path)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let mut lines = BufReader::new(child.stdout.take().unwrap()).lines();
+        let mut committed_this_life = 0;
+        while committed_this_life < 10 {
+            let line = lines
+                .next()
+                .expect("the child stopped before committing 10 generations")
+                .unwrap();
+            if let Some(n) = line.strip_prefix("committed ") {
+                seen = n.parse().unwrap();
+                committed_this_life += 1;
+            }
+        }
+        // SIGKILL, while the child is most likely inside its next transaction.
+        child.kill().unwrap();
+        child.wait().unwrap();
+
+        let store = RunStore::open(&path).unwrap();
+        let last = store.last_generation().unwrap().unwrap();
+        assert!(
+            last >= seen,
+            "life {life}: generation {seen} was committed, last is {last}"
+        );
+        assert!(last >= 10 * life + 9);
+        let gs = store.generations().unwrap();
+        assert_eq!(gs.len() as u32, last + 1, "a generation is missing");
+        for g in 0..=last {
+            let is = store.individuals(g).unwrap();
+            assert_eq!(is.len(), 50, "generation {g} is incomplete");
+            assert_eq!(is[49].fitness, f64::from(g) + 0.49);
+        }
+    }
+}
