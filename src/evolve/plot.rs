@@ -1,0 +1,227 @@
+//! The fitness plot of a run: `runs/NAME/fitness.svg`.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use plotters::prelude::*;
+
+use super::store::GenerationRecord;
+
+/// The failure floor: a failed evaluation's fitness. Values at or below it are not plotted.
+pub const FAILURE_FLOOR: f64 = -999_999.0;
+
+/// Why the plot could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// Drawing the chart failed.
+    #[error("{}: cannot draw the fitness plot: {detail}", path.display())]
+    Draw {
+        /// The picture's path.
+        path: PathBuf,
+        /// What plotters reported.
+        detail: String,
+    },
+    /// Writing the file failed.
+    #[error("{}: cannot write the fitness plot: {source}", path.display())]
+    Io {
+        /// The picture's path.
+        path: PathBuf,
+        /// The error.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// The three series: name, colour (Okabe–Ito, readable by colour-blind people), value.
+type Series = (&'static str, RGBColor, fn(&GenerationRecord) -> f64);
+const SERIES: [Series; 3] = [
+    ("best", RGBColor(0, 114, 178), |g| g.best),
+    ("mean", RGBColor(230, 159, 0), |g| g.mean),
+    ("median", RGBColor(0, 158, 115), |g| g.median),
+];
+
+/// A value worth plotting: a number above the failure floor.
+fn plotted(y: f64) -> bool {
+    y.is_finite() && y > FAILURE_FLOOR
+}
+
+/// Writes an SVG plot of best, mean and median fitness per generation to `path` (three
+/// labelled lines with a legend; axes "generation" and "fitness"), under `title`.
+///
+/// The GA computes `mean` and `median` over valid individuals only, since failed ones score
+/// the failure floor −999999 and would drown the others. The plot is robust anyway: values at
+/// or below the floor, and NaN (no valid individual), are skipped, leaving a gap in the line,
+/// and do not stretch the y range. A point with no neighbour is drawn as a dot.
+///
+/// The file is written to a temporary name beside `path` and renamed, so a viewer never sees
+/// half a picture.
+pub fn fitness_svg(
+    path: &Path,
+    generations: &[GenerationRecord],
+    title: &str,
+) -> Result<(), PlotError> {
+    let mut svg = String::new();
+    draw(&mut svg, generations, title).map_err(|detail| PlotError::Draw {
+        path: path.into(),
+        detail,
+    })?;
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = PathBuf::from(tmp);
+    let io = |source| PlotError::Io {
+        path: path.into(),
+        source,
+    };
+    fs::write(&tmp, svg).map_err(io)?;
+    fs::rename(&tmp, path).map_err(|e| {
+        let _ = fs::remove_file(&tmp);
+        io(e)
+    })
+}
+
+/// The y range: the plotted values' span, padded by 5 % (at least ±0.5 around a single
+/// value), or 0..1 when there is nothing to plot.
+fn y_range(generations: &[GenerationRecord]) -> (f64, f64) {
+    let values = generations
+        .iter()
+        .flat_map(|g| SERIES.iter().map(move |(_, _, f)| f(g)))
+        .filter(|&y| plotted(y));
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+        (lo.min(y), hi.max(y))
+    });
+    if lo > hi {
+        return (0.0, 1.0);
+    }
+    let pad = ((hi - lo) * 0.05).max(0.5);
+    (lo - pad, hi + pad)
+}
+
+/// Splits a series into runs of consecutive plotted points.
+fn segments(
+    generations: &[GenerationRecord],
+    value: fn(&GenerationRecord) -> f64,
+) -> Vec<Vec<(u32, f64)>> {
+    let mut out: Vec<Vec<(u32, f64)>> = Vec::new();
+    let mut previous: Option<u32> = None;
+    for g in generations {
+        let y = value(g);
+        if !plotted(y) {
+            previous = None;
+            continue;
+        }
+        match (previous, out.last_mut()) {
+            (Some(p), Some(run)) if g.index == p + 1 => run.push((g.index, y)),
+            _ => out.push(vec![(g.index, y)]),
+        }
+        previous = Some(g.index);
+    }
+    out
+}
+
+fn draw(svg: &mut String, generations: &[GenerationRecord], title: &str) -> Result<(), String> {
+    let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    root.fill(&WHITE).map_err(|x| e(&x))?;
+    let first = generations.iter().map(|g| g.index).min().unwrap_or(0);
+    let last = generations.iter().map(|g| g.index).max().unwrap_or(0);
+    let (y0, y1) = y_range(generations);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 24))
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(first..last.max(first + 1), y0..y1)
+        .map_err(|x| e(&x))?;
+    chart
+        .configure_mesh()
+        .x_desc("generation")
+        .y_desc("fitness")
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 16))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|x| e(&x))?;
+    for (name, colour, value) in SERIES {
+        let style = colour.stroke_width(2);
+        let runs = segments(generations, value);
+        // The legend's entry hangs on one series, even an empty one.
+        let labelled = chart
+            .draw_series(LineSeries::new(
+                runs.first().cloned().unwrap_or_default(),
+                style,
+            ))
+            .map_err(|x| e(&x))?;
+        labelled
+            .label(name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        for run in runs.iter().skip(1) {
+            chart
+                .draw_series(LineSeries::new(run.clone(), style))
+                .map_err(|x| e(&x))?;
+        }
+        chart
+            .draw_series(
+                runs.iter()
+                    .filter(|run| run.len() == 1)
+                    .map(|run| Circle::new(run[0], 3, colour.filled())),
+            )
+            .map_err(|x| e(&x))?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .label_font(("sans-serif", 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(160, 160, 160))
+        .draw()
+        .map_err(|x| e(&x))?;
+    root.present().map_err(|x| e(&x))?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn generation(index: u32, best: f64, mean: f64, median: f64) -> GenerationRecord {
+        GenerationRecord {
+            index,
+            best,
+            mean,
+            median,
+            sd: 0.0,
+            valid_fraction: 1.0,
+            evaluations: 10,
+            wall_seconds: 1.0,
+            evaluations_per_second: 10.0,
+        }
+    }
+
+    #[test]
+    fn y_range_ignores_the_failure_floor_and_nan() {
+        let gs = [
+            generation(0, 10.0, FAILURE_FLOOR, f64::NAN),
+            generation(1, 30.0, 20.0, -999_999.5),
+        ];
+        // Plotted values 10, 30, 20: span 20, padded by 1 on each side.
+        assert_eq!(y_range(&gs), (9.0, 31.0));
+        assert_eq!(y_range(&[]), (0.0, 1.0));
+        // A single value gets ±0.5.
+        assert_eq!(y_range(&[generation(0, 2.0, 2.0, 2.0)]), (1.5, 2.5));
+    }
+
+    #[test]
+    fn segments_break_at_skipped_points_and_gaps() {
+        let gs = [
+            generation(0, 1.0, 0.0, 0.0),
+            generation(1, FAILURE_FLOOR, 0.0, 0.0),
+            generation(2, 2.0, 0.0, 0.0),
+            generation(3, 3.0, 0.0, 0.0),
+            generation(5, 5.0, 0.0, 0.0),
+        ];
+        assert_eq!(
+            segments(&gs, |g| g.best),
+            vec![vec![(0, 1.0)], vec![(2, 2.0), (3, 3.0)], vec![(5, 5.0)]]
+        );
+    }
+}

@@ -1,0 +1,833 @@
+//! The run store: one SQLite database per run (`runs/NAME/run.sqlite`) holding the run's
+//! settings, one row per generation and one row per individual. This is the only code in the
+//! crate that knows SQL.
+//!
+//! Durability: the database is in WAL mode with `synchronous=FULL`, and each generation is
+//! written in one transaction. A crash (`kill -9`, a panic, a power cut) at any moment leaves
+//! every generation whose [`RunStore::write_generation`] returned, and nothing of the one being
+//! written. `FULL` (rather than `NORMAL`, which is enough for a killed process but may lose the
+//! last commits on a power cut) costs one `fsync` per generation, which is nothing beside the
+//! seconds a generation's evaluations take.
+
+use std::fs::{self, OpenOptions};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use rusqlite::{Connection, ErrorCode, OpenFlags, OptionalExtension, Row, params};
+
+/// The schema's version, kept in the database header (`PRAGMA user_version`). Raise it when
+/// the tables change.
+pub const SCHEMA_VERSION: i64 = 1;
+
+/// Marks the file as an Ontogeny run store (`PRAGMA application_id`): the bytes "Onto".
+pub const APPLICATION_ID: i64 = 0x4F6E_746F;
+
+/// The schema, created in one transaction by [`RunStore::create`]. A NaN in any REAL column
+/// is stored as NULL (SQLite has no NaN) and read back as NaN.
+const SCHEMA: &str = "
+CREATE TABLE run (
+    id       INTEGER PRIMARY KEY CHECK (id = 1),
+    config   TEXT NOT NULL,
+    seed     TEXT NOT NULL CHECK (seed GLOB '[0-9]*' AND seed NOT GLOB '*[^0-9]*'),
+    encoding TEXT NOT NULL,
+    task     TEXT NOT NULL,
+    version  TEXT NOT NULL
+) STRICT;
+CREATE TABLE generation (
+    generation             INTEGER PRIMARY KEY CHECK (generation >= 0),
+    best                   REAL,
+    mean                   REAL,
+    median                 REAL,
+    sd                     REAL,
+    valid_fraction         REAL,
+    evaluations            INTEGER NOT NULL CHECK (evaluations >= 0),
+    wall_seconds           REAL,
+    evaluations_per_second REAL
+) STRICT;
+CREATE TABLE individual (
+    generation  INTEGER NOT NULL REFERENCES generation (generation),
+    individual  INTEGER NOT NULL CHECK (individual >= 0),
+    parents     TEXT NOT NULL CHECK (json_valid(parents) AND json_type(parents) = 'array'),
+    operator    TEXT NOT NULL,
+    genome_text TEXT NOT NULL,
+    genome_json TEXT NOT NULL CHECK (json_valid(genome_json)),
+    fitness     REAL,
+    status      TEXT NOT NULL,
+    terms_json  TEXT NOT NULL CHECK (json_valid(terms_json)),
+    parts       INTEGER NOT NULL CHECK (parts >= 0),
+    joints      INTEGER NOT NULL CHECK (joints >= 0),
+    neurons     INTEGER NOT NULL CHECK (neurons >= 0),
+    PRIMARY KEY (generation, individual)
+) STRICT;
+";
+
+/// Each table's columns, in order, as `open` expects to find them.
+const TABLES: [(&str, &[&str]); 3] = [
+    (
+        "run",
+        &["id", "config", "seed", "encoding", "task", "version"],
+    ),
+    (
+        "generation",
+        &[
+            "generation",
+            "best",
+            "mean",
+            "median",
+            "sd",
+            "valid_fraction",
+            "evaluations",
+            "wall_seconds",
+            "evaluations_per_second",
+        ],
+    ),
+    (
+        "individual",
+        &[
+            "generation",
+            "individual",
+            "parents",
+            "operator",
+            "genome_text",
+            "genome_json",
+            "fitness",
+            "status",
+            "terms_json",
+            "parts",
+            "joints",
+            "neurons",
+        ],
+    ),
+];
+
+const INDIVIDUAL_COLUMNS: &str = "generation, individual, parents, operator, genome_text, \
+     genome_json, fitness, status, terms_json, parts, joints, neurons";
+
+/// What a run is: written once, when the run starts.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunRecord {
+    /// The text of the run's `config.toml` (every setting).
+    pub config: String,
+    /// The run's master seed.
+    pub seed: u64,
+    /// The encoding's name, e.g. `lsystem`.
+    pub encoding: String,
+    /// The task's name, e.g. `walker`.
+    pub task: String,
+    /// The version of ontogeny that started the run (`CARGO_PKG_VERSION`).
+    pub version: String,
+}
+
+/// One generation's statistics. Statistics of an empty sample (no valid individual) are NaN.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GenerationRecord {
+    /// The generation's index, from 0.
+    pub index: u32,
+    /// The best fitness.
+    pub best: f64,
+    /// The mean fitness (the GA computes it over valid individuals).
+    pub mean: f64,
+    /// The median fitness (the GA computes it over valid individuals).
+    pub median: f64,
+    /// The standard deviation of fitness (over valid individuals).
+    pub sd: f64,
+    /// The fraction of individuals whose evaluation succeeded, in [0, 1].
+    pub valid_fraction: f64,
+    /// How many evaluations the generation ran.
+    pub evaluations: u64,
+    /// Wall-clock seconds the generation took.
+    pub wall_seconds: f64,
+    /// `evaluations / wall_seconds`.
+    pub evaluations_per_second: f64,
+}
+
+/// One individual of one generation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IndividualRecord {
+    /// The index of its generation.
+    pub generation: u32,
+    /// Its index within the generation, from 0.
+    pub index: u32,
+    /// Its parents' indices in the previous generation (empty for a random individual).
+    pub parents: Vec<u32>,
+    /// The operator that made it, e.g. `mutation`, `crossover`, `random`, `elite`.
+    pub operator: String,
+    /// The genome as text, for people (an L-system's `.lsys` text, say).
+    pub genome_text: String,
+    /// The genome as JSON (serde), to resume a run.
+    pub genome_json: String,
+    /// Its fitness; a failed evaluation scores the failure floor −999999, a normal value.
+    pub fitness: f64,
+    /// The evaluation's status, e.g. `ok` or the reason it failed.
+    pub status: String,
+    /// The fitness terms as a JSON object.
+    pub terms_json: String,
+    /// How many parts its body has.
+    pub parts: u32,
+    /// How many joints its body has.
+    pub joints: u32,
+    /// How many neurons its brain has.
+    pub neurons: u32,
+}
+
+/// Why a run store could not be created, opened, read or written. Every message names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    /// `create` was given a path that exists.
+    #[error("{} already exists; a new run needs a new file (nothing was changed)", path.display())]
+    Exists {
+        /// The database's path.
+        path: PathBuf,
+    },
+    /// `open` was given a path that does not exist.
+    #[error("{} does not exist", path.display())]
+    Missing {
+        /// The database's path.
+        path: PathBuf,
+    },
+    /// The file is not an SQLite database, or a database but not a run store.
+    #[error("{} is not a run database ({reason})", path.display())]
+    NotARunStore {
+        /// The database's path.
+        path: PathBuf,
+        /// What is wrong, in plain words.
+        reason: String,
+    },
+    /// The file is a damaged database (truncated, overwritten).
+    #[error("{} is corrupt: {detail}", path.display())]
+    Corrupt {
+        /// The database's path.
+        path: PathBuf,
+        /// What SQLite found.
+        detail: String,
+    },
+    /// The run store was written by a newer schema than this program reads.
+    #[error(
+        "{} was written by a newer schema (version {found}); this ontogeny reads version {SCHEMA_VERSION}: update ontogeny",
+        path.display()
+    )]
+    NewerSchema {
+        /// The database's path.
+        path: PathBuf,
+        /// The schema version found in the file.
+        found: i64,
+    },
+    /// The run store was written by an older schema that this program cannot read.
+    #[error(
+        "{} was written by an older schema (version {found}) that this ontogeny (schema version {SCHEMA_VERSION}) cannot read",
+        path.display()
+    )]
+    OlderSchema {
+        /// The database's path.
+        path: PathBuf,
+        /// The schema version found in the file.
+        found: i64,
+    },
+    /// A record given to `write_generation` does not fit the store; nothing was written.
+    #[error("{}: cannot write generation {generation} (nothing of it was stored): {reason}", path.display())]
+    InvalidRecord {
+        /// The database's path.
+        path: PathBuf,
+        /// The generation being written.
+        generation: u32,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A file-system error outside SQLite.
+    #[error("{}: {action}: {source}", path.display())]
+    Io {
+        /// The database's path.
+        path: PathBuf,
+        /// What was being done.
+        action: &'static str,
+        /// The error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// Any other SQLite error.
+    #[error("{}: {action}: {source}", path.display())]
+    Sqlite {
+        /// The database's path.
+        path: PathBuf,
+        /// What was being done.
+        action: String,
+        /// SQLite's error.
+        #[source]
+        source: rusqlite::Error,
+    },
+}
+
+/// An open run store.
+#[derive(Debug)]
+pub struct RunStore {
+    conn: Connection,
+    path: PathBuf,
+}
+
+impl RunStore {
+    /// Creates `path` (error if it exists), the schema, and the run row.
+    pub fn create(path: &Path, run: &RunRecord) -> Result<RunStore, StoreError> {
+        // create_new makes the file atomically, so two runs can never share one.
+        match OpenOptions::new().write(true).create_new(true).open(path) {
+            Ok(_) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                return Err(StoreError::Exists { path: path.into() });
+            }
+            Err(source) => {
+                return Err(StoreError::Io {
+                    path: path.into(),
+                    action: "cannot create the file",
+                    source,
+                });
+            }
+        }
+        let result = Self::create_schema(path, run);
+        if result.is_err() {
+            // The file is ours and holds no committed run: leave no half-made store behind.
+            let _ = fs::remove_file(path);
+            for suffix in ["-wal", "-shm", "-journal"] {
+                let _ = fs::remove_file(side_file(path, suffix));
+            }
+        }
+        result
+    }
+
+    fn create_schema(path: &Path, run: &RunRecord) -> Result<RunStore, StoreError> {
+        let mut store = Self::connect(path)?;
+        let p = store.path.clone();
+        let tx = store
+            .conn
+            .transaction()
+            .map_err(|e| sqlite(&p, "cannot start a transaction", e))?;
+        tx.pragma_update(None, "application_id", APPLICATION_ID)
+            .and_then(|()| tx.pragma_update(None, "user_version", SCHEMA_VERSION))
+            .and_then(|()| tx.execute_batch(SCHEMA))
+            .and_then(|()| {
+                tx.execute(
+                    "INSERT INTO run (id, config, seed, encoding, task, version) \
+                     VALUES (1, ?1, ?2, ?3, ?4, ?5)",
+                    params![
+                        run.config,
+                        run.seed.to_string(),
+                        run.encoding,
+                        run.task,
+                        run.version
+                    ],
+                )
+            })
+            .and_then(|_| tx.commit())
+            .map_err(|e| sqlite(&p, "cannot create the schema", e))?;
+        Ok(store)
+    }
+
+    /// Opens an existing store, checking it is a run store of this schema and not corrupt
+    /// (`PRAGMA quick_check`); never modifies a file it rejects.
+    pub fn open(path: &Path) -> Result<RunStore, StoreError> {
+        // A write-ahead log beside the file holds commits not yet copied into it (the last
+        // run was killed, or is still running): then SQLite must read the log too.
+        let wal = side_file(path, "-wal").exists();
+        if !wal {
+            check_header(path)?;
+        }
+        {
+            // Every check runs on a read-only connection, so a rejected file is left as it
+            // was. Without a log, `immutable=1` also keeps SQLite from creating `-shm` and
+            // `-wal` files beside it.
+            let ro = if wal {
+                Connection::open_with_flags(
+                    path,
+                    OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+                )
+            } else {
+                Connection::open_with_flags(
+                    immutable_uri(path),
+                    OpenFlags::SQLITE_OPEN_READ_ONLY
+                        | OpenFlags::SQLITE_OPEN_NO_MUTEX
+                        | OpenFlags::SQLITE_OPEN_URI,
+                )
+            }
+            .map_err(|e| classify(path, "cannot open it", e))?;
+            check_store(path, &ro)?;
+            ro.close()
+                .map_err(|(_, e)| classify(path, "cannot close it", e))?;
+        }
+        Self::connect(path)
+    }
+
+    /// Opens a read-write connection with the store's settings.
+    fn connect(path: &Path) -> Result<RunStore, StoreError> {
+        let conn = Connection::open_with_flags(
+            path,
+            OpenFlags::SQLITE_OPEN_READ_WRITE | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+        )
+        .map_err(|e| classify(path, "cannot open it", e))?;
+        let setup = || -> rusqlite::Result<String> {
+            // A reader (sqlite3 in another terminal) must not make a write fail at once.
+            conn.busy_timeout(Duration::from_secs(10))?;
+            let mode: String =
+                conn.pragma_update_and_check(None, "journal_mode", "WAL", |r| r.get(0))?;
+            conn.pragma_update(None, "synchronous", "FULL")?;
+            conn.pragma_update(None, "foreign_keys", true)?;
+            Ok(mode)
+        };
+        let mode = setup().map_err(|e| classify(path, "cannot set it up", e))?;
+        if !mode.eq_ignore_ascii_case("wal") {
+            return Err(StoreError::Sqlite {
+                path: path.into(),
+                action: format!("cannot switch to WAL mode (journal mode is {mode})"),
+                source: rusqlite::Error::InvalidQuery,
+            });
+        }
+        Ok(RunStore {
+            conn,
+            path: path.into(),
+        })
+    }
+
+    /// The database's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The run's record.
+    pub fn run(&self) -> Result<RunRecord, StoreError> {
+        let (config, seed, encoding, task, version): (String, String, String, String, String) =
+            self.conn
+                .query_row(
+                    "SELECT config, seed, encoding, task, version FROM run WHERE id = 1",
+                    [],
+                    |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?, r.get(4)?)),
+                )
+                .map_err(|e| classify(&self.path, "cannot read the run row", e))?;
+        let seed = seed.parse().map_err(|_| StoreError::Corrupt {
+            path: self.path.clone(),
+            detail: format!("the run's seed {seed:?} is not a whole number below 2^64"),
+        })?;
+        Ok(RunRecord {
+            config,
+            seed,
+            encoding,
+            task,
+            version,
+        })
+    }
+
+    /// Writes one generation row and all its individuals in ONE transaction: either all of it
+    /// is stored or, on any error, none of it. A generation index already stored is refused.
+    pub fn write_generation(
+        &mut self,
+        generation: &GenerationRecord,
+        individuals: &[IndividualRecord],
+    ) -> Result<(), StoreError> {
+        let g = generation.index;
+        let invalid = |reason: String| StoreError::InvalidRecord {
+            path: self.path.clone(),
+            generation: g,
+            reason,
+        };
+        if let Some(i) = individuals.iter().find(|i| i.generation != g) {
+            return Err(invalid(format!(
+                "individual {} says it belongs to generation {}",
+                i.index, i.generation
+            )));
+        }
+        if let Some(last) = self.last_generation()?
+            && g <= last
+        {
+            return Err(invalid(format!(
+                "the store already holds generations up to {last}"
+            )));
+        }
+        let evaluations = i64::try_from(generation.evaluations).map_err(|_| {
+            invalid(format!(
+                "{} evaluations is too many",
+                generation.evaluations
+            ))
+        })?;
+        let path = self.path.clone();
+        let tx = self
+            .conn
+            .transaction()
+            .map_err(|e| classify(&path, "cannot start a transaction", e))?;
+        tx.execute(
+            "INSERT INTO generation (generation, best, mean, median, sd, valid_fraction, \
+             evaluations, wall_seconds, evaluations_per_second) \
+             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+            params![
+                g,
+                real(generation.best),
+                real(generation.mean),
+                real(generation.median),
+                real(generation.sd),
+                real(generation.valid_fraction),
+                evaluations,
+                real(generation.wall_seconds),
+                real(generation.evaluations_per_second),
+            ],
+        )
+        .map_err(|e| write_error(&path, g, "the generation row".into(), e))?;
+        {
+            let mut insert = tx
+                .prepare(&format!(
+                    "INSERT INTO individual ({INDIVIDUAL_COLUMNS}) \
+                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)"
+                ))
+                .map_err(|e| classify(&path, "cannot prepare the insert", e))?;
+            for i in individuals {
+                let parents = serde_json::to_string(&i.parents).expect("a Vec<u32> serialises");
+                insert
+                    .execute(params![
+                        i.generation,
+                        i.index,
+                        parents,
+                        i.operator,
+                        i.genome_text,
+                        i.genome_json,
+                        real(i.fitness),
+                        i.status,
+                        i.terms_json,
+                        i.parts,
+                        i.joints,
+                        i.neurons,
+                    ])
+                    .map_err(|e| write_error(&path, g, format!("individual {}", i.index), e))?;
+            }
+        }
+        // Dropping an uncommitted transaction (any `?` above) rolls it back.
+        tx.commit()
+            .map_err(|e| write_error(&path, g, "the commit".into(), e))
+    }
+
+    /// The index of the last complete generation, if any. Every stored generation is complete,
+    /// since each is written in one transaction.
+    pub fn last_generation(&self) -> Result<Option<u32>, StoreError> {
+        self.conn
+            .query_row("SELECT max(generation) FROM generation", [], |r| r.get(0))
+            .map_err(|e| classify(&self.path, "cannot read the last generation", e))
+    }
+
+    /// Every stored generation, in index order.
+    pub fn generations(&self) -> Result<Vec<GenerationRecord>, StoreError> {
+        let read = || -> rusqlite::Result<Vec<GenerationRecord>> {
+            let mut stmt = self.conn.prepare(
+                "SELECT generation, best, mean, median, sd, valid_fraction, evaluations, \
+                 wall_seconds, evaluations_per_second FROM generation ORDER BY generation",
+            )?;
+            stmt.query_map([], |r| {
+                Ok(GenerationRecord {
+                    index: r.get(0)?,
+                    best: get_real(r, 1)?,
+                    mean: get_real(r, 2)?,
+                    median: get_real(r, 3)?,
+                    sd: get_real(r, 4)?,
+                    valid_fraction: get_real(r, 5)?,
+                    evaluations: u64::try_from(r.get::<_, i64>(6)?).map_err(|e| {
+                        rusqlite::Error::FromSqlConversionFailure(
+                            6,
+                            rusqlite::types::Type::Integer,
+                            Box::new(e),
+                        )
+                    })?,
+                    wall_seconds: get_real(r, 7)?,
+                    evaluations_per_second: get_real(r, 8)?,
+                })
+            })?
+            .collect()
+        };
+        read().map_err(|e| classify(&self.path, "cannot read the generations", e))
+    }
+
+    /// A generation's individuals, in index order (empty if the generation is not stored).
+    pub fn individuals(&self, generation: u32) -> Result<Vec<IndividualRecord>, StoreError> {
+        let read = || -> rusqlite::Result<Vec<IndividualRecord>> {
+            let mut stmt = self.conn.prepare(&format!(
+                "SELECT {INDIVIDUAL_COLUMNS} FROM individual WHERE generation = ?1 \
+                 ORDER BY individual"
+            ))?;
+            stmt.query_map([generation], individual_from_row)?.collect()
+        };
+        read().map_err(|e| {
+            classify(
+                &self.path,
+                &format!("cannot read generation {generation}'s individuals"),
+                e,
+            )
+        })
+    }
+
+    /// The fittest individual of the whole run (ties go to the earliest generation, then the
+    /// lowest index); `None` before the first generation. NaN fitness never wins.
+    pub fn best_individual(&self) -> Result<Option<IndividualRecord>, StoreError> {
+        self.conn
+            .query_row(
+                &format!(
+                    "SELECT {INDIVIDUAL_COLUMNS} FROM individual WHERE fitness IS NOT NULL \
+                     ORDER BY fitness DESC, generation, individual LIMIT 1"
+                ),
+                [],
+                individual_from_row,
+            )
+            .optional()
+            .map_err(|e| classify(&self.path, "cannot read the best individual", e))
+    }
+}
+
+/// The file SQLite keeps beside `path` with `suffix` (`-wal`, `-shm`, `-journal`).
+fn side_file(path: &Path, suffix: &str) -> PathBuf {
+    let mut side = path.as_os_str().to_owned();
+    side.push(suffix);
+    PathBuf::from(side)
+}
+
+/// An SQLite URI opening `path` as immutable: read without locks, logs or side files.
+fn immutable_uri(path: &Path) -> String {
+    let mut uri = String::from("file:");
+    let bytes = path.as_os_str().as_encoded_bytes();
+    if bytes.starts_with(b"/") {
+        // An empty authority, so a path starting with "//" is not read as a host.
+        uri.push_str("//");
+    }
+    for &b in bytes {
+        if b.is_ascii_alphanumeric() || b"/-._~".contains(&b) {
+            uri.push(b as char);
+        } else {
+            uri.push_str(&format!("%{b:02X}"));
+        }
+    }
+    uri.push_str("?immutable=1");
+    uri
+}
+
+/// NaN becomes NULL: SQLite has no NaN (it would store NULL anyway, but say so).
+fn real(x: f64) -> Option<f64> {
+    (!x.is_nan()).then_some(x)
+}
+
+/// NULL becomes NaN.
+fn get_real(r: &Row<'_>, i: usize) -> rusqlite::Result<f64> {
+    Ok(r.get::<_, Option<f64>>(i)?.unwrap_or(f64::NAN))
+}
+
+fn individual_from_row(r: &Row<'_>) -> rusqlite::Result<IndividualRecord> {
+    let parents: String = r.get(2)?;
+    let parents = serde_json::from_str(&parents).map_err(|e| {
+        rusqlite::Error::FromSqlConversionFailure(2, rusqlite::types::Type::Text, Box::new(e))
+    })?;
+    Ok(IndividualRecord {
+        generation: r.get(0)?,
+        index: r.get(1)?,
+        parents,
+        operator: r.get(3)?,
+        genome_text: r.get(4)?,
+        genome_json: r.get(5)?,
+        fitness: get_real(r, 6)?,
+        status: r.get(7)?,
+        terms_json: r.get(8)?,
+        parts: r.get(9)?,
+        joints: r.get(10)?,
+        neurons: r.get(11)?,
+    })
+}
+
+fn sqlite(path: &Path, action: &str, source: rusqlite::Error) -> StoreError {
+    StoreError::Sqlite {
+        path: path.into(),
+        action: action.into(),
+        source,
+    }
+}
+
+/// Turns SQLite's "not a database" and "malformed" codes into their plain errors.
+fn classify(path: &Path, action: &str, e: rusqlite::Error) -> StoreError {
+    match e.sqlite_error_code() {
+        Some(ErrorCode::NotADatabase) => StoreError::NotARunStore {
+            path: path.into(),
+            reason: "file is not a database".into(),
+        },
+        Some(ErrorCode::DatabaseCorrupt) => StoreError::Corrupt {
+            path: path.into(),
+            detail: e.to_string(),
+        },
+        _ => sqlite(path, action, e),
+    }
+}
+
+fn write_error(path: &Path, generation: u32, what: String, e: rusqlite::Error) -> StoreError {
+    match e.sqlite_error_code() {
+        Some(ErrorCode::ConstraintViolation) => StoreError::InvalidRecord {
+            path: path.into(),
+            generation,
+            reason: format!("{what} breaks a rule of the schema ({e})"),
+        },
+        _ => match classify(path, "", e) {
+            StoreError::Sqlite { source, .. } => StoreError::Sqlite {
+                path: path.into(),
+                action: format!(
+                    "cannot write generation {generation} (nothing of it was stored): {what}"
+                ),
+                source,
+            },
+            other => other,
+        },
+    }
+}
+
+/// Checks the file exists and starts like an SQLite database, before SQLite sees it.
+fn check_header(path: &Path) -> Result<(), StoreError> {
+    let mut file = match fs::File::open(path) {
+        Ok(f) => f,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(StoreError::Missing { path: path.into() });
+        }
+        Err(source) => {
+            return Err(StoreError::Io {
+                path: path.into(),
+                action: "cannot read it",
+                source,
+            });
+        }
+    };
+    let mut header = Vec::with_capacity(100);
+    (&mut file)
+        .take(100)
+        .read_to_end(&mut header)
+        .map_err(|source| StoreError::Io {
+            path: path.into(),
+            action: "cannot read it",
+            source,
+        })?;
+    let not = |reason: &str| StoreError::NotARunStore {
+        path: path.into(),
+        reason: reason.into(),
+    };
+    if header.is_empty() {
+        return Err(not("the file is empty"));
+    }
+    if !header.starts_with(b"SQLite format 3\0") {
+        return Err(not("file is not a database"));
+    }
+    if header.len() < 100 {
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail: format!(
+                "the file is {} bytes long, shorter than an SQLite header",
+                header.len()
+            ),
+        });
+    }
+    // The header's page size and page count (valid when the change counter at 24 matches the
+    // "version valid for" at 92) give the file's length: a shorter file was truncated.
+    let be32 = |at: usize| u32::from_be_bytes(header[at..at + 4].try_into().expect("4 bytes"));
+    let page_size = match u16::from_be_bytes([header[16], header[17]]) {
+        1 => 65536,
+        n => u64::from(n),
+    };
+    let pages = u64::from(be32(28));
+    let length = file.metadata().map(|m| m.len()).unwrap_or(u64::MAX);
+    if be32(24) == be32(92) && pages > 0 && page_size * pages > length {
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail: format!(
+                "the file is truncated ({length} bytes where its header says {})",
+                page_size * pages
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Checks, on a read-only connection, that the database is an undamaged run store of this
+/// schema.
+fn check_store(path: &Path, conn: &Connection) -> Result<(), StoreError> {
+    let not = |reason: String| StoreError::NotARunStore {
+        path: path.into(),
+        reason,
+    };
+    let pragma = |name: &str| -> Result<i64, StoreError> {
+        conn.pragma_query_value(None, name, |r| r.get(0))
+            .map_err(|e| classify(path, &format!("cannot read {name}"), e))
+    };
+    let application_id = pragma("application_id")?;
+    if application_id != APPLICATION_ID {
+        return Err(not(if application_id == 0 {
+            "it is an SQLite database, but not one ontogeny wrote".into()
+        } else {
+            format!(
+                "it is an SQLite database of another program (application_id {application_id:#x})"
+            )
+        }));
+    }
+    let version = pragma("user_version")?;
+    if version > SCHEMA_VERSION {
+        return Err(StoreError::NewerSchema {
+            path: path.into(),
+            found: version,
+        });
+    }
+    if version < SCHEMA_VERSION {
+        return Err(StoreError::OlderSchema {
+            path: path.into(),
+            found: version,
+        });
+    }
+    let mut problems = Vec::new();
+    conn.pragma_query(None, "quick_check", |r| {
+        problems.push(r.get::<_, String>(0)?);
+        Ok(())
+    })
+    .map_err(|e| classify(path, "cannot check it", e))?;
+    if problems != ["ok"] {
+        let shown = problems.len().min(3);
+        let mut detail = problems[..shown].join("; ");
+        if problems.len() > shown {
+            detail.push_str(&format!(" (and {} more problems)", problems.len() - shown));
+        }
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail,
+        });
+    }
+    for (table, expected) in TABLES {
+        let mut columns: Vec<String> = Vec::new();
+        conn.pragma(None, "table_info", table, |r| {
+            columns.push(r.get(1)?);
+            Ok(())
+        })
+        .map_err(|e| classify(path, "cannot read the schema", e))?;
+        if columns.is_empty() {
+            return Err(not(format!("it has no {table} table")));
+        }
+        if columns != expected {
+            let missing: Vec<&str> = expected
+                .iter()
+                .filter(|c| !columns.iter().any(|have| have == *c))
+                .copied()
+                .collect();
+            let extra: Vec<&str> = columns
+                .iter()
+                .filter(|c| !expected.contains(&c.as_str()))
+                .map(String::as_str)
+                .collect();
+            return Err(not(match (missing.as_slice(), extra.as_slice()) {
+                ([one], []) => format!("its {table} table lacks the column {one}"),
+                ([], []) => format!("its {table} table's columns are in another order"),
+                _ => format!(
+                    "its {table} table lacks the columns ({}) and has others ({})",
+                    missing.join(", "),
+                    extra.join(", ")
+                ),
+            }));
+        }
+    }
+    let runs: i64 = conn
+        .query_row("SELECT count(*) FROM run", [], |r| r.get(0))
+        .map_err(|e| classify(path, "cannot read the run table", e))?;
+    if runs != 1 {
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail: format!("the run table has {runs} rows, not 1"),
+        });
+    }
+    Ok(())
+}
