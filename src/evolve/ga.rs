@@ -199,7 +199,7 @@ pub struct Individual<G> {
 }
 
 /// One generation's figures. Mean, median and standard deviation are over the individuals
-/// whose status is `ok` (0 when there are none); the failure floor would swamp them.
+/// whose status is `ok` (NaN when there are none); the failure floor would swamp them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GenerationStats {
     /// The best fitness (of any individual).
@@ -231,7 +231,7 @@ impl GenerationStats {
         valid.sort_by(f64::total_cmp);
         let n = valid.len();
         let (mean, median, sd) = if n == 0 {
-            (0.0, 0.0, 0.0)
+            (f64::NAN, f64::NAN, f64::NAN)
         } else {
             let mean = valid.iter().sum::<f64>() / n as f64;
             let median = if n % 2 == 1 {

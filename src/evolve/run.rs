@@ -308,10 +308,8 @@ impl<G: Genome> Run<G> {
             G::NAME,
             self.config.task.task.name()
         );
-        let svg = self.dir.join("fitness.svg");
-        let temporary = svg.with_extension("tmp.svg");
-        fitness_svg(&temporary, &generations, &title).map_err(|e| RunError::Plot(e.to_string()))?;
-        std::fs::rename(&temporary, &svg).map_err(io(&svg))?;
+        fitness_svg(&self.dir.join("fitness.svg"), &generations, &title)
+            .map_err(|e| RunError::Plot(e.to_string()))?;
         Ok(())
     }
 }
