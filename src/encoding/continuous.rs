@@ -107,14 +107,18 @@ impl ContinuousLimits {
         if !pos(self.time) || !pos(self.dt) {
             return Err("time and dt must be positive and finite".into());
         }
-        if !pos(self.min_threshold) || !(self.max_threshold >= self.min_threshold) {
+        if !pos(self.min_threshold)
+            || self.max_threshold.is_nan()
+            || self.max_threshold < self.min_threshold
+        {
             return Err("thresholds need 0 < min_threshold <= max_threshold".into());
         }
         if !self.max_threshold.is_finite() {
             return Err("max_threshold must be finite".into());
         }
         if !pos(self.min_duration)
-            || !(self.max_duration >= self.min_duration)
+            || self.max_duration.is_nan()
+            || self.max_duration < self.min_duration
             || !self.max_duration.is_finite()
         {
             return Err("durations need 0 < min_duration <= max_duration".into());
@@ -550,35 +554,162 @@ fn random_threshold(limits: &ContinuousLimits, rng: &mut Rng) -> f64 {
     random_param(ParamKind::Length, limits, rng).unwrap_or(limits.min_threshold)
 }
 
-/// A random non-bracket token; a maturing token only when `grower_ok`.
-fn random_token(limits: &ContinuousLimits, grower_ok: bool, rng: &mut Rng) -> Token {
-    let growers = if grower_ok {
-        limits.growers()
-    } else {
-        Vec::new()
-    };
+/// A random maturing symbol: mostly (4 in 5) one the genome has a rule for, when it has any.
+fn random_grower(limits: &ContinuousLimits, active: &[Grower], rng: &mut Rng) -> Grower {
+    if !active.is_empty() && rng.random_bool(0.8) {
+        return active[rng.random_range(0..active.len())];
+    }
+    let all = limits.growers();
+    let weights: Vec<f64> = all.iter().map(|g| g.weight()).collect();
+    all[weighted(rng, &weights)]
+}
+
+/// A random non-bracket token; a maturing token only when `grower_ok`. Maturing tokens
+/// together weigh as much as `forward`.
+fn random_token(
+    limits: &ContinuousLimits,
+    active: &[Grower],
+    grower_ok: bool,
+    rng: &mut Rng,
+) -> Token {
     let mut weights: Vec<f64> = Command::ALL.iter().map(|&(_, w)| w).collect();
-    // Maturing tokens together weigh as much as `forward`.
-    let grower_weights: Vec<f64> = growers.iter().map(|g| g.weight()).collect();
-    let grower_total: f64 = grower_weights.iter().sum();
-    weights.extend(grower_weights.iter().map(|w| w / grower_total * 5.0));
+    if grower_ok {
+        weights.push(Command::ALL[0].1);
+    }
     let i = weighted(rng, &weights);
     if i < Command::ALL.len() {
         let c = Command::ALL[i].0;
         Token::Command(c, random_param(c.kind(), limits, rng))
     } else {
-        Token::Grower(growers[i - Command::ALL.len()])
+        Token::Grower(random_grower(limits, active, rng))
     }
 }
 
-/// A random balanced sequence of `min_len` to `max_len` tokens with at most `growers`
-/// maturing tokens (it decreases as they are used). Branches nest at most 3 deep.
+/// A random joint command: `revolute2` (the freest) twice as often as each other one.
+fn random_joint(rng: &mut Rng) -> Token {
+    let joints = [
+        (Command::Revolute1, 1.0),
+        (Command::Revolute2, 2.0),
+        (Command::Twist90, 1.0),
+        (Command::Twist180, 1.0),
+    ];
+    let weights: Vec<f64> = joints.iter().map(|&(_, w)| w).collect();
+    Token::Command(joints[weighted(rng, &weights)].0, None)
+}
+
+/// A random turn of 45° to 90° either way: smaller turns make branches that overlap.
+fn random_turn(rng: &mut Rng) -> Token {
+    let turns = [
+        Command::Left,
+        Command::Right,
+        Command::Up,
+        Command::Down,
+        Command::Clockwise,
+        Command::Counterclockwise,
+    ];
+    let c = turns[rng.random_range(0..turns.len())];
+    Token::Command(c, Some(round_grid(rng.random_range(0.5..=1.0))))
+}
+
+/// A limb: a part (`forward(l)`, or the maturing token `part` born at 0), with, 7 times in
+/// 10 when there is room, a joint command before it and an `output` driving that joint after
+/// it. At most `room` tokens.
+fn limb(part: Token, room: usize, limits: &ContinuousLimits, rng: &mut Rng) -> Vec<Token> {
+    if room >= 3 && rng.random_bool(0.7) {
+        let output = Token::Command(
+            Command::Output,
+            random_param(ParamKind::Weight, limits, rng),
+        );
+        vec![random_joint(rng), part, output]
+    } else {
+        vec![part]
+    }
+}
+
+/// A maturing token; `mforward(0)` has a joint command before it 7 times in 10 (the output
+/// that drives that joint comes at the start of `mforward`'s successor, see [`random_rule`]).
+fn grower_motif(
+    limits: &ContinuousLimits,
+    active: &[Grower],
+    room: usize,
+    rng: &mut Rng,
+) -> Vec<Token> {
+    match random_grower(limits, active, rng) {
+        g @ Grower::Maturing(Command::Forward) if room >= 2 && rng.random_bool(0.7) => {
+            vec![random_joint(rng), Token::Grower(g)]
+        }
+        g => vec![Token::Grower(g)],
+    }
+}
+
+/// A random motif of at most `room` (≥ 1) tokens: a limb (4), a limb that grows (3, while
+/// `growers` allows a maturing token), a branch `[ turn ... ]` (2), a turn (1) or any single
+/// token (2). Branches nest at most 3 deep.
+fn random_motif(
+    limits: &ContinuousLimits,
+    active: &[Grower],
+    growers: &mut usize,
+    room: usize,
+    depth: usize,
+    rng: &mut Rng,
+) -> Vec<Token> {
+    let can_grow = *growers > 0;
+    let can_branch = room >= 4 && depth < 3;
+    let weights = [
+        4.0,
+        if can_grow { 3.0 } else { 0.0 },
+        if can_branch { 2.0 } else { 0.0 },
+        1.0,
+        2.0,
+    ];
+    match weighted(rng, &weights) {
+        0 => {
+            let part = Token::Command(
+                Command::Forward,
+                random_param(ParamKind::Length, limits, rng),
+            );
+            limb(part, room, limits, rng)
+        }
+        1 => {
+            *growers -= 1;
+            grower_motif(limits, active, room, rng)
+        }
+        2 => {
+            let inner_len = rng.random_range(2..=(room - 2).min(6));
+            let mut v = vec![Token::Push, random_turn(rng)];
+            let inner = random_sequence(
+                inner_len - 1,
+                inner_len - 1,
+                growers,
+                depth + 1,
+                limits,
+                active,
+                rng,
+            );
+            v.extend(inner);
+            v.push(Token::Pop);
+            v
+        }
+        3 => vec![random_turn(rng)],
+        _ => {
+            let t = random_token(limits, active, can_grow, rng);
+            if t.is_grower() {
+                *growers -= 1;
+            }
+            vec![t]
+        }
+    }
+}
+
+/// A random balanced sequence of `min_len` to `max_len` tokens made of motifs, with at most
+/// `growers` maturing tokens (it decreases as they are used).
 fn random_sequence(
     min_len: usize,
     max_len: usize,
     growers: &mut usize,
     depth: usize,
     limits: &ContinuousLimits,
+    active: &[Grower],
     rng: &mut Rng,
 ) -> Vec<Token> {
     let len = if max_len > min_len {
@@ -589,32 +720,75 @@ fn random_sequence(
     let mut out = Vec::with_capacity(len);
     while out.len() < len {
         let room = len - out.len();
-        if room >= 3 && depth < 3 && rng.random_bool(0.25) {
-            let inner = random_sequence(1, (room - 2).min(5), growers, depth + 1, limits, rng);
-            out.push(Token::Push);
-            out.extend(inner);
-            out.push(Token::Pop);
-        } else {
-            let t = random_token(limits, *growers > 0, rng);
-            if t.is_grower() {
-                *growers -= 1;
-            }
-            out.push(t);
-        }
+        out.extend(random_motif(limits, active, growers, room, depth, rng));
     }
     out
 }
 
-fn random_rule(grower: Grower, limits: &ContinuousLimits, rng: &mut Rng) -> Rule {
+/// A random rule for `grower`; `active` are the symbols the genome has rules for.
+fn random_rule(
+    grower: Grower,
+    limits: &ContinuousLimits,
+    active: &[Grower],
+    rng: &mut Rng,
+) -> Rule {
     let threshold = random_threshold(limits, rng);
     let mut growers = limits.max_growers;
-    let max = limits.max_successor;
+    let max = limits.max_successor.min(8);
+    let forward = grower == Grower::Maturing(Command::Forward);
+    let len = rng.random_range(usize::from(forward).min(max)..=max);
+    // A grown limb drives the joint it was born with, 9 times in 10.
+    let mut successor = Vec::with_capacity(len);
+    if forward && len > 0 && rng.random_bool(0.9) {
+        successor.push(Token::Command(
+            Command::Output,
+            random_param(ParamKind::Weight, limits, rng),
+        ));
+    }
+    let rest = len - successor.len();
+    successor.extend(random_sequence(
+        rest,
+        rest,
+        &mut growers,
+        0,
+        limits,
+        active,
+        rng,
+    ));
     Rule {
         grower,
         threshold,
         rate: random_rate(threshold, limits, rng),
-        successor: random_sequence(0, max.min(8), &mut growers, 0, limits, rng),
+        successor,
     }
+}
+
+/// A random axiom: a first part (`forward`), a maturing token one of the rules rewrites (when
+/// the limits allow one), and random motifs, at most `max_axiom` tokens in all.
+fn random_axiom(limits: &ContinuousLimits, active: &[Grower], rng: &mut Rng) -> Vec<Token> {
+    let max = limits.max_axiom;
+    let len = rng.random_range(max.min(3)..=max.min(8));
+    let mut axiom = vec![Token::Command(
+        Command::Forward,
+        random_param(ParamKind::Length, limits, rng),
+    )];
+    let mut growers = limits.max_growers;
+    if growers > 0 && axiom.len() < len && !active.is_empty() {
+        growers -= 1;
+        let room = len - axiom.len();
+        axiom.extend(grower_motif(limits, active, room, rng));
+    }
+    let rest = len - axiom.len();
+    axiom.extend(random_sequence(
+        rest,
+        rest,
+        &mut growers,
+        0,
+        limits,
+        active,
+        rng,
+    ));
+    axiom
 }
 
 // ---- mutation ------------------------------------------------------------------------
@@ -660,6 +834,7 @@ fn mutate_sequence(
     min_len: usize,
     max_len: usize,
     limits: &ContinuousLimits,
+    active: &[Grower],
     rate: f64,
     rng: &mut Rng,
 ) {
@@ -670,7 +845,7 @@ fn mutate_sequence(
         }
         if chance(rng, rate) {
             let others = count(seq) - usize::from(seq[i].is_grower());
-            seq[i] = random_token(limits, others < limits.max_growers, rng);
+            seq[i] = random_token(limits, active, others < limits.max_growers, rng);
         }
         if let Token::Command(c, Some(v)) = &mut seq[i]
             && chance(rng, rate)
@@ -680,7 +855,7 @@ fn mutate_sequence(
     }
     if seq.len() < max_len && chance(rng, rate) {
         let at = rng.random_range(0..=seq.len());
-        let token = random_token(limits, count(seq) < limits.max_growers, rng);
+        let token = random_token(limits, active, count(seq) < limits.max_growers, rng);
         if seq.len() + 3 <= max_len && rng.random_bool(0.25) {
             seq.splice(at..at, [Token::Push, token, Token::Pop]);
         } else {
@@ -838,7 +1013,11 @@ fn check_sequence(
                             return Err(format!(
                                 "{what}: {}({v}) is outside its range, {}[{lo}, {hi}]",
                                 c.name(),
-                                if integral(kind) { "whole numbers in " } else { "" }
+                                if integral(kind) {
+                                    "whole numbers in "
+                                } else {
+                                    ""
+                                }
                             ));
                         }
                     }
@@ -864,25 +1043,27 @@ impl Genome for ContinuousGenome {
 
     fn random(limits: &ContinuousLimits, rng: &mut Rng) -> Self {
         let limits = limits.sane();
+        // Always a rule for mforward (limbs that lengthen, Figure 2), and others at random.
         let mut candidates = limits.growers();
-        let n_rules = rng.random_range(1..=limits.max_rules.min(candidates.len()).max(1));
-        let mut rules = Vec::with_capacity(n_rules);
-        while rules.len() < n_rules && !candidates.is_empty() {
+        let n_rules = rng.random_range(1..=limits.max_rules.min(candidates.len()));
+        let mut active = Vec::with_capacity(n_rules);
+        let mforward = Grower::Maturing(Command::Forward);
+        candidates.retain(|&g| g != mforward);
+        active.push(mforward);
+        while active.len() < n_rules {
             let weights: Vec<f64> = candidates.iter().map(|g| g.weight()).collect();
-            let g = candidates.remove(weighted(rng, &weights));
-            rules.push(random_rule(g, &limits, rng));
+            active.push(candidates.remove(weighted(rng, &weights)));
         }
-        let mut growers = limits.max_growers;
-        let axiom = random_sequence(1, limits.max_axiom.min(8), &mut growers, 0, &limits, rng);
         let mut genome = ContinuousGenome {
             time: limits.time,
             dt: limits.dt,
-            axiom,
+            axiom: Vec::new(),
             rules: Vec::new(),
         };
-        for rule in rules {
-            genome.insert_rule(rule);
+        for &g in &active {
+            genome.insert_rule(random_rule(g, &limits, &active, rng));
         }
+        genome.axiom = random_axiom(&limits, &active, rng);
         genome
     }
 
@@ -890,7 +1071,16 @@ impl Genome for ContinuousGenome {
         let limits = limits.sane();
         let rate = if rate.is_finite() { rate } else { 0.0 };
         let mut g = self.clone();
-        mutate_sequence(&mut g.axiom, 1, limits.max_axiom, &limits, rate, rng);
+        let active: Vec<Grower> = g.rules.iter().map(|r| r.grower).collect();
+        mutate_sequence(
+            &mut g.axiom,
+            1,
+            limits.max_axiom,
+            &limits,
+            &active,
+            rate,
+            rng,
+        );
         for rule in &mut g.rules {
             if chance(rng, rate) {
                 rule.threshold = perturb(rule.threshold, ParamKind::Length, &limits, rng);
@@ -911,6 +1101,7 @@ impl Genome for ContinuousGenome {
                 0,
                 limits.max_successor,
                 &limits,
+                &active,
                 rate,
                 rng,
             );
@@ -928,18 +1119,13 @@ impl Genome for ContinuousGenome {
             if !unused.is_empty() {
                 let weights: Vec<f64> = unused.iter().map(|x| x.weight()).collect();
                 let grower = unused[weighted(rng, &weights)];
-                g.insert_rule(random_rule(grower, &limits, rng));
+                g.insert_rule(random_rule(grower, &limits, &active, rng));
             }
         }
         g
     }
 
-    fn crossover(
-        &self,
-        other: &Self,
-        limits: &ContinuousLimits,
-        rng: &mut Rng,
-    ) -> Option<Self> {
+    fn crossover(&self, other: &Self, limits: &ContinuousLimits, rng: &mut Rng) -> Option<Self> {
         let limits = limits.sane();
         let alphabet = limits.growers();
         let cut = alphabet[rng.random_range(0..alphabet.len())].name();
@@ -1079,7 +1265,9 @@ fn token_of(call: &ModuleCall, limits: &ContinuousLimits) -> Result<Token, Strin
     if let Some(g) = Grower::from_name(name, limits) {
         return match call.args.as_slice() {
             [arg] if number(arg) == Some(0.0) => Ok(Token::Grower(g)),
-            _ => Err(format!("the maturing token {name} must be written {name}(0)")),
+            _ => Err(format!(
+                "the maturing token {name} must be written {name}(0)"
+            )),
         };
     }
     Err(format!(
@@ -1150,7 +1338,10 @@ fn from_file(lsys: &LSystem, limits: &ContinuousLimits) -> Result<ContinuousGeno
             let [(param, _)] = r.predecessor.params.as_slice() else {
                 return Err(format!("{line}: {name} must have one parameter"));
             };
-            let guard = r.guard.as_ref().ok_or_else(|| format!("{line}: {template}"))?;
+            let guard = r
+                .guard
+                .as_ref()
+                .ok_or_else(|| format!("{line}: {template}"))?;
             match &r.solve {
                 Some(ode) => {
                     let threshold = comparison(guard, BinaryOp::Lt, param)
@@ -1159,7 +1350,11 @@ fn from_file(lsys: &LSystem, limits: &ContinuousLimits) -> Result<ContinuousGeno
                         [d] if d.param == *param => number(&d.rhs),
                         _ => None,
                     }
-                    .ok_or_else(|| format!("{line}: the growth must be 'solve d{param}/dt = R' with a number R"))?;
+                    .ok_or_else(|| {
+                        format!(
+                            "{line}: the growth must be 'solve d{param}/dt = R' with a number R"
+                        )
+                    })?;
                     grow = Some((threshold, rate));
                 }
                 None => {

@@ -29,13 +29,7 @@ pub struct DevelopError(pub String);
 /// does not develop gives a [`DevelopError`].
 pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned {
     /// The encoding's limits and settings (serialisable: they are part of a run's config).
-    type Limits: Clone
-        + std::fmt::Debug
-        + Default
-        + Send
-        + Sync
-        + Serialize
-        + DeserializeOwned;
+    type Limits: Clone + std::fmt::Debug + Default + Send + Sync + Serialize + DeserializeOwned;
 
     /// The encoding's name, as the CLI and the run store spell it.
     const NAME: &'static str;
