@@ -137,7 +137,7 @@ fn the_hand_written_walker_fits_and_develops_like_its_file() {
     let text = std::fs::read_to_string("examples/continuous-walker.lsys").unwrap();
     let g = ContinuousGenome::from_lsys(&text, &limits).unwrap();
     assert_eq!(g.rules.len(), 4);
-    assert_eq!(g.axiom.len(), 6);
+    assert_eq!(g.axiom.len(), 9);
     let mforward = g.rule(Grower::Maturing(Command::Forward)).unwrap();
     assert_eq!((mforward.threshold, mforward.rate), (0.4, 0.4));
     let from_file = grown_from_text(&text, &limits);

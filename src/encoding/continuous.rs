@@ -176,7 +176,7 @@ enum ParamKind {
     None,
     /// A part length, within the thresholds.
     Length,
-    /// A width or thickness, in [0.1, 0.5].
+    /// A width or thickness, in [0.1, 1].
     Size,
     /// A turn, in [−1, 1] (1 is 90°).
     Turn,
@@ -498,7 +498,7 @@ fn range_of(kind: ParamKind, limits: &ContinuousLimits) -> (f64, f64) {
     match kind {
         ParamKind::None => (0.0, 0.0),
         ParamKind::Length => (limits.min_threshold, limits.max_threshold),
-        ParamKind::Size => (0.1, 0.5),
+        ParamKind::Size => (0.1, 1.0),
         ParamKind::Turn => (-1.0, 1.0),
         ParamKind::Weight => (-2.0, 2.0),
         ParamKind::Index => (0.0, 3.0),
