@@ -1561,6 +1561,57 @@ mod tests {
     }
 
     #[test]
+    fn limits_read_from_config_fill_defaults_and_refuse_unknown_keys() {
+        let l: ContinuousLimits = serde_json::from_str("{}").unwrap();
+        assert_eq!(l, ContinuousLimits::default());
+        let l: ContinuousLimits = serde_json::from_str(r#"{"max_rules": 2}"#).unwrap();
+        assert_eq!((l.max_rules, l.max_axiom), (2, 12));
+        let e = serde_json::from_str::<ContinuousLimits>(r#"{"max_rule": 2}"#).unwrap_err();
+        assert!(e.to_string().contains("unknown field"), "{e}");
+    }
+
+    #[test]
+    fn growth_doubles_once_per_min_duration_and_no_more() {
+        // Two limbs that each branch into two every time unit (threshold 0.2, rate 0.2), over
+        // 4 time units: generations born at t = 0, 1, 2, 3, 4 hold 2, 4, 8, 16, 32 tokens;
+        // the first four matured into 30 parts, the last is just born.
+        let mf = Grower::Maturing(Command::Forward);
+        let g = ContinuousGenome {
+            time: 4.0,
+            dt: 1.0,
+            axiom: vec![
+                Token::Command(Command::Forward, Some(0.5)),
+                Token::Grower(mf),
+                Token::Grower(mf),
+            ],
+            rules: vec![Rule {
+                grower: mf,
+                threshold: 0.2,
+                rate: 0.2,
+                successor: vec![
+                    Token::Push,
+                    Token::Command(Command::Left, Some(1.0)),
+                    Token::Grower(mf),
+                    Token::Pop,
+                    Token::Grower(mf),
+                ],
+            }],
+        };
+        let l = ContinuousLimits::default();
+        g.check_limits(&l).unwrap();
+        let lsys = LSystem::from_text("t", &g.to_text()).unwrap();
+        let mut dev = lsys.development(&DeriveOptions::default()).unwrap();
+        while dev.advance().unwrap() {}
+        let s = lsys.display(dev.current());
+        assert_eq!(s.matches("mforward").count(), 32, "{s}");
+        assert_eq!(s.matches("forward").count() - 32, 31, "{s}");
+        // A rate that would mature faster than min_duration is refused.
+        let mut fast = g.clone();
+        fast.rules[0].rate = 0.4;
+        assert!(fast.check_limits(&l).unwrap_err().contains("min_duration"));
+    }
+
+    #[test]
     fn bad_limits_are_reported_and_operators_still_work() {
         let bad = ContinuousLimits {
             max_rules: 0,
