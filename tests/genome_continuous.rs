@@ -278,7 +278,7 @@ fn mutation_rate_zero_changes_nothing_and_rate_one_changes_every_token() {
 #[test]
 fn developmental_errors_are_errors_not_panics() {
     let limits = ContinuousLimits::default();
-    // A non-finite parameter prints as a name the language does not know.
+    // A genome that does not fit its limits (read from elsewhere) is refused...
     let mut g = ContinuousGenome::from_lsys(
         &std::fs::read_to_string("examples/continuous-walker.lsys").unwrap(),
         &limits,
@@ -286,7 +286,15 @@ fn developmental_errors_are_errors_not_panics() {
     .unwrap();
     g.axiom[0] = Token::Command(Command::Width, Some(f64::NAN));
     let e = g.develop(&limits, 0).unwrap_err();
-    assert!(e.0.contains("NaN"), "{e}");
+    assert!(e.0.contains("width(NaN) is outside its range"), "{e}");
+    let mut slow = g.clone();
+    slow.axiom[0] = Token::Command(Command::Width, Some(0.5));
+    slow.dt = 1e-6;
+    let e = slow.develop(&limits, 0).unwrap_err();
+    assert!(e.0.contains("more than 1000 frames"), "{e}");
+    // ...and its text does not compile: a non-finite number prints as an unknown name.
+    let e = LSystem::from_text("g", &g.to_text()).unwrap_err();
+    assert!(e.to_string().contains("NaN"), "{e}");
     // Growth past max_modules stops development with the language's message.
     let small = ContinuousLimits {
         max_modules: 20,

@@ -453,6 +453,9 @@ pub struct ContinuousGenome {
 
 // ---- random draws --------------------------------------------------------------------
 
+/// Most frames (time / dt) a genome may show: each costs a restart of the ODE solver.
+const MAX_FRAMES: f64 = 1000.0;
+
 /// Values are kept on a grid of 0.01 so that printed genomes stay readable.
 const GRID: f64 = 100.0;
 
@@ -890,8 +893,11 @@ impl ContinuousGenome {
                 self.time, limits.time
             ));
         }
-        if !(self.dt.is_finite() && self.dt > 0.0) {
-            return Err(format!("its dt, {}, is not positive", self.dt));
+        if !(self.dt.is_finite() && self.dt > 0.0 && self.time / self.dt <= MAX_FRAMES) {
+            return Err(format!(
+                "its dt, {}, is not positive or makes more than {MAX_FRAMES} frames",
+                self.dt
+            ));
         }
         if self.axiom.is_empty() {
             return Err("its axiom is empty".into());
@@ -1143,6 +1149,10 @@ impl Genome for ContinuousGenome {
 
     fn develop(&self, limits: &ContinuousLimits, _seed: u64) -> Result<Creature, DevelopError> {
         let limits = limits.sane();
+        // A genome from elsewhere (a store, a hand-edited file) may not fit: its time and
+        // frames would be unbounded.
+        self.check_limits(&limits)
+            .map_err(|e| DevelopError(format!("the genome exceeds its limits: {e}")))?;
         let lsys = LSystem::from_text(Self::NAME, &self.to_text())
             .map_err(|d| DevelopError(d.to_string()))?;
         let options = DeriveOptions {
@@ -1270,11 +1280,17 @@ fn token_of(call: &ModuleCall, limits: &ContinuousLimits) -> Result<Token, Strin
             )),
         };
     }
+    let controls = match limits.control_tokens.min(26) {
+        0 => "no control tokens".to_string(),
+        n => format!(
+            "control tokens A to {}",
+            Grower::Control(n as u8 - 1).name()
+        ),
+    };
     Err(format!(
         "'{name}' is not a token of the genome (the commands but chem, target, secrete, \
          release, increase and decrease; the maturing twins of forward, the turns and the \
-         joints; control tokens A to {})",
-        Grower::Control(limits.control_tokens.clamp(1, 26) as u8 - 1).name()
+         joints; {controls})"
     ))
 }
 
