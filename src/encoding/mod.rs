@@ -10,6 +10,9 @@ use serde::{Serialize, de::DeserializeOwned};
 
 use crate::creature::Creature;
 
+pub mod continuous;
+pub use continuous::{ContinuousGenome, ContinuousLimits};
+
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.
 pub type Rng = ChaCha8Rng;
