@@ -10,6 +10,10 @@ use serde::{Serialize, de::DeserializeOwned};
 
 use crate::creature::Creature;
 
+pub mod lsystem;
+
+pub use lsystem::{LSystemGenome, LSystemLimits};
+
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.
 pub type Rng = ChaCha8Rng;
@@ -26,13 +30,7 @@ pub struct DevelopError(pub String);
 /// does not develop gives a [`DevelopError`].
 pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned {
     /// The encoding's limits and settings (serialisable: they are part of a run's config).
-    type Limits: Clone
-        + std::fmt::Debug
-        + Default
-        + Send
-        + Sync
-        + Serialize
-        + DeserializeOwned;
+    type Limits: Clone + std::fmt::Debug + Default + Send + Sync + Serialize + DeserializeOwned;
 
     /// The encoding's name, as the CLI and the run store spell it.
     const NAME: &'static str;
