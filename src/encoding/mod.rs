@@ -11,7 +11,10 @@ use serde::{Serialize, de::DeserializeOwned};
 use crate::creature::Creature;
 
 pub mod continuous;
+pub mod lsystem;
+
 pub use continuous::{ContinuousGenome, ContinuousLimits};
+pub use lsystem::{LSystemGenome, LSystemLimits};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.
