@@ -143,9 +143,9 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
         };
     }
     let source = match &args.config {
-        Some(path) => Some(
-            Source::read(path).with_context(|| format!("cannot read {}", path.display()))?,
-        ),
+        Some(path) => {
+            Some(Source::read(path).with_context(|| format!("cannot read {}", path.display()))?)
+        }
         None => None,
     };
     let encoding = match (args.encoding, &source) {
@@ -164,7 +164,10 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
 
 /// Resolves the settings (command line over config file over preset) and starts the run.
 fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Result<()> {
-    let out = args.out.as_ref().expect("clap requires --out without --resume");
+    let out = args
+        .out
+        .as_ref()
+        .expect("clap requires --out without --resume");
     let file: ConfigFile<G::Limits> = match source {
         Some(s) => read_config(s)?,
         None => ConfigFile {
@@ -190,7 +193,10 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         overrides.generations = args.gens;
     }
     let ga = overrides.resolve();
-    let mut task = file.task.clone().unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+    let mut task = file
+        .task
+        .clone()
+        .unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
     if let Some(t) = args.task {
         task.task = match t {
             TaskArg::Walker => TaskKind::Walker,
@@ -231,7 +237,9 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         G::from_lsys(text, &limits).map_err(|e| {
             bad(format!(
                 "{}: cannot seed the {} encoding: {}",
-                init_path.as_ref().map_or(String::new(), |p| p.display().to_string()),
+                init_path
+                    .as_ref()
+                    .map_or(String::new(), |p| p.display().to_string()),
                 G::NAME,
                 e.0
             ))
@@ -270,7 +278,10 @@ fn resume<G: Genome>(dir: &Path) -> anyhow::Result<()> {
 /// Runs the remaining generations with a progress bar on a terminal, log lines otherwise.
 fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     let total = run.config().ga.generations as u64;
-    let first = run.last_generation().map_err(run_error)?.map_or(0, |g| g + 1) as u64;
+    let first = run
+        .last_generation()
+        .map_err(run_error)?
+        .map_or(0, |g| g + 1) as u64;
     let terminal = std::io::stderr().is_terminal();
     let bar = if terminal {
         let bar = indicatif::ProgressBar::new(total);
@@ -402,17 +413,29 @@ pub fn runs(args: &RunsArgs) -> anyhow::Result<()> {
 /// `ontogeny replay RUN [--gen G] [--rank K]`: re-evaluates individual K (1 = best) of
 /// generation G (default: the last) with a recording, and writes its genome, `creature.png`,
 /// `recording.json` and `behaviour.gif` to `RUN/replay/gen-G-rank-K/`.
-pub fn replay_run(dir: &Path, generation: Option<u32>, rank: usize, fps: f64) -> anyhow::Result<()> {
+pub fn replay_run(
+    dir: &Path,
+    generation: Option<u32>,
+    rank: usize,
+    fps: f64,
+) -> anyhow::Result<()> {
     let config = dir.join("config.toml");
-    let source = Source::read(&config)
-        .map_err(|_| bad(format!("{} is not a run directory (no config.toml)", dir.display())))?;
+    let source = Source::read(&config).map_err(|_| {
+        bad(format!(
+            "{} is not a run directory (no config.toml)",
+            dir.display()
+        ))
+    })?;
     let encoding = encoding_of(&source)?.unwrap_or_default();
     match encoding.as_str() {
         n if n == LSystemGenome::NAME => replay_typed::<LSystemGenome>(dir, generation, rank, fps),
         n if n == ContinuousGenome::NAME => {
             replay_typed::<ContinuousGenome>(dir, generation, rank, fps)
         }
-        other => Err(bad(format!("{}: unknown encoding '{other}'", config.display()))),
+        other => Err(bad(format!(
+            "{}: unknown encoding '{other}'",
+            config.display()
+        ))),
     }
 }
 

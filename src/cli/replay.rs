@@ -18,8 +18,8 @@ pub struct ReplayArgs {
     #[arg(long, default_value_t = 10.0)]
     fps: f64,
     /// For a run: the generation (default: the last complete one).
-    #[arg(long)]
-    gen: Option<u32>,
+    #[arg(long = "gen", value_name = "G")]
+    generation: Option<u32>,
     /// For a run: the individual's rank in its generation, 1 for the best.
     #[arg(long, default_value_t = 1)]
     rank: usize,
@@ -40,7 +40,7 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         ));
     }
     if args.dir.join("config.toml").exists() {
-        return super::evolve::replay_run(&args.dir, args.gen, args.rank, args.fps);
+        return super::evolve::replay_run(&args.dir, args.generation, args.rank, args.fps);
     }
     let path = args.dir.join("recording.json");
     let text = std::fs::read_to_string(&path)

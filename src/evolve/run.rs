@@ -145,8 +145,7 @@ impl<G: Genome> Run<G> {
             return Err(RunError::NotARun(dir.to_path_buf()));
         }
         let source = Source::read(&path).map_err(io(&path))?;
-        let config: RunConfig<G::Limits> =
-            read_run_config(&source).map_err(RunError::Config)?;
+        let config: RunConfig<G::Limits> = read_run_config(&source).map_err(RunError::Config)?;
         let store = RunStore::open(&dir.join("run.sqlite"))?;
         let init = match &config.init {
             Some(file) => {
