@@ -1,0 +1,313 @@
+//! `ontogeny evolve` end to end: the run directory and its database, identical results on
+//! one and two threads, a run killed with SIGKILL mid-generation and resumed equals the
+//! uninterrupted run, and bad input refused with exit code 2.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use ontogeny::evolve::store::RunStore;
+
+fn ontogeny() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ontogeny-evolve-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A small, quick run: 12 individuals, `gens` generations, 1 s walks.
+fn run_of(out: &Path, gens: &str, extra: &[&str]) -> Output {
+    let mut c = ontogeny();
+    c.args([
+        "evolve",
+        "--encoding",
+        "lsystem",
+        "--task",
+        "walker",
+        "--pop",
+        "12",
+        "--gens",
+        gens,
+        "--seconds",
+        "1",
+        "--seed",
+        "5",
+        "--out",
+    ])
+    .arg(out)
+    .args(extra);
+    c.output().unwrap()
+}
+
+/// The small run of 4 generations.
+fn small_run(out: &Path, extra: &[&str]) -> Output {
+    run_of(out, "4", extra)
+}
+
+/// Everything the store holds of a run but wall-clock times, as one comparable string.
+fn contents(dir: &Path) -> String {
+    let store = RunStore::open(&dir.join("run.sqlite")).unwrap();
+    let mut out = String::new();
+    let last = store.last_generation().unwrap().unwrap();
+    for g in store.generations().unwrap() {
+        out += &format!(
+            "{} {:?} {:?} {:?} {:?} {} {}\n",
+            g.index, g.best, g.mean, g.median, g.sd, g.valid_fraction, g.evaluations
+        );
+    }
+    for generation in 0..=last {
+        for i in store.individuals(generation).unwrap() {
+            out += &format!(
+                "{} {} {:?} {} {:?} {} {} {} {} {} {}\n{}\n",
+                i.generation,
+                i.index,
+                i.parents,
+                i.operator,
+                i.fitness,
+                i.status,
+                i.terms_json,
+                i.parts,
+                i.joints,
+                i.neurons,
+                i.genome_json,
+                i.genome_text
+            );
+        }
+    }
+    out
+}
+
+#[test]
+fn a_run_writes_its_directory_and_database() {
+    let dir = scratch("layout");
+    let out = dir.join("run");
+    let o = small_run(&out, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for file in [
+        "config.toml",
+        "run.sqlite",
+        "fitness.svg",
+        "best.lsys",
+        "log.txt",
+    ] {
+        assert!(out.join(file).exists(), "{file}");
+    }
+    let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+    let run = store.run().unwrap();
+    assert_eq!(
+        (run.encoding.as_str(), run.task.as_str(), run.seed),
+        ("lsystem", "walker", 5)
+    );
+    assert_eq!(
+        run.config,
+        std::fs::read_to_string(out.join("config.toml")).unwrap()
+    );
+    let generations = store.generations().unwrap();
+    assert_eq!(generations.len(), 4);
+    // Generation 0 evaluates everyone; later ones all but the elite (20% of 12: 2).
+    assert_eq!(generations[0].evaluations, 12);
+    assert!(generations[1..].iter().all(|g| g.evaluations == 10));
+    for g in 0..4 {
+        let individuals = store.individuals(g).unwrap();
+        assert_eq!(individuals.len(), 12);
+        // The best of each generation is the generation's best figure.
+        let best = individuals
+            .iter()
+            .map(|i| i.fitness)
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert_eq!(best, generations[g as usize].best);
+        // Elitism: the best never gets worse.
+        if g > 0 {
+            assert!(generations[g as usize].best >= generations[g as usize - 1].best);
+            assert_eq!(individuals[0].operator, "elite");
+        }
+    }
+    // best.lsys is a grammar that grows and evaluates to the stored best fitness.
+    let eval = ontogeny()
+        .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
+        .arg(out.join("best.lsys"))
+        .output()
+        .unwrap();
+    assert!(
+        eval.status.success(),
+        "{}",
+        String::from_utf8_lossy(&eval.stderr)
+    );
+    let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
+    assert_eq!(value["fitness"].as_f64().unwrap(), generations[3].best);
+    // `runs show` prints a row per generation; `replay` re-evaluates the best.
+    let show = ontogeny()
+        .args(["runs", "show"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(show.status.success());
+    assert_eq!(String::from_utf8_lossy(&show.stdout).lines().count(), 2 + 4);
+    let replay = ontogeny()
+        .arg("replay")
+        .arg(&out)
+        .args(["--gen", "3"])
+        .output()
+        .unwrap();
+    assert!(
+        replay.status.success(),
+        "{}",
+        String::from_utf8_lossy(&replay.stderr)
+    );
+    let shown = out.join("replay").join("gen-3-rank-1");
+    for file in [
+        "genome.lsys",
+        "creature.png",
+        "recording.json",
+        "behaviour.gif",
+    ] {
+        assert!(shown.join(file).exists(), "{file}");
+    }
+    assert!(!String::from_utf8_lossy(&replay.stdout).contains("differs"));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn one_and_two_threads_give_the_same_run() {
+    let dir = scratch("threads");
+    let (a, b) = (dir.join("one"), dir.join("two"));
+    assert!(small_run(&a, &["--threads", "1"]).status.success());
+    assert!(small_run(&b, &["--threads", "2"]).status.success());
+    assert_eq!(contents(&a), contents(&b));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_run_killed_mid_generation_resumes_to_the_same_result() {
+    let dir = scratch("kill");
+    let whole = dir.join("whole");
+    assert!(small_run(&whole, &[]).status.success());
+    let killed = dir.join("killed");
+    // Start the same run and SIGKILL it once generation 1 is committed, while generation 2
+    // is being evaluated.
+    let mut child = ontogeny()
+        .args([
+            "evolve",
+            "--encoding",
+            "lsystem",
+            "--task",
+            "walker",
+            "--pop",
+            "12",
+            "--gens",
+            "4",
+            "--seconds",
+            "1",
+            "--seed",
+            "5",
+            "--out",
+        ])
+        .arg(&killed)
+        .stderr(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let log = killed.join("log.txt");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    loop {
+        let lines = std::fs::read_to_string(&log).map_or(0, |t| t.lines().count());
+        if lines >= 2 || std::time::Instant::now() > deadline {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    child.kill().unwrap();
+    let _ = child.wait();
+    let store = RunStore::open(&killed.join("run.sqlite")).unwrap();
+    let done = store.last_generation().unwrap();
+    drop(store);
+    assert!(
+        done.is_some_and(|g| g < 3),
+        "killed before the end: {done:?}"
+    );
+    let resumed = ontogeny()
+        .arg("evolve")
+        .arg("--resume")
+        .arg(&killed)
+        .output()
+        .unwrap();
+    assert!(
+        resumed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    assert_eq!(contents(&whole), contents(&killed));
+    // A complete run has nothing to resume.
+    let again = ontogeny()
+        .arg("evolve")
+        .arg("--resume")
+        .arg(&killed)
+        .output()
+        .unwrap();
+    assert!(again.status.success());
+    assert!(String::from_utf8_lossy(&again.stdout).contains("nothing to resume"));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn bad_input_is_refused_with_exit_code_2() {
+    let dir = scratch("bad");
+    // An unknown key: file, line and key.
+    let config = dir.join("bad.toml");
+    std::fs::write(
+        &config,
+        "seed = 3\n\n[ga]\npopulation = 10\npopulaton = 12\n",
+    )
+    .unwrap();
+    let o = ontogeny()
+        .args(["evolve", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(dir.join("x"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("bad.toml:5:1") && err.contains("populaton"),
+        "{err}"
+    );
+    assert!(!dir.join("x").exists());
+    // An out-of-range value.
+    std::fs::write(&config, "[ga]\nelite = 1.5\n").unwrap();
+    let o = ontogeny()
+        .args(["evolve", "--config"])
+        .arg(&config)
+        .arg("--out")
+        .arg(dir.join("y"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("elite must be between 0 and 1"), "{err}");
+    // --out naming an existing run is refused, and the run is untouched.
+    let run = dir.join("run");
+    assert!(run_of(&run, "1", &[]).status.success());
+    let before = std::fs::read(run.join("run.sqlite")).unwrap();
+    let o = small_run(&run, &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--resume"));
+    assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
+    // A truncated database: a clear message, nothing overwritten.
+    let half = before[..before.len() / 2].to_vec();
+    std::fs::write(run.join("run.sqlite"), &half).unwrap();
+    let o = ontogeny()
+        .arg("evolve")
+        .arg("--resume")
+        .arg(&run)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("run.sqlite"), "{err}");
+    assert_eq!(half, std::fs::read(run.join("run.sqlite")).unwrap());
+    let _ = std::fs::remove_dir_all(dir);
+}
