@@ -32,7 +32,7 @@ const OFFSET_RANGE: (f64, f64) = (-2.0, 2.0);
 const MAX_RUN: usize = 3;
 
 /// The limits of the L-system genome: every operator keeps a genome within them. They are
-/// part of a run's configuration (`[encoding]` in `config.toml`).
+/// part of a run's configuration (`config.toml`); unknown keys are refused.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct LSystemLimits {
