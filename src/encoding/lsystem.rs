@@ -32,7 +32,7 @@ const OFFSET_RANGE: (f64, f64) = (-2.0, 2.0);
 const MAX_RUN: usize = 3;
 
 /// The limits of the L-system genome: every operator keeps a genome within them. They are
-/// part of a run's configuration (`[encoding]` in `config.toml`).
+/// part of a run's configuration (`config.toml`); unknown keys are refused.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct LSystemLimits {
@@ -347,7 +347,7 @@ impl Arg {
     fn text(&self) -> String {
         match *self {
             Arg::Const(c) => format!("{c}"),
-            Arg::Plus(i, c) if c == 0.0 => format!("n{i}"),
+            Arg::Plus(i, 0.0) => format!("n{i}"),
             Arg::Plus(i, c) if c < 0.0 => format!("n{i} - {}", -c),
             Arg::Plus(i, c) => format!("n{i} + {c}"),
             Arg::Times(i, c) => format!("n{i} * {c}"),
@@ -606,11 +606,8 @@ fn balance(items: &mut Vec<Item>) {
     for (k, item) in items.iter().enumerate() {
         match item {
             Item::Push => open.push(k),
-            Item::Pop => {
-                if open.pop().is_none() {
-                    drop[k] = true;
-                }
-            }
+            // The guard pops the partner when there is one; a `]` without one goes.
+            Item::Pop if open.pop().is_none() => drop[k] = true,
             _ => {}
         }
     }
@@ -1382,4 +1379,155 @@ pub fn is_driven_walker(creature: &Creature) -> bool {
             .any(|l| l.to == k && l.weight != 0.0)
     });
     creature.is_valid() && creature.parts.len() >= 2 && driven
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    fn fwd(l: f64) -> Item {
+        Item::Command(Command::Forward, Some(Arg::Const(l)))
+    }
+
+    #[test]
+    fn balance_drops_only_unpartnered_brackets() {
+        let mut items = vec![
+            Item::Pop,
+            Item::Push,
+            fwd(1.0),
+            Item::Push,
+            Item::Pop,
+            Item::Push,
+        ];
+        assert!(!is_balanced(&items));
+        balance(&mut items);
+        // `]` first has nothing to close; the `[` before `f` and the last are never closed.
+        assert_eq!(items, vec![fwd(1.0), Item::Push, Item::Pop]);
+        assert!(is_balanced(&items));
+        let kept = items.clone();
+        balance(&mut items);
+        assert_eq!(items, kept);
+    }
+
+    #[test]
+    fn arguments_print_as_the_language_reads_them() {
+        assert_eq!(Arg::Const(-1.5).text(), "-1.5");
+        assert_eq!(Arg::Plus(0, 0.0).text(), "n0");
+        assert_eq!(Arg::Plus(1, -2.0).text(), "n1 - 2");
+        assert_eq!(Arg::Plus(1, 0.25).text(), "n1 + 0.25");
+        assert_eq!(Arg::Times(0, -1.0).text(), "n0 * -1");
+    }
+
+    #[test]
+    fn perturbation_stays_in_range_and_on_the_grid() {
+        let mut rng = Rng::seed_from_u64(3);
+        let mut turn = 1.0;
+        let mut length = 0.2;
+        for _ in 0..1000 {
+            turn = perturb(
+                turn,
+                ArgKind::Turn.range(),
+                ArgKind::Turn.quantum(),
+                &mut rng,
+            );
+            assert!(turn == 0.5 || turn == 1.0, "{turn}");
+            let before = length;
+            length = perturb(length, ArgKind::Length.range(), 1.0 / GRID, &mut rng);
+            assert!((0.2..=1.2).contains(&length));
+            // A tenth of the range at most, plus rounding.
+            assert!((length - before).abs() <= 0.1 + 1e-9);
+            assert_eq!(length, round(length));
+            assert_eq!(format!("{length}").parse::<f64>().unwrap(), length);
+        }
+        let index = perturb(0.0, ArgKind::Index.range(), 1.0, &mut rng);
+        assert!(index == 0.0 || index == 1.0);
+    }
+
+    #[test]
+    fn random_constants_cover_their_grid() {
+        let mut rng = Rng::seed_from_u64(1);
+        let mut seen = [false; 3];
+        for _ in 0..200 {
+            let f = random_constant(ArgKind::Function, &mut rng);
+            assert_eq!(f, f.round());
+            seen[f as usize] = true;
+        }
+        assert_eq!(seen, [true; 3]);
+    }
+
+    #[test]
+    fn removing_a_production_drops_its_calls_and_renumbers_the_rest() {
+        let call = |t| Item::Call(t, vec![]);
+        let production = |successor| Production {
+            pairs: vec![Pair {
+                condition: None,
+                successor,
+            }],
+        };
+        let mut g = LSystemGenome {
+            start: vec![],
+            derivation_length: 2,
+            productions: vec![
+                production(vec![call(1), Item::Push, call(2), Item::Pop, call(0)]),
+                production(vec![fwd(1.0)]),
+                production(vec![call(1)]),
+            ],
+        };
+        g.remove_production(1);
+        assert_eq!(
+            g.productions[0].pairs[0].successor,
+            vec![Item::Push, call(1), Item::Pop, call(0)]
+        );
+        assert!(g.productions[1].pairs[0].successor.is_empty());
+        let limits = LSystemLimits {
+            params: 0,
+            ..LSystemLimits::default()
+        };
+        assert_eq!(g.check(&limits), Ok(()));
+        assert_eq!(
+            g.to_text().lines().skip(1).collect::<Vec<_>>(),
+            [
+                "derivation length: 2",
+                "axiom: P0",
+                "",
+                "P0 --> [ P1 ] P0",
+                "P1 -->",
+            ]
+        );
+    }
+
+    #[test]
+    fn check_names_what_breaks_the_limits() {
+        let limits = LSystemLimits::default();
+        let mut rng = Rng::seed_from_u64(5);
+        let g = LSystemGenome::random(&limits, &mut rng);
+        let tight = LSystemLimits {
+            max_successor: 0,
+            ..LSystemLimits::default()
+        };
+        assert!(g.check(&tight).unwrap_err().contains("items, more than 0"));
+        let mut bad = g.clone();
+        bad.productions[0].pairs[0]
+            .successor
+            .push(Item::Call(99, vec![Arg::Const(0.0); 2]));
+        assert!(bad.check(&limits).unwrap_err().contains("malformed"));
+        assert!(
+            LSystemLimits {
+                max_productions: 0,
+                ..LSystemLimits::default()
+            }
+            .validate()
+            .is_err()
+        );
+        assert_eq!(limits.validate(), Ok(()));
+    }
+
+    #[test]
+    fn limits_read_from_toml_like_json_refuse_unknown_keys() {
+        let l: LSystemLimits = serde_json::from_str(r#"{"max_parts": 20}"#).unwrap();
+        assert_eq!(l.max_parts, 20);
+        assert_eq!(l.max_productions, LSystemLimits::default().max_productions);
+        assert!(serde_json::from_str::<LSystemLimits>(r#"{"max_part": 20}"#).is_err());
+    }
 }
