@@ -775,3 +775,32 @@ fn the_rest_setting_steps_as_a_world_built_with_it_does() {
     let mut plain = World::new(&falling, &fast).unwrap();
     assert_eq!(run(&mut w, 10), run(&mut plain, 10));
 }
+
+#[test]
+fn a_passive_creature_of_fused_parts_does_not_walk() {
+    // Evolution found that a long chain of rigidly joined parts, with no motor at all, gained
+    // energy from the solver and crossed 25 m in 20 s. Fused parts now share one rigid body.
+    let c = grown("tests/fixtures/passive-rigid-chain.lsys");
+    assert!(c.joints.iter().filter(|j| j.kind.dof() == 0).count() >= 10);
+    let options = WalkerOptions {
+        fitness: task::WalkerFitness::Distance,
+        ..WalkerOptions::default()
+    };
+    for sim in [
+        SimOptions::default(),
+        SimOptions {
+            substeps: 4,
+            solver_iterations: 8,
+            pgs_iterations: 1,
+            ..SimOptions::default()
+        },
+    ] {
+        let e = task::walker(&c, &sim, &options, false);
+        assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+        assert!(
+            e.terms["D_w"] < 0.01,
+            "a passive creature walked {} m",
+            e.terms["D_w"]
+        );
+    }
+}

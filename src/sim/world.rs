@@ -161,6 +161,30 @@ impl Default for SimOptions {
 enum JointHandle {
     Impulse(ImpulseJointHandle),
     Multibody(MultibodyJointHandle),
+    /// No rapier joint: a rigid joint, or a joint between two parts of one rigid body (its
+    /// parts are fused into one body with a collider per part).
+    Fused,
+}
+
+/// The groups of parts fused by rigid joints: for each part, the lowest-numbered part of its
+/// group (union-find over the creature's rigid joints).
+fn fused_groups(creature: &Creature) -> Vec<usize> {
+    let mut root: Vec<usize> = (0..creature.parts.len()).collect();
+    fn find(root: &mut [usize], mut i: usize) -> usize {
+        while root[i] != i {
+            root[i] = root[root[i]];
+            i = root[i];
+        }
+        i
+    }
+    for joint in &creature.joints {
+        if joint.kind.dof() == 0 {
+            let (a, b) = (find(&mut root, joint.parent), find(&mut root, joint.child));
+            let (lo, hi) = (a.min(b), a.max(b));
+            root[hi] = lo;
+        }
+    }
+    (0..root.len()).map(|i| find(&mut root, i)).collect()
 }
 
 /// Why a world could not be built.
@@ -322,14 +346,28 @@ impl World {
             // Parts collide with the ground only.
             InteractionGroups::new(Group::GROUP_2, Group::GROUP_1, InteractionTestMode::And)
         };
-        for part in &creature.parts {
+        // Parts fused by rigid joints share one rigid body, a collider each (as MuJoCo welds
+        // them): a chain of fixed joints is the stiffest thing an impulse solver meets, and
+        // at one substep it can pump energy into a creature that has no motor at all.
+        let group = fused_groups(creature);
+        let mut group_body: Vec<Option<RigidBodyHandle>> = vec![None; creature.parts.len()];
+        for (i, part) in creature.parts.iter().enumerate() {
             let pose =
                 Pose::from_parts(vector(&(part.position + lift)), rotation(&part.orientation));
-            let body = world
-                .bodies
-                .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
+            let body = match group_body[group[i]] {
+                Some(body) => body,
+                None => {
+                    let body = world
+                        .bodies
+                        .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
+                    group_body[group[i]] = Some(body);
+                    body
+                }
+            };
+            let relative = world.bodies[body].position().inverse() * pose;
             let half = part.size / 2.0;
             let collider = ColliderBuilder::cuboid(half.x as Real, half.y as Real, half.z as Real)
+                .position(relative)
                 .density(part.density as Real)
                 .friction(options.friction as Real)
                 .collision_groups(groups);
@@ -342,6 +380,16 @@ impl World {
         for (index, joint) in creature.joints.iter().enumerate() {
             let (b1, _) = world.parts[joint.parent];
             let (b2, _) = world.parts[joint.child];
+            let max_torque = max_torque(creature, joint, options);
+            if b1 == b2 {
+                world.joints.push(JointHandle::Fused);
+                world.joint_ends.push((b1, b2));
+                world.joint_info.push(JointInfo {
+                    limits: joint.limits.clone(),
+                    max_torque,
+                });
+                continue;
+            }
             let pose1 = *world.bodies[b1].position();
             let pose2 = *world.bodies[b2].position();
             let anchor = vector(&(joint.anchor + lift));
@@ -359,7 +407,6 @@ impl World {
                 .build();
             data.set_local_frame1(pose1.inverse() * world_frame);
             data.set_local_frame2(pose2.inverse() * world_frame);
-            let max_torque = max_torque(creature, joint, options);
             for (k, &(lo, hi)) in joint.limits.iter().enumerate().take(joint.kind.dof()) {
                 data.set_limits(ANGULAR[k], [lo as Real, hi as Real]);
                 data.set_motor_model(ANGULAR[k], MotorModel::ForceBased);
@@ -383,10 +430,8 @@ impl World {
                 max_torque,
             });
         }
-        world.previous = world
-            .parts
-            .iter()
-            .map(|(b, _)| world.bodies[*b].translation())
+        world.previous = (0..world.parts.len())
+            .map(|i| world.part_world_pose(i).translation)
             .collect();
         Ok(world)
     }
@@ -447,7 +492,12 @@ impl World {
     /// [`release`](Self::release) (Chaumont 4.1: the root part is the arm).
     pub fn attach_projectile(&mut self, size: Vector3<f64>, density: f64) {
         let (root, root_collider) = self.parts[0];
-        let root_pose = *self.bodies[root].position();
+        let root_pose = self.part_world_pose(0);
+        // The root part's pose in its body's frame (fused parts share a body).
+        let root_in_body = self.colliders[root_collider]
+            .position_wrt_parent()
+            .copied()
+            .unwrap_or(Pose::IDENTITY);
         let root_half = self.colliders[root_collider]
             .shape()
             .as_cuboid()
@@ -462,7 +512,12 @@ impl World {
         let lift = (self.options.drop_height as Real - projectile_bottom).max(0.0);
         if lift > 0.0 {
             let up = Vector::new(0.0, lift, 0.0);
+            let mut moved: Vec<RigidBodyHandle> = Vec::new();
             for (body, _) in &self.parts {
+                if moved.contains(body) {
+                    continue;
+                }
+                moved.push(*body);
                 let b = &mut self.bodies[*body];
                 let t = b.translation() + up;
                 b.set_translation(t, true);
@@ -483,7 +538,7 @@ impl World {
         let mut grip = GenericJointBuilder::new(JointAxesMask::LOCKED_FIXED_AXES)
             .contacts_enabled(false)
             .build();
-        grip.set_local_frame1(Pose::from_translation(grip_local));
+        grip.set_local_frame1(root_in_body * Pose::from_translation(grip_local));
         grip.set_local_frame2(Pose::from_translation(Vector::new(
             half.x as Real,
             0.0,
@@ -511,6 +566,7 @@ impl World {
                     self.impulse_joints.remove(h, true);
                 }
                 JointHandle::Multibody(h) => self.multibody_joints.remove(h, true),
+                JointHandle::Fused => {}
             }
         }
     }
@@ -528,17 +584,28 @@ impl World {
         self.target = target;
     }
 
+    /// The world pose of part `i`: its body's pose and the part's place in the body (always
+    /// in step with the body, even before the colliders are synchronised).
+    fn part_world_pose(&self, i: usize) -> Pose {
+        let (body, collider) = self.parts[i];
+        let relative = self.colliders[collider]
+            .position_wrt_parent()
+            .copied()
+            .unwrap_or(Pose::IDENTITY);
+        *self.bodies[body].position() * relative
+    }
+
     /// The centre of part `i`.
     pub fn part_position(&self, i: usize) -> Vector3<f64> {
-        to_na(self.bodies[self.parts[i].0].translation())
+        to_na(self.part_world_pose(i).translation)
     }
 
     /// The pose of part `i`: centre and orientation.
     pub fn part_pose(&self, i: usize) -> (Vector3<f64>, UnitQuaternion<f64>) {
-        let body = &self.bodies[self.parts[i].0];
-        let q = body.rotation();
+        let pose = self.part_world_pose(i);
+        let q = pose.rotation;
         (
-            to_na(body.translation()),
+            to_na(pose.translation),
             UnitQuaternion::from_quaternion(Quaternion::new(
                 q.w as f64, q.x as f64, q.y as f64, q.z as f64,
             )),
@@ -552,17 +619,21 @@ impl World {
 
     /// The lowest point of any part's box.
     pub fn lowest_point(&self) -> f64 {
-        self.parts
-            .iter()
-            .map(|(_, c)| self.colliders[*c].compute_aabb().mins.y as f64)
+        (0..self.parts.len())
+            .map(|i| self.part_aabb(i).mins.y as f64)
             .fold(f64::INFINITY, f64::min)
+    }
+
+    fn part_aabb(&self, i: usize) -> rapier3d::parry::bounding_volume::Aabb {
+        self.colliders[self.parts[i].1]
+            .shape()
+            .compute_aabb(&self.part_world_pose(i))
     }
 
     /// The highest point of any part's box.
     pub fn highest_point(&self) -> f64 {
-        self.parts
-            .iter()
-            .map(|(_, c)| self.colliders[*c].compute_aabb().maxs.y as f64)
+        (0..self.parts.len())
+            .map(|i| self.part_aabb(i).maxs.y as f64)
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
@@ -577,6 +648,7 @@ impl World {
                 Some((mb, link)) => &mb.link(link).expect("link exists").joint.data,
                 None => return 0.0,
             },
+            JointHandle::Fused => return 0.0,
         };
         let (b1, b2) = self.joint_bodies(j);
         let r1 = *self.bodies[b1].rotation() * data.local_frame1.rotation;
@@ -598,6 +670,7 @@ impl World {
                 Some((mb, link)) => mb.link(link).expect("link exists").joint.data,
                 None => return 0.0,
             },
+            JointHandle::Fused => return 0.0,
         };
         let (b1, b2) = self.joint_bodies(j);
         let axis = *self.bodies[b1].rotation() * data.local_frame1.rotation * Vector::X;
@@ -735,6 +808,7 @@ impl World {
                     f(&mut link.joint.data);
                 }
             }
+            JointHandle::Fused => {}
         }
     }
 
@@ -768,9 +842,9 @@ impl World {
         self.physics_time += started.elapsed();
         self.time += self.options.dt;
         let mut largest: f64 = 0.0;
-        for (k, (body, _)) in self.parts.iter().enumerate() {
-            let body = &self.bodies[*body];
-            let p = body.translation();
+        for k in 0..self.parts.len() {
+            let body = &self.bodies[self.parts[k].0];
+            let p = self.part_world_pose(k).translation;
             let v = body.linvel();
             if !p.is_finite() || !v.is_finite() {
                 return Err(Exploded::NotANumber);
