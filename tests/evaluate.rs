@@ -804,3 +804,46 @@ fn a_passive_creature_of_fused_parts_does_not_walk() {
         );
     }
 }
+
+#[test]
+fn energy_from_nowhere_is_an_explosion() {
+    // A creature that the solver feeds energy: with every motor off it still crossed 39 m.
+    let c = grown("tests/fixtures/energy-from-nowhere.lsys");
+    let passive = SimOptions {
+        strength: 0.0,
+        ..SimOptions::default()
+    };
+    let e = task::walker(&c, &passive, &WalkerOptions::default(), false);
+    assert_eq!(e.status, Status::Exploded, "{e:?}");
+    assert!(
+        e.message
+            .as_deref()
+            .unwrap_or("")
+            .contains("cannot have supplied")
+    );
+    // The audit off, it walks: the audit is what catches it.
+    let unaudited = SimOptions {
+        energy_tolerance: 0.0,
+        ..passive
+    };
+    let e = task::walker(&c, &unaudited, &WalkerOptions::default(), false);
+    assert_eq!(e.status, Status::Ok, "{e:?}");
+    assert!(e.terms["D_w"] > 3.0, "{}", e.terms["D_w"]);
+    // The shipped walkers pass the audit, and their peak is far below the tolerance.
+    for file in [
+        "examples/quadruped.lsys",
+        "examples/snake.lsys",
+        "examples/hornby-walker.lsys",
+    ] {
+        let c = grown(file);
+        let mut world = ontogeny::sim::World::new(&c, &SimOptions::default()).unwrap();
+        for _ in 0..600 {
+            world.step(true).unwrap();
+        }
+        let per_kg = world.peak_unexplained_energy() / world.creature_mass();
+        assert!(
+            per_kg < ontogeny::sim::ENERGY_TOLERANCE / 3.0,
+            "{file}: {per_kg} J/kg"
+        );
+    }
+}

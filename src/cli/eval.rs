@@ -94,6 +94,10 @@ pub struct PhysicsArgs {
     /// Let parts of one creature pass through each other (joint neighbours never collide).
     #[arg(long)]
     no_self_collision: bool,
+    /// Energy from nowhere, in J per kg of creature, that counts as an explosion (the energy
+    /// audit; 0 turns it off).
+    #[arg(long, default_value_t = ontogeny::sim::ENERGY_TOLERANCE)]
+    energy_tolerance: f64,
 }
 
 impl PhysicsArgs {
@@ -121,6 +125,12 @@ impl PhysicsArgs {
                  --rest-solver-iterations and --pgs-iterations 1 to 256",
             ));
         }
+        if !(self.energy_tolerance.is_finite() && self.energy_tolerance >= 0.0) {
+            anyhow::bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                "--energy-tolerance must be finite and not negative (0 turns the audit off)",
+            ));
+        }
         let strength_ok = self.strength.is_finite() && self.strength >= 0.0;
         let speed_ok = self.muscle_speed.is_finite() && self.muscle_speed > 0.0;
         if !(strength_ok && speed_ok) {
@@ -139,6 +149,7 @@ impl PhysicsArgs {
             rest_substeps: self.rest_substeps,
             rest_solver_iterations: self.rest_solver_iterations,
             self_collision: !self.no_self_collision,
+            energy_tolerance: self.energy_tolerance,
             strength_from: match self.strength_from {
                 StrengthArg::Smaller => StrengthFrom::Smaller,
                 StrengthArg::Bigger => StrengthFrom::Bigger,

@@ -80,6 +80,16 @@ pub const DEFAULT_STRENGTH: f64 = 1.0e4;
 /// that a muscle is torque-limited, never speed-limited, in every shipped creature.
 pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 
+/// The default [`SimOptions::energy_tolerance`] (J/kg): the energy a creature may gain from
+/// nothing within about [`ENERGY_WINDOW`], what lifting it by 1 m takes: three times the
+/// most the shipped and random creatures reach at the default setting (3.2 J/kg), well
+/// below what the exploits evolution found reach (27 J/kg). See the README's "energy audit".
+pub const ENERGY_TOLERANCE: f64 = 10.0;
+
+/// The memory (s) of the energy audit: unexplained energy gained this long ago counts for
+/// 1/e of its amount.
+pub const ENERGY_WINDOW: f64 = 0.5;
+
 /// World settings.
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -125,6 +135,11 @@ pub struct SimOptions {
     pub explosion_distance: f64,
     /// A part faster than this (m/s) means the world exploded.
     pub speed_limit: f64,
+    /// Energy from nowhere (J per kg of creature) that means the world exploded: the sum,
+    /// over control steps, of every rise of the creature's mechanical energy (kinetic plus
+    /// gravitational) beyond the most work its motors could have done in that step. 0 turns
+    /// the audit off.
+    pub energy_tolerance: f64,
 }
 
 impl Default for SimOptions {
@@ -152,6 +167,7 @@ impl Default for SimOptions {
             drop_height: 0.05,
             explosion_distance: 2.0,
             speed_limit: 100.0,
+            energy_tolerance: ENERGY_TOLERANCE,
         }
     }
 }
@@ -245,6 +261,16 @@ pub struct World {
     physics_time: std::time::Duration,
     /// Whether the world steps with the rest setting (see [`World::set_resting`]).
     resting: bool,
+    /// The creature's bodies, once each.
+    creature_bodies: Vec<RigidBodyHandle>,
+    /// The creature's mass (kg).
+    creature_mass: f64,
+    /// The creature's mechanical energy after the last step (J).
+    energy: f64,
+    /// Energy gained beyond what the motors could supply, summed over the recent steps (J).
+    unexplained_energy: f64,
+    /// The most `unexplained_energy` has been (J).
+    peak_unexplained: f64,
 }
 
 fn vector(v: &Vector3<f64>) -> Vector {
@@ -329,6 +355,11 @@ impl World {
             previous: Vec::new(),
             physics_time: std::time::Duration::ZERO,
             resting: false,
+            creature_bodies: Vec::new(),
+            creature_mass: 0.0,
+            energy: 0.0,
+            unexplained_energy: 0.0,
+            peak_unexplained: 0.0,
         };
         let ground = world.bodies.insert(RigidBodyBuilder::fixed());
         world.colliders.insert_with_parent(
@@ -433,6 +464,13 @@ impl World {
         world.previous = (0..world.parts.len())
             .map(|i| world.part_world_pose(i).translation)
             .collect();
+        world.creature_bodies = group_body.into_iter().flatten().collect();
+        world.creature_mass = world
+            .creature_bodies
+            .iter()
+            .map(|b| world.bodies[*b].mass() as f64)
+            .sum();
+        world.energy = world.mechanical_energy();
         Ok(world)
     }
 
@@ -465,6 +503,64 @@ impl World {
                 o.pgs_iterations.max(1),
             )
         }
+    }
+
+    /// The creature's mechanical energy (J): kinetic, and gravitational above the ground.
+    fn mechanical_energy(&self) -> f64 {
+        self.creature_bodies
+            .iter()
+            .map(|b| {
+                let body = &self.bodies[*b];
+                body.kinetic_energy() as f64
+                    + body.mass() as f64 * GRAVITY * body.center_of_mass().y as f64
+            })
+            .sum()
+    }
+
+    /// The most energy the creature gained beyond what its motors could supply within
+    /// about [`ENERGY_WINDOW`] (J), so far. A passive creature or a motor-driven one in a
+    /// faithful world gains none; solver artefacts do.
+    pub fn peak_unexplained_energy(&self) -> f64 {
+        self.peak_unexplained
+    }
+
+    /// The creature's mass (kg).
+    pub fn creature_mass(&self) -> f64 {
+        self.creature_mass
+    }
+
+    /// The most power the motors can be giving now (W): Σ over driven degrees of freedom of
+    /// the torque limit × the joint's angular speed.
+    fn motor_power_bound(&self) -> f64 {
+        let mut work = 0.0;
+        for (j, handle) in self.joints.iter().enumerate() {
+            let data = match *handle {
+                JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
+                    Some(joint) => &joint.data,
+                    None => continue,
+                },
+                JointHandle::Multibody(h) => match self.multibody_joints.get(h) {
+                    Some((mb, link)) => &mb.link(link).expect("link exists").joint.data,
+                    None => continue,
+                },
+                JointHandle::Fused => continue,
+            };
+            let (b1, b2) = self.joint_ends[j];
+            let relative = self.bodies[b2].angvel() - self.bodies[b1].angvel();
+            let frame = *self.bodies[b1].rotation() * data.local_frame1.rotation;
+            let dof = self.joint_info[j].limits.len().min(3);
+            for (k, axis) in [Vector::X, Vector::Y, Vector::Z]
+                .into_iter()
+                .enumerate()
+                .take(dof)
+            {
+                let limit = data.motors[3 + k].max_force as f64;
+                if limit > 0.0 {
+                    work += limit * (relative.dot(frame * axis) as f64).abs();
+                }
+            }
+        }
+        work
     }
 
     /// Simulated time so far.
@@ -821,6 +917,7 @@ impl World {
             self.brain.step(self.time, self.options.dt);
         }
         self.drive(controller);
+        let power_before = self.motor_power_bound();
         let started = std::time::Instant::now();
         for _ in 0..self.stepping().0 {
             self.pipeline.step(
@@ -841,6 +938,22 @@ impl World {
         }
         self.physics_time += started.elapsed();
         self.time += self.options.dt;
+        // The energy audit: a rise beyond the motors' possible work is energy from nowhere.
+        let energy = self.mechanical_energy();
+        // The motors' work over the step is at most the larger of their power bounds at its
+        // two ends × dt (a speed through zero in between only lowers it).
+        let allowed = power_before.max(self.motor_power_bound()) * self.options.dt;
+        // Summed with a memory of ENERGY_WINDOW seconds: a slow trickle of solver error
+        // fades, a burst does not.
+        let fade = (-self.options.dt / ENERGY_WINDOW).exp();
+        self.unexplained_energy =
+            self.unexplained_energy * fade + (energy - self.energy - allowed).max(0.0);
+        self.peak_unexplained = self.peak_unexplained.max(self.unexplained_energy);
+        self.energy = energy;
+        let tolerance = self.options.energy_tolerance;
+        if tolerance > 0.0 && self.unexplained_energy > tolerance * self.creature_mass {
+            return Err(Exploded::Energy(self.unexplained_energy));
+        }
         let mut largest: f64 = 0.0;
         for k in 0..self.parts.len() {
             let body = &self.bodies[self.parts[k].0];
@@ -883,4 +996,7 @@ pub enum Exploded {
     /// A part moved too fast.
     #[error("a part reached {0:.1} m/s")]
     Speed(f64),
+    /// The creature gained energy its motors cannot have given it.
+    #[error("the creature gained {0:.1} J its motors cannot have supplied")]
+    Energy(f64),
 }
