@@ -4,8 +4,10 @@
 //! derives module strings from it in discrete steps or continuous developmental time,
 //! exchanging chemicals with an [`environment`]; [`develop`] builds a [`creature`] (body and
 //! brain) from each string; [`render`] draws it; [`sim`] runs it in a rapier3d world; and
-//! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks; [`evolve`]
-//! holds the statistics that compare settings (and, to come, the genetic algorithm).
+//! [`task`] scores it on the seed papers' walker, catapult, aim and jump tasks; [`encoding`]
+//! holds the genomes evolution searches, which develop into creatures; [`evolve`] runs the
+//! genetic algorithm over them into a run directory with its SQLite store, and holds the
+//! statistics that compare settings.
 //! [`export`] writes a creature with the simulator's settings in other simulators' formats
 //! (MuJoCo's MJCF).
 
