@@ -311,3 +311,31 @@ fn bad_input_is_refused_with_exit_code_2() {
     assert_eq!(half, std::fs::read(run.join("run.sqlite")).unwrap());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn init_seeds_the_first_generation_with_a_grammar_and_its_mutants() {
+    let dir = scratch("init");
+    let out = dir.join("run");
+    let o = run_of(&out, "1", &["--init", "examples/hornby-walker.lsys"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read_to_string(out.join("init.lsys")).unwrap(),
+        std::fs::read_to_string("examples/hornby-walker.lsys").unwrap()
+    );
+    let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+    let first = store.individuals(0).unwrap();
+    assert!(first.iter().all(|i| i.operator == "init"));
+    // Individual 0 is the grammar itself: it scores what `eval` gives the file.
+    let eval = ontogeny()
+        .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
+        .arg("examples/hornby-walker.lsys")
+        .output()
+        .unwrap();
+    let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
+    assert_eq!(value["fitness"].as_f64().unwrap(), first[0].fitness);
+    // A grammar the genome cannot hold is refused before anything is written.
+    let o = run_of(&dir.join("bad"), "1", &["--init", "examples/snake.lsys"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!dir.join("bad").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
