@@ -20,6 +20,11 @@ fn scratch(name: &str) -> PathBuf {
 
 /// A small, quick run: 12 individuals, `gens` generations, 1 s walks.
 fn run_of(out: &Path, gens: &str, extra: &[&str]) -> Output {
+    evolve_command(out, gens, extra).output().unwrap()
+}
+
+/// The command of [`run_of`], to run or spawn.
+fn evolve_command(out: &Path, gens: &str, extra: &[&str]) -> Command {
     let mut c = ontogeny();
     c.args([
         "evolve",
@@ -39,7 +44,7 @@ fn run_of(out: &Path, gens: &str, extra: &[&str]) -> Output {
     ])
     .arg(out)
     .args(extra);
-    c.output().unwrap()
+    c
 }
 
 /// The small run of 4 generations.
@@ -188,24 +193,7 @@ fn a_run_killed_mid_generation_resumes_to_the_same_result() {
     let killed = dir.join("killed");
     // Start the same run and SIGKILL it once generation 1 is committed, while generation 2
     // is being evaluated.
-    let mut child = ontogeny()
-        .args([
-            "evolve",
-            "--encoding",
-            "lsystem",
-            "--task",
-            "walker",
-            "--pop",
-            "12",
-            "--gens",
-            "4",
-            "--seconds",
-            "1",
-            "--seed",
-            "5",
-            "--out",
-        ])
-        .arg(&killed)
+    let mut child = evolve_command(&killed, "4", &[])
         .stderr(std::process::Stdio::null())
         .stdout(std::process::Stdio::null())
         .spawn()

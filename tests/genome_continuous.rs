@@ -5,7 +5,8 @@ use std::process::Command as Process;
 
 use ontogeny::creature::{Actuator, Creature, Role};
 use ontogeny::develop::{BuildOptions, grow};
-use ontogeny::encoding::continuous::{Command, Grower, Rule, Token};
+use ontogeny::encoding::command::Command;
+use ontogeny::encoding::continuous::{Grower, Rule, Token};
 use ontogeny::encoding::{ContinuousGenome, ContinuousLimits, Genome, Rng};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 use proptest::prelude::*;

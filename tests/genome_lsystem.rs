@@ -41,7 +41,7 @@ fn grown(text: &str, limits: &LSystemLimits) -> Creature {
 /// `P0(n0, n1) --> forward(0.5) output(1)`, from `P0(2, 0)` for 3 steps.
 fn chain() -> LSystemGenome {
     let c = |command, v: Option<f64>| Item::Command(command, v.map(Arg::Const));
-    use ontogeny::encoding::lsystem::Command as C;
+    use ontogeny::encoding::command::Command as C;
     LSystemGenome {
         start: vec![2.0, 0.0],
         derivation_length: 3,
@@ -324,7 +324,7 @@ fn files_outside_the_form_or_the_limits_are_refused_clearly() {
     assert_eq!(
         g.productions[0].pairs[0].successor,
         vec![Item::Command(
-            ontogeny::encoding::lsystem::Command::Forward,
+            ontogeny::encoding::command::Command::Forward,
             Some(Arg::Times(0, 0.5))
         )]
     );

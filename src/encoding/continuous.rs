@@ -22,6 +22,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
+use super::command::{Argument, Command};
 use super::{DevelopError, Genome, Rng};
 use crate::creature::Creature;
 use crate::develop::BuildOptions;
@@ -162,194 +163,66 @@ impl ContinuousLimits {
     pub fn growers(&self) -> Vec<Grower> {
         let mut all: Vec<Grower> = (0..self.control_tokens.min(26) as u8)
             .map(Grower::Control)
-            .chain(Command::MATURING.iter().map(|&c| Grower::Maturing(c)))
+            .chain(MATURING.iter().map(|&c| Grower::Maturing(c)))
             .collect();
         all.sort_by_key(|g| g.name());
         all
     }
 }
 
-/// How a command's parameter is drawn and mutated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum ParamKind {
-    /// No parameter.
-    None,
-    /// A part length, within the thresholds.
-    Length,
-    /// A width or thickness, in [0.1, 1].
-    Size,
-    /// A turn, in [−1, 1] (1 is 90°).
-    Turn,
-    /// A link weight or bias, in [−2, 2].
-    Weight,
-    /// An index, 0 to 3.
-    Index,
-    /// A transfer function, 0 to 2.
-    Function,
-}
+/// The commands a genome uses (all but Hornby's `increase`/`decrease`, which `weight`
+/// covers), with the weight of drawing each as a random token: body commands, joints and
+/// `output` are favoured so that random creatures often have driven joints.
+const CHOICES: [(Command, f64); 28] = [
+    (Command::Forward, 5.0),
+    (Command::Backward, 0.3),
+    (Command::Left, 1.0),
+    (Command::Right, 1.0),
+    (Command::Up, 0.7),
+    (Command::Down, 0.7),
+    (Command::Clockwise, 0.4),
+    (Command::Counterclockwise, 0.4),
+    (Command::Revolute1, 1.0),
+    (Command::Revolute2, 2.0),
+    (Command::Twist90, 1.0),
+    (Command::Twist180, 1.0),
+    (Command::Width, 0.4),
+    (Command::Thickness, 0.4),
+    (Command::Split, 0.8),
+    (Command::Duplicate, 0.3),
+    (Command::Loop, 0.3),
+    (Command::Merge, 0.2),
+    (Command::Next, 0.2),
+    (Command::Parent, 0.2),
+    (Command::Output, 4.0),
+    (Command::Reverse, 0.2),
+    (Command::Setfunc, 0.3),
+    (Command::Bias, 0.3),
+    (Command::Cut, 0.1),
+    (Command::Weight, 0.4),
+    (Command::Touch, 0.4),
+    (Command::Angle, 0.4),
+];
 
-/// The builder commands a genome uses (all but the environment and task commands `chem`,
-/// `target`, `secrete`, `release`, and Hornby's `increase`/`decrease`, which `weight` covers).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-#[allow(missing_docs)]
-pub enum Command {
-    Forward,
-    Backward,
-    Left,
-    Right,
-    Up,
-    Down,
-    Clockwise,
-    Counterclockwise,
-    Revolute1,
-    Revolute2,
-    Twist90,
-    Twist180,
-    Width,
-    Thickness,
-    Split,
-    Duplicate,
-    Loop,
-    Merge,
-    Next,
-    Parent,
-    Output,
-    Reverse,
-    Setfunc,
-    Bias,
-    Cut,
-    Weight,
-    Touch,
-    Angle,
-}
+/// The commands whose maturing twins (`mforward`, `mleft`, ..., `mrevolute1`, ...) can be
+/// maturing symbols.
+pub const MATURING: [Command; 11] = [
+    Command::Forward,
+    Command::Left,
+    Command::Right,
+    Command::Up,
+    Command::Down,
+    Command::Clockwise,
+    Command::Counterclockwise,
+    Command::Revolute1,
+    Command::Revolute2,
+    Command::Twist90,
+    Command::Twist180,
+];
 
-impl Command {
-    /// Every command, with the weight of drawing it as a random token: body commands, joints
-    /// and `output` are favoured so that random creatures often have driven joints.
-    const ALL: [(Command, f64); 28] = [
-        (Command::Forward, 5.0),
-        (Command::Backward, 0.3),
-        (Command::Left, 1.0),
-        (Command::Right, 1.0),
-        (Command::Up, 0.7),
-        (Command::Down, 0.7),
-        (Command::Clockwise, 0.4),
-        (Command::Counterclockwise, 0.4),
-        (Command::Revolute1, 1.0),
-        (Command::Revolute2, 2.0),
-        (Command::Twist90, 1.0),
-        (Command::Twist180, 1.0),
-        (Command::Width, 0.4),
-        (Command::Thickness, 0.4),
-        (Command::Split, 0.8),
-        (Command::Duplicate, 0.3),
-        (Command::Loop, 0.3),
-        (Command::Merge, 0.2),
-        (Command::Next, 0.2),
-        (Command::Parent, 0.2),
-        (Command::Output, 4.0),
-        (Command::Reverse, 0.2),
-        (Command::Setfunc, 0.3),
-        (Command::Bias, 0.3),
-        (Command::Cut, 0.1),
-        (Command::Weight, 0.4),
-        (Command::Touch, 0.4),
-        (Command::Angle, 0.4),
-    ];
-
-    /// The commands whose maturing twins (`mforward`, `mleft`, ..., `mrevolute1`, ...) can be
-    /// maturing symbols.
-    pub const MATURING: [Command; 11] = [
-        Command::Forward,
-        Command::Left,
-        Command::Right,
-        Command::Up,
-        Command::Down,
-        Command::Clockwise,
-        Command::Counterclockwise,
-        Command::Revolute1,
-        Command::Revolute2,
-        Command::Twist90,
-        Command::Twist180,
-    ];
-
-    /// The command's name in a module string.
-    pub fn name(self) -> &'static str {
-        match self {
-            Command::Forward => "forward",
-            Command::Backward => "backward",
-            Command::Left => "left",
-            Command::Right => "right",
-            Command::Up => "up",
-            Command::Down => "down",
-            Command::Clockwise => "clockwise",
-            Command::Counterclockwise => "counterclockwise",
-            Command::Revolute1 => "revolute1",
-            Command::Revolute2 => "revolute2",
-            Command::Twist90 => "twist90",
-            Command::Twist180 => "twist180",
-            Command::Width => "width",
-            Command::Thickness => "thickness",
-            Command::Split => "split",
-            Command::Duplicate => "duplicate",
-            Command::Loop => "loop",
-            Command::Merge => "merge",
-            Command::Next => "next",
-            Command::Parent => "parent",
-            Command::Output => "output",
-            Command::Reverse => "reverse",
-            Command::Setfunc => "setfunc",
-            Command::Bias => "bias",
-            Command::Cut => "cut",
-            Command::Weight => "weight",
-            Command::Touch => "touch",
-            Command::Angle => "angle",
-        }
-    }
-
-    /// The command a name stands for.
-    pub fn from_name(name: &str) -> Option<Command> {
-        Command::ALL
-            .iter()
-            .map(|&(c, _)| c)
-            .find(|c| c.name() == name)
-    }
-
-    fn kind(self) -> ParamKind {
-        match self {
-            Command::Forward => ParamKind::Length,
-            Command::Left
-            | Command::Right
-            | Command::Up
-            | Command::Down
-            | Command::Clockwise
-            | Command::Counterclockwise => ParamKind::Turn,
-            Command::Width | Command::Thickness => ParamKind::Size,
-            Command::Split
-            | Command::Duplicate
-            | Command::Loop
-            | Command::Output
-            | Command::Bias
-            | Command::Weight => ParamKind::Weight,
-            Command::Merge | Command::Next | Command::Parent => ParamKind::Index,
-            Command::Setfunc => ParamKind::Function,
-            Command::Backward
-            | Command::Revolute1
-            | Command::Revolute2
-            | Command::Twist90
-            | Command::Twist180
-            | Command::Reverse
-            | Command::Cut
-            | Command::Touch
-            | Command::Angle => ParamKind::None,
-        }
-    }
-
-    /// Whether the command takes a parameter.
-    pub fn has_param(self) -> bool {
-        self.kind() != ParamKind::None
-    }
+/// The command a name stands for, among those this genome uses.
+fn command_named(name: &str) -> Option<Command> {
+    Command::from_name(name).filter(|c| CHOICES.iter().any(|&(d, _)| d == *c))
 }
 
 /// A maturing symbol: the predecessor of a rule, and a token born at 0 in an axiom or
@@ -497,24 +370,24 @@ fn weighted(rng: &mut Rng, weights: &[f64]) -> usize {
     weights.len() - 1
 }
 
-fn range_of(kind: ParamKind, limits: &ContinuousLimits) -> (f64, f64) {
+fn range_of(kind: Argument, limits: &ContinuousLimits) -> (f64, f64) {
     match kind {
-        ParamKind::None => (0.0, 0.0),
-        ParamKind::Length => (limits.min_threshold, limits.max_threshold),
-        ParamKind::Size => (0.1, 1.0),
-        ParamKind::Turn => (-1.0, 1.0),
-        ParamKind::Weight => (-2.0, 2.0),
-        ParamKind::Index => (0.0, 3.0),
-        ParamKind::Function => (0.0, 2.0),
+        Argument::None => (0.0, 0.0),
+        Argument::Length => (limits.min_threshold, limits.max_threshold),
+        Argument::Size => (0.1, 1.0),
+        Argument::Turn => (-1.0, 1.0),
+        Argument::Weight | Argument::Bias => (-2.0, 2.0),
+        Argument::Index => (0.0, 3.0),
+        Argument::Function => (0.0, 2.0),
     }
 }
 
-fn integral(kind: ParamKind) -> bool {
-    matches!(kind, ParamKind::Index | ParamKind::Function)
+fn integral(kind: Argument) -> bool {
+    matches!(kind, Argument::Index | Argument::Function)
 }
 
-fn random_param(kind: ParamKind, limits: &ContinuousLimits, rng: &mut Rng) -> Option<f64> {
-    if kind == ParamKind::None {
+fn random_param(kind: Argument, limits: &ContinuousLimits, rng: &mut Rng) -> Option<f64> {
+    if kind == Argument::None {
         return None;
     }
     let (lo, hi) = range_of(kind, limits);
@@ -527,7 +400,7 @@ fn random_param(kind: ParamKind, limits: &ContinuousLimits, rng: &mut Rng) -> Op
 }
 
 /// A small change: ±1 for indices, else up to a quarter of the range (a triangular draw).
-fn perturb(v: f64, kind: ParamKind, limits: &ContinuousLimits, rng: &mut Rng) -> f64 {
+fn perturb(v: f64, kind: Argument, limits: &ContinuousLimits, rng: &mut Rng) -> f64 {
     let (lo, hi) = range_of(kind, limits);
     if integral(kind) {
         let step = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
@@ -554,7 +427,7 @@ fn random_rate(threshold: f64, limits: &ContinuousLimits, rng: &mut Rng) -> f64 
 }
 
 fn random_threshold(limits: &ContinuousLimits, rng: &mut Rng) -> f64 {
-    random_param(ParamKind::Length, limits, rng).unwrap_or(limits.min_threshold)
+    random_param(Argument::Length, limits, rng).unwrap_or(limits.min_threshold)
 }
 
 /// A random maturing symbol: mostly (4 in 5) one the genome has a rule for, when it has any.
@@ -575,14 +448,14 @@ fn random_token(
     grower_ok: bool,
     rng: &mut Rng,
 ) -> Token {
-    let mut weights: Vec<f64> = Command::ALL.iter().map(|&(_, w)| w).collect();
+    let mut weights: Vec<f64> = CHOICES.iter().map(|&(_, w)| w).collect();
     if grower_ok {
-        weights.push(Command::ALL[0].1);
+        weights.push(CHOICES[0].1);
     }
     let i = weighted(rng, &weights);
-    if i < Command::ALL.len() {
-        let c = Command::ALL[i].0;
-        Token::Command(c, random_param(c.kind(), limits, rng))
+    if i < CHOICES.len() {
+        let c = CHOICES[i].0;
+        Token::Command(c, random_param(c.argument(), limits, rng))
     } else {
         Token::Grower(random_grower(limits, active, rng))
     }
@@ -619,10 +492,7 @@ fn random_turn(rng: &mut Rng) -> Token {
 /// it. At most `room` tokens.
 fn limb(part: Token, room: usize, limits: &ContinuousLimits, rng: &mut Rng) -> Vec<Token> {
     if room >= 3 && rng.random_bool(0.7) {
-        let output = Token::Command(
-            Command::Output,
-            random_param(ParamKind::Weight, limits, rng),
-        );
+        let output = Token::Command(Command::Output, random_param(Argument::Weight, limits, rng));
         vec![random_joint(rng), part, output]
     } else {
         vec![part]
@@ -669,7 +539,7 @@ fn random_motif(
         0 => {
             let part = Token::Command(
                 Command::Forward,
-                random_param(ParamKind::Length, limits, rng),
+                random_param(Argument::Length, limits, rng),
             );
             limb(part, room, limits, rng)
         }
@@ -745,7 +615,7 @@ fn random_rule(
     if forward && len > 0 && rng.random_bool(0.9) {
         successor.push(Token::Command(
             Command::Output,
-            random_param(ParamKind::Weight, limits, rng),
+            random_param(Argument::Weight, limits, rng),
         ));
     }
     let rest = len - successor.len();
@@ -773,7 +643,7 @@ fn random_axiom(limits: &ContinuousLimits, active: &[Grower], rng: &mut Rng) -> 
     let len = rng.random_range(max.min(3)..=max.min(8));
     let mut axiom = vec![Token::Command(
         Command::Forward,
-        random_param(ParamKind::Length, limits, rng),
+        random_param(Argument::Length, limits, rng),
     )];
     let mut growers = limits.max_growers;
     if growers > 0 && axiom.len() < len && !active.is_empty() {
@@ -853,7 +723,7 @@ fn mutate_sequence(
         if let Token::Command(c, Some(v)) = &mut seq[i]
             && chance(rng, rate)
         {
-            *v = perturb(*v, c.kind(), limits, rng);
+            *v = perturb(*v, c.argument(), limits, rng);
         }
     }
     if seq.len() < max_len && chance(rng, rate) {
@@ -966,7 +836,7 @@ fn check_grower(g: Grower, limits: &ContinuousLimits) -> Result<(), String> {
             g.name(),
             limits.control_tokens
         )),
-        Grower::Maturing(c) if !Command::MATURING.contains(&c) => Err(format!(
+        Grower::Maturing(c) if !MATURING.contains(&c) => Err(format!(
             "m{} is not a maturing symbol (they are the maturing twins of forward, the turns \
              and the joints, and the control tokens)",
             c.name()
@@ -1004,10 +874,10 @@ fn check_sequence(
                     .ok_or_else(|| format!("{what} has a ']' without its '['"))?;
             }
             Token::Command(c, p) => {
-                let kind = c.kind();
+                let kind = c.argument();
                 match (kind, p) {
-                    (ParamKind::None, None) => {}
-                    (ParamKind::None, Some(_)) => {
+                    (Argument::None, None) => {}
+                    (Argument::None, Some(_)) => {
                         return Err(format!("{what}: {} takes no parameter", c.name()));
                     }
                     (_, None) => {
@@ -1089,7 +959,7 @@ impl Genome for ContinuousGenome {
         );
         for rule in &mut g.rules {
             if chance(rng, rate) {
-                rule.threshold = perturb(rule.threshold, ParamKind::Length, &limits, rng);
+                rule.threshold = perturb(rule.threshold, Argument::Length, &limits, rng);
                 rule.rate = fit_rate(rule.rate, rule.threshold, &limits);
             }
             if chance(rng, rate) {
@@ -1200,7 +1070,7 @@ impl Genome for ContinuousGenome {
             ));
             let twin = match rule.grower {
                 Grower::Control(_) => None,
-                Grower::Maturing(c) if c.has_param() => Some(format!("{}(x)", c.name())),
+                Grower::Maturing(c) if c.has_argument() => Some(format!("{}(x)", c.name())),
                 Grower::Maturing(c) => Some(c.name().to_string()),
             };
             let tail = sequence_text(&rule.successor);
@@ -1262,8 +1132,8 @@ fn token_of(call: &ModuleCall, limits: &ContinuousLimits) -> Result<Token, Strin
         }
         _ => {}
     }
-    if let Some(c) = Command::from_name(name) {
-        return match (c.has_param(), call.args.as_slice()) {
+    if let Some(c) = command_named(name) {
+        return match (c.has_argument(), call.args.as_slice()) {
             (false, []) => Ok(Token::Command(c, None)),
             (true, [arg]) => number(arg)
                 .map(|v| Token::Command(c, Some(v)))
@@ -1381,13 +1251,13 @@ fn from_file(lsys: &LSystem, limits: &ContinuousLimits) -> Result<ContinuousGeno
                         let twin_ok = calls.first().is_some_and(|first| {
                             first.name == c.name()
                                 && match first.args.as_slice() {
-                                    [] => !c.has_param(),
-                                    [Expr::Name(n, _)] => c.has_param() && n == param,
+                                    [] => !c.has_argument(),
+                                    [Expr::Name(n, _)] => c.has_argument() && n == param,
                                     _ => false,
                                 }
                         });
                         if !twin_ok {
-                            let twin = if c.has_param() {
+                            let twin = if c.has_argument() {
                                 format!("{}({param})", c.name())
                             } else {
                                 c.name().to_string()

@@ -13,6 +13,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
+use super::command::{Argument, Command};
 use super::{DevelopError, Genome, Rng};
 use crate::creature::{Actuator, Creature, Role};
 use crate::develop::{BuildOptions, build};
@@ -117,216 +118,40 @@ impl LSystemLimits {
     }
 }
 
-/// A building command a successor may hold: Hornby & Pollack's body and brain commands as
-/// the language spells them (see the README's "Building creatures"), plus `width`,
-/// `thickness`, `bias` and the `touch` and `angle` sensors. Left out: repeat blocks `{ }(n)`
-/// (they multiply the builder's work geometrically, and production calls already repeat),
-/// the maturing `m` twins (continuous time only), and the environment and task commands
-/// (`chem`, `secrete`, `target`, `release`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-#[allow(missing_docs)]
-pub enum Command {
-    Forward,
-    Backward,
-    Left,
-    Right,
-    Up,
-    Down,
-    Clockwise,
-    Counterclockwise,
-    Revolute1,
-    Revolute2,
-    Twist90,
-    Twist180,
-    Width,
-    Thickness,
-    Split,
-    Duplicate,
-    Loop,
-    Merge,
-    Next,
-    Parent,
-    Output,
-    Reverse,
-    Setfunc,
-    Bias,
-    Cut,
-    Weight,
-    Increase,
-    Decrease,
-    Touch,
-    Angle,
-}
-
-/// What a command's argument means, and so the range of random values for it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum ArgKind {
-    /// No argument.
-    None,
-    /// A part's length (m).
-    Length,
-    /// A part's width or thickness (m).
-    Size,
-    /// A turn, in units of 90°.
-    Turn,
-    /// A link weight.
-    Weight,
-    /// An index among links or neurons.
-    Index,
-    /// A transfer function number.
-    Function,
-    /// A bias.
-    Bias,
-}
-
-impl ArgKind {
-    /// The range random constants are drawn from and perturbations stay in.
-    fn range(self) -> (f64, f64) {
-        match self {
-            ArgKind::None => (0.0, 0.0),
-            ArgKind::Length => (0.2, 1.2),
-            ArgKind::Size => (0.1, 0.5),
-            ArgKind::Turn => (0.5, 1.0),
-            ArgKind::Weight => (-2.0, 2.0),
-            ArgKind::Index => (0.0, 3.0),
-            ArgKind::Function => (0.0, 2.0),
-            ArgKind::Bias => (-1.0, 1.0),
-        }
-    }
-
-    /// The step between values: random values and perturbations stay on this grid (turns
-    /// are whole half-quarter turns, so that branches meet at 45° or 90°).
-    fn quantum(self) -> f64 {
-        match self {
-            ArgKind::Index | ArgKind::Function => 1.0,
-            ArgKind::Turn => 0.5,
-            _ => 1.0 / GRID,
-        }
+/// The range an argument's random constants are drawn from and perturbations stay in.
+fn range(argument: Argument) -> (f64, f64) {
+    match argument {
+        Argument::None => (0.0, 0.0),
+        Argument::Length => (0.2, 1.2),
+        Argument::Size => (0.1, 0.5),
+        Argument::Turn => (0.5, 1.0),
+        Argument::Weight => (-2.0, 2.0),
+        Argument::Index => (0.0, 3.0),
+        Argument::Function => (0.0, 2.0),
+        Argument::Bias => (-1.0, 1.0),
     }
 }
 
-impl Command {
-    /// Every command, in the order of the table below.
-    pub const ALL: [Command; 30] = [
-        Command::Forward,
-        Command::Backward,
-        Command::Left,
-        Command::Right,
-        Command::Up,
-        Command::Down,
-        Command::Clockwise,
-        Command::Counterclockwise,
-        Command::Revolute1,
-        Command::Revolute2,
-        Command::Twist90,
-        Command::Twist180,
-        Command::Width,
-        Command::Thickness,
-        Command::Split,
-        Command::Duplicate,
-        Command::Loop,
-        Command::Merge,
-        Command::Next,
-        Command::Parent,
-        Command::Output,
-        Command::Reverse,
-        Command::Setfunc,
-        Command::Bias,
-        Command::Cut,
-        Command::Weight,
-        Command::Increase,
-        Command::Decrease,
-        Command::Touch,
-        Command::Angle,
-    ];
-
-    /// The command's name in the language.
-    pub fn name(self) -> &'static str {
-        match self {
-            Command::Forward => "forward",
-            Command::Backward => "backward",
-            Command::Left => "left",
-            Command::Right => "right",
-            Command::Up => "up",
-            Command::Down => "down",
-            Command::Clockwise => "clockwise",
-            Command::Counterclockwise => "counterclockwise",
-            Command::Revolute1 => "revolute1",
-            Command::Revolute2 => "revolute2",
-            Command::Twist90 => "twist90",
-            Command::Twist180 => "twist180",
-            Command::Width => "width",
-            Command::Thickness => "thickness",
-            Command::Split => "split",
-            Command::Duplicate => "duplicate",
-            Command::Loop => "loop",
-            Command::Merge => "merge",
-            Command::Next => "next",
-            Command::Parent => "parent",
-            Command::Output => "output",
-            Command::Reverse => "reverse",
-            Command::Setfunc => "setfunc",
-            Command::Bias => "bias",
-            Command::Cut => "cut",
-            Command::Weight => "weight",
-            Command::Increase => "increase",
-            Command::Decrease => "decrease",
-            Command::Touch => "touch",
-            Command::Angle => "angle",
-        }
+/// The step between an argument's values: random values and perturbations stay on this grid
+/// (turns are whole half-quarter turns, so that branches meet at 45° or 90°).
+fn quantum(argument: Argument) -> f64 {
+    match argument {
+        Argument::Index | Argument::Function => 1.0,
+        Argument::Turn => 0.5,
+        _ => 1.0 / GRID,
     }
+}
 
-    /// The command a name stands for.
-    pub fn from_name(name: &str) -> Option<Command> {
-        Command::ALL.into_iter().find(|c| c.name() == name)
-    }
-
-    fn arg_kind(self) -> ArgKind {
-        match self {
-            Command::Forward => ArgKind::Length,
-            Command::Left
-            | Command::Right
-            | Command::Up
-            | Command::Down
-            | Command::Clockwise
-            | Command::Counterclockwise => ArgKind::Turn,
-            Command::Width | Command::Thickness => ArgKind::Size,
-            Command::Split
-            | Command::Duplicate
-            | Command::Loop
-            | Command::Output
-            | Command::Weight
-            | Command::Increase
-            | Command::Decrease => ArgKind::Weight,
-            Command::Merge | Command::Next | Command::Parent => ArgKind::Index,
-            Command::Setfunc => ArgKind::Function,
-            Command::Bias => ArgKind::Bias,
-            Command::Backward
-            | Command::Revolute1
-            | Command::Revolute2
-            | Command::Twist90
-            | Command::Twist180
-            | Command::Reverse
-            | Command::Cut
-            | Command::Touch
-            | Command::Angle => ArgKind::None,
-        }
-    }
-
-    /// The weight of the command in random successors: body commands that make parts and
-    /// joints, and `output`, which drives a joint, are the most likely, so that random
-    /// genomes often grow jointed, driven bodies.
-    fn weight(self) -> u32 {
-        match self {
-            Command::Forward => 12,
-            Command::Revolute1 | Command::Revolute2 | Command::Twist90 | Command::Twist180 => 2,
-            Command::Output => 6,
-            Command::Left | Command::Right | Command::Up | Command::Down => 2,
-            Command::Clockwise | Command::Counterclockwise => 1,
-            Command::Backward | Command::Width | Command::Thickness => 1,
-            _ => 1,
-        }
+/// The weight of a command in random successors: body commands that make parts and
+/// joints, and `output`, which drives a joint, are the most likely, so that random genomes
+/// often grow jointed, driven bodies.
+fn draw_weight(command: Command) -> u32 {
+    match command {
+        Command::Forward => 12,
+        Command::Revolute1 | Command::Revolute2 | Command::Twist90 | Command::Twist180 => 2,
+        Command::Output => 6,
+        Command::Left | Command::Right | Command::Up | Command::Down => 2,
+        _ => 1,
     }
 }
 
@@ -481,26 +306,26 @@ fn perturb(x: f64, (lo, hi): (f64, f64), quantum: f64, rng: &mut Rng) -> f64 {
 }
 
 /// A random value of `range` on the grid of `quantum`.
-fn random_constant(kind: ArgKind, rng: &mut Rng) -> f64 {
-    let (lo, hi) = kind.range();
-    let q = kind.quantum();
+fn random_constant(kind: Argument, rng: &mut Rng) -> f64 {
+    let (lo, hi) = range(kind);
+    let q = quantum(kind);
     let steps = ((hi - lo) / q).round() as u64;
     round(lo + rng.random_range(0..=steps) as f64 * q)
 }
 
 fn random_command(rng: &mut Rng) -> Item {
-    let total: u32 = Command::ALL.iter().map(|c| c.weight()).sum();
+    let total: u32 = Command::ALL.into_iter().map(draw_weight).sum();
     let mut draw = rng.random_range(0..total);
     let mut command = Command::Forward;
     for c in Command::ALL {
-        if draw < c.weight() {
+        if draw < draw_weight(c) {
             command = c;
             break;
         }
-        draw -= c.weight();
+        draw -= draw_weight(c);
     }
-    let kind = command.arg_kind();
-    let arg = (kind != ArgKind::None).then(|| Arg::Const(random_constant(kind, rng)));
+    let kind = command.argument();
+    let arg = (kind != Argument::None).then(|| Arg::Const(random_constant(kind, rng)));
     Item::Command(command, arg)
 }
 
@@ -584,7 +409,7 @@ fn push_random_run(
             ][rng.random_range(0..4)];
             out.push(Item::Command(joint, None));
             for c in [Command::Forward, Command::Output] {
-                let kind = c.arg_kind();
+                let kind = c.argument();
                 out.push(Item::Command(
                     c,
                     Some(Arg::Const(random_constant(kind, rng))),
@@ -705,7 +530,7 @@ impl LSystemGenome {
                         Item::Push | Item::Pop => true,
                         Item::Command(c, arg) => match arg {
                             None => true,
-                            Some(a) => c.arg_kind() != ArgKind::None && arg_ok(a),
+                            Some(a) => c.argument() != Argument::None && arg_ok(a),
                         },
                         Item::Call(target, args) => {
                             *target < self.productions.len()
@@ -795,9 +620,9 @@ impl LSystemGenome {
             if rng.random_bool(rate) {
                 match item {
                     Item::Command(c, Some(arg)) => {
-                        let kind = c.arg_kind();
+                        let kind = c.argument();
                         let (range, quantum) = match arg {
-                            Arg::Const(_) => (kind.range(), kind.quantum()),
+                            Arg::Const(_) => (range(kind), quantum(kind)),
                             _ => (OFFSET_RANGE, 1.0 / GRID),
                         };
                         let v = arg.constant_mut();
@@ -1339,11 +1164,11 @@ fn item(
     if let Some(c) = Command::from_name(&call.name) {
         return match call.args.as_slice() {
             [] => Ok(Item::Command(c, None)),
-            [a] if c.arg_kind() != ArgKind::None => Ok(Item::Command(c, Some(arg(a)?))),
+            [a] if c.argument() != Argument::None => Ok(Item::Command(c, Some(arg(a)?))),
             _ => Err(refuse(format!(
                 "line {at}: '{}' takes {} argument",
                 c.name(),
-                if c.arg_kind() == ArgKind::None {
+                if c.argument() == Argument::None {
                     "no"
                 } else {
                     "at most one"
@@ -1427,20 +1252,20 @@ mod tests {
         for _ in 0..1000 {
             turn = perturb(
                 turn,
-                ArgKind::Turn.range(),
-                ArgKind::Turn.quantum(),
+                range(Argument::Turn),
+                quantum(Argument::Turn),
                 &mut rng,
             );
             assert!(turn == 0.5 || turn == 1.0, "{turn}");
             let before = length;
-            length = perturb(length, ArgKind::Length.range(), 1.0 / GRID, &mut rng);
+            length = perturb(length, range(Argument::Length), 1.0 / GRID, &mut rng);
             assert!((0.2..=1.2).contains(&length));
             // A tenth of the range at most, plus rounding.
             assert!((length - before).abs() <= 0.1 + 1e-9);
             assert_eq!(length, round(length));
             assert_eq!(format!("{length}").parse::<f64>().unwrap(), length);
         }
-        let index = perturb(0.0, ArgKind::Index.range(), 1.0, &mut rng);
+        let index = perturb(0.0, range(Argument::Index), 1.0, &mut rng);
         assert!(index == 0.0 || index == 1.0);
     }
 
@@ -1449,7 +1274,7 @@ mod tests {
         let mut rng = Rng::seed_from_u64(1);
         let mut seen = [false; 3];
         for _ in 0..200 {
-            let f = random_constant(ArgKind::Function, &mut rng);
+            let f = random_constant(Argument::Function, &mut rng);
             assert_eq!(f, f.round());
             seen[f as usize] = true;
         }

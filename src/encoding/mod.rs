@@ -10,6 +10,7 @@ use serde::{Serialize, de::DeserializeOwned};
 
 use crate::creature::Creature;
 
+pub mod command;
 pub mod continuous;
 pub mod lsystem;
 

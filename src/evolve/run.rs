@@ -124,18 +124,7 @@ impl<G: Genome> Run<G> {
                 version: env!("CARGO_PKG_VERSION").to_string(),
             },
         )?;
-        Ok(Run {
-            dir: dir.to_path_buf(),
-            evolution: Evolution {
-                settings: config.ga.clone(),
-                limits: config.limits.clone(),
-                task: config.task.clone(),
-                seed: config.seed,
-                init,
-            },
-            config,
-            store,
-        })
+        Ok(Run::assemble(dir, config, store, init))
     }
 
     /// Opens the run in `dir` to go on with it.
@@ -155,7 +144,17 @@ impl<G: Genome> Run<G> {
             }
             None => None,
         };
-        Ok(Run {
+        Ok(Run::assemble(dir, config, store, init))
+    }
+
+    /// A run of `config`, its store and its `init` genome.
+    fn assemble(
+        dir: &Path,
+        config: RunConfig<G::Limits>,
+        store: RunStore,
+        init: Option<G>,
+    ) -> Run<G> {
+        Run {
             dir: dir.to_path_buf(),
             evolution: Evolution {
                 settings: config.ga.clone(),
@@ -166,7 +165,7 @@ impl<G: Genome> Run<G> {
             },
             config,
             store,
-        })
+        }
     }
 
     /// The run's settings.
