@@ -485,10 +485,12 @@ fn replay_typed<G: Genome>(
     super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
     let stored = individual.evaluation.fitness;
     say!(
-        "generation {generation}, rank {rank}: {} fitness {:.6} ({:?}; stored {stored:.6})",
+        "generation {generation}, rank {rank}: {} fitness {:.6} ({}; stored {stored:.6})",
         evaluation.task,
         evaluation.fitness,
-        evaluation.status
+        serde_json::to_value(evaluation.status)?
+            .as_str()
+            .unwrap_or("?")
     );
     if evaluation.fitness != stored {
         say!("warning: the re-evaluation differs from the stored fitness");
