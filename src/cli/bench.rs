@@ -33,6 +33,14 @@ pub struct BenchArgs {
     /// evaluator's).
     #[arg(long, default_value_t = SimOptions::default().pgs_iterations)]
     pgs_iterations: usize,
+    /// Substeps per control step while a task waits for rest, in the setting measured
+    /// (default: the evaluator's).
+    #[arg(long, default_value_t = SimOptions::default().rest_substeps)]
+    rest_substeps: usize,
+    /// Solver iterations per substep while a task waits for rest, in the setting measured
+    /// (default: the evaluator's).
+    #[arg(long, default_value_t = SimOptions::default().rest_solver_iterations)]
+    rest_solver_iterations: usize,
     /// Also measure fidelity: walk this many creatures (the shipped examples, then random
     /// command strings) `--runs` times with the setting and with a fine reference (1/240 s
     /// physics, 8 solver iterations), and print the Spearman rank correlation of their median
@@ -46,6 +54,11 @@ pub struct BenchArgs {
     /// Seed of the random creatures of `--fidelity`.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// With `--fidelity`: more settings to rank against the fine reference in the same run,
+    /// each `SxIxP` or `SxIxP/SxI` (substeps × solver iterations × PGS passes while walking,
+    /// then substeps × iterations while waiting for rest), e.g. `1x4x1/2x8`.
+    #[arg(long, value_name = "SETTING", value_delimiter = ',')]
+    fidelity_also: Vec<String>,
     /// With `--fidelity`: print every creature's figures.
     #[arg(long)]
     verbose: bool,
@@ -113,6 +126,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         substeps: args.substeps.clamp(1, 64),
         solver_iterations: args.solver_iterations.clamp(1, 256),
         pgs_iterations: args.pgs_iterations.clamp(1, 256),
+        rest_substeps: args.rest_substeps.clamp(1, 64),
+        rest_solver_iterations: args.rest_solver_iterations.clamp(1, 256),
         ..SimOptions::default()
     };
     let n = args.evaluations.max(1);
@@ -326,9 +341,64 @@ fn ensemble(
     (median(&mut fitness), rested, walks)
 }
 
-/// Walks every fidelity creature with `sim` and with the fine reference, each `--runs` times
-/// from drop heights 0.1 mm apart; prints the rank correlation of their median fitness, a
-/// noise floor, and how many walks each setting brings to rest.
+/// A stepping setting of `--fidelity-also`: `SxIxP` (substeps, solver iterations, PGS passes
+/// while walking), optionally followed by `/SxI` (substeps and iterations while waiting for
+/// rest); e.g. `1x2x3/2x4`.
+fn parse_setting(text: &str, base: &SimOptions) -> anyhow::Result<SimOptions> {
+    let bad = || {
+        ontogeny::lang::Diagnostic::without_location(
+            ontogeny::lang::DiagnosticKind::Semantic,
+            format!(
+                "--fidelity-also: '{text}' is not a setting such as 1x2x3 or 1x2x3/2x4 (substeps x iterations x PGS passes / rest substeps x rest iterations)"
+            ),
+        )
+    };
+    let numbers = |part: &str, count: usize| -> anyhow::Result<Vec<usize>> {
+        let n: Vec<usize> = part
+            .split('x')
+            .map(|x| x.trim().parse::<usize>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| bad())?;
+        if n.len() != count || n.iter().any(|&k| k == 0 || k > 256) {
+            return Err(bad().into());
+        }
+        Ok(n)
+    };
+    let (walking, resting) = match text.split_once('/') {
+        Some((w, r)) => (w, Some(r)),
+        None => (text, None),
+    };
+    let w = numbers(walking, 3)?;
+    let mut sim = SimOptions {
+        substeps: w[0],
+        solver_iterations: w[1],
+        pgs_iterations: w[2],
+        ..base.clone()
+    };
+    if let Some(r) = resting {
+        let r = numbers(r, 2)?;
+        sim.rest_substeps = r[0];
+        sim.rest_solver_iterations = r[1];
+    }
+    Ok(sim)
+}
+
+/// A setting's short name: `SxIxP/SxI`.
+fn setting_name(sim: &SimOptions) -> String {
+    format!(
+        "{}x{}x{}/{}x{}",
+        sim.substeps,
+        sim.solver_iterations,
+        sim.pgs_iterations,
+        sim.rest_substeps,
+        sim.rest_solver_iterations
+    )
+}
+
+/// Walks every fidelity creature with `sim` (and every `--fidelity-also` setting) and with
+/// the fine reference, each `--runs` times from drop heights 0.1 mm apart; prints the rank
+/// correlation of their median fitness, a noise floor, how many walks each setting brings to
+/// rest, and each setting's cost in whole walks (rest phases included) against the default's.
 fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     let fine = SimOptions {
         substeps: 4,
@@ -338,6 +408,10 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
         rest_solver_iterations: 8,
         ..SimOptions::default()
     };
+    let mut settings = vec![sim.clone()];
+    for text in &args.fidelity_also {
+        settings.push(parse_setting(text, sim)?);
+    }
     let creatures = fidelity_creatures(args.fidelity, args.seed)?;
     let options = WalkerOptions {
         seconds: args.seconds,
@@ -345,75 +419,92 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     };
     let runs = args.runs.max(1);
     say!(
-        "\nfidelity: {} creatures walked {} s, {runs} times each from drop heights 0.1 mm apart, with the measured setting and with a fine reference (1/240 s physics, 8 iterations)",
+        "\nfidelity: {} creatures walked {} s, {runs} times each from drop heights 0.1 mm apart, with each setting and with a fine reference (4x8x1/4x8: 1/240 s physics, 8 iterations)",
         creatures.len(),
         args.seconds
     );
     // The noise floor: the fine reference against itself, from other drop heights. No
     // setting can rank creatures more alike than the reference does itself.
     type Ensemble = (f64, usize, Vec<task::Evaluation>);
-    let results: Vec<(Ensemble, Ensemble, Ensemble)> = creatures
+    let fine_results: Vec<(Ensemble, Ensemble)> = creatures
         .par_iter()
         .map(|(_, c)| {
             (
-                ensemble(c, sim, &options, 0, runs),
                 ensemble(c, &fine, &options, 0, runs),
                 ensemble(c, &fine, &options, runs, runs),
             )
         })
         .collect();
-    if args.verbose {
-        say!(
-            "{:>14} {:>14} {:>8} {:>8}  creature",
-            "measured",
-            "fine",
-            "at rest",
-            "at rest"
-        );
-        for ((name, _), (a, b, _)) in creatures.iter().zip(&results) {
-            say!(
-                "{:>14.6} {:>14.6} {:>8} {:>8}  {name}",
-                a.0,
-                b.0,
-                format!("{}/{runs}", a.1),
-                format!("{}/{runs}", b.1),
-            );
-        }
-    }
-    let measured: Vec<f64> = results.iter().map(|(a, _, _)| a.0).collect();
-    let reference: Vec<f64> = results.iter().map(|(_, b, _)| b.0).collect();
-    let floor: Vec<f64> = results.iter().map(|(_, _, c)| c.0).collect();
+    let reference: Vec<f64> = fine_results.iter().map(|(b, _)| b.0).collect();
+    let floor: Vec<f64> = fine_results.iter().map(|(_, c)| c.0).collect();
+    let first_fine: Vec<f64> = fine_results.iter().map(|(b, _)| b.2[0].fitness).collect();
+    let first_floor: Vec<f64> = fine_results.iter().map(|(_, c)| c.2[0].fitness).collect();
     let rested = |e: &task::Evaluation| e.status != Status::Unstable;
-    let (mut fine_rested, mut both_rested) = (0, 0);
-    for (a, b, _) in &results {
-        for (x, y) in a.2.iter().zip(&b.2) {
-            if rested(y) {
-                fine_rested += 1;
-                if rested(x) {
+    let fine_rested: usize = fine_results
+        .iter()
+        .map(|(b, _)| b.2.iter().filter(|e| rested(e)).count())
+        .sum();
+    say!(
+        "noise floor, fine against fine from other drop heights: {:.3} (medians), {:.3} (single walks); the fine reference brings {fine_rested} of {} walks to rest",
+        spearman(&floor, &reference),
+        spearman(&first_floor, &first_fine),
+        creatures.len() * runs
+    );
+    say!(
+        "{:<16} {:>10} {:>10} {:>16} {:>10}",
+        "setting",
+        "Spearman",
+        "single",
+        "rested of fine's",
+        "cost"
+    );
+    let mut default_cost = None;
+    for setting in &settings {
+        let started = Instant::now();
+        let results: Vec<Ensemble> = creatures
+            .par_iter()
+            .map(|(_, c)| ensemble(c, setting, &options, 0, runs))
+            .collect();
+        let cost = started.elapsed().as_secs_f64();
+        let default_cost = *default_cost.get_or_insert(cost);
+        if args.verbose {
+            say!(
+                "{:>14} {:>14} {:>8} {:>8}  creature ({})",
+                "measured",
+                "fine",
+                "at rest",
+                "at rest",
+                setting_name(setting)
+            );
+            for ((name, _), (a, (b, _))) in creatures.iter().zip(results.iter().zip(&fine_results))
+            {
+                say!(
+                    "{:>14.6} {:>14.6} {:>8} {:>8}  {name}",
+                    a.0,
+                    b.0,
+                    format!("{}/{runs}", a.1),
+                    format!("{}/{runs}", b.1),
+                );
+            }
+        }
+        let measured: Vec<f64> = results.iter().map(|a| a.0).collect();
+        let first_measured: Vec<f64> = results.iter().map(|a| a.2[0].fitness).collect();
+        let mut both_rested = 0;
+        for (a, (b, _)) in results.iter().zip(&fine_results) {
+            for (x, y) in a.2.iter().zip(&b.2) {
+                if rested(y) && rested(x) {
                     both_rested += 1;
                 }
             }
         }
+        say!(
+            "{:<16} {:>10.3} {:>10.3} {:>16} {:>9.2}×",
+            setting_name(setting),
+            spearman(&measured, &reference),
+            spearman(&first_measured, &first_fine),
+            format!("{both_rested}/{fine_rested}"),
+            cost / default_cost
+        );
     }
-    let first_measured: Vec<f64> = results.iter().map(|(a, _, _)| a.2[0].fitness).collect();
-    let first_fine: Vec<f64> = results.iter().map(|(_, b, _)| b.2[0].fitness).collect();
-    let first_floor: Vec<f64> = results.iter().map(|(_, _, c)| c.2[0].fitness).collect();
-    say!(
-        "Spearman rank correlation of median walker fitness, measured against fine: {:.3}",
-        spearman(&measured, &reference)
-    );
-    say!(
-        "noise floor, fine against fine from other drop heights: {:.3}",
-        spearman(&floor, &reference)
-    );
-    say!(
-        "single walks (the first drop height): measured against fine {:.3}, noise floor {:.3}",
-        spearman(&first_measured, &first_fine),
-        spearman(&first_floor, &first_fine)
-    );
-    say!(
-        "at rest: the fine reference brings {fine_rested} of {} walks to rest; the measured setting brings {both_rested} of those {fine_rested} to rest",
-        results.len() * runs
-    );
     Ok(())
 }
