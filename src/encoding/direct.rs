@@ -153,16 +153,17 @@ impl DirectGenome {
 
     /// At each of [`run_sites`] sites, with probability `rate`, deletes a run of 1 to 3
     /// modules at a random place, never the last module. Brackets left without a partner are
-    /// dropped too.
+    /// dropped too; a deletion that would leave nothing is undone.
     pub fn delete_runs(&mut self, rate: f64, rng: &mut Rng) {
         let rate = clamp_rate(rate);
         for _ in 0..run_sites(self.modules.len()) {
             if self.modules.len() > 1 && rng.random_bool(rate) {
+                let before = self.clone();
                 let run = pick_run(&self.modules, (self.modules.len() - 1).min(MAX_RUN), rng);
                 self.modules.drain(run);
+                self.settle(&before);
             }
         }
-        self.settle(None);
     }
 
     /// One-point crossover: the first `cut` modules of `self`, then `other`'s from
@@ -177,7 +178,12 @@ impl DirectGenome {
     ) -> DirectGenome {
         let cut = cut.min(self.modules.len());
         let other_cut = other_cut.min(other.modules.len());
-        self.exchange(other, cut..self.modules.len(), other_cut..other.modules.len(), limits)
+        self.exchange(
+            other,
+            cut..self.modules.len(),
+            other_cut..other.modules.len(),
+            limits,
+        )
     }
 
     /// Two-point crossover: `self` with its modules `cut` replaced by `other`'s modules
@@ -213,26 +219,16 @@ impl DirectGenome {
         let mut modules = self.modules.clone();
         modules.splice(out, other.modules[run.start..end].iter().cloned());
         let mut child = DirectGenome { modules };
-        child.settle(Some(self));
+        child.settle(self);
         child
     }
 
-    /// Balances the brackets; an empty string becomes `fallback` (or stays as it was before
-    /// balancing, when it was not empty).
-    fn settle(&mut self, fallback: Option<&DirectGenome>) {
-        let before = self.modules.clone();
+    /// Balances the brackets; a string left empty becomes a copy of `fallback`.
+    fn settle(&mut self, fallback: &DirectGenome) {
         balance(&mut self.modules);
         if self.modules.is_empty() {
-            self.modules = match fallback {
-                Some(f) => f.modules.clone(),
-                None => before,
-            };
+            self.modules = fallback.modules.clone();
         }
-    }
-
-    /// Whether `self` is empty of modules or a lone bracket (never, for a checked genome).
-    fn is_empty(&self) -> bool {
-        self.modules.is_empty()
     }
 }
 
@@ -279,7 +275,7 @@ impl Genome for DirectGenome {
     }
 
     fn develop(&self, limits: &DirectLimits, seed: u64) -> Result<Creature, DevelopError> {
-        if self.is_empty() {
+        if self.modules.is_empty() {
             return Err(DevelopError("the genome has no modules".into()));
         }
         super::lsystem::develop_text(&self.to_text(), limits.modules(), limits.max_parts, seed)
@@ -336,7 +332,11 @@ fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopE
                             at(),
                             m.params.len(),
                             c.name(),
-                            if c.has_argument() { "at most one" } else { "none" }
+                            if c.has_argument() {
+                                "at most one"
+                            } else {
+                                "none"
+                            }
                         )));
                     }
                 },
@@ -354,13 +354,15 @@ fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopE
         }
         Ok(modules)
     })
-    .map_err(|d| DevelopError(d.to_string()))??;
+    .map_err(|d| refuse(d.to_string()))??;
     let genome = DirectGenome { modules };
-    if genome.is_empty() {
+    if genome.modules.is_empty() {
         return Err(refuse("its derived string has no building command"));
     }
     if !is_balanced(&genome.modules) {
-        return Err(refuse("the brackets of its derived string are not balanced"));
+        return Err(refuse(
+            "the brackets of its derived string are not balanced",
+        ));
     }
     genome.check(limits).map_err(refuse)?;
     Ok(genome)
@@ -380,9 +382,6 @@ mod tests {
 
     #[test]
     fn run_sites_are_one_per_started_successor_length() {
-        assert_eq!(
-            [0, 1, 15, 16, 30, 31].map(run_sites),
-            [1, 1, 1, 2, 2, 3]
-        );
+        assert_eq!([0, 1, 15, 16, 30, 31].map(run_sites), [1, 1, 1, 2, 2, 3]);
     }
 }

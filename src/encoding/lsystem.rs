@@ -17,9 +17,9 @@ use super::command::{Argument, Command};
 use super::{DevelopError, Genome, Rng};
 use crate::creature::{Actuator, Creature, Role};
 use crate::develop::{BuildOptions, build};
+use crate::environment::Environment;
 use crate::lang::ast::{BinaryOp, Expr, ModuleCall, Section, UnaryOp};
 use crate::lang::{self, Source};
-use crate::environment::Environment;
 use crate::lsystem::{DeriveOptions, LSystem, ModuleString};
 
 /// Random constants are rounded to this many parts of a unit, so printed genomes stay
