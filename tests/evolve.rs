@@ -345,83 +345,56 @@ fn bad_input_is_refused(encoding: &str) {
 
 #[test]
 fn init_seeds_the_first_generation_with_a_grammar_and_its_mutants() {
-    let dir = scratch("init");
-    let out = dir.join("run");
-    let o = run_of(
-        "lsystem",
-        &out,
-        "1",
-        &["--init", "examples/hornby-walker.lsys"],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(
-        std::fs::read_to_string(out.join("init.lsys")).unwrap(),
-        std::fs::read_to_string("examples/hornby-walker.lsys").unwrap()
-    );
-    let store = RunStore::open(&out.join("run.sqlite")).unwrap();
-    let first = store.individuals(0).unwrap();
-    assert!(first.iter().all(|i| i.operator == "init"));
-    // Individual 0 is the grammar itself: it scores what `eval` gives the file.
-    let eval = ontogeny()
-        .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
-        .arg("examples/hornby-walker.lsys")
-        .output()
-        .unwrap();
-    let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
-    assert_eq!(value["fitness"].as_f64().unwrap(), first[0].fitness);
-    // A grammar the genome cannot hold is refused before anything is written.
-    let o = run_of(
-        "lsystem",
-        &dir.join("bad"),
-        "1",
-        &["--init", "examples/snake.lsys"],
-    );
-    assert_eq!(o.status.code(), Some(2));
-    assert!(!dir.join("bad").exists());
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn init_seeds_a_direct_run_with_the_grammars_derived_string() {
-    let dir = scratch("init-direct");
-    let out = dir.join("run");
-    let o = run_of(
-        "direct",
-        &out,
-        "1",
-        &["--init", "examples/hornby-walker.lsys"],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let store = RunStore::open(&out.join("run.sqlite")).unwrap();
-    let first = store.individuals(0).unwrap();
-    // Individual 0 is the grammar's creature: an axiom, scoring what `eval` gives the file.
-    assert!(
-        first[0]
-            .genome_text
-            .contains("\naxiom: width(0.6) thickness(0.2)")
-    );
-    let eval = ontogeny()
-        .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
-        .arg("examples/hornby-walker.lsys")
-        .output()
-        .unwrap();
-    let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
-    assert_eq!(value["fitness"].as_f64().unwrap(), first[0].fitness);
-    // A grammar whose string the genome cannot hold is refused before anything is written.
-    let o = run_of(
-        "direct",
-        &dir.join("bad"),
-        "1",
-        &["--init", "examples/plastic.lsys"],
-    );
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        String::from_utf8_lossy(&o.stderr).contains("does not fit the direct genome"),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    assert!(!dir.join("bad").exists());
-    let _ = std::fs::remove_dir_all(dir);
+    // The file, and a shipped grammar the encoding cannot hold.
+    for (encoding, refused) in [("lsystem", "snake"), ("direct", "plastic")] {
+        let dir = scratch(&format!("init-{encoding}"));
+        let out = dir.join("run");
+        let o = run_of(
+            encoding,
+            &out,
+            "1",
+            &["--init", "examples/hornby-walker.lsys"],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(
+            std::fs::read_to_string(out.join("init.lsys")).unwrap(),
+            std::fs::read_to_string("examples/hornby-walker.lsys").unwrap()
+        );
+        let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+        let first = store.individuals(0).unwrap();
+        assert!(first.iter().all(|i| i.operator == "init"));
+        if encoding == "direct" {
+            // The grammar's derived string, as an axiom.
+            assert!(
+                first[0]
+                    .genome_text
+                    .contains("\naxiom: width(0.6) thickness(0.2) forward(0.8) [")
+            );
+        }
+        // Individual 0 is the grammar itself: it scores what `eval` gives the file.
+        let eval = ontogeny()
+            .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
+            .arg("examples/hornby-walker.lsys")
+            .output()
+            .unwrap();
+        let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
+        assert_eq!(value["fitness"].as_f64().unwrap(), first[0].fitness);
+        // A grammar the genome cannot hold is refused before anything is written.
+        let o = run_of(
+            encoding,
+            &dir.join("bad"),
+            "1",
+            &["--init", &format!("examples/{refused}.lsys")],
+        );
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(&format!("does not fit the {encoding} genome")),
+            "{err}"
+        );
+        assert!(!dir.join("bad").exists());
+        let _ = std::fs::remove_dir_all(dir);
+    }
 }
 
 #[test]

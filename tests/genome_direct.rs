@@ -3,14 +3,14 @@
 //! grows the identical creature through the language and the command, and any grammar's
 //! derived string seeds a genome.
 
+mod common;
+
 use std::process::Command;
 
 use ontogeny::creature::{Creature, JointKind};
-use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::encoding::command::Command as C;
 use ontogeny::encoding::lsystem::{Arg, Item, is_driven_walker};
 use ontogeny::encoding::{DirectGenome, DirectLimits, Genome, LSystemLimits, Rng};
-use ontogeny::lsystem::{DeriveOptions, LSystem};
 use proptest::prelude::*;
 use rand::SeedableRng;
 
@@ -37,23 +37,9 @@ fn axiom(g: &DirectGenome) -> String {
     line["axiom: ".len()..].to_string()
 }
 
-/// The last creature `develop::grow` makes from `text` with the limits' caps (what `ontogeny
-/// grow --max-modules --max-parts` does).
+/// The creature `ontogeny grow --max-modules --max-parts` makes of `text` with the limits.
 fn grown(text: &str, limits: &DirectLimits) -> Creature {
-    let lsys = LSystem::from_text("t.lsys", text).expect("the text compiles");
-    let options = DeriveOptions {
-        max_modules: limits.max_modules,
-        ..DeriveOptions::default()
-    };
-    let build = BuildOptions {
-        max_parts: limits.max_parts,
-        ..BuildOptions::default()
-    };
-    grow(&lsys, &options, None, &build)
-        .expect("the text grows")
-        .pop()
-        .expect("a frame")
-        .creature
+    common::grown_with_caps(text, limits.max_modules, limits.max_parts)
 }
 
 fn example(name: &str) -> String {

@@ -44,3 +44,22 @@ pub fn grown(path: &str) -> Creature {
     .unwrap();
     frames.into_iter().last().unwrap().creature
 }
+
+/// The last creature `develop::grow` makes from `text` with a module and a part cap (what
+/// `ontogeny grow --max-modules --max-parts` does).
+pub fn grown_with_caps(text: &str, max_modules: usize, max_parts: usize) -> Creature {
+    let lsys = lsystem(text);
+    let options = DeriveOptions {
+        max_modules,
+        ..DeriveOptions::default()
+    };
+    let build = BuildOptions {
+        max_parts,
+        ..BuildOptions::default()
+    };
+    grow(&lsys, &options, None, &build)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .pop()
+        .expect("a frame")
+        .creature
+}
