@@ -5,8 +5,6 @@
 
 mod common;
 
-use std::process::Command;
-
 use ontogeny::creature::{Creature, JointKind};
 use ontogeny::encoding::command::Command as C;
 use ontogeny::encoding::lsystem::{Arg, Item, is_driven_walker};
@@ -345,19 +343,9 @@ fn mutation_rate_zero_changes_nothing_and_rate_one_changes_something() {
 #[test]
 fn everything_is_determined_by_the_random_source() {
     let limits = DirectLimits::default();
-    let a = DirectGenome::random(&limits, &mut rng(42));
-    assert_eq!(a, DirectGenome::random(&limits, &mut rng(42)));
-    assert_ne!(a, DirectGenome::random(&limits, &mut rng(43)));
-    let other = DirectGenome::random(&limits, &mut rng(1));
-    assert_eq!(
-        a.mutate(&limits, 0.2, &mut rng(5)),
-        a.mutate(&limits, 0.2, &mut rng(5))
-    );
-    assert_eq!(
-        a.crossover(&other, &limits, &mut rng(5)),
-        a.crossover(&other, &limits, &mut rng(5))
-    );
-    assert_eq!(a.graft(&other, &limits, &mut rng(5)), None);
+    common::assert_determined_by_the_random_source::<DirectGenome>(&limits);
+    let (a, b) = parents();
+    assert_eq!(a.graft(&b, &limits, &mut rng(5)), None);
 }
 
 #[test]
@@ -437,42 +425,22 @@ fn the_printed_text_grows_and_evaluates_with_the_command() {
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("genome.lsys");
     std::fs::write(&file, g.to_text()).unwrap();
-    let run = |args: &[&str]| {
-        let o = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        o
-    };
-    let json = |out: &std::path::Path| -> serde_json::Value {
-        serde_json::from_str(&std::fs::read_to_string(out.join("creature.json")).unwrap()).unwrap()
-    };
-    let out = dir.join("genome");
-    run(&[
-        "grow",
-        file.to_str().unwrap(),
-        "--max-parts",
-        "50",
-        "--max-modules",
-        "1000",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
     let developed = serde_json::to_value(g.develop(&limits, 0).unwrap()).unwrap();
-    assert_eq!(json(&out), developed);
+    let caps = ["--max-parts", "50", "--max-modules", "1000"];
+    assert_eq!(
+        common::grow_creature_json(&file, &dir.join("genome"), &caps),
+        developed
+    );
     // The same creature `ontogeny grow` makes of the example itself.
-    let original = dir.join("original");
-    run(&[
-        "grow",
-        "examples/hornby-walker.lsys",
-        "--out",
-        original.to_str().unwrap(),
-    ]);
-    assert_eq!(json(&original), developed);
+    let original = std::path::Path::new("examples/hornby-walker.lsys");
+    assert_eq!(
+        common::grow_creature_json(original, &dir.join("original"), &[]),
+        developed
+    );
     // `eval` scores the text as it scores the example.
     let fitness = |path: &str| -> f64 {
-        let o = run(&["eval", path, "--task", "walker", "--seconds", "1", "--json"]);
+        let o =
+            common::ontogeny_ok(&["eval", path, "--task", "walker", "--seconds", "1", "--json"]);
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         v["fitness"].as_f64().unwrap()
     };
