@@ -137,8 +137,9 @@ impl DirectGenome {
         }
     }
 
-    /// At each of [`run_sites`] sites, with probability `rate`, inserts a random run of 1 to
-    /// 3 modules (fewer when `max_modules` leaves less room) at a random place.
+    /// At each insertion site (one per started 15 modules, the L-system genome's default
+    /// `max_successor`), with probability `rate`, inserts a random run of 1 to 3 modules
+    /// (fewer when `max_modules` leaves less room) at a random place.
     pub fn insert_runs(&mut self, limits: &DirectLimits, rate: f64, rng: &mut Rng) {
         let rate = clamp_rate(rate);
         for _ in 0..run_sites(self.modules.len()) {
@@ -151,9 +152,9 @@ impl DirectGenome {
         }
     }
 
-    /// At each of [`run_sites`] sites, with probability `rate`, deletes a run of 1 to 3
-    /// modules at a random place, never the last module. Brackets left without a partner are
-    /// dropped too; a deletion that would leave nothing is undone.
+    /// At each deletion site (one per started 15 modules), with probability `rate`, deletes
+    /// a run of 1 to 3 modules at a random place, never the last module. Brackets left
+    /// without a partner are dropped too; a deletion that would leave nothing is undone.
     pub fn delete_runs(&mut self, rate: f64, rng: &mut Rng) {
         let rate = clamp_rate(rate);
         for _ in 0..run_sites(self.modules.len()) {
@@ -283,7 +284,7 @@ impl Genome for DirectGenome {
 
     fn to_text(&self) -> String {
         let mut out = format!(
-            "# A direct genome (Hornby & Pollack 2001's non-generative encoding): {} modules.\naxiom:",
+            "# A direct genome (Hornby & Pollack 2001's non-generative encoding): {} module(s).\naxiom:",
             self.modules.len()
         );
         for item in &self.modules {
