@@ -1,6 +1,7 @@
-//! `ontogeny evolve` end to end: the run directory and its database, identical results on
-//! one and two threads, a run killed with SIGKILL mid-generation and resumed equals the
-//! uninterrupted run, and bad input refused with exit code 2.
+//! `ontogeny evolve` end to end, for every encoding: the run directory and its database,
+//! identical results on one and two threads, a run killed with SIGKILL mid-generation and
+//! resumed equals the uninterrupted run, and bad input refused with exit code 2; and every
+//! task and preset with the `direct` encoding.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -11,6 +12,9 @@ fn ontogeny() -> Command {
     Command::new(env!("CARGO_BIN_EXE_ontogeny"))
 }
 
+/// Every encoding the tests run for.
+const ENCODINGS: [&str; 3] = ["lsystem", "lsystem-continuous", "direct"];
+
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("ontogeny-evolve-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -18,18 +22,18 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// A small, quick run: 12 individuals, `gens` generations, 1 s walks.
-fn run_of(out: &Path, gens: &str, extra: &[&str]) -> Output {
-    evolve_command(out, gens, extra).output().unwrap()
+/// A small, quick run of `encoding`: 12 individuals, `gens` generations, 1 s walks.
+fn run_of(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Output {
+    evolve_command(encoding, out, gens, extra).output().unwrap()
 }
 
 /// The command of [`run_of`], to run or spawn.
-fn evolve_command(out: &Path, gens: &str, extra: &[&str]) -> Command {
+fn evolve_command(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Command {
     let mut c = ontogeny();
     c.args([
         "evolve",
         "--encoding",
-        "lsystem",
+        encoding,
         "--task",
         "walker",
         "--pop",
@@ -48,8 +52,8 @@ fn evolve_command(out: &Path, gens: &str, extra: &[&str]) -> Command {
 }
 
 /// The small run of 4 generations.
-fn small_run(out: &Path, extra: &[&str]) -> Output {
-    run_of(out, "4", extra)
+fn small_run(encoding: &str, out: &Path, extra: &[&str]) -> Output {
+    run_of(encoding, out, "4", extra)
 }
 
 /// Everything the store holds of a run but wall-clock times, as one comparable string.
@@ -87,9 +91,15 @@ fn contents(dir: &Path) -> String {
 
 #[test]
 fn a_run_writes_its_directory_and_database() {
-    let dir = scratch("layout");
+    for encoding in ENCODINGS {
+        writes_its_directory_and_database(encoding);
+    }
+}
+
+fn writes_its_directory_and_database(encoding: &str) {
+    let dir = scratch(&format!("layout-{encoding}"));
     let out = dir.join("run");
-    let o = small_run(&out, &[]);
+    let o = small_run(encoding, &out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for file in [
         "config.toml",
@@ -104,7 +114,7 @@ fn a_run_writes_its_directory_and_database() {
     let run = store.run().unwrap();
     assert_eq!(
         (run.encoding.as_str(), run.task.as_str(), run.seed),
-        ("lsystem", "walker", 5)
+        (encoding, "walker", 5)
     );
     assert_eq!(
         run.config,
@@ -142,7 +152,11 @@ fn a_run_writes_its_directory_and_database() {
         String::from_utf8_lossy(&eval.stderr)
     );
     let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
-    assert_eq!(value["fitness"].as_f64().unwrap(), generations[3].best);
+    assert_eq!(
+        value["fitness"].as_f64().unwrap(),
+        generations[3].best,
+        "{encoding}"
+    );
     // `runs show` prints a row per generation; `replay` re-evaluates the best.
     let show = ontogeny()
         .args(["runs", "show"])
@@ -171,29 +185,48 @@ fn a_run_writes_its_directory_and_database() {
     ] {
         assert!(shown.join(file).exists(), "{file}");
     }
-    assert!(!String::from_utf8_lossy(&replay.stdout).contains("differs"));
+    assert!(
+        !String::from_utf8_lossy(&replay.stdout).contains("differs"),
+        "{encoding}"
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
 fn one_and_two_threads_give_the_same_run() {
-    let dir = scratch("threads");
-    let (a, b) = (dir.join("one"), dir.join("two"));
-    assert!(small_run(&a, &["--threads", "1"]).status.success());
-    assert!(small_run(&b, &["--threads", "2"]).status.success());
-    assert_eq!(contents(&a), contents(&b));
-    let _ = std::fs::remove_dir_all(dir);
+    for encoding in ENCODINGS {
+        let dir = scratch(&format!("threads-{encoding}"));
+        let (a, b) = (dir.join("one"), dir.join("two"));
+        assert!(
+            small_run(encoding, &a, &["--threads", "1"])
+                .status
+                .success()
+        );
+        assert!(
+            small_run(encoding, &b, &["--threads", "2"])
+                .status
+                .success()
+        );
+        assert_eq!(contents(&a), contents(&b), "{encoding}");
+        let _ = std::fs::remove_dir_all(dir);
+    }
 }
 
 #[test]
 fn a_run_killed_mid_generation_resumes_to_the_same_result() {
-    let dir = scratch("kill");
+    for encoding in ENCODINGS {
+        killed_mid_generation_resumes_to_the_same_result(encoding);
+    }
+}
+
+fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
+    let dir = scratch(&format!("kill-{encoding}"));
     let whole = dir.join("whole");
-    assert!(small_run(&whole, &[]).status.success());
+    assert!(small_run(encoding, &whole, &[]).status.success());
     let killed = dir.join("killed");
     // Start the same run and SIGKILL it once generation 1 is committed, while generation 2
     // is being evaluated.
-    let mut child = evolve_command(&killed, "4", &[])
+    let mut child = evolve_command(encoding, &killed, "4", &[])
         .stderr(std::process::Stdio::null())
         .stdout(std::process::Stdio::null())
         .spawn()
@@ -214,7 +247,7 @@ fn a_run_killed_mid_generation_resumes_to_the_same_result() {
     drop(store);
     assert!(
         done.is_some_and(|g| g < 3),
-        "killed before the end: {done:?}"
+        "{encoding}: killed before the end: {done:?}"
     );
     let resumed = ontogeny()
         .arg("evolve")
@@ -227,7 +260,7 @@ fn a_run_killed_mid_generation_resumes_to_the_same_result() {
         "{}",
         String::from_utf8_lossy(&resumed.stderr)
     );
-    assert_eq!(contents(&whole), contents(&killed));
+    assert_eq!(contents(&whole), contents(&killed), "{encoding}");
     // A complete run has nothing to resume.
     let again = ontogeny()
         .arg("evolve")
@@ -242,12 +275,18 @@ fn a_run_killed_mid_generation_resumes_to_the_same_result() {
 
 #[test]
 fn bad_input_is_refused_with_exit_code_2() {
-    let dir = scratch("bad");
+    for encoding in ENCODINGS {
+        bad_input_is_refused(encoding);
+    }
+}
+
+fn bad_input_is_refused(encoding: &str) {
+    let dir = scratch(&format!("bad-{encoding}"));
     // An unknown key: file, line and key.
     let config = dir.join("bad.toml");
     std::fs::write(
         &config,
-        "seed = 3\n\n[ga]\npopulation = 10\npopulaton = 12\n",
+        format!("encoding = \"{encoding}\"\n\n[ga]\npopulation = 10\npopulaton = 12\n"),
     )
     .unwrap();
     let o = ontogeny()
@@ -265,7 +304,11 @@ fn bad_input_is_refused_with_exit_code_2() {
     );
     assert!(!dir.join("x").exists());
     // An out-of-range value.
-    std::fs::write(&config, "[ga]\nelite = 1.5\n").unwrap();
+    std::fs::write(
+        &config,
+        format!("encoding = \"{encoding}\"\n[ga]\nelite = 1.5\n"),
+    )
+    .unwrap();
     let o = ontogeny()
         .args(["evolve", "--config"])
         .arg(&config)
@@ -278,9 +321,9 @@ fn bad_input_is_refused_with_exit_code_2() {
     assert!(err.contains("elite must be between 0 and 1"), "{err}");
     // --out naming an existing run is refused, and the run is untouched.
     let run = dir.join("run");
-    assert!(run_of(&run, "1", &[]).status.success());
+    assert!(run_of(encoding, &run, "1", &[]).status.success());
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
-    let o = small_run(&run, &[]);
+    let o = small_run(encoding, &run, &[]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--resume"));
     assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
@@ -302,28 +345,93 @@ fn bad_input_is_refused_with_exit_code_2() {
 
 #[test]
 fn init_seeds_the_first_generation_with_a_grammar_and_its_mutants() {
-    let dir = scratch("init");
-    let out = dir.join("run");
-    let o = run_of(&out, "1", &["--init", "examples/hornby-walker.lsys"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(
-        std::fs::read_to_string(out.join("init.lsys")).unwrap(),
-        std::fs::read_to_string("examples/hornby-walker.lsys").unwrap()
-    );
-    let store = RunStore::open(&out.join("run.sqlite")).unwrap();
-    let first = store.individuals(0).unwrap();
-    assert!(first.iter().all(|i| i.operator == "init"));
-    // Individual 0 is the grammar itself: it scores what `eval` gives the file.
-    let eval = ontogeny()
-        .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
-        .arg("examples/hornby-walker.lsys")
-        .output()
-        .unwrap();
-    let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
-    assert_eq!(value["fitness"].as_f64().unwrap(), first[0].fitness);
-    // A grammar the genome cannot hold is refused before anything is written.
-    let o = run_of(&dir.join("bad"), "1", &["--init", "examples/snake.lsys"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(!dir.join("bad").exists());
+    // The file, and a shipped grammar the encoding cannot hold.
+    for (encoding, refused) in [("lsystem", "snake"), ("direct", "plastic")] {
+        let dir = scratch(&format!("init-{encoding}"));
+        let out = dir.join("run");
+        let o = run_of(
+            encoding,
+            &out,
+            "1",
+            &["--init", "examples/hornby-walker.lsys"],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(
+            std::fs::read_to_string(out.join("init.lsys")).unwrap(),
+            std::fs::read_to_string("examples/hornby-walker.lsys").unwrap()
+        );
+        let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+        let first = store.individuals(0).unwrap();
+        assert!(first.iter().all(|i| i.operator == "init"));
+        if encoding == "direct" {
+            // The grammar's derived string, as an axiom.
+            assert!(
+                first[0]
+                    .genome_text
+                    .contains("\naxiom: width(0.6) thickness(0.2) forward(0.8) [")
+            );
+        }
+        // Individual 0 is the grammar itself: it scores what `eval` gives the file.
+        let eval = ontogeny()
+            .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
+            .arg("examples/hornby-walker.lsys")
+            .output()
+            .unwrap();
+        let value: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
+        assert_eq!(value["fitness"].as_f64().unwrap(), first[0].fitness);
+        // A grammar the genome cannot hold is refused before anything is written.
+        let o = run_of(
+            encoding,
+            &dir.join("bad"),
+            "1",
+            &["--init", &format!("examples/{refused}.lsys")],
+        );
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(&format!("does not fit the {encoding} genome")),
+            "{err}"
+        );
+        assert!(!dir.join("bad").exists());
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}
+
+#[test]
+fn every_task_and_preset_runs_with_the_direct_encoding() {
+    let dir = scratch("tasks-direct");
+    // The aim task needs a target.
+    let config = dir.join("aim.toml");
+    std::fs::write(&config, "[task.catapult]\ntarget = [3.0, 0.0, 0.0]\n").unwrap();
+    for task in ["walker", "catapult", "aim", "jump"] {
+        for preset in ["chaumont", "wwd"] {
+            let out = dir.join(format!("{task}-{preset}"));
+            // Two generations of 6, so that the preset's operators make the second.
+            let o = ontogeny()
+                .args(["evolve", "--encoding", "direct", "--task", task])
+                .args(["--preset", preset, "--pop", "6", "--gens", "2"])
+                .args(["--seconds", "0.5", "--seed", "3", "--config"])
+                .arg(&config)
+                .arg("--out")
+                .arg(&out)
+                .output()
+                .unwrap();
+            assert!(
+                o.status.success(),
+                "{task} {preset}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+            let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+            let run = store.run().unwrap();
+            assert_eq!((run.encoding.as_str(), run.task.as_str()), ("direct", task));
+            assert_eq!(store.generations().unwrap().len(), 2, "{task} {preset}");
+            let second = store.individuals(1).unwrap();
+            assert!(
+                second.iter().any(|i| i.operator == "crossover"),
+                "{task} {preset}: {:?}",
+                second.iter().map(|i| &i.operator).collect::<Vec<_>>()
+            );
+        }
+    }
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
-use ontogeny::encoding::{ContinuousGenome, Genome, LSystemGenome};
+use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, LSystemGenome};
 use ontogeny::evolve::config::{
     ConfigFile, GaOverrides, RunConfig, check_settings, encoding_of, read_config,
 };
@@ -22,6 +22,8 @@ pub enum EncodingArg {
     Lsystem,
     /// Matos & Arita's continuous (dL) L-system.
     LsystemContinuous,
+    /// Hornby & Pollack's non-generative baseline: one string of commands.
+    Direct,
 }
 
 /// Runs `$body` with `$G` standing for the genome type of the encoding named `$name`, or
@@ -38,6 +40,10 @@ macro_rules! with_genome {
                 type $G = ContinuousGenome;
                 $body
             }
+            n if n == DirectGenome::NAME => {
+                type $G = DirectGenome;
+                $body
+            }
             other => $unknown(other),
         }
     };
@@ -48,6 +54,7 @@ impl EncodingArg {
         match self {
             EncodingArg::Lsystem => LSystemGenome::NAME,
             EncodingArg::LsystemContinuous => ContinuousGenome::NAME,
+            EncodingArg::Direct => DirectGenome::NAME,
         }
     }
 }

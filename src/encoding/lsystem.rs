@@ -17,9 +17,10 @@ use super::command::{Argument, Command};
 use super::{DevelopError, Genome, Rng};
 use crate::creature::{Actuator, Creature, Role};
 use crate::develop::{BuildOptions, build};
+use crate::environment::Environment;
 use crate::lang::ast::{BinaryOp, Expr, ModuleCall, Section, UnaryOp};
 use crate::lang::{self, Source};
-use crate::lsystem::{DeriveOptions, LSystem};
+use crate::lsystem::{DeriveOptions, LSystem, ModuleString};
 
 /// Random constants are rounded to this many parts of a unit, so printed genomes stay
 /// readable (`0.731`, not `0.7312093857`); a rounded value prints and parses back exactly.
@@ -30,7 +31,7 @@ const PARAM_RANGE: (f64, f64) = (0.0, 8.0);
 /// Range of the constant in a `n + c` or `n * c` argument.
 const OFFSET_RANGE: (f64, f64) = (-2.0, 2.0);
 /// Longest run inserted or deleted by one mutation.
-const MAX_RUN: usize = 3;
+pub(crate) const MAX_RUN: usize = 3;
 
 /// The limits of the L-system genome: every operator keeps a genome within them. They are
 /// part of a run's configuration (`config.toml`); unknown keys are refused.
@@ -313,7 +314,9 @@ fn random_constant(kind: Argument, rng: &mut Rng) -> f64 {
     round(lo + rng.random_range(0..=steps) as f64 * q)
 }
 
-fn random_command(rng: &mut Rng) -> Item {
+/// A random command drawn by [`draw_weight`], with a random constant argument when it takes
+/// one.
+pub(crate) fn random_command(rng: &mut Rng) -> Item {
     let total: u32 = Command::ALL.into_iter().map(draw_weight).sum();
     let mut draw = rng.random_range(0..total);
     let mut command = Command::Forward;
@@ -365,8 +368,10 @@ fn random_condition(params: usize, rng: &mut Rng) -> Option<Condition> {
     })
 }
 
-/// A random, well-nested run of exactly `len` items for a successor of production `home`.
-fn random_run(
+/// A random, well-nested run of exactly `len` items for a successor of production `home` of
+/// a genome of `productions` productions; with `productions == 0` (the direct genome) a run
+/// of commands and brackets only, where a call would have been a random command.
+pub(crate) fn random_run(
     len: usize,
     home: usize,
     productions: usize,
@@ -397,7 +402,11 @@ fn push_random_run(
             out.push(Item::Pop);
             left -= inner + 2;
         } else if draw < 24 {
-            out.push(random_call(home, productions, params, rng));
+            out.push(if productions == 0 {
+                random_command(rng)
+            } else {
+                random_call(home, productions, params, rng)
+            });
             left -= 1;
         } else if draw < 36 && left >= 3 {
             // A driven segment: a joint, the part it moves, and an output driving it.
@@ -425,7 +434,7 @@ fn push_random_run(
 
 /// Drops brackets that have no partner, so that a successor is well nested. Only removes
 /// items, so it never breaks a limit.
-fn balance(items: &mut Vec<Item>) {
+pub(crate) fn balance(items: &mut Vec<Item>) {
     let mut open = Vec::new();
     let mut drop = vec![false; items.len()];
     for (k, item) in items.iter().enumerate() {
@@ -446,7 +455,8 @@ fn balance(items: &mut Vec<Item>) {
     });
 }
 
-fn is_balanced(items: &[Item]) -> bool {
+/// Whether every `[` of `items` has its `]` and every `]` its `[`.
+pub(crate) fn is_balanced(items: &[Item]) -> bool {
     let mut depth = 0usize;
     for item in items {
         match item {
@@ -619,15 +629,7 @@ impl LSystemGenome {
             // Perturb a parameter.
             if rng.random_bool(rate) {
                 match item {
-                    Item::Command(c, Some(arg)) => {
-                        let kind = c.argument();
-                        let (range, quantum) = match arg {
-                            Arg::Const(_) => (range(kind), quantum(kind)),
-                            _ => (OFFSET_RANGE, 1.0 / GRID),
-                        };
-                        let v = arg.constant_mut();
-                        *v = perturb(*v, range, quantum, rng);
-                    }
+                    Item::Command(c, Some(arg)) => perturb_argument(*c, arg, rng),
                     Item::Call(_, args) if !args.is_empty() => {
                         let k = rng.random_range(0..args.len());
                         let arg = &mut args[k];
@@ -660,8 +662,20 @@ impl LSystemGenome {
     }
 }
 
+/// Perturbs the argument of command `c`: a constant within the argument's range and on its
+/// grid, the constant of a parameter expression within [`OFFSET_RANGE`].
+pub(crate) fn perturb_argument(c: Command, arg: &mut Arg, rng: &mut Rng) {
+    let kind = c.argument();
+    let (range, quantum) = match arg {
+        Arg::Const(_) => (range(kind), quantum(kind)),
+        _ => (OFFSET_RANGE, 1.0 / GRID),
+    };
+    let v = arg.constant_mut();
+    *v = perturb(*v, range, quantum, rng);
+}
+
 /// Keeps a mutation rate a probability.
-fn clamp_rate(rate: f64) -> f64 {
+pub(crate) fn clamp_rate(rate: f64) -> f64 {
     if rate.is_nan() {
         0.0
     } else {
@@ -670,7 +684,7 @@ fn clamp_rate(rate: f64) -> f64 {
 }
 
 /// Picks a contiguous run of `items` of at most `max` items (possibly empty).
-fn pick_run(items: &[Item], max: usize, rng: &mut Rng) -> std::ops::Range<usize> {
+pub(crate) fn pick_run(items: &[Item], max: usize, rng: &mut Rng) -> std::ops::Range<usize> {
     if items.is_empty() || max == 0 {
         return 0..0;
     }
@@ -815,36 +829,7 @@ impl Genome for LSystemGenome {
     }
 
     fn develop(&self, limits: &LSystemLimits, seed: u64) -> Result<Creature, DevelopError> {
-        let text = self.to_text();
-        let lsys = LSystem::from_text("genome.lsys", &text)
-            .map_err(|d| DevelopError(format!("the genome does not compile: {d}")))?;
-        let options = DeriveOptions {
-            seed: Some(seed),
-            max_modules: limits.max_modules,
-            ..DeriveOptions::default()
-        };
-        let build_options = BuildOptions {
-            max_parts: limits.max_parts,
-            ..BuildOptions::default()
-        };
-        // Build only the last frame: `develop::grow` builds every frame the same way, so
-        // its last creature is this one.
-        let mut creature = None;
-        lsys.for_each_frame(&options, None, |frame| {
-            if frame.last {
-                let shown = lsys.interpret(frame.string, frame.t, &options)?;
-                creature = Some(build(
-                    &shown,
-                    lsys.symbols(),
-                    frame.env,
-                    Some(frame.t),
-                    &build_options,
-                ));
-            }
-            Ok::<(), lang::Diagnostic>(())
-        })
-        .map_err(|d| DevelopError(d.to_string()))?;
-        creature.ok_or_else(|| DevelopError("development produced no frame".into()))
+        develop_text(&self.to_text(), limits.max_modules, limits.max_parts, seed)
     }
 
     fn to_text(&self) -> String {
@@ -881,19 +866,7 @@ impl Genome for LSystemGenome {
                 out.push_str(" -->");
                 for item in &pair.successor {
                     out.push(' ');
-                    match item {
-                        Item::Push => out.push('['),
-                        Item::Pop => out.push(']'),
-                        Item::Command(c, None) => out.push_str(c.name()),
-                        Item::Command(c, Some(a)) => {
-                            out.push_str(&format!("{}({})", c.name(), a.text()))
-                        }
-                        Item::Call(t, args) if args.is_empty() => out.push_str(&format!("P{t}")),
-                        Item::Call(t, args) => {
-                            let args: Vec<String> = args.iter().map(Arg::text).collect();
-                            out.push_str(&format!("P{t}({})", args.join(", ")));
-                        }
-                    }
+                    push_item_text(item, &mut out);
                 }
                 out.push('\n');
             }
@@ -904,6 +877,73 @@ impl Genome for LSystemGenome {
     fn from_lsys(text: &str, limits: &LSystemLimits) -> Result<Self, DevelopError> {
         from_lsys(text, limits)
     }
+}
+
+/// Appends an item as the language writes it (`[`, `forward(0.5)`, `P1(n0 - 1, 2)`).
+pub(crate) fn push_item_text(item: &Item, out: &mut String) {
+    match item {
+        Item::Push => out.push('['),
+        Item::Pop => out.push(']'),
+        Item::Command(c, None) => out.push_str(c.name()),
+        Item::Command(c, Some(a)) => out.push_str(&format!("{}({})", c.name(), a.text())),
+        Item::Call(t, args) if args.is_empty() => out.push_str(&format!("P{t}")),
+        Item::Call(t, args) => {
+            let args: Vec<String> = args.iter().map(Arg::text).collect();
+            out.push_str(&format!("P{t}({})", args.join(", ")));
+        }
+    }
+}
+
+/// Grows `text` as `ontogeny grow --max-modules M --max-parts P` does, building only the
+/// last frame (`develop::grow` builds every frame the same way, so its last creature is this
+/// one); `seed` drives stochastic rules.
+pub(crate) fn develop_text(
+    text: &str,
+    max_modules: usize,
+    max_parts: usize,
+    seed: u64,
+) -> Result<Creature, DevelopError> {
+    let lsys = LSystem::from_text("genome.lsys", text)
+        .map_err(|d| DevelopError(format!("the genome does not compile: {d}")))?;
+    let options = DeriveOptions {
+        seed: Some(seed),
+        max_modules,
+        ..DeriveOptions::default()
+    };
+    let build_options = BuildOptions {
+        max_parts,
+        ..BuildOptions::default()
+    };
+    last_frame(&lsys, &options, |shown, env, t| {
+        build(shown, lsys.symbols(), env, Some(t), &build_options)
+    })
+    .map_err(|d| DevelopError(d.to_string()))
+}
+
+/// Runs `lsys` to its last frame, as `ontogeny grow` does, and gives `visit` that frame's
+/// string after the interpretation rules (what the builder sees), its environment and time.
+pub(crate) fn last_frame<T>(
+    lsys: &LSystem,
+    options: &DeriveOptions,
+    visit: impl FnOnce(&ModuleString, &Environment, f64) -> T,
+) -> Result<T, lang::Diagnostic> {
+    let mut visit = Some(visit);
+    let mut out = None;
+    lsys.for_each_frame(options, None, |frame| {
+        if frame.last
+            && let Some(visit) = visit.take()
+        {
+            let shown = lsys.interpret(frame.string, frame.t, options)?;
+            out = Some(visit(&shown, frame.env, frame.t));
+        }
+        Ok::<(), lang::Diagnostic>(())
+    })?;
+    out.ok_or_else(|| {
+        lang::Diagnostic::without_location(
+            lang::DiagnosticKind::Runtime,
+            "development produced no frame".to_string(),
+        )
+    })
 }
 
 // ---- reading hand-written files ------------------------------------------------------

@@ -12,9 +12,11 @@ use crate::creature::Creature;
 
 pub mod command;
 pub mod continuous;
+pub mod direct;
 pub mod lsystem;
 
 pub use continuous::{ContinuousGenome, ContinuousLimits};
+pub use direct::{DirectGenome, DirectLimits};
 pub use lsystem::{LSystemGenome, LSystemLimits};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per

@@ -44,3 +44,76 @@ pub fn grown(path: &str) -> Creature {
     .unwrap();
     frames.into_iter().last().unwrap().creature
 }
+
+/// The last creature `develop::grow` makes from `text` with a module and a part cap (what
+/// `ontogeny grow --max-modules --max-parts` does).
+pub fn grown_with_caps(text: &str, max_modules: usize, max_parts: usize) -> Creature {
+    let lsys = lsystem(text);
+    let options = DeriveOptions {
+        max_modules,
+        ..DeriveOptions::default()
+    };
+    let build = BuildOptions {
+        max_parts,
+        ..BuildOptions::default()
+    };
+    grow(&lsys, &options, None, &build)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .pop()
+        .expect("a frame")
+        .creature
+}
+
+/// Asserts that a genome type's operators are functions of their random source: the same
+/// seed gives the same random genome, mutant, child and creature, another seed another
+/// genome.
+pub fn assert_determined_by_the_random_source<G: ontogeny::encoding::Genome + PartialEq>(
+    limits: &G::Limits,
+) {
+    use rand::SeedableRng;
+    let rng = ontogeny::encoding::Rng::seed_from_u64;
+    let a = G::random(limits, &mut rng(42));
+    assert_eq!(a, G::random(limits, &mut rng(42)));
+    assert_ne!(a, G::random(limits, &mut rng(43)));
+    let other = G::random(limits, &mut rng(1));
+    assert_eq!(
+        a.mutate(limits, 0.2, &mut rng(5)),
+        a.mutate(limits, 0.2, &mut rng(5))
+    );
+    assert_eq!(
+        a.crossover(&other, limits, &mut rng(5)),
+        a.crossover(&other, limits, &mut rng(5))
+    );
+    assert_eq!(
+        a.graft(&other, limits, &mut rng(5)),
+        a.graft(&other, limits, &mut rng(5))
+    );
+    assert_eq!(a.develop(limits, 3), a.develop(limits, 3));
+}
+
+/// Runs `ontogeny ARGS`, asserting that it succeeds.
+pub fn ontogeny_ok(args: &[&str]) -> std::process::Output {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
+/// `ontogeny grow FILE --out OUT EXTRA...`, and the `creature.json` it writes.
+pub fn grow_creature_json(
+    file: &std::path::Path,
+    out: &std::path::Path,
+    extra: &[&str],
+) -> serde_json::Value {
+    let mut args = vec![
+        "grow",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    ontogeny_ok(&args);
+    serde_json::from_str(&std::fs::read_to_string(out.join("creature.json")).unwrap()).unwrap()
+}

@@ -1,0 +1,388 @@
+//! Hornby & Pollack's non-generative baseline (2001, section "Generative vs non-generative
+//! encodings"): one string of the same body and brain commands as the L-system genome's
+//! successors, `[` `]` branches included, and no productions. What the builder reads is the
+//! genome itself; nothing is rewritten.
+//!
+//! Its text form is an `.lsys` file with an axiom and nothing else, which `ontogeny grow` and
+//! `ontogeny eval` accept, and [`DirectGenome::develop`] grows that text through the language
+//! exactly as `grow` does. Its limits equal the L-system genome's ([`DirectLimits::default`]
+//! is derived from [`LSystemLimits::default`]): at most as many modules as an L-system
+//! genome's derived string may hold, and at most as many parts.
+//!
+//! Every operator keeps the genome within [`DirectLimits`] by construction and never retries
+//! a draw.
+
+use std::ops::Range;
+
+use rand::RngExt;
+use serde::{Deserialize, Serialize};
+
+use super::command::Command;
+use super::lsystem::{
+    Arg, Item, LSystemLimits, MAX_RUN, balance, clamp_rate, is_balanced, last_frame,
+    perturb_argument, pick_run, push_item_text, random_command, random_run,
+};
+use super::{DevelopError, Genome, Rng};
+use crate::creature::Creature;
+use crate::lang;
+use crate::lsystem::{DeriveOptions, LSystem};
+
+/// The limits of the direct genome: every operator keeps a genome within them. They are part
+/// of a run's configuration (`config.toml`); unknown keys are refused.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DirectLimits {
+    /// Most modules (commands and brackets) in the genome: the L-system genome's
+    /// `max_modules`, the longest derived string it may build from. At least 1.
+    pub max_modules: usize,
+    /// A creature with more parts than this is invalid: the L-system genome's `max_parts`.
+    pub max_parts: usize,
+    /// Random genomes are 1 to this many modules long: the L-system genome's
+    /// `max_successor`, so that a random direct genome is drawn exactly as one random
+    /// L-system successor without calls (and as often a driven walker: 19.5% against 19.6%
+    /// over 1000 seeds). At most `max_modules`.
+    pub random_length: usize,
+}
+
+impl Default for DirectLimits {
+    fn default() -> Self {
+        DirectLimits::from(&LSystemLimits::default())
+    }
+}
+
+impl From<&LSystemLimits> for DirectLimits {
+    /// The direct genome's limits that equal an L-system genome's.
+    fn from(l: &LSystemLimits) -> Self {
+        DirectLimits {
+            max_modules: l.max_modules,
+            max_parts: l.max_parts,
+            random_length: l.max_successor,
+        }
+    }
+}
+
+impl DirectLimits {
+    /// The most modules, at least 1 (a genome always has a module: an axiom is never empty).
+    fn modules(&self) -> usize {
+        self.max_modules.max(1)
+    }
+
+    /// The longest random genome: 1 to `max_modules`.
+    fn random_modules(&self) -> usize {
+        self.random_length.clamp(1, self.modules())
+    }
+}
+
+/// The direct genome: a string of building commands and brackets, read by the builder as it
+/// is.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DirectGenome {
+    /// The modules: commands with constant arguments, `[` and `]` (never calls).
+    pub modules: Vec<Item>,
+}
+
+/// How many insertion (and deletion) sites a string of `len` modules has: one per started
+/// L-system successor's worth of modules (`max_successor` of the default limits), so that a
+/// module is as likely to see a run inserted or deleted nearby as in an L-system successor.
+fn run_sites(len: usize) -> usize {
+    len.div_ceil(LSystemLimits::default().max_successor.max(1))
+        .max(1)
+}
+
+impl DirectGenome {
+    /// Whether the genome lies within `limits` and is well formed: 1 to `max_modules`
+    /// modules, commands only with finite constant arguments where they take one, balanced
+    /// brackets. `Err` says what is wrong.
+    pub fn check(&self, limits: &DirectLimits) -> Result<(), String> {
+        let n = self.modules.len();
+        if n == 0 || n > limits.modules() {
+            return Err(format!("{n} modules, not 1 to {}", limits.modules()));
+        }
+        for (k, item) in self.modules.iter().enumerate() {
+            let ok = match item {
+                Item::Push | Item::Pop | Item::Command(_, None) => true,
+                Item::Command(c, Some(Arg::Const(v))) => c.has_argument() && v.is_finite(),
+                Item::Command(_, Some(_)) | Item::Call(..) => false,
+            };
+            if !ok {
+                return Err(format!("module {k} is malformed: {item:?}"));
+            }
+        }
+        if !is_balanced(&self.modules) {
+            return Err("the brackets are not balanced".into());
+        }
+        Ok(())
+    }
+
+    /// Replaces each command (not a bracket), with probability `rate`, by a random command.
+    pub fn replace_commands(&mut self, rate: f64, rng: &mut Rng) {
+        let rate = clamp_rate(rate);
+        for item in &mut self.modules {
+            if rng.random_bool(rate) && !matches!(item, Item::Push | Item::Pop) {
+                *item = random_command(rng);
+            }
+        }
+    }
+
+    /// Perturbs each argument, with probability `rate`, as the L-system genome does: up to a
+    /// tenth of its range either way, staying in range and on its grid.
+    pub fn perturb_arguments(&mut self, rate: f64, rng: &mut Rng) {
+        let rate = clamp_rate(rate);
+        for item in &mut self.modules {
+            if rng.random_bool(rate)
+                && let Item::Command(c, Some(arg)) = item
+            {
+                perturb_argument(*c, arg, rng);
+            }
+        }
+    }
+
+    /// At each insertion site (one per started 15 modules, the L-system genome's default
+    /// `max_successor`), with probability `rate`, inserts a random run of 1 to 3 modules
+    /// (fewer when `max_modules` leaves less room) at a random place.
+    pub fn insert_runs(&mut self, limits: &DirectLimits, rate: f64, rng: &mut Rng) {
+        let rate = clamp_rate(rate);
+        for _ in 0..run_sites(self.modules.len()) {
+            let room = limits.modules().saturating_sub(self.modules.len());
+            if room > 0 && rng.random_bool(rate) {
+                let len = rng.random_range(1..=room.min(MAX_RUN));
+                let at = rng.random_range(0..=self.modules.len());
+                self.modules.splice(at..at, random_run(len, 0, 0, 0, rng));
+            }
+        }
+    }
+
+    /// At each deletion site (one per started 15 modules), with probability `rate`, deletes
+    /// a run of 1 to 3 modules at a random place, never the last module. Brackets left
+    /// without a partner are dropped too; a deletion that would leave nothing is undone.
+    pub fn delete_runs(&mut self, rate: f64, rng: &mut Rng) {
+        let rate = clamp_rate(rate);
+        for _ in 0..run_sites(self.modules.len()) {
+            if self.modules.len() > 1 && rng.random_bool(rate) {
+                let before = self.clone();
+                let run = pick_run(&self.modules, (self.modules.len() - 1).min(MAX_RUN), rng);
+                self.modules.drain(run);
+                self.settle(&before);
+            }
+        }
+    }
+
+    /// One-point crossover: the first `cut` modules of `self`, then `other`'s from
+    /// `other_cut` on (as many as `max_modules` leaves room for). Brackets left without a
+    /// partner are dropped; a child left empty is a copy of `self`.
+    pub fn one_point(
+        &self,
+        other: &DirectGenome,
+        cut: usize,
+        other_cut: usize,
+        limits: &DirectLimits,
+    ) -> DirectGenome {
+        let cut = cut.min(self.modules.len());
+        let other_cut = other_cut.min(other.modules.len());
+        self.exchange(
+            other,
+            cut..self.modules.len(),
+            other_cut..other.modules.len(),
+            limits,
+        )
+    }
+
+    /// Two-point crossover: `self` with its modules `cut` replaced by `other`'s modules
+    /// `other_cut` (as many as `max_modules` leaves room for). Brackets left without a
+    /// partner are dropped; a child left empty is a copy of `self`.
+    pub fn two_point(
+        &self,
+        other: &DirectGenome,
+        cut: Range<usize>,
+        other_cut: Range<usize>,
+        limits: &DirectLimits,
+    ) -> DirectGenome {
+        let fit = |r: Range<usize>, n: usize| r.start.min(n)..r.end.clamp(r.start.min(n), n);
+        self.exchange(
+            other,
+            fit(cut, self.modules.len()),
+            fit(other_cut, other.modules.len()),
+            limits,
+        )
+    }
+
+    /// `self` with `out` replaced by `other`'s `run`, cut to the room left.
+    fn exchange(
+        &self,
+        other: &DirectGenome,
+        out: Range<usize>,
+        run: Range<usize>,
+        limits: &DirectLimits,
+    ) -> DirectGenome {
+        let kept = self.modules.len() - out.len();
+        let room = limits.modules().saturating_sub(kept);
+        let end = run.end.min(run.start + room);
+        let mut modules = self.modules.clone();
+        modules.splice(out, other.modules[run.start..end].iter().cloned());
+        let mut child = DirectGenome { modules };
+        child.settle(self);
+        child
+    }
+
+    /// Balances the brackets; a string left empty becomes a copy of `fallback`.
+    fn settle(&mut self, fallback: &DirectGenome) {
+        balance(&mut self.modules);
+        if self.modules.is_empty() {
+            self.modules = fallback.modules.clone();
+        }
+    }
+}
+
+fn refuse(message: impl Into<String>) -> DevelopError {
+    DevelopError(format!(
+        "this file does not fit the direct genome: {}",
+        message.into()
+    ))
+}
+
+impl Genome for DirectGenome {
+    type Limits = DirectLimits;
+
+    const NAME: &'static str = "direct";
+
+    fn random(limits: &DirectLimits, rng: &mut Rng) -> Self {
+        let len = rng.random_range(1..=limits.random_modules());
+        DirectGenome {
+            modules: random_run(len, 0, 0, 0, rng),
+        }
+    }
+
+    fn mutate(&self, limits: &DirectLimits, rate: f64, rng: &mut Rng) -> Self {
+        let mut g = self.clone();
+        g.replace_commands(rate, rng);
+        g.perturb_arguments(rate, rng);
+        g.insert_runs(limits, rate, rng);
+        g.delete_runs(rate, rng);
+        g
+    }
+
+    fn crossover(&self, other: &Self, limits: &DirectLimits, rng: &mut Rng) -> Option<Self> {
+        let (n, m) = (self.modules.len(), other.modules.len());
+        if rng.random_bool(0.5) {
+            let cut = rng.random_range(0..=n);
+            let other_cut = rng.random_range(0..=m);
+            Some(self.one_point(other, cut, other_cut, limits))
+        } else {
+            let sorted = |a: usize, b: usize| a.min(b)..a.max(b);
+            let cut = sorted(rng.random_range(0..=n), rng.random_range(0..=n));
+            let other_cut = sorted(rng.random_range(0..=m), rng.random_range(0..=m));
+            Some(self.two_point(other, cut, other_cut, limits))
+        }
+    }
+
+    fn develop(&self, limits: &DirectLimits, seed: u64) -> Result<Creature, DevelopError> {
+        if self.modules.is_empty() {
+            return Err(DevelopError("the genome has no modules".into()));
+        }
+        super::lsystem::develop_text(&self.to_text(), limits.modules(), limits.max_parts, seed)
+    }
+
+    fn to_text(&self) -> String {
+        let mut out = format!(
+            "# A direct genome (Hornby & Pollack 2001's non-generative encoding): {} module(s).\naxiom:",
+            self.modules.len()
+        );
+        for item in &self.modules {
+            out.push(' ');
+            push_item_text(item, &mut out);
+        }
+        out.push('\n');
+        out
+    }
+
+    fn from_lsys(text: &str, limits: &DirectLimits) -> Result<Self, DevelopError> {
+        from_lsys(text, limits)
+    }
+}
+
+/// Any grammar, derived as `ontogeny grow` derives it (its own derivation length or time,
+/// seed and interpretation rules; `max_modules` caps the string), gives the direct genome of
+/// its last string: commands and brackets in order, control symbols (which build nothing)
+/// dropped.
+fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopError> {
+    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
+    let options = DeriveOptions {
+        max_modules: limits.modules(),
+        ..DeriveOptions::default()
+    };
+    let modules = last_frame(&lsys, &options, |shown, _, _| {
+        let symbols = lsys.symbols();
+        let mut modules = Vec::new();
+        for (k, m) in shown.iter().enumerate() {
+            let name = symbols.name(m.sym);
+            let at = || format!("module {} of the derived string, '{}'", k + 1, name);
+            let item = match (name, Command::from_name(name)) {
+                ("[", _) => Item::Push,
+                ("]", _) => Item::Pop,
+                (_, Some(c)) => match m.params {
+                    [] => Item::Command(c, None),
+                    [v] if c.has_argument() && v.is_finite() => {
+                        Item::Command(c, Some(Arg::Const(*v)))
+                    }
+                    [v] if c.has_argument() => {
+                        return Err(refuse(format!("{}: its argument is {v}", at())));
+                    }
+                    _ => {
+                        return Err(refuse(format!(
+                            "{}: it has {} arguments; the genome's '{}' takes {}",
+                            at(),
+                            m.params.len(),
+                            c.name(),
+                            if c.has_argument() {
+                                "at most one"
+                            } else {
+                                "none"
+                            }
+                        )));
+                    }
+                },
+                _ if lang::is_builtin_command(name) || name == "{" || name == "}" => {
+                    return Err(refuse(format!(
+                        "{}: not a command the genome uses (not used: repeat blocks, maturing \
+                         m-commands, chem, secrete, target, release)",
+                        at()
+                    )));
+                }
+                // A control symbol: the builder skips it.
+                _ => continue,
+            };
+            modules.push(item);
+        }
+        Ok(modules)
+    })
+    .map_err(|d| refuse(d.to_string()))??;
+    let genome = DirectGenome { modules };
+    if genome.modules.is_empty() {
+        return Err(refuse("its derived string has no building command"));
+    }
+    if !is_balanced(&genome.modules) {
+        return Err(refuse(
+            "the brackets of its derived string are not balanced",
+        ));
+    }
+    genome.check(limits).map_err(refuse)?;
+    Ok(genome)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_limits_are_the_lsystem_genomes() {
+        let l = LSystemLimits::default();
+        let d = DirectLimits::default();
+        assert_eq!((d.max_modules, d.max_parts), (l.max_modules, l.max_parts));
+        assert_eq!(d.random_length, l.max_successor);
+    }
+
+    #[test]
+    fn run_sites_are_one_per_started_successor_length() {
+        assert_eq!([0, 1, 15, 16, 30, 31].map(run_sites), [1, 1, 1, 2, 2, 3]);
+    }
+}
