@@ -1,9 +1,10 @@
 //! Evolution and comparison: the genetic algorithm ([`ga`]: presets as data, a generational
 //! loop over any [`crate::encoding::Genome`], parallel evaluation), a run's configuration
 //! ([`config`]), its directory ([`run`]), its database ([`store`], the only code that knows
-//! SQL), its fitness plot ([`plot`]), and the statistics that compare settings and encodings
-//! ([`stats`]).
+//! SQL), its fitness plot ([`plot`]), the statistics that compare settings and encodings
+//! ([`stats`]), and comparisons of encodings over replicated runs ([`compare`]).
 
+pub mod compare;
 pub mod config;
 pub mod ga;
 pub mod plot;

@@ -1,4 +1,5 @@
-//! The fitness plot of a run: `runs/NAME/fitness.svg`.
+//! The fitness plot of a run (`runs/NAME/fitness.svg`), and a comparison's plots: mean best
+//! fitness with 95% bands per encoding, and a strip chart of the champions' parts.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -65,18 +66,7 @@ pub fn fitness_svg(
         path: path.into(),
         detail,
     })?;
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = PathBuf::from(tmp);
-    let io = |source| PlotError::Io {
-        path: path.into(),
-        source,
-    };
-    fs::write(&tmp, svg).map_err(io)?;
-    fs::rename(&tmp, path).map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        io(e)
-    })
+    write_svg(path, svg)
 }
 
 /// The y range: the plotted values' span, padded by 5 % (at least ±0.5 around a single
@@ -175,6 +165,215 @@ fn draw(svg: &mut String, generations: &[GenerationRecord], title: &str) -> Resu
         .border_style(RGBColor(160, 160, 160))
         .draw()
         .map_err(|x| e(&x))?;
+    root.present().map_err(|x| e(&x))?;
+    Ok(())
+}
+
+/// One line with a band: a name and points (x, mean, low, high).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Band {
+    /// The legend's text.
+    pub name: String,
+    /// (x, y, band low, band high), by increasing x.
+    pub points: Vec<(f64, f64, f64, f64)>,
+}
+
+/// Colours of a comparison's series (Okabe–Ito), in order.
+const PALETTE: [RGBColor; 7] = [
+    RGBColor(0, 114, 178),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 0, 0),
+];
+
+/// Writes `svg` to `path` through a temporary file and a rename.
+fn write_svg(path: &Path, svg: String) -> Result<(), PlotError> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = PathBuf::from(tmp);
+    let io = |source| PlotError::Io {
+        path: path.into(),
+        source,
+    };
+    fs::write(&tmp, svg).map_err(io)?;
+    fs::rename(&tmp, path).map_err(|e| {
+        let _ = fs::remove_file(&tmp);
+        io(e)
+    })
+}
+
+/// Writes an SVG of one line per band (mean best fitness against evaluations) over its shaded
+/// 95% band, with a legend; values at or below the failure floor are left out.
+pub fn bands_svg(path: &Path, bands: &[Band], title: &str) -> Result<(), PlotError> {
+    let mut svg = String::new();
+    draw_bands(&mut svg, bands, title).map_err(|detail| PlotError::Draw {
+        path: path.into(),
+        detail,
+    })?;
+    write_svg(path, svg)
+}
+
+fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), String> {
+    let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    root.fill(&WHITE).map_err(|x| e(&x))?;
+    let shown = |b: &Band| -> Vec<(f64, f64, f64, f64)> {
+        b.points
+            .iter()
+            .copied()
+            .filter(|p| plotted(p.1) && plotted(p.2) && plotted(p.3))
+            .collect()
+    };
+    let all: Vec<(f64, f64, f64, f64)> = bands.iter().flat_map(shown).collect();
+    let (x0, x1) = all
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.0), b.max(p.0))
+        });
+    let (x0, x1) = if x0 > x1 { (0.0, 1.0) } else { (x0, x1.max(x0 + 1.0)) };
+    let (lo, hi) = all
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.2), b.max(p.3))
+        });
+    let (y0, y1) = if lo > hi {
+        (0.0, 1.0)
+    } else {
+        let pad = ((hi - lo) * 0.05).max(0.5);
+        (lo - pad, hi + pad)
+    };
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 24))
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|x| e(&x))?;
+    chart
+        .configure_mesh()
+        .x_desc("evaluations")
+        .y_desc("mean best fitness")
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 16))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|x| e(&x))?;
+    for (i, band) in bands.iter().enumerate() {
+        let colour = PALETTE[i % PALETTE.len()];
+        let points = shown(band);
+        let mut outline: Vec<(f64, f64)> = points.iter().map(|p| (p.0, p.3)).collect();
+        outline.extend(points.iter().rev().map(|p| (p.0, p.2)));
+        if points.len() > 1 {
+            chart
+                .draw_series(std::iter::once(Polygon::new(outline, colour.mix(0.18))))
+                .map_err(|x| e(&x))?;
+        }
+        let style = colour.stroke_width(2);
+        chart
+            .draw_series(LineSeries::new(points.iter().map(|p| (p.0, p.1)), style))
+            .map_err(|x| e(&x))?
+            .label(band.name.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .label_font(("sans-serif", 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(160, 160, 160))
+        .draw()
+        .map_err(|x| e(&x))?;
+    root.present().map_err(|x| e(&x))?;
+    Ok(())
+}
+
+/// Writes an SVG strip chart: one column per group (its name below it), a dot per value
+/// (spread sideways so equal values stay visible) and a bar at the median; `y_desc` names the
+/// values.
+pub fn strip_svg(
+    path: &Path,
+    groups: &[(String, Vec<f64>)],
+    y_desc: &str,
+    title: &str,
+) -> Result<(), PlotError> {
+    let mut svg = String::new();
+    draw_strip(&mut svg, groups, y_desc, title).map_err(|detail| PlotError::Draw {
+        path: path.into(),
+        detail,
+    })?;
+    write_svg(path, svg)
+}
+
+fn draw_strip(
+    svg: &mut String,
+    groups: &[(String, Vec<f64>)],
+    y_desc: &str,
+    title: &str,
+) -> Result<(), String> {
+    let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    root.fill(&WHITE).map_err(|x| e(&x))?;
+    let hi = groups
+        .iter()
+        .flat_map(|g| g.1.iter().copied())
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, f64::max);
+    let n = groups.len().max(1);
+    let names: Vec<String> = groups.iter().map(|g| g.0.clone()).collect();
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 24))
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(-0.5..(n as f64 - 0.5), 0.0..(hi * 1.1).max(1.0))
+        .map_err(|x| e(&x))?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_labels(n)
+        .x_label_formatter(&|x| {
+            let i = x.round();
+            if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < names.len() {
+                names[i as usize].clone()
+            } else {
+                String::new()
+            }
+        })
+        .y_desc(y_desc)
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 16))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|x| e(&x))?;
+    for (i, (_, values)) in groups.iter().enumerate() {
+        let colour = PALETTE[i % PALETTE.len()];
+        let count = values.len().max(1) as f64;
+        chart
+            .draw_series(values.iter().enumerate().map(|(k, &v)| {
+                let x = i as f64 + 0.3 * ((k as f64 + 0.5) / count - 0.5);
+                Circle::new((x, v), 4, colour.filled())
+            }))
+            .map_err(|x| e(&x))?;
+        let mut sorted: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+        sorted.sort_by(f64::total_cmp);
+        if !sorted.is_empty() {
+            let m = sorted.len();
+            let median = if m % 2 == 1 {
+                sorted[m / 2]
+            } else {
+                (sorted[m / 2 - 1] + sorted[m / 2]) / 2.0
+            };
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(i as f64 - 0.25, median), (i as f64 + 0.25, median)],
+                    colour.stroke_width(3),
+                )))
+                .map_err(|x| e(&x))?;
+        }
+    }
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
