@@ -26,31 +26,9 @@ pub enum EncodingArg {
     Direct,
 }
 
-/// Runs `$body` with `$G` standing for the genome type of the encoding named `$name`, or
-/// `$unknown(name)` when no encoding has that name. The one list of encodings the command line
-/// knows: a new encoding is one line here and one variant of [`EncodingArg`].
-macro_rules! with_genome {
-    ($name:expr, $G:ident => $body:expr, $unknown:expr) => {
-        match $name {
-            n if n == LSystemGenome::NAME => {
-                type $G = LSystemGenome;
-                $body
-            }
-            n if n == ContinuousGenome::NAME => {
-                type $G = ContinuousGenome;
-                $body
-            }
-            n if n == DirectGenome::NAME => {
-                type $G = DirectGenome;
-                $body
-            }
-            other => $unknown(other),
-        }
-    };
-}
-
 impl EncodingArg {
-    fn name(self) -> &'static str {
+    /// The encoding's name, as the run store spells it.
+    pub fn name(self) -> &'static str {
         match self {
             EncodingArg::Lsystem => LSystemGenome::NAME,
             EncodingArg::LsystemContinuous => ContinuousGenome::NAME,
@@ -72,6 +50,27 @@ pub enum TaskArg {
     Aim,
 }
 
+/// The task of a config file (default: the walker), with `--task` and `--seconds` over it.
+pub fn resolve_task(file: Option<TaskSpec>, task: Option<TaskArg>, seconds: Option<f64>) -> TaskSpec {
+    let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+    if let Some(t) = task {
+        spec.task = match t {
+            TaskArg::Walker => TaskKind::Walker,
+            TaskArg::Jump => TaskKind::Jump,
+            TaskArg::Catapult => TaskKind::Catapult,
+            TaskArg::Aim => TaskKind::Aim,
+        };
+    }
+    if let Some(s) = seconds {
+        match spec.task {
+            TaskKind::Walker => spec.walker.seconds = s,
+            TaskKind::Jump => spec.jump.seconds = s,
+            TaskKind::Catapult | TaskKind::Aim => spec.catapult.max_seconds = s,
+        }
+    }
+    spec
+}
+
 /// The presets `--preset` accepts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PresetArg {
@@ -79,6 +78,16 @@ pub enum PresetArg {
     Chaumont,
     /// Walking with Dinosaurs 3.3.
     Wwd,
+}
+
+impl PresetArg {
+    /// The preset it names.
+    pub fn preset(self) -> Preset {
+        match self {
+            PresetArg::Chaumont => Preset::Chaumont,
+            PresetArg::Wwd => Preset::Wwd,
+        }
+    }
 }
 
 /// Flags of `ontogeny evolve`.
@@ -122,14 +131,16 @@ pub struct EvolveArgs {
     init: Option<PathBuf>,
 }
 
-fn bad(message: impl Into<String>) -> anyhow::Error {
+/// A bad-input error (exit code 2) with `message`.
+pub fn bad(message: impl Into<String>) -> anyhow::Error {
     anyhow::Error::new(Diagnostic::without_location(
         DiagnosticKind::Semantic,
         message.into(),
     ))
 }
 
-fn run_error(e: RunError) -> anyhow::Error {
+/// The command line's error for a run's.
+pub fn run_error(e: RunError) -> anyhow::Error {
     match e {
         RunError::Config(d) => anyhow::Error::new(d),
         RunError::Io { path, source } => {
@@ -139,9 +150,9 @@ fn run_error(e: RunError) -> anyhow::Error {
     }
 }
 
-/// Runs `ontogeny evolve`.
-pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
-    if let Some(threads) = args.threads {
+/// Sets the number of worker threads (`--threads`), 1 to 1024.
+pub fn set_threads(threads: Option<usize>) -> anyhow::Result<()> {
+    if let Some(threads) = threads {
         if !(1..=1024).contains(&threads) {
             return Err(bad(format!("--threads must be 1 to 1024, not {threads}")));
         }
@@ -150,6 +161,12 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
             .num_threads(threads)
             .build_global();
     }
+    Ok(())
+}
+
+/// Runs `ontogeny evolve`.
+pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
+    set_threads(args.threads)?;
     if let Some(dir) = &args.resume {
         let config = dir.join("config.toml");
         let source = Source::read(&config).map_err(|_| {
@@ -207,10 +224,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
     };
     let mut overrides = file.ga.clone();
     if let Some(p) = args.preset {
-        overrides.preset = Some(match p {
-            PresetArg::Chaumont => Preset::Chaumont,
-            PresetArg::Wwd => Preset::Wwd,
-        });
+        overrides.preset = Some(p.preset());
     }
     if args.pop.is_some() {
         overrides.population = args.pop;
@@ -219,25 +233,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         overrides.generations = args.gens;
     }
     let ga = overrides.resolve();
-    let mut task = file
-        .task
-        .clone()
-        .unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
-    if let Some(t) = args.task {
-        task.task = match t {
-            TaskArg::Walker => TaskKind::Walker,
-            TaskArg::Jump => TaskKind::Jump,
-            TaskArg::Catapult => TaskKind::Catapult,
-            TaskArg::Aim => TaskKind::Aim,
-        };
-    }
-    if let Some(s) = args.seconds {
-        match task.task {
-            TaskKind::Walker => task.walker.seconds = s,
-            TaskKind::Jump => task.jump.seconds = s,
-            TaskKind::Catapult | TaskKind::Aim => task.catapult.max_seconds = s,
-        }
-    }
+    let task = resolve_task(file.task.clone(), args.task, args.seconds);
     let where_from = source.map_or("the command line".to_string(), |s| s.name().to_string());
     check_settings(&ga, &task).map_err(|e| bad(format!("{where_from}: {e}")))?;
     // --init on the command line is relative to the working directory; in the config file,

@@ -9,7 +9,31 @@ macro_rules! say {
     }};
 }
 
+/// Runs `$body` with `$G` standing for the genome type of the encoding named `$name`, or
+/// `$unknown(name)` when no encoding has that name. The one list of encodings the command line
+/// knows: a new encoding is one line here and one variant of `evolve::EncodingArg`.
+macro_rules! with_genome {
+    ($name:expr, $G:ident => $body:expr, $unknown:expr) => {
+        match $name {
+            n if n == <ontogeny::encoding::LSystemGenome as ontogeny::encoding::Genome>::NAME => {
+                type $G = ontogeny::encoding::LSystemGenome;
+                $body
+            }
+            n if n == <ontogeny::encoding::ContinuousGenome as ontogeny::encoding::Genome>::NAME => {
+                type $G = ontogeny::encoding::ContinuousGenome;
+                $body
+            }
+            n if n == <ontogeny::encoding::DirectGenome as ontogeny::encoding::Genome>::NAME => {
+                type $G = ontogeny::encoding::DirectGenome;
+                $body
+            }
+            other => $unknown(other),
+        }
+    };
+}
+
 mod bench;
+mod compare;
 mod check;
 mod derive;
 mod eval;
@@ -54,6 +78,9 @@ enum Verb {
     /// Evolve creatures: a genetic algorithm over an encoding, on a task, into a run directory
     /// (or `--resume` one).
     Evolve(evolve::EvolveArgs),
+    /// Compare encodings on equal terms: replicated runs of each with the same evaluation
+    /// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
+    Compare(compare::CompareArgs),
     /// Inspect run directories.
     Runs(evolve::RunsArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core and on all
@@ -72,6 +99,7 @@ pub fn main() -> ExitCode {
         Verb::Export(args) => export::run(&args),
         Verb::Replay(args) => replay::run(&args),
         Verb::Evolve(args) => evolve::run(&args),
+        Verb::Compare(args) => compare::run(&args),
         Verb::Runs(args) => evolve::runs(&args),
         Verb::Bench(args) => bench::run(&args),
     };

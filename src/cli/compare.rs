@@ -1,0 +1,434 @@
+//! `ontogeny compare`: encodings compared on equal evaluation budgets over replicated runs.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use ontogeny::encoding::Genome;
+use ontogeny::evolve::compare::{
+    self, CompareError, Manifest, Replicate, ReplicateState, Shared, evaluations_of,
+    generations_for, read_replicate, replicate_dir, replicate_seed,
+};
+use ontogeny::evolve::config::{ConfigFile, GaOverrides, RunConfig, check_settings, read_config};
+use ontogeny::evolve::run::{GenerationReport, Run};
+use ontogeny::lang::Source;
+
+use super::evolve::{
+    EncodingArg, PresetArg, TaskArg, bad, resolve_task, run_error, set_threads,
+};
+
+/// Flags of `ontogeny compare`.
+#[derive(Args)]
+pub struct CompareArgs {
+    /// The encodings to compare, comma-separated (e.g. lsystem,direct).
+    #[arg(long, value_enum, value_delimiter = ',', required_unless_present_any = ["resume", "merge"])]
+    encodings: Vec<EncodingArg>,
+    /// The task (default: the config's, else walker).
+    #[arg(long, value_enum)]
+    task: Option<TaskArg>,
+    /// Runs per encoding (default 10).
+    #[arg(long)]
+    replicates: Option<usize>,
+    /// The evaluation budget of every replicate: the generations are as many as fit in it.
+    #[arg(long, required_unless_present_any = ["resume", "merge"])]
+    evaluations: Option<u64>,
+    /// The comparison's seed; replicate k's seed derives from it (default: the config's,
+    /// else 1).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// The comparison directory to create.
+    #[arg(long, value_name = "DIR", required_unless_present_any = ["resume", "merge"])]
+    out: Option<PathBuf>,
+    /// The genetic algorithm's schedule (default: the config's, else chaumont).
+    #[arg(long, value_enum)]
+    preset: Option<PresetArg>,
+    /// Individuals per generation (default: the preset's, 300).
+    #[arg(long)]
+    pop: Option<usize>,
+    /// Seconds of the task's measurement (walker: walking, default 20).
+    #[arg(long)]
+    seconds: Option<f64>,
+    /// A TOML file of shared settings ([ga] without generations, [task], seed).
+    #[arg(long, value_name = "FILE.toml")]
+    config: Option<PathBuf>,
+    /// Worker threads (default: every core). Results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Create the comparison directory and print one `ontogeny evolve` command per
+    /// replicate instead of running them (then `compare --merge DIR`).
+    #[arg(long, conflicts_with_all = ["resume", "merge"])]
+    plan: bool,
+    /// Run the replicates of the comparison in DIR that are missing or unfinished, then
+    /// write the report.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "config", "merge"])]
+    resume: Option<PathBuf>,
+    /// Write the report of the comparison in DIR from its finished replicates (runs nothing).
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "config", "threads"])]
+    merge: Option<PathBuf>,
+}
+
+fn compare_error(e: CompareError) -> anyhow::Error {
+    match e {
+        CompareError::Input(m) => bad(m),
+        CompareError::Io { path, source } => {
+            anyhow::Error::new(source).context(path.display().to_string())
+        }
+        CompareError::Other(m) => anyhow::anyhow!(m),
+    }
+}
+
+/// Runs `ontogeny compare`.
+pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
+    set_threads(args.threads)?;
+    if let Some(root) = &args.merge {
+        let (manifest, shared) = compare::open(root).map_err(compare_error)?;
+        return report(root, &manifest, &shared, true);
+    }
+    if let Some(root) = &args.resume {
+        let (manifest, shared) = compare::open(root).map_err(compare_error)?;
+        run_all(root, &manifest, &shared)?;
+        return report(root, &manifest, &shared, false);
+    }
+    let root = args
+        .out
+        .as_ref()
+        .expect("clap requires --out without --resume or --merge");
+    let (manifest, shared) = plan(args)?;
+    compare::create(root, &manifest, &shared).map_err(compare_error)?;
+    // Read back what was written, so that a direct run and `--plan` commands start from the
+    // same settings.
+    let (manifest, shared) = compare::open(root).map_err(compare_error)?;
+    if args.plan {
+        for k in 1..=manifest.replicates {
+            for encoding in &manifest.encodings {
+                say!(
+                    "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}",
+                    quote(&root.join("evolve.toml")),
+                    replicate_seed(manifest.seed, k),
+                    quote(&replicate_dir(root, encoding, k))
+                );
+            }
+        }
+        eprintln!(
+            "{} commands, one per replicate; when they are done: ontogeny compare --merge {}",
+            manifest.replicates * manifest.encodings.len(),
+            quote(root)
+        );
+        return Ok(());
+    }
+    run_all(root, &manifest, &shared)?;
+    report(root, &manifest, &shared, false)
+}
+
+/// A path as a shell word: as it is when it is plain, else in single quotes.
+fn quote(path: &Path) -> String {
+    let s = path.display().to_string();
+    if !s.is_empty()
+        && s.bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b"/._-+=:,".contains(&b))
+    {
+        s
+    } else {
+        format!("'{}'", s.replace('\'', r"'\''"))
+    }
+}
+
+/// The comparison the flags describe, checked.
+fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
+    let mut encodings: Vec<String> = Vec::new();
+    for e in &args.encodings {
+        if encodings.iter().any(|x| x == e.name()) {
+            return Err(bad(format!("--encodings names {} twice", e.name())));
+        }
+        encodings.push(e.name().to_string());
+    }
+    if encodings.is_empty() {
+        return Err(bad(format!(
+            "--encodings needs at least one of {}",
+            EncodingArg::value_variants()
+                .iter()
+                .map(|e| e.name())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
+    let replicates = args.replicates.unwrap_or(10);
+    if !(1..=10_000).contains(&replicates) {
+        return Err(bad(format!(
+            "--replicates must be 1 to 10000, not {replicates}"
+        )));
+    }
+    let source = match &args.config {
+        Some(path) => {
+            Some(Source::read(path).with_context(|| format!("cannot read {}", path.display()))?)
+        }
+        None => None,
+    };
+    let file: ConfigFile<toml::Value> = match &source {
+        Some(s) => read_config(s)?,
+        None => ConfigFile {
+            encoding: None,
+            seed: None,
+            init: None,
+            ga: GaOverrides::default(),
+            task: None,
+            limits: None,
+        },
+    };
+    let where_from = source
+        .as_ref()
+        .map_or("the command line".to_string(), |s| s.name().to_string());
+    let refuse = |what: &str, why: &str| bad(format!("{where_from}: {what} has no place in a comparison's config: {why}"));
+    if file.encoding.is_some() {
+        return Err(refuse("encoding", "--encodings names them"));
+    }
+    if file.init.is_some() {
+        return Err(refuse("init", "every replicate starts from random genomes"));
+    }
+    if file.limits.is_some() {
+        return Err(refuse("[limits]", "every encoding runs with its default limits"));
+    }
+    if file.ga.generations.is_some() {
+        return Err(refuse(
+            "[ga] generations",
+            "--evaluations sets the generations",
+        ));
+    }
+    let mut overrides = file.ga.clone();
+    if let Some(p) = args.preset {
+        overrides.preset = Some(p.preset());
+    }
+    if args.pop.is_some() {
+        overrides.population = args.pop;
+    }
+    let mut ga = overrides.resolve();
+    ga.generations = 1;
+    let task = resolve_task(file.task.clone(), args.task, args.seconds);
+    check_settings(&ga, &task).map_err(|e| bad(format!("{where_from}: {e}")))?;
+    let budget = args.evaluations.expect("clap requires --evaluations");
+    ga.generations =
+        generations_for(&ga, budget).map_err(|e| bad(format!("--evaluations: {e}")))?;
+    Ok((
+        Manifest {
+            encodings,
+            replicates,
+            evaluations: budget,
+            seed: args.seed.or(file.seed).unwrap_or(1),
+        },
+        Shared { ga, task },
+    ))
+}
+
+/// Evaluations a replicate has made after `generations` complete generations.
+fn made(shared: &Shared, generations: usize) -> u64 {
+    if generations == 0 {
+        return 0;
+    }
+    let mut ga = shared.ga.clone();
+    ga.generations = generations;
+    evaluations_of(&ga)
+}
+
+/// The state of replicate `k` of `encoding`.
+fn state(
+    root: &Path,
+    manifest: &Manifest,
+    shared: &Shared,
+    encoding: &str,
+    k: usize,
+) -> anyhow::Result<ReplicateState> {
+    with_genome!(
+        encoding,
+        G => read_replicate::<G>(root, manifest, shared, k).map_err(compare_error),
+        |other| Err(bad(format!("{}: unknown encoding '{other}'", root.join("compare.toml").display())))
+    )
+}
+
+/// Runs every replicate that is missing or unfinished: replicate 1 of every encoding, then
+/// replicate 2, ..., one at a time, each on all worker threads.
+fn run_all(root: &Path, manifest: &Manifest, shared: &Shared) -> anyhow::Result<()> {
+    let per_replicate = evaluations_of(&shared.ga);
+    let total = per_replicate * (manifest.replicates * manifest.encodings.len()) as u64;
+    let mut done = 0u64;
+    let mut todo = Vec::new();
+    for k in 1..=manifest.replicates {
+        for encoding in &manifest.encodings {
+            match state(root, manifest, shared, encoding, k)? {
+                ReplicateState::Done(_) => done += per_replicate,
+                ReplicateState::Partial(g) => {
+                    done += made(shared, g);
+                    todo.push((encoding.clone(), k));
+                }
+                ReplicateState::Missing => todo.push((encoding.clone(), k)),
+            }
+        }
+    }
+    if todo.is_empty() {
+        eprintln!("{}: every replicate is complete", root.display());
+        return Ok(());
+    }
+    let mut progress = Progress {
+        total,
+        done,
+        at_start: done,
+        started: Instant::now(),
+    };
+    for (encoding, k) in todo {
+        with_genome!(
+            encoding.as_str(),
+            G => run_replicate::<G>(root, manifest, shared, k, &mut progress),
+            |other| Err(bad(format!("unknown encoding '{other}'")))
+        )?;
+    }
+    Ok(())
+}
+
+/// The comparison's progress, in evaluations.
+struct Progress {
+    total: u64,
+    done: u64,
+    at_start: u64,
+    started: Instant,
+}
+
+impl Progress {
+    fn line(&mut self, label: &str, r: &GenerationReport, generations: usize) -> String {
+        self.done += r.stats.evaluations;
+        let elapsed = self.started.elapsed().as_secs_f64();
+        let rate = (self.done - self.at_start) as f64 / elapsed.max(1e-9);
+        let left = (self.total - self.done.min(self.total)) as f64 / rate.max(1e-9);
+        format!(
+            "{label} generation {}/{generations}: best {:.4}, {:.1} evaluations/s; comparison {}/{} evaluations ({:.1}%), about {} left",
+            r.generation + 1,
+            r.stats.best,
+            r.stats.evaluations as f64 / r.wall_seconds.max(1e-9),
+            self.done,
+            self.total,
+            self.done as f64 / self.total.max(1) as f64 * 100.0,
+            duration(left)
+        )
+    }
+}
+
+fn duration(seconds: f64) -> String {
+    let s = seconds.round() as u64;
+    if s >= 3600 {
+        format!("{}h{:02}m", s / 3600, s % 3600 / 60)
+    } else if s >= 60 {
+        format!("{}m{:02}s", s / 60, s % 60)
+    } else {
+        format!("{s}s")
+    }
+}
+
+fn run_replicate<G: Genome>(
+    root: &Path,
+    manifest: &Manifest,
+    shared: &Shared,
+    k: usize,
+    progress: &mut Progress,
+) -> anyhow::Result<()> {
+    let dir = replicate_dir(root, G::NAME, k);
+    let mut run = match read_replicate::<G>(root, manifest, shared, k).map_err(compare_error)? {
+        ReplicateState::Done(_) => return Ok(()),
+        ReplicateState::Partial(_) => Run::<G>::resume(&dir).map_err(run_error)?,
+        ReplicateState::Missing => {
+            // A start killed between writing config.toml and creating the database left
+            // nothing computed: start again.
+            let config = dir.join("config.toml");
+            if config.exists() && !dir.join("run.sqlite").exists() {
+                std::fs::remove_file(&config)
+                    .with_context(|| format!("cannot remove {}", config.display()))?;
+            }
+            Run::<G>::start(
+                &dir,
+                RunConfig {
+                    encoding: G::NAME.to_string(),
+                    seed: replicate_seed(manifest.seed, k),
+                    init: None,
+                    ga: shared.ga.clone(),
+                    task: shared.task.clone(),
+                    limits: G::Limits::default(),
+                },
+                None,
+            )
+            .map_err(run_error)?
+        }
+    };
+    let label = format!("[{} {k}/{}]", G::NAME, manifest.replicates);
+    let generations = shared.ga.generations;
+    let mut observer = |r: &GenerationReport| {
+        eprintln!("{}", progress.line(&label, r, generations));
+    };
+    run.run(&mut observer).map_err(run_error)
+}
+
+/// Gathers the finished replicates and writes the report. `merging`: say what is missing
+/// rather than treat it as an error.
+fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> anyhow::Result<()> {
+    let mut finished: Vec<Replicate> = Vec::new();
+    let mut unfinished = Vec::new();
+    for encoding in &manifest.encodings {
+        for k in 1..=manifest.replicates {
+            match state(root, manifest, shared, encoding, k)? {
+                ReplicateState::Done(r) => finished.push(*r),
+                ReplicateState::Partial(g) => unfinished.push(format!(
+                    "{encoding} rep-{k} ({g} of {} generations)",
+                    shared.ga.generations
+                )),
+                ReplicateState::Missing => unfinished.push(format!("{encoding} rep-{k} (not started)")),
+            }
+        }
+    }
+    if finished.is_empty() {
+        return Err(bad(format!(
+            "{}: no replicate is finished yet (run the `compare --plan` commands, or `compare --resume {0}`)",
+            root.display()
+        )));
+    }
+    if !merging && !unfinished.is_empty() {
+        anyhow::bail!("replicates still unfinished: {}", unfinished.join(", "));
+    }
+    let r = compare::write_report(root, manifest, shared, &finished, &unfinished)
+        .map_err(compare_error)?;
+    say!(
+        "{}: {} replicates of {} evaluations each on the {} task",
+        root.display(),
+        finished.len(),
+        r.evaluations,
+        shared.task.task.name()
+    );
+    for e in &r.encodings {
+        say!(
+            "  {:<20} n {:>3}  best {:.4} ± {:.4} (sd {:.4})  parts {}  shapes/part {:.3}",
+            e.encoding,
+            e.replicates,
+            e.best.mean,
+            e.best.ci95,
+            e.best.sd,
+            e.median_parts,
+            e.median_shapes_per_part
+        );
+    }
+    for p in &r.pairs {
+        say!(
+            "  {} vs {}: U {} p {:.4} (Holm {:.4}) A12 {:.3} ({})",
+            p.a,
+            p.b,
+            p.test.u,
+            p.test.p,
+            p.holm_p,
+            p.a12,
+            ontogeny::evolve::stats::a12_magnitude(p.a12)
+        );
+    }
+    if !unfinished.is_empty() {
+        say!("not yet in the report: {}", unfinished.join(", "));
+    }
+    say!(
+        "wrote {0}/report.md, {0}/summary.csv, {0}/fitness.svg and {0}/parts.svg",
+        root.display()
+    );
+    Ok(())
+}
