@@ -14,9 +14,7 @@ use ontogeny::evolve::config::{ConfigFile, GaOverrides, RunConfig, check_setting
 use ontogeny::evolve::run::{GenerationReport, Run};
 use ontogeny::lang::Source;
 
-use super::evolve::{
-    EncodingArg, PresetArg, TaskArg, bad, resolve_task, run_error, set_threads,
-};
+use super::evolve::{EncodingArg, PresetArg, TaskArg, bad, resolve_task, run_error, set_threads};
 
 /// Flags of `ontogeny compare`.
 #[derive(Args)]
@@ -179,7 +177,11 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     let where_from = source
         .as_ref()
         .map_or("the command line".to_string(), |s| s.name().to_string());
-    let refuse = |what: &str, why: &str| bad(format!("{where_from}: {what} has no place in a comparison's config: {why}"));
+    let refuse = |what: &str, why: &str| {
+        bad(format!(
+            "{where_from}: {what} has no place in a comparison's config: {why}"
+        ))
+    };
     if file.encoding.is_some() {
         return Err(refuse("encoding", "--encodings names them"));
     }
@@ -187,7 +189,10 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
         return Err(refuse("init", "every replicate starts from random genomes"));
     }
     if file.limits.is_some() {
-        return Err(refuse("[limits]", "every encoding runs with its default limits"));
+        return Err(refuse(
+            "[limits]",
+            "every encoding runs with its default limits",
+        ));
     }
     if file.ga.generations.is_some() {
         return Err(refuse(
@@ -377,7 +382,9 @@ fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> a
                     "{encoding} rep-{k} ({g} of {} generations)",
                     shared.ga.generations
                 )),
-                ReplicateState::Missing => unfinished.push(format!("{encoding} rep-{k} (not started)")),
+                ReplicateState::Missing => {
+                    unfinished.push(format!("{encoding} rep-{k} (not started)"))
+                }
             }
         }
     }

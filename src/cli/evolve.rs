@@ -51,7 +51,11 @@ pub enum TaskArg {
 }
 
 /// The task of a config file (default: the walker), with `--task` and `--seconds` over it.
-pub fn resolve_task(file: Option<TaskSpec>, task: Option<TaskArg>, seconds: Option<f64>) -> TaskSpec {
+pub fn resolve_task(
+    file: Option<TaskSpec>,
+    task: Option<TaskArg>,
+    seconds: Option<f64>,
+) -> TaskSpec {
     let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
     if let Some(t) = task {
         spec.task = match t {

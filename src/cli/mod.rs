@@ -19,7 +19,9 @@ macro_rules! with_genome {
                 type $G = ontogeny::encoding::LSystemGenome;
                 $body
             }
-            n if n == <ontogeny::encoding::ContinuousGenome as ontogeny::encoding::Genome>::NAME => {
+            n if n
+                == <ontogeny::encoding::ContinuousGenome as ontogeny::encoding::Genome>::NAME =>
+            {
                 type $G = ontogeny::encoding::ContinuousGenome;
                 $body
             }
@@ -33,8 +35,8 @@ macro_rules! with_genome {
 }
 
 mod bench;
-mod compare;
 mod check;
+mod compare;
 mod derive;
 mod eval;
 mod evolve;

@@ -627,10 +627,19 @@ fn band(encoding: &str, replicates: &[Replicate]) -> Band {
     let points = rs.first().map_or(0, |r| r.curve.len());
     let mut out = Vec::with_capacity(points);
     for g in 0..points {
-        let values: Vec<f64> = rs.iter().filter_map(|r| r.curve.get(g)).map(|p| p.1).collect();
+        let values: Vec<f64> = rs
+            .iter()
+            .filter_map(|r| r.curve.get(g))
+            .map(|p| p.1)
+            .collect();
         let s = stats::summary(&values);
         let half = if s.ci95.is_finite() { s.ci95 } else { 0.0 };
-        out.push((rs[0].curve[g].0 as f64, s.mean, s.mean - half, s.mean + half));
+        out.push((
+            rs[0].curve[g].0 as f64,
+            s.mean,
+            s.mean - half,
+            s.mean + half,
+        ));
     }
     Band {
         name: encoding.to_string(),

@@ -1,0 +1,423 @@
+//! `ontogeny compare` end to end: equal budgets, `--plan` commands merged equal a direct
+//! comparison, a comparison killed and resumed equals an uninterrupted one, and bad input
+//! exits 2 without losing anything computed.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use ontogeny::evolve::store::RunStore;
+
+fn ontogeny() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ontogeny-compare-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Every encoding the tests compare.
+const ENCODINGS: &str = "lsystem,lsystem-continuous,direct";
+
+/// The tiny comparison's flags: 2 replicates, population 6, 16 evaluations (3 generations:
+/// 6 + 5 + 5, the elite of 1 not re-evaluated), 1 s walks.
+fn tiny(out: &Path) -> Command {
+    let mut c = ontogeny();
+    c.args([
+        "compare",
+        "--encodings",
+        ENCODINGS,
+        "--task",
+        "walker",
+        "--replicates",
+        "2",
+        "--evaluations",
+        "17",
+        "--pop",
+        "6",
+        "--seconds",
+        "1",
+        "--seed",
+        "4",
+        "--out",
+    ])
+    .arg(out);
+    c
+}
+
+fn ok(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+fn refused(output: &Output, words: &str) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(words), "expected {words:?} in: {stderr}");
+}
+
+/// The report's numbers without wall-clock figures: `summary.csv` without its last column
+/// (wall seconds) and `report.md` without its evaluations-per-second column.
+fn numbers(dir: &Path) -> String {
+    let csv = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let mut out = String::new();
+    for line in csv.lines() {
+        out += &line[..line.rfind(',').unwrap()];
+        out.push('\n');
+    }
+    for line in md.lines() {
+        if line.starts_with("| lsystem") || line.starts_with("| direct") {
+            let cells: Vec<&str> = line.split('|').collect();
+            // A line of the encodings' table has 10 cells; drop evaluations/s.
+            let keep = if cells.len() == 12 {
+                &cells[..10]
+            } else {
+                &cells[..]
+            };
+            out += &keep.join("|");
+            out.push('\n');
+        }
+    }
+    out
+}
+
+fn evaluations_in(run: &Path) -> u64 {
+    let store = RunStore::open(&run.join("run.sqlite")).unwrap();
+    store
+        .generations()
+        .unwrap()
+        .iter()
+        .map(|g| g.evaluations)
+        .sum()
+}
+
+#[test]
+fn every_replicate_gets_exactly_the_same_evaluations() {
+    let dir = scratch("budget");
+    let out = dir.join("cmp");
+    let stdout = ok(&tiny(&out).output().unwrap());
+    assert!(
+        stdout.contains("6 replicates of 16 evaluations"),
+        "{stdout}"
+    );
+    for encoding in ENCODINGS.split(',') {
+        for k in 1..=2 {
+            let run = out.join(encoding).join(format!("rep-{k}"));
+            // A budget of 17 buys 3 generations: 6 + 5 + 5 = 16 (a fourth would need 21).
+            assert_eq!(evaluations_in(&run), 16, "{}", run.display());
+            // Each replicate is an ordinary run directory.
+            let shown = ok(&ontogeny()
+                .args(["runs", "show"])
+                .arg(&run)
+                .output()
+                .unwrap());
+            assert!(shown.contains(&format!("{encoding} encoding")), "{shown}");
+            let resumed = ok(&ontogeny()
+                .args(["evolve", "--resume"])
+                .arg(&run)
+                .output()
+                .unwrap());
+            assert!(resumed.contains("nothing to resume"), "{resumed}");
+        }
+    }
+    // The same seed for replicate k of every encoding, different seeds for k = 1, 2.
+    let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let seeds: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).unwrap())
+        .collect();
+    assert_eq!(seeds.len(), 6);
+    assert_eq!(seeds[0], seeds[2]);
+    assert_ne!(seeds[0], seeds[1]);
+    for file in ["report.md", "fitness.svg", "parts.svg"] {
+        assert!(out.join(file).is_file(), "{file}");
+    }
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("every replicate made exactly 16 evaluations (budget 17"));
+    assert!(md.contains("| lsystem | direct |"), "{md}");
+    // Resuming a complete comparison runs nothing and writes the same report.
+    let before = numbers(&out);
+    ok(&ontogeny()
+        .args(["compare", "--resume"])
+        .arg(&out)
+        .output()
+        .unwrap());
+    assert_eq!(numbers(&out), before);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Runs one line of `compare --plan` with this build's binary.
+fn run_planned(line: &str) {
+    let words: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(words[0], "ontogeny", "{line}");
+    ok(&ontogeny().args(&words[1..]).output().unwrap());
+}
+
+#[test]
+fn planned_replicates_merged_equal_a_direct_comparison() {
+    let dir = scratch("plan");
+    let direct = dir.join("direct");
+    ok(&tiny(&direct).output().unwrap());
+    let planned = dir.join("planned");
+    let plan = ok(&tiny(&planned).arg("--plan").output().unwrap());
+    let lines: Vec<&str> = plan.lines().collect();
+    assert_eq!(lines.len(), 6, "{plan}");
+    // Nothing runs at --plan, and nothing is finished to merge yet.
+    assert!(!planned.join("direct").exists());
+    refused(
+        &ontogeny()
+            .args(["compare", "--merge"])
+            .arg(&planned)
+            .output()
+            .unwrap(),
+        "no replicate is finished",
+    );
+    // Half the commands, then a merge of what is finished.
+    for line in &lines[..3] {
+        run_planned(line);
+    }
+    let partial = ok(&ontogeny()
+        .args(["compare", "--merge"])
+        .arg(&planned)
+        .output()
+        .unwrap());
+    assert!(partial.contains("not yet in the report"), "{partial}");
+    assert!(
+        std::fs::read_to_string(planned.join("report.md"))
+            .unwrap()
+            .contains("**Incomplete**")
+    );
+    for line in &lines[3..] {
+        run_planned(line);
+    }
+    ok(&ontogeny()
+        .args(["compare", "--merge"])
+        .arg(&planned)
+        .output()
+        .unwrap());
+    assert_eq!(numbers(&planned), numbers(&direct));
+    // Replicate by replicate, the databases hold the same individuals.
+    for encoding in ENCODINGS.split(',') {
+        let a = RunStore::open(&direct.join(encoding).join("rep-2/run.sqlite")).unwrap();
+        let b = RunStore::open(&planned.join(encoding).join("rep-2/run.sqlite")).unwrap();
+        assert_eq!(a.best_individual().unwrap(), b.best_individual().unwrap());
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_killed_comparison_resumes_to_the_same_report() {
+    let dir = scratch("kill");
+    let whole = dir.join("whole");
+    ok(&tiny(&whole).output().unwrap());
+    let killed = dir.join("killed");
+    let mut child = tiny(&killed)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Kill it once the second replicate (lsystem-continuous rep-1) has a generation.
+    let log = killed.join("lsystem-continuous/rep-1/log.txt");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while !log.exists() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(1));
+    }
+    child.kill().unwrap();
+    let _ = child.wait();
+    assert!(
+        !killed.join("report.md").exists(),
+        "the comparison finished before it was killed"
+    );
+    ok(&ontogeny()
+        .args(["compare", "--resume"])
+        .arg(&killed)
+        .output()
+        .unwrap());
+    assert_eq!(numbers(&killed), numbers(&whole));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn bad_input_exits_2_and_keeps_what_was_computed() {
+    let dir = scratch("bad");
+    let out = dir.join("cmp");
+    let with = |extra: &[&str]| {
+        let mut c = ontogeny();
+        c.args([
+            "compare",
+            "--replicates",
+            "1",
+            "--pop",
+            "6",
+            "--seconds",
+            "1",
+        ])
+        .args(extra);
+        c.output().unwrap()
+    };
+    let o = out.to_str().unwrap();
+    refused(
+        &with(&[
+            "--encodings",
+            "lsystem,nonsense",
+            "--evaluations",
+            "6",
+            "--out",
+            o,
+        ]),
+        "nonsense",
+    );
+    refused(
+        &with(&[
+            "--encodings",
+            "lsystem",
+            "--task",
+            "swim",
+            "--evaluations",
+            "6",
+            "--out",
+            o,
+        ]),
+        "swim",
+    );
+    refused(
+        &with(&["--encodings", "lsystem", "--evaluations", "5", "--out", o]),
+        "a budget of 5 evaluations is smaller than one generation (6 individuals)",
+    );
+    refused(
+        &with(&[
+            "--encodings",
+            "lsystem,lsystem",
+            "--evaluations",
+            "6",
+            "--out",
+            o,
+        ]),
+        "names lsystem twice",
+    );
+    let config = dir.join("limits.toml");
+    std::fs::write(&config, "[limits]\nmax_rules = 3\n").unwrap();
+    refused(
+        &with(&[
+            "--encodings",
+            "lsystem",
+            "--evaluations",
+            "6",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            o,
+        ]),
+        "every encoding runs with its default limits",
+    );
+    assert!(!out.exists(), "refused input wrote {}", out.display());
+    refused(
+        &ontogeny()
+            .args(["compare", "--resume"])
+            .arg(&dir)
+            .output()
+            .unwrap(),
+        "not a comparison directory",
+    );
+    // A comparison of one finished replicate per encoding.
+    ok(&with(&[
+        "--encodings",
+        "lsystem,direct",
+        "--evaluations",
+        "11",
+        "--out",
+        o,
+    ]));
+    let before = numbers(&out);
+    refused(
+        &with(&["--encodings", "direct", "--evaluations", "11", "--out", o]),
+        "already holds a comparison",
+    );
+    // A replicate run with other settings (2 s walks) where rep-1 of direct belongs.
+    let rep = out.join("direct/rep-1");
+    let moved = dir.join("kept");
+    std::fs::rename(&rep, &moved).unwrap();
+    let plan = ok(&ontogeny()
+        .args([
+            "compare",
+            "--plan",
+            "--encodings",
+            "lsystem,direct",
+            "--replicates",
+            "1",
+        ])
+        .args([
+            "--pop",
+            "6",
+            "--seconds",
+            "1",
+            "--evaluations",
+            "11",
+            "--out",
+        ])
+        .arg(dir.join("other"))
+        .output()
+        .unwrap());
+    let direct_line = plan
+        .lines()
+        .find(|l| l.contains("--encoding direct"))
+        .unwrap();
+    let seed = direct_line
+        .split_whitespace()
+        .skip_while(|w| *w != "--seed")
+        .nth(1)
+        .unwrap();
+    ok(&ontogeny()
+        .args([
+            "evolve",
+            "--encoding",
+            "direct",
+            "--pop",
+            "6",
+            "--gens",
+            "2",
+            "--seconds",
+            "2",
+        ])
+        .args(["--seed", seed, "--out"])
+        .arg(&rep)
+        .output()
+        .unwrap());
+    refused(
+        &ontogeny()
+            .args(["compare", "--merge"])
+            .arg(&out)
+            .output()
+            .unwrap(),
+        "is not replicate 1 of this comparison: its task.walker differs",
+    );
+    refused(
+        &ontogeny()
+            .args(["compare", "--resume"])
+            .arg(&out)
+            .output()
+            .unwrap(),
+        "is not replicate 1 of this comparison",
+    );
+    // Nothing computed was lost: the odd replicate is still there, and with the original
+    // back the report is as before.
+    assert!(rep.join("run.sqlite").is_file());
+    std::fs::remove_dir_all(&rep).unwrap();
+    std::fs::rename(&moved, &rep).unwrap();
+    ok(&ontogeny()
+        .args(["compare", "--merge"])
+        .arg(&out)
+        .output()
+        .unwrap());
+    assert_eq!(numbers(&out), before);
+    let _ = std::fs::remove_dir_all(dir);
+}
