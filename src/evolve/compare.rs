@@ -591,7 +591,7 @@ pub fn write_report(
         .iter()
         .map(|e| band(e, replicates))
         .collect();
-    let title = format!("{}: mean best fitness, 95% band", task);
+    let title = format!("{task}: mean best fitness with 95% confidence bands");
     plot::bands_svg(&root.join("fitness.svg"), &bands, &title)
         .map_err(|e| CompareError::Other(e.to_string()))?;
     let parts: Vec<(String, Vec<f64>)> = manifest

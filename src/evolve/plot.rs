@@ -243,10 +243,13 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
             (a.min(p.2), b.max(p.3))
         });
+    // Fitness of a comparison may span hundredths: pad by 5% of the span, not a fixed amount.
     let (y0, y1) = if lo > hi {
         (0.0, 1.0)
+    } else if hi - lo < 1e-12 {
+        (lo - 0.5, hi + 0.5)
     } else {
-        let pad = ((hi - lo) * 0.05).max(0.5);
+        let pad = (hi - lo) * 0.05;
         (lo - pad, hi + pad)
     };
     let mut chart = ChartBuilder::on(&root)
