@@ -430,4 +430,45 @@ mod tests {
             vec![vec![(0, 1.0)], vec![(2, 2.0), (3, 3.0)], vec![(5, 5.0)]]
         );
     }
+
+    #[test]
+    fn comparison_plots_draw_every_series() {
+        let dir = std::env::temp_dir().join(format!("ontogeny-plot-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let bands = [
+            Band {
+                name: "first-encoding".into(),
+                points: vec![(6.0, 0.01, 0.0, 0.02), (11.0, 0.03, 0.02, 0.04)],
+            },
+            Band {
+                name: "second-encoding".into(),
+                // A failed point is left out, not drawn at the floor.
+                points: vec![
+                    (6.0, FAILURE_FLOOR, FAILURE_FLOOR, 0.0),
+                    (11.0, 0.02, 0.01, 0.03),
+                ],
+            },
+        ];
+        let path = dir.join("bands.svg");
+        bands_svg(&path, &bands, "title").unwrap();
+        let svg = fs::read_to_string(&path).unwrap();
+        assert!(svg.contains("first-encoding") && svg.contains("second-encoding"));
+        assert!(svg.contains("<polygon"), "a band is drawn");
+        assert!(
+            !svg.contains("999999"),
+            "the failure floor stretches no axis"
+        );
+        let path = dir.join("strip.svg");
+        strip_svg(
+            &path,
+            &[("a".into(), vec![3.0, 5.0, 9.0]), ("b".into(), vec![1.0])],
+            "parts",
+            "title",
+        )
+        .unwrap();
+        let svg = fs::read_to_string(&path).unwrap();
+        // Four dots.
+        assert_eq!(svg.matches("<circle").count(), 4, "{svg}");
+        let _ = fs::remove_dir_all(dir);
+    }
 }
