@@ -287,7 +287,7 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
+        .position(SeriesLabelPosition::UpperLeft)
         .label_font(("sans-serif", 14))
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(160, 160, 160))
