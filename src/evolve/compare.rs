@@ -159,8 +159,8 @@ pub fn open(root: &Path) -> Result<(Manifest, Shared), CompareError> {
             root.display()
         ))
     })?;
-    let manifest: Manifest =
-        toml::from_str(source.text()).map_err(|e| CompareError::Input(format!("{path:?}: {e}")))?;
+    let manifest: Manifest = toml::from_str(source.text())
+        .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
     let path = root.join("evolve.toml");
     let text = std::fs::read_to_string(&path).map_err(io(&path))?;
     let shared: Shared = toml::from_str(&text)
@@ -449,6 +449,14 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
     }
 }
 
+/// Writes `text` to `path` through a temporary file and a rename: a reader never sees half a
+/// report.
+fn write_file(path: &Path, text: &str) -> Result<(), CompareError> {
+    let temporary = path.with_extension("tmp");
+    std::fs::write(&temporary, text).map_err(io(&temporary))?;
+    std::fs::rename(&temporary, path).map_err(io(path))
+}
+
 /// A number for a table: NaN as "–".
 fn num(v: f64, decimals: usize) -> String {
     if v.is_finite() {
@@ -557,8 +565,7 @@ pub fn write_report(
         md,
         "\n![mean best fitness against evaluations](fitness.svg)\n\n![champions' parts](parts.svg)"
     );
-    let path = root.join("report.md");
-    std::fs::write(&path, md).map_err(io(&path))?;
+    write_file(&root.join("report.md"), &md)?;
 
     let mut csv = String::from(
         "encoding,replicate,seed,evaluations,best_fitness,parts,joints,neurons,shapes_per_part,wall_seconds\n",
@@ -583,8 +590,7 @@ pub fn write_report(
             rep.wall_seconds
         );
     }
-    let path = root.join("summary.csv");
-    std::fs::write(&path, csv).map_err(io(&path))?;
+    write_file(&root.join("summary.csv"), &csv)?;
 
     let bands: Vec<Band> = manifest
         .encodings
