@@ -112,7 +112,7 @@ pub fn generations_for(ga: &GaSettings, budget: u64) -> Result<usize, String> {
     Ok(generations as usize)
 }
 
-/// The seed of replicate `k` (1-based) of a comparison seeded with `seed`: SplitMix64 of both,
+/// The seed of replicate `k` (1-based) of a comparison seeded with `seed`: both mixed by SplitMix64,
 /// kept to 31 bits so that it reads easily in commands and tables.
 pub fn replicate_seed(seed: u64, k: usize) -> u64 {
     let mut x = seed
