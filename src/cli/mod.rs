@@ -15,6 +15,7 @@ mod derive;
 mod eval;
 mod evolve;
 mod export;
+mod genome;
 mod grow;
 mod replay;
 
@@ -56,6 +57,8 @@ enum Verb {
     Evolve(evolve::EvolveArgs),
     /// Inspect run directories.
     Runs(evolve::RunsArgs),
+    /// Inspect genome files (`genome show FILE`: a graph genome, readably).
+    Genome(genome::GenomeArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core and on all
     /// cores, its overhead over rapier's own stepping, and impulse against multibody joints.
     Bench(bench::BenchArgs),
@@ -73,6 +76,7 @@ pub fn main() -> ExitCode {
         Verb::Replay(args) => replay::run(&args),
         Verb::Evolve(args) => evolve::run(&args),
         Verb::Runs(args) => evolve::runs(&args),
+        Verb::Genome(args) => genome::run(&args),
         Verb::Bench(args) => bench::run(&args),
     };
     match result {
