@@ -249,8 +249,7 @@ pub(super) fn load_creature(
         let text = std::fs::read_to_string(file)
             .with_context(|| format!("cannot read {}", file.display()))?;
         // A graph genome (a run's best.json) develops with the default limits.
-        if serde_json::from_str::<serde_json::Value>(&text)
-            .is_ok_and(|v| v.get("nodes").is_some())
+        if serde_json::from_str::<serde_json::Value>(&text).is_ok_and(|v| v.get("nodes").is_some())
         {
             let genome = super::genome::read_graph(file)?;
             return Ok(genome.creature(ontogeny::encoding::GraphLimits::default().max_parts));

@@ -64,7 +64,11 @@ pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
                     .join(", "),
                 creature.brain.neurons.len(),
                 creature.brain.links.len(),
-                if creature.is_valid() { "valid" } else { "invalid" }
+                if creature.is_valid() {
+                    "valid"
+                } else {
+                    "invalid"
+                }
             );
             for p in &creature.problems {
                 let level = match p.severity {
