@@ -43,7 +43,8 @@ pub enum Purpose {
 /// A genome of one encoding.
 ///
 /// Every operator respects `Limits` by construction: a result never exceeds them, and no
-/// operator loops until a random draw happens to fit. Development never panics: a genome that
+/// operator loops until a random draw happens to fit (an encoding may make a newborn again a
+/// bounded number of times, as the graph genome does when its parts interpenetrate). Development never panics: a genome that
 /// does not develop gives a [`DevelopError`].
 pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned {
     /// The encoding's limits and settings (serialisable: they are part of a run's config).
