@@ -103,22 +103,19 @@ fn a_connection_on_a_side_face_places_and_turns_the_child_as_computed_by_hand() 
     let c = &mut g.nodes[0].connections[0];
     c.face = Face::Top;
     c.position = [0.5, 0.0]; // half way towards the root's back end (the top face's y is −x)
-    c.orientation = [0.0, std::f64::consts::FRAC_PI_4, 0.0];
+    let a: f64 = 0.785; // the largest bend (45° on the 0.001 grid)
+    c.orientation = [0.0, a, 0.0];
     let creature = develop(&g);
     assert_eq!(creature.parts.len(), 2);
     // Anchor: top face (y = 0.25), x = −0.5 · 0.5 = −0.25. Direction: the face normal (+y)
-    // bent 45° about z towards −x: (−√½, √½, 0); centre 0.25 along it.
-    let h = std::f64::consts::FRAC_1_SQRT_2;
+    // bent by a about z towards −x: (−sin a, cos a, 0); centre 0.25 along it.
+    let direction = Vector3::new(-a.sin(), a.cos(), 0.0);
     let anchor = Vector3::new(-0.25, 0.25, 0.0);
     assert!(near(&creature.joints[0].anchor, &anchor));
-    let centre = anchor + Vector3::new(-h, h, 0.0) * 0.25;
-    assert!(
-        near(&creature.parts[1].position, &centre),
-        "{:?}",
-        creature.parts[1]
-    );
+    let centre = anchor + direction * 0.25;
+    assert!(near(&creature.parts[1].position, &centre), "{:?}", creature.parts[1]);
     let length_axis = creature.parts[1].orientation * Vector3::x();
-    assert!(near(&length_axis, &Vector3::new(-h, h, 0.0)));
+    assert!(near(&length_axis, &direction));
 }
 
 #[test]
@@ -624,5 +621,31 @@ fn evolve_with_the_graph_encoding_runs_resumes_and_throws() {
     let best = std::fs::read_to_string(out.join("best.json")).unwrap();
     let g = GraphGenome::from_text(&best, &GraphLimits::default()).unwrap();
     assert!(g.nodes[0].connections.iter().all(|c| c.face != Face::Back));
+    // The other tasks and the other preset.
+    for (task, preset) in [("jump", "wwd"), ("aim", "chaumont"), ("walker", "wwd")] {
+        let out = dir.join(format!("{task}-{preset}"));
+        let o = run(&[
+            "--encoding",
+            "graph",
+            "--task",
+            task,
+            "--preset",
+            preset,
+            "--pop",
+            "6",
+            "--gens",
+            "2",
+            "--seconds",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            o.status.success(),
+            "{task} {preset}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(out.join("best.json").exists());
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }

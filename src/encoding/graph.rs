@@ -45,14 +45,14 @@ pub const PART_SIZE_RANGE: (f64, f64) = (0.05, 2.0);
 /// Range of a connection's scale factor.
 pub const SCALE_RANGE: (f64, f64) = (0.5, 1.5);
 /// Range of a connection's two bend angles (radians): a child leaves its face within 45° of
-/// the face's normal in each of two directions.
-pub const BEND_RANGE: (f64, f64) = (-std::f64::consts::FRAC_PI_4, std::f64::consts::FRAC_PI_4);
-/// Range of a connection's roll about the child's length (radians; a box is the same after a
-/// half turn).
-pub const ROLL_RANGE: (f64, f64) = (-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2);
-/// Range of a joint's lower limit per degree of freedom (radians); the upper limit is in the
-/// mirror range.
-pub const LOWER_LIMIT_RANGE: (f64, f64) = (-std::f64::consts::FRAC_PI_2, -0.1);
+/// the face's normal in each of two directions (the range's ends on the 0.001 grid).
+pub const BEND_RANGE: (f64, f64) = (-0.785, 0.785);
+/// Range of a connection's roll about the child's length (radians, ±90°: a box is the same
+/// after a half turn).
+pub const ROLL_RANGE: (f64, f64) = (-1.571, 1.571);
+/// Range of a joint's lower limit per degree of freedom (radians, −90° to −5.7°); the upper
+/// limit is in the mirror range.
+pub const LOWER_LIMIT_RANGE: (f64, f64) = (-1.571, -0.1);
 /// Range of a link's weight.
 pub const WEIGHT_RANGE: (f64, f64) = (-2.0, 2.0);
 /// Range of a neuron's bias, and of the threshold and constant parameters.
