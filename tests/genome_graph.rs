@@ -669,3 +669,43 @@ fn evolve_with_the_graph_encoding_runs_resumes_and_throws() {
     assert!(out.join("best.json").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// `GraphGenome::creature` takes any genome, checked or not: out-of-range and
+    /// non-finite values, connections and inputs to nothing.
+    #[test]
+    fn development_never_panics_even_on_unchecked_genomes(
+        seed in any::<u64>(),
+        values in proptest::collection::vec(
+            prop_oneof![any::<f64>(), Just(f64::NAN), Just(f64::INFINITY), -10.0f64..10.0],
+            16,
+        ),
+        index in 0usize..50,
+    ) {
+        let mut g = GraphGenome::random(&GraphLimits::default(), &mut rng(seed));
+        let mut v = values.into_iter().cycle();
+        for node in &mut g.nodes {
+            node.size = [v.next().unwrap(), v.next().unwrap(), v.next().unwrap()];
+            node.limits = vec![(v.next().unwrap(), v.next().unwrap()); 3];
+            node.recursive_limit = index as u32 % 7;
+            for c in &mut node.connections {
+                c.to = index;
+                c.position = [v.next().unwrap(), v.next().unwrap()];
+                c.orientation = [v.next().unwrap(), v.next().unwrap(), v.next().unwrap()];
+                c.scale = v.next().unwrap();
+            }
+            for n in &mut node.neurons {
+                n.bias = v.next().unwrap();
+                for i in &mut n.inputs {
+                    i.weight = v.next().unwrap();
+                    i.source = Source::Local { neuron: index };
+                }
+            }
+        }
+        g.nodes[0].connections.push(straight(0, Face::Top, v.next().unwrap()));
+        let c = g.creature(20);
+        prop_assert!(c.parts.len() <= 20);
+    }
+}
