@@ -13,7 +13,12 @@ fn ontogeny() -> Command {
 }
 
 /// Every encoding the tests run for.
-const ENCODINGS: [&str; 3] = ["lsystem", "lsystem-continuous", "direct"];
+const ENCODINGS: [&str; 4] = ["lsystem", "lsystem-continuous", "direct", "graph"];
+
+/// The extension of an encoding's text form: `.lsys` grammars, `.json` for graph genomes.
+fn text_extension(encoding: &str) -> &'static str {
+    if encoding == "graph" { "json" } else { "lsys" }
+}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("ontogeny-evolve-{}-{name}", std::process::id()));
@@ -101,11 +106,12 @@ fn writes_its_directory_and_database(encoding: &str) {
     let out = dir.join("run");
     let o = small_run(encoding, &out, &[]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let best = format!("best.{}", text_extension(encoding));
     for file in [
         "config.toml",
         "run.sqlite",
         "fitness.svg",
-        "best.lsys",
+        best.as_str(),
         "log.txt",
     ] {
         assert!(out.join(file).exists(), "{file}");
@@ -140,10 +146,10 @@ fn writes_its_directory_and_database(encoding: &str) {
             assert_eq!(individuals[0].operator, "elite");
         }
     }
-    // best.lsys is a grammar that grows and evaluates to the stored best fitness.
+    // best.lsys (best.json) is a genome that grows and evaluates to the stored best fitness.
     let eval = ontogeny()
         .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
-        .arg(out.join("best.lsys"))
+        .arg(out.join(&best))
         .output()
         .unwrap();
     assert!(
@@ -177,8 +183,9 @@ fn writes_its_directory_and_database(encoding: &str) {
         String::from_utf8_lossy(&replay.stderr)
     );
     let shown = out.join("replay").join("gen-3-rank-1");
+    let genome = format!("genome.{}", text_extension(encoding));
     for file in [
-        "genome.lsys",
+        genome.as_str(),
         "creature.png",
         "recording.json",
         "behaviour.gif",

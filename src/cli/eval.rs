@@ -184,7 +184,7 @@ enum FitnessArg {
 /// Flags of `ontogeny eval`.
 #[derive(Args)]
 pub struct EvalArgs {
-    /// An L-system file (`.lsys`, grown to its last frame) or a `creature.json`.
+    /// An L-system file (`.lsys`, grown to its last frame), a `creature.json` or a graph genome (`.json`).
     file: PathBuf,
     /// The task.
     #[arg(long, value_enum)]
@@ -238,7 +238,8 @@ fn parse_point(text: &str) -> Result<[f64; 3], String> {
 }
 
 /// Loads a creature from `file`: an L-system (`.lsys`, grown to its last frame with the
-/// development flags and seed) or a `creature.json`, which must be well formed.
+/// development flags and seed), a `creature.json`, which must be well formed, or a graph
+/// genome's JSON (developed with the default limits).
 pub(super) fn load_creature(
     file: &Path,
     development: &DevelopmentArgs,
@@ -247,6 +248,12 @@ pub(super) fn load_creature(
     if file.extension().is_some_and(|e| e == "json") {
         let text = std::fs::read_to_string(file)
             .with_context(|| format!("cannot read {}", file.display()))?;
+        // A graph genome (a run's best.json) develops with the default limits.
+        if serde_json::from_str::<serde_json::Value>(&text).is_ok_and(|v| v.get("nodes").is_some())
+        {
+            let genome = super::genome::read_graph(file)?;
+            return Ok(genome.creature(ontogeny::encoding::GraphLimits::default().max_parts));
+        }
         let creature: Creature = serde_json::from_str(&text).map_err(|e| {
             anyhow::Error::new(Diagnostic::without_location(
                 DiagnosticKind::Semantic,

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
-use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, LSystemGenome};
+use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome};
 use ontogeny::evolve::config::{
     ConfigFile, GaOverrides, RunConfig, check_settings, encoding_of, read_config,
 };
@@ -24,6 +24,8 @@ pub enum EncodingArg {
     LsystemContinuous,
     /// Hornby & Pollack's non-generative baseline: one string of commands.
     Direct,
+    /// Sims' directed graph, as Chaumont et al. reimplemented it.
+    Graph,
 }
 
 impl EncodingArg {
@@ -33,6 +35,7 @@ impl EncodingArg {
             EncodingArg::Lsystem => LSystemGenome::NAME,
             EncodingArg::LsystemContinuous => ContinuousGenome::NAME,
             EncodingArg::Direct => DirectGenome::NAME,
+            EncodingArg::Graph => GraphGenome::NAME,
         }
     }
 }
@@ -367,8 +370,9 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
             (wall - evaluating).max(0.0) / wall.max(1e-9) * 100.0
         );
         say!(
-            "wrote {0}/run.sqlite, {0}/fitness.svg, {0}/best.lsys and {0}/log.txt",
-            dir.display()
+            "wrote {0}/run.sqlite, {0}/fitness.svg, {0}/best.{1} and {0}/log.txt",
+            dir.display(),
+            G::TEXT_EXTENSION
         );
     }
     Ok(())
@@ -491,7 +495,8 @@ fn replay_typed<G: Genome>(
         .join("replay")
         .join(format!("gen-{generation}-rank-{rank}"));
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
-    let genome_path = out.join("genome.lsys");
+    let genome_name = format!("genome.{}", G::TEXT_EXTENSION);
+    let genome_path = out.join(&genome_name);
     std::fs::write(&genome_path, individual.genome.to_text())
         .with_context(|| format!("cannot write {}", genome_path.display()))?;
     let limits = &run.config().limits;
@@ -517,7 +522,7 @@ fn replay_typed<G: Genome>(
         say!("warning: the re-evaluation differs from the stored fitness");
     }
     say!(
-        "wrote {0}/genome.lsys, {0}/creature.png, {0}/recording.json and {0}/behaviour.gif",
+        "wrote {0}/{genome_name}, {0}/creature.png, {0}/recording.json and {0}/behaviour.gif",
         out.display()
     );
     Ok(())

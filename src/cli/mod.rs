@@ -29,6 +29,10 @@ macro_rules! with_genome {
                 type $G = ontogeny::encoding::DirectGenome;
                 $body
             }
+            n if n == <ontogeny::encoding::GraphGenome as ontogeny::encoding::Genome>::NAME => {
+                type $G = ontogeny::encoding::GraphGenome;
+                $body
+            }
             other => $unknown(other),
         }
     };
@@ -41,6 +45,7 @@ mod derive;
 mod eval;
 mod evolve;
 mod export;
+mod genome;
 mod grow;
 mod replay;
 
@@ -85,6 +90,8 @@ enum Verb {
     Compare(compare::CompareArgs),
     /// Inspect run directories.
     Runs(evolve::RunsArgs),
+    /// Inspect genome files (`genome show FILE`: a graph genome, readably).
+    Genome(genome::GenomeArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core and on all
     /// cores, its overhead over rapier's own stepping, and impulse against multibody joints.
     Bench(bench::BenchArgs),
@@ -103,6 +110,7 @@ pub fn main() -> ExitCode {
         Verb::Evolve(args) => evolve::run(&args),
         Verb::Compare(args) => compare::run(&args),
         Verb::Runs(args) => evolve::runs(&args),
+        Verb::Genome(args) => genome::run(&args),
         Verb::Bench(args) => bench::run(&args),
     };
     match result {

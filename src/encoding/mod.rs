@@ -13,10 +13,12 @@ use crate::creature::Creature;
 pub mod command;
 pub mod continuous;
 pub mod direct;
+pub mod graph;
 pub mod lsystem;
 
 pub use continuous::{ContinuousGenome, ContinuousLimits};
 pub use direct::{DirectGenome, DirectLimits};
+pub use graph::{GraphGenome, GraphLimits};
 pub use lsystem::{LSystemGenome, LSystemLimits};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
@@ -28,10 +30,23 @@ pub type Rng = ChaCha8Rng;
 #[error("{0}")]
 pub struct DevelopError(pub String);
 
+/// What the creatures of a run are for, as far as an encoding needs to know: a task that
+/// throws a projectile held by the root part (catapult, aim) asks some encodings to keep that
+/// part as an arm (Chaumont et al. section 4.1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Purpose {
+    /// Moving the whole body (walker, jump).
+    #[default]
+    Locomotion,
+    /// Throwing the task's projectile from the root part (catapult, aim).
+    Throwing,
+}
+
 /// A genome of one encoding.
 ///
 /// Every operator respects `Limits` by construction: a result never exceeds them, and no
-/// operator loops until a random draw happens to fit. Development never panics: a genome that
+/// operator loops until a random draw happens to fit (an encoding may make a newborn again a
+/// bounded number of times, as the graph genome does when its parts interpenetrate). Development never panics: a genome that
 /// does not develop gives a [`DevelopError`].
 pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned {
     /// The encoding's limits and settings (serialisable: they are part of a run's config).
@@ -39,6 +54,16 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
 
     /// The encoding's name, as the CLI and the run store spell it.
     const NAME: &'static str;
+
+    /// The extension of the file that holds [`Genome::to_text`] (a run's `best.lsys`,
+    /// `best.json`, ...).
+    const TEXT_EXTENSION: &'static str = "lsys";
+
+    /// Adapts `limits` to what the creatures are for (called when a run is assembled, from
+    /// its task); the default changes nothing.
+    fn adapt_limits(limits: &mut Self::Limits, purpose: Purpose) {
+        let _ = (limits, purpose);
+    }
 
     /// A random genome within `limits`.
     fn random(limits: &Self::Limits, rng: &mut Rng) -> Self;
@@ -65,6 +90,19 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
 
     /// The genome as text for people (for L-system genomes, a valid `.lsys` file).
     fn to_text(&self) -> String;
+
+    /// [`Genome::to_text`] preceded by `note` as comments, where the text form has comments
+    /// (`#` lines by default); a text form without comments (JSON) is returned as it is.
+    fn annotated_text(&self, note: &str) -> String {
+        let mut out = String::new();
+        for line in note.lines() {
+            out.push_str("# ");
+            out.push_str(line);
+            out.push('\n');
+        }
+        out.push_str(&self.to_text());
+        out
+    }
 
     /// A genome read from a hand-written `.lsys` file, to seed a first generation with its
     /// mutants; `Err` when the encoding cannot start from a grammar or the file does not fit

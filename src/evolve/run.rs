@@ -1,5 +1,5 @@
 //! A run directory: `config.toml` (every setting, written at the start), `run.sqlite` (the
-//! record of truth, one transaction per generation), `fitness.svg`, `best.lsys` and `log.txt`,
+//! record of truth, one transaction per generation), `fitness.svg`, `best.lsys` (`best.json`, ... after the encoding's text form) and `log.txt`,
 //! rewritten after every generation. A run killed at any moment resumes from its last complete
 //! generation and ends exactly as an uninterrupted run would.
 
@@ -10,8 +10,9 @@ use super::config::{RunConfig, read_run_config};
 use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, ranking};
 use super::plot::fitness_svg;
 use super::store::{GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError};
-use crate::encoding::Genome;
+use crate::encoding::{Genome, Purpose};
 use crate::lang::{Diagnostic, Source};
+use crate::task::TaskKind;
 
 /// Why a run could not start, resume or go on.
 #[derive(Debug, thiserror::Error)]
@@ -154,11 +155,17 @@ impl<G: Genome> Run<G> {
         store: RunStore,
         init: Option<G>,
     ) -> Run<G> {
+        let purpose = match config.task.task {
+            TaskKind::Walker | TaskKind::Jump => Purpose::Locomotion,
+            TaskKind::Catapult | TaskKind::Aim => Purpose::Throwing,
+        };
+        let mut limits = config.limits.clone();
+        G::adapt_limits(&mut limits, purpose);
         Run {
             dir: dir.to_path_buf(),
             evolution: Evolution {
                 settings: config.ga.clone(),
-                limits: config.limits.clone(),
+                limits,
                 task: config.task.clone(),
                 seed: config.seed,
                 init,
@@ -242,7 +249,8 @@ impl<G: Genome> Run<G> {
         Ok(())
     }
 
-    /// Stores a generation (one transaction), then rewrites `best.lsys` and `fitness.svg`.
+    /// Stores a generation (one transaction), then rewrites `best.lsys` (or the encoding's
+    /// extension) and `fitness.svg`.
     fn record(
         &mut self,
         generation: u32,
@@ -289,15 +297,16 @@ impl<G: Genome> Run<G> {
         )?;
         if let Some(&best) = ranking(population).first() {
             let b = &population[best];
-            let text = format!(
-                "# The best individual of {} after generation {generation}: {} fitness {} ({}).\n# Grow it with `ontogeny grow`, evaluate it with `ontogeny eval`.\n{}",
+            let note = format!(
+                "The best individual of {} after generation {generation}: {} fitness {} ({}).\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
                 self.dir.display(),
                 self.config.task.task.name(),
                 b.evaluation.fitness,
                 status_name(b),
-                b.genome.to_text()
             );
-            write_atomically(&self.dir.join("best.lsys"), text.as_bytes())?;
+            let text = b.genome.annotated_text(&note);
+            let name = format!("best.{}", G::TEXT_EXTENSION);
+            write_atomically(&self.dir.join(name), text.as_bytes())?;
         }
         let generations = self.store.generations()?;
         let title = format!(
