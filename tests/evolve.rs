@@ -405,8 +405,14 @@ fn init_seeds_the_first_generation_with_a_grammar_and_its_mutants() {
 }
 
 #[test]
-fn every_task_and_preset_runs_with_the_direct_encoding() {
-    let dir = scratch("tasks-direct");
+fn every_task_and_preset_runs_with_the_direct_and_graph_encodings() {
+    for encoding in ["direct", "graph"] {
+        every_task_and_preset_runs_with(encoding);
+    }
+}
+
+fn every_task_and_preset_runs_with(encoding: &str) {
+    let dir = scratch(&format!("tasks-{encoding}"));
     // The aim task needs a target.
     let config = dir.join("aim.toml");
     std::fs::write(&config, "[task.catapult]\ntarget = [3.0, 0.0, 0.0]\n").unwrap();
@@ -415,7 +421,7 @@ fn every_task_and_preset_runs_with_the_direct_encoding() {
             let out = dir.join(format!("{task}-{preset}"));
             // Two generations of 6, so that the preset's operators make the second.
             let o = ontogeny()
-                .args(["evolve", "--encoding", "direct", "--task", task])
+                .args(["evolve", "--encoding", encoding, "--task", task])
                 .args(["--preset", preset, "--pop", "6", "--gens", "2"])
                 .args(["--seconds", "0.5", "--seed", "3", "--config"])
                 .arg(&config)
@@ -430,7 +436,7 @@ fn every_task_and_preset_runs_with_the_direct_encoding() {
             );
             let store = RunStore::open(&out.join("run.sqlite")).unwrap();
             let run = store.run().unwrap();
-            assert_eq!((run.encoding.as_str(), run.task.as_str()), ("direct", task));
+            assert_eq!((run.encoding.as_str(), run.task.as_str()), (encoding, task));
             assert_eq!(store.generations().unwrap().len(), 2, "{task} {preset}");
             let second = store.individuals(1).unwrap();
             assert!(
