@@ -403,3 +403,48 @@ fn eval_rejects_bad_input_with_exit_2() {
     );
     assert!(stderr(&out).contains("cannot read /no/such/dir/recording.json"));
 }
+
+#[test]
+fn negative_option_values_are_values_not_flags() {
+    // A target behind the projectile, written as a user would.
+    let o = ontogeny(&[
+        "eval",
+        "examples/thrower.lsys",
+        "--task",
+        "aim",
+        "--target",
+        "-3,0,1",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let behind: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let o = ontogeny(&[
+        "eval",
+        "examples/thrower.lsys",
+        "--task",
+        "aim",
+        "--target",
+        "5,0,1",
+        "--json",
+    ]);
+    let ahead: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    // Targets are relative to the projectile's start: -3 and 5 on x are 8 m apart.
+    let x = |v: &serde_json::Value| v["terms"]["target_x"].as_f64().unwrap();
+    assert!((x(&ahead) - x(&behind) - 8.0).abs() < 1e-5);
+    // A negative number reaches the command's own range check (exit 2, its own words),
+    // not clap's "unexpected argument".
+    let o = ontogeny(&[
+        "eval",
+        "examples/snake.lsys",
+        "--task",
+        "walker",
+        "--seconds",
+        "-1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--seconds must be in (0, 3600], not -1"),
+        "{}",
+        stderr(&o)
+    );
+}

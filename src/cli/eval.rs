@@ -206,7 +206,7 @@ pub struct EvalArgs {
     #[arg(long, value_enum, default_value = "normalised")]
     fitness: FitnessArg,
     /// The aim task's target relative to the projectile's start, as X,Y,Z metres.
-    #[arg(long, value_name = "X,Y,Z", default_value = "5,0,0", value_parser = parse_point)]
+    #[arg(long, value_name = "X,Y,Z", default_value = "5,0,0", value_parser = parse_point, allow_hyphen_values = true)]
     target: [f64; 3],
     /// The catapult's projectile: edge length of the cube (m).
     #[arg(long, default_value_t = 0.2)]

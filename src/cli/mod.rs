@@ -52,7 +52,7 @@ mod replay;
 use std::io::Write;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Command, CommandFactory, FromArgMatches, Parser, Subcommand};
 use ontogeny::lang::Diagnostic;
 
 /// Grow virtual creatures from L-systems and evolve them in physics.
@@ -97,9 +97,24 @@ enum Verb {
     Bench(bench::BenchArgs),
 }
 
+/// Lets every verb take negative numbers as option values (`--strength -1`), not only
+/// `--strength=-1`.
+fn allow_negative_numbers(command: Command) -> Command {
+    let verbs: Vec<String> = command
+        .get_subcommands()
+        .map(|verb| verb.get_name().to_string())
+        .collect();
+    verbs
+        .into_iter()
+        .fold(command.allow_negative_numbers(true), |command, verb| {
+            command.mut_subcommand(verb, allow_negative_numbers)
+        })
+}
+
 /// Runs the command line and turns the outcome into an exit code.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = allow_negative_numbers(Cli::command()).get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let result = match cli.verb {
         Verb::Derive(args) => derive::run(&args),
         Verb::Check(args) => check::run(&args),
