@@ -448,3 +448,42 @@ fn negative_option_values_are_values_not_flags() {
         stderr(&o)
     );
 }
+
+#[test]
+fn a_dash_reads_the_grammar_from_standard_input() {
+    use std::io::Write;
+    for verb in ["derive", "check", "grow"] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+            .args([verb, "-"])
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(b"derivation length: 2\naxiom: a\na --> ab\nb --> a\n")
+            .unwrap();
+        let o = child.wait_with_output().unwrap();
+        assert!(o.status.success(), "{verb}: {}", stderr(&o));
+    }
+    // Errors name the source <stdin>, with line and column.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args(["derive", "-"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"axiom: a\na --> (\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("<stdin>:2:"), "{}", stderr(&o));
+}

@@ -8,7 +8,7 @@ use ontogeny::lsystem::LSystem;
 /// Flags of `ontogeny check`.
 #[derive(Args)]
 pub struct CheckArgs {
-    /// The L-system file (`.lsys`).
+    /// The L-system file (`.lsys`); `-` reads it from standard input.
     file: PathBuf,
     /// Print the report as one JSON object.
     #[arg(long)]

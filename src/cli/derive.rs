@@ -54,7 +54,7 @@ pub fn derive_options(
 /// Flags of `ontogeny derive`.
 #[derive(Args)]
 pub struct DeriveArgs {
-    /// The L-system file (`.lsys`).
+    /// The L-system file (`.lsys`); `-` reads it from standard input.
     file: PathBuf,
     /// Number of discrete derivation steps (default: the file's `derivation length:`).
     #[arg(long)]

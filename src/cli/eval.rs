@@ -184,7 +184,7 @@ enum FitnessArg {
 /// Flags of `ontogeny eval`.
 #[derive(Args)]
 pub struct EvalArgs {
-    /// An L-system file (`.lsys`, grown to its last frame), a `creature.json` or a graph genome (`.json`).
+    /// An L-system file (`.lsys`, grown to its last frame), a `creature.json` or a graph genome (`.json`); `-` reads an L-system from standard input.
     file: PathBuf,
     /// The task.
     #[arg(long, value_enum)]

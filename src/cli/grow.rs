@@ -16,7 +16,7 @@ use super::derive::{DevelopmentArgs, derive_options};
 /// Flags of `ontogeny grow`.
 #[derive(Args)]
 pub struct GrowArgs {
-    /// The L-system file (`.lsys`).
+    /// The L-system file (`.lsys`); `-` reads it from standard input.
     file: PathBuf,
     #[command(flatten)]
     development: DevelopmentArgs,

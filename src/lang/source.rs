@@ -52,9 +52,17 @@ impl Source {
         })
     }
 
-    /// Reads a file; the path becomes the source's name.
+    /// Reads a file; the path becomes the source's name. The path `-` reads standard input,
+    /// named `<stdin>`.
     pub fn read(path: &std::path::Path) -> std::io::Result<Arc<Source>> {
-        let bytes = std::fs::read(path)?;
+        let from_stdin = path.as_os_str() == "-";
+        let bytes = if from_stdin {
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(&mut std::io::stdin(), &mut bytes)?;
+            bytes
+        } else {
+            std::fs::read(path)?
+        };
         let text = String::from_utf8(bytes).map_err(|e| {
             std::io::Error::new(
                 std::io::ErrorKind::InvalidData,
@@ -64,7 +72,12 @@ impl Source {
                 ),
             )
         })?;
-        Ok(Source::new(path.display().to_string(), text))
+        let name = if from_stdin {
+            "<stdin>".to_string()
+        } else {
+            path.display().to_string()
+        };
+        Ok(Source::new(name, text))
     }
 
     /// The name diagnostics report (a path, or `<string>`).
