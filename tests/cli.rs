@@ -487,3 +487,69 @@ fn a_dash_reads_the_grammar_from_standard_input() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("<stdin>:2:"), "{}", stderr(&o));
 }
+
+/// Each frame's delay (centiseconds) of a GIF.
+fn gif_delays(path: &std::path::Path) -> Vec<u16> {
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::Indexed);
+    let mut decoder = options
+        .read_info(std::fs::File::open(path).unwrap())
+        .unwrap();
+    let mut delays = Vec::new();
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        delays.push(frame.delay);
+    }
+    delays
+}
+
+#[test]
+fn replay_writes_the_frames_per_second_it_says() {
+    let dir = std::env::temp_dir().join(format!("ontogeny-fps-{}", std::process::id()));
+    let o = ontogeny(&[
+        "eval",
+        "examples/snake.lsys",
+        "--task",
+        "walker",
+        "--seconds",
+        "1",
+        "--record",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(dir.join("recording.json")).unwrap();
+    let recording: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let times: Vec<f64> = recording["frames"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["t"].as_f64().unwrap())
+        .collect();
+    let span = times.last().unwrap() - times[0];
+    for fps in [30.0, 7.0] {
+        let o = ontogeny(&["replay", dir.to_str().unwrap(), "--fps", &fps.to_string()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let delays = gif_delays(&dir.join("behaviour.gif"));
+        // One frame per 1/fps s of the recording, the first at its start.
+        assert_eq!(
+            delays.len(),
+            (span * fps + 1e-9).floor() as usize + 1,
+            "fps {fps}"
+        );
+        // Played back, frame k starts at round(100 k / fps) cs: real time.
+        let mut start = 0u64;
+        for (k, d) in delays.iter().enumerate() {
+            assert_eq!(start, (100.0 * k as f64 / fps).round() as u64, "fps {fps}");
+            start += *d as u64;
+        }
+        assert!(stdout(&o).contains(&format!("{} frames at {fps} frames/s", delays.len())));
+    }
+    // Beyond what GIF timing can show.
+    let o = ontogeny(&["replay", dir.to_str().unwrap(), "--fps", "60"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--fps must be in (0, 50]"),
+        "{}",
+        stderr(&o)
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}

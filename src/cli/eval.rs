@@ -413,6 +413,42 @@ pub fn write_recording_at(
     Ok(())
 }
 
+/// The largest `--fps` an animation takes: GIF delays are whole centiseconds, and browsers
+/// slow frames shorter than 2 cs down to 10.
+pub const MAX_FPS: f64 = 50.0;
+
+/// Which recorded frames an animation at `fps` frames per second of simulated time shows
+/// (the frame nearest each time k / fps), and each one's GIF delay in centiseconds, chosen
+/// so that frame k starts at round(100 k / fps) cs: played back, the animation keeps the
+/// simulation's time, whatever the ratio of `fps` to the recording's rate.
+pub fn animation_frames(
+    frames: &[ontogeny::task::RecordedFrame],
+    fps: f64,
+) -> (Vec<usize>, Vec<u16>) {
+    let (Some(first), Some(last)) = (frames.first(), frames.last()) else {
+        return (Vec::new(), Vec::new());
+    };
+    let span = (last.t - first.t).max(0.0);
+    let count = (span * fps + 1e-9).floor() as usize + 1;
+    let mut chosen = Vec::with_capacity(count);
+    let mut next = 0;
+    for k in 0..count {
+        let t = first.t + k as f64 / fps;
+        // The recorded frame nearest t (frames are in time order).
+        while next + 1 < frames.len()
+            && (frames[next + 1].t - t).abs() <= (frames[next].t - t).abs()
+        {
+            next += 1;
+        }
+        chosen.push(next);
+    }
+    let start = |k: usize| (100.0 * k as f64 / fps).round() as u64;
+    let delays = (0..count)
+        .map(|k| (start(k + 1) - start(k)).clamp(2, u16::MAX as u64) as u16)
+        .collect();
+    (chosen, delays)
+}
+
 /// Renders recorded frames as an animation, `fps` pictures per second of simulated time.
 pub fn render_recording(
     creature: &Creature,
@@ -420,14 +456,10 @@ pub fn render_recording(
     path: &Path,
     fps: f64,
 ) -> anyhow::Result<()> {
-    let dt = match frames {
-        [a, b, ..] => (b.t - a.t).max(1e-6),
-        _ => 1.0 / 60.0,
-    };
-    let every = ((1.0 / fps / dt).round() as usize).max(1);
-    let posed: Vec<Creature> = frames
+    let (chosen, delays) = animation_frames(frames, fps);
+    let posed: Vec<Creature> = chosen
         .iter()
-        .step_by(every)
+        .map(|&i| &frames[i])
         .map(|frame| {
             let mut c = creature.clone();
             for (part, (position, orientation)) in c.parts.iter_mut().zip(&frame.parts) {
@@ -450,8 +482,7 @@ pub fn render_recording(
             c
         })
         .collect();
-    let delay = (100.0 / fps).round().clamp(2.0, 1000.0) as u16;
-    ontogeny::render::write_gif(posed.iter(), path, 480, 300, delay)
+    ontogeny::render::write_gif(posed.iter(), path, 480, 300, &delays)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }

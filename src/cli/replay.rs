@@ -14,7 +14,8 @@ pub struct ReplayArgs {
     /// A directory written by `ontogeny eval --record DIR`, or a run directory written by
     /// `ontogeny evolve`.
     dir: PathBuf,
-    /// Frames per second of simulated time in the animation.
+    /// Frames per second of the animation, in (0, 50]; each frame shows the recording at
+    /// k / fps seconds, and plays back in real time.
     #[arg(long, default_value_t = 10.0)]
     fps: f64,
     /// For a run: the generation (default: the last complete one).
@@ -33,10 +34,14 @@ struct Recording {
 
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
 pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
-    if !(args.fps > 0.0 && args.fps <= 100.0) {
+    if !(args.fps > 0.0 && args.fps <= super::eval::MAX_FPS) {
         anyhow::bail!(Diagnostic::without_location(
             DiagnosticKind::Semantic,
-            format!("--fps must be in (0, 100], not {}", args.fps),
+            format!(
+                "--fps must be in (0, {}], not {} (GIF frames last whole centiseconds)",
+                super::eval::MAX_FPS,
+                args.fps
+            ),
         ));
     }
     if args.dir.join("config.toml").exists() {
@@ -57,17 +62,14 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
             format!("{}: not a usable creature: {problem}", path.display()),
         ))
     })?;
-    if !(args.fps > 0.0 && args.fps <= 100.0) {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("--fps must be in (0, 100], not {}", args.fps),
-        ));
-    }
     let gif = args.dir.join("behaviour.gif");
     super::eval::render_recording(&recording.creature, &recording.frames, &gif, args.fps)?;
+    let (shown, _) = super::eval::animation_frames(&recording.frames, args.fps);
     say!(
-        "wrote {} ({} frames recorded)",
+        "wrote {} ({} frames at {} frames/s, of {} recorded)",
         gif.display(),
+        shown.len(),
+        args.fps,
         recording.frames.len()
     );
     Ok(())

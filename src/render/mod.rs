@@ -496,7 +496,7 @@ pub fn write_gif<'a>(
     path: &std::path::Path,
     width: u32,
     height: u32,
-    delay_cs: u16,
+    delays_cs: &[u16],
 ) -> Result<(), RenderError> {
     let view = View::framing_all(creatures.clone());
     let w = u16::try_from(width).map_err(|_| RenderError::Size(width, height))?;
@@ -507,11 +507,11 @@ pub fn write_gif<'a>(
     encoder
         .set_repeat(gif::Repeat::Infinite)
         .map_err(|e| RenderError::Gif(e.to_string()))?;
-    for creature in creatures {
+    for (i, creature) in creatures.into_iter().enumerate() {
         let pixmap = picture(creature, &view, width, height)?;
         let mut rgba = pixmap.data().to_vec(); // opaque background: premultiplied = straight
         let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, 10);
-        frame.delay = delay_cs;
+        frame.delay = delays_cs.get(i).or(delays_cs.last()).copied().unwrap_or(10);
         encoder
             .write_frame(&frame)
             .map_err(|e| RenderError::Gif(e.to_string()))?;
