@@ -68,7 +68,7 @@ fn the_growth_gif_has_a_frame_per_growth_frame() {
     let dir = std::env::temp_dir().join(format!("ontogeny-render-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("growth.gif");
-    write_gif(frames.iter().map(|f| &f.creature), &path, 160, 100, 20).unwrap();
+    write_gif(frames.iter().map(|f| &f.creature), &path, 160, 100, &[20]).unwrap();
     let mut decoder = gif::DecodeOptions::new()
         .read_info(std::fs::File::open(&path).unwrap())
         .unwrap();
