@@ -489,8 +489,9 @@ pub fn write_png(
         .map_err(|e| RenderError::Png(e.to_string()))
 }
 
-/// Writes an animated GIF of a sequence of creatures, framed alike, `delay_cs` hundredths of
-/// a second per frame, looping.
+/// Writes an animated GIF of a sequence of creatures, framed alike, looping: frame i lasts
+/// `delays_cs[i]` hundredths of a second (the last delay for frames beyond the slice, 10 if
+/// it is empty).
 pub fn write_gif<'a>(
     creatures: impl IntoIterator<Item = &'a Creature> + Clone,
     path: &std::path::Path,
