@@ -553,3 +553,29 @@ fn replay_writes_the_frames_per_second_it_says() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn growing_nothing_says_so() {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args(["grow", "-"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"axiom: a b c\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    let out = stdout(&o);
+    assert!(out.starts_with("<stdin>: grown to t = 0"), "{out}");
+    assert!(out.contains("mass: 0.0000"), "{out}");
+    assert!(
+        out.contains("valid: no\n  error: no part: the string builds nothing"),
+        "{out}"
+    );
+}

@@ -93,10 +93,9 @@ fn summarise(file: &str, t: f64, frames: usize, c: &Creature) -> Summary {
         mass: c.mass(),
         bounding_box: [[lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]],
         valid: c.is_valid(),
-        problems: c
-            .problems
-            .iter()
-            .map(|p| {
+        problems: no_part(c)
+            .into_iter()
+            .chain(c.problems.iter().map(|p| {
                 let level = match p.severity {
                     Severity::Warning => "warning",
                     Severity::Error => "error",
@@ -108,9 +107,17 @@ fn summarise(file: &str, t: f64, frames: usize, c: &Creature) -> Summary {
                     .unwrap_or_default();
                 let t = p.t.map(|t| format!(" at t = {t}")).unwrap_or_default();
                 format!("{level}: {}{module}{t}", p.message)
-            })
+            }))
             .collect(),
     }
+}
+
+/// The problem of a creature without parts, which development does not list (growth may
+/// start from nothing): there is nothing to simulate.
+fn no_part(c: &Creature) -> Option<String> {
+    c.parts.is_empty().then(|| {
+        "error: no part: the string builds nothing (a part comes from forward, backward or their maturing twins; see README \"Building creatures\")".to_string()
+    })
 }
 
 /// Grows the file into creatures and reports on the last one.
@@ -123,12 +130,7 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     };
     let frames = grow(&lsys, &options, args.steps, &build_options)?;
     let last = frames.last().expect("at least the first frame");
-    let summary = summarise(
-        &args.file.display().to_string(),
-        last.t,
-        frames.len(),
-        &last.creature,
-    );
+    let summary = summarise(lsys.source().name(), last.t, frames.len(), &last.creature);
     if let Some(dir) = &args.out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         let path = dir.join("creature.json");

@@ -512,7 +512,10 @@ impl Creature {
 
     /// Total mass of the parts.
     pub fn mass(&self) -> f64 {
-        self.parts.iter().map(Part::mass).sum()
+        // Folded from +0.0: an empty sum of f64 is −0.0, which prints as "-0.0000".
+        self.parts
+            .iter()
+            .fold(0.0, |total, part| total + part.mass())
     }
 
     /// The axis-aligned bounding box of all parts: (min, max); zeros for no parts.
