@@ -579,3 +579,58 @@ fn growing_nothing_says_so() {
         "{out}"
     );
 }
+
+#[test]
+fn grow_and_eval_take_steps_and_note_a_missing_derivation_length() {
+    let dir = std::env::temp_dir().join(format!("ontogeny-steps-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("no-length.lsys");
+    std::fs::write(&file, "axiom: A\nA --> forward(1) revolute2 A\n").unwrap();
+    let file = file.to_str().unwrap();
+    // Without a length: the axiom alone, and a note saying so, as `derive` does.
+    for verb in [
+        &["grow", file][..],
+        &["eval", file, "--task", "walker", "--seconds", "0.5"][..],
+    ] {
+        let o = ontogeny(verb);
+        assert!(
+            stderr(&o).contains("has no 'derivation length:' and no --steps was given"),
+            "{verb:?}: {}",
+            stderr(&o)
+        );
+    }
+    // --steps 3: A → forward revolute2 A, three times: 3 parts joined by 2 joints.
+    let o = ontogeny(&["grow", file, "--steps", "3"]);
+    assert!(
+        stdout(&o).contains("parts: 3   joints: 2 revolute"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(!stderr(&o).contains("note:"));
+    let o = ontogeny(&[
+        "eval",
+        file,
+        "--task",
+        "walker",
+        "--seconds",
+        "0.5",
+        "--steps",
+        "3",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let value: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(value["terms"]["N"].as_f64(), Some(3.0));
+    // In continuous time, steps mean nothing: an error.
+    let o = ontogeny(&[
+        "eval",
+        "examples/continuous-walker.lsys",
+        "--task",
+        "walker",
+        "--steps",
+        "3",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--steps counts discrete steps"));
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -15,6 +15,9 @@ use serde::Serialize;
 /// Flags shared by the verbs that develop an L-system (the default: the file's own settings).
 #[derive(Args, Default)]
 pub struct DevelopmentArgs {
+    /// Number of discrete derivation steps (default: the file's `derivation length:`).
+    #[arg(long)]
+    pub steps: Option<u64>,
     /// Develop in continuous time from 0 to T (default: the file's `time:`; giving either
     /// switches to continuous mode).
     #[arg(long, value_name = "T")]
@@ -56,9 +59,6 @@ pub fn derive_options(
 pub struct DeriveArgs {
     /// The L-system file (`.lsys`); `-` reads it from standard input.
     file: PathBuf,
-    /// Number of discrete derivation steps (default: the file's `derivation length:`).
-    #[arg(long)]
-    steps: Option<u64>,
     #[command(flatten)]
     development: DevelopmentArgs,
     /// Also print a line for every event (time, module, rule line) in continuous mode.
@@ -133,12 +133,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
         options: &options,
     };
     if options.time.is_some() || lsys.is_continuous() {
-        if args.steps.is_some() {
-            bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                "--steps counts discrete steps; in continuous time use --time and --dt",
-            ));
-        }
+        discrete_steps(&lsys, &options, args.development.steps, "printing")?;
         frames(&lsys, &options, &mut out)?;
     } else {
         if options.dt.is_some() || options.timing.is_some() {
@@ -157,17 +152,37 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
 }
 
 fn derive(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
-    if out.args.steps.is_none() && lsys.derivation_length().is_none() {
-        eprintln!(
-            "note: {} has no 'derivation length:' and no --steps was given: printing the axiom only",
-            out.args.file.display()
-        );
-    }
+    discrete_steps(lsys, options, out.args.development.steps, "printing")?;
     frames(lsys, options, out)
 }
 
+/// `--steps` checked against the mode: an error in continuous time; in discrete time, a note
+/// on standard error when neither the file nor `--steps` gives a derivation length (`doing`
+/// says what happens to the axiom alone, e.g. "growing").
+pub fn discrete_steps(
+    lsys: &LSystem,
+    options: &DeriveOptions,
+    steps: Option<u64>,
+    doing: &str,
+) -> anyhow::Result<Option<u64>> {
+    if options.time.is_some() || lsys.is_continuous() {
+        if steps.is_some() {
+            bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                "--steps counts discrete steps; in continuous time use --time and --dt",
+            ));
+        }
+    } else if steps.is_none() && lsys.derivation_length().is_none() {
+        eprintln!(
+            "note: {} has no 'derivation length:' and no --steps was given: {doing} the axiom only",
+            lsys.source().name()
+        );
+    }
+    Ok(steps)
+}
+
 fn frames(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
-    lsys.for_each_frame(options, out.args.steps, |frame| {
+    lsys.for_each_frame(options, out.args.development.steps, |frame| {
         if out.args.events {
             for event in &frame.events {
                 out.event(event)?;

@@ -13,7 +13,7 @@ use ontogeny::task::{
     self, CatapultOptions, Evaluation, JumpOptions, WalkerFitness, WalkerOptions,
 };
 
-use super::derive::{DevelopmentArgs, derive_options};
+use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
 
 /// The tasks.
 #[derive(Clone, Copy, ValueEnum)]
@@ -270,7 +270,8 @@ pub(super) fn load_creature(
     }
     let lsys = LSystem::from_path(file)?;
     let options = derive_options(development, seed, DEFAULT_MAX_MODULES);
-    let frames = grow(&lsys, &options, None, &BuildOptions::default())?;
+    let steps = discrete_steps(&lsys, &options, development.steps, "building")?;
+    let frames = grow(&lsys, &options, steps, &BuildOptions::default())?;
     Ok(frames.into_iter().last().expect("a first frame").creature)
 }
 

@@ -11,7 +11,7 @@ use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use serde::Serialize;
 
-use super::derive::{DevelopmentArgs, derive_options};
+use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
 
 /// Flags of `ontogeny grow`.
 #[derive(Args)]
@@ -20,9 +20,6 @@ pub struct GrowArgs {
     file: PathBuf,
     #[command(flatten)]
     development: DevelopmentArgs,
-    /// Number of discrete derivation steps (default: the file's `derivation length:`).
-    #[arg(long)]
-    steps: Option<u64>,
     /// Seed for stochastic rules and random functions (default: the file's `seed:`, else 0).
     #[arg(long)]
     seed: Option<u64>,
@@ -128,7 +125,8 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         max_parts: args.max_parts,
         ..BuildOptions::default()
     };
-    let frames = grow(&lsys, &options, args.steps, &build_options)?;
+    let steps = discrete_steps(&lsys, &options, args.development.steps, "growing")?;
+    let frames = grow(&lsys, &options, steps, &build_options)?;
     let last = frames.last().expect("at least the first frame");
     let summary = summarise(lsys.source().name(), last.t, frames.len(), &last.creature);
     if let Some(dir) = &args.out {
