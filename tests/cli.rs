@@ -634,3 +634,45 @@ fn grow_and_eval_take_steps_and_note_a_missing_derivation_length() {
     assert!(stderr(&o).contains("--steps counts discrete steps"));
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn flags_the_task_does_not_use_are_warned_about() {
+    let o = ontogeny(&[
+        "eval",
+        "examples/snake.lsys",
+        "--task",
+        "walker",
+        "--seconds",
+        "0.5",
+        "--target",
+        "1,2,3",
+        "--projectile-size",
+        "0.3",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("warning: --target is for the aim task only"),
+        "{err}"
+    );
+    assert!(err.contains("warning: --projectile-size is for the catapult and aim tasks only"));
+    let o = ontogeny(&[
+        "eval",
+        "examples/thrower.lsys",
+        "--task",
+        "catapult",
+        "--fitness",
+        "distance",
+    ]);
+    assert!(stderr(&o).contains("warning: --fitness is for the walker task only"));
+    // Flags that apply give no warning.
+    let o = ontogeny(&[
+        "eval",
+        "examples/thrower.lsys",
+        "--task",
+        "aim",
+        "--target",
+        "4,0,0",
+    ]);
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+}

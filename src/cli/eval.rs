@@ -202,24 +202,45 @@ pub struct EvalArgs {
     joints: JointsArg,
     #[command(flatten)]
     physics: PhysicsArgs,
-    /// Walker fitness formula.
-    #[arg(long, value_enum, default_value = "normalised")]
-    fitness: FitnessArg,
-    /// The aim task's target relative to the projectile's start, as X,Y,Z metres.
-    #[arg(long, value_name = "X,Y,Z", default_value = "5,0,0", value_parser = parse_point, allow_hyphen_values = true)]
-    target: [f64; 3],
-    /// The catapult's projectile: edge length of the cube (m).
-    #[arg(long, default_value_t = 0.2)]
-    projectile_size: f64,
-    /// The catapult's projectile: density (kg/m³).
-    #[arg(long, default_value_t = ontogeny::creature::DEFAULT_DENSITY)]
-    projectile_density: f64,
+    /// Walker fitness formula (walker only) [default: normalised].
+    #[arg(long, value_enum)]
+    fitness: Option<FitnessArg>,
+    /// The aim task's target relative to the projectile's start, as X,Y,Z metres (aim only)
+    /// [default: 5,0,0].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
+    target: Option<[f64; 3]>,
+    /// The projectile: edge length of the cube in metres (catapult and aim) [default: 0.2].
+    #[arg(long)]
+    projectile_size: Option<f64>,
+    /// The projectile: density in kg/m³ (catapult and aim) [default: 1000].
+    #[arg(long)]
+    projectile_density: Option<f64>,
     /// Write recording.json (every part's pose per step) and behaviour.gif into DIR.
     #[arg(long, value_name = "DIR")]
     record: Option<PathBuf>,
     /// Print the evaluation as JSON.
     #[arg(long)]
     json: bool,
+}
+
+/// The flags given that the chosen task does not use, each with the tasks it is for.
+fn inapplicable_flags(args: &EvalArgs) -> Vec<String> {
+    let mut out = Vec::new();
+    let task = args.task;
+    if args.fitness.is_some() && !matches!(task, TaskArg::Walker) {
+        out.push("--fitness is for the walker task only".to_string());
+    }
+    if args.target.is_some() && !matches!(task, TaskArg::Aim) {
+        out.push("--target is for the aim task only (the catapult has no target)".to_string());
+    }
+    let throwing = matches!(task, TaskArg::Catapult | TaskArg::Aim);
+    if args.projectile_size.is_some() && !throwing {
+        out.push("--projectile-size is for the catapult and aim tasks only".to_string());
+    }
+    if args.projectile_density.is_some() && !throwing {
+        out.push("--projectile-density is for the catapult and aim tasks only".to_string());
+    }
+    out
 }
 
 fn parse_point(text: &str) -> Result<[f64; 3], String> {
@@ -287,11 +308,8 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             format!("--seconds must be in (0, 3600], not {seconds}"),
         ));
     }
-    if !(args.projectile_size.is_finite()
-        && args.projectile_size > 0.0
-        && args.projectile_density.is_finite()
-        && args.projectile_density > 0.0)
-    {
+    let positive = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
+    if !(positive(args.projectile_size) && positive(args.projectile_density)) {
         anyhow::bail!(Diagnostic::without_location(
             DiagnosticKind::Semantic,
             "--projectile-size and --projectile-density must be positive",
@@ -305,10 +323,13 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         ..physics
     };
     let record = args.record.is_some();
+    for flag in inapplicable_flags(args) {
+        eprintln!("warning: {flag}; ignored");
+    }
     let evaluation = match args.task {
         TaskArg::Walker => {
             let mut options = WalkerOptions {
-                fitness: match args.fitness {
+                fitness: match args.fitness.unwrap_or(FitnessArg::Normalised) {
                     FitnessArg::Normalised => WalkerFitness::Normalised,
                     FitnessArg::Distance => WalkerFitness::Distance,
                     FitnessArg::IterativeMove => WalkerFitness::IterativeMove,
@@ -332,15 +353,19 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         }
         TaskArg::Catapult | TaskArg::Aim => {
             let mut options = CatapultOptions {
-                projectile_size: nalgebra::Vector3::repeat(args.projectile_size),
-                projectile_density: args.projectile_density,
                 ..CatapultOptions::default()
             };
+            if let Some(size) = args.projectile_size {
+                options.projectile_size = nalgebra::Vector3::repeat(size);
+            }
+            if let Some(density) = args.projectile_density {
+                options.projectile_density = density;
+            }
             if let Some(s) = args.seconds {
                 options.max_seconds = s;
             }
             if matches!(args.task, TaskArg::Aim) {
-                let [x, y, z] = args.target;
+                let [x, y, z] = args.target.unwrap_or([5.0, 0.0, 0.0]);
                 options.target = Some(nalgebra::Vector3::new(x, y, z));
             }
             task::catapult(&creature, &sim, &options, record)
