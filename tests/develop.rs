@@ -699,3 +699,20 @@ fn overlap_away_from_the_joint_is_caught_even_between_joined_parts_and_siblings(
         assert!(c.is_valid(), "{axiom}: {:?}", c.problems);
     }
 }
+
+#[test]
+fn an_unclosed_bracket_is_a_warning_as_an_unmatched_one_is() {
+    let unclosed =
+        ontogeny::develop::creature_from_commands("forward(1) [ revolute2 forward(1)").unwrap();
+    assert_eq!(unclosed.parts.len(), 2);
+    assert!(unclosed.is_valid());
+    let warning = unclosed
+        .problems
+        .iter()
+        .find(|p| p.message.contains("'[' without a matching ']'"))
+        .expect("a warning");
+    assert_eq!(warning.severity, ontogeny::creature::Severity::Warning);
+    let balanced =
+        ontogeny::develop::creature_from_commands("forward(1) [ revolute2 forward(1) ]").unwrap();
+    assert!(balanced.problems.is_empty(), "{:?}", balanced.problems);
+}

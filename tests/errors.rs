@@ -240,3 +240,30 @@ fn lone_carriage_returns_end_lines_in_error_positions() {
     assert_eq!((loc.line, loc.column), (2, 9));
     assert_eq!(loc.line_text, "A --> B(1/0)");
 }
+
+#[test]
+fn syntax_errors_in_plain_words() {
+    // Several grammar rules share the name "a sign": it is listed once.
+    let shown = compile_error("axiom: a\na --> b(1 +)\n", DiagnosticKind::Syntax, 2);
+    assert!(
+        shown.contains("expected a sign, a name, or a number, found ')'"),
+        "{shown}"
+    );
+    // A header without its colon.
+    let shown = compile_error("axiom a\n", DiagnosticKind::Syntax, 1);
+    assert!(
+        shown.contains("a header ends with a colon: 'axiom: ...'"),
+        "{shown}"
+    );
+    let shown = compile_error("derivation length 3\naxiom: a\n", DiagnosticKind::Syntax, 1);
+    assert!(shown.contains("'derivation length: ...'"), "{shown}");
+    // A space between a module's name and its parameters.
+    let shown = compile_error("axiom: a\na --> forward (1)\n", DiagnosticKind::Syntax, 2);
+    assert!(
+        shown.contains("parameters follow a module's name with no space between: 'forward(...)'"),
+        "{shown}"
+    );
+    // A module whose name merely starts like a header gets no header hint.
+    let shown = compile_error("axiom: a\ntimer --> (\n", DiagnosticKind::Syntax, 2);
+    assert!(!shown.contains("header"), "{shown}");
+}

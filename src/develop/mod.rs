@@ -426,6 +426,17 @@ impl<'a> Builder<'a> {
     }
 
     fn finish(mut self) -> Creature {
+        if !self.stack.is_empty() {
+            self.creature.problems.push(Problem {
+                severity: Severity::Warning,
+                message: format!(
+                    "{} '[' without a matching ']': each branch runs to the end of the string",
+                    self.stack.len()
+                ),
+                module: None,
+                t: self.t,
+            });
+        }
         self.creature.brain = self.brain.finish();
         overlap::report(&mut self.creature, self.t);
         self.creature

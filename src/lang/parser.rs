@@ -169,12 +169,33 @@ pub(super) fn parse_raw(source: &Source) -> Result<RawFile, Diagnostic> {
 }
 
 fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic {
-    let error = error.renamed_rules(human_rule_name);
     let (start, end) = match error.location {
         pest::error::InputLocation::Pos(p) => (p, p),
         pest::error::InputLocation::Span((s, e)) => (s, e),
     };
-    let message = error.variant.message().into_owned();
+    let message = match &error.variant {
+        // pest lists what it expected by rule; several rules share a human name ("a sign"),
+        // so list each name once.
+        pest::error::ErrorVariant::ParsingError {
+            positives,
+            negatives,
+        } if negatives.is_empty() && !positives.is_empty() => {
+            let mut names: Vec<String> = Vec::new();
+            for expected in positives {
+                let name = human_rule_name(expected);
+                if !names.contains(&name) {
+                    names.push(name);
+                }
+            }
+            format!("expected {}", one_of(&names))
+        }
+        _ => error
+            .clone()
+            .renamed_rules(human_rule_name)
+            .variant
+            .message()
+            .into_owned(),
+    };
     let at_end = start >= source.text().trim_end().len();
     let found = if at_end {
         "end of file".to_string()
@@ -196,10 +217,56 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
         .location
         .as_ref()
         .map_or("", |l| l.line_text.as_str());
+    let before = &source.text()[..start.min(source.text().len())];
+    let word_before_space = before
+        .strip_suffix([' ', '\t'])
+        .map(|b| b.trim_end_matches([' ', '\t']))
+        .and_then(|b| {
+            let word: String = b
+                .chars()
+                .rev()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            (!word.is_empty()).then(|| word.chars().rev().collect::<String>())
+        });
+    let header = HEADERS.iter().find(|h| {
+        line.trim_start().strip_prefix(**h).is_some_and(|rest| {
+            (rest.is_empty() || rest.starts_with(char::is_whitespace))
+                && !rest.trim_start().starts_with(':')
+        })
+    });
     if line.contains("->") && !line.contains("-->") {
         diagnostic.with_note("a rule's arrow is '-->'")
+    } else if let Some(header) = header {
+        diagnostic.with_note(format!("a header ends with a colon: '{header}: ...'"))
+    } else if let (Some(word), true) = (word_before_space, found == "'('") {
+        diagnostic.with_note(format!(
+            "parameters follow a module's name with no space between: '{word}(...)'"
+        ))
     } else {
         diagnostic
+    }
+}
+
+/// The headers a line may start with, each followed by a colon.
+const HEADERS: [&str; 8] = [
+    "axiom",
+    "derivation length",
+    "seed",
+    "ignore",
+    "time",
+    "dt",
+    "timing",
+    "environment",
+];
+
+/// "a", "a or b", "a, b, or c".
+fn one_of(names: &[String]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.clone(),
+        [a, b] => format!("{a} or {b}"),
+        [init @ .., last] => format!("{}, or {last}", init.join(", ")),
     }
 }
 
