@@ -63,32 +63,34 @@ pub struct PhysicsArgs {
     /// Actuator model.
     #[arg(long, value_enum, default_value = "muscle")]
     actuator: ActuatorArg,
-    /// Physics and control time step in seconds.
+    /// Physics and control time step in seconds, in (0, 0.1].
     #[arg(long, default_value_t = SimOptions::default().dt)]
     time_step: f64,
-    /// Physics substeps per control step.
+    /// Physics substeps per control step, 1 to 64.
     #[arg(long, default_value_t = SimOptions::default().substeps)]
     substeps: usize,
-    /// Solver iterations per substep.
+    /// Solver iterations per substep, 1 to 256.
     #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
     solver_iterations: usize,
-    /// Gauss-Seidel passes inside each solver iteration.
+    /// Gauss-Seidel passes inside each solver iteration, 1 to 256.
     #[arg(long, default_value_t = SimOptions::default().pgs_iterations)]
     pgs_iterations: usize,
-    /// Substeps per control step while waiting for the creature to come to rest.
+    /// Substeps per control step while waiting for the creature to come to rest, 1 to 64.
     #[arg(long, default_value_t = SimOptions::default().rest_substeps)]
     rest_substeps: usize,
-    /// Solver iterations per substep while waiting for the creature to come to rest.
+    /// Solver iterations per substep while waiting for the creature to come to rest, 1 to
+    /// 256.
     #[arg(long, default_value_t = SimOptions::default().rest_solver_iterations)]
     rest_solver_iterations: usize,
     /// Whose cross-section sets a joint's strength.
     #[arg(long, value_enum, default_value = "bigger")]
     strength_from: StrengthArg,
-    /// Joint strength: maximum torque per square metre of cross-section (N·m/m²).
+    /// Joint strength: maximum torque per square metre of cross-section (N·m/m², finite, not
+    /// negative).
     #[arg(long, default_value_t = ontogeny::sim::DEFAULT_STRENGTH)]
     strength: f64,
     /// The muscle model's target speed V_des (rad/s), high so that muscles are
-    /// torque-limited (Chaumont et al. 5.3).
+    /// torque-limited (Chaumont et al. 5.3); finite and positive.
     #[arg(long, default_value_t = ontogeny::sim::DEFAULT_MUSCLE_SPEED)]
     muscle_speed: f64,
     /// Let parts of one creature pass through each other (joint neighbours never collide).
@@ -184,12 +186,15 @@ enum FitnessArg {
 /// Flags of `ontogeny eval`.
 #[derive(Args)]
 pub struct EvalArgs {
-    /// An L-system file (`.lsys`, grown to its last frame), a `creature.json` or a graph genome (`.json`); `-` reads an L-system from standard input.
+    /// An L-system file (`.lsys`, grown to its last frame), a `creature.json` or a graph
+    /// genome (`.json`); `-` reads an L-system from standard input.
     file: PathBuf,
     /// The task.
     #[arg(long, value_enum)]
     task: TaskArg,
-    /// Seconds of evaluation (walker: measured walking, default 20; jump: default 10).
+    /// Seconds of evaluation, in (0, 3600] (walker: measured walking, default 20; jump:
+    /// default 10; catapult and aim: the cap on waiting for the projectile to rest, default
+    /// 60).
     #[arg(long)]
     seconds: Option<f64>,
     /// Seed for growing the creature from an L-system.
@@ -209,10 +214,11 @@ pub struct EvalArgs {
     /// [default: 5,0,0].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
     target: Option<[f64; 3]>,
-    /// The projectile: edge length of the cube in metres (catapult and aim) [default: 0.2].
+    /// The projectile: edge length of the cube in metres, positive (catapult and aim)
+    /// [default: 0.2].
     #[arg(long)]
     projectile_size: Option<f64>,
-    /// The projectile: density in kg/m³ (catapult and aim) [default: 1000].
+    /// The projectile: density in kg/m³, positive (catapult and aim) [default: 1000].
     #[arg(long)]
     projectile_density: Option<f64>,
     /// Write recording.json (every part's pose per step) and behaviour.gif into DIR.
