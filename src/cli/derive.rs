@@ -157,8 +157,8 @@ fn derive(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> any
 }
 
 /// `--steps` checked against the mode: an error in continuous time; in discrete time, a note
-/// on standard error when neither the file nor `--steps` gives a derivation length (`doing`
-/// says what happens to the axiom alone, e.g. "growing").
+/// on standard error when the file has productions but neither it nor `--steps` gives a
+/// derivation length (`doing` says what happens to the axiom alone, e.g. "growing").
 pub fn discrete_steps(
     lsys: &LSystem,
     options: &DeriveOptions,
@@ -172,7 +172,7 @@ pub fn discrete_steps(
                 "--steps counts discrete steps; in continuous time use --time and --dt",
             ));
         }
-    } else if steps.is_none() && lsys.derivation_length().is_none() {
+    } else if steps.is_none() && lsys.derivation_length().is_none() && lsys.has_productions() {
         eprintln!(
             "note: {} has no 'derivation length:' and no --steps was given: {doing} the axiom only",
             lsys.source().name()

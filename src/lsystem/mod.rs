@@ -149,6 +149,12 @@ impl LSystem {
         self.constants.iter().map(|(n, v, _)| (n.as_str(), *v))
     }
 
+    /// Whether the file has productions (rules that rewrite the string); a file of an axiom
+    /// alone needs no derivation length.
+    pub fn has_productions(&self) -> bool {
+        !self.productions.rules.is_empty()
+    }
+
     /// Whether the file has an `interpretation:` section.
     pub fn has_interpretation(&self) -> bool {
         !self.interpretation.rules.is_empty()
