@@ -106,7 +106,9 @@ function drawCreature(creature) {
     creatureGroup.add(mesh);
     return mesh;
   });
-  const scale = typicalSize(creature);
+  // Joint markers: a fraction of a typical part's thickness, and small beside the whole body.
+  const diagonal = boundsOf([creature]).getSize(new THREE.Vector3()).length();
+  const scale = Math.min(typicalSize(creature), 0.1 * diagonal);
   for (const j of creature.joints) {
     const color = j.growing ? COLORS.jointGrowing : (j.kind === 'rigid' ? COLORS.fused : COLORS.joint);
     const r = (j.kind === 'rigid' ? 0.15 : 0.3) * scale;
@@ -342,6 +344,7 @@ function showGrowth(data, keepFrame) {
   $('file').textContent = data.file;
   if (data.error) {
     showError(data.error);
+    if (!growthFramed) { playButton.style.display = 'none'; slider.style.display = 'none'; }
     finish();
     return;
   }
