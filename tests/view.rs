@@ -112,10 +112,15 @@ fn browser() -> Option<PathBuf> {
         .map(PathBuf::from)
         .or_else(|| {
             let dirs = std::env::var_os("PATH")?;
-            ["chromium", "chromium-browser", "google-chrome", "google-chrome-stable"]
-                .iter()
-                .flat_map(|n| std::env::split_paths(&dirs).map(move |d| d.join(n)))
-                .find(|p| p.is_file())
+            [
+                "chromium",
+                "chromium-browser",
+                "google-chrome",
+                "google-chrome-stable",
+            ]
+            .iter()
+            .flat_map(|n| std::env::split_paths(&dirs).map(move |d| d.join(n)))
+            .find(|p| p.is_file())
         });
     if found.is_none() {
         assert!(
@@ -222,7 +227,11 @@ fn a_path_that_is_no_page_is_refused_with_exit_code_2() {
     // A recording whose frames do not fit its creature.
     let rec = dir.join("rec");
     std::fs::create_dir_all(&rec).unwrap();
-    std::fs::write(rec.join("recording.json"), r#"{"creature": 3, "frames": []}"#).unwrap();
+    std::fs::write(
+        rec.join("recording.json"),
+        r#"{"creature": 3, "frames": []}"#,
+    )
+    .unwrap();
     let out = ontogeny().arg("view").arg(&rec).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("not a recording"));
@@ -240,7 +249,10 @@ fn a_port_in_use_is_refused_with_exit_code_2() {
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains(&format!("port {port} is already in use")), "{err}");
+    assert!(
+        err.contains(&format!("port {port} is already in use")),
+        "{err}"
+    );
 }
 
 #[test]
@@ -374,13 +386,20 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
         .arg(&rec)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let recording: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(rec.join("recording.json")).unwrap())
             .unwrap();
     let parts = recording["creature"]["parts"].as_array().unwrap().len();
     let frames = recording["frames"].as_array().unwrap().len();
-    assert_eq!(parts, parts_per_frame("thrower.lsys").last().copied().unwrap());
+    assert_eq!(
+        parts,
+        parts_per_frame("thrower.lsys").last().copied().unwrap()
+    );
     let viewer = Viewer::start(&rec);
     let page = Page::load(&browser, &format!("{}?frame=20", viewer.url));
     page.assert_ready();
@@ -411,7 +430,11 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
         .arg(&run)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let store = ontogeny::evolve::store::RunStore::open(&run.join("run.sqlite")).unwrap();
     let generation0 = store.individuals(0).unwrap();
     let viewer = Viewer::start(&run);
@@ -446,7 +469,11 @@ fn snapshot_writes_a_picture_of_the_page() {
         .arg(&browser)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let picture = tiny_skia::Pixmap::load_png(&png).unwrap();
     assert_eq!((picture.width(), picture.height()), (640, 400));
     // The creature is drawn: many pixels of the parts' blue in the 3D view (the left 340 × 260

@@ -56,7 +56,9 @@ fn parse_size(text: &str) -> Result<(u32, u32), String> {
     let (w, h) = text.split_once('x').ok_or_else(bad)?;
     let (w, h): (u32, u32) = (w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?);
     if !(64..=8192).contains(&w) || !(64..=8192).contains(&h) {
-        return Err(format!("{text}: width and height must be 64 to 8192 pixels"));
+        return Err(format!(
+            "{text}: width and height must be 64 to 8192 pixels"
+        ));
     }
     Ok((w, h))
 }
@@ -110,9 +112,11 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             developer = Some(developer_of?);
         }
     }
-    let port = args
-        .port
-        .unwrap_or(if args.snapshot.is_some() { 0 } else { DEFAULT_PORT });
+    let port = args.port.unwrap_or(if args.snapshot.is_some() {
+        0
+    } else {
+        DEFAULT_PORT
+    });
     let server = Server::bind(target.clone(), port, options, args.steps, developer)
         .map_err(|e| bad(e.to_string()))?;
     let mut query = Vec::new();
@@ -174,17 +178,24 @@ pub fn find_browser(given: Option<&Path>) -> Option<PathBuf> {
         return Some(PathBuf::from(path));
     }
     let dirs = std::env::var_os("PATH")?;
-    ["chromium", "chromium-browser", "google-chrome", "google-chrome-stable"]
-        .iter()
-        .flat_map(|name| std::env::split_paths(&dirs).map(move |d| d.join(name)))
-        .find(|p| p.is_file())
+    [
+        "chromium",
+        "chromium-browser",
+        "google-chrome",
+        "google-chrome-stable",
+    ]
+    .iter()
+    .flat_map(|name| std::env::split_paths(&dirs).map(move |d| d.join(name)))
+    .find(|p| p.is_file())
 }
 
 /// Renders `url` with headless Chromium into `out`.
 fn snapshot(args: &ViewArgs, url: &str, out: &Path) -> anyhow::Result<()> {
     let browser = find_browser(args.browser.as_deref()).ok_or_else(|| {
-        bad("--snapshot needs Chromium: install it (e.g. apt-get install chromium), or name \
-             a browser with --browser or $ONTOGENY_BROWSER")
+        bad(
+            "--snapshot needs Chromium: install it (e.g. apt-get install chromium), or name \
+             a browser with --browser or $ONTOGENY_BROWSER",
+        )
     })?;
     let out = std::path::absolute(out).with_context(|| format!("bad path {}", out.display()))?;
     if out.exists() {

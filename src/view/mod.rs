@@ -141,7 +141,12 @@ impl Target {
 }
 
 /// The JSON of one frame of growth: step, time, module string (when known) and creature.
-fn frame_json(step: u64, t: f64, string: Option<String>, creature: &crate::creature::Creature) -> Value {
+fn frame_json(
+    step: u64,
+    t: f64,
+    string: Option<String>,
+    creature: &crate::creature::Creature,
+) -> Value {
     json!({ "step": step, "t": t, "string": string, "creature": creature })
 }
 
@@ -218,10 +223,7 @@ pub fn growth_data(dir: &Path) -> Result<Value, ViewError> {
         frames.push(frame_json(frame.step, frame.t, None, &frame.creature));
     }
     if frames.is_empty() {
-        return Err(ViewError::BadFile(format!(
-            "{}: no frames",
-            path.display()
-        )));
+        return Err(ViewError::BadFile(format!("{}: no frames", path.display())));
     }
     Ok(json!({ "kind": "growth", "file": dir.display().to_string(), "frames": frames }))
 }
@@ -256,7 +258,10 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
             path.display()
         )));
     }
-    if let Some(bad) = frames.iter().position(|f| f.parts.len() != creature.parts.len()) {
+    if let Some(bad) = frames
+        .iter()
+        .position(|f| f.parts.len() != creature.parts.len())
+    {
         return Err(ViewError::BadFile(format!(
             "{}: frame {bad} has {} part poses for a creature of {} parts",
             path.display(),
@@ -334,4 +339,119 @@ fn finite(x: f64) -> Value {
 /// The page's data for one creature shown alone (a run's individual): one frame.
 pub fn creature_data(title: &str, creature: &crate::creature::Creature) -> Value {
     json!({ "kind": "creature", "file": title, "frames": [frame_json(0, 0.0, None, creature)] })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("ontogeny-view-unit-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn paths_are_classified_by_what_they_hold() {
+        let dir = scratch("classify");
+        let lsys = dir.join("a.lsys");
+        std::fs::write(&lsys, "axiom: forward(1)\n").unwrap();
+        assert_eq!(Target::classify(&lsys).unwrap().kind, Kind::Lsys);
+        let grown = dir.join("grown");
+        std::fs::create_dir_all(&grown).unwrap();
+        std::fs::write(grown.join("frames.jsonl"), "").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Growth);
+        // A recording made by `replay` inside a run directory is a recording.
+        std::fs::write(grown.join("recording.json"), "{}").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Recording);
+        std::fs::write(grown.join("config.toml"), "").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Recording);
+        std::fs::write(grown.join("run.sqlite"), "").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Run);
+        let other = dir.join("notes.txt");
+        std::fs::write(&other, "").unwrap();
+        for bad in [other, dir.join("missing"), dir.clone()] {
+            assert!(matches!(
+                Target::classify(&bad),
+                Err(ViewError::NotViewable(_))
+            ));
+        }
+    }
+
+    #[test]
+    fn an_lsys_page_has_one_frame_per_step_with_its_string() {
+        let dir = scratch("lsys");
+        let file = dir.join("two.lsys");
+        std::fs::write(
+            &file,
+            "axiom: A\nderivation length: 2\nA --> forward(1) B\nB --> forward(0.5)\n",
+        )
+        .unwrap();
+        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        let frames = data["frames"].as_array().unwrap();
+        let strings: Vec<&str> = frames
+            .iter()
+            .map(|f| f["string"].as_str().unwrap())
+            .collect();
+        assert_eq!(strings, ["A", "forward(1) B", "forward(1) forward(0.5)"]);
+        let lengths: Vec<f64> = frames[2]["creature"]["parts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p["size"][0].as_f64().unwrap())
+            .collect();
+        assert_eq!(lengths, [1.0, 0.5]);
+        // --steps overrides the file's derivation length.
+        let one = lsys_data(&file, &DeriveOptions::default(), Some(1));
+        assert_eq!(one["frames"].as_array().unwrap().len(), 2);
+    }
+
+    #[test]
+    fn an_lsys_error_carries_its_line_and_column() {
+        let dir = scratch("error");
+        let file = dir.join("bad.lsys");
+        std::fs::write(&file, "axiom: A\nA --> forward(1\n").unwrap();
+        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        assert!(data.get("frames").is_none());
+        let error = &data["error"];
+        assert_eq!(error["location"]["line"], 2);
+        assert_eq!(error["location"]["column"], 16);
+        assert_eq!(error["location"]["line_text"], "A --> forward(1");
+        assert!(error["text"].as_str().unwrap().contains("bad.lsys:2:16"));
+    }
+
+    #[test]
+    fn bad_directories_say_which_file_and_line() {
+        let dir = scratch("bad-dirs");
+        std::fs::write(dir.join("frames.jsonl"), "{\"step\": 0}\n").unwrap();
+        let err = growth_data(&dir).unwrap_err().to_string();
+        assert!(
+            err.contains("frames.jsonl:1: not a frame of growth"),
+            "{err}"
+        );
+        std::fs::write(dir.join("frames.jsonl"), "\n").unwrap();
+        assert!(
+            growth_data(&dir)
+                .unwrap_err()
+                .to_string()
+                .contains("no frames")
+        );
+
+        // A recording with one part pose for a creature of two parts.
+        let creature = crate::develop::creature_from_commands("forward(1) forward(1)").unwrap();
+        assert_eq!(creature.parts.len(), 2);
+        let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose]}]}).to_string(),
+        )
+        .unwrap();
+        let err = recording_data(&dir).unwrap_err().to_string();
+        assert!(
+            err.contains("frame 0 has 1 part poses for a creature of 2 parts"),
+            "{err}"
+        );
+    }
 }

@@ -98,8 +98,8 @@ impl Server {
             let (status, content_type, body) = self.answer(request.url());
             let header = tiny_http::Header::from_bytes("Content-Type", content_type)
                 .expect("a valid header");
-            let no_cache = tiny_http::Header::from_bytes("Cache-Control", "no-store")
-                .expect("a valid header");
+            let no_cache =
+                tiny_http::Header::from_bytes("Cache-Control", "no-store").expect("a valid header");
             let response = tiny_http::Response::from_data(body)
                 .with_status_code(status)
                 .with_header(header)
@@ -120,7 +120,11 @@ impl Server {
             "/three/three.core.min.js" => (200, js, THREE_CORE.into()),
             "/three/OrbitControls.js" => (200, js, ORBIT_CONTROLS.into()),
             "/three/LICENSE" => (200, "text/plain; charset=utf-8", THREE_LICENSE.into()),
-            "/version" => (200, "text/plain; charset=utf-8", self.target.version().into()),
+            "/version" => (
+                200,
+                "text/plain; charset=utf-8",
+                self.target.version().into(),
+            ),
             "/data.json" => json_answer(self.data()),
             "/generation.json" => json_answer(
                 number(query, "gen")
@@ -150,8 +154,7 @@ impl Server {
 
     /// One of a run's individuals, developed.
     fn individual(&self, query: &str) -> Result<Value, ViewError> {
-        let (Some(generation), Some(index)) = (number(query, "gen"), number(query, "index"))
-        else {
+        let (Some(generation), Some(index)) = (number(query, "gen"), number(query, "index")) else {
             return Err(ViewError::BadFile(
                 "individual.json needs ?gen=G&index=I".into(),
             ));
