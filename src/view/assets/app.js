@@ -383,6 +383,8 @@ let stepPlay = () => {};
 let playInterval = 600;
 playButton.addEventListener('click', () => setPlaying(!playing));
 function setPlaying(on) {
+  // Play from the start again once at the end.
+  if (on && !playing && Number(slider.value) === Number(slider.max)) setFrame(0);
   playing = on;
   playButton.textContent = on ? 'pause' : 'play';
   clearInterval(playTimer);
@@ -423,7 +425,9 @@ function showRecording(data) {
   const posed = (f) => ({ parts: data.creature.parts.map((p, i) => ({ ...p, position: f.parts[i][0], orientation: f.parts[i][1] })) });
   const firstBox = boundsOf([posed(frames[0])]);
   const sunSize = firstBox.getSize(new THREE.Vector3()).length();
-  frame(firstBox, 0); // the physics' ground: the plane y = 0
+  const view = firstBox.clone();
+  if (Array.isArray(data.target)) view.expandByPoint(v3(data.target));
+  frame(view, 0); // the physics' ground: the plane y = 0
   const centreOf = (f) => {
     const c = new THREE.Vector3();
     for (const [p] of f.parts) c.add(v3(p));
@@ -433,19 +437,23 @@ function showRecording(data) {
   // Target, projectile and its trail.
   clearGroup(extrasGroup);
   const scale = typicalSize(data.creature);
+  const withProjectile = frames.filter((f) => f.projectile);
+  const projectileSize = withProjectile.length
+    ? Math.max(...(withProjectile[0].projectile_size || [scale, scale, scale])) : scale;
   if (Array.isArray(data.target)) {
-    const ring = new THREE.Mesh(new THREE.TorusGeometry(scale * 2, scale * 0.3, 8, 32),
-      new THREE.MeshStandardMaterial({ color: COLORS.target }));
+    // A ring on a pole, a few projectiles wide.
+    const r = 1.5 * projectileSize;
+    const material = new THREE.MeshStandardMaterial({ color: COLORS.target });
+    const ring = new THREE.Mesh(new THREE.TorusGeometry(r, r * 0.12, 8, 40), material);
     ring.rotation.x = Math.PI / 2;
     ring.position.copy(v3(data.target));
     extrasGroup.add(ring);
-    const pole = new THREE.Mesh(new THREE.SphereGeometry(scale * 0.5, 12, 8),
-      new THREE.MeshStandardMaterial({ color: COLORS.target }));
-    pole.position.copy(v3(data.target));
+    const height = Math.max(data.target[1], 1e-3);
+    const pole = new THREE.Mesh(new THREE.CylinderGeometry(r * 0.06, r * 0.06, height, 8), material);
+    pole.position.set(data.target[0], height / 2, data.target[2]);
     extrasGroup.add(pole);
   }
   let projectile = null, trail = null;
-  const withProjectile = frames.filter((f) => f.projectile);
   if (withProjectile.length) {
     const size = withProjectile[0].projectile_size || [scale, scale, scale];
     projectile = new THREE.Mesh(new THREE.BoxGeometry(size[0], size[1], size[2]),
