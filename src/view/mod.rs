@@ -117,26 +117,35 @@ impl Target {
     }
 
     /// A fingerprint of the files behind the page (modification time and length): it changes
-    /// when they do, and the page polls it to reload (watch mode).
+    /// when they do, and the page polls it to reload (watch mode). A run's store is in WAL
+    /// mode, so its write-ahead log counts too.
     pub fn version(&self) -> String {
-        let file = match self.kind {
-            Kind::Lsys => self.path.clone(),
-            Kind::Growth => self.path.join("frames.jsonl"),
-            Kind::Recording => self.path.join("recording.json"),
-            Kind::Run => self.path.join("run.sqlite"),
-        };
-        match std::fs::metadata(&file) {
-            Ok(m) => {
-                let modified = m
-                    .modified()
-                    .ok()
-                    .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
-                    .map(|d| d.as_nanos())
-                    .unwrap_or(0);
-                format!("{modified}-{}", m.len())
-            }
-            Err(_) => "missing".to_string(),
+        match self.kind {
+            Kind::Lsys => fingerprint(&self.path),
+            Kind::Growth => fingerprint(&self.path.join("frames.jsonl")),
+            Kind::Recording => fingerprint(&self.path.join("recording.json")),
+            Kind::Run => format!(
+                "{}/{}",
+                fingerprint(&self.path.join("run.sqlite")),
+                fingerprint(&self.path.join("run.sqlite-wal"))
+            ),
         }
+    }
+}
+
+/// A file's modification time (ns) and length, or `missing`.
+fn fingerprint(file: &Path) -> String {
+    match std::fs::metadata(file) {
+        Ok(m) => {
+            let modified = m
+                .modified()
+                .ok()
+                .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+                .map(|d| d.as_nanos())
+                .unwrap_or(0);
+            format!("{modified}-{}", m.len())
+        }
+        Err(_) => "missing".to_string(),
     }
 }
 
@@ -378,6 +387,21 @@ mod tests {
                 Err(ViewError::NotViewable(_))
             ));
         }
+    }
+
+    #[test]
+    fn a_runs_version_changes_with_its_write_ahead_log() {
+        let dir = scratch("version");
+        std::fs::write(dir.join("config.toml"), "").unwrap();
+        std::fs::write(dir.join("run.sqlite"), "db").unwrap();
+        let run = Target::classify(&dir).unwrap();
+        let before = run.version();
+        assert!(before.ends_with("/missing"), "{before}");
+        std::fs::write(dir.join("run.sqlite-wal"), "one generation").unwrap();
+        let during = run.version();
+        assert_ne!(during, before);
+        std::fs::write(dir.join("run.sqlite-wal"), "two generations").unwrap();
+        assert_ne!(run.version(), during);
     }
 
     #[test]

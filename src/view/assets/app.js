@@ -518,19 +518,24 @@ function showRun(data) {
   $('file').textContent = `${data.file}  (${data.encoding} on ${data.task})`;
   playButton.style.display = 'none';
   slider.style.display = 'none';
-  drawPlot(data.generations);
-  const table = $('generations');
-  table.innerHTML = '<tr><th>gen</th><th>best</th><th>mean</th><th>median</th><th>valid</th></tr>';
   const rows = [];
-  for (const g of data.generations) {
-    const tr = document.createElement('tr');
-    tr.className = 'clickable';
-    tr.innerHTML = `<td>${g.index}</td><td>${fmt(g.best)}</td><td>${fmt(g.mean)}</td><td>${fmt(g.median)}</td><td>${g.valid_fraction === null ? '' : Math.round(100 * g.valid_fraction) + '%'}</td>`;
-    tr.addEventListener('click', () => openGeneration(g.index, null));
-    table.appendChild(tr);
-    rows[g.index] = tr;
+  // The plot and the table of generations; called again when the run goes on.
+  function listGenerations(generations) {
+    drawPlot(generations);
+    const table = $('generations');
+    table.innerHTML = '<tr><th>gen</th><th>best</th><th>mean</th><th>median</th><th>valid</th></tr>';
+    rows.length = 0;
+    for (const g of generations) {
+      const tr = document.createElement('tr');
+      tr.className = 'clickable';
+      tr.innerHTML = `<td>${g.index}</td><td>${fmt(g.best)}</td><td>${fmt(g.mean)}</td><td>${fmt(g.median)}</td><td>${g.valid_fraction === null ? '' : Math.round(100 * g.valid_fraction) + '%'}</td>`;
+      tr.addEventListener('click', () => openGeneration(g.index, null));
+      if (g.index === selectedGeneration) tr.classList.add('selected');
+      table.appendChild(tr);
+      rows[g.index] = tr;
+    }
+    body.dataset.generations = String(generations.length);
   }
-  body.dataset.generations = String(data.generations.length);
   let selectedGeneration = null;
   async function openGeneration(gen, index) {
     rows.forEach((r) => r && r.classList.remove('selected'));
@@ -544,7 +549,7 @@ function showRun(data) {
     for (const ind of list.individuals) {
       const tr = document.createElement('tr');
       tr.className = 'clickable';
-      tr.innerHTML = `<td>${ind.rank}</td><td>${ind.index}</td><td>${fmt(ind.fitness)}</td><td>${ind.status}</td><td>${ind.parts}</td>`;
+      tr.innerHTML = `<td>${ind.rank}</td><td>${ind.index}</td><td>${fmt(ind.fitness)}</td><td>${escape(ind.status)}</td><td>${ind.parts}</td>`;
       tr.addEventListener('click', () => openIndividual(gen, ind, tr));
       t.appendChild(tr);
       byIndex[ind.index] = [ind, tr];
@@ -573,6 +578,27 @@ function showRun(data) {
     }
     finish();
   }
+  listGenerations(data.generations);
+  // A run still going on: new generations join the plot and the table as they are stored.
+  if (!still) {
+    let version = null;
+    const poll = async () => {
+      try {
+        const v = await (await fetch('/version', { cache: 'no-store' })).text();
+        if (version !== null && v !== version) {
+          const fresh = await fetchJson('/data.json');
+          listGenerations(fresh.generations);
+          if (selectedGeneration === null && fresh.generations.length) {
+            showError(null);
+            openGeneration(fresh.generations[fresh.generations.length - 1].index, null);
+          }
+        }
+        version = v;
+      } catch (e) { /* try again */ }
+      setTimeout(poll, 2000);
+    };
+    poll();
+  }
   if (!data.generations.length) {
     showError({ message: 'this run has no complete generation yet' });
     finish();
@@ -582,6 +608,12 @@ function showRun(data) {
   const gen = params.has('gen') ? Number(params.get('gen')) : last;
   const index = params.has('index') ? Number(params.get('index')) : null;
   openGeneration(gen, index);
+}
+
+function escape(text) {
+  const span = document.createElement('span');
+  span.textContent = String(text);
+  return span.innerHTML;
 }
 
 function fmt(x) {
