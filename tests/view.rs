@@ -408,6 +408,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     assert_eq!(page.number("frames"), frames);
     assert_eq!(page.number("frame"), 20);
     drop(viewer);
+    assert_snapshot(&browser, &rec, &dir.join("recording.png"));
 
     let run = dir.join("run");
     let out = ontogeny()
@@ -453,6 +454,28 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
         assert_eq!(page.number("individual"), individual.index as usize);
         assert_eq!(page.number("parts"), individual.parts as usize);
     }
+    drop(viewer);
+    assert_snapshot(&browser, &run, &dir.join("run.png"));
+}
+
+/// `ontogeny view PATH --snapshot OUT --size 480x300` writes a 480 × 300 picture.
+fn assert_snapshot(browser: &Path, path: &Path, png: &Path) {
+    let out = ontogeny()
+        .arg("view")
+        .arg(path)
+        .arg("--snapshot")
+        .arg(png)
+        .args(["--size", "480x300", "--browser"])
+        .arg(browser)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let picture = tiny_skia::Pixmap::load_png(png).unwrap();
+    assert_eq!((picture.width(), picture.height()), (480, 300));
 }
 
 #[test]
