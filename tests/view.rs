@@ -500,7 +500,8 @@ fn snapshot_writes_a_picture_of_the_page() {
     let picture = tiny_skia::Pixmap::load_png(&png).unwrap();
     assert_eq!((picture.width(), picture.height()), (640, 400));
     // The creature is drawn: many pixels of the parts' blue in the 3D view (the left 340 × 260
-    // pixels under the header; the brain's panel is 300 pixels wide), none in an empty view.
+    // pixels under the header; the brain's panel is at most 300 pixels wide), none in an
+    // empty view.
     let blue = picture
         .pixels()
         .iter()

@@ -198,6 +198,10 @@ fn snapshot(args: &ViewArgs, url: &str, out: &Path) -> anyhow::Result<()> {
         )
     })?;
     let out = std::path::absolute(out).with_context(|| format!("bad path {}", out.display()))?;
+    if let Some(parent) = out.parent() {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create {}", parent.display()))?;
+    }
     if out.exists() {
         std::fs::remove_file(&out).with_context(|| format!("cannot replace {}", out.display()))?;
     }
