@@ -2,7 +2,8 @@
 //! every kind of page loaded in headless Chromium, which must draw the expected number of parts
 //! (the page exposes it as `data-parts` on its body and in its title), scrub to the frame the URL
 //! asks for (`?frame=N`), show a grammar's error with its line and column, and save a screenshot
-//! with `--snapshot`.
+//! with `--snapshot`; and a page left open (driven through Chromium's DevTools protocol) must
+//! redraw when its `.lsys` file is saved (watch mode).
 //!
 //! The browser tests are skipped, with a message, when no Chromium is installed; in CI
 //! (`CI=true`) a missing browser is a failure, as `.ci/run` installs one.
@@ -530,4 +531,223 @@ fn snapshot_writes_a_picture_of_the_page() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("broken.lsys:2:"));
     assert!(png.is_file());
+}
+
+/// A page open in headless Chromium, driven through the DevTools protocol (a WebSocket), so a
+/// test can watch it change over real time.
+struct LivePage {
+    browser: Child,
+    socket: std::net::TcpStream,
+    profile: PathBuf,
+    next_id: u64,
+}
+
+impl LivePage {
+    fn open(browser: &Path, url: &str) -> LivePage {
+        let profile = scratch(&format!("live-{:x}", hash(url)));
+        let mut child = Command::new(browser)
+            .args([
+                "--headless=new",
+                "--no-sandbox",
+                "--use-gl=angle",
+                "--use-angle=swiftshader",
+                "--enable-unsafe-swiftshader",
+                "--remote-debugging-port=0",
+            ])
+            .arg(format!("--user-data-dir={}", profile.display()))
+            .arg(url)
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // "DevTools listening on ws://127.0.0.1:PORT/devtools/browser/ID"
+        let mut stderr = BufReader::new(child.stderr.take().unwrap());
+        let mut port = None;
+        let mut line = String::new();
+        while port.is_none() && stderr.read_line(&mut line).unwrap() > 0 {
+            port = line
+                .split("ws://127.0.0.1:")
+                .nth(1)
+                .and_then(|rest| rest.split('/').next())
+                .map(str::to_string);
+            line.clear();
+        }
+        let port = port.expect("Chromium printed no DevTools address");
+        // Keep reading its standard error so that it never blocks on a full pipe.
+        std::thread::spawn(move || std::io::copy(&mut stderr, &mut std::io::sink()));
+        let list = http_get(&format!("127.0.0.1:{port}"), "/json/list");
+        let targets: serde_json::Value = serde_json::from_str(&list).unwrap();
+        let page = targets
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|t| t["type"] == "page")
+            .expect("a page target");
+        let ws = page["webSocketDebuggerUrl"].as_str().unwrap();
+        let path = &ws[ws.find("/devtools").unwrap()..];
+        let mut socket = std::net::TcpStream::connect(format!("127.0.0.1:{port}")).unwrap();
+        write!(
+            socket,
+            "GET {path} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\n\
+             Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n\
+             Sec-WebSocket-Version: 13\r\n\r\n"
+        )
+        .unwrap();
+        // The handshake's answer ends with an empty line.
+        let mut head = Vec::new();
+        let mut byte = [0u8; 1];
+        while !head.ends_with(b"\r\n\r\n") {
+            socket.read_exact(&mut byte).unwrap();
+            head.push(byte[0]);
+        }
+        assert!(
+            head.starts_with(b"HTTP/1.1 101"),
+            "{}",
+            String::from_utf8_lossy(&head)
+        );
+        LivePage {
+            browser: child,
+            socket,
+            profile,
+            next_id: 0,
+        }
+    }
+
+    /// Evaluates `expression` in the page and returns its value (a string).
+    fn eval(&mut self, expression: &str) -> String {
+        self.next_id += 1;
+        let id = self.next_id;
+        let message = serde_json::json!({
+            "id": id,
+            "method": "Runtime.evaluate",
+            "params": { "expression": expression, "returnByValue": true },
+        })
+        .to_string();
+        // A client's frame: final text frame, masked (with a zero mask, which leaves it as is).
+        let mut frame = vec![0x81u8];
+        let n = message.len();
+        if n < 126 {
+            frame.push(0x80 | n as u8);
+        } else {
+            frame.push(0x80 | 126);
+            frame.extend_from_slice(&(n as u16).to_be_bytes());
+        }
+        frame.extend_from_slice(&[0, 0, 0, 0]);
+        frame.extend_from_slice(message.as_bytes());
+        self.socket.write_all(&frame).unwrap();
+        loop {
+            let text = self.read_message();
+            let reply: serde_json::Value = serde_json::from_str(&text).unwrap();
+            if reply["id"] == id {
+                let value = &reply["result"]["result"]["value"];
+                return value.as_str().map(str::to_string).unwrap_or_default();
+            }
+        }
+    }
+
+    /// One message from the browser (unmasked frames; continuation frames joined).
+    fn read_message(&mut self) -> String {
+        let mut payload = Vec::new();
+        loop {
+            let mut head = [0u8; 2];
+            self.socket.read_exact(&mut head).unwrap();
+            let mut n = u64::from(head[1] & 0x7f);
+            if n == 126 {
+                let mut b = [0u8; 2];
+                self.socket.read_exact(&mut b).unwrap();
+                n = u64::from(u16::from_be_bytes(b));
+            } else if n == 127 {
+                let mut b = [0u8; 8];
+                self.socket.read_exact(&mut b).unwrap();
+                n = u64::from_be_bytes(b);
+            }
+            let mut part = vec![0u8; n as usize];
+            self.socket.read_exact(&mut part).unwrap();
+            payload.extend_from_slice(&part);
+            if head[0] & 0x80 != 0 {
+                return String::from_utf8(payload).unwrap();
+            }
+        }
+    }
+
+    /// Asks the page for `expression` until `accept` likes the answer, for at most 30 s of
+    /// real time (a deadline, not a measurement); returns the last answer.
+    fn wait_for(&mut self, expression: &str, accept: impl Fn(&str) -> bool) -> String {
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+        loop {
+            let value = self.eval(expression);
+            if accept(&value) || std::time::Instant::now() > deadline {
+                return value;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(200));
+        }
+    }
+}
+
+impl Drop for LivePage {
+    fn drop(&mut self) {
+        let _ = self.browser.kill();
+        let _ = self.browser.wait();
+        let _ = std::fs::remove_dir_all(&self.profile);
+    }
+}
+
+/// `GET path` from `host` over plain HTTP: the body, `Content-Length` bytes of it (Chromium's
+/// DevTools server keeps the connection open).
+fn http_get(host: &str, path: &str) -> String {
+    let mut stream = std::net::TcpStream::connect(host).unwrap();
+    write!(stream, "GET {path} HTTP/1.1\r\nHost: {host}\r\n\r\n").unwrap();
+    let mut head = Vec::new();
+    let mut byte = [0u8; 1];
+    while !head.ends_with(b"\r\n\r\n") {
+        stream.read_exact(&mut byte).unwrap();
+        head.push(byte[0]);
+    }
+    let head = String::from_utf8_lossy(&head).to_lowercase();
+    let length: usize = head
+        .lines()
+        .find_map(|l| l.strip_prefix("content-length:"))
+        .and_then(|v| v.trim().parse().ok())
+        .expect("a Content-Length");
+    let mut body = vec![0u8; length];
+    stream.read_exact(&mut body).unwrap();
+    String::from_utf8(body).unwrap()
+}
+
+#[test]
+fn saving_the_file_redraws_the_open_page() {
+    let Some(browser) = browser() else { return };
+    let dir = scratch("live");
+    let file = dir.join("live.lsys");
+    std::fs::write(&file, "axiom: forward(1)\n").unwrap();
+    let viewer = Viewer::start(&file);
+    let mut page = LivePage::open(&browser, &viewer.url);
+    let state = "JSON.stringify([document.body.dataset.ready, document.body.dataset.frames, \
+                 document.body.dataset.parts, document.body.dataset.error || ''])";
+    let first = page.wait_for(state, |s| s.starts_with("[\"yes\""));
+    assert_eq!(first, r#"["yes","1","1",""]"#);
+
+    // Saved with two steps and two parts: the page shows them, on the last frame.
+    std::fs::write(
+        &file,
+        "axiom: A\nderivation length: 2\nA --> forward(1) B\nB --> forward(0.5)\n",
+    )
+    .unwrap();
+    let grown = page.wait_for(state, |s| s.contains(r#""3","2""#));
+    assert_eq!(grown, r#"["yes","3","2",""]"#);
+
+    // Saved with an error: the page says where, and keeps the last good creature drawn.
+    std::fs::write(&file, "axiom: A\nA --> forward(1\n").unwrap();
+    let broken = page.wait_for(state, |s| s.contains("line 2"));
+    assert!(
+        broken.starts_with(r#"["yes","3","2","line 2, column 16: "#),
+        "{broken}"
+    );
+
+    // Fixed again: the error goes.
+    std::fs::write(&file, "axiom: forward(1) forward(1) forward(1)\n").unwrap();
+    let fixed = page.wait_for(state, |s| !s.contains("line 2"));
+    assert_eq!(fixed, r#"["yes","1","3",""]"#);
+    drop(viewer);
 }
