@@ -9,7 +9,8 @@
 //! genetic algorithm over them into a run directory with its SQLite store, and holds the
 //! statistics that compare settings.
 //! [`export`] writes a creature with the simulator's settings in other simulators' formats
-//! (MuJoCo's MJCF).
+//! (MuJoCo's MJCF). [`view`] serves a local web page that shows creatures growing, recordings
+//! playing and runs' progress in the browser.
 
 #![warn(missing_docs)]
 
@@ -24,3 +25,4 @@ pub mod lsystem;
 pub mod render;
 pub mod sim;
 pub mod task;
+pub mod view;

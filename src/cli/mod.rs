@@ -48,6 +48,7 @@ mod export;
 mod genome;
 mod grow;
 mod replay;
+mod view;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -95,6 +96,9 @@ enum Verb {
     /// Measure the evaluator on this machine: evaluations per second on one core and on all
     /// cores, its overhead over rapier's own stepping, and impulse against multibody joints.
     Bench(bench::BenchArgs),
+    /// Show a creature in the browser: an `.lsys` file growing (reloaded when saved), a
+    /// recording playing, or a run's fitness and individuals; or render it to a PNG.
+    View(view::ViewArgs),
 }
 
 /// Lets every verb take negative numbers as option values (`--strength -1`), not only
@@ -127,6 +131,7 @@ pub fn main() -> ExitCode {
         Verb::Runs(args) => evolve::runs(&args),
         Verb::Genome(args) => genome::run(&args),
         Verb::Bench(args) => bench::run(&args),
+        Verb::View(args) => view::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,251 @@
+//! `ontogeny view`
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use anyhow::Context;
+use clap::Args;
+use ontogeny::encoding::Genome;
+use ontogeny::evolve::run::Run;
+use ontogeny::lang::{Diagnostic, DiagnosticKind};
+use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
+use ontogeny::view::{Developer, Kind, Server, Target};
+
+use super::derive::{DevelopmentArgs, derive_options};
+
+/// The port `view` listens on when `--port` is not given (and not snapshotting).
+const DEFAULT_PORT: u16 = 8750;
+
+/// Flags of `ontogeny view`.
+#[derive(Args)]
+pub struct ViewArgs {
+    /// An `.lsys` file, or a directory written by `grow --out`, `eval --record` (or `replay`)
+    /// or `evolve`.
+    path: PathBuf,
+    /// The port to listen on at 127.0.0.1 (0: any free port). Default 8750; with --snapshot,
+    /// any free port.
+    #[arg(long)]
+    port: Option<u16>,
+    /// Render the page in headless Chromium to this PNG file and exit, instead of serving.
+    #[arg(long, value_name = "OUT.png")]
+    snapshot: Option<PathBuf>,
+    /// The frame to show first (0 the first, -1 the last; default: the last frame of growth,
+    /// the first of a recording).
+    #[arg(long, allow_negative_numbers = true)]
+    frame: Option<i64>,
+    /// The size of the snapshot in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x800", value_parser = parse_size)]
+    size: (u32, u32),
+    /// The browser `--snapshot` runs (default: $ONTOGENY_BROWSER, else the first of chromium,
+    /// chromium-browser, google-chrome on the PATH).
+    #[arg(long)]
+    browser: Option<PathBuf>,
+    #[command(flatten)]
+    development: DevelopmentArgs,
+    /// For an `.lsys` file: the number of discrete derivation steps (default: the file's
+    /// `derivation length:`).
+    #[arg(long)]
+    steps: Option<u64>,
+    /// For an `.lsys` file: the seed of stochastic rules (default: the file's `seed:`, else 0).
+    #[arg(long)]
+    seed: Option<u64>,
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("'{text}' is not WIDTHxHEIGHT (e.g. 1280x800)");
+    let (w, h) = text.split_once('x').ok_or_else(bad)?;
+    let (w, h): (u32, u32) = (w.parse().map_err(|_| bad())?, h.parse().map_err(|_| bad())?);
+    if !(64..=8192).contains(&w) || !(64..=8192).contains(&h) {
+        return Err(format!(
+            "{text}: width and height must be 64 to 8192 pixels"
+        ));
+    }
+    Ok((w, h))
+}
+
+fn bad(message: impl Into<String>) -> anyhow::Error {
+    anyhow::Error::new(Diagnostic::without_location(
+        DiagnosticKind::Semantic,
+        message.into(),
+    ))
+}
+
+/// Serves the page (or renders it with `--snapshot`).
+pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    let target = Target::classify(&args.path).map_err(|e| bad(e.to_string()))?;
+    let options = derive_options(&args.development, args.seed, DEFAULT_MAX_MODULES);
+    // A page that cannot be made at all is bad input; a grammar with an error is shown in the
+    // page (watch mode lets the user fix it), and reported here too.
+    let mut grammar_error = None;
+    let mut developer = None;
+    match target.kind {
+        Kind::Lsys => {
+            grammar_error = LSystem::from_path(&target.path)
+                .and_then(|lsys| {
+                    ontogeny::develop::grow(
+                        &lsys,
+                        &options,
+                        args.steps,
+                        &ontogeny::develop::BuildOptions::default(),
+                    )
+                })
+                .err();
+        }
+        Kind::Growth => {
+            ontogeny::view::growth_data(&target.path).map_err(|e| bad(e.to_string()))?;
+        }
+        Kind::Recording => {
+            ontogeny::view::recording_data(&target.path).map_err(|e| bad(e.to_string()))?;
+        }
+        Kind::Run => {
+            let data = ontogeny::view::run_data(&target.path).map_err(|e| bad(e.to_string()))?;
+            let encoding = data["encoding"].as_str().unwrap_or_default().to_string();
+            let dir = target.path.clone();
+            let developer_of: anyhow::Result<Developer> = with_genome!(
+                encoding.as_str(),
+                G => Ok(developer_for::<G>(dir)),
+                |other| Err(bad(format!(
+                    "{}: unknown encoding '{other}'",
+                    target.path.display()
+                )))
+            );
+            developer = Some(developer_of?);
+        }
+    }
+    let port = args.port.unwrap_or(if args.snapshot.is_some() {
+        0
+    } else {
+        DEFAULT_PORT
+    });
+    let server = Server::bind(target.clone(), port, options, args.steps, developer)
+        .map_err(|e| bad(e.to_string()))?;
+    let mut query = Vec::new();
+    if let Some(f) = args.frame {
+        query.push(format!("frame={f}"));
+    }
+    if let Some(out) = &args.snapshot {
+        query.push("still=1".to_string());
+        let url = format!("{}?{}", server.url(), query.join("&"));
+        std::thread::spawn(move || server.run());
+        snapshot(args, &url, out)?;
+        say!("wrote {}", out.display());
+        if let Some(d) = grammar_error {
+            // The picture shows the error; the exit code says it too.
+            return Err(anyhow::Error::new(d));
+        }
+        return Ok(());
+    }
+    if let Some(d) = &grammar_error {
+        eprintln!("{d}");
+        eprintln!("(the page shows this error until the file is fixed and saved)");
+    }
+    let url = if query.is_empty() {
+        server.url()
+    } else {
+        format!("{}?{}", server.url(), query.join("&"))
+    };
+    say!("ontogeny view: {} at {url}", target.path.display());
+    say!("press Ctrl-C to stop");
+    server.run();
+    Ok(())
+}
+
+/// A function that develops a run's individual `(generation, index)`.
+fn developer_for<G: Genome + 'static>(dir: PathBuf) -> Developer {
+    Box::new(move |generation, index| {
+        let run = Run::<G>::resume(&dir).map_err(|e| e.to_string())?;
+        let population = run.population(generation).map_err(|e| e.to_string())?;
+        let individual = population.get(index as usize).ok_or_else(|| {
+            format!(
+                "generation {generation} has {} individuals, not {}",
+                population.len(),
+                index + 1
+            )
+        })?;
+        individual
+            .genome
+            .develop(&run.config().limits, individual.develop_seed)
+            .map_err(|e| format!("the genome does not develop: {e}"))
+    })
+}
+
+/// The browser to run: `--browser`, `$ONTOGENY_BROWSER`, or a Chromium on the PATH.
+pub fn find_browser(given: Option<&Path>) -> Option<PathBuf> {
+    if let Some(path) = given {
+        return Some(path.to_path_buf());
+    }
+    if let Some(path) = std::env::var_os("ONTOGENY_BROWSER").filter(|p| !p.is_empty()) {
+        return Some(PathBuf::from(path));
+    }
+    let dirs = std::env::var_os("PATH")?;
+    [
+        "chromium",
+        "chromium-browser",
+        "google-chrome",
+        "google-chrome-stable",
+    ]
+    .iter()
+    .flat_map(|name| std::env::split_paths(&dirs).map(move |d| d.join(name)))
+    .find(|p| p.is_file())
+}
+
+/// Renders `url` with headless Chromium into `out`.
+fn snapshot(args: &ViewArgs, url: &str, out: &Path) -> anyhow::Result<()> {
+    let browser = find_browser(args.browser.as_deref()).ok_or_else(|| {
+        bad(
+            "--snapshot needs Chromium: install it (e.g. apt-get install chromium), or name \
+             a browser with --browser or $ONTOGENY_BROWSER",
+        )
+    })?;
+    let out = std::path::absolute(out).with_context(|| format!("bad path {}", out.display()))?;
+    if let Some(parent) = out.parent() {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create {}", parent.display()))?;
+    }
+    if out.exists() {
+        std::fs::remove_file(&out).with_context(|| format!("cannot replace {}", out.display()))?;
+    }
+    let profile = std::env::temp_dir().join(format!("ontogeny-view-{}", std::process::id()));
+    let (w, h) = args.size;
+    let output = Command::new(&browser)
+        .args(chromium_flags())
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .arg(format!("--window-size={w},{h}"))
+        .arg(format!("--screenshot={}", out.display()))
+        .arg(url)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .with_context(|| format!("cannot run {}", browser.display()))?;
+    let _ = std::fs::remove_dir_all(&profile);
+    if !out.is_file() {
+        anyhow::bail!(
+            "{} did not write {} (exit status {}):\n{}",
+            browser.display(),
+            out.display(),
+            output.status,
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    Ok(())
+}
+
+/// The flags `--snapshot` gives Chromium: headless, WebGL through SwiftShader (a CPU
+/// renderer, so no GPU is needed), and virtual time so the page finishes loading and drawing
+/// before the picture is taken.
+pub fn chromium_flags() -> Vec<String> {
+    [
+        "--headless=new",
+        "--no-sandbox",
+        "--use-gl=angle",
+        "--use-angle=swiftshader",
+        "--enable-unsafe-swiftshader",
+        "--hide-scrollbars",
+        "--no-first-run",
+        "--no-default-browser-check",
+        "--disable-extensions",
+        "--virtual-time-budget=8000",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect()
+}

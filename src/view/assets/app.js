@@ -1,0 +1,673 @@
+// The page of `ontogeny view`: a creature in 3D (three.js), its brain, and the controls of
+// the kind of page the server shows (growth, recording, run). Everything the tests read is on
+// document.body.dataset: kind, parts (parts drawn now), frame, frames, ready, error, webgl.
+import * as THREE from 'three';
+import { OrbitControls } from '/three/OrbitControls.js';
+
+const params = new URLSearchParams(location.search);
+const still = params.has('still');
+const body = document.body;
+const $ = (id) => document.getElementById(id);
+
+const COLORS = {
+  root: 0x1f3f7a, part: 0x4f86d9, growing: 0xf08c1e,
+  joint: 0xdd2222, jointGrowing: 0xf08c1e, fused: 0x999999,
+  projectile: 0x8a5a2b, trail: 0x8a5a2b, target: 0xdd2222,
+};
+
+// ---------------------------------------------------------------- the 3D scene
+
+const sceneBox = $('scene');
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0xe9edf2);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+let renderer = null;
+let controls = null;
+try {
+  renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.shadowMap.enabled = true;
+  sceneBox.appendChild(renderer.domElement);
+  controls = new OrbitControls(camera, renderer.domElement);
+  controls.addEventListener('change', requestRender);
+  body.dataset.webgl = 'yes';
+} catch (e) {
+  body.dataset.webgl = 'no';
+  renderer = null;
+  const note = document.createElement('div');
+  note.style.cssText = 'padding:2em;color:#a00';
+  note.textContent = 'WebGL is not available in this browser: the 3D view cannot be drawn (' + e.message + ')';
+  sceneBox.appendChild(note);
+}
+
+scene.add(new THREE.HemisphereLight(0xffffff, 0x8899aa, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+sun.castShadow = true;
+sun.shadow.mapSize.set(1024, 1024);
+scene.add(sun);
+scene.add(sun.target);
+const ground = new THREE.Mesh(
+  new THREE.PlaneGeometry(1, 1),
+  new THREE.MeshLambertMaterial({ color: 0xd5dbe3 }));
+ground.rotation.x = -Math.PI / 2;
+ground.receiveShadow = true;
+scene.add(ground);
+let grid = null;
+
+// The creature's meshes: one per part (counted in data-parts), one per joint marker.
+const creatureGroup = new THREE.Group();
+scene.add(creatureGroup);
+const extrasGroup = new THREE.Group(); // target, projectile, trail
+scene.add(extrasGroup);
+
+let renderPending = false;
+function requestRender() {
+  if (!renderer || renderPending) return;
+  renderPending = true;
+  requestAnimationFrame(() => {
+    renderPending = false;
+    renderer.render(scene, camera);
+  });
+}
+
+function resize() {
+  const w = sceneBox.clientWidth || 1, h = sceneBox.clientHeight || 1;
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+  if (renderer) renderer.setSize(w, h, false);
+  requestRender();
+}
+window.addEventListener('resize', resize);
+
+const v3 = (a) => new THREE.Vector3(a[0], a[1], a[2]);
+const quat = (q) => new THREE.Quaternion(q[0], q[1], q[2], q[3]); // nalgebra: [i, j, k, w]
+
+function clearGroup(group) {
+  for (const child of [...group.children]) {
+    group.remove(child);
+    child.geometry?.dispose();
+    child.material?.dispose();
+  }
+}
+
+// Draws a creature's parts and joints; returns the part meshes (in part order).
+function drawCreature(creature) {
+  clearGroup(creatureGroup);
+  const meshes = creature.parts.map((p, i) => {
+    const color = p.growing ? COLORS.growing : (i === 0 ? COLORS.root : COLORS.part);
+    const mesh = new THREE.Mesh(
+      new THREE.BoxGeometry(p.size[0], p.size[1], p.size[2]),
+      new THREE.MeshStandardMaterial({ color, roughness: 0.7, metalness: 0.0 }));
+    mesh.position.copy(v3(p.position));
+    mesh.quaternion.copy(quat(p.orientation));
+    mesh.castShadow = true;
+    mesh.receiveShadow = true;
+    mesh.userData.part = i;
+    creatureGroup.add(mesh);
+    return mesh;
+  });
+  // Joint markers: a fraction of a typical part's thickness, and small beside the whole body.
+  const diagonal = boundsOf([creature]).getSize(new THREE.Vector3()).length();
+  const scale = Math.min(typicalSize(creature), 0.1 * diagonal);
+  for (const j of creature.joints) {
+    const color = j.growing ? COLORS.jointGrowing : (j.kind === 'rigid' ? COLORS.fused : COLORS.joint);
+    const r = (j.kind === 'rigid' ? 0.15 : 0.3) * scale;
+    // Drawn over the parts, as they sit inside them.
+    const marker = new THREE.Mesh(
+      new THREE.SphereGeometry(r, 16, 12),
+      new THREE.MeshBasicMaterial({ color, depthTest: false }));
+    marker.renderOrder = 1;
+    marker.position.copy(v3(j.anchor));
+    marker.userData.joint = { parent: j.parent, child: j.child };
+    // In a recording the marker rides on its parent part.
+    if (meshes[j.parent]) {
+      const parent = meshes[j.parent];
+      parent.updateMatrixWorld();
+      marker.userData.local = parent.worldToLocal(marker.position.clone());
+    }
+    creatureGroup.add(marker);
+  }
+  body.dataset.parts = String(meshes.length);
+  return meshes;
+}
+
+function typicalSize(creature) {
+  if (!creature.parts.length) return 0.1;
+  const sizes = creature.parts.map((p) => Math.min(p.size[0], p.size[1], p.size[2]));
+  sizes.sort((a, b) => a - b);
+  return Math.max(sizes[Math.floor(sizes.length / 2)], 1e-3);
+}
+
+// The box around every part of every given creature (their exact corners).
+function boundsOf(creatures) {
+  const box = new THREE.Box3();
+  const corner = new THREE.Vector3();
+  for (const c of creatures) {
+    for (const p of c.parts) {
+      const q = quat(p.orientation || [0, 0, 0, 1]);
+      const centre = v3(p.position);
+      for (let k = 0; k < 8; k++) {
+        corner.set((k & 1 ? 0.5 : -0.5) * p.size[0], (k & 2 ? 0.5 : -0.5) * p.size[1], (k & 4 ? 0.5 : -0.5) * p.size[2]);
+        box.expandByPoint(corner.applyQuaternion(q).add(centre));
+      }
+    }
+  }
+  if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, 0, -0.5), new THREE.Vector3(0.5, 1, 0.5));
+  return box;
+}
+
+// A 3/4 view of the box, the ground (at height groundY) and its grid sized to it.
+function frame(box, groundY) {
+  const centre = box.getCenter(new THREE.Vector3());
+  const size = Math.max(box.getSize(new THREE.Vector3()).length(), 0.2);
+  const distance = size * 0.7 / Math.tan((camera.fov * Math.PI / 180) / 2) + size * 0.2;
+  const dir = new THREE.Vector3(1, 0.75, 1.3).normalize();
+  camera.position.copy(centre).addScaledVector(dir, distance);
+  camera.near = Math.max(distance / 1000, 1e-3);
+  camera.far = distance * 100;
+  camera.updateProjectionMatrix();
+  camera.lookAt(centre);
+  if (controls) { controls.target.copy(centre); controls.update(); }
+  const extent = Math.max(size * 6, 2);
+  ground.scale.set(extent, extent, 1);
+  ground.position.set(centre.x, groundY, centre.z);
+  if (grid) { scene.remove(grid); grid.geometry.dispose(); grid.material.dispose(); }
+  const step = Math.pow(10, Math.floor(Math.log10(extent / 10)));
+  const divisions = Math.min(200, Math.round(extent / step));
+  grid = new THREE.GridHelper(divisions * step, divisions, 0xaab3bf, 0xc3cad3);
+  grid.position.set(centre.x, groundY + 0.0005 * size, centre.z);
+  scene.add(grid);
+  placeSun(centre, size);
+}
+
+function placeSun(centre, size) {
+  sun.position.copy(centre).add(new THREE.Vector3(size, size * 2, size * 0.7));
+  sun.target.position.copy(centre);
+  const cam = sun.shadow.camera;
+  cam.left = cam.bottom = -size * 2;
+  cam.right = cam.top = size * 2;
+  cam.near = 0.01;
+  cam.far = size * 8;
+  cam.updateProjectionMatrix();
+}
+
+// ---------------------------------------------------------------- the brain
+
+function functionName(f) { return typeof f === 'string' ? f : Object.keys(f || {})[0] || '?'; }
+
+function drawBrain(brain) {
+  const canvas = $('brain');
+  const g = canvas.getContext('2d');
+  const W = canvas.width, H = canvas.height;
+  g.clearRect(0, 0, W, H);
+  const neurons = brain ? brain.neurons : [];
+  if (!neurons.length) {
+    g.fillStyle = '#778'; g.font = '13px system-ui'; g.textAlign = 'center';
+    g.fillText('no neurons', W / 2, H / 2);
+    return;
+  }
+  // Columns: sensors, hidden neurons, actuators.
+  const column = (n) => n.role.kind === 'sensor' ? 0 : (n.role.kind === 'actuator' ? 2 : 1);
+  const columns = [[], [], []];
+  neurons.forEach((n, i) => columns[column(n)].push(i));
+  const pos = [];
+  columns.forEach((ids, c) => {
+    ids.forEach((id, k) => {
+      pos[id] = [W * (0.1 + 0.33 * c), 16 + (H - 16) * (k + 1) / (ids.length + 1)];
+    });
+  });
+  const r = Math.max(3, Math.min(10, H / (2.5 * Math.max(...columns.map((c) => c.length)))));
+  const maxW = Math.max(1e-9, ...brain.links.map((l) => Math.abs(l.weight)));
+  for (const l of brain.links) {
+    const a = pos[l.from], b = pos[l.to];
+    if (!a || !b) continue;
+    g.strokeStyle = l.weight >= 0 ? 'rgba(30,30,40,0.75)' : 'rgba(210,30,30,0.8)';
+    g.lineWidth = 0.6 + 2.4 * Math.abs(l.weight) / maxW;
+    g.beginPath();
+    if (l.from === l.to) {
+      g.arc(a[0], a[1] - r * 1.6, r * 0.9, 0, 2 * Math.PI);
+    } else {
+      const mx = (a[0] + b[0]) / 2 + (b[1] - a[1]) * 0.15, my = (a[1] + b[1]) / 2 - (b[0] - a[0]) * 0.15;
+      g.moveTo(a[0], a[1]);
+      g.quadraticCurveTo(mx, my, b[0], b[1]);
+    }
+    g.stroke();
+    // A dot at the receiving end.
+    const t = 0.85;
+    const ex = l.from === l.to ? a[0] : (1 - t) * (1 - t) * a[0] + 2 * (1 - t) * t * ((a[0] + b[0]) / 2 + (b[1] - a[1]) * 0.15) + t * t * b[0];
+    const ey = l.from === l.to ? a[1] - r * 0.7 : (1 - t) * (1 - t) * a[1] + 2 * (1 - t) * t * ((a[1] + b[1]) / 2 - (b[0] - a[0]) * 0.15) + t * t * b[1];
+    g.fillStyle = g.strokeStyle;
+    g.beginPath(); g.arc(ex, ey, 2, 0, 2 * Math.PI); g.fill();
+  }
+  neurons.forEach((n, i) => {
+    const [x, y] = pos[i];
+    const kind = n.role.kind;
+    g.fillStyle = kind === 'sensor' ? '#2a9d4a' : kind === 'actuator' ? '#d33' :
+      functionName(n.function) === 'oscillator' ? '#8a3fbf' : '#3f6fd0';
+    g.beginPath(); g.arc(x, y, r, 0, 2 * Math.PI); g.fill();
+    g.fillStyle = '#222'; g.font = '10px system-ui'; g.textAlign = 'left';
+    g.fillText(String(i) + ' ' + neuronLabel(n), x + r + 3, y + 3);
+  });
+  g.fillStyle = '#556'; g.font = '10px system-ui'; g.textAlign = 'center';
+  ['sensors', 'hidden', 'actuators'].forEach((t, c) => g.fillText(t, W * (0.1 + 0.33 * c), 10));
+}
+
+function neuronLabel(n) {
+  if (n.role.kind === 'sensor') {
+    const s = n.role.sensor;
+    return s.type + (s.part !== undefined ? ' p' + s.part : '') + (s.joint !== undefined ? ' j' + s.joint + '.' + s.dof : '') + (s.slot !== undefined ? ' ' + s.slot : '');
+  }
+  if (n.role.kind === 'actuator') {
+    const a = n.role.actuator;
+    return a.joint !== undefined ? 'joint ' + a.joint + '.' + a.dof : a.type + (a.slot !== undefined ? ' ' + a.slot : '');
+  }
+  return functionName(n.function);
+}
+
+function describe(creature, extra) {
+  const joints = {};
+  for (const j of creature.joints) joints[j.kind] = (joints[j.kind] || 0) + 1;
+  const mass = creature.parts.reduce((m, p) => m + p.size[0] * p.size[1] * p.size[2] * p.density, 0);
+  const growing = creature.parts.filter((p) => p.growing).length;
+  const lines = [
+    `parts: ${creature.parts.length}` + (growing ? ` (${growing} growing)` : ''),
+    `joints: ${Object.entries(joints).map(([k, n]) => `${n} ${k}`).join(', ') || 'none'}`,
+    `neurons: ${creature.brain.neurons.length}   links: ${creature.brain.links.length}`,
+    `mass: ${mass.toPrecision(4)} kg`,
+  ];
+  for (const p of creature.problems || []) {
+    lines.push(`${p.severity}: ${p.message}` + (p.module ? ` [${p.module}]` : ''));
+  }
+  if (extra) lines.push('', ...extra);
+  $('info').textContent = lines.join('\n');
+}
+
+// ---------------------------------------------------------------- controls
+
+const slider = $('slider');
+const playButton = $('play');
+let onFrame = () => {};
+let playing = false;
+let playTimer = null;
+
+function setFrame(i) {
+  const n = Number(slider.max) + 1;
+  i = Math.max(0, Math.min(n - 1, Math.round(i)));
+  slider.value = String(i);
+  body.dataset.frame = String(i);
+  onFrame(i);
+  requestRender();
+}
+slider.addEventListener('input', () => setFrame(Number(slider.value)));
+
+function initialFrame(n, fallback) {
+  const f = params.get('frame');
+  if (f === null) return fallback;
+  const k = Number(f);
+  if (!Number.isFinite(k)) return fallback;
+  return k < 0 ? n + k : k; // frame=-1 is the last
+}
+
+function showError(error) {
+  const box = $('error');
+  if (!error) {
+    box.classList.remove('shown');
+    delete body.dataset.error;
+    $('status').textContent = '';
+    return;
+  }
+  box.textContent = error.text || error.message;
+  box.classList.add('shown');
+  const where = error.location ? `line ${error.location.line}, column ${error.location.column}: ` : '';
+  body.dataset.error = where + error.message;
+  $('status').textContent = 'error ' + (error.location ? `at line ${error.location.line}, column ${error.location.column}` : '');
+}
+
+function finish() {
+  document.title = `ontogeny view: ${body.dataset.parts} parts`;
+  body.dataset.ready = 'yes';
+  requestRender();
+}
+
+async function fetchJson(url) {
+  const response = await fetch(url, { cache: 'no-store' });
+  const value = await response.json();
+  if (!response.ok) throw new Error(value.error ? value.error.message : response.statusText);
+  return value;
+}
+
+// ---------------------------------------------------------------- growth pages
+
+let growthFramed = false;
+function showGrowth(data, keepFrame) {
+  body.dataset.kind = data.kind;
+  $('file').textContent = data.file;
+  if (data.error) {
+    showError(data.error);
+    if (!growthFramed) { playButton.style.display = 'none'; slider.style.display = 'none'; }
+    finish();
+    return;
+  }
+  showError(null);
+  const frames = data.frames;
+  const previous = Number(slider.value), wasLast = previous === Number(slider.max);
+  slider.max = String(frames.length - 1);
+  body.dataset.frames = String(frames.length);
+  playButton.style.display = frames.length > 1 ? '' : 'none';
+  slider.style.display = frames.length > 1 ? '' : 'none';
+  if (!growthFramed || !keepFrame) {
+    // Development happens off the ground: draw the ground under the lowest part (as the
+    // pictures of `grow --out` do).
+    const box = boundsOf(frames.map((f) => f.creature));
+    frame(box, Math.min(box.min.y, 0));
+    growthFramed = true;
+  }
+  onFrame = (i) => {
+    const f = frames[i];
+    drawCreature(f.creature);
+    drawBrain(f.creature.brain);
+    describe(f.creature);
+    $('frame-label').textContent = `frame ${i} of ${frames.length - 1}   t = ${+f.t.toFixed(4)}`;
+    $('string').textContent = f.string !== null && f.string !== undefined ? f.string
+      : (data.kind === 'growth' ? '(grow --out does not store the module strings: view the .lsys file to see them)' : '');
+    document.title = `ontogeny view: ${body.dataset.parts} parts`;
+  };
+  stepPlay = () => setFrame((Number(slider.value) + 1) % frames.length);
+  playInterval = 600;
+  const start = keepFrame ? (wasLast ? frames.length - 1 : previous) : initialFrame(frames.length, frames.length - 1);
+  setFrame(start);
+  finish();
+}
+
+let stepPlay = () => {};
+let playInterval = 600;
+playButton.addEventListener('click', () => setPlaying(!playing));
+function setPlaying(on) {
+  // Play from the start again once at the end.
+  if (on && !playing && Number(slider.value) === Number(slider.max)) setFrame(0);
+  playing = on;
+  playButton.textContent = on ? 'pause' : 'play';
+  clearInterval(playTimer);
+  if (on) playTimer = setInterval(() => stepPlay(), playInterval);
+}
+
+// Watch mode: poll the file's fingerprint and reload when it changes.
+function watch(kind) {
+  if (still) return;
+  let version = null;
+  const poll = async () => {
+    try {
+      const v = await (await fetch('/version', { cache: 'no-store' })).text();
+      if (version !== null && v !== version) {
+        const data = await fetchJson('/data.json');
+        if (kind === 'lsys' || kind === 'growth') showGrowth(data, true);
+        $('status').textContent = body.dataset.error ? $('status').textContent : 'reloaded ' + new Date().toLocaleTimeString();
+      }
+      version = v;
+    } catch (e) { /* the server is gone or busy: try again */ }
+    setTimeout(poll, 700);
+  };
+  poll();
+}
+
+// ---------------------------------------------------------------- recording pages
+
+function showRecording(data) {
+  body.dataset.kind = 'recording';
+  $('file').textContent = data.file + (data.task ? `  (${data.task})` : '');
+  const frames = data.frames;
+  const meshes = drawCreature(data.creature);
+  drawBrain(data.creature.brain);
+  const markers = creatureGroup.children.filter((m) => m.userData.joint);
+  slider.max = String(frames.length - 1);
+  body.dataset.frames = String(frames.length);
+  // Frame the first pose; the camera then follows the creature's centre.
+  const posed = (f) => ({ parts: data.creature.parts.map((p, i) => ({ ...p, position: f.parts[i][0], orientation: f.parts[i][1] })) });
+  const firstBox = boundsOf([posed(frames[0])]);
+  const sunSize = firstBox.getSize(new THREE.Vector3()).length();
+  const view = firstBox.clone();
+  if (Array.isArray(data.target)) view.expandByPoint(v3(data.target));
+  frame(view, 0); // the physics' ground: the plane y = 0
+  const centreOf = (f) => {
+    const c = new THREE.Vector3();
+    for (const [p] of f.parts) c.add(v3(p));
+    return c.multiplyScalar(1 / Math.max(1, f.parts.length));
+  };
+  let followed = centreOf(frames[0]);
+  // Target, projectile and its trail.
+  clearGroup(extrasGroup);
+  const scale = typicalSize(data.creature);
+  const withProjectile = frames.filter((f) => f.projectile);
+  const projectileSize = withProjectile.length
+    ? Math.max(...(withProjectile[0].projectile_size || [scale, scale, scale])) : scale;
+  if (Array.isArray(data.target)) {
+    // A ring on a pole, a few projectiles wide.
+    const r = 1.5 * projectileSize;
+    const material = new THREE.MeshStandardMaterial({ color: COLORS.target });
+    const ring = new THREE.Mesh(new THREE.TorusGeometry(r, r * 0.12, 8, 40), material);
+    ring.rotation.x = Math.PI / 2;
+    ring.position.copy(v3(data.target));
+    extrasGroup.add(ring);
+    const height = Math.max(data.target[1], 1e-3);
+    const pole = new THREE.Mesh(new THREE.CylinderGeometry(r * 0.06, r * 0.06, height, 8), material);
+    pole.position.set(data.target[0], height / 2, data.target[2]);
+    extrasGroup.add(pole);
+  }
+  let projectile = null, trail = null;
+  if (withProjectile.length) {
+    const size = withProjectile[0].projectile_size || [scale, scale, scale];
+    projectile = new THREE.Mesh(new THREE.BoxGeometry(size[0], size[1], size[2]),
+      new THREE.MeshStandardMaterial({ color: COLORS.projectile }));
+    projectile.castShadow = true;
+    extrasGroup.add(projectile);
+    const positions = new Float32Array(frames.length * 3);
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    trail = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: COLORS.trail }));
+    frames.forEach((f, i) => {
+      const p = f.projectile || [NaN, NaN, NaN];
+      positions.set(p, i * 3);
+    });
+    extrasGroup.add(trail);
+  }
+  onFrame = (i) => {
+    const f = frames[i];
+    f.parts.forEach(([p, q], k) => {
+      meshes[k].position.copy(v3(p));
+      meshes[k].quaternion.copy(quat(q));
+      meshes[k].updateMatrixWorld();
+    });
+    for (const m of markers) {
+      const parent = meshes[m.userData.joint.parent];
+      if (parent && m.userData.local) m.position.copy(parent.localToWorld(m.userData.local.clone()));
+    }
+    if (projectile) {
+      projectile.visible = !!f.projectile;
+      if (f.projectile) projectile.position.copy(v3(f.projectile));
+      // The trail so far: frames 0..i that had a projectile.
+      trail.geometry.setDrawRange(0, i + 1);
+    }
+    const centre = centreOf(f);
+    const delta = centre.clone().sub(followed);
+    camera.position.add(delta);
+    if (controls) { controls.target.add(delta); controls.update(); }
+    followed = centre;
+    placeSun(centre, sunSize);
+    $('frame-label').textContent = `frame ${i} of ${frames.length - 1}   t = ${f.t.toFixed(3)} s`;
+  };
+  describe(data.creature, [`task: ${data.task || '?'}`, `recorded frames: ${frames.length}`,
+    `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);
+  $('string').textContent = '';
+  // Play at the speed of simulated time.
+  const dt = frames.length > 1 ? (frames[frames.length - 1].t - frames[0].t) / (frames.length - 1) : 0.1;
+  playInterval = Math.max(16, dt * 1000);
+  stepPlay = () => {
+    const next = Number(slider.value) + 1;
+    if (next >= frames.length) { setPlaying(false); return; }
+    setFrame(next);
+  };
+  setFrame(initialFrame(frames.length, 0));
+  finish();
+  if (!still && params.get('frame') === null) setPlaying(true);
+}
+
+// ---------------------------------------------------------------- run pages
+
+function showRun(data) {
+  body.dataset.kind = 'run';
+  $('file').textContent = `${data.file}  (${data.encoding} on ${data.task})`;
+  playButton.style.display = 'none';
+  slider.style.display = 'none';
+  const rows = [];
+  // The plot and the table of generations; called again when the run goes on.
+  function listGenerations(generations) {
+    drawPlot(generations);
+    const table = $('generations');
+    table.innerHTML = '<tr><th>gen</th><th>best</th><th>mean</th><th>median</th><th>valid</th></tr>';
+    rows.length = 0;
+    for (const g of generations) {
+      const tr = document.createElement('tr');
+      tr.className = 'clickable';
+      tr.innerHTML = `<td>${g.index}</td><td>${fmt(g.best)}</td><td>${fmt(g.mean)}</td><td>${fmt(g.median)}</td><td>${g.valid_fraction === null ? '' : Math.round(100 * g.valid_fraction) + '%'}</td>`;
+      tr.addEventListener('click', () => openGeneration(g.index, null));
+      if (g.index === selectedGeneration) tr.classList.add('selected');
+      table.appendChild(tr);
+      rows[g.index] = tr;
+    }
+    body.dataset.generations = String(generations.length);
+  }
+  let selectedGeneration = null;
+  async function openGeneration(gen, index) {
+    rows.forEach((r) => r && r.classList.remove('selected'));
+    if (rows[gen]) rows[gen].classList.add('selected');
+    selectedGeneration = gen;
+    const list = await fetchJson(`/generation.json?gen=${gen}`);
+    $('individuals-title').textContent = `Generation ${gen}: individuals, best first`;
+    const t = $('individuals');
+    t.innerHTML = '<tr><th>rank</th><th>#</th><th>fitness</th><th>status</th><th>parts</th></tr>';
+    const byIndex = [];
+    for (const ind of list.individuals) {
+      const tr = document.createElement('tr');
+      tr.className = 'clickable';
+      tr.innerHTML = `<td>${ind.rank}</td><td>${ind.index}</td><td>${fmt(ind.fitness)}</td><td>${escape(ind.status)}</td><td>${ind.parts}</td>`;
+      tr.addEventListener('click', () => openIndividual(gen, ind, tr));
+      t.appendChild(tr);
+      byIndex[ind.index] = [ind, tr];
+    }
+    const chosen = index !== null && byIndex[index] ? byIndex[index] : (list.individuals.length ? byIndex[list.individuals[0].index] : null);
+    if (chosen) await openIndividual(gen, chosen[0], chosen[1]);
+  }
+  async function openIndividual(gen, ind, tr) {
+    for (const r of $('individuals').querySelectorAll('tr')) r.classList.remove('selected');
+    tr.classList.add('selected');
+    try {
+      const one = await fetchJson(`/individual.json?gen=${gen}&index=${ind.index}`);
+      showError(null);
+      const c = one.frames[0].creature;
+      const box = boundsOf([c]);
+      frame(box, Math.min(box.min.y, 0));
+      drawCreature(c);
+      drawBrain(c.brain);
+      describe(c, [`generation ${gen}, individual ${ind.index} (rank ${ind.rank})`, `fitness: ${fmt(ind.fitness)}`, `status: ${ind.status}`]);
+      body.dataset.generation = String(gen);
+      body.dataset.individual = String(ind.index);
+    } catch (e) {
+      clearGroup(creatureGroup);
+      body.dataset.parts = '0';
+      showError({ message: `generation ${gen}, individual ${ind.index}: ${e.message}` });
+    }
+    finish();
+  }
+  listGenerations(data.generations);
+  // A run still going on: new generations join the plot and the table as they are stored.
+  if (!still) {
+    let version = null;
+    const poll = async () => {
+      try {
+        const v = await (await fetch('/version', { cache: 'no-store' })).text();
+        if (version !== null && v !== version) {
+          const fresh = await fetchJson('/data.json');
+          listGenerations(fresh.generations);
+          if (selectedGeneration === null && fresh.generations.length) {
+            showError(null);
+            openGeneration(fresh.generations[fresh.generations.length - 1].index, null);
+          }
+        }
+        version = v;
+      } catch (e) { /* try again */ }
+      setTimeout(poll, 2000);
+    };
+    poll();
+  }
+  if (!data.generations.length) {
+    showError({ message: 'this run has no complete generation yet' });
+    finish();
+    return;
+  }
+  const last = data.generations[data.generations.length - 1].index;
+  const gen = params.has('gen') ? Number(params.get('gen')) : last;
+  const index = params.has('index') ? Number(params.get('index')) : null;
+  openGeneration(gen, index);
+}
+
+function escape(text) {
+  const span = document.createElement('span');
+  span.textContent = String(text);
+  return span.innerHTML;
+}
+
+function fmt(x) {
+  if (x === null || x === undefined) return '';
+  const a = Math.abs(x);
+  return a !== 0 && (a >= 1e5 || a < 1e-3) ? x.toExponential(2) : (+x.toFixed(3)).toString();
+}
+
+function drawPlot(generations) {
+  const canvas = $('plot');
+  const g = canvas.getContext('2d');
+  const W = canvas.width, H = canvas.height, L = 44, R = 8, T = 10, B = 24;
+  g.clearRect(0, 0, W, H);
+  // Failed evaluations score a floor far below the rest: plot what is above it.
+  const values = generations.flatMap((x) => [x.best, x.mean]).filter((v) => v !== null && v > -1e5);
+  if (!values.length) return;
+  let lo = Math.min(...values), hi = Math.max(...values);
+  if (hi - lo < 1e-9) { lo -= 1; hi += 1; }
+  const n = Math.max(1, generations.length - 1);
+  const X = (i) => L + (W - L - R) * i / n;
+  const Y = (v) => T + (H - T - B) * (1 - (v - lo) / (hi - lo));
+  g.strokeStyle = '#99a'; g.lineWidth = 1;
+  g.beginPath(); g.moveTo(L, T); g.lineTo(L, H - B); g.lineTo(W - R, H - B); g.stroke();
+  g.fillStyle = '#556'; g.font = '10px system-ui';
+  g.textAlign = 'right'; g.fillText(fmt(hi), L - 3, T + 8); g.fillText(fmt(lo), L - 3, H - B);
+  g.textAlign = 'center'; g.fillText('generation', (L + W) / 2, H - 4);
+  g.fillText('0', L, H - B + 11); g.fillText(String(generations.length - 1), W - R, H - B + 11);
+  const line = (key, color) => {
+    g.strokeStyle = color; g.lineWidth = 2; g.beginPath();
+    let started = false;
+    generations.forEach((x, i) => {
+      const v = x[key];
+      if (v === null || v <= -1e5) { started = false; return; }
+      if (started) g.lineTo(X(i), Y(v)); else g.moveTo(X(i), Y(v));
+      started = true;
+    });
+    g.stroke();
+  };
+  line('mean', '#8aa4d6');
+  line('best', '#1f3f7a');
+  g.textAlign = 'left';
+  g.fillStyle = '#1f3f7a'; g.fillText('best', L + 6, T + 10);
+  g.fillStyle = '#8aa4d6'; g.fillText('mean', L + 36, T + 10);
+}
+
+// ---------------------------------------------------------------- start
+
+resize();
+fetchJson('/data.json').then((data) => {
+  if (data.kind === 'lsys' || data.kind === 'growth') { showGrowth(data, false); watch(data.kind); }
+  else if (data.kind === 'recording') showRecording(data);
+  else if (data.kind === 'run') showRun(data);
+  resize();
+}).catch((e) => {
+  showError({ message: e.message });
+  finish();
+});

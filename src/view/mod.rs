@@ -1,0 +1,481 @@
+//! The browser viewer: a small local web server and the static page it serves.
+//!
+//! `ontogeny view PATH` opens one of four kinds of page, told apart by what PATH is
+//! ([`Target::classify`]):
+//!
+//! - a `.lsys` file ([`Kind::Lsys`]): the creature grown at every frame, with a
+//!   developmental-time slider, its brain, and the module string of the current frame; the file
+//!   is read again whenever it changes on disk (watch mode), and a syntax error is shown in the
+//!   page with its line and column;
+//! - a `grow --out` directory ([`Kind::Growth`]): the same page over its `frames.jsonl`;
+//! - a recording directory ([`Kind::Recording`], `eval --record`): the behaviour, played;
+//! - a run directory ([`Kind::Run`]): the fitness plot, the generations, and any individual
+//!   opened in 3D.
+//!
+//! What this room owns: classifying PATH, turning each kind into the JSON the page reads, and
+//! serving it with the page and its vendored JavaScript (three.js, see `assets/three/LICENSE`).
+//! What it does not own: developing a run's genomes (the command line passes a function that
+//! does, as it alone knows every encoding), nor driving a browser.
+
+mod server;
+
+use std::path::{Path, PathBuf};
+
+use serde_json::{Value, json};
+
+use crate::develop::{BuildOptions, build};
+use crate::lang::Diagnostic;
+use crate::lsystem::{DeriveOptions, LSystem};
+
+pub use server::{Developer, Server, ServerError};
+
+/// The version of three.js vendored in `src/view/assets/three/`.
+pub const THREE_VERSION: &str = "0.181.0";
+
+/// What kind of page a path opens.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// An L-system file: grown here, and grown again when it changes.
+    Lsys,
+    /// A directory written by `ontogeny grow --out` (`frames.jsonl`).
+    Growth,
+    /// A directory written by `ontogeny eval --record` (`recording.json`).
+    Recording,
+    /// A run directory written by `ontogeny evolve` (`config.toml` and `run.sqlite`).
+    Run,
+}
+
+impl Kind {
+    /// The kind's name as the page and `--json` output spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Lsys => "lsys",
+            Kind::Growth => "growth",
+            Kind::Recording => "recording",
+            Kind::Run => "run",
+        }
+    }
+}
+
+/// Errors of the viewer.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewError {
+    /// PATH is none of the four kinds.
+    #[error("{0}")]
+    NotViewable(String),
+    /// A file of the directory cannot be read or makes no sense.
+    #[error("{0}")]
+    BadFile(String),
+}
+
+/// A path and the kind of page it opens.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Target {
+    /// What it is.
+    pub kind: Kind,
+    /// The file or directory.
+    pub path: PathBuf,
+}
+
+impl Target {
+    /// Tells what `path` is: a `.lsys` file, or a grow, recording or run directory.
+    pub fn classify(path: &Path) -> Result<Target, ViewError> {
+        let shown = path.display();
+        let target = |kind| {
+            Ok(Target {
+                kind,
+                path: path.to_path_buf(),
+            })
+        };
+        if path.is_file() {
+            if path.extension().is_some_and(|e| e == "lsys") {
+                return target(Kind::Lsys);
+            }
+            return Err(ViewError::NotViewable(format!(
+                "{shown}: not an .lsys file (view shows an .lsys file, or a directory written \
+                 by grow --out, eval --record or evolve)"
+            )));
+        }
+        if !path.is_dir() {
+            return Err(ViewError::NotViewable(format!(
+                "{shown}: no such file or directory"
+            )));
+        }
+        if path.join("config.toml").is_file() && path.join("run.sqlite").is_file() {
+            target(Kind::Run)
+        } else if path.join("recording.json").is_file() {
+            target(Kind::Recording)
+        } else if path.join("frames.jsonl").is_file() {
+            target(Kind::Growth)
+        } else {
+            Err(ViewError::NotViewable(format!(
+                "{shown}: not a directory view can show (it has no frames.jsonl from grow \
+                 --out, no recording.json from eval --record, and no config.toml and \
+                 run.sqlite from evolve)"
+            )))
+        }
+    }
+
+    /// A fingerprint of the files behind the page (modification time and length): it changes
+    /// when they do, and the page polls it to reload (watch mode). A run's store is in WAL
+    /// mode, so its write-ahead log counts too.
+    pub fn version(&self) -> String {
+        match self.kind {
+            Kind::Lsys => fingerprint(&self.path),
+            Kind::Growth => fingerprint(&self.path.join("frames.jsonl")),
+            Kind::Recording => fingerprint(&self.path.join("recording.json")),
+            Kind::Run => format!(
+                "{}/{}",
+                fingerprint(&self.path.join("run.sqlite")),
+                fingerprint(&self.path.join("run.sqlite-wal"))
+            ),
+        }
+    }
+}
+
+/// A file's modification time (ns) and length, or `missing`.
+fn fingerprint(file: &Path) -> String {
+    match std::fs::metadata(file) {
+        Ok(m) => {
+            let modified = m
+                .modified()
+                .ok()
+                .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+                .map(|d| d.as_nanos())
+                .unwrap_or(0);
+            format!("{modified}-{}", m.len())
+        }
+        Err(_) => "missing".to_string(),
+    }
+}
+
+/// The JSON of one frame of growth: step, time, module string (when known) and creature.
+fn frame_json(
+    step: u64,
+    t: f64,
+    string: Option<String>,
+    creature: &crate::creature::Creature,
+) -> Value {
+    json!({ "step": step, "t": t, "string": string, "creature": creature })
+}
+
+/// A diagnostic as the page shows it: the message, and the line and column when it has them.
+pub fn diagnostic_json(d: &Diagnostic) -> Value {
+    let location = d.location.as_ref().map(|l| {
+        json!({
+            "file": l.file, "line": l.line, "column": l.column,
+            "line_text": l.line_text, "width": l.width,
+        })
+    });
+    json!({ "message": d.message, "location": location, "text": d.to_string() })
+}
+
+/// Grows an `.lsys` file and returns the page's data: `{"kind": "lsys", "file", "frames":
+/// [{"step", "t", "string", "creature"}]}`, or `{"kind": "lsys", "file", "error": {...}}`
+/// when the file does not parse or derive (the page shows it with its line and column).
+pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Value {
+    let file = path.display().to_string();
+    match grow_with_strings(path, options, steps) {
+        Ok(frames) => json!({ "kind": "lsys", "file": file, "frames": frames }),
+        Err(d) => json!({ "kind": "lsys", "file": file, "error": diagnostic_json(&d) }),
+    }
+}
+
+/// Like [`crate::develop::grow`], keeping each frame's module string (as derived, before the
+/// interpretation rules).
+fn grow_with_strings(
+    path: &Path,
+    options: &DeriveOptions,
+    steps: Option<u64>,
+) -> Result<Vec<Value>, Diagnostic> {
+    let lsys = LSystem::from_path(path)?;
+    let build_options = BuildOptions::default();
+    let mut frames = Vec::new();
+    lsys.for_each_frame(options, steps, |frame| {
+        let shown = lsys.interpret(frame.string, frame.t, options)?;
+        let creature = build(
+            &shown,
+            lsys.symbols(),
+            frame.env,
+            Some(frame.t),
+            &build_options,
+        );
+        frames.push(frame_json(
+            frame.step,
+            frame.t,
+            Some(frame.string.display(lsys.symbols())),
+            &creature,
+        ));
+        Ok::<(), Diagnostic>(())
+    })?;
+    Ok(frames)
+}
+
+/// Reads a `grow --out` directory's `frames.jsonl` into the page's data (the same shape as
+/// [`lsys_data`]; the module strings are not stored there, so `string` is null).
+pub fn growth_data(dir: &Path) -> Result<Value, ViewError> {
+    let path = dir.join("frames.jsonl");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| ViewError::BadFile(format!("cannot read {}: {e}", path.display())))?;
+    let mut frames = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let frame: crate::develop::GrowthFrame = serde_json::from_str(line).map_err(|e| {
+            ViewError::BadFile(format!(
+                "{}:{}: not a frame of growth: {e}",
+                path.display(),
+                i + 1
+            ))
+        })?;
+        frames.push(frame_json(frame.step, frame.t, None, &frame.creature));
+    }
+    if frames.is_empty() {
+        return Err(ViewError::BadFile(format!("{}: no frames", path.display())));
+    }
+    Ok(json!({ "kind": "growth", "file": dir.display().to_string(), "frames": frames }))
+}
+
+/// Reads a recording directory's `recording.json` (written by `eval --record`: `creature`,
+/// `task`, `target`, `frames` of part poses) into the page's data.
+pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
+    let path = dir.join("recording.json");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| ViewError::BadFile(format!("cannot read {}: {e}", path.display())))?;
+    let mut value: Value = serde_json::from_str(&text)
+        .map_err(|e| ViewError::BadFile(format!("{}: not JSON: {e}", path.display())))?;
+    let creature: crate::creature::Creature = value
+        .get("creature")
+        .cloned()
+        .ok_or_else(|| ViewError::BadFile(format!("{}: no creature", path.display())))
+        .and_then(|c| {
+            serde_json::from_value(c).map_err(|e| {
+                ViewError::BadFile(format!("{}: not a recording: {e}", path.display()))
+            })
+        })?;
+    let frames: Vec<crate::task::RecordedFrame> = value
+        .get("frames")
+        .cloned()
+        .map(serde_json::from_value)
+        .transpose()
+        .map_err(|e| ViewError::BadFile(format!("{}: not a recording: {e}", path.display())))?
+        .unwrap_or_default();
+    if frames.is_empty() {
+        return Err(ViewError::BadFile(format!(
+            "{}: no frames recorded",
+            path.display()
+        )));
+    }
+    if let Some(bad) = frames
+        .iter()
+        .position(|f| f.parts.len() != creature.parts.len())
+    {
+        return Err(ViewError::BadFile(format!(
+            "{}: frame {bad} has {} part poses for a creature of {} parts",
+            path.display(),
+            frames[bad].parts.len(),
+            creature.parts.len()
+        )));
+    }
+    value["kind"] = json!("recording");
+    value["file"] = json!(dir.display().to_string());
+    Ok(value)
+}
+
+/// Reads a run directory's store into the page's data: `{"kind": "run", "file", "encoding",
+/// "task", "generations": [{"index", "best", "mean", "median", "sd", "valid_fraction",
+/// "evaluations"}]}`.
+pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
+    let store = crate::evolve::store::RunStore::open(&dir.join("run.sqlite"))
+        .map_err(|e| ViewError::BadFile(e.to_string()))?;
+    let run = store.run().map_err(|e| ViewError::BadFile(e.to_string()))?;
+    let generations: Vec<Value> = store
+        .generations()
+        .map_err(|e| ViewError::BadFile(e.to_string()))?
+        .iter()
+        .map(|g| {
+            json!({
+                "index": g.index, "best": finite(g.best), "mean": finite(g.mean),
+                "median": finite(g.median), "sd": finite(g.sd),
+                "valid_fraction": finite(g.valid_fraction), "evaluations": g.evaluations,
+            })
+        })
+        .collect();
+    Ok(json!({
+        "kind": "run",
+        "file": dir.display().to_string(),
+        "encoding": run.encoding,
+        "task": run.task,
+        "seed": run.seed,
+        "generations": generations,
+    }))
+}
+
+/// A generation's individuals, best first: `[{"rank", "index", "fitness", "status",
+/// "operator", "parts", "joints", "neurons"}]`.
+pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewError> {
+    let store = crate::evolve::store::RunStore::open(&dir.join("run.sqlite"))
+        .map_err(|e| ViewError::BadFile(e.to_string()))?;
+    let mut individuals = store
+        .individuals(generation)
+        .map_err(|e| ViewError::BadFile(e.to_string()))?;
+    individuals.sort_by(|a, b| {
+        b.fitness
+            .partial_cmp(&a.fitness)
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(a.index.cmp(&b.index))
+    });
+    let rows: Vec<Value> = individuals
+        .iter()
+        .enumerate()
+        .map(|(rank, i)| {
+            json!({
+                "rank": rank + 1, "index": i.index, "fitness": finite(i.fitness),
+                "status": i.status, "operator": i.operator,
+                "parts": i.parts, "joints": i.joints, "neurons": i.neurons,
+            })
+        })
+        .collect();
+    Ok(json!({ "generation": generation, "individuals": rows }))
+}
+
+/// JSON has no NaN or infinity: those become null.
+fn finite(x: f64) -> Value {
+    if x.is_finite() { json!(x) } else { Value::Null }
+}
+
+/// The page's data for one creature shown alone (a run's individual): one frame.
+pub fn creature_data(title: &str, creature: &crate::creature::Creature) -> Value {
+    json!({ "kind": "creature", "file": title, "frames": [frame_json(0, 0.0, None, creature)] })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("ontogeny-view-unit-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn paths_are_classified_by_what_they_hold() {
+        let dir = scratch("classify");
+        let lsys = dir.join("a.lsys");
+        std::fs::write(&lsys, "axiom: forward(1)\n").unwrap();
+        assert_eq!(Target::classify(&lsys).unwrap().kind, Kind::Lsys);
+        let grown = dir.join("grown");
+        std::fs::create_dir_all(&grown).unwrap();
+        std::fs::write(grown.join("frames.jsonl"), "").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Growth);
+        // A recording made by `replay` inside a run directory is a recording.
+        std::fs::write(grown.join("recording.json"), "{}").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Recording);
+        std::fs::write(grown.join("config.toml"), "").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Recording);
+        std::fs::write(grown.join("run.sqlite"), "").unwrap();
+        assert_eq!(Target::classify(&grown).unwrap().kind, Kind::Run);
+        let other = dir.join("notes.txt");
+        std::fs::write(&other, "").unwrap();
+        for bad in [other, dir.join("missing"), dir.clone()] {
+            assert!(matches!(
+                Target::classify(&bad),
+                Err(ViewError::NotViewable(_))
+            ));
+        }
+    }
+
+    #[test]
+    fn a_runs_version_changes_with_its_write_ahead_log() {
+        let dir = scratch("version");
+        std::fs::write(dir.join("config.toml"), "").unwrap();
+        std::fs::write(dir.join("run.sqlite"), "db").unwrap();
+        let run = Target::classify(&dir).unwrap();
+        let before = run.version();
+        assert!(before.ends_with("/missing"), "{before}");
+        std::fs::write(dir.join("run.sqlite-wal"), "one generation").unwrap();
+        let during = run.version();
+        assert_ne!(during, before);
+        std::fs::write(dir.join("run.sqlite-wal"), "two generations").unwrap();
+        assert_ne!(run.version(), during);
+    }
+
+    #[test]
+    fn an_lsys_page_has_one_frame_per_step_with_its_string() {
+        let dir = scratch("lsys");
+        let file = dir.join("two.lsys");
+        std::fs::write(
+            &file,
+            "axiom: A\nderivation length: 2\nA --> forward(1) B\nB --> forward(0.5)\n",
+        )
+        .unwrap();
+        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        let frames = data["frames"].as_array().unwrap();
+        let strings: Vec<&str> = frames
+            .iter()
+            .map(|f| f["string"].as_str().unwrap())
+            .collect();
+        assert_eq!(strings, ["A", "forward(1) B", "forward(1) forward(0.5)"]);
+        let lengths: Vec<f64> = frames[2]["creature"]["parts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p["size"][0].as_f64().unwrap())
+            .collect();
+        assert_eq!(lengths, [1.0, 0.5]);
+        // --steps overrides the file's derivation length.
+        let one = lsys_data(&file, &DeriveOptions::default(), Some(1));
+        assert_eq!(one["frames"].as_array().unwrap().len(), 2);
+    }
+
+    #[test]
+    fn an_lsys_error_carries_its_line_and_column() {
+        let dir = scratch("error");
+        let file = dir.join("bad.lsys");
+        std::fs::write(&file, "axiom: A\nA --> forward(1\n").unwrap();
+        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        assert!(data.get("frames").is_none());
+        let error = &data["error"];
+        assert_eq!(error["location"]["line"], 2);
+        assert_eq!(error["location"]["column"], 16);
+        assert_eq!(error["location"]["line_text"], "A --> forward(1");
+        assert!(error["text"].as_str().unwrap().contains("bad.lsys:2:16"));
+    }
+
+    #[test]
+    fn bad_directories_say_which_file_and_line() {
+        let dir = scratch("bad-dirs");
+        std::fs::write(dir.join("frames.jsonl"), "{\"step\": 0}\n").unwrap();
+        let err = growth_data(&dir).unwrap_err().to_string();
+        assert!(
+            err.contains("frames.jsonl:1: not a frame of growth"),
+            "{err}"
+        );
+        std::fs::write(dir.join("frames.jsonl"), "\n").unwrap();
+        assert!(
+            growth_data(&dir)
+                .unwrap_err()
+                .to_string()
+                .contains("no frames")
+        );
+
+        // A recording with one part pose for a creature of two parts.
+        let creature = crate::develop::creature_from_commands("forward(1) forward(1)").unwrap();
+        assert_eq!(creature.parts.len(), 2);
+        let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose]}]}).to_string(),
+        )
+        .unwrap();
+        let err = recording_data(&dir).unwrap_err().to_string();
+        assert!(
+            err.contains("frame 0 has 1 part poses for a creature of 2 parts"),
+            "{err}"
+        );
+    }
+}
