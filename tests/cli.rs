@@ -17,6 +17,21 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// Runs `ontogeny` with `input` on its standard input.
+fn ontogeny_reading(args: &[&str], input: &[u8]) -> Output {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child.stdin.take().unwrap().write_all(input).unwrap();
+    child.wait_with_output().unwrap()
+}
+
 /// Grows the snake example into a fresh directory and returns it.
 fn grown_snake(tag: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("ontogeny-{tag}-{}", std::process::id()));
@@ -451,39 +466,15 @@ fn negative_option_values_are_values_not_flags() {
 
 #[test]
 fn a_dash_reads_the_grammar_from_standard_input() {
-    use std::io::Write;
     for verb in ["derive", "check", "grow"] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-            .args([verb, "-"])
-            .stdin(std::process::Stdio::piped())
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(b"derivation length: 2\naxiom: a\na --> ab\nb --> a\n")
-            .unwrap();
-        let o = child.wait_with_output().unwrap();
+        let o = ontogeny_reading(
+            &[verb, "-"],
+            b"derivation length: 2\naxiom: a\na --> ab\nb --> a\n",
+        );
         assert!(o.status.success(), "{verb}: {}", stderr(&o));
     }
     // Errors name the source <stdin>, with line and column.
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(["derive", "-"])
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"axiom: a\na --> (\n")
-        .unwrap();
-    let o = child.wait_with_output().unwrap();
+    let o = ontogeny_reading(&["derive", "-"], b"axiom: a\na --> (\n");
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("<stdin>:2:"), "{}", stderr(&o));
 }
@@ -556,21 +547,7 @@ fn replay_writes_the_frames_per_second_it_says() {
 
 #[test]
 fn growing_nothing_says_so() {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(["grow", "-"])
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"axiom: a b c\n")
-        .unwrap();
-    let o = child.wait_with_output().unwrap();
+    let o = ontogeny_reading(&["grow", "-"], b"axiom: a b c\n");
     let out = stdout(&o);
     assert!(out.starts_with("<stdin>: grown to t = 0"), "{out}");
     assert!(out.contains("mass: 0.0000"), "{out}");
