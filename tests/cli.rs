@@ -642,6 +642,28 @@ fn flags_the_task_does_not_use_are_warned_about() {
         "distance",
     ]);
     assert!(stderr(&o).contains("warning: --fitness is for the walker task only"));
+    // Development flags on a creature that is not grown from a grammar.
+    let dir = grown_snake("inapplicable");
+    let creature = dir.join("creature.json");
+    let o = ontogeny(&[
+        "eval",
+        creature.to_str().unwrap(),
+        "--task",
+        "walker",
+        "--seconds",
+        "0.5",
+        "--steps",
+        "3",
+        "--seed",
+        "4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("warning: --steps, --seed grow a creature from a grammar;"),
+        "{}",
+        stderr(&o)
+    );
+    let _ = std::fs::remove_dir_all(dir);
     // Flags that apply give no warning.
     let o = ontogeny(&[
         "eval",

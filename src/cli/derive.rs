@@ -35,6 +35,30 @@ pub struct DevelopmentArgs {
     env: Vec<(usize, f64)>,
 }
 
+impl DevelopmentArgs {
+    /// The development flags given on the command line, by name (for a warning when the
+    /// input is not grown from a grammar).
+    pub fn given(&self) -> Vec<&'static str> {
+        let mut out = Vec::new();
+        if self.steps.is_some() {
+            out.push("--steps");
+        }
+        if self.time.is_some() {
+            out.push("--time");
+        }
+        if self.dt.is_some() {
+            out.push("--dt");
+        }
+        if self.timing.is_some() {
+            out.push("--timing");
+        }
+        if !self.env.is_empty() {
+            out.push("--env");
+        }
+        out
+    }
+}
+
 /// The derivation options the flags ask for.
 pub fn derive_options(
     args: &DevelopmentArgs,

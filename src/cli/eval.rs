@@ -273,6 +273,18 @@ pub(super) fn load_creature(
     seed: Option<u64>,
 ) -> anyhow::Result<Creature> {
     if file.extension().is_some_and(|e| e == "json") {
+        let given = development.given();
+        if !given.is_empty() || seed.is_some() {
+            let mut flags = given;
+            if seed.is_some() {
+                flags.push("--seed");
+            }
+            eprintln!(
+                "warning: {} grow a creature from a grammar; {} is not one: ignored",
+                flags.join(", "),
+                file.display()
+            );
+        }
         let text = std::fs::read_to_string(file)
             .with_context(|| format!("cannot read {}", file.display()))?;
         // A graph genome (a run's best.json) develops with the default limits.
