@@ -155,3 +155,15 @@ fn report(error: anyhow::Error) -> ExitCode {
     // A file that cannot be read or written is the user's to fix; anything else is ours.
     ExitCode::from(if io.is_some() { 2 } else { 1 })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// clap's own checks of every verb's flags (unique names, valid defaults), which
+    /// otherwise only fire when that verb is run.
+    #[test]
+    fn the_command_line_is_well_formed() {
+        allow_negative_numbers(Cli::command()).debug_assert();
+    }
+}

@@ -42,10 +42,6 @@ pub struct ViewArgs {
     browser: Option<PathBuf>,
     #[command(flatten)]
     development: DevelopmentArgs,
-    /// For an `.lsys` file: the number of discrete derivation steps (default: the file's
-    /// `derivation length:`).
-    #[arg(long)]
-    steps: Option<u64>,
     /// For an `.lsys` file: the seed of stochastic rules (default: the file's `seed:`, else 0).
     #[arg(long)]
     seed: Option<u64>,
@@ -85,7 +81,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
                     ontogeny::develop::grow(
                         &lsys,
                         &options,
-                        args.steps,
+                        args.development.steps,
                         &ontogeny::develop::BuildOptions::default(),
                     )
                 })
@@ -117,8 +113,14 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     } else {
         DEFAULT_PORT
     });
-    let server = Server::bind(target.clone(), port, options, args.steps, developer)
-        .map_err(|e| bad(e.to_string()))?;
+    let server = Server::bind(
+        target.clone(),
+        port,
+        options,
+        args.development.steps,
+        developer,
+    )
+    .map_err(|e| bad(e.to_string()))?;
     let mut query = Vec::new();
     if let Some(f) = args.frame {
         query.push(format!("frame={f}"));
