@@ -68,7 +68,15 @@ fn the_growth_gif_has_a_frame_per_growth_frame() {
     let dir = std::env::temp_dir().join(format!("ontogeny-render-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("growth.gif");
-    write_gif(frames.iter().map(|f| &f.creature), &path, 160, 100, &[20]).unwrap();
+    write_gif(
+        frames.iter().map(|f| &f.creature),
+        &path,
+        160,
+        100,
+        &[20],
+        ontogeny::render::Framing::Still,
+    )
+    .unwrap();
     let mut decoder = gif::DecodeOptions::new()
         .read_info(std::fs::File::open(&path).unwrap())
         .unwrap();
@@ -104,4 +112,54 @@ fn growth_builds_a_creature_per_frame_with_parts_appearing() {
         (growing[0] - 0.125).abs() < 1e-9 && (growing[2] - 0.375).abs() < 1e-9,
         "{growing:?}"
     );
+}
+
+/// The blue pixels of each frame of a GIF.
+fn blue_pixels_per_frame(path: &std::path::Path, width: usize) -> Vec<usize> {
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = options
+        .read_info(std::fs::File::open(path).unwrap())
+        .unwrap();
+    let mut counts = Vec::new();
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        counts.push(blue_pixels(&frame.buffer, width));
+    }
+    counts
+}
+
+#[test]
+fn a_following_camera_keeps_a_travelling_creature_large() {
+    // The same creature at rest and 40 m further on.
+    let start = creature("width(0.3) forward(1) revolute2 forward(1)");
+    let mut far = start.clone();
+    for part in &mut far.parts {
+        part.position.x += 40.0;
+    }
+    let dir = std::env::temp_dir().join(format!("ontogeny-follow-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut counts = Vec::new();
+    for framing in [
+        ontogeny::render::Framing::Still,
+        ontogeny::render::Framing::Following {
+            parts: start.parts.len(),
+        },
+    ] {
+        let path = dir.join("travel.gif");
+        write_gif([&start, &far], &path, 240, 150, &[10], framing).unwrap();
+        counts.push(blue_pixels_per_frame(&path, 240));
+    }
+    let (still, following) = (&counts[0], &counts[1]);
+    // Following: the creature is as large in the last frame as in the first.
+    assert!(following[0] > 500, "{following:?}");
+    assert!(
+        following[1] as f64 > 0.8 * following[0] as f64,
+        "{following:?}"
+    );
+    // A still camera framing the whole trip shows it far smaller.
+    assert!(
+        (still[1] as f64) < 0.2 * following[1] as f64,
+        "{still:?} {following:?}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
 }

@@ -526,7 +526,10 @@ pub fn render_recording(
             c
         })
         .collect();
-    ontogeny::render::write_gif(posed.iter(), path, 480, 300, &delays)
+    let framing = ontogeny::render::Framing::Following {
+        parts: creature.parts.len(),
+    };
+    ontogeny::render::write_gif(posed.iter(), path, 480, 300, &delays, framing)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }

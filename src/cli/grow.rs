@@ -148,8 +148,15 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         ontogeny::render::write_png(&last.creature, &path, 960, 600)
             .with_context(|| format!("cannot write {}", path.display()))?;
         let path = dir.join("growth.gif");
-        ontogeny::render::write_gif(frames.iter().map(|f| &f.creature), &path, 480, 300, &[25])
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        ontogeny::render::write_gif(
+            frames.iter().map(|f| &f.creature),
+            &path,
+            480,
+            300,
+            &[25],
+            ontogeny::render::Framing::Still,
+        )
+        .with_context(|| format!("cannot write {}", path.display()))?;
     }
     if args.json {
         say!("{}", serde_json::to_string_pretty(&summary)?);

@@ -67,6 +67,67 @@ impl View {
     }
 }
 
+/// How an animation's camera moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Framing {
+    /// One view that holds every frame (growth: the creature grows in place).
+    Still,
+    /// The camera follows the first `parts` parts of each frame (the creature, not a thrown
+    /// projectile drawn after them) and keeps the creature's own size in the picture, so a
+    /// creature that travels far stays large; the ground's grid shows the motion.
+    Following {
+        /// How many leading parts of each frame are the creature.
+        parts: usize,
+    },
+}
+
+impl View {
+    /// One view per frame for `framing`.
+    fn per_frame<'a>(
+        creatures: impl IntoIterator<Item = &'a Creature> + Clone,
+        framing: Framing,
+    ) -> Vec<View> {
+        match framing {
+            Framing::Still => {
+                let view = View::framing_all(creatures.clone());
+                creatures.into_iter().map(|_| view).collect()
+            }
+            Framing::Following { parts } => {
+                let boxes: Vec<Option<(Vector3<f64>, Vector3<f64>)>> = creatures
+                    .into_iter()
+                    .map(|c| {
+                        let own = &c.parts[..parts.min(c.parts.len())];
+                        let mut corners = own.iter().flat_map(|p| p.corners());
+                        let first = corners.next()?;
+                        Some(corners.fold((first, first), |(lo, hi), x| (lo.inf(&x), hi.sup(&x))))
+                    })
+                    .collect();
+                // The creature's largest own extent, on each axis, over the frames.
+                let extent = boxes
+                    .iter()
+                    .flatten()
+                    .fold(Vector3::repeat(0.5), |e, (lo, hi)| e.sup(&(hi - lo)));
+                let fallback = View::framing_all(std::iter::empty());
+                boxes
+                    .into_iter()
+                    .map(|b| match b {
+                        None => fallback,
+                        Some((lo, hi)) => {
+                            let centre = (lo + hi) / 2.0;
+                            let mut min = centre - extent / 2.0;
+                            let mut max = centre + extent / 2.0;
+                            // Keep the ground in the picture.
+                            min.y = lo.y.min(0.0);
+                            max.y = min.y + extent.y.max(hi.y - min.y);
+                            View { min, max }
+                        }
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
 /// An orthographic 3/4 camera: world point -> (x, y, depth) in pixels.
 struct Camera {
     rotation: Matrix3<f64>,
@@ -489,7 +550,8 @@ pub fn write_png(
         .map_err(|e| RenderError::Png(e.to_string()))
 }
 
-/// Writes an animated GIF of a sequence of creatures, framed alike, looping: frame i lasts
+/// Writes an animated GIF of a sequence of creatures, framed as `framing` says, looping:
+/// frame i lasts
 /// `delays_cs[i]` hundredths of a second (the last delay for frames beyond the slice, 10 if
 /// it is empty).
 pub fn write_gif<'a>(
@@ -498,8 +560,9 @@ pub fn write_gif<'a>(
     width: u32,
     height: u32,
     delays_cs: &[u16],
+    framing: Framing,
 ) -> Result<(), RenderError> {
-    let view = View::framing_all(creatures.clone());
+    let views = View::per_frame(creatures.clone(), framing);
     let w = u16::try_from(width).map_err(|_| RenderError::Size(width, height))?;
     let h = u16::try_from(height).map_err(|_| RenderError::Size(width, height))?;
     let file = std::fs::File::create(path)?;
@@ -509,7 +572,7 @@ pub fn write_gif<'a>(
         .set_repeat(gif::Repeat::Infinite)
         .map_err(|e| RenderError::Gif(e.to_string()))?;
     for (i, creature) in creatures.into_iter().enumerate() {
-        let pixmap = picture(creature, &view, width, height)?;
+        let pixmap = picture(creature, &views[i], width, height)?;
         let mut rgba = pixmap.data().to_vec(); // opaque background: premultiplied = straight
         let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, 10);
         frame.delay = delays_cs.get(i).or(delays_cs.last()).copied().unwrap_or(10);
