@@ -461,18 +461,29 @@ pub fn write_recording_at(
 /// slow frames shorter than 2 cs down to 10.
 pub const MAX_FPS: f64 = 50.0;
 
+/// The most frames a behaviour GIF holds (about 10 MB at 480 × 300): longer evaluations are
+/// drawn at a lower frame rate.
+pub const MAX_GIF_FRAMES: usize = 600;
+
 /// Which recorded frames an animation at `fps` frames per second of simulated time shows
 /// (the frame nearest each time k / fps), and each one's GIF delay in centiseconds, chosen
 /// so that frame k starts at round(100 k / fps) cs: played back, the animation keeps the
-/// simulation's time, whatever the ratio of `fps` to the recording's rate.
+/// simulation's time, whatever the ratio of `fps` to the recording's rate. Returns the frame
+/// rate used too: lower than `fps` when the recording is too long for [`MAX_GIF_FRAMES`].
 pub fn animation_frames(
     frames: &[ontogeny::task::RecordedFrame],
     fps: f64,
-) -> (Vec<usize>, Vec<u16>) {
+) -> (Vec<usize>, Vec<u16>, f64) {
     let (Some(first), Some(last)) = (frames.first(), frames.last()) else {
-        return (Vec::new(), Vec::new());
+        return (Vec::new(), Vec::new(), fps);
     };
     let span = (last.t - first.t).max(0.0);
+    // A long evaluation is shown at a lower rate, so the GIF stays under MAX_GIF_FRAMES.
+    let fps = if span * fps + 1.0 > MAX_GIF_FRAMES as f64 {
+        (MAX_GIF_FRAMES - 1) as f64 / span
+    } else {
+        fps
+    };
     let count = (span * fps + 1e-9).floor() as usize + 1;
     let mut chosen = Vec::with_capacity(count);
     let mut next = 0;
@@ -490,7 +501,7 @@ pub fn animation_frames(
     let delays = (0..count)
         .map(|k| (start(k + 1) - start(k)).clamp(2, u16::MAX as u64) as u16)
         .collect();
-    (chosen, delays)
+    (chosen, delays, fps)
 }
 
 /// Renders recorded frames as an animation, `fps` pictures per second of simulated time.
@@ -500,7 +511,14 @@ pub fn render_recording(
     path: &Path,
     fps: f64,
 ) -> anyhow::Result<()> {
-    let (chosen, delays) = animation_frames(frames, fps);
+    let (chosen, delays, shown_fps) = animation_frames(frames, fps);
+    if shown_fps < fps {
+        eprintln!(
+            "note: {} s recorded: {} is drawn at {shown_fps:.3} frames/s instead of {fps}, to stay under {MAX_GIF_FRAMES} frames",
+            frames.last().map_or(0.0, |f| f.t),
+            path.display()
+        );
+    }
     let posed: Vec<Creature> = chosen
         .iter()
         .map(|&i| &frames[i])
@@ -532,4 +550,42 @@ pub fn render_recording(
     ontogeny::render::write_gif(posed.iter(), path, 480, 300, &delays, framing)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn recording(seconds: f64) -> Vec<ontogeny::task::RecordedFrame> {
+        (0..=(seconds * 60.0).round() as usize)
+            .map(|k| ontogeny::task::RecordedFrame {
+                t: k as f64 / 60.0,
+                parts: Vec::new(),
+                projectile: None,
+                projectile_size: None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_short_recording_is_drawn_at_the_asked_rate() {
+        let (chosen, delays, fps) = animation_frames(&recording(2.0), 10.0);
+        assert_eq!(fps, 10.0);
+        assert_eq!(chosen.len(), 21);
+        // Frame k shows the recording at k / 10 s: recorded frame 6k at 60 frames/s.
+        assert!(chosen.iter().enumerate().all(|(k, &i)| i == 6 * k));
+        assert!(delays.iter().all(|&d| d == 10));
+    }
+
+    #[test]
+    fn a_long_recording_stays_under_the_frame_cap() {
+        // An hour at 10 frames/s would be 36,001 frames.
+        let (chosen, delays, fps) = animation_frames(&recording(3600.0), 10.0);
+        assert!(chosen.len() <= MAX_GIF_FRAMES, "{}", chosen.len());
+        assert_eq!(chosen.len(), MAX_GIF_FRAMES);
+        assert!((fps - 599.0 / 3600.0).abs() < 1e-12);
+        // It still plays back in real time: the delays add up to the hour (in cs).
+        let total: u64 = delays[..delays.len() - 1].iter().map(|&d| d as u64).sum();
+        assert!((total as f64 - 360_000.0).abs() <= 1.0, "{total}");
+    }
 }

@@ -64,12 +64,12 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
     })?;
     let gif = args.dir.join("behaviour.gif");
     super::eval::render_recording(&recording.creature, &recording.frames, &gif, args.fps)?;
-    let (shown, _) = super::eval::animation_frames(&recording.frames, args.fps);
+    let (shown, _, fps) = super::eval::animation_frames(&recording.frames, args.fps);
     say!(
         "wrote {} ({} frames at {} frames/s, of {} recorded)",
         gif.display(),
         shown.len(),
-        args.fps,
+        ontogeny::lsystem::format_number(fps),
         recording.frames.len()
     );
     Ok(())
