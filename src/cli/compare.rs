@@ -10,7 +10,7 @@ use ontogeny::evolve::compare::{
     self, CompareError, Manifest, Replicate, ReplicateState, Shared, evaluations_of,
     generations_for, read_replicate, replicate_dir, replicate_seed,
 };
-use ontogeny::evolve::config::{ConfigFile, GaOverrides, RunConfig, check_settings, read_config};
+use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, read_config};
 use ontogeny::evolve::run::{GenerationReport, Run};
 use ontogeny::lang::Source;
 
@@ -165,14 +165,7 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     };
     let file: ConfigFile<toml::Value> = match &source {
         Some(s) => read_config(s)?,
-        None => ConfigFile {
-            encoding: None,
-            seed: None,
-            init: None,
-            ga: GaOverrides::default(),
-            task: None,
-            limits: None,
-        },
+        None => ConfigFile::default(),
     };
     let where_from = source
         .as_ref()

@@ -6,9 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
 use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome};
-use ontogeny::evolve::config::{
-    ConfigFile, GaOverrides, RunConfig, check_settings, encoding_of, read_config,
-};
+use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, encoding_of, read_config};
 use ontogeny::evolve::ga::Preset;
 use ontogeny::evolve::run::{GenerationReport, Run, RunError};
 use ontogeny::evolve::store::RunStore;
@@ -220,14 +218,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         .expect("clap requires --out without --resume");
     let file: ConfigFile<G::Limits> = match source {
         Some(s) => read_config(s)?,
-        None => ConfigFile {
-            encoding: None,
-            seed: None,
-            init: None,
-            ga: GaOverrides::default(),
-            task: None,
-            limits: None,
-        },
+        None => ConfigFile::default(),
     };
     let mut overrides = file.ga.clone();
     if let Some(p) = args.preset {

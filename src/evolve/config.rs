@@ -98,6 +98,20 @@ pub struct ConfigFile<L> {
     pub limits: Option<L>,
 }
 
+/// No file: nothing set, everything from the command line and the preset.
+impl<L> Default for ConfigFile<L> {
+    fn default() -> Self {
+        ConfigFile {
+            encoding: None,
+            seed: None,
+            init: None,
+            ga: GaOverrides::default(),
+            task: None,
+            limits: None,
+        }
+    }
+}
+
 /// A diagnostic for a TOML error in `source`, at its place when it has one.
 fn toml_diagnostic(source: &Source, error: &toml::de::Error) -> Diagnostic {
     let message = error.message().to_string();
