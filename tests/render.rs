@@ -4,7 +4,11 @@
 use ontogeny::creature::Creature;
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
-use ontogeny::render::{View, picture, write_gif};
+use ontogeny::render::{Overlay, View, picture, write_gif};
+
+fn none() -> Overlay {
+    Overlay::default()
+}
 
 fn creature(axiom: &str) -> Creature {
     ontogeny::develop::creature_from_commands(axiom).unwrap()
@@ -28,8 +32,8 @@ fn a_picture_shows_the_body_and_grows_with_it() {
     let one = creature("forward(1)");
     let four = creature("forward(1) forward(1) left(1) forward(1) forward(1)");
     let view = View::framing(&four);
-    let small = picture(&one, &view, 400, 300).unwrap();
-    let large = picture(&four, &view, 400, 300).unwrap();
+    let small = picture(&one, &view, 400, 300, &none()).unwrap();
+    let large = picture(&four, &view, 400, 300, &none()).unwrap();
     assert_eq!((small.width(), small.height()), (400, 300));
     let (a, b) = (
         blue_pixels(small.data(), 400),
@@ -42,7 +46,7 @@ fn a_picture_shows_the_body_and_grows_with_it() {
     );
     // Same creature, same picture.
     assert_eq!(
-        picture(&four, &view, 400, 300).unwrap().data(),
+        picture(&four, &view, 400, 300, &none()).unwrap().data(),
         large.data()
     );
 }
@@ -50,9 +54,9 @@ fn a_picture_shows_the_body_and_grows_with_it() {
 #[test]
 fn an_empty_creature_still_draws_and_bad_sizes_are_errors() {
     let empty = creature("A");
-    let pic = picture(&empty, &View::framing(&empty), 200, 100).unwrap();
+    let pic = picture(&empty, &View::framing(&empty), 200, 100, &none()).unwrap();
     assert_eq!(blue_pixels(pic.data(), 200), 0);
-    assert!(picture(&empty, &View::framing(&empty), 0, 100).is_err());
+    assert!(picture(&empty, &View::framing(&empty), 0, 100, &none()).is_err());
 }
 
 #[test]
@@ -70,6 +74,7 @@ fn the_growth_gif_has_a_frame_per_growth_frame() {
     let path = dir.join("growth.gif");
     write_gif(
         frames.iter().map(|f| &f.creature),
+        &[],
         &path,
         160,
         100,
@@ -146,7 +151,7 @@ fn a_following_camera_keeps_a_travelling_creature_large() {
         },
     ] {
         let path = dir.join("travel.gif");
-        write_gif([&start, &far], &path, 240, 150, &[10], framing).unwrap();
+        write_gif([&start, &far], &[], &path, 240, 150, &[10], framing).unwrap();
         counts.push(blue_pixels_per_frame(&path, 240));
     }
     let (still, following) = (&counts[0], &counts[1]);

@@ -434,6 +434,8 @@ pub fn write_recording_at(
 ) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let path = dir.join("recording.json");
+    // In the terms of every aim evaluation that got as far as placing the projectile, failed
+    // or not.
     let target: Option<Vec<f64>> = ["target_x", "target_y", "target_z"]
         .iter()
         .map(|k| evaluation.terms.get(*k).copied())
@@ -451,6 +453,7 @@ pub fn write_recording_at(
     render_recording(
         creature,
         &evaluation.recording,
+        target.map(|t| nalgebra::Vector3::new(t[0], t[1], t[2])),
         &dir.join("behaviour.gif"),
         fps,
     )?;
@@ -504,10 +507,16 @@ pub fn animation_frames(
     (chosen, delays, fps)
 }
 
-/// Renders recorded frames as an animation, `fps` pictures per second of simulated time.
+/// The most points of a projectile's trail drawn in one frame.
+const MAX_TRAIL_POINTS: usize = 400;
+
+/// Renders recorded frames as an animation, `fps` pictures per second of simulated time:
+/// each frame labelled with its simulated time and the protocol's phase, the projectile's
+/// trail so far drawn, and `target` (the aim task's, in world coordinates) when there is one.
 pub fn render_recording(
     creature: &Creature,
     frames: &[ontogeny::task::RecordedFrame],
+    target: Option<nalgebra::Vector3<f64>>,
     path: &Path,
     fps: f64,
 ) -> anyhow::Result<()> {
@@ -540,14 +549,50 @@ pub fn render_recording(
                     growing: true,
                 });
             }
-            c.joints.clear();
+            // Joints move with their parent part.
+            for joint in &mut c.joints {
+                let (Some(before), Some(after)) =
+                    (creature.parts.get(joint.parent), c.parts.get(joint.parent))
+                else {
+                    continue;
+                };
+                let turn = after.orientation * before.orientation.inverse();
+                joint.anchor = after.position + turn * (joint.anchor - before.position);
+                for axis in &mut joint.axes {
+                    *axis = turn * *axis;
+                }
+            }
             c
+        })
+        .collect();
+    let overlays: Vec<ontogeny::render::Overlay> = chosen
+        .iter()
+        .map(|&i| {
+            let frame = &frames[i];
+            let phase = frame.phase.map(|p| p.label()).unwrap_or("");
+            let flown: Vec<_> = frames[..=i].iter().filter_map(|f| f.projectile).collect();
+            let stride = flown.len().div_ceil(MAX_TRAIL_POINTS).max(1);
+            let mut trail: Vec<_> = flown.iter().step_by(stride).copied().collect();
+            if let Some(last) = flown.last()
+                && trail.last() != Some(last)
+            {
+                trail.push(*last);
+            }
+            ontogeny::render::Overlay {
+                label: vec![
+                    format!("t = {:.2} s  {phase}", frame.t)
+                        .trim_end()
+                        .to_string(),
+                ],
+                target,
+                trail,
+            }
         })
         .collect();
     let framing = ontogeny::render::Framing::Following {
         parts: creature.parts.len(),
     };
-    ontogeny::render::write_gif(posed.iter(), path, 480, 300, &delays, framing)
+    ontogeny::render::write_gif(posed.iter(), &overlays, path, 480, 300, &delays, framing)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
 }
@@ -560,6 +605,7 @@ mod tests {
         (0..=(seconds * 60.0).round() as usize)
             .map(|k| ontogeny::task::RecordedFrame {
                 t: k as f64 / 60.0,
+                phase: None,
                 parts: Vec::new(),
                 projectile: None,
                 projectile_size: None,

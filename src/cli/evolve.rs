@@ -496,7 +496,8 @@ fn replay_typed<G: Genome>(
         .develop(limits, individual.develop_seed)
         .map_err(|e| bad(format!("the genome does not develop: {e}")))?;
     let png = out.join("creature.png");
-    ontogeny::render::write_png(&creature, &png, 960, 600)
+    let title = format!("generation {generation}, rank {rank}");
+    ontogeny::render::write_png(&creature, &title, &png, 960, 600)
         .with_context(|| format!("cannot write {}", png.display()))?;
     let evaluation = run.config().task.evaluate(&creature, true);
     super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;

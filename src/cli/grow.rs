@@ -145,11 +145,19 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         }
         out.flush()?;
         let path = dir.join("creature.png");
-        ontogeny::render::write_png(&last.creature, &path, 960, 600)
+        ontogeny::render::write_png(&last.creature, &summary.file, &path, 960, 600)
             .with_context(|| format!("cannot write {}", path.display()))?;
         let path = dir.join("growth.gif");
+        let labels: Vec<ontogeny::render::Overlay> = frames
+            .iter()
+            .map(|f| ontogeny::render::Overlay {
+                label: vec![format!("t = {}", ontogeny::lsystem::format_number(f.t))],
+                ..Default::default()
+            })
+            .collect();
         ontogeny::render::write_gif(
             frames.iter().map(|f| &f.creature),
+            &labels,
             &path,
             480,
             300,

@@ -30,6 +30,9 @@ pub struct ReplayArgs {
 struct Recording {
     creature: Creature,
     frames: Vec<RecordedFrame>,
+    /// The aim task's target (absent or null for other tasks).
+    #[serde(default)]
+    target: Option<[f64; 3]>,
 }
 
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
@@ -63,7 +66,16 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         ))
     })?;
     let gif = args.dir.join("behaviour.gif");
-    super::eval::render_recording(&recording.creature, &recording.frames, &gif, args.fps)?;
+    let target = recording
+        .target
+        .map(|[x, y, z]| nalgebra::Vector3::new(x, y, z));
+    super::eval::render_recording(
+        &recording.creature,
+        &recording.frames,
+        target,
+        &gif,
+        args.fps,
+    )?;
     let (shown, _, fps) = super::eval::animation_frames(&recording.frames, args.fps);
     say!(
         "wrote {} ({} frames at {} frames/s, of {} recorded)",

@@ -1,11 +1,57 @@
 //! Pictures of creatures, headless and in pure Rust: a shaded 3/4 view of the body on a
 //! ground grid with joints and growing parts marked, a drawing of the neural network beside
-//! it, and animations of growth. Drawing is done with tiny-skia; GIFs are encoded with `gif`.
+//! it, and animations of growth and behaviour. Drawing is done with tiny-skia, text with the
+//! public-domain 8×8 bitmap font of `font8x8`; GIFs are encoded with `gif`, on a palette that
+//! keeps the colours that carry meaning exact.
+
+use std::collections::HashMap;
 
 use nalgebra::{Matrix3, Vector3};
-use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Stroke, Transform};
+use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
-use crate::creature::{Creature, NeuronFunction, Role};
+use crate::creature::{Creature, NeuronFunction, Role, Severity};
+
+/// Sensor neurons.
+const SENSOR: [u8; 3] = [40, 170, 70];
+/// Actuator neurons.
+const ACTUATOR: [u8; 3] = [210, 50, 50];
+/// Oscillator neurons.
+const OSCILLATOR: [u8; 3] = [140, 70, 190];
+/// Other neurons.
+const NEURON: [u8; 3] = [60, 110, 200];
+/// Movable joints' discs.
+const JOINT: [u8; 3] = [215, 40, 40];
+/// Growing joints' discs.
+const GROWING_JOINT: [u8; 3] = [255, 120, 0];
+/// Hinge axes.
+const AXIS: [u8; 3] = [25, 25, 25];
+/// The aim task's target.
+const TARGET: [u8; 3] = [225, 0, 200];
+/// A projectile's trail.
+const TRAIL: [u8; 3] = [190, 90, 0];
+/// What makes a creature invalid: interpenetrating parts, problem text.
+const MARK: [u8; 3] = [255, 0, 0];
+/// Text.
+const INK: [u8; 3] = [20, 20, 20];
+/// The brain panel's background.
+const PANEL: [u8; 3] = [248, 248, 250];
+
+/// The colours a GIF's palette holds exactly, whatever else the frame needs.
+const KEY_COLOURS: [[u8; 3]; 13] = [
+    SENSOR,
+    ACTUATOR,
+    OSCILLATOR,
+    NEURON,
+    JOINT,
+    GROWING_JOINT,
+    AXIS,
+    TARGET,
+    TRAIL,
+    MARK,
+    INK,
+    PANEL,
+    [255, 255, 255],
+];
 
 /// Why a picture could not be made or written.
 #[derive(Debug, thiserror::Error)]
@@ -222,8 +268,173 @@ fn paint(r: u8, g: u8, b: u8, a: u8) -> Paint<'static> {
     p
 }
 
-/// Draws the body into the region `(x, y, w, h)` of `pixmap`.
-fn draw_body(pixmap: &mut Pixmap, creature: &Creature, view: &View, region: (f32, f32, f32, f32)) {
+fn solid(c: [u8; 3]) -> Paint<'static> {
+    paint(c[0], c[1], c[2], 255)
+}
+
+/// What is drawn over a picture besides the creature.
+#[derive(Clone, Debug, Default)]
+pub struct Overlay {
+    /// Lines of text at the top left (a behaviour frame's time and phase, say).
+    pub label: Vec<String>,
+    /// A target, in world coordinates (the aim task's): a bullseye with a line down to the
+    /// ground.
+    pub target: Option<Vector3<f64>>,
+    /// A projectile's past positions, oldest first, drawn as its trail. With a target or a
+    /// trail, a top view in the corner shows them even when they are out of the camera's
+    /// view.
+    pub trail: Vec<Vector3<f64>>,
+}
+
+/// Whether a picture checks the creature: marks interpenetrating parts, numbers the parts and
+/// writes its validity and problems.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Checks {
+    On,
+    Off,
+}
+
+/// Text that fits the 8×8 font: ASCII, with the symbols messages use spelt out.
+fn ascii(text: &str) -> String {
+    text.chars()
+        .map(|c| match c {
+            '−' | '–' | '—' => '-',
+            '·' | '×' => '*',
+            '²' => '2',
+            '³' => '3',
+            '°' => 'o',
+            c if c.is_ascii() && !c.is_ascii_control() => c,
+            _ => '?',
+        })
+        .collect()
+}
+
+/// The width in pixels of `text` drawn at `scale`.
+fn text_width(text: &str, scale: f32) -> f32 {
+    text.chars().count() as f32 * 8.0 * scale
+}
+
+/// `text`, cut with "..." to fit `width` pixels at `scale`.
+fn fit(text: &str, width: f32, scale: f32) -> String {
+    let text = ascii(text);
+    let room = (width / (8.0 * scale)).floor().max(0.0) as usize;
+    if text.len() <= room {
+        text
+    } else if room > 3 {
+        format!("{}...", &text[..room - 3])
+    } else {
+        String::new()
+    }
+}
+
+/// Draws `text` with its top left at `(x, y)`, each font pixel `scale` pixels square, on a
+/// pale backing when `backing` is set.
+fn draw_text(
+    pixmap: &mut Pixmap,
+    (x, y): (f32, f32),
+    text: &str,
+    scale: f32,
+    colour: [u8; 3],
+    backing: bool,
+) {
+    let text = ascii(text);
+    if text.is_empty() {
+        return;
+    }
+    let (x, y) = (x.round(), y.round());
+    if backing
+        && let Some(rect) = Rect::from_xywh(
+            x - 2.0,
+            y - 2.0,
+            text_width(&text, scale) + 4.0,
+            8.0 * scale + 4.0,
+        )
+    {
+        pixmap.fill_rect(
+            rect,
+            &paint(255, 255, 255, 215),
+            Transform::identity(),
+            None,
+        );
+    }
+    let mut pb = PathBuilder::new();
+    for (i, c) in text.bytes().enumerate() {
+        let glyph = font8x8::legacy::BASIC_LEGACY[c as usize & 0x7f];
+        for (row, bits) in glyph.iter().enumerate() {
+            for col in 0..8 {
+                if bits >> col & 1 == 1
+                    && let Some(r) = Rect::from_xywh(
+                        x + (i * 8 + col) as f32 * scale,
+                        y + row as f32 * scale,
+                        scale,
+                        scale,
+                    )
+                {
+                    pb.push_rect(r);
+                }
+            }
+        }
+    }
+    if let Some(path) = pb.finish() {
+        let mut p = solid(colour);
+        p.anti_alias = false;
+        pixmap.fill_path(&path, &p, FillRule::Winding, Transform::identity(), None);
+    }
+}
+
+/// The round length (1, 2 or 5 × a power of ten, in metres) whose bar is at most `room`
+/// pixels long at `scale` pixels per metre.
+fn scale_bar_length(scale: f64, room: f64) -> f64 {
+    let mut best = 1e-3;
+    for exponent in -3..=4 {
+        for m in [1.0, 2.0, 5.0] {
+            let length = m * 10f64.powi(exponent);
+            if length * scale <= room {
+                best = length;
+            }
+        }
+    }
+    best
+}
+
+/// A length for a scale bar's label: "1 m", "50 cm", "5 mm".
+fn length_label(metres: f64) -> String {
+    if metres >= 1.0 {
+        format!("{} m", crate::lsystem::format_number(metres))
+    } else if metres >= 0.01 {
+        format!("{} cm", (metres * 100.0).round())
+    } else {
+        format!("{} mm", (metres * 1000.0).round())
+    }
+}
+
+/// The radius of a joint's disc in metres: half the smaller joined part's middle dimension
+/// (its width, for a bar), so that a disc is as wide as the parts it joins.
+fn joint_radius(creature: &Creature, parent: usize, child: usize) -> f64 {
+    let middle = |i: usize| {
+        creature.parts.get(i).map(|p| {
+            let mut d = [p.size.x, p.size.y, p.size.z];
+            d.sort_by(f64::total_cmp);
+            d[1]
+        })
+    };
+    let sizes: Vec<f64> = [middle(parent), middle(child)]
+        .into_iter()
+        .flatten()
+        .collect();
+    sizes.into_iter().fold(f64::INFINITY, f64::min).min(1e6) / 2.0
+}
+
+/// Draws the body into the region `(x, y, w, h)` of `pixmap`, with `overlay` and, when
+/// `checks` is on, the marks of what makes the creature invalid and part numbers.
+fn draw_body(
+    pixmap: &mut Pixmap,
+    creature: &Creature,
+    view: &View,
+    region: (f32, f32, f32, f32),
+    overlay: &Overlay,
+    checks: Checks,
+) {
     let (rx, ry, rw, rh) = region;
     let camera = Camera::new(view, rw as f64, rh as f64, 12.0);
     let shift = Transform::from_translate(rx, ry);
@@ -286,6 +497,23 @@ fn draw_body(pixmap: &mut Pixmap, creature: &Creature, view: &View, region: (f32
             ..Stroke::default()
         };
         pixmap.stroke_path(&path, &paint(190, 194, 186, 255), &stroke, shift, None);
+    }
+
+    // The target's foot on the ground and the line up to it.
+    if let Some(target) = overlay.target {
+        let (fx, fy, _) = camera.project(&Vector3::new(target.x, ground, target.z));
+        let (tx, ty, _) = camera.project(&target);
+        let mut pb = PathBuilder::new();
+        pb.push_oval(Rect::from_xywh(fx - 8.0, fy - 3.5, 16.0, 7.0).expect("finite"));
+        pb.move_to(fx, fy);
+        pb.line_to(tx, ty);
+        if let Some(path) = pb.finish() {
+            let stroke = Stroke {
+                width: 1.5,
+                ..Stroke::default()
+            };
+            pixmap.stroke_path(&path, &solid(TARGET), &stroke, shift, None);
+        }
     }
 
     // Shadows: each part's footprint dropped onto the ground.
@@ -363,19 +591,413 @@ fn draw_body(pixmap: &mut Pixmap, creature: &Creature, view: &View, region: (f32
         }
     }
 
-    // Joints on top: red discs for movable joints (orange while growing), grey dots for fused.
-    for joint in &creature.joints {
-        let (sx, sy, _) = camera.project(&joint.anchor);
-        let (radius, colour) = match (joint.kind.dof(), joint.growing) {
-            (0, _) => (2.5, paint(90, 90, 90, 220)),
-            (_, true) => (5.0, paint(255, 120, 0, 255)),
-            _ => (5.0, paint(215, 40, 40, 255)),
-        };
-        if let Some(path) = PathBuilder::from_circle(sx, sy, radius) {
-            pixmap.fill_path(&path, &colour, FillRule::Winding, shift, None);
-            pixmap.stroke_path(&path, &paint(255, 255, 255, 255), &outline, shift, None);
+    // Interpenetrating parts: outlined in the marking colour.
+    let pairs = if checks == Checks::On {
+        creature.interpenetrating_pairs()
+    } else {
+        Vec::new()
+    };
+    let mut marked: Vec<usize> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+    marked.sort_unstable();
+    marked.dedup();
+    for &index in &marked {
+        let mut pts: Vec<(f32, f32)> = creature.parts[index]
+            .corners()
+            .iter()
+            .map(|c| {
+                let (sx, sy, _) = camera.project(c);
+                (sx, sy)
+            })
+            .collect();
+        if let Some(path) = convex_hull_path(&mut pts) {
+            let stroke = Stroke {
+                width: 3.0,
+                ..Stroke::default()
+            };
+            pixmap.stroke_path(&path, &solid(MARK), &stroke, shift, None);
         }
     }
+
+    // Joints on top: a disc in the plane each movable joint turns in (red, orange while
+    // growing), its size following the parts it joins, with a line along each axis ending
+    // in a dot at the axis's positive end; fused joints are grey dots.
+    let most = 0.08 * rw.min(rh);
+    for joint in &creature.joints {
+        let (sx, sy, _) = camera.project(&joint.anchor);
+        let radius = joint_radius(creature, joint.parent, joint.child);
+        let pixels = ((radius * camera.scale) as f32).clamp(3.0, most.max(3.0));
+        let radius = pixels as f64 / camera.scale;
+        if joint.kind.dof() == 0 || joint.axes.is_empty() {
+            let dot = (0.4 * pixels).clamp(2.0, 6.0);
+            if let Some(path) = PathBuilder::from_circle(sx, sy, dot) {
+                pixmap.fill_path(
+                    &path,
+                    &paint(90, 90, 90, 220),
+                    FillRule::Winding,
+                    shift,
+                    None,
+                );
+                pixmap.stroke_path(&path, &solid([255; 3]), &outline, shift, None);
+            }
+            continue;
+        }
+        let colour = if joint.growing { GROWING_JOINT } else { JOINT };
+        let axis = joint.axes[0].try_normalize(1e-12).unwrap_or(Vector3::x());
+        let helper = if axis.y.abs() < 0.9 {
+            Vector3::y()
+        } else {
+            Vector3::x()
+        };
+        let u = axis.cross(&helper).normalize();
+        let v = axis.cross(&u);
+        let rim: Vec<(f32, f32)> = (0..24)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 24.0;
+                let p = joint.anchor + (u * a.cos() + v * a.sin()) * radius;
+                let (px, py, _) = camera.project(&p);
+                (px, py)
+            })
+            .collect();
+        if let Some(path) = polygon(&rim) {
+            pixmap.fill_path(
+                &path,
+                &paint(colour[0], colour[1], colour[2], 235),
+                FillRule::Winding,
+                shift,
+                None,
+            );
+            pixmap.stroke_path(&path, &solid([255; 3]), &outline, shift, None);
+        }
+        if let Some(path) = PathBuilder::from_circle(sx, sy, 2.5) {
+            pixmap.fill_path(&path, &solid(colour), FillRule::Winding, shift, None);
+        }
+        let stroke = Stroke {
+            width: 2.0,
+            ..Stroke::default()
+        };
+        for axis in &joint.axes {
+            let Some(axis) = axis.try_normalize(1e-12) else {
+                continue;
+            };
+            let (ax, ay, _) = camera.project(&(joint.anchor - axis * 1.6 * radius));
+            let (bx, by, _) = camera.project(&(joint.anchor + axis * 1.6 * radius));
+            let mut pb = PathBuilder::new();
+            pb.move_to(ax, ay);
+            pb.line_to(bx, by);
+            pb.push_circle(bx, by, 2.5);
+            if let Some(path) = pb.finish() {
+                pixmap.stroke_path(&path, &solid(AXIS), &stroke, shift, None);
+            }
+        }
+    }
+
+    // The projectile's trail and the target's bullseye.
+    if overlay.trail.len() >= 2 {
+        let mut pb = PathBuilder::new();
+        for (k, p) in overlay.trail.iter().enumerate() {
+            let (px, py, _) = camera.project(p);
+            if k == 0 {
+                pb.move_to(px, py);
+            } else {
+                pb.line_to(px, py);
+            }
+        }
+        if let Some(path) = pb.finish() {
+            let stroke = Stroke {
+                width: 2.0,
+                ..Stroke::default()
+            };
+            pixmap.stroke_path(&path, &solid(TRAIL), &stroke, shift, None);
+        }
+    }
+    if let Some(target) = overlay.target {
+        let (tx, ty, _) = camera.project(&target);
+        draw_bullseye(pixmap, (rx + tx, ry + ty), 7.0);
+    }
+
+    // Part numbers, red for marked parts.
+    if checks == Checks::On && creature.parts.len() <= 60 {
+        for (index, part) in creature.parts.iter().enumerate() {
+            let (px, py, _) = camera.project(&part.position);
+            let text = index.to_string();
+            let colour = if marked.contains(&index) { MARK } else { INK };
+            let half = text_width(&text, 1.0) / 2.0;
+            draw_text(
+                pixmap,
+                (rx + px - half, ry + py - 4.0),
+                &text,
+                1.0,
+                colour,
+                true,
+            );
+        }
+    }
+
+    let text_scale = if rh >= 500.0 { 2.0 } else { 1.0 };
+    // The scale bar, bottom left.
+    let length = scale_bar_length(camera.scale, 0.25 * rw as f64);
+    let bar = (length * camera.scale) as f32;
+    let (bx, by) = ((rx + 12.0).round() + 0.5, (ry + rh - 10.0).round() + 0.5);
+    let mut pb = PathBuilder::new();
+    pb.move_to(bx, by - 4.0);
+    pb.line_to(bx, by);
+    pb.line_to(bx + bar, by);
+    pb.line_to(bx + bar, by - 4.0);
+    if let Some(path) = pb.finish() {
+        let stroke = Stroke {
+            width: 2.0,
+            ..Stroke::default()
+        };
+        let mut p = solid(INK);
+        p.anti_alias = false;
+        pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
+    }
+    draw_text(
+        pixmap,
+        (bx + bar + 6.0, by - 8.0 * text_scale),
+        &length_label(length),
+        text_scale,
+        INK,
+        true,
+    );
+
+    // The top view of projectile and target, in the top right corner.
+    let mut room = rw - 16.0;
+    if overlay.target.is_some() || !overlay.trail.is_empty() {
+        let side = (0.34 * rw.min(rh)).round();
+        draw_top_view(
+            pixmap,
+            creature,
+            overlay,
+            (rx + rw - side - 6.0, ry + 6.0, side, side),
+        );
+        room -= side + 6.0;
+    }
+
+    // Lines of text, top left; with checks, the creature's validity and problems after them.
+    let line = 10.0 * text_scale + 2.0;
+    let mut y = ry + 6.0;
+    for text in &overlay.label {
+        draw_text(
+            pixmap,
+            (rx + 8.0, y),
+            &fit(text, room, text_scale),
+            text_scale,
+            INK,
+            true,
+        );
+        y += line;
+    }
+    if checks == Checks::On {
+        let mut problems: Vec<(String, [u8; 3])> = Vec::new();
+        if creature.parts.is_empty() {
+            problems.push(("error: no part".to_string(), MARK));
+        }
+        for p in &creature.problems {
+            let (level, colour) = match p.severity {
+                Severity::Error => ("error", MARK),
+                Severity::Warning => ("warning", TRAIL),
+            };
+            problems.push((format!("{level}: {}", p.message), colour));
+        }
+        for (a, b) in &pairs {
+            let message = format!("parts {a} and {b} interpenetrate");
+            if !creature.problems.iter().any(|p| p.message == message) {
+                problems.push((format!("error: {message}"), MARK));
+            }
+        }
+        let valid = creature.is_valid() && pairs.is_empty();
+        let summary = format!(
+            "{} parts, {} joints, {} neurons: {}",
+            creature.parts.len(),
+            creature.joints.len(),
+            creature.brain.neurons.len(),
+            if valid { "valid" } else { "INVALID" }
+        );
+        draw_text(
+            pixmap,
+            (rx + 8.0, y),
+            &fit(&summary, room, text_scale),
+            text_scale,
+            if valid { INK } else { MARK },
+            true,
+        );
+        y += line;
+        let shown = ((rh - y - 24.0) / line).floor().max(0.0) as usize;
+        let total = problems.len();
+        for (k, (text, colour)) in problems.into_iter().enumerate() {
+            if k + 1 == shown && total > shown {
+                let rest = format!("... and {} more", total - k);
+                draw_text(pixmap, (rx + 8.0, y), &rest, text_scale, colour, true);
+                break;
+            }
+            if k >= shown {
+                break;
+            }
+            draw_text(
+                pixmap,
+                (rx + 8.0, y),
+                &fit(&text, room, text_scale),
+                text_scale,
+                colour,
+                true,
+            );
+            y += line;
+        }
+        if !valid && let Some(rect) = Rect::from_xywh(rx + 1.5, ry + 1.5, rw - 3.0, rh - 3.0) {
+            let stroke = Stroke {
+                width: 3.0,
+                ..Stroke::default()
+            };
+            let mut p = solid(MARK);
+            p.anti_alias = false;
+            pixmap.stroke_path(
+                &PathBuilder::from_rect(rect),
+                &p,
+                &stroke,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+}
+
+/// A target's bullseye centred on `(x, y)` (pixels), `radius` across its outer ring.
+fn draw_bullseye(pixmap: &mut Pixmap, (x, y): (f32, f32), radius: f32) {
+    for (r, colour) in [
+        (radius, TARGET),
+        (radius * 0.62, [255; 3]),
+        (radius * 0.3, TARGET),
+    ] {
+        if let Some(path) = PathBuilder::from_circle(x, y, r) {
+            pixmap.fill_path(
+                &path,
+                &solid(colour),
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+}
+
+/// A top view (x right, z down) of the creature's parts, the trail, the projectile and the
+/// target in the square `(x, y, side, side)`, fitted to hold them all, with its scale.
+fn draw_top_view(
+    pixmap: &mut Pixmap,
+    creature: &Creature,
+    overlay: &Overlay,
+    (x, y, side, _): (f32, f32, f32, f32),
+) {
+    let Some(rect) = Rect::from_xywh(x, y, side, side) else {
+        return;
+    };
+    pixmap.fill_rect(
+        rect,
+        &paint(255, 255, 255, 225),
+        Transform::identity(),
+        None,
+    );
+    let thin = Stroke {
+        width: 1.0,
+        ..Stroke::default()
+    };
+    pixmap.stroke_path(
+        &PathBuilder::from_rect(rect),
+        &paint(120, 120, 120, 255),
+        &thin,
+        Transform::identity(),
+        None,
+    );
+    let points: Vec<Vector3<f64>> = creature
+        .parts
+        .iter()
+        .flat_map(|p| p.corners())
+        .chain(overlay.trail.iter().copied())
+        .chain(overlay.target)
+        .collect();
+    let Some(first) = points.first() else {
+        return;
+    };
+    let (lo, hi) = points
+        .iter()
+        .fold((*first, *first), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    let inner = side as f64 - 16.0;
+    let span = (hi.x - lo.x).max(hi.z - lo.z).max(0.5);
+    let scale = inner / span;
+    let (cx, cz) = ((lo.x + hi.x) / 2.0, (lo.z + hi.z) / 2.0);
+    let place = |p: &Vector3<f64>| {
+        (
+            x + side / 2.0 + ((p.x - cx) * scale) as f32,
+            y + side / 2.0 + ((p.z - cz) * scale) as f32,
+        )
+    };
+    for part in &creature.parts {
+        let mut pts: Vec<(f32, f32)> = part.corners().iter().map(place).collect();
+        if let Some(path) = convex_hull_path(&mut pts) {
+            let colour = if part.growing {
+                paint(240, 150, 40, 255)
+            } else {
+                paint(100, 150, 220, 255)
+            };
+            pixmap.fill_path(
+                &path,
+                &colour,
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+    if overlay.trail.len() >= 2 {
+        let mut pb = PathBuilder::new();
+        for (k, p) in overlay.trail.iter().enumerate() {
+            let (px, py) = place(p);
+            if k == 0 {
+                pb.move_to(px, py);
+            } else {
+                pb.line_to(px, py);
+            }
+        }
+        if let Some(path) = pb.finish() {
+            let stroke = Stroke {
+                width: 1.5,
+                ..Stroke::default()
+            };
+            pixmap.stroke_path(&path, &solid(TRAIL), &stroke, Transform::identity(), None);
+        }
+    }
+    if let Some(last) = overlay.trail.last() {
+        let (px, py) = place(last);
+        if let Some(path) = PathBuilder::from_circle(px, py, 3.0) {
+            pixmap.fill_path(
+                &path,
+                &solid(TRAIL),
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+    if let Some(target) = overlay.target {
+        draw_bullseye(pixmap, place(&target), 5.0);
+    }
+    let length = scale_bar_length(scale, 0.5 * inner);
+    draw_text(pixmap, (x + 3.0, y + 3.0), "top", 1.0, INK, false);
+    let label = length_label(length);
+    let bar = (length * scale) as f32;
+    let (bx, by) = ((x + 4.0).round() + 0.5, (y + side - 5.0).round() + 0.5);
+    let mut pb = PathBuilder::new();
+    pb.move_to(bx, by);
+    pb.line_to(bx + bar, by);
+    if let Some(path) = pb.finish() {
+        let stroke = Stroke {
+            width: 2.0,
+            ..Stroke::default()
+        };
+        pixmap.stroke_path(&path, &solid(INK), &stroke, Transform::identity(), None);
+    }
+    draw_text(pixmap, (bx + bar + 3.0, by - 8.0), &label, 1.0, INK, false);
 }
 
 /// The convex hull of `pts` as a closed path (gift wrapping; at most 8 points here).
@@ -426,12 +1048,7 @@ fn polygon(points: &[(f32, f32)]) -> Option<tiny_skia::Path> {
 fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32, f32, f32, f32)) {
     let (rx, ry, rw, rh) = region;
     if let Some(rect) = tiny_skia::Rect::from_xywh(rx, ry, rw, rh) {
-        pixmap.fill_rect(
-            rect,
-            &paint(248, 248, 250, 255),
-            Transform::identity(),
-            None,
-        );
+        pixmap.fill_rect(rect, &solid(PANEL), Transform::identity(), None);
     }
     let neurons = &creature.brain.neurons;
     if neurons.is_empty() {
@@ -489,12 +1106,12 @@ fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32, f32, f32, 
     }
     for (i, neuron) in neurons.iter().enumerate() {
         let (x, y) = place(i);
-        let colour = match (neuron.role, neuron.function) {
-            (Role::Sensor { .. }, _) => paint(40, 170, 70, 255),
-            (Role::Actuator { .. }, _) => paint(210, 50, 50, 255),
-            (_, NeuronFunction::Oscillator) => paint(140, 70, 190, 255),
-            _ => paint(60, 110, 200, 255),
-        };
+        let colour = solid(match (neuron.role, neuron.function) {
+            (Role::Sensor { .. }, _) => SENSOR,
+            (Role::Actuator { .. }, _) => ACTUATOR,
+            (_, NeuronFunction::Oscillator) => OSCILLATOR,
+            _ => NEURON,
+        });
         if let Some(path) = PathBuilder::from_circle(x, y, dot) {
             pixmap.fill_path(
                 &path,
@@ -518,12 +1135,25 @@ fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32, f32, f32, 
     }
 }
 
-/// A picture of the creature: the body in a 3/4 view on the left, its brain on the right.
+/// A picture of the creature: the body in a 3/4 view on the left, its brain on the right,
+/// with `overlay` drawn over the body.
 pub fn picture(
     creature: &Creature,
     view: &View,
     width: u32,
     height: u32,
+    overlay: &Overlay,
+) -> Result<Pixmap, RenderError> {
+    compose(creature, view, width, height, overlay, Checks::Off)
+}
+
+fn compose(
+    creature: &Creature,
+    view: &View,
+    width: u32,
+    height: u32,
+    overlay: &Overlay,
+    checks: Checks,
 ) -> Result<Pixmap, RenderError> {
     if width < 64 || height < 64 || width > 8192 || height > 8192 {
         return Err(RenderError::Size(width, height));
@@ -532,30 +1162,107 @@ pub fn picture(
     pixmap.fill(Color::from_rgba8(255, 255, 255, 255));
     let (w, h) = (width as f32, height as f32);
     let brain_w = (w * 0.3).round();
-    draw_body(&mut pixmap, creature, view, (0.0, 0.0, w - brain_w, h));
+    draw_body(
+        &mut pixmap,
+        creature,
+        view,
+        (0.0, 0.0, w - brain_w, h),
+        overlay,
+        checks,
+    );
     draw_brain(&mut pixmap, creature, (w - brain_w, 0.0, brain_w, h));
     Ok(pixmap)
 }
 
-/// Writes `creature.png`-style picture of one creature.
+/// The `creature.png` picture: the body and brain with the creature checked — parts that
+/// interpenetrate outlined red, every part numbered, `title`, the counts and validity and
+/// every problem written at the top left (a red frame round an invalid creature) — and a
+/// scale bar.
+pub fn checked_picture(
+    creature: &Creature,
+    title: &str,
+    width: u32,
+    height: u32,
+) -> Result<Pixmap, RenderError> {
+    let overlay = Overlay {
+        label: if title.is_empty() {
+            Vec::new()
+        } else {
+            vec![title.to_string()]
+        },
+        ..Overlay::default()
+    };
+    compose(
+        creature,
+        &View::framing(creature),
+        width,
+        height,
+        &overlay,
+        Checks::On,
+    )
+}
+
+/// Writes the `creature.png` picture of one creature (see [`checked_picture`]).
 pub fn write_png(
     creature: &Creature,
+    title: &str,
     path: &std::path::Path,
     width: u32,
     height: u32,
 ) -> Result<(), RenderError> {
-    let pixmap = picture(creature, &View::framing(creature), width, height)?;
+    let pixmap = checked_picture(creature, title, width, height)?;
     pixmap
         .save_png(path)
         .map_err(|e| RenderError::Png(e.to_string()))
 }
 
+/// One GIF frame of an opaque picture: a palette of the colours that carry meaning
+/// ([`KEY_COLOURS`], exact) and 243 more that NeuQuant fits to the rest of the picture;
+/// each pixel takes the nearest of the two candidates (its NeuQuant colour or the nearest
+/// key colour), so a red actuator stays the red of the legend.
+fn gif_frame(pixmap: &Pixmap) -> gif::Frame<'static> {
+    let rgba = pixmap.data(); // opaque background: premultiplied = straight
+    let quant = color_quant::NeuQuant::new(10, 256 - KEY_COLOURS.len(), rgba);
+    let mut palette = quant.color_map_rgb();
+    let learned = palette.len() / 3;
+    palette.extend(KEY_COLOURS.iter().flatten());
+    let distance = |a: &[u8], b: &[u8]| -> u32 {
+        (0..3)
+            .map(|k| (a[k] as i32 - b[k] as i32).pow(2) as u32)
+            .sum()
+    };
+    let mut chosen: HashMap<[u8; 3], u8> = HashMap::new();
+    let indices: Vec<u8> = rgba
+        .chunks_exact(4)
+        .map(|p| {
+            *chosen.entry([p[0], p[1], p[2]]).or_insert_with(|| {
+                let own = quant.index_of(p);
+                let mut best = (distance(p, &palette[3 * own..3 * own + 3]), own);
+                for (k, key) in KEY_COLOURS.iter().enumerate() {
+                    let d = distance(p, key);
+                    if d < best.0 {
+                        best = (d, learned + k);
+                    }
+                }
+                best.1 as u8
+            })
+        })
+        .collect();
+    gif::Frame::from_palette_pixels(
+        pixmap.width() as u16,
+        pixmap.height() as u16,
+        indices,
+        palette,
+        None,
+    )
+}
+
 /// Writes an animated GIF of a sequence of creatures, framed as `framing` says, looping:
-/// frame i lasts
-/// `delays_cs[i]` hundredths of a second (the last delay for frames beyond the slice, 10 if
-/// it is empty).
+/// frame i is drawn with `overlays[i]` (none beyond the slice) and lasts `delays_cs[i]`
+/// hundredths of a second (the last delay for frames beyond the slice, 10 if it is empty).
 pub fn write_gif<'a>(
     creatures: impl IntoIterator<Item = &'a Creature> + Clone,
+    overlays: &[Overlay],
     path: &std::path::Path,
     width: u32,
     height: u32,
@@ -571,10 +1278,11 @@ pub fn write_gif<'a>(
     encoder
         .set_repeat(gif::Repeat::Infinite)
         .map_err(|e| RenderError::Gif(e.to_string()))?;
+    let none = Overlay::default();
     for (i, creature) in creatures.into_iter().enumerate() {
-        let pixmap = picture(creature, &views[i], width, height)?;
-        let mut rgba = pixmap.data().to_vec(); // opaque background: premultiplied = straight
-        let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, 10);
+        let overlay = overlays.get(i).unwrap_or(&none);
+        let pixmap = picture(creature, &views[i], width, height, overlay)?;
+        let mut frame = gif_frame(&pixmap);
         frame.delay = delays_cs.get(i).or(delays_cs.last()).copied().unwrap_or(10);
         encoder
             .write_frame(&frame)

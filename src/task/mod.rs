@@ -136,11 +136,44 @@ impl Default for WalkerOptions {
     }
 }
 
+/// Which stage of a task's protocol a recorded frame belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Phase {
+    /// Controller off, waiting for the creature to come to rest (walker, jump).
+    Settling,
+    /// The walker's brief first activation of the controller, before it settles again.
+    ControllerOn,
+    /// Controller on, the fitness being measured (walker, jump).
+    Measuring,
+    /// Catapult and aim: controller on, the projectile still held.
+    Throwing,
+    /// Catapult and aim: the projectile released, until it comes to rest.
+    Flying,
+}
+
+impl Phase {
+    /// The phase in words, as pictures label it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Phase::Settling => "settling",
+            Phase::ControllerOn => "controller on",
+            Phase::Measuring => "measuring",
+            Phase::Throwing => "throwing",
+            Phase::Flying => "projectile flying",
+        }
+    }
+}
+
 /// The poses of every part at one moment.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RecordedFrame {
     /// Simulated time.
     pub t: f64,
+    /// The protocol's phase during the step that ended here (absent in recordings made
+    /// before phases were recorded).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub phase: Option<Phase>,
     /// Each part's centre and orientation.
     pub parts: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
     /// The projectile's centre, in the catapult and aim tasks.
@@ -264,6 +297,7 @@ struct Run {
     record: bool,
     recording: Vec<RecordedFrame>,
     task: &'static str,
+    phase: Phase,
 }
 
 impl Run {
@@ -278,6 +312,7 @@ impl Run {
         if self.record {
             self.recording.push(RecordedFrame {
                 t: self.world.time(),
+                phase: Some(self.phase),
                 parts: (0..self.world.part_count())
                     .map(|i| self.world.part_pose(i))
                     .collect(),
@@ -291,6 +326,7 @@ impl Run {
     /// Steps with the controller off for at least `at_least` seconds and until the creature
     /// is at rest; `Unstable` if it is not within the time limit.
     fn settle(&mut self, rest: &Rest, at_least: f64, dt: f64) -> Result<(), Evaluation> {
+        self.phase = Phase::Settling;
         self.world.set_resting(true);
         let settled = self.wait_for_rest(rest, at_least, dt);
         self.world.set_resting(false);
@@ -367,6 +403,7 @@ fn start(
         record,
         recording: Vec::new(),
         task,
+        phase: Phase::Settling,
     })
 }
 
@@ -439,9 +476,11 @@ pub fn walker(
         run.settle(&options.rest, 0.0, sim.dt)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
+        run.phase = Phase::ControllerOn;
         run.run_for(options.activation, true, sim.dt)?;
         run.settle(&options.rest, options.second_settle, sim.dt)?;
         let measure_from = run.world.time();
+        run.phase = Phase::Measuring;
         let from = run.world.part_position(0);
         // Iterative move: the centre of mass's horizontal gain over every whole second.
         let mut gains = Vec::new();
@@ -540,6 +579,7 @@ pub fn jump(
         run.check_height(options.max_height)?;
         let resting = run.world.lowest_point().max(0.0);
         let mut best: f64 = 0.0;
+        run.phase = Phase::Measuring;
         for _ in 0..steps_in(options.seconds, sim.dt) {
             run.step(true)?;
             best = best.max(run.world.lowest_point());
@@ -618,7 +658,9 @@ pub fn distance_to_trajectory(trajectory: &[Vector3<f64>], target: &Vector3<f64>
 /// end and released after `release_delay` seconds, or earlier when the brain's first
 /// `release` effector fires. D_p is the horizontal distance of the projectile's centre from
 /// release to rest; the simulation ends when the projectile comes to rest, and a projectile
-/// still moving after `max_seconds` is `unstable`.
+/// still moving after `max_seconds` is `unstable`. Once the projectile is placed, the aim
+/// task's target in the world is in the terms (`target_x`, `target_y`, `target_z`), of a
+/// failed evaluation too.
 pub fn catapult(
     creature: &Creature,
     sim: &SimOptions,
@@ -640,12 +682,17 @@ pub fn catapult(
             format!("the target must be within {MAX_TARGET_DISTANCE} m of the projectile"),
         );
     }
-    evaluate(task, creature, sim, record, limits, |run| {
+    // The target in the world, once the projectile is placed: kept in the terms of a failed
+    // evaluation too, so that its recording can show the target.
+    let placed_target = std::cell::Cell::new(None);
+    let mut evaluation = evaluate(task, creature, sim, record, limits, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);
+        run.phase = Phase::Throwing;
         let (start_position, _) = run.world.projectile_state().expect("attached");
         let target = options.target.map(|t| start_position + t);
+        placed_target.set(target);
         run.world.set_target(target);
         let mut released_at = None;
         let mut release_point = start_position;
@@ -662,6 +709,7 @@ pub fn catapult(
             let (position, speed) = run.world.projectile_state().expect("attached");
             if released_at.is_none() && (step >= release_step || run.world.release_signalled()) {
                 run.world.release();
+                run.phase = Phase::Flying;
                 released_at = Some(step);
                 release_point = position;
             }
@@ -718,5 +766,15 @@ pub fn catapult(
             None => distance,
         };
         Ok((fitness, terms))
-    })
+    });
+    if let Some(target) = placed_target.get() {
+        for (name, value) in [
+            ("target_x", target.x),
+            ("target_y", target.y),
+            ("target_z", target.z),
+        ] {
+            evaluation.terms.entry(name.to_string()).or_insert(value);
+        }
+    }
+    evaluation
 }
