@@ -847,3 +847,106 @@ fn energy_from_nowhere_is_an_explosion() {
         );
     }
 }
+
+/// The phases of a recording in order, each with its number of frames.
+fn phase_runs(e: &task::Evaluation) -> Vec<(task::Phase, usize)> {
+    let mut runs: Vec<(task::Phase, usize)> = Vec::new();
+    for f in &e.recording {
+        let phase = f.phase.expect("every frame has its phase");
+        match runs.last_mut() {
+            Some((p, n)) if *p == phase => *n += 1,
+            _ => runs.push((phase, 1)),
+        }
+    }
+    runs
+}
+
+#[test]
+fn recorded_frames_carry_the_protocols_phases() {
+    use task::Phase::*;
+    let sim = SimOptions::default();
+    let walk = task::walker(&grown("examples/snake.lsys"), &sim, &short_walk(), true);
+    assert_eq!(walk.status, Status::Ok, "{:?}", walk.message);
+    let runs = phase_runs(&walk);
+    let phases: Vec<task::Phase> = runs.iter().map(|r| r.0).collect();
+    assert_eq!(phases, [Settling, ControllerOn, Settling, Measuring]);
+    // 9 steps of controller (9/60 s), 2 s measured at 60 steps/s, and the first settling
+    // ends at `settled_at`.
+    assert_eq!(runs[1].1, 9);
+    assert_eq!(runs[3].1, 120);
+    assert!((runs[0].1 as f64 * sim.dt - walk.terms["settled_at"]).abs() < 1e-9);
+
+    let throw = task::catapult(
+        &grown("examples/thrower.lsys"),
+        &sim,
+        &task::CatapultOptions::default(),
+        true,
+    );
+    assert_eq!(throw.status, Status::Ok, "{:?}", throw.message);
+    let runs = phase_runs(&throw);
+    assert_eq!(
+        runs.iter().map(|r| r.0).collect::<Vec<_>>(),
+        [Throwing, Flying]
+    );
+    // The step that releases the projectile is the last one of throwing.
+    assert_eq!(runs[0].1 as f64, throw.terms["release_step"]);
+
+    let hop = task::jump(
+        &creature("forward(1) revolute2 forward(1)"),
+        &sim,
+        &JumpOptions {
+            seconds: 0.5,
+            ..JumpOptions::default()
+        },
+        true,
+    );
+    let runs = phase_runs(&hop);
+    assert_eq!(
+        runs.iter().map(|r| r.0).collect::<Vec<_>>(),
+        [Settling, Measuring]
+    );
+    assert_eq!(runs[1].1, 30);
+}
+
+#[test]
+fn a_frame_recorded_without_a_phase_still_loads() {
+    let old = r#"{"t": 0.5, "parts": [[[0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]]}"#;
+    let frame: task::RecordedFrame = serde_json::from_str(old).unwrap();
+    assert_eq!(frame.phase, None);
+    assert_eq!(frame.t, 0.5);
+    let json = serde_json::to_value(task::RecordedFrame {
+        phase: Some(task::Phase::ControllerOn),
+        ..frame
+    })
+    .unwrap();
+    assert_eq!(json["phase"], "controller-on");
+}
+
+#[test]
+fn a_failed_aim_still_knows_its_target() {
+    let c = grown("examples/thrower.lsys");
+    let aim = task::CatapultOptions {
+        target: Some(nalgebra::Vector3::new(5.0, 0.0, 0.0)),
+        ..task::CatapultOptions::default()
+    };
+    let done = task::catapult(&c, &SimOptions::default(), &aim, false);
+    assert_eq!(done.status, Status::Ok, "{:?}", done.message);
+    // Cut before the projectile comes to rest: unstable, the target still in the terms.
+    let short = task::CatapultOptions {
+        max_seconds: done.terms["release_time"] + 0.1,
+        ..aim
+    };
+    let cut = task::catapult(&c, &SimOptions::default(), &short, false);
+    assert_eq!(cut.status, Status::Unstable);
+    for k in ["target_x", "target_y", "target_z"] {
+        assert_eq!(cut.terms[k], done.terms[k], "{k}");
+    }
+    assert!(!cut.terms.contains_key("D_p"));
+    // The catapult has no target, failed or not.
+    let plain = task::CatapultOptions {
+        target: None,
+        ..short
+    };
+    let cut = task::catapult(&c, &SimOptions::default(), &plain, false);
+    assert!(!cut.terms.contains_key("target_x"));
+}

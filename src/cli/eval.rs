@@ -613,6 +613,87 @@ mod tests {
             .collect()
     }
 
+    fn thrower() -> Creature {
+        let lsys = LSystem::from_path(Path::new("examples/thrower.lsys")).unwrap();
+        let options = ontogeny::lsystem::DeriveOptions::default();
+        let frames = grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
+        frames.into_iter().last().unwrap().creature
+    }
+
+    /// The frames of the GIF at `path` as straight RGBA.
+    fn gif_frames(path: &Path) -> Vec<Vec<u8>> {
+        let mut options = gif::DecodeOptions::new();
+        options.set_color_output(gif::ColorOutput::RGBA);
+        let mut decoder = options
+            .read_info(std::fs::File::open(path).unwrap())
+            .unwrap();
+        let mut frames = Vec::new();
+        while let Some(frame) = decoder.read_next_frame().unwrap() {
+            frames.push(frame.buffer.to_vec());
+        }
+        frames
+    }
+
+    /// The aim task's target colour in the pictures (render's `TARGET`).
+    const TARGET: [u8; 3] = [225, 0, 200];
+
+    #[test]
+    fn an_aim_recording_shows_its_target_and_a_catapult_one_does_not() {
+        let creature = thrower();
+        let dir = std::env::temp_dir().join(format!("ontogeny-aim-gif-{}", std::process::id()));
+        let sim = SimOptions::default();
+        let mut gifs = Vec::new();
+        for (name, target) in [("catapult", None), ("aim", Some([5.0, 0.0, 0.0]))] {
+            let options = CatapultOptions {
+                target: target.map(|[x, y, z]| nalgebra::Vector3::new(x, y, z)),
+                ..CatapultOptions::default()
+            };
+            let evaluation = task::catapult(&creature, &sim, &options, true);
+            assert_eq!(
+                evaluation.status,
+                task::Status::Ok,
+                "{:?}",
+                evaluation.message
+            );
+            write_recording_at(&dir.join(name), &creature, &evaluation, 10.0).unwrap();
+            gifs.push(std::fs::read(dir.join(name).join("behaviour.gif")).unwrap());
+        }
+        assert_ne!(gifs[0], gifs[1], "an aim GIF differs from a catapult one");
+        let has_target = |name: &str| {
+            gif_frames(&dir.join(name).join("behaviour.gif"))
+                .iter()
+                .map(|f| f.chunks_exact(4).filter(|p| p[..3] == TARGET).count())
+                .collect::<Vec<_>>()
+        };
+        assert!(has_target("catapult").iter().all(|&n| n == 0));
+        assert!(
+            has_target("aim").iter().all(|&n| n > 20),
+            "{:?}",
+            has_target("aim")
+        );
+        // The projectile's trail grows: the last frame holds more of its colour than the first.
+        let trail = |f: &Vec<u8>| f.chunks_exact(4).filter(|p| p[..3] == [190, 90, 0]).count();
+        let frames = gif_frames(&dir.join("catapult").join("behaviour.gif"));
+        assert!(trail(frames.last().unwrap()) > trail(&frames[0]) + 50);
+
+        // A failed aim evaluation still records its target, and its GIF still shows it.
+        let cut = CatapultOptions {
+            target: Some(nalgebra::Vector3::new(5.0, 0.0, 0.0)),
+            max_seconds: 1.0,
+            ..CatapultOptions::default()
+        };
+        let failed = task::catapult(&creature, &sim, &cut, true);
+        assert_eq!(failed.status, task::Status::Unstable);
+        let out = dir.join("failed");
+        write_recording_at(&out, &creature, &failed, 10.0).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("recording.json")).unwrap())
+                .unwrap();
+        assert!(json["target"].is_array(), "{}", json["target"]);
+        assert!(has_target("failed").iter().all(|&n| n > 20));
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
     #[test]
     fn a_short_recording_is_drawn_at_the_asked_rate() {
         let (chosen, delays, fps) = animation_frames(&recording(2.0), 10.0);

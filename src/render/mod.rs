@@ -659,13 +659,7 @@ fn draw_body(
             })
             .collect();
         if let Some(path) = polygon(&rim) {
-            pixmap.fill_path(
-                &path,
-                &paint(colour[0], colour[1], colour[2], 235),
-                FillRule::Winding,
-                shift,
-                None,
-            );
+            pixmap.fill_path(&path, &solid(colour), FillRule::Winding, shift, None);
             pixmap.stroke_path(&path, &solid([255; 3]), &outline, shift, None);
         }
         if let Some(path) = PathBuilder::from_circle(sx, sy, 2.5) {
@@ -1289,4 +1283,203 @@ pub fn write_gif<'a>(
             .map_err(|e| RenderError::Gif(e.to_string()))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::creature::Role;
+    use crate::develop::creature_from_commands;
+
+    fn creature(commands: &str) -> Creature {
+        creature_from_commands(commands).unwrap()
+    }
+
+    /// How many pixels of straight RGBA `data` are exactly `colour`.
+    fn count(data: &[u8], colour: [u8; 3]) -> usize {
+        data.chunks_exact(4)
+            .filter(|p| p[..3] == colour[..])
+            .count()
+    }
+
+    /// Every frame of the GIF at `path`, as straight RGBA.
+    fn gif_frames(path: &std::path::Path) -> Vec<Vec<u8>> {
+        let mut options = gif::DecodeOptions::new();
+        options.set_color_output(gif::ColorOutput::RGBA);
+        let mut decoder = options
+            .read_info(std::fs::File::open(path).unwrap())
+            .unwrap();
+        let mut frames = Vec::new();
+        while let Some(frame) = decoder.read_next_frame().unwrap() {
+            frames.push(frame.buffer.to_vec());
+        }
+        frames
+    }
+
+    fn temp(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("ontogeny-render-unit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    /// A thrower-like creature with an actuator, posed with a projectile-like growing part.
+    fn arm() -> Creature {
+        let c = creature("forward(1) revolute2 forward(1) output(1)");
+        assert!(
+            c.brain
+                .neurons
+                .iter()
+                .any(|n| matches!(n.role, Role::Actuator { .. }))
+        );
+        c
+    }
+
+    #[test]
+    fn legend_colours_survive_the_gif_palette() {
+        let c = arm();
+        let view = View::framing(&c);
+        let pixmap = picture(&c, &view, 480, 300, &Overlay::default()).unwrap();
+        let path = temp("legend.gif");
+        write_gif([&c], &[], &path, 480, 300, &[10], Framing::Still).unwrap();
+        let frames = gif_frames(&path);
+        assert_eq!(frames.len(), 1);
+        // Every pixel that is exactly a legend colour in the picture is that colour in the
+        // GIF: the actuator's red, the joint's red, the panel.
+        for colour in [ACTUATOR, JOINT, PANEL, OSCILLATOR] {
+            let drawn: Vec<usize> = pixmap
+                .data()
+                .chunks_exact(4)
+                .enumerate()
+                .filter(|(_, p)| p[..3] == colour[..])
+                .map(|(i, _)| i)
+                .collect();
+            if colour != OSCILLATOR {
+                assert!(drawn.len() > 20, "{colour:?} drawn: {}", drawn.len());
+            }
+            for i in drawn {
+                assert_eq!(&frames[0][4 * i..4 * i + 3], &colour[..], "pixel {i}");
+            }
+        }
+        // The actuator disc is solid red in the GIF (dot radius >= 3 px: at least 9 pixels).
+        assert!(count(&frames[0], ACTUATOR) >= 9);
+    }
+
+    #[test]
+    fn a_target_and_a_trail_are_drawn_and_shown_in_the_top_view() {
+        let c = arm();
+        let view = View::framing(&c);
+        let trail: Vec<Vector3<f64>> = (0..20)
+            .map(|k| Vector3::new(2.0 + 0.2 * k as f64, 1.0 - 0.002 * (k * k) as f64, 0.0))
+            .collect();
+        let plain = picture(&c, &view, 480, 300, &Overlay::default()).unwrap();
+        let thrown = Overlay {
+            trail: trail.clone(),
+            ..Overlay::default()
+        };
+        let aimed = Overlay {
+            trail,
+            target: Some(Vector3::new(12.0, 0.0, 3.0)),
+            ..Overlay::default()
+        };
+        let thrown_pic = picture(&c, &view, 480, 300, &thrown).unwrap();
+        let aimed_pic = picture(&c, &view, 480, 300, &aimed).unwrap();
+        assert_eq!(count(plain.data(), TARGET), 0);
+        assert_eq!(count(plain.data(), TRAIL), 0);
+        assert!(count(thrown_pic.data(), TRAIL) > 30);
+        assert_eq!(count(thrown_pic.data(), TARGET), 0);
+        // The target, 12 m off, is outside the camera's view but in the top view.
+        assert!(count(aimed_pic.data(), TARGET) > 20);
+        // Through a GIF: the target's colour in the aim animation only.
+        let (a, b) = (temp("aim.gif"), temp("catapult.gif"));
+        write_gif([&c], &[aimed], &a, 480, 300, &[10], Framing::Still).unwrap();
+        write_gif([&c], &[thrown], &b, 480, 300, &[10], Framing::Still).unwrap();
+        assert!(count(&gif_frames(&a)[0], TARGET) > 20);
+        assert_eq!(count(&gif_frames(&b)[0], TARGET), 0);
+    }
+
+    #[test]
+    fn a_label_is_written_in_the_top_left_corner() {
+        let c = arm();
+        let view = View::framing(&c);
+        let plain = picture(&c, &view, 480, 300, &Overlay::default()).unwrap();
+        let label = Overlay {
+            label: vec!["t = 1.50 s  measuring".to_string()],
+            ..Overlay::default()
+        };
+        let labelled = picture(&c, &view, 480, 300, &label).unwrap();
+        // The label's box: 21 characters of 8 px from x = 8, y = 6.
+        let ink = |p: &Pixmap| {
+            (6..14)
+                .flat_map(|y| (8..8 + 21 * 8).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    let i = 4 * (y * 480 + x) as usize;
+                    p.data()[i..i + 3] == INK[..]
+                })
+                .count()
+        };
+        assert_eq!(ink(&plain), 0);
+        assert!(ink(&labelled) > 150, "{}", ink(&labelled));
+    }
+
+    #[test]
+    fn an_invalid_creature_is_marked_and_a_valid_one_is_not() {
+        let valid = arm();
+        let pic = checked_picture(&valid, "arm", 960, 600).unwrap();
+        assert_eq!(count(pic.data(), MARK), 0);
+        // Two parts laid one inside the other (a creature.json may hold anything).
+        let mut overlapping = valid.clone();
+        overlapping.parts[1].position = overlapping.parts[0].position;
+        assert!(!overlapping.interpenetrating_pairs().is_empty());
+        let pic = checked_picture(&overlapping, "arm", 960, 600).unwrap();
+        // The red frame alone is 2 × (960 × 0.7 + 600) × 3 px; the outlines and the text add.
+        assert!(
+            count(pic.data(), MARK) > 6000,
+            "{}",
+            count(pic.data(), MARK)
+        );
+        // A problem listed by development marks it too, with no geometry to outline.
+        let mut listed = valid.clone();
+        listed.problems.push(crate::creature::Problem {
+            severity: Severity::Error,
+            message: "too many parts".to_string(),
+            module: None,
+            t: None,
+        });
+        let pic = checked_picture(&listed, "", 960, 600).unwrap();
+        assert!(count(pic.data(), MARK) > 6000);
+    }
+
+    #[test]
+    fn joint_discs_follow_the_parts_and_show_the_axis() {
+        // Parts 0.25 m wide and thick (the default) and 1 m long: discs 0.125 m across.
+        let thin = creature("forward(1) revolute2 forward(1)");
+        assert!((joint_radius(&thin, 0, 1) - 0.125).abs() < 1e-12);
+        // Twice as wide: twice the disc, as many more red pixels as the area says (4×),
+        // within the anti-aliased rim.
+        let wide = creature("width(0.5) thickness(0.5) forward(1) revolute2 forward(1)");
+        assert!((joint_radius(&wide, 0, 1) - 0.25).abs() < 1e-12);
+        let view = View::framing(&wide);
+        let red = |c: &Creature| {
+            let pic = picture(c, &view, 480, 300, &Overlay::default()).unwrap();
+            count(pic.data(), JOINT)
+        };
+        let (a, b) = (red(&thin), red(&wide));
+        assert!(a > 10 && (b as f64) > 2.5 * a as f64, "{a} {b}");
+        // The axis is drawn: some pixels of the axis colour near the anchor.
+        let pic = picture(&thin, &View::framing(&thin), 480, 300, &Overlay::default()).unwrap();
+        assert!(count(pic.data(), AXIS) > 5);
+    }
+
+    #[test]
+    fn scale_bars_take_round_lengths() {
+        // 100 px per metre and 120 px of room: 1 m; 90 px: 50 cm; 1000 px: 10 m.
+        assert_eq!(scale_bar_length(100.0, 120.0), 1.0);
+        assert_eq!(scale_bar_length(100.0, 90.0), 0.5);
+        assert_eq!(scale_bar_length(100.0, 1000.0), 10.0);
+        assert_eq!(length_label(1.0), "1 m");
+        assert_eq!(length_label(0.5), "50 cm");
+        assert_eq!(length_label(0.005), "5 mm");
+        assert_eq!(fit("a long label", 48.0, 1.0), "a l...");
+        assert_eq!(ascii("D_p − D_t · 2"), "D_p - D_t * 2");
+    }
 }
