@@ -569,7 +569,6 @@ pub fn render_recording(
         .iter()
         .map(|&i| {
             let frame = &frames[i];
-            let phase = frame.phase.map(|p| p.label()).unwrap_or("");
             let flown: Vec<_> = frames[..=i].iter().filter_map(|f| f.projectile).collect();
             let stride = flown.len().div_ceil(MAX_TRAIL_POINTS).max(1);
             let mut trail: Vec<_> = flown.iter().step_by(stride).copied().collect();
@@ -579,11 +578,10 @@ pub fn render_recording(
                 trail.push(*last);
             }
             ontogeny::render::Overlay {
-                label: vec![
-                    format!("t = {:.2} s  {phase}", frame.t)
-                        .trim_end()
-                        .to_string(),
-                ],
+                // The time, and the protocol's phase below it.
+                label: std::iter::once(format!("t = {:.2} s", frame.t))
+                    .chain(frame.phase.map(|p| p.label().to_string()))
+                    .collect(),
                 target,
                 trail,
             }

@@ -621,11 +621,11 @@ fn draw_body(
     // Joints on top: a disc in the plane each movable joint turns in (red, orange while
     // growing), its size following the parts it joins, with a line along each axis ending
     // in a dot at the axis's positive end; fused joints are grey dots.
-    let most = 0.08 * rw.min(rh);
+    let most = 0.05 * rw.min(rh);
     for joint in &creature.joints {
         let (sx, sy, _) = camera.project(&joint.anchor);
         let radius = joint_radius(creature, joint.parent, joint.child);
-        let pixels = ((radius * camera.scale) as f32).clamp(3.0, most.max(3.0));
+        let pixels = ((radius * camera.scale) as f32).clamp(4.0, most.max(4.0));
         let radius = pixels as f64 / camera.scale;
         if joint.kind.dof() == 0 || joint.axes.is_empty() {
             let dot = (0.4 * pixels).clamp(2.0, 6.0);
@@ -709,13 +709,40 @@ fn draw_body(
         draw_bullseye(pixmap, (rx + tx, ry + ty), 7.0);
     }
 
-    // Part numbers, red for marked parts.
-    if checks == Checks::On && creature.parts.len() <= 60 {
-        for (index, part) in creature.parts.iter().enumerate() {
+    // Part numbers, red for marked parts: every marked part's, and the others' where the part
+    // is large enough in the picture to hold its number and no other number is in the way.
+    if checks == Checks::On {
+        let mut taken: Vec<Rect> = Vec::new();
+        let order = marked
+            .iter()
+            .copied()
+            .chain((0..creature.parts.len()).filter(|i| !marked.contains(i)));
+        for index in order {
+            let part = &creature.parts[index];
             let (px, py, _) = camera.project(&part.position);
             let text = index.to_string();
-            let colour = if marked.contains(&index) { MARK } else { INK };
             let half = text_width(&text, 1.0) / 2.0;
+            let is_marked = marked.contains(&index);
+            let (mut lo, mut hi) = (
+                (f32::INFINITY, f32::INFINITY),
+                (f32::NEG_INFINITY, f32::NEG_INFINITY),
+            );
+            for c in part.corners() {
+                let (sx, sy, _) = camera.project(&c);
+                lo = (lo.0.min(sx), lo.1.min(sy));
+                hi = (hi.0.max(sx), hi.1.max(sy));
+            }
+            let roomy = hi.0 - lo.0 >= 2.0 * half + 8.0 && hi.1 - lo.1 >= 16.0;
+            let Some(boxed) = Rect::from_xywh(px - half - 2.0, py - 6.0, 2.0 * half + 4.0, 12.0)
+            else {
+                continue;
+            };
+            let clear = !taken.iter().any(|t| t.intersect(&boxed).is_some());
+            if !(is_marked || roomy && clear) {
+                continue;
+            }
+            taken.push(boxed);
+            let colour = if is_marked { MARK } else { INK };
             draw_text(
                 pixmap,
                 (rx + px - half, ry + py - 4.0),
