@@ -1478,22 +1478,25 @@ mod tests {
 
     #[test]
     fn joint_discs_follow_the_parts_and_show_the_axis() {
-        // Parts 0.25 m wide and thick (the default) and 1 m long: discs 0.125 m across.
-        let thin = creature("forward(1) revolute2 forward(1)");
-        assert!((joint_radius(&thin, 0, 1) - 0.125).abs() < 1e-12);
-        // Twice as wide: twice the disc, as many more red pixels as the area says (4×),
-        // within the anti-aliased rim.
-        let wide = creature("width(0.5) thickness(0.5) forward(1) revolute2 forward(1)");
-        assert!((joint_radius(&wide, 0, 1) - 0.25).abs() < 1e-12);
+        // Parts 0.1 m wide and thick and 1 m long: discs 0.05 m in radius.
+        let thin = creature("width(0.1) thickness(0.1) forward(1) revolute2 forward(1)");
+        assert!((joint_radius(&thin, 0, 1) - 0.05).abs() < 1e-12);
+        // Twice as wide: twice the radius, about four times the red pixels (less the
+        // anti-aliased rim, where the colour is not exact).
+        let wide = creature("width(0.2) thickness(0.2) forward(1) revolute2 forward(1)");
+        assert!((joint_radius(&wide, 0, 1) - 0.1).abs() < 1e-12);
         let view = View::framing(&wide);
         let red = |c: &Creature| {
-            let pic = picture(c, &view, 480, 300, &Overlay::default()).unwrap();
+            let pic = picture(c, &view, 960, 600, &Overlay::default()).unwrap();
             count(pic.data(), JOINT)
         };
         let (a, b) = (red(&thin), red(&wide));
-        assert!(a > 10 && (b as f64) > 2.5 * a as f64, "{a} {b}");
+        assert!(
+            a > 10 && (2.5..6.0).contains(&(b as f64 / a as f64)),
+            "{a} {b}"
+        );
         // The axis is drawn: some pixels of the axis colour near the anchor.
-        let pic = picture(&thin, &View::framing(&thin), 480, 300, &Overlay::default()).unwrap();
+        let pic = picture(&thin, &view, 960, 600, &Overlay::default()).unwrap();
         assert!(count(pic.data(), AXIS) > 5);
     }
 
