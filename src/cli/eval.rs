@@ -438,16 +438,23 @@ pub fn write_recording_at(
         .iter()
         .map(|k| evaluation.terms.get(*k).copied())
         .collect();
-    std::fs::write(
-        &path,
-        serde_json::to_string(&serde_json::json!({
-            "creature": creature,
-            "task": evaluation.task,
-            "target": target,
-            "frames": evaluation.recording,
-        }))?,
-    )
-    .with_context(|| format!("cannot write {}", path.display()))?;
+    // Written straight from the frames (not through a `serde_json::Value`, which would widen
+    // their f32 poses back to f64 digits).
+    #[derive(serde::Serialize)]
+    struct RecordingFile<'a> {
+        creature: &'a Creature,
+        task: &'a str,
+        target: Option<Vec<f64>>,
+        frames: &'a [ontogeny::task::RecordedFrame],
+    }
+    let file = RecordingFile {
+        creature,
+        task: &evaluation.task,
+        target,
+        frames: &evaluation.recording,
+    };
+    std::fs::write(&path, serde_json::to_string(&file)?)
+        .with_context(|| format!("cannot write {}", path.display()))?;
     render_recording(
         creature,
         &evaluation.recording,
