@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use ontogeny::creature::Creature;
-use ontogeny::develop::{BuildOptions, grow};
+use ontogeny::develop::{BuildOptions, grow_with_progress};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use ontogeny::sim::{ActuatorModel, JointModel, SimOptions, StrengthFrom};
@@ -14,6 +14,7 @@ use ontogeny::task::{
 };
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
+use super::progress::Progress;
 
 /// The tasks.
 #[derive(Clone, Copy, ValueEnum)]
@@ -221,7 +222,8 @@ pub struct EvalArgs {
     /// The projectile: density in kg/m³, positive (catapult and aim) [default: 1000].
     #[arg(long)]
     projectile_density: Option<f64>,
-    /// Write recording.json (every part's pose per step) and behaviour.gif into DIR.
+    /// Write recording.json (every part's pose per step; a long run keeps evenly spaced
+    /// steps, at most 12,000 frames) and behaviour.gif into DIR.
     #[arg(long, value_name = "DIR")]
     record: Option<PathBuf>,
     /// Print the evaluation as JSON.
@@ -310,7 +312,15 @@ pub(super) fn load_creature(
     let lsys = LSystem::from_path(file)?;
     let options = derive_options(development, seed, DEFAULT_MAX_MODULES);
     let steps = discrete_steps(&lsys, &options, development.steps, "building")?;
-    let frames = grow(&lsys, &options, steps, &BuildOptions::default())?;
+    let mut progress = Progress::new("growing");
+    let frames = grow_with_progress(
+        &lsys,
+        &options,
+        steps,
+        &BuildOptions::default(),
+        &mut |f| progress.set(f),
+    )?;
+    progress.finish();
     Ok(frames.into_iter().last().expect("a first frame").creature)
 }
 
@@ -344,6 +354,26 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     for flag in inapplicable_flags(args) {
         eprintln!("warning: {flag}; ignored");
     }
+    let seconds = |default: f64| args.seconds.unwrap_or(default);
+    let what = match args.task {
+        TaskArg::Walker => format!("walker, {} s", seconds(WalkerOptions::default().seconds)),
+        TaskArg::Jump => format!("jump, {} s", seconds(JumpOptions::default().seconds)),
+        TaskArg::Catapult => "catapult".to_string(),
+        TaskArg::Aim => "aim".to_string(),
+    };
+    let mut progress = Progress::new(what);
+    let mut tell = |fraction: f64| progress.set(fraction);
+    let note = |max_steps: usize| {
+        let interval = task::recording_interval(max_steps);
+        if record && interval > 1 {
+            eprintln!(
+                "note: this evaluation may take {max_steps} steps ({:.1} s): recording.json keeps one step in {interval} (a frame every {:.3} s), to stay under {} frames",
+                max_steps as f64 * sim.dt,
+                interval as f64 * sim.dt,
+                task::MAX_RECORDED_FRAMES
+            );
+        }
+    };
     let evaluation = match args.task {
         TaskArg::Walker => {
             let mut options = WalkerOptions {
@@ -360,14 +390,16 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             if let Some(s) = args.seconds {
                 options.seconds = s;
             }
-            task::walker(&creature, &sim, &options, record)
+            note(options.max_steps(sim.dt));
+            task::walker_with_progress(&creature, &sim, &options, record, &mut tell)
         }
         TaskArg::Jump => {
             let mut options = JumpOptions::default();
             if let Some(s) = args.seconds {
                 options.seconds = s;
             }
-            task::jump(&creature, &sim, &options, record)
+            note(options.max_steps(sim.dt));
+            task::jump_with_progress(&creature, &sim, &options, record, &mut tell)
         }
         TaskArg::Catapult | TaskArg::Aim => {
             let mut options = CatapultOptions {
@@ -386,9 +418,11 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
                 let [x, y, z] = args.target.unwrap_or([5.0, 0.0, 0.0]);
                 options.target = Some(nalgebra::Vector3::new(x, y, z));
             }
-            task::catapult(&creature, &sim, &options, record)
+            note(options.max_steps(sim.dt));
+            task::catapult_with_progress(&creature, &sim, &options, record, &mut tell)
         }
     };
+    progress.finish();
     if let Some(dir) = &args.record {
         write_recording(dir, &creature, &evaluation)?;
     }
