@@ -9,8 +9,8 @@ use nalgebra::{UnitQuaternion, Vector3};
 use ontogeny::creature::Creature;
 use ontogeny::sim::SimOptions;
 use ontogeny::task::{
-    self, CatapultOptions, JumpOptions, MAX_RECORDED_FRAMES, RecordedFrame, Status,
-    WalkerOptions, recording_interval,
+    self, CatapultOptions, JumpOptions, MAX_RECORDED_FRAMES, RecordedFrame, Status, WalkerOptions,
+    recording_interval,
 };
 
 fn passive_pair() -> Creature {
@@ -35,7 +35,10 @@ fn the_longest_runs_by_hand() {
     // Two waits for rest of at most 600 + 1 steps, 9 steps of activation, 1200 of walking.
     assert_eq!(WalkerOptions::default().max_steps(dt), 2 * 601 + 9 + 1200);
     // Every step of the default walker is recorded.
-    assert_eq!(recording_interval(WalkerOptions::default().max_steps(dt)), 1);
+    assert_eq!(
+        recording_interval(WalkerOptions::default().max_steps(dt)),
+        1
+    );
     // An hour's walk: 217,211 steps, one in ⌈217,211 / 11,999⌉ = 19 kept.
     let hour = WalkerOptions {
         seconds: 3600.0,
@@ -62,7 +65,11 @@ fn a_short_run_keeps_every_step() {
     let steps = (end / sim.dt).round() as usize;
     assert_eq!(e.recording.len(), steps);
     for (i, frame) in e.recording.iter().enumerate() {
-        assert!((frame.t - (i + 1) as f64 * sim.dt).abs() < 1e-9, "{i}: {}", frame.t);
+        assert!(
+            (frame.t - (i + 1) as f64 * sim.dt).abs() < 1e-9,
+            "{i}: {}",
+            frame.t
+        );
     }
 }
 
@@ -87,13 +94,21 @@ fn a_long_run_keeps_at_most_the_bound_evenly_spaced_first_and_last_included() {
     // The steps taken: to the end of the measured walk.
     let end = e.terms["measured_from"] + 3600.0;
     let steps = (end / sim.dt).round() as usize;
-    assert_eq!(frames.len(), steps.div_ceil(interval) + usize::from((steps - 1) % interval != 0));
+    assert_eq!(
+        frames.len(),
+        steps.div_ceil(interval) + usize::from(!(steps - 1).is_multiple_of(interval))
+    );
     // The first step, then every 4th, evenly 0.4 s apart; the last step closes the recording.
     assert!((frames[0].t - 0.1).abs() < 1e-9, "{}", frames[0].t);
     let spacing = interval as f64 * sim.dt;
     let (last, evenly) = frames.split_last().unwrap();
     for pair in evenly.windows(2) {
-        assert!((pair[1].t - pair[0].t - spacing).abs() < 1e-6, "{} {}", pair[0].t, pair[1].t);
+        assert!(
+            (pair[1].t - pair[0].t - spacing).abs() < 1e-6,
+            "{} {}",
+            pair[0].t,
+            pair[1].t
+        );
     }
     assert!((last.t - end).abs() < 1e-6, "{} {end}", last.t);
     let gap = last.t - evenly.last().unwrap().t;
@@ -190,4 +205,68 @@ fn poses_are_written_at_f32_precision() {
     let back: RecordedFrame = serde_json::from_str(&text).unwrap();
     assert!((back.parts[0].0.y - frame.parts[0].0.y).abs() < 1e-7);
     assert_eq!(back.parts[0].1, frame.parts[0].1);
+}
+
+/// Runs `ontogeny` with `input` on its standard input, standard error a pipe.
+fn ontogeny_reading(args: &[&str], input: &[u8]) -> std::process::Output {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child.stdin.take().unwrap().write_all(input).unwrap();
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn an_hours_recording_off_a_terminal_says_its_rate_and_shows_no_progress() {
+    let dir = std::env::temp_dir().join(format!("ontogeny-long-run-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    // An hour's jump at 1/10 s per step: at most 101 + 36,000 steps, one in 4 recorded.
+    let out = ontogeny_reading(
+        &[
+            "eval",
+            "-",
+            "--task",
+            "jump",
+            "--seconds",
+            "3600",
+            "--time-step",
+            "0.1",
+            "--record",
+            dir.to_str().unwrap(),
+        ],
+        b"axiom: forward(1) revolute2 forward(1)\n",
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains(
+            "recording.json keeps one step in 4 (a frame every 0.400 s), to stay under 12000 frames"
+        ),
+        "{stderr}"
+    );
+    // Standard error is a pipe: notes only, no progress bar.
+    assert!(
+        !stderr.contains('\r') && !stderr.contains('%') && !stderr.contains('█'),
+        "{stderr:?}"
+    );
+    assert!(stderr.lines().all(|l| l.starts_with("note: ")), "{stderr}");
+    let recording: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("recording.json")).unwrap())
+            .unwrap();
+    let frames = recording["frames"].as_array().unwrap();
+    assert!(
+        frames.len() <= MAX_RECORDED_FRAMES && frames.len() > 9000,
+        "{}",
+        frames.len()
+    );
+    let last = frames.last().unwrap()["t"].as_f64().unwrap();
+    assert!(last > 3600.0, "{last}");
+    // (tests/cli.rs replays a recording written the same way.)
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -208,10 +208,8 @@ pub fn discrete_steps(
 fn frames(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
     // A bar only when the frames are not printing to the terminal themselves.
     let quiet = out.args.last || !std::io::stdout().is_terminal();
-    let mut progress = super::progress::Progress::on(
-        "deriving",
-        quiet && std::io::stderr().is_terminal(),
-    );
+    let mut progress =
+        super::progress::Progress::on("deriving", quiet && std::io::stderr().is_terminal());
     let derived = lsys.for_each_frame(options, out.args.development.steps, |frame| {
         progress.set(frame.fraction());
         if out.args.events {

@@ -313,13 +313,9 @@ pub(super) fn load_creature(
     let options = derive_options(development, seed, DEFAULT_MAX_MODULES);
     let steps = discrete_steps(&lsys, &options, development.steps, "building")?;
     let mut progress = Progress::new("growing");
-    let frames = grow_with_progress(
-        &lsys,
-        &options,
-        steps,
-        &BuildOptions::default(),
-        &mut |f| progress.set(f),
-    )?;
+    let frames = grow_with_progress(&lsys, &options, steps, &BuildOptions::default(), &mut |f| {
+        progress.set(f)
+    })?;
     progress.finish();
     Ok(frames.into_iter().last().expect("a first frame").creature)
 }

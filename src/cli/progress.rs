@@ -116,7 +116,11 @@ mod tests {
         progress.started = Instant::now() - std::time::Duration::from_secs(10);
         progress.set(0.01);
         assert!(progress.showing());
-        progress.bar.as_ref().unwrap().set_draw_target(indicatif::ProgressDrawTarget::hidden());
+        progress
+            .bar
+            .as_ref()
+            .unwrap()
+            .set_draw_target(indicatif::ProgressDrawTarget::hidden());
         progress.finish();
         assert!(!progress.showing());
     }

@@ -28,7 +28,10 @@ pub fn poses<S: Serializer>(
 }
 
 /// An optional point as `[x, y, z]` at f32 precision.
-pub fn point<S: Serializer>(point: &Option<Vector3<f64>>, serializer: S) -> Result<S::Ok, S::Error> {
+pub fn point<S: Serializer>(
+    point: &Option<Vector3<f64>>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
     match point {
         Some(p) => serializer.serialize_some(&vector(p)),
         None => serializer.serialize_none(),

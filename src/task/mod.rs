@@ -166,7 +166,9 @@ impl WalkerOptions {
     /// The most control steps of `dt` the walker can take: both waits for rest at their
     /// time limit, the activation and the measured walk.
     pub fn max_steps(&self, dt: f64) -> usize {
-        2 * settle_steps(&self.rest, dt) + steps_in(self.activation, dt) + steps_in(self.seconds, dt)
+        2 * settle_steps(&self.rest, dt)
+            + steps_in(self.activation, dt)
+            + steps_in(self.seconds, dt)
     }
 }
 
@@ -350,7 +352,7 @@ impl Run<'_> {
     /// Keeps the frame of step `steps` if the recording's interval falls on it; otherwise
     /// holds it back, in case it is the last.
     fn keep(&mut self, frame: RecordedFrame) {
-        if (self.steps - 1) % self.interval == 0 {
+        if (self.steps - 1).is_multiple_of(self.interval) {
             self.recording.push(frame);
             self.pending = None;
         } else {
