@@ -50,6 +50,12 @@ fn the_longest_runs_by_hand() {
     assert_eq!(CatapultOptions::default().max_steps(dt), 3600);
     // At 1/10 s: 2 × 101 + ⌈1.5⌉ + 36,000 = 36,204.
     assert_eq!(hour.max_steps(0.1), 36_204);
+    // A duration out of range (refused by the task) does not overflow the count.
+    let endless = WalkerOptions {
+        seconds: f64::INFINITY,
+        ..WalkerOptions::default()
+    };
+    assert_eq!(endless.max_steps(dt), usize::MAX);
 }
 
 #[test]

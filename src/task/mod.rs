@@ -104,7 +104,7 @@ fn steps_in(seconds: f64, dt: f64) -> usize {
 /// The most control steps one wait for rest can take: the creature is unstable once it has
 /// stepped past `rest.limit`.
 fn settle_steps(rest: &Rest, dt: f64) -> usize {
-    steps_in(rest.limit, dt) + 1
+    steps_in(rest.limit, dt).saturating_add(1)
 }
 
 /// The most frames a recording holds. A run that may take more control steps keeps one step
@@ -166,9 +166,12 @@ impl WalkerOptions {
     /// The most control steps of `dt` the walker can take: both waits for rest at their
     /// time limit, the activation and the measured walk.
     pub fn max_steps(&self, dt: f64) -> usize {
-        2 * settle_steps(&self.rest, dt)
-            + steps_in(self.activation, dt)
-            + steps_in(self.seconds, dt)
+        // Saturating: a duration out of range is refused later, not an overflow here.
+        let settle = settle_steps(&self.rest, dt);
+        settle
+            .saturating_add(settle)
+            .saturating_add(steps_in(self.activation, dt))
+            .saturating_add(steps_in(self.seconds, dt))
     }
 }
 
@@ -368,15 +371,15 @@ impl Run<'_> {
 
     /// A phase that can take at most `longest` steps is over: it counts as that many.
     fn end_phase(&mut self, longest: usize) {
-        self.counted += longest;
+        self.counted = self.counted.saturating_add(longest);
         self.phase_start = self.steps;
         self.tell();
     }
 
     /// Tells the progress callback the fraction done, when it has grown by a thousandth.
     fn tell(&mut self) {
-        let done = self.counted + (self.steps - self.phase_start);
-        let thousandths = (1000 * done / self.max_steps.max(1)).min(999);
+        let done = self.counted.saturating_add(self.steps - self.phase_start);
+        let thousandths = ((1000.0 * done as f64 / self.max_steps.max(1) as f64) as usize).min(999);
         if self.told.is_none_or(|told| thousandths > told) {
             self.told = Some(thousandths);
             (self.progress)(thousandths as f64 / 1000.0);
@@ -683,7 +686,7 @@ impl JumpOptions {
     /// The most control steps of `dt` the jump can take: the wait for rest at its time
     /// limit, then the jump.
     pub fn max_steps(&self, dt: f64) -> usize {
-        settle_steps(&self.rest, dt) + steps_in(self.seconds, dt)
+        settle_steps(&self.rest, dt).saturating_add(steps_in(self.seconds, dt))
     }
 }
 
