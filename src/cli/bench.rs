@@ -1,6 +1,8 @@
 //! `ontogeny bench`: the evaluator's speed on this machine, and whether the fast default
 //! setting ranks creatures as a fine reference setting does.
 
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use clap::Args;
@@ -13,6 +15,8 @@ use ontogeny::task::{self, Status, WalkerOptions};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+
+use super::progress::Progress;
 
 /// Flags of `ontogeny bench`.
 #[derive(Args)]
@@ -314,6 +318,38 @@ fn median(values: &mut [f64]) -> f64 {
     }
 }
 
+/// A batch of walks run in parallel, counted into a progress bar on a terminal.
+struct Walks {
+    done: AtomicUsize,
+    total: usize,
+    progress: Mutex<Progress>,
+}
+
+impl Walks {
+    fn new(what: &str, total: usize) -> Walks {
+        Walks {
+            done: AtomicUsize::new(0),
+            total,
+            progress: Mutex::new(Progress::new(what)),
+        }
+    }
+
+    /// One more walk is done.
+    fn tick(&self) {
+        let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
+        if let Ok(mut progress) = self.progress.lock() {
+            progress.set(done as f64 / self.total.max(1) as f64);
+        }
+    }
+
+    /// The batch is done: the bar, if shown, is cleared.
+    fn finish(self) {
+        if let Ok(mut progress) = self.progress.into_inner() {
+            progress.finish();
+        }
+    }
+}
+
 /// One creature's walks with one setting, dropped from `runs` heights: the drop height plus
 /// `first + k` × 0.1 mm for k in 0..runs. Returns the median fitness and how many walks ended
 /// at rest (any status but `unstable`).
@@ -321,8 +357,8 @@ fn ensemble(
     creature: &Creature,
     sim: &SimOptions,
     options: &WalkerOptions,
-    first: usize,
-    runs: usize,
+    (first, runs): (usize, usize),
+    walks: &Walks,
 ) -> (f64, usize, Vec<task::Evaluation>) {
     let walks: Vec<task::Evaluation> = (first..first + runs)
         .map(|k| {
@@ -330,7 +366,9 @@ fn ensemble(
                 drop_height: sim.drop_height + 1e-4 * k as f64,
                 ..sim.clone()
             };
-            task::walker(creature, &nudged, options, false)
+            let walk = task::walker(creature, &nudged, options, false);
+            walks.tick();
+            walk
         })
         .collect();
     let mut fitness: Vec<f64> = walks.iter().map(|e| e.fitness).collect();
@@ -426,15 +464,17 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     // The noise floor: the fine reference against itself, from other drop heights. No
     // setting can rank creatures more alike than the reference does itself.
     type Ensemble = (f64, usize, Vec<task::Evaluation>);
+    let walks = Walks::new("fine reference walks", 2 * runs * creatures.len());
     let fine_results: Vec<(Ensemble, Ensemble)> = creatures
         .par_iter()
         .map(|(_, c)| {
             (
-                ensemble(c, &fine, &options, 0, runs),
-                ensemble(c, &fine, &options, runs, runs),
+                ensemble(c, &fine, &options, (0, runs), &walks),
+                ensemble(c, &fine, &options, (runs, runs), &walks),
             )
         })
         .collect();
+    walks.finish();
     let reference: Vec<f64> = fine_results.iter().map(|(b, _)| b.0).collect();
     let floor: Vec<f64> = fine_results.iter().map(|(_, c)| c.0).collect();
     let first_fine: Vec<f64> = fine_results.iter().map(|(b, _)| b.2[0].fitness).collect();
@@ -460,12 +500,14 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     );
     let mut default_cost = None;
     for setting in &settings {
+        let walks = Walks::new(&setting_name(setting), runs * creatures.len());
         let started = Instant::now();
         let results: Vec<Ensemble> = creatures
             .par_iter()
-            .map(|(_, c)| ensemble(c, setting, &options, 0, runs))
+            .map(|(_, c)| ensemble(c, setting, &options, (0, runs), &walks))
             .collect();
         let cost = started.elapsed().as_secs_f64();
+        walks.finish();
         let default_cost = *default_cost.get_or_insert(cost);
         if args.verbose {
             say!(

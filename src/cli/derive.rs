@@ -1,6 +1,6 @@
 //! `ontogeny derive`
 
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 
 use anyhow::bail;
@@ -206,7 +206,12 @@ pub fn discrete_steps(
 }
 
 fn frames(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {
-    lsys.for_each_frame(options, out.args.development.steps, |frame| {
+    // A bar only when the frames are not printing to the terminal themselves.
+    let quiet = out.args.last || !std::io::stdout().is_terminal();
+    let mut progress =
+        super::progress::Progress::on("deriving", quiet && std::io::stderr().is_terminal());
+    let derived = lsys.for_each_frame(options, out.args.development.steps, |frame| {
+        progress.set(frame.fraction());
         if out.args.events {
             for event in &frame.events {
                 out.event(event)?;
@@ -216,7 +221,9 @@ fn frames(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> any
             out.frame(frame.step, frame.t, frame.string, frame.env)?;
         }
         Ok::<(), anyhow::Error>(())
-    })
+    });
+    progress.finish();
+    derived
 }
 
 struct Printer<'a> {

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use ontogeny::creature::Creature;
-use ontogeny::develop::{BuildOptions, grow};
+use ontogeny::develop::{BuildOptions, grow_with_progress};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use ontogeny::sim::{ActuatorModel, JointModel, SimOptions, StrengthFrom};
@@ -14,6 +14,7 @@ use ontogeny::task::{
 };
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
+use super::progress::Progress;
 
 /// The tasks.
 #[derive(Clone, Copy, ValueEnum)]
@@ -221,7 +222,8 @@ pub struct EvalArgs {
     /// The projectile: density in kg/m³, positive (catapult and aim) [default: 1000].
     #[arg(long)]
     projectile_density: Option<f64>,
-    /// Write recording.json (every part's pose per step) and behaviour.gif into DIR.
+    /// Write recording.json (every part's pose per step; a long run keeps evenly spaced
+    /// steps, at most 12,000 frames) and behaviour.gif into DIR.
     #[arg(long, value_name = "DIR")]
     record: Option<PathBuf>,
     /// Print the evaluation as JSON.
@@ -310,7 +312,11 @@ pub(super) fn load_creature(
     let lsys = LSystem::from_path(file)?;
     let options = derive_options(development, seed, DEFAULT_MAX_MODULES);
     let steps = discrete_steps(&lsys, &options, development.steps, "building")?;
-    let frames = grow(&lsys, &options, steps, &BuildOptions::default())?;
+    let mut progress = Progress::new("growing");
+    let frames = grow_with_progress(&lsys, &options, steps, &BuildOptions::default(), &mut |f| {
+        progress.set(f)
+    })?;
+    progress.finish();
     Ok(frames.into_iter().last().expect("a first frame").creature)
 }
 
@@ -344,6 +350,26 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     for flag in inapplicable_flags(args) {
         eprintln!("warning: {flag}; ignored");
     }
+    let seconds = |default: f64| args.seconds.unwrap_or(default);
+    let what = match args.task {
+        TaskArg::Walker => format!("walker, {} s", seconds(WalkerOptions::default().seconds)),
+        TaskArg::Jump => format!("jump, {} s", seconds(JumpOptions::default().seconds)),
+        TaskArg::Catapult => "catapult".to_string(),
+        TaskArg::Aim => "aim".to_string(),
+    };
+    let mut progress = Progress::new(what);
+    let mut tell = |fraction: f64| progress.set(fraction);
+    let note = |max_steps: usize| {
+        let interval = task::recording_interval(max_steps);
+        if record && interval > 1 {
+            eprintln!(
+                "note: this evaluation may take {max_steps} steps ({:.1} s): recording.json keeps one step in {interval} (a frame every {:.3} s), to stay under {} frames",
+                max_steps as f64 * sim.dt,
+                interval as f64 * sim.dt,
+                task::MAX_RECORDED_FRAMES
+            );
+        }
+    };
     let evaluation = match args.task {
         TaskArg::Walker => {
             let mut options = WalkerOptions {
@@ -360,14 +386,16 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             if let Some(s) = args.seconds {
                 options.seconds = s;
             }
-            task::walker(&creature, &sim, &options, record)
+            note(options.max_steps(sim.dt));
+            task::walker_with_progress(&creature, &sim, &options, record, &mut tell)
         }
         TaskArg::Jump => {
             let mut options = JumpOptions::default();
             if let Some(s) = args.seconds {
                 options.seconds = s;
             }
-            task::jump(&creature, &sim, &options, record)
+            note(options.max_steps(sim.dt));
+            task::jump_with_progress(&creature, &sim, &options, record, &mut tell)
         }
         TaskArg::Catapult | TaskArg::Aim => {
             let mut options = CatapultOptions {
@@ -386,9 +414,11 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
                 let [x, y, z] = args.target.unwrap_or([5.0, 0.0, 0.0]);
                 options.target = Some(nalgebra::Vector3::new(x, y, z));
             }
-            task::catapult(&creature, &sim, &options, record)
+            note(options.max_steps(sim.dt));
+            task::catapult_with_progress(&creature, &sim, &options, record, &mut tell)
         }
     };
+    progress.finish();
     if let Some(dir) = &args.record {
         write_recording(dir, &creature, &evaluation)?;
     }
@@ -440,16 +470,23 @@ pub fn write_recording_at(
         .iter()
         .map(|k| evaluation.terms.get(*k).copied())
         .collect();
-    std::fs::write(
-        &path,
-        serde_json::to_string(&serde_json::json!({
-            "creature": creature,
-            "task": evaluation.task,
-            "target": target,
-            "frames": evaluation.recording,
-        }))?,
-    )
-    .with_context(|| format!("cannot write {}", path.display()))?;
+    // Written straight from the frames (not through a `serde_json::Value`, which would widen
+    // their f32 poses back to f64 digits).
+    #[derive(serde::Serialize)]
+    struct RecordingFile<'a> {
+        creature: &'a Creature,
+        task: &'a str,
+        target: Option<Vec<f64>>,
+        frames: &'a [ontogeny::task::RecordedFrame],
+    }
+    let file = RecordingFile {
+        creature,
+        task: &evaluation.task,
+        target: target.clone(),
+        frames: &evaluation.recording,
+    };
+    std::fs::write(&path, serde_json::to_string(&file)?)
+        .with_context(|| format!("cannot write {}", path.display()))?;
     render_recording(
         creature,
         &evaluation.recording,
@@ -614,7 +651,8 @@ mod tests {
     fn thrower() -> Creature {
         let lsys = LSystem::from_path(Path::new("examples/thrower.lsys")).unwrap();
         let options = ontogeny::lsystem::DeriveOptions::default();
-        let frames = grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
+        let frames =
+            ontogeny::develop::grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
         frames.into_iter().last().unwrap().creature
     }
 

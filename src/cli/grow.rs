@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::{Creature, Role, Severity};
-use ontogeny::develop::{BuildOptions, grow};
+use ontogeny::develop::{BuildOptions, grow_with_progress};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use serde::Serialize;
 
@@ -126,7 +126,11 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         ..BuildOptions::default()
     };
     let steps = discrete_steps(&lsys, &options, args.development.steps, "growing")?;
-    let frames = grow(&lsys, &options, steps, &build_options)?;
+    let mut progress = super::progress::Progress::new("growing");
+    let frames = grow_with_progress(&lsys, &options, steps, &build_options, &mut |f| {
+        progress.set(f)
+    })?;
+    progress.finish();
     let last = frames.last().expect("at least the first frame");
     let summary = summarise(lsys.source().name(), last.t, frames.len(), &last.creature);
     if let Some(dir) = &args.out {

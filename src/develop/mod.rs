@@ -498,8 +498,21 @@ pub fn grow(
     steps: Option<u64>,
     build_options: &BuildOptions,
 ) -> Result<Vec<GrowthFrame>, crate::lang::Diagnostic> {
+    grow_with_progress(lsys, options, steps, build_options, &mut |_| {})
+}
+
+/// [`grow`], telling `progress` the fraction of the frames built after each one (1 after
+/// the last).
+pub fn grow_with_progress(
+    lsys: &crate::lsystem::LSystem,
+    options: &crate::lsystem::DeriveOptions,
+    steps: Option<u64>,
+    build_options: &BuildOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Vec<GrowthFrame>, crate::lang::Diagnostic> {
     let mut frames = Vec::new();
     lsys.for_each_frame(options, steps, |frame| {
+        let fraction = frame.fraction();
         let shown = lsys.interpret(frame.string, frame.t, options)?;
         frames.push(GrowthFrame {
             step: frame.step,
@@ -512,6 +525,7 @@ pub fn grow(
                 build_options,
             ),
         });
+        progress(fraction);
         Ok::<(), crate::lang::Diagnostic>(())
     })?;
     Ok(frames)

@@ -366,6 +366,21 @@ pub struct Frame<'a> {
     pub events: Vec<Event>,
     /// Whether this is the last frame.
     pub last: bool,
+    /// The step of the last frame: `step / final_step` is the fraction of the frames shown
+    /// so far (see [`Frame::fraction`]).
+    pub final_step: u64,
+}
+
+impl Frame<'_> {
+    /// The fraction of the frames shown so far, 0 at the first frame and 1 at the last: a
+    /// derivation's progress, for a progress bar.
+    pub fn fraction(&self) -> f64 {
+        if self.final_step == 0 {
+            1.0
+        } else {
+            self.step as f64 / self.final_step as f64
+        }
+    }
 }
 
 impl LSystem {
@@ -388,6 +403,7 @@ impl LSystem {
                     string: dev.current(),
                     env: dev.environment(),
                     last: dev.frame_number() == dev.frame_count(),
+                    final_step: dev.frame_count(),
                 })?;
                 if !dev.advance()? {
                     return Ok(());
@@ -407,6 +423,7 @@ impl LSystem {
                 env: d.environment(),
                 events: Vec::new(),
                 last: step == steps,
+                final_step: steps,
             })?;
         }
         Ok(())

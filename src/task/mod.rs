@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
+mod compact;
 mod spec;
 pub use spec::{TaskKind, TaskSpec};
 
@@ -100,6 +101,31 @@ fn steps_in(seconds: f64, dt: f64) -> usize {
     if seconds > 0.0 { steps.max(1) } else { 0 }
 }
 
+/// The most control steps one wait for rest can take: the creature is unstable once it has
+/// stepped past `rest.limit`.
+fn settle_steps(rest: &Rest, dt: f64) -> usize {
+    steps_in(rest.limit, dt).saturating_add(1)
+}
+
+/// The most frames a recording holds. A run that may take more control steps keeps one step
+/// in every [`recording_interval`], chosen before the run from its longest possible duration,
+/// so the frames stay evenly spaced in time; the first and the last step are always kept.
+/// 12,000 frames are 200 s at 1/60 s per step (every step of the default walker, jump and
+/// catapult), about 11 MB of `recording.json` for a 10-part creature; an hour's walk keeps
+/// one step in 19 (a frame every 0.32 s).
+pub const MAX_RECORDED_FRAMES: usize = 12_000;
+
+/// Every how many control steps a recording keeps a frame, for a run of at most `max_steps`
+/// steps: 1 (every step) when they fit in [`MAX_RECORDED_FRAMES`]; otherwise the least k for
+/// which the kept steps 1, 1 + k, 1 + 2k, ... and the last step fit.
+pub fn recording_interval(max_steps: usize) -> usize {
+    if max_steps <= MAX_RECORDED_FRAMES {
+        1
+    } else {
+        max_steps.div_ceil(MAX_RECORDED_FRAMES - 1)
+    }
+}
+
 /// Settings of the walker task (Chaumont et al. sections 3.3–3.5).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -165,6 +191,19 @@ impl Phase {
     }
 }
 
+impl WalkerOptions {
+    /// The most control steps of `dt` the walker can take: both waits for rest at their
+    /// time limit, the activation and the measured walk.
+    pub fn max_steps(&self, dt: f64) -> usize {
+        // Saturating: a duration out of range is refused later, not an overflow here.
+        let settle = settle_steps(&self.rest, dt);
+        settle
+            .saturating_add(settle)
+            .saturating_add(steps_in(self.activation, dt))
+            .saturating_add(steps_in(self.seconds, dt))
+    }
+}
+
 /// The poses of every part at one moment.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RecordedFrame {
@@ -174,10 +213,15 @@ pub struct RecordedFrame {
     /// before phases were recorded).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub phase: Option<Phase>,
-    /// Each part's centre and orientation.
+    /// Each part's centre and orientation (written at the physics' f32 precision).
+    #[serde(serialize_with = "compact::poses")]
     pub parts: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
     /// The projectile's centre, in the catapult and aim tasks.
-    #[serde(skip_serializing_if = "Option::is_none", default)]
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        default,
+        serialize_with = "compact::point"
+    )]
     pub projectile: Option<Vector3<f64>>,
     /// The projectile's size, in the catapult and aim tasks.
     #[serde(skip_serializing_if = "Option::is_none", default)]
@@ -291,16 +335,33 @@ fn too_tall(task: &str, height: f64, max_height: f64, when: &str) -> Option<Eval
 }
 
 /// A running evaluation: the world plus the bookkeeping every protocol needs.
-struct Run {
+struct Run<'p> {
     world: World,
     projectile_size: Option<Vector3<f64>>,
     record: bool,
     recording: Vec<RecordedFrame>,
     task: &'static str,
     phase: Phase,
+    /// Control steps taken.
+    steps: usize,
+    /// The most control steps the protocol can take (every phase at its longest).
+    max_steps: usize,
+    /// Every how many steps the recording keeps a frame.
+    interval: usize,
+    /// The last step's frame when the interval skipped it: kept at the end of the run.
+    pending: Option<RecordedFrame>,
+    /// Steps counted as done: every finished phase at its longest, so the fraction done
+    /// grows steadily and ends at 1.
+    counted: usize,
+    /// Steps taken when the current phase began.
+    phase_start: usize,
+    /// Told the fraction done, in steps of 0.001 (and 1 at the end).
+    progress: &'p mut dyn FnMut(f64),
+    /// The last fraction told, in thousandths.
+    told: Option<usize>,
 }
 
-impl Run {
+impl Run<'_> {
     fn step(&mut self, controller: bool) -> Result<f64, Evaluation> {
         let moved = self.world.step(controller).map_err(|e| {
             Evaluation::failed(
@@ -309,8 +370,9 @@ impl Run {
                 format!("{e} at t = {:.3} s", self.world.time()),
             )
         })?;
+        self.steps += 1;
         if self.record {
-            self.recording.push(RecordedFrame {
+            let frame = RecordedFrame {
                 t: self.world.time(),
                 phase: Some(self.phase),
                 parts: (0..self.world.part_count())
@@ -318,9 +380,45 @@ impl Run {
                     .collect(),
                 projectile: self.world.projectile_state().map(|(p, _)| p),
                 projectile_size: self.projectile_size,
-            });
+            };
+            self.keep(frame);
         }
+        self.tell();
         Ok(moved)
+    }
+
+    /// Keeps the frame of step `steps` if the recording's interval falls on it; otherwise
+    /// holds it back, in case it is the last.
+    fn keep(&mut self, frame: RecordedFrame) {
+        if (self.steps - 1).is_multiple_of(self.interval) {
+            self.recording.push(frame);
+            self.pending = None;
+        } else {
+            self.pending = Some(frame);
+        }
+    }
+
+    /// The recording, its last step included.
+    fn take_recording(&mut self) -> Vec<RecordedFrame> {
+        self.recording.extend(self.pending.take());
+        std::mem::take(&mut self.recording)
+    }
+
+    /// A phase that can take at most `longest` steps is over: it counts as that many.
+    fn end_phase(&mut self, longest: usize) {
+        self.counted = self.counted.saturating_add(longest);
+        self.phase_start = self.steps;
+        self.tell();
+    }
+
+    /// Tells the progress callback the fraction done, when it has grown by a thousandth.
+    fn tell(&mut self) {
+        let done = self.counted.saturating_add(self.steps - self.phase_start);
+        let thousandths = ((1000.0 * done as f64 / self.max_steps.max(1) as f64) as usize).min(999);
+        if self.told.is_none_or(|told| thousandths > told) {
+            self.told = Some(thousandths);
+            (self.progress)(thousandths as f64 / 1000.0);
+        }
     }
 
     /// Steps with the controller off for at least `at_least` seconds and until the creature
@@ -330,6 +428,7 @@ impl Run {
         self.world.set_resting(true);
         let settled = self.wait_for_rest(rest, at_least, dt);
         self.world.set_resting(false);
+        self.end_phase(settle_steps(rest, dt));
         settled
     }
 
@@ -373,9 +472,11 @@ impl Run {
     }
 
     fn run_for(&mut self, seconds: f64, controller: bool, dt: f64) -> Result<(), Evaluation> {
-        for _ in 0..steps_in(seconds, dt) {
+        let steps = steps_in(seconds, dt);
+        for _ in 0..steps {
             self.step(controller)?;
         }
+        self.end_phase(steps);
         Ok(())
     }
 
@@ -389,38 +490,77 @@ impl Run {
     }
 }
 
-fn start(
+/// How an evaluation is watched: whether it is recorded, the most control steps its protocol
+/// can take, and the callback told the fraction done.
+struct Watch<'p> {
+    record: bool,
+    max_steps: usize,
+    progress: &'p mut dyn FnMut(f64),
+}
+
+fn start<'p>(
     task: &'static str,
     creature: &Creature,
     sim: &SimOptions,
-    record: bool,
-) -> Result<Run, Evaluation> {
+    watch: Watch<'p>,
+) -> Result<Run<'p>, Evaluation> {
     let world = World::new(creature, sim)
         .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
     Ok(Run {
         world,
         projectile_size: None,
-        record,
+        record: watch.record,
         recording: Vec::new(),
         task,
         phase: Phase::Settling,
+        steps: 0,
+        max_steps: watch.max_steps,
+        interval: recording_interval(watch.max_steps),
+        pending: None,
+        counted: 0,
+        phase_start: 0,
+        progress: watch.progress,
+        told: None,
     })
 }
 
 /// Screens the creature, builds its world and runs `protocol`, which returns the fitness and
-/// its terms (or a failed evaluation).
+/// its terms (or a failed evaluation). The progress callback is told 1 at the end.
 fn evaluate(
     task: &'static str,
     creature: &Creature,
     sim: &SimOptions,
-    record: bool,
+    watch: Watch<'_>,
+    limits: (f64, f64),
+    protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
+) -> Evaluation {
+    let Watch {
+        record,
+        max_steps,
+        progress,
+    } = watch;
+    let watch = Watch {
+        record,
+        max_steps,
+        progress: &mut *progress,
+    };
+    let evaluation = evaluate_run(task, creature, sim, watch, limits, protocol);
+    progress(1.0);
+    evaluation
+}
+
+fn evaluate_run(
+    task: &'static str,
+    creature: &Creature,
+    sim: &SimOptions,
+    watch: Watch<'_>,
     (max_height, seconds): (f64, f64),
-    protocol: impl FnOnce(&mut Run) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
+    protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
 ) -> Evaluation {
     if let Some(rejected) = screen(task, creature, max_height, seconds) {
         return rejected;
     }
-    let mut run = match start(task, creature, sim, record) {
+    let mut run = match start(task, creature, sim, watch) {
         Ok(run) => run,
         Err(failed) => return failed,
     };
@@ -439,12 +579,12 @@ fn evaluate(
                 status: Status::Ok,
                 terms,
                 message: None,
-                recording: std::mem::take(&mut run.recording),
+                recording: run.take_recording(),
             }
         }
         Err(mut failed) => {
             // What was recorded up to the failure shows why it failed.
-            failed.recording = std::mem::take(&mut run.recording);
+            failed.recording = run.take_recording();
             failed
         }
     }
@@ -471,8 +611,25 @@ pub fn walker(
     options: &WalkerOptions,
     record: bool,
 ) -> Evaluation {
+    walker_with_progress(creature, sim, options, record, &mut |_| {})
+}
+
+/// [`walker`], telling `progress` the fraction done: from 0, growing by thousandths as the
+/// protocol steps (a phase that ends early counts as done at its longest), and 1 at the end.
+pub fn walker_with_progress(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &WalkerOptions,
+    record: bool,
+    progress: &mut dyn FnMut(f64),
+) -> Evaluation {
     let limits = (options.max_height, options.seconds);
-    evaluate("walker", creature, sim, record, limits, |run| {
+    let watch = Watch {
+        record,
+        max_steps: options.max_steps(sim.dt),
+        progress,
+    };
+    evaluate("walker", creature, sim, watch, limits, |run| {
         run.settle(&options.rest, 0.0, sim.dt)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
@@ -564,6 +721,14 @@ impl Default for JumpOptions {
     }
 }
 
+impl JumpOptions {
+    /// The most control steps of `dt` the jump can take: the wait for rest at its time
+    /// limit, then the jump.
+    pub fn max_steps(&self, dt: f64) -> usize {
+        settle_steps(&self.rest, dt).saturating_add(steps_in(self.seconds, dt))
+    }
+}
+
 /// Jump (Walking with Dinosaurs 3.3.3): after coming to rest (and passing the height test
 /// again), the controller runs for `seconds`; the fitness is the best height of the
 /// creature's lowest point above the ground.
@@ -573,8 +738,24 @@ pub fn jump(
     options: &JumpOptions,
     record: bool,
 ) -> Evaluation {
+    jump_with_progress(creature, sim, options, record, &mut |_| {})
+}
+
+/// [`jump`], telling `progress` the fraction done, as [`walker_with_progress`] does.
+pub fn jump_with_progress(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &JumpOptions,
+    record: bool,
+    progress: &mut dyn FnMut(f64),
+) -> Evaluation {
     let limits = (options.max_height, options.seconds);
-    evaluate("jump", creature, sim, record, limits, |run| {
+    let watch = Watch {
+        record,
+        max_steps: options.max_steps(sim.dt),
+        progress,
+    };
+    evaluate("jump", creature, sim, watch, limits, |run| {
         run.settle(&options.rest, 0.0, sim.dt)?;
         run.check_height(options.max_height)?;
         let resting = run.world.lowest_point().max(0.0);
@@ -631,6 +812,13 @@ impl Default for CatapultOptions {
     }
 }
 
+impl CatapultOptions {
+    /// The most control steps of `dt` the catapult and aim tasks can take: `max_seconds`.
+    pub fn max_steps(&self, dt: f64) -> usize {
+        steps_in(self.max_seconds, dt)
+    }
+}
+
 /// The minimum distance between the polyline `trajectory` and `target` (D_t of equation 3).
 pub fn distance_to_trajectory(trajectory: &[Vector3<f64>], target: &Vector3<f64>) -> f64 {
     match trajectory {
@@ -667,6 +855,18 @@ pub fn catapult(
     options: &CatapultOptions,
     record: bool,
 ) -> Evaluation {
+    catapult_with_progress(creature, sim, options, record, &mut |_| {})
+}
+
+/// [`catapult`], telling `progress` the fraction done, as [`walker_with_progress`] does (the
+/// run counts as done when the projectile comes to rest).
+pub fn catapult_with_progress(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &CatapultOptions,
+    record: bool,
+    progress: &mut dyn FnMut(f64),
+) -> Evaluation {
     let task: &'static str = if options.target.is_some() {
         "aim"
     } else {
@@ -682,10 +882,15 @@ pub fn catapult(
             format!("the target must be within {MAX_TARGET_DISTANCE} m of the projectile"),
         );
     }
+    let watch = Watch {
+        record,
+        max_steps: options.max_steps(sim.dt),
+        progress,
+    };
     // The target in the world, once the projectile is placed: kept in the terms of a failed
     // evaluation too, so that its recording can show the target.
     let placed_target = std::cell::Cell::new(None);
-    let mut evaluation = evaluate(task, creature, sim, record, limits, |run| {
+    let mut evaluation = evaluate(task, creature, sim, watch, limits, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);
