@@ -419,6 +419,16 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         }
     };
     progress.finish();
+    if let Some(&gap) = evaluation.terms.get("joint_gap")
+        && gap > ontogeny::sim::JOINT_GAP_WARNING
+    {
+        eprintln!(
+            "warning: the solver let a joint come {:.1} cm apart: this step setting is too coarse \
+             for this creature, and its fitness may not hold at a finer one (try --substeps 4 \
+             --solver-iterations 8 --pgs-iterations 1; README, \"Speed and fidelity\")",
+            gap * 100.0
+        );
+    }
     if let Some(dir) = &args.record {
         write_recording(dir, &creature, &evaluation)?;
     }

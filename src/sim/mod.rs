@@ -6,6 +6,6 @@ pub mod world;
 pub use brain::BrainRuntime;
 pub use world::{
     ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, BuildError, DEFAULT_MUSCLE_SPEED,
-    DEFAULT_STRENGTH, ENERGY_TOLERANCE, Exploded, GRAVITY, JointModel, SATURATION_DAMPING,
-    SimOptions, StrengthFrom, World, max_torque,
+    DEFAULT_STRENGTH, ENERGY_TOLERANCE, Exploded, GRAVITY, JOINT_GAP_WARNING, JointModel,
+    SATURATION_DAMPING, SimOptions, StrengthFrom, World, max_torque,
 };

@@ -86,6 +86,12 @@ pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 /// below what the exploits evolution found reach (27 J/kg). See the README's "energy audit".
 pub const ENERGY_TOLERANCE: f64 = 10.0;
 
+/// A joint gap (m) beyond which `ontogeny eval` warns that the step setting is too coarse for
+/// the creature: the fine reference keeps the evolved walkers measured under 1.1 cm, while
+/// the champions that exploit the default setting reach 7 to 23 cm. See the README's
+/// "Speed and fidelity".
+pub const JOINT_GAP_WARNING: f64 = 0.05;
+
 /// The memory (s) of the energy audit: unexplained energy gained this long ago counts for
 /// 1/e of its amount.
 pub const ENERGY_WINDOW: f64 = 0.5;
@@ -271,6 +277,8 @@ pub struct World {
     unexplained_energy: f64,
     /// The most `unexplained_energy` has been (J).
     peak_unexplained: f64,
+    /// The largest gap seen between the two ends of any joint's anchor (m).
+    peak_joint_gap: f64,
 }
 
 fn vector(v: &Vector3<f64>) -> Vector {
@@ -360,6 +368,7 @@ impl World {
             energy: 0.0,
             unexplained_energy: 0.0,
             peak_unexplained: 0.0,
+            peak_joint_gap: 0.0,
         };
         let ground = world.bodies.insert(RigidBodyBuilder::fixed());
         world.colliders.insert_with_parent(
@@ -522,6 +531,32 @@ impl World {
     /// faithful world gains none; solver artefacts do.
     pub fn peak_unexplained_energy(&self) -> f64 {
         self.peak_unexplained
+    }
+
+    /// The largest distance between a joint's anchor as the parent and as the child see it
+    /// (m), now: how far the impulse solver lets joints come apart (multibody joints and fused
+    /// parts cannot).
+    pub fn joint_gap(&self) -> f64 {
+        let mut gap: f64 = 0.0;
+        for (j, handle) in self.joints.iter().enumerate() {
+            let data = match *handle {
+                JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
+                    Some(joint) => &joint.data,
+                    None => continue,
+                },
+                _ => continue,
+            };
+            let (b1, b2) = self.joint_ends[j];
+            let a1 = *self.bodies[b1].position() * data.local_frame1;
+            let a2 = *self.bodies[b2].position() * data.local_frame2;
+            gap = gap.max((a1.translation - a2.translation).length() as f64);
+        }
+        gap
+    }
+
+    /// The largest [`World::joint_gap`] so far (m).
+    pub fn peak_joint_gap(&self) -> f64 {
+        self.peak_joint_gap
     }
 
     /// The creature's mass (kg).
@@ -954,6 +989,7 @@ impl World {
         if tolerance > 0.0 && self.unexplained_energy > tolerance * self.creature_mass {
             return Err(Exploded::Energy(self.unexplained_energy));
         }
+        self.peak_joint_gap = self.peak_joint_gap.max(self.joint_gap());
         let mut largest: f64 = 0.0;
         for k in 0..self.parts.len() {
             let body = &self.bodies[self.parts[k].0];

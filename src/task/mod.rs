@@ -565,7 +565,10 @@ fn evaluate_run(
         Err(failed) => return failed,
     };
     match protocol(&mut run) {
-        Ok((fitness, terms)) => {
+        Ok((fitness, mut terms)) => {
+            // How far the solver let any joint come apart (m): a diagnostic of the step
+            // setting, not part of any fitness.
+            terms.insert("joint_gap".into(), run.world.peak_joint_gap());
             // No NaN or infinity leaves an evaluation: JSON cannot hold them.
             if let Some((name, _)) = terms.iter().find(|(_, v)| !v.is_finite()) {
                 return Evaluation::failed(task, Status::Invalid, format!("{name} is not finite"));
