@@ -345,6 +345,7 @@ fn run_replicate<G: Genome>(
                     encoding: G::NAME.to_string(),
                     seed: replicate_seed(manifest.seed, k),
                     init: None,
+                    verify_best: true,
                     ga: shared.ga.clone(),
                     task: shared.task.clone(),
                     limits: G::Limits::default(),
