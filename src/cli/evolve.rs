@@ -8,7 +8,7 @@ use clap::{Args, Subcommand, ValueEnum};
 use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome};
 use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, encoding_of, read_config};
 use ontogeny::evolve::ga::Preset;
-use ontogeny::evolve::run::{GenerationReport, Run, RunError};
+use ontogeny::evolve::run::{GenerationReport, Run, RunError, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::lang::{Diagnostic, DiagnosticKind, Source};
 use ontogeny::task::{TaskKind, TaskSpec};
@@ -390,13 +390,6 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
         );
     }
     Ok(())
-}
-
-/// Whether a champion's fitness at the fine reference setting, `fine`, is below half its
-/// fitness `best` (a positive one) or is no number: then its score may owe more to the
-/// evaluator's coarse stepping than to its behaviour.
-pub fn exploits_stepping(best: f64, fine: f64) -> bool {
-    best > 0.0 && !(fine >= best / 2.0)
 }
 
 /// Subcommands of `ontogeny runs`.
