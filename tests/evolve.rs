@@ -686,3 +686,73 @@ fn every_task_and_preset_runs_with(encoding: &str) {
     }
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn an_elite_copy_of_the_best_is_not_walked_again() {
+    let dir = scratch("elite-copy");
+    let whole = dir.join("whole");
+    assert!(small_run("lsystem", &whole, &[]).status.success());
+    let fine = |dir: &Path| -> Vec<f64> {
+        RunStore::open_read_only(&dir.join("run.sqlite"))
+            .unwrap()
+            .generations()
+            .unwrap()
+            .iter()
+            .map(|g| g.best_fine.as_ref().unwrap().fitness)
+            .collect()
+    };
+    // Which generations' best is the previous best carried over unchanged.
+    let rank_1 = |store: &RunStore, g: u32| {
+        let is = store.individuals(g).unwrap();
+        let best = is
+            .iter()
+            .map(|i| i.fitness)
+            .fold(f64::NEG_INFINITY, f64::max);
+        is.into_iter().find(|i| i.fitness == best).unwrap()
+    };
+    let store = RunStore::open_read_only(&whole.join("run.sqlite")).unwrap();
+    let copied: Vec<bool> = (1..4)
+        .map(|g| {
+            let (now, before) = (rank_1(&store, g), rank_1(&store, g - 1));
+            now.operator == "elite" && now.parents == [before.index]
+        })
+        .collect();
+    assert_eq!(
+        copied,
+        [false, true, true],
+        "the run's bests changed: pick another"
+    );
+    drop(store);
+    // The run stopped after generation `after`, whose stored value is then replaced by a
+    // marker; the fine reference values of the resumed run.
+    let resumed_with_marker = |after: u32| -> Vec<f64> {
+        let cut = dir.join(format!("cut-{after}"));
+        assert!(small_run("lsystem", &cut, &[]).status.success());
+        {
+            let conn = rusqlite::Connection::open(cut.join("run.sqlite")).unwrap();
+            conn.execute_batch(&format!(
+                "DELETE FROM individual WHERE generation > {after};
+                 DELETE FROM generation WHERE generation > {after};
+                 UPDATE generation SET best_fine = 123.0 WHERE generation = {after};"
+            ))
+            .unwrap();
+        }
+        let resumed = ontogeny()
+            .args(["evolve", "--resume"])
+            .arg(&cut)
+            .output()
+            .unwrap();
+        assert!(resumed.status.success());
+        fine(&cut)
+    };
+    let whole = fine(&whole);
+    assert!(!whole.contains(&123.0));
+    // Generation 1's best is new: walked, whatever was stored before it; 2 and 3 copy it.
+    assert_eq!(
+        resumed_with_marker(0),
+        [vec![123.0], whole[1..].to_vec()].concat()
+    );
+    // Generations 2 and 3 copy generation 1's stored value, the marker.
+    assert_eq!(resumed_with_marker(1), [&whole[..1], &[123.0; 3]].concat());
+    let _ = std::fs::remove_dir_all(dir);
+}

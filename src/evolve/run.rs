@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::config::{RunConfig, read_run_config};
-use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, ranking};
+use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, Operator, ranking};
 use super::plot::fitness_svg;
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
@@ -215,6 +215,16 @@ impl<G: Genome> Run<G> {
             None => (Vec::new(), 0),
             Some(g) => (self.population(g)?, g + 1),
         };
+        // The previous generation's best (its index) and its fine reference evaluation: an
+        // elite copy of it needs no second walk, as the evaluation is a pure function of the
+        // genome, its development seed and the task.
+        let mut previous_best: Option<(u32, FineEvaluation)> = None;
+        if first > 0
+            && let Some(&best) = ranking(&population).first()
+            && let Some(stored) = self.store.generations()?.pop().and_then(|g| g.best_fine)
+        {
+            previous_best = Some((best as u32, stored));
+        }
         let mut fallbacks = Fallbacks::default();
         let log = self.dir.join("log.txt");
         for generation in first..generations {
@@ -228,13 +238,20 @@ impl<G: Genome> Run<G> {
                     .next_generation(&population, generation, &mut fallbacks)
             };
             population = next;
-            let best_fine = if self.config.verify_best {
-                ranking(&population)
-                    .first()
-                    .map(|&best| self.fine_evaluation(&population[best]))
-            } else {
-                None
+            let best = ranking(&population).first().copied();
+            let best_fine = match best {
+                Some(best) if self.config.verify_best => {
+                    let b = &population[best];
+                    Some(match &previous_best {
+                        Some((p, fine)) if b.operator == Operator::Elite && b.parents == [*p] => {
+                            fine.clone()
+                        }
+                        _ => self.fine_evaluation(b),
+                    })
+                }
+                _ => None,
             };
+            previous_best = best.zip(best_fine.clone()).map(|(b, f)| (b as u32, f));
             let evaluation_seconds = started.elapsed().as_secs_f64();
             let stats = GenerationStats::of(&population, evaluations);
             self.record(generation, &population, &stats, best_fine.clone(), started)?;
