@@ -403,7 +403,7 @@ fn status_text(e: &Evaluation) -> String {
 /// stored fitness `best` (a positive one), or is no number: then its score may owe more to
 /// the evaluator's coarse stepping than to its behaviour, and `ontogeny evolve` warns.
 pub fn exploits_stepping(best: f64, fine: f64) -> bool {
-    best > 0.0 && !(fine >= best / 2.0)
+    best > 0.0 && (fine.is_nan() || fine < best / 2.0)
 }
 
 /// " (fine reference 4.100000)" for a log line, or nothing when the best was not verified.
