@@ -76,9 +76,9 @@ fn numbers(dir: &Path) -> String {
     for line in md.lines() {
         if line.starts_with("| lsystem") || line.starts_with("| direct") {
             let cells: Vec<&str> = line.split('|').collect();
-            // A line of the encodings' table has 10 cells; drop evaluations/s.
-            let keep = if cells.len() == 12 {
-                &cells[..10]
+            // A line of the encodings' table has 11 cells; drop evaluations/s.
+            let keep = if cells.len() == 13 {
+                &cells[..11]
             } else {
                 &cells[..]
             };
@@ -138,6 +138,30 @@ fn every_replicate_gets_exactly_the_same_evaluations() {
     assert_eq!(seeds.len(), 6);
     assert_eq!(seeds[0], seeds[2]);
     assert_ne!(seeds[0], seeds[1]);
+    // Each replicate's final champion re-walked at the fine reference: its last generation's
+    // stored value, and the report's mean of them.
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(header[4..6], ["best_fitness", "best_fine"]);
+    let mut fine_of = std::collections::BTreeMap::<&str, Vec<f64>>::new();
+    for line in csv.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let run = out.join(cells[0]).join(format!("rep-{}", cells[1]));
+        let store = RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+        let last = store.generations().unwrap().pop().unwrap();
+        let stored = last.best_fine.expect("compare verifies the best").fitness;
+        assert_eq!(cells[5].parse::<f64>().unwrap(), stored, "{line}");
+        fine_of.entry(cells[0]).or_default().push(stored);
+    }
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for (encoding, values) in fine_of {
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let row = md
+            .lines()
+            .find(|l| l.starts_with(&format!("| {encoding} | 2 |")))
+            .unwrap();
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        assert_eq!(cells[4], format!("{mean:.4}"), "{row}");
+    }
     for file in ["report.md", "fitness.svg", "parts.svg"] {
         assert!(out.join(file).is_file(), "{file}");
     }

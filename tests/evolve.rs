@@ -1,12 +1,21 @@
 //! `ontogeny evolve` end to end, for every encoding: the run directory and its database,
 //! identical results on one and two threads, a run killed with SIGKILL mid-generation and
 //! resumed equals the uninterrupted run, and bad input refused with exit code 2; and every
-//! task and preset with the `direct` encoding.
+//! task and preset with the `direct` encoding. Each generation's best re-walked at the fine
+//! reference setting: the stored value recomputed, the switch that turns it off, a version-1
+//! database migrated on resume.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use ontogeny::encoding::{
+    ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome, Purpose,
+};
+use ontogeny::evolve::ga::ranking;
+use ontogeny::evolve::plot::FINE_LABEL;
+use ontogeny::evolve::run::{Run, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
+use ontogeny::task::{Evaluation, TaskSpec};
 
 fn ontogeny() -> Command {
     Command::new(env!("CARGO_BIN_EXE_ontogeny"))
@@ -63,13 +72,25 @@ fn small_run(encoding: &str, out: &Path, extra: &[&str]) -> Output {
 
 /// Everything the store holds of a run but wall-clock times, as one comparable string.
 fn contents(dir: &Path) -> String {
-    let store = RunStore::open(&dir.join("run.sqlite")).unwrap();
+    contents_of(dir, true)
+}
+
+/// [`contents`], with or without the fine reference values.
+fn contents_of(dir: &Path, with_fine: bool) -> String {
+    let store = RunStore::open_read_only(&dir.join("run.sqlite")).unwrap();
     let mut out = String::new();
     let last = store.last_generation().unwrap().unwrap();
     for g in store.generations().unwrap() {
         out += &format!(
-            "{} {:?} {:?} {:?} {:?} {} {}\n",
-            g.index, g.best, g.mean, g.median, g.sd, g.valid_fraction, g.evaluations
+            "{} {:?} {:?} {:?} {:?} {} {} {:?}\n",
+            g.index,
+            g.best,
+            g.mean,
+            g.median,
+            g.sd,
+            g.valid_fraction,
+            g.evaluations,
+            if with_fine { g.best_fine.clone() } else { None }
         );
     }
     for generation in 0..=last {
@@ -196,7 +217,224 @@ fn writes_its_directory_and_database(encoding: &str) {
         !String::from_utf8_lossy(&replay.stdout).contains("differs"),
         "{encoding}"
     );
+    // Each generation's best was re-walked at the fine reference: the value stored is the
+    // evaluation recomputed here, and the log, plot, `runs show` and end line say it.
+    match encoding {
+        "lsystem" => fine_values_are_recomputed::<LSystemGenome>(&out),
+        "lsystem-continuous" => fine_values_are_recomputed::<ContinuousGenome>(&out),
+        "direct" => fine_values_are_recomputed::<DirectGenome>(&out),
+        "graph" => fine_values_are_recomputed::<GraphGenome>(&out),
+        other => panic!("no genome type for {other}"),
+    }
+    let log = std::fs::read_to_string(out.join("log.txt")).unwrap();
+    assert_eq!(log.matches(" (fine reference ").count(), 4, "{log}");
+    let svg = std::fs::read_to_string(out.join("fitness.svg")).unwrap();
+    assert!(
+        svg.contains(FINE_LABEL),
+        "{encoding}: no fine line in the plot"
+    );
+    let shown = String::from_utf8_lossy(&show.stdout).to_string();
+    assert!(shown.contains("best fine"), "{shown}");
+    let last = store.generations().unwrap()[3].best_fine.clone().unwrap();
+    let end = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(
+        end.contains(&format!(
+            "generation 3 best {:.6} (fine reference {:.6}",
+            generations[3].best, last.fitness
+        )),
+        "{end}"
+    );
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Checks every generation's stored fine reference value of the run in `out` against the
+/// rank-1 individual developed again and evaluated with the run's task at
+/// `sim.fine_reference()`; and that the check differs from the stored best somewhere, so it
+/// does run at another setting.
+fn fine_values_are_recomputed<G: Genome>(out: &Path) {
+    let run = Run::<G>::resume(out).unwrap();
+    let config = run.config().clone();
+    let mut limits = config.limits.clone();
+    G::adapt_limits(&mut limits, Purpose::Locomotion);
+    let fine = TaskSpec {
+        sim: config.task.sim.fine_reference(),
+        ..config.task.clone()
+    };
+    assert_eq!(
+        (
+            fine.sim.substeps,
+            fine.sim.solver_iterations,
+            fine.sim.pgs_iterations
+        ),
+        (4, 8, 1)
+    );
+    assert_eq!(
+        (fine.sim.rest_substeps, fine.sim.rest_solver_iterations),
+        (4, 8)
+    );
+    assert_eq!(fine.sim.dt, config.task.sim.dt);
+    let store = RunStore::open_read_only(&out.join("run.sqlite")).unwrap();
+    let mut differs = false;
+    for g in store.generations().unwrap() {
+        let population = run.population(g.index).unwrap();
+        let best = &population[ranking(&population)[0]];
+        assert_eq!(best.evaluation.fitness, g.best);
+        let expected = match best.genome.develop(&limits, best.develop_seed) {
+            Ok(creature) => fine.evaluate(&creature, false),
+            Err(e) => Evaluation::invalid("walker", format!("development: {e}")),
+        };
+        let stored = g.best_fine.expect("verified");
+        assert_eq!(
+            stored.fitness.to_bits(),
+            expected.fitness.to_bits(),
+            "{} generation {}: {} stored, {} recomputed",
+            G::NAME,
+            g.index,
+            stored.fitness,
+            expected.fitness
+        );
+        assert_eq!(
+            serde_json::to_value(expected.status).unwrap(),
+            serde_json::Value::String(stored.status.clone())
+        );
+        differs |= stored.fitness != g.best;
+    }
+    assert!(
+        differs,
+        "{}: the fine reference gave the stored best",
+        G::NAME
+    );
+}
+
+#[test]
+fn verify_best_off_stores_null_and_evaluates_nothing_more() {
+    let dir = scratch("no-verify");
+    // From the command line, and from the config file.
+    let config = dir.join("off.toml");
+    std::fs::write(&config, "verify_best = false\n").unwrap();
+    let flag = dir.join("flag");
+    let file = dir.join("file");
+    let on = dir.join("on");
+    for (out, extra) in [
+        (&flag, vec!["--no-verify-best".to_string()]),
+        (&file, vec!["--config".into(), config.display().to_string()]),
+        (&on, vec![]),
+    ] {
+        let extra: Vec<&str> = extra.iter().map(String::as_str).collect();
+        let o = run_of("lsystem", out, "2", &extra);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    for out in [&flag, &file] {
+        let written = std::fs::read_to_string(out.join("config.toml")).unwrap();
+        assert!(written.contains("verify_best = false"), "{written}");
+        let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+        assert!(
+            store
+                .generations()
+                .unwrap()
+                .iter()
+                .all(|g| g.best_fine.is_none())
+        );
+        let log = std::fs::read_to_string(out.join("log.txt")).unwrap();
+        assert!(!log.contains("fine reference"), "{log}");
+        let svg = std::fs::read_to_string(out.join("fitness.svg")).unwrap();
+        assert!(!svg.contains(FINE_LABEL));
+        // The GA itself is the same as with the check on.
+        assert_ne!(contents(out), contents(&on));
+        assert_eq!(contents(out), contents_of(&on, false));
+    }
+    assert!(
+        std::fs::read_to_string(on.join("config.toml"))
+            .unwrap()
+            .contains("verify_best = true")
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_version_1_database_is_migrated_on_resume() {
+    let dir = scratch("version-1");
+    let whole = dir.join("whole");
+    assert!(small_run("lsystem", &whole, &[]).status.success());
+    // The same run stopped after generation 1 by a version that knew schema 1 only: its
+    // database turned back into version 1 (the columns dropped), its config.toml without
+    // the switch.
+    let old = dir.join("old");
+    assert!(small_run("lsystem", &old, &[]).status.success());
+    let config = std::fs::read_to_string(old.join("config.toml")).unwrap();
+    std::fs::write(
+        old.join("config.toml"),
+        config.replace("verify_best = true\n", ""),
+    )
+    .unwrap();
+    {
+        let conn = rusqlite::Connection::open(old.join("run.sqlite")).unwrap();
+        conn.execute_batch(
+            "DELETE FROM individual WHERE generation >= 2;
+             DELETE FROM generation WHERE generation >= 2;
+             ALTER TABLE generation DROP COLUMN best_fine;
+             ALTER TABLE generation DROP COLUMN best_fine_status;
+             PRAGMA user_version = 1;
+             PRAGMA wal_checkpoint(TRUNCATE);",
+        )
+        .unwrap();
+    }
+    // `runs show` reads it without changing it.
+    let before = std::fs::read(old.join("run.sqlite")).unwrap();
+    let show = ontogeny()
+        .args(["runs", "show"])
+        .arg(&old)
+        .output()
+        .unwrap();
+    assert!(
+        show.status.success(),
+        "{}",
+        String::from_utf8_lossy(&show.stderr)
+    );
+    assert_eq!(String::from_utf8_lossy(&show.stdout).lines().count(), 2 + 2);
+    assert_eq!(std::fs::read(old.join("run.sqlite")).unwrap(), before);
+    let resumed = ontogeny()
+        .arg("evolve")
+        .arg("--resume")
+        .arg(&old)
+        .output()
+        .unwrap();
+    assert!(
+        resumed.status.success(),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
+    assert_eq!(store.schema_version(), 2);
+    let generations = store.generations().unwrap();
+    let fresh = RunStore::open_read_only(&whole.join("run.sqlite"))
+        .unwrap()
+        .generations()
+        .unwrap();
+    // The old generations read back as not verified; the new ones as the uninterrupted
+    // run's.
+    assert_eq!(generations[0].best_fine, None);
+    assert_eq!(generations[1].best_fine, None);
+    assert!(fresh[2].best_fine.is_some());
+    assert_eq!(generations[2].best_fine, fresh[2].best_fine);
+    assert_eq!(generations[3].best_fine, fresh[3].best_fine);
+    // Nothing else differs.
+    assert_eq!(contents_of(&old, false), contents_of(&whole, false));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn the_warning_threshold_is_half_the_stored_best() {
+    // Half of 26.23 is 13.115.
+    assert!(exploits_stepping(26.23, 4.10));
+    assert!(exploits_stepping(26.23, 13.11));
+    assert!(!exploits_stepping(26.23, 13.12));
+    assert!(!exploits_stepping(26.23, 30.0));
+    // No number at the fine reference: suspicious too.
+    assert!(exploits_stepping(26.23, f64::NAN));
+    // A best that is not positive has no meaningful half.
+    assert!(!exploits_stepping(0.0, -5.0));
+    assert!(!exploits_stepping(-3.0, -999_999.0));
 }
 
 #[test]
@@ -446,5 +684,75 @@ fn every_task_and_preset_runs_with(encoding: &str) {
             );
         }
     }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn an_elite_copy_of_the_best_is_not_walked_again() {
+    let dir = scratch("elite-copy");
+    let whole = dir.join("whole");
+    assert!(small_run("lsystem", &whole, &[]).status.success());
+    let fine = |dir: &Path| -> Vec<f64> {
+        RunStore::open_read_only(&dir.join("run.sqlite"))
+            .unwrap()
+            .generations()
+            .unwrap()
+            .iter()
+            .map(|g| g.best_fine.as_ref().unwrap().fitness)
+            .collect()
+    };
+    // Which generations' best is the previous best carried over unchanged.
+    let rank_1 = |store: &RunStore, g: u32| {
+        let is = store.individuals(g).unwrap();
+        let best = is
+            .iter()
+            .map(|i| i.fitness)
+            .fold(f64::NEG_INFINITY, f64::max);
+        is.into_iter().find(|i| i.fitness == best).unwrap()
+    };
+    let store = RunStore::open_read_only(&whole.join("run.sqlite")).unwrap();
+    let copied: Vec<bool> = (1..4)
+        .map(|g| {
+            let (now, before) = (rank_1(&store, g), rank_1(&store, g - 1));
+            now.operator == "elite" && now.parents == [before.index]
+        })
+        .collect();
+    assert_eq!(
+        copied,
+        [false, true, true],
+        "the run's bests changed: pick another"
+    );
+    drop(store);
+    // The run stopped after generation `after`, whose stored value is then replaced by a
+    // marker; the fine reference values of the resumed run.
+    let resumed_with_marker = |after: u32| -> Vec<f64> {
+        let cut = dir.join(format!("cut-{after}"));
+        assert!(small_run("lsystem", &cut, &[]).status.success());
+        {
+            let conn = rusqlite::Connection::open(cut.join("run.sqlite")).unwrap();
+            conn.execute_batch(&format!(
+                "DELETE FROM individual WHERE generation > {after};
+                 DELETE FROM generation WHERE generation > {after};
+                 UPDATE generation SET best_fine = 123.0 WHERE generation = {after};"
+            ))
+            .unwrap();
+        }
+        let resumed = ontogeny()
+            .args(["evolve", "--resume"])
+            .arg(&cut)
+            .output()
+            .unwrap();
+        assert!(resumed.status.success());
+        fine(&cut)
+    };
+    let whole = fine(&whole);
+    assert!(!whole.contains(&123.0));
+    // Generation 1's best is new: walked, whatever was stored before it; 2 and 3 copy it.
+    assert_eq!(
+        resumed_with_marker(0),
+        [vec![123.0], whole[1..].to_vec()].concat()
+    );
+    // Generations 2 and 3 copy generation 1's stored value, the marker.
+    assert_eq!(resumed_with_marker(1), [&whole[..1], &[123.0; 3]].concat());
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -1,12 +1,14 @@
 //! The run store (`run.sqlite`) and the fitness plot: round trips, one transaction per
-//! generation, refusals that leave files untouched, the README's example queries.
+//! generation, refusals that leave files untouched, a version-1 file read as it is and
+//! migrated when opened for writing, the README's example queries.
 
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use ontogeny::evolve::plot::{FAILURE_FLOOR, fitness_svg};
+use ontogeny::evolve::plot::{FAILURE_FLOOR, FINE_LABEL, fitness_svg};
 use ontogeny::evolve::store::{
-    GenerationRecord, IndividualRecord, RunRecord, RunStore, SCHEMA_VERSION, StoreError,
+    FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, SCHEMA_VERSION,
+    StoreError,
 };
 
 /// A fresh, empty directory for one test.
@@ -39,7 +41,15 @@ fn generation(index: u32) -> GenerationRecord {
         evaluations: 4,
         wall_seconds: 0.5,
         evaluations_per_second: 8.0,
+        best_fine: None,
     }
+}
+
+fn fine(fitness: f64, status: &str) -> Option<FineEvaluation> {
+    Some(FineEvaluation {
+        fitness,
+        status: status.into(),
+    })
 }
 
 /// Four individuals: `fitness[i]` each; individual 3 failed.
@@ -81,6 +91,11 @@ fn same_generation(a: &GenerationRecord, b: &GenerationRecord) -> bool {
         && a.evaluations == b.evaluations
         && same(a.wall_seconds, b.wall_seconds)
         && same(a.evaluations_per_second, b.evaluations_per_second)
+        && match (&a.best_fine, &b.best_fine) {
+            (None, None) => true,
+            (Some(x), Some(y)) => same(x.fitness, y.fitness) && x.status == y.status,
+            _ => false,
+        }
 }
 
 /// A store with generations 0 and 1 written, closed again.
@@ -122,10 +137,15 @@ fn every_field_round_trips() {
         evaluations: 4,
         wall_seconds: 0.0,
         evaluations_per_second: f64::INFINITY,
+        // Verified, but the fine evaluation gave no number: NULL fitness, a status.
+        best_fine: fine(f64::NAN, "invalid"),
     };
     let i0 = individuals(0, [FAILURE_FLOOR; 4]);
     store.write_generation(&g0, &i0).unwrap();
-    let g1 = generation(1);
+    let g1 = GenerationRecord {
+        best_fine: fine(0.1 + 0.2, "ok"),
+        ..generation(1)
+    };
     let i1 = individuals(1, [0.1 + 0.2, -3.0e-300, 7.0, FAILURE_FLOOR]);
     store.write_generation(&g1, &i1).unwrap();
     drop(store);
@@ -137,6 +157,8 @@ fn every_field_round_trips() {
     assert_eq!(gs.len(), 2);
     assert!(same_generation(&gs[0], &g0), "{:?}", gs[0]);
     assert!(same_generation(&gs[1], &g1), "{:?}", gs[1]);
+    assert!(gs[0].best_fine.as_ref().unwrap().fitness.is_nan());
+    assert_eq!(gs[1].best_fine.as_ref().unwrap().fitness, 0.1 + 0.2);
     assert_eq!(store.individuals(0).unwrap(), i0);
     // Every bit of the fitness survives (0.1 + 0.2 is not 0.3).
     assert_eq!(store.individuals(1).unwrap(), i1);
@@ -401,8 +423,10 @@ fn open_refuses_another_schema() {
     let err = open_rejects(&newer);
     assert!(matches!(err, StoreError::NewerSchema { .. }), "{err:?}");
     assert!(
-        err.to_string()
-            .contains("was written by a newer schema (version 2)"),
+        err.to_string().contains(&format!(
+            "was written by a newer schema (version {})",
+            SCHEMA_VERSION + 1
+        )),
         "{err}"
     );
 
@@ -502,6 +526,33 @@ fn the_fitness_plot_names_its_series_and_axes() {
     // The y axis is labelled from about 3 to 27, not down to -999999.
     assert!(!svg.contains("999999") && !svg.contains("-1000000"));
     assert!(!dir.join("fitness.svg.tmp").exists());
+
+    // Nothing was re-walked at the fine reference: no dashed line, no legend for it.
+    assert!(!svg.contains(FINE_LABEL));
+    // Generations 10 to 29 re-walked: a dashed line and its legend entry; its values, down
+    // to -20, stretch the y axis.
+    for (k, g) in gs.iter_mut().enumerate().skip(10) {
+        g.best_fine = fine(-(k as f64) + 9.0, "ok");
+    }
+    fitness_svg(&path, &gs, "fine").unwrap();
+    let with_fine = fs::read_to_string(&path).unwrap();
+    let texts: Vec<&str> = with_fine.lines().map(str::trim).collect();
+    assert!(
+        texts.contains(&FINE_LABEL),
+        "no text {FINE_LABEL} in the SVG"
+    );
+    assert!(
+        texts.contains(&"-20.0"),
+        "the y axis does not reach the fine values"
+    );
+    // Dashes: many more line pieces than the solid plot has.
+    let paths = |s: &str| s.matches("<polyline").count();
+    assert!(
+        paths(&with_fine) > paths(&svg) + 20,
+        "{} pieces against {}",
+        paths(&with_fine),
+        paths(&svg)
+    );
 
     // No generation yet, or none with a valid individual: still a picture, not an error.
     fitness_svg(&path, &[], "empty").unwrap();
@@ -605,4 +656,223 @@ fn kill_9_keeps_every_committed_generation() {
             assert_eq!(is[49].fitness, f64::from(g) + 0.49);
         }
     }
+}
+
+/// The schema of version 1, as ontogeny 0.1 created it: the `generation` table without the
+/// fine reference columns.
+const SCHEMA_V1: &str = "
+CREATE TABLE run (
+    id       INTEGER PRIMARY KEY CHECK (id = 1),
+    config   TEXT NOT NULL,
+    seed     TEXT NOT NULL CHECK (seed GLOB '[0-9]*' AND seed NOT GLOB '*[^0-9]*'),
+    encoding TEXT NOT NULL,
+    task     TEXT NOT NULL,
+    version  TEXT NOT NULL
+) STRICT;
+CREATE TABLE generation (
+    generation             INTEGER PRIMARY KEY CHECK (generation >= 0),
+    best                   REAL,
+    mean                   REAL,
+    median                 REAL,
+    sd                     REAL,
+    valid_fraction         REAL,
+    evaluations            INTEGER NOT NULL CHECK (evaluations >= 0),
+    wall_seconds           REAL,
+    evaluations_per_second REAL
+) STRICT;
+CREATE TABLE individual (
+    generation  INTEGER NOT NULL REFERENCES generation (generation),
+    individual  INTEGER NOT NULL CHECK (individual >= 0),
+    parents     TEXT NOT NULL CHECK (json_valid(parents) AND json_type(parents) = 'array'),
+    operator    TEXT NOT NULL,
+    genome_text TEXT NOT NULL,
+    genome_json TEXT NOT NULL CHECK (json_valid(genome_json)),
+    fitness     REAL,
+    status      TEXT NOT NULL,
+    terms_json  TEXT NOT NULL CHECK (json_valid(terms_json)),
+    parts       INTEGER NOT NULL CHECK (parts >= 0),
+    joints      INTEGER NOT NULL CHECK (joints >= 0),
+    neurons     INTEGER NOT NULL CHECK (neurons >= 0),
+    PRIMARY KEY (generation, individual)
+) STRICT;
+";
+
+/// A version-1 store at `path` holding the run record and generations 0 and 1 of
+/// [`finished_store`], written with SQL as ontogeny 0.1 did (a rollback journal: no WAL).
+fn version_1_store(path: &Path) {
+    let conn = rusqlite::Connection::open(path).unwrap();
+    conn.pragma_update(None, "application_id", 0x4F6E_746F_i64)
+        .unwrap();
+    conn.pragma_update(None, "user_version", 1).unwrap();
+    conn.execute_batch(SCHEMA_V1).unwrap();
+    let run = run_record();
+    conn.execute(
+        "INSERT INTO run VALUES (1, ?1, ?2, ?3, ?4, ?5)",
+        rusqlite::params![
+            run.config,
+            run.seed.to_string(),
+            run.encoding,
+            run.task,
+            run.version
+        ],
+    )
+    .unwrap();
+    for (g, fitness) in [
+        (0, [1.0, 2.0, 0.5, FAILURE_FLOOR]),
+        (1, [4.0, 2.0, 3.0, 1.0]),
+    ] {
+        let r = generation(g);
+        conn.execute(
+            "INSERT INTO generation VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+            rusqlite::params![
+                r.index,
+                r.best,
+                r.mean,
+                r.median,
+                r.sd,
+                r.valid_fraction,
+                r.evaluations as i64,
+                r.wall_seconds,
+                r.evaluations_per_second
+            ],
+        )
+        .unwrap();
+        for i in individuals(g, fitness) {
+            conn.execute(
+                "INSERT INTO individual VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+                rusqlite::params![
+                    i.generation,
+                    i.index,
+                    serde_json::to_string(&i.parents).unwrap(),
+                    i.operator,
+                    i.genome_text,
+                    i.genome_json,
+                    i.fitness,
+                    i.status,
+                    i.terms_json,
+                    i.parts,
+                    i.joints,
+                    i.neurons
+                ],
+            )
+            .unwrap();
+        }
+    }
+}
+
+/// Everything a store holds, fine reference columns aside, for before/after comparisons.
+fn held(store: &RunStore) -> (RunRecord, Vec<GenerationRecord>, Vec<Vec<IndividualRecord>>) {
+    let generations = store.generations().unwrap();
+    let individuals = generations
+        .iter()
+        .map(|g| store.individuals(g.index).unwrap())
+        .collect();
+    (store.run().unwrap(), generations, individuals)
+}
+
+#[test]
+fn a_version_1_store_is_read_as_it_is_and_migrated_when_opened_for_writing() {
+    let dir = scratch("version-1");
+    let path = dir.join("run.sqlite");
+    version_1_store(&path);
+    let before = fs::read(&path).unwrap();
+
+    // Read-only: read whole, nothing verified, the file not touched.
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), 1);
+    let (run, generations, individuals_v1) = held(&store);
+    assert_eq!(run, run_record());
+    assert_eq!(generations.len(), 2);
+    for (g, r) in generations.iter().enumerate() {
+        assert!(same_generation(r, &generation(g as u32)), "{r:?}");
+        assert_eq!(r.best_fine, None);
+    }
+    assert_eq!(
+        individuals_v1[1],
+        individuals(1, [4.0, 2.0, 3.0, 1.0]),
+        "individuals read back"
+    );
+    assert_eq!(store.best_individual().unwrap().unwrap().fitness, 4.0);
+    drop(store);
+    assert_eq!(
+        fs::read(&path).unwrap(),
+        before,
+        "a read-only open changed it"
+    );
+    let mut store = RunStore::open_read_only(&path).unwrap();
+    assert!(
+        store
+            .write_generation(&generation(2), &individuals(2, [1.0; 4]))
+            .is_err(),
+        "a read-only store took a write"
+    );
+    drop(store);
+    assert_eq!(fs::read(&path).unwrap(), before);
+
+    // For writing: migrated to the current version, everything kept, old generations NULL.
+    let mut store = RunStore::open(&path).unwrap();
+    assert_eq!(store.schema_version(), SCHEMA_VERSION);
+    let (run, migrated, individuals_v2) = held(&store);
+    assert_eq!(run, run_record());
+    assert_eq!(individuals_v2, individuals_v1);
+    assert_eq!(migrated.len(), 2);
+    for (a, b) in migrated.iter().zip(&generations) {
+        assert!(same_generation(a, b), "{a:?}");
+    }
+    // The next generation stores its fine reference value beside the old ones' NULLs.
+    let g2 = GenerationRecord {
+        best_fine: fine(1.25, "ok"),
+        ..generation(2)
+    };
+    store
+        .write_generation(&g2, &individuals(2, [1.0; 4]))
+        .unwrap();
+    drop(store);
+    let conn = rusqlite::Connection::open(&path).unwrap();
+    let version: i64 = conn
+        .query_row("PRAGMA user_version", [], |r| r.get(0))
+        .unwrap();
+    assert_eq!(version, SCHEMA_VERSION);
+    let fine_rows: Vec<(u32, Option<f64>, Option<String>)> = conn
+        .prepare("SELECT generation, best_fine, best_fine_status FROM generation ORDER BY 1")
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    assert_eq!(
+        fine_rows,
+        vec![
+            (0, None, None),
+            (1, None, None),
+            (2, Some(1.25), Some("ok".into()))
+        ]
+    );
+    drop(conn);
+    // Opening the migrated file again changes nothing more; read-only sees version 2.
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), SCHEMA_VERSION);
+    let gs = store.generations().unwrap();
+    assert_eq!(gs[2].best_fine, fine(1.25, "ok"));
+    assert_eq!(gs[0].best_fine, None);
+}
+
+#[test]
+fn a_schema_older_than_version_1_is_refused() {
+    let dir = scratch("version-0");
+    let path = dir.join("run.sqlite");
+    version_1_store(&path);
+    {
+        let conn = rusqlite::Connection::open(&path).unwrap();
+        conn.pragma_update(None, "user_version", 0).unwrap();
+    }
+    let err = open_rejects(&path);
+    assert!(
+        matches!(err, StoreError::OlderSchema { found: 0, .. }),
+        "{err:?}"
+    );
+    assert!(matches!(
+        RunStore::open_read_only(&path),
+        Err(StoreError::OlderSchema { .. })
+    ));
 }

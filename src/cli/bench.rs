@@ -438,14 +438,8 @@ fn setting_name(sim: &SimOptions) -> String {
 /// correlation of their median fitness, a noise floor, how many walks each setting brings to
 /// rest, and each setting's cost in whole walks (rest phases included) against the default's.
 fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
-    let fine = SimOptions {
-        substeps: 4,
-        solver_iterations: 8,
-        pgs_iterations: 1,
-        rest_substeps: 4,
-        rest_solver_iterations: 8,
-        ..SimOptions::default()
-    };
+    // `sim` differs from the default only in its stepping, which the reference replaces.
+    let fine = sim.fine_reference();
     let mut settings = vec![sim.clone()];
     for text in &args.fidelity_also {
         settings.push(parse_setting(text, sim)?);

@@ -345,6 +345,7 @@ fn run_replicate<G: Genome>(
                     encoding: G::NAME.to_string(),
                     seed: replicate_seed(manifest.seed, k),
                     init: None,
+                    verify_best: true,
                     ga: shared.ga.clone(),
                     task: shared.task.clone(),
                     limits: G::Limits::default(),
@@ -401,12 +402,13 @@ fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> a
     );
     for e in &r.encodings {
         say!(
-            "  {:<20} n {:>3}  best {:.4} ± {:.4} (sd {:.4})  parts {}  shapes/part {:.3}",
+            "  {:<20} n {:>3}  best {:.4} ± {:.4} (sd {:.4}; at the fine reference {:.4})  parts {}  shapes/part {:.3}",
             e.encoding,
             e.replicates,
             e.best.mean,
             e.best.ci95,
             e.best.sd,
+            e.mean_fine,
             e.median_parts,
             e.median_shapes_per_part
         );

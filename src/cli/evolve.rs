@@ -8,7 +8,7 @@ use clap::{Args, Subcommand, ValueEnum};
 use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome};
 use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, encoding_of, read_config};
 use ontogeny::evolve::ga::Preset;
-use ontogeny::evolve::run::{GenerationReport, Run, RunError};
+use ontogeny::evolve::run::{GenerationReport, Run, RunError, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::lang::{Diagnostic, DiagnosticKind, Source};
 use ontogeny::task::{TaskKind, TaskSpec};
@@ -102,7 +102,7 @@ pub struct EvolveArgs {
     #[arg(long, value_name = "DIR", required_unless_present = "resume")]
     out: Option<PathBuf>,
     /// Continue the run in DIR where it stopped (any other flag but --threads is refused).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "gens", "seed", "config", "init", "seconds"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "gens", "seed", "config", "init", "seconds", "no_verify_best"])]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_enum)]
@@ -134,6 +134,10 @@ pub struct EvolveArgs {
     /// Seed the first generation with mutants of this hand-written grammar.
     #[arg(long, value_name = "FILE.lsys")]
     init: Option<PathBuf>,
+    /// Do not re-walk each generation's best at the fine reference setting (the config's
+    /// `verify_best = false`).
+    #[arg(long)]
+    no_verify_best: bool,
 }
 
 /// A bad-input error (exit code 2) with `message`.
@@ -269,6 +273,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         encoding: G::NAME.to_string(),
         seed: args.seed.or(file.seed).unwrap_or(1),
         init: None,
+        verify_best: !args.no_verify_best && file.verify_best.unwrap_or(true),
         ga,
         task,
         limits: file.limits.unwrap_or_default(),
@@ -323,8 +328,12 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     let mut observer = |r: &GenerationReport| {
         evaluations += r.stats.evaluations;
         evaluating += r.evaluation_seconds;
+        let fine = match &r.best_fine {
+            Some(f) => format!(" (fine reference {:.4})", f.fitness),
+            None => String::new(),
+        };
         let line = format!(
-            "best {:.4}  mean {:.4}  valid {:.0}%  {:.1} evaluations/s",
+            "best {:.4}{fine}  mean {:.4}  valid {:.0}%  {:.1} evaluations/s",
             r.stats.best,
             r.stats.mean,
             r.stats.valid_fraction * 100.0,
@@ -352,14 +361,28 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
                 r.fallbacks.crossover + r.fallbacks.graft
             );
         }
+        let fine = match &r.best_fine {
+            Some(f) if f.status == "ok" => format!(" (fine reference {:.6})", f.fitness),
+            Some(f) => format!(" (fine reference {:.6}, {})", f.fitness, f.status),
+            None => String::new(),
+        };
         say!(
-            "{}: generation {} best {:.6}; {evaluations} evaluations in {wall:.1} s ({:.1}/s), {:.1}% of the time outside evaluation",
+            "{}: generation {} best {:.6}{fine}; {evaluations} evaluations in {wall:.1} s ({:.1}/s), {:.1}% of the time outside evaluation",
             dir.display(),
             r.generation,
             r.stats.best,
             evaluations as f64 / wall.max(1e-9),
             (wall - evaluating).max(0.0) / wall.max(1e-9) * 100.0
         );
+        if let Some(f) = &r.best_fine
+            && exploits_stepping(r.stats.best, f.fitness)
+        {
+            say!(
+                "warning: the champion scores {:.6} at the fine reference setting, less than half its {:.6}: it may exploit the simulator's step setting (see the README's \"Evolve\", \"Re-walking the best at the fine reference\")",
+                f.fitness,
+                r.stats.best
+            );
+        }
         say!(
             "wrote {0}/run.sqlite, {0}/fitness.svg, {0}/best.{1} and {0}/log.txt",
             dir.display(),
@@ -390,7 +413,9 @@ pub struct RunsArgs {
 pub fn runs(args: &RunsArgs) -> anyhow::Result<()> {
     match &args.verb {
         RunsVerb::Show { dir } => {
-            let store = RunStore::open(&dir.join("run.sqlite")).map_err(|e| bad(e.to_string()))?;
+            // Read-only: an old run's file is shown as it is, not migrated.
+            let store = RunStore::open_read_only(&dir.join("run.sqlite"))
+                .map_err(|e| bad(e.to_string()))?;
             let run = store.run().map_err(|e| bad(e.to_string()))?;
             say!(
                 "{}: {} encoding, {} task, seed {}, ontogeny {}",
@@ -401,9 +426,10 @@ pub fn runs(args: &RunsArgs) -> anyhow::Result<()> {
                 run.version
             );
             say!(
-                "{:>5} {:>12} {:>12} {:>12} {:>10} {:>7} {:>6} {:>8} {:>8}",
+                "{:>5} {:>12} {:>12} {:>12} {:>12} {:>10} {:>7} {:>6} {:>8} {:>8}",
                 "gen",
                 "best",
+                "best fine",
                 "mean",
                 "median",
                 "sd",
@@ -413,8 +439,15 @@ pub fn runs(args: &RunsArgs) -> anyhow::Result<()> {
                 "evals/s"
             );
             for g in store.generations().map_err(|e| bad(e.to_string()))? {
+                // "–" where the best was not re-walked at the fine reference; a status other
+                // than ok follows the value.
+                let fine = match &g.best_fine {
+                    None => "–".to_string(),
+                    Some(f) if f.status == "ok" => format!("{:.6}", f.fitness),
+                    Some(f) => format!("{:.6} {}", f.fitness, f.status),
+                };
                 say!(
-                    "{:>5} {:>12.6} {:>12.6} {:>12.6} {:>10.6} {:>6.0}% {:>6} {:>8.1} {:>8.1}",
+                    "{:>5} {:>12.6} {fine:>12} {:>12.6} {:>12.6} {:>10.6} {:>6.0}% {:>6} {:>8.1} {:>8.1}",
                     g.index,
                     g.best,
                     g.mean,

@@ -22,12 +22,22 @@ pub struct RunConfig<L> {
     /// A grammar whose mutants seed the first generation, relative to the run directory.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub init: Option<PathBuf>,
+    /// Whether each generation's best individual is walked again at the fine reference
+    /// setting ([`crate::sim::SimOptions::fine_reference`]) and the result stored with the
+    /// generation. Absent from the `config.toml` of a run started before it existed: on.
+    #[serde(default = "verify_best_default")]
+    pub verify_best: bool,
     /// The genetic algorithm's settings.
     pub ga: GaSettings,
     /// The task.
     pub task: TaskSpec,
     /// The encoding's limits.
     pub limits: L,
+}
+
+/// The default of [`RunConfig::verify_best`]: on.
+pub fn verify_best_default() -> bool {
+    true
 }
 
 /// The `[ga]` table as a person writes it: a preset, and any of its values overridden.
@@ -89,6 +99,8 @@ pub struct ConfigFile<L> {
     pub seed: Option<u64>,
     /// A grammar whose mutants seed the first generation (relative to the config file).
     pub init: Option<PathBuf>,
+    /// See [`RunConfig::verify_best`] (default: on).
+    pub verify_best: Option<bool>,
     /// The genetic algorithm.
     #[serde(default)]
     pub ga: GaOverrides,
@@ -105,6 +117,7 @@ impl<L> Default for ConfigFile<L> {
             encoding: None,
             seed: None,
             init: None,
+            verify_best: None,
             ga: GaOverrides::default(),
             task: None,
             limits: None,

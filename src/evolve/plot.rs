@@ -33,7 +33,7 @@ pub enum PlotError {
     },
 }
 
-/// The three series: name, colour (Okabe–Ito, readable by colour-blind people), value.
+/// A series: name, colour (Okabe–Ito, readable by colour-blind people), value.
 type Series = (&'static str, RGBColor, fn(&GenerationRecord) -> f64);
 const SERIES: [Series; 3] = [
     ("best", RGBColor(0, 114, 178), |g| g.best),
@@ -41,13 +41,33 @@ const SERIES: [Series; 3] = [
     ("median", RGBColor(0, 158, 115), |g| g.median),
 ];
 
+/// The legend of the dashed line of the best re-walked at the fine reference setting.
+pub const FINE_LABEL: &str = "best, re-walked at the fine reference";
+
+/// The dashed series: the best individual re-walked at the fine reference (NaN, so not
+/// plotted, where it was not), in the best's colour.
+const FINE: Series = (FINE_LABEL, RGBColor(0, 114, 178), |g| {
+    g.best_fine.as_ref().map_or(f64::NAN, |f| f.fitness)
+});
+
+/// The series to draw: the three, and the dashed one when some generation was verified.
+fn series(generations: &[GenerationRecord]) -> Vec<(Series, bool)> {
+    let mut out: Vec<(Series, bool)> = SERIES.iter().map(|&s| (s, false)).collect();
+    if generations.iter().any(|g| g.best_fine.is_some()) {
+        out.push((FINE, true));
+    }
+    out
+}
+
 /// A value worth plotting: a number above the failure floor.
 fn plotted(y: f64) -> bool {
     y.is_finite() && y > FAILURE_FLOOR
 }
 
 /// Writes an SVG plot of best, mean and median fitness per generation to `path` (three
-/// labelled lines with a legend; axes "generation" and "fitness"), under `title`.
+/// labelled lines with a legend; axes "generation" and "fitness"), under `title`. When some
+/// generation's best was re-walked at the fine reference setting
+/// ([`GenerationRecord::best_fine`]), a fourth, dashed line ([`FINE_LABEL`]) shows it.
 ///
 /// The GA computes `mean` and `median` over valid individuals only, since failed ones score
 /// the failure floor −999999 and would drown the others. The plot is robust anyway: values at
@@ -72,9 +92,10 @@ pub fn fitness_svg(
 /// The y range: the plotted values' span, padded by 5 % (at least ±0.5 around a single
 /// value), or 0..1 when there is nothing to plot.
 fn y_range(generations: &[GenerationRecord]) -> (f64, f64) {
+    let shown = series(generations);
     let values = generations
         .iter()
-        .flat_map(|g| SERIES.iter().map(move |(_, _, f)| f(g)))
+        .flat_map(|g| shown.iter().map(move |((_, _, f), _)| f(g)))
         .filter(|&y| plotted(y));
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
         (lo.min(y), hi.max(y))
@@ -108,6 +129,28 @@ fn segments(
     out
 }
 
+/// The fitness plot's chart.
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordu32, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// Draws one run of points as a line, dashed (6 pixels, 4 apart) or solid.
+fn draw_line<'c, 'a, 'b>(
+    chart: &'c mut Chart<'a, 'b>,
+    run: Vec<(u32, f64)>,
+    style: ShapeStyle,
+    dashed: bool,
+) -> Result<&'c mut plotters::chart::SeriesAnno<'a, SVGBackend<'b>>, String> {
+    if dashed {
+        chart.draw_series(DashedLineSeries::new(run, 6, 4, style))
+    } else {
+        chart.draw_series(LineSeries::new(run, style))
+    }
+    .map_err(|x| x.to_string())
+}
+
 fn draw(svg: &mut String, generations: &[GenerationRecord], title: &str) -> Result<(), String> {
     let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
     let e = |e: &dyn std::fmt::Display| e.to_string();
@@ -131,23 +174,25 @@ fn draw(svg: &mut String, generations: &[GenerationRecord], title: &str) -> Resu
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(|x| e(&x))?;
-    for (name, colour, value) in SERIES {
+    for ((name, colour, value), dashed) in series(generations) {
         let style = colour.stroke_width(2);
         let runs = segments(generations, value);
         // The legend's entry hangs on one series, even an empty one.
-        let labelled = chart
-            .draw_series(LineSeries::new(
-                runs.first().cloned().unwrap_or_default(),
-                style,
-            ))
-            .map_err(|x| e(&x))?;
-        labelled
-            .label(name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        draw_line(
+            &mut chart,
+            runs.first().cloned().unwrap_or_default(),
+            style,
+            dashed,
+        )?
+        .label(name)
+        .legend(move |(x, y)| {
+            let gap = if dashed { (9, 15) } else { (12, 12) };
+            EmptyElement::at((x, y))
+                + PathElement::new(vec![(0, 0), (gap.0, 0)], style)
+                + PathElement::new(vec![(gap.1, 0), (24, 0)], style)
+        });
         for run in runs.iter().skip(1) {
-            chart
-                .draw_series(LineSeries::new(run.clone(), style))
-                .map_err(|x| e(&x))?;
+            draw_line(&mut chart, run.clone(), style, dashed)?;
         }
         chart
             .draw_series(
@@ -400,6 +445,7 @@ mod tests {
             evaluations: 10,
             wall_seconds: 1.0,
             evaluations_per_second: 10.0,
+            best_fine: None,
         }
     }
 

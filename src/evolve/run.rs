@@ -7,12 +7,14 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::config::{RunConfig, read_run_config};
-use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, ranking};
+use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, Operator, ranking};
 use super::plot::fitness_svg;
-use super::store::{GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError};
+use super::store::{
+    FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
+};
 use crate::encoding::{Genome, Purpose};
 use crate::lang::{Diagnostic, Source};
-use crate::task::TaskKind;
+use crate::task::{Evaluation, TaskKind, TaskSpec};
 
 /// Why a run could not start, resume or go on.
 #[derive(Debug, thiserror::Error)]
@@ -76,6 +78,9 @@ pub struct GenerationReport {
     pub evaluation_seconds: f64,
     /// Children made by mutation so far because the encoding lacks an operator.
     pub fallbacks: Fallbacks,
+    /// The best individual re-walked at the fine reference setting (`None` when the run's
+    /// `verify_best` is off).
+    pub best_fine: Option<FineEvaluation>,
 }
 
 /// A run: its directory, settings, genetic algorithm and store.
@@ -210,6 +215,16 @@ impl<G: Genome> Run<G> {
             None => (Vec::new(), 0),
             Some(g) => (self.population(g)?, g + 1),
         };
+        // The previous generation's best (its index) and its fine reference evaluation: an
+        // elite copy of it needs no second walk, as the evaluation is a pure function of the
+        // genome, its development seed and the task.
+        let mut previous_best: Option<(u32, FineEvaluation)> = None;
+        if first > 0
+            && let Some(&best) = ranking(&population).first()
+            && let Some(stored) = self.store.generations()?.pop().and_then(|g| g.best_fine)
+        {
+            previous_best = Some((best as u32, stored));
+        }
         let mut fallbacks = Fallbacks::default();
         let log = self.dir.join("log.txt");
         for generation in first..generations {
@@ -222,14 +237,29 @@ impl<G: Genome> Run<G> {
                 self.evolution
                     .next_generation(&population, generation, &mut fallbacks)
             };
-            let evaluation_seconds = started.elapsed().as_secs_f64();
             population = next;
+            let best = ranking(&population).first().copied();
+            let best_fine = match best {
+                Some(best) if self.config.verify_best => {
+                    let b = &population[best];
+                    Some(match &previous_best {
+                        Some((p, fine)) if b.operator == Operator::Elite && b.parents == [*p] => {
+                            fine.clone()
+                        }
+                        _ => self.fine_evaluation(b),
+                    })
+                }
+                _ => None,
+            };
+            previous_best = best.zip(best_fine.clone()).map(|(b, f)| (b as u32, f));
+            let evaluation_seconds = started.elapsed().as_secs_f64();
             let stats = GenerationStats::of(&population, evaluations);
-            self.record(generation, &population, &stats, started)?;
+            self.record(generation, &population, &stats, best_fine.clone(), started)?;
             let wall_seconds = started.elapsed().as_secs_f64();
             let line = format!(
-                "generation {generation}: best {:.6}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations in {:.1} s{}\n",
+                "generation {generation}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations in {:.1} s{}\n",
                 stats.best,
+                fine_note(best_fine.as_ref()),
                 stats.mean,
                 stats.median,
                 stats.valid_fraction * 100.0,
@@ -244,9 +274,36 @@ impl<G: Genome> Run<G> {
                 wall_seconds,
                 evaluation_seconds,
                 fallbacks: fallbacks.clone(),
+                best_fine,
             });
         }
         Ok(())
+    }
+
+    /// The task specification of the fine reference check: the run's, with the simulator at
+    /// its fine reference setting.
+    pub fn fine_task(&self) -> TaskSpec {
+        TaskSpec {
+            sim: self.config.task.sim.fine_reference(),
+            ..self.config.task.clone()
+        }
+    }
+
+    /// `individual` developed again (same limits and development seed as in the run) and
+    /// evaluated with [`Run::fine_task`]: a pure function of the genome and the task.
+    pub fn fine_evaluation(&self, individual: &Individual<G>) -> FineEvaluation {
+        let task = self.fine_task();
+        let evaluation = match individual
+            .genome
+            .develop(&self.evolution.limits, individual.develop_seed)
+        {
+            Ok(creature) => task.evaluate(&creature, false),
+            Err(e) => Evaluation::invalid(task.task.name(), format!("development: {e}")),
+        };
+        FineEvaluation {
+            fitness: evaluation.fitness,
+            status: status_text(&evaluation),
+        }
     }
 
     /// Stores a generation (one transaction), then rewrites `best.lsys` (or the encoding's
@@ -256,6 +313,7 @@ impl<G: Genome> Run<G> {
         generation: u32,
         population: &[Individual<G>],
         stats: &GenerationStats,
+        best_fine: Option<FineEvaluation>,
         started: Instant,
     ) -> Result<(), RunError> {
         let individuals = population
@@ -292,13 +350,21 @@ impl<G: Genome> Run<G> {
                 evaluations: stats.evaluations,
                 wall_seconds,
                 evaluations_per_second: stats.evaluations as f64 / wall_seconds.max(1e-9),
+                best_fine: best_fine.clone(),
             },
             &individuals,
         )?;
         if let Some(&best) = ranking(population).first() {
             let b = &population[best];
+            let fine = match &best_fine {
+                Some(f) => format!(
+                    "; re-walked at the fine reference setting: {} ({})",
+                    f.fitness, f.status
+                ),
+                None => String::new(),
+            };
             let note = format!(
-                "The best individual of {} after generation {generation}: {} fitness {} ({}).\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
+                "The best individual of {} after generation {generation}: {} fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
                 self.dir.display(),
                 self.config.task.task.name(),
                 b.evaluation.fitness,
@@ -322,10 +388,31 @@ impl<G: Genome> Run<G> {
 }
 
 fn status_name<G>(i: &Individual<G>) -> String {
-    serde_json::to_value(i.evaluation.status)
+    status_text(&i.evaluation)
+}
+
+/// An evaluation's status as the store spells it (`ok`, `unstable`, ...).
+fn status_text(e: &Evaluation) -> String {
+    serde_json::to_value(e.status)
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
+}
+
+/// Whether a champion's fitness at the fine reference setting, `fine`, is below half its
+/// stored fitness `best` (a positive one), or is no number: then its score may owe more to
+/// the evaluator's coarse stepping than to its behaviour, and `ontogeny evolve` warns.
+pub fn exploits_stepping(best: f64, fine: f64) -> bool {
+    best > 0.0 && (fine.is_nan() || fine < best / 2.0)
+}
+
+/// " (fine reference 4.100000)" for a log line, or nothing when the best was not verified.
+fn fine_note(fine: Option<&FineEvaluation>) -> String {
+    match fine {
+        Some(f) if f.status == "ok" => format!(" (fine reference {:.6})", f.fitness),
+        Some(f) => format!(" (fine reference {:.6}, {})", f.fitness, f.status),
+        None => String::new(),
+    }
 }
 
 fn fallback_note(f: &Fallbacks, encoding: &str) -> String {

@@ -14,11 +14,21 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use rusqlite::{Connection, ErrorCode, OpenFlags, OptionalExtension, Row, params};
+use rusqlite::{
+    Connection, ErrorCode, OpenFlags, OptionalExtension, Row, TransactionBehavior, params,
+};
 
 /// The schema's version, kept in the database header (`PRAGMA user_version`). Raise it when
-/// the tables change.
-pub const SCHEMA_VERSION: i64 = 1;
+/// the tables change, and teach [`RunStore::open`] to migrate the older versions.
+///
+/// - 1: the first schema.
+/// - 2: `generation.best_fine` and `generation.best_fine_status`, the generation's best
+///   re-walked at the fine reference setting (NULL when not verified). A version-1 file is
+///   migrated when it is opened for writing; [`RunStore::open_read_only`] reads it as it is.
+pub const SCHEMA_VERSION: i64 = 2;
+
+/// The oldest schema version this program reads (and migrates when it writes).
+pub const OLDEST_SCHEMA_VERSION: i64 = 1;
 
 /// Marks the file as an Ontogeny run store (`PRAGMA application_id`): the bytes "Onto".
 pub const APPLICATION_ID: i64 = 0x4F6E_746F;
@@ -43,7 +53,9 @@ CREATE TABLE generation (
     valid_fraction         REAL,
     evaluations            INTEGER NOT NULL CHECK (evaluations >= 0),
     wall_seconds           REAL,
-    evaluations_per_second REAL
+    evaluations_per_second REAL,
+    best_fine              REAL,
+    best_fine_status       TEXT
 ) STRICT;
 CREATE TABLE individual (
     generation  INTEGER NOT NULL REFERENCES generation (generation),
@@ -62,7 +74,27 @@ CREATE TABLE individual (
 ) STRICT;
 ";
 
-/// Each table's columns, in order, as `open` expects to find them.
+/// Version 1 to 2: the columns of the fine reference check, NULL in every generation stored
+/// before (they were not verified).
+const MIGRATE_1_TO_2: &str = "
+ALTER TABLE generation ADD COLUMN best_fine REAL;
+ALTER TABLE generation ADD COLUMN best_fine_status TEXT;
+";
+
+/// The columns of the `generation` table in schema version 1.
+const GENERATION_COLUMNS_V1: [&str; 9] = [
+    "generation",
+    "best",
+    "mean",
+    "median",
+    "sd",
+    "valid_fraction",
+    "evaluations",
+    "wall_seconds",
+    "evaluations_per_second",
+];
+
+/// Each table's columns, in order, as `open` expects to find them (schema version 2).
 const TABLES: [(&str, &[&str]); 3] = [
     (
         "run",
@@ -80,6 +112,8 @@ const TABLES: [(&str, &[&str]); 3] = [
             "evaluations",
             "wall_seconds",
             "evaluations_per_second",
+            "best_fine",
+            "best_fine_status",
         ],
     ),
     (
@@ -119,6 +153,17 @@ pub struct RunRecord {
     pub version: String,
 }
 
+/// The evaluation of a generation's best individual at the fine reference setting
+/// ([`crate::sim::SimOptions::fine_reference`]): a check that its fitness is not an artefact
+/// of the evaluator's coarse stepping.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FineEvaluation {
+    /// Its fitness at the fine reference (NaN if the evaluation gave none).
+    pub fitness: f64,
+    /// The evaluation's status, e.g. `ok` or the reason it failed.
+    pub status: String,
+}
+
 /// One generation's statistics. Statistics of an empty sample (no valid individual) are NaN.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GenerationRecord {
@@ -140,6 +185,9 @@ pub struct GenerationRecord {
     pub wall_seconds: f64,
     /// `evaluations / wall_seconds`.
     pub evaluations_per_second: f64,
+    /// The best individual (rank 1) re-walked at the fine reference setting; `None` when it
+    /// was not (the run's `verify_best` is off, or the generation predates schema version 2).
+    pub best_fine: Option<FineEvaluation>,
 }
 
 /// One individual of one generation.
@@ -215,7 +263,7 @@ pub enum StoreError {
     },
     /// The run store was written by an older schema that this program cannot read.
     #[error(
-        "{} was written by an older schema (version {found}) that this ontogeny (schema version {SCHEMA_VERSION}) cannot read",
+        "{} was written by an older schema (version {found}) that this ontogeny (schema versions {OLDEST_SCHEMA_VERSION} to {SCHEMA_VERSION}) cannot read",
         path.display()
     )]
     OlderSchema {
@@ -263,6 +311,9 @@ pub enum StoreError {
 pub struct RunStore {
     conn: Connection,
     path: PathBuf,
+    /// The schema version of the open file: [`SCHEMA_VERSION`], except for an older file
+    /// opened with [`RunStore::open_read_only`].
+    version: i64,
 }
 
 impl RunStore {
@@ -321,38 +372,103 @@ impl RunStore {
         Ok(store)
     }
 
-    /// Opens an existing store, checking it is a run store of this schema and not corrupt
-    /// (`PRAGMA quick_check`); never modifies a file it rejects.
+    /// Opens an existing store to read and write it, checking it is a run store of a schema
+    /// this program reads and not corrupt (`PRAGMA quick_check`); never modifies a file it
+    /// rejects. A store of an older schema is migrated to [`SCHEMA_VERSION`] in one
+    /// transaction, keeping everything stored (columns added since are NULL in old rows).
     pub fn open(path: &Path) -> Result<RunStore, StoreError> {
+        let (ro, version) = Self::checked_read_only(path)?;
+        ro.close()
+            .map_err(|(_, e)| classify(path, "cannot close it", e))?;
+        let mut store = Self::connect(path)?;
+        if version < SCHEMA_VERSION {
+            store.migrate()?;
+        }
+        Ok(store)
+    }
+
+    /// Opens an existing store to read it only, with the checks of [`RunStore::open`]. A store
+    /// of an older schema is read as it is, never migrated: what it lacks reads as absent
+    /// (e.g. [`GenerationRecord::best_fine`] is `None`). Writing through it fails.
+    pub fn open_read_only(path: &Path) -> Result<RunStore, StoreError> {
+        let (conn, version) = Self::checked_read_only(path)?;
+        conn.busy_timeout(Duration::from_secs(10))
+            .map_err(|e| classify(path, "cannot set it up", e))?;
+        Ok(RunStore {
+            conn,
+            path: path.into(),
+            version,
+        })
+    }
+
+    /// Brings the open store to [`SCHEMA_VERSION`], in one transaction that first reads the
+    /// version again (another process may have migrated it meanwhile).
+    fn migrate(&mut self) -> Result<(), StoreError> {
+        let path = self.path.clone();
+        let tx = self
+            .conn
+            .transaction_with_behavior(TransactionBehavior::Immediate)
+            .map_err(|e| classify(&path, "cannot start the schema migration", e))?;
+        let version: i64 = tx
+            .pragma_query_value(None, "user_version", |r| r.get(0))
+            .map_err(|e| classify(&path, "cannot read user_version", e))?;
+        if version < SCHEMA_VERSION {
+            let migrate = || -> rusqlite::Result<()> {
+                if version < 2 {
+                    tx.execute_batch(MIGRATE_1_TO_2)?;
+                }
+                tx.pragma_update(None, "user_version", SCHEMA_VERSION)
+            };
+            migrate().map_err(|e| {
+                classify(
+                    &path,
+                    &format!(
+                        "cannot migrate the schema from version {version} to {SCHEMA_VERSION} (nothing was changed)"
+                    ),
+                    e,
+                )
+            })?;
+        }
+        // Dropping an uncommitted transaction (any `?` above) rolls it back.
+        tx.commit().map_err(|e| {
+            classify(
+                &path,
+                "cannot commit the schema migration (nothing was changed)",
+                e,
+            )
+        })?;
+        self.version = SCHEMA_VERSION;
+        Ok(())
+    }
+
+    /// Checks `path` on a read-only connection (see [`RunStore::open`]) and returns that
+    /// connection with the file's schema version.
+    fn checked_read_only(path: &Path) -> Result<(Connection, i64), StoreError> {
         // A write-ahead log beside the file holds commits not yet copied into it (the last
         // run was killed, or is still running): then SQLite must read the log too.
         let wal = side_file(path, "-wal").exists();
         if !wal {
             check_header(path)?;
         }
-        {
-            // Every check runs on a read-only connection, so a rejected file is left as it
-            // was. Without a log, `immutable=1` also keeps SQLite from creating `-shm` and
-            // `-wal` files beside it.
-            let ro = if wal {
-                Connection::open_with_flags(
-                    path,
-                    OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
-                )
-            } else {
-                Connection::open_with_flags(
-                    immutable_uri(path),
-                    OpenFlags::SQLITE_OPEN_READ_ONLY
-                        | OpenFlags::SQLITE_OPEN_NO_MUTEX
-                        | OpenFlags::SQLITE_OPEN_URI,
-                )
-            }
-            .map_err(|e| classify(path, "cannot open it", e))?;
-            check_store(path, &ro)?;
-            ro.close()
-                .map_err(|(_, e)| classify(path, "cannot close it", e))?;
+        // Every check runs on a read-only connection, so a rejected file is left as it was.
+        // Without a log, `immutable=1` also keeps SQLite from creating `-shm` and `-wal`
+        // files beside it.
+        let ro = if wal {
+            Connection::open_with_flags(
+                path,
+                OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+            )
+        } else {
+            Connection::open_with_flags(
+                immutable_uri(path),
+                OpenFlags::SQLITE_OPEN_READ_ONLY
+                    | OpenFlags::SQLITE_OPEN_NO_MUTEX
+                    | OpenFlags::SQLITE_OPEN_URI,
+            )
         }
-        Self::connect(path)
+        .map_err(|e| classify(path, "cannot open it", e))?;
+        let version = check_store(path, &ro)?;
+        Ok((ro, version))
     }
 
     /// Opens a read-write connection with the store's settings.
@@ -382,7 +498,14 @@ impl RunStore {
         Ok(RunStore {
             conn,
             path: path.into(),
+            version: SCHEMA_VERSION,
         })
+    }
+
+    /// The schema version of the open file: [`SCHEMA_VERSION`], or an older one when opened
+    /// with [`RunStore::open_read_only`].
+    pub fn schema_version(&self) -> i64 {
+        self.version
     }
 
     /// The database's path.
@@ -452,8 +575,8 @@ impl RunStore {
             .map_err(|e| classify(&path, "cannot start a transaction", e))?;
         tx.execute(
             "INSERT INTO generation (generation, best, mean, median, sd, valid_fraction, \
-             evaluations, wall_seconds, evaluations_per_second) \
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)",
+             evaluations, wall_seconds, evaluations_per_second, best_fine, best_fine_status) \
+             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
             params![
                 g,
                 real(generation.best),
@@ -464,6 +587,8 @@ impl RunStore {
                 evaluations,
                 real(generation.wall_seconds),
                 real(generation.evaluations_per_second),
+                generation.best_fine.as_ref().and_then(|f| real(f.fitness)),
+                generation.best_fine.as_ref().map(|f| f.status.as_str()),
             ],
         )
         .map_err(|e| write_error(&path, g, "the generation row".into(), e))?;
@@ -509,11 +634,18 @@ impl RunStore {
 
     /// Every stored generation, in index order.
     pub fn generations(&self) -> Result<Vec<GenerationRecord>, StoreError> {
+        // A version-1 file (read-only) has no fine reference columns: none was verified.
+        let fine = if self.version >= 2 {
+            "best_fine, best_fine_status"
+        } else {
+            "NULL, NULL"
+        };
         let read = || -> rusqlite::Result<Vec<GenerationRecord>> {
-            let mut stmt = self.conn.prepare(
+            let mut stmt = self.conn.prepare(&format!(
                 "SELECT generation, best, mean, median, sd, valid_fraction, evaluations, \
-                 wall_seconds, evaluations_per_second FROM generation ORDER BY generation",
-            )?;
+                 wall_seconds, evaluations_per_second, {fine} FROM generation \
+                 ORDER BY generation"
+            ))?;
             stmt.query_map([], |r| {
                 Ok(GenerationRecord {
                     index: r.get(0)?,
@@ -531,6 +663,13 @@ impl RunStore {
                     })?,
                     wall_seconds: get_real(r, 7)?,
                     evaluations_per_second: get_real(r, 8)?,
+                    best_fine: match r.get::<_, Option<String>>(10)? {
+                        Some(status) => Some(FineEvaluation {
+                            fitness: get_real(r, 9)?,
+                            status,
+                        }),
+                        None => None,
+                    },
                 })
             })?
             .collect()
@@ -737,9 +876,9 @@ fn check_header(path: &Path) -> Result<(), StoreError> {
     Ok(())
 }
 
-/// Checks, on a read-only connection, that the database is an undamaged run store of this
-/// schema.
-fn check_store(path: &Path, conn: &Connection) -> Result<(), StoreError> {
+/// Checks, on a read-only connection, that the database is an undamaged run store of a
+/// schema this program reads; returns its version.
+fn check_store(path: &Path, conn: &Connection) -> Result<i64, StoreError> {
     let not = |reason: String| StoreError::NotARunStore {
         path: path.into(),
         reason,
@@ -765,7 +904,7 @@ fn check_store(path: &Path, conn: &Connection) -> Result<(), StoreError> {
             found: version,
         });
     }
-    if version < SCHEMA_VERSION {
+    if version < OLDEST_SCHEMA_VERSION {
         return Err(StoreError::OlderSchema {
             path: path.into(),
             found: version,
@@ -789,6 +928,10 @@ fn check_store(path: &Path, conn: &Connection) -> Result<(), StoreError> {
         });
     }
     for (table, expected) in TABLES {
+        let expected = match table {
+            "generation" if version < 2 => &GENERATION_COLUMNS_V1[..],
+            _ => expected,
+        };
         let mut columns: Vec<String> = Vec::new();
         conn.pragma(None, "table_info", table, |r| {
             columns.push(r.get(1)?);
@@ -829,5 +972,5 @@ fn check_store(path: &Path, conn: &Connection) -> Result<(), StoreError> {
             detail: format!("the run table has {runs} rows, not 1"),
         });
     }
-    Ok(())
+    Ok(version)
 }

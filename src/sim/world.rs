@@ -178,6 +178,25 @@ impl Default for SimOptions {
     }
 }
 
+impl SimOptions {
+    /// The fine reference setting: these settings with 4 physics substeps of 8 solver
+    /// iterations (one PGS pass each) both while walking and while waiting for rest; the
+    /// control step `dt` and everything else unchanged. At the default `dt` of 1/60 s that is
+    /// physics at 1/240 s. `ontogeny bench --fidelity` ranks stepping settings against it,
+    /// and `ontogeny evolve` re-walks each generation's best with it, since evolution learns
+    /// to exploit a coarse setting (see the README's *Speed and fidelity* and *Evolve*).
+    pub fn fine_reference(&self) -> SimOptions {
+        SimOptions {
+            substeps: 4,
+            solver_iterations: 8,
+            pgs_iterations: 1,
+            rest_substeps: 4,
+            rest_solver_iterations: 8,
+            ..self.clone()
+        }
+    }
+}
+
 /// A joint handle of either model.
 #[derive(Clone, Copy, Debug)]
 enum JointHandle {
