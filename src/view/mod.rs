@@ -287,7 +287,7 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
 /// "task", "generations": [{"index", "best", "mean", "median", "sd", "valid_fraction",
 /// "evaluations"}]}`.
 pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
-    let store = crate::evolve::store::RunStore::open(&dir.join("run.sqlite"))
+    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     let run = store.run().map_err(|e| ViewError::BadFile(e.to_string()))?;
     let generations: Vec<Value> = store
@@ -315,7 +315,7 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
 /// A generation's individuals, best first: `[{"rank", "index", "fitness", "status",
 /// "operator", "parts", "joints", "neurons"}]`.
 pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewError> {
-    let store = crate::evolve::store::RunStore::open(&dir.join("run.sqlite"))
+    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     let mut individuals = store
         .individuals(generation)
