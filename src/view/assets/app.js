@@ -317,6 +317,8 @@ function showError(error) {
     return;
   }
   box.textContent = error.text || error.message;
+  // A grammar's error keeps its lines (the caret under the column); other messages wrap.
+  box.style.whiteSpace = error.location ? 'pre' : 'pre-wrap';
   box.classList.add('shown');
   const where = error.location ? `line ${error.location.line}, column ${error.location.column}: ` : '';
   body.dataset.error = where + error.message;
