@@ -733,7 +733,10 @@ fn draw_recording(
     let framing = ontogeny::render::Framing::Following {
         parts: creature.parts.len(),
     };
-    let name = path.file_name().unwrap_or(path.as_os_str()).to_string_lossy();
+    let name = path
+        .file_name()
+        .unwrap_or(path.as_os_str())
+        .to_string_lossy();
     let mut progress = Progress::new(format!("drawing {name}"));
     ontogeny::render::write_gif_with_progress(
         posed.iter(),
@@ -846,6 +849,87 @@ mod tests {
         assert!(json["target"].is_array(), "{}", json["target"]);
         assert!(has_target("failed").iter().all(|&n| n > 20));
         let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn long_growth_keeps_600_frames_evenly_spaced_in_time() {
+        // `grow --dt 0.002` of a 4-unit development: 2001 frames.
+        let times: Vec<f64> = (0..=2000).map(|k| k as f64 * 0.002).collect();
+        let chosen = evenly_in_time(&times, MAX_GIF_FRAMES);
+        assert_eq!(chosen.len(), MAX_GIF_FRAMES);
+        assert_eq!(chosen[0], 0);
+        assert_eq!(*chosen.last().unwrap(), 2000);
+        // Frame k is the one nearest 4 k / 599: within half a frame (0.001) of it.
+        for (k, &i) in chosen.iter().enumerate() {
+            let ideal = 4.0 * k as f64 / 599.0;
+            assert!(
+                (times[i] - ideal).abs() <= 0.001 + 1e-12,
+                "{k}: {}",
+                times[i]
+            );
+        }
+        assert!(chosen.windows(2).all(|w| w[0] < w[1]));
+        // Few frames: all of them.
+        assert_eq!(evenly_in_time(&[0.0, 1.0, 2.0], 600), [0, 1, 2]);
+        assert!(evenly_in_time(&[], 600).is_empty());
+    }
+
+    #[test]
+    fn uneven_growth_frames_are_each_shown_once() {
+        // Nine frames crowded at the start, then one at t = 10: three evenly spaced times
+        // (0, 5, 10) pick frame 0, then the one nearest 5 (t = 0.8), then the last.
+        let mut times: Vec<f64> = (0..9).map(|k| k as f64 * 0.1).collect();
+        times.push(10.0);
+        assert_eq!(evenly_in_time(&times, 3), [0, 8, 9]);
+        // Four times (0, 3.33, 6.67, 10) would pick frame 8 twice: it is shown once.
+        assert_eq!(evenly_in_time(&times, 4), [0, 8, 9]);
+    }
+
+    #[test]
+    fn a_refused_evaluation_writes_one_picture_saying_why() {
+        let creature = ontogeny::develop::creature_from_commands(
+            "forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)",
+        )
+        .unwrap();
+        let evaluation = task::walker(
+            &creature,
+            &SimOptions::default(),
+            &WalkerOptions::default(),
+            true,
+        );
+        assert_eq!(evaluation.status, task::Status::SelfIntersecting);
+        assert!(evaluation.recording.is_empty());
+        let dir = std::env::temp_dir().join(format!("ontogeny-refused-{}", std::process::id()));
+        write_recording_at(&dir, &creature, &evaluation, 10.0).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("recording.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["status"], "self-intersecting");
+        assert_eq!(json["message"], "parts 0 and 3 interpenetrate");
+        let frames = gif_frames(&dir.join("behaviour.gif"));
+        assert_eq!(frames.len(), 1, "one picture, not an empty GIF");
+        // The picture is checked: the interpenetrating parts are outlined and the text is
+        // written in the marking red (render's `MARK`), thousands of pixels of it with the
+        // frame round an invalid creature.
+        let red = frames[0]
+            .chunks_exact(4)
+            .filter(|p| p[..3] == [255, 0, 0])
+            .count();
+        assert!(red > 2000, "{red}");
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn refusals_are_wrapped_at_spaces() {
+        assert_eq!(
+            wrap("self-intersecting: parts 0 and 3 interpenetrate", 20),
+            ["self-intersecting:", "parts 0 and 3", "interpenetrate"]
+        );
+        assert_eq!(
+            wrap("averyveryverylongword x", 5),
+            ["averyveryverylongword", "x"]
+        );
+        assert!(wrap("", 5).is_empty());
     }
 
     #[test]

@@ -95,8 +95,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             }
         }
         Kind::Growth => {
-            let data =
-                ontogeny::view::growth_data(&target.path).map_err(|e| bad(e.to_string()))?;
+            let data = ontogeny::view::growth_data(&target.path).map_err(|e| bad(e.to_string()))?;
             frames = data["frames"].as_array().map(Vec::len);
         }
         Kind::Recording => {

@@ -499,4 +499,44 @@ mod tests {
             "{err}"
         );
     }
+
+    #[test]
+    fn a_recording_without_frames_is_shown_with_the_reason() {
+        let dir = scratch("no-frames");
+        let creature = crate::develop::creature_from_commands("forward(1) forward(1)").unwrap();
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature, "task": "walker", "status": "self-intersecting",
+                   "message": "parts 0 and 1 interpenetrate", "frames": []})
+            .to_string(),
+        )
+        .unwrap();
+        let data = recording_data(&dir).unwrap();
+        assert_eq!(data["frames"], json!([]));
+        assert_eq!(
+            data["no_frames"],
+            "no frames recorded: self-intersecting: parts 0 and 1 interpenetrate"
+        );
+        // A file written before the status was recorded, without frames at all.
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature}).to_string(),
+        )
+        .unwrap();
+        let data = recording_data(&dir).unwrap();
+        assert_eq!(data["frames"], json!([]));
+        assert_eq!(
+            data["no_frames"],
+            "no frames recorded (the evaluation was refused before simulating)"
+        );
+        // With frames there is no reason.
+        let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose, pose]}]})
+                .to_string(),
+        )
+        .unwrap();
+        assert!(recording_data(&dir).unwrap().get("no_frames").is_none());
+    }
 }
