@@ -168,3 +168,58 @@ fn a_following_camera_keeps_a_travelling_creature_large() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn drawing_a_gif_reports_its_progress_frame_by_frame() {
+    let c = creature("forward(1) forward(1)");
+    let path = std::env::temp_dir().join(format!("ontogeny-progress-{}.gif", std::process::id()));
+    let mut seen = Vec::new();
+    ontogeny::render::write_gif_with_progress(
+        [&c, &c, &c, &c],
+        &[],
+        &path,
+        120,
+        80,
+        &[10],
+        ontogeny::render::Framing::Still,
+        &mut |f| seen.push(f),
+    )
+    .unwrap();
+    // A quarter more after each of the four frames.
+    assert_eq!(seen, [0.25, 0.5, 0.75, 1.0]);
+    let _ = std::fs::remove_file(path);
+}
+
+#[test]
+fn a_still_gif_is_one_checked_picture() {
+    // Parts 0 and 3 cross: outlined red, the text red, a red frame round the picture.
+    let crossing = creature("forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)");
+    let fine = creature("forward(1) forward(1)");
+    let dir = std::env::temp_dir().join(format!("ontogeny-still-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut red = Vec::new();
+    for (name, c) in [("crossing", &crossing), ("fine", &fine)] {
+        let path = dir.join(format!("{name}.gif"));
+        let label = vec!["no frames recorded".to_string()];
+        ontogeny::render::write_still_gif(c, &label, &path, 480, 300).unwrap();
+        let frames = blue_pixels_per_frame(&path, 480);
+        assert_eq!(frames.len(), 1, "{name}");
+        assert!(frames[0] > 1000, "{name}: the body is drawn: {frames:?}");
+        let mut options = gif::DecodeOptions::new();
+        options.set_color_output(gif::ColorOutput::RGBA);
+        let mut decoder = options
+            .read_info(std::fs::File::open(&path).unwrap())
+            .unwrap();
+        let frame = decoder.read_next_frame().unwrap().unwrap();
+        red.push(
+            frame
+                .buffer
+                .chunks_exact(4)
+                .filter(|p| p[..3] == [255, 0, 0])
+                .count(),
+        );
+    }
+    assert!(red[0] > 2000, "{red:?}");
+    assert_eq!(red[1], 0, "{red:?}");
+    let _ = std::fs::remove_dir_all(dir);
+}

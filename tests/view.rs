@@ -455,8 +455,109 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
         assert_eq!(page.number("individual"), individual.index as usize);
         assert_eq!(page.number("parts"), individual.parts as usize);
     }
+    // A generation the run does not have: said, and the page is ready.
+    let page = Page::load(&browser, &format!("{}?gen=7", viewer.url));
+    assert_eq!(page.data("ready").as_deref(), Some("yes"), "{}", page.body);
+    assert_eq!(
+        page.data("error").as_deref(),
+        Some("no generation 7 (the run has 0–1)")
+    );
     drop(viewer);
     assert_snapshot(&browser, &run, &dir.join("run.png"));
+
+    // An evaluation refused before simulating: the page shows the creature as built and why.
+    let crossing = dir.join("crossing.lsys");
+    std::fs::write(
+        &crossing,
+        "axiom: forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)\n",
+    )
+    .unwrap();
+    let refused = dir.join("refused");
+    let out = ontogeny()
+        .arg("eval")
+        .arg(&crossing)
+        .args(["--task", "walker", "--record"])
+        .arg(&refused)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let viewer = Viewer::start(&refused);
+    let page = Page::load(&browser, &viewer.url);
+    page.assert_ready();
+    assert_eq!(page.data("kind").as_deref(), Some("recording"));
+    assert_eq!(page.number("frames"), 0);
+    assert_eq!(page.number("parts"), 4);
+    assert_eq!(
+        page.data("error").as_deref(),
+        Some("no frames recorded: self-intersecting: parts 0 and 3 interpenetrate")
+    );
+}
+
+/// The warnings `ontogeny view PATH FLAGS` writes on standard error before it serves.
+fn view_warnings(path: &Path, flags: &[&str]) -> String {
+    let mut child = ontogeny()
+        .arg("view")
+        .arg(path)
+        .args(["--port", "0"])
+        .args(flags)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The address is printed after the warnings.
+    let mut line = String::new();
+    BufReader::new(child.stdout.as_mut().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    assert!(line.contains("http://127.0.0.1:"), "{line}");
+    let _ = child.kill();
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    let _ = child.wait();
+    err
+}
+
+#[test]
+fn flags_that_do_not_apply_are_warned_about() {
+    let dir = scratch("ignored-flags");
+    // A recording of two frames of a two-part creature.
+    let creature = ontogeny::develop::creature_from_commands("forward(1) forward(1)").unwrap();
+    let pose = serde_json::json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+    let frame = |t: f64| serde_json::json!({"t": t, "parts": [pose, pose]});
+    std::fs::write(
+        dir.join("recording.json"),
+        serde_json::json!({"creature": creature, "frames": [frame(0.0), frame(0.1)]}).to_string(),
+    )
+    .unwrap();
+    let err = view_warnings(
+        &dir,
+        &[
+            "--steps", "3", "--seed", "1", "--size", "300x200", "--frame", "2",
+        ],
+    );
+    for expected in [
+        "warning: --steps, --seed grow a creature from a grammar",
+        "warning: --size sets the size of a --snapshot picture: ignored",
+        "warning: --frame 2: there are 2 frames (0 to 1, or -2 to -1): showing the last",
+    ] {
+        assert!(err.contains(expected), "{expected:?} not in {err}");
+    }
+    // Frames that exist, and no stray flags: no warning.
+    assert_eq!(view_warnings(&dir, &["--frame", "-2"]), "");
+    // An .lsys file is grown with the growth flags: two steps, three frames.
+    let err = view_warnings(&example("algae.lsys"), &["--steps", "2", "--frame", "-99"]);
+    assert!(!err.contains("--steps"), "{err}");
+    assert!(
+        err.contains(
+            "warning: --frame -99: there are 3 frames (0 to 2, or -3 to -1): showing the first"
+        ),
+        "{err}"
+    );
 }
 
 /// `ontogeny view PATH --snapshot OUT --size 480x300` writes a 480 × 300 picture.

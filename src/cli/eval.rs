@@ -486,23 +486,37 @@ pub fn write_recording_at(
     struct RecordingFile<'a> {
         creature: &'a Creature,
         task: &'a str,
+        status: task::Status,
+        message: Option<&'a str>,
         target: Option<Vec<f64>>,
         frames: &'a [ontogeny::task::RecordedFrame],
     }
     let file = RecordingFile {
         creature,
         task: &evaluation.task,
+        status: evaluation.status,
+        message: evaluation.message.as_deref(),
         target: target.clone(),
         frames: &evaluation.recording,
     };
     std::fs::write(&path, serde_json::to_string(&file)?)
         .with_context(|| format!("cannot write {}", path.display()))?;
-    render_recording(
+    let status = serde_json::to_value(evaluation.status)?;
+    let why = format!(
+        "{}: {}",
+        status.as_str().unwrap_or("?"),
+        evaluation
+            .message
+            .as_deref()
+            .unwrap_or("the evaluation was refused before simulating")
+    );
+    draw_recording(
         creature,
         &evaluation.recording,
         target.map(|t| nalgebra::Vector3::new(t[0], t[1], t[2])),
         &dir.join("behaviour.gif"),
         fps,
+        &why,
     )?;
     Ok(())
 }
@@ -511,9 +525,40 @@ pub fn write_recording_at(
 /// slow frames shorter than 2 cs down to 10.
 pub const MAX_FPS: f64 = 50.0;
 
-/// The most frames a behaviour GIF holds (about 10 MB at 480 × 300): longer evaluations are
-/// drawn at a lower frame rate.
+/// The most frames a GIF holds (behaviour.gif and growth.gif; 10–11 MB at 480 × 300):
+/// longer evaluations are drawn at a lower frame rate, longer growth with frames left out.
 pub const MAX_GIF_FRAMES: usize = 600;
+
+/// Which of frames at `times` (in time order) a GIF of at most `max` frames shows: the frame
+/// nearest each of `max` times evenly spaced from the first to the last, each frame once, the
+/// first and last always. All of them when there are no more than `max`.
+pub fn evenly_in_time(times: &[f64], max: usize) -> Vec<usize> {
+    let n = times.len();
+    if n <= max || n == 0 {
+        return (0..n).collect();
+    }
+    if max < 2 {
+        return vec![n - 1];
+    }
+    let (first, last) = (times[0], times[n - 1]);
+    let mut chosen: Vec<usize> = Vec::with_capacity(max);
+    let mut next = 0;
+    for k in 0..max {
+        let t = first + (last - first) * k as f64 / (max - 1) as f64;
+        while next + 1 < n && (times[next + 1] - t).abs() <= (times[next] - t).abs() {
+            next += 1;
+        }
+        if chosen.last() != Some(&next) {
+            chosen.push(next);
+        }
+    }
+    chosen[0] = 0;
+    if chosen.last() != Some(&(n - 1)) {
+        chosen.push(n - 1);
+    }
+    chosen.dedup();
+    chosen
+}
 
 /// Which recorded frames an animation at `fps` frames per second of simulated time shows
 /// (the frame nearest each time k / fps), and each one's GIF delay in centiseconds, chosen
@@ -560,6 +605,9 @@ const MAX_TRAIL_POINTS: usize = 400;
 /// Renders recorded frames as an animation, `fps` pictures per second of simulated time:
 /// each frame labelled with its simulated time and the protocol's phase, the projectile's
 /// trail so far drawn, and `target` (the aim task's, in world coordinates) when there is one.
+///
+/// A recording without frames (an evaluation refused before simulating) is drawn as one
+/// picture of the creature as built, checked, saying that nothing was recorded.
 pub fn render_recording(
     creature: &Creature,
     frames: &[ontogeny::task::RecordedFrame],
@@ -567,10 +615,58 @@ pub fn render_recording(
     path: &Path,
     fps: f64,
 ) -> anyhow::Result<()> {
+    draw_recording(
+        creature,
+        frames,
+        target,
+        path,
+        fps,
+        "the evaluation was refused before simulating",
+    )
+}
+
+/// The most characters of a line of a refused recording's picture (its 3D view's width in
+/// the 8-pixel font, less a margin).
+const STILL_LINE: usize = 40;
+
+/// `text` broken at spaces into lines of at most `width` characters (a longer word alone on
+/// its line).
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split_whitespace() {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= width => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// [`render_recording`], with `why` (the status and message of the evaluation) written on the
+/// picture of a recording without frames.
+fn draw_recording(
+    creature: &Creature,
+    frames: &[ontogeny::task::RecordedFrame],
+    target: Option<nalgebra::Vector3<f64>>,
+    path: &Path,
+    fps: f64,
+    why: &str,
+) -> anyhow::Result<()> {
+    if frames.is_empty() {
+        let label: Vec<String> = std::iter::once("no frames recorded (starting pose)".to_string())
+            .chain(wrap(why, STILL_LINE))
+            .collect();
+        ontogeny::render::write_still_gif(creature, &label, path, 480, 300)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        return Ok(());
+    }
     let (chosen, delays, shown_fps) = animation_frames(frames, fps);
     if shown_fps < fps {
         eprintln!(
-            "note: {} s recorded: {} is drawn at {shown_fps:.3} frames/s instead of {fps}, to stay under {MAX_GIF_FRAMES} frames",
+            "note: {} s recorded: {} is drawn at {shown_fps:.3} frames/s instead of {fps}, to keep to {MAX_GIF_FRAMES} frames",
             frames.last().map_or(0.0, |f| f.t),
             path.display()
         );
@@ -637,8 +733,23 @@ pub fn render_recording(
     let framing = ontogeny::render::Framing::Following {
         parts: creature.parts.len(),
     };
-    ontogeny::render::write_gif(posed.iter(), &overlays, path, 480, 300, &delays, framing)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    let name = path
+        .file_name()
+        .unwrap_or(path.as_os_str())
+        .to_string_lossy();
+    let mut progress = Progress::new(format!("drawing {name}"));
+    ontogeny::render::write_gif_with_progress(
+        posed.iter(),
+        &overlays,
+        path,
+        480,
+        300,
+        &delays,
+        framing,
+        &mut |f| progress.set(f),
+    )
+    .with_context(|| format!("cannot write {}", path.display()))?;
+    progress.finish();
     Ok(())
 }
 
@@ -738,6 +849,87 @@ mod tests {
         assert!(json["target"].is_array(), "{}", json["target"]);
         assert!(has_target("failed").iter().all(|&n| n > 20));
         let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn long_growth_keeps_600_frames_evenly_spaced_in_time() {
+        // `grow --dt 0.002` of a 4-unit development: 2001 frames.
+        let times: Vec<f64> = (0..=2000).map(|k| k as f64 * 0.002).collect();
+        let chosen = evenly_in_time(&times, MAX_GIF_FRAMES);
+        assert_eq!(chosen.len(), MAX_GIF_FRAMES);
+        assert_eq!(chosen[0], 0);
+        assert_eq!(*chosen.last().unwrap(), 2000);
+        // Frame k is the one nearest 4 k / 599: within half a frame (0.001) of it.
+        for (k, &i) in chosen.iter().enumerate() {
+            let ideal = 4.0 * k as f64 / 599.0;
+            assert!(
+                (times[i] - ideal).abs() <= 0.001 + 1e-12,
+                "{k}: {}",
+                times[i]
+            );
+        }
+        assert!(chosen.windows(2).all(|w| w[0] < w[1]));
+        // Few frames: all of them.
+        assert_eq!(evenly_in_time(&[0.0, 1.0, 2.0], 600), [0, 1, 2]);
+        assert!(evenly_in_time(&[], 600).is_empty());
+    }
+
+    #[test]
+    fn uneven_growth_frames_are_each_shown_once() {
+        // Nine frames crowded at the start, then one at t = 10: three evenly spaced times
+        // (0, 5, 10) pick frame 0, then the one nearest 5 (t = 0.8), then the last.
+        let mut times: Vec<f64> = (0..9).map(|k| k as f64 * 0.1).collect();
+        times.push(10.0);
+        assert_eq!(evenly_in_time(&times, 3), [0, 8, 9]);
+        // Four times (0, 3.33, 6.67, 10) would pick frame 8 twice: it is shown once.
+        assert_eq!(evenly_in_time(&times, 4), [0, 8, 9]);
+    }
+
+    #[test]
+    fn a_refused_evaluation_writes_one_picture_saying_why() {
+        let creature = ontogeny::develop::creature_from_commands(
+            "forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)",
+        )
+        .unwrap();
+        let evaluation = task::walker(
+            &creature,
+            &SimOptions::default(),
+            &WalkerOptions::default(),
+            true,
+        );
+        assert_eq!(evaluation.status, task::Status::SelfIntersecting);
+        assert!(evaluation.recording.is_empty());
+        let dir = std::env::temp_dir().join(format!("ontogeny-refused-{}", std::process::id()));
+        write_recording_at(&dir, &creature, &evaluation, 10.0).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("recording.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["status"], "self-intersecting");
+        assert_eq!(json["message"], "parts 0 and 3 interpenetrate");
+        let frames = gif_frames(&dir.join("behaviour.gif"));
+        assert_eq!(frames.len(), 1, "one picture, not an empty GIF");
+        // The picture is checked: the interpenetrating parts are outlined and the text is
+        // written in the marking red (render's `MARK`), thousands of pixels of it with the
+        // frame round an invalid creature.
+        let red = frames[0]
+            .chunks_exact(4)
+            .filter(|p| p[..3] == [255, 0, 0])
+            .count();
+        assert!(red > 2000, "{red}");
+        let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn refusals_are_wrapped_at_spaces() {
+        assert_eq!(
+            wrap("self-intersecting: parts 0 and 3 interpenetrate", 20),
+            ["self-intersecting:", "parts 0 and 3", "interpenetrate"]
+        );
+        assert_eq!(
+            wrap("averyveryverylongword x", 5),
+            ["averyveryverylongword", "x"]
+        );
+        assert!(wrap("", 5).is_empty());
     }
 
     #[test]

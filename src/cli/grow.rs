@@ -2,16 +2,17 @@
 
 use std::collections::BTreeMap;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::{Creature, Role, Severity};
-use ontogeny::develop::{BuildOptions, grow_with_progress};
+use ontogeny::develop::{BuildOptions, GrowthFrame, grow_with_progress};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use serde::Serialize;
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
+use super::eval::{MAX_GIF_FRAMES, evenly_in_time};
 
 /// Flags of `ontogeny grow`.
 #[derive(Args)]
@@ -117,6 +118,47 @@ fn no_part(c: &Creature) -> Option<String> {
     })
 }
 
+/// Draws `growth.gif`: the frames of growth labelled with developmental time, at most
+/// [`MAX_GIF_FRAMES`] of them (evenly spaced in developmental time, the first and last
+/// kept, with a note when some are left out), with a progress bar on a terminal.
+fn write_growth_gif(frames: &[GrowthFrame], path: &Path) -> anyhow::Result<()> {
+    let times: Vec<f64> = frames.iter().map(|f| f.t).collect();
+    let chosen = evenly_in_time(&times, MAX_GIF_FRAMES);
+    if chosen.len() < frames.len() {
+        eprintln!(
+            "note: {} frames of growth: {} shows {} of them, evenly spaced in developmental \
+             time, to keep to {MAX_GIF_FRAMES} frames",
+            frames.len(),
+            path.display(),
+            chosen.len()
+        );
+    }
+    let labels: Vec<ontogeny::render::Overlay> = chosen
+        .iter()
+        .map(|&i| ontogeny::render::Overlay {
+            label: vec![format!(
+                "t = {}",
+                ontogeny::lsystem::format_number(frames[i].t)
+            )],
+            ..Default::default()
+        })
+        .collect();
+    let mut progress = super::progress::Progress::new("drawing growth.gif");
+    ontogeny::render::write_gif_with_progress(
+        chosen.iter().map(|&i| &frames[i].creature),
+        &labels,
+        path,
+        480,
+        300,
+        &[25],
+        ontogeny::render::Framing::Still,
+        &mut |f| progress.set(f),
+    )
+    .with_context(|| format!("cannot write {}", path.display()))?;
+    progress.finish();
+    Ok(())
+}
+
 /// Grows the file into creatures and reports on the last one.
 pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     let lsys = LSystem::from_path(&args.file)?;
@@ -151,24 +193,7 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         let path = dir.join("creature.png");
         ontogeny::render::write_png(&last.creature, &summary.file, &path, 960, 600)
             .with_context(|| format!("cannot write {}", path.display()))?;
-        let path = dir.join("growth.gif");
-        let labels: Vec<ontogeny::render::Overlay> = frames
-            .iter()
-            .map(|f| ontogeny::render::Overlay {
-                label: vec![format!("t = {}", ontogeny::lsystem::format_number(f.t))],
-                ..Default::default()
-            })
-            .collect();
-        ontogeny::render::write_gif(
-            frames.iter().map(|f| &f.creature),
-            &labels,
-            &path,
-            480,
-            300,
-            &[25],
-            ontogeny::render::Framing::Still,
-        )
-        .with_context(|| format!("cannot write {}", path.display()))?;
+        write_growth_gif(&frames, &dir.join("growth.gif"))?;
     }
     if args.json {
         say!("{}", serde_json::to_string_pretty(&summary)?);

@@ -16,6 +16,9 @@ use super::derive::{DevelopmentArgs, derive_options};
 /// The port `view` listens on when `--port` is not given (and not snapshotting).
 const DEFAULT_PORT: u16 = 8750;
 
+/// The size of a snapshot when `--size` is not given.
+const DEFAULT_SIZE: (u32, u32) = (1280, 800);
+
 /// Flags of `ontogeny view`.
 #[derive(Args)]
 pub struct ViewArgs {
@@ -33,9 +36,10 @@ pub struct ViewArgs {
     /// the first of a recording).
     #[arg(long, allow_negative_numbers = true)]
     frame: Option<i64>,
-    /// The size of the snapshot in pixels, WIDTHxHEIGHT.
-    #[arg(long, default_value = "1280x800", value_parser = parse_size)]
-    size: (u32, u32),
+    /// The size of the snapshot in pixels, WIDTHxHEIGHT (default 1280x800; only with
+    /// --snapshot).
+    #[arg(long, value_parser = parse_size)]
+    size: Option<(u32, u32)>,
     /// The browser `--snapshot` runs (default: $ONTOGENY_BROWSER, else the first of chromium,
     /// chromium-browser, google-chrome on the PATH).
     #[arg(long)]
@@ -74,24 +78,36 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     // page (watch mode lets the user fix it), and reported here too.
     let mut grammar_error = None;
     let mut developer = None;
+    // How many frames the page has (None: not known, or a run page, which has none).
+    let mut frames = None;
     match target.kind {
         Kind::Lsys => {
-            grammar_error = LSystem::from_path(&target.path)
-                .and_then(|lsys| {
-                    ontogeny::develop::grow(
-                        &lsys,
-                        &options,
-                        args.development.steps,
-                        &ontogeny::develop::BuildOptions::default(),
-                    )
-                })
-                .err();
+            match LSystem::from_path(&target.path).and_then(|lsys| {
+                ontogeny::develop::grow(
+                    &lsys,
+                    &options,
+                    args.development.steps,
+                    &ontogeny::develop::BuildOptions::default(),
+                )
+            }) {
+                Ok(grown) => frames = Some(grown.len()),
+                Err(d) => grammar_error = Some(d),
+            }
         }
         Kind::Growth => {
-            ontogeny::view::growth_data(&target.path).map_err(|e| bad(e.to_string()))?;
+            let data = ontogeny::view::growth_data(&target.path).map_err(|e| bad(e.to_string()))?;
+            frames = data["frames"].as_array().map(Vec::len);
         }
         Kind::Recording => {
-            ontogeny::view::recording_data(&target.path).map_err(|e| bad(e.to_string()))?;
+            let data =
+                ontogeny::view::recording_data(&target.path).map_err(|e| bad(e.to_string()))?;
+            frames = data["frames"].as_array().map(Vec::len);
+            if let Some(reason) = ontogeny::view::no_frames_reason(&data) {
+                eprintln!(
+                    "note: {}: {reason}; the page shows the creature as built",
+                    target.path.display()
+                );
+            }
         }
         Kind::Run => {
             let data = ontogeny::view::run_data(&target.path).map_err(|e| bad(e.to_string()))?;
@@ -107,6 +123,9 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             );
             developer = Some(developer_of?);
         }
+    }
+    for warning in ignored_flags(args, &target, frames) {
+        eprintln!("warning: {warning}");
     }
     let port = args.port.unwrap_or(if args.snapshot.is_some() {
         0
@@ -150,6 +169,49 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     say!("press Ctrl-C to stop");
     server.run();
     Ok(())
+}
+
+/// What the flags given do not do for this page, one warning each: growth flags with a
+/// directory (its creatures are already grown), `--size` without `--snapshot`, `--frame` on
+/// a run page or past the page's `frames` frames.
+fn ignored_flags(args: &ViewArgs, target: &Target, frames: Option<usize>) -> Vec<String> {
+    let mut warnings = Vec::new();
+    if target.kind != Kind::Lsys {
+        let mut flags = args.development.given();
+        if args.seed.is_some() {
+            flags.push("--seed");
+        }
+        if !flags.is_empty() {
+            warnings.push(format!(
+                "{} grow a creature from a grammar; {} is not an .lsys file: ignored",
+                flags.join(", "),
+                target.path.display()
+            ));
+        }
+    }
+    if args.size.is_some() && args.snapshot.is_none() {
+        warnings.push("--size sets the size of a --snapshot picture: ignored".to_string());
+    }
+    if let Some(k) = args.frame {
+        if target.kind == Kind::Run {
+            warnings.push(format!(
+                "--frame {k}: a run page has no frames (open an individual with ?gen=G&index=I \
+                 in its address): ignored"
+            ));
+        } else if let Some(n) = frames {
+            let n = n as i64;
+            if n == 0 {
+                warnings.push(format!("--frame {k}: the recording has no frames: ignored"));
+            } else if k >= n || k < -n {
+                warnings.push(format!(
+                    "--frame {k}: there are {n} frames (0 to {}, or -{n} to -1): showing the {}",
+                    n - 1,
+                    if k >= n { "last" } else { "first" }
+                ));
+            }
+        }
+    }
+    warnings
 }
 
 /// A function that develops a run's individual `(generation, index)`.
@@ -208,7 +270,7 @@ fn snapshot(args: &ViewArgs, url: &str, out: &Path) -> anyhow::Result<()> {
         std::fs::remove_file(&out).with_context(|| format!("cannot replace {}", out.display()))?;
     }
     let profile = std::env::temp_dir().join(format!("ontogeny-view-{}", std::process::id()));
-    let (w, h) = args.size;
+    let (w, h) = args.size.unwrap_or(DEFAULT_SIZE);
     let output = Command::new(&browser)
         .args(chromium_flags())
         .arg(format!("--user-data-dir={}", profile.display()))

@@ -1278,6 +1278,52 @@ fn gif_frame(pixmap: &Pixmap) -> gif::Frame<'static> {
     )
 }
 
+/// A looping GIF encoder writing to `path`.
+fn gif_encoder(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+) -> Result<gif::Encoder<std::io::BufWriter<std::fs::File>>, RenderError> {
+    let w = u16::try_from(width).map_err(|_| RenderError::Size(width, height))?;
+    let h = u16::try_from(height).map_err(|_| RenderError::Size(width, height))?;
+    let file = std::fs::File::create(path)?;
+    let mut encoder = gif::Encoder::new(std::io::BufWriter::new(file), w, h, &[])
+        .map_err(|e| RenderError::Gif(e.to_string()))?;
+    encoder
+        .set_repeat(gif::Repeat::Infinite)
+        .map_err(|e| RenderError::Gif(e.to_string()))?;
+    Ok(encoder)
+}
+
+/// Writes a GIF of one frame: the creature as built, checked as in [`checked_picture`]
+/// (interpenetrating parts outlined red, its validity and problems written), under the lines
+/// of `label`. It stands in for an animation when there is nothing to animate (an
+/// evaluation refused before simulating), so that the file opens and says why.
+pub fn write_still_gif(
+    creature: &Creature,
+    label: &[String],
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+) -> Result<(), RenderError> {
+    let overlay = Overlay {
+        label: label.to_vec(),
+        ..Overlay::default()
+    };
+    let pixmap = compose(
+        creature,
+        &View::framing(creature),
+        width,
+        height,
+        &overlay,
+        Checks::On,
+    )?;
+    let mut encoder = gif_encoder(path, width, height)?;
+    encoder
+        .write_frame(&gif_frame(&pixmap))
+        .map_err(|e| RenderError::Gif(e.to_string()))
+}
+
 /// Writes an animated GIF of a sequence of creatures, framed as `framing` says, looping:
 /// frame i is drawn with `overlays[i]` (none beyond the slice) and lasts `delays_cs[i]`
 /// hundredths of a second (the last delay for frames beyond the slice, 10 if it is empty).
@@ -1290,15 +1336,34 @@ pub fn write_gif<'a>(
     delays_cs: &[u16],
     framing: Framing,
 ) -> Result<(), RenderError> {
+    write_gif_with_progress(
+        creatures,
+        overlays,
+        path,
+        width,
+        height,
+        delays_cs,
+        framing,
+        &mut |_| {},
+    )
+}
+
+/// [`write_gif`], calling `progress` with the fraction of frames written (0 to 1) after
+/// each one, so that the caller can show how far drawing has got.
+#[allow(clippy::too_many_arguments)]
+pub fn write_gif_with_progress<'a>(
+    creatures: impl IntoIterator<Item = &'a Creature> + Clone,
+    overlays: &[Overlay],
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    delays_cs: &[u16],
+    framing: Framing,
+    progress: &mut dyn FnMut(f64),
+) -> Result<(), RenderError> {
     let views = View::per_frame(creatures.clone(), framing);
-    let w = u16::try_from(width).map_err(|_| RenderError::Size(width, height))?;
-    let h = u16::try_from(height).map_err(|_| RenderError::Size(width, height))?;
-    let file = std::fs::File::create(path)?;
-    let mut encoder = gif::Encoder::new(std::io::BufWriter::new(file), w, h, &[])
-        .map_err(|e| RenderError::Gif(e.to_string()))?;
-    encoder
-        .set_repeat(gif::Repeat::Infinite)
-        .map_err(|e| RenderError::Gif(e.to_string()))?;
+    let count = views.len().max(1);
+    let mut encoder = gif_encoder(path, width, height)?;
     let none = Overlay::default();
     for (i, creature) in creatures.into_iter().enumerate() {
         let overlay = overlays.get(i).unwrap_or(&none);
@@ -1308,6 +1373,7 @@ pub fn write_gif<'a>(
         encoder
             .write_frame(&frame)
             .map_err(|e| RenderError::Gif(e.to_string()))?;
+        progress((i + 1) as f64 / count as f64);
     }
     Ok(())
 }

@@ -238,7 +238,9 @@ pub fn growth_data(dir: &Path) -> Result<Value, ViewError> {
 }
 
 /// Reads a recording directory's `recording.json` (written by `eval --record`: `creature`,
-/// `task`, `target`, `frames` of part poses) into the page's data.
+/// `task`, `status`, `message`, `target`, `frames` of part poses) into the page's data. A
+/// recording without frames (an evaluation refused before simulating) is data too: the page
+/// shows the creature as built and why nothing was recorded ([`no_frames_reason`]).
 pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
     let path = dir.join("recording.json");
     let text = std::fs::read_to_string(&path)
@@ -261,12 +263,6 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
         .transpose()
         .map_err(|e| ViewError::BadFile(format!("{}: not a recording: {e}", path.display())))?
         .unwrap_or_default();
-    if frames.is_empty() {
-        return Err(ViewError::BadFile(format!(
-            "{}: no frames recorded",
-            path.display()
-        )));
-    }
     if let Some(bad) = frames
         .iter()
         .position(|f| f.parts.len() != creature.parts.len())
@@ -280,7 +276,32 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
     }
     value["kind"] = json!("recording");
     value["file"] = json!(dir.display().to_string());
+    if frames.is_empty() {
+        value["frames"] = json!([]);
+    }
+    if let Some(reason) = no_frames_reason(&value) {
+        value["no_frames"] = json!(reason);
+    }
     Ok(value)
+}
+
+/// Why a recording's data (from [`recording_data`]) has no frames, or `None` when it has
+/// some: the evaluation's status and message when the file holds them (files written before
+/// they were recorded do not).
+pub fn no_frames_reason(data: &Value) -> Option<String> {
+    if data["frames"].as_array().is_some_and(|f| !f.is_empty()) {
+        return None;
+    }
+    let status = data["status"].as_str();
+    let message = data["message"].as_str();
+    Some(match (status, message) {
+        (Some(s), Some(m)) => format!("no frames recorded: {s}: {m}"),
+        (Some(s), None) => format!("no frames recorded: {s}"),
+        (None, Some(m)) => format!("no frames recorded: {m}"),
+        (None, None) => {
+            "no frames recorded (the evaluation was refused before simulating)".to_string()
+        }
+    })
 }
 
 /// Reads a run directory's store into the page's data: `{"kind": "run", "file", "encoding",
@@ -477,5 +498,45 @@ mod tests {
             err.contains("frame 0 has 1 part poses for a creature of 2 parts"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn a_recording_without_frames_is_shown_with_the_reason() {
+        let dir = scratch("no-frames");
+        let creature = crate::develop::creature_from_commands("forward(1) forward(1)").unwrap();
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature, "task": "walker", "status": "self-intersecting",
+                   "message": "parts 0 and 1 interpenetrate", "frames": []})
+            .to_string(),
+        )
+        .unwrap();
+        let data = recording_data(&dir).unwrap();
+        assert_eq!(data["frames"], json!([]));
+        assert_eq!(
+            data["no_frames"],
+            "no frames recorded: self-intersecting: parts 0 and 1 interpenetrate"
+        );
+        // A file written before the status was recorded, without frames at all.
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature}).to_string(),
+        )
+        .unwrap();
+        let data = recording_data(&dir).unwrap();
+        assert_eq!(data["frames"], json!([]));
+        assert_eq!(
+            data["no_frames"],
+            "no frames recorded (the evaluation was refused before simulating)"
+        );
+        // With frames there is no reason.
+        let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        std::fs::write(
+            dir.join("recording.json"),
+            json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose, pose]}]})
+                .to_string(),
+        )
+        .unwrap();
+        assert!(recording_data(&dir).unwrap().get("no_frames").is_none());
     }
 }

@@ -317,6 +317,8 @@ function showError(error) {
     return;
   }
   box.textContent = error.text || error.message;
+  // A grammar's error keeps its lines (the caret under the column); other messages wrap.
+  box.style.whiteSpace = error.location ? 'pre' : 'pre-wrap';
   box.classList.add('shown');
   const where = error.location ? `line ${error.location.line}, column ${error.location.column}: ` : '';
   body.dataset.error = where + error.message;
@@ -367,7 +369,7 @@ function showGrowth(data, keepFrame) {
     drawCreature(f.creature);
     drawBrain(f.creature.brain);
     describe(f.creature);
-    $('frame-label').textContent = `frame ${i} of ${frames.length - 1}   t = ${+f.t.toFixed(4)}`;
+    $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${+f.t.toFixed(4)}`;
     $('string').textContent = f.string !== null && f.string !== undefined ? f.string
       : (data.kind === 'growth' ? '(grow --out does not store the module strings: view the .lsys file to see them)' : '');
     document.title = `ontogeny view: ${body.dataset.parts} parts`;
@@ -412,12 +414,30 @@ function watch(kind) {
 
 // ---------------------------------------------------------------- recording pages
 
+// A recorded phase as the GIFs label it (recording.json spells it in kebab case).
+function phaseLabel(phase) {
+  return { 'controller-on': 'controller on', flying: 'projectile flying' }[phase] || String(phase).replace(/-/g, ' ');
+}
+
 function showRecording(data) {
   body.dataset.kind = 'recording';
   $('file').textContent = data.file + (data.task ? `  (${data.task})` : '');
   const frames = data.frames;
   const meshes = drawCreature(data.creature);
   drawBrain(data.creature.brain);
+  if (!frames.length) {
+    // Refused before simulating: the creature as built, and why.
+    const box = boundsOf([data.creature]);
+    frame(box, Math.min(box.min.y, 0));
+    body.dataset.frames = '0';
+    playButton.style.display = 'none';
+    slider.style.display = 'none';
+    describe(data.creature, [`task: ${data.task || '?'}`, 'recorded frames: 0 (the starting pose is shown)']);
+    $('string').textContent = '';
+    showError({ message: data.no_frames || 'no frames recorded' });
+    finish();
+    return;
+  }
   const markers = creatureGroup.children.filter((m) => m.userData.joint);
   slider.max = String(frames.length - 1);
   body.dataset.frames = String(frames.length);
@@ -493,7 +513,8 @@ function showRecording(data) {
     if (controls) { controls.target.add(delta); controls.update(); }
     followed = centre;
     placeSun(centre, sunSize);
-    $('frame-label').textContent = `frame ${i} of ${frames.length - 1}   t = ${f.t.toFixed(3)} s`;
+    $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${f.t.toFixed(3)} s` +
+      (f.phase ? `   ${phaseLabel(f.phase)}` : '');
   };
   describe(data.creature, [`task: ${data.task || '?'}`, `recorded frames: ${frames.length}`,
     `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);
@@ -604,10 +625,19 @@ function showRun(data) {
     finish();
     return;
   }
+  const first = data.generations[0].index;
   const last = data.generations[data.generations.length - 1].index;
   const gen = params.has('gen') ? Number(params.get('gen')) : last;
   const index = params.has('index') ? Number(params.get('index')) : null;
-  openGeneration(gen, index);
+  if (!data.generations.some((g) => g.index === gen)) {
+    showError({ message: `no generation ${params.get('gen')} (the run has ${first === last ? first : `${first}–${last}`})` });
+    finish();
+    return;
+  }
+  openGeneration(gen, index).catch((e) => {
+    showError({ message: `generation ${gen}: ${e.message}` });
+    finish();
+  });
 }
 
 function escape(text) {
