@@ -677,8 +677,8 @@ fn range_errors_name_only_the_flag_at_fault_and_its_value() {
         args.extend(flag);
         let o = ontogeny(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        let first = stderr(&o).lines().next().unwrap_or_default().to_string();
-        assert_eq!(first, format!("error: {message}"), "{args:?}");
+        // The whole of standard error: one line, no blank line after it.
+        assert_eq!(stderr(&o), format!("error: {message}\n"), "{args:?}");
     }
     // evolve and compare say the same of --seconds, with no "the command line:" before it.
     let dir = std::env::temp_dir().join(format!("ontogeny-seconds-{}", std::process::id()));

@@ -222,10 +222,11 @@ impl Diagnostic {
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "error: {}", self.message)?;
+        write!(f, "error: {}", self.message)?;
         if let Some(loc) = &self.location {
             let gutter = loc.line.to_string().len();
             let pad = " ".repeat(gutter);
+            writeln!(f)?;
             writeln!(f, "{pad}--> {}:{}:{}", loc.file, loc.line, loc.column)?;
             writeln!(f, "{pad} |")?;
             writeln!(f, "{} | {}", loc.line, loc.line_text)?;
