@@ -555,6 +555,207 @@ fn growing_nothing_says_so() {
         out.contains("valid: no\n  error: no part: the string builds nothing"),
         "{out}"
     );
+    // `backward` moves the turtle and builds nothing: the message names only what builds.
+    let o = ontogeny_reading(&["grow", "-"], b"axiom: backward\n");
+    let out = stdout(&o);
+    assert!(out.contains("parts: 0"), "{out}");
+    assert!(
+        out.contains("(a part comes from forward or its maturing twin mforward;"),
+        "{out}"
+    );
+    assert!(!out.contains("backward or"), "{out}");
+}
+
+#[test]
+fn continuous_time_flags_for_a_discrete_file_are_refused_by_every_verb_that_grows_it() {
+    let snapshot =
+        std::env::temp_dir().join(format!("ontogeny-refused-{}.png", std::process::id()));
+    let snapshot = snapshot.to_str().unwrap();
+    for verb in ["derive", "grow", "eval", "export", "view"] {
+        for flag in [&["--dt", "0.3"][..], &["--timing", "exact"][..]] {
+            let mut args = vec![verb, "examples/thrower.lsys"];
+            if verb == "eval" {
+                args.extend(["--task", "catapult"]);
+            }
+            if verb == "view" {
+                // Refused before any server or browser starts.
+                args.extend(["--snapshot", snapshot]);
+            }
+            args.extend(flag);
+            let o = ontogeny(&args);
+            assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+            assert!(
+                stderr(&o).starts_with(
+                    "error: --dt and --timing are for continuous time: give --time T (or 'time:' in examples/thrower.lsys)"
+                ),
+                "{args:?}: {}",
+                stderr(&o)
+            );
+            assert!(stdout(&o).is_empty(), "{args:?}: {}", stdout(&o));
+        }
+    }
+    // With --time the file develops in continuous time, and --dt applies.
+    let o = ontogeny(&["grow", "examples/thrower.lsys", "--time", "2", "--dt", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("grown to t = 2 in 3 frame(s)"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
+fn eval_names_standard_input_and_prints_the_builders_warnings() {
+    let o = ontogeny_reading(
+        &["eval", "-", "--task", "walker", "--seconds", "0.5"],
+        b"axiom: [ forward(1)\n",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).starts_with("<stdin>: walker fitness"),
+        "{}",
+        stdout(&o)
+    );
+    assert!(
+        stderr(&o).contains(
+            "warning: 1 '[' without a matching ']': each branch runs to the end of the string"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    let o = ontogeny_reading(
+        &["eval", "-", "--task", "walker", "--seconds", "0.5"],
+        b"axiom: forward(1) ] forward(1)\n",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("warning: ']' with nothing to pop: ignored []]"),
+        "{}",
+        stderr(&o)
+    );
+    // A creature without warnings gets none.
+    let o = ontogeny(&["eval", "examples/thrower.lsys", "--task", "catapult"]);
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+}
+
+#[test]
+fn range_errors_name_only_the_flag_at_fault_and_its_value() {
+    let cases: [(&[&str], &str); 10] = [
+        (
+            &["--strength", "-1"],
+            "--strength must be finite and not negative, not -1",
+        ),
+        (
+            &["--muscle-speed", "-2"],
+            "--muscle-speed must be finite and positive, not -2",
+        ),
+        (&["--substeps", "0"], "--substeps must be 1 to 64, not 0"),
+        (
+            &["--rest-substeps", "65"],
+            "--rest-substeps must be 1 to 64, not 65",
+        ),
+        (
+            &["--solver-iterations", "0"],
+            "--solver-iterations must be 1 to 256, not 0",
+        ),
+        (
+            &["--rest-solver-iterations", "257"],
+            "--rest-solver-iterations must be 1 to 256, not 257",
+        ),
+        (
+            &["--pgs-iterations", "0"],
+            "--pgs-iterations must be 1 to 256, not 0",
+        ),
+        (
+            &["--energy-tolerance", "-1"],
+            "--energy-tolerance must be finite and not negative (0 turns the audit off), not -1",
+        ),
+        (
+            &["--projectile-size", "0"],
+            "--projectile-size must be finite and positive, not 0",
+        ),
+        (
+            &["--projectile-density", "-5"],
+            "--projectile-density must be finite and positive, not -5",
+        ),
+    ];
+    for (flag, message) in cases {
+        let mut args = vec!["eval", "examples/thrower.lsys", "--task", "catapult"];
+        args.extend(flag);
+        let o = ontogeny(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        // The whole of standard error: one line, no blank line after it.
+        assert_eq!(stderr(&o), format!("error: {message}\n"), "{args:?}");
+    }
+    // evolve and compare say the same of --seconds, with no "the command line:" before it.
+    let dir = std::env::temp_dir().join(format!("ontogeny-seconds-{}", std::process::id()));
+    let out = dir.join("run");
+    let out = out.to_str().unwrap();
+    for args in [
+        &["evolve", "--out", out, "--seconds", "5000"][..],
+        &[
+            "compare",
+            "--encodings",
+            "lsystem",
+            "--evaluations",
+            "100",
+            "--out",
+            out,
+            "--seconds",
+            "0",
+        ][..],
+    ] {
+        let o = ontogeny(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let value = args.last().unwrap();
+        assert!(
+            stderr(&o).starts_with(&format!(
+                "error: --seconds must be in (0, 3600], not {value}"
+            )),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+        assert!(!std::path::Path::new(out).exists(), "{args:?} made {out}");
+    }
+    // ... and their --help gives the range, as bench's does.
+    for verb in ["evolve", "compare", "bench"] {
+        let o = ontogeny(&[verb, "--help"]);
+        let help = stdout(&o);
+        let seconds = help
+            .split("--seconds <SECONDS>")
+            .nth(1)
+            .unwrap_or_default()
+            .split("\n      --")
+            .next()
+            .unwrap_or_default()
+            .to_string();
+        assert!(seconds.contains("in (0, 3600]"), "{verb}: {seconds}");
+    }
+}
+
+#[test]
+fn eval_refuses_a_record_path_that_is_a_file_before_evaluating() {
+    let file = temp_file("a-file-not-a-dir", "taken\n");
+    let o = ontogeny(&[
+        "eval",
+        "examples/thrower.lsys",
+        "--task",
+        "catapult",
+        "--record",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).starts_with(&format!(
+            "error: --record {}: a file is there; give a directory",
+            file.display()
+        )),
+        "{}",
+        stderr(&o)
+    );
+    // Refused before the evaluation: nothing was printed, and the file is untouched.
+    assert!(stdout(&o).is_empty(), "{}", stdout(&o));
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "taken\n");
 }
 
 #[test]

@@ -243,10 +243,46 @@ fn lone_carriage_returns_end_lines_in_error_positions() {
 
 #[test]
 fn syntax_errors_in_plain_words() {
-    // Several grammar rules share the name "a sign": it is listed once.
+    // The ways to start a value (a sign, a name, a number, ...) are "a value", once.
     let shown = compile_error("axiom: a\na --> b(1 +)\n", DiagnosticKind::Syntax, 2);
+    assert!(shown.contains("expected a value, found ')'"), "{shown}");
+    // An arrow where a value should be is named whole.
+    let shown = compile_error("axiom: A(1)\nA(x) : x > --> B\n", DiagnosticKind::Syntax, 2);
+    assert!(shown.contains("expected a value, found '-->'"), "{shown}");
+    // The binary operators are "an operator"; in an argument list ',' and ')' are named.
+    let shown = compile_error("axiom: A\nA --> B(1 2)\n", DiagnosticKind::Syntax, 2);
     assert!(
-        shown.contains("expected a sign, a name, or a number, found ')'"),
+        shown.contains("expected an operator, ',', or ')', found '2'"),
+        "{shown}"
+    );
+    assert!(!shown.contains("'||'"), "{shown}");
+    let shown = compile_error("axiom: A\nA --> B(1, f(2 33))\n", DiagnosticKind::Syntax, 2);
+    assert!(
+        shown.contains("expected an operator, ',', or ')', found '33'"),
+        "{shown}"
+    );
+    // A bracketing parenthesis closes with ')' alone.
+    let shown = compile_error("axiom: A\nA : (1 2) --> B\n", DiagnosticKind::Syntax, 2);
+    assert!(
+        shown.contains("expected an operator or ')', found '2'"),
+        "{shown}"
+    );
+    // Outside parentheses, the line may end instead.
+    let shown = compile_error("axiom: A\nA --> B : 0.5 : 2\n", DiagnosticKind::Syntax, 2);
+    assert!(
+        shown.contains("expected end of line or an operator, found ':'"),
+        "{shown}"
+    );
+    // A header line with an error is reported as that header, not as a rule.
+    let shown = compile_error("seed: x\naxiom: A\n", DiagnosticKind::Syntax, 1);
+    assert!(
+        shown.contains("expected a whole number, found 'x'"),
+        "{shown}"
+    );
+    assert!(shown.contains("bad.lsys:1:7"), "{shown}");
+    let shown = compile_error("axiom: A\ntiming: fast\n", DiagnosticKind::Syntax, 2);
+    assert!(
+        shown.contains("expected 'exact' or 'iterative', found 'fast'"),
         "{shown}"
     );
     // A header without its colon.
@@ -263,6 +299,22 @@ fn syntax_errors_in_plain_words() {
         shown.contains("parameters follow a module's name with no space between: 'forward(...)'"),
         "{shown}"
     );
+    // ... also when the module ends an axiom line (the line is read as the header it is).
+    for (text, word, column) in [
+        ("axiom: forward (1)\n", "forward", 16),
+        ("axiom: A (2)\nA --> B\n", "A", 10),
+        ("axiom: A (2)", "A", 10),
+    ] {
+        let shown = compile_error(text, DiagnosticKind::Syntax, 1);
+        assert!(
+            shown.contains(&format!(
+                "parameters follow a module's name with no space between: '{word}(...)'"
+            )),
+            "{shown}"
+        );
+        assert!(shown.contains(&format!("bad.lsys:1:{column}")), "{shown}");
+        assert!(!shown.contains("'-->'"), "{shown}");
+    }
     // A module whose name merely starts like a header gets no header hint.
     let shown = compile_error("axiom: a\ntimer --> (\n", DiagnosticKind::Syntax, 2);
     assert!(!shown.contains("header"), "{shown}");

@@ -24,7 +24,7 @@ pub struct BenchArgs {
     /// Evaluations per measurement (more is steadier, slower).
     #[arg(long, default_value_t = 16)]
     evaluations: usize,
-    /// Simulated seconds per evaluation.
+    /// Simulated seconds per evaluation, in (0, 3600].
     #[arg(long, default_value_t = 20.0)]
     seconds: f64,
     /// Physics substeps per control step of the setting measured (default: the evaluator's).

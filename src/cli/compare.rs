@@ -14,7 +14,10 @@ use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, read_confi
 use ontogeny::evolve::run::{GenerationReport, Run};
 use ontogeny::lang::Source;
 
-use super::evolve::{EncodingArg, PresetArg, TaskArg, bad, resolve_task, run_error, set_threads};
+use super::evolve::{
+    EncodingArg, PresetArg, TaskArg, bad, check_seconds, config_error, resolve_task, run_error,
+    set_threads,
+};
 
 /// Flags of `ontogeny compare`.
 #[derive(Args)]
@@ -44,7 +47,7 @@ pub struct CompareArgs {
     /// Individuals per generation (default: the preset's, 300).
     #[arg(long)]
     pop: Option<usize>,
-    /// Seconds of the task's measurement (walker: walking, default 20).
+    /// Seconds of the task's measurement (walker: walking, default 20), in (0, 3600].
     #[arg(long)]
     seconds: Option<f64>,
     /// A TOML file of shared settings ([ga] without generations, [task], seed).
@@ -202,8 +205,9 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     }
     let mut ga = overrides.resolve();
     ga.generations = 1;
+    check_seconds(args.seconds)?;
     let task = resolve_task(file.task.clone(), args.task, args.seconds);
-    check_settings(&ga, &task).map_err(|e| bad(format!("{where_from}: {e}")))?;
+    check_settings(&ga, &task).map_err(|e| bad(config_error(source.as_deref(), e)))?;
     let budget = args.evaluations.expect("clap requires --evaluations");
     ga.generations =
         generations_for(&ga, budget).map_err(|e| bad(format!("--evaluations: {e}")))?;

@@ -160,15 +160,6 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
         discrete_steps(&lsys, &options, args.development.steps, "printing")?;
         frames(&lsys, &options, &mut out)?;
     } else {
-        if options.dt.is_some() || options.timing.is_some() {
-            bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                format!(
-                    "--dt and --timing are for continuous time: give --time T (or 'time:' in {})",
-                    args.file.display()
-                ),
-            ));
-        }
         derive(&lsys, &options, &mut out)?;
     }
     out.out.flush()?;
@@ -180,15 +171,18 @@ fn derive(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> any
     frames(lsys, options, out)
 }
 
-/// `--steps` checked against the mode: an error in continuous time; in discrete time, a note
-/// on standard error when the file has productions but neither it nor `--steps` gives a
-/// derivation length (`doing` says what happens to the axiom alone, e.g. "growing").
+/// The development flags checked against the mode (every verb that develops a grammar calls
+/// this): `--steps` is an error in continuous time, `--dt` and `--timing` in discrete time; in
+/// discrete time, a note on standard error when the file has productions but neither it nor
+/// `--steps` gives a derivation length (`doing` says what happens to the axiom alone, e.g.
+/// "growing").
 pub fn discrete_steps(
     lsys: &LSystem,
     options: &DeriveOptions,
     steps: Option<u64>,
     doing: &str,
 ) -> anyhow::Result<Option<u64>> {
+    check_continuous_flags(lsys, options)?;
     if options.time.is_some() || lsys.is_continuous() {
         if steps.is_some() {
             bail!(Diagnostic::without_location(
@@ -203,6 +197,22 @@ pub fn discrete_steps(
         );
     }
     Ok(steps)
+}
+
+/// `--dt` and `--timing` for a discrete file (no differential rules, no `time:`) and no
+/// `--time`: an error, since they would change nothing.
+pub fn check_continuous_flags(lsys: &LSystem, options: &DeriveOptions) -> anyhow::Result<()> {
+    let continuous = options.time.is_some() || lsys.is_continuous();
+    if !continuous && (options.dt.is_some() || options.timing.is_some()) {
+        bail!(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!(
+                "--dt and --timing are for continuous time: give --time T (or 'time:' in {})",
+                lsys.source().name()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn frames(lsys: &LSystem, options: &DeriveOptions, out: &mut Printer<'_>) -> anyhow::Result<()> {

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, ValueEnum};
-use ontogeny::creature::Creature;
+use ontogeny::creature::{Creature, Severity};
 use ontogeny::develop::{BuildOptions, grow_with_progress};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
@@ -116,31 +116,48 @@ impl PhysicsArgs {
                 ),
             ));
         }
-        let counts_ok = (1..=64).contains(&self.substeps)
-            && (1..=64).contains(&self.rest_substeps)
-            && (1..=256).contains(&self.solver_iterations)
-            && (1..=256).contains(&self.rest_solver_iterations)
-            && (1..=256).contains(&self.pgs_iterations);
-        if !counts_ok {
-            anyhow::bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                "--substeps and --rest-substeps must be 1 to 64, --solver-iterations, \
-                 --rest-solver-iterations and --pgs-iterations 1 to 256",
-            ));
+        let counts = [
+            ("--substeps", self.substeps, 64),
+            ("--rest-substeps", self.rest_substeps, 64),
+            ("--solver-iterations", self.solver_iterations, 256),
+            ("--rest-solver-iterations", self.rest_solver_iterations, 256),
+            ("--pgs-iterations", self.pgs_iterations, 256),
+        ];
+        for (flag, value, most) in counts {
+            if !(1..=most).contains(&value) {
+                anyhow::bail!(Diagnostic::without_location(
+                    DiagnosticKind::Semantic,
+                    format!("{flag} must be 1 to {most}, not {value}"),
+                ));
+            }
         }
-        if !(self.energy_tolerance.is_finite() && self.energy_tolerance >= 0.0) {
-            anyhow::bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                "--energy-tolerance must be finite and not negative (0 turns the audit off)",
-            ));
-        }
-        let strength_ok = self.strength.is_finite() && self.strength >= 0.0;
-        let speed_ok = self.muscle_speed.is_finite() && self.muscle_speed > 0.0;
-        if !(strength_ok && speed_ok) {
-            anyhow::bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                "--strength must be finite and not negative, --muscle-speed finite and positive",
-            ));
+        let reals = [
+            (
+                "--energy-tolerance",
+                self.energy_tolerance,
+                self.energy_tolerance >= 0.0,
+                "finite and not negative (0 turns the audit off)",
+            ),
+            (
+                "--strength",
+                self.strength,
+                self.strength >= 0.0,
+                "finite and not negative",
+            ),
+            (
+                "--muscle-speed",
+                self.muscle_speed,
+                self.muscle_speed > 0.0,
+                "finite and positive",
+            ),
+        ];
+        for (flag, value, in_range, range) in reals {
+            if !(value.is_finite() && in_range) {
+                anyhow::bail!(Diagnostic::without_location(
+                    DiagnosticKind::Semantic,
+                    format!("{flag} must be {range}, not {value}"),
+                ));
+            }
         }
         Ok(SimOptions {
             dt: self.time_step,
@@ -266,6 +283,15 @@ fn parse_point(text: &str) -> Result<[f64; 3], String> {
     }
 }
 
+/// How the input is named in reports: its path, or `<stdin>` for `-` (as in diagnostics).
+fn input_name(file: &Path) -> String {
+    if file.as_os_str() == "-" {
+        "<stdin>".to_string()
+    } else {
+        file.display().to_string()
+    }
+}
+
 /// Loads a creature from `file`: an L-system (`.lsys`, grown to its last frame with the
 /// development flags and seed), a `creature.json`, which must be well formed, or a graph
 /// genome's JSON (developed with the default limits).
@@ -317,7 +343,15 @@ pub(super) fn load_creature(
         progress.set(f)
     })?;
     progress.finish();
-    Ok(frames.into_iter().last().expect("a first frame").creature)
+    let creature = frames.into_iter().last().expect("a first frame").creature;
+    // The builder's warnings, as `grow` lists them (its errors make the creature invalid,
+    // which the evaluation reports).
+    for problem in &creature.problems {
+        if problem.severity == Severity::Warning {
+            eprintln!("{}", super::grow::problem_line(problem));
+        }
+    }
+    Ok(creature)
 }
 
 /// Evaluates the creature and prints the result.
@@ -332,12 +366,31 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             format!("--seconds must be in (0, 3600], not {seconds}"),
         ));
     }
-    let positive = |v: Option<f64>| v.is_none_or(|v| v.is_finite() && v > 0.0);
-    if !(positive(args.projectile_size) && positive(args.projectile_density)) {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            "--projectile-size and --projectile-density must be positive",
-        ));
+    for (flag, value) in [
+        ("--projectile-size", args.projectile_size),
+        ("--projectile-density", args.projectile_density),
+    ] {
+        if let Some(v) = value
+            && !(v.is_finite() && v > 0.0)
+        {
+            anyhow::bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("{flag} must be finite and positive, not {v}"),
+            ));
+        }
+    }
+    // A place to record into, checked before the evaluation runs.
+    if let Some(dir) = &args.record {
+        if dir.exists() && !dir.is_dir() {
+            anyhow::bail!(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!(
+                    "--record {}: a file is there; give a directory (made if missing)",
+                    dir.display()
+                ),
+            ));
+        }
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
     let sim = SimOptions {
         joints: match args.joints {
@@ -441,7 +494,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let status = serde_json::to_value(evaluation.status)?;
     say!(
         "{}: {} fitness {:.6} ({})",
-        args.file.display(),
+        input_name(&args.file),
         evaluation.task,
         evaluation.fitness,
         status.as_str().unwrap_or("?")
@@ -599,6 +652,11 @@ pub fn animation_frames(
     (chosen, delays, fps)
 }
 
+/// Simulated seconds for a note: to the millisecond, without trailing zeros (`601.483`).
+fn seconds_text(seconds: f64) -> String {
+    ontogeny::lsystem::format_number((seconds * 1000.0).round() / 1000.0)
+}
+
 /// The most points of a projectile's trail drawn in one frame.
 const MAX_TRAIL_POINTS: usize = 400;
 
@@ -667,7 +725,7 @@ fn draw_recording(
     if shown_fps < fps {
         eprintln!(
             "note: {} s recorded: {} is drawn at {shown_fps:.3} frames/s instead of {fps}, to keep to {MAX_GIF_FRAMES} frames",
-            frames.last().map_or(0.0, |f| f.t),
+            seconds_text(frames.last().map_or(0.0, |f| f.t)),
             path.display()
         );
     }
@@ -930,6 +988,14 @@ mod tests {
             ["averyveryverylongword", "x"]
         );
         assert!(wrap("", 5).is_empty());
+    }
+
+    #[test]
+    fn recorded_seconds_are_shown_to_the_millisecond() {
+        assert_eq!(seconds_text(601.483333333115), "601.483");
+        assert_eq!(seconds_text(3603.266666684936), "3603.267");
+        assert_eq!(seconds_text(600.0000000001), "600");
+        assert_eq!(seconds_text(0.5), "0.5");
     }
 
     #[test]

@@ -51,6 +51,24 @@ pub enum TaskArg {
     Aim,
 }
 
+/// `--seconds` checked against the evaluator's limit, (0, 3600].
+pub fn check_seconds(seconds: Option<f64>) -> anyhow::Result<()> {
+    match seconds {
+        Some(s) if !(s > 0.0 && s <= 3600.0) => {
+            Err(bad(format!("--seconds must be in (0, 3600], not {s}")))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// A settings error, prefixed with the config file's name when there is one.
+pub fn config_error(source: Option<&Source>, error: String) -> String {
+    match source {
+        Some(s) => format!("{}: {error}", s.name()),
+        None => error,
+    }
+}
+
 /// The task of a config file (default: the walker), with `--task` and `--seconds` over it.
 pub fn resolve_task(
     file: Option<TaskSpec>,
@@ -122,7 +140,7 @@ pub struct EvolveArgs {
     /// The run's seed (default: the config's, else 1).
     #[arg(long)]
     seed: Option<u64>,
-    /// Seconds of the task's measurement (walker: walking, default 20).
+    /// Seconds of the task's measurement (walker: walking, default 20), in (0, 3600].
     #[arg(long)]
     seconds: Option<f64>,
     /// Worker threads (default: every core). Results do not depend on it.
@@ -235,9 +253,9 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         overrides.generations = args.gens;
     }
     let ga = overrides.resolve();
+    check_seconds(args.seconds)?;
     let task = resolve_task(file.task.clone(), args.task, args.seconds);
-    let where_from = source.map_or("the command line".to_string(), |s| s.name().to_string());
-    check_settings(&ga, &task).map_err(|e| bad(format!("{where_from}: {e}")))?;
+    check_settings(&ga, &task).map_err(|e| bad(config_error(source, e)))?;
     // --init on the command line is relative to the working directory; in the config file,
     // to the file.
     let init_path = match (&args.init, &file.init, source) {

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use ontogeny::creature::{Creature, Role, Severity};
+use ontogeny::creature::{Creature, Problem, Role, Severity};
 use ontogeny::develop::{BuildOptions, GrowthFrame, grow_with_progress};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use serde::Serialize;
@@ -93,28 +93,32 @@ fn summarise(file: &str, t: f64, frames: usize, c: &Creature) -> Summary {
         valid: c.is_valid(),
         problems: no_part(c)
             .into_iter()
-            .chain(c.problems.iter().map(|p| {
-                let level = match p.severity {
-                    Severity::Warning => "warning",
-                    Severity::Error => "error",
-                };
-                let module = p
-                    .module
-                    .as_deref()
-                    .map(|m| format!(" [{m}]"))
-                    .unwrap_or_default();
-                let t = p.t.map(|t| format!(" at t = {t}")).unwrap_or_default();
-                format!("{level}: {}{module}{t}", p.message)
-            }))
+            .chain(c.problems.iter().map(problem_line))
             .collect(),
     }
+}
+
+/// A problem development found, as `grow` and `eval` print it: "warning: MESSAGE [MODULE] at
+/// t = T".
+pub(super) fn problem_line(p: &Problem) -> String {
+    let level = match p.severity {
+        Severity::Warning => "warning",
+        Severity::Error => "error",
+    };
+    let module = p
+        .module
+        .as_deref()
+        .map(|m| format!(" [{m}]"))
+        .unwrap_or_default();
+    let t = p.t.map(|t| format!(" at t = {t}")).unwrap_or_default();
+    format!("{level}: {}{module}{t}", p.message)
 }
 
 /// The problem of a creature without parts, which development does not list (growth may
 /// start from nothing): there is nothing to simulate.
 fn no_part(c: &Creature) -> Option<String> {
     c.parts.is_empty().then(|| {
-        "error: no part: the string builds nothing (a part comes from forward, backward or their maturing twins; see README \"Building creatures\")".to_string()
+        "error: no part: the string builds nothing (a part comes from forward or its maturing twin mforward; see README \"Building creatures\")".to_string()
     })
 }
 

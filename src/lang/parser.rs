@@ -60,7 +60,7 @@ pub(super) struct RawFile {
 
 fn human_rule_name(grammar_rule: &Rule) -> String {
     match grammar_rule {
-        Rule::EOI => "end of file",
+        Rule::EOI => "end of line",
         Rule::file | Rule::statement | Rule::section => "a statement",
         Rule::define => "'define NAME = value'",
         Rule::module_decl => "'module' and names",
@@ -169,25 +169,32 @@ pub(super) fn parse_raw(source: &Source) -> Result<RawFile, Diagnostic> {
 }
 
 fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic {
-    let (start, end) = match error.location {
-        pest::error::InputLocation::Pos(p) => (p, p),
-        pest::error::InputLocation::Span((s, e)) => (s, e),
+    let (start, end) = error_span(&error);
+    let (line, _) = source.line_col(start);
+    let line_text = source.line_text(line);
+    let header = HEADERS.iter().find(|(h, _)| {
+        line_text.trim_start().strip_prefix(*h).is_some_and(|rest| {
+            (rest.is_empty() || rest.starts_with(char::is_whitespace))
+                && !rest.trim_start().starts_with(':')
+        })
+    });
+    // A header line that fails is also tried as a rule (`axiom: A (2)` reads as the module
+    // `axiom` with a guard), which reaches further and so names the rule's tokens. Parse such
+    // a line again as the header it starts with, and report that error.
+    let header_error = header_with_colon(line_text).and_then(|header_rule| {
+        let line_start = source.line_start(line);
+        LsysParser::parse(header_rule, line_text).err().map(|e| {
+            let (s, e2) = error_span(&e);
+            (e, line_start + s, line_start + e2)
+        })
+    });
+    let (error, start, end) = match header_error {
+        Some(found) => found,
+        None => (error, start, end),
     };
     let message = match &error.variant {
-        // pest lists what it expected by rule; several rules share a human name ("a sign"),
-        // so list each name once.
-        pest::error::ErrorVariant::ParsingError {
-            positives,
-            negatives,
-        } if negatives.is_empty() && !positives.is_empty() => {
-            let mut names: Vec<String> = Vec::new();
-            for expected in positives {
-                let name = human_rule_name(expected);
-                if !names.contains(&name) {
-                    names.push(name);
-                }
-            }
-            format!("expected {}", one_of(&names))
+        pest::error::ErrorVariant::ParsingError { positives, .. } if !positives.is_empty() => {
+            format!("expected {}", expected(source.text(), start, positives))
         }
         _ => error
             .clone()
@@ -196,27 +203,13 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
             .message()
             .into_owned(),
     };
-    let at_end = start >= source.text().trim_end().len();
-    let found = if at_end {
-        "end of file".to_string()
-    } else {
-        let rest = &source.text()[start..];
-        match rest.chars().next() {
-            Some('\n') | Some('\r') => "end of line".to_string(),
-            Some(c) => format!("'{c}'"),
-            None => "end of file".to_string(),
-        }
-    };
+    let found = found_token(source.text(), start);
     let diagnostic = Diagnostic::at(
         DiagnosticKind::Syntax,
         source,
         Span::new(start, end),
         format!("{message}, found {found}"),
     );
-    let line = diagnostic
-        .location
-        .as_ref()
-        .map_or("", |l| l.line_text.as_str());
     let before = &source.text()[..start.min(source.text().len())];
     let word_before_space = before
         .strip_suffix([' ', '\t'])
@@ -229,15 +222,9 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
                 .collect();
             (!word.is_empty()).then(|| word.chars().rev().collect::<String>())
         });
-    let header = HEADERS.iter().find(|h| {
-        line.trim_start().strip_prefix(**h).is_some_and(|rest| {
-            (rest.is_empty() || rest.starts_with(char::is_whitespace))
-                && !rest.trim_start().starts_with(':')
-        })
-    });
-    if line.contains("->") && !line.contains("-->") {
+    if line_text.contains("->") && !line_text.contains("-->") {
         diagnostic.with_note("a rule's arrow is '-->'")
-    } else if let Some(header) = header {
+    } else if let Some((header, _)) = header {
         diagnostic.with_note(format!("a header ends with a colon: '{header}: ...'"))
     } else if let (Some(word), true) = (word_before_space, found == "'('") {
         diagnostic.with_note(format!(
@@ -248,16 +235,143 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
     }
 }
 
+/// The byte range a pest error points at.
+fn error_span(error: &pest::error::Error<Rule>) -> (usize, usize) {
+    match error.location {
+        pest::error::InputLocation::Pos(p) => (p, p),
+        pest::error::InputLocation::Span((s, e)) => (s, e),
+    }
+}
+
+/// The grammar rule of the header `line` starts with, colon included; `None` for a line
+/// holding a rule's arrow (a module may be named like a header).
+fn header_with_colon(line: &str) -> Option<Rule> {
+    if line.contains("-->") || line.contains('→') {
+        return None;
+    }
+    HEADERS.iter().find_map(|(h, rule)| {
+        let rest = line.trim_start().strip_prefix(*h)?;
+        rest.trim_start().starts_with(':').then_some(*rule)
+    })
+}
+
+/// What pest expected at `at`, in plain words, each once: the binary operators are "an
+/// operator", the ways to start a value are "a value", and where an argument list or a
+/// parenthesis is open, ',' and ')' (or ')' alone) are named too.
+fn expected(text: &str, at: usize, positives: &[Rule]) -> String {
+    let mut names: Vec<String> = Vec::new();
+    let mut operator = false;
+    for expected in positives {
+        let name = if is_binary_operator(*expected) {
+            operator = true;
+            "an operator".to_string()
+        } else if matches!(
+            expected,
+            Rule::neg | Rule::not | Rule::number | Rule::name | Rule::call | Rule::primary
+        ) {
+            "a value".to_string()
+        } else {
+            human_rule_name(expected)
+        };
+        if !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    if operator {
+        match open_parenthesis(text, at) {
+            Some(true) => names.extend(["','".to_string(), "')'".to_string()]),
+            Some(false) => names.push("')'".to_string()),
+            None => {}
+        }
+    }
+    one_of(&names)
+}
+
+fn is_binary_operator(grammar_rule: Rule) -> bool {
+    matches!(
+        grammar_rule,
+        Rule::infix
+            | Rule::or
+            | Rule::and
+            | Rule::eq
+            | Rule::ne
+            | Rule::le
+            | Rule::ge
+            | Rule::lt
+            | Rule::gt
+            | Rule::add
+            | Rule::sub
+            | Rule::mul
+            | Rule::div
+            | Rule::rem
+            | Rule::pow
+    )
+}
+
+/// Whether a parenthesis is open at `at` on its line: `Some(true)` when the innermost one
+/// follows a name (a module's parameters or a function call, where ',' may come next),
+/// `Some(false)` for a bracketing parenthesis, `None` when none is open.
+fn open_parenthesis(text: &str, at: usize) -> Option<bool> {
+    let at = at.min(text.len());
+    let line_start = text[..at].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+    let mut open: Vec<usize> = Vec::new();
+    for (i, c) in text[line_start..at].char_indices() {
+        match c {
+            '(' => open.push(line_start + i),
+            ')' => {
+                open.pop();
+            }
+            '#' => break,
+            _ => {}
+        }
+    }
+    let paren = *open.last()?;
+    let before = text[..paren].trim_end_matches([' ', '\t']);
+    Some(
+        before
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_'),
+    )
+}
+
+/// The token at `at`, quoted, for "found ...": a whole word or number, an arrow, a
+/// two-character operator, or one character; "end of line" or "end of file" at the end.
+fn found_token(text: &str, at: usize) -> String {
+    if at >= text.trim_end().len() {
+        return "end of file".to_string();
+    }
+    let rest = &text[at..];
+    let word_len = rest
+        .find(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
+        .unwrap_or(rest.len());
+    let token = if word_len > 0 {
+        &rest[..word_len]
+    } else if let Some(t) = ["-->", "→", "||", "&&", "==", "!=", "<=", ">="]
+        .into_iter()
+        .find(|t| rest.starts_with(t))
+    {
+        t
+    } else {
+        match rest.chars().next() {
+            Some('\n' | '\r') => return "end of line".to_string(),
+            Some(c) => &rest[..c.len_utf8()],
+            None => return "end of file".to_string(),
+        }
+    };
+    format!("'{token}'")
+}
+
 /// The headers a line may start with, each followed by a colon.
-const HEADERS: [&str; 8] = [
-    "axiom",
-    "derivation length",
-    "seed",
-    "ignore",
-    "time",
-    "dt",
-    "timing",
-    "environment",
+const HEADERS: [(&str, Rule); 8] = [
+    ("axiom", Rule::axiom_stmt),
+    ("derivation length", Rule::length_stmt),
+    ("seed", Rule::seed_stmt),
+    ("ignore", Rule::ignore_stmt),
+    ("time", Rule::time_stmt),
+    ("dt", Rule::dt_stmt),
+    ("timing", Rule::timing_stmt),
+    ("environment", Rule::environment_stmt),
 ];
 
 /// "a", "a or b", "a, b, or c".

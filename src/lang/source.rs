@@ -101,6 +101,11 @@ impl Source {
         (line + 1, column)
     }
 
+    /// The byte offset where a 1-based line starts.
+    pub fn line_start(&self, line: usize) -> usize {
+        self.line_starts[line - 1]
+    }
+
     /// The text of a 1-based line, without its line ending.
     pub fn line_text(&self, line: usize) -> &str {
         let start = self.line_starts[line - 1];
@@ -217,10 +222,11 @@ impl Diagnostic {
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "error: {}", self.message)?;
+        write!(f, "error: {}", self.message)?;
         if let Some(loc) = &self.location {
             let gutter = loc.line.to_string().len();
             let pad = " ".repeat(gutter);
+            writeln!(f)?;
             writeln!(f, "{pad}--> {}:{}:{}", loc.file, loc.line, loc.column)?;
             writeln!(f, "{pad} |")?;
             writeln!(f, "{} | {}", loc.line, loc.line_text)?;
