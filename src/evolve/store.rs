@@ -81,8 +81,8 @@ ALTER TABLE generation ADD COLUMN best_fine REAL;
 ALTER TABLE generation ADD COLUMN best_fine_status TEXT;
 ";
 
-/// The columns of the `generation` table in schema version 1.
-const GENERATION_COLUMNS_V1: [&str; 9] = [
+/// The columns of the `generation` table (schema version 2).
+const GENERATION_COLUMNS: [&str; 11] = [
     "generation",
     "best",
     "mean",
@@ -92,7 +92,12 @@ const GENERATION_COLUMNS_V1: [&str; 9] = [
     "evaluations",
     "wall_seconds",
     "evaluations_per_second",
+    "best_fine",
+    "best_fine_status",
 ];
+
+/// The columns of the `generation` table in schema version 1: all but the last two.
+const GENERATION_COLUMNS_V1: &[&str] = GENERATION_COLUMNS.split_at(9).0;
 
 /// Each table's columns, in order, as `open` expects to find them (schema version 2).
 const TABLES: [(&str, &[&str]); 3] = [
@@ -100,22 +105,7 @@ const TABLES: [(&str, &[&str]); 3] = [
         "run",
         &["id", "config", "seed", "encoding", "task", "version"],
     ),
-    (
-        "generation",
-        &[
-            "generation",
-            "best",
-            "mean",
-            "median",
-            "sd",
-            "valid_fraction",
-            "evaluations",
-            "wall_seconds",
-            "evaluations_per_second",
-            "best_fine",
-            "best_fine_status",
-        ],
-    ),
+    ("generation", &GENERATION_COLUMNS),
     (
         "individual",
         &[
@@ -929,7 +919,7 @@ fn check_store(path: &Path, conn: &Connection) -> Result<i64, StoreError> {
     }
     for (table, expected) in TABLES {
         let expected = match table {
-            "generation" if version < 2 => &GENERATION_COLUMNS_V1[..],
+            "generation" if version < 2 => GENERATION_COLUMNS_V1,
             _ => expected,
         };
         let mut columns: Vec<String> = Vec::new();
