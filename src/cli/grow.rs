@@ -122,6 +122,13 @@ fn no_part(c: &Creature) -> Option<String> {
     })
 }
 
+/// How long (centiseconds) each frame of a growth animation of `frames` frames shows: a
+/// quarter of a second, shorter for long animations so that the whole plays in at most
+/// 30 s, and never under 4 cs (browsers slow shorter frames down).
+fn growth_frame_delay(frames: usize) -> u16 {
+    (3000 / frames.max(1)).clamp(4, 25) as u16
+}
+
 /// Draws `growth.gif`: the frames of growth labelled with developmental time, at most
 /// [`MAX_GIF_FRAMES`] of them (evenly spaced in developmental time, the first and last
 /// kept, with a note when some are left out), with a progress bar on a terminal.
@@ -154,7 +161,7 @@ fn write_growth_gif(frames: &[GrowthFrame], path: &Path) -> anyhow::Result<()> {
         path,
         480,
         300,
-        &[25],
+        &[growth_frame_delay(chosen.len())],
         ontogeny::render::Framing::Still,
         &mut |f| progress.set(f),
     )
@@ -249,4 +256,22 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::growth_frame_delay;
+
+    #[test]
+    fn a_growth_animation_plays_in_at_most_half_a_minute() {
+        // Up to 120 frames: a quarter of a second each.
+        assert_eq!(growth_frame_delay(1), 25);
+        assert_eq!(growth_frame_delay(120), 25);
+        // 600 frames (the most a GIF holds): 5 cs each, 30 s in all.
+        assert_eq!(growth_frame_delay(600), 5);
+        assert!(growth_frame_delay(300) as usize * 300 <= 3000);
+        // Never under 4 cs.
+        assert_eq!(growth_frame_delay(10_000), 4);
+        assert_eq!(growth_frame_delay(0), 25);
+    }
 }
