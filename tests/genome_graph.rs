@@ -9,7 +9,7 @@ use std::process::Command;
 use nalgebra::{Matrix3, Vector3};
 use ontogeny::creature::{Creature, Face, JointKind, NeuronFunction};
 use ontogeny::encoding::graph::{Connection, Effector, Input, NeuronGene, Node, Source};
-use ontogeny::encoding::{Genome, GraphGenome, GraphLimits, Purpose, Rng};
+use ontogeny::encoding::{Genome, GraphGenome, GraphLimits, JointSet, Purpose, Rng};
 use ontogeny::sim::{SimOptions, World};
 use ontogeny::task::{Status, WalkerOptions, walker};
 use proptest::prelude::*;
@@ -266,6 +266,41 @@ fn grafting_redirects_a_connection_of_the_first_parent_to_a_subgraph_of_the_seco
 }
 
 #[test]
+fn new_nodes_and_joint_mutations_draw_from_the_configured_joint_set() {
+    // Chaumont 5.1: one degree of freedom per joint by default; `sims` allows all seven kinds.
+    let kinds_seen = |joints: JointSet| {
+        let limits = GraphLimits {
+            joints,
+            ..GraphLimits::default()
+        };
+        let mut seen = std::collections::BTreeSet::new();
+        for seed in 0..40 {
+            let mut r = rng(seed);
+            let mut g = GraphGenome::random(&limits, &mut r);
+            for _ in 0..10 {
+                seen.extend(g.nodes.iter().map(|n| format!("{:?}", n.joint)));
+                g = g.mutate(&limits, 0.5, &mut r);
+            }
+        }
+        seen
+    };
+    let one_axis = kinds_seen(JointSet::OneAxis);
+    assert_eq!(
+        one_axis,
+        ["Revolute", "Rigid", "Twist"].map(String::from).into(),
+        "the default joint set"
+    );
+    assert_eq!(JointSet::default(), JointSet::OneAxis);
+    assert!(JointSet::OneAxis.kinds().iter().all(|k| k.dof() <= 1));
+    let sims = kinds_seen(JointSet::Sims);
+    assert_eq!(sims.len(), 7, "Sims' seven kinds all appear: {sims:?}");
+    // The key as a config writes it.
+    let limits: GraphLimits = toml::from_str("joints = \"sims\"").unwrap();
+    assert_eq!(limits.joints, JointSet::Sims);
+    assert!(toml::from_str::<GraphLimits>("joints = \"two-axis\"").is_err());
+}
+
+#[test]
 fn for_throwing_the_root_is_the_first_parents_arm_and_keeps_its_back_face_free() {
     let mut limits = GraphLimits::default();
     GraphGenome::adapt_limits(&mut limits, Purpose::Throwing);
@@ -402,22 +437,30 @@ fn small_limits() -> impl Strategy<Value = GraphLimits> {
         0usize..3,
         0usize..4,
         any::<bool>(),
+        any::<bool>(),
     )
         .prop_map(
-            |(nodes, parts, connections, recursion, local, global, inputs, throwing)| GraphLimits {
-                max_nodes: nodes,
-                max_parts: parts,
-                max_connections: connections,
-                max_recursion: recursion,
-                max_local_neurons: local,
-                max_global_neurons: global,
-                max_inputs: inputs,
-                regenerate_tries: 2,
-                purpose: if throwing {
-                    Purpose::Throwing
-                } else {
-                    Purpose::Locomotion
-                },
+            |(nodes, parts, connections, recursion, local, global, inputs, throwing, sims)| {
+                GraphLimits {
+                    max_nodes: nodes,
+                    max_parts: parts,
+                    max_connections: connections,
+                    max_recursion: recursion,
+                    max_local_neurons: local,
+                    max_global_neurons: global,
+                    max_inputs: inputs,
+                    regenerate_tries: 2,
+                    joints: if sims {
+                        JointSet::Sims
+                    } else {
+                        JointSet::OneAxis
+                    },
+                    purpose: if throwing {
+                        Purpose::Throwing
+                    } else {
+                        Purpose::Locomotion
+                    },
+                }
             },
         )
 }

@@ -85,6 +85,9 @@ pub struct GraphLimits {
     /// (Chaumont section 5.5); the last try is kept (and evaluated as `self-intersecting`).
     /// At least 1.
     pub regenerate_tries: usize,
+    /// The joint kinds of new nodes and joint mutations: `one-axis` (default, Chaumont 5.1)
+    /// or `sims` (all seven). A genome that holds other kinds still loads and keeps them.
+    pub joints: JointSet,
     /// What the creatures are for: set from the task when a run is assembled, never written.
     #[serde(skip)]
     pub purpose: Purpose,
@@ -101,6 +104,7 @@ impl Default for GraphLimits {
             max_global_neurons: 4,
             max_inputs: 3,
             regenerate_tries: 10,
+            joints: JointSet::OneAxis,
             purpose: Purpose::Locomotion,
         }
     }
@@ -284,7 +288,8 @@ const FACES: [Face; 6] = [
     Face::Left,
 ];
 
-const KINDS: [JointKind; 7] = [
+/// Sims' seven joint kinds.
+const SIMS_KINDS: [JointKind; 7] = [
     JointKind::Rigid,
     JointKind::Revolute,
     JointKind::Twist,
@@ -293,6 +298,39 @@ const KINDS: [JointKind; 7] = [
     JointKind::TwistBend,
     JointKind::Spherical,
 ];
+
+/// The kinds with at most one degree of freedom.
+const ONE_AXIS_KINDS: [JointKind; 3] = [JointKind::Rigid, JointKind::Revolute, JointKind::Twist];
+
+/// Which joint kinds new nodes and joint mutations draw from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum JointSet {
+    /// `rigid`, `revolute` and `twist`: at most one degree of freedom, as Chaumont et al.
+    /// built their creatures (section 5.1: "To ensure a maximum of stability, each (ball and
+    /// socket) joint has only one degree of freedom"). Evolution turns the multi-axis joints
+    /// into exploits of the impulse solver (see the README's *Speed and fidelity*).
+    #[default]
+    OneAxis,
+    /// Sims' seven kinds, `universal`, `bend-twist`, `twist-bend` and `spherical` included.
+    Sims,
+}
+
+impl JointSet {
+    /// The kinds this set draws from.
+    pub fn kinds(self) -> &'static [JointKind] {
+        match self {
+            JointSet::OneAxis => &ONE_AXIS_KINDS,
+            JointSet::Sims => &SIMS_KINDS,
+        }
+    }
+
+    /// A random kind of this set.
+    fn random(self, rng: &mut Rng) -> JointKind {
+        let kinds = self.kinds();
+        kinds[rng.random_range(0..kinds.len())]
+    }
+}
 
 /// Chaumont et al.'s Table I functions (besides sensors and effectors).
 const CHAUMONT: [NeuronFunction; 7] = [
@@ -432,7 +470,7 @@ fn random_connection(nodes: usize, limits: &GraphLimits, root: bool, rng: &mut R
 /// A random node with no connections: one effector neuron per degree of freedom (as room
 /// allows), perhaps a hidden neuron.
 fn random_node(globals: usize, limits: &GraphLimits, rng: &mut Rng) -> Node {
-    let joint = KINDS[rng.random_range(0..KINDS.len())];
+    let joint = limits.joints.random(rng);
     let dof = joint.dof();
     let recursive_limit = if rng.random_bool(0.5) {
         1
@@ -796,7 +834,7 @@ impl GraphGenome {
                 }
             }
             if rng.random_bool(rate) {
-                node.joint = KINDS[rng.random_range(0..KINDS.len())];
+                node.joint = limits.joints.random(rng);
                 let dof = node.joint.dof();
                 node.limits.truncate(dof);
                 let more = random_limits(dof - node.limits.len(), rng);

@@ -18,7 +18,7 @@ pub mod lsystem;
 
 pub use continuous::{ContinuousGenome, ContinuousLimits};
 pub use direct::{DirectGenome, DirectLimits};
-pub use graph::{GraphGenome, GraphLimits};
+pub use graph::{GraphGenome, GraphLimits, JointSet};
 pub use lsystem::{LSystemGenome, LSystemLimits};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
