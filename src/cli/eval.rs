@@ -477,8 +477,8 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     {
         eprintln!(
             "warning: the solver let a joint come {:.1} cm apart: this step setting is too coarse \
-             for this creature, and its fitness may not hold at a finer one (try --substeps 4 \
-             --solver-iterations 8 --pgs-iterations 1; README, \"Speed and fidelity\")",
+             for this creature, and its fitness may not hold at a finer one (try --substeps 16 \
+             --solver-iterations 8; README, \"Speed and fidelity\")",
             gap * 100.0
         );
     }
