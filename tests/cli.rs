@@ -876,3 +876,56 @@ fn flags_the_task_does_not_use_are_warned_about() {
     ]);
     assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
 }
+
+#[test]
+fn bench_fidelity_ranks_settings_and_counts_walks_and_creatures_at_rest() {
+    // Four creatures (the shipped walkers), one short walk each: the fast setting beside the
+    // default. Every row names its setting and gives rest as counts of the fine reference's.
+    let o = ontogeny(&[
+        "bench",
+        "--evaluations",
+        "1",
+        "--seconds",
+        "0.5",
+        "--fidelity",
+        "4",
+        "--runs",
+        "1",
+        "--fidelity-also",
+        "1x2x3/2x4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let floor = out
+        .lines()
+        .find(|l| l.starts_with("noise floor"))
+        .unwrap_or_else(|| panic!("{out}"));
+    assert!(floor.contains("of 4 walks"), "{floor}");
+    assert!(
+        floor.contains("of 4 creatures (most of their walks)"),
+        "{floor}"
+    );
+    for setting in ["4x4x1/4x8", "1x2x3/2x4"] {
+        let row = out
+            .lines()
+            .find(|l| l.starts_with(setting))
+            .unwrap_or_else(|| panic!("no {setting} row: {out}"));
+        let fields: Vec<&str> = row.split_whitespace().collect();
+        assert_eq!(fields.len(), 6, "{row}");
+        for rest in &fields[3..5] {
+            let (rested, of) = rest.split_once('/').unwrap_or_else(|| panic!("{row}"));
+            let (rested, of): (usize, usize) = (rested.parse().unwrap(), of.parse().unwrap());
+            assert!(rested <= of && of <= 4, "{row}");
+        }
+    }
+    // The speed rows: the default, the first version's reference and the fast setting.
+    assert!(
+        out.contains("measured: 4 substep(s), 4 iterations × 1 PGS"),
+        "{out}"
+    );
+    assert!(out.contains("reference: 2 substeps, 4 iterations"), "{out}");
+    assert!(
+        out.contains("fast: 1 substep, 2 iterations × 3 PGS"),
+        "{out}"
+    );
+}

@@ -487,18 +487,28 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
         .iter()
         .map(|(b, _)| b.2.iter().filter(|e| rested(e)).count())
         .sum();
+    // A creature is at rest under a setting when most of its walks come to rest (so its
+    // median fitness is a rested walk's).
+    let mostly_rested = |at_rest: usize| 2 * at_rest > runs;
+    let fine_creatures: Vec<bool> = fine_results
+        .iter()
+        .map(|(b, _)| mostly_rested(b.1))
+        .collect();
+    let fine_creatures_rested = fine_creatures.iter().filter(|&&r| r).count();
     say!(
-        "noise floor, fine against fine from other drop heights: {:.3} (medians), {:.3} (single walks); the fine reference brings {fine_rested} of {} walks to rest",
+        "noise floor, fine against fine from other drop heights: {:.3} (medians), {:.3} (single walks); the fine reference brings {fine_rested} of {} walks and {fine_creatures_rested} of {} creatures (most of their walks) to rest",
         spearman(&floor, &reference),
         spearman(&first_floor, &first_fine),
-        creatures.len() * runs
+        creatures.len() * runs,
+        creatures.len()
     );
     say!(
-        "{:<16} {:>10} {:>10} {:>16} {:>10}",
+        "{:<16} {:>10} {:>10} {:>16} {:>18} {:>10}",
         "setting",
         "Spearman",
         "single",
         "rested of fine's",
+        "creatures rested",
         "cost"
     );
     let mut default_cost = None;
@@ -542,12 +552,18 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
                 }
             }
         }
+        let creatures_rested = results
+            .iter()
+            .zip(&fine_creatures)
+            .filter(|(a, fine_rests)| **fine_rests && mostly_rested(a.1))
+            .count();
         say!(
-            "{:<16} {:>10.3} {:>10.3} {:>16} {:>9.2}×",
+            "{:<16} {:>10.3} {:>10.3} {:>16} {:>18} {:>9.2}×",
             setting_name(setting),
             spearman(&measured, &reference),
             spearman(&first_measured, &first_fine),
             format!("{both_rested}/{fine_rested}"),
+            format!("{creatures_rested}/{fine_creatures_rested}"),
             cost / default_cost
         );
     }

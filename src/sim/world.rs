@@ -82,13 +82,13 @@ pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 
 /// The default [`SimOptions::energy_tolerance`] (J/kg): the energy a creature may gain from
 /// nothing within about [`ENERGY_WINDOW`], what lifting it by 1 m takes: three times the
-/// most the shipped and random creatures reach at the default setting (3.2 J/kg), well
+/// most the shipped and random creatures reach at the fast setting ([`SimOptions::fast`], 3.2 J/kg), well
 /// below what the exploits evolution found reach (27 J/kg). See the README's "energy audit".
 pub const ENERGY_TOLERANCE: f64 = 10.0;
 
 /// A joint gap (m) beyond which `ontogeny eval` warns that the step setting is too coarse for
 /// the creature: the fine reference keeps the evolved walkers measured under 1.1 cm, while
-/// the champions that exploit the default setting reach 7 to 23 cm. See the README's
+/// the champions that exploited the fast setting reach 7 to 23 cm. See the README's
 /// "Speed and fidelity".
 pub const JOINT_GAP_WARNING: f64 = 0.05;
 
