@@ -291,10 +291,10 @@ fn grow_writes_the_creature_its_frames_and_pictures() {
     assert!(out.status.success(), "{}", stderr(&out));
     let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(summary["parts"], 11);
-    assert_eq!(summary["joints"]["revolute"], 4);
-    assert_eq!(summary["joints"]["twist"], 4);
+    assert_eq!(summary["joints"]["revolute"], 8);
+    assert_eq!(summary["joints"]["rigid"], 2);
     assert_eq!(summary["actuators"], 8);
-    assert_eq!(summary["sensors"], 4);
+    assert_eq!(summary["sensors"], 0);
     assert_eq!(summary["valid"], true);
     let creature: ontogeny::creature::Creature =
         serde_json::from_str(&std::fs::read_to_string(dir.join("creature.json")).unwrap()).unwrap();
