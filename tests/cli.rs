@@ -191,6 +191,41 @@ fn check_reports_rules_that_never_fire_and_unused_parameters() {
 }
 
 #[test]
+fn check_reports_brackets_a_successor_or_the_axiom_leaves_unpaired() {
+    let path = temp_file(
+        "brackets.lsys",
+        "axiom: A ]\nA --> [ B\nB --> C ] ]\nC --> [ D ] [ E ]\n",
+    );
+    let out = ontogeny(&["check", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("findings (4):"), "{text}");
+    assert!(
+        text.contains(":1:10: ']' closes a branch the axiom did not open"),
+        "{text}"
+    );
+    assert!(
+        text.contains(":2:7: '[' is not closed in this successor"),
+        "{text}"
+    );
+    assert!(
+        text.contains(":3:9: ']' closes a branch this successor did not open"),
+        "{text}"
+    );
+    assert!(text.contains(":3:11: ']' closes a branch"), "{text}");
+    let out = ontogeny(&["check", path.to_str().unwrap(), "--json"]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(
+        report["findings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|f| f["kind"] == "unbalanced-brackets"),
+        "{report}"
+    );
+}
+
+#[test]
 fn help_describes_every_verb() {
     let out = ontogeny(&["--help"]);
     let text = stdout(&out);

@@ -22,6 +22,9 @@ pub enum FindingKind {
     UnusedConstant,
     /// A word read as several modules.
     SplitWord,
+    /// A successor or the axiom whose `[` and `]` do not pair up: the derived string is
+    /// balanced only if other rules close (or open) the branch.
+    UnbalancedBrackets,
 }
 
 /// One thing `check` has to say about a place in the file.
@@ -218,6 +221,38 @@ impl LSystem {
                     FindingKind::UnusedConstant,
                     *span,
                     format!("constant '{name}' is never used"),
+                );
+            }
+        }
+
+        // Branches a successor (or the axiom) opens and does not close, or closes unopened.
+        let successors = file
+            .axiom
+            .iter()
+            .map(|(calls, _)| ("the axiom", calls))
+            .chain(file.rules.iter().map(|r| ("this successor", &r.successor)));
+        for (whose, calls) in successors {
+            let mut open = Vec::new();
+            for call in calls {
+                match call.name.as_str() {
+                    "[" => open.push(call.span),
+                    "]" if open.pop().is_none() => push(
+                        FindingKind::UnbalancedBrackets,
+                        call.span,
+                        format!(
+                            "']' closes a branch {whose} did not open (the builder ignores it, with a warning, unless a module before it opened one)"
+                        ),
+                    ),
+                    _ => {}
+                }
+            }
+            for span in open {
+                push(
+                    FindingKind::UnbalancedBrackets,
+                    span,
+                    format!(
+                        "'[' is not closed in {whose} (unless a later module closes it, the branch runs to the end of the string, and the builder warns)"
+                    ),
                 );
             }
         }
