@@ -139,8 +139,11 @@ fn browser() -> Option<PathBuf> {
 /// The page at `url` once loaded and drawn in headless Chromium: its body's `data-*`
 /// attributes and its title.
 struct Page {
+    /// The body's opening tag, with its `data-` attributes.
     body: String,
     title: String,
+    /// The whole document as Chromium left it.
+    dom: String,
 }
 
 impl Page {
@@ -172,7 +175,7 @@ impl Page {
             .and_then(|(_, t)| t.split_once("</title>"))
             .map(|(t, _)| t.to_string())
             .unwrap_or_default();
-        Page { body, title }
+        Page { body, title, dom }
     }
 
     /// A `data-NAME` attribute of the body.
@@ -455,6 +458,17 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
         assert_eq!(page.number("individual"), individual.index as usize);
         assert_eq!(page.number("parts"), individual.parts as usize);
     }
+    // Failed individuals show a dash, not the failure floor (−999999 as −1.00e+6).
+    let page = Page::load(&browser, &format!("{}?gen=0", viewer.url));
+    page.assert_ready();
+    let failed = generation0.iter().filter(|i| i.status != "ok").count();
+    assert!(failed > 0, "the test wants a failed individual in generation 0");
+    assert!(!page.dom.contains("e+6"), "{}", page.dom);
+    assert!(
+        page.dom.matches("<td>\u{2014}</td>").count() >= failed,
+        "{failed} failed: {}",
+        page.dom
+    );
     // A generation the run does not have: said, and the page is ready.
     let page = Page::load(&browser, &format!("{}?gen=7", viewer.url));
     assert_eq!(page.data("ready").as_deref(), Some("yes"), "{}", page.body);

@@ -570,7 +570,7 @@ function showRun(data) {
     for (const ind of list.individuals) {
       const tr = document.createElement('tr');
       tr.className = 'clickable';
-      tr.innerHTML = `<td>${ind.rank}</td><td>${ind.index}</td><td>${fmt(ind.fitness)}</td><td>${escape(ind.status)}</td><td>${ind.parts}</td>`;
+      tr.innerHTML = `<td>${ind.rank}</td><td>${ind.index}</td><td>${fitnessText(ind)}</td><td>${escape(ind.status)}</td><td>${ind.parts}</td>`;
       tr.addEventListener('click', () => openIndividual(gen, ind, tr));
       t.appendChild(tr);
       byIndex[ind.index] = [ind, tr];
@@ -589,7 +589,7 @@ function showRun(data) {
       frame(box, Math.min(box.min.y, 0));
       drawCreature(c);
       drawBrain(c.brain);
-      describe(c, [`generation ${gen}, individual ${ind.index} (rank ${ind.rank})`, `fitness: ${fmt(ind.fitness)}`, `status: ${ind.status}`]);
+      describe(c, [`generation ${gen}, individual ${ind.index} (rank ${ind.rank})`, ind.status === 'ok' ? `fitness: ${fmt(ind.fitness)}` : `fitness: ${ind.fitness} (the failure floor)`, `status: ${ind.status}`]);
       body.dataset.generation = String(gen);
       body.dataset.individual = String(ind.index);
     } catch (e) {
@@ -644,6 +644,12 @@ function escape(text) {
   const span = document.createElement('span');
   span.textContent = String(text);
   return span.innerHTML;
+}
+
+// An individual's fitness as the run table shows it: a failed evaluation scores the failure
+// floor, which says nothing the status column does not, so it shows as a dash.
+function fitnessText(ind) {
+  return ind.status === 'ok' ? fmt(ind.fitness) : '—';
 }
 
 function fmt(x) {
