@@ -270,7 +270,7 @@ fn new_nodes_and_joint_mutations_draw_from_the_configured_joint_set() {
     // Chaumont 5.1: one degree of freedom per joint by default; `sims` allows all seven kinds.
     let kinds_seen = |joints: JointSet| {
         let limits = GraphLimits {
-            joints,
+            joint_kinds: joints,
             ..GraphLimits::default()
         };
         let mut seen = std::collections::BTreeSet::new();
@@ -295,9 +295,9 @@ fn new_nodes_and_joint_mutations_draw_from_the_configured_joint_set() {
     let sims = kinds_seen(JointSet::Sims);
     assert_eq!(sims.len(), 7, "Sims' seven kinds all appear: {sims:?}");
     // The key as a config writes it.
-    let limits: GraphLimits = toml::from_str("joints = \"sims\"").unwrap();
-    assert_eq!(limits.joints, JointSet::Sims);
-    assert!(toml::from_str::<GraphLimits>("joints = \"two-axis\"").is_err());
+    let limits: GraphLimits = toml::from_str("joint_kinds = \"sims\"").unwrap();
+    assert_eq!(limits.joint_kinds, JointSet::Sims);
+    assert!(toml::from_str::<GraphLimits>("joint_kinds = \"two-axis\"").is_err());
 }
 
 #[test]
@@ -450,7 +450,7 @@ fn small_limits() -> impl Strategy<Value = GraphLimits> {
                     max_global_neurons: global,
                     max_inputs: inputs,
                     regenerate_tries: 2,
-                    joints: if sims {
+                    joint_kinds: if sims {
                         JointSet::Sims
                     } else {
                         JointSet::OneAxis
@@ -635,6 +635,23 @@ fn evolve_with_the_graph_encoding_runs_resumes_and_throws() {
     // Lengthen the run to two generations, then resume it.
     let config = out.join("config.toml");
     let text = std::fs::read_to_string(&config).unwrap();
+    // The run's config names its joint kinds; one written before the key existed (the
+    // line removed) is read as the seven kinds that run drew from.
+    let read = |text: &str| {
+        let source = ontogeny::lang::Source::new("config.toml", text);
+        ontogeny::evolve::config::read_run_config::<GraphLimits>(&source)
+            .unwrap()
+            .limits
+            .joint_kinds
+    };
+    assert!(text.contains("joint_kinds = \"one-axis\""), "{text}");
+    assert_eq!(read(&text), JointSet::OneAxis);
+    let older: String = text
+        .lines()
+        .filter(|l| !l.starts_with("joint_kinds"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_eq!(read(&older), JointSet::Sims);
     std::fs::write(&config, text.replace("generations = 1", "generations = 2")).unwrap();
     let o = run(&["--resume", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -462,7 +462,10 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     let page = Page::load(&browser, &format!("{}?gen=0", viewer.url));
     page.assert_ready();
     let failed = generation0.iter().filter(|i| i.status != "ok").count();
-    assert!(failed > 0, "the test wants a failed individual in generation 0");
+    assert!(
+        failed > 0,
+        "the test wants a failed individual in generation 0"
+    );
     assert!(!page.dom.contains("e+6"), "{}", page.dom);
     assert!(
         page.dom.matches("<td>\u{2014}</td>").count() >= failed,

@@ -87,7 +87,7 @@ pub struct GraphLimits {
     pub regenerate_tries: usize,
     /// The joint kinds of new nodes and joint mutations: `one-axis` (default, Chaumont 5.1)
     /// or `sims` (all seven). A genome that holds other kinds still loads and keeps them.
-    pub joints: JointSet,
+    pub joint_kinds: JointSet,
     /// What the creatures are for: set from the task when a run is assembled, never written.
     #[serde(skip)]
     pub purpose: Purpose,
@@ -104,7 +104,7 @@ impl Default for GraphLimits {
             max_global_neurons: 4,
             max_inputs: 3,
             regenerate_tries: 10,
-            joints: JointSet::OneAxis,
+            joint_kinds: JointSet::OneAxis,
             purpose: Purpose::Locomotion,
         }
     }
@@ -470,7 +470,7 @@ fn random_connection(nodes: usize, limits: &GraphLimits, root: bool, rng: &mut R
 /// A random node with no connections: one effector neuron per degree of freedom (as room
 /// allows), perhaps a hidden neuron.
 fn random_node(globals: usize, limits: &GraphLimits, rng: &mut Rng) -> Node {
-    let joint = limits.joints.random(rng);
+    let joint = limits.joint_kinds.random(rng);
     let dof = joint.dof();
     let recursive_limit = if rng.random_bool(0.5) {
         1
@@ -834,7 +834,7 @@ impl GraphGenome {
                 }
             }
             if rng.random_bool(rate) {
-                node.joint = limits.joints.random(rng);
+                node.joint = limits.joint_kinds.random(rng);
                 let dof = node.joint.dof();
                 node.limits.truncate(dof);
                 let more = random_limits(dof - node.limits.len(), rng);

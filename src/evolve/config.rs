@@ -162,9 +162,29 @@ pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>
     toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))
 }
 
-/// Reads a run directory's full `config.toml`.
+/// Reads a run directory's full `config.toml`. The file is written in full when a run starts,
+/// so a key it lacks was added to the program later, and the run keeps what it ran with: a
+/// `graph` run begun before `[limits] joint_kinds` existed drew all of Sims' joint kinds and
+/// resumes with `joint_kinds = "sims"`.
 pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
-    toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))
+    let mut table: toml::Table =
+        toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
+    let is_graph = table.get("encoding").and_then(|e| e.as_str()) == Some("graph");
+    let limits = table.get_mut("limits").and_then(|l| l.as_table_mut());
+    match limits {
+        Some(limits) if is_graph && !limits.contains_key("joint_kinds") => {
+            limits.insert("joint_kinds".into(), toml::Value::String("sims".into()));
+            toml::Value::Table(table)
+                .try_into()
+                .map_err(|e: toml::de::Error| {
+                    Diagnostic::without_location(
+                        DiagnosticKind::Semantic,
+                        format!("{}: {}", source.name(), e.message()),
+                    )
+                })
+        }
+        _ => toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e)),
+    }
 }
 
 impl<L: Serialize> RunConfig<L> {
