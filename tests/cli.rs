@@ -958,7 +958,10 @@ fn bench_fidelity_ranks_settings_and_counts_walks_and_creatures_at_rest() {
         out.contains("measured: 4 substep(s), 4 iterations × 1 PGS"),
         "{out}"
     );
-    assert!(out.contains("reference: 2 substeps, 4 iterations"), "{out}");
+    assert!(
+        out.contains("first version: 2 substeps, 4 iterations"),
+        "{out}"
+    );
     assert!(
         out.contains("fast: 1 substep, 2 iterations × 3 PGS"),
         "{out}"
