@@ -64,7 +64,7 @@ pub struct PhysicsArgs {
     /// Actuator model.
     #[arg(long, value_enum, default_value = "muscle")]
     actuator: ActuatorArg,
-    /// Physics and control time step in seconds, in (0, 0.1].
+    /// Control time step in seconds, in (0, 0.1]; the physics runs `--substeps` times per step.
     #[arg(long, default_value_t = SimOptions::default().dt)]
     time_step: f64,
     /// Physics substeps per control step, 1 to 64.

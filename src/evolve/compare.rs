@@ -540,8 +540,8 @@ pub fn write_report(
          median parts, joints and neurons, and median distinct part shapes per part (lower is \
          more regular). \"At the fine reference\": the mean of the replicates' final \
          champions walked again with 4 physics substeps of 8 solver iterations (the stored \
-         best comes from the evaluator's faster default stepping; a much lower value means \
-         the champions exploit it), over the replicates that recorded it when fewer.\n"
+         best comes from the run's own stepping, 4 substeps of 4 iterations by default; a \
+         much lower value means the champions exploit it, or were lucky), over the replicates that recorded it when fewer.\n"
     );
     let _ = writeln!(
         md,

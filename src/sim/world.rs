@@ -100,7 +100,8 @@ pub const ENERGY_WINDOW: f64 = 0.5;
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SimOptions {
-    /// Control (and physics) step in seconds.
+    /// Control step in seconds: the brain runs once per step; physics runs `substeps`
+    /// times per step, at `dt / substeps`.
     pub dt: f64,
     /// Physics substeps per control step.
     pub substeps: usize,
@@ -154,11 +155,12 @@ impl Default for SimOptions {
             dt: 1.0 / 60.0,
             // Physics at 1/240 s: 4 substeps of 4 solver iterations (one PGS pass each) while
             // walking, 4 substeps of 8 iterations (the fine reference's own setting) while a
-            // task waits for rest. Evolution exploits anything coarser: the champions evolved
-            // at the faster `SimOptions::fast` setting lose most of their distance at the fine
-            // reference, those evolved at this one keep it, and this setting ranks random
-            // creatures as alike to the fine reference as the reference does to itself (see
-            // `ontogeny bench --fidelity` and the README's "Speed and fidelity").
+            // task waits for rest. The champions evolved at the faster `SimOptions::fast`
+            // setting lost most of their distance at the fine reference; those of the few runs
+            // evolved at this one kept most of theirs (lucky walks aside), and this setting
+            // ranks random creatures about as alike to the fine reference as the reference
+            // ranks them to itself (see `ontogeny bench --fidelity` and the README's "Speed
+            // and fidelity").
             substeps: 4,
             solver_iterations: 4,
             pgs_iterations: 1,
@@ -183,8 +185,8 @@ impl Default for SimOptions {
 impl SimOptions {
     /// The fast setting, the default until evolution was found to exploit it: one physics
     /// step of 1/60 s with 2 solver iterations of 3 Gauss-Seidel passes while walking, 2
-    /// substeps of 4 iterations while waiting for rest; everything else as `self`. About 3.7×
-    /// cheaper than the default per walk, and good for ranking random creatures
+    /// substeps of 4 iterations while waiting for rest; everything else as `self`. About 4×
+    /// cheaper than the default per walk (3.6× with the rest phases, 4.7× controller on), and good for ranking random creatures
     /// (`bench --fidelity`), but evolved creatures learn to walk on its errors (README,
     /// "Speed and fidelity").
     pub fn fast(&self) -> SimOptions {
