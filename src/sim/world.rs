@@ -186,9 +186,9 @@ impl SimOptions {
     /// The fast setting, the default until evolution was found to exploit it: one physics
     /// step of 1/60 s with 2 solver iterations of 3 Gauss-Seidel passes while walking, 2
     /// substeps of 4 iterations while waiting for rest; everything else as `self`. About 4×
-    /// cheaper than the default per walk (3.6× with the rest phases, 4.7× controller on), and good for ranking random creatures
-    /// (`bench --fidelity`), but evolved creatures learn to walk on its errors (README,
-    /// "Speed and fidelity").
+    /// cheaper than the default per walk (3.6× with the rest phases, 4.7× controller on),
+    /// and good for ranking random creatures (`bench --fidelity`), but evolved creatures
+    /// learn to walk on its errors (README, "Speed and fidelity").
     pub fn fast(&self) -> SimOptions {
         SimOptions {
             substeps: 1,
