@@ -52,11 +52,13 @@ fn an_exploit_of_the_fast_setting_shows_in_its_joint_gap_and_fails_at_the_defaul
         "--rest-solver-iterations",
         "4",
     ];
-    let (distance, gap, stderr) = walk(&fast);
+    let (distance, gap, stderr) = walk(&["--fast"]);
     assert!(
         distance > 50.0,
         "the exploit walks {distance} m at the fast setting"
     );
+    // `--fast` is those five flags.
+    assert_eq!(walk(&fast).0, distance);
     assert!(gap > ontogeny::sim::JOINT_GAP_WARNING, "gap {gap} m");
     assert!(
         stderr.contains("warning: the solver let a joint come") && stderr.contains("cm apart"),
@@ -81,6 +83,19 @@ fn an_exploit_of_the_fast_setting_shows_in_its_joint_gap_and_fails_at_the_defaul
         assert!(gap < 0.01, "gap {gap} m at {setting}");
         assert!(!stderr.contains("warning: the solver"), "{stderr}");
     }
+    // ... and it does not mix with them.
+    let out = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args([
+            "eval",
+            "tests/fixtures/exploit-walker.json",
+            "--task",
+            "walker",
+        ])
+        .args(["--fast", "--substeps", "2"])
+        .output()
+        .expect("run ontogeny");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("'--fast' cannot be used with"));
 }
 
 #[test]
