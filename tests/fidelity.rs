@@ -7,21 +7,24 @@
 
 use std::process::Command;
 
-/// `ontogeny eval` of the fixture with `extra` flags: (fitness, joint gap, stderr).
-fn walk(extra: &[&str]) -> (f64, f64, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+/// `ontogeny eval` of the fixture on the walker task, scored by distance, with `extra` flags.
+fn eval_fixture(extra: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
         .args([
             "eval",
             "tests/fixtures/exploit-walker.json",
             "--task",
             "walker",
-            "--fitness",
-            "distance",
-            "--json",
         ])
+        .args(["--fitness", "distance", "--json"])
         .args(extra)
         .output()
-        .expect("run ontogeny");
+        .expect("run ontogeny")
+}
+
+/// The fixture's evaluation with `extra` flags: (fitness, joint gap, stderr).
+fn walk(extra: &[&str]) -> (f64, f64, String) {
+    let out = eval_fixture(extra);
     assert!(
         out.status.success(),
         "{}",
@@ -84,16 +87,7 @@ fn an_exploit_of_the_fast_setting_shows_in_its_joint_gap_and_fails_at_the_defaul
         assert!(!stderr.contains("warning: the solver"), "{stderr}");
     }
     // ... and it does not mix with them.
-    let out = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args([
-            "eval",
-            "tests/fixtures/exploit-walker.json",
-            "--task",
-            "walker",
-        ])
-        .args(["--fast", "--substeps", "2"])
-        .output()
-        .expect("run ontogeny");
+    let out = eval_fixture(&["--fast", "--substeps", "2"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("'--fast' cannot be used with"));
 }
