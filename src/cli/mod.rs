@@ -94,8 +94,9 @@ enum Verb {
     Runs(evolve::RunsArgs),
     /// Inspect genome files (`genome show FILE`: a graph genome, readably).
     Genome(genome::GenomeArgs),
-    /// Measure the evaluator on this machine: evaluations per second on one core and on all
-    /// cores, its overhead over rapier's own stepping, and impulse against multibody joints.
+    /// Measure the evaluator on this machine: evaluations per second on one core (the setting
+    /// measured, the first version's and the fast one) and on all cores, its overhead over
+    /// rapier's own stepping, and impulse against multibody joints.
     Bench(bench::BenchArgs),
     /// Show a creature in the browser: an `.lsys` file growing (reloaded when saved), a
     /// recording playing, or a run's fitness and individuals; or render it to a PNG.
