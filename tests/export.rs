@@ -551,7 +551,8 @@ fn the_command_writes_to_standard_output_or_a_file() {
     .unwrap();
     assert_eq!(printed, expected);
 
-    let dir = std::env::temp_dir().join(format!("ontogeny-export-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("export-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("thrower.xml");
     let out = ontogeny(&[
@@ -594,7 +595,8 @@ fn the_command_writes_to_standard_output_or_a_file() {
 #[test]
 fn the_command_reads_a_creature_json() {
     let c = grown("examples/quadruped.lsys");
-    let dir = std::env::temp_dir().join(format!("ontogeny-export-json-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("export-json-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("creature.json");
     std::fs::write(&path, serde_json::to_string(&c).unwrap()).unwrap();
@@ -612,7 +614,8 @@ fn the_command_reads_a_creature_json() {
 
 #[test]
 fn bad_input_exits_2_with_a_message() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-export-bad-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("export-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let garbage = dir.join("garbage.json");
     std::fs::write(&garbage, "{\"parts\": 3}").unwrap();
