@@ -406,13 +406,18 @@ fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> a
     );
     for e in &r.encodings {
         say!(
-            "  {:<20} n {:>3}  best {:.4} ± {:.4} (sd {:.4}; at the fine reference {:.4})  parts {}  shapes/part {:.3}",
+            "  {:<20} n {:>3}  best {:.4} ± {:.4} (sd {:.4}; at the fine reference {:.4}{})  parts {}  shapes/part {:.3}",
             e.encoding,
             e.replicates,
             e.best.mean,
             e.best.ci95,
             e.best.sd,
             e.mean_fine,
+            if e.fine_failed > 0 {
+                format!(", {} re-walk(s) failed", e.fine_failed)
+            } else {
+                String::new()
+            },
             e.median_parts,
             e.median_shapes_per_part
         );

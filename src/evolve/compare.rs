@@ -365,10 +365,13 @@ pub struct EncodingSummary {
     /// The replicates' best fitness.
     pub best: stats::Summary,
     /// The mean of the replicates' final champions re-walked at the fine reference setting
-    /// ([`Champion::fine_fitness`]), over those that were (NaN if none).
+    /// ([`Champion::fine_fitness`]), over those that were and whose re-walk did not fail (NaN
+    /// if none): a failed re-walk scores the failure floor, which would swamp the mean.
     pub mean_fine: f64,
     /// How many replicates' champions were re-walked at the fine reference.
     pub fine_replicates: usize,
+    /// How many of those re-walks failed (scored the failure floor: unstable, exploded, ...).
+    pub fine_failed: usize,
     /// The champions' median parts, joints and neurons.
     pub median_parts: f64,
     /// See `median_parts`.
@@ -424,10 +427,15 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
             };
             let evaluations: u64 = rs.iter().map(|r| r.evaluations).sum();
             let wall: f64 = rs.iter().map(|r| r.wall_seconds).sum();
-            let fine: Vec<f64> = rs
+            let walked: Vec<f64> = rs
                 .iter()
                 .map(|r| r.champion.fine_fitness)
                 .filter(|f| !f.is_nan())
+                .collect();
+            let fine: Vec<f64> = walked
+                .iter()
+                .copied()
+                .filter(|&f| f > crate::task::FAILURE_FITNESS)
                 .collect();
             EncodingSummary {
                 encoding: e.clone(),
@@ -438,7 +446,8 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
                 } else {
                     fine.iter().sum::<f64>() / fine.len() as f64
                 },
-                fine_replicates: fine.len(),
+                fine_replicates: walked.len(),
+                fine_failed: walked.len() - fine.len(),
                 median_parts: pick(|c| c.parts as f64),
                 median_joints: pick(|c| c.joints as f64),
                 median_neurons: pick(|c| c.neurons as f64),
@@ -555,15 +564,23 @@ pub fn write_report(
             e.encoding,
             e.replicates,
             num(e.best.mean, 4),
-            if e.fine_replicates == e.replicates || e.fine_replicates == 0 {
-                num(e.mean_fine, 4)
-            } else {
-                format!(
+            match (
+                e.fine_replicates == e.replicates || e.fine_replicates == 0,
+                e.fine_failed
+            ) {
+                (true, 0) => num(e.mean_fine, 4),
+                (false, 0) => format!(
                     "{} ({} of {})",
                     num(e.mean_fine, 4),
                     e.fine_replicates,
                     e.replicates
-                )
+                ),
+                (_, failed) => format!(
+                    "{} ({} of {}; {failed} failed)",
+                    num(e.mean_fine, 4),
+                    e.fine_replicates - failed,
+                    e.replicates
+                ),
             },
             num(e.best.sd, 4),
             num(e.best.mean - e.best.ci95, 4),
@@ -803,13 +820,16 @@ mod tests {
         // Replicate 1 of c was not re-walked at the fine reference (an old run).
         let mut unverified = replicate("c", 1, 1.5, 1);
         unverified.champion.fine_fitness = f64::NAN;
+        // b's third champion did not come to rest at the fine reference: the failure floor.
+        let mut failed = replicate("b", 3, 6.0, 2);
+        failed.champion.fine_fitness = crate::task::FAILURE_FITNESS;
         let reps = vec![
             replicate("a", 1, 1.0, 3),
             replicate("a", 2, 2.0, 5),
             replicate("a", 3, 3.0, 9),
             replicate("b", 1, 4.0, 1),
             replicate("b", 2, 5.0, 1),
-            replicate("b", 3, 6.0, 2),
+            failed,
             unverified,
             replicate("c", 2, 2.5, 1),
             replicate("c", 3, 3.5, 2),
@@ -825,6 +845,13 @@ mod tests {
         // c's over its two verified replicates: (2.5 + 3.5) / 4 / 2.
         let c = &r.encodings[2];
         assert_eq!((c.mean_fine, c.fine_replicates), (0.75, 2));
+        // b's over the two re-walks that did not fail: (4 + 5) / 4 / 2; one failed.
+        let b = &r.encodings[1];
+        assert_eq!(
+            (b.mean_fine, b.fine_replicates, b.fine_failed),
+            (1.125, 3, 1)
+        );
+        assert_eq!((a.fine_failed, c.fine_failed), (0, 0));
         assert_eq!(a.median_parts, 5.0);
         assert_eq!(a.median_joints, 4.0);
         assert_eq!(a.median_neurons, 10.0);
