@@ -7,6 +7,20 @@
 
 use std::process::Command;
 
+/// The fine reference setting as `eval` flags (`SimOptions::fine_reference`).
+const FINE: [&str; 10] = [
+    "--substeps",
+    "4",
+    "--solver-iterations",
+    "8",
+    "--pgs-iterations",
+    "1",
+    "--rest-substeps",
+    "4",
+    "--rest-solver-iterations",
+    "8",
+];
+
 /// `ontogeny eval` of the fixture on the walker task, scored by distance, with `extra` flags.
 fn eval_fixture(extra: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_ontogeny"))
@@ -68,19 +82,7 @@ fn an_exploit_of_the_fast_setting_shows_in_its_joint_gap_and_fails_at_the_defaul
         "{stderr}"
     );
 
-    let fine = [
-        "--substeps",
-        "4",
-        "--solver-iterations",
-        "8",
-        "--pgs-iterations",
-        "1",
-        "--rest-substeps",
-        "4",
-        "--rest-solver-iterations",
-        "8",
-    ];
-    for (setting, flags) in [("the default", &[][..]), ("the fine reference", &fine[..])] {
+    for (setting, flags) in [("the default", &[][..]), ("the fine reference", &FINE[..])] {
         let (distance, gap, stderr) = walk(flags);
         assert!(distance < 5.0, "{setting} walks it {distance} m");
         assert!(gap < 0.01, "gap {gap} m at {setting}");
@@ -103,14 +105,9 @@ fn a_resting_creature_keeps_its_joints_together() {
             "walker",
             "--seconds",
             "2",
-            "--substeps",
-            "4",
-            "--solver-iterations",
-            "8",
-            "--pgs-iterations",
-            "1",
             "--json",
         ])
+        .args(FINE)
         .output()
         .expect("run ontogeny");
     assert!(out.status.success());
