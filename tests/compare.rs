@@ -422,7 +422,7 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
             .arg(&out)
             .output()
             .unwrap(),
-        "is not replicate 1 of this comparison: its task.walker differs",
+        "is not replicate 1 of this comparison: its task.walker.seconds differs",
     );
     refused(
         &ontogeny()
@@ -443,5 +443,57 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
         .output()
         .unwrap());
     assert_eq!(numbers(&out), before);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_second_process_on_a_comparison_is_refused_at_once_naming_the_holder() {
+    let dir = scratch("locked");
+    let out = dir.join("cmp");
+    let mut first = ontogeny()
+        .args([
+            "compare",
+            "--encodings",
+            "direct",
+            "--replicates",
+            "2",
+            "--evaluations",
+            "100000",
+            "--pop",
+            "6",
+            "--seconds",
+            "1",
+            "--out",
+        ])
+        .arg(&out)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let holder = format!("pid {}:", first.id());
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    // The holder locks the directory, then writes compare.toml.
+    while !(std::fs::read_to_string(out.join(".lock")).is_ok_and(|h| h.starts_with(&holder))
+        && out.join("compare.toml").is_file())
+    {
+        assert!(std::time::Instant::now() < deadline, "no lock taken");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let resumed = ontogeny()
+        .args(["compare", "--resume"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let merged = ontogeny()
+        .args(["compare", "--merge"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    first.kill().unwrap();
+    let _ = first.wait();
+    for output in [&resumed, &merged] {
+        refused(output, "is in use by another ontogeny process");
+        refused(output, &holder);
+    }
     let _ = std::fs::remove_dir_all(dir);
 }

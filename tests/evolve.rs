@@ -756,3 +756,235 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
     assert_eq!(resumed_with_marker(1), [&whole[..1], &[123.0; 3]].concat());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Runs `ontogeny evolve --resume DIR`.
+fn resume(dir: &Path) -> Output {
+    ontogeny()
+        .args(["evolve", "--resume"])
+        .arg(dir)
+        .output()
+        .unwrap()
+}
+
+fn succeeded(output: &Output) {
+    assert!(
+        output.status.success(),
+        "{}\n{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+fn refused_with(output: &Output, words: &str) {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(words), "expected {words:?} in: {stderr}");
+}
+
+#[test]
+fn a_resume_whose_config_was_edited_is_refused_naming_the_keys_and_changes_nothing() {
+    let dir = scratch("edited");
+    let run = dir.join("run");
+    succeeded(&run_of("direct", &run, "2", &[]));
+    let config = std::fs::read_to_string(run.join("config.toml")).unwrap();
+    let edited = config
+        .replace("seed = 5\n", "seed = 6\n")
+        .replace("population = 12\n", "population = 13\n");
+    assert_ne!(edited, config);
+    std::fs::write(run.join("config.toml"), &edited).unwrap();
+    let before = contents(&run);
+    let database = std::fs::read(run.join("run.sqlite")).unwrap();
+    refused_with(
+        &resume(&run),
+        "ga.population, seed differ from the settings",
+    );
+    assert_eq!(contents(&run), before);
+    assert_eq!(std::fs::read(run.join("run.sqlite")).unwrap(), database);
+    // A change that does not change a setting (a comment, the layout) is no change.
+    std::fs::write(run.join("config.toml"), format!("# my notes\n\n{config}")).unwrap();
+    succeeded(&resume(&run));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Waits until the process `pid` holds the lock of `dir` (it wrote itself into `.lock`) and
+/// has made its run's store.
+fn wait_for_lock(dir: &Path, pid: u32) {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while !(std::fs::read_to_string(dir.join(".lock"))
+        .is_ok_and(|holder| holder.starts_with(&format!("pid {pid}:")))
+        && dir.join("config.toml").is_file())
+    {
+        assert!(std::time::Instant::now() < deadline, "no lock taken");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn a_second_process_on_a_run_directory_is_refused_at_once_naming_the_holder() {
+    let dir = scratch("locked");
+    let run = dir.join("run");
+    let mut first = evolve_command("direct", &run, "1000", &[])
+        .stderr(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    wait_for_lock(&run, first.id());
+    let holder = format!("pid {}", first.id());
+    // Another start on the same directory, and a resume while it runs.
+    let again = run_of("direct", &run, "1000", &[]);
+    let resumed = resume(&run);
+    first.kill().unwrap();
+    let _ = first.wait();
+    for output in [&again, &resumed] {
+        refused_with(output, "is in use by another ontogeny process");
+        refused_with(output, &holder);
+    }
+    // The lock dies with its holder, however it died.
+    ontogeny::evolve::lock::DirectoryLock::acquire(&run).unwrap();
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// The `config.toml` of the run in `dir`.
+fn config_text(dir: &Path) -> String {
+    std::fs::read_to_string(dir.join("config.toml")).unwrap()
+}
+
+#[test]
+fn every_state_a_killed_start_leaves_is_one_resume_completes() {
+    let dir = scratch("start-states");
+    let whole = dir.join("whole");
+    succeeded(&run_of("lsystem", &whole, "2", &[]));
+    let config = config_text(&whole);
+    // An older ontogeny wrote config.toml first, then created the store in place: killed
+    // in between, it left config.toml alone, or beside an empty file, or beside an SQLite
+    // file in WAL mode with no table yet.
+    let alone = dir.join("config-alone");
+    let empty = dir.join("empty-store");
+    let tableless = dir.join("tableless-store");
+    for d in [&alone, &empty, &tableless] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join("config.toml"), &config).unwrap();
+    }
+    std::fs::write(empty.join("run.sqlite"), b"").unwrap();
+    {
+        let conn = rusqlite::Connection::open(tableless.join("run.sqlite")).unwrap();
+        conn.pragma_update(None, "journal_mode", "WAL").unwrap();
+    }
+    // This ontogeny creates the store whole, then config.toml: killed in between, the store
+    // alone (with no generation yet).
+    let store_alone = dir.join("store-alone");
+    {
+        let source = ontogeny::lang::Source::new("config.toml", config.clone());
+        let run_config = ontogeny::evolve::config::read_run_config(&source).unwrap();
+        Run::<LSystemGenome>::start(&store_alone, run_config, None).unwrap();
+    }
+    std::fs::remove_file(store_alone.join("config.toml")).unwrap();
+    for d in [&alone, &empty, &tableless, &store_alone] {
+        // `--out` refuses it as a run, and `--resume` completes it.
+        refused_with(&run_of("lsystem", d, "2", &[]), "already holds a run");
+        succeeded(&resume(d));
+        assert_eq!(contents(d), contents(&whole), "{}", d.display());
+        assert_eq!(config_text(d), config, "{}", d.display());
+    }
+    // Killed while building the store under its temporary name: no run; `--out` starts it.
+    let partial = dir.join("partial");
+    std::fs::create_dir_all(&partial).unwrap();
+    std::fs::write(partial.join("run.sqlite.partial"), b"SQLite format 3\0half").unwrap();
+    refused_with(&resume(&partial), "holds no run");
+    succeeded(&run_of("lsystem", &partial, "2", &[]));
+    assert_eq!(contents(&partial), contents(&whole));
+    assert!(!partial.join("run.sqlite.partial").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `log.txt` without its wall-clock figures (" in 1.2 s").
+fn log_without_times(dir: &Path) -> String {
+    std::fs::read_to_string(dir.join("log.txt"))
+        .unwrap()
+        .lines()
+        .map(|line| {
+            let (head, tail) = line.split_once(" evaluations in ").unwrap();
+            let tail = tail.split_once(" s").map_or("", |(_, rest)| rest);
+            format!("{head} evaluations{tail}\n")
+        })
+        .collect()
+}
+
+#[test]
+fn log_and_plot_are_rewritten_from_the_store_on_every_resume() {
+    // The direct encoding has no crossover: the log counts the children made by mutation
+    // instead, and a resume counts on from the store, not from zero.
+    let dir = scratch("derived");
+    let whole = dir.join("whole");
+    succeeded(&run_of("direct", &whole, "4", &[]));
+    let log = log_without_times(&whole);
+    assert_eq!(log.lines().count(), 4, "{log}");
+    assert!(
+        log.contains("children so far made by mutation instead"),
+        "{log}"
+    );
+    // A kill inside a commit lost the last log line and left the plot a point short; another
+    // process damaged the best file. A resume of the finished run rewrites all three.
+    let damaged = dir.join("damaged");
+    std::fs::create_dir_all(&damaged).unwrap();
+    for file in ["config.toml", "run.sqlite"] {
+        std::fs::copy(whole.join(file), damaged.join(file)).unwrap();
+    }
+    let first_line: String = log.lines().next().unwrap().to_string();
+    std::fs::write(damaged.join("log.txt"), first_line).unwrap();
+    std::fs::write(damaged.join("best.lsys"), "").unwrap();
+    succeeded(&resume(&damaged));
+    assert_eq!(log_without_times(&damaged), log);
+    assert_eq!(
+        std::fs::read_to_string(damaged.join("best.lsys")).unwrap(),
+        std::fs::read_to_string(whole.join("best.lsys"))
+            .unwrap()
+            .replace(&whole.display().to_string(), &damaged.display().to_string())
+    );
+    assert!(damaged.join("fitness.svg").is_file());
+    // Killed after generation 1 and resumed: the same log as the uninterrupted run.
+    let killed = dir.join("killed");
+    succeeded(&run_of("direct", &killed, "4", &[]));
+    {
+        let conn = rusqlite::Connection::open(killed.join("run.sqlite")).unwrap();
+        conn.execute_batch(
+            "DELETE FROM individual WHERE generation >= 2;
+             DELETE FROM generation WHERE generation >= 2;",
+        )
+        .unwrap();
+    }
+    succeeded(&resume(&killed));
+    assert_eq!(contents(&killed), contents(&whole));
+    assert_eq!(log_without_times(&killed), log);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn replay_reads_a_version_1_store_without_migrating_it() {
+    let dir = scratch("read-only");
+    let run = dir.join("run");
+    succeeded(&small_run("lsystem", &run, &[]));
+    {
+        let conn = rusqlite::Connection::open(run.join("run.sqlite")).unwrap();
+        conn.execute_batch(
+            "ALTER TABLE generation DROP COLUMN best_fine;
+             ALTER TABLE generation DROP COLUMN best_fine_status;
+             PRAGMA user_version = 1;
+             PRAGMA wal_checkpoint(TRUNCATE);",
+        )
+        .unwrap();
+    }
+    let before = std::fs::read(run.join("run.sqlite")).unwrap();
+    succeeded(
+        &ontogeny()
+            .args(["replay"])
+            .arg(&run)
+            .args(["--gen", "0", "--rank", "2"])
+            .output()
+            .unwrap(),
+    );
+    assert_eq!(std::fs::read(run.join("run.sqlite")).unwrap(), before);
+    let store = RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    assert_eq!(store.schema_version(), 1);
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -869,3 +869,53 @@ fn saving_the_file_redraws_the_open_page() {
     assert_eq!(fixed, r#"["yes","1","3",""]"#);
     drop(viewer);
 }
+
+#[test]
+fn the_viewer_opens_a_version_1_run_without_migrating_it() {
+    let dir = scratch("read-only-run");
+    let run = dir.join("run");
+    let out = ontogeny()
+        .args([
+            "evolve",
+            "--encoding",
+            "direct",
+            "--pop",
+            "6",
+            "--gens",
+            "2",
+            "--seconds",
+            "1",
+            "--out",
+        ])
+        .arg(&run)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    {
+        let conn = rusqlite::Connection::open(run.join("run.sqlite")).unwrap();
+        conn.execute_batch(
+            "ALTER TABLE generation DROP COLUMN best_fine;
+             ALTER TABLE generation DROP COLUMN best_fine_status;
+             PRAGMA user_version = 1;
+             PRAGMA wal_checkpoint(TRUNCATE);",
+        )
+        .unwrap();
+    }
+    let before = std::fs::read(run.join("run.sqlite")).unwrap();
+    let viewer = Viewer::start(&run);
+    let (status, body) = viewer.get("/individual.json?gen=1&index=0");
+    assert_eq!(status, 200, "{body}");
+    assert!(body.contains("\"parts\""), "{body}");
+    drop(viewer);
+    assert_eq!(std::fs::read(run.join("run.sqlite")).unwrap(), before);
+    let version: i64 = rusqlite::Connection::open(run.join("run.sqlite"))
+        .unwrap()
+        .pragma_query_value(None, "user_version", |r| r.get(0))
+        .unwrap();
+    assert_eq!(version, 1);
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -83,10 +83,12 @@ fn compare_error(e: CompareError) -> anyhow::Error {
 pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
     if let Some(root) = &args.merge {
+        let _lock = compare::lock(root).map_err(compare_error)?;
         let (manifest, shared) = compare::open(root).map_err(compare_error)?;
         return report(root, &manifest, &shared, true);
     }
     if let Some(root) = &args.resume {
+        let _lock = compare::lock(root).map_err(compare_error)?;
         let (manifest, shared) = compare::open(root).map_err(compare_error)?;
         run_all(root, &manifest, &shared)?;
         return report(root, &manifest, &shared, false);
@@ -96,7 +98,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         .as_ref()
         .expect("clap requires --out without --resume or --merge");
     let (manifest, shared) = plan(args)?;
-    compare::create(root, &manifest, &shared).map_err(compare_error)?;
+    let _lock = compare::create(root, &manifest, &shared).map_err(compare_error)?;
     // Read back what was written, so that a direct run and `--plan` commands start from the
     // same settings.
     let (manifest, shared) = compare::open(root).map_err(compare_error)?;
@@ -336,10 +338,10 @@ fn run_replicate<G: Genome>(
         ReplicateState::Done(_) => return Ok(()),
         ReplicateState::Partial(_) => Run::<G>::resume(&dir).map_err(run_error)?,
         ReplicateState::Missing => {
-            // A start killed between writing config.toml and creating the database left
-            // nothing computed: start again.
+            // A start killed before its store held the run left nothing computed (at most
+            // a config.toml written by an older ontogeny, or an empty store): start again.
             let config = dir.join("config.toml");
-            if config.exists() && !dir.join("run.sqlite").exists() {
+            if config.exists() {
                 std::fs::remove_file(&config)
                     .with_context(|| format!("cannot remove {}", config.display()))?;
             }

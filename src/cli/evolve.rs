@@ -8,7 +8,7 @@ use clap::{Args, Subcommand, ValueEnum};
 use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome};
 use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, encoding_of, read_config};
 use ontogeny::evolve::ga::Preset;
-use ontogeny::evolve::run::{GenerationReport, Run, RunError, exploits_stepping};
+use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::lang::{Diagnostic, DiagnosticKind, Source};
 use ontogeny::task::{TaskKind, TaskSpec};
@@ -195,16 +195,9 @@ pub fn set_threads(threads: Option<usize>) -> anyhow::Result<()> {
 pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
     if let Some(dir) = &args.resume {
-        let config = dir.join("config.toml");
-        let source = Source::read(&config).map_err(|_| {
-            bad(format!(
-                "{} is not a run directory (no readable config.toml)",
-                dir.display()
-            ))
-        })?;
-        let encoding = encoding_of(&source)?.unwrap_or_default();
+        let encoding = encoding_of_run(dir).map_err(run_error)?;
         return with_genome!(encoding.as_str(), G => resume::<G>(dir), |other| Err(bad(
-            format!("{}: unknown encoding '{other}'", config.display())
+            format!("{}: unknown encoding '{other}'", dir.display())
         )));
     }
     let source = match &args.config {
@@ -491,18 +484,11 @@ pub fn replay_run(
     rank: usize,
     fps: f64,
 ) -> anyhow::Result<()> {
-    let config = dir.join("config.toml");
-    let source = Source::read(&config).map_err(|_| {
-        bad(format!(
-            "{} is not a run directory (no config.toml)",
-            dir.display()
-        ))
-    })?;
-    let encoding = encoding_of(&source)?.unwrap_or_default();
+    let encoding = encoding_of_run(dir).map_err(run_error)?;
     with_genome!(
         encoding.as_str(),
         G => replay_typed::<G>(dir, generation, rank, fps),
-        |other| Err(bad(format!("{}: unknown encoding '{other}'", config.display())))
+        |other| Err(bad(format!("{}: unknown encoding '{other}'", dir.display())))
     )
 }
 
@@ -512,7 +498,8 @@ fn replay_typed<G: Genome>(
     rank: usize,
     fps: f64,
 ) -> anyhow::Result<()> {
-    let run = Run::<G>::resume(dir).map_err(run_error)?;
+    // Read-only: replaying never changes the run's store.
+    let run = Run::<G>::open_read_only(dir).map_err(run_error)?;
     let last = run
         .last_generation()
         .map_err(run_error)?

@@ -221,7 +221,8 @@ fn ignored_flags(args: &ViewArgs, target: &Target, frames: Option<usize>) -> Vec
 /// A function that develops a run's individual `(generation, index)`.
 fn developer_for<G: Genome + 'static>(dir: PathBuf) -> Developer {
     Box::new(move |generation, index| {
-        let run = Run::<G>::resume(&dir).map_err(|e| e.to_string())?;
+        // Read-only: the viewer never changes a run's files.
+        let run = Run::<G>::open_read_only(&dir).map_err(|e| e.to_string())?;
         let population = run.population(generation).map_err(|e| e.to_string())?;
         let individual = population.get(index as usize).ok_or_else(|| {
             format!(

@@ -20,6 +20,7 @@ use serde::{Deserialize, Serialize};
 
 use super::config::{RunConfig, read_run_config};
 use super::ga::{GaSettings, Individual};
+use super::lock::{DirectoryLock, LockError};
 use super::plot::{self, Band};
 use super::stats;
 use super::store::RunStore;
@@ -129,9 +130,34 @@ pub fn replicate_dir(root: &Path, encoding: &str, k: usize) -> PathBuf {
     root.join(encoding).join(format!("rep-{k}"))
 }
 
+/// Takes the lock of the comparison in `root` ([`crate::evolve::lock`]), held while the
+/// returned value lives: one process at a time runs replicates or writes the report.
+pub fn lock(root: &Path) -> Result<DirectoryLock, CompareError> {
+    if !root.join("compare.toml").is_file() {
+        // No comparison: say so, and leave the directory untouched (no lock file).
+        return Err(not_a_comparison(root));
+    }
+    acquire(root)
+}
+
+/// Locks `root`, a directory that exists.
+fn acquire(root: &Path) -> Result<DirectoryLock, CompareError> {
+    DirectoryLock::acquire(root).map_err(|e| match e {
+        LockError::Held { .. } => CompareError::Input(e.to_string()),
+        LockError::Io { path, source } => CompareError::Io { path, source },
+    })
+}
+
 /// Writes `compare.toml` and `evolve.toml` into `root` (created), refusing a directory that
-/// already holds a comparison.
-pub fn create(root: &Path, manifest: &Manifest, shared: &Shared) -> Result<(), CompareError> {
+/// already holds a comparison; returns the comparison's lock, taken before anything is
+/// written.
+pub fn create(
+    root: &Path,
+    manifest: &Manifest,
+    shared: &Shared,
+) -> Result<DirectoryLock, CompareError> {
+    std::fs::create_dir_all(root).map_err(io(root))?;
+    let lock = acquire(root)?;
     let path = root.join("compare.toml");
     if path.exists() {
         return Err(CompareError::Input(format!(
@@ -139,7 +165,6 @@ pub fn create(root: &Path, manifest: &Manifest, shared: &Shared) -> Result<(), C
             root.display()
         )));
     }
-    std::fs::create_dir_all(root).map_err(io(root))?;
     let settings = root.join("evolve.toml");
     let text = toml::to_string(shared).map_err(|e| CompareError::Other(e.to_string()))?;
     std::fs::write(&settings, text).map_err(io(&settings))?;
@@ -147,18 +172,22 @@ pub fn create(root: &Path, manifest: &Manifest, shared: &Shared) -> Result<(), C
     // The manifest last: a comparison exists once both are written.
     let temporary = path.with_extension("tmp");
     std::fs::write(&temporary, text).map_err(io(&temporary))?;
-    std::fs::rename(&temporary, &path).map_err(io(&path))
+    std::fs::rename(&temporary, &path).map_err(io(&path))?;
+    Ok(lock)
+}
+
+/// The error for a directory that holds no comparison.
+fn not_a_comparison(root: &Path) -> CompareError {
+    CompareError::Input(format!(
+        "{} is not a comparison directory (no readable compare.toml)",
+        root.display()
+    ))
 }
 
 /// Reads a comparison's `compare.toml` and `evolve.toml`.
 pub fn open(root: &Path) -> Result<(Manifest, Shared), CompareError> {
     let path = root.join("compare.toml");
-    let source = Source::read(&path).map_err(|_| {
-        CompareError::Input(format!(
-            "{} is not a comparison directory (no readable compare.toml)",
-            root.display()
-        ))
-    })?;
+    let source = Source::read(&path).map_err(|_| not_a_comparison(root))?;
     let manifest: Manifest = toml::from_str(source.text())
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
     let path = root.join("evolve.toml");
@@ -247,14 +276,20 @@ pub fn read_replicate<G: Genome>(
     k: usize,
 ) -> Result<ReplicateState, CompareError> {
     let dir = replicate_dir(root, G::NAME, k);
-    let config_path = dir.join("config.toml");
     let database = dir.join("run.sqlite");
-    if !config_path.exists() || !database.exists() {
+    if RunStore::is_vacant(&database) {
         return Ok(ReplicateState::Missing);
     }
-    let source = Source::read(&config_path).map_err(io(&config_path))?;
+    // Read-only: reading a comparison does not migrate its replicates' files. The settings
+    // are the store's, the run's record of truth (a resume checks config.toml against them).
+    let store =
+        RunStore::open_read_only(&database).map_err(|e| CompareError::Other(e.to_string()))?;
+    let stored = store
+        .run()
+        .map_err(|e| CompareError::Other(e.to_string()))?;
+    let source = Source::new(database.display().to_string(), stored.config);
     let config: RunConfig<G::Limits> = read_run_config(&source)
-        .map_err(|d| CompareError::Input(format!("{}: {d}", config_path.display())))?;
+        .map_err(|d| CompareError::Input(format!("{}: {d}", database.display())))?;
     let expected = RunConfig {
         encoding: G::NAME.to_string(),
         seed: replicate_seed(manifest.seed, k),
@@ -264,7 +299,7 @@ pub fn read_replicate<G: Genome>(
         task: shared.task.clone(),
         limits: G::Limits::default(),
     };
-    let differences = differences(&config, &expected)?;
+    let differences = config.differences(&expected).map_err(CompareError::Other)?;
     if !differences.is_empty() {
         return Err(CompareError::Input(format!(
             "{} is not replicate {k} of this comparison: its {} differ{} from {}",
@@ -274,9 +309,6 @@ pub fn read_replicate<G: Genome>(
             root.join("evolve.toml").display()
         )));
     }
-    // Read-only: reading a comparison does not migrate its replicates' files.
-    let store =
-        RunStore::open_read_only(&database).map_err(|e| CompareError::Other(e.to_string()))?;
     let generations = store
         .generations()
         .map_err(|e| CompareError::Other(e.to_string()))?;
@@ -325,34 +357,6 @@ pub fn read_replicate<G: Genome>(
             shapes_per_part,
         },
     })))
-}
-
-/// The top-level settings (as TOML) in which `a` and `b` differ.
-fn differences<L: Serialize>(
-    a: &RunConfig<L>,
-    b: &RunConfig<L>,
-) -> Result<Vec<String>, CompareError> {
-    let table = |c: &RunConfig<L>| {
-        toml::Table::try_from(c).map_err(|e| CompareError::Other(format!("{e}")))
-    };
-    let (a, b) = (table(a)?, table(b)?);
-    let keys: BTreeSet<&String> = a.keys().chain(b.keys()).collect();
-    let mut out = Vec::new();
-    for key in keys {
-        match (a.get(key), b.get(key)) {
-            (Some(toml::Value::Table(x)), Some(toml::Value::Table(y))) => {
-                let inner: BTreeSet<&String> = x.keys().chain(y.keys()).collect();
-                for k in inner {
-                    if x.get(k) != y.get(k) {
-                        out.push(format!("{key}.{k}"));
-                    }
-                }
-            }
-            (x, y) if x != y => out.push(key.clone()),
-            _ => {}
-        }
-    }
-    Ok(out)
 }
 
 /// One encoding's figures.

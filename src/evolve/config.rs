@@ -3,6 +3,7 @@
 //! are errors that name the file, line and key) and written back in full at the start of a
 //! run.
 
+use std::collections::BTreeSet;
 use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
@@ -191,6 +192,31 @@ impl<L: Serialize> RunConfig<L> {
     /// The configuration as TOML text.
     pub fn to_toml(&self) -> Result<String, String> {
         toml::to_string(self).map_err(|e| e.to_string())
+    }
+
+    /// The settings in which `self` and `other` differ, as dotted TOML keys
+    /// (`seed`, `ga.population`, `task.sim.substeps`), in key order.
+    pub fn differences(&self, other: &RunConfig<L>) -> Result<Vec<String>, String> {
+        let table = |c: &RunConfig<L>| toml::Table::try_from(c).map_err(|e| e.to_string());
+        let mut out = Vec::new();
+        differing_keys("", &table(self)?, &table(other)?, &mut out);
+        Ok(out)
+    }
+}
+
+/// Pushes onto `out` the keys, under `prefix`, whose values differ between `a` and `b`,
+/// descending into tables both hold.
+fn differing_keys(prefix: &str, a: &toml::Table, b: &toml::Table, out: &mut Vec<String>) {
+    let keys: BTreeSet<&String> = a.keys().chain(b.keys()).collect();
+    for key in keys {
+        let name = format!("{prefix}{key}");
+        match (a.get(key), b.get(key)) {
+            (Some(toml::Value::Table(x)), Some(toml::Value::Table(y))) => {
+                differing_keys(&format!("{name}."), x, y, out)
+            }
+            (x, y) if x != y => out.push(name),
+            _ => {}
+        }
     }
 }
 

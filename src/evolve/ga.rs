@@ -561,6 +561,30 @@ impl Fallbacks {
             _ => self.graft += 1,
         }
     }
+
+    /// Counts individual `index` of a generation after the first, stored as made by
+    /// `operator` in a run with `settings`: a child made by mutation alone where the schedule
+    /// asked for crossover or grafting is one the encoding could not mate. The schedule is a
+    /// function of the index alone ([`schedule`]; Walking with Dinosaurs' always mates), so
+    /// the count read back from a run store equals the one the run made.
+    pub fn count_stored(&mut self, settings: &GaSettings, index: usize, operator: Operator) {
+        let survivors = settings.survivors().min(settings.population);
+        if index < survivors || operator != Operator::Mutation {
+            return;
+        }
+        let scheduled = match settings.preset {
+            Preset::Chaumont => schedule(
+                index - survivors,
+                settings.population - survivors,
+                settings.asexual,
+                settings.crossover,
+            ),
+            Preset::Wwd => Operator::Crossover,
+        };
+        if scheduled != Operator::Mutation {
+            self.count(scheduled);
+        }
+    }
 }
 
 /// Chaumont's operator for child `k` of `children`: the first round(asexual × children) by

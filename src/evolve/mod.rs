@@ -1,12 +1,13 @@
 //! Evolution and comparison: the genetic algorithm ([`ga`]: presets as data, a generational
 //! loop over any [`crate::encoding::Genome`], parallel evaluation), a run's configuration
 //! ([`config`]), its directory ([`run`]), its database ([`store`], the only code that knows
-//! SQL), its fitness plot ([`plot`]), the statistics that compare settings and encodings
+//! SQL), the lock that keeps a directory one process's ([`lock`]), its fitness plot ([`plot`]), the statistics that compare settings and encodings
 //! ([`stats`]), and comparisons of encodings over replicated runs ([`compare`]).
 
 pub mod compare;
 pub mod config;
 pub mod ga;
+pub mod lock;
 pub mod plot;
 pub mod run;
 pub mod stats;

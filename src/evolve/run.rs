@@ -1,13 +1,21 @@
-//! A run directory: `config.toml` (every setting, written at the start), `run.sqlite` (the
-//! record of truth, one transaction per generation), `fitness.svg`, `best.lsys` (`best.json`, ... after the encoding's text form) and `log.txt`,
-//! rewritten after every generation. A run killed at any moment resumes from its last complete
-//! generation and ends exactly as an uninterrupted run would.
+//! A run directory: `run.sqlite` (the record of truth: every setting, written when the run
+//! starts, and one transaction per generation), `config.toml` (the settings as text, for
+//! people), and the files derived from the store: `log.txt`, `fitness.svg` and `best.lsys`
+//! (`best.json`, ... after the encoding's text form), rewritten from the store after every
+//! generation and whenever the run is resumed, so they always agree with it.
+//!
+//! A run killed at any moment resumes from its last complete generation and ends exactly as
+//! an uninterrupted run would. The store is created whole and only then `config.toml`, so a
+//! kill during the start leaves either no run (start it again) or a run `--resume` completes.
+//! A process writing a run holds the directory's lock ([`super::lock`]); a resume whose
+//! `config.toml` differs from the settings the store was created with is refused.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use super::config::{RunConfig, read_run_config};
 use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, Operator, ranking};
+use super::lock::{DirectoryLock, LockError};
 use super::plot::fitness_svg;
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
@@ -25,8 +33,27 @@ pub enum RunError {
     )]
     Exists(PathBuf),
     /// A directory that is not a run.
-    #[error("{0} is not a run directory (no config.toml)")]
+    #[error(
+        "{0} holds no run (no run.sqlite with a run in it): start one with `ontogeny evolve --out {0}`"
+    )]
     NotARun(PathBuf),
+    /// Another process is writing the run.
+    #[error(transparent)]
+    Locked(#[from] LockError),
+    /// `config.toml` was edited since the run started: resuming would mix two settings in
+    /// one store.
+    #[error(
+        "{}: {} differ{} from the settings the run was started with (kept in run.sqlite); a resumed run must go on as it began: undo the edit, or start a new run with --out",
+        path.display(),
+        keys.join(", "),
+        if keys.len() == 1 { "s" } else { "" }
+    )]
+    ConfigChanged {
+        /// The run's `config.toml`.
+        path: PathBuf,
+        /// The settings that differ, as dotted TOML keys.
+        keys: Vec<String>,
+    },
     /// A bad configuration.
     #[error("{0}")]
     Config(Diagnostic),
@@ -65,6 +92,12 @@ fn write_atomically(path: &Path, text: &[u8]) -> Result<(), RunError> {
     std::fs::rename(&temporary, path).map_err(io(path))
 }
 
+/// The names of a run directory's files.
+const CONFIG_FILE: &str = "config.toml";
+const STORE_FILE: &str = "run.sqlite";
+const LOG_FILE: &str = "log.txt";
+const PLOT_FILE: &str = "fitness.svg";
+
 /// What happened in one generation, for progress displays.
 #[derive(Clone, Debug)]
 pub struct GenerationReport {
@@ -89,26 +122,49 @@ pub struct Run<G: Genome> {
     config: RunConfig<G::Limits>,
     evolution: Evolution<G>,
     store: RunStore,
+    /// The directory's lock, held while the run may write (`None` when opened read-only).
+    _lock: Option<DirectoryLock>,
+}
+
+/// The encoding of the run in `dir`, as its store records it (or, for a start interrupted
+/// before its store was made, as its `config.toml` says), read without changing anything.
+pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
+    let store = dir.join(STORE_FILE);
+    if RunStore::is_vacant(&store) {
+        let path = dir.join(CONFIG_FILE);
+        if !path.is_file() {
+            return Err(RunError::NotARun(dir.to_path_buf()));
+        }
+        let source = Source::read(&path).map_err(io(&path))?;
+        return Ok(super::config::encoding_of(&source)
+            .map_err(RunError::Config)?
+            .unwrap_or_else(|| "lsystem".to_string()));
+    }
+    Ok(RunStore::open_read_only(&store)?.run()?.encoding)
 }
 
 impl<G: Genome> Run<G> {
-    /// Starts a new run in `dir` (refused if it holds a run): writes `config.toml` (and
-    /// `init.lsys`, the grammar of `init_text`) and creates the database.
+    /// Starts a new run in `dir` (refused if it holds a run, or another process holds its
+    /// lock): writes `init.lsys` (the grammar of `init_text`), creates the database holding
+    /// every setting, then writes `config.toml`, and rewrites the derived files.
     pub fn start(
         dir: &Path,
         mut config: RunConfig<G::Limits>,
         init_text: Option<&str>,
     ) -> Result<Run<G>, RunError> {
-        if dir.join("config.toml").exists() || dir.join("run.sqlite").exists() {
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let lock = DirectoryLock::acquire(dir)?;
+        let store_path = dir.join(STORE_FILE);
+        if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&store_path) {
             return Err(RunError::Exists(dir.to_path_buf()));
         }
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        // Neither config.toml nor a run: whatever a killed start left is ours to replace.
+        RunStore::remove_vacant(&store_path)?;
         let init = match init_text {
             Some(text) => {
                 let genome =
                     G::from_lsys(text, &config.limits).map_err(|e| RunError::Corrupt(e.0))?;
-                let path = dir.join("init.lsys");
-                std::fs::write(&path, text).map_err(io(&path))?;
+                write_atomically(&dir.join("init.lsys"), text.as_bytes())?;
                 config.init = Some(PathBuf::from("init.lsys"));
                 Some(genome)
             }
@@ -118,39 +174,127 @@ impl<G: Genome> Run<G> {
             }
         };
         let text = config.to_toml().map_err(RunError::Corrupt)?;
-        let path = dir.join("config.toml");
-        write_atomically(&path, text.as_bytes())?;
         let store = RunStore::create(
-            &dir.join("run.sqlite"),
+            &store_path,
             &RunRecord {
-                config: text,
+                config: text.clone(),
                 seed: config.seed,
                 encoding: config.encoding.clone(),
                 task: config.task.task.name().to_string(),
                 version: env!("CARGO_PKG_VERSION").to_string(),
             },
         )?;
-        Ok(Run::assemble(dir, config, store, init))
+        write_atomically(&dir.join(CONFIG_FILE), text.as_bytes())?;
+        let run = Run::assemble(dir, config, store, init, Some(lock));
+        run.write_derived_files()?;
+        Ok(run)
     }
 
-    /// Opens the run in `dir` to go on with it.
+    /// Opens the run in `dir` to go on with it: takes the directory's lock, checks that
+    /// `config.toml` holds the settings the store was created with (writing it from the store
+    /// if a start was killed before it), migrates an older store, and rewrites the derived
+    /// files from the store.
     pub fn resume(dir: &Path) -> Result<Run<G>, RunError> {
-        let path = dir.join("config.toml");
-        if !path.exists() {
+        let config_path = dir.join(CONFIG_FILE);
+        let store_path = dir.join(STORE_FILE);
+        // A directory with neither is no run: leave it untouched (no lock file either).
+        if !config_path.is_file() && !store_path.is_file() {
             return Err(RunError::NotARun(dir.to_path_buf()));
         }
-        let source = Source::read(&path).map_err(io(&path))?;
+        let lock = DirectoryLock::acquire(dir)?;
+        let file_config = if config_path.exists() {
+            let source = Source::read(&config_path).map_err(io(&config_path))?;
+            Some((
+                read_run_config::<G::Limits>(&source).map_err(RunError::Config)?,
+                source,
+            ))
+        } else {
+            None
+        };
+        if RunStore::is_vacant(&store_path) {
+            // A start killed by an older ontogeny after config.toml, before its store held
+            // the run: nothing was computed; make the store from config.toml.
+            let Some((config, source)) = file_config else {
+                return Err(RunError::NotARun(dir.to_path_buf()));
+            };
+            RunStore::remove_vacant(&store_path)?;
+            let store = RunStore::create(
+                &store_path,
+                &RunRecord {
+                    config: source.text().to_string(),
+                    seed: config.seed,
+                    encoding: config.encoding.clone(),
+                    task: config.task.task.name().to_string(),
+                    version: env!("CARGO_PKG_VERSION").to_string(),
+                },
+            )?;
+            let init = Self::read_init(dir, &config)?;
+            let run = Run::assemble(dir, config, store, init, Some(lock));
+            run.write_derived_files()?;
+            return Ok(run);
+        }
+        // Read-only until the settings are checked: a refused resume changes nothing.
+        let stored = RunStore::open_read_only(&store_path)?.run()?;
+        let source = Source::new(
+            format!(
+                "{} (the settings the run started with)",
+                store_path.display()
+            ),
+            stored.config.clone(),
+        );
         let config: RunConfig<G::Limits> = read_run_config(&source).map_err(RunError::Config)?;
-        let store = RunStore::open(&dir.join("run.sqlite"))?;
-        let init = match &config.init {
+        match &file_config {
+            Some((edited, _)) => {
+                let keys = config.differences(edited).map_err(RunError::Corrupt)?;
+                if !keys.is_empty() {
+                    return Err(RunError::ConfigChanged {
+                        path: config_path,
+                        keys,
+                    });
+                }
+            }
+            None => write_atomically(&config_path, stored.config.as_bytes())?,
+        }
+        let store = RunStore::open(&store_path)?;
+        let init = Self::read_init(dir, &config)?;
+        let run = Run::assemble(dir, config, store, init, Some(lock));
+        run.write_derived_files()?;
+        Ok(run)
+    }
+
+    /// Opens the run in `dir` to read it: the store read-only (never migrated, never
+    /// written), the settings from the store, no lock. [`Run::run`] fails on such a run.
+    pub fn open_read_only(dir: &Path) -> Result<Run<G>, RunError> {
+        let store_path = dir.join(STORE_FILE);
+        if RunStore::is_vacant(&store_path) {
+            return Err(RunError::NotARun(dir.to_path_buf()));
+        }
+        let store = RunStore::open_read_only(&store_path)?;
+        let stored = store.run()?;
+        let source = Source::new(
+            format!(
+                "{} (the settings the run started with)",
+                store_path.display()
+            ),
+            stored.config,
+        );
+        let config: RunConfig<G::Limits> = read_run_config(&source).map_err(RunError::Config)?;
+        let init = Self::read_init(dir, &config).ok().flatten();
+        Ok(Run::assemble(dir, config, store, init, None))
+    }
+
+    /// The genome of the run's `init.lsys`, if it has one.
+    fn read_init(dir: &Path, config: &RunConfig<G::Limits>) -> Result<Option<G>, RunError> {
+        match &config.init {
             Some(file) => {
                 let path = dir.join(file);
                 let text = std::fs::read_to_string(&path).map_err(io(&path))?;
-                Some(G::from_lsys(&text, &config.limits).map_err(|e| RunError::Corrupt(e.0))?)
+                Ok(Some(
+                    G::from_lsys(&text, &config.limits).map_err(|e| RunError::Corrupt(e.0))?,
+                ))
             }
-            None => None,
-        };
-        Ok(Run::assemble(dir, config, store, init))
+            None => Ok(None),
+        }
     }
 
     /// A run of `config`, its store and its `init` genome.
@@ -159,6 +303,7 @@ impl<G: Genome> Run<G> {
         config: RunConfig<G::Limits>,
         store: RunStore,
         init: Option<G>,
+        lock: Option<DirectoryLock>,
     ) -> Run<G> {
         let purpose = match config.task.task {
             TaskKind::Walker | TaskKind::Jump => Purpose::Locomotion,
@@ -177,6 +322,7 @@ impl<G: Genome> Run<G> {
             },
             config,
             store,
+            _lock: lock,
         }
     }
 
@@ -225,8 +371,11 @@ impl<G: Genome> Run<G> {
         {
             previous_best = Some((best as u32, stored));
         }
-        let mut fallbacks = Fallbacks::default();
-        let log = self.dir.join("log.txt");
+        let mut fallbacks = self
+            .fallbacks_by_generation()?
+            .last()
+            .cloned()
+            .unwrap_or_default();
         for generation in first..generations {
             let started = Instant::now();
             let (next, evaluations) = if generation == 0 {
@@ -256,18 +405,6 @@ impl<G: Genome> Run<G> {
             let stats = GenerationStats::of(&population, evaluations);
             self.record(generation, &population, &stats, best_fine.clone(), started)?;
             let wall_seconds = started.elapsed().as_secs_f64();
-            let line = format!(
-                "generation {generation}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations in {:.1} s{}\n",
-                stats.best,
-                fine_note(best_fine.as_ref()),
-                stats.mean,
-                stats.median,
-                stats.valid_fraction * 100.0,
-                evaluations,
-                wall_seconds,
-                fallback_note(&fallbacks, G::NAME),
-            );
-            append(&log, &line)?;
             observer(&GenerationReport {
                 generation,
                 stats,
@@ -354,34 +491,83 @@ impl<G: Genome> Run<G> {
             },
             &individuals,
         )?;
-        if let Some(&best) = ranking(population).first() {
-            let b = &population[best];
-            let fine = match &best_fine {
-                Some(f) => format!(
-                    "; re-walked at the fine reference setting: {} ({})",
-                    f.fitness, f.status
-                ),
-                None => String::new(),
-            };
-            let note = format!(
-                "The best individual of {} after generation {generation}: {} fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
-                self.dir.display(),
-                self.config.task.task.name(),
-                b.evaluation.fitness,
-                status_name(b),
-            );
-            let text = b.genome.annotated_text(&note);
-            let name = format!("best.{}", G::TEXT_EXTENSION);
-            write_atomically(&self.dir.join(name), text.as_bytes())?;
-        }
+        self.write_derived_files()
+    }
+
+    /// How many children each stored generation had made by mutation instead of the
+    /// scheduled operator, counted from the first generation through that one (index 0 is
+    /// the first generation's, always none).
+    fn fallbacks_by_generation(&self) -> Result<Vec<Fallbacks>, RunError> {
         let generations = self.store.generations()?;
+        let mut fallen = vec![Fallbacks::default(); generations.len()];
+        for (generation, index) in self.store.individuals_made_by(Operator::Mutation.name())? {
+            if let Some(f) = fallen.get_mut(generation as usize) {
+                f.count_stored(&self.config.ga, index as usize, Operator::Mutation);
+            }
+        }
+        let mut total = Fallbacks::default();
+        for f in &mut fallen {
+            total.crossover += f.crossover;
+            total.graft += f.graft;
+            *f = total.clone();
+        }
+        Ok(fallen)
+    }
+
+    /// Rewrites the files derived from the store: `log.txt` (a line per stored generation),
+    /// `fitness.svg`, and `best.lsys` (or the encoding's extension: the best individual of the
+    /// last stored generation). Each is written whole through a temporary file, so they
+    /// agree with the store whenever a process is killed.
+    pub fn write_derived_files(&self) -> Result<(), RunError> {
+        let generations = self.store.generations()?;
+        let fallbacks = self.fallbacks_by_generation()?;
+        let mut log = String::new();
+        for (g, fallen) in generations.iter().zip(&fallbacks) {
+            log.push_str(&format!(
+                "generation {}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations in {:.1} s{}\n",
+                g.index,
+                g.best,
+                fine_note(g.best_fine.as_ref()),
+                g.mean,
+                g.median,
+                g.valid_fraction * 100.0,
+                g.evaluations,
+                g.wall_seconds,
+                fallback_note(fallen, G::NAME),
+            ));
+        }
+        write_atomically(&self.dir.join(LOG_FILE), log.as_bytes())?;
+        if let Some(last) = generations.last() {
+            let population = self.population(last.index)?;
+            if let Some(&best) = ranking(&population).first() {
+                let b = &population[best];
+                let fine = match &last.best_fine {
+                    Some(f) => format!(
+                        "; re-walked at the fine reference setting: {} ({})",
+                        f.fitness, f.status
+                    ),
+                    None => String::new(),
+                };
+                let note = format!(
+                    "The best individual of {} after generation {}: {} fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
+                    self.dir.display(),
+                    last.index,
+                    self.config.task.task.name(),
+                    b.evaluation.fitness,
+                    status_name(b),
+                );
+                let text = b.genome.annotated_text(&note);
+                let name = format!("best.{}", G::TEXT_EXTENSION);
+                write_atomically(&self.dir.join(name), text.as_bytes())?;
+            }
+        }
         let title = format!(
             "{}: {} on the {} task",
             self.dir.display(),
             G::NAME,
             self.config.task.task.name()
         );
-        fitness_svg(&self.dir.join("fitness.svg"), &generations, &title)
+        fitness_svg(&self.dir.join(PLOT_FILE), &generations, &title)
             .map_err(|e| RunError::Plot(e.to_string()))?;
         Ok(())
     }
@@ -428,14 +614,4 @@ fn fallback_note(f: &Fallbacks, encoding: &str) -> String {
         },
         f.crossover + f.graft
     )
-}
-
-fn append(path: &Path, line: &str) -> Result<(), RunError> {
-    use std::io::Write;
-    let mut file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(path)
-        .map_err(io(path))?;
-    file.write_all(line.as_bytes()).map_err(io(path))
 }

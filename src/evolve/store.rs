@@ -307,9 +307,92 @@ pub struct RunStore {
 }
 
 impl RunStore {
-    /// Creates `path` (error if it exists), the schema, and the run row.
+    /// Creates `path` (error if it exists), the schema, and the run row, and opens it.
+    ///
+    /// The store is built whole under a temporary name beside `path` (`run.sqlite.partial`)
+    /// and renamed into place once its run row is committed, so `path` never names a store
+    /// that is empty or half made: a process killed (or a disk filled) while creating it
+    /// leaves no file at `path`. A temporary file left by such a start is removed by the
+    /// next; the caller holds the directory's lock ([`crate::evolve::lock`]).
     pub fn create(path: &Path, run: &RunRecord) -> Result<RunStore, StoreError> {
-        // create_new makes the file atomically, so two runs can never share one.
+        if fs::symlink_metadata(path).is_ok() {
+            return Err(StoreError::Exists { path: path.into() });
+        }
+        let partial = side_file(path, ".partial");
+        remove_with_side_files(&partial);
+        let result = Self::create_schema(&partial, run);
+        if let Err(e) = result {
+            // The file is ours and holds no committed run: leave no half-made store behind.
+            remove_with_side_files(&partial);
+            return Err(match e {
+                StoreError::Sqlite { action, source, .. } => StoreError::Sqlite {
+                    path: path.into(),
+                    action,
+                    source,
+                },
+                other => other,
+            });
+        }
+        // A hard link never replaces a file that appeared meanwhile (a rename would); where
+        // the file system has no hard links, a rename.
+        let placed = match fs::hard_link(&partial, path) {
+            Ok(()) => fs::remove_file(&partial),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                remove_with_side_files(&partial);
+                return Err(StoreError::Exists { path: path.into() });
+            }
+            Err(_) => fs::rename(&partial, path),
+        };
+        if let Err(source) = placed.and_then(|()| sync_directory(path)) {
+            remove_with_side_files(&partial);
+            return Err(StoreError::Io {
+                path: path.into(),
+                action: "cannot move the new store into place",
+                source,
+            });
+        }
+        Self::open(path)
+    }
+
+    /// Whether `path` holds no run: there is no file, or an empty one, or an SQLite
+    /// database with no table (a start interrupted before the schema was committed, by an
+    /// earlier ontogeny that created the store in place). Such a file can be replaced
+    /// without losing anything.
+    pub fn is_vacant(path: &Path) -> bool {
+        let Ok(metadata) = fs::metadata(path) else {
+            return fs::symlink_metadata(path).is_err();
+        };
+        if !metadata.is_file() {
+            return false;
+        }
+        if metadata.len() == 0 {
+            // An empty file, unless a write-ahead log beside it holds committed pages.
+            return fs::metadata(side_file(path, "-wal")).map_or(true, |m| m.len() == 0);
+        }
+        let Ok(conn) = Connection::open_with_flags(
+            path,
+            OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+        ) else {
+            return false;
+        };
+        conn.query_row("SELECT count(*) FROM sqlite_master", [], |r| {
+            r.get::<_, i64>(0)
+        })
+        .is_ok_and(|tables| tables == 0)
+    }
+
+    /// Removes a vacant store ([`RunStore::is_vacant`]) and its side files; refuses (and
+    /// removes nothing) when `path` holds a run.
+    pub fn remove_vacant(path: &Path) -> Result<(), StoreError> {
+        if !Self::is_vacant(path) {
+            return Err(StoreError::Exists { path: path.into() });
+        }
+        remove_with_side_files(path);
+        Ok(())
+    }
+
+    fn create_schema(path: &Path, run: &RunRecord) -> Result<(), StoreError> {
+        // create_new makes the file atomically, so two starts can never share one.
         match OpenOptions::new().write(true).create_new(true).open(path) {
             Ok(_) => {}
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
@@ -323,24 +406,19 @@ impl RunStore {
                 });
             }
         }
-        let result = Self::create_schema(path, run);
-        if result.is_err() {
-            // The file is ours and holds no committed run: leave no half-made store behind.
-            let _ = fs::remove_file(path);
-            for suffix in ["-wal", "-shm", "-journal"] {
-                let _ = fs::remove_file(side_file(path, suffix));
-            }
-        }
-        result
-    }
-
-    fn create_schema(path: &Path, run: &RunRecord) -> Result<RunStore, StoreError> {
-        let mut store = Self::connect(path)?;
-        let p = store.path.clone();
-        let tx = store
-            .conn
+        // A rollback journal while building: once committed, everything is in the main file
+        // (no write-ahead log to carry along when it is renamed). `open` turns on WAL mode.
+        let mut conn = Connection::open_with_flags(
+            path,
+            OpenFlags::SQLITE_OPEN_READ_WRITE | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+        )
+        .map_err(|e| classify(path, "cannot open it", e))?;
+        conn.pragma_update(None, "journal_mode", "DELETE")
+            .and_then(|()| conn.pragma_update(None, "synchronous", "FULL"))
+            .map_err(|e| classify(path, "cannot set it up", e))?;
+        let tx = conn
             .transaction()
-            .map_err(|e| sqlite(&p, "cannot start a transaction", e))?;
+            .map_err(|e| sqlite(path, "cannot start a transaction", e))?;
         tx.pragma_update(None, "application_id", APPLICATION_ID)
             .and_then(|()| tx.pragma_update(None, "user_version", SCHEMA_VERSION))
             .and_then(|()| tx.execute_batch(SCHEMA))
@@ -358,8 +436,9 @@ impl RunStore {
                 )
             })
             .and_then(|_| tx.commit())
-            .map_err(|e| sqlite(&p, "cannot create the schema", e))?;
-        Ok(store)
+            .map_err(|e| sqlite(path, "cannot create the schema", e))?;
+        conn.close()
+            .map_err(|(_, e)| classify(path, "cannot close it", e))
     }
 
     /// Opens an existing store to read and write it, checking it is a run store of a schema
@@ -685,6 +764,20 @@ impl RunStore {
         })
     }
 
+    /// The (generation, index) of every stored individual that `operator` made (its name as
+    /// the store spells it, e.g. `mutation`), in generation and index order.
+    pub fn individuals_made_by(&self, operator: &str) -> Result<Vec<(u32, u32)>, StoreError> {
+        let read = || -> rusqlite::Result<Vec<(u32, u32)>> {
+            let mut stmt = self.conn.prepare(
+                "SELECT generation, individual FROM individual WHERE operator = ?1 \
+                 ORDER BY generation, individual",
+            )?;
+            stmt.query_map([operator], |r| Ok((r.get(0)?, r.get(1)?)))?
+                .collect()
+        };
+        read().map_err(|e| classify(&self.path, "cannot read the individuals' operators", e))
+    }
+
     /// The fittest individual of the whole run (ties go to the earliest generation, then the
     /// lowest index); `None` before the first generation. NaN fitness never wins.
     pub fn best_individual(&self) -> Result<Option<IndividualRecord>, StoreError> {
@@ -707,6 +800,22 @@ fn side_file(path: &Path, suffix: &str) -> PathBuf {
     let mut side = path.as_os_str().to_owned();
     side.push(suffix);
     PathBuf::from(side)
+}
+
+/// Removes `path` and the files SQLite keeps beside it, where they exist.
+fn remove_with_side_files(path: &Path) {
+    let _ = fs::remove_file(path);
+    for suffix in ["-wal", "-shm", "-journal"] {
+        let _ = fs::remove_file(side_file(path, suffix));
+    }
+}
+
+/// Makes a rename into `path`'s directory durable (a power cut after it keeps it).
+fn sync_directory(path: &Path) -> std::io::Result<()> {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => fs::File::open(dir)?.sync_all(),
+        _ => fs::File::open(".")?.sync_all(),
+    }
 }
 
 /// An SQLite URI opening `path` as immutable: read without locks, logs or side files.
