@@ -5,6 +5,8 @@
 //! reference setting: the stored value recomputed, the switch that turns it off, a version-1
 //! database migrated on resume.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -964,16 +966,7 @@ fn replay_reads_a_version_1_store_without_migrating_it() {
     let dir = scratch("read-only");
     let run = dir.join("run");
     succeeded(&small_run("lsystem", &run, &[]));
-    {
-        let conn = rusqlite::Connection::open(run.join("run.sqlite")).unwrap();
-        conn.execute_batch(
-            "ALTER TABLE generation DROP COLUMN best_fine;
-             ALTER TABLE generation DROP COLUMN best_fine_status;
-             PRAGMA user_version = 1;
-             PRAGMA wal_checkpoint(TRUNCATE);",
-        )
-        .unwrap();
-    }
+    common::make_version_1(&run.join("run.sqlite"));
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
     succeeded(
         &ontogeny()

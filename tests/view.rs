@@ -8,6 +8,8 @@
 //! The browser tests are skipped, with a message, when no Chromium is installed; in CI
 //! (`CI=true`) a missing browser is a failure, as `.ci/run` installs one.
 
+mod common;
+
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -895,16 +897,7 @@ fn the_viewer_opens_a_version_1_run_without_migrating_it() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    {
-        let conn = rusqlite::Connection::open(run.join("run.sqlite")).unwrap();
-        conn.execute_batch(
-            "ALTER TABLE generation DROP COLUMN best_fine;
-             ALTER TABLE generation DROP COLUMN best_fine_status;
-             PRAGMA user_version = 1;
-             PRAGMA wal_checkpoint(TRUNCATE);",
-        )
-        .unwrap();
-    }
+    common::make_version_1(&run.join("run.sqlite"));
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
     let viewer = Viewer::start(&run);
     let (status, body) = viewer.get("/individual.json?gen=1&index=0");

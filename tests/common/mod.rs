@@ -117,3 +117,16 @@ pub fn grow_creature_json(
     ontogeny_ok(&args);
     serde_json::from_str(&std::fs::read_to_string(out.join("creature.json")).unwrap()).unwrap()
 }
+
+/// Turns the run store at `path` back into schema version 1, as an older ontogeny wrote it:
+/// the fine reference columns dropped, the version set to 1, the log folded in.
+pub fn make_version_1(path: &std::path::Path) {
+    let conn = rusqlite::Connection::open(path).unwrap();
+    conn.execute_batch(
+        "ALTER TABLE generation DROP COLUMN best_fine;
+         ALTER TABLE generation DROP COLUMN best_fine_status;
+         PRAGMA user_version = 1;
+         PRAGMA wal_checkpoint(TRUNCATE);",
+    )
+    .unwrap();
+}
