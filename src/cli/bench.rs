@@ -10,12 +10,13 @@ use ontogeny::creature::Creature;
 use ontogeny::develop::{BuildOptions, creature_from_commands, grow};
 use ontogeny::evolve::stats::spearman;
 use ontogeny::lsystem::{DeriveOptions, LSystem};
-use ontogeny::sim::{JointModel, SimOptions, World};
+use ontogeny::sim::{JointModel, SimOptions, StepSetting, World};
 use ontogeny::task::{self, Status, WalkerOptions};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
+use super::eval::{SteppingArgs, flag_error};
 use super::progress::Progress;
 
 /// Flags of `ontogeny bench`.
@@ -27,24 +28,10 @@ pub struct BenchArgs {
     /// Simulated seconds per evaluation, in (0, 3600].
     #[arg(long, default_value_t = 20.0)]
     seconds: f64,
-    /// Physics substeps per control step of the setting measured (default: the evaluator's).
-    #[arg(long, default_value_t = SimOptions::default().substeps)]
-    substeps: usize,
-    /// Solver iterations per substep of the setting measured (default: the evaluator's).
-    #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
-    solver_iterations: usize,
-    /// Gauss-Seidel passes per solver iteration of the setting measured (default: the
+    /// The step setting measured: a named one and the stepping flags over it (default: the
     /// evaluator's).
-    #[arg(long, default_value_t = SimOptions::default().pgs_iterations)]
-    pgs_iterations: usize,
-    /// Substeps per control step while a task waits for rest, in the setting measured
-    /// (default: the evaluator's).
-    #[arg(long, default_value_t = SimOptions::default().rest_substeps)]
-    rest_substeps: usize,
-    /// Solver iterations per substep while a task waits for rest, in the setting measured
-    /// (default: the evaluator's).
-    #[arg(long, default_value_t = SimOptions::default().rest_solver_iterations)]
-    rest_solver_iterations: usize,
+    #[command(flatten)]
+    stepping: SteppingArgs,
     /// Also measure fidelity: walk this many creatures (the shipped examples, then random
     /// command strings) `--runs` times with the setting and with a fine reference (1/240 s
     /// physics, 8 solver iterations), and print the Spearman rank correlation of their median
@@ -59,8 +46,9 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// With `--fidelity`: more settings to rank against the fine reference in the same run,
-    /// each `SxIxP` or `SxIxP/SxI` (substeps × solver iterations × PGS passes while walking,
-    /// then substeps × iterations while waiting for rest), e.g. `1x4x1/2x8`.
+    /// each a named setting (`fast`, `default`, `fine`) or `SxIxP` or `SxIxP/SxI` (substeps ×
+    /// solver iterations × PGS passes while walking, then substeps × iterations while waiting
+    /// for rest), e.g. `fast,1x4x1/2x8`.
     #[arg(long, value_name = "SETTING", value_delimiter = ',')]
     fidelity_also: Vec<String>,
     /// With `--fidelity`: print every creature's figures.
@@ -120,20 +108,8 @@ fn one_core(creature: &Creature, sim: &SimOptions, n: usize, seconds: f64) -> (f
 
 /// Measures and prints the figures the README reports.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
-    if !(args.seconds.is_finite() && args.seconds > 0.0 && args.seconds <= 3600.0) {
-        anyhow::bail!(ontogeny::lang::Diagnostic::without_location(
-            ontogeny::lang::DiagnosticKind::Semantic,
-            format!("--seconds must be in (0, 3600], not {}", args.seconds),
-        ));
-    }
-    let sim = SimOptions {
-        substeps: args.substeps.clamp(1, 64),
-        solver_iterations: args.solver_iterations.clamp(1, 256),
-        pgs_iterations: args.pgs_iterations.clamp(1, 256),
-        rest_substeps: args.rest_substeps.clamp(1, 64),
-        rest_solver_iterations: args.rest_solver_iterations.clamp(1, 256),
-        ..SimOptions::default()
-    };
+    task::check_duration("seconds", args.seconds).map_err(flag_error)?;
+    let sim = args.stepping.apply(&SimOptions::default())?;
     let n = args.evaluations.max(1);
     let steps = (args.seconds / sim.dt).round();
     if let Some(file) = &args.creature {
@@ -187,10 +163,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let (measured, measured_step, measured_overhead) = one_core(&walker, &sim, n, args.seconds);
     say!(
         "{:<44} {measured:>12.1} {measured_step:>10.1} {measured_overhead:>9.1}%",
-        format!(
-            "measured: {} substep(s), {} iterations × {} PGS",
-            sim.substeps, sim.solver_iterations, sim.pgs_iterations
-        )
+        format!("measured: {}", setting_name(&sim))
     );
     let (slow, slow_step, slow_overhead) = one_core(&walker, &reference, n, args.seconds);
     say!(
@@ -200,7 +173,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let (quick, quick_step, quick_overhead) = one_core(&walker, &fast, n, args.seconds);
     say!(
         "{:<44} {quick:>12.1} {quick_step:>10.1} {quick_overhead:>9.1}%",
-        "fast: 1 substep, 2 iterations × 3 PGS"
+        setting_name(&fast)
     );
     say!(
         "ratio:     {:.2}× the first version's evaluations/s (fast: {:.2}×)",
@@ -403,15 +376,19 @@ fn creatures_at_rest(measured: &[usize], fine: &[usize], runs: usize) -> (usize,
     (both, fine_rested)
 }
 
-/// A stepping setting of `--fidelity-also`: `SxIxP` (substeps, solver iterations, PGS passes
-/// while walking), optionally followed by `/SxI` (substeps and iterations while waiting for
-/// rest); e.g. `1x2x3/2x4`.
+/// A stepping setting of `--fidelity-also`: a named one (`fast`, `default`, `fine`), or `SxIxP`
+/// (substeps, solver iterations, PGS passes while walking), optionally followed by `/SxI`
+/// (substeps and iterations while waiting for rest); e.g. `1x2x3/2x4`. Checked as every
+/// setting is ([`SimOptions::check`]).
 fn parse_setting(text: &str, base: &SimOptions) -> anyhow::Result<SimOptions> {
+    if let Ok(named) = text.parse::<StepSetting>() {
+        return Ok(named.apply(base));
+    }
     let bad = || {
         ontogeny::lang::Diagnostic::without_location(
             ontogeny::lang::DiagnosticKind::Semantic,
             format!(
-                "--fidelity-also: '{text}' is not a setting such as 1x2x3 or 1x2x3/2x4 (substeps x iterations x PGS passes / rest substeps x rest iterations)"
+                "--fidelity-also: '{text}' is not a setting such as fast, 1x2x3 or 1x2x3/2x4 (a named setting, or substeps x iterations x PGS passes / rest substeps x rest iterations)"
             ),
         )
     };
@@ -421,7 +398,7 @@ fn parse_setting(text: &str, base: &SimOptions) -> anyhow::Result<SimOptions> {
             .map(|x| x.trim().parse::<usize>())
             .collect::<Result<_, _>>()
             .map_err(|_| bad())?;
-        if n.len() != count || n.iter().any(|&k| k == 0 || k > 256) {
+        if n.len() != count {
             return Err(bad().into());
         }
         Ok(n)
@@ -442,11 +419,17 @@ fn parse_setting(text: &str, base: &SimOptions) -> anyhow::Result<SimOptions> {
         sim.rest_substeps = r[0];
         sim.rest_solver_iterations = r[1];
     }
+    sim.check()
+        .map_err(|e| super::evolve::bad(format!("--fidelity-also {text}: {e}")))?;
     Ok(sim)
 }
 
-/// A setting's short name: `SxIxP/SxI`.
+/// A setting's short name: its name when it is a named setting (`fast`, `default`, `fine`),
+/// else `SxIxP/SxI`.
 fn setting_name(sim: &SimOptions) -> String {
+    if let Some(named) = StepSetting::of(sim) {
+        return named.name().to_string();
+    }
     format!(
         "{}x{}x{}/{}x{}",
         sim.substeps,
@@ -476,7 +459,7 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     };
     let runs = args.runs.max(1);
     say!(
-        "\nfidelity: {} creatures walked {} s, {runs} times each from drop heights 0.1 mm apart, with each setting and with a fine reference (4x8x1/4x8: 1/240 s physics, 8 iterations)",
+        "\nfidelity: {} creatures walked {} s, {runs} times each from drop heights 0.1 mm apart, with each setting and with the fine reference (the fine setting: 1/240 s physics, 8 iterations, also while settling)",
         creatures.len(),
         args.seconds
     );

@@ -13,6 +13,9 @@ use ontogeny::evolve::compare::{
 use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, read_config};
 use ontogeny::evolve::run::{GenerationReport, Run};
 use ontogeny::lang::Source;
+use ontogeny::sim::StepSetting;
+
+use super::eval::setting_parser;
 
 use super::evolve::{
     EncodingArg, PresetArg, TaskArg, bad, check_seconds, config_error, resolve_task, run_error,
@@ -50,6 +53,10 @@ pub struct CompareArgs {
     /// Seconds of the task's measurement (walker: walking, default 20), in (0, 3600].
     #[arg(long)]
     seconds: Option<f64>,
+    /// The named step setting (default: the config's `[task.sim]`, else default); it replaces
+    /// the config's five stepping values.
+    #[arg(long, value_name = "NAME", value_parser = setting_parser())]
+    setting: Option<StepSetting>,
     /// A TOML file of shared settings ([ga] without generations, [task], seed).
     #[arg(long, value_name = "FILE.toml")]
     config: Option<PathBuf>,
@@ -62,10 +69,10 @@ pub struct CompareArgs {
     plan: bool,
     /// Run the replicates of the comparison in DIR that are missing or unfinished, then
     /// write the report.
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "config", "merge"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "merge"])]
     resume: Option<PathBuf>,
     /// Write the report of the comparison in DIR from its finished replicates (runs nothing).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "config", "threads"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "threads"])]
     merge: Option<PathBuf>,
 }
 
@@ -208,7 +215,7 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     let mut ga = overrides.resolve();
     ga.generations = 1;
     check_seconds(args.seconds)?;
-    let task = resolve_task(file.task.clone(), args.task, args.seconds);
+    let task = resolve_task(file.task.clone(), args.task, args.seconds, args.setting);
     check_settings(&ga, &task).map_err(|e| bad(config_error(source.as_deref(), e)))?;
     let budget = args.evaluations.expect("clap requires --evaluations");
     ga.generations =

@@ -3,15 +3,16 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
+use clap::builder::TypedValueParser;
 use clap::{Args, ValueEnum};
 use ontogeny::creature::{Creature, Severity};
 use ontogeny::develop::{BuildOptions, grow_with_progress};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
-use ontogeny::sim::{ActuatorModel, JointModel, SimOptions, StrengthFrom};
-use ontogeny::task::{
-    self, CatapultOptions, Evaluation, JumpOptions, WalkerFitness, WalkerOptions,
+use ontogeny::sim::{
+    ActuatorModel, JointModel, SettingError, SimOptions, StepSetting, StrengthFrom,
 };
+use ontogeny::task::{self, Evaluation, TaskKind, TaskSpec, WalkerFitness};
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
 use super::progress::Progress;
@@ -64,30 +65,12 @@ pub struct PhysicsArgs {
     /// Actuator model.
     #[arg(long, value_enum, default_value = "muscle")]
     actuator: ActuatorArg,
-    /// Control time step in seconds, in (0, 0.1]; the physics runs `--substeps` times per step.
+    /// Control time step in seconds, in [0.001, 0.1]; the physics runs `--substeps` times per
+    /// step.
     #[arg(long, default_value_t = SimOptions::default().dt)]
     time_step: f64,
-    /// Physics substeps per control step, 1 to 64.
-    #[arg(long, default_value_t = SimOptions::default().substeps)]
-    substeps: usize,
-    /// Solver iterations per substep, 1 to 256.
-    #[arg(long, default_value_t = SimOptions::default().solver_iterations)]
-    solver_iterations: usize,
-    /// Gauss-Seidel passes inside each solver iteration, 1 to 256.
-    #[arg(long, default_value_t = SimOptions::default().pgs_iterations)]
-    pgs_iterations: usize,
-    /// Substeps per control step while waiting for the creature to come to rest, 1 to 64.
-    #[arg(long, default_value_t = SimOptions::default().rest_substeps)]
-    rest_substeps: usize,
-    /// Solver iterations per substep while waiting for the creature to come to rest, 1 to
-    /// 256.
-    #[arg(long, default_value_t = SimOptions::default().rest_solver_iterations)]
-    rest_solver_iterations: usize,
-    /// The fast step setting, the default before physics ran at 1/240 s: 1 substep of 2
-    /// solver iterations × 3 Gauss-Seidel passes, settling at 2 × 4 (`SimOptions::fast`;
-    /// about 4× quicker, but evolution exploits it). Not with the five stepping flags.
-    #[arg(long, conflicts_with_all = ["substeps", "solver_iterations", "pgs_iterations", "rest_substeps", "rest_solver_iterations"])]
-    fast: bool,
+    #[command(flatten)]
+    stepping: SteppingArgs,
     /// Whose cross-section sets a joint's strength.
     #[arg(long, value_enum, default_value = "bigger")]
     strength_from: StrengthArg,
@@ -108,71 +91,88 @@ pub struct PhysicsArgs {
     energy_tolerance: f64,
 }
 
+/// `--setting NAME` of the verbs without the five stepping flags (`evolve`, `compare`): the
+/// named step settings, parsed by the library's [`StepSetting`] (one definition of the names).
+pub fn setting_parser() -> impl TypedValueParser<Value = StepSetting> {
+    let names =
+        StepSetting::ALL.map(|s| clap::builder::PossibleValue::new(s.name()).help(s.summary()));
+    clap::builder::PossibleValuesParser::new(names)
+        .try_map(|name: String| name.parse::<StepSetting>())
+}
+
+/// The step setting: a named one (`--setting`), and the five stepping flags over it, for
+/// experts. Shared by `eval`, `export` and `bench`.
+#[derive(Args)]
+pub struct SteppingArgs {
+    /// The named step setting [default: default]; the five stepping flags override its values.
+    #[arg(long, value_name = "NAME", value_parser = setting_parser())]
+    setting: Option<StepSetting>,
+    /// Physics substeps per control step, 1 to 64 [default: the setting's].
+    #[arg(long)]
+    substeps: Option<usize>,
+    /// Solver iterations per substep, 1 to 256 [default: the setting's].
+    #[arg(long)]
+    solver_iterations: Option<usize>,
+    /// Gauss-Seidel passes inside each solver iteration, 1 to 256 [default: the setting's].
+    #[arg(long)]
+    pgs_iterations: Option<usize>,
+    /// Substeps per control step while waiting for the creature to come to rest, 1 to 64
+    /// [default: the setting's].
+    #[arg(long)]
+    rest_substeps: Option<usize>,
+    /// Solver iterations per substep while waiting for the creature to come to rest, 1 to
+    /// 256 [default: the setting's].
+    #[arg(long)]
+    rest_solver_iterations: Option<usize>,
+}
+
+impl SteppingArgs {
+    /// `base` with the named setting's stepping and the given stepping flags over it, checked
+    /// ([`SimOptions::check`]); an error names the flag at fault.
+    pub fn apply(&self, base: &SimOptions) -> anyhow::Result<SimOptions> {
+        let mut options = self.setting.unwrap_or_default().apply(base);
+        let flags = [
+            (&mut options.substeps, self.substeps),
+            (&mut options.solver_iterations, self.solver_iterations),
+            (&mut options.pgs_iterations, self.pgs_iterations),
+            (&mut options.rest_substeps, self.rest_substeps),
+            (
+                &mut options.rest_solver_iterations,
+                self.rest_solver_iterations,
+            ),
+        ];
+        for (field, flag) in flags {
+            if let Some(value) = flag {
+                *field = value;
+            }
+        }
+        options.check().map_err(flag_error)?;
+        Ok(options)
+    }
+}
+
+/// The bad-input error for a setting a flag gave: the message names the flag (`--time-step`
+/// for `dt`, `--seconds` for a task's duration, else the key in kebab case: `--substeps`).
+pub fn flag_error(error: SettingError) -> anyhow::Error {
+    let flag = match error.key {
+        "dt" => "--time-step".to_string(),
+        "seconds" | "max_seconds" => "--seconds".to_string(),
+        key => format!("--{}", key.replace('_', "-")),
+    };
+    anyhow::Error::new(Diagnostic::without_location(
+        DiagnosticKind::Semantic,
+        error.for_flag(&flag),
+    ))
+}
+
 impl PhysicsArgs {
     /// The simulator settings the flags ask for (the rest at their defaults), or an error
     /// naming the flag that is out of range.
     pub fn sim_options(&self) -> anyhow::Result<SimOptions> {
-        if !(self.time_step > 0.0 && self.time_step <= 0.1) {
-            anyhow::bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                format!(
-                    "--time-step must be in (0, 0.1] seconds, not {}",
-                    self.time_step
-                ),
-            ));
-        }
-        let counts = [
-            ("--substeps", self.substeps, 64),
-            ("--rest-substeps", self.rest_substeps, 64),
-            ("--solver-iterations", self.solver_iterations, 256),
-            ("--rest-solver-iterations", self.rest_solver_iterations, 256),
-            ("--pgs-iterations", self.pgs_iterations, 256),
-        ];
-        for (flag, value, most) in counts {
-            if !(1..=most).contains(&value) {
-                anyhow::bail!(Diagnostic::without_location(
-                    DiagnosticKind::Semantic,
-                    format!("{flag} must be 1 to {most}, not {value}"),
-                ));
-            }
-        }
-        let reals = [
-            (
-                "--energy-tolerance",
-                self.energy_tolerance,
-                self.energy_tolerance >= 0.0,
-                "finite and not negative (0 turns the audit off)",
-            ),
-            (
-                "--strength",
-                self.strength,
-                self.strength >= 0.0,
-                "finite and not negative",
-            ),
-            (
-                "--muscle-speed",
-                self.muscle_speed,
-                self.muscle_speed > 0.0,
-                "finite and positive",
-            ),
-        ];
-        for (flag, value, in_range, range) in reals {
-            if !(value.is_finite() && in_range) {
-                anyhow::bail!(Diagnostic::without_location(
-                    DiagnosticKind::Semantic,
-                    format!("{flag} must be {range}, not {value}"),
-                ));
-            }
-        }
-        let options = SimOptions {
+        let base = SimOptions {
             dt: self.time_step,
             strength: self.strength,
             muscle_speed: self.muscle_speed,
-            substeps: self.substeps,
-            solver_iterations: self.solver_iterations,
-            pgs_iterations: self.pgs_iterations,
-            rest_substeps: self.rest_substeps,
-            rest_solver_iterations: self.rest_solver_iterations,
             self_collision: !self.no_self_collision,
             energy_tolerance: self.energy_tolerance,
             strength_from: match self.strength_from {
@@ -186,7 +186,7 @@ impl PhysicsArgs {
             },
             ..SimOptions::default()
         };
-        Ok(if self.fast { options.fast() } else { options })
+        self.stepping.apply(&base)
     }
 }
 
@@ -360,31 +360,57 @@ pub(super) fn load_creature(
     Ok(creature)
 }
 
+/// The task and its settings the flags ask for, checked ([`TaskSpec::check`]); an error names
+/// the flag at fault.
+fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
+    let physics = args.physics.sim_options()?;
+    if let Some(seconds) = args.seconds {
+        task::check_duration("seconds", seconds).map_err(flag_error)?;
+    }
+    let mut spec = TaskSpec::new(match args.task {
+        TaskArg::Walker => TaskKind::Walker,
+        TaskArg::Jump => TaskKind::Jump,
+        TaskArg::Catapult => TaskKind::Catapult,
+        TaskArg::Aim => TaskKind::Aim,
+    });
+    spec.sim = SimOptions {
+        joints: match args.joints {
+            JointsArg::Impulse => JointModel::Impulse,
+            JointsArg::Multibody => JointModel::Multibody,
+        },
+        ..physics
+    };
+    spec.walker.fitness = match args.fitness.unwrap_or(FitnessArg::Normalised) {
+        FitnessArg::Normalised => WalkerFitness::Normalised,
+        FitnessArg::Distance => WalkerFitness::Distance,
+        FitnessArg::IterativeMove => WalkerFitness::IterativeMove,
+        FitnessArg::BoxLover => WalkerFitness::BoxLover,
+        FitnessArg::FatLover => WalkerFitness::FatLover,
+        FitnessArg::DwarfSlayer => WalkerFitness::DwarfSlayer,
+    };
+    if let Some(s) = args.seconds {
+        spec.walker.seconds = s;
+        spec.jump.seconds = s;
+        spec.catapult.max_seconds = s;
+    }
+    if let Some(size) = args.projectile_size {
+        spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);
+    }
+    if let Some(density) = args.projectile_density {
+        spec.catapult.projectile_density = density;
+    }
+    if spec.task == TaskKind::Aim {
+        let [x, y, z] = args.target.unwrap_or([5.0, 0.0, 0.0]);
+        spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
+    }
+    spec.check().map_err(flag_error)?;
+    Ok(spec)
+}
+
 /// Evaluates the creature and prints the result.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let creature = load_creature(&args.file, &args.development, args.seed)?;
-    let physics = args.physics.sim_options()?;
-    if let Some(seconds) = args.seconds
-        && !(seconds > 0.0 && seconds <= 3600.0)
-    {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("--seconds must be in (0, 3600], not {seconds}"),
-        ));
-    }
-    for (flag, value) in [
-        ("--projectile-size", args.projectile_size),
-        ("--projectile-density", args.projectile_density),
-    ] {
-        if let Some(v) = value
-            && !(v.is_finite() && v > 0.0)
-        {
-            anyhow::bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                format!("{flag} must be finite and positive, not {v}"),
-            ));
-        }
-    }
+    let spec = task_spec(args)?;
     // A place to record into, checked before the evaluation runs.
     if let Some(dir) = &args.record {
         if dir.exists() && !dir.is_dir() {
@@ -398,23 +424,16 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         }
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
-    let sim = SimOptions {
-        joints: match args.joints {
-            JointsArg::Impulse => JointModel::Impulse,
-            JointsArg::Multibody => JointModel::Multibody,
-        },
-        ..physics
-    };
+    let sim = &spec.sim;
     let record = args.record.is_some();
     for flag in inapplicable_flags(args) {
         eprintln!("warning: {flag}; ignored");
     }
-    let seconds = |default: f64| args.seconds.unwrap_or(default);
-    let what = match args.task {
-        TaskArg::Walker => format!("walker, {} s", seconds(WalkerOptions::default().seconds)),
-        TaskArg::Jump => format!("jump, {} s", seconds(JumpOptions::default().seconds)),
-        TaskArg::Catapult => "catapult".to_string(),
-        TaskArg::Aim => "aim".to_string(),
+    let what = match spec.task {
+        TaskKind::Walker => format!("walker, {} s", spec.walker.seconds),
+        TaskKind::Jump => format!("jump, {} s", spec.jump.seconds),
+        TaskKind::Catapult => "catapult".to_string(),
+        TaskKind::Aim => "aim".to_string(),
     };
     let mut progress = Progress::new(what);
     let mut tell = |fraction: f64| progress.set(fraction);
@@ -429,52 +448,18 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             );
         }
     };
-    let evaluation = match args.task {
-        TaskArg::Walker => {
-            let mut options = WalkerOptions {
-                fitness: match args.fitness.unwrap_or(FitnessArg::Normalised) {
-                    FitnessArg::Normalised => WalkerFitness::Normalised,
-                    FitnessArg::Distance => WalkerFitness::Distance,
-                    FitnessArg::IterativeMove => WalkerFitness::IterativeMove,
-                    FitnessArg::BoxLover => WalkerFitness::BoxLover,
-                    FitnessArg::FatLover => WalkerFitness::FatLover,
-                    FitnessArg::DwarfSlayer => WalkerFitness::DwarfSlayer,
-                },
-                ..WalkerOptions::default()
-            };
-            if let Some(s) = args.seconds {
-                options.seconds = s;
-            }
-            note(options.max_steps(sim.dt));
-            task::walker_with_progress(&creature, &sim, &options, record, &mut tell)
+    let evaluation = match spec.task {
+        TaskKind::Walker => {
+            note(spec.walker.max_steps(sim.dt));
+            task::walker_with_progress(&creature, sim, &spec.walker, record, &mut tell)
         }
-        TaskArg::Jump => {
-            let mut options = JumpOptions::default();
-            if let Some(s) = args.seconds {
-                options.seconds = s;
-            }
-            note(options.max_steps(sim.dt));
-            task::jump_with_progress(&creature, &sim, &options, record, &mut tell)
+        TaskKind::Jump => {
+            note(spec.jump.max_steps(sim.dt));
+            task::jump_with_progress(&creature, sim, &spec.jump, record, &mut tell)
         }
-        TaskArg::Catapult | TaskArg::Aim => {
-            let mut options = CatapultOptions {
-                ..CatapultOptions::default()
-            };
-            if let Some(size) = args.projectile_size {
-                options.projectile_size = nalgebra::Vector3::repeat(size);
-            }
-            if let Some(density) = args.projectile_density {
-                options.projectile_density = density;
-            }
-            if let Some(s) = args.seconds {
-                options.max_seconds = s;
-            }
-            if matches!(args.task, TaskArg::Aim) {
-                let [x, y, z] = args.target.unwrap_or([5.0, 0.0, 0.0]);
-                options.target = Some(nalgebra::Vector3::new(x, y, z));
-            }
-            note(options.max_steps(sim.dt));
-            task::catapult_with_progress(&creature, &sim, &options, record, &mut tell)
+        TaskKind::Catapult | TaskKind::Aim => {
+            note(spec.catapult.max_steps(sim.dt));
+            task::catapult_with_progress(&creature, sim, &spec.catapult, record, &mut tell)
         }
     };
     progress.finish();

@@ -11,7 +11,10 @@ use ontogeny::evolve::ga::Preset;
 use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::lang::{Diagnostic, DiagnosticKind, Source};
+use ontogeny::sim::StepSetting;
 use ontogeny::task::{TaskKind, TaskSpec};
+
+use super::eval::{flag_error, setting_parser};
 
 /// The encodings `--encoding` accepts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -51,13 +54,11 @@ pub enum TaskArg {
     Aim,
 }
 
-/// `--seconds` checked against the evaluator's limit, (0, 3600].
+/// `--seconds` checked against the evaluator's limit, (0, [`ontogeny::task::MAX_SECONDS`]].
 pub fn check_seconds(seconds: Option<f64>) -> anyhow::Result<()> {
     match seconds {
-        Some(s) if !(s > 0.0 && s <= 3600.0) => {
-            Err(bad(format!("--seconds must be in (0, 3600], not {s}")))
-        }
-        _ => Ok(()),
+        Some(s) => ontogeny::task::check_duration("seconds", s).map_err(flag_error),
+        None => Ok(()),
     }
 }
 
@@ -69,13 +70,18 @@ pub fn config_error(source: Option<&Source>, error: String) -> String {
     }
 }
 
-/// The task of a config file (default: the walker), with `--task` and `--seconds` over it.
+/// The task of a config file (default: the walker), with `--task`, `--seconds` and `--setting`
+/// over it (a named setting replaces the file's five stepping values, and nothing else).
 pub fn resolve_task(
     file: Option<TaskSpec>,
     task: Option<TaskArg>,
     seconds: Option<f64>,
+    setting: Option<StepSetting>,
 ) -> TaskSpec {
     let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+    if let Some(setting) = setting {
+        spec.sim = setting.apply(&spec.sim);
+    }
     if let Some(t) = task {
         spec.task = match t {
             TaskArg::Walker => TaskKind::Walker,
@@ -120,7 +126,7 @@ pub struct EvolveArgs {
     #[arg(long, value_name = "DIR", required_unless_present = "resume")]
     out: Option<PathBuf>,
     /// Continue the run in DIR where it stopped (any other flag but --threads is refused).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "gens", "seed", "config", "init", "seconds", "no_verify_best"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "gens", "seed", "config", "init", "seconds", "setting", "no_verify_best"])]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_enum)]
@@ -143,6 +149,10 @@ pub struct EvolveArgs {
     /// Seconds of the task's measurement (walker: walking, default 20), in (0, 3600].
     #[arg(long)]
     seconds: Option<f64>,
+    /// The named step setting (default: the config's `[task.sim]`, else default); it replaces
+    /// the config's five stepping values.
+    #[arg(long, value_name = "NAME", value_parser = setting_parser())]
+    setting: Option<StepSetting>,
     /// Worker threads (default: every core). Results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
@@ -247,7 +257,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
     }
     let ga = overrides.resolve();
     check_seconds(args.seconds)?;
-    let task = resolve_task(file.task.clone(), args.task, args.seconds);
+    let task = resolve_task(file.task.clone(), args.task, args.seconds, args.setting);
     check_settings(&ga, &task).map_err(|e| bad(config_error(source, e)))?;
     // --init on the command line is relative to the working directory; in the config file,
     // to the file.

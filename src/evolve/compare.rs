@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::config::{RunConfig, read_run_config};
+use super::config::{RunConfig, check_settings, read_run_config};
 use super::ga::{GaSettings, Individual};
 use super::lock::{DirectoryLock, LockError};
 use super::plot::{self, Band};
@@ -193,6 +193,8 @@ pub fn open(root: &Path) -> Result<(Manifest, Shared), CompareError> {
     let path = root.join("evolve.toml");
     let text = std::fs::read_to_string(&path).map_err(io(&path))?;
     let shared: Shared = toml::from_str(&text)
+        .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
+    check_settings(&shared.ga, &shared.task)
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
     Ok((manifest, shared))
 }

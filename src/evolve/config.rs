@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use super::ga::{GaSettings, Preset};
 use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
-use crate::task::{TaskKind, TaskSpec};
+use crate::task::TaskSpec;
 
 /// Every setting of a run, resolved: what `config.toml` holds in a run directory.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -220,29 +220,9 @@ fn differing_keys(prefix: &str, a: &toml::Table, b: &toml::Table, out: &mut Vec<
     }
 }
 
-/// Checks the values a configuration may get wrong; the message names the setting.
+/// Checks the values a configuration may get wrong ([`GaSettings::check`] and
+/// [`TaskSpec::check`]); the message names the setting (`[task.sim] substeps ...`).
 pub fn check_settings(ga: &GaSettings, task: &TaskSpec) -> Result<(), String> {
     ga.check().map_err(|e| format!("[ga] {e}"))?;
-    let sim = &task.sim;
-    if !(sim.dt > 0.0 && sim.dt <= 0.1) {
-        return Err(format!(
-            "[task.sim] dt must be in (0, 0.1] seconds, not {}",
-            sim.dt
-        ));
-    }
-    let seconds = match task.task {
-        TaskKind::Walker => task.walker.seconds,
-        TaskKind::Jump => task.jump.seconds,
-        TaskKind::Catapult | TaskKind::Aim => task.catapult.max_seconds,
-    };
-    if !(seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0) {
-        return Err(format!(
-            "the {} task's seconds must be in (0, 3600], not {seconds}",
-            task.task.name()
-        ));
-    }
-    if task.task == TaskKind::Aim && task.catapult.target.is_none() {
-        return Err("the aim task needs [task.catapult] target = [x, y, z]".into());
-    }
-    Ok(())
+    task.check().map_err(|e| e.to_string())
 }

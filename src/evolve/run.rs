@@ -13,7 +13,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use super::config::{RunConfig, read_run_config};
+use super::config::{RunConfig, check_settings, read_run_config};
 use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, Operator, ranking};
 use super::lock::{DirectoryLock, LockError};
 use super::plot::fitness_svg;
@@ -21,7 +21,7 @@ use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
 };
 use crate::encoding::{Genome, Purpose};
-use crate::lang::{Diagnostic, Source};
+use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::task::{Evaluation, TaskKind, TaskSpec};
 
 /// Why a run could not start, resume or go on.
@@ -143,15 +143,28 @@ pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
     Ok(RunStore::open_read_only(&store)?.run()?.encoding)
 }
 
+/// The run's settings in range ([`check_settings`]); the error names `name`, where they come
+/// from, and the key.
+fn checked_settings<L>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
+    check_settings(&config.ga, &config.task).map_err(|e| {
+        RunError::Config(Diagnostic::without_location(
+            DiagnosticKind::Semantic,
+            format!("{name}: {e}"),
+        ))
+    })
+}
+
 impl<G: Genome> Run<G> {
-    /// Starts a new run in `dir` (refused if it holds a run, or another process holds its
-    /// lock): writes `init.lsys` (the grammar of `init_text`), creates the database holding
-    /// every setting, then writes `config.toml`, and rewrites the derived files.
+    /// Starts a new run in `dir` (refused if it holds a run, if another process holds its
+    /// lock, or if a setting is out of range, before anything is written): writes `init.lsys`
+    /// (the grammar of `init_text`), creates the database holding every setting, then writes
+    /// `config.toml`, and rewrites the derived files.
     pub fn start(
         dir: &Path,
         mut config: RunConfig<G::Limits>,
         init_text: Option<&str>,
     ) -> Result<Run<G>, RunError> {
+        checked_settings(&config, "the run's settings")?;
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         let lock = DirectoryLock::acquire(dir)?;
         let store_path = dir.join(STORE_FILE);
@@ -217,6 +230,7 @@ impl<G: Genome> Run<G> {
             let Some((config, source)) = file_config else {
                 return Err(RunError::NotARun(dir.to_path_buf()));
             };
+            checked_settings(&config, source.name())?;
             RunStore::remove_vacant(&store_path)?;
             let store = RunStore::create(
                 &store_path,
@@ -243,6 +257,7 @@ impl<G: Genome> Run<G> {
             stored.config.clone(),
         );
         let config: RunConfig<G::Limits> = read_run_config(&source).map_err(RunError::Config)?;
+        checked_settings(&config, source.name())?;
         match &file_config {
             Some((edited, _)) => {
                 let keys = config.differences(edited).map_err(RunError::Corrupt)?;

@@ -220,34 +220,12 @@ pub fn z_up() -> UnitQuaternion<f64> {
     UnitQuaternion::from_axis_angle(&Vector3::x_axis(), FRAC_PI_2)
 }
 
+/// The simulator's settings in range ([`SimOptions::check`]), so that the model's numbers are
+/// finite and its time step positive.
 fn check_settings(options: &SimOptions) -> Result<(), ExportError> {
-    let bad = |what: &str, v: f64| {
-        Err(ExportError::Settings(format!(
-            "{what} must be positive and finite, not {v}"
-        )))
-    };
-    if !(options.dt.is_finite() && options.dt > 0.0) {
-        return bad("the time step", options.dt);
-    }
-    if !(options.friction.is_finite() && options.friction >= 0.0) {
-        return Err(ExportError::Settings(format!(
-            "the friction must be finite and not negative, not {}",
-            options.friction
-        )));
-    }
-    if !(options.max_speed.is_finite() && options.max_speed > 0.0) {
-        return bad("the maximum speed", options.max_speed);
-    }
-    if !(options.strength.is_finite() && options.strength >= 0.0) {
-        return Err(ExportError::Settings(format!(
-            "the strength must be finite and not negative, not {}",
-            options.strength
-        )));
-    }
-    if !options.drop_height.is_finite() {
-        return bad("the drop height", options.drop_height);
-    }
-    Ok(())
+    options
+        .check()
+        .map_err(|e| ExportError::Settings(e.to_string()))
 }
 
 /// Indentation of a body at `depth` (capped, so that deep chains stay linear in size).

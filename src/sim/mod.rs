@@ -1,9 +1,14 @@
 //! Simulation: running a creature's brain against its body in a rapier3d world.
 
 pub mod brain;
+pub mod setting;
 pub mod world;
 
 pub use brain::BrainRuntime;
+pub use setting::{
+    MAX_DT, MAX_ITERATIONS, MAX_SUBSTEPS, MIN_DT, SettingError, SimTable, StepSetting,
+    UnknownSetting,
+};
 pub use world::{
     ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, BuildError, DEFAULT_MUSCLE_SPEED,
     DEFAULT_STRENGTH, ENERGY_TOLERANCE, Exploded, GRAVITY, JOINT_GAP_WARNING, JointModel,

@@ -6,6 +6,7 @@ use rapier3d::math::{Pose, Real, Rotation, Vector};
 use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
+use super::setting::StepSetting;
 use crate::creature::{Actuator, Creature, Face, Joint, Role, Sensor};
 
 /// Gravity's acceleration (m/s²), pulling along −Y.
@@ -96,9 +97,10 @@ pub const JOINT_GAP_WARNING: f64 = 0.05;
 /// 1/e of its amount.
 pub const ENERGY_WINDOW: f64 = 0.5;
 
-/// World settings.
+/// World settings. Read from a `[task.sim]` table through [`SimTable`](super::SimTable) (a named
+/// step setting and any value over it); checked by [`SimOptions::check`].
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(from = "super::SimTable")]
 pub struct SimOptions {
     /// Control step in seconds: the brain runs once per step; physics runs `substeps`
     /// times per step, at `dt / substeps`.
@@ -151,21 +153,22 @@ pub struct SimOptions {
 
 impl Default for SimOptions {
     fn default() -> Self {
+        // Physics at 1/240 s: 4 substeps of 4 solver iterations (one PGS pass each) while
+        // walking, 4 substeps of 8 iterations (the fine reference's own setting) while a task
+        // waits for rest. The champions evolved at the faster `SimOptions::fast` setting lost
+        // most of their distance at the fine reference; those of the few runs evolved at this
+        // one kept most of theirs (lucky walks aside), and this setting ranks random creatures
+        // about as alike to the fine reference as the reference ranks them to itself (see
+        // `ontogeny bench --fidelity` and the README's "Speed and fidelity").
+        let (substeps, solver_iterations, pgs_iterations, rest_substeps, rest_solver_iterations) =
+            StepSetting::Default.stepping();
         SimOptions {
             dt: 1.0 / 60.0,
-            // Physics at 1/240 s: 4 substeps of 4 solver iterations (one PGS pass each) while
-            // walking, 4 substeps of 8 iterations (the fine reference's own setting) while a
-            // task waits for rest. The champions evolved at the faster `SimOptions::fast`
-            // setting lost most of their distance at the fine reference; those of the few runs
-            // evolved at this one kept most of theirs (lucky walks aside), and this setting
-            // ranks random creatures about as alike to the fine reference as the reference
-            // ranks them to itself (see `ontogeny bench --fidelity` and the README's "Speed
-            // and fidelity").
-            substeps: 4,
-            solver_iterations: 4,
-            pgs_iterations: 1,
-            rest_substeps: 4,
-            rest_solver_iterations: 8,
+            substeps,
+            solver_iterations,
+            pgs_iterations,
+            rest_substeps,
+            rest_solver_iterations,
             joints: JointModel::Impulse,
             self_collision: true,
             friction: 1.0,
@@ -183,38 +186,25 @@ impl Default for SimOptions {
 }
 
 impl SimOptions {
-    /// The fast setting, the default until evolution was found to exploit it: one physics
-    /// step of 1/60 s with 2 solver iterations of 3 Gauss-Seidel passes while walking, 2
-    /// substeps of 4 iterations while waiting for rest; everything else as `self`. About 4×
-    /// cheaper than the default per walk (3.6× with the rest phases, 4.7× controller on),
-    /// and good for ranking random creatures (`bench --fidelity`), but evolved creatures
-    /// learn to walk on its errors (README, "Speed and fidelity").
+    /// The fast setting ([`StepSetting::Fast`]), the default until evolution was found to
+    /// exploit it: one physics step of 1/60 s with 2 solver iterations of 3 Gauss-Seidel
+    /// passes while walking, 2 substeps of 4 iterations while waiting for rest; everything else
+    /// as `self`. About 4× cheaper than the default per walk (3.6× with the rest phases, 4.7×
+    /// controller on), and good for ranking random creatures (`bench --fidelity`), but evolved
+    /// creatures learn to walk on its errors (README, "Speed and fidelity").
     pub fn fast(&self) -> SimOptions {
-        SimOptions {
-            substeps: 1,
-            solver_iterations: 2,
-            pgs_iterations: 3,
-            rest_substeps: 2,
-            rest_solver_iterations: 4,
-            ..self.clone()
-        }
+        StepSetting::Fast.apply(self)
     }
 
-    /// The fine reference setting: these settings with 4 physics substeps of 8 solver
-    /// iterations (one PGS pass each) both while walking and while waiting for rest; the
-    /// control step `dt` and everything else unchanged. At the default `dt` of 1/60 s that is
-    /// physics at 1/240 s. `ontogeny bench --fidelity` ranks stepping settings against it,
-    /// and `ontogeny evolve` re-walks each generation's best with it, since evolution learns
-    /// to exploit a coarse setting (see the README's *Speed and fidelity* and *Evolve*).
+    /// The fine reference setting ([`StepSetting::Fine`]): these settings with 4 physics
+    /// substeps of 8 solver iterations (one PGS pass each) both while walking and while waiting
+    /// for rest; the control step `dt` and everything else unchanged. At the default `dt` of
+    /// 1/60 s that is physics at 1/240 s. `ontogeny bench --fidelity` ranks stepping settings
+    /// against it, and `ontogeny evolve` re-walks each generation's best with it, since
+    /// evolution learns to exploit a coarse setting (see the README's *Speed and fidelity* and
+    /// *Evolve*).
     pub fn fine_reference(&self) -> SimOptions {
-        SimOptions {
-            substeps: 4,
-            solver_iterations: 8,
-            pgs_iterations: 1,
-            rest_substeps: 4,
-            rest_solver_iterations: 8,
-            ..self.clone()
-        }
+        StepSetting::Fine.apply(self)
     }
 }
 

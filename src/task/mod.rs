@@ -6,8 +6,10 @@ use std::collections::BTreeMap;
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
+mod check;
 mod compact;
 mod spec;
+pub use check::{MAX_SECONDS, check_duration};
 pub use spec::{TaskKind, TaskSpec};
 
 use crate::creature::{Creature, Severity};

@@ -1,0 +1,186 @@
+//! The range check of every task setting, and the one limit on how long a task may run
+//! ([`MAX_SECONDS`]): each options type checks its own values ([`WalkerOptions::check`] and its
+//! kin) and [`TaskSpec::check`] checks them all with the simulator's, naming the key as a
+//! config file spells it (`[task.walker] seconds`).
+
+use super::{
+    CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
+};
+use crate::sim::SettingError;
+use crate::sim::setting::check_real;
+
+/// The longest any duration of a task may be (s): an hour. A task's measurement (`seconds`,
+/// the catapult's `max_seconds`), a wait for rest and every other phase must fit in it, so
+/// that an evaluation ends in a bounded number of steps.
+pub const MAX_SECONDS: f64 = 3600.0;
+
+/// `seconds` is a task's duration: in (0, [`MAX_SECONDS`]]. The error names `key`.
+pub fn check_duration(key: &'static str, seconds: f64) -> Result<(), SettingError> {
+    if seconds > 0.0 && seconds <= MAX_SECONDS {
+        Ok(())
+    } else {
+        Err(SettingError::out_of_range(
+            key,
+            &format!("in (0, {MAX_SECONDS}]"),
+            seconds,
+        ))
+    }
+}
+
+/// `seconds` is a phase that may be empty: in [0, [`MAX_SECONDS`]]. The error names `key`.
+fn check_phase(key: &'static str, seconds: f64) -> Result<(), SettingError> {
+    if (0.0..=MAX_SECONDS).contains(&seconds) {
+        Ok(())
+    } else {
+        Err(SettingError::out_of_range(
+            key,
+            &format!("in [0, {MAX_SECONDS}]"),
+            seconds,
+        ))
+    }
+}
+
+impl Rest {
+    /// Checks the rest criterion: thresholds finite and positive, the calm window in [0,
+    /// [`MAX_SECONDS`]], the time limit in (0, [`MAX_SECONDS`]].
+    pub fn check(&self) -> Result<(), SettingError> {
+        check_real("distance", self.distance, 0.0, true)?;
+        check_phase("duration", self.duration)?;
+        check_real("drift", self.drift, 0.0, true)?;
+        check_duration("limit", self.limit)
+    }
+}
+
+impl WalkerOptions {
+    /// Checks the walker's settings: `seconds` in (0, [`MAX_SECONDS`]], the activation and the
+    /// second settling in [0, [`MAX_SECONDS`]], κ and the height limit finite and positive,
+    /// and the rest criterion ([`Rest::check`], in the `rest` table).
+    pub fn check(&self) -> Result<(), SettingError> {
+        check_duration("seconds", self.seconds)?;
+        check_real("kappa", self.kappa, 0.0, true)?;
+        check_phase("activation", self.activation)?;
+        check_phase("second_settle", self.second_settle)?;
+        check_real("max_height", self.max_height, 0.0, true)?;
+        self.rest.check().map_err(|e| e.within("rest"))
+    }
+}
+
+impl JumpOptions {
+    /// Checks the jump's settings: `seconds` in (0, [`MAX_SECONDS`]], the height limit finite
+    /// and positive, and the rest criterion ([`Rest::check`], in the `rest` table).
+    pub fn check(&self) -> Result<(), SettingError> {
+        check_duration("seconds", self.seconds)?;
+        check_real("max_height", self.max_height, 0.0, true)?;
+        self.rest.check().map_err(|e| e.within("rest"))
+    }
+}
+
+impl CatapultOptions {
+    /// Checks the catapult's settings: the projectile's size (every edge) and density finite
+    /// and positive, `max_seconds` in (0, [`MAX_SECONDS`]], the release delay and the rest
+    /// duration in [0, [`MAX_SECONDS`]], the rest speed and the height limit finite and
+    /// positive, and a target, when there is one, finite and within [`MAX_TARGET_DISTANCE`].
+    pub fn check(&self) -> Result<(), SettingError> {
+        for edge in self.projectile_size.iter() {
+            check_real("projectile_size", *edge, 0.0, true)?;
+        }
+        check_real("projectile_density", self.projectile_density, 0.0, true)?;
+        check_duration("max_seconds", self.max_seconds)?;
+        check_phase("release_delay", self.release_delay)?;
+        check_real("rest_speed", self.rest_speed, 0.0, true)?;
+        check_phase("rest_duration", self.rest_duration)?;
+        check_real("max_height", self.max_height, 0.0, true)?;
+        if let Some(target) = self.target
+            && !(target.iter().all(|v| v.is_finite()) && target.norm() <= MAX_TARGET_DISTANCE)
+        {
+            return Err(SettingError::out_of_range(
+                "target",
+                &format!("within {MAX_TARGET_DISTANCE} m of the projectile"),
+                format!("[{}, {}, {}]", target.x, target.y, target.z),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl TaskSpec {
+    /// Checks every setting of the specification — the simulator's ([`crate::sim::SimOptions::check`])
+    /// and every task's, used or not — and that the aim task has a target. The error names the
+    /// key in its table as a config file spells it (`[task.sim] substeps`).
+    pub fn check(&self) -> Result<(), SettingError> {
+        self.check_tables().map_err(|e| e.within("task"))
+    }
+
+    /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
+    fn check_tables(&self) -> Result<(), SettingError> {
+        self.sim.check().map_err(|e| e.within("sim"))?;
+        self.walker.check().map_err(|e| e.within("walker"))?;
+        self.jump.check().map_err(|e| e.within("jump"))?;
+        self.catapult.check().map_err(|e| e.within("catapult"))?;
+        if self.task == TaskKind::Aim && self.catapult.target.is_none() {
+            return Err(SettingError {
+                table: "catapult".to_string(),
+                key: "target",
+                problem:
+                    "is needed by the aim task: target = [x, y, z] (metres from the projectile)"
+                        .to_string(),
+            });
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::SimOptions;
+
+    #[test]
+    fn every_task_passes_its_defaults() {
+        for task in [TaskKind::Walker, TaskKind::Jump, TaskKind::Catapult] {
+            assert_eq!(TaskSpec::new(task).check(), Ok(()));
+        }
+    }
+
+    #[test]
+    fn the_check_names_the_key_in_its_table() {
+        let mut spec = TaskSpec::new(TaskKind::Walker);
+        spec.sim = SimOptions {
+            substeps: 0,
+            ..SimOptions::default()
+        };
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.sim] substeps must be 1 to 64, not 0"
+        );
+        let mut spec = TaskSpec::new(TaskKind::Walker);
+        spec.walker.rest.limit = 1e12;
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.walker.rest] limit must be in (0, 3600], not 1000000000000"
+        );
+        let mut spec = TaskSpec::new(TaskKind::Catapult);
+        spec.catapult.max_seconds = 3600.5;
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.catapult] max_seconds must be in (0, 3600], not 3600.5"
+        );
+        let spec = TaskSpec::new(TaskKind::Aim);
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.catapult] target is needed by the aim task: target = [x, y, z] (metres from the projectile)"
+        );
+        let mut spec = TaskSpec::new(TaskKind::Aim);
+        spec.catapult.target = Some(nalgebra::Vector3::new(2.0 * MAX_TARGET_DISTANCE, 0.0, 0.0));
+        let e = spec.check().unwrap_err();
+        assert_eq!((e.table.as_str(), e.key), ("task.catapult", "target"));
+    }
+
+    #[test]
+    fn a_duration_is_checked_against_the_one_limit() {
+        assert_eq!(check_duration("seconds", MAX_SECONDS), Ok(()));
+        for bad in [0.0, -1.0, MAX_SECONDS + 1.0, f64::NAN, f64::INFINITY] {
+            assert!(check_duration("seconds", bad).is_err(), "{bad}");
+        }
+    }
+}
