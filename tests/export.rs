@@ -649,3 +649,35 @@ fn bad_input_exits_2_with_a_message() {
         assert!(stderr.contains(says), "{all:?}: {stderr}");
     }
 }
+
+#[test]
+fn export_takes_a_named_step_setting_and_explicit_flags_over_it() {
+    let out = ontogeny(&["export", "examples/snake.lsys", "--setting", "fast"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let expected = to_mjcf(
+        &grown("examples/snake.lsys"),
+        &SimOptions::default().fast(),
+        "snake",
+    )
+    .unwrap();
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+    let out = ontogeny(&[
+        "export",
+        "examples/snake.lsys",
+        "--setting",
+        "fine",
+        "--solver-iterations",
+        "5",
+    ]);
+    assert!(out.status.success());
+    let options = SimOptions {
+        solver_iterations: 5,
+        ..SimOptions::default().fine_reference()
+    };
+    let expected = to_mjcf(&grown("examples/snake.lsys"), &options, "snake").unwrap();
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+}
