@@ -91,8 +91,8 @@ pub struct PhysicsArgs {
     energy_tolerance: f64,
 }
 
-/// `--setting NAME` of the verbs without the five stepping flags (`evolve`, `compare`): the
-/// named step settings, parsed by the library's [`StepSetting`] (one definition of the names).
+/// The parser of `--setting NAME` on every verb that simulates: the names and summaries of the
+/// library's [`StepSetting`] (one definition of the names), listed in `--help`.
 pub fn setting_parser() -> impl TypedValueParser<Value = StepSetting> {
     let names =
         StepSetting::ALL.map(|s| clap::builder::PossibleValue::new(s.name()).help(s.summary()));
@@ -805,6 +805,7 @@ fn draw_recording(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ontogeny::task::{CatapultOptions, WalkerOptions};
 
     fn recording(seconds: f64) -> Vec<ontogeny::task::RecordedFrame> {
         (0..=(seconds * 60.0).round() as usize)
