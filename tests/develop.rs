@@ -800,3 +800,40 @@ fn growth_that_keeps_every_frame_is_refused_before_deriving_past_the_frame_limit
     let last = grow_last(&lsys, &options, None, &build_options, &mut |_| {}).unwrap();
     assert_eq!(Some(&last), all.last());
 }
+
+#[test]
+fn repeat_blocks_that_build_nothing_stop_past_a_million_repeated_modules() {
+    use ontogeny::develop::MAX_REPEATED_MODULES;
+    // 10^8 turns (10^16 with eight levels) would run for seconds (years).
+    let c = creature("forward(1) { { { { left }(100) }(100) }(100) }(100) forward(1)");
+    assert!(!c.is_valid());
+    let error = c
+        .problems
+        .iter()
+        .find(|p| p.severity == Severity::Error)
+        .expect("an error");
+    assert!(
+        error
+            .message
+            .contains(&format!("more than {MAX_REPEATED_MODULES} modules")),
+        "{}",
+        error.message
+    );
+    // The part after the blocks is never built.
+    assert_eq!(c.parts.len(), 1);
+    // Blocks within the budget build as before: 100 × 100 turns, then a part.
+    let c = creature("forward(1) { { left }(100) }(100) forward(1)");
+    assert!(c.is_valid(), "{:?}", c.problems);
+    assert_eq!(c.parts.len(), 2);
+    // Many '{' without a '}' are each ignored, in one pass over the string.
+    let opens = vec!["{"; 200_000].join(" ");
+    let c = creature(&format!("forward(1) {opens} forward(1)"));
+    assert_eq!(c.parts.len(), 2);
+    assert_eq!(
+        c.problems
+            .iter()
+            .filter(|p| p.message.contains("no matching '}'"))
+            .count(),
+        200_000
+    );
+}

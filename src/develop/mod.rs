@@ -23,6 +23,12 @@ use brain::BrainBuilder;
 /// about 1e-13 by then) and far below any part the simulator can use.
 pub const MIN_PART_LENGTH: f64 = 1e-6;
 
+/// The most modules repeat blocks may make the builder interpret beyond the string's own
+/// length (a block's second and later passes, over all blocks): past it the creature is
+/// invalid and building stops, so that nested blocks of commands that make no part (turns,
+/// brain commands) cannot run for years. `{ { ... }(100) }(100)` over 100 modules is this.
+pub const MAX_REPEATED_MODULES: usize = 1_000_000;
+
 /// Builder settings.
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -88,6 +94,12 @@ pub struct Builder<'a> {
     stack: Vec<TurtleState>,
     brain: BrainBuilder,
     commands: Vec<Option<Command>>,
+    /// For each `{` of the string, the index of its `}` (bracket matching, done once).
+    closes: Vec<Option<usize>>,
+    /// Modules interpreted so far, and the most allowed (the string's length plus
+    /// [`MAX_REPEATED_MODULES`]).
+    interpreted: usize,
+    most_interpreted: usize,
     /// Set when the part limit is passed: the creature is invalid and building stops at
     /// once (the rest of the string is not interpreted, so the work stays bounded by the
     /// limit however long the string is).
@@ -104,6 +116,8 @@ pub fn build(
     options: &BuildOptions,
 ) -> Creature {
     let mut builder = Builder::new(symbols, options, t, env.len());
+    builder.closes = matching_closes(string, &builder.commands);
+    builder.most_interpreted = string.len().saturating_add(MAX_REPEATED_MODULES);
     builder.run(string, 0, string.len(), 0);
     let mut creature = builder.finish();
     creature.environment = env.values().to_vec();
@@ -141,6 +155,9 @@ impl<'a> Builder<'a> {
             stack: Vec::new(),
             brain,
             commands,
+            closes: Vec::new(),
+            interpreted: 0,
+            most_interpreted: usize::MAX,
             stopped: false,
         }
     }
@@ -160,6 +177,20 @@ impl<'a> Builder<'a> {
     fn run(&mut self, string: &ModuleString, from: usize, to: usize, depth: usize) {
         let mut i = from;
         while i < to && !self.stopped {
+            self.interpreted += 1;
+            if self.interpreted > self.most_interpreted {
+                self.problem(
+                    Severity::Error,
+                    string,
+                    i,
+                    format!(
+                        "repeat blocks make the builder interpret more than {MAX_REPEATED_MODULES} \
+                         modules beyond the string's own: building stopped here"
+                    ),
+                );
+                self.stopped = true;
+                break;
+            }
             let Some(command) = self.commands[string.sym(i) as usize] else {
                 i += 1;
                 continue; // control tokens build nothing
@@ -168,7 +199,7 @@ impl<'a> Builder<'a> {
             let arg = |default: f64| params.first().copied().unwrap_or(default);
             match command {
                 Command::RepeatStart => {
-                    let close = matching_close(string, i, to, self.commands.as_slice());
+                    let close = self.closes[i].filter(|&close| close < to);
                     let Some(close) = close else {
                         self.problem(
                             Severity::Warning,
@@ -453,23 +484,23 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// The index of the `}` closing the `{` at `open`, before `to`.
-fn matching_close(
-    string: &ModuleString,
-    open: usize,
-    to: usize,
-    commands: &[Option<Command>],
-) -> Option<usize> {
-    let mut depth = 0usize;
-    for k in open + 1..to {
+/// For each module of `string` that is a `{`, the index of the `}` that closes it (the first
+/// `}` after it at the same depth), if any: bracket matching in one pass.
+fn matching_closes(string: &ModuleString, commands: &[Option<Command>]) -> Vec<Option<usize>> {
+    let mut closes = vec![None; string.len()];
+    let mut open = Vec::new();
+    for k in 0..string.len() {
         match commands[string.sym(k) as usize] {
-            Some(Command::RepeatStart) => depth += 1,
-            Some(Command::RepeatEnd) if depth == 0 => return Some(k),
-            Some(Command::RepeatEnd) => depth -= 1,
+            Some(Command::RepeatStart) => open.push(k),
+            Some(Command::RepeatEnd) => {
+                if let Some(start) = open.pop() {
+                    closes[start] = Some(k);
+                }
+            }
             _ => {}
         }
     }
-    None
+    closes
 }
 
 mod overlap;
