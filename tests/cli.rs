@@ -1249,3 +1249,80 @@ fn compare_refuses_a_step_setting_out_of_range_and_writes_nothing() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// A scratch directory of this test binary's own, made afresh.
+fn scratch_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn a_growth_of_a_billion_frames_is_refused_at_once_when_its_frames_are_written() {
+    let dir = scratch_dir("billion-frames");
+    let file = dir.join("long.lsys");
+    std::fs::write(
+        &file,
+        "axiom: forward(1)\nderivation length: 1000000000\nforward(x) --> forward(x)\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = ontogeny(&[
+        "grow",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let said = stderr(&o);
+    assert!(
+        said.contains("1000000001 frames") && said.contains("--steps"),
+        "{said}"
+    );
+    assert!(!out.exists(), "nothing is written");
+    // --steps brings it within the limit; without --out only the last frame is kept.
+    let o = ontogeny(&["grow", file.to_str().unwrap(), "--steps", "20000"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("in 20001 frame(s)"), "{}", stdout(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_creature_file_with_more_parts_than_max_parts_is_refused_by_eval_and_export() {
+    let dir = scratch_dir("too-many-parts");
+    let file = dir.join("chain.lsys");
+    std::fs::write(
+        &file,
+        "axiom: { forward(0.5) }(100) { forward(0.5) }(100) forward(0.5)\n",
+    )
+    .unwrap();
+    let out = dir.join("grown");
+    let o = ontogeny(&[
+        "grow",
+        file.to_str().unwrap(),
+        "--max-parts",
+        "201",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let creature = out.join("creature.json");
+    let creature = creature.to_str().unwrap();
+    for args in [
+        &["eval", creature, "--task", "walker"][..],
+        &["export", creature],
+    ] {
+        let o = ontogeny(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("201 parts, more than the 200 allowed (--max-parts)"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
+    // --max-parts lifts the limit.
+    let o = ontogeny(&["export", creature, "--max-parts", "201"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -716,3 +716,124 @@ fn an_unclosed_bracket_is_a_warning_as_an_unmatched_one_is() {
         ontogeny::develop::creature_from_commands("forward(1) [ revolute2 forward(1) ]").unwrap();
     assert!(balanced.problems.is_empty(), "{:?}", balanced.problems);
 }
+
+// ---- runaway work is bounded -------------------------------------------------------------
+
+#[test]
+fn the_builder_stops_at_the_first_part_past_the_limit_however_long_the_string() {
+    let axiom = vec!["forward(0.5)"; 5000].join(" ");
+    let lsys = LSystem::from_text("t.lsys", &format!("axiom: {axiom} [ left forward ]\n")).unwrap();
+    let options = BuildOptions {
+        max_parts: 10,
+        ..BuildOptions::default()
+    };
+    let c = build(
+        lsys.axiom(),
+        lsys.symbols(),
+        &Environment::default(),
+        None,
+        &options,
+    );
+    // The 11th part is the one that passes the limit; nothing after it is built.
+    assert_eq!(c.parts.len(), 11);
+    assert!(!c.is_valid());
+    let errors: Vec<&str> = c
+        .problems
+        .iter()
+        .filter(|p| p.severity == Severity::Error)
+        .map(|p| p.message.as_str())
+        .collect();
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert!(errors[0].contains("more than 10 parts"), "{}", errors[0]);
+    // A stopped build does not blame the string for the branch it never closed.
+    assert!(c.problems.iter().all(|p| !p.message.contains("'['")));
+    // Repeat blocks stop too.
+    let lsys = LSystem::from_text("t.lsys", "axiom: { forward(0.5) }(100)\n").unwrap();
+    let c = build(
+        lsys.axiom(),
+        lsys.symbols(),
+        &Environment::default(),
+        None,
+        &options,
+    );
+    assert_eq!(c.parts.len(), 11);
+}
+
+#[test]
+fn growth_that_keeps_every_frame_is_refused_before_deriving_past_the_frame_limit() {
+    use ontogeny::develop::{MAX_KEPT_FRAMES, grow, grow_last};
+    use ontogeny::lsystem::DeriveOptions;
+    let text = |steps: u64| {
+        format!("axiom: forward(1)\nderivation length: {steps}\nforward(x) --> forward(x)\n")
+    };
+    let options = DeriveOptions::default();
+    let build_options = BuildOptions::default();
+    // The last frame allowed: every frame is kept.
+    let lsys = LSystem::from_text("ok.lsys", &text(MAX_KEPT_FRAMES - 1)).unwrap();
+    let frames = grow(&lsys, &options, None, &build_options).unwrap();
+    assert_eq!(frames.len() as u64, MAX_KEPT_FRAMES);
+    // One more frame is refused, and so is a billion, before anything is derived.
+    for steps in [MAX_KEPT_FRAMES, 1_000_000_000] {
+        let lsys = LSystem::from_text("long.lsys", &text(steps)).unwrap();
+        let err = grow(&lsys, &options, None, &build_options).unwrap_err();
+        let shown = err.to_string();
+        assert!(
+            shown.contains(&format!("{} frames", steps + 1)) && shown.contains("derivation length"),
+            "{shown}"
+        );
+    }
+    // In continuous time, the frames are time / dt.
+    let lsys = LSystem::from_text("t.lsys", "time: 20000\naxiom: forward(1)\n").unwrap();
+    let shown = grow(&lsys, &options, None, &build_options)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        shown.contains("20001 frames") && shown.contains("dt"),
+        "{shown}"
+    );
+    // Keeping only the last frame has no such limit, and it is grow's last frame.
+    let lsys = LSystem::from_text("long.lsys", &text(MAX_KEPT_FRAMES + 5)).unwrap();
+    let last = grow_last(&lsys, &options, None, &build_options, &mut |_| {}).unwrap();
+    assert_eq!(last.step, MAX_KEPT_FRAMES + 5);
+    let lsys = LSystem::from_path(std::path::Path::new("examples/snake.lsys")).unwrap();
+    let all = grow(&lsys, &options, None, &build_options).unwrap();
+    let last = grow_last(&lsys, &options, None, &build_options, &mut |_| {}).unwrap();
+    assert_eq!(Some(&last), all.last());
+}
+
+#[test]
+fn repeat_blocks_that_build_nothing_stop_past_a_million_repeated_modules() {
+    use ontogeny::develop::MAX_REPEATED_MODULES;
+    // 10^8 turns (10^16 with eight levels) would run for seconds (years).
+    let c = creature("forward(1) { { { { left }(100) }(100) }(100) }(100) forward(1)");
+    assert!(!c.is_valid());
+    let error = c
+        .problems
+        .iter()
+        .find(|p| p.severity == Severity::Error)
+        .expect("an error");
+    assert!(
+        error
+            .message
+            .contains(&format!("more than {MAX_REPEATED_MODULES} modules")),
+        "{}",
+        error.message
+    );
+    // The part after the blocks is never built.
+    assert_eq!(c.parts.len(), 1);
+    // Blocks within the budget build as before: 100 × 100 turns, then a part.
+    let c = creature("forward(1) { { left }(100) }(100) forward(1)");
+    assert!(c.is_valid(), "{:?}", c.problems);
+    assert_eq!(c.parts.len(), 2);
+    // Many '{' without a '}' are each ignored, in one pass over the string.
+    let opens = vec!["{"; 200_000].join(" ");
+    let c = creature(&format!("forward(1) {opens} forward(1)"));
+    assert_eq!(c.parts.len(), 2);
+    assert_eq!(
+        c.problems
+            .iter()
+            .filter(|p| p.message.contains("no matching '}'"))
+            .count(),
+        200_000
+    );
+}

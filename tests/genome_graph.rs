@@ -769,3 +769,45 @@ proptest! {
         prop_assert!(c.parts.len() <= 20);
     }
 }
+
+#[test]
+fn a_graph_genome_far_beyond_the_node_limit_is_refused_by_its_sizes_with_the_limits_name() {
+    let one = node([0.5, 0.2, 0.2], JointKind::Revolute, 1);
+    let genome = GraphGenome {
+        nodes: vec![one; 100_000],
+        neurons: vec![],
+    };
+    let text = serde_json::to_string(&genome).unwrap();
+    let err = GraphGenome::from_text(&text, &GraphLimits::default()).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("100000 nodes; 1 to 20 allowed (max_nodes)"),
+        "{err}"
+    );
+    // The same for the command line: refused with exit code 2.
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("graph-100000-nodes");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("huge.json");
+    std::fs::write(&file, &text).unwrap();
+    for verb in [&["genome", "show"][..], &["eval", "--task", "walker"][..]] {
+        let o = ontogeny().args(verb).arg(&file).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{verb:?}");
+        let said = String::from_utf8_lossy(&o.stderr);
+        assert!(said.contains("(max_nodes)"), "{verb:?}: {said}");
+    }
+    // Too many connections on one node, named the same way.
+    let mut wide = node([0.5, 0.2, 0.2], JointKind::Revolute, 1);
+    wide.connections = vec![straight(0, Face::Front, 1.0); 1000];
+    let text = serde_json::to_string(&GraphGenome {
+        nodes: vec![wide],
+        neurons: vec![],
+    })
+    .unwrap();
+    let err = GraphGenome::from_text(&text, &GraphLimits::default()).unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("node 0: 1000 connections; at most 4 allowed (max_connections)"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

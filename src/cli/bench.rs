@@ -113,7 +113,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let n = args.evaluations.max(1);
     let steps = (args.seconds / sim.dt).round();
     if let Some(file) = &args.creature {
-        let creature = super::eval::load_creature(file, &Default::default(), None)?;
+        let creature = super::eval::load_creature(
+            file,
+            &Default::default(),
+            None,
+            ontogeny::develop::BuildOptions::default().max_parts,
+        )?;
         World::new(&creature, &sim).map_err(|e| {
             ontogeny::lang::Diagnostic::without_location(
                 ontogeny::lang::DiagnosticKind::Semantic,

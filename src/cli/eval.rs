@@ -6,7 +6,7 @@ use anyhow::Context;
 use clap::builder::TypedValueParser;
 use clap::{Args, ValueEnum};
 use ontogeny::creature::{Creature, Severity};
-use ontogeny::develop::{BuildOptions, grow_with_progress};
+use ontogeny::develop::{BuildOptions, grow_last};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 use ontogeny::sim::{
@@ -226,6 +226,10 @@ pub struct EvalArgs {
     seed: Option<u64>,
     #[command(flatten)]
     development: DevelopmentArgs,
+    /// Most parts: a creature grown from an L-system with more is invalid, a
+    /// `creature.json` with more is refused.
+    #[arg(long, default_value_t = BuildOptions::default().max_parts)]
+    max_parts: usize,
     /// Joint model.
     #[arg(long, value_enum, default_value = "impulse")]
     joints: JointsArg,
@@ -299,12 +303,14 @@ fn input_name(file: &Path) -> String {
 }
 
 /// Loads a creature from `file`: an L-system (`.lsys`, grown to its last frame with the
-/// development flags and seed), a `creature.json`, which must be well formed, or a graph
-/// genome's JSON (developed with the default limits).
+/// development flags and seed, invalid beyond `max_parts` parts), a `creature.json`, which
+/// must be well formed and have at most `max_parts` parts, or a graph genome's JSON
+/// (checked against the default limits before it develops, and developed with them).
 pub(super) fn load_creature(
     file: &Path,
     development: &DevelopmentArgs,
     seed: Option<u64>,
+    max_parts: usize,
 ) -> anyhow::Result<Creature> {
     if file.extension().is_some_and(|e| e == "json") {
         let given = development.given();
@@ -321,9 +327,10 @@ pub(super) fn load_creature(
         }
         let text = std::fs::read_to_string(file)
             .with_context(|| format!("cannot read {}", file.display()))?;
-        // A graph genome (a run's best.json) develops with the default limits.
-        if serde_json::from_str::<serde_json::Value>(&text).is_ok_and(|v| v.get("nodes").is_some())
-        {
+        // A graph genome (a run's best.json) develops with the default limits. Only the
+        // presence of "nodes" is looked at here: the file is not held as a whole a second
+        // time.
+        if is_graph_genome(&text) {
             let genome = super::genome::read_graph(file)?;
             return Ok(genome.creature(ontogeny::encoding::GraphLimits::default().max_parts));
         }
@@ -333,7 +340,7 @@ pub(super) fn load_creature(
                 format!("{}: not a creature: {e}", file.display()),
             ))
         })?;
-        creature.check_consistency().map_err(|problem| {
+        creature.check_file(max_parts).map_err(|problem| {
             anyhow::Error::new(Diagnostic::without_location(
                 DiagnosticKind::Semantic,
                 format!("{}: not a usable creature: {problem}", file.display()),
@@ -344,12 +351,16 @@ pub(super) fn load_creature(
     let lsys = LSystem::from_path(file)?;
     let options = derive_options(development, seed, DEFAULT_MAX_MODULES);
     let steps = discrete_steps(&lsys, &options, development.steps, "building")?;
+    let build_options = BuildOptions {
+        max_parts,
+        ..BuildOptions::default()
+    };
     let mut progress = Progress::new("growing");
-    let frames = grow_with_progress(&lsys, &options, steps, &BuildOptions::default(), &mut |f| {
+    let creature = grow_last(&lsys, &options, steps, &build_options, &mut |f| {
         progress.set(f)
-    })?;
+    })?
+    .creature;
     progress.finish();
-    let creature = frames.into_iter().last().expect("a first frame").creature;
     // The builder's warnings, as `grow` lists them (its errors make the creature invalid,
     // which the evaluation reports).
     for problem in &creature.problems {
@@ -407,9 +418,19 @@ fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
     Ok(spec)
 }
 
+/// Whether a `.json` file's text is a graph genome (an object with `nodes`) rather than a
+/// creature, read without building anything of it.
+fn is_graph_genome(text: &str) -> bool {
+    #[derive(serde::Deserialize)]
+    struct Probe {
+        nodes: Option<serde::de::IgnoredAny>,
+    }
+    serde_json::from_str::<Probe>(text).is_ok_and(|p| p.nodes.is_some())
+}
+
 /// Evaluates the creature and prints the result.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
-    let creature = load_creature(&args.file, &args.development, args.seed)?;
+    let creature = load_creature(&args.file, &args.development, args.seed, args.max_parts)?;
     let spec = task_spec(args)?;
     // A place to record into, checked before the evaluation runs.
     if let Some(dir) = &args.record {

@@ -44,13 +44,17 @@ pub struct ExportArgs {
     seed: Option<u64>,
     #[command(flatten)]
     development: DevelopmentArgs,
+    /// Most parts: a creature grown from an L-system with more is invalid, a
+    /// `creature.json` with more is refused.
+    #[arg(long, default_value_t = ontogeny::develop::BuildOptions::default().max_parts)]
+    max_parts: usize,
     #[command(flatten)]
     physics: PhysicsArgs,
 }
 
 /// Exports the creature.
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
-    let creature = load_creature(&args.file, &args.development, args.seed)?;
+    let creature = load_creature(&args.file, &args.development, args.seed, args.max_parts)?;
     let sim = args.physics.sim_options()?;
     let name = args
         .file

@@ -7,8 +7,9 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::{Creature, Problem, Role, Severity};
-use ontogeny::develop::{BuildOptions, GrowthFrame, grow_with_progress};
-use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
+use ontogeny::develop::{BuildOptions, GrowthFrame, for_each_growth_frame, kept_frame_plan};
+use ontogeny::lang::Diagnostic;
+use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions, FramePlan, LSystem};
 use serde::Serialize;
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
@@ -129,39 +130,33 @@ fn growth_frame_delay(frames: usize) -> u16 {
     (3000 / frames.max(1)).clamp(4, 25) as u16
 }
 
-/// Draws `growth.gif`: the frames of growth labelled with developmental time, at most
-/// [`MAX_GIF_FRAMES`] of them (evenly spaced in developmental time, the first and last
-/// kept, with a note when some are left out), with a progress bar on a terminal.
-fn write_growth_gif(frames: &[GrowthFrame], path: &Path) -> anyhow::Result<()> {
-    let times: Vec<f64> = frames.iter().map(|f| f.t).collect();
-    let chosen = evenly_in_time(&times, MAX_GIF_FRAMES);
-    if chosen.len() < frames.len() {
+/// Draws `growth.gif` from `frames`, the frames [`growth_gif_steps`] chose (the first and
+/// last kept), of `total` frames of growth, labelled with developmental time, with a note
+/// when some are left out and a progress bar on a terminal.
+fn write_growth_gif(frames: &[GrowthFrame], total: u64, path: &Path) -> anyhow::Result<()> {
+    if (frames.len() as u64) < total {
         eprintln!(
-            "note: {} frames of growth: {} shows {} of them, evenly spaced in developmental \
+            "note: {total} frames of growth: {} shows {} of them, evenly spaced in developmental \
              time, to keep to {MAX_GIF_FRAMES} frames",
-            frames.len(),
             path.display(),
-            chosen.len()
+            frames.len()
         );
     }
-    let labels: Vec<ontogeny::render::Overlay> = chosen
+    let labels: Vec<ontogeny::render::Overlay> = frames
         .iter()
-        .map(|&i| ontogeny::render::Overlay {
-            label: vec![format!(
-                "t = {}",
-                ontogeny::lsystem::format_number(frames[i].t)
-            )],
+        .map(|frame| ontogeny::render::Overlay {
+            label: vec![format!("t = {}", ontogeny::lsystem::format_number(frame.t))],
             ..Default::default()
         })
         .collect();
     let mut progress = super::progress::Progress::new("drawing growth.gif");
     ontogeny::render::write_gif_with_progress(
-        chosen.iter().map(|&i| &frames[i].creature),
+        frames.iter().map(|frame| &frame.creature),
         &labels,
         path,
         480,
         300,
-        &[growth_frame_delay(chosen.len())],
+        &[growth_frame_delay(frames.len())],
         ontogeny::render::Framing::Still,
         &mut |f| progress.set(f),
     )
@@ -170,7 +165,70 @@ fn write_growth_gif(frames: &[GrowthFrame], path: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Grows the file into creatures and reports on the last one.
+/// Which frames (by step) `growth.gif` shows: at most [`MAX_GIF_FRAMES`], evenly spaced in
+/// developmental time, the first and last kept; `wanted[step]` says whether frame `step` is one.
+fn growth_gif_steps(plan: &FramePlan) -> Vec<bool> {
+    let times: Vec<f64> = (0..=plan.last_step()).map(|k| plan.time(k)).collect();
+    let mut wanted = vec![false; times.len()];
+    for i in evenly_in_time(&times, MAX_GIF_FRAMES) {
+        wanted[i] = true;
+    }
+    wanted
+}
+
+/// Writes `--out`: creature.json, frames.jsonl (every frame, built again one at a time as it
+/// is written, so that no more than one is held), creature.png and growth.gif (`shown`, the
+/// frames chosen for it). Called once growing has succeeded, so that a failed growth writes
+/// nothing.
+fn write_out(
+    dir: &Path,
+    grown: &Grown<'_>,
+    last: &GrowthFrame,
+    shown: &[GrowthFrame],
+    summary: &Summary,
+) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let path = dir.join("creature.json");
+    std::fs::write(&path, serde_json::to_string_pretty(&last.creature)?)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    let path = dir.join("frames.jsonl");
+    let mut out = std::io::BufWriter::new(
+        std::fs::File::create(&path).with_context(|| format!("cannot write {}", path.display()))?,
+    );
+    let mut progress = super::progress::Progress::new("writing frames.jsonl");
+    for_each_growth_frame(
+        grown.lsys,
+        grown.options,
+        grown.steps,
+        grown.build_options,
+        |_, _| true,
+        &mut |f| progress.set(f),
+        |frame| {
+            serde_json::to_writer(&mut out, &frame)
+                .map_err(std::io::Error::from)
+                .and_then(|()| writeln!(out))
+                .with_context(|| format!("cannot write {}", path.display()))
+        },
+    )?;
+    out.flush()?;
+    progress.finish();
+    let path = dir.join("creature.png");
+    ontogeny::render::write_png(&last.creature, &summary.file, &path, 960, 600)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    write_growth_gif(shown, last.step + 1, &dir.join("growth.gif"))
+}
+
+/// What one growth is made of, to grow it again frame by frame.
+struct Grown<'a> {
+    lsys: &'a LSystem,
+    options: &'a DeriveOptions,
+    steps: Option<u64>,
+    build_options: &'a BuildOptions,
+}
+
+/// Grows the file into creatures and reports on the last one. Only the frames needed are
+/// held: the last one, and with `--out` the ones `growth.gif` shows (at most
+/// [`ontogeny::develop::MAX_KEPT_FRAMES`] frames may be written).
 pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     let lsys = LSystem::from_path(&args.file)?;
     let options = derive_options(&args.development, args.seed, args.max_modules);
@@ -179,32 +237,46 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         ..BuildOptions::default()
     };
     let steps = discrete_steps(&lsys, &options, args.development.steps, "growing")?;
+    // With --out every frame is written: refused at once when there are too many.
+    let gif_steps = match &args.out {
+        Some(_) => Some(growth_gif_steps(&kept_frame_plan(&lsys, &options, steps)?)),
+        None => None,
+    };
     let mut progress = super::progress::Progress::new("growing");
-    let frames = grow_with_progress(&lsys, &options, steps, &build_options, &mut |f| {
-        progress.set(f)
-    })?;
+    let mut shown = Vec::new();
+    let mut last = None;
+    for_each_growth_frame(
+        &lsys,
+        &options,
+        steps,
+        &build_options,
+        |step, is_last| {
+            is_last
+                || gif_steps
+                    .as_ref()
+                    .is_some_and(|wanted| wanted.get(step as usize) == Some(&true))
+        },
+        &mut |f| progress.set(f),
+        |frame| {
+            if gif_steps.is_some() {
+                shown.push(frame.clone());
+            }
+            last = Some(frame);
+            Ok::<(), Diagnostic>(())
+        },
+    )?;
     progress.finish();
-    let last = frames.last().expect("at least the first frame");
-    let summary = summarise(lsys.source().name(), last.t, frames.len(), &last.creature);
+    let last = last.expect("at least the first frame");
+    let frames = last.step as usize + 1;
+    let summary = summarise(lsys.source().name(), last.t, frames, &last.creature);
     if let Some(dir) = &args.out {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        let path = dir.join("creature.json");
-        std::fs::write(&path, serde_json::to_string_pretty(&last.creature)?)
-            .with_context(|| format!("cannot write {}", path.display()))?;
-        let path = dir.join("frames.jsonl");
-        let mut out = std::io::BufWriter::new(
-            std::fs::File::create(&path)
-                .with_context(|| format!("cannot write {}", path.display()))?,
-        );
-        for frame in &frames {
-            serde_json::to_writer(&mut out, frame)?;
-            writeln!(out)?;
-        }
-        out.flush()?;
-        let path = dir.join("creature.png");
-        ontogeny::render::write_png(&last.creature, &summary.file, &path, 960, 600)
-            .with_context(|| format!("cannot write {}", path.display()))?;
-        write_growth_gif(&frames, &dir.join("growth.gif"))?;
+        let grown = Grown {
+            lsys: &lsys,
+            options: &options,
+            steps,
+            build_options: &build_options,
+        };
+        write_out(dir, &grown, &last, &shown, &summary)?;
     }
     if args.json {
         say!("{}", serde_json::to_string_pretty(&summary)?);

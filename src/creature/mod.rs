@@ -505,6 +505,19 @@ impl Creature {
         Ok(())
     }
 
+    /// Checks a creature read from a file before anything uses it: at most `max_parts` parts
+    /// (the limit development obeys; a file may come from anywhere), then
+    /// [`check_consistency`](Self::check_consistency).
+    pub fn check_file(&self, max_parts: usize) -> Result<(), String> {
+        if self.parts.len() > max_parts {
+            return Err(format!(
+                "{} parts, more than the {max_parts} allowed (--max-parts)",
+                self.parts.len()
+            ));
+        }
+        self.check_consistency()
+    }
+
     /// Whether the evaluator may simulate it (no error-level problem, at least one part).
     pub fn is_valid(&self) -> bool {
         !self.parts.is_empty() && self.problems.iter().all(|p| p.severity != Severity::Error)

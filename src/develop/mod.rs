@@ -23,6 +23,12 @@ use brain::BrainBuilder;
 /// about 1e-13 by then) and far below any part the simulator can use.
 pub const MIN_PART_LENGTH: f64 = 1e-6;
 
+/// The most modules repeat blocks may make the builder interpret beyond the string's own
+/// length (a block's second and later passes, over all blocks): past it the creature is
+/// invalid and building stops, so that nested blocks of commands that make no part (turns,
+/// brain commands) cannot run for years. `{ { ... }(100) }(100)` over 100 modules is this.
+pub const MAX_REPEATED_MODULES: usize = 1_000_000;
+
 /// Builder settings.
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -88,6 +94,16 @@ pub struct Builder<'a> {
     stack: Vec<TurtleState>,
     brain: BrainBuilder,
     commands: Vec<Option<Command>>,
+    /// For each `{` of the string, the index of its `}` (bracket matching, done once).
+    closes: Vec<Option<usize>>,
+    /// Modules interpreted so far, and the most allowed (the string's length plus
+    /// [`MAX_REPEATED_MODULES`]).
+    interpreted: usize,
+    most_interpreted: usize,
+    /// Set when the part limit is passed: the creature is invalid and building stops at
+    /// once (the rest of the string is not interpreted, so the work stays bounded by the
+    /// limit however long the string is).
+    stopped: bool,
 }
 
 /// Builds the creature a module string describes. `t` is its developmental time (for
@@ -100,6 +116,8 @@ pub fn build(
     options: &BuildOptions,
 ) -> Creature {
     let mut builder = Builder::new(symbols, options, t, env.len());
+    builder.closes = matching_closes(string, &builder.commands);
+    builder.most_interpreted = string.len().saturating_add(MAX_REPEATED_MODULES);
     builder.run(string, 0, string.len(), 0);
     let mut creature = builder.finish();
     creature.environment = env.values().to_vec();
@@ -137,6 +155,10 @@ impl<'a> Builder<'a> {
             stack: Vec::new(),
             brain,
             commands,
+            closes: Vec::new(),
+            interpreted: 0,
+            most_interpreted: usize::MAX,
+            stopped: false,
         }
     }
 
@@ -154,7 +176,21 @@ impl<'a> Builder<'a> {
     /// Interprets modules `from..to`; `depth` counts enclosing repeat blocks.
     fn run(&mut self, string: &ModuleString, from: usize, to: usize, depth: usize) {
         let mut i = from;
-        while i < to {
+        while i < to && !self.stopped {
+            self.interpreted += 1;
+            if self.interpreted > self.most_interpreted {
+                self.problem(
+                    Severity::Error,
+                    string,
+                    i,
+                    format!(
+                        "repeat blocks make the builder interpret more than {MAX_REPEATED_MODULES} \
+                         modules beyond the string's own: building stopped here"
+                    ),
+                );
+                self.stopped = true;
+                break;
+            }
             let Some(command) = self.commands[string.sym(i) as usize] else {
                 i += 1;
                 continue; // control tokens build nothing
@@ -163,7 +199,7 @@ impl<'a> Builder<'a> {
             let arg = |default: f64| params.first().copied().unwrap_or(default);
             match command {
                 Command::RepeatStart => {
-                    let close = matching_close(string, i, to, self.commands.as_slice());
+                    let close = self.closes[i].filter(|&close| close < to);
                     let Some(close) = close else {
                         self.problem(
                             Severity::Warning,
@@ -201,7 +237,7 @@ impl<'a> Builder<'a> {
                     };
                     for _ in 0..times {
                         self.run(string, i + 1, close, depth + 1);
-                        if self.creature.parts.len() > self.options.max_parts {
+                        if self.stopped {
                             break;
                         }
                     }
@@ -366,8 +402,12 @@ impl<'a> Builder<'a> {
                 Severity::Error,
                 string,
                 i,
-                format!("more than {} parts (--max-parts)", self.options.max_parts),
+                format!(
+                    "more than {} parts (--max-parts): building stopped here",
+                    self.options.max_parts
+                ),
             );
+            self.stopped = true;
         }
         if let Some(parent) = parent {
             let pending = self.state.pending.take();
@@ -426,7 +466,8 @@ impl<'a> Builder<'a> {
     }
 
     fn finish(mut self) -> Creature {
-        if !self.stack.is_empty() {
+        // A build stopped at the part limit leaves branches open: not the string's fault.
+        if !self.stack.is_empty() && !self.stopped {
             self.creature.problems.push(Problem {
                 severity: Severity::Warning,
                 message: format!(
@@ -443,23 +484,23 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// The index of the `}` closing the `{` at `open`, before `to`.
-fn matching_close(
-    string: &ModuleString,
-    open: usize,
-    to: usize,
-    commands: &[Option<Command>],
-) -> Option<usize> {
-    let mut depth = 0usize;
-    for k in open + 1..to {
+/// For each module of `string` that is a `{`, the index of the `}` that closes it (the first
+/// `}` after it at the same depth), if any: bracket matching in one pass.
+fn matching_closes(string: &ModuleString, commands: &[Option<Command>]) -> Vec<Option<usize>> {
+    let mut closes = vec![None; string.len()];
+    let mut open = Vec::new();
+    for k in 0..string.len() {
         match commands[string.sym(k) as usize] {
-            Some(Command::RepeatStart) => depth += 1,
-            Some(Command::RepeatEnd) if depth == 0 => return Some(k),
-            Some(Command::RepeatEnd) => depth -= 1,
+            Some(Command::RepeatStart) => open.push(k),
+            Some(Command::RepeatEnd) => {
+                if let Some(start) = open.pop() {
+                    closes[start] = Some(k);
+                }
+            }
             _ => {}
         }
     }
-    None
+    closes
 }
 
 mod overlap;
@@ -488,10 +529,112 @@ pub struct GrowthFrame {
     pub creature: Creature,
 }
 
+/// The most frames of growth a verb keeps (`grow --out`'s `frames.jsonl` and
+/// `growth.gif`, the viewer's page): a growth of more frames is refused before anything is
+/// derived, so that what is kept stays bounded whatever the derivation length. Verbs that
+/// need only the last creature ([`grow_last`]) keep one frame and have no such limit.
+pub const MAX_KEPT_FRAMES: u64 = 10_000;
+
+/// The frames growing `lsys` with these settings shows (see [`LSystem::frame_plan`]),
+/// refused when there are more than [`MAX_KEPT_FRAMES`] of them.
+///
+/// [`LSystem::frame_plan`]: crate::lsystem::LSystem::frame_plan
+pub fn kept_frame_plan(
+    lsys: &crate::lsystem::LSystem,
+    options: &crate::lsystem::DeriveOptions,
+    steps: Option<u64>,
+) -> Result<crate::lsystem::FramePlan, crate::lang::Diagnostic> {
+    let plan = lsys.frame_plan(options, steps)?;
+    if plan.frame_count() > MAX_KEPT_FRAMES {
+        let how = if options.time.is_some() || lsys.is_continuous() {
+            "lower 'time:' or raise 'dt:' (or pass --time, --dt)"
+        } else {
+            "lower 'derivation length:' (or pass --steps)"
+        };
+        return Err(crate::lang::Diagnostic::without_location(
+            crate::lang::DiagnosticKind::Semantic,
+            format!(
+                "{}: growing it makes {} frames, more than the {MAX_KEPT_FRAMES} kept for \
+                 `grow --out` and the viewer: {how}",
+                lsys.source().name(),
+                plan.frame_count()
+            ),
+        ));
+    }
+    Ok(plan)
+}
+
+/// Grows `lsys` frame by frame, as [`grow`] does, keeping nothing: every frame's string is
+/// interpreted (an error at any frame is an error), the frames `wanted(step, last)` asks
+/// for are built and shown to `visit` in order, and `progress` is told the fraction of the
+/// frames done after each one. Memory stays that of one frame whatever the derivation
+/// length.
+pub fn for_each_growth_frame<E: From<crate::lang::Diagnostic>>(
+    lsys: &crate::lsystem::LSystem,
+    options: &crate::lsystem::DeriveOptions,
+    steps: Option<u64>,
+    build_options: &BuildOptions,
+    mut wanted: impl FnMut(u64, bool) -> bool,
+    progress: &mut dyn FnMut(f64),
+    mut visit: impl FnMut(GrowthFrame) -> Result<(), E>,
+) -> Result<(), E> {
+    lsys.for_each_frame(options, steps, |frame| {
+        let fraction = frame.fraction();
+        let shown = lsys.interpret(frame.string, frame.t, options)?;
+        if wanted(frame.step, frame.last) {
+            visit(GrowthFrame {
+                step: frame.step,
+                t: frame.t,
+                creature: build(
+                    &shown,
+                    lsys.symbols(),
+                    frame.env,
+                    Some(frame.t),
+                    build_options,
+                ),
+            })?;
+        }
+        progress(fraction);
+        Ok(())
+    })
+}
+
+/// The last frame of [`grow`], building only that one (see [`for_each_growth_frame`]): what
+/// a verb that needs only the grown creature calls. Its `step` + 1 is the number of frames.
+pub fn grow_last(
+    lsys: &crate::lsystem::LSystem,
+    options: &crate::lsystem::DeriveOptions,
+    steps: Option<u64>,
+    build_options: &BuildOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<GrowthFrame, crate::lang::Diagnostic> {
+    let mut last = None;
+    for_each_growth_frame(
+        lsys,
+        options,
+        steps,
+        build_options,
+        |_, is_last| is_last,
+        progress,
+        |frame| {
+            last = Some(frame);
+            Ok::<(), crate::lang::Diagnostic>(())
+        },
+    )?;
+    last.ok_or_else(|| {
+        crate::lang::Diagnostic::without_location(
+            crate::lang::DiagnosticKind::Runtime,
+            "development produced no frame".to_string(),
+        )
+    })
+}
+
 /// Grows `lsys` and builds one creature per frame: every derivation step in discrete mode
 /// (`steps`, default the file's derivation length), every observation time in continuous
 /// mode (a file with `time:`, or `options.time`). The interpretation rules are applied before
-/// building.
+/// building. More than [`MAX_KEPT_FRAMES`] frames is refused before deriving (see
+/// [`kept_frame_plan`]); [`grow_last`] and [`for_each_growth_frame`] keep no frames and have
+/// no such limit.
 pub fn grow(
     lsys: &crate::lsystem::LSystem,
     options: &crate::lsystem::DeriveOptions,
@@ -510,23 +653,19 @@ pub fn grow_with_progress(
     build_options: &BuildOptions,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Vec<GrowthFrame>, crate::lang::Diagnostic> {
+    kept_frame_plan(lsys, options, steps)?;
     let mut frames = Vec::new();
-    lsys.for_each_frame(options, steps, |frame| {
-        let fraction = frame.fraction();
-        let shown = lsys.interpret(frame.string, frame.t, options)?;
-        frames.push(GrowthFrame {
-            step: frame.step,
-            t: frame.t,
-            creature: build(
-                &shown,
-                lsys.symbols(),
-                frame.env,
-                Some(frame.t),
-                build_options,
-            ),
-        });
-        progress(fraction);
-        Ok::<(), crate::lang::Diagnostic>(())
-    })?;
+    for_each_growth_frame(
+        lsys,
+        options,
+        steps,
+        build_options,
+        |_, _| true,
+        progress,
+        |frame| {
+            frames.push(frame);
+            Ok::<(), crate::lang::Diagnostic>(())
+        },
+    )?;
     Ok(frames)
 }

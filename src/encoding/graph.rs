@@ -629,26 +629,10 @@ impl GraphGenome {
     /// Checks that the genome is within `limits` and well formed (connections to nodes that
     /// exist, limits per degree of freedom, values in their ranges); `Err` says what is not.
     pub fn check(&self, limits: &GraphLimits) -> Result<(), String> {
+        GenomeShape::of(self).check(limits)?;
         let n = self.nodes.len();
-        if n == 0 || n > limits.nodes() {
-            return Err(format!("{n} nodes; 1 to {} allowed", limits.nodes()));
-        }
-        if self.neurons.len() > limits.max_global_neurons {
-            return Err(format!(
-                "{} global neurons; at most {} allowed",
-                self.neurons.len(),
-                limits.max_global_neurons
-            ));
-        }
         let within = |x: f64, (lo, hi): (f64, f64)| x.is_finite() && x >= lo && x <= hi;
         let check_neuron = |where_: &str, g: &NeuronGene| -> Result<(), String> {
-            if g.inputs.len() > limits.max_inputs {
-                return Err(format!(
-                    "{where_} has {} inputs; at most {} allowed",
-                    g.inputs.len(),
-                    limits.max_inputs
-                ));
-            }
             if !within(g.bias, BIAS_RANGE)
                 || g.params.len() > 1
                 || g.params
@@ -701,22 +685,8 @@ impl GraphGenome {
                     limits.recursion()
                 ));
             }
-            if node.neurons.len() > limits.max_local_neurons {
-                return Err(format!(
-                    "node {i}: {} neurons; at most {} allowed",
-                    node.neurons.len(),
-                    limits.max_local_neurons
-                ));
-            }
             for (k, g) in node.neurons.iter().enumerate() {
                 check_neuron(&format!("node {i} neuron {k}"), g)?;
-            }
-            if node.connections.len() > limits.max_connections {
-                return Err(format!(
-                    "node {i}: {} connections; at most {} allowed",
-                    node.connections.len(),
-                    limits.max_connections
-                ));
             }
             for (k, c) in node.connections.iter().enumerate() {
                 if c.to >= n {
@@ -1098,8 +1068,14 @@ impl GraphGenome {
         d.creature
     }
 
-    /// The genome read from its JSON text form, checked against `limits`.
+    /// The genome read from its JSON text form, checked against `limits`. Its sizes (nodes,
+    /// connections, neurons, inputs) are checked first, on a reading that keeps nothing but
+    /// counts, so that a file far beyond the limits is refused before it is built.
     pub fn from_text(text: &str, limits: &GraphLimits) -> Result<GraphGenome, DevelopError> {
+        // A text that is not even shaped like a genome gets the full reading's message.
+        if let Ok(shape) = serde_json::from_str::<GenomeShape>(text) {
+            shape.check(limits).map_err(DevelopError)?;
+        }
         let g: GraphGenome = serde_json::from_str(text)
             .map_err(|e| DevelopError(format!("not a graph genome: {e}")))?;
         g.check(limits).map_err(DevelopError)?;
@@ -1316,6 +1292,107 @@ struct Instance {
     joint: Option<usize>,
     /// Sensors made for this part so far.
     sensors: Vec<(Sensor, usize)>,
+}
+
+/// The sizes of a genome's JSON text, read without building the genome: every list is
+/// skipped over and counted (see [`GraphGenome::from_text`]).
+#[derive(Deserialize)]
+struct GenomeShape {
+    #[serde(default)]
+    nodes: Vec<NodeShape>,
+    #[serde(default)]
+    neurons: Vec<NeuronShape>,
+}
+
+/// A node's sizes (see [`GenomeShape`]).
+#[derive(Deserialize)]
+struct NodeShape {
+    #[serde(default)]
+    connections: Vec<serde::de::IgnoredAny>,
+    #[serde(default)]
+    neurons: Vec<NeuronShape>,
+}
+
+/// A neuron gene's sizes (see [`GenomeShape`]).
+#[derive(Deserialize)]
+struct NeuronShape {
+    #[serde(default)]
+    inputs: Vec<serde::de::IgnoredAny>,
+}
+
+impl NeuronShape {
+    fn of(g: &NeuronGene) -> NeuronShape {
+        NeuronShape {
+            inputs: vec![serde::de::IgnoredAny; g.inputs.len()],
+        }
+    }
+}
+
+impl GenomeShape {
+    /// The sizes of a genome already read.
+    fn of(genome: &GraphGenome) -> GenomeShape {
+        GenomeShape {
+            nodes: genome
+                .nodes
+                .iter()
+                .map(|node| NodeShape {
+                    connections: vec![serde::de::IgnoredAny; node.connections.len()],
+                    neurons: node.neurons.iter().map(NeuronShape::of).collect(),
+                })
+                .collect(),
+            neurons: genome.neurons.iter().map(NeuronShape::of).collect(),
+        }
+    }
+
+    /// The size limits of [`GraphGenome::check`] (its first checks), each message naming
+    /// the limit.
+    fn check(&self, limits: &GraphLimits) -> Result<(), String> {
+        let n = self.nodes.len();
+        if n == 0 || n > limits.nodes() {
+            return Err(format!(
+                "{n} nodes; 1 to {} allowed (max_nodes)",
+                limits.nodes()
+            ));
+        }
+        if self.neurons.len() > limits.max_global_neurons {
+            return Err(format!(
+                "{} global neurons; at most {} allowed (max_global_neurons)",
+                self.neurons.len(),
+                limits.max_global_neurons
+            ));
+        }
+        let inputs = |where_: &str, neurons: &[NeuronShape]| -> Result<(), String> {
+            for (k, g) in neurons.iter().enumerate() {
+                if g.inputs.len() > limits.max_inputs {
+                    return Err(format!(
+                        "{where_} neuron {k} has {} inputs; at most {} allowed (max_inputs)",
+                        g.inputs.len(),
+                        limits.max_inputs
+                    ));
+                }
+            }
+            Ok(())
+        };
+        inputs("global", &self.neurons)?;
+        for (i, node) in self.nodes.iter().enumerate() {
+            if node.neurons.len() > limits.max_local_neurons {
+                return Err(format!(
+                    "node {i}: {} neurons; at most {} allowed (max_local_neurons)",
+                    node.neurons.len(),
+                    limits.max_local_neurons
+                ));
+            }
+            inputs(&format!("node {i}"), &node.neurons)?;
+            if node.connections.len() > limits.max_connections {
+                return Err(format!(
+                    "node {i}: {} connections; at most {} allowed (max_connections)",
+                    node.connections.len(),
+                    limits.max_connections
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 struct Development<'a> {

@@ -554,7 +554,7 @@ impl<'l> Development<'l> {
 }
 
 /// How many observation steps develop `time` in steps of `dt` (the last one possibly shorter).
-fn frame_count(time: f64, dt: f64) -> u64 {
+pub(super) fn frame_count(time: f64, dt: f64) -> u64 {
     let steps = time / dt;
     let whole = steps.round();
     if (steps - whole).abs() < WHOLE_STEPS {

@@ -216,6 +216,15 @@ impl LSystem {
         env: Environment,
         options: &DeriveOptions,
     ) -> Result<Development<'_>, Diagnostic> {
+        let (time, dt) = self.time_and_dt(options)?;
+        let timing = options.timing.unwrap_or(self.timing);
+        Development::new(self, options, start, start_time, env, time, dt, timing)
+    }
+
+    /// The duration and observation step of continuous development (`options` over the
+    /// file's headers), checked: a positive dt, a time of 0 or more, at most 10^9
+    /// observation steps.
+    fn time_and_dt(&self, options: &DeriveOptions) -> Result<(f64, f64), Diagnostic> {
         let time = options.time.or(self.time).ok_or_else(|| {
             Diagnostic::without_location(
                 DiagnosticKind::Semantic,
@@ -244,8 +253,28 @@ impl LSystem {
                 format!("time / dt = {} observation steps is too many", time / dt),
             ));
         }
-        let timing = options.timing.unwrap_or(self.timing);
-        Development::new(self, options, start, start_time, env, time, dt, timing)
+        Ok((time, dt))
+    }
+
+    /// The frames [`for_each_frame`](Self::for_each_frame) will show with these settings,
+    /// known before deriving anything: their number and their times.
+    pub fn frame_plan(
+        &self,
+        options: &DeriveOptions,
+        steps: Option<u64>,
+    ) -> Result<FramePlan, Diagnostic> {
+        if options.time.is_some() || self.is_continuous() {
+            let (time, dt) = self.time_and_dt(options)?;
+            Ok(FramePlan {
+                last_step: continuous::frame_count(time, dt),
+                continuous: Some((time, dt)),
+            })
+        } else {
+            Ok(FramePlan {
+                last_step: steps.or(self.derivation_length).unwrap_or(0),
+                continuous: None,
+            })
+        }
     }
 
     /// A string written readably (see [`ModuleString::display`]).
@@ -379,6 +408,37 @@ impl Frame<'_> {
             1.0
         } else {
             self.step as f64 / self.final_step as f64
+        }
+    }
+}
+
+/// The frames a run shows, known before it starts (see [`LSystem::frame_plan`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FramePlan {
+    /// The step of the last frame: frames are numbered 0 to this.
+    last_step: u64,
+    /// Continuous development's duration and observation step.
+    continuous: Option<(f64, f64)>,
+}
+
+impl FramePlan {
+    /// The step of the last frame (frames are numbered from 0).
+    pub fn last_step(&self) -> u64 {
+        self.last_step
+    }
+
+    /// How many frames: one more than [`last_step`](Self::last_step) (saturating).
+    pub fn frame_count(&self) -> u64 {
+        self.last_step.saturating_add(1)
+    }
+
+    /// The developmental time of frame `step`, as [`Frame::t`] will give it: the step in
+    /// discrete mode; `step · dt` in continuous mode, the last frame at the final time.
+    pub fn time(&self, step: u64) -> f64 {
+        match self.continuous {
+            None => step as f64,
+            Some((time, _)) if step >= self.last_step => time,
+            Some((_, dt)) => step as f64 * dt,
         }
     }
 }

@@ -189,6 +189,8 @@ fn grow_with_strings(
     steps: Option<u64>,
 ) -> Result<Vec<Value>, Diagnostic> {
     let lsys = LSystem::from_path(path)?;
+    // The page holds every frame: refused at once when there are too many.
+    crate::develop::kept_frame_plan(&lsys, options, steps)?;
     let build_options = BuildOptions::default();
     let mut frames = Vec::new();
     lsys.for_each_frame(options, steps, |frame| {
@@ -221,6 +223,13 @@ pub fn growth_data(dir: &Path) -> Result<Value, ViewError> {
     for (i, line) in text.lines().enumerate() {
         if line.trim().is_empty() {
             continue;
+        }
+        if frames.len() as u64 == crate::develop::MAX_KEPT_FRAMES {
+            return Err(ViewError::BadFile(format!(
+                "{}: more than {} frames, the most the page holds",
+                path.display(),
+                crate::develop::MAX_KEPT_FRAMES
+            )));
         }
         let frame: crate::develop::GrowthFrame = serde_json::from_str(line).map_err(|e| {
             ViewError::BadFile(format!(
