@@ -154,8 +154,12 @@ fn report(error: anyhow::Error) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     let _ = writeln!(std::io::stderr(), "error: {error:#}");
-    // A file that cannot be read or written is the user's to fix; anything else is ours.
-    ExitCode::from(if io.is_some() { 2 } else { 1 })
+    // A file that cannot be read or written, or an output refused (a target that is not a
+    // regular file), is the user's to fix; anything else is ours.
+    let refused = error
+        .chain()
+        .any(|cause| cause.downcast_ref::<ontogeny::output::OutputError>().is_some());
+    ExitCode::from(if io.is_some() || refused { 2 } else { 1 })
 }
 
 #[cfg(test)]
