@@ -165,7 +165,7 @@ fn write_growth_gif(frames: &[GrowthFrame], path: &Path) -> anyhow::Result<()> {
         ontogeny::render::Framing::Still,
         &mut |f| progress.set(f),
     )
-    .with_context(|| format!("cannot write {}", path.display()))?;
+    .map_err(super::render_error(path))?;
     progress.finish();
     Ok(())
 }
@@ -188,22 +188,22 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     let summary = summarise(lsys.source().name(), last.t, frames.len(), &last.creature);
     if let Some(dir) = &args.out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        super::check_outputs(
+            ["creature.json", "frames.jsonl", "creature.png", "growth.gif"].map(|f| dir.join(f)),
+        )?;
         let path = dir.join("creature.json");
-        std::fs::write(&path, serde_json::to_string_pretty(&last.creature)?)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        ontogeny::output::write(&path, serde_json::to_string_pretty(&last.creature)?)?;
         let path = dir.join("frames.jsonl");
-        let mut out = std::io::BufWriter::new(
-            std::fs::File::create(&path)
-                .with_context(|| format!("cannot write {}", path.display()))?,
-        );
-        for frame in &frames {
-            serde_json::to_writer(&mut out, frame)?;
-            writeln!(out)?;
-        }
-        out.flush()?;
+        ontogeny::output::write_with(&path, |out| -> anyhow::Result<()> {
+            for frame in &frames {
+                serde_json::to_writer(&mut *out, frame)?;
+                writeln!(out).with_context(|| format!("cannot write {}", path.display()))?;
+            }
+            Ok(())
+        })?;
         let path = dir.join("creature.png");
         ontogeny::render::write_png(&last.creature, &summary.file, &path, 960, 600)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+            .map_err(super::render_error(&path))?;
         write_growth_gif(&frames, &dir.join("growth.gif"))?;
     }
     if args.json {

@@ -141,6 +141,26 @@ pub fn main() -> ExitCode {
     }
 }
 
+/// Refuses, before any work is done, output files that could not be written: each must be
+/// missing or a regular file (see [`ontogeny::output`]).
+fn check_outputs<P: AsRef<std::path::Path>>(
+    paths: impl IntoIterator<Item = P>,
+) -> anyhow::Result<()> {
+    for path in paths {
+        ontogeny::output::check_target(path.as_ref())?;
+    }
+    Ok(())
+}
+
+/// A failure to draw `path` as the command line reports it: a refused output as it is (its
+/// message names the file; exit code 2), anything else after the file it was writing.
+fn render_error(path: &std::path::Path) -> impl FnOnce(ontogeny::render::RenderError) -> anyhow::Error + '_ {
+    move |error| match error {
+        ontogeny::render::RenderError::Output(e) => anyhow::Error::new(e),
+        other => anyhow::Error::new(other).context(format!("cannot write {}", path.display())),
+    }
+}
+
 fn report(error: anyhow::Error) -> ExitCode {
     if let Some(diagnostic) = error.downcast_ref::<Diagnostic>() {
         eprintln!("{diagnostic}");
