@@ -225,9 +225,8 @@ fn developer_for<G: Genome + 'static>(dir: PathBuf) -> Developer {
         let population = run.population(generation).map_err(|e| e.to_string())?;
         let individual = population.get(index as usize).ok_or_else(|| {
             format!(
-                "generation {generation} has {} individuals, not {}",
-                population.len(),
-                index + 1
+                "generation {generation} has {} individual(s); there is no individual {index}",
+                population.len()
             )
         })?;
         individual

@@ -66,6 +66,13 @@ pub enum ViewError {
     /// A file of the directory cannot be read or makes no sense.
     #[error("{0}")]
     BadFile(String),
+    /// A request for data that does not say what it wants (a query number missing or out of
+    /// range).
+    #[error("{0}")]
+    BadRequest(String),
+    /// A request for data that is not there (an individual past the end of its generation).
+    #[error("{0}")]
+    NotFound(String),
 }
 
 /// A path and the kind of page it opens.
@@ -359,6 +366,16 @@ pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewErr
         })
         .collect();
     Ok(json!({ "generation": generation, "individuals": rows }))
+}
+
+/// How many individuals a run's generation `generation` has (0 for a generation not stored).
+pub fn run_population_size(dir: &Path, generation: u32) -> Result<usize, ViewError> {
+    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+        .map_err(|e| ViewError::BadFile(e.to_string()))?;
+    Ok(store
+        .individuals(generation)
+        .map_err(|e| ViewError::BadFile(e.to_string()))?
+        .len())
 }
 
 /// JSON has no NaN or infinity: those become null.
