@@ -4,13 +4,16 @@
 //! `localhost`, `127.0.0.1` or `[::1]` on its own port (a page elsewhere that rebinds its domain
 //! name to 127.0.0.1 gets 403), only reads (GET and HEAD; anything else gets 405), and tells
 //! the browser to run nothing but the page's own scripts (`Content-Security-Policy`,
-//! `X-Content-Type-Options: nosniff`). A fixed pool of [`WORKERS`] threads answers one
-//! connection at a time each (one request per connection), so no number of connections makes
-//! more threads; a connection that sends no request within [`REQUEST_TIMEOUT`] is dropped.
+//! `X-Content-Type-Options: nosniff`). One thread gathers requests from every connection
+//! without waiting on any, and a fixed pool of [`WORKERS`] threads answers them (one request
+//! per connection), so no number of connections makes more threads, and idle ones keep no one
+//! waiting; a connection that sends no request within [`REQUEST_TIMEOUT`] is dropped.
 
+use std::collections::VecDeque;
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream};
-use std::time::Duration;
+use std::sync::mpsc::SyncSender;
+use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 
@@ -36,6 +39,12 @@ pub const REQUEST_TIMEOUT: Duration = Duration::from_secs(5);
 
 /// The longest request head (request line and headers) read, in bytes.
 const MAX_HEAD: usize = 16 * 1024;
+
+/// The most connections whose requests are read at once.
+pub const MAX_PENDING: usize = 256;
+
+/// The longest wait between two looks for new connections and requests when there are none.
+const MAX_PAUSE: Duration = Duration::from_millis(20);
 
 /// Develops a run's individual `(generation, index)` into a creature, or says why not.
 pub type Developer = Box<dyn Fn(u32, u32) -> Result<Creature, String> + Send + Sync>;
@@ -132,36 +141,36 @@ impl Server {
         format!("http://{}/", self.addr())
     }
 
-    /// Answers requests until the process ends, on [`WORKERS`] threads.
+    /// Answers requests until the process ends: one thread gathers the connections' requests
+    /// (without blocking on any of them), [`WORKERS`] threads answer them.
     pub fn run(&self) {
+        let (requests, queue) = std::sync::mpsc::sync_channel::<(TcpStream, Vec<u8>)>(WORKERS);
+        let queue = std::sync::Mutex::new(queue);
         std::thread::scope(|scope| {
             for _ in 0..WORKERS {
                 scope.spawn(|| {
                     loop {
-                        match self.listener.accept() {
-                            Ok((stream, _)) => self.serve(stream),
-                            // A connection reset before it was accepted, or no descriptors
-                            // left for a moment: not the server's end.
-                            Err(_) => std::thread::sleep(Duration::from_millis(10)),
+                        // The lock is held only while waiting for the next request.
+                        let next = queue.lock().map(|queue| queue.recv());
+                        match next {
+                            Ok(Ok((stream, head))) => self.serve(stream, &head),
+                            _ => return,
                         }
                     }
                 });
             }
+            gather_requests(&self.listener, &requests);
         });
     }
 
-    /// Reads one request from `stream` and answers it; a connection that sends none in time,
-    /// or goes away, is dropped.
-    fn serve(&self, mut stream: TcpStream) {
-        if stream.set_read_timeout(Some(REQUEST_TIMEOUT)).is_err()
+    /// Answers the request whose head is `head` on `stream`.
+    fn serve(&self, mut stream: TcpStream, head: &[u8]) {
+        if stream.set_nonblocking(false).is_err()
             || stream.set_write_timeout(Some(REQUEST_TIMEOUT)).is_err()
         {
             return;
         }
-        let Some(head) = read_head(&mut stream) else {
-            return;
-        };
-        let (answer, with_body) = match parse_head(&head) {
+        let (answer, with_body) = match parse_head(head) {
             Err(answer) => (answer, true),
             Ok(request) => (self.answer_request(&request), request.method != "HEAD"),
         };
@@ -325,22 +334,114 @@ struct Request {
     host: Option<String>,
 }
 
-/// Reads a request's head (up to the blank line), or `None` when the connection sends none in
-/// time, closes, or sends more than [`MAX_HEAD`] bytes of it. A request to only read has no
-/// body; any other is refused without reading one.
-fn read_head(stream: &mut TcpStream) -> Option<Vec<u8>> {
-    let mut head = Vec::new();
-    let mut chunk = [0u8; 1024];
-    while !head.windows(4).any(|w| w == b"\r\n\r\n") {
-        if head.len() > MAX_HEAD {
-            return None;
-        }
-        match stream.read(&mut chunk) {
-            Ok(0) | Err(_) => return None,
-            Ok(n) => head.extend_from_slice(&chunk[..n]),
+/// A connection whose request head is being read.
+struct Pending {
+    stream: TcpStream,
+    head: Vec<u8>,
+    since: Instant,
+}
+
+/// What became of a read from a [`Pending`] connection.
+enum Progress {
+    /// Its whole head has come.
+    Complete,
+    /// More has come, not all.
+    Some,
+    /// Nothing new.
+    Nothing,
+    /// It closed, failed, sent too much, or took too long: dropped.
+    Dropped,
+}
+
+impl Pending {
+    fn read(&mut self) -> Progress {
+        let mut chunk = [0u8; 4096];
+        match self.stream.read(&mut chunk) {
+            Ok(0) => Progress::Dropped,
+            Ok(n) => {
+                self.head.extend_from_slice(&chunk[..n]);
+                if self.head.windows(4).any(|w| w == b"\r\n\r\n") {
+                    Progress::Complete
+                } else if self.head.len() > MAX_HEAD {
+                    Progress::Dropped
+                } else {
+                    Progress::Some
+                }
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                if self.since.elapsed() > REQUEST_TIMEOUT {
+                    Progress::Dropped
+                } else {
+                    Progress::Nothing
+                }
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => Progress::Nothing,
+            Err(_) => Progress::Dropped,
         }
     }
-    Some(head)
+}
+
+/// Accepts connections and reads their request heads without blocking on any, sending each
+/// complete head with its connection to `requests`; so idle connections hold no thread and
+/// cannot keep others waiting. At most [`MAX_PENDING`] are read at once (the oldest is dropped
+/// for a newer one), each for at most [`REQUEST_TIMEOUT`]. Returns when the listener fails or
+/// the workers are gone.
+fn gather_requests(listener: &TcpListener, requests: &SyncSender<(TcpStream, Vec<u8>)>) {
+    if listener.set_nonblocking(true).is_err() {
+        return;
+    }
+    let mut pending: VecDeque<Pending> = VecDeque::new();
+    let mut pause = Duration::from_millis(1);
+    loop {
+        let mut busy = false;
+        loop {
+            match listener.accept() {
+                Ok((stream, _)) => {
+                    busy = true;
+                    if stream.set_nonblocking(true).is_err() {
+                        continue;
+                    }
+                    if pending.len() >= MAX_PENDING {
+                        pending.pop_front();
+                    }
+                    pending.push_back(Pending {
+                        stream,
+                        head: Vec::new(),
+                        since: Instant::now(),
+                    });
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => break,
+                // A connection reset before it was accepted, or no descriptors left for a
+                // moment: try again on the next round.
+                Err(_) => break,
+            }
+        }
+        let mut still = VecDeque::with_capacity(pending.len());
+        for mut connection in pending.drain(..) {
+            match connection.read() {
+                Progress::Complete => {
+                    busy = true;
+                    if requests.send((connection.stream, connection.head)).is_err() {
+                        return;
+                    }
+                }
+                Progress::Some => {
+                    busy = true;
+                    still.push_back(connection);
+                }
+                Progress::Nothing => still.push_back(connection),
+                Progress::Dropped => {}
+            }
+        }
+        pending = still;
+        // Quick to answer a browser's burst of requests, idle when there is none.
+        pause = if busy {
+            Duration::from_millis(1)
+        } else {
+            (pause * 2).min(MAX_PAUSE)
+        };
+        std::thread::sleep(pause);
+    }
 }
 
 /// Parses a request head, or says why it is malformed (400).
