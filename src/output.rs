@@ -197,10 +197,7 @@ mod tests {
         std::os::unix::fs::symlink(&file, &link).unwrap();
         for target in [Path::new("/dev/null"), &socket, &link] {
             assert!(
-                matches!(
-                    write(target, "x"),
-                    Err(OutputError::NotARegularFile { .. })
-                ),
+                matches!(write(target, "x"), Err(OutputError::NotARegularFile { .. })),
                 "{}",
                 target.display()
             );

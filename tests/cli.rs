@@ -1050,7 +1050,12 @@ fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
 fn grow_out_refuses_a_picture_that_is_a_directory_and_writes_nothing() {
     let dir = target_scratch("grow-out-directory");
     std::fs::create_dir(dir.join("creature.png")).unwrap();
-    let out = ontogeny(&["grow", "examples/snake.lsys", "--out", dir.to_str().unwrap()]);
+    let out = ontogeny(&[
+        "grow",
+        "examples/snake.lsys",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(
         stderr(&out).contains("creature.png exists and is not a regular file"),

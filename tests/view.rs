@@ -873,7 +873,10 @@ fn saving_the_file_redraws_the_open_page() {
 /// Sends `request` (a request head, blank line included) to the viewer and returns the whole
 /// response.
 fn raw_request(viewer: &Viewer, request: &str) -> String {
-    let host = viewer.url.trim_start_matches("http://").trim_end_matches('/');
+    let host = viewer
+        .url
+        .trim_start_matches("http://")
+        .trim_end_matches('/');
     let mut stream = std::net::TcpStream::connect(host).unwrap();
     stream.write_all(request.as_bytes()).unwrap();
     let mut response = Vec::new();
@@ -887,7 +890,11 @@ fn the_viewer_answers_only_its_own_host_and_only_reads() {
     let port = viewer.url.rsplit(':').next().unwrap().trim_end_matches('/');
     // A page elsewhere whose domain name now points at 127.0.0.1 (DNS rebinding), or a
     // request naming no host: refused.
-    for host in ["Host: evil.example\r\n", "Host: evil.example:{port}\r\n", ""] {
+    for host in [
+        "Host: evil.example\r\n",
+        "Host: evil.example:{port}\r\n",
+        "",
+    ] {
         let host = host.replace("{port}", port);
         let response = raw_request(&viewer, &format!("GET /data.json HTTP/1.1\r\n{host}\r\n"));
         assert!(response.starts_with("HTTP/1.1 403 "), "{host}: {response}");
@@ -901,7 +908,10 @@ fn the_viewer_answers_only_its_own_host_and_only_reads() {
         );
         assert!(response.starts_with("HTTP/1.1 200 "), "{host}: {response}");
         let head = response.split("\r\n\r\n").next().unwrap().to_lowercase();
-        assert!(head.contains("\r\nx-content-type-options: nosniff"), "{head}");
+        assert!(
+            head.contains("\r\nx-content-type-options: nosniff"),
+            "{head}"
+        );
         assert!(
             head.contains("\r\ncontent-security-policy: default-src 'self';"),
             "{head}"
@@ -915,7 +925,10 @@ fn the_viewer_answers_only_its_own_host_and_only_reads() {
                 "{method} /data.json HTTP/1.1\r\nHost: localhost:{port}\r\nContent-Length: 0\r\n\r\n"
             ),
         );
-        assert!(response.starts_with("HTTP/1.1 405 "), "{method}: {response}");
+        assert!(
+            response.starts_with("HTTP/1.1 405 "),
+            "{method}: {response}"
+        );
         assert!(response.contains("\r\nAllow: GET, HEAD\r\n"), "{response}");
     }
     let response = raw_request(
@@ -924,14 +937,21 @@ fn the_viewer_answers_only_its_own_host_and_only_reads() {
     );
     assert!(response.starts_with("HTTP/1.1 200 "), "{response}");
     assert!(response.ends_with("\r\n\r\n"), "no body: {response}");
-    assert!(response.to_lowercase().contains("x-content-type-options: nosniff"));
+    assert!(
+        response
+            .to_lowercase()
+            .contains("x-content-type-options: nosniff")
+    );
 }
 
 #[cfg(target_os = "linux")]
 #[test]
 fn idle_connections_neither_make_threads_nor_keep_the_page_waiting() {
     let viewer = Viewer::start(&example("algae.lsys"));
-    let host = viewer.url.trim_start_matches("http://").trim_end_matches('/');
+    let host = viewer
+        .url
+        .trim_start_matches("http://")
+        .trim_end_matches('/');
     let idle: Vec<std::net::TcpStream> = (0..300)
         .map(|_| std::net::TcpStream::connect(host).unwrap())
         .collect();
@@ -940,7 +960,11 @@ fn idle_connections_neither_make_threads_nor_keep_the_page_waiting() {
     let threads = std::fs::read_dir(format!("/proc/{}/task", viewer.child.id()))
         .unwrap()
         .count();
-    assert!(threads <= 8, "{threads} threads for {} idle connections", idle.len());
+    assert!(
+        threads <= 8,
+        "{threads} threads for {} idle connections",
+        idle.len()
+    );
     drop(idle);
 }
 
@@ -950,8 +974,20 @@ fn a_query_number_out_of_range_is_refused_not_wrapped() {
     let run = dir.join("run");
     let out = ontogeny()
         .args([
-            "evolve", "--encoding", "direct", "--task", "walker", "--pop", "4", "--gens", "1",
-            "--seconds", "0.2", "--seed", "3", "--out",
+            "evolve",
+            "--encoding",
+            "direct",
+            "--task",
+            "walker",
+            "--pop",
+            "4",
+            "--gens",
+            "1",
+            "--seconds",
+            "0.2",
+            "--seed",
+            "3",
+            "--out",
         ])
         .arg(&run)
         .output()
@@ -971,7 +1007,10 @@ fn a_query_number_out_of_range_is_refused_not_wrapped() {
     for query in ["gen=0&index=4294967296", "gen=-1&index=0", "gen=0&index=x"] {
         let (status, body) = viewer.get(&format!("/individual.json?{query}"));
         assert_eq!(status, 400, "{query}: {body}");
-        assert!(body.contains("not a whole number from 0 to 4294967295"), "{body}");
+        assert!(
+            body.contains("not a whole number from 0 to 4294967295"),
+            "{body}"
+        );
     }
     let (status, body) = viewer.get("/individual.json?gen=0&index=3");
     assert_eq!(status, 200, "{body}");
@@ -1016,5 +1055,8 @@ fn a_snapshot_refuses_a_target_that_is_not_a_regular_file() {
             .file_type()
             .is_socket()
     );
-    assert_eq!(std::fs::read_to_string(directory.join("kept")).unwrap(), "kept");
+    assert_eq!(
+        std::fs::read_to_string(directory.join("kept")).unwrap(),
+        "kept"
+    );
 }

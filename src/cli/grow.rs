@@ -189,7 +189,13 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     if let Some(dir) = &args.out {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         super::check_outputs(
-            ["creature.json", "frames.jsonl", "creature.png", "growth.gif"].map(|f| dir.join(f)),
+            [
+                "creature.json",
+                "frames.jsonl",
+                "creature.png",
+                "growth.gif",
+            ]
+            .map(|f| dir.join(f)),
         )?;
         let path = dir.join("creature.json");
         ontogeny::output::write(&path, serde_json::to_string_pretty(&last.creature)?)?;

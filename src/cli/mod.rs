@@ -154,7 +154,9 @@ fn check_outputs<P: AsRef<std::path::Path>>(
 
 /// A failure to draw `path` as the command line reports it: a refused output as it is (its
 /// message names the file; exit code 2), anything else after the file it was writing.
-fn render_error(path: &std::path::Path) -> impl FnOnce(ontogeny::render::RenderError) -> anyhow::Error + '_ {
+fn render_error(
+    path: &std::path::Path,
+) -> impl FnOnce(ontogeny::render::RenderError) -> anyhow::Error + '_ {
     move |error| match error {
         ontogeny::render::RenderError::Output(e) => anyhow::Error::new(e),
         other => anyhow::Error::new(other).context(format!("cannot write {}", path.display())),
@@ -176,9 +178,11 @@ fn report(error: anyhow::Error) -> ExitCode {
     let _ = writeln!(std::io::stderr(), "error: {error:#}");
     // A file that cannot be read or written, or an output refused (a target that is not a
     // regular file), is the user's to fix; anything else is ours.
-    let refused = error
-        .chain()
-        .any(|cause| cause.downcast_ref::<ontogeny::output::OutputError>().is_some());
+    let refused = error.chain().any(|cause| {
+        cause
+            .downcast_ref::<ontogeny::output::OutputError>()
+            .is_some()
+    });
     ExitCode::from(if io.is_some() || refused { 2 } else { 1 })
 }
 

@@ -547,10 +547,7 @@ mod tests {
                 "{value}"
             );
         }
-        assert_eq!(
-            number("index=4294967295", "index").unwrap(),
-            Some(u32::MAX)
-        );
+        assert_eq!(number("index=4294967295", "index").unwrap(), Some(u32::MAX));
     }
 
     #[test]
@@ -606,7 +603,8 @@ mod tests {
 
     #[test]
     fn every_response_forbids_sniffing_and_outside_resources() {
-        let page = String::from_utf8(response_bytes(&Answer::text(404, "not found"), true)).unwrap();
+        let page =
+            String::from_utf8(response_bytes(&Answer::text(404, "not found"), true)).unwrap();
         assert!(page.starts_with("HTTP/1.1 404 Not Found\r\n"), "{page}");
         assert!(page.contains("\r\nX-Content-Type-Options: nosniff\r\n"));
         assert!(page.contains("\r\nContent-Security-Policy: default-src 'none'"));
@@ -618,6 +616,10 @@ mod tests {
     #[test]
     fn the_page_carries_the_import_maps_nonce() {
         assert_eq!(INDEX_HTML.matches(IMPORT_MAP_TAG).count(), 1);
-        assert_eq!(INDEX_HTML.matches("<script").count(), 2, "one inline script only");
+        assert_eq!(
+            INDEX_HTML.matches("<script").count(),
+            2,
+            "one inline script only"
+        );
     }
 }
