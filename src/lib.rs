@@ -10,7 +10,8 @@
 //! statistics that compare settings.
 //! [`export`] writes a creature with the simulator's settings in other simulators' formats
 //! (MuJoCo's MJCF). [`view`] serves a local web page that shows creatures growing, recordings
-//! playing and runs' progress in the browser.
+//! playing and runs' progress in the browser. [`output`] writes every file for the user whole or
+//! not at all, and never over something that is not a regular file.
 
 #![warn(missing_docs)]
 
@@ -22,6 +23,7 @@ pub mod evolve;
 pub mod export;
 pub mod lang;
 pub mod lsystem;
+pub mod output;
 pub mod render;
 pub mod sim;
 pub mod task;

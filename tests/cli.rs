@@ -1326,3 +1326,101 @@ fn a_creature_file_with_more_parts_than_max_parts_is_refused_by_eval_and_export(
     assert!(o.status.success(), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A fresh scratch directory under the test target's own temporary directory.
+fn target_scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn export_refuses_an_out_that_is_a_directory_and_leaves_it_intact() {
+    let dir = target_scratch("export-out-directory");
+    let taken = dir.join("model.xml");
+    std::fs::create_dir(&taken).unwrap();
+    std::fs::write(taken.join("kept"), "kept").unwrap();
+    let out = ontogeny(&[
+        "export",
+        "examples/snake.lsys",
+        "--out",
+        taken.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains(&format!(
+            "{} exists and is not a regular file; refusing to replace it",
+            taken.display()
+        )),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(std::fs::read_to_string(taken.join("kept")).unwrap(), "kept");
+    // A regular file is replaced whole, and nothing is left beside it.
+    let file = dir.join("model-file.xml");
+    std::fs::write(&file, "old").unwrap();
+    let out = ontogeny(&[
+        "export",
+        "examples/snake.lsys",
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(std::fs::read_to_string(&file).unwrap().contains("<mujoco"));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
+}
+
+#[cfg(unix)]
+#[test]
+fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = target_scratch("record-socket");
+    let socket = dir.join("behaviour.gif");
+    let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
+    let out = ontogeny(&[
+        "eval",
+        "examples/snake.lsys",
+        "--task",
+        "walker",
+        "--seconds",
+        "1",
+        "--record",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("behaviour.gif exists and is not a regular file"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(
+        std::fs::symlink_metadata(&socket)
+            .unwrap()
+            .file_type()
+            .is_socket()
+    );
+    // Refused before anything was evaluated or written.
+    assert!(!dir.join("recording.json").exists());
+    assert!(stdout(&out).is_empty(), "{}", stdout(&out));
+}
+
+#[test]
+fn grow_out_refuses_a_picture_that_is_a_directory_and_writes_nothing() {
+    let dir = target_scratch("grow-out-directory");
+    std::fs::create_dir(dir.join("creature.png")).unwrap();
+    let out = ontogeny(&[
+        "grow",
+        "examples/snake.lsys",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("creature.png exists and is not a regular file"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(dir.join("creature.png").is_dir());
+    assert!(!dir.join("creature.json").exists());
+}

@@ -82,6 +82,7 @@ fn compare_error(e: CompareError) -> anyhow::Error {
         CompareError::Io { path, source } => {
             anyhow::Error::new(source).context(path.display().to_string())
         }
+        CompareError::Output(e) => anyhow::Error::new(e),
         CompareError::Other(m) => anyhow::anyhow!(m),
     }
 }

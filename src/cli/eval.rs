@@ -444,6 +444,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
             ));
         }
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
     }
     let sim = &spec.sim;
     let record = args.record.is_some();
@@ -564,8 +565,7 @@ pub fn write_recording_at(
         target: target.clone(),
         frames: &evaluation.recording,
     };
-    std::fs::write(&path, serde_json::to_string(&file)?)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    ontogeny::output::write(&path, serde_json::to_string(&file)?)?;
     let status = serde_json::to_value(evaluation.status)?;
     let why = format!(
         "{}: {}",
@@ -730,7 +730,7 @@ fn draw_recording(
             .chain(wrap(why, STILL_LINE))
             .collect();
         ontogeny::render::write_still_gif(creature, &label, path, 480, 300)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+            .map_err(super::render_error(path))?;
         return Ok(());
     }
     let (chosen, delays, shown_fps) = animation_frames(frames, fps);
@@ -818,7 +818,7 @@ fn draw_recording(
         framing,
         &mut |f| progress.set(f),
     )
-    .with_context(|| format!("cannot write {}", path.display()))?;
+    .map_err(super::render_error(path))?;
     progress.finish();
     Ok(())
 }

@@ -536,17 +536,22 @@ fn replay_typed<G: Genome>(
     std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
     let genome_name = format!("genome.{}", G::TEXT_EXTENSION);
     let genome_path = out.join(&genome_name);
-    std::fs::write(&genome_path, individual.genome.to_text())
-        .with_context(|| format!("cannot write {}", genome_path.display()))?;
+    let png = out.join("creature.png");
+    super::check_outputs([
+        &genome_path,
+        &png,
+        &out.join("recording.json"),
+        &out.join("behaviour.gif"),
+    ])?;
+    ontogeny::output::write(&genome_path, individual.genome.to_text())?;
     let limits = &run.config().limits;
     let creature = individual
         .genome
         .develop(limits, individual.develop_seed)
         .map_err(|e| bad(format!("the genome does not develop: {e}")))?;
-    let png = out.join("creature.png");
     let title = format!("generation {generation}, rank {rank}");
     ontogeny::render::write_png(&creature, &title, &png, 960, 600)
-        .with_context(|| format!("cannot write {}", png.display()))?;
+        .map_err(super::render_error(&png))?;
     let evaluation = run.config().task.evaluate(&creature, true);
     super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
     let stored = individual.evaluation.fitness;

@@ -2,7 +2,6 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use clap::{Args, ValueEnum};
 use ontogeny::export::to_mjcf;
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
@@ -72,8 +71,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     })?;
     match &args.out {
         Some(path) => {
-            std::fs::write(path, &text)
-                .with_context(|| format!("cannot write {}", path.display()))?;
+            ontogeny::output::write(path, &text)?;
         }
         None => {
             use std::io::Write as _;

@@ -160,7 +160,7 @@ fn write_growth_gif(frames: &[GrowthFrame], total: u64, path: &Path) -> anyhow::
         ontogeny::render::Framing::Still,
         &mut |f| progress.set(f),
     )
-    .with_context(|| format!("cannot write {}", path.display()))?;
+    .map_err(super::render_error(path))?;
     progress.finish();
     Ok(())
 }
@@ -188,35 +188,42 @@ fn write_out(
     summary: &Summary,
 ) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    super::check_outputs(OUT_FILES.map(|f| dir.join(f)))?;
     let path = dir.join("creature.json");
-    std::fs::write(&path, serde_json::to_string_pretty(&last.creature)?)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    ontogeny::output::write(&path, serde_json::to_string_pretty(&last.creature)?)?;
     let path = dir.join("frames.jsonl");
-    let mut out = std::io::BufWriter::new(
-        std::fs::File::create(&path).with_context(|| format!("cannot write {}", path.display()))?,
-    );
     let mut progress = super::progress::Progress::new("writing frames.jsonl");
-    for_each_growth_frame(
-        grown.lsys,
-        grown.options,
-        grown.steps,
-        grown.build_options,
-        |_, _| true,
-        &mut |f| progress.set(f),
-        |frame| {
-            serde_json::to_writer(&mut out, &frame)
-                .map_err(std::io::Error::from)
-                .and_then(|()| writeln!(out))
-                .with_context(|| format!("cannot write {}", path.display()))
-        },
-    )?;
-    out.flush()?;
+    ontogeny::output::write_with(&path, |out| -> anyhow::Result<()> {
+        for_each_growth_frame(
+            grown.lsys,
+            grown.options,
+            grown.steps,
+            grown.build_options,
+            |_, _| true,
+            &mut |f| progress.set(f),
+            |frame| {
+                serde_json::to_writer(&mut *out, &frame)
+                    .map_err(std::io::Error::from)
+                    .and_then(|()| writeln!(out))
+                    .with_context(|| format!("cannot write {}", path.display()))
+            },
+        )?;
+        Ok(())
+    })?;
     progress.finish();
     let path = dir.join("creature.png");
     ontogeny::render::write_png(&last.creature, &summary.file, &path, 960, 600)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+        .map_err(super::render_error(&path))?;
     write_growth_gif(shown, last.step + 1, &dir.join("growth.gif"))
 }
+
+/// The files `--out` writes.
+const OUT_FILES: [&str; 4] = [
+    "creature.json",
+    "frames.jsonl",
+    "creature.png",
+    "growth.gif",
+];
 
 /// What one growth is made of, to grow it again frame by frame.
 struct Grown<'a> {
@@ -237,6 +244,10 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         ..BuildOptions::default()
     };
     let steps = discrete_steps(&lsys, &options, args.development.steps, "growing")?;
+    // Outputs that are not regular files are refused before anything is grown.
+    if let Some(dir) = &args.out {
+        super::check_outputs(OUT_FILES.map(|f| dir.join(f)))?;
+    }
     // With --out every frame is written: refused at once when there are too many.
     let gif_steps = match &args.out {
         Some(_) => Some(growth_gif_steps(&kept_frame_plan(&lsys, &options, steps)?)),

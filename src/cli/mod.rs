@@ -141,6 +141,28 @@ pub fn main() -> ExitCode {
     }
 }
 
+/// Refuses, before any work is done, output files that could not be written: each must be
+/// missing or a regular file (see [`ontogeny::output`]).
+fn check_outputs<P: AsRef<std::path::Path>>(
+    paths: impl IntoIterator<Item = P>,
+) -> anyhow::Result<()> {
+    for path in paths {
+        ontogeny::output::check_target(path.as_ref())?;
+    }
+    Ok(())
+}
+
+/// A failure to draw `path` as the command line reports it: a refused output as it is (its
+/// message names the file; exit code 2), anything else after the file it was writing.
+fn render_error(
+    path: &std::path::Path,
+) -> impl FnOnce(ontogeny::render::RenderError) -> anyhow::Error + '_ {
+    move |error| match error {
+        ontogeny::render::RenderError::Output(e) => anyhow::Error::new(e),
+        other => anyhow::Error::new(other).context(format!("cannot write {}", path.display())),
+    }
+}
+
 fn report(error: anyhow::Error) -> ExitCode {
     if let Some(diagnostic) = error.downcast_ref::<Diagnostic>() {
         eprintln!("{diagnostic}");
@@ -154,8 +176,14 @@ fn report(error: anyhow::Error) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     let _ = writeln!(std::io::stderr(), "error: {error:#}");
-    // A file that cannot be read or written is the user's to fix; anything else is ours.
-    ExitCode::from(if io.is_some() { 2 } else { 1 })
+    // A file that cannot be read or written, or an output refused (a target that is not a
+    // regular file), is the user's to fix; anything else is ours.
+    let refused = error.chain().any(|cause| {
+        cause
+            .downcast_ref::<ontogeny::output::OutputError>()
+            .is_some()
+    });
+    ExitCode::from(if io.is_some() || refused { 2 } else { 1 })
 }
 
 #[cfg(test)]

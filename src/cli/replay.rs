@@ -66,6 +66,7 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         ))
     })?;
     let gif = args.dir.join("behaviour.gif");
+    super::check_outputs([&gif])?;
     let target = recording
         .target
         .map(|[x, y, z]| nalgebra::Vector3::new(x, y, z));

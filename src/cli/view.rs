@@ -226,9 +226,8 @@ fn developer_for<G: Genome + 'static>(dir: PathBuf) -> Developer {
         let population = run.population(generation).map_err(|e| e.to_string())?;
         let individual = population.get(index as usize).ok_or_else(|| {
             format!(
-                "generation {generation} has {} individuals, not {}",
-                population.len(),
-                index + 1
+                "generation {generation} has {} individual(s); there is no individual {index}",
+                population.len()
             )
         })?;
         individual
@@ -258,7 +257,10 @@ pub fn find_browser(given: Option<&Path>) -> Option<PathBuf> {
     .find(|p| p.is_file())
 }
 
-/// Renders `url` with headless Chromium into `out`.
+/// Renders `url` with headless Chromium into `out`. Chromium runs with a fresh private profile
+/// and writes its screenshot there; the picture is then put in place whole
+/// ([`ontogeny::output`]), and a target that is not a regular file is refused before
+/// Chromium starts.
 fn snapshot(args: &ViewArgs, url: &str, out: &Path) -> anyhow::Result<()> {
     let browser = find_browser(args.browser.as_deref()).ok_or_else(|| {
         bad(
@@ -271,22 +273,25 @@ fn snapshot(args: &ViewArgs, url: &str, out: &Path) -> anyhow::Result<()> {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("cannot create {}", parent.display()))?;
     }
-    if out.exists() {
-        std::fs::remove_file(&out).with_context(|| format!("cannot replace {}", out.display()))?;
-    }
-    let profile = std::env::temp_dir().join(format!("ontogeny-view-{}", std::process::id()));
+    ontogeny::output::check_target(&out)?;
+    // Removed, with everything Chromium put in it, when dropped.
+    let scratch = tempfile::Builder::new()
+        .prefix("ontogeny-view-")
+        .tempdir()
+        .context("cannot make a temporary directory for the browser")?;
+    let profile = scratch.path().join("profile");
+    let screenshot = scratch.path().join("snapshot.png");
     let (w, h) = args.size.unwrap_or(DEFAULT_SIZE);
     let output = Command::new(&browser)
         .args(chromium_flags())
         .arg(format!("--user-data-dir={}", profile.display()))
         .arg(format!("--window-size={w},{h}"))
-        .arg(format!("--screenshot={}", out.display()))
+        .arg(format!("--screenshot={}", screenshot.display()))
         .arg(url)
         .stdin(std::process::Stdio::null())
         .output()
         .with_context(|| format!("cannot run {}", browser.display()))?;
-    let _ = std::fs::remove_dir_all(&profile);
-    if !out.is_file() {
+    if !screenshot.is_file() {
         anyhow::bail!(
             "{} did not write {} (exit status {}):\n{}",
             browser.display(),
@@ -295,6 +300,7 @@ fn snapshot(args: &ViewArgs, url: &str, out: &Path) -> anyhow::Result<()> {
             String::from_utf8_lossy(&output.stderr)
         );
     }
+    ontogeny::output::copy_into_place(&screenshot, &out)?;
     Ok(())
 }
 

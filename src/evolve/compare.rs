@@ -43,9 +43,21 @@ pub enum CompareError {
         /// What went wrong.
         source: std::io::Error,
     },
+    /// An output file was refused or could not be written (see [`crate::output`]).
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
     /// Anything else (a database or a plot that fails).
     #[error("{0}")]
     Other(String),
+}
+
+impl From<plot::PlotError> for CompareError {
+    fn from(e: plot::PlotError) -> Self {
+        match e {
+            plot::PlotError::Output(e) => CompareError::Output(e),
+            other => CompareError::Other(other.to_string()),
+        }
+    }
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CompareError + '_ {
@@ -167,12 +179,10 @@ pub fn create(
     }
     let settings = root.join("evolve.toml");
     let text = toml::to_string(shared).map_err(|e| CompareError::Other(e.to_string()))?;
-    std::fs::write(&settings, text).map_err(io(&settings))?;
+    crate::output::write(&settings, text)?;
     let text = toml::to_string(manifest).map_err(|e| CompareError::Other(e.to_string()))?;
     // The manifest last: a comparison exists once both are written.
-    let temporary = path.with_extension("tmp");
-    std::fs::write(&temporary, text).map_err(io(&temporary))?;
-    std::fs::rename(&temporary, &path).map_err(io(&path))?;
+    crate::output::write(&path, text)?;
     Ok(lock)
 }
 
@@ -491,12 +501,10 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
     }
 }
 
-/// Writes `text` to `path` through a temporary file and a rename: a reader never sees half a
-/// report.
+/// Writes `text` to `path` whole or not at all ([`crate::output::write`]): a reader never sees
+/// half a report.
 fn write_file(path: &Path, text: &str) -> Result<(), CompareError> {
-    let temporary = path.with_extension("tmp");
-    std::fs::write(&temporary, text).map_err(io(&temporary))?;
-    std::fs::rename(&temporary, path).map_err(io(path))
+    Ok(crate::output::write(path, text)?)
 }
 
 /// A number for a table: NaN as "–".
@@ -662,8 +670,7 @@ pub fn write_report(
         .map(|e| band(e, replicates))
         .collect();
     let title = format!("{task}: mean best fitness with 95% confidence bands");
-    plot::bands_svg(&root.join("fitness.svg"), &bands, &title)
-        .map_err(|e| CompareError::Other(e.to_string()))?;
+    plot::bands_svg(&root.join("fitness.svg"), &bands, &title)?;
     let parts: Vec<(String, Vec<f64>)> = manifest
         .encodings
         .iter()
@@ -682,8 +689,7 @@ pub fn write_report(
         &parts,
         "parts",
         &format!("{task}: the champions' parts (bar: median)"),
-    )
-    .map_err(|e| CompareError::Other(e.to_string()))?;
+    )?;
     Ok(r)
 }
 

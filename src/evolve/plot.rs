@@ -1,7 +1,6 @@
 //! The fitness plot of a run (`runs/NAME/fitness.svg`), and a comparison's plots: mean best
 //! fitness with 95% bands per encoding, and a strip chart of the champions' parts.
 
-use std::fs;
 use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
@@ -22,15 +21,9 @@ pub enum PlotError {
         /// What plotters reported.
         detail: String,
     },
-    /// Writing the file failed.
-    #[error("{}: cannot write the fitness plot: {source}", path.display())]
-    Io {
-        /// The picture's path.
-        path: PathBuf,
-        /// The error.
-        #[source]
-        source: std::io::Error,
-    },
+    /// The file was refused or could not be written (see [`crate::output`]).
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 /// A series: name, colour (Okabe–Ito, readable by colour-blind people), value.
@@ -234,20 +227,9 @@ const PALETTE: [RGBColor; 7] = [
     RGBColor(0, 0, 0),
 ];
 
-/// Writes `svg` to `path` through a temporary file and a rename.
+/// Writes `svg` to `path`, whole or not at all ([`crate::output::write`]).
 fn write_svg(path: &Path, svg: String) -> Result<(), PlotError> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = PathBuf::from(tmp);
-    let io = |source| PlotError::Io {
-        path: path.into(),
-        source,
-    };
-    fs::write(&tmp, svg).map_err(io)?;
-    fs::rename(&tmp, path).map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        io(e)
-    })
+    Ok(crate::output::write(path, svg)?)
 }
 
 /// Writes an SVG of one line per band (mean best fitness against evaluations) over its shaded
@@ -432,6 +414,8 @@ fn draw_strip(
 
 #[cfg(test)]
 mod tests {
+    use std::fs;
+
     use super::*;
 
     fn generation(index: u32, best: f64, mean: f64, median: f64) -> GenerationRecord {
@@ -479,8 +463,8 @@ mod tests {
 
     #[test]
     fn comparison_plots_draw_every_series() {
-        let dir = std::env::temp_dir().join(format!("ontogeny-plot-{}", std::process::id()));
-        fs::create_dir_all(&dir).unwrap();
+        let scratch = tempfile::tempdir().unwrap();
+        let dir = scratch.path();
         let bands = [
             Band {
                 name: "first-encoding".into(),

@@ -22,6 +22,7 @@ use super::store::{
 };
 use crate::encoding::{Genome, Purpose};
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
+use crate::output;
 use crate::task::{Evaluation, TaskKind, TaskSpec};
 
 /// Why a run could not start, resume or go on.
@@ -75,6 +76,9 @@ pub enum RunError {
     /// The plot could not be drawn.
     #[error("{0}")]
     Plot(String),
+    /// A file of the run could not be written, or its target is not a regular file.
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
@@ -82,14 +86,6 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
         path: path.to_path_buf(),
         source,
     }
-}
-
-/// Writes `text` to `path` through a temporary file and a rename, so a crash leaves either
-/// the old file or the new one.
-fn write_atomically(path: &Path, text: &[u8]) -> Result<(), RunError> {
-    let temporary = path.with_extension("tmp");
-    std::fs::write(&temporary, text).map_err(io(&temporary))?;
-    std::fs::rename(&temporary, path).map_err(io(path))
 }
 
 /// The names of a run directory's files.
@@ -177,7 +173,7 @@ impl<G: Genome> Run<G> {
             Some(text) => {
                 let genome =
                     G::from_lsys(text, &config.limits).map_err(|e| RunError::Corrupt(e.0))?;
-                write_atomically(&dir.join("init.lsys"), text.as_bytes())?;
+                output::write(&dir.join("init.lsys"), text.as_bytes())?;
                 config.init = Some(PathBuf::from("init.lsys"));
                 Some(genome)
             }
@@ -197,7 +193,7 @@ impl<G: Genome> Run<G> {
                 version: env!("CARGO_PKG_VERSION").to_string(),
             },
         )?;
-        write_atomically(&dir.join(CONFIG_FILE), text.as_bytes())?;
+        output::write(&dir.join(CONFIG_FILE), text.as_bytes())?;
         let run = Run::assemble(dir, config, store, init, Some(lock));
         run.write_derived_files()?;
         Ok(run)
@@ -268,7 +264,7 @@ impl<G: Genome> Run<G> {
                     });
                 }
             }
-            None => write_atomically(&config_path, stored.config.as_bytes())?,
+            None => output::write(&config_path, stored.config.as_bytes())?,
         }
         let store = RunStore::open(&store_path)?;
         let init = Self::read_init(dir, &config)?;
@@ -551,7 +547,7 @@ impl<G: Genome> Run<G> {
                 fallback_note(fallen, G::NAME),
             ));
         }
-        write_atomically(&self.dir.join(LOG_FILE), log.as_bytes())?;
+        output::write(&self.dir.join(LOG_FILE), log.as_bytes())?;
         if let Some(last) = generations.last() {
             let population = self.population(last.index)?;
             if let Some(&best) = ranking(&population).first() {
@@ -573,7 +569,7 @@ impl<G: Genome> Run<G> {
                 );
                 let text = b.genome.annotated_text(&note);
                 let name = format!("best.{}", G::TEXT_EXTENSION);
-                write_atomically(&self.dir.join(name), text.as_bytes())?;
+                output::write(&self.dir.join(name), text.as_bytes())?;
             }
         }
         let title = format!(
@@ -582,8 +578,10 @@ impl<G: Genome> Run<G> {
             G::NAME,
             self.config.task.task.name()
         );
-        fitness_svg(&self.dir.join(PLOT_FILE), &generations, &title)
-            .map_err(|e| RunError::Plot(e.to_string()))?;
+        fitness_svg(&self.dir.join(PLOT_FILE), &generations, &title).map_err(|e| match e {
+            super::plot::PlotError::Output(e) => RunError::Output(e),
+            other => RunError::Plot(other.to_string()),
+        })?;
         Ok(())
     }
 }

@@ -68,6 +68,9 @@ pub enum RenderError {
     /// A file could not be written.
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    /// The output file was refused or could not be written (see [`crate::output`]).
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
 }
 
 /// What the camera looks at: a world-space box kept in view.
@@ -1232,9 +1235,10 @@ pub fn write_png(
     height: u32,
 ) -> Result<(), RenderError> {
     let pixmap = checked_picture(creature, title, width, height)?;
-    pixmap
-        .save_png(path)
-        .map_err(|e| RenderError::Png(e.to_string()))
+    let png = pixmap
+        .encode_png()
+        .map_err(|e| RenderError::Png(e.to_string()))?;
+    Ok(crate::output::write(path, png)?)
 }
 
 /// One GIF frame of an opaque picture: a palette of the colours that carry meaning
@@ -1278,17 +1282,16 @@ fn gif_frame(pixmap: &Pixmap) -> gif::Frame<'static> {
     )
 }
 
-/// A looping GIF encoder writing to `path`.
-fn gif_encoder(
-    path: &std::path::Path,
+/// A looping GIF encoder writing to `out`.
+fn gif_encoder<W: std::io::Write>(
+    out: W,
     width: u32,
     height: u32,
-) -> Result<gif::Encoder<std::io::BufWriter<std::fs::File>>, RenderError> {
+) -> Result<gif::Encoder<W>, RenderError> {
     let w = u16::try_from(width).map_err(|_| RenderError::Size(width, height))?;
     let h = u16::try_from(height).map_err(|_| RenderError::Size(width, height))?;
-    let file = std::fs::File::create(path)?;
-    let mut encoder = gif::Encoder::new(std::io::BufWriter::new(file), w, h, &[])
-        .map_err(|e| RenderError::Gif(e.to_string()))?;
+    let mut encoder =
+        gif::Encoder::new(out, w, h, &[]).map_err(|e| RenderError::Gif(e.to_string()))?;
     encoder
         .set_repeat(gif::Repeat::Infinite)
         .map_err(|e| RenderError::Gif(e.to_string()))?;
@@ -1318,10 +1321,22 @@ pub fn write_still_gif(
         &overlay,
         Checks::On,
     )?;
-    let mut encoder = gif_encoder(path, width, height)?;
-    encoder
-        .write_frame(&gif_frame(&pixmap))
-        .map_err(|e| RenderError::Gif(e.to_string()))
+    crate::output::write_with(path, |out| {
+        let mut encoder = gif_encoder(out, width, height)?;
+        encoder
+            .write_frame(&gif_frame(&pixmap))
+            .map_err(|e| RenderError::Gif(e.to_string()))?;
+        finish_gif(encoder)
+    })
+}
+
+/// Writes a GIF's trailer and flushes it, reporting a failure (dropping the encoder would
+/// hide it).
+fn finish_gif<W: std::io::Write>(encoder: gif::Encoder<W>) -> Result<(), RenderError> {
+    let mut out = encoder
+        .into_inner()
+        .map_err(|e| RenderError::Gif(e.to_string()))?;
+    Ok(out.flush()?)
 }
 
 /// Writes an animated GIF of a sequence of creatures, framed as `framing` says, looping:
@@ -1363,19 +1378,21 @@ pub fn write_gif_with_progress<'a>(
 ) -> Result<(), RenderError> {
     let views = View::per_frame(creatures.clone(), framing);
     let count = views.len().max(1);
-    let mut encoder = gif_encoder(path, width, height)?;
-    let none = Overlay::default();
-    for (i, creature) in creatures.into_iter().enumerate() {
-        let overlay = overlays.get(i).unwrap_or(&none);
-        let pixmap = picture(creature, &views[i], width, height, overlay)?;
-        let mut frame = gif_frame(&pixmap);
-        frame.delay = delays_cs.get(i).or(delays_cs.last()).copied().unwrap_or(10);
-        encoder
-            .write_frame(&frame)
-            .map_err(|e| RenderError::Gif(e.to_string()))?;
-        progress((i + 1) as f64 / count as f64);
-    }
-    Ok(())
+    crate::output::write_with(path, |out| {
+        let mut encoder = gif_encoder(out, width, height)?;
+        let none = Overlay::default();
+        for (i, creature) in creatures.into_iter().enumerate() {
+            let overlay = overlays.get(i).unwrap_or(&none);
+            let pixmap = picture(creature, &views[i], width, height, overlay)?;
+            let mut frame = gif_frame(&pixmap);
+            frame.delay = delays_cs.get(i).or(delays_cs.last()).copied().unwrap_or(10);
+            encoder
+                .write_frame(&frame)
+                .map_err(|e| RenderError::Gif(e.to_string()))?;
+            progress((i + 1) as f64 / count as f64);
+        }
+        finish_gif(encoder)
+    })
 }
 
 #[cfg(test)]

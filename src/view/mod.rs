@@ -66,6 +66,13 @@ pub enum ViewError {
     /// A file of the directory cannot be read or makes no sense.
     #[error("{0}")]
     BadFile(String),
+    /// A request for data that does not say what it wants (a query number missing or out of
+    /// range).
+    #[error("{0}")]
+    BadRequest(String),
+    /// A request for data that is not there (an individual past the end of its generation).
+    #[error("{0}")]
+    NotFound(String),
 }
 
 /// A path and the kind of page it opens.
@@ -370,6 +377,16 @@ pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewErr
     Ok(json!({ "generation": generation, "individuals": rows }))
 }
 
+/// How many individuals a run's generation `generation` has (0 for a generation not stored).
+pub fn run_population_size(dir: &Path, generation: u32) -> Result<usize, ViewError> {
+    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+        .map_err(|e| ViewError::BadFile(e.to_string()))?;
+    Ok(store
+        .individuals(generation)
+        .map_err(|e| ViewError::BadFile(e.to_string()))?
+        .len())
+}
+
 /// JSON has no NaN or infinity: those become null.
 fn finite(x: f64) -> Value {
     if x.is_finite() { json!(x) } else { Value::Null }
@@ -384,17 +401,18 @@ pub fn creature_data(title: &str, creature: &crate::creature::Creature) -> Value
 mod tests {
     use super::*;
 
-    fn scratch(name: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("ontogeny-view-unit-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    /// A fresh private directory for test `name`, removed when dropped.
+    fn scratch(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("ontogeny-view-unit-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     #[test]
     fn paths_are_classified_by_what_they_hold() {
-        let dir = scratch("classify");
+        let scratch = scratch("classify");
+        let dir = scratch.path().to_path_buf();
         let lsys = dir.join("a.lsys");
         std::fs::write(&lsys, "axiom: forward(1)\n").unwrap();
         assert_eq!(Target::classify(&lsys).unwrap().kind, Kind::Lsys);
@@ -421,7 +439,8 @@ mod tests {
 
     #[test]
     fn a_runs_version_changes_with_its_write_ahead_log() {
-        let dir = scratch("version");
+        let scratch = scratch("version");
+        let dir = scratch.path().to_path_buf();
         std::fs::write(dir.join("config.toml"), "").unwrap();
         std::fs::write(dir.join("run.sqlite"), "db").unwrap();
         let run = Target::classify(&dir).unwrap();
@@ -436,7 +455,8 @@ mod tests {
 
     #[test]
     fn an_lsys_page_has_one_frame_per_step_with_its_string() {
-        let dir = scratch("lsys");
+        let scratch = scratch("lsys");
+        let dir = scratch.path().to_path_buf();
         let file = dir.join("two.lsys");
         std::fs::write(
             &file,
@@ -464,7 +484,8 @@ mod tests {
 
     #[test]
     fn an_lsys_error_carries_its_line_and_column() {
-        let dir = scratch("error");
+        let scratch = scratch("error");
+        let dir = scratch.path().to_path_buf();
         let file = dir.join("bad.lsys");
         std::fs::write(&file, "axiom: A\nA --> forward(1\n").unwrap();
         let data = lsys_data(&file, &DeriveOptions::default(), None);
@@ -478,7 +499,8 @@ mod tests {
 
     #[test]
     fn bad_directories_say_which_file_and_line() {
-        let dir = scratch("bad-dirs");
+        let scratch = scratch("bad-dirs");
+        let dir = scratch.path().to_path_buf();
         std::fs::write(dir.join("frames.jsonl"), "{\"step\": 0}\n").unwrap();
         let err = growth_data(&dir).unwrap_err().to_string();
         assert!(
@@ -511,7 +533,8 @@ mod tests {
 
     #[test]
     fn a_recording_without_frames_is_shown_with_the_reason() {
-        let dir = scratch("no-frames");
+        let scratch = scratch("no-frames");
+        let dir = scratch.path().to_path_buf();
         let creature = crate::develop::creature_from_commands("forward(1) forward(1)").unwrap();
         std::fs::write(
             dir.join("recording.json"),

@@ -1,0 +1,227 @@
+//! Writing output files: whole or not at all, and never over something that is not a file.
+//!
+//! Every file Ontogeny writes for its user (pictures, animations, plots, recordings, exported
+//! models, reports) goes through [`write`] or [`write_with`]: the content goes to a fresh
+//! temporary file in the target's own directory, which is then renamed over the target. A
+//! reader sees the old file or the new one, never half of one, and a failure leaves the old one
+//! as it was. A target that exists and is not a regular file (a directory, a device such as
+//! `/dev/null`, a fifo, a socket, or a symbolic link, which is refused rather than followed or
+//! replaced) is refused before anything is written.
+//!
+//! What this room does not own: deciding where outputs go, or creating their directories.
+
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// Why an output file was not written.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// The target exists and is not a regular file (nor a link to one: links are refused).
+    #[error("{} exists and is not a regular file; refusing to replace it", path.display())]
+    NotARegularFile {
+        /// The target.
+        path: PathBuf,
+    },
+    /// The file could not be written (or its temporary file made, or renamed into place).
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        /// The target.
+        path: PathBuf,
+        /// What went wrong.
+        #[source]
+        source: io::Error,
+    },
+}
+
+/// Refuses a target that exists and is not a regular file; a missing target, or a regular
+/// file (which [`write`] replaces), passes. A symbolic link is refused whatever it points to,
+/// since replacing it would cut the link and following it would write somewhere else.
+pub fn check_target(path: &Path) -> Result<(), OutputError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(metadata) if metadata.file_type().is_file() => Ok(()),
+        Ok(_) => Err(OutputError::NotARegularFile { path: path.into() }),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
+        Err(source) => Err(OutputError::Io {
+            path: path.into(),
+            source,
+        }),
+    }
+}
+
+/// Writes `bytes` to `path`, whole or not at all (see the module's documentation).
+pub fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), OutputError> {
+    write_with(path, |out| {
+        out.write_all(bytes.as_ref())
+            .map_err(|source| OutputError::Io {
+                path: path.into(),
+                source,
+            })
+    })
+}
+
+/// Writes to `path` what `fill` writes, whole or not at all: `fill` writes to a temporary file
+/// beside `path`, which replaces `path` only if `fill` succeeds. An error of `fill` is returned
+/// as it is; the temporary file is removed.
+pub fn write_with<E: From<OutputError>>(
+    path: &Path,
+    fill: impl FnOnce(&mut BufWriter<File>) -> Result<(), E>,
+) -> Result<(), E> {
+    check_target(path)?;
+    let io_error = |source| OutputError::Io {
+        path: path.into(),
+        source,
+    };
+    let directory = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    let name = path
+        .file_name()
+        .ok_or_else(|| io_error(io::Error::other("the path names no file")))?;
+    let mut prefix = std::ffi::OsString::from(".");
+    prefix.push(name);
+    prefix.push(".");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    // The permissions of a file made by `std::fs::write` (read and write for all, less the
+    // process's umask), not the private ones of a temporary file.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let temporary = builder.tempfile_in(directory).map_err(io_error)?;
+    let mut out = BufWriter::new(temporary.reopen().map_err(io_error)?);
+    fill(&mut out)?;
+    out.into_inner()
+        .map_err(|e| io_error(e.into_error()))?
+        .sync_all()
+        .map_err(io_error)?;
+    // Checked again just before the rename, so that a target that became something else while
+    // the content was written is not replaced.
+    check_target(path)?;
+    temporary.persist(path).map_err(|e| io_error(e.error))?;
+    Ok(())
+}
+
+/// Moves the file `source` (written by another program, e.g. a browser's screenshot) to
+/// `target` as [`write`] would write it; `source` is left in place for its owner to remove.
+pub fn copy_into_place(source: &Path, target: &Path) -> Result<(), OutputError> {
+    let bytes = std::fs::read(source).map_err(|e| OutputError::Io {
+        path: source.into(),
+        source: e,
+    })?;
+    write(target, bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A private scratch directory, removed when dropped.
+    fn scratch() -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix("ontogeny-output-unit-")
+            .tempdir()
+            .unwrap()
+    }
+
+    #[test]
+    fn a_new_file_is_written_and_nothing_else_is_left_beside_it() {
+        let dir = scratch();
+        let path = dir.path().join("out.txt");
+        write(&path, "hello").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "hello");
+        let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(names.len(), 1);
+    }
+
+    #[test]
+    fn a_regular_file_is_replaced_whole() {
+        let dir = scratch();
+        let path = dir.path().join("out.txt");
+        std::fs::write(&path, "an old and longer content").unwrap();
+        write(&path, "new").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+    }
+
+    #[test]
+    fn a_failed_fill_leaves_the_old_file_and_no_temporary() {
+        let dir = scratch();
+        let path = dir.path().join("out.txt");
+        std::fs::write(&path, "old").unwrap();
+        let result = write_with(&path, |out| {
+            out.write_all(b"half").map_err(|source| OutputError::Io {
+                path: path.clone(),
+                source,
+            })?;
+            Err(OutputError::Io {
+                path: path.clone(),
+                source: io::Error::other("the encoder failed"),
+            })
+        });
+        assert!(result.is_err());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn a_directory_is_refused_and_left_intact() {
+        let dir = scratch();
+        let target = dir.path().join("taken");
+        std::fs::create_dir(&target).unwrap();
+        std::fs::write(target.join("inside"), "kept").unwrap();
+        let error = write(&target, "x").unwrap_err();
+        assert!(matches!(error, OutputError::NotARegularFile { .. }));
+        assert_eq!(
+            error.to_string(),
+            format!(
+                "{} exists and is not a regular file; refusing to replace it",
+                target.display()
+            )
+        );
+        assert_eq!(
+            std::fs::read_to_string(target.join("inside")).unwrap(),
+            "kept"
+        );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_device_a_socket_and_a_link_are_refused() {
+        use std::os::unix::fs::FileTypeExt;
+        let dir = scratch();
+        let socket = dir.path().join("socket");
+        let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
+        let file = dir.path().join("file");
+        std::fs::write(&file, "kept").unwrap();
+        let link = dir.path().join("link");
+        std::os::unix::fs::symlink(&file, &link).unwrap();
+        for target in [Path::new("/dev/null"), &socket, &link] {
+            assert!(
+                matches!(write(target, "x"), Err(OutputError::NotARegularFile { .. })),
+                "{}",
+                target.display()
+            );
+        }
+        assert!(
+            std::fs::symlink_metadata(&socket)
+                .unwrap()
+                .file_type()
+                .is_socket()
+        );
+        assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_new_file_gets_the_permissions_of_an_ordinary_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = scratch();
+        let ours = dir.path().join("ours");
+        let ordinary = dir.path().join("ordinary");
+        write(&ours, "x").unwrap();
+        std::fs::write(&ordinary, "x").unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode();
+        assert_eq!(mode(&ours), mode(&ordinary));
+    }
+}
