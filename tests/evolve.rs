@@ -981,3 +981,53 @@ fn replay_reads_a_version_1_store_without_migrating_it() {
     assert_eq!(store.schema_version(), 1);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn a_finished_run_extended_with_gens_equals_a_run_started_with_that_many() {
+    let dir = scratch("extend");
+    let whole = dir.join("whole");
+    succeeded(&small_run("direct", &whole, &[]));
+    let extended = dir.join("extended");
+    succeeded(&run_of("direct", &extended, "2", &[]));
+    // Fewer generations than it has stored: refused, nothing changed.
+    let before = contents(&extended);
+    let shorter = ontogeny()
+        .args(["evolve", "--gens", "1", "--resume"])
+        .arg(&extended)
+        .output()
+        .unwrap();
+    refused_with(&shorter, "has 2 generations stored");
+    assert_eq!(contents(&extended), before);
+    let longer = ontogeny()
+        .args(["evolve", "--gens", "4", "--resume"])
+        .arg(&extended)
+        .output()
+        .unwrap();
+    succeeded(&longer);
+    assert_eq!(contents(&extended), contents(&whole));
+    let settings = |d: &Path| {
+        RunStore::open_read_only(&d.join("run.sqlite"))
+            .unwrap()
+            .run()
+            .unwrap()
+            .config
+    };
+    assert_eq!(settings(&extended), settings(&whole));
+    assert_eq!(config_text(&extended), config_text(&whole));
+    // Editing the count in config.toml extends it too: the one setting a resume may change.
+    let config = config_text(&extended);
+    std::fs::write(
+        extended.join("config.toml"),
+        config.replace("generations = 4\n", "generations = 5\n"),
+    )
+    .unwrap();
+    succeeded(&resume(&extended));
+    assert_eq!(
+        RunStore::open_read_only(&extended.join("run.sqlite"))
+            .unwrap()
+            .last_generation()
+            .unwrap(),
+        Some(4)
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -125,8 +125,9 @@ pub struct EvolveArgs {
     /// The run directory to create (refused if it holds a run).
     #[arg(long, value_name = "DIR", required_unless_present = "resume")]
     out: Option<PathBuf>,
-    /// Continue the run in DIR where it stopped (any other flag but --threads is refused).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "gens", "seed", "config", "init", "seconds", "setting", "no_verify_best"])]
+    /// Continue the run in DIR where it stopped (any other flag but --threads and --gens is
+    /// refused).
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "seed", "config", "init", "seconds", "setting", "no_verify_best"])]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_enum)]
@@ -140,7 +141,8 @@ pub struct EvolveArgs {
     /// Individuals per generation (default: the preset's, 300).
     #[arg(long)]
     pop: Option<usize>,
-    /// Generations (default: the preset's, 100).
+    /// Generations (default: the preset's, 100). With --resume: extend the run to this many
+    /// generations in all (at least as many as it has).
     #[arg(long)]
     gens: Option<usize>,
     /// The run's seed (default: the config's, else 1).
@@ -206,7 +208,7 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
     if let Some(dir) = &args.resume {
         let encoding = encoding_of_run(dir).map_err(run_error)?;
-        return with_genome!(encoding.as_str(), G => resume::<G>(dir), |other| Err(bad(
+        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens), |other| Err(bad(
             format!("{}: unknown encoding '{other}'", dir.display())
         )));
     }
@@ -303,8 +305,11 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
     go(&mut run, out)
 }
 
-fn resume<G: Genome>(dir: &Path) -> anyhow::Result<()> {
+fn resume<G: Genome>(dir: &Path, generations: Option<usize>) -> anyhow::Result<()> {
     let mut run = Run::<G>::resume(dir).map_err(run_error)?;
+    if let Some(generations) = generations {
+        run.extend(generations).map_err(run_error)?;
+    }
     let done = run.last_generation().map_err(run_error)?;
     let total = run.config().ga.generations as u32;
     match done {

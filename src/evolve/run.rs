@@ -73,6 +73,9 @@ pub enum RunError {
     /// version).
     #[error("{0}")]
     Corrupt(String),
+    /// A run cannot be extended to the generations asked for.
+    #[error("{0}")]
+    Extend(String),
     /// The plot could not be drawn.
     #[error("{0}")]
     Plot(String),
@@ -87,6 +90,10 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
         source,
     }
 }
+
+/// The settings a resume may change (by `--gens`, or in `config.toml`): the number of
+/// generations, as no choice of the genetic algorithm depends on it.
+pub const RESUMABLE_KEYS: [&str; 1] = ["ga.generations"];
 
 /// The names of a run directory's files.
 const CONFIG_FILE: &str = "config.toml";
@@ -254,23 +261,68 @@ impl<G: Genome> Run<G> {
         );
         let config: RunConfig<G::Limits> = read_run_config(&source).map_err(RunError::Config)?;
         checked_settings(&config, source.name())?;
+        let mut extend_to = None;
         match &file_config {
             Some((edited, _)) => {
                 let keys = config.differences(edited).map_err(RunError::Corrupt)?;
-                if !keys.is_empty() {
+                let refused: Vec<String> = keys
+                    .iter()
+                    .filter(|k| !RESUMABLE_KEYS.contains(&k.as_str()))
+                    .cloned()
+                    .collect();
+                if !refused.is_empty() {
                     return Err(RunError::ConfigChanged {
                         path: config_path,
-                        keys,
+                        keys: refused,
                     });
+                }
+                if keys.iter().any(|k| k == "ga.generations") {
+                    extend_to = Some(edited.ga.generations);
                 }
             }
             None => output::write(&config_path, stored.config.as_bytes())?,
         }
         let store = RunStore::open(&store_path)?;
         let init = Self::read_init(dir, &config)?;
-        let run = Run::assemble(dir, config, store, init, Some(lock));
+        let mut run = Run::assemble(dir, config, store, init, Some(lock));
+        if let Some(generations) = extend_to {
+            run.extend(generations)?;
+        }
         run.write_derived_files()?;
         Ok(run)
+    }
+
+    /// Makes the run go on to `generations` generations in all (at least as many as it has
+    /// stored): the count is recorded in the store and in `config.toml`, and the run then
+    /// equals one started with that count, as no choice of the genetic algorithm depends on
+    /// it.
+    pub fn extend(&mut self, generations: usize) -> Result<(), RunError> {
+        if self._lock.is_none() {
+            return Err(RunError::Corrupt(format!(
+                "{}: opened read-only, so it cannot be extended",
+                self.dir.display()
+            )));
+        }
+        let stored = self.store.last_generation()?.map_or(0, |g| g as usize + 1);
+        let mut ga = self.config.ga.clone();
+        ga.generations = generations;
+        ga.check()
+            .map_err(|e| RunError::Extend(format!("--gens: {e}")))?;
+        if generations < stored {
+            return Err(RunError::Extend(format!(
+                "{} has {stored} generations stored; it can go on to more, not stop at {generations}",
+                self.dir.display()
+            )));
+        }
+        if generations == self.config.ga.generations {
+            return Ok(());
+        }
+        self.config.ga.generations = generations;
+        self.evolution.settings.generations = generations;
+        let text = self.config.to_toml().map_err(RunError::Corrupt)?;
+        self.store.set_config(&text)?;
+        output::write(&self.dir.join(CONFIG_FILE), text.as_bytes())?;
+        Ok(())
     }
 
     /// Opens the run in `dir` to read it: the store read-only (never migrated, never

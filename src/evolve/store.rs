@@ -605,6 +605,15 @@ impl RunStore {
         })
     }
 
+    /// Replaces the text of the run's settings (`run.config`): a run extended to more
+    /// generations records the count it now runs to.
+    pub fn set_config(&mut self, config: &str) -> Result<(), StoreError> {
+        self.conn
+            .execute("UPDATE run SET config = ?1 WHERE id = 1", [config])
+            .map(|_| ())
+            .map_err(|e| classify(&self.path, "cannot record the run's settings", e))
+    }
+
     /// Writes one generation row and all its individuals in ONE transaction: either all of it
     /// is stored or, on any error, none of it. A generation index already stored is refused.
     pub fn write_generation(

@@ -444,31 +444,37 @@ fn gather_requests(listener: &TcpListener, requests: &SyncSender<(TcpStream, Vec
     }
 }
 
-/// Parses a request head, or says why it is malformed (400).
+/// Parses a request head (with `httparse`), or says why it is malformed (400): not HTTP/1,
+/// a target that is not a path (an absolute URL), or two `Host` headers.
 fn parse_head(head: &[u8]) -> Result<Request, Answer> {
     let bad = || Answer::text(400, "bad request");
-    let text = std::str::from_utf8(head).map_err(|_| bad())?;
-    let mut lines = text.split("\r\n");
-    let mut words = lines.next().ok_or_else(bad)?.split(' ');
-    let (Some(method), Some(target), Some(version), None) =
-        (words.next(), words.next(), words.next(), words.next())
-    else {
+    let mut headers = [httparse::EMPTY_HEADER; 64];
+    let mut request = httparse::Request::new(&mut headers);
+    match request.parse(head) {
+        Ok(httparse::Status::Complete(_)) => {}
+        _ => return Err(bad()),
+    }
+    let (Some(method), Some(target)) = (request.method, request.path) else {
         return Err(bad());
     };
-    if method.is_empty() || !target.starts_with('/') || !version.starts_with("HTTP/1.") {
+    if !target.starts_with('/') {
         return Err(bad());
     }
-    let mut host = None;
-    for line in lines.take_while(|l| !l.is_empty()) {
-        let (name, value) = line.split_once(':').ok_or_else(bad)?;
-        if name.eq_ignore_ascii_case("host") {
-            if host.is_some() {
-                // Two Host headers: which one is meant is anyone's guess.
-                return Err(bad());
-            }
-            host = Some(value.trim().to_string());
-        }
-    }
+    let mut hosts = request
+        .headers
+        .iter()
+        .filter(|h| h.name.eq_ignore_ascii_case("host"));
+    let host = match (hosts.next(), hosts.next()) {
+        // Two Host headers: which one is meant is anyone's guess.
+        (Some(_), Some(_)) => return Err(bad()),
+        (Some(h), None) => Some(
+            std::str::from_utf8(h.value)
+                .map_err(|_| bad())?
+                .trim()
+                .to_string(),
+        ),
+        (None, _) => None,
+    };
     Ok(Request {
         method: method.to_string(),
         target: target.to_string(),
