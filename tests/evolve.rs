@@ -756,3 +756,34 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
     assert_eq!(resumed_with_marker(1), [&whole[..1], &[123.0; 3]].concat());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume_and_replay() {
+    let dir = scratch("resume-population-0");
+    let run = dir.join("run");
+    assert!(run_of("direct", &run, "1", &[]).status.success());
+    // The input the config fuzz target found: the GA panicked (`clamp` with min > max).
+    let config = run.join("config.toml");
+    let edited: Vec<String> = std::fs::read_to_string(&config)
+        .unwrap()
+        .lines()
+        .map(|line| match line.split(" = ").next() {
+            Some("population") => "population = 0".to_string(),
+            Some("generations") => "generations = 3".to_string(),
+            _ => line.to_string(),
+        })
+        .collect();
+    std::fs::write(&config, edited.join("\n")).unwrap();
+    let before = std::fs::read(run.join("run.sqlite")).unwrap();
+    for verb in [&["evolve", "--resume"][..], &["replay"][..]] {
+        let o = ontogeny().args(verb).arg(&run).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{verb:?}: {err}");
+        assert!(
+            err.contains("config.toml: [ga] population must be 2 to 100000, not 0"),
+            "{verb:?}: {err}"
+        );
+    }
+    assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
+    let _ = std::fs::remove_dir_all(dir);
+}
