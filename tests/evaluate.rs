@@ -1017,8 +1017,14 @@ fn a_cheater_that_survives_a_short_activation_walks_nothing_with_the_default_sec
     // Nine steps of 1/60 s (the paper's first attempt): it falls during the walk, about half
     // its 2 m pole's height.
     let cheated = walk(9.0 / 60.0);
-    assert!(cheated > 0.5, "the short activation lets it topple later: {cheated}");
+    assert!(
+        cheated > 0.5,
+        "the short activation lets it topple later: {cheated}"
+    );
     // The default: it topples during the activation and rests again before the walk.
     let honest = walk(WalkerOptions::default().activation);
-    assert!(honest < 0.01, "toppled before the walk, it walks nothing: {honest}");
+    assert!(
+        honest < 0.01,
+        "toppled before the walk, it walks nothing: {honest}"
+    );
 }
