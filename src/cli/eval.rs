@@ -238,6 +238,11 @@ pub struct EvalArgs {
     /// Walker fitness formula (walker only) [default: normalised].
     #[arg(long, value_enum)]
     fitness: Option<FitnessArg>,
+    /// Seconds of the walker's first activation of the controller, between its two waits
+    /// for rest, in [0, 3600] (walker only) [default: 1, Chaumont et al.'s final protocol;
+    /// 0.15 is their first attempt, 9 steps of 1/60 s].
+    #[arg(long, value_name = "SECONDS")]
+    activation: Option<f64>,
     /// The aim task's target relative to the projectile's start, as X,Y,Z metres (aim only)
     /// [default: 5,0,0].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
@@ -399,6 +404,9 @@ fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
         FitnessArg::FatLover => WalkerFitness::FatLover,
         FitnessArg::DwarfSlayer => WalkerFitness::DwarfSlayer,
     };
+    if let Some(a) = args.activation {
+        spec.walker.activation = a;
+    }
     if let Some(s) = args.seconds {
         spec.walker.seconds = s;
         spec.jump.seconds = s;
