@@ -958,12 +958,14 @@ fn bench_fidelity_ranks_settings_and_counts_walks_and_creatures_at_rest() {
             assert!(rested <= of && of <= 4, "{row}");
         }
     }
-    // The speed rows: the default, the first version's reference and the fast setting.
+    // The speed rows: the default, 2 substeps of 4 iterations and the fast setting, each
+    // named by its setting.
     assert!(out.contains("\nmeasured: default "), "{out}");
     assert!(
-        out.contains("first version: 2 substeps, 4 iterations"),
+        out.contains("\n2x4x1/2x4 (2 substeps, 4 iterations) "),
         "{out}"
     );
+    assert!(!out.contains("issue"), "{out}");
     assert!(out.contains("\nfast "), "{out}");
 }
 

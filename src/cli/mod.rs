@@ -95,7 +95,7 @@ enum Verb {
     /// Inspect genome files (`genome show FILE`: a graph genome, readably).
     Genome(genome::GenomeArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core (the setting
-    /// measured, the first version's and the fast one) and on all cores, its overhead over
+    /// measured, 2 substeps of 4 iterations and the fast one) and on all cores, its overhead over
     /// rapier's own stepping, and impulse against multibody joints.
     Bench(bench::BenchArgs),
     /// Show a creature in the browser: an `.lsys` file growing (reloaded when saved), a
