@@ -986,3 +986,45 @@ fn the_shipped_quadruped_walks_with_its_body_off_the_ground() {
     let lowest = measured.iter().copied().fold(f64::INFINITY, f64::min);
     assert!(lowest > 0.15, "the body sank to {lowest} m");
 }
+
+#[test]
+fn a_creature_lying_still_neither_moves_nor_drags_under_hornby_and_pollack() {
+    use ontogeny::task::WalkerFitness;
+    // One box with no brain: it settles and lies still through the walk, so its centre of
+    // mass moves 0 m and it drags 0 m along the ground.
+    let options = WalkerOptions {
+        fitness: WalkerFitness::HornbyPollack,
+        ..short_walk()
+    };
+    let e = task::walker(
+        &creature("forward(1)"),
+        &SimOptions::default(),
+        &options,
+        false,
+    );
+    assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+    assert!(e.terms["displacement"].abs() < 1e-4, "{:?}", e.terms);
+    assert!(e.terms["drag"].abs() < 1e-4, "{:?}", e.terms);
+    assert_eq!(e.fitness, e.terms["displacement"] - e.terms["drag"]);
+}
+
+#[test]
+fn hornby_and_pollack_score_the_centre_of_mass_displacement_minus_the_drag() {
+    use ontogeny::task::WalkerFitness;
+    let snake = grown("examples/snake.lsys");
+    let run = |fitness| {
+        let options = WalkerOptions {
+            fitness,
+            ..short_walk()
+        };
+        task::walker(&snake, &SimOptions::default(), &options, false)
+    };
+    let hornby = run(WalkerFitness::HornbyPollack);
+    let (displacement, drag) = (hornby.terms["displacement"], hornby.terms["drag"]);
+    assert!(displacement > 0.0 && drag > 0.0, "{:?}", hornby.terms);
+    assert_eq!(hornby.fitness, displacement - drag);
+    // Measuring the drag does not change the walk: the root's distance is the same.
+    let distance = run(WalkerFitness::Distance);
+    assert_eq!(hornby.terms["D_w"], distance.fitness);
+    assert!(!distance.terms.contains_key("drag"));
+}

@@ -190,23 +190,6 @@ impl PhysicsArgs {
     }
 }
 
-/// Walker fitness formulas.
-#[derive(Clone, Copy, ValueEnum)]
-enum FitnessArg {
-    /// Equation (1): D_w · C_v / (C_s · C_l) · κ^N.
-    Normalised,
-    /// The raw distance D_w.
-    Distance,
-    /// Walking with Dinosaurs' iterative move (later distance counts more).
-    IterativeMove,
-    /// Iterative move × number of parts.
-    BoxLover,
-    /// Iterative move × mass.
-    FatLover,
-    /// Iterative move, 0 below 3 parts.
-    DwarfSlayer,
-}
-
 /// Flags of `ontogeny eval`.
 #[derive(Args)]
 pub struct EvalArgs {
@@ -236,8 +219,8 @@ pub struct EvalArgs {
     #[command(flatten)]
     physics: PhysicsArgs,
     /// Walker fitness formula (walker only) [default: normalised].
-    #[arg(long, value_enum)]
-    fitness: Option<FitnessArg>,
+    #[arg(long, value_parser = super::walker_fitness_parser())]
+    fitness: Option<WalkerFitness>,
     /// The aim task's target relative to the projectile's start, as X,Y,Z metres (aim only)
     /// [default: 5,0,0].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
@@ -391,14 +374,7 @@ fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
         },
         ..physics
     };
-    spec.walker.fitness = match args.fitness.unwrap_or(FitnessArg::Normalised) {
-        FitnessArg::Normalised => WalkerFitness::Normalised,
-        FitnessArg::Distance => WalkerFitness::Distance,
-        FitnessArg::IterativeMove => WalkerFitness::IterativeMove,
-        FitnessArg::BoxLover => WalkerFitness::BoxLover,
-        FitnessArg::FatLover => WalkerFitness::FatLover,
-        FitnessArg::DwarfSlayer => WalkerFitness::DwarfSlayer,
-    };
+    spec.walker.fitness = args.fitness.unwrap_or(WalkerFitness::Normalised);
     if let Some(s) = args.seconds {
         spec.walker.seconds = s;
         spec.jump.seconds = s;
