@@ -613,10 +613,9 @@ impl<G: Genome> Run<G> {
                     None => String::new(),
                 };
                 let note = format!(
-                    "The best individual of {} after generation {}: {} fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
+                    "The best individual of {} after generation {} ({fitness}): fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
                     self.dir.display(),
                     last.index,
-                    self.config.task.task.name(),
                     b.evaluation.fitness,
                     status_name(b),
                 );
