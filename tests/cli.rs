@@ -1424,3 +1424,30 @@ fn grow_out_refuses_a_picture_that_is_a_directory_and_writes_nothing() {
     assert!(dir.join("creature.png").is_dir());
     assert!(!dir.join("creature.json").exists());
 }
+
+#[test]
+fn eval_activation_sets_the_walker_s_first_activation_and_is_checked() {
+    let file = "tests/fixtures/late-toppler.lsys";
+    let fitness = |extra: &[&str]| -> f64 {
+        let mut args = vec!["eval", file, "--task", "walker", "--fitness", "distance"];
+        args.extend_from_slice(extra);
+        let o = ontogeny(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let out = stdout(&o);
+        let line = out.lines().next().unwrap();
+        line.split("fitness ")
+            .nth(1)
+            .unwrap()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    // The default (1 s): toppled before the walk; 9 steps: toppled during it.
+    assert!(fitness(&[]) < 0.01);
+    assert!(fitness(&["--activation", "0.15"]) > 0.5);
+    let o = ontogeny(&["eval", file, "--task", "walker", "--activation", "-1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--activation"), "{}", stderr(&o));
+}

@@ -499,6 +499,51 @@ fn a_second_process_on_a_comparison_is_refused_at_once_naming_the_holder() {
 }
 
 #[test]
+fn a_comparison_whose_files_were_edited_out_of_range_is_refused() {
+    let dir = scratch("edited");
+    let out = dir.join("c");
+    ok(&tiny(&out).arg("--plan").output().unwrap());
+    let edit = |name: &str, key: &str, value: &str| {
+        let path = out.join(name);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let edited: Vec<String> = text
+            .lines()
+            .map(|line| match line.split(" = ").next() {
+                Some(k) if k == key => format!("{key} = {value}"),
+                _ => line.to_string(),
+            })
+            .collect();
+        std::fs::write(&path, edited.join("\n")).unwrap();
+        text
+    };
+    // The input the config fuzz target found: `compare --resume` panicked computing the
+    // budget of a population of 0.
+    let original = edit("evolve.toml", "population", "0");
+    for verb in ["--resume", "--merge"] {
+        refused(
+            &ontogeny()
+                .args(["compare", verb])
+                .arg(&out)
+                .output()
+                .unwrap(),
+            "evolve.toml: [ga] population must be 2 to 100000, not 0",
+        );
+    }
+    std::fs::write(out.join("evolve.toml"), original).unwrap();
+    edit("compare.toml", "replicates", "20000");
+    refused(
+        &ontogeny()
+            .args(["compare", "--merge"])
+            .arg(&out)
+            .output()
+            .unwrap(),
+        "compare.toml: replicates must be 1 to 10000, not 20000",
+    );
+    assert!(!out.join("lsystem").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
 fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
     let dir = scratch("fitness");
     let out = dir.join("c");

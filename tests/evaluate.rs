@@ -54,9 +54,10 @@ fn the_activation_sequence_happens_at_the_right_times() {
     let settled = e.terms["settled_at"];
     // At rest takes at least the 0.5 s calm window.
     assert!(settled >= 0.5 - 1e-9, "{settled}");
-    // Measuring starts after 9 steps of controller (Chaumont: "less than 10 time steps") and
-    // at least 0.5 s of rest.
-    assert!(e.terms["measured_from"] - settled >= 9.0 * sim.dt + 0.5 - 1e-9);
+    // Measuring starts after 1 s of controller (Chaumont 3.3's final protocol) and at least
+    // 0.5 s of rest.
+    assert_eq!(options.activation, 1.0);
+    assert!(e.terms["measured_from"] - settled >= 1.0 + 0.5 - 1e-9);
     // The recording covers every step to the end of the measured walk.
     let last = e.recording.last().unwrap().t;
     assert!(
@@ -819,11 +820,18 @@ fn energy_from_nowhere_is_an_explosion() {
         strength: 0.0,
         ..SimOptions::default()
     };
+    // The fixture was found under Chaumont's first, 9-step activation: with the 1 s one, its
+    // unaudited walk (below) never comes to rest before the walk (unstable), which hides
+    // the audit's part in it.
+    let protocol = WalkerOptions {
+        activation: 9.0 / 60.0,
+        ..WalkerOptions::default()
+    };
     // At the default setting the solver does not feed it: it lies still (2.5 cm).
-    let e = task::walker(&c, &at_default, &WalkerOptions::default(), false);
+    let e = task::walker(&c, &at_default, &protocol, false);
     assert_eq!(e.status, Status::Ok, "{e:?}");
     assert!(e.terms["D_w"] < 0.1, "{}", e.terms["D_w"]);
-    let e = task::walker(&c, &passive, &WalkerOptions::default(), false);
+    let e = task::walker(&c, &passive, &protocol, false);
     assert_eq!(e.status, Status::Exploded, "{e:?}");
     assert!(
         e.message
@@ -836,7 +844,7 @@ fn energy_from_nowhere_is_an_explosion() {
         energy_tolerance: 0.0,
         ..passive
     };
-    let e = task::walker(&c, &unaudited, &WalkerOptions::default(), false);
+    let e = task::walker(&c, &unaudited, &protocol, false);
     assert_eq!(e.status, Status::Ok, "{e:?}");
     assert!(e.terms["D_w"] > 3.0, "{}", e.terms["D_w"]);
     // The shipped walkers pass the audit, and their peak is far below the tolerance.
@@ -880,9 +888,9 @@ fn recorded_frames_carry_the_protocols_phases() {
     let runs = phase_runs(&walk);
     let phases: Vec<task::Phase> = runs.iter().map(|r| r.0).collect();
     assert_eq!(phases, [Settling, ControllerOn, Settling, Measuring]);
-    // 9 steps of controller (9/60 s), 2 s measured at 60 steps/s, and the first settling
+    // 60 steps of controller (1 s), 2 s measured at 60 steps/s, and the first settling
     // ends at `settled_at`.
-    assert_eq!(runs[1].1, 9);
+    assert_eq!(runs[1].1, 60);
     assert_eq!(runs[3].1, 120);
     assert!((runs[0].1 as f64 * sim.dt - walk.terms["settled_at"]).abs() < 1e-9);
 
@@ -985,6 +993,40 @@ fn the_shipped_quadruped_walks_with_its_body_off_the_ground() {
     assert_eq!(measured.len(), 1200, "20 s at 60 frames a second");
     let lowest = measured.iter().copied().fold(f64::INFINITY, f64::min);
     assert!(lowest > 0.15, "the body sank to {lowest} m");
+}
+
+#[test]
+fn a_cheater_that_survives_a_short_activation_walks_nothing_with_the_default_second() {
+    // Chaumont et al. 3.3: creatures "stable enough to keep their balance even after the
+    // first (short) activation" topple during the measured walk, "reaching a decent
+    // distance"; "we simply increase the interval for the initial controller activation to
+    // 1 second". The fixture leans its arm into a joint stop; a weak signal needs about half
+    // a second to push it past upright, after which the creature falls over.
+    let c = grown("tests/fixtures/late-toppler.lsys");
+    let walk = |activation: f64| {
+        let options = WalkerOptions {
+            activation,
+            fitness: task::WalkerFitness::Distance,
+            ..WalkerOptions::default()
+        };
+        let e = task::walker(&c, &SimOptions::default(), &options, false);
+        assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+        e.fitness
+    };
+    assert_eq!(WalkerOptions::default().activation, 1.0);
+    // Nine steps of 1/60 s (the paper's first attempt): it falls during the walk, about half
+    // its 2 m pole's height.
+    let cheated = walk(9.0 / 60.0);
+    assert!(
+        cheated > 0.5,
+        "the short activation lets it topple later: {cheated}"
+    );
+    // The default: it topples during the activation and rests again before the walk.
+    let honest = walk(WalkerOptions::default().activation);
+    assert!(
+        honest < 0.01,
+        "toppled before the walk, it walks nothing: {honest}"
+    );
 }
 
 #[test]

@@ -693,7 +693,31 @@ fn every_task_and_preset_runs_with(encoding: &str) {
 fn an_elite_copy_of_the_best_is_not_walked_again() {
     let dir = scratch("elite-copy");
     let whole = dir.join("whole");
-    assert!(small_run("lsystem", &whole, &[]).status.success());
+    // The small run of seed 4 (a seed whose generation 1 finds a new best that 2 and 3 keep).
+    let seeded_run = |out: &Path| {
+        let output = ontogeny()
+            .args([
+                "evolve",
+                "--encoding",
+                "lsystem",
+                "--task",
+                "walker",
+                "--pop",
+                "12",
+                "--gens",
+                "4",
+                "--seconds",
+                "1",
+                "--seed",
+                "4",
+                "--out",
+            ])
+            .arg(out)
+            .output()
+            .unwrap();
+        assert!(output.status.success());
+    };
+    seeded_run(&whole);
     let fine = |dir: &Path| -> Vec<f64> {
         RunStore::open_read_only(&dir.join("run.sqlite"))
             .unwrap()
@@ -729,7 +753,7 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
     // marker; the fine reference values of the resumed run.
     let resumed_with_marker = |after: u32| -> Vec<f64> {
         let cut = dir.join(format!("cut-{after}"));
-        assert!(small_run("lsystem", &cut, &[]).status.success());
+        seeded_run(&cut);
         {
             let conn = rusqlite::Connection::open(cut.join("run.sqlite")).unwrap();
             conn.execute_batch(&format!(
@@ -1029,6 +1053,43 @@ fn a_finished_run_extended_with_gens_equals_a_run_started_with_that_many() {
             .unwrap(),
         Some(4)
     );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() {
+    let dir = scratch("resume-population-0");
+    let run = dir.join("run");
+    assert!(run_of("direct", &run, "1", &[]).status.success());
+    // The input the config fuzz target found: the GA panicked (`clamp` with min > max).
+    let config = run.join("config.toml");
+    let edited: Vec<String> = std::fs::read_to_string(&config)
+        .unwrap()
+        .lines()
+        .map(|line| match line.split(" = ").next() {
+            Some("population") => "population = 0".to_string(),
+            Some("generations") => "generations = 3".to_string(),
+            _ => line.to_string(),
+        })
+        .collect();
+    std::fs::write(&config, edited.join("\n")).unwrap();
+    let before = std::fs::read(run.join("run.sqlite")).unwrap();
+    let o = ontogeny()
+        .args(["evolve", "--resume"])
+        .arg(&run)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("config.toml: [ga] population must be 2 to 100000, not 0"),
+        "{err}"
+    );
+    assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
+    // `replay` reads the run's settings from its store, not the edited file.
+    let o = ontogeny().arg("replay").arg(&run).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -32,24 +32,25 @@ fn the_recording_interval_by_hand() {
 #[test]
 fn the_longest_runs_by_hand() {
     let dt = 1.0 / 60.0;
-    // Two waits for rest of at most 600 + 1 steps, 9 steps of activation, 1200 of walking.
-    assert_eq!(WalkerOptions::default().max_steps(dt), 2 * 601 + 9 + 1200);
+    // Two waits for rest of at most 600 + 1 steps, 60 steps (1 s) of activation, 1200 of
+    // walking.
+    assert_eq!(WalkerOptions::default().max_steps(dt), 2 * 601 + 60 + 1200);
     // Every step of the default walker is recorded.
     assert_eq!(
         recording_interval(WalkerOptions::default().max_steps(dt)),
         1
     );
-    // An hour's walk: 217,211 steps, one in ⌈217,211 / 11,999⌉ = 19 kept.
+    // An hour's walk: 217,262 steps, one in ⌈217,262 / 11,999⌉ = 19 kept.
     let hour = WalkerOptions {
         seconds: 3600.0,
         ..WalkerOptions::default()
     };
-    assert_eq!(hour.max_steps(dt), 2 * 601 + 9 + 216_000);
+    assert_eq!(hour.max_steps(dt), 2 * 601 + 60 + 216_000);
     assert_eq!(recording_interval(hour.max_steps(dt)), 19);
     assert_eq!(JumpOptions::default().max_steps(dt), 601 + 600);
     assert_eq!(CatapultOptions::default().max_steps(dt), 3600);
-    // At 1/10 s: 2 × 101 + ⌈1.5⌉ + 36,000 = 36,204.
-    assert_eq!(hour.max_steps(0.1), 36_204);
+    // At 1/10 s: 2 × 101 + 10 + 36,000 = 36,212.
+    assert_eq!(hour.max_steps(0.1), 36_212);
     // A duration out of range (refused by the task) does not overflow the count.
     let endless = WalkerOptions {
         seconds: f64::INFINITY,

@@ -170,9 +170,10 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
         )));
     }
     let replicates = args.replicates.unwrap_or(10);
-    if !(1..=10_000).contains(&replicates) {
+    if !(1..=compare::MAX_REPLICATES).contains(&replicates) {
         return Err(bad(format!(
-            "--replicates must be 1 to 10000, not {replicates}"
+            "--replicates must be 1 to {}, not {replicates}",
+            compare::MAX_REPLICATES
         )));
     }
     let source = match &args.config {

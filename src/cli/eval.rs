@@ -221,6 +221,11 @@ pub struct EvalArgs {
     /// Walker fitness formula (walker only) [default: normalised].
     #[arg(long, value_parser = super::walker_fitness_parser())]
     fitness: Option<WalkerFitness>,
+    /// Seconds of the walker's first activation of the controller, between its two waits
+    /// for rest, in [0, 3600] (walker only) [default: 1, Chaumont et al.'s final protocol;
+    /// 0.15 is their first attempt, 9 steps of 1/60 s].
+    #[arg(long, value_name = "SECONDS")]
+    activation: Option<f64>,
     /// The aim task's target relative to the projectile's start, as X,Y,Z metres (aim only)
     /// [default: 5,0,0].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
@@ -375,6 +380,9 @@ fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
         ..physics
     };
     spec.walker.fitness = args.fitness.unwrap_or(WalkerFitness::Normalised);
+    if let Some(a) = args.activation {
+        spec.walker.activation = a;
+    }
     if let Some(s) = args.seconds {
         spec.walker.seconds = s;
         spec.jump.seconds = s;

@@ -81,6 +81,32 @@ pub struct Manifest {
     pub seed: u64,
 }
 
+/// The most replicates per encoding a comparison may have.
+pub const MAX_REPLICATES: usize = 10_000;
+
+impl Manifest {
+    /// Checks what a comparison's manifest may get wrong: no encoding or one named twice,
+    /// replicates out of 1 to [`MAX_REPLICATES`]; the message names the key. (An encoding
+    /// name the program does not know is refused where it is run.)
+    pub fn check(&self) -> Result<(), String> {
+        if self.encodings.is_empty() {
+            return Err("encodings names no encoding".into());
+        }
+        for (i, e) in self.encodings.iter().enumerate() {
+            if self.encodings[..i].contains(e) {
+                return Err(format!("encodings names {e} twice"));
+            }
+        }
+        if !(1..=MAX_REPLICATES).contains(&self.replicates) {
+            return Err(format!(
+                "replicates must be 1 to {MAX_REPLICATES}, not {}",
+                self.replicates
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The settings every replicate shares (`evolve.toml`, readable by `ontogeny evolve
 /// --config`): the genetic algorithm, its generations set by the budget, and the task.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -204,6 +230,10 @@ pub fn open(root: &Path) -> Result<(Manifest, Shared), CompareError> {
     let text = std::fs::read_to_string(&path).map_err(io(&path))?;
     let shared: Shared = toml::from_str(&text)
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
+    // Both files may have been edited: their values get the checks of a new comparison's.
+    manifest.check().map_err(|e| {
+        CompareError::Input(format!("{}: {e}", root.join("compare.toml").display()))
+    })?;
     check_settings(&shared.ga, &shared.task)
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
     Ok((manifest, shared))

@@ -166,8 +166,18 @@ pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>
 /// Reads a run directory's full `config.toml`. The file is written in full when a run starts,
 /// so a key it lacks was added to the program later, and the run keeps what it ran with: a
 /// `graph` run begun before `[limits] joint_kinds` existed drew all of Sims' joint kinds and
-/// resumes with `joint_kinds = "sims"`.
+/// resumes with `joint_kinds = "sims"`. Its settings get the checks of [`check_settings`], as
+/// a configuration file's do when a run starts: an edited file may hold anything.
 pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
+    let config: RunConfig<L> = parse_run_config(source)?;
+    check_settings(&config.ga, &config.task).map_err(|e| {
+        Diagnostic::without_location(DiagnosticKind::Semantic, format!("{}: {e}", source.name()))
+    })?;
+    Ok(config)
+}
+
+/// [`read_run_config`] without the checks of the settings.
+fn parse_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
     let mut table: toml::Table =
         toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
     let is_graph = table.get("encoding").and_then(|e| e.as_str()) == Some("graph");

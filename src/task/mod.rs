@@ -200,8 +200,10 @@ pub struct WalkerOptions {
     pub fitness: WalkerFitness,
     /// When the creature is at rest.
     pub rest: Rest,
-    /// The first activation of the controller (s): "less than 10 time steps" of 1/60 s
-    /// (Chaumont et al. 3.3), so 9/60 s.
+    /// The first activation of the controller (s), between the two waits for rest: 1 s,
+    /// Chaumont et al.'s final protocol (3.3: their first attempt, "less than 10 time
+    /// steps", let balanced creatures through that toppled during the measured walk, "so we
+    /// simply increase the interval for the initial controller activation to 1 second").
     pub activation: f64,
     /// The second stabilisation, controller off: at least this long (s), and until the
     /// creature is at rest by the same criterion as the first.
@@ -217,7 +219,7 @@ impl Default for WalkerOptions {
             kappa: 1.02,
             fitness: WalkerFitness::Normalised,
             rest: Rest::default(),
-            activation: 9.0 / 60.0,
+            activation: 1.0,
             second_settle: 0.5,
             max_height: 15.0,
         }
@@ -230,7 +232,7 @@ impl Default for WalkerOptions {
 pub enum Phase {
     /// Controller off, waiting for the creature to come to rest (walker, jump).
     Settling,
-    /// The walker's brief first activation of the controller, before it settles again.
+    /// The walker's first activation of the controller (1 s), before it settles again.
     ControllerOn,
     /// Controller on, the fitness being measured (walker, jump).
     Measuring,
@@ -666,7 +668,7 @@ pub fn iterative_move(gains: &[f64]) -> f64 {
 }
 
 /// The walker (Chaumont et al. 3.3–3.5): stabilise with the controller off until at rest,
-/// check the height again, activate the controller for `activation` (9 steps of 1/60 s),
+/// check the height again, activate the controller for `activation` (1 s),
 /// stabilise again (at least `second_settle`, and until at rest), then walk with the
 /// controller on for `seconds`; D_w is the horizontal distance the root part's centre of mass
 /// travels.
