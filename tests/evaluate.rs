@@ -1070,3 +1070,22 @@ fn hornby_and_pollack_score_the_centre_of_mass_displacement_minus_the_drag() {
     assert_eq!(hornby.terms["D_w"], distance.fitness);
     assert!(!distance.terms.contains_key("drag"));
 }
+
+#[test]
+fn every_task_names_its_fitness_and_every_walker_formula_is_spelled_as_configs_spell_it() {
+    use ontogeny::task::{TaskKind, TaskSpec, WalkerFitness};
+    let label = |task| TaskSpec::new(task).fitness_label();
+    assert_eq!(
+        label(TaskKind::Walker),
+        "walker, normalised (Chaumont eq. 1)"
+    );
+    assert_eq!(label(TaskKind::Jump), "jump, height (m)");
+    assert_eq!(label(TaskKind::Catapult), "catapult, distance (m)");
+    assert_eq!(label(TaskKind::Aim), "aim, distance − miss (m)");
+    for fitness in WalkerFitness::ALL {
+        let spelled = serde_json::to_value(fitness).unwrap();
+        assert_eq!(spelled.as_str(), Some(fitness.name()));
+        assert_eq!(fitness.name().parse::<WalkerFitness>(), Ok(fitness));
+    }
+    assert!("sliding".parse::<WalkerFitness>().is_err());
+}
