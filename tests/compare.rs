@@ -542,3 +542,37 @@ fn a_comparison_whose_files_were_edited_out_of_range_is_refused() {
     assert!(!out.join("lsystem").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
+    let dir = scratch("fitness");
+    let out = dir.join("c");
+    let mut command = ontogeny();
+    command
+        .args(["compare", "--encodings", "direct", "--fitness", "distance"])
+        .args(["--replicates", "1", "--evaluations", "6", "--pop", "6"])
+        .args(["--seconds", "1", "--seed", "4", "--out"])
+        .arg(&out);
+    let stdout = ok(&command.output().unwrap());
+    assert!(stdout.contains("; walker, distance (m)"), "{stdout}");
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        report.contains("Fitness: walker, distance (m)."),
+        "{report}"
+    );
+    let shared = std::fs::read_to_string(out.join("evolve.toml")).unwrap();
+    assert!(shared.contains("fitness = \"distance\""), "{shared}");
+    // A walker formula for another task is refused.
+    let jump = ontogeny()
+        .args(["compare", "--encodings", "direct", "--task", "jump"])
+        .args(["--fitness", "distance", "--evaluations", "6", "--out"])
+        .arg(dir.join("jump"))
+        .output()
+        .unwrap();
+    refused(
+        &jump,
+        "--fitness is for the walker task only, and the task is jump",
+    );
+    assert!(!dir.join("jump").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}

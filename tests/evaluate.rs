@@ -1028,3 +1028,64 @@ fn a_cheater_that_survives_a_short_activation_walks_nothing_with_the_default_sec
         "toppled before the walk, it walks nothing: {honest}"
     );
 }
+
+#[test]
+fn a_creature_lying_still_neither_moves_nor_drags_under_hornby_and_pollack() {
+    use ontogeny::task::WalkerFitness;
+    // One box with no brain: it settles and lies still through the walk, so its centre of
+    // mass moves 0 m and it drags 0 m along the ground.
+    let options = WalkerOptions {
+        fitness: WalkerFitness::HornbyPollack,
+        ..short_walk()
+    };
+    let e = task::walker(
+        &creature("forward(1)"),
+        &SimOptions::default(),
+        &options,
+        false,
+    );
+    assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+    assert!(e.terms["displacement"].abs() < 1e-4, "{:?}", e.terms);
+    assert!(e.terms["drag"].abs() < 1e-4, "{:?}", e.terms);
+    assert_eq!(e.fitness, e.terms["displacement"] - e.terms["drag"]);
+}
+
+#[test]
+fn hornby_and_pollack_score_the_centre_of_mass_displacement_minus_the_drag() {
+    use ontogeny::task::WalkerFitness;
+    let snake = grown("examples/snake.lsys");
+    let run = |fitness| {
+        let options = WalkerOptions {
+            fitness,
+            ..short_walk()
+        };
+        task::walker(&snake, &SimOptions::default(), &options, false)
+    };
+    let hornby = run(WalkerFitness::HornbyPollack);
+    let (displacement, drag) = (hornby.terms["displacement"], hornby.terms["drag"]);
+    assert!(displacement > 0.0 && drag > 0.0, "{:?}", hornby.terms);
+    assert_eq!(hornby.fitness, displacement - drag);
+    // Measuring the drag does not change the walk: the root's distance is the same.
+    let distance = run(WalkerFitness::Distance);
+    assert_eq!(hornby.terms["D_w"], distance.fitness);
+    assert!(!distance.terms.contains_key("drag"));
+}
+
+#[test]
+fn every_task_names_its_fitness_and_every_walker_formula_is_spelled_as_configs_spell_it() {
+    use ontogeny::task::{TaskKind, TaskSpec, WalkerFitness};
+    let label = |task| TaskSpec::new(task).fitness_label();
+    assert_eq!(
+        label(TaskKind::Walker),
+        "walker, normalised (Chaumont eq. 1)"
+    );
+    assert_eq!(label(TaskKind::Jump), "jump, height (m)");
+    assert_eq!(label(TaskKind::Catapult), "catapult, distance (m)");
+    assert_eq!(label(TaskKind::Aim), "aim, distance − miss (m)");
+    for fitness in WalkerFitness::ALL {
+        let spelled = serde_json::to_value(fitness).unwrap();
+        assert_eq!(spelled.as_str(), Some(fitness.name()));
+        assert_eq!(fitness.name().parse::<WalkerFitness>(), Ok(fitness));
+    }
+    assert!("sliding".parse::<WalkerFitness>().is_err());
+}

@@ -1092,3 +1092,63 @@ fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() 
     assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
+    let dir = scratch("fitness");
+    let out = dir.join("run");
+    let o = run_of("direct", &out, "2", &["--fitness", "hornby-pollack"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let label = "walker, hornby-pollack (m)";
+    let end = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(
+        end.contains(&format!("{label}: generation 1 best ")),
+        "{end}"
+    );
+    let progress = String::from_utf8_lossy(&o.stderr).to_string();
+    assert!(
+        progress.contains(&format!("generation 1: {label}: best ")),
+        "{progress}"
+    );
+    let config = std::fs::read_to_string(out.join("config.toml")).unwrap();
+    assert!(config.contains("fitness = \"hornby-pollack\""), "{config}");
+    let log = std::fs::read_to_string(out.join("log.txt")).unwrap();
+    assert_eq!(log.lines().count(), 2, "{log}");
+    assert!(
+        log.lines()
+            .all(|line| line.contains(&format!(": {label}: best "))),
+        "{log}"
+    );
+    let show = ontogeny()
+        .args(["runs", "show"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let shown = String::from_utf8_lossy(&show.stdout).to_string();
+    assert!(
+        shown.contains(&format!("direct encoding, {label}, seed 5")),
+        "{shown}"
+    );
+    // Without the flag, the task's default formula, named as such.
+    let default = dir.join("default");
+    let o = run_of("direct", &default, "1", &[]);
+    let end = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(
+        end.contains("walker, normalised (Chaumont eq. 1): generation 0"),
+        "{end}"
+    );
+    // A walker formula for another task is refused, and nothing is written.
+    let jump = ontogeny()
+        .args(["evolve", "--task", "jump", "--fitness", "distance", "--out"])
+        .arg(dir.join("jump"))
+        .output()
+        .unwrap();
+    assert_eq!(jump.status.code(), Some(2));
+    let refusal = String::from_utf8_lossy(&jump.stderr).to_string();
+    assert!(
+        refusal.contains("--fitness is for the walker task only"),
+        "{refusal}"
+    );
+    assert!(!dir.join("jump").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}

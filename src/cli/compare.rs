@@ -14,6 +14,7 @@ use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, read_confi
 use ontogeny::evolve::run::{GenerationReport, Run};
 use ontogeny::lang::Source;
 use ontogeny::sim::StepSetting;
+use ontogeny::task::WalkerFitness;
 
 use super::eval::setting_parser;
 
@@ -31,6 +32,10 @@ pub struct CompareArgs {
     /// The task (default: the config's, else walker).
     #[arg(long, value_enum)]
     task: Option<TaskArg>,
+    /// The walker's fitness formula, as `eval --fitness` (walker only; default: the config's
+    /// `[task.walker] fitness`, else normalised).
+    #[arg(long, value_parser = super::walker_fitness_parser())]
+    fitness: Option<WalkerFitness>,
     /// Runs per encoding (default 10).
     #[arg(long)]
     replicates: Option<usize>,
@@ -69,10 +74,10 @@ pub struct CompareArgs {
     plan: bool,
     /// Run the replicates of the comparison in DIR that are missing or unfinished, then
     /// write the report.
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "merge"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "merge"])]
     resume: Option<PathBuf>,
     /// Write the report of the comparison in DIR from its finished replicates (runs nothing).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "threads"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "threads"])]
     merge: Option<PathBuf>,
 }
 
@@ -217,7 +222,13 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     let mut ga = overrides.resolve();
     ga.generations = 1;
     check_seconds(args.seconds)?;
-    let task = resolve_task(file.task.clone(), args.task, args.seconds, args.setting);
+    let task = resolve_task(
+        file.task.clone(),
+        args.task,
+        args.fitness,
+        args.seconds,
+        args.setting,
+    )?;
     check_settings(&ga, &task).map_err(|e| bad(config_error(source.as_deref(), e)))?;
     let budget = args.evaluations.expect("clap requires --evaluations");
     ga.generations =
@@ -370,7 +381,12 @@ fn run_replicate<G: Genome>(
             .map_err(run_error)?
         }
     };
-    let label = format!("[{} {k}/{}]", G::NAME, manifest.replicates);
+    let label = format!(
+        "[{} {k}/{}] {}:",
+        G::NAME,
+        manifest.replicates,
+        shared.task.fitness_label()
+    );
     let generations = shared.ga.generations;
     let mut observer = |r: &GenerationReport| {
         eprintln!("{}", progress.line(&label, r, generations));
@@ -409,11 +425,11 @@ fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> a
     let r = compare::write_report(root, manifest, shared, &finished, &unfinished)
         .map_err(compare_error)?;
     say!(
-        "{}: {} replicates of {} evaluations each on the {} task",
+        "{}: {} replicates of {} evaluations each; {}",
         root.display(),
         finished.len(),
         r.evaluations,
-        shared.task.task.name()
+        shared.task.fitness_label()
     );
     for e in &r.encodings {
         say!(

@@ -190,23 +190,6 @@ impl PhysicsArgs {
     }
 }
 
-/// Walker fitness formulas.
-#[derive(Clone, Copy, ValueEnum)]
-enum FitnessArg {
-    /// Equation (1): D_w · C_v / (C_s · C_l) · κ^N.
-    Normalised,
-    /// The raw distance D_w.
-    Distance,
-    /// Walking with Dinosaurs' iterative move (later distance counts more).
-    IterativeMove,
-    /// Iterative move × number of parts.
-    BoxLover,
-    /// Iterative move × mass.
-    FatLover,
-    /// Iterative move, 0 below 3 parts.
-    DwarfSlayer,
-}
-
 /// Flags of `ontogeny eval`.
 #[derive(Args)]
 pub struct EvalArgs {
@@ -236,8 +219,8 @@ pub struct EvalArgs {
     #[command(flatten)]
     physics: PhysicsArgs,
     /// Walker fitness formula (walker only) [default: normalised].
-    #[arg(long, value_enum)]
-    fitness: Option<FitnessArg>,
+    #[arg(long, value_parser = super::walker_fitness_parser())]
+    fitness: Option<WalkerFitness>,
     /// Seconds of the walker's first activation of the controller, between its two waits
     /// for rest, in [0, 3600] (walker only) [default: 1, Chaumont et al.'s final protocol;
     /// 0.15 is their first attempt, 9 steps of 1/60 s].
@@ -396,14 +379,7 @@ fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
         },
         ..physics
     };
-    spec.walker.fitness = match args.fitness.unwrap_or(FitnessArg::Normalised) {
-        FitnessArg::Normalised => WalkerFitness::Normalised,
-        FitnessArg::Distance => WalkerFitness::Distance,
-        FitnessArg::IterativeMove => WalkerFitness::IterativeMove,
-        FitnessArg::BoxLover => WalkerFitness::BoxLover,
-        FitnessArg::FatLover => WalkerFitness::FatLover,
-        FitnessArg::DwarfSlayer => WalkerFitness::DwarfSlayer,
-    };
+    spec.walker.fitness = args.fitness.unwrap_or(WalkerFitness::Normalised);
     if let Some(a) = args.activation {
         spec.walker.activation = a;
     }

@@ -12,7 +12,7 @@ use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run, ex
 use ontogeny::evolve::store::RunStore;
 use ontogeny::lang::{Diagnostic, DiagnosticKind, Source};
 use ontogeny::sim::StepSetting;
-use ontogeny::task::{TaskKind, TaskSpec};
+use ontogeny::task::{TaskKind, TaskSpec, WalkerFitness};
 
 use super::eval::{flag_error, setting_parser};
 
@@ -70,14 +70,16 @@ pub fn config_error(source: Option<&Source>, error: String) -> String {
     }
 }
 
-/// The task of a config file (default: the walker), with `--task`, `--seconds` and `--setting`
-/// over it (a named setting replaces the file's five stepping values, and nothing else).
+/// The task of a config file (default: the walker), with `--task`, `--fitness`, `--seconds`
+/// and `--setting` over it (a named setting replaces the file's five stepping values, and
+/// nothing else). `--fitness` for a task other than the walker is refused.
 pub fn resolve_task(
     file: Option<TaskSpec>,
     task: Option<TaskArg>,
+    fitness: Option<WalkerFitness>,
     seconds: Option<f64>,
     setting: Option<StepSetting>,
-) -> TaskSpec {
+) -> anyhow::Result<TaskSpec> {
     let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
     if let Some(setting) = setting {
         spec.sim = setting.apply(&spec.sim);
@@ -97,7 +99,16 @@ pub fn resolve_task(
             TaskKind::Catapult | TaskKind::Aim => spec.catapult.max_seconds = s,
         }
     }
-    spec
+    if let Some(fitness) = fitness {
+        if spec.task != TaskKind::Walker {
+            return Err(bad(format!(
+                "--fitness is for the walker task only, and the task is {}",
+                spec.task.name()
+            )));
+        }
+        spec.walker.fitness = fitness;
+    }
+    Ok(spec)
 }
 
 /// The presets `--preset` accepts.
@@ -127,7 +138,7 @@ pub struct EvolveArgs {
     out: Option<PathBuf>,
     /// Continue the run in DIR where it stopped (any other flag but --threads and --gens is
     /// refused).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "preset", "pop", "seed", "config", "init", "seconds", "setting", "no_verify_best"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "fitness", "preset", "pop", "seed", "config", "init", "seconds", "setting", "no_verify_best"])]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_enum)]
@@ -135,6 +146,10 @@ pub struct EvolveArgs {
     /// The task (default: the config's, else walker).
     #[arg(long, value_enum)]
     task: Option<TaskArg>,
+    /// The walker's fitness formula, as `eval --fitness` (walker only; default: the config's
+    /// `[task.walker] fitness`, else normalised).
+    #[arg(long, value_parser = super::walker_fitness_parser())]
+    fitness: Option<WalkerFitness>,
     /// The genetic algorithm's schedule (default: the config's, else chaumont).
     #[arg(long, value_enum)]
     preset: Option<PresetArg>,
@@ -259,7 +274,13 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
     }
     let ga = overrides.resolve();
     check_seconds(args.seconds)?;
-    let task = resolve_task(file.task.clone(), args.task, args.seconds, args.setting);
+    let task = resolve_task(
+        file.task.clone(),
+        args.task,
+        args.fitness,
+        args.seconds,
+        args.setting,
+    )?;
     check_settings(&ga, &task).map_err(|e| bad(config_error(source, e)))?;
     // --init on the command line is relative to the working directory; in the config file,
     // to the file.
@@ -351,6 +372,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     let mut evaluations = 0u64;
     let mut evaluating = 0.0;
     let mut last: Option<GenerationReport> = None;
+    let fitness = run.config().task.fitness_label();
     let mut observer = |r: &GenerationReport| {
         evaluations += r.stats.evaluations;
         evaluating += r.evaluation_seconds;
@@ -359,7 +381,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
             None => String::new(),
         };
         let line = format!(
-            "best {:.4}{fine}  mean {:.4}  valid {:.0}%  {:.1} evaluations/s",
+            "{fitness}: best {:.4}{fine}  mean {:.4}  valid {:.0}%  {:.1} evaluations/s",
             r.stats.best,
             r.stats.mean,
             r.stats.valid_fraction * 100.0,
@@ -393,7 +415,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
             None => String::new(),
         };
         say!(
-            "{}: generation {} best {:.6}{fine}; {evaluations} evaluations in {wall:.1} s ({:.1}/s), {:.1}% of the time outside evaluation",
+            "{}: {fitness}: generation {} best {:.6}{fine}; {evaluations} evaluations in {wall:.1} s ({:.1}/s), {:.1}% of the time outside evaluation",
             dir.display(),
             r.generation,
             r.stats.best,
@@ -443,11 +465,15 @@ pub fn runs(args: &RunsArgs) -> anyhow::Result<()> {
             let store = RunStore::open_read_only(&dir.join("run.sqlite"))
                 .map_err(|e| bad(e.to_string()))?;
             let run = store.run().map_err(|e| bad(e.to_string()))?;
+            // The task and its fitness as the run's settings name them; a settings text this
+            // version cannot read names the task alone.
+            let task = run
+                .task_spec()
+                .map_or_else(|| format!("{} task", run.task), |spec| spec.fitness_label());
             say!(
-                "{}: {} encoding, {} task, seed {}, ontogeny {}",
+                "{}: {} encoding, {task}, seed {}, ontogeny {}",
                 dir.display(),
                 run.encoding,
-                run.task,
                 run.seed,
                 run.version
             );

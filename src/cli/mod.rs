@@ -105,6 +105,16 @@ enum Verb {
 
 /// Lets every verb take negative numbers as option values (`--strength -1`), not only
 /// `--strength=-1`.
+/// Parses `--fitness`: one of the walker's formulas by its name
+/// ([`ontogeny::task::WalkerFitness::name`]), every name listed in the help.
+fn walker_fitness_parser()
+-> impl clap::builder::TypedValueParser<Value = ontogeny::task::WalkerFitness> {
+    use clap::builder::TypedValueParser;
+    use ontogeny::task::WalkerFitness;
+    clap::builder::PossibleValuesParser::new(WalkerFitness::ALL.map(WalkerFitness::name))
+        .try_map(|name| name.parse::<WalkerFitness>())
+}
+
 fn allow_negative_numbers(command: Command) -> Command {
     let verbs: Vec<String> = command
         .get_subcommands()

@@ -560,8 +560,9 @@ pub fn write_report(
     let task = shared.task.task.name();
     let _ = writeln!(
         md,
-        "# Comparison of {} on the {task} task\n",
-        manifest.encodings.join(", ")
+        "# Comparison of {} on the {task} task\n\nFitness: {}.\n",
+        manifest.encodings.join(", "),
+        shared.task.fitness_label()
     );
     let _ = writeln!(
         md,

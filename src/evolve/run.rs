@@ -585,9 +585,10 @@ impl<G: Genome> Run<G> {
         let generations = self.store.generations()?;
         let fallbacks = self.fallbacks_by_generation()?;
         let mut log = String::new();
+        let fitness = self.config.task.fitness_label();
         for (g, fallen) in generations.iter().zip(&fallbacks) {
             log.push_str(&format!(
-                "generation {}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations in {:.1} s{}\n",
+                "generation {}: {fitness}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations in {:.1} s{}\n",
                 g.index,
                 g.best,
                 fine_note(g.best_fine.as_ref()),
@@ -612,10 +613,9 @@ impl<G: Genome> Run<G> {
                     None => String::new(),
                 };
                 let note = format!(
-                    "The best individual of {} after generation {}: {} fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
+                    "The best individual of {} after generation {} ({fitness}): fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
                     self.dir.display(),
                     last.index,
-                    self.config.task.task.name(),
                     b.evaluation.fitness,
                     status_name(b),
                 );

@@ -143,6 +143,15 @@ pub struct RunRecord {
     pub version: String,
 }
 
+impl RunRecord {
+    /// The task its settings give (`[task]` of [`RunRecord::config`]); `None` when the text
+    /// cannot be read as one.
+    pub fn task_spec(&self) -> Option<crate::task::TaskSpec> {
+        let config: toml::Table = toml::from_str(&self.config).ok()?;
+        config.get("task")?.clone().try_into().ok()
+    }
+}
+
 /// The evaluation of a generation's best individual at the fine reference setting
 /// ([`crate::sim::SimOptions::fine_reference`]): a check that its fitness is not an artefact
 /// of the evaluator's coarse stepping.

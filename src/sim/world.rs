@@ -261,6 +261,10 @@ struct JointInfo {
     max_torque: f64,
 }
 
+/// How near a part's contact point must be to the ground to count as touching it (m): the
+/// touch sensors' and the ground drag's threshold.
+pub const TOUCH_DISTANCE: Real = 1e-3;
+
 /// A creature in a physics world, with its brain.
 pub struct World {
     options: SimOptions,
@@ -309,6 +313,8 @@ pub struct World {
     peak_unexplained: f64,
     /// The largest gap seen between the two ends of any joint's anchor (m).
     peak_joint_gap: f64,
+    /// The ground's collider.
+    ground_collider: ColliderHandle,
 }
 
 fn vector(v: &Vector3<f64>) -> Vector {
@@ -399,9 +405,10 @@ impl World {
             unexplained_energy: 0.0,
             peak_unexplained: 0.0,
             peak_joint_gap: 0.0,
+            ground_collider: ColliderHandle::invalid(),
         };
         let ground = world.bodies.insert(RigidBodyBuilder::fixed());
-        world.colliders.insert_with_parent(
+        world.ground_collider = world.colliders.insert_with_parent(
             ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y))
                 .friction(options.friction as Real),
             ground,
@@ -843,6 +850,46 @@ impl World {
         self.joint_ends[j]
     }
 
+    /// How fast the creature's parts slide along the ground now (m/s): over every contact
+    /// manifold between a part and the ground, the mean over its touching points (no farther
+    /// apart than [`TOUCH_DISTANCE`]) of the horizontal speed of the part's material point
+    /// there, summed over manifolds. One manifold is one contact: a face resting on four
+    /// corners counts once, at its corners' mean sliding speed. A part that rolls without
+    /// slipping, or stands still, slides at 0. Times the control step, it is the distance
+    /// dragged during the step (Hornby & Pollack's D_drag).
+    pub fn ground_sliding_speed(&self) -> f64 {
+        let mut total = 0.0;
+        for &(body, collider) in &self.parts {
+            let Some(pair) = self
+                .narrow_phase
+                .contact_pair(collider, self.ground_collider)
+            else {
+                continue;
+            };
+            let ours_first = pair.collider1 == collider;
+            let pose = self.colliders[collider].position();
+            let body = &self.bodies[body];
+            for manifold in pair.manifolds() {
+                let mut speeds = 0.0;
+                let mut touching = 0usize;
+                for point in manifold.points.iter().filter(|p| p.dist <= TOUCH_DISTANCE) {
+                    let local = if ours_first {
+                        point.local_p1
+                    } else {
+                        point.local_p2
+                    };
+                    let v = body.velocity_at_point(pose.transform_point(local));
+                    speeds += (v.x as f64).hypot(v.z as f64);
+                    touching += 1;
+                }
+                if touching > 0 {
+                    total += speeds / touching as f64;
+                }
+            }
+        }
+        total
+    }
+
     /// Sets every sensor neuron from the world.
     fn read_sensors(&mut self) {
         for i in 0..self.roles.len() {
@@ -855,7 +902,7 @@ impl World {
                     let touching = self.narrow_phase.contact_pairs_with(collider).any(|p| {
                         let ours_first = p.collider1 == collider;
                         p.manifolds().iter().any(|m| {
-                            m.points.iter().any(|pt| pt.dist <= 1e-3)
+                            m.points.iter().any(|pt| pt.dist <= TOUCH_DISTANCE)
                                 && face.is_none_or(|face| {
                                     // The contact normal, outward from this part, in its axes.
                                     let n = if ours_first { m.local_n1 } else { m.local_n2 };
@@ -1065,4 +1112,82 @@ pub enum Exploded {
     /// The creature gained energy its motors cannot have given it.
     #[error("the creature gained {0:.1} J its motors cannot have supplied")]
     Energy(f64),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One box, 1 m long, 0.25 m wide and thick, lying on the ground at rest.
+    fn settled_box() -> World {
+        let creature = crate::develop::creature_from_commands("forward(1)").unwrap();
+        let mut world = World::new(&creature, &SimOptions::default()).unwrap();
+        for _ in 0..60 {
+            world.step(false).unwrap();
+        }
+        world
+    }
+
+    /// Steps `world` for `steps` control steps; the distance dragged along the ground.
+    fn drag_over(world: &mut World, steps: usize) -> f64 {
+        let dt = world.options.dt;
+        let mut meter = crate::sim::DragMeter::start(world);
+        for _ in 0..steps {
+            world.step(false).unwrap();
+            meter.after_step(world, dt);
+        }
+        meter.dragged()
+    }
+
+    fn horizontal(v: Vector3<f64>) -> f64 {
+        v.x.hypot(v.z)
+    }
+
+    #[test]
+    fn a_box_lying_still_drags_nothing() {
+        let mut world = settled_box();
+        assert!(drag_over(&mut world, 30) < 1e-4);
+    }
+
+    #[test]
+    fn a_box_sliding_to_a_stop_drags_the_distance_it_slides() {
+        // Launched at v = 2 m/s along the ground with friction μ = 1 (part against ground),
+        // it slows at μg = 9.81 m/s² and stops after v²/(2μg) = 4 / 19.62 ≈ 0.204 m, every
+        // centimetre of it sliding: D_drag ≈ 0.204 m.
+        let mut world = settled_box();
+        let from = world.part_position(0);
+        let body = world.parts[0].0;
+        world.bodies[body].set_linvel(Vector::new(2.0, 0.0, 0.0), true);
+        let dragged = drag_over(&mut world, 60);
+        let slid = horizontal(world.part_position(0) - from);
+        let by_hand = 4.0 / (2.0 * GRAVITY);
+        assert!((slid - by_hand).abs() < 0.1 * by_hand, "slid {slid} m");
+        assert!(
+            (dragged - slid).abs() < 0.05 * slid,
+            "dragged {dragged} m, slid {slid} m"
+        );
+    }
+
+    #[test]
+    fn a_ball_rolling_the_same_distance_drags_almost_nothing() {
+        // The box's shape made a ball of radius r = 0.125 m, launched rolling without
+        // slipping at v = 2 m/s, ω = v / r about −z: its contact point is still, so over
+        // the 0.2 m it rolls (0.1 s) it drags next to nothing.
+        let mut world = settled_box();
+        let (body, collider) = world.parts[0];
+        world.colliders[collider].set_shape(SharedShape::ball(0.125));
+        for _ in 0..60 {
+            world.step(false).unwrap();
+        }
+        let from = world.part_position(0);
+        world.bodies[body].set_linvel(Vector::new(2.0, 0.0, 0.0), true);
+        world.bodies[body].set_angvel(Vector::new(0.0, 0.0, -2.0 / 0.125), true);
+        let dragged = drag_over(&mut world, 6);
+        let rolled = horizontal(world.part_position(0) - from);
+        assert!((rolled - 0.2).abs() < 0.02, "rolled {rolled} m");
+        assert!(
+            dragged < 0.1 * rolled,
+            "dragged {dragged} m, rolled {rolled} m"
+        );
+    }
 }

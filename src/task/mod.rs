@@ -13,12 +13,13 @@ pub use check::{MAX_SECONDS, check_duration};
 pub use spec::{TaskKind, TaskSpec};
 
 use crate::creature::{Creature, Severity};
-use crate::sim::{SimOptions, World};
+use crate::sim::{DragMeter, SimOptions, World};
 
 /// The fitness of every failed evaluation, whatever the task: Walking with Dinosaurs' value
 /// for illegal creatures (3.5.1), and Chaumont et al.'s "arbitrary low value" (5.4). Every
 /// valid score of every task is above it: walker, catapult and jump scores are never
-/// negative, and an aim score D_p − D_t is at least −D_t ≥ −|target| > −[`MAX_TARGET_DISTANCE`].
+/// negative, except the walker's Hornby & Pollack score, held at −[`MAX_TARGET_DISTANCE`] or
+/// above, and an aim score D_p − D_t is at least −D_t ≥ −|target| > −[`MAX_TARGET_DISTANCE`].
 pub const FAILURE_FITNESS: f64 = -999_999.0;
 
 /// The farthest an aim task's target may be from the projectile's start (m), so that every
@@ -65,6 +66,65 @@ pub enum WalkerFitness {
     FatLover,
     /// Iterative move, but 0 for creatures of fewer than 3 parts.
     DwarfSlayer,
+    /// Hornby & Pollack's walker fitness: "the distance moved by the creature's centre of
+    /// mass, minus the distance ground points were dragged along the ground". The horizontal
+    /// displacement of the whole creature's centre of mass over the measured walk, minus
+    /// D_drag, the horizontal distance its parts slid along the ground while touching it
+    /// (see [`crate::sim::DragMeter`]): stepping and rolling score, sliding does not. Held
+    /// at −[`MAX_TARGET_DISTANCE`] or above, so that it stays above [`FAILURE_FITNESS`].
+    HornbyPollack,
+}
+
+impl WalkerFitness {
+    /// Every formula, in the order the CLI lists them.
+    pub const ALL: [WalkerFitness; 7] = [
+        WalkerFitness::Normalised,
+        WalkerFitness::Distance,
+        WalkerFitness::IterativeMove,
+        WalkerFitness::BoxLover,
+        WalkerFitness::FatLover,
+        WalkerFitness::DwarfSlayer,
+        WalkerFitness::HornbyPollack,
+    ];
+
+    /// The formula's name as configs and the CLI spell it (`"hornby-pollack"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            WalkerFitness::Normalised => "normalised",
+            WalkerFitness::Distance => "distance",
+            WalkerFitness::IterativeMove => "iterative-move",
+            WalkerFitness::BoxLover => "box-lover",
+            WalkerFitness::FatLover => "fat-lover",
+            WalkerFitness::DwarfSlayer => "dwarf-slayer",
+            WalkerFitness::HornbyPollack => "hornby-pollack",
+        }
+    }
+
+    /// The formula and what its score measures, as reports show it:
+    /// `"distance (m)"`, `"normalised (Chaumont eq. 1)"`.
+    pub fn label(self) -> &'static str {
+        match self {
+            WalkerFitness::Normalised => "normalised (Chaumont eq. 1)",
+            WalkerFitness::Distance => "distance (m)",
+            WalkerFitness::IterativeMove => "iterative-move (m)",
+            WalkerFitness::BoxLover => "box-lover (m × parts)",
+            WalkerFitness::FatLover => "fat-lover (m × kg)",
+            WalkerFitness::DwarfSlayer => "dwarf-slayer (m)",
+            WalkerFitness::HornbyPollack => "hornby-pollack (m)",
+        }
+    }
+}
+
+impl std::str::FromStr for WalkerFitness {
+    type Err = String;
+
+    /// The formula named `name` ([`WalkerFitness::name`]).
+    fn from_str(name: &str) -> Result<WalkerFitness, String> {
+        WalkerFitness::ALL
+            .into_iter()
+            .find(|f| f.name() == name)
+            .ok_or_else(|| format!("unknown walker fitness '{name}'"))
+    }
 }
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
@@ -649,10 +709,17 @@ pub fn walker_with_progress(
         // Iterative move: the centre of mass's horizontal gain over every whole second.
         let mut gains = Vec::new();
         let mut last_second = centre_of_mass(&run.world, creature);
+        let centre_from = last_second;
+        // Hornby & Pollack's D_drag, measured only when it is the fitness.
+        let mut drag =
+            (options.fitness == WalkerFitness::HornbyPollack).then(|| DragMeter::start(&run.world));
         let steps = steps_in(options.seconds, sim.dt);
         let start_time = run.world.time();
         for _ in 0..steps {
             run.step(true)?;
+            if let Some(drag) = &mut drag {
+                drag.after_step(&run.world, sim.dt);
+            }
             let elapsed = run.world.time() - start_time;
             if elapsed + 1e-9 >= (gains.len() + 1) as f64 {
                 let centre = centre_of_mass(&run.world, creature);
@@ -667,6 +734,9 @@ pub fn walker_with_progress(
         let distance = (d.x * d.x + d.z * d.z).sqrt();
         let (c_l, c_s, c_v) = size_coefficients(creature);
         let n = creature.parts.len() as f64;
+        let centre_moved = centre_of_mass(&run.world, creature) - centre_from;
+        let displacement = centre_moved.x.hypot(centre_moved.z);
+        let dragged = drag.map_or(0.0, |drag| drag.dragged());
         let fitness = match options.fitness {
             WalkerFitness::Normalised => distance * (c_v / (c_s * c_l)) * options.kappa.powf(n),
             WalkerFitness::Distance => distance,
@@ -680,8 +750,9 @@ pub fn walker_with_progress(
                     iterative
                 }
             }
+            WalkerFitness::HornbyPollack => (displacement - dragged).max(-MAX_TARGET_DISTANCE),
         };
-        let terms = BTreeMap::from([
+        let mut terms = BTreeMap::from([
             ("D_w".to_string(), distance),
             ("C_l".to_string(), c_l),
             ("C_s".to_string(), c_s),
@@ -693,6 +764,10 @@ pub fn walker_with_progress(
             ("mass".to_string(), creature.mass()),
             ("measured_from".to_string(), measure_from),
         ]);
+        if options.fitness == WalkerFitness::HornbyPollack {
+            terms.insert("displacement".into(), displacement);
+            terms.insert("drag".into(), dragged);
+        }
         Ok((fitness, terms))
     })
 }

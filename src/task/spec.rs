@@ -67,6 +67,19 @@ impl TaskSpec {
         }
     }
 
+    /// The task and what its fitness measures, as every report names them:
+    /// `"walker, distance (m)"`, `"walker, normalised (Chaumont eq. 1)"`,
+    /// `"jump, height (m)"`, `"catapult, distance (m)"`, `"aim, distance − miss (m)"`.
+    pub fn fitness_label(&self) -> String {
+        let fitness = match self.task {
+            TaskKind::Walker => self.walker.fitness.label(),
+            TaskKind::Jump => "height (m)",
+            TaskKind::Catapult => "distance (m)",
+            TaskKind::Aim => "distance − miss (m)",
+        };
+        format!("{}, {fitness}", self.task.name())
+    }
+
     /// Evaluates `creature` on the task; `record` keeps every frame.
     pub fn evaluate(&self, creature: &Creature, record: bool) -> Evaluation {
         match self.task {
