@@ -360,6 +360,7 @@ fn run_replicate<G: Genome>(
                     seed: replicate_seed(manifest.seed, k),
                     init: None,
                     verify_best: true,
+                    cache: true,
                     ga: shared.ga.clone(),
                     task: shared.task.clone(),
                     limits: G::Limits::default(),

@@ -307,6 +307,8 @@ pub fn read_replicate<G: Genome>(
         seed: replicate_seed(manifest.seed, k),
         init: None,
         verify_best: true,
+        // The cache changes no result: a replicate may have run with or without it.
+        cache: config.cache,
         ga: shared.ga.clone(),
         task: shared.task.clone(),
         limits: G::Limits::default(),
