@@ -85,7 +85,7 @@ impl CanonicalHasher {
     }
 }
 
-impl<'a> ser::Serializer for &'a mut CanonicalHasher {
+impl ser::Serializer for &mut CanonicalHasher {
     type Ok = ();
     type Error = HashError;
     type SerializeSeq = Self;
