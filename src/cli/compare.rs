@@ -119,10 +119,11 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         for k in 1..=manifest.replicates {
             for encoding in &manifest.encodings {
                 say!(
-                    "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}",
+                    "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}{}",
                     quote(&root.join("evolve.toml")),
                     replicate_seed(manifest.seed, k),
-                    quote(&replicate_dir(root, encoding, k))
+                    quote(&replicate_dir(root, encoding, k)),
+                    if args.no_cache { " --no-cache" } else { "" }
                 );
             }
         }
