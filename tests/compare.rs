@@ -76,9 +76,9 @@ fn numbers(dir: &Path) -> String {
     for line in md.lines() {
         if line.starts_with("| lsystem") || line.starts_with("| direct") {
             let cells: Vec<&str> = line.split('|').collect();
-            // A line of the encodings' table has 11 cells; drop evaluations/s.
-            let keep = if cells.len() == 13 {
-                &cells[..11]
+            // A line of the encodings' table has 13 cells; drop evaluations/s.
+            let keep = if cells.len() == 15 {
+                &cells[..13]
             } else {
                 &cells[..]
             };
@@ -574,5 +574,40 @@ fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
         "--fitness is for the walker task only, and the task is jump",
     );
     assert!(!dir.join("jump").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_comparison_without_cache_reports_the_same_numbers_with_nothing_reused() {
+    let dir = scratch("no-cache");
+    let (on, off) = (dir.join("on"), dir.join("off"));
+    ok(&tiny(&on).output().unwrap());
+    ok(&tiny(&off).arg("--no-cache").output().unwrap());
+    // summary.csv: simulated and reused are the two columns before wall_seconds.
+    let split = |dir: &Path| -> Vec<(String, u64, u64)> {
+        let csv = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        assert_eq!(header[10..], ["simulated", "reused", "wall_seconds"]);
+        csv.lines()
+            .skip(1)
+            .map(|line| {
+                let cells: Vec<&str> = line.split(',').collect();
+                (
+                    cells[..10].join(","),
+                    cells[10].parse().unwrap(),
+                    cells[11].parse().unwrap(),
+                )
+            })
+            .collect()
+    };
+    let (with, without) = (split(&on), split(&off));
+    assert_eq!(with.len(), without.len());
+    for (a, b) in with.iter().zip(&without) {
+        assert_eq!(a.0, b.0, "the replicates' numbers differ");
+        assert_eq!(a.1 + a.2, b.1, "evaluations differ");
+        assert_eq!(b.2, 0, "a replicate without cache reused");
+    }
+    let md = std::fs::read_to_string(off.join("report.md")).unwrap();
+    assert!(md.contains("| simulated | reused |"), "{md}");
     let _ = std::fs::remove_dir_all(dir);
 }

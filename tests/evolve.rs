@@ -74,11 +74,22 @@ fn small_run(encoding: &str, out: &Path, extra: &[&str]) -> Output {
 
 /// Everything the store holds of a run but wall-clock times, as one comparable string.
 fn contents(dir: &Path) -> String {
-    contents_of(dir, true)
+    contents_of(dir, true, CacheColumns::Both)
 }
 
-/// [`contents`], with or without the fine reference values.
-fn contents_of(dir: &Path, with_fine: bool) -> String {
+/// Which of the evaluation cache's columns [`contents_of`] shows.
+#[derive(Clone, Copy, PartialEq)]
+enum CacheColumns {
+    /// `reused` and `evaluation_key`.
+    Both,
+    /// `evaluation_key` alone.
+    Key,
+    /// Neither.
+    Neither,
+}
+
+/// [`contents`], with or without the fine reference values and the cache's columns.
+fn contents_of(dir: &Path, with_fine: bool, cache: CacheColumns) -> String {
     let store = RunStore::open_read_only(&dir.join("run.sqlite")).unwrap();
     let mut out = String::new();
     let last = store.last_generation().unwrap().unwrap();
@@ -112,6 +123,12 @@ fn contents_of(dir: &Path, with_fine: bool) -> String {
                 i.genome_json,
                 i.genome_text
             );
+            if cache != CacheColumns::Neither {
+                out += &format!("{:?}\n", i.evaluation_key);
+            }
+            if cache == CacheColumns::Both {
+                out += &format!("reused {}\n", i.reused);
+            }
         }
     }
     out
@@ -343,7 +360,7 @@ fn verify_best_off_stores_null_and_evaluates_nothing_more() {
         assert!(!svg.contains(FINE_LABEL));
         // The GA itself is the same as with the check on.
         assert_ne!(contents(out), contents(&on));
-        assert_eq!(contents(out), contents_of(&on, false));
+        assert_eq!(contents(out), contents_of(&on, false, CacheColumns::Both));
     }
     assert!(
         std::fs::read_to_string(on.join("config.toml"))
@@ -376,6 +393,8 @@ fn a_version_1_database_is_migrated_on_resume() {
              DELETE FROM generation WHERE generation >= 2;
              ALTER TABLE generation DROP COLUMN best_fine;
              ALTER TABLE generation DROP COLUMN best_fine_status;
+             ALTER TABLE individual DROP COLUMN reused;
+             ALTER TABLE individual DROP COLUMN evaluation_key;
              PRAGMA user_version = 1;
              PRAGMA wal_checkpoint(TRUNCATE);",
         )
@@ -407,7 +426,7 @@ fn a_version_1_database_is_migrated_on_resume() {
         String::from_utf8_lossy(&resumed.stderr)
     );
     let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
-    assert_eq!(store.schema_version(), 2);
+    assert_eq!(store.schema_version(), 3);
     let generations = store.generations().unwrap();
     let fresh = RunStore::open_read_only(&whole.join("run.sqlite"))
         .unwrap()
@@ -421,7 +440,10 @@ fn a_version_1_database_is_migrated_on_resume() {
     assert_eq!(generations[2].best_fine, fresh[2].best_fine);
     assert_eq!(generations[3].best_fine, fresh[3].best_fine);
     // Nothing else differs.
-    assert_eq!(contents_of(&old, false), contents_of(&whole, false));
+    assert_eq!(
+        contents_of(&old, false, CacheColumns::Neither),
+        contents_of(&whole, false, CacheColumns::Neither)
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -928,10 +950,12 @@ fn log_without_times(dir: &Path) -> String {
     std::fs::read_to_string(dir.join("log.txt"))
         .unwrap()
         .lines()
-        .map(|line| {
-            let (head, tail) = line.split_once(" evaluations in ").unwrap();
-            let tail = tail.split_once(" s").map_or("", |(_, rest)| rest);
-            format!("{head} evaluations{tail}\n")
+        .map(|line| match line.split_once(" simulated in ") {
+            Some((head, tail)) => {
+                let tail = tail.split_once(" s").map_or("", |(_, rest)| rest);
+                format!("{head} simulated{tail}\n")
+            }
+            None => format!("{line}\n"),
         })
         .collect()
 }
@@ -944,11 +968,16 @@ fn log_and_plot_are_rewritten_from_the_store_on_every_resume() {
     let whole = dir.join("whole");
     succeeded(&run_of("direct", &whole, "4", &[]));
     let log = log_without_times(&whole);
-    assert_eq!(log.lines().count(), 4, "{log}");
+    // A line per generation, then the note, said once.
+    assert_eq!(log.lines().count(), 4 + 1, "{log}");
     assert!(
-        log.contains("children so far made by mutation instead"),
+        log.lines()
+            .last()
+            .unwrap()
+            .contains("children of generations 1 to 3 were made by mutation instead"),
         "{log}"
     );
+    assert_eq!(log.matches("made by mutation instead").count(), 1, "{log}");
     // A kill inside a commit lost the last log line and left the plot a point short; another
     // process damaged the best file. A resume of the finished run rewrites all three.
     let damaged = dir.join("damaged");
@@ -1093,6 +1122,81 @@ fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() 
     let _ = std::fs::remove_dir_all(dir);
 }
 
+/// Every stored individual of the run in `dir`, in generation and index order.
+fn stored_individuals(dir: &Path) -> Vec<ontogeny::evolve::store::IndividualRecord> {
+    let store = RunStore::open_read_only(&dir.join("run.sqlite")).unwrap();
+    let last = store.last_generation().unwrap().unwrap();
+    (0..=last)
+        .flat_map(|g| store.individuals(g).unwrap())
+        .collect()
+}
+
+#[test]
+fn the_cache_changes_nothing_in_the_database_but_reused_for_every_encoding() {
+    for encoding in ENCODINGS {
+        let dir = scratch(&format!("cache-{encoding}"));
+        let (on, off) = (dir.join("on"), dir.join("off"));
+        succeeded(&small_run(encoding, &on, &[]));
+        succeeded(&small_run(encoding, &off, &["--no-cache"]));
+        assert_eq!(
+            contents_of(&on, true, CacheColumns::Key),
+            contents_of(&off, true, CacheColumns::Key),
+            "{encoding}"
+        );
+        assert!(config_text(&off).contains("cache = false"), "{encoding}");
+        let off = stored_individuals(&off);
+        assert!(off.iter().all(|i| !i.reused), "{encoding}");
+        // Every developed creature has a key; one that did not develop has none.
+        for i in &off {
+            let undeveloped = i.genome_json.contains(r#""message":"development: "#);
+            assert_eq!(i.evaluation_key.is_none(), undeveloped, "{encoding} {i:?}");
+        }
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}
+
+#[test]
+fn an_lsystem_run_reuses_the_evaluation_of_an_identical_creature_bit_for_bit() {
+    let dir = scratch("cache-reuse");
+    let run = dir.join("run");
+    succeeded(&small_run("lsystem", &run, &[]));
+    let all = stored_individuals(&run);
+    let reused: Vec<_> = all.iter().filter(|i| i.reused).collect();
+    assert!(!reused.is_empty(), "no individual was reused");
+    for r in &reused {
+        assert_ne!(r.operator, "elite");
+        let first = all
+            .iter()
+            .find(|i| i.evaluation_key == r.evaluation_key && !i.reused)
+            .expect("a reused individual's key was evaluated before");
+        assert!((first.generation, first.index) < (r.generation, r.index));
+        assert_eq!(first.fitness.to_bits(), r.fitness.to_bits());
+        assert_eq!(
+            (
+                &first.status,
+                &first.terms_json,
+                first.parts,
+                first.joints,
+                first.neurons
+            ),
+            (&r.status, &r.terms_json, r.parts, r.joints, r.neurons)
+        );
+    }
+    // The log counts them per generation: evaluations, of which simulated.
+    let log = std::fs::read_to_string(run.join("log.txt")).unwrap();
+    let store = RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    for (line, g) in log.lines().zip(store.generations().unwrap()) {
+        let reused_here = reused.iter().filter(|i| i.generation == g.index).count() as u64;
+        let counts = format!(
+            "{} evaluations, {} simulated in",
+            g.evaluations,
+            g.evaluations - reused_here
+        );
+        assert!(line.contains(&counts), "{line} lacks {counts}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 #[test]
 fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
     let dir = scratch("fitness");
@@ -1113,9 +1217,14 @@ fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
     let config = std::fs::read_to_string(out.join("config.toml")).unwrap();
     assert!(config.contains("fitness = \"hornby-pollack\""), "{config}");
     let log = std::fs::read_to_string(out.join("log.txt")).unwrap();
-    assert_eq!(log.lines().count(), 2, "{log}");
+    let generations: Vec<&str> = log
+        .lines()
+        .filter(|l| l.starts_with("generation "))
+        .collect();
+    assert_eq!(generations.len(), 2, "{log}");
     assert!(
-        log.lines()
+        generations
+            .iter()
             .all(|line| line.contains(&format!(": {label}: best "))),
         "{log}"
     );
@@ -1150,5 +1259,52 @@ fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
         "{refusal}"
     );
     assert!(!dir.join("jump").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_version_2_database_is_migrated_to_version_3_on_resume() {
+    let dir = scratch("version-2");
+    let whole = dir.join("whole");
+    succeeded(&small_run("lsystem", &whole, &[]));
+    // The same run stopped after generation 1 by a version that knew schema 2: no reused
+    // or evaluation_key columns, no cache setting in config.toml.
+    let old = dir.join("old");
+    succeeded(&small_run("lsystem", &old, &[]));
+    let config = config_text(&old);
+    std::fs::write(
+        old.join("config.toml"),
+        config.replace("cache = true\n", ""),
+    )
+    .unwrap();
+    {
+        let conn = rusqlite::Connection::open(old.join("run.sqlite")).unwrap();
+        conn.execute_batch(
+            "DELETE FROM individual WHERE generation >= 2;
+             DELETE FROM generation WHERE generation >= 2;
+             ALTER TABLE individual DROP COLUMN reused;
+             ALTER TABLE individual DROP COLUMN evaluation_key;
+             PRAGMA user_version = 2;
+             PRAGMA wal_checkpoint(TRUNCATE);",
+        )
+        .unwrap();
+    }
+    succeeded(&resume(&old));
+    let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
+    assert_eq!(store.schema_version(), 3);
+    drop(store);
+    // The old rows: evaluated, no key; the new ones keyed as in the uninterrupted run.
+    let (migrated, fresh) = (stored_individuals(&old), stored_individuals(&whole));
+    for (m, f) in migrated.iter().zip(&fresh) {
+        if m.generation < 2 {
+            assert!(!m.reused && m.evaluation_key.is_none(), "{m:?}");
+        } else {
+            assert_eq!(m.evaluation_key, f.evaluation_key);
+        }
+    }
+    assert_eq!(
+        contents_of(&old, true, CacheColumns::Neither),
+        contents_of(&whole, true, CacheColumns::Neither)
+    );
     let _ = std::fs::remove_dir_all(dir);
 }

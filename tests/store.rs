@@ -72,6 +72,8 @@ fn individuals(generation: u32, fitness: [f64; 4]) -> Vec<IndividualRecord> {
             parts: 3 + i,
             joints: 2 + i,
             neurons: 10 * i,
+            reused: false,
+            evaluation_key: None,
         })
         .collect()
 }
@@ -875,4 +877,76 @@ fn a_schema_older_than_version_1_is_refused() {
         RunStore::open_read_only(&path),
         Err(StoreError::OlderSchema { .. })
     ));
+}
+
+#[test]
+fn reused_flags_and_evaluation_keys_read_back_as_written() {
+    let dir = scratch("keys");
+    let path = dir.join("run.sqlite");
+    let mut store = RunStore::create(&path, &run_record()).unwrap();
+    let mut is = individuals(0, [1.0, 2.0, 2.0, FAILURE_FLOOR]);
+    let key = "0123456789abcdef".repeat(4);
+    is[1].evaluation_key = Some(key.clone());
+    is[2].evaluation_key = Some(key.clone());
+    is[2].reused = true;
+    store.write_generation(&generation(0), &is).unwrap();
+    assert_eq!(store.individuals(0).unwrap(), is);
+    assert_eq!(
+        store.evaluations_by_key().unwrap(),
+        vec![(key.clone(), is[1].genome_json.clone())],
+        "the reused individual is not an evaluation"
+    );
+    assert_eq!(store.reused_by_generation().unwrap(), vec![(0, 1)]);
+    // A key that is not 64 characters breaks the schema: nothing of the generation is stored.
+    let mut bad = individuals(1, [1.0; 4]);
+    bad[0].evaluation_key = Some("abc".into());
+    assert!(matches!(
+        store.write_generation(&generation(1), &bad),
+        Err(StoreError::InvalidRecord { .. })
+    ));
+    assert_eq!(store.last_generation().unwrap(), Some(0));
+}
+
+#[test]
+fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_writing() {
+    let dir = scratch("version-2");
+    let path = dir.join("run.sqlite");
+    version_1_store(&path);
+    // Version 2: version 1 with the fine reference columns.
+    RunStore::open(&path).unwrap();
+    {
+        let conn = rusqlite::Connection::open(&path).unwrap();
+        conn.execute_batch(
+            "ALTER TABLE individual DROP COLUMN reused;
+             ALTER TABLE individual DROP COLUMN evaluation_key;
+             PRAGMA user_version = 2;
+             PRAGMA wal_checkpoint(TRUNCATE);",
+        )
+        .unwrap();
+    }
+    let before = fs::read(&path).unwrap();
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), 2);
+    let (_, _, old) = held(&store);
+    assert_eq!(old[1], individuals(1, [4.0, 2.0, 3.0, 1.0]));
+    assert_eq!(store.reused_by_generation().unwrap(), vec![]);
+    assert_eq!(store.evaluations_by_key().unwrap(), vec![]);
+    drop(store);
+    assert_eq!(
+        fs::read(&path).unwrap(),
+        before,
+        "a read-only open changed it"
+    );
+    // Migrated: old rows were all evaluated and have no key; new rows keep theirs.
+    let mut store = RunStore::open(&path).unwrap();
+    assert_eq!(store.schema_version(), 3);
+    let (_, _, migrated) = held(&store);
+    assert_eq!(migrated, old);
+    let mut new = individuals(2, [1.0; 4]);
+    new[0].evaluation_key = Some("ab".repeat(32));
+    new[1].evaluation_key = Some("ab".repeat(32));
+    new[1].reused = true;
+    store.write_generation(&generation(2), &new).unwrap();
+    assert_eq!(store.individuals(2).unwrap(), new);
+    assert_eq!(store.reused_by_generation().unwrap(), vec![(2, 1)]);
 }

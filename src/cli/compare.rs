@@ -72,6 +72,11 @@ pub struct CompareArgs {
     /// replicate instead of running them (then `compare --merge DIR`).
     #[arg(long, conflicts_with_all = ["resume", "merge"])]
     plan: bool,
+    /// Simulate every individual of the replicates this command starts, even one identical
+    /// to a creature evaluated earlier in its run (their `cache = false`); results are the
+    /// same either way.
+    #[arg(long, conflicts_with = "merge")]
+    no_cache: bool,
     /// Run the replicates of the comparison in DIR that are missing or unfinished, then
     /// write the report.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "merge"])]
@@ -103,7 +108,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     if let Some(root) = &args.resume {
         let _lock = compare::lock(root).map_err(compare_error)?;
         let (manifest, shared) = compare::open(root).map_err(compare_error)?;
-        run_all(root, &manifest, &shared)?;
+        run_all(root, &manifest, &shared, !args.no_cache)?;
         return report(root, &manifest, &shared, false);
     }
     let root = args
@@ -119,10 +124,11 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         for k in 1..=manifest.replicates {
             for encoding in &manifest.encodings {
                 say!(
-                    "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}",
+                    "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}{}",
                     quote(&root.join("evolve.toml")),
                     replicate_seed(manifest.seed, k),
-                    quote(&replicate_dir(root, encoding, k))
+                    quote(&replicate_dir(root, encoding, k)),
+                    if args.no_cache { " --no-cache" } else { "" }
                 );
             }
         }
@@ -133,7 +139,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         );
         return Ok(());
     }
-    run_all(root, &manifest, &shared)?;
+    run_all(root, &manifest, &shared, !args.no_cache)?;
     report(root, &manifest, &shared, false)
 }
 
@@ -271,7 +277,8 @@ fn state(
 
 /// Runs every replicate that is missing or unfinished: replicate 1 of every encoding, then
 /// replicate 2, ..., one at a time, each on all worker threads.
-fn run_all(root: &Path, manifest: &Manifest, shared: &Shared) -> anyhow::Result<()> {
+/// A replicate started here caches evaluations when `cache` is on.
+fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> anyhow::Result<()> {
     let per_replicate = evaluations_of(&shared.ga);
     let total = per_replicate * (manifest.replicates * manifest.encodings.len()) as u64;
     let mut done = 0u64;
@@ -301,7 +308,7 @@ fn run_all(root: &Path, manifest: &Manifest, shared: &Shared) -> anyhow::Result<
     for (encoding, k) in todo {
         with_genome!(
             encoding.as_str(),
-            G => run_replicate::<G>(root, manifest, shared, k, &mut progress),
+            G => run_replicate::<G>(root, manifest, shared, k, cache, &mut progress),
             |other| Err(bad(format!("unknown encoding '{other}'")))
         )?;
     }
@@ -351,6 +358,7 @@ fn run_replicate<G: Genome>(
     manifest: &Manifest,
     shared: &Shared,
     k: usize,
+    cache: bool,
     progress: &mut Progress,
 ) -> anyhow::Result<()> {
     let dir = replicate_dir(root, G::NAME, k);
@@ -372,6 +380,7 @@ fn run_replicate<G: Genome>(
                     seed: replicate_seed(manifest.seed, k),
                     init: None,
                     verify_best: true,
+                    cache,
                     ga: shared.ga.clone(),
                     task: shared.task.clone(),
                     limits: G::Limits::default(),

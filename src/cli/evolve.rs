@@ -138,7 +138,7 @@ pub struct EvolveArgs {
     out: Option<PathBuf>,
     /// Continue the run in DIR where it stopped (any other flag but --threads and --gens is
     /// refused).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "fitness", "preset", "pop", "seed", "config", "init", "seconds", "setting", "no_verify_best"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "fitness", "preset", "pop", "seed", "config", "init", "seconds", "setting", "no_verify_best", "no_cache"])]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_enum)]
@@ -183,6 +183,10 @@ pub struct EvolveArgs {
     /// `verify_best = false`).
     #[arg(long)]
     no_verify_best: bool,
+    /// Simulate every individual, even one identical to a creature evaluated earlier in the
+    /// run (the config's `cache = false`); results are the same either way.
+    #[arg(long)]
+    no_cache: bool,
 }
 
 /// A bad-input error (exit code 2) with `message`.
@@ -318,6 +322,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         seed: args.seed.or(file.seed).unwrap_or(1),
         init: None,
         verify_best: !args.no_verify_best && file.verify_best.unwrap_or(true),
+        cache: !args.no_cache && file.cache.unwrap_or(true),
         ga,
         task,
         limits: file.limits.unwrap_or_default(),
@@ -370,11 +375,13 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     };
     let started = std::time::Instant::now();
     let mut evaluations = 0u64;
+    let mut reused = 0u64;
     let mut evaluating = 0.0;
     let mut last: Option<GenerationReport> = None;
     let fitness = run.config().task.fitness_label();
     let mut observer = |r: &GenerationReport| {
         evaluations += r.stats.evaluations;
+        reused += r.stats.reused;
         evaluating += r.evaluation_seconds;
         let fine = match &r.best_fine {
             Some(f) => format!(" (fine reference {:.4})", f.fitness),
@@ -404,7 +411,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     if let Some(r) = last {
         if r.fallbacks.crossover + r.fallbacks.graft > 0 {
             say!(
-                "note: the {} encoding lacks an operator of the schedule; {} children were made by mutation instead (see log.txt)",
+                "note: the {} encoding lacks an operator of the schedule; {} children of this run were made by mutation instead (see log.txt)",
                 G::NAME,
                 r.fallbacks.crossover + r.fallbacks.graft
             );
@@ -415,10 +422,11 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
             None => String::new(),
         };
         say!(
-            "{}: {fitness}: generation {} best {:.6}{fine}; {evaluations} evaluations in {wall:.1} s ({:.1}/s), {:.1}% of the time outside evaluation",
+            "{}: {fitness}: generation {} best {:.6}{fine}; {evaluations} evaluations, {} simulated in {wall:.1} s ({:.1} evaluations/s), {:.1}% of the time outside evaluation",
             dir.display(),
             r.generation,
             r.stats.best,
+            evaluations - reused,
             evaluations as f64 / wall.max(1e-9),
             (wall - evaluating).max(0.0) / wall.max(1e-9) * 100.0
         );

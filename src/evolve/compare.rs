@@ -292,6 +292,9 @@ pub struct Replicate {
     pub curve: Vec<(u64, f64)>,
     /// Evaluations made (the last point of the curve).
     pub evaluations: u64,
+    /// Of which reused from an identical creature evaluated earlier in the run (the others
+    /// were simulated).
+    pub reused: u64,
     /// Wall-clock seconds its generations took.
     pub wall_seconds: f64,
     /// Its best individual.
@@ -337,6 +340,8 @@ pub fn read_replicate<G: Genome>(
         seed: replicate_seed(manifest.seed, k),
         init: None,
         verify_best: true,
+        // The cache changes no result: a replicate may have run with or without it.
+        cache: config.cache,
         ga: shared.ga.clone(),
         task: shared.task.clone(),
         limits: G::Limits::default(),
@@ -365,6 +370,12 @@ pub fn read_replicate<G: Genome>(
         wall += g.wall_seconds;
         curve.push((evaluations, best));
     }
+    let reused = store
+        .reused_by_generation()
+        .map_err(|e| CompareError::Other(e.to_string()))?
+        .iter()
+        .map(|&(_, n)| n)
+        .sum();
     let record = store
         .best_individual()
         .map_err(|e| CompareError::Other(e.to_string()))?
@@ -386,6 +397,7 @@ pub fn read_replicate<G: Genome>(
         seed: config.seed,
         curve,
         evaluations,
+        reused,
         wall_seconds: wall,
         champion: Champion {
             fitness: record.fitness,
@@ -428,6 +440,11 @@ pub struct EncodingSummary {
     pub median_shapes_per_part: f64,
     /// Evaluations per second over all its replicates.
     pub evaluations_per_second: f64,
+    /// Evaluations its replicates simulated, in all.
+    pub simulated: u64,
+    /// Evaluations its replicates reused from an identical creature evaluated earlier in the
+    /// same run, in all.
+    pub reused: u64,
 }
 
 /// One pairwise test.
@@ -472,6 +489,7 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
                 stats::median(&rs.iter().map(|r| f(&r.champion)).collect::<Vec<_>>())
             };
             let evaluations: u64 = rs.iter().map(|r| r.evaluations).sum();
+            let reused: u64 = rs.iter().map(|r| r.reused).sum();
             let wall: f64 = rs.iter().map(|r| r.wall_seconds).sum();
             let walked: Vec<f64> = rs
                 .iter()
@@ -503,6 +521,8 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
                 } else {
                     f64::NAN
                 },
+                simulated: evaluations.saturating_sub(reused),
+                reused,
             }
         })
         .collect();
@@ -595,17 +615,20 @@ pub fn write_report(
          more regular). \"At the fine reference\": the mean of the replicates' final \
          champions walked again with 4 physics substeps of 8 solver iterations (the stored \
          best comes from the run's own stepping, 4 substeps of 4 iterations by default; a \
-         much lower value means the champions exploit it, or were lucky), over the replicates that recorded it when fewer.\n"
+         much lower value means the champions exploit it, or were lucky), over the replicates that recorded it when fewer. \
+         Simulated and reused: the evaluations of all its replicates, split into those \
+         simulated and those that reused the evaluation of an identical creature earlier in \
+         the same run.\n"
     );
     let _ = writeln!(
         md,
-        "| encoding | n | mean best | at the fine reference | sd | 95% CI | parts | joints | neurons | shapes/part | evaluations/s |"
+        "| encoding | n | mean best | at the fine reference | sd | 95% CI | parts | joints | neurons | shapes/part | simulated | reused | evaluations/s |"
     );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for e in &r.encodings {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} to {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} to {} | {} | {} | {} | {} | {} | {} | {} |",
             e.encoding,
             e.replicates,
             num(e.best.mean, 4),
@@ -634,6 +657,8 @@ pub fn write_report(
             num(e.median_joints, 1),
             num(e.median_neurons, 1),
             num(e.median_shapes_per_part, 3),
+            e.simulated,
+            e.reused,
             num(e.evaluations_per_second, 1),
         );
     }
@@ -670,7 +695,7 @@ pub fn write_report(
     write_file(&root.join("report.md"), &md)?;
 
     let mut csv = String::from(
-        "encoding,replicate,seed,evaluations,best_fitness,best_fine,parts,joints,neurons,shapes_per_part,wall_seconds\n",
+        "encoding,replicate,seed,evaluations,best_fitness,best_fine,parts,joints,neurons,shapes_per_part,simulated,reused,wall_seconds\n",
     );
     let mut sorted: Vec<&Replicate> = replicates.iter().collect();
     let position = |e: &str| manifest.encodings.iter().position(|x| x == e);
@@ -679,7 +704,7 @@ pub fn write_report(
         let c = &rep.champion;
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{:.3}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
             rep.encoding,
             rep.k,
             rep.seed,
@@ -690,6 +715,8 @@ pub fn write_report(
             c.joints,
             c.neurons,
             c.shapes_per_part,
+            rep.evaluations - rep.reused,
+            rep.reused,
             rep.wall_seconds
         );
     }
@@ -836,6 +863,7 @@ mod tests {
             seed: k as u64,
             curve: vec![(6, best / 2.0), (11, best)],
             evaluations: 11,
+            reused: 1,
             wall_seconds: 2.0,
             champion: Champion {
                 fitness: best,
@@ -900,6 +928,8 @@ mod tests {
         assert_eq!(a.median_neurons, 10.0);
         // 33 evaluations in 6 s.
         assert_eq!(a.evaluations_per_second, 5.5);
+        // Of which one per replicate reused.
+        assert_eq!((a.simulated, a.reused), (30, 3));
         // a against b: every b beats every a: U = 0, exact p = 2/C(6, 3) = 0.1, A12 = 0.
         let ab = &r.pairs[0];
         assert_eq!((ab.a.as_str(), ab.b.as_str()), ("a", "b"));

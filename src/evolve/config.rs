@@ -28,6 +28,12 @@ pub struct RunConfig<L> {
     /// generation. Absent from the `config.toml` of a run started before it existed: on.
     #[serde(default = "verify_best_default")]
     pub verify_best: bool,
+    /// Whether an individual whose creature is identical, bit for bit, to one evaluated
+    /// earlier in the run reuses that evaluation instead of simulating it again
+    /// ([`super::cache`]); results are the same either way. Absent from the `config.toml` of
+    /// a run started before it existed: on.
+    #[serde(default = "cache_default")]
+    pub cache: bool,
     /// The genetic algorithm's settings.
     pub ga: GaSettings,
     /// The task.
@@ -38,6 +44,11 @@ pub struct RunConfig<L> {
 
 /// The default of [`RunConfig::verify_best`]: on.
 pub fn verify_best_default() -> bool {
+    true
+}
+
+/// The default of [`RunConfig::cache`]: on.
+pub fn cache_default() -> bool {
     true
 }
 
@@ -102,6 +113,8 @@ pub struct ConfigFile<L> {
     pub init: Option<PathBuf>,
     /// See [`RunConfig::verify_best`] (default: on).
     pub verify_best: Option<bool>,
+    /// See [`RunConfig::cache`] (default: on).
+    pub cache: Option<bool>,
     /// The genetic algorithm.
     #[serde(default)]
     pub ga: GaOverrides,
@@ -119,6 +132,7 @@ impl<L> Default for ConfigFile<L> {
             seed: None,
             init: None,
             verify_best: None,
+            cache: None,
             ga: GaOverrides::default(),
             task: None,
             limits: None,

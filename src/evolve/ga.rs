@@ -9,6 +9,11 @@ use rand::{RngExt, SeedableRng};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use std::collections::HashMap;
+
+use super::cache::EvaluationCache;
+use super::key::EvaluationKey;
+use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::task::{Evaluation, Status, TaskSpec};
 
@@ -196,6 +201,15 @@ pub struct Individual<G> {
     pub evaluation: Evaluation,
     /// Parts, joints and neurons of the creature it developed into (0 when it did not).
     pub size: (u32, u32, u32),
+    /// The key of the creature it developed into and the run's task (`None` when it did not
+    /// develop). Not part of its JSON form: the run store keeps it in a column.
+    #[serde(skip)]
+    pub key: Option<EvaluationKey>,
+    /// Whether its evaluation was taken from an identical creature evaluated earlier in the
+    /// run rather than simulated (never for an elite, which is carried over). Not part of its
+    /// JSON form: the run store keeps it in a column.
+    #[serde(skip)]
+    pub reused: bool,
 }
 
 /// One generation's figures. Mean, median and standard deviation are over the individuals
@@ -214,6 +228,9 @@ pub struct GenerationStats {
     pub valid_fraction: f64,
     /// Evaluations made in this generation (the elite is not evaluated again).
     pub evaluations: u64,
+    /// Of which reused from an identical creature evaluated earlier in the run (the others
+    /// were simulated).
+    pub reused: u64,
 }
 
 impl GenerationStats {
@@ -249,6 +266,7 @@ impl GenerationStats {
             sd,
             valid_fraction: n as f64 / population.len().max(1) as f64,
             evaluations,
+            reused: population.iter().filter(|i| i.reused).count() as u64,
         }
     }
 }
@@ -291,36 +309,137 @@ struct Unborn<G> {
     operator: Operator,
 }
 
+/// A new individual developed, before evaluation: its creature (or why it has none) and key.
+struct Developed<G> {
+    unborn: Unborn<G>,
+    creature: Result<Creature, String>,
+    key: Option<EvaluationKey>,
+}
+
+/// Where a new individual's evaluation comes from.
+enum Source {
+    /// Simulated now.
+    Simulated,
+    /// An earlier generation's evaluation of the same key.
+    Cached(Evaluation),
+    /// The evaluation of the lower-indexed individual of this generation with the same key.
+    Sibling(usize),
+}
+
 impl<G: Genome> Evolution<G> {
-    /// Develops and evaluates one genome.
-    fn evaluate(&self, unborn: Unborn<G>) -> Individual<G> {
-        let (evaluation, size) = match unborn.genome.develop(&self.limits, unborn.develop_seed) {
-            Ok(creature) => {
-                let size = (
-                    creature.parts.len() as u32,
-                    creature.joints.len() as u32,
-                    creature.brain.neurons.len() as u32,
-                );
-                (self.task.evaluate(&creature, false), size)
-            }
-            Err(e) => (
-                Evaluation::invalid(self.task.task.name(), format!("development: {e}")),
-                (0, 0, 0),
-            ),
-        };
-        Individual {
-            genome: unborn.genome,
-            develop_seed: unborn.develop_seed,
-            parents: unborn.parents,
-            operator: unborn.operator,
-            evaluation,
-            size,
+    /// The evaluation key of the creature `genome` develops into with `develop_seed` (`None`
+    /// when it does not develop): for an individual stored before keys were.
+    pub fn key(&self, genome: &G, develop_seed: u64) -> Option<EvaluationKey> {
+        genome
+            .develop(&self.limits, develop_seed)
+            .ok()
+            .map(|c| EvaluationKey::of(&c, &self.task))
+    }
+
+    /// Develops one genome and keys its creature with the task.
+    fn develop(&self, unborn: Unborn<G>) -> Developed<G> {
+        let creature = unborn
+            .genome
+            .develop(&self.limits, unborn.develop_seed)
+            .map_err(|e| e.to_string());
+        let key = creature
+            .as_ref()
+            .ok()
+            .map(|c| EvaluationKey::of(c, &self.task));
+        Developed {
+            unborn,
+            creature,
+            key,
         }
     }
 
-    /// Generation 0: random genomes (or mutants of the `init` genome), evaluated in parallel.
-    pub fn first_generation(&self) -> Vec<Individual<G>> {
-        (0..self.settings.population as u32)
+    /// Develops and evaluates new individuals, in parallel. With the cache on, an individual
+    /// whose key the cache holds reuses that evaluation, and one whose key a lower-indexed
+    /// individual of `unborn` has reuses that one's (decided before any simulation, so the
+    /// result does not depend on the number of threads); every new evaluation joins the cache.
+    fn evaluate_all(
+        &self,
+        unborn: Vec<Unborn<G>>,
+        cache: &mut EvaluationCache,
+    ) -> Vec<Individual<G>> {
+        let developed: Vec<Developed<G>> =
+            unborn.into_par_iter().map(|u| self.develop(u)).collect();
+        let mut first_with: HashMap<EvaluationKey, usize> = HashMap::new();
+        let sources: Vec<Source> = developed
+            .iter()
+            .enumerate()
+            .map(|(index, d)| match d.key {
+                Some(key) if cache.enabled() => {
+                    if let Some(evaluation) = cache.get(&key) {
+                        Source::Cached(evaluation.clone())
+                    } else if let Some(&first) = first_with.get(&key) {
+                        Source::Sibling(first)
+                    } else {
+                        first_with.insert(key, index);
+                        Source::Simulated
+                    }
+                }
+                _ => Source::Simulated,
+            })
+            .collect();
+        let simulated: Vec<Option<Evaluation>> = developed
+            .par_iter()
+            .zip(sources.par_iter())
+            .map(|(d, source)| {
+                matches!(source, Source::Simulated).then(|| match &d.creature {
+                    Ok(creature) => self.task.evaluate(creature, false),
+                    Err(e) => {
+                        Evaluation::invalid(self.task.task.name(), format!("development: {e}"))
+                    }
+                })
+            })
+            .collect();
+        let mut born = Vec::with_capacity(developed.len());
+        for (d, source) in developed.into_iter().zip(sources) {
+            let (evaluation, reused) = match source {
+                Source::Simulated => (
+                    simulated[born.len()]
+                        .clone()
+                        .expect("a simulated individual has an evaluation"),
+                    false,
+                ),
+                Source::Cached(evaluation) => (evaluation, true),
+                Source::Sibling(first) => (
+                    simulated[first]
+                        .clone()
+                        .expect("the first of a key is simulated"),
+                    true,
+                ),
+            };
+            if let (Some(key), false) = (d.key, reused) {
+                cache.insert(key, &evaluation);
+            }
+            let size = match &d.creature {
+                Ok(c) => (
+                    c.parts.len() as u32,
+                    c.joints.len() as u32,
+                    c.brain.neurons.len() as u32,
+                ),
+                Err(_) => (0, 0, 0),
+            };
+            born.push(Individual {
+                genome: d.unborn.genome,
+                develop_seed: d.unborn.develop_seed,
+                parents: d.unborn.parents,
+                operator: d.unborn.operator,
+                evaluation,
+                size,
+                key: d.key,
+                reused,
+            });
+        }
+        born
+    }
+
+    /// Generation 0: random genomes (or mutants of the `init` genome), evaluated in parallel
+    /// (identical creatures once, when `cache` is on).
+    pub fn first_generation(&self, cache: &mut EvaluationCache) -> Vec<Individual<G>> {
+        let unborn: Vec<Unborn<G>> = (0..self.settings.population as u32)
             .into_par_iter()
             .map(|index| {
                 let mut rng = individual_rng(self.seed, 0, index, 0);
@@ -334,26 +453,29 @@ impl<G: Genome> Evolution<G> {
                     ),
                     None => (G::random(&self.limits, &mut rng), Operator::Random),
                 };
-                self.evaluate(Unborn {
+                Unborn {
                     genome,
                     develop_seed,
                     parents: Vec::new(),
                     operator,
-                })
+                }
             })
-            .collect()
+            .collect();
+        self.evaluate_all(unborn, cache)
     }
 
     /// The next generation, number `generation`, from `previous` (in any order): the elite
     /// carried over with their evaluations, the rest made by the preset's operators and
     /// evaluated in parallel. Returns it, best first among the elite, and the number of
     /// evaluations made. `fallbacks` counts children made by mutation because the encoding
-    /// lacks the scheduled operator.
+    /// lacks the scheduled operator. A child identical to a creature of `cache` reuses its
+    /// evaluation.
     pub fn next_generation(
         &self,
         previous: &[Individual<G>],
         generation: u32,
         fallbacks: &mut Fallbacks,
+        cache: &mut EvaluationCache,
     ) -> (Vec<Individual<G>>, u64) {
         let order = ranking(previous);
         let population = self.settings.population;
@@ -363,6 +485,7 @@ impl<G: Genome> Evolution<G> {
             .map(|&i| Individual {
                 operator: Operator::Elite,
                 parents: vec![i as u32],
+                reused: false,
                 ..previous[i].clone()
             })
             .collect();
@@ -391,10 +514,7 @@ impl<G: Genome> Evolution<G> {
                 fallbacks.count(*op);
             }
         }
-        let born: Vec<Individual<G>> = unborn
-            .into_par_iter()
-            .map(|(u, _)| self.evaluate(u))
-            .collect();
+        let born = self.evaluate_all(unborn.into_iter().map(|(u, _)| u).collect(), cache);
         let evaluations = born.len() as u64;
         next.extend(born);
         (next, evaluations)

@@ -2,11 +2,13 @@
 //! loop over any [`crate::encoding::Genome`], parallel evaluation), a run's configuration
 //! ([`config`]), its directory ([`run`]), its database ([`store`], the only code that knows
 //! SQL), the lock that keeps a directory one process's ([`lock`]), its fitness plot ([`plot`]), the statistics that compare settings and encodings
-//! ([`stats`]), and comparisons of encodings over replicated runs ([`compare`]).
+//! ([`stats`]), the evaluation cache and its keys ([`cache`], [`key`]), and comparisons of encodings over replicated runs ([`compare`]).
 
+pub mod cache;
 pub mod compare;
 pub mod config;
 pub mod ga;
+pub mod key;
 pub mod lock;
 pub mod plot;
 pub mod run;

@@ -13,8 +13,12 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use rayon::prelude::*;
+
+use super::cache::EvaluationCache;
 use super::config::{RunConfig, check_settings, read_run_config};
 use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, Operator, ranking};
+use super::key::EvaluationKey;
 use super::lock::{DirectoryLock, LockError};
 use super::plot::fitness_svg;
 use super::store::{
@@ -125,6 +129,8 @@ pub struct Run<G: Genome> {
     config: RunConfig<G::Limits>,
     evolution: Evolution<G>,
     store: RunStore,
+    /// The evaluations made so far, by key (rebuilt from the store when the run goes on).
+    cache: EvaluationCache,
     /// The directory's lock, held while the run may write (`None` when opened read-only).
     _lock: Option<DirectoryLock>,
 }
@@ -375,6 +381,7 @@ impl<G: Genome> Run<G> {
         let mut limits = config.limits.clone();
         G::adapt_limits(&mut limits, purpose);
         Run {
+            cache: EvaluationCache::new(config.cache),
             dir: dir.to_path_buf(),
             evolution: Evolution {
                 settings: config.ga.clone(),
@@ -405,16 +412,94 @@ impl<G: Genome> Run<G> {
             .individuals(generation)?
             .iter()
             .map(|r| {
-                serde_json::from_str(&r.genome_json).map_err(|e| {
-                    RunError::Corrupt(format!(
-                        "{}: individual {} of generation {generation} does not read back as a {} genome: {e}",
-                        self.dir.join("run.sqlite").display(),
-                        r.index,
-                        G::NAME
-                    ))
-                })
+                let mut individual: Individual<G> =
+                    serde_json::from_str(&r.genome_json).map_err(|e| {
+                        RunError::Corrupt(format!(
+                            "{}: individual {} of generation {generation} does not read back as a {} genome: {e}",
+                            self.dir.join(STORE_FILE).display(),
+                            r.index,
+                            G::NAME
+                        ))
+                    })?;
+                individual.reused = r.reused;
+                individual.key = r
+                    .evaluation_key
+                    .as_deref()
+                    .map(|hex| self.stored_key(hex, generation, r.index))
+                    .transpose()?;
+                Ok(individual)
             })
             .collect()
+    }
+
+    /// The evaluation key `hex` of individual `index` of generation `generation`.
+    fn stored_key(
+        &self,
+        hex: &str,
+        generation: u32,
+        index: u32,
+    ) -> Result<EvaluationKey, RunError> {
+        EvaluationKey::from_hex(hex).ok_or_else(|| {
+            RunError::Corrupt(format!(
+                "{}: individual {index} of generation {generation} has the evaluation key {hex:?}, not 64 hexadecimal digits",
+                self.dir.join(STORE_FILE).display()
+            ))
+        })
+    }
+
+    /// Fills the evaluation cache (when the run's `cache` is on) from the store: every
+    /// individual evaluated (not reused) with a key, its evaluation read back from its JSON
+    /// form, and each verified generation's fine reference re-walk under its best
+    /// individual's key. A resumed run thus reuses what an uninterrupted one would.
+    fn rebuild_cache(&mut self) -> Result<(), RunError> {
+        /// The evaluation within an individual's JSON form (the genome is skipped).
+        #[derive(serde::Deserialize)]
+        struct StoredEvaluation {
+            evaluation: Evaluation,
+        }
+        let mut cache = EvaluationCache::new(self.config.cache);
+        if cache.enabled() {
+            for (hex, json) in self.store.evaluations_by_key()? {
+                let stored: StoredEvaluation = serde_json::from_str(&json).map_err(|e| {
+                    RunError::Corrupt(format!(
+                        "{}: an individual with the evaluation key {hex} does not read back: {e}",
+                        self.dir.join(STORE_FILE).display()
+                    ))
+                })?;
+                let key = EvaluationKey::from_hex(&hex).ok_or_else(|| {
+                    RunError::Corrupt(format!(
+                        "{}: the evaluation key {hex:?} is not 64 hexadecimal digits",
+                        self.dir.join(STORE_FILE).display()
+                    ))
+                })?;
+                cache.insert(key, &stored.evaluation);
+            }
+            let keys = self.store.keys()?;
+            for generation in self.store.generations()? {
+                let Some(fine) = &generation.best_fine else {
+                    continue;
+                };
+                let members = keys.iter().filter(|k| k.generation == generation.index);
+                // The best as [`ranking`] orders them: highest fitness, then lowest index. A
+                // NaN fitness (stored as NULL, its sign lost) could rank otherwise: skip.
+                let mut best: Option<&super::store::StoredKey> = None;
+                let mut unsure = false;
+                for k in members {
+                    unsure |= k.fitness.is_nan();
+                    if best.is_none_or(|b| k.fitness.total_cmp(&b.fitness).is_gt()) {
+                        best = Some(k);
+                    }
+                }
+                if let (Some(hex), false) = (best.and_then(|b| b.evaluation_key.as_deref()), unsure)
+                {
+                    let key =
+                        self.stored_key(hex, generation.index, best.map_or(0, |b| b.index))?;
+                    cache.insert_fine(key, fine);
+                }
+            }
+        }
+        self.cache = cache;
+        Ok(())
     }
 
     /// Runs the remaining generations, calling `observer` after each.
@@ -424,6 +509,21 @@ impl<G: Genome> Run<G> {
             None => (Vec::new(), 0),
             Some(g) => (self.population(g)?, g + 1),
         };
+        self.rebuild_cache()?;
+        // A generation stored before evaluation keys existed (a migrated store): its
+        // individuals are keyed again, so its elites carry their keys on, and join the cache.
+        if population.iter().any(|i| i.key.is_none()) {
+            let evolution = &self.evolution;
+            population
+                .par_iter_mut()
+                .filter(|i| i.key.is_none())
+                .for_each(|i| i.key = evolution.key(&i.genome, i.develop_seed));
+            for i in &population {
+                if let (Some(key), false) = (i.key, i.reused) {
+                    self.cache.insert(key, &i.evaluation);
+                }
+            }
+        }
         // The previous generation's best (its index) and its fine reference evaluation: an
         // elite copy of it needs no second walk, as the evaluation is a pure function of the
         // genome, its development seed and the task.
@@ -442,12 +542,16 @@ impl<G: Genome> Run<G> {
         for generation in first..generations {
             let started = Instant::now();
             let (next, evaluations) = if generation == 0 {
-                let p = self.evolution.first_generation();
+                let p = self.evolution.first_generation(&mut self.cache);
                 let n = p.len() as u64;
                 (p, n)
             } else {
-                self.evolution
-                    .next_generation(&population, generation, &mut fallbacks)
+                self.evolution.next_generation(
+                    &population,
+                    generation,
+                    &mut fallbacks,
+                    &mut self.cache,
+                )
             };
             population = next;
             let best = ranking(&population).first().copied();
@@ -458,7 +562,16 @@ impl<G: Genome> Run<G> {
                         Some((p, fine)) if b.operator == Operator::Elite && b.parents == [*p] => {
                             fine.clone()
                         }
-                        _ => self.fine_evaluation(b),
+                        _ => match b.key.and_then(|k| self.cache.fine(&k).cloned()) {
+                            Some(fine) => fine,
+                            None => {
+                                let fine = self.fine_evaluation(b);
+                                if let Some(key) = b.key {
+                                    self.cache.insert_fine(key, &fine);
+                                }
+                                fine
+                            }
+                        },
                     })
                 }
                 _ => None,
@@ -535,6 +648,8 @@ impl<G: Genome> Run<G> {
                     parts: i.size.0,
                     joints: i.size.1,
                     neurons: i.size.2,
+                    reused: i.reused,
+                    evaluation_key: i.key.map(|k| k.to_hex()),
                 })
             })
             .collect::<Result<Vec<_>, RunError>>()?;
@@ -584,11 +699,17 @@ impl<G: Genome> Run<G> {
     pub fn write_derived_files(&self) -> Result<(), RunError> {
         let generations = self.store.generations()?;
         let fallbacks = self.fallbacks_by_generation()?;
+        let mut reused = vec![0u64; generations.len()];
+        for (generation, count) in self.store.reused_by_generation()? {
+            if let Some(r) = reused.get_mut(generation as usize) {
+                *r = count;
+            }
+        }
         let mut log = String::new();
         let fitness = self.config.task.fitness_label();
-        for (g, fallen) in generations.iter().zip(&fallbacks) {
+        for (g, reused) in generations.iter().zip(&reused) {
             log.push_str(&format!(
-                "generation {}: {fitness}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations in {:.1} s{}\n",
+                "generation {}: {fitness}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations, {} simulated in {:.1} s\n",
                 g.index,
                 g.best,
                 fine_note(g.best_fine.as_ref()),
@@ -596,9 +717,13 @@ impl<G: Genome> Run<G> {
                 g.median,
                 g.valid_fraction * 100.0,
                 g.evaluations,
+                g.evaluations.saturating_sub(*reused),
                 g.wall_seconds,
-                fallback_note(fallen, G::NAME),
             ));
+        }
+        // The operators the encoding lacks, said once, with the count the store gives.
+        if let (Some(last), Some(fallen)) = (generations.last(), fallbacks.last()) {
+            log.push_str(&fallback_note(fallen, G::NAME, last.index));
         }
         output::write(&self.dir.join(LOG_FILE), log.as_bytes())?;
         if let Some(last) = generations.last() {
@@ -666,12 +791,14 @@ fn fine_note(fine: Option<&FineEvaluation>) -> String {
     }
 }
 
-fn fallback_note(f: &Fallbacks, encoding: &str) -> String {
+/// The line of `log.txt` that says, once, how many children the encoding could not mate
+/// (made by mutation instead) through generation `last`; nothing when there were none.
+fn fallback_note(f: &Fallbacks, encoding: &str, last: u32) -> String {
     if f.crossover == 0 && f.graft == 0 {
         return String::new();
     }
     format!(
-        " (the {encoding} encoding has no {}: {} children so far made by mutation instead)",
+        "note: the {encoding} encoding has no {}: {} children of generations 1 to {last} were made by mutation instead\n",
         match (f.crossover > 0, f.graft > 0) {
             (true, true) => "crossover or grafting",
             (true, false) => "crossover",

@@ -25,7 +25,11 @@ use rusqlite::{
 /// - 2: `generation.best_fine` and `generation.best_fine_status`, the generation's best
 ///   re-walked at the fine reference setting (NULL when not verified). A version-1 file is
 ///   migrated when it is opened for writing; [`RunStore::open_read_only`] reads it as it is.
-pub const SCHEMA_VERSION: i64 = 2;
+/// - 3: `individual.reused` (1 when the individual's evaluation was taken from an identical
+///   creature evaluated earlier in the run) and `individual.evaluation_key` (the key of its
+///   creature and the task, [`crate::evolve::key::EvaluationKey`], NULL when it did not
+///   develop). Versions 1 and 2 are migrated on writing: old rows get `reused` 0 and no key.
+pub const SCHEMA_VERSION: i64 = 3;
 
 /// The oldest schema version this program reads (and migrates when it writes).
 pub const OLDEST_SCHEMA_VERSION: i64 = 1;
@@ -70,6 +74,8 @@ CREATE TABLE individual (
     parts       INTEGER NOT NULL CHECK (parts >= 0),
     joints      INTEGER NOT NULL CHECK (joints >= 0),
     neurons     INTEGER NOT NULL CHECK (neurons >= 0),
+    reused      INTEGER NOT NULL CHECK (reused IN (0, 1)),
+    evaluation_key TEXT CHECK (evaluation_key IS NULL OR length(evaluation_key) = 64),
     PRIMARY KEY (generation, individual)
 ) STRICT;
 ";
@@ -81,7 +87,15 @@ ALTER TABLE generation ADD COLUMN best_fine REAL;
 ALTER TABLE generation ADD COLUMN best_fine_status TEXT;
 ";
 
-/// The columns of the `generation` table (schema version 2).
+/// Version 2 to 3: whether an individual's evaluation was reused, and its evaluation key;
+/// rows stored before were all evaluated (`reused` 0) and have no key.
+const MIGRATE_2_TO_3: &str = "
+ALTER TABLE individual ADD COLUMN reused INTEGER NOT NULL DEFAULT 0 CHECK (reused IN (0, 1));
+ALTER TABLE individual ADD COLUMN evaluation_key TEXT
+    CHECK (evaluation_key IS NULL OR length(evaluation_key) = 64);
+";
+
+/// The columns of the `generation` table (schema version 2 and later).
 const GENERATION_COLUMNS: [&str; 11] = [
     "generation",
     "best",
@@ -99,32 +113,38 @@ const GENERATION_COLUMNS: [&str; 11] = [
 /// The columns of the `generation` table in schema version 1: all but the last two.
 const GENERATION_COLUMNS_V1: &[&str] = GENERATION_COLUMNS.split_at(9).0;
 
-/// Each table's columns, in order, as `open` expects to find them (schema version 2).
+/// The columns of the `individual` table (schema version 3).
+const INDIVIDUAL_COLUMN_NAMES: [&str; 14] = [
+    "generation",
+    "individual",
+    "parents",
+    "operator",
+    "genome_text",
+    "genome_json",
+    "fitness",
+    "status",
+    "terms_json",
+    "parts",
+    "joints",
+    "neurons",
+    "reused",
+    "evaluation_key",
+];
+
+/// The columns of the `individual` table before schema version 3: all but the last two.
+const INDIVIDUAL_COLUMNS_V2: &[&str] = INDIVIDUAL_COLUMN_NAMES.split_at(12).0;
+
+/// Each table's columns, in order, as `open` expects to find them (schema version 3).
 const TABLES: [(&str, &[&str]); 3] = [
     (
         "run",
         &["id", "config", "seed", "encoding", "task", "version"],
     ),
     ("generation", &GENERATION_COLUMNS),
-    (
-        "individual",
-        &[
-            "generation",
-            "individual",
-            "parents",
-            "operator",
-            "genome_text",
-            "genome_json",
-            "fitness",
-            "status",
-            "terms_json",
-            "parts",
-            "joints",
-            "neurons",
-        ],
-    ),
+    ("individual", &INDIVIDUAL_COLUMN_NAMES),
 ];
 
+/// The columns every schema version's `individual` table has, as `SELECT` lists them.
 const INDIVIDUAL_COLUMNS: &str = "generation, individual, parents, operator, genome_text, \
      genome_json, fitness, status, terms_json, parts, joints, neurons";
 
@@ -216,6 +236,28 @@ pub struct IndividualRecord {
     pub joints: u32,
     /// How many neurons its brain has.
     pub neurons: u32,
+    /// Whether its evaluation was taken from an identical creature evaluated earlier in the
+    /// run (always false for an elite, which is carried over, and in a run without cache).
+    pub reused: bool,
+    /// The key of its creature and the run's task, as 64 hex digits (`None` when it did not
+    /// develop, or it was stored before schema version 3).
+    pub evaluation_key: Option<String>,
+}
+
+/// The evaluation key, fitness and reuse of one stored individual: what a resumed run needs
+/// to rebuild its evaluation cache.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StoredKey {
+    /// The index of its generation.
+    pub generation: u32,
+    /// Its index within the generation.
+    pub index: u32,
+    /// Its fitness (NaN where the store holds NULL).
+    pub fitness: f64,
+    /// Whether its evaluation was reused.
+    pub reused: bool,
+    /// Its evaluation key as 64 hex digits, if it has one.
+    pub evaluation_key: Option<String>,
 }
 
 /// Why a run store could not be created, opened, read or written. Every message names the file.
@@ -495,6 +537,9 @@ impl RunStore {
                 if version < 2 {
                     tx.execute_batch(MIGRATE_1_TO_2)?;
                 }
+                if version < 3 {
+                    tx.execute_batch(MIGRATE_2_TO_3)?;
+                }
                 tx.pragma_update(None, "user_version", SCHEMA_VERSION)
             };
             migrate().map_err(|e| {
@@ -682,8 +727,8 @@ impl RunStore {
         {
             let mut insert = tx
                 .prepare(&format!(
-                    "INSERT INTO individual ({INDIVIDUAL_COLUMNS}) \
-                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)"
+                    "INSERT INTO individual ({INDIVIDUAL_COLUMNS}, reused, evaluation_key) \
+                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)"
                 ))
                 .map_err(|e| classify(&path, "cannot prepare the insert", e))?;
             for i in individuals {
@@ -702,6 +747,8 @@ impl RunStore {
                         i.parts,
                         i.joints,
                         i.neurons,
+                        i.reused,
+                        i.evaluation_key,
                     ])
                     .map_err(|e| write_error(&path, g, format!("individual {}", i.index), e))?;
             }
@@ -768,8 +815,8 @@ impl RunStore {
     pub fn individuals(&self, generation: u32) -> Result<Vec<IndividualRecord>, StoreError> {
         let read = || -> rusqlite::Result<Vec<IndividualRecord>> {
             let mut stmt = self.conn.prepare(&format!(
-                "SELECT {INDIVIDUAL_COLUMNS} FROM individual WHERE generation = ?1 \
-                 ORDER BY individual"
+                "SELECT {} FROM individual WHERE generation = ?1 ORDER BY individual",
+                self.individual_columns()
             ))?;
             stmt.query_map([generation], individual_from_row)?.collect()
         };
@@ -802,14 +849,87 @@ impl RunStore {
         self.conn
             .query_row(
                 &format!(
-                    "SELECT {INDIVIDUAL_COLUMNS} FROM individual WHERE fitness IS NOT NULL \
-                     ORDER BY fitness DESC, generation, individual LIMIT 1"
+                    "SELECT {} FROM individual WHERE fitness IS NOT NULL \
+                     ORDER BY fitness DESC, generation, individual LIMIT 1",
+                    self.individual_columns()
                 ),
                 [],
                 individual_from_row,
             )
             .optional()
             .map_err(|e| classify(&self.path, "cannot read the best individual", e))
+    }
+
+    /// The columns an [`IndividualRecord`] is read from: a store older than version 3
+    /// (opened read-only) reads `reused` as 0 and no key.
+    fn individual_columns(&self) -> String {
+        if self.version >= 3 {
+            format!("{INDIVIDUAL_COLUMNS}, reused, evaluation_key")
+        } else {
+            format!("{INDIVIDUAL_COLUMNS}, 0, NULL")
+        }
+    }
+
+    /// Every stored individual's key, fitness and reuse, in generation and index order.
+    pub fn keys(&self) -> Result<Vec<StoredKey>, StoreError> {
+        let columns = if self.version >= 3 {
+            "reused, evaluation_key"
+        } else {
+            "0, NULL"
+        };
+        let read = || -> rusqlite::Result<Vec<StoredKey>> {
+            let mut stmt = self.conn.prepare(&format!(
+                "SELECT generation, individual, fitness, {columns} FROM individual \
+                 ORDER BY generation, individual"
+            ))?;
+            stmt.query_map([], |r| {
+                Ok(StoredKey {
+                    generation: r.get(0)?,
+                    index: r.get(1)?,
+                    fitness: get_real(r, 2)?,
+                    reused: r.get(3)?,
+                    evaluation_key: r.get(4)?,
+                })
+            })?
+            .collect()
+        };
+        read().map_err(|e| classify(&self.path, "cannot read the evaluation keys", e))
+    }
+
+    /// The key and `genome_json` of every stored individual that was evaluated (not reused)
+    /// and has a key, in generation and index order: the evaluations a resumed run's cache
+    /// holds.
+    pub fn evaluations_by_key(&self) -> Result<Vec<(String, String)>, StoreError> {
+        if self.version < 3 {
+            return Ok(Vec::new());
+        }
+        let read = || -> rusqlite::Result<Vec<(String, String)>> {
+            let mut stmt = self.conn.prepare(
+                "SELECT evaluation_key, genome_json FROM individual \
+                 WHERE evaluation_key IS NOT NULL AND reused = 0 \
+                 ORDER BY generation, individual",
+            )?;
+            stmt.query_map([], |r| Ok((r.get(0)?, r.get(1)?)))?
+                .collect()
+        };
+        read().map_err(|e| classify(&self.path, "cannot read the stored evaluations", e))
+    }
+
+    /// How many individuals of each stored generation reused an evaluation, by generation
+    /// index (generations with none are absent).
+    pub fn reused_by_generation(&self) -> Result<Vec<(u32, u64)>, StoreError> {
+        if self.version < 3 {
+            return Ok(Vec::new());
+        }
+        let read = || -> rusqlite::Result<Vec<(u32, u64)>> {
+            let mut stmt = self.conn.prepare(
+                "SELECT generation, count(*) FROM individual WHERE reused = 1 \
+                 GROUP BY generation ORDER BY generation",
+            )?;
+            stmt.query_map([], |r| Ok((r.get(0)?, r.get::<_, i64>(1)?.max(0) as u64)))?
+                .collect()
+        };
+        read().map_err(|e| classify(&self.path, "cannot read the reused evaluations", e))
     }
 }
 
@@ -883,6 +1003,8 @@ fn individual_from_row(r: &Row<'_>) -> rusqlite::Result<IndividualRecord> {
         parts: r.get(9)?,
         joints: r.get(10)?,
         neurons: r.get(11)?,
+        reused: r.get(12)?,
+        evaluation_key: r.get(13)?,
     })
 }
 
@@ -1047,6 +1169,7 @@ fn check_store(path: &Path, conn: &Connection) -> Result<i64, StoreError> {
     for (table, expected) in TABLES {
         let expected = match table {
             "generation" if version < 2 => GENERATION_COLUMNS_V1,
+            "individual" if version < 3 => INDIVIDUAL_COLUMNS_V2,
             _ => expected,
         };
         let mut columns: Vec<String> = Vec::new();

@@ -125,6 +125,8 @@ pub fn make_version_1(path: &std::path::Path) {
     conn.execute_batch(
         "ALTER TABLE generation DROP COLUMN best_fine;
          ALTER TABLE generation DROP COLUMN best_fine_status;
+         ALTER TABLE individual DROP COLUMN reused;
+         ALTER TABLE individual DROP COLUMN evaluation_key;
          PRAGMA user_version = 1;
          PRAGMA wal_checkpoint(TRUNCATE);",
     )

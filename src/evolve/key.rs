@@ -1,0 +1,345 @@
+//! The evaluation key: a SHA-256 hash of a developed creature and the task specification it
+//! is evaluated with, over a canonical byte serialisation of both (every part, joint, neuron
+//! and setting, every `f64` by its bits). An evaluation is a pure function of the creature
+//! and the task, so two individuals with one key have one evaluation.
+
+use serde::ser::{self, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::creature::Creature;
+use crate::task::TaskSpec;
+
+/// A creature-and-task key: 32 bytes, written as 64 lowercase hexadecimal digits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct EvaluationKey(pub [u8; 32]);
+
+impl EvaluationKey {
+    /// The key of evaluating `creature` with `task`.
+    pub fn of(creature: &Creature, task: &TaskSpec) -> EvaluationKey {
+        let mut hasher = CanonicalHasher(Sha256::new());
+        // Serialising plain data into a hasher cannot fail: every value has a byte form.
+        creature
+            .serialize(&mut hasher)
+            .and_then(|()| task.serialize(&mut hasher))
+            .expect("every creature and task serialises");
+        EvaluationKey(hasher.0.finalize().into())
+    }
+
+    /// The key as 64 lowercase hexadecimal digits, as the run store keeps it.
+    pub fn to_hex(&self) -> String {
+        self.0.iter().map(|b| format!("{b:02x}")).collect()
+    }
+
+    /// The key written by [`EvaluationKey::to_hex`]; `None` if `text` is not 64 hex digits.
+    pub fn from_hex(text: &str) -> Option<EvaluationKey> {
+        if text.len() != 64 || !text.is_ascii() {
+            return None;
+        }
+        let mut bytes = [0u8; 32];
+        for (i, b) in bytes.iter_mut().enumerate() {
+            *b = u8::from_str_radix(&text[2 * i..2 * i + 2], 16).ok()?;
+        }
+        Some(EvaluationKey(bytes))
+    }
+}
+
+/// A serde serialiser that feeds a canonical byte form of a value to SHA-256: each value is
+/// a type tag then its bytes (numbers little-endian, floats by their bits, strings and
+/// sequences after their length), so distinct values give distinct byte streams.
+struct CanonicalHasher(Sha256);
+
+/// Serialisation into a hasher never fails; serde requires an error type all the same.
+#[derive(Debug)]
+struct HashError(String);
+
+impl std::fmt::Display for HashError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for HashError {}
+
+impl ser::Error for HashError {
+    fn custom<T: std::fmt::Display>(msg: T) -> Self {
+        HashError(msg.to_string())
+    }
+}
+
+impl CanonicalHasher {
+    fn tag(&mut self, tag: u8) {
+        self.0.update([tag]);
+    }
+
+    fn bytes(&mut self, tag: u8, bytes: &[u8]) {
+        self.tag(tag);
+        self.0.update((bytes.len() as u64).to_le_bytes());
+        self.0.update(bytes);
+    }
+
+    fn length(&mut self, tag: u8, len: Option<usize>) {
+        self.tag(tag);
+        // Sequences of unknown length end with a terminator tag instead.
+        self.0
+            .update((len.map_or(u64::MAX, |n| n as u64)).to_le_bytes());
+    }
+}
+
+impl ser::Serializer for &mut CanonicalHasher {
+    type Ok = ();
+    type Error = HashError;
+    type SerializeSeq = Self;
+    type SerializeTuple = Self;
+    type SerializeTupleStruct = Self;
+    type SerializeTupleVariant = Self;
+    type SerializeMap = Self;
+    type SerializeStruct = Self;
+    type SerializeStructVariant = Self;
+
+    fn serialize_bool(self, v: bool) -> Result<(), HashError> {
+        self.bytes(1, &[v as u8]);
+        Ok(())
+    }
+    fn serialize_i8(self, v: i8) -> Result<(), HashError> {
+        self.serialize_i64(v.into())
+    }
+    fn serialize_i16(self, v: i16) -> Result<(), HashError> {
+        self.serialize_i64(v.into())
+    }
+    fn serialize_i32(self, v: i32) -> Result<(), HashError> {
+        self.serialize_i64(v.into())
+    }
+    fn serialize_i64(self, v: i64) -> Result<(), HashError> {
+        self.bytes(2, &v.to_le_bytes());
+        Ok(())
+    }
+    fn serialize_i128(self, v: i128) -> Result<(), HashError> {
+        self.bytes(3, &v.to_le_bytes());
+        Ok(())
+    }
+    fn serialize_u8(self, v: u8) -> Result<(), HashError> {
+        self.serialize_u64(v.into())
+    }
+    fn serialize_u16(self, v: u16) -> Result<(), HashError> {
+        self.serialize_u64(v.into())
+    }
+    fn serialize_u32(self, v: u32) -> Result<(), HashError> {
+        self.serialize_u64(v.into())
+    }
+    fn serialize_u64(self, v: u64) -> Result<(), HashError> {
+        self.bytes(4, &v.to_le_bytes());
+        Ok(())
+    }
+    fn serialize_u128(self, v: u128) -> Result<(), HashError> {
+        self.bytes(5, &v.to_le_bytes());
+        Ok(())
+    }
+    fn serialize_f32(self, v: f32) -> Result<(), HashError> {
+        self.bytes(6, &v.to_bits().to_le_bytes());
+        Ok(())
+    }
+    fn serialize_f64(self, v: f64) -> Result<(), HashError> {
+        self.bytes(7, &v.to_bits().to_le_bytes());
+        Ok(())
+    }
+    fn serialize_char(self, v: char) -> Result<(), HashError> {
+        self.bytes(8, &u32::from(v).to_le_bytes());
+        Ok(())
+    }
+    fn serialize_str(self, v: &str) -> Result<(), HashError> {
+        self.bytes(9, v.as_bytes());
+        Ok(())
+    }
+    fn serialize_bytes(self, v: &[u8]) -> Result<(), HashError> {
+        self.bytes(10, v);
+        Ok(())
+    }
+    fn serialize_none(self) -> Result<(), HashError> {
+        self.tag(11);
+        Ok(())
+    }
+    fn serialize_some<T: ?Sized + Serialize>(self, value: &T) -> Result<(), HashError> {
+        self.tag(12);
+        value.serialize(self)
+    }
+    fn serialize_unit(self) -> Result<(), HashError> {
+        self.tag(13);
+        Ok(())
+    }
+    fn serialize_unit_struct(self, name: &'static str) -> Result<(), HashError> {
+        self.bytes(14, name.as_bytes());
+        Ok(())
+    }
+    fn serialize_unit_variant(
+        self,
+        _name: &'static str,
+        index: u32,
+        variant: &'static str,
+    ) -> Result<(), HashError> {
+        self.bytes(15, &index.to_le_bytes());
+        self.bytes(15, variant.as_bytes());
+        Ok(())
+    }
+    fn serialize_newtype_struct<T: ?Sized + Serialize>(
+        self,
+        _name: &'static str,
+        value: &T,
+    ) -> Result<(), HashError> {
+        self.tag(16);
+        value.serialize(self)
+    }
+    fn serialize_newtype_variant<T: ?Sized + Serialize>(
+        self,
+        _name: &'static str,
+        index: u32,
+        variant: &'static str,
+        value: &T,
+    ) -> Result<(), HashError> {
+        self.bytes(17, &index.to_le_bytes());
+        self.bytes(17, variant.as_bytes());
+        value.serialize(self)
+    }
+    fn serialize_seq(self, len: Option<usize>) -> Result<Self, HashError> {
+        self.length(18, len);
+        Ok(self)
+    }
+    fn serialize_tuple(self, len: usize) -> Result<Self, HashError> {
+        self.length(19, Some(len));
+        Ok(self)
+    }
+    fn serialize_tuple_struct(self, _name: &'static str, len: usize) -> Result<Self, HashError> {
+        self.length(20, Some(len));
+        Ok(self)
+    }
+    fn serialize_tuple_variant(
+        self,
+        _name: &'static str,
+        index: u32,
+        variant: &'static str,
+        len: usize,
+    ) -> Result<Self, HashError> {
+        self.bytes(21, &index.to_le_bytes());
+        self.bytes(21, variant.as_bytes());
+        self.length(21, Some(len));
+        Ok(self)
+    }
+    fn serialize_map(self, len: Option<usize>) -> Result<Self, HashError> {
+        self.length(22, len);
+        Ok(self)
+    }
+    fn serialize_struct(self, _name: &'static str, len: usize) -> Result<Self, HashError> {
+        self.length(23, Some(len));
+        Ok(self)
+    }
+    fn serialize_struct_variant(
+        self,
+        _name: &'static str,
+        index: u32,
+        variant: &'static str,
+        len: usize,
+    ) -> Result<Self, HashError> {
+        self.bytes(24, &index.to_le_bytes());
+        self.bytes(24, variant.as_bytes());
+        self.length(24, Some(len));
+        Ok(self)
+    }
+}
+
+/// The end of a sequence, map or struct.
+const END: u8 = 0xFF;
+
+macro_rules! compound {
+    ($trait:ident, $method:ident) => {
+        impl ser::$trait for &mut CanonicalHasher {
+            type Ok = ();
+            type Error = HashError;
+            fn $method<T: ?Sized + Serialize>(&mut self, value: &T) -> Result<(), HashError> {
+                value.serialize(&mut **self)
+            }
+            fn end(self) -> Result<(), HashError> {
+                self.tag(END);
+                Ok(())
+            }
+        }
+    };
+}
+
+compound!(SerializeSeq, serialize_element);
+compound!(SerializeTuple, serialize_element);
+compound!(SerializeTupleStruct, serialize_field);
+compound!(SerializeTupleVariant, serialize_field);
+
+impl ser::SerializeMap for &mut CanonicalHasher {
+    type Ok = ();
+    type Error = HashError;
+    fn serialize_key<T: ?Sized + Serialize>(&mut self, key: &T) -> Result<(), HashError> {
+        key.serialize(&mut **self)
+    }
+    fn serialize_value<T: ?Sized + Serialize>(&mut self, value: &T) -> Result<(), HashError> {
+        value.serialize(&mut **self)
+    }
+    fn end(self) -> Result<(), HashError> {
+        self.tag(END);
+        Ok(())
+    }
+}
+
+macro_rules! fields {
+    ($trait:ident) => {
+        impl ser::$trait for &mut CanonicalHasher {
+            type Ok = ();
+            type Error = HashError;
+            fn serialize_field<T: ?Sized + Serialize>(
+                &mut self,
+                key: &'static str,
+                value: &T,
+            ) -> Result<(), HashError> {
+                self.bytes(25, key.as_bytes());
+                value.serialize(&mut **self)
+            }
+            fn skip_field(&mut self, key: &'static str) -> Result<(), HashError> {
+                self.bytes(26, key.as_bytes());
+                Ok(())
+            }
+            fn end(self) -> Result<(), HashError> {
+                self.tag(END);
+                Ok(())
+            }
+        }
+    };
+}
+
+fields!(SerializeStruct);
+fields!(SerializeStructVariant);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::task::TaskKind;
+
+    #[test]
+    fn a_key_reads_back_from_its_hex_form() {
+        let key = EvaluationKey::of(&Creature::default(), &TaskSpec::new(TaskKind::Walker));
+        assert_eq!(key.to_hex().len(), 64);
+        assert_eq!(EvaluationKey::from_hex(&key.to_hex()), Some(key));
+        assert_eq!(EvaluationKey::from_hex("zz"), None);
+    }
+
+    #[test]
+    fn a_key_changes_with_the_last_bit_of_a_value_and_with_the_task() {
+        let task = TaskSpec::new(TaskKind::Walker);
+        let mut creature = Creature {
+            environment: vec![0.5],
+            ..Creature::default()
+        };
+        let key = EvaluationKey::of(&creature, &task);
+        assert_eq!(EvaluationKey::of(&creature.clone(), &task), key);
+        creature.environment[0] = f64::from_bits(0.5f64.to_bits() + 1);
+        assert_ne!(EvaluationKey::of(&creature, &task), key);
+        creature.environment[0] = 0.5;
+        assert_ne!(
+            EvaluationKey::of(&creature, &TaskSpec::new(TaskKind::Jump)),
+            key
+        );
+    }
+}
