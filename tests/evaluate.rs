@@ -310,6 +310,7 @@ fn every_actuator_model_delivers_its_torque_against_gravity() {
     // strength is 10⁴ N·m per m² × 1 m².
     for model in [
         ActuatorModel::Muscle,
+        ActuatorModel::MuscleTorque,
         ActuatorModel::Velocity,
         ActuatorModel::Angle,
     ] {
@@ -328,6 +329,36 @@ fn every_actuator_model_delivers_its_torque_against_gravity() {
             after.y > before.y + 0.3,
             "{model:?}: the child should swing up, from {before:?} to {after:?}"
         );
+    }
+}
+
+#[test]
+fn both_muscles_give_the_signal_times_the_strength() {
+    use ontogeny::sim::World;
+    // The lifter's child (2 kg, its centre 0.5 m beyond the hinge) needs 2 × 9.81 × 0.5 =
+    // 9.81 N·m to rise. A signal of 0.5 on a joint of 1 m² cross-section gives 0.5 × strength
+    // N·m: 13 N·m at 26 N·m/m² lifts it, 8 N·m at 16 does not, for the motor and the torque.
+    for model in [ActuatorModel::Muscle, ActuatorModel::MuscleTorque] {
+        for (strength, lifts) in [(26.0, true), (16.0, false)] {
+            let sim = SimOptions {
+                actuator: model,
+                strength,
+                ..SimOptions::default()
+            };
+            let mut c = lifter();
+            c.environment = vec![0.5];
+            let mut world = World::new(&c, &sim).unwrap();
+            let before = world.part_position(1);
+            for _ in 0..240 {
+                world.step(true).unwrap();
+            }
+            let risen = world.part_position(1).y - before.y;
+            assert_eq!(
+                risen > 0.3,
+                lifts,
+                "{model:?} at {strength} N·m/m²: the child rose {risen} m"
+            );
+        }
     }
 }
 

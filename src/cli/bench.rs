@@ -16,7 +16,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::eval::{SteppingArgs, flag_error};
+use super::eval::{ActuatorArg, SteppingArgs, flag_error};
 use super::progress::Progress;
 
 /// Flags of `ontogeny bench`.
@@ -32,6 +32,9 @@ pub struct BenchArgs {
     /// evaluator's).
     #[command(flatten)]
     stepping: SteppingArgs,
+    /// The actuator model measured (and of the fine reference).
+    #[arg(long, value_enum, default_value = "muscle")]
+    actuator: ActuatorArg,
     /// Also measure fidelity: walk this many creatures (the shipped examples, then random
     /// command strings) `--runs` times with the setting and with a fine reference (1/240 s
     /// physics, 8 solver iterations), and print the Spearman rank correlation of their median
@@ -109,7 +112,11 @@ fn one_core(creature: &Creature, sim: &SimOptions, n: usize, seconds: f64) -> (f
 /// Measures and prints the figures the README reports.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     task::check_duration("seconds", args.seconds).map_err(flag_error)?;
-    let sim = args.stepping.apply(&SimOptions::default())?;
+    let base = SimOptions {
+        actuator: args.actuator.model(),
+        ..SimOptions::default()
+    };
+    let sim = args.stepping.apply(&base)?;
     let n = args.evaluations.max(1);
     let steps = (args.seconds / sim.dt).round();
     if let Some(file) = &args.creature {
@@ -148,9 +155,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         pgs_iterations: 1,
         rest_substeps: 2,
         rest_solver_iterations: 4,
-        ..SimOptions::default()
+        ..base.clone()
     };
-    let fast = SimOptions::default().fast();
+    let fast = base.fast();
     let walker = chain(10);
     say!(
         "10-part walker, {} s at 1/60 s, {} evaluations per row; {} threads available",

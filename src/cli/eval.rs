@@ -41,13 +41,28 @@ enum JointsArg {
 
 /// Actuator models.
 #[derive(Clone, Copy, ValueEnum)]
-enum ActuatorArg {
+pub enum ActuatorArg {
     /// Chaumont's muscle: saturated motor, torque scaled by |signal|.
     Muscle,
+    /// Chaumont's muscle as a torque of signal × strength on the joint's two parts, without
+    /// a motor constraint.
+    MuscleTorque,
     /// Hornby's: the signal sets the target angle.
     Angle,
     /// Matos's: the signal sets the target speed.
     Velocity,
+}
+
+impl ActuatorArg {
+    /// The library's actuator model of this name.
+    pub fn model(self) -> ActuatorModel {
+        match self {
+            ActuatorArg::Muscle => ActuatorModel::Muscle,
+            ActuatorArg::MuscleTorque => ActuatorModel::MuscleTorque,
+            ActuatorArg::Angle => ActuatorModel::Angle,
+            ActuatorArg::Velocity => ActuatorModel::Velocity,
+        }
+    }
 }
 
 /// Whose cross-section sets a joint's strength.
@@ -179,11 +194,7 @@ impl PhysicsArgs {
                 StrengthArg::Smaller => StrengthFrom::Smaller,
                 StrengthArg::Bigger => StrengthFrom::Bigger,
             },
-            actuator: match self.actuator {
-                ActuatorArg::Muscle => ActuatorModel::Muscle,
-                ActuatorArg::Angle => ActuatorModel::Angle,
-                ActuatorArg::Velocity => ActuatorModel::Velocity,
-            },
+            actuator: self.actuator.model(),
             ..SimOptions::default()
         };
         self.stepping.apply(&base)

@@ -323,6 +323,7 @@ pub fn to_mjcf(
     let friction = format!("{} {TORSIONAL_AND_ROLLING}", numbers(&[options.friction]));
     let model = match options.actuator {
         ActuatorModel::Muscle => "muscle",
+        ActuatorModel::MuscleTorque => "muscle-torque",
         ActuatorModel::Angle => "angle",
         ActuatorModel::Velocity => "velocity",
     };
@@ -466,6 +467,11 @@ pub fn to_mjcf(
                     a.name,
                     numbers(&[t * SATURATION_DAMPING]),
                     numbers(&[-target_speed, target_speed])
+                ),
+                ActuatorModel::MuscleTorque => format!(
+                    "<motor name=\"{0}\" joint=\"{0}\" gear=\"{1}\" ctrlrange=\"-1 1\"/>",
+                    a.name,
+                    numbers(&[t])
                 ),
                 ActuatorModel::Angle => {
                     let (lo, hi) = creature.joints[a.joint].limits[a.dof];

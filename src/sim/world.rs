@@ -51,6 +51,10 @@ pub enum ActuatorModel {
     /// Chaumont et al. 5.3: the motor runs at saturation, its target velocity fixed high in
     /// the signal's sign, its maximum torque |s| × the joint's strength.
     Muscle,
+    /// Chaumont et al. 5.3's muscle applied as what a saturated motor gives: a torque of
+    /// s × the joint's strength about the joint's axis, equal and opposite on its two parts,
+    /// with no motor row in the joint's constraint.
+    MuscleTorque,
     /// Hornby & Pollack: s sets the target angle inside the joint's range.
     Angle,
     /// Matos & Arita: s sets the target angular velocity (s × `max_speed`).
@@ -259,6 +263,8 @@ const ANGULAR: [JointAxis; 3] = [JointAxis::AngX, JointAxis::AngY, JointAxis::An
 struct JointInfo {
     limits: Vec<(f64, f64)>,
     max_torque: f64,
+    /// The torques (N·m) the torque muscle applies about the joint's axes this control step.
+    torques: [f64; 3],
 }
 
 /// How near a part's contact point must be to the ground to count as touching it (m): the
@@ -464,6 +470,7 @@ impl World {
                 world.joint_info.push(JointInfo {
                     limits: joint.limits.clone(),
                     max_torque,
+                    torques: [0.0; 3],
                 });
                 continue;
             }
@@ -505,6 +512,7 @@ impl World {
             world.joint_info.push(JointInfo {
                 limits: joint.limits.clone(),
                 max_torque,
+                torques: [0.0; 3],
             });
         }
         world.previous = (0..world.parts.len())
@@ -605,17 +613,9 @@ impl World {
     /// the torque limit × the joint's angular speed.
     fn motor_power_bound(&self) -> f64 {
         let mut work = 0.0;
-        for (j, handle) in self.joints.iter().enumerate() {
-            let data = match *handle {
-                JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
-                    Some(joint) => &joint.data,
-                    None => continue,
-                },
-                JointHandle::Multibody(h) => match self.multibody_joints.get(h) {
-                    Some((mb, link)) => &mb.link(link).expect("link exists").joint.data,
-                    None => continue,
-                },
-                JointHandle::Fused => continue,
+        for j in 0..self.joints.len() {
+            let Some(data) = self.joint_data(j) else {
+                continue;
             };
             let (b1, b2) = self.joint_ends[j];
             let relative = self.bodies[b2].angvel() - self.bodies[b1].angvel();
@@ -626,7 +626,8 @@ impl World {
                 .enumerate()
                 .take(dof)
             {
-                let limit = data.motors[3 + k].max_force as f64;
+                let limit =
+                    data.motors[3 + k].max_force as f64 + self.joint_info[j].torques[k].abs();
                 if limit > 0.0 {
                     work += limit * (relative.dot(frame * axis) as f64).abs();
                 }
@@ -956,6 +957,11 @@ impl World {
                     let (muscle_speed, speed) = (self.options.muscle_speed, self.options.max_speed);
                     let model = self.options.actuator;
                     let axis = ANGULAR[dof.min(2)];
+                    if model == ActuatorModel::MuscleTorque {
+                        let torque = if on { s * max_torque } else { 0.0 };
+                        self.joint_info[joint].torques[dof.min(2)] = torque;
+                        continue;
+                    }
                     self.with_joint(joint, |data| {
                         if !on {
                             data.set_motor_max_force(axis, 0.0);
@@ -963,7 +969,7 @@ impl World {
                         }
                         let stiff = (max_torque * SATURATION_DAMPING).max(1e-3) as Real;
                         match model {
-                            ActuatorModel::Muscle => {
+                            ActuatorModel::Muscle | ActuatorModel::MuscleTorque => {
                                 data.set_motor_velocity(
                                     axis,
                                     (muscle_speed * s.signum()) as Real,
@@ -1002,6 +1008,47 @@ impl World {
         }
     }
 
+    /// The torque muscle: sets every creature body's torque to the sum of the muscle torques
+    /// of its joints, each about the joint's axis as it is now (its first part's frame), +τ on
+    /// the second part and −τ on the first.
+    fn apply_muscle_torques(&mut self) {
+        for &b in &self.creature_bodies {
+            self.bodies[b].reset_torques(false);
+        }
+        for j in 0..self.joints.len() {
+            let torques = self.joint_info[j].torques;
+            if torques == [0.0; 3] {
+                continue;
+            }
+            let Some(frame1) = self.joint_data(j).map(|data| data.local_frame1.rotation) else {
+                continue;
+            };
+            let (b1, b2) = self.joint_ends[j];
+            let frame = *self.bodies[b1].rotation() * frame1;
+            let torque = [Vector::X, Vector::Y, Vector::Z]
+                .into_iter()
+                .zip(torques)
+                .fold(Vector::ZERO, |sum, (axis, t)| {
+                    sum + frame * axis * t as Real
+                });
+            self.bodies[b2].add_torque(torque, true);
+            self.bodies[b1].add_torque(-torque, true);
+        }
+    }
+
+    /// Joint `j`'s data, or `None` for a fused joint.
+    fn joint_data(&self, j: usize) -> Option<&GenericJoint> {
+        match self.joints[j] {
+            JointHandle::Impulse(h) => self.impulse_joints.get(h).map(|joint| &joint.data),
+            JointHandle::Multibody(h) => self
+                .multibody_joints
+                .get(h)
+                .and_then(|(mb, link)| mb.link(link))
+                .map(|link| &link.joint.data),
+            JointHandle::Fused => None,
+        }
+    }
+
     fn with_joint(&mut self, j: usize, f: impl FnOnce(&mut GenericJoint)) {
         match self.joints[j] {
             JointHandle::Impulse(h) => {
@@ -1031,7 +1078,11 @@ impl World {
         self.drive(controller);
         let power_before = self.motor_power_bound();
         let started = std::time::Instant::now();
+        let torque_muscles = self.options.actuator == ActuatorModel::MuscleTorque;
         for _ in 0..self.stepping().0 {
+            if torque_muscles {
+                self.apply_muscle_torques();
+            }
             self.pipeline.step(
                 self.gravity,
                 &self.params,
