@@ -300,6 +300,7 @@ fn actuators_match_each_actuator_model() {
     let c = multi_dof();
     for model in [
         ActuatorModel::Muscle,
+        ActuatorModel::MuscleTorque,
         ActuatorModel::Velocity,
         ActuatorModel::Angle,
     ] {
@@ -332,6 +333,12 @@ fn actuators_match_each_actuator_model() {
                     };
                     assert_eq!(loaded.ctrl_range, Some([-v, v]));
                 }
+                ActuatorModel::MuscleTorque => {
+                    // A torque of s × t: MuJoCo's motor with gear t and s in [-1, 1].
+                    assert_eq!(loaded.kind, ActuatorKind::Motor);
+                    assert_eq!(loaded.gear[0], t);
+                    assert_eq!(loaded.ctrl_range, Some([-1.0, 1.0]));
+                }
                 ActuatorModel::Angle => {
                     assert_eq!(loaded.kind, ActuatorKind::Position);
                     assert_eq!(loaded.kp, Some(t * ANGLE_STIFFNESS));
@@ -342,6 +349,7 @@ fn actuators_match_each_actuator_model() {
         }
         let name = match model {
             ActuatorModel::Muscle => "muscle",
+            ActuatorModel::MuscleTorque => "muscle-torque",
             ActuatorModel::Velocity => "velocity",
             ActuatorModel::Angle => "angle",
         };

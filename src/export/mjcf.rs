@@ -469,7 +469,7 @@ pub fn to_mjcf(
                     numbers(&[-target_speed, target_speed])
                 ),
                 ActuatorModel::MuscleTorque => format!(
-                    "<motor name=\"{0}\" joint=\"{0}\" gear=\"{1}\" ctrlrange=\"-1 1\"/>",
+                    "<motor name=\"{0}\" joint=\"{0}\" gear=\"{1}\" ctrlrange=\"-1 1\" {force}/>",
                     a.name,
                     numbers(&[t])
                 ),
