@@ -448,7 +448,7 @@ fn a_version_1_database_is_migrated_on_resume() {
 }
 
 #[test]
-fn the_warning_threshold_is_half_the_stored_best() {
+fn the_warning_threshold_is_half_the_stored_best_s_size() {
     // Half of 26.23 is 13.115.
     assert!(exploits_stepping(26.23, 4.10));
     assert!(exploits_stepping(26.23, 13.11));
@@ -456,9 +456,14 @@ fn the_warning_threshold_is_half_the_stored_best() {
     assert!(!exploits_stepping(26.23, 30.0));
     // No number at the fine reference: suspicious too.
     assert!(exploits_stepping(26.23, f64::NAN));
-    // A best that is not positive has no meaningful half.
+    // A best of 0 has nothing to lose.
     assert!(!exploits_stepping(0.0, -5.0));
-    assert!(!exploits_stepping(-3.0, -999_999.0));
+    // A negative best (the hornby-pollack fitness can be one) is suspicious when it falls
+    // by more than half its size: -2 to below -3.
+    assert!(!exploits_stepping(-2.0, -2.9));
+    assert!(!exploits_stepping(-2.0, 1.0));
+    assert!(exploits_stepping(-2.0, -3.1));
+    assert!(exploits_stepping(-3.0, -999_999.0));
 }
 
 #[test]

@@ -434,7 +434,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
             && exploits_stepping(r.stats.best, f.fitness)
         {
             say!(
-                "warning: the champion scores {:.6} at the fine reference setting, less than half its {:.6}: it may exploit the simulator's step setting (see the README's \"Evolve\", \"Re-walking the best at the fine reference\")",
+                "warning: the champion scores {:.6} at the fine reference setting, down more than half of its {:.6}: it may exploit the simulator's step setting (see the README's \"Evolve\", \"Re-walking the best at the fine reference\")",
                 f.fitness,
                 r.stats.best
             );

@@ -775,11 +775,13 @@ fn status_text(e: &Evaluation) -> String {
         .unwrap_or_default()
 }
 
-/// Whether a champion's fitness at the fine reference setting, `fine`, is below half its
-/// stored fitness `best` (a positive one), or is no number: then its score may owe more to
-/// the evaluator's coarse stepping than to its behaviour, and `ontogeny evolve` warns.
+/// Whether a champion's fitness at the fine reference setting, `fine`, falls below its
+/// stored fitness `best` by more than half of `best`'s size (below half a positive `best`;
+/// below 1.5 × a negative one), or is no number: then its score may owe more to the
+/// evaluator's coarse stepping than to its behaviour, and `ontogeny evolve` warns. A `best`
+/// of 0 has nothing to lose.
 pub fn exploits_stepping(best: f64, fine: f64) -> bool {
-    best > 0.0 && (fine.is_nan() || fine < best / 2.0)
+    best != 0.0 && best.is_finite() && (fine.is_nan() || fine < best - best.abs() / 2.0)
 }
 
 /// " (fine reference 4.100000)" for a log line, or nothing when the best was not verified.
