@@ -224,6 +224,10 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
         });
     if line_text.contains("->") && !line_text.contains("-->") {
         diagnostic.with_note("a rule's arrow is '-->'")
+    } else if let Some(header) = miscased_header(line_text) {
+        diagnostic.with_note(format!(
+            "headers are written in lower case: '{header}:' (a capitalised word is a module)"
+        ))
     } else if let Some((header, _)) = header {
         diagnostic.with_note(format!("a header ends with a colon: '{header}: ...'"))
     } else if let (Some(word), true) = (word_before_space, found == "'('") {
@@ -233,6 +237,19 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
     } else {
         diagnostic
     }
+}
+
+/// The header `line` starts with when it is written in other letter case (`Axiom: A`), and is
+/// followed by a colon; `None` when it is written right or is no header.
+fn miscased_header(line: &str) -> Option<&'static str> {
+    let line = line.trim_start();
+    HEADERS.iter().map(|(h, _)| *h).find(|h| {
+        line.get(..h.len()).is_some_and(|start| {
+            start.eq_ignore_ascii_case(h)
+                && start != *h
+                && line[h.len()..].trim_start().starts_with(':')
+        })
+    })
 }
 
 /// The byte range a pest error points at.
