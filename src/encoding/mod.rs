@@ -9,13 +9,16 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Serialize, de::DeserializeOwned};
 
 use crate::creature::Creature;
+use crate::lang::ast::{Expr, UnaryOp};
 
-pub mod command;
 pub mod continuous;
 pub mod direct;
+mod draw;
 pub mod graph;
 pub mod lsystem;
 
+/// The building commands genomes write (the language's one table of commands).
+pub use crate::lang::commands as command;
 pub use continuous::{ContinuousGenome, ContinuousLimits};
 pub use direct::{DirectGenome, DirectLimits};
 pub use graph::{GraphGenome, GraphLimits, JointSet};
@@ -113,5 +116,23 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
             "the {} encoding cannot start from a grammar",
             Self::NAME
         )))
+    }
+}
+
+/// A constant number written as such in a hand-written file (`0.5`, `-1`); with
+/// `nested_minus`, minus signs may nest (`-(-1)` is 1), else only one is read.
+pub(crate) fn number(e: &Expr, nested_minus: bool) -> Option<f64> {
+    match e {
+        Expr::Number(v, _) => Some(*v),
+        Expr::Unary {
+            op: UnaryOp::Neg,
+            operand,
+            ..
+        } => match operand.as_ref() {
+            Expr::Number(v, _) => Some(-v),
+            nested if nested_minus => number(nested, true).map(|v| -v),
+            _ => None,
+        },
+        _ => None,
     }
 }
