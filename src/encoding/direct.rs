@@ -246,6 +246,9 @@ impl Genome for DirectGenome {
 
     const NAME: &'static str = "direct";
 
+    const DESCRIPTION: &'static str =
+        "Hornby & Pollack's non-generative baseline: one string of commands";
+
     fn random(limits: &DirectLimits, rng: &mut Rng) -> Self {
         let len = rng.random_range(1..=limits.random_modules());
         DirectGenome {

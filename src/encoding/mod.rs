@@ -16,6 +16,7 @@ pub mod direct;
 mod draw;
 pub mod graph;
 pub mod lsystem;
+mod registry;
 
 /// The building commands genomes write (the language's one table of commands).
 pub use crate::lang::commands as command;
@@ -23,6 +24,7 @@ pub use continuous::{ContinuousGenome, ContinuousLimits};
 pub use direct::{DirectGenome, DirectLimits};
 pub use graph::{GraphGenome, GraphLimits, JointSet};
 pub use lsystem::{LSystemGenome, LSystemLimits};
+pub use registry::{ENCODINGS, EncodingInfo, encoding_named};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.
@@ -57,6 +59,14 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
 
     /// The encoding's name, as the CLI and the run store spell it.
     const NAME: &'static str;
+
+    /// One line for people (the command line's help lists it beside [`Genome::NAME`]).
+    const DESCRIPTION: &'static str = "";
+
+    /// Keys of [`Genome::Limits`] added after runs had begun, with the value (a string) that
+    /// a run begun before the key existed ran with: a resumed run's `config.toml` that lacks
+    /// a key gets it, so that the run keeps what it ran with.
+    const LIMITS_OF_OLDER_RUNS: &'static [(&'static str, &'static str)] = &[];
 
     /// The extension of the file that holds [`Genome::to_text`] (a run's `best.lsys`,
     /// `best.json`, ...).

@@ -490,6 +490,8 @@ impl Genome for ContinuousGenome {
 
     const NAME: &'static str = "lsystem-continuous";
 
+    const DESCRIPTION: &'static str = "Matos & Arita's continuous (dL) L-system";
+
     fn random(limits: &ContinuousLimits, rng: &mut Rng) -> Self {
         ContinuousGenome::random_genome(limits, rng)
     }

@@ -357,33 +357,31 @@ pub(super) fn random_axiom(
 
 // ---- mutation ------------------------------------------------------------------------
 
-/// The index of the bracket matching the one at `i`.
+/// The index of the bracket matching the one at `i` (scanning forward from a `[`, backward
+/// from a `]`).
 pub(super) fn matching_bracket(seq: &[Token], i: usize) -> Option<usize> {
+    let forward = seq[i] == Token::Push;
+    if !forward && seq[i] != Token::Pop {
+        return None;
+    }
+    let (opens, closes) = if forward {
+        (Token::Push, Token::Pop)
+    } else {
+        (Token::Pop, Token::Push)
+    };
+    let order: Box<dyn Iterator<Item = usize>> = if forward {
+        Box::new(i..seq.len())
+    } else {
+        Box::new((0..=i).rev())
+    };
     let mut depth = 0i64;
-    if seq[i] == Token::Push {
-        for (k, t) in seq.iter().enumerate().skip(i) {
-            match t {
-                Token::Push => depth += 1,
-                Token::Pop => {
-                    depth -= 1;
-                    if depth == 0 {
-                        return Some(k);
-                    }
-                }
-                _ => {}
-            }
-        }
-    } else if seq[i] == Token::Pop {
-        for k in (0..=i).rev() {
-            match seq[k] {
-                Token::Pop => depth += 1,
-                Token::Push => {
-                    depth -= 1;
-                    if depth == 0 {
-                        return Some(k);
-                    }
-                }
-                _ => {}
+    for k in order {
+        if seq[k] == opens {
+            depth += 1;
+        } else if seq[k] == closes {
+            depth -= 1;
+            if depth == 0 {
+                return Some(k);
             }
         }
     }

@@ -443,6 +443,12 @@ impl Genome for GraphGenome {
 
     const NAME: &'static str = "graph";
 
+    const DESCRIPTION: &'static str = "Sims' directed graph, as Chaumont et al. reimplemented it";
+
+    /// A run begun before `joint_kinds` existed drew all of Sims' joint kinds.
+    const LIMITS_OF_OLDER_RUNS: &'static [(&'static str, &'static str)] =
+        &[("joint_kinds", "sims")];
+
     const TEXT_EXTENSION: &'static str = "json";
 
     fn adapt_limits(limits: &mut GraphLimits, purpose: Purpose) {

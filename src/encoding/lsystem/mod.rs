@@ -385,6 +385,8 @@ impl Genome for LSystemGenome {
 
     const NAME: &'static str = "lsystem";
 
+    const DESCRIPTION: &'static str = "Hornby & Pollack's parametric L-system";
+
     fn random(limits: &LSystemLimits, rng: &mut Rng) -> Self {
         LSystemGenome::random_genome(limits, rng)
     }
