@@ -320,7 +320,7 @@ fn split_words(system: &LSystem, findings: &mut Findings) {
 }
 
 impl LSystem {
-    /// Analyses the system without deriving it: the [`PASSES`] in order, their findings
+    /// Analyses the system without deriving it: the named passes in order, their findings
     /// sorted by place.
     pub fn check(&self) -> Report {
         let mut findings = Findings {
