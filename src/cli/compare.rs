@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context;
-use clap::{Args, ValueEnum};
+use clap::Args;
 use ontogeny::encoding::Genome;
 use ontogeny::evolve::compare::{
     self, CompareError, Manifest, Replicate, ReplicateState, Shared, evaluations_of,
@@ -19,15 +19,15 @@ use ontogeny::task::WalkerFitness;
 use super::eval::setting_parser;
 
 use super::evolve::{
-    EncodingArg, PresetArg, TaskArg, bad, check_seconds, config_error, resolve_task, run_error,
-    set_threads,
+    EncodingArg, TaskArg, bad, check_seconds, config_error, encoding_names, encoding_parser,
+    resolve_task, run_error, set_threads,
 };
 
 /// Flags of `ontogeny compare`.
 #[derive(Args)]
 pub struct CompareArgs {
     /// The encodings to compare, comma-separated (e.g. lsystem,direct).
-    #[arg(long, value_enum, value_delimiter = ',', required_unless_present_any = ["resume", "merge"])]
+    #[arg(long, value_parser = encoding_parser(), value_delimiter = ',', required_unless_present_any = ["resume", "merge"])]
     encodings: Vec<EncodingArg>,
     /// The task (default: the config's, else walker).
     #[arg(long, value_enum)]
@@ -50,8 +50,8 @@ pub struct CompareArgs {
     #[arg(long, value_name = "DIR", required_unless_present_any = ["resume", "merge"])]
     out: Option<PathBuf>,
     /// The genetic algorithm's schedule (default: the config's, else chaumont).
-    #[arg(long, value_enum)]
-    preset: Option<PresetArg>,
+    #[arg(long, value_parser = super::evolve::preset_parser())]
+    preset: Option<ontogeny::evolve::ga::Preset>,
     /// Individuals per generation (default: the preset's, 300).
     #[arg(long)]
     pop: Option<usize>,
@@ -168,11 +168,7 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     if encodings.is_empty() {
         return Err(bad(format!(
             "--encodings needs at least one of {}",
-            EncodingArg::value_variants()
-                .iter()
-                .map(|e| e.name())
-                .collect::<Vec<_>>()
-                .join(", ")
+            encoding_names()
         )));
     }
     let replicates = args.replicates.unwrap_or(10);
@@ -220,7 +216,7 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     }
     let mut overrides = file.ga.clone();
     if let Some(p) = args.preset {
-        overrides.preset = Some(p.preset());
+        overrides.preset = Some(p);
     }
     if args.pop.is_some() {
         overrides.population = args.pop;

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
-use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome};
+use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, LSystemGenome, encoding_named};
 use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, encoding_of, read_config};
 use ontogeny::evolve::ga::Preset;
 use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run, exploits_stepping};
@@ -16,29 +16,37 @@ use ontogeny::task::{TaskKind, TaskSpec, WalkerFitness};
 
 use super::eval::{flag_error, setting_parser};
 
-/// The encodings `--encoding` accepts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum EncodingArg {
-    /// Hornby & Pollack's parametric L-system.
-    Lsystem,
-    /// Matos & Arita's continuous (dL) L-system.
-    LsystemContinuous,
-    /// Hornby & Pollack's non-generative baseline: one string of commands.
-    Direct,
-    /// Sims' directed graph, as Chaumont et al. reimplemented it.
-    Graph,
-}
+/// An encoding `--encoding` accepts: one of the library's registry ([`ENCODINGS`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EncodingArg(&'static EncodingInfo);
 
 impl EncodingArg {
     /// The encoding's name, as the run store spells it.
     pub fn name(self) -> &'static str {
-        match self {
-            EncodingArg::Lsystem => LSystemGenome::NAME,
-            EncodingArg::LsystemContinuous => ContinuousGenome::NAME,
-            EncodingArg::Direct => DirectGenome::NAME,
-            EncodingArg::Graph => GraphGenome::NAME,
-        }
+        self.0.name
     }
+}
+
+/// Parses an encoding's name, every name listed in the help with its description.
+pub fn encoding_parser() -> impl clap::builder::TypedValueParser<Value = EncodingArg> {
+    use clap::builder::TypedValueParser;
+    let names = ENCODINGS
+        .iter()
+        .map(|e| clap::builder::PossibleValue::new(e.name).help(e.description));
+    clap::builder::PossibleValuesParser::new(names).try_map(|name: String| {
+        encoding_named(&name)
+            .map(EncodingArg)
+            .ok_or_else(|| format!("unknown encoding '{name}'"))
+    })
+}
+
+/// Every encoding's name, comma-separated (for messages).
+pub fn encoding_names() -> String {
+    ENCODINGS
+        .iter()
+        .map(|e| e.name)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The tasks `--task` accepts.
@@ -111,23 +119,14 @@ pub fn resolve_task(
     Ok(spec)
 }
 
-/// The presets `--preset` accepts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum PresetArg {
-    /// Chaumont et al. 5.7.
-    Chaumont,
-    /// Walking with Dinosaurs 3.3.
-    Wwd,
-}
-
-impl PresetArg {
-    /// The preset it names.
-    pub fn preset(self) -> Preset {
-        match self {
-            PresetArg::Chaumont => Preset::Chaumont,
-            PresetArg::Wwd => Preset::Wwd,
-        }
-    }
+/// Parses `--preset`: one of the library's presets by its name ([`Preset::name`]), every
+/// name listed in the help with its summary.
+pub fn preset_parser() -> impl clap::builder::TypedValueParser<Value = Preset> {
+    use clap::builder::TypedValueParser;
+    let names = Preset::ALL.map(|p| clap::builder::PossibleValue::new(p.name()).help(p.summary()));
+    clap::builder::PossibleValuesParser::new(names).try_map(|name: String| {
+        Preset::named(&name).ok_or_else(|| format!("unknown preset '{name}'"))
+    })
 }
 
 /// Flags of `ontogeny evolve`.
@@ -141,7 +140,7 @@ pub struct EvolveArgs {
     #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "fitness", "preset", "pop", "seed", "config", "init", "seconds", "setting", "no_verify_best", "no_cache"])]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = encoding_parser())]
     encoding: Option<EncodingArg>,
     /// The task (default: the config's, else walker).
     #[arg(long, value_enum)]
@@ -151,8 +150,8 @@ pub struct EvolveArgs {
     #[arg(long, value_parser = super::walker_fitness_parser())]
     fitness: Option<WalkerFitness>,
     /// The genetic algorithm's schedule (default: the config's, else chaumont).
-    #[arg(long, value_enum)]
-    preset: Option<PresetArg>,
+    #[arg(long, value_parser = preset_parser())]
+    preset: Option<Preset>,
     /// Individuals per generation (default: the preset's, 300).
     #[arg(long)]
     pop: Option<usize>,
@@ -247,11 +246,7 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
         G => start::<G>(args, source.as_deref()),
         |other| Err(bad(format!(
             "unknown encoding '{other}' ({})",
-            EncodingArg::value_variants()
-                .iter()
-                .map(|e| e.name())
-                .collect::<Vec<_>>()
-                .join(", ")
+            encoding_names()
         )))
     )
 }
@@ -268,7 +263,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
     };
     let mut overrides = file.ga.clone();
     if let Some(p) = args.preset {
-        overrides.preset = Some(p.preset());
+        overrides.preset = Some(p);
     }
     if args.pop.is_some() {
         overrides.population = args.pop;

@@ -10,31 +10,11 @@ macro_rules! say {
 }
 
 /// Runs `$body` with `$G` standing for the genome type of the encoding named `$name`, or
-/// `$unknown(name)` when no encoding has that name. The one list of encodings the command line
-/// knows: a new encoding is one line here and one variant of `evolve::EncodingArg`.
+/// `$unknown(name)` when no encoding has that name: the library's registry of encodings
+/// ([`ontogeny::encoding::ENCODINGS`]), under the name every verb uses.
 macro_rules! with_genome {
-    ($name:expr, $G:ident => $body:expr, $unknown:expr) => {
-        match $name {
-            n if n == <ontogeny::encoding::LSystemGenome as ontogeny::encoding::Genome>::NAME => {
-                type $G = ontogeny::encoding::LSystemGenome;
-                $body
-            }
-            n if n
-                == <ontogeny::encoding::ContinuousGenome as ontogeny::encoding::Genome>::NAME =>
-            {
-                type $G = ontogeny::encoding::ContinuousGenome;
-                $body
-            }
-            n if n == <ontogeny::encoding::DirectGenome as ontogeny::encoding::Genome>::NAME => {
-                type $G = ontogeny::encoding::DirectGenome;
-                $body
-            }
-            n if n == <ontogeny::encoding::GraphGenome as ontogeny::encoding::Genome>::NAME => {
-                type $G = ontogeny::encoding::GraphGenome;
-                $body
-            }
-            other => $unknown(other),
-        }
+    ($($dispatch:tt)*) => {
+        ontogeny::with_genome!($($dispatch)*)
     };
 }
 

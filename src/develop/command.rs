@@ -1,10 +1,12 @@
-//! The building commands a module name stands for.
+//! What the builder does for each module name: the commands of the language's table
+//! ([`crate::lang::commands`]), their maturing twins, and the brackets.
 
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::Vector3;
 
 use crate::creature::JointKind;
+use crate::lang::commands::Command;
 
 /// An edge-encoding (brain) command.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,7 +58,7 @@ pub enum BrainOp {
 
 /// What a module makes the builder do.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Command {
+pub enum Action {
     /// `forward(l)` / `mforward(l)`
     Forward {
         /// Made by the maturing twin.
@@ -96,68 +98,65 @@ pub enum Command {
     Brain(BrainOp),
 }
 
-/// The command a module name stands for; `None` for control tokens and anything else.
-pub fn command_of(name: &str) -> Option<Command> {
+/// The action a module name stands for; `None` for control tokens and anything else.
+pub fn command_of(name: &str) -> Option<Action> {
     match name {
-        "[" => return Some(Command::Push),
-        "]" => return Some(Command::Pop),
-        "{" => return Some(Command::RepeatStart),
-        "}" => return Some(Command::RepeatEnd),
+        "[" => return Some(Action::Push),
+        "]" => return Some(Action::Pop),
+        "{" => return Some(Action::RepeatStart),
+        "}" => return Some(Action::RepeatEnd),
         _ => {}
     }
-    if let Some(c) = plain(name, false) {
-        return Some(c);
+    if let Some(command) = Command::from_name(name) {
+        return Some(action(command, false));
     }
     let rest = name.strip_prefix('m')?;
-    plain(rest, true)
+    Command::from_name(rest).map(|command| action(command, true))
 }
 
-fn plain(name: &str, maturing: bool) -> Option<Command> {
-    let turn = |axis: Vector3<f64>, sign: f64| Some(Command::Turn { axis, sign });
-    let joint = |kind, limits| {
-        Some(Command::Joint {
-            kind,
-            limits,
-            maturing,
-        })
+/// What `command` (or its maturing twin) makes the builder do.
+fn action(command: Command, maturing: bool) -> Action {
+    let turn = |axis: Vector3<f64>, sign: f64| Action::Turn { axis, sign };
+    let joint = |kind, limits| Action::Joint {
+        kind,
+        limits,
+        maturing,
     };
-    let brain = |op| Some(Command::Brain(op));
-    match name {
-        "forward" => Some(Command::Forward { maturing }),
-        "backward" => Some(Command::Backward),
-        "left" => turn(Vector3::y(), 1.0),
-        "right" => turn(Vector3::y(), -1.0),
-        "up" => turn(Vector3::z(), 1.0),
-        "down" => turn(Vector3::z(), -1.0),
-        "clockwise" => turn(Vector3::x(), 1.0),
-        "counterclockwise" => turn(Vector3::x(), -1.0),
-        "revolute1" => joint(JointKind::Revolute, (0.0, FRAC_PI_2)),
-        "revolute2" => joint(JointKind::Revolute, (-FRAC_PI_2, FRAC_PI_2)),
-        "twist90" => joint(JointKind::Twist, (0.0, FRAC_PI_2)),
-        "twist180" => joint(JointKind::Twist, (-FRAC_PI_2, FRAC_PI_2)),
-        "width" => Some(Command::Width),
-        "thickness" => Some(Command::Thickness),
-        "split" => brain(BrainOp::Split),
-        "duplicate" => brain(BrainOp::Duplicate),
-        "loop" => brain(BrainOp::Loop),
-        "merge" => brain(BrainOp::Merge),
-        "next" => brain(BrainOp::Next),
-        "parent" => brain(BrainOp::Parent),
-        "output" => brain(BrainOp::Output),
-        "reverse" => brain(BrainOp::Reverse),
-        "setfunc" => brain(BrainOp::SetFunc),
-        "bias" => brain(BrainOp::Bias),
-        "cut" => brain(BrainOp::Cut),
-        "weight" => brain(BrainOp::Weight),
-        "increase" => brain(BrainOp::Increase),
-        "decrease" => brain(BrainOp::Decrease),
-        "touch" => brain(BrainOp::Touch),
-        "angle" => brain(BrainOp::Angle),
-        "chem" => brain(BrainOp::Chem),
-        "target" => brain(BrainOp::Target),
-        "secrete" => brain(BrainOp::Secrete),
-        "release" => brain(BrainOp::Release),
-        _ => None,
+    match command {
+        Command::Forward => Action::Forward { maturing },
+        Command::Backward => Action::Backward,
+        Command::Left => turn(Vector3::y(), 1.0),
+        Command::Right => turn(Vector3::y(), -1.0),
+        Command::Up => turn(Vector3::z(), 1.0),
+        Command::Down => turn(Vector3::z(), -1.0),
+        Command::Clockwise => turn(Vector3::x(), 1.0),
+        Command::Counterclockwise => turn(Vector3::x(), -1.0),
+        Command::Revolute1 => joint(JointKind::Revolute, (0.0, FRAC_PI_2)),
+        Command::Revolute2 => joint(JointKind::Revolute, (-FRAC_PI_2, FRAC_PI_2)),
+        Command::Twist90 => joint(JointKind::Twist, (0.0, FRAC_PI_2)),
+        Command::Twist180 => joint(JointKind::Twist, (-FRAC_PI_2, FRAC_PI_2)),
+        Command::Width => Action::Width,
+        Command::Thickness => Action::Thickness,
+        Command::Split => Action::Brain(BrainOp::Split),
+        Command::Duplicate => Action::Brain(BrainOp::Duplicate),
+        Command::Loop => Action::Brain(BrainOp::Loop),
+        Command::Merge => Action::Brain(BrainOp::Merge),
+        Command::Next => Action::Brain(BrainOp::Next),
+        Command::Parent => Action::Brain(BrainOp::Parent),
+        Command::Output => Action::Brain(BrainOp::Output),
+        Command::Reverse => Action::Brain(BrainOp::Reverse),
+        Command::Setfunc => Action::Brain(BrainOp::SetFunc),
+        Command::Bias => Action::Brain(BrainOp::Bias),
+        Command::Cut => Action::Brain(BrainOp::Cut),
+        Command::Weight => Action::Brain(BrainOp::Weight),
+        Command::Increase => Action::Brain(BrainOp::Increase),
+        Command::Decrease => Action::Brain(BrainOp::Decrease),
+        Command::Touch => Action::Brain(BrainOp::Touch),
+        Command::Angle => Action::Brain(BrainOp::Angle),
+        Command::Chem => Action::Brain(BrainOp::Chem),
+        Command::Target => Action::Brain(BrainOp::Target),
+        Command::Secrete => Action::Brain(BrainOp::Secrete),
+        Command::Release => Action::Brain(BrainOp::Release),
     }
 }
 
@@ -175,7 +174,7 @@ mod tests {
         assert_eq!(command_of("F"), None);
         assert_eq!(
             command_of("mforward"),
-            Some(Command::Forward { maturing: true })
+            Some(Action::Forward { maturing: true })
         );
     }
 }

@@ -13,7 +13,7 @@ use nalgebra::{Unit, UnitQuaternion, Vector3};
 use crate::creature::{Creature, Joint, JointKind, Part, Problem, Severity};
 use crate::environment::Environment;
 use crate::lsystem::{ModuleString, SymbolTable, format_number};
-pub use command::{Command, command_of};
+pub use command::{Action, command_of};
 
 use brain::BrainBuilder;
 
@@ -93,7 +93,7 @@ pub struct Builder<'a> {
     state: TurtleState,
     stack: Vec<TurtleState>,
     brain: BrainBuilder,
-    commands: Vec<Option<Command>>,
+    commands: Vec<Option<Action>>,
     /// For each `{` of the string, the index of its `}` (bracket matching, done once).
     closes: Vec<Option<usize>>,
     /// Modules interpreted so far, and the most allowed (the string's length plus
@@ -198,7 +198,7 @@ impl<'a> Builder<'a> {
             let params = string.params(i);
             let arg = |default: f64| params.first().copied().unwrap_or(default);
             match command {
-                Command::RepeatStart => {
+                Action::RepeatStart => {
                     let close = self.closes[i].filter(|&close| close < to);
                     let Some(close) = close else {
                         self.problem(
@@ -244,7 +244,7 @@ impl<'a> Builder<'a> {
                     i = close + 1;
                     continue;
                 }
-                Command::RepeatEnd => {
+                Action::RepeatEnd => {
                     self.problem(
                         Severity::Warning,
                         string,
@@ -252,8 +252,8 @@ impl<'a> Builder<'a> {
                         "'}' has no matching '{': ignored".to_string(),
                     );
                 }
-                Command::Push => self.stack.push(self.state.clone()),
-                Command::Pop => match self.stack.pop() {
+                Action::Push => self.stack.push(self.state.clone()),
+                Action::Pop => match self.stack.pop() {
                     Some(state) => self.state = state,
                     None => self.problem(
                         Severity::Warning,
@@ -262,12 +262,12 @@ impl<'a> Builder<'a> {
                         "']' with nothing to pop: ignored".to_string(),
                     ),
                 },
-                Command::Forward { maturing } => {
+                Action::Forward { maturing } => {
                     let length = arg(self.options.default_length);
                     self.forward(string, i, length, maturing);
                 }
-                Command::Backward => self.backward(string, i),
-                Command::Turn { axis, sign } => {
+                Action::Backward => self.backward(string, i),
+                Action::Turn { axis, sign } => {
                     let angle = sign * arg(1.0) * std::f64::consts::FRAC_PI_2;
                     if !angle.is_finite() {
                         self.problem(
@@ -281,7 +281,7 @@ impl<'a> Builder<'a> {
                         self.state.orientation *= UnitQuaternion::from_axis_angle(&axis, angle);
                     }
                 }
-                Command::Joint {
+                Action::Joint {
                     kind,
                     limits,
                     maturing,
@@ -292,7 +292,7 @@ impl<'a> Builder<'a> {
                         growing: maturing,
                     })
                 }
-                Command::Width | Command::Thickness => {
+                Action::Width | Action::Thickness => {
                     let v = arg(f64::NAN);
                     if !(v.is_finite() && v > 0.0) {
                         self.problem(
@@ -301,13 +301,13 @@ impl<'a> Builder<'a> {
                             i,
                             "width and thickness need a positive parameter: ignored".into(),
                         );
-                    } else if command == Command::Width {
+                    } else if command == Action::Width {
                         self.state.width = v;
                     } else {
                         self.state.thickness = v;
                     }
                 }
-                Command::Brain(op) => {
+                Action::Brain(op) => {
                     let joint = self.state.part.and_then(|p| self.joint_of[p]);
                     let joint_info = joint.map(|j| (j, self.creature.joints[j].kind.dof()));
                     let outcome = self.brain.apply(
@@ -486,13 +486,13 @@ impl<'a> Builder<'a> {
 
 /// For each module of `string` that is a `{`, the index of the `}` that closes it (the first
 /// `}` after it at the same depth), if any: bracket matching in one pass.
-fn matching_closes(string: &ModuleString, commands: &[Option<Command>]) -> Vec<Option<usize>> {
+fn matching_closes(string: &ModuleString, commands: &[Option<Action>]) -> Vec<Option<usize>> {
     let mut closes = vec![None; string.len()];
     let mut open = Vec::new();
     for k in 0..string.len() {
         match commands[string.sym(k) as usize] {
-            Some(Command::RepeatStart) => open.push(k),
-            Some(Command::RepeatEnd) => {
+            Some(Action::RepeatStart) => open.push(k),
+            Some(Action::RepeatEnd) => {
                 if let Some(start) = open.pop() {
                     closes[start] = Some(k);
                 }

@@ -17,14 +17,15 @@ use std::ops::Range;
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::command::Command;
+use super::draw::clamp_rate;
 use super::lsystem::{
-    Arg, Item, LSystemLimits, MAX_RUN, balance, clamp_rate, is_balanced, last_frame,
-    perturb_argument, pick_run, push_item_text, random_command, random_run,
+    Arg, Item, LSystemLimits, MAX_RUN, balance, is_balanced, last_frame, perturb_argument,
+    pick_run, push_item_text, random_command, random_run,
 };
 use super::{DevelopError, Genome, Rng};
 use crate::creature::Creature;
 use crate::lang;
+use crate::lang::commands::Command;
 use crate::lsystem::{DeriveOptions, LSystem};
 
 /// The limits of the direct genome: every operator keeps a genome within them. They are part
@@ -245,6 +246,9 @@ impl Genome for DirectGenome {
 
     const NAME: &'static str = "direct";
 
+    const DESCRIPTION: &'static str =
+        "Hornby & Pollack's non-generative baseline: one string of commands";
+
     fn random(limits: &DirectLimits, rng: &mut Rng) -> Self {
         let len = rng.random_range(1..=limits.random_modules());
         DirectGenome {
@@ -316,7 +320,7 @@ fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopE
         for (k, m) in shown.iter().enumerate() {
             let name = symbols.name(m.sym);
             let at = || format!("module {} of the derived string, '{}'", k + 1, name);
-            let item = match (name, Command::from_name(name)) {
+            let item = match (name, Command::building_from_name(name)) {
                 ("[", _) => Item::Push,
                 ("]", _) => Item::Pop,
                 (_, Some(c)) => match m.params {

@@ -9,17 +9,22 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Serialize, de::DeserializeOwned};
 
 use crate::creature::Creature;
+use crate::lang::ast::{Expr, UnaryOp};
 
-pub mod command;
 pub mod continuous;
 pub mod direct;
+mod draw;
 pub mod graph;
 pub mod lsystem;
+mod registry;
 
+/// The building commands genomes write (the language's one table of commands).
+pub use crate::lang::commands as command;
 pub use continuous::{ContinuousGenome, ContinuousLimits};
 pub use direct::{DirectGenome, DirectLimits};
 pub use graph::{GraphGenome, GraphLimits, JointSet};
 pub use lsystem::{LSystemGenome, LSystemLimits};
+pub use registry::{ENCODINGS, EncodingInfo, encoding_named};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.
@@ -54,6 +59,14 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
 
     /// The encoding's name, as the CLI and the run store spell it.
     const NAME: &'static str;
+
+    /// One line for people (the command line's help lists it beside [`Genome::NAME`]).
+    const DESCRIPTION: &'static str = "";
+
+    /// Keys of [`Genome::Limits`] added after runs had begun, with the value (a string) that
+    /// a run begun before the key existed ran with: a resumed run's `config.toml` that lacks
+    /// a key gets it, so that the run keeps what it ran with.
+    const LIMITS_OF_OLDER_RUNS: &'static [(&'static str, &'static str)] = &[];
 
     /// The extension of the file that holds [`Genome::to_text`] (a run's `best.lsys`,
     /// `best.json`, ...).
@@ -113,5 +126,23 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
             "the {} encoding cannot start from a grammar",
             Self::NAME
         )))
+    }
+}
+
+/// A constant number written as such in a hand-written file (`0.5`, `-1`); with
+/// `nested_minus`, minus signs may nest (`-(-1)` is 1), else only one is read.
+pub(crate) fn number(e: &Expr, nested_minus: bool) -> Option<f64> {
+    match e {
+        Expr::Number(v, _) => Some(*v),
+        Expr::Unary {
+            op: UnaryOp::Neg,
+            operand,
+            ..
+        } => match operand.as_ref() {
+            Expr::Number(v, _) => Some(-v),
+            nested if nested_minus => number(nested, true).map(|v| -v),
+            _ => None,
+        },
+        _ => None,
     }
 }

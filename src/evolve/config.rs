@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use super::ga::{GaSettings, Preset};
+use crate::encoding::encoding_named;
 use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
 use crate::task::TaskSpec;
 
@@ -178,10 +179,11 @@ pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>
 }
 
 /// Reads a run directory's full `config.toml`. The file is written in full when a run starts,
-/// so a key it lacks was added to the program later, and the run keeps what it ran with: a
-/// `graph` run begun before `[limits] joint_kinds` existed drew all of Sims' joint kinds and
-/// resumes with `joint_kinds = "sims"`. Its settings get the checks of [`check_settings`], as
-/// a configuration file's do when a run starts: an edited file may hold anything.
+/// so a key it lacks was added to the program later, and the run keeps what it ran with: its
+/// encoding says what that was ([`crate::encoding::Genome::LIMITS_OF_OLDER_RUNS`]: a `graph`
+/// run begun before `[limits] joint_kinds` existed drew all of Sims' joint kinds and resumes
+/// with `joint_kinds = "sims"`). Its settings get the checks of [`check_settings`], as a
+/// configuration file's do when a run starts: an edited file may hold anything.
 pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
     let config: RunConfig<L> = parse_run_config(source)?;
     check_settings(&config.ga, &config.task).map_err(|e| {
@@ -194,11 +196,19 @@ pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig
 fn parse_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
     let mut table: toml::Table =
         toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
-    let is_graph = table.get("encoding").and_then(|e| e.as_str()) == Some("graph");
+    let older_runs = table
+        .get("encoding")
+        .and_then(|e| e.as_str())
+        .and_then(encoding_named)
+        .map_or(&[][..], |e| e.limits_of_older_runs);
     let limits = table.get_mut("limits").and_then(|l| l.as_table_mut());
     match limits {
-        Some(limits) if is_graph && !limits.contains_key("joint_kinds") => {
-            limits.insert("joint_kinds".into(), toml::Value::String("sims".into()));
+        Some(limits) if older_runs.iter().any(|(key, _)| !limits.contains_key(*key)) => {
+            for (key, value) in older_runs {
+                if !limits.contains_key(*key) {
+                    limits.insert(key.to_string(), toml::Value::String(value.to_string()));
+                }
+            }
             toml::Value::Table(table)
                 .try_into()
                 .map_err(|e: toml::de::Error| {

@@ -30,6 +30,32 @@ pub enum Preset {
     Wwd,
 }
 
+impl Preset {
+    /// Every preset.
+    pub const ALL: [Preset; 2] = [Preset::Chaumont, Preset::Wwd];
+
+    /// Its name, as the command line and `config.toml` spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Chaumont => "chaumont",
+            Preset::Wwd => "wwd",
+        }
+    }
+
+    /// One line for people: where the schedule comes from.
+    pub fn summary(self) -> &'static str {
+        match self {
+            Preset::Chaumont => "Chaumont et al. 5.7",
+            Preset::Wwd => "Walking with Dinosaurs 3.3",
+        }
+    }
+
+    /// The preset named `name`.
+    pub fn named(name: &str) -> Option<Preset> {
+        Preset::ALL.into_iter().find(|p| p.name() == name)
+    }
+}
+
 /// The genetic algorithm's settings (the `[ga]` table of a run's `config.toml`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -19,6 +19,7 @@
 //! and `F2` with no known name `F2` is the two modules `F` and `2`.
 
 pub mod ast;
+pub mod commands;
 mod parser;
 pub mod source;
 
@@ -30,44 +31,10 @@ pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
 use ast::{ModuleCall, PatternModule, Rule};
 use parser::{RawCall, RawPattern};
 
-/// The builder's commands (Hornby & Pollack; Matos & Arita), known names for word splitting.
-/// Each also has a maturing twin prefixed `m` (`mforward`, `mrevolute1`, ...).
-pub const BUILTIN_COMMANDS: &[&str] = &[
-    "forward",
-    "backward",
-    "left",
-    "right",
-    "up",
-    "down",
-    "clockwise",
-    "counterclockwise",
-    "revolute1",
-    "revolute2",
-    "twist90",
-    "twist180",
-    "width",
-    "thickness",
-    "split",
-    "duplicate",
-    "loop",
-    "merge",
-    "next",
-    "parent",
-    "output",
-    "reverse",
-    "setfunc",
-    "bias",
-    "cut",
-    "weight",
-    "increase",
-    "decrease",
-    "touch",
-    "angle",
-    "chem",
-    "target",
-    "secrete",
-    "release",
-];
+/// The builder's commands (Hornby & Pollack; Matos & Arita), known names for word splitting:
+/// the names of [`commands::COMMANDS`]. Each also has a maturing twin prefixed `m`
+/// (`mforward`, `mrevolute1`, ...).
+pub const BUILTIN_COMMANDS: &[&str] = &commands::NAMES;
 
 /// Whether `name` is a built-in command or its maturing twin.
 pub fn is_builtin_command(name: &str) -> bool {

@@ -6,9 +6,9 @@ use std::collections::{BTreeSet, HashSet};
 use serde::Serialize;
 
 use super::LSystem;
-use super::compile::PatternEl;
+use super::compile::{CompiledRule, PatternEl, RuleSet};
 use crate::lang::Span;
-use crate::lang::ast::{Expr, Section};
+use crate::lang::ast::{self, Expr, Section};
 
 /// What kind of finding a [`Finding`] is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -82,188 +82,255 @@ pub struct Report {
     pub findings: Vec<Finding>,
 }
 
-impl LSystem {
-    /// Analyses the system without deriving it.
-    pub fn check(&self) -> Report {
-        let mut findings = Vec::new();
-        let at = |span: Span| self.source.line_col(span.start);
-        let mut push = |kind, span: Span, message: String| {
-            let (line, column) = at(span);
-            findings.push(Finding {
-                kind,
-                message,
-                line,
-                column,
-            });
+/// The checks `check` runs, in order: each adds its findings (the report sorts them by place).
+const PASSES: [fn(&LSystem, &mut Findings); 5] = [
+    rules_that_never_fire,
+    unused_parameters,
+    unused_constants,
+    unbalanced_brackets,
+    split_words,
+];
+
+/// The findings of the passes so far, located in the system's source.
+struct Findings<'a> {
+    system: &'a LSystem,
+    list: Vec<Finding>,
+}
+
+impl Findings<'_> {
+    /// The 1-based line and column where `span` starts.
+    fn at(&self, span: Span) -> (usize, usize) {
+        self.system.source.line_col(span.start)
+    }
+
+    fn push(&mut self, kind: FindingKind, span: Span, message: String) {
+        let (line, column) = self.at(span);
+        self.list.push(Finding {
+            kind,
+            message,
+            line,
+            column,
+        });
+    }
+}
+
+/// Every rule of both sections (productions, then interpretation) with its section's rules,
+/// its index there and its syntax.
+fn rules_with_syntax(
+    system: &LSystem,
+) -> impl Iterator<Item = (&RuleSet, usize, &CompiledRule, &ast::Rule)> {
+    [
+        (Section::Productions, &system.productions),
+        (Section::Interpretation, &system.interpretation),
+    ]
+    .into_iter()
+    .flat_map(move |(section, set)| {
+        let asts = system
+            .file
+            .rules
+            .iter()
+            .filter(move |r| r.section == section);
+        set.rules
+            .iter()
+            .zip(asts)
+            .enumerate()
+            .map(move |(index, (rule, ast))| (set, index, rule, ast))
+    })
+}
+
+/// The symbols that can ever appear: the axiom's, then successors of reachable rules.
+fn reachable_symbols(system: &LSystem) -> HashSet<u32> {
+    let mut reachable: HashSet<u32> = system.axiom.symbols().iter().copied().collect();
+    loop {
+        let before = reachable.len();
+        for rule in &system.productions.rules {
+            if reachable.contains(&rule.pred) {
+                reachable.extend(rule.successor.iter().map(|(s, _)| *s));
+            }
+        }
+        if reachable.len() == before {
+            return reachable;
+        }
+    }
+}
+
+/// Rules that no derivation can apply: a predecessor or context that never appears, a
+/// condition always false, or an earlier rule that always rewrites the same symbol first.
+fn rules_that_never_fire(system: &LSystem, findings: &mut Findings) {
+    let reachable = reachable_symbols(system);
+    for (set, index, rule, ast) in rules_with_syntax(system) {
+        let name = system.symbols.name(rule.pred);
+        let reason = if !reachable.contains(&rule.pred) {
+            Some(format!(
+                "'{name}' never appears in the axiom or in a successor that can be produced"
+            ))
+        } else if let Some(missing) = rule
+            .left
+            .iter()
+            .chain(&rule.right)
+            .filter_map(|el| match el {
+                PatternEl::Module { sym, .. } => Some(*sym),
+                _ => None,
+            })
+            .find(|s| !reachable.contains(s))
+        {
+            Some(format!(
+                "its context needs '{}', which never appears",
+                system.symbols.name(missing)
+            ))
+        } else if rule.guard.as_ref().and_then(|g| g.as_const()) == Some(0.0) {
+            Some("its condition is always false".to_string())
+        } else {
+            set.by_symbol[rule.pred as usize]
+                .iter()
+                .take_while(|&&r| r as usize != index)
+                .map(|&r| &set.rules[r as usize])
+                .find(|earlier| earlier.unconditional())
+                .map(|earlier| {
+                    let (line, _) = findings.at(earlier.span);
+                    format!("the rule on line {line} always rewrites '{name}' first")
+                })
         };
-
-        // Which symbols can ever appear: the axiom's, then successors of reachable rules.
-        let mut reachable: HashSet<u32> = self.axiom.symbols().iter().copied().collect();
-        loop {
-            let before = reachable.len();
-            for rule in &self.productions.rules {
-                if reachable.contains(&rule.pred) {
-                    reachable.extend(rule.successor.iter().map(|(s, _)| *s));
-                }
-            }
-            if reachable.len() == before {
-                break;
-            }
+        if let Some(reason) = reason {
+            findings.push(
+                FindingKind::NeverFires,
+                ast.span,
+                format!("rule never fires: {reason}"),
+            );
         }
+    }
+}
 
-        for (section, set) in [
-            (Section::Productions, &self.productions),
-            (Section::Interpretation, &self.interpretation),
-        ] {
-            let asts = self.file.rules.iter().filter(|r| r.section == section);
-            for (index, (rule, ast)) in set.rules.iter().zip(asts).enumerate() {
-                let name = self.symbols.name(rule.pred);
-                let reason = if !reachable.contains(&rule.pred) {
-                    Some(format!(
-                        "'{name}' never appears in the axiom or in a successor that can be produced"
-                    ))
-                } else if let Some(missing) = rule
-                    .left
-                    .iter()
-                    .chain(&rule.right)
-                    .filter_map(|el| match el {
-                        PatternEl::Module { sym, .. } => Some(*sym),
-                        _ => None,
-                    })
-                    .find(|s| !reachable.contains(s))
-                {
-                    Some(format!(
-                        "its context needs '{}', which never appears",
-                        self.symbols.name(missing)
-                    ))
-                } else if rule.guard.as_ref().and_then(|g| g.as_const()) == Some(0.0) {
-                    Some("its condition is always false".to_string())
-                } else {
-                    set.by_symbol[rule.pred as usize]
-                        .iter()
-                        .take_while(|&&r| r as usize != index)
-                        .map(|&r| &set.rules[r as usize])
-                        .find(|earlier| earlier.unconditional())
-                        .map(|earlier| {
-                            let (line, _) = at(earlier.span);
-                            format!("the rule on line {line} always rewrites '{name}' first")
-                        })
-                };
-                if let Some(reason) = reason {
-                    push(
-                        FindingKind::NeverFires,
-                        ast.span,
-                        format!("rule never fires: {reason}"),
-                    );
-                }
-
-                // Parameters never read.
-                let mut used = HashSet::new();
-                let mut note = |n: &str, _| {
-                    used.insert(n.to_string());
-                };
-                for e in ast.guard.iter().chain(&ast.probability) {
-                    e.visit_names(&mut note);
-                }
-                for call in &ast.successor {
-                    call.args.iter().for_each(|a| a.visit_names(&mut note));
-                }
-                for ode in ast.solve.iter().flatten() {
-                    ode.rhs.visit_names(&mut note);
-                }
-                let formals = ast
-                    .left
-                    .iter()
-                    .chain(std::iter::once(&ast.predecessor))
-                    .chain(&ast.right)
-                    .flat_map(|p| &p.params);
-                for (param, span) in formals {
-                    if !used.contains(param) && !crate::lang::ast::is_constant_formal(param) {
-                        push(
-                            FindingKind::UnusedParameter,
-                            *span,
-                            format!("parameter '{param}' is never used"),
-                        );
-                    }
-                }
-            }
-        }
-
-        // Constants never read.
+/// Formal parameters that a rule's guard, probability, successor and ODEs never read.
+fn unused_parameters(system: &LSystem, findings: &mut Findings) {
+    for (_, _, _, ast) in rules_with_syntax(system) {
         let mut used = HashSet::new();
         let mut note = |n: &str, _| {
             used.insert(n.to_string());
         };
-        let file = &self.file;
-        let exprs = file
-            .defines
+        for e in ast.guard.iter().chain(&ast.probability) {
+            e.visit_names(&mut note);
+        }
+        for call in &ast.successor {
+            call.args.iter().for_each(|a| a.visit_names(&mut note));
+        }
+        for ode in ast.solve.iter().flatten() {
+            ode.rhs.visit_names(&mut note);
+        }
+        let formals = ast
+            .left
             .iter()
-            .map(|d| &d.value)
-            .chain(&file.derivation_length)
-            .chain(&file.time)
-            .chain(&file.dt)
-            .chain(
-                file.axiom
-                    .iter()
-                    .flat_map(|(calls, _)| calls.iter().flat_map(|c| &c.args)),
-            )
-            .chain(file.rules.iter().flat_map(|r| {
-                r.guard
-                    .iter()
-                    .chain(&r.probability)
-                    .chain(r.successor.iter().flat_map(|c| &c.args))
-                    .chain(r.solve.iter().flatten().map(|ode| &ode.rhs))
-            }));
-        exprs.for_each(|e: &Expr| e.visit_names(&mut note));
-        for (name, _, span) in &self.constants {
-            if !used.contains(name) {
-                push(
-                    FindingKind::UnusedConstant,
+            .chain(std::iter::once(&ast.predecessor))
+            .chain(&ast.right)
+            .flat_map(|p| &p.params);
+        for (param, span) in formals {
+            if !used.contains(param) && !ast::is_constant_formal(param) {
+                findings.push(
+                    FindingKind::UnusedParameter,
                     *span,
-                    format!("constant '{name}' is never used"),
+                    format!("parameter '{param}' is never used"),
                 );
             }
         }
+    }
+}
 
-        // Branches a successor (or the axiom) opens and does not close, or closes unopened.
-        let successors = file
-            .axiom
-            .iter()
-            .map(|(calls, _)| ("the axiom", calls))
-            .chain(file.rules.iter().map(|r| ("this successor", &r.successor)));
-        for (whose, calls) in successors {
-            let mut open = Vec::new();
-            for call in calls {
-                match call.name.as_str() {
-                    "[" => open.push(call.span),
-                    "]" if open.pop().is_none() => push(
-                        FindingKind::UnbalancedBrackets,
-                        call.span,
-                        format!(
-                            "']' closes a branch {whose} did not open (the builder ignores it, with a warning, unless a module before it opened one)"
-                        ),
-                    ),
-                    _ => {}
-                }
-            }
-            for span in open {
-                push(
-                    FindingKind::UnbalancedBrackets,
-                    span,
-                    format!(
-                        "'[' is not closed in {whose} (unless a later module closes it, the branch runs to the end of the string, and the builder warns)"
-                    ),
-                );
-            }
-        }
-
-        for (word, pieces, span) in &file.split_words {
-            push(
-                FindingKind::SplitWord,
+/// Constants no expression of the file reads.
+fn unused_constants(system: &LSystem, findings: &mut Findings) {
+    let mut used = HashSet::new();
+    let mut note = |n: &str, _| {
+        used.insert(n.to_string());
+    };
+    let file = &system.file;
+    let exprs = file
+        .defines
+        .iter()
+        .map(|d| &d.value)
+        .chain(&file.derivation_length)
+        .chain(&file.time)
+        .chain(&file.dt)
+        .chain(
+            file.axiom
+                .iter()
+                .flat_map(|(calls, _)| calls.iter().flat_map(|c| &c.args)),
+        )
+        .chain(file.rules.iter().flat_map(|r| {
+            r.guard
+                .iter()
+                .chain(&r.probability)
+                .chain(r.successor.iter().flat_map(|c| &c.args))
+                .chain(r.solve.iter().flatten().map(|ode| &ode.rhs))
+        }));
+    exprs.for_each(|e: &Expr| e.visit_names(&mut note));
+    for (name, _, span) in &system.constants {
+        if !used.contains(name) {
+            findings.push(
+                FindingKind::UnusedConstant,
                 *span,
-                format!("'{word}' is read as the modules {}", pieces.join(" ")),
+                format!("constant '{name}' is never used"),
             );
         }
+    }
+}
+
+/// Branches a successor (or the axiom) opens and does not close, or closes unopened.
+fn unbalanced_brackets(system: &LSystem, findings: &mut Findings) {
+    let file = &system.file;
+    let successors = file
+        .axiom
+        .iter()
+        .map(|(calls, _)| ("the axiom", calls))
+        .chain(file.rules.iter().map(|r| ("this successor", &r.successor)));
+    for (whose, calls) in successors {
+        let mut open = Vec::new();
+        for call in calls {
+            match call.name.as_str() {
+                "[" => open.push(call.span),
+                "]" if open.pop().is_none() => findings.push(
+                    FindingKind::UnbalancedBrackets,
+                    call.span,
+                    format!(
+                        "']' closes a branch {whose} did not open (the builder ignores it, with a warning, unless a module before it opened one)"
+                    ),
+                ),
+                _ => {}
+            }
+        }
+        for span in open {
+            findings.push(
+                FindingKind::UnbalancedBrackets,
+                span,
+                format!(
+                    "'[' is not closed in {whose} (unless a later module closes it, the branch runs to the end of the string, and the builder warns)"
+                ),
+            );
+        }
+    }
+}
+
+/// Words the parser read as several modules.
+fn split_words(system: &LSystem, findings: &mut Findings) {
+    for (word, pieces, span) in &system.file.split_words {
+        findings.push(
+            FindingKind::SplitWord,
+            *span,
+            format!("'{word}' is read as the modules {}", pieces.join(" ")),
+        );
+    }
+}
+
+impl LSystem {
+    /// Analyses the system without deriving it: the named passes in order, their findings
+    /// sorted by place.
+    pub fn check(&self) -> Report {
+        let mut findings = Findings {
+            system: self,
+            list: Vec::new(),
+        };
+        for pass in PASSES {
+            pass(self, &mut findings);
+        }
+        let mut findings = findings.list;
         findings.sort_by_key(|f| (f.line, f.column));
 
         Report {
@@ -277,8 +344,8 @@ impl LSystem {
             time: self.time,
             dt: self.dt(),
             timing: match self.timing {
-                crate::lang::ast::Timing::Exact => "exact".to_string(),
-                crate::lang::ast::Timing::Iterative => "iterative".to_string(),
+                ast::Timing::Exact => "exact".to_string(),
+                ast::Timing::Iterative => "iterative".to_string(),
             },
             differential_rules: self
                 .productions

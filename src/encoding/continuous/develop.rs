@@ -1,0 +1,88 @@
+//! The continuous genome's development: through its text, exactly as `ontogeny grow` develops
+//! the printed file, building only the last frame.
+
+use super::*;
+
+impl ContinuousGenome {
+    /// The creature the genome grows into at the end of its developmental time.
+    pub(super) fn creature(&self, limits: &ContinuousLimits) -> Result<Creature, DevelopError> {
+        let limits = limits.sane();
+        // A genome from elsewhere (a store, a hand-edited file) may not fit: its time and
+        // frames would be unbounded.
+        self.check_limits(&limits)
+            .map_err(|e| DevelopError(format!("the genome exceeds its limits: {e}")))?;
+        let lsys = LSystem::from_text(Self::NAME, &self.to_text())
+            .map_err(|d| DevelopError(d.to_string()))?;
+        let options = DeriveOptions {
+            max_modules: limits.max_modules,
+            ..DeriveOptions::default()
+        };
+        let build_options = BuildOptions {
+            max_parts: limits.max_parts,
+            ..BuildOptions::default()
+        };
+        // What `develop::grow` does, building only the last frame.
+        let mut last = None;
+        lsys.for_each_frame(&options, None, |frame| {
+            if frame.last {
+                let shown = lsys.interpret(frame.string, frame.t, &options)?;
+                last = Some(crate::develop::build(
+                    &shown,
+                    lsys.symbols(),
+                    frame.env,
+                    Some(frame.t),
+                    &build_options,
+                ));
+            }
+            Ok::<(), crate::lang::Diagnostic>(())
+        })
+        .map_err(|d| DevelopError(d.to_string()))?;
+        last.ok_or_else(|| DevelopError("development showed no last frame".into()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn growth_doubles_once_per_min_duration_and_no_more() {
+        // Two limbs that each branch into two every time unit (threshold 0.2, rate 0.2), over
+        // 4 time units: generations born at t = 0, 1, 2, 3, 4 hold 2, 4, 8, 16, 32 tokens;
+        // the first four matured into 30 parts, the last is just born.
+        let mf = Grower::Maturing(Command::Forward);
+        let g = ContinuousGenome {
+            time: 4.0,
+            dt: 1.0,
+            axiom: vec![
+                Token::Command(Command::Forward, Some(0.5)),
+                Token::Grower(mf),
+                Token::Grower(mf),
+            ],
+            rules: vec![Rule {
+                grower: mf,
+                threshold: 0.2,
+                rate: 0.2,
+                successor: vec![
+                    Token::Push,
+                    Token::Command(Command::Left, Some(1.0)),
+                    Token::Grower(mf),
+                    Token::Pop,
+                    Token::Grower(mf),
+                ],
+            }],
+        };
+        let l = ContinuousLimits::default();
+        g.check_limits(&l).unwrap();
+        let lsys = LSystem::from_text("t", &g.to_text()).unwrap();
+        let mut dev = lsys.development(&DeriveOptions::default()).unwrap();
+        while dev.advance().unwrap() {}
+        let s = lsys.display(dev.current());
+        assert_eq!(s.matches("mforward").count(), 32, "{s}");
+        assert_eq!(s.matches("forward").count() - 32, 31, "{s}");
+        // A rate that would mature faster than min_duration is refused.
+        let mut fast = g.clone();
+        fast.rules[0].rate = 0.4;
+        assert!(fast.check_limits(&l).unwrap_err().contains("min_duration"));
+    }
+}

@@ -1,0 +1,453 @@
+//! Hornby & Pollack's generative encoding (2001, section "evolutionary algorithm"): a
+//! parametric L-system whose productions each have a predecessor with parameters and a list
+//! of condition–successor pairs. A condition compares one parameter with a constant; a
+//! successor is a string of body and brain commands, `[` `]` branches and calls of
+//! productions whose arguments are parameter expressions. Development derives a fixed number
+//! of steps from the start production `P0` with its starting parameters, exactly as a
+//! hand-written `.lsys` file is derived: [`LSystemGenome::develop`] prints the genome as text
+//! and grows it through the language.
+//!
+//! Every operator keeps the genome within [`LSystemLimits`] by construction: it draws sizes
+//! from what the limits leave free and never retries a draw.
+
+use rand::RngExt;
+use serde::{Deserialize, Serialize};
+
+use super::{DevelopError, Genome, Rng};
+use crate::creature::{Actuator, Creature, Role};
+use crate::develop::{BuildOptions, build};
+use crate::environment::Environment;
+use crate::lang::ast::{BinaryOp, Expr, ModuleCall, Section};
+use crate::lang::commands::{Argument, Command};
+use crate::lang::{self, Source};
+use crate::lsystem::{DeriveOptions, LSystem, ModuleString};
+
+mod develop;
+mod operators;
+mod text;
+
+pub use develop::is_driven_walker;
+pub(crate) use develop::{develop_text, last_frame};
+pub(crate) use operators::{
+    balance, is_balanced, perturb_argument, pick_run, random_command, random_run,
+};
+use text::from_lsys;
+pub(crate) use text::push_item_text;
+
+/// Random constants are rounded to this many parts of a unit, so printed genomes stay
+/// readable (`0.731`, not `0.7312093857`); a rounded value prints and parses back exactly.
+const GRID: f64 = 1000.0;
+
+/// Range of starting parameters and of the constants conditions compare with.
+const PARAM_RANGE: (f64, f64) = (0.0, 8.0);
+/// Range of the constant in a `n + c` or `n * c` argument.
+const OFFSET_RANGE: (f64, f64) = (-2.0, 2.0);
+/// Longest run inserted or deleted by one mutation.
+pub(crate) const MAX_RUN: usize = 3;
+
+/// The limits of the L-system genome: every operator keeps a genome within them. They are
+/// part of a run's configuration (`config.toml`); unknown keys are refused.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LSystemLimits {
+    /// Most productions (`P0`, `P1`, ...). Hornby & Pollack's runs had a fixed number of
+    /// productions (the digit is lost in our copy of the paper); 8 leaves room for a body
+    /// plan, a limb and its joints, and a few brain motifs. At least 1 (the start
+    /// production).
+    pub max_productions: usize,
+    /// Most condition–successor pairs per production (Hornby & Pollack: a few per
+    /// production; 3 here). At least 1.
+    pub max_pairs: usize,
+    /// Parameters of every production (Hornby & Pollack: 2). All productions take the same
+    /// number, so any call may name any production.
+    pub params: usize,
+    /// Most items in one successor (commands, brackets and production calls; Hornby &
+    /// Pollack's successors had a maximum number of build commands, 15 here).
+    pub max_successor: usize,
+    /// The derivation length of random genomes, and the most a hand-written file may ask
+    /// for (`derivation length:`). Hornby & Pollack derive a fixed number of steps; 6 lets a
+    /// production nest calls six deep.
+    pub derivation_length: u64,
+    /// A derived string longer than this stops development with an error (the language's
+    /// `--max-modules`): it cuts runaway growth so that a genome develops in a few
+    /// milliseconds.
+    pub max_modules: usize,
+    /// A creature with more parts than this is invalid (the language's `--max-parts`).
+    /// Hornby & Pollack capped their creatures' bars; 50 keeps evaluations fast.
+    pub max_parts: usize,
+}
+
+impl Default for LSystemLimits {
+    fn default() -> Self {
+        LSystemLimits {
+            max_productions: 8,
+            max_pairs: 3,
+            params: 2,
+            max_successor: 15,
+            derivation_length: 6,
+            max_modules: 1_000,
+            max_parts: 50,
+        }
+    }
+}
+
+impl LSystemLimits {
+    /// Checks that the limits make sense; `Err` names the first that does not.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.max_productions == 0 {
+            return Err("max_productions must be at least 1 (the start production)".into());
+        }
+        if self.max_pairs == 0 {
+            return Err("max_pairs must be at least 1".into());
+        }
+        if self.params > 8 {
+            return Err(format!("params must be at most 8, not {}", self.params));
+        }
+        if self.derivation_length > 64 {
+            return Err(format!(
+                "derivation_length must be at most 64, not {}",
+                self.derivation_length
+            ));
+        }
+        if self.max_modules == 0 || self.max_parts == 0 {
+            return Err("max_modules and max_parts must be at least 1".into());
+        }
+        Ok(())
+    }
+
+    /// The most productions, at least 1 (a genome always has its start production).
+    fn productions(&self) -> usize {
+        self.max_productions.max(1)
+    }
+
+    /// The most pairs per production, at least 1.
+    fn pairs(&self) -> usize {
+        self.max_pairs.max(1)
+    }
+
+    /// The parameter count, capped at 8.
+    fn param_count(&self) -> usize {
+        self.params.min(8)
+    }
+}
+
+/// The range an argument's random constants are drawn from and perturbations stay in.
+fn range(argument: Argument) -> (f64, f64) {
+    match argument {
+        Argument::None => (0.0, 0.0),
+        Argument::Length => (0.2, 1.2),
+        Argument::Size => (0.1, 0.5),
+        Argument::Turn => (0.5, 1.0),
+        Argument::Weight => (-2.0, 2.0),
+        Argument::Index => (0.0, 3.0),
+        Argument::Function => (0.0, 2.0),
+        Argument::Bias => (-1.0, 1.0),
+    }
+}
+
+/// The step between an argument's values: random values and perturbations stay on this grid
+/// (turns are whole half-quarter turns, so that branches meet at 45° or 90°).
+fn quantum(argument: Argument) -> f64 {
+    match argument {
+        Argument::Index | Argument::Function => 1.0,
+        Argument::Turn => 0.5,
+        _ => 1.0 / GRID,
+    }
+}
+
+/// The weight of a command in random successors: body commands that make parts and
+/// joints, and `output`, which drives a joint, are the most likely, so that random genomes
+/// often grow jointed, driven bodies.
+fn draw_weight(command: Command) -> u32 {
+    match command {
+        Command::Forward => 12,
+        Command::Revolute1 | Command::Revolute2 | Command::Twist90 | Command::Twist180 => 2,
+        Command::Output => 6,
+        Command::Left | Command::Right | Command::Up | Command::Down => 2,
+        _ => 1,
+    }
+}
+
+/// An argument: a constant or a parameter expression (Hornby & Pollack's "parameter
+/// equation").
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Arg {
+    /// A constant.
+    Const(f64),
+    /// Parameter `n<i>` plus a constant (`n0 + 1`, `n1 - 0.5`, `n0`).
+    Plus(usize, f64),
+    /// Parameter `n<i>` times a constant (`n1 * 0.5`).
+    Times(usize, f64),
+}
+
+impl Arg {
+    fn text(&self) -> String {
+        match *self {
+            Arg::Const(c) => format!("{c}"),
+            Arg::Plus(i, 0.0) => format!("n{i}"),
+            Arg::Plus(i, c) if c < 0.0 => format!("n{i} - {}", -c),
+            Arg::Plus(i, c) => format!("n{i} + {c}"),
+            Arg::Times(i, c) => format!("n{i} * {c}"),
+        }
+    }
+
+    fn constant_mut(&mut self) -> &mut f64 {
+        match self {
+            Arg::Const(c) | Arg::Plus(_, c) | Arg::Times(_, c) => c,
+        }
+    }
+}
+
+/// A comparison in a condition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[allow(missing_docs)]
+pub enum Compare {
+    Less,
+    LessEqual,
+    Greater,
+    GreaterEqual,
+}
+
+impl Compare {
+    const ALL: [Compare; 4] = [
+        Compare::Less,
+        Compare::LessEqual,
+        Compare::Greater,
+        Compare::GreaterEqual,
+    ];
+
+    fn symbol(self) -> &'static str {
+        match self {
+            Compare::Less => "<",
+            Compare::LessEqual => "<=",
+            Compare::Greater => ">",
+            Compare::GreaterEqual => ">=",
+        }
+    }
+
+    /// The comparison with its sides swapped (`c < n` is `n > c`).
+    fn flipped(self) -> Compare {
+        match self {
+            Compare::Less => Compare::Greater,
+            Compare::LessEqual => Compare::GreaterEqual,
+            Compare::Greater => Compare::Less,
+            Compare::GreaterEqual => Compare::LessEqual,
+        }
+    }
+}
+
+/// A condition: parameter `n<param>` compared with a constant.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Condition {
+    /// The parameter's index.
+    pub param: usize,
+    /// The comparison.
+    pub compare: Compare,
+    /// The constant.
+    pub value: f64,
+}
+
+/// One item of a successor.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Item {
+    /// `[`: push the construction state.
+    Push,
+    /// `]`: pop it.
+    Pop,
+    /// A building command, with its argument (`None`: written bare, the builder's default).
+    Command(Command, Option<Arg>),
+    /// A call of production `P<index>` with one argument per parameter.
+    Call(usize, Vec<Arg>),
+}
+
+/// A condition–successor pair: the successor applies when the condition holds (always,
+/// without one) and no earlier pair of the production applies.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Pair {
+    /// The condition.
+    pub condition: Option<Condition>,
+    /// The successor.
+    pub successor: Vec<Item>,
+}
+
+/// A production `P<i>(n0, n1, ...)`: its condition–successor pairs, tried in order.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Production {
+    /// The pairs (at least one).
+    pub pairs: Vec<Pair>,
+}
+
+/// Hornby & Pollack's L-system genome.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LSystemGenome {
+    /// The starting parameters of `P0`, the axiom.
+    pub start: Vec<f64>,
+    /// The number of derivation steps.
+    pub derivation_length: u64,
+    /// The productions; `P0` is the start.
+    pub productions: Vec<Production>,
+}
+
+// ---- the genome ----------------------------------------------------------------------
+
+impl LSystemGenome {
+    /// The number of items in the longest successor.
+    pub fn longest_successor(&self) -> usize {
+        self.successors().map(Vec::len).max().unwrap_or(0)
+    }
+
+    fn successors(&self) -> impl Iterator<Item = &Vec<Item>> {
+        self.productions
+            .iter()
+            .flat_map(|p| p.pairs.iter().map(|pair| &pair.successor))
+    }
+
+    /// Whether the genome lies within `limits` and is well formed: every production has a
+    /// pair, calls name existing productions with one argument per parameter, parameters
+    /// named exist, and every successor's brackets are balanced. `Err` says what is wrong.
+    pub fn check(&self, limits: &LSystemLimits) -> Result<(), String> {
+        let params = limits.param_count();
+        if self.productions.is_empty() || self.productions.len() > limits.productions() {
+            return Err(format!(
+                "{} productions, not 1 to {}",
+                self.productions.len(),
+                limits.productions()
+            ));
+        }
+        if self.start.len() != params {
+            return Err(format!(
+                "{} starting parameters, not {params}",
+                self.start.len()
+            ));
+        }
+        if self.derivation_length > limits.derivation_length {
+            return Err(format!(
+                "derivation length {} is more than {}",
+                self.derivation_length, limits.derivation_length
+            ));
+        }
+        let arg_ok = |a: &Arg| match *a {
+            Arg::Const(c) => c.is_finite(),
+            Arg::Plus(i, c) | Arg::Times(i, c) => i < params && c.is_finite(),
+        };
+        for (i, p) in self.productions.iter().enumerate() {
+            if p.pairs.is_empty() || p.pairs.len() > limits.pairs() {
+                return Err(format!(
+                    "P{i} has {} pairs, not 1 to {}",
+                    p.pairs.len(),
+                    limits.pairs()
+                ));
+            }
+            for pair in &p.pairs {
+                if let Some(c) = pair.condition
+                    && !(c.param < params && c.value.is_finite())
+                {
+                    return Err(format!("P{i} has a condition on a missing parameter"));
+                }
+                if pair.successor.len() > limits.max_successor {
+                    return Err(format!(
+                        "a successor of P{i} has {} items, more than {}",
+                        pair.successor.len(),
+                        limits.max_successor
+                    ));
+                }
+                if !is_balanced(&pair.successor) {
+                    return Err(format!("a successor of P{i} has unbalanced brackets"));
+                }
+                for item in &pair.successor {
+                    let ok = match item {
+                        Item::Push | Item::Pop => true,
+                        Item::Command(c, arg) => match arg {
+                            None => true,
+                            Some(a) => c.argument() != Argument::None && arg_ok(a),
+                        },
+                        Item::Call(target, args) => {
+                            *target < self.productions.len()
+                                && args.len() == params
+                                && args.iter().all(arg_ok)
+                        }
+                    };
+                    if !ok {
+                        return Err(format!("a successor of P{i} has a malformed item {item:?}"));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Genome for LSystemGenome {
+    type Limits = LSystemLimits;
+
+    const NAME: &'static str = "lsystem";
+
+    const DESCRIPTION: &'static str = "Hornby & Pollack's parametric L-system";
+
+    fn random(limits: &LSystemLimits, rng: &mut Rng) -> Self {
+        LSystemGenome::random_genome(limits, rng)
+    }
+
+    fn mutate(&self, limits: &LSystemLimits, rate: f64, rng: &mut Rng) -> Self {
+        self.mutant(limits, rate, rng)
+    }
+
+    fn crossover(&self, other: &Self, limits: &LSystemLimits, rng: &mut Rng) -> Option<Self> {
+        self.child(other, limits, rng)
+    }
+
+    fn develop(&self, limits: &LSystemLimits, seed: u64) -> Result<Creature, DevelopError> {
+        develop_text(&self.to_text(), limits.max_modules, limits.max_parts, seed)
+    }
+
+    fn to_text(&self) -> String {
+        self.text()
+    }
+
+    fn from_lsys(text: &str, limits: &LSystemLimits) -> Result<Self, DevelopError> {
+        from_lsys(text, limits)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn check_names_what_breaks_the_limits() {
+        let limits = LSystemLimits::default();
+        let mut rng = Rng::seed_from_u64(5);
+        let g = LSystemGenome::random(&limits, &mut rng);
+        let tight = LSystemLimits {
+            max_successor: 0,
+            ..LSystemLimits::default()
+        };
+        assert!(g.check(&tight).unwrap_err().contains("items, more than 0"));
+        let mut bad = g.clone();
+        bad.productions[0].pairs[0]
+            .successor
+            .push(Item::Call(99, vec![Arg::Const(0.0); 2]));
+        assert!(bad.check(&limits).unwrap_err().contains("malformed"));
+        assert!(
+            LSystemLimits {
+                max_productions: 0,
+                ..LSystemLimits::default()
+            }
+            .validate()
+            .is_err()
+        );
+        assert_eq!(limits.validate(), Ok(()));
+    }
+
+    #[test]
+    fn limits_read_from_toml_like_json_refuse_unknown_keys() {
+        let l: LSystemLimits = serde_json::from_str(r#"{"max_parts": 20}"#).unwrap();
+        assert_eq!(l.max_parts, 20);
+        assert_eq!(l.max_productions, LSystemLimits::default().max_productions);
+        assert!(serde_json::from_str::<LSystemLimits>(r#"{"max_part": 20}"#).is_err());
+    }
+}
