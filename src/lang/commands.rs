@@ -1,5 +1,5 @@
 //! The builder's commands: the one table of their names, arguments and kinds (see the
-//! README's "Building creatures"), from which the parser's built-in names, the builder's
+//! reference page `docs/reference/commands.md`), from which the parser's built-in names, the builder's
 //! reading of a module and the genomes' vocabularies all derive.
 //!
 //! Each command also has a maturing twin prefixed `m` (`mforward`, `mrevolute1`, ...) that the
