@@ -1,8 +1,7 @@
 //! The evaluator and the tasks: fitness terms by hand, the activation sequence, explosions,
 //! statuses, determinism across thread counts.
 
-mod common;
-use common::grown;
+use crate::util::grown;
 
 use ontogeny::creature::Creature;
 use ontogeny::sim::{ActuatorModel, SimOptions};

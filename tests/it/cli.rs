@@ -1,40 +1,19 @@
 //! The `ontogeny` command as a user runs it: output formats and exit codes.
 
-use std::process::{Command, Output};
+use std::path::PathBuf;
 
-fn ontogeny(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use crate::util::{
+    assert_bad_input, ontogeny, ontogeny_reading, refused, scratch_dir, stderr, stdout,
+};
 
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Runs `ontogeny` with `input` on its standard input.
-fn ontogeny_reading(args: &[&str], input: &[u8]) -> Output {
-    use std::io::Write;
-    use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    child.stdin.take().unwrap().write_all(input).unwrap();
-    child.wait_with_output().unwrap()
+/// A fresh scratch directory of this module's, named after `tag`.
+fn scratch(tag: &str) -> PathBuf {
+    scratch_dir(&format!("cli-{tag}"))
 }
 
 /// Grows the snake example into a fresh directory and returns it.
-fn grown_snake(tag: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-{tag}-{}", std::process::id()));
+fn grown_snake(tag: &str) -> PathBuf {
+    let dir = scratch(&format!("snake-{tag}"));
     let out = ontogeny(&[
         "grow",
         "examples/snake.lsys",
@@ -45,8 +24,9 @@ fn grown_snake(tag: &str) -> std::path::PathBuf {
     dir
 }
 
-fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-cli-{}", std::process::id()));
+/// Writes `text` to the file `name` in a directory the module's tests share.
+fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-files");
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
@@ -121,27 +101,25 @@ fn bad_grammar_exits_2_with_a_located_message_and_no_panic() {
 
 #[test]
 fn runaway_growth_exits_2() {
-    let out = ontogeny(&[
-        "derive",
-        "examples/algae.lsys",
-        "--steps",
-        "40",
-        "--max-modules",
-        "1000",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(
-        stderr(&out).contains("grew past 1000 modules"),
-        "{}",
-        stderr(&out)
+    assert_bad_input(
+        &[
+            "derive",
+            "examples/algae.lsys",
+            "--steps",
+            "40",
+            "--max-modules",
+            "1000",
+        ],
+        "grew past 1000 modules",
     );
 }
 
 #[test]
 fn missing_file_exits_2() {
-    let out = ontogeny(&["derive", "no-such-file.lsys"]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains("cannot read no-such-file.lsys"));
+    assert_bad_input(
+        &["derive", "no-such-file.lsys"],
+        "cannot read no-such-file.lsys",
+    );
 }
 
 #[test]
@@ -315,7 +293,7 @@ fn bad_continuous_flags_exit_2() {
 
 #[test]
 fn grow_writes_the_creature_its_frames_and_pictures() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-grow-{}", std::process::id()));
+    let dir = scratch("grow");
     let out = ontogeny(&[
         "grow",
         "examples/quadruped.lsys",
@@ -371,7 +349,7 @@ fn check_counts_names_used_in_odes_and_time_headers() {
 
 #[test]
 fn eval_prints_fitness_terms_and_records() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-eval-{}", std::process::id()));
+    let dir = scratch("eval");
     let out = ontogeny(&[
         "eval",
         "examples/thrower.lsys",
@@ -421,21 +399,19 @@ fn eval_prints_fitness_terms_and_records() {
 #[test]
 fn eval_rejects_bad_input_with_exit_2() {
     let path = temp_file("not-a-creature.json", "{\"parts\": 3}");
-    let out = ontogeny(&["eval", path.to_str().unwrap(), "--task", "walker"]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(stderr(&out).contains("not a creature"), "{}", stderr(&out));
+    assert_bad_input(
+        &["eval", path.to_str().unwrap(), "--task", "walker"],
+        "not a creature",
+    );
     // Well-formed JSON, but a joint to a part that does not exist, and a negative size.
     let grown = grown_snake("bad");
     let text = std::fs::read_to_string(grown.join("creature.json")).unwrap();
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value["joints"][0]["child"] = serde_json::json!(99);
     let bad = temp_file("bad-joint.json", &value.to_string());
-    let out = ontogeny(&["eval", bad.to_str().unwrap(), "--task", "walker"]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(
-        stderr(&out).contains("joint 0 does not join two of the 9 parts"),
-        "{}",
-        stderr(&out)
+    assert_bad_input(
+        &["eval", bad.to_str().unwrap(), "--task", "walker"],
+        "joint 0 does not join two of the 9 parts",
     );
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value["parts"][0]["size"] = serde_json::json!([-1.0, 1.0, 1.0]);
@@ -444,14 +420,10 @@ fn eval_rejects_bad_input_with_exit_2() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(!stderr(&out).contains("panicked"));
 
-    let out = ontogeny(&["replay", "/no/such/dir"]);
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "a missing file is bad input: {}",
-        stderr(&out)
+    assert_bad_input(
+        &["replay", "/no/such/dir"],
+        "cannot read /no/such/dir/recording.json",
     );
-    assert!(stderr(&out).contains("cannot read /no/such/dir/recording.json"));
 }
 
 #[test]
@@ -483,19 +455,16 @@ fn negative_option_values_are_values_not_flags() {
     assert!((x(&ahead) - x(&behind) - 8.0).abs() < 1e-5);
     // A negative number reaches the command's own range check (exit 2, its own words),
     // not clap's "unexpected argument".
-    let o = ontogeny(&[
-        "eval",
-        "examples/snake.lsys",
-        "--task",
-        "walker",
-        "--seconds",
-        "-1",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("--seconds must be in (0, 3600], not -1"),
-        "{}",
-        stderr(&o)
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/snake.lsys",
+            "--task",
+            "walker",
+            "--seconds",
+            "-1",
+        ],
+        "--seconds must be in (0, 3600], not -1",
     );
 }
 
@@ -510,8 +479,7 @@ fn a_dash_reads_the_grammar_from_standard_input() {
     }
     // Errors name the source <stdin>, with line and column.
     let o = ontogeny_reading(&["derive", "-"], b"axiom: a\na --> (\n");
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("<stdin>:2:"), "{}", stderr(&o));
+    refused(&o, "<stdin>:2:");
 }
 
 /// Each frame's delay (centiseconds) of a GIF.
@@ -530,7 +498,7 @@ fn gif_delays(path: &std::path::Path) -> Vec<u16> {
 
 #[test]
 fn replay_writes_the_frames_per_second_it_says() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-fps-{}", std::process::id()));
+    let dir = scratch("fps");
     let o = ontogeny(&[
         "eval",
         "examples/snake.lsys",
@@ -570,12 +538,9 @@ fn replay_writes_the_frames_per_second_it_says() {
         assert!(stdout(&o).contains(&format!("{} frames at {fps} frames/s", delays.len())));
     }
     // Beyond what GIF timing can show.
-    let o = ontogeny(&["replay", dir.to_str().unwrap(), "--fps", "60"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("--fps must be in (0, 50]"),
-        "{}",
-        stderr(&o)
+    assert_bad_input(
+        &["replay", dir.to_str().unwrap(), "--fps", "60"],
+        "--fps must be in (0, 50]",
     );
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -603,8 +568,7 @@ fn growing_nothing_says_so() {
 
 #[test]
 fn continuous_time_flags_for_a_discrete_file_are_refused_by_every_verb_that_grows_it() {
-    let snapshot =
-        std::env::temp_dir().join(format!("ontogeny-refused-{}.png", std::process::id()));
+    let snapshot = scratch("refused").join("refused.png");
     let snapshot = snapshot.to_str().unwrap();
     for verb in ["derive", "grow", "eval", "export", "view"] {
         for flag in [&["--dt", "0.3"][..], &["--timing", "exact"][..]] {
@@ -723,7 +687,7 @@ fn range_errors_name_only_the_flag_at_fault_and_its_value() {
         assert_eq!(stderr(&o), format!("error: {message}\n"), "{args:?}");
     }
     // evolve and compare say the same of --seconds, with no "the command line:" before it.
-    let dir = std::env::temp_dir().join(format!("ontogeny-seconds-{}", std::process::id()));
+    let dir = scratch("seconds");
     let out = dir.join("run");
     let out = out.to_str().unwrap();
     for args in [
@@ -795,7 +759,7 @@ fn eval_refuses_a_record_path_that_is_a_file_before_evaluating() {
 
 #[test]
 fn grow_and_eval_take_steps_and_note_a_missing_derivation_length() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-steps-{}", std::process::id()));
+    let dir = scratch("steps");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("no-length.lsys");
     std::fs::write(&file, "axiom: A\nA --> forward(1) revolute2 A\n").unwrap();
@@ -835,16 +799,17 @@ fn grow_and_eval_take_steps_and_note_a_missing_derivation_length() {
     let value: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(value["terms"]["N"].as_f64(), Some(3.0));
     // In continuous time, steps mean nothing: an error.
-    let o = ontogeny(&[
-        "eval",
-        "examples/continuous-walker.lsys",
-        "--task",
-        "walker",
-        "--steps",
-        "3",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--steps counts discrete steps"));
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/continuous-walker.lsys",
+            "--task",
+            "walker",
+            "--steps",
+            "3",
+        ],
+        "--steps counts discrete steps",
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -969,15 +934,6 @@ fn bench_fidelity_ranks_settings_and_counts_walks_and_creatures_at_rest() {
     assert!(out.contains("\nfast "), "{out}");
 }
 
-/// A fresh scratch directory under the target's, named after `tag`.
-fn scratch(tag: &str) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("cli-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn evolve_refuses_a_step_setting_out_of_range_at_once_naming_the_key_and_writes_no_run() {
     let dir = scratch("evolve-bad-sim");
@@ -1023,18 +979,15 @@ fn evolve_refuses_a_step_setting_out_of_range_at_once_naming_the_key_and_writes_
     let config = dir.join("bad.toml");
     std::fs::write(&config, "[task.walker.rest]\nlimit = 1e12\n").unwrap();
     let out = dir.join("run");
-    let o = ontogeny(&[
-        "evolve",
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("[task.walker.rest] limit must be in (0, 3600]"),
-        "{}",
-        stderr(&o)
+    assert_bad_input(
+        &[
+            "evolve",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        "[task.walker.rest] limit must be in (0, 3600]",
     );
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(dir);
@@ -1107,19 +1060,16 @@ fn eval_setting_names_the_stepping_flags_and_an_explicit_flag_overrides_it() {
     assert_eq!(over, snake_walk(&overridden));
     assert_ne!(over, named, "--substeps 3 changed nothing");
     // An unknown name is refused, with the names that exist.
-    let o = ontogeny(&[
-        "eval",
-        "examples/snake.lsys",
-        "--task",
-        "walker",
-        "--setting",
-        "quick",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("[possible values: fast, default, fine]"),
-        "{}",
-        stderr(&o)
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/snake.lsys",
+            "--task",
+            "walker",
+            "--setting",
+            "quick",
+        ],
+        "[possible values: fast, default, fine]",
     );
     // --fast is gone: --setting fast says it.
     let o = ontogeny(&["eval", "examples/snake.lsys", "--task", "walker", "--fast"]);
@@ -1242,27 +1192,16 @@ fn compare_refuses_a_step_setting_out_of_range_and_writes_nothing() {
         .unwrap()
         .replace("substeps = 4\n", "substeps = 0\n");
     std::fs::write(&settings, text).unwrap();
-    let o = ontogeny(&["compare", "--resume", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("[task.sim] substeps must be 1 to 64, not 0"),
-        "{}",
-        stderr(&o)
+    assert_bad_input(
+        &["compare", "--resume", out.to_str().unwrap()],
+        "[task.sim] substeps must be 1 to 64, not 0",
     );
     let _ = std::fs::remove_dir_all(dir);
 }
 
-/// A scratch directory of this test binary's own, made afresh.
-fn scratch_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn a_growth_of_a_billion_frames_is_refused_at_once_when_its_frames_are_written() {
-    let dir = scratch_dir("billion-frames");
+    let dir = scratch("billion-frames");
     let file = dir.join("long.lsys");
     std::fs::write(
         &file,
@@ -1292,7 +1231,7 @@ fn a_growth_of_a_billion_frames_is_refused_at_once_when_its_frames_are_written()
 
 #[test]
 fn a_creature_file_with_more_parts_than_max_parts_is_refused_by_eval_and_export() {
-    let dir = scratch_dir("too-many-parts");
+    let dir = scratch("too-many-parts");
     let file = dir.join("chain.lsys");
     std::fs::write(
         &file,
@@ -1315,13 +1254,7 @@ fn a_creature_file_with_more_parts_than_max_parts_is_refused_by_eval_and_export(
         &["eval", creature, "--task", "walker"][..],
         &["export", creature],
     ] {
-        let o = ontogeny(args);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        assert!(
-            stderr(&o).contains("201 parts, more than the 200 allowed (--max-parts)"),
-            "{args:?}: {}",
-            stderr(&o)
-        );
+        assert_bad_input(args, "201 parts, more than the 200 allowed (--max-parts)");
     }
     // --max-parts lifts the limit.
     let o = ontogeny(&["export", creature, "--max-parts", "201"]);
@@ -1329,17 +1262,9 @@ fn a_creature_file_with_more_parts_than_max_parts_is_refused_by_eval_and_export(
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// A fresh scratch directory under the test target's own temporary directory.
-fn target_scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn export_refuses_an_out_that_is_a_directory_and_leaves_it_intact() {
-    let dir = target_scratch("export-out-directory");
+    let dir = scratch("export-out-directory");
     let taken = dir.join("model.xml");
     std::fs::create_dir(&taken).unwrap();
     std::fs::write(taken.join("kept"), "kept").unwrap();
@@ -1377,7 +1302,7 @@ fn export_refuses_an_out_that_is_a_directory_and_leaves_it_intact() {
 #[test]
 fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
     use std::os::unix::fs::FileTypeExt;
-    let dir = target_scratch("record-socket");
+    let dir = scratch("record-socket");
     let socket = dir.join("behaviour.gif");
     let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
     let out = ontogeny(&[
@@ -1390,12 +1315,7 @@ fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
         "--record",
         dir.to_str().unwrap(),
     ]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(
-        stderr(&out).contains("behaviour.gif exists and is not a regular file"),
-        "{}",
-        stderr(&out)
-    );
+    refused(&out, "behaviour.gif exists and is not a regular file");
     assert!(
         std::fs::symlink_metadata(&socket)
             .unwrap()
@@ -1409,19 +1329,16 @@ fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
 
 #[test]
 fn grow_out_refuses_a_picture_that_is_a_directory_and_writes_nothing() {
-    let dir = target_scratch("grow-out-directory");
+    let dir = scratch("grow-out-directory");
     std::fs::create_dir(dir.join("creature.png")).unwrap();
-    let out = ontogeny(&[
-        "grow",
-        "examples/snake.lsys",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(
-        stderr(&out).contains("creature.png exists and is not a regular file"),
-        "{}",
-        stderr(&out)
+    assert_bad_input(
+        &[
+            "grow",
+            "examples/snake.lsys",
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+        "creature.png exists and is not a regular file",
     );
     assert!(dir.join("creature.png").is_dir());
     assert!(!dir.join("creature.json").exists());
@@ -1449,7 +1366,8 @@ fn eval_activation_sets_the_walker_s_first_activation_and_is_checked() {
     // The default (1 s): toppled before the walk; 9 steps: toppled during it.
     assert!(fitness(&[]) < 0.01);
     assert!(fitness(&["--activation", "0.15"]) > 0.5);
-    let o = ontogeny(&["eval", file, "--task", "walker", "--activation", "-1"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--activation"), "{}", stderr(&o));
+    assert_bad_input(
+        &["eval", file, "--task", "walker", "--activation", "-1"],
+        "--activation",
+    );
 }

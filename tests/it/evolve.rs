@@ -5,8 +5,6 @@
 //! reference setting: the stored value recomputed, the switch that turns it off, a version-1
 //! database migrated on resume.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -19,9 +17,7 @@ use ontogeny::evolve::run::{Run, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::task::{Evaluation, TaskSpec};
 
-fn ontogeny() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-}
+use crate::util::{ontogeny_command, refused, scratch_dir, succeeded};
 
 /// Every encoding the tests run for.
 const ENCODINGS: [&str; 4] = ["lsystem", "lsystem-continuous", "direct", "graph"];
@@ -31,11 +27,9 @@ fn text_extension(encoding: &str) -> &'static str {
     if encoding == "graph" { "json" } else { "lsys" }
 }
 
+/// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-evolve-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir(&format!("evolve-{name}"))
 }
 
 /// A small, quick run of `encoding`: 12 individuals, `gens` generations, 1 s walks.
@@ -45,7 +39,7 @@ fn run_of(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Output {
 
 /// The command of [`run_of`], to run or spawn.
 fn evolve_command(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Command {
-    let mut c = ontogeny();
+    let mut c = ontogeny_command();
     c.args([
         "evolve",
         "--encoding",
@@ -187,7 +181,7 @@ fn writes_its_directory_and_database(encoding: &str) {
         }
     }
     // best.lsys (best.json) is a genome that grows and evaluates to the stored best fitness.
-    let eval = ontogeny()
+    let eval = ontogeny_command()
         .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
         .arg(out.join(&best))
         .output()
@@ -204,14 +198,14 @@ fn writes_its_directory_and_database(encoding: &str) {
         "{encoding}"
     );
     // `runs show` prints a row per generation; `replay` re-evaluates the best.
-    let show = ontogeny()
+    let show = ontogeny_command()
         .args(["runs", "show"])
         .arg(&out)
         .output()
         .unwrap();
     assert!(show.status.success());
     assert_eq!(String::from_utf8_lossy(&show.stdout).lines().count(), 2 + 4);
-    let replay = ontogeny()
+    let replay = ontogeny_command()
         .arg("replay")
         .arg(&out)
         .args(["--gen", "3"])
@@ -402,7 +396,7 @@ fn a_version_1_database_is_migrated_on_resume() {
     }
     // `runs show` reads it without changing it.
     let before = std::fs::read(old.join("run.sqlite")).unwrap();
-    let show = ontogeny()
+    let show = ontogeny_command()
         .args(["runs", "show"])
         .arg(&old)
         .output()
@@ -414,7 +408,7 @@ fn a_version_1_database_is_migrated_on_resume() {
     );
     assert_eq!(String::from_utf8_lossy(&show.stdout).lines().count(), 2 + 2);
     assert_eq!(std::fs::read(old.join("run.sqlite")).unwrap(), before);
-    let resumed = ontogeny()
+    let resumed = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&old)
@@ -518,7 +512,7 @@ fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
         done.is_some_and(|g| g < 3),
         "{encoding}: killed before the end: {done:?}"
     );
-    let resumed = ontogeny()
+    let resumed = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&killed)
@@ -531,7 +525,7 @@ fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
     );
     assert_eq!(contents(&whole), contents(&killed), "{encoding}");
     // A complete run has nothing to resume.
-    let again = ontogeny()
+    let again = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&killed)
@@ -558,7 +552,7 @@ fn bad_input_is_refused(encoding: &str) {
         format!("encoding = \"{encoding}\"\n\n[ga]\npopulation = 10\npopulaton = 12\n"),
     )
     .unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["evolve", "--config"])
         .arg(&config)
         .arg("--out")
@@ -578,7 +572,7 @@ fn bad_input_is_refused(encoding: &str) {
         format!("encoding = \"{encoding}\"\n[ga]\nelite = 1.5\n"),
     )
     .unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["evolve", "--config"])
         .arg(&config)
         .arg("--out")
@@ -599,7 +593,7 @@ fn bad_input_is_refused(encoding: &str) {
     // A truncated database: a clear message, nothing overwritten.
     let half = before[..before.len() / 2].to_vec();
     std::fs::write(run.join("run.sqlite"), &half).unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&run)
@@ -641,7 +635,7 @@ fn init_seeds_the_first_generation_with_a_grammar_and_its_mutants() {
             );
         }
         // Individual 0 is the grammar itself: it scores what `eval` gives the file.
-        let eval = ontogeny()
+        let eval = ontogeny_command()
             .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
             .arg("examples/hornby-walker.lsys")
             .output()
@@ -682,7 +676,7 @@ fn every_task_and_preset_runs_with(encoding: &str) {
         for preset in ["chaumont", "wwd"] {
             let out = dir.join(format!("{task}-{preset}"));
             // Two generations of 6, so that the preset's operators make the second.
-            let o = ontogeny()
+            let o = ontogeny_command()
                 .args(["evolve", "--encoding", encoding, "--task", task])
                 .args(["--preset", preset, "--pop", "6", "--gens", "2"])
                 .args(["--seconds", "0.5", "--seed", "3", "--config"])
@@ -717,7 +711,7 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
     let whole = dir.join("whole");
     // The small run of seed 4 (a seed whose generation 1 finds a new best that 2 and 3 keep).
     let seeded_run = |out: &Path| {
-        let output = ontogeny()
+        let output = ontogeny_command()
             .args([
                 "evolve",
                 "--encoding",
@@ -785,7 +779,7 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
             ))
             .unwrap();
         }
-        let resumed = ontogeny()
+        let resumed = ontogeny_command()
             .args(["evolve", "--resume"])
             .arg(&cut)
             .output()
@@ -807,26 +801,11 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
 
 /// Runs `ontogeny evolve --resume DIR`.
 fn resume(dir: &Path) -> Output {
-    ontogeny()
+    ontogeny_command()
         .args(["evolve", "--resume"])
         .arg(dir)
         .output()
         .unwrap()
-}
-
-fn succeeded(output: &Output) {
-    assert!(
-        output.status.success(),
-        "{}\n{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-}
-
-fn refused_with(output: &Output, words: &str) {
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains(words), "expected {words:?} in: {stderr}");
 }
 
 #[test]
@@ -842,7 +821,7 @@ fn a_resume_whose_config_was_edited_is_refused_naming_the_keys_and_changes_nothi
     std::fs::write(run.join("config.toml"), &edited).unwrap();
     let before = contents(&run);
     let database = std::fs::read(run.join("run.sqlite")).unwrap();
-    refused_with(
+    refused(
         &resume(&run),
         "ga.population, seed differ from the settings",
     );
@@ -884,8 +863,8 @@ fn a_second_process_on_a_run_directory_is_refused_at_once_naming_the_holder() {
     first.kill().unwrap();
     let _ = first.wait();
     for output in [&again, &resumed] {
-        refused_with(output, "is in use by another ontogeny process");
-        refused_with(output, &holder);
+        refused(output, "is in use by another ontogeny process");
+        refused(output, &holder);
     }
     // The lock dies with its holder, however it died.
     ontogeny::evolve::lock::DirectoryLock::acquire(&run).unwrap();
@@ -929,7 +908,7 @@ fn every_state_a_killed_start_leaves_is_one_resume_completes() {
     std::fs::remove_file(store_alone.join("config.toml")).unwrap();
     for d in [&alone, &empty, &tableless, &store_alone] {
         // `--out` refuses it as a run, and `--resume` completes it.
-        refused_with(&run_of("lsystem", d, "2", &[]), "already holds a run");
+        refused(&run_of("lsystem", d, "2", &[]), "already holds a run");
         succeeded(&resume(d));
         assert_eq!(contents(d), contents(&whole), "{}", d.display());
         assert_eq!(config_text(d), config, "{}", d.display());
@@ -938,7 +917,7 @@ fn every_state_a_killed_start_leaves_is_one_resume_completes() {
     let partial = dir.join("partial");
     std::fs::create_dir_all(&partial).unwrap();
     std::fs::write(partial.join("run.sqlite.partial"), b"SQLite format 3\0half").unwrap();
-    refused_with(&resume(&partial), "holds no run");
+    refused(&resume(&partial), "holds no run");
     succeeded(&run_of("lsystem", &partial, "2", &[]));
     assert_eq!(contents(&partial), contents(&whole));
     assert!(!partial.join("run.sqlite.partial").exists());
@@ -1019,10 +998,10 @@ fn replay_reads_a_version_1_store_without_migrating_it() {
     let dir = scratch("read-only");
     let run = dir.join("run");
     succeeded(&small_run("lsystem", &run, &[]));
-    common::make_version_1(&run.join("run.sqlite"));
+    crate::util::make_version_1(&run.join("run.sqlite"));
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
     succeeded(
-        &ontogeny()
+        &ontogeny_command()
             .args(["replay"])
             .arg(&run)
             .args(["--gen", "0", "--rank", "2"])
@@ -1044,14 +1023,14 @@ fn a_finished_run_extended_with_gens_equals_a_run_started_with_that_many() {
     succeeded(&run_of("direct", &extended, "2", &[]));
     // Fewer generations than it has stored: refused, nothing changed.
     let before = contents(&extended);
-    let shorter = ontogeny()
+    let shorter = ontogeny_command()
         .args(["evolve", "--gens", "1", "--resume"])
         .arg(&extended)
         .output()
         .unwrap();
-    refused_with(&shorter, "has 2 generations stored");
+    refused(&shorter, "has 2 generations stored");
     assert_eq!(contents(&extended), before);
-    let longer = ontogeny()
+    let longer = ontogeny_command()
         .args(["evolve", "--gens", "4", "--resume"])
         .arg(&extended)
         .output()
@@ -1103,7 +1082,7 @@ fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() 
         .collect();
     std::fs::write(&config, edited.join("\n")).unwrap();
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["evolve", "--resume"])
         .arg(&run)
         .output()
@@ -1116,7 +1095,7 @@ fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() 
     );
     assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
     // `replay` reads the run's settings from its store, not the edited file.
-    let o = ontogeny().arg("replay").arg(&run).output().unwrap();
+    let o = ontogeny_command().arg("replay").arg(&run).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
     let _ = std::fs::remove_dir_all(dir);
@@ -1228,7 +1207,7 @@ fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
             .all(|line| line.contains(&format!(": {label}: best "))),
         "{log}"
     );
-    let show = ontogeny()
+    let show = ontogeny_command()
         .args(["runs", "show"])
         .arg(&out)
         .output()
@@ -1247,7 +1226,7 @@ fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
         "{end}"
     );
     // A walker formula for another task is refused, and nothing is written.
-    let jump = ontogeny()
+    let jump = ontogeny_command()
         .args(["evolve", "--task", "jump", "--fitness", "distance", "--out"])
         .arg(dir.join("jump"))
         .output()

@@ -11,12 +11,11 @@ use ontogeny::evolve::store::{
     StoreError,
 };
 
-/// A fresh, empty directory for one test.
-fn scratch(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-store-{tag}-{}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
+use crate::util::scratch_dir;
+
+/// A fresh, empty scratch directory of this module's, named after `name`.
+fn scratch(name: &str) -> PathBuf {
+    scratch_dir(&format!("store-{name}"))
 }
 
 fn run_record() -> RunRecord {
@@ -618,7 +617,7 @@ fn kill_9_keeps_every_committed_generation() {
         let mut child = Command::new(std::env::current_exe().unwrap())
             .args([
                 "--exact",
-                "durability_child",
+                "store::durability_child",
                 "--nocapture",
                 "--test-threads=1",
             ])

@@ -8,8 +8,6 @@
 //! The browser tests are skipped, with a message, when no Chromium is installed; in CI
 //! (`CI=true`) a missing browser is a failure, as `.ci/run` installs one.
 
-mod common;
-
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -17,15 +15,11 @@ use std::process::{Child, Command, Stdio};
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 
-fn ontogeny() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-}
+use crate::util::{assert_bad_input, ontogeny_command, refused, scratch_dir};
 
+/// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-view-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir(&format!("view-{name}"))
 }
 
 fn example(name: &str) -> PathBuf {
@@ -57,7 +51,7 @@ struct Viewer {
 
 impl Viewer {
     fn start(path: &Path) -> Viewer {
-        let mut child = ontogeny()
+        let mut child = ontogeny_command()
             .arg("view")
             .arg(path)
             .args(["--port", "0"])
@@ -225,10 +219,7 @@ fn a_path_that_is_no_page_is_refused_with_exit_code_2() {
         (text, "not an .lsys file"),
         (dir.clone(), "not a directory view can show"),
     ] {
-        let out = ontogeny().arg("view").arg(&path).output().unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{}: {err}", path.display());
-        assert!(err.contains(expected), "{}: {err}", path.display());
+        assert_bad_input(&["view", path.to_str().unwrap()], expected);
     }
     // A recording whose frames do not fit its creature.
     let rec = dir.join("rec");
@@ -238,27 +229,20 @@ fn a_path_that_is_no_page_is_refused_with_exit_code_2() {
         r#"{"creature": 3, "frames": []}"#,
     )
     .unwrap();
-    let out = ontogeny().arg("view").arg(&rec).output().unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("not a recording"));
+    assert_bad_input(&["view", rec.to_str().unwrap()], "not a recording");
 }
 
 #[test]
 fn a_port_in_use_is_refused_with_exit_code_2() {
     let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
     let port = taken.local_addr().unwrap().port().to_string();
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(example("algae.lsys"))
         .args(["--port", &port])
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains(&format!("port {port} is already in use")),
-        "{err}"
-    );
+    refused(&out, &format!("port {port} is already in use"));
 }
 
 #[test]
@@ -342,7 +326,7 @@ fn growth_pages_draw_every_frame_in_chromium() {
 
     // The same from a grow --out directory.
     let dir = scratch("grown");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("grow")
         .arg(example("quadruped.lsys"))
         .arg("--out")
@@ -385,7 +369,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     let Some(browser) = browser() else { return };
     let dir = scratch("recorded");
     let rec = dir.join("rec");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("eval")
         .arg(example("thrower.lsys"))
         .args(["--task", "catapult", "--seconds", "1", "--record"])
@@ -417,7 +401,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     assert_snapshot(&browser, &rec, &dir.join("recording.png"));
 
     let run = dir.join("run");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .args([
             "evolve",
             "--encoding",
@@ -492,7 +476,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     )
     .unwrap();
     let refused = dir.join("refused");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("eval")
         .arg(&crossing)
         .args(["--task", "walker", "--record"])
@@ -514,7 +498,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
 
 /// The warnings `ontogeny view PATH FLAGS` writes on standard error before it serves.
 fn view_warnings(path: &Path, flags: &[&str]) -> String {
-    let mut child = ontogeny()
+    let mut child = ontogeny_command()
         .arg("view")
         .arg(path)
         .args(["--port", "0"])
@@ -581,7 +565,7 @@ fn flags_that_do_not_apply_are_warned_about() {
 
 /// `ontogeny view PATH --snapshot OUT --size 480x300` writes a 480 × 300 picture.
 fn assert_snapshot(browser: &Path, path: &Path, png: &Path) {
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(path)
         .arg("--snapshot")
@@ -604,7 +588,7 @@ fn snapshot_writes_a_picture_of_the_page() {
     let Some(browser) = browser() else { return };
     let dir = scratch("snapshot");
     let png = dir.join("quadruped.png");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(example("quadruped.lsys"))
         .arg("--snapshot")
@@ -639,7 +623,7 @@ fn snapshot_writes_a_picture_of_the_page() {
     let broken = dir.join("broken.lsys");
     std::fs::write(&broken, "axiom: A\nA --> forward(1\n").unwrap();
     let png = dir.join("broken.png");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(&broken)
         .arg("--snapshot")
@@ -648,8 +632,7 @@ fn snapshot_writes_a_picture_of_the_page() {
         .arg(&browser)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("broken.lsys:2:"));
+    refused(&out, "broken.lsys:2:");
     assert!(png.is_file());
 }
 
@@ -974,7 +957,7 @@ fn idle_connections_neither_make_threads_nor_keep_the_page_waiting() {
 fn a_query_number_out_of_range_is_refused_not_wrapped() {
     let dir = scratch("query-range");
     let run = dir.join("run");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .args([
             "evolve",
             "--encoding",
@@ -1033,7 +1016,7 @@ fn a_snapshot_refuses_a_target_that_is_not_a_regular_file() {
     std::fs::write(directory.join("kept"), "kept").unwrap();
     for target in [&socket, &directory] {
         // The browser is never started: `true` would write nothing.
-        let out = ontogeny()
+        let out = ontogeny_command()
             .arg("view")
             .arg(example("algae.lsys"))
             .arg("--snapshot")
@@ -1041,14 +1024,12 @@ fn a_snapshot_refuses_a_target_that_is_not_a_regular_file() {
             .args(["--browser", "true"])
             .output()
             .unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{err}");
-        assert!(
-            err.contains(&format!(
+        refused(
+            &out,
+            &format!(
                 "{} exists and is not a regular file; refusing to replace it",
                 target.display()
-            )),
-            "{err}"
+            ),
         );
     }
     assert!(
@@ -1067,7 +1048,7 @@ fn a_snapshot_refuses_a_target_that_is_not_a_regular_file() {
 fn the_viewer_opens_a_version_1_run_without_migrating_it() {
     let dir = scratch("read-only-run");
     let run = dir.join("run");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .args([
             "evolve",
             "--encoding",
@@ -1088,7 +1069,7 @@ fn the_viewer_opens_a_version_1_run_without_migrating_it() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    common::make_version_1(&run.join("run.sqlite"));
+    crate::util::make_version_1(&run.join("run.sqlite"));
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
     let viewer = Viewer::start(&run);
     let (status, body) = viewer.get("/individual.json?gen=1&index=0");
