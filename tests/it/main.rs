@@ -3,6 +3,9 @@
 //! file would link it once per file.
 //!
 //! Run one concern with a filter on its module: `cargo test --release --test it -- cli::`.
+//! Scratch files go under `CARGO_TARGET_TMPDIR` (`util::scratch_dir`). Proptest keeps the
+//! failing cases it finds in `tests/proptest-regressions/MODULE.txt`, its default place for a
+//! test binary whose `main.rs` is in `tests/it/`.
 
 mod brain;
 mod cli;

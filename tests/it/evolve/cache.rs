@@ -134,12 +134,7 @@ fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
         .arg(dir.join("jump"))
         .output()
         .unwrap();
-    assert_eq!(jump.status.code(), Some(2));
-    let refusal = String::from_utf8_lossy(&jump.stderr).to_string();
-    assert!(
-        refusal.contains("--fitness is for the walker task only"),
-        "{refusal}"
-    );
+    refused(&jump, "--fitness is for the walker task only");
     assert!(!dir.join("jump").exists());
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -278,11 +278,9 @@ fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() 
         .arg(&run)
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("config.toml: [ga] population must be 2 to 100000, not 0"),
-        "{err}"
+    refused(
+        &o,
+        "config.toml: [ga] population must be 2 to 100000, not 0",
     );
     assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
     // `replay` reads the run's settings from its store, not the edited file.
