@@ -1,5 +1,8 @@
-//! Helpers shared by the integration tests.
-#![allow(dead_code)]
+//! Helpers shared by the integration tests: running the command, scratch directories, and
+//! small creatures and genomes.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 
 use ontogeny::creature::Creature;
 use ontogeny::develop::{BuildOptions, grow};
@@ -91,22 +94,97 @@ pub fn assert_determined_by_the_random_source<G: ontogeny::encoding::Genome + Pa
     assert_eq!(a.develop(limits, 3), a.develop(limits, 3));
 }
 
-/// Runs `ontogeny ARGS`, asserting that it succeeds.
-pub fn ontogeny_ok(args: &[&str]) -> std::process::Output {
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+/// The `ontogeny` binary as a command, for a test to add arguments, input or environment to.
+pub fn ontogeny_command() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+}
+
+/// Runs `ontogeny ARGS` and returns what it did, whatever its exit code.
+pub fn ontogeny(args: &[&str]) -> Output {
+    ontogeny_command()
         .args(args)
         .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        .expect("the binary runs")
+}
+
+/// Runs `ontogeny ARGS` with `input` on its standard input.
+pub fn ontogeny_reading(args: &[&str], input: &[u8]) -> Output {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut child = ontogeny_command()
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    child.stdin.take().unwrap().write_all(input).unwrap();
+    child.wait_with_output().unwrap()
+}
+
+/// Runs `ontogeny ARGS`, asserting that it succeeds.
+pub fn ontogeny_ok(args: &[&str]) -> Output {
+    let o = ontogeny(args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
     o
 }
 
+/// A command's standard output, as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A command's standard error, as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Asserts that a command succeeded (showing what it printed if not); returns its standard
+/// output.
+pub fn succeeded(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "{}\n{}",
+        stdout(output),
+        stderr(output)
+    );
+    stdout(output)
+}
+
+/// Asserts that a command refused bad input: exit code 2 and `message` in its standard error.
+/// Returns the standard error, for a test to check more of it.
+pub fn refused(output: &Output, message: &str) -> String {
+    let said = stderr(output);
+    assert_eq!(output.status.code(), Some(2), "{said}");
+    assert!(said.contains(message), "expected {message:?} in: {said}");
+    said
+}
+
+/// Runs `ontogeny ARGS` and asserts that it refuses them as bad input: exit code 2 and
+/// `message` in its standard error. Returns the standard error.
+pub fn assert_bad_input(args: &[&str], message: &str) -> String {
+    let output = ontogeny(args);
+    let said = stderr(&output);
+    assert_eq!(output.status.code(), Some(2), "{args:?}: {said}");
+    assert!(
+        said.contains(message),
+        "{args:?}: expected {message:?} in: {said}"
+    );
+    said
+}
+
+/// A fresh, empty directory for a test's scratch files, under the target directory's
+/// `CARGO_TARGET_TMPDIR`. Tests share one process: give each its own `name` (a module
+/// prefix keeps them apart).
+pub fn scratch_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// `ontogeny grow FILE --out OUT EXTRA...`, and the `creature.json` it writes.
-pub fn grow_creature_json(
-    file: &std::path::Path,
-    out: &std::path::Path,
-    extra: &[&str],
-) -> serde_json::Value {
+pub fn grow_creature_json(file: &Path, out: &Path, extra: &[&str]) -> serde_json::Value {
     let mut args = vec![
         "grow",
         file.to_str().unwrap(),
@@ -120,7 +198,7 @@ pub fn grow_creature_json(
 
 /// Turns the run store at `path` back into schema version 1, as an older ontogeny wrote it:
 /// the fine reference columns dropped, the version set to 1, the log folded in.
-pub fn make_version_1(path: &std::path::Path) {
+pub fn make_version_1(path: &Path) {
     let conn = rusqlite::Connection::open(path).unwrap();
     conn.execute_batch(
         "ALTER TABLE generation DROP COLUMN best_fine;

@@ -8,7 +8,7 @@
 //! The browser tests are skipped, with a message, when no Chromium is installed; in CI
 //! (`CI=true`) a missing browser is a failure, as `.ci/run` installs one.
 
-mod common;
+mod server;
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
@@ -17,15 +17,11 @@ use std::process::{Child, Command, Stdio};
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 
-fn ontogeny() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-}
+use crate::util::{assert_bad_input, ontogeny_command, refused, scratch_dir};
 
+/// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-view-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir(&format!("view-{name}"))
 }
 
 fn example(name: &str) -> PathBuf {
@@ -57,7 +53,7 @@ struct Viewer {
 
 impl Viewer {
     fn start(path: &Path) -> Viewer {
-        let mut child = ontogeny()
+        let mut child = ontogeny_command()
             .arg("view")
             .arg(path)
             .args(["--port", "0"])
@@ -225,10 +221,7 @@ fn a_path_that_is_no_page_is_refused_with_exit_code_2() {
         (text, "not an .lsys file"),
         (dir.clone(), "not a directory view can show"),
     ] {
-        let out = ontogeny().arg("view").arg(&path).output().unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{}: {err}", path.display());
-        assert!(err.contains(expected), "{}: {err}", path.display());
+        assert_bad_input(&["view", path.to_str().unwrap()], expected);
     }
     // A recording whose frames do not fit its creature.
     let rec = dir.join("rec");
@@ -238,27 +231,20 @@ fn a_path_that_is_no_page_is_refused_with_exit_code_2() {
         r#"{"creature": 3, "frames": []}"#,
     )
     .unwrap();
-    let out = ontogeny().arg("view").arg(&rec).output().unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("not a recording"));
+    assert_bad_input(&["view", rec.to_str().unwrap()], "not a recording");
 }
 
 #[test]
 fn a_port_in_use_is_refused_with_exit_code_2() {
     let taken = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
     let port = taken.local_addr().unwrap().port().to_string();
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(example("algae.lsys"))
         .args(["--port", &port])
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains(&format!("port {port} is already in use")),
-        "{err}"
-    );
+    refused(&out, &format!("port {port} is already in use"));
 }
 
 #[test]
@@ -342,7 +328,7 @@ fn growth_pages_draw_every_frame_in_chromium() {
 
     // The same from a grow --out directory.
     let dir = scratch("grown");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("grow")
         .arg(example("quadruped.lsys"))
         .arg("--out")
@@ -385,7 +371,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     let Some(browser) = browser() else { return };
     let dir = scratch("recorded");
     let rec = dir.join("rec");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("eval")
         .arg(example("thrower.lsys"))
         .args(["--task", "catapult", "--seconds", "1", "--record"])
@@ -417,7 +403,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     assert_snapshot(&browser, &rec, &dir.join("recording.png"));
 
     let run = dir.join("run");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .args([
             "evolve",
             "--encoding",
@@ -492,7 +478,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     )
     .unwrap();
     let refused = dir.join("refused");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("eval")
         .arg(&crossing)
         .args(["--task", "walker", "--record"])
@@ -514,7 +500,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
 
 /// The warnings `ontogeny view PATH FLAGS` writes on standard error before it serves.
 fn view_warnings(path: &Path, flags: &[&str]) -> String {
-    let mut child = ontogeny()
+    let mut child = ontogeny_command()
         .arg("view")
         .arg(path)
         .args(["--port", "0"])
@@ -581,7 +567,7 @@ fn flags_that_do_not_apply_are_warned_about() {
 
 /// `ontogeny view PATH --snapshot OUT --size 480x300` writes a 480 × 300 picture.
 fn assert_snapshot(browser: &Path, path: &Path, png: &Path) {
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(path)
         .arg("--snapshot")
@@ -604,7 +590,7 @@ fn snapshot_writes_a_picture_of_the_page() {
     let Some(browser) = browser() else { return };
     let dir = scratch("snapshot");
     let png = dir.join("quadruped.png");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(example("quadruped.lsys"))
         .arg("--snapshot")
@@ -639,7 +625,7 @@ fn snapshot_writes_a_picture_of_the_page() {
     let broken = dir.join("broken.lsys");
     std::fs::write(&broken, "axiom: A\nA --> forward(1\n").unwrap();
     let png = dir.join("broken.png");
-    let out = ontogeny()
+    let out = ontogeny_command()
         .arg("view")
         .arg(&broken)
         .arg("--snapshot")
@@ -648,8 +634,7 @@ fn snapshot_writes_a_picture_of_the_page() {
         .arg(&browser)
         .output()
         .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("broken.lsys:2:"));
+    refused(&out, "broken.lsys:2:");
     assert!(png.is_file());
 }
 
@@ -870,236 +855,4 @@ fn saving_the_file_redraws_the_open_page() {
     let fixed = page.wait_for(state, |s| !s.contains("line 2"));
     assert_eq!(fixed, r#"["yes","1","3",""]"#);
     drop(viewer);
-}
-
-/// Sends `request` (a request head, blank line included) to the viewer and returns the whole
-/// response.
-fn raw_request(viewer: &Viewer, request: &str) -> String {
-    let host = viewer
-        .url
-        .trim_start_matches("http://")
-        .trim_end_matches('/');
-    let mut stream = std::net::TcpStream::connect(host).unwrap();
-    stream.write_all(request.as_bytes()).unwrap();
-    let mut response = Vec::new();
-    stream.read_to_end(&mut response).unwrap();
-    String::from_utf8_lossy(&response).into_owned()
-}
-
-#[test]
-fn the_viewer_answers_only_its_own_host_and_only_reads() {
-    let viewer = Viewer::start(&example("algae.lsys"));
-    let port = viewer.url.rsplit(':').next().unwrap().trim_end_matches('/');
-    // A page elsewhere whose domain name now points at 127.0.0.1 (DNS rebinding), or a
-    // request naming no host: refused.
-    for host in [
-        "Host: evil.example\r\n",
-        "Host: evil.example:{port}\r\n",
-        "",
-    ] {
-        let host = host.replace("{port}", port);
-        let response = raw_request(&viewer, &format!("GET /data.json HTTP/1.1\r\n{host}\r\n"));
-        assert!(response.starts_with("HTTP/1.1 403 "), "{host}: {response}");
-        assert!(!response.contains("\"kind\""), "{response}");
-    }
-    // Every name of this machine, on this port: answered, with the policy and nosniff.
-    for host in ["localhost", "127.0.0.1", "[::1]"] {
-        let response = raw_request(
-            &viewer,
-            &format!("GET / HTTP/1.1\r\nHost: {host}:{port}\r\n\r\n"),
-        );
-        assert!(response.starts_with("HTTP/1.1 200 "), "{host}: {response}");
-        let head = response.split("\r\n\r\n").next().unwrap().to_lowercase();
-        assert!(
-            head.contains("\r\nx-content-type-options: nosniff"),
-            "{head}"
-        );
-        assert!(
-            head.contains("\r\ncontent-security-policy: default-src 'self';"),
-            "{head}"
-        );
-    }
-    // Only reading: anything but GET and HEAD is 405, saying what is allowed.
-    for method in ["POST", "PUT", "DELETE"] {
-        let response = raw_request(
-            &viewer,
-            &format!(
-                "{method} /data.json HTTP/1.1\r\nHost: localhost:{port}\r\nContent-Length: 0\r\n\r\n"
-            ),
-        );
-        assert!(
-            response.starts_with("HTTP/1.1 405 "),
-            "{method}: {response}"
-        );
-        assert!(response.contains("\r\nAllow: GET, HEAD\r\n"), "{response}");
-    }
-    let response = raw_request(
-        &viewer,
-        &format!("HEAD /data.json HTTP/1.1\r\nHost: localhost:{port}\r\n\r\n"),
-    );
-    assert!(response.starts_with("HTTP/1.1 200 "), "{response}");
-    assert!(response.ends_with("\r\n\r\n"), "no body: {response}");
-    assert!(
-        response
-            .to_lowercase()
-            .contains("x-content-type-options: nosniff")
-    );
-}
-
-#[cfg(target_os = "linux")]
-#[test]
-fn idle_connections_neither_make_threads_nor_keep_the_page_waiting() {
-    let viewer = Viewer::start(&example("algae.lsys"));
-    let host = viewer
-        .url
-        .trim_start_matches("http://")
-        .trim_end_matches('/');
-    let idle: Vec<std::net::TcpStream> = (0..300)
-        .map(|_| std::net::TcpStream::connect(host).unwrap())
-        .collect();
-    let (status, _) = viewer.get("/version");
-    assert_eq!(status, 200);
-    let threads = std::fs::read_dir(format!("/proc/{}/task", viewer.child.id()))
-        .unwrap()
-        .count();
-    assert!(
-        threads <= 8,
-        "{threads} threads for {} idle connections",
-        idle.len()
-    );
-    drop(idle);
-}
-
-#[test]
-fn a_query_number_out_of_range_is_refused_not_wrapped() {
-    let dir = scratch("query-range");
-    let run = dir.join("run");
-    let out = ontogeny()
-        .args([
-            "evolve",
-            "--encoding",
-            "direct",
-            "--task",
-            "walker",
-            "--pop",
-            "4",
-            "--gens",
-            "1",
-            "--seconds",
-            "0.2",
-            "--seed",
-            "3",
-            "--out",
-        ])
-        .arg(&run)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let viewer = Viewer::start(&run);
-    let (status, body) = viewer.get("/individual.json?gen=0&index=4294967295");
-    assert_eq!(status, 404, "{body}");
-    assert!(
-        body.contains("generation 0 has 4 individual(s); there is no individual 4294967295"),
-        "{body}"
-    );
-    for query in ["gen=0&index=4294967296", "gen=-1&index=0", "gen=0&index=x"] {
-        let (status, body) = viewer.get(&format!("/individual.json?{query}"));
-        assert_eq!(status, 400, "{query}: {body}");
-        assert!(
-            body.contains("not a whole number from 0 to 4294967295"),
-            "{body}"
-        );
-    }
-    let (status, body) = viewer.get("/individual.json?gen=0&index=3");
-    assert_eq!(status, 200, "{body}");
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[cfg(unix)]
-#[test]
-fn a_snapshot_refuses_a_target_that_is_not_a_regular_file() {
-    use std::os::unix::fs::FileTypeExt;
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("snapshot-targets");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let socket = dir.join("socket.png");
-    let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
-    let directory = dir.join("directory.png");
-    std::fs::create_dir(&directory).unwrap();
-    std::fs::write(directory.join("kept"), "kept").unwrap();
-    for target in [&socket, &directory] {
-        // The browser is never started: `true` would write nothing.
-        let out = ontogeny()
-            .arg("view")
-            .arg(example("algae.lsys"))
-            .arg("--snapshot")
-            .arg(target)
-            .args(["--browser", "true"])
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{err}");
-        assert!(
-            err.contains(&format!(
-                "{} exists and is not a regular file; refusing to replace it",
-                target.display()
-            )),
-            "{err}"
-        );
-    }
-    assert!(
-        std::fs::symlink_metadata(&socket)
-            .unwrap()
-            .file_type()
-            .is_socket()
-    );
-    assert_eq!(
-        std::fs::read_to_string(directory.join("kept")).unwrap(),
-        "kept"
-    );
-}
-
-#[test]
-fn the_viewer_opens_a_version_1_run_without_migrating_it() {
-    let dir = scratch("read-only-run");
-    let run = dir.join("run");
-    let out = ontogeny()
-        .args([
-            "evolve",
-            "--encoding",
-            "direct",
-            "--pop",
-            "6",
-            "--gens",
-            "2",
-            "--seconds",
-            "1",
-            "--out",
-        ])
-        .arg(&run)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    common::make_version_1(&run.join("run.sqlite"));
-    let before = std::fs::read(run.join("run.sqlite")).unwrap();
-    let viewer = Viewer::start(&run);
-    let (status, body) = viewer.get("/individual.json?gen=1&index=0");
-    assert_eq!(status, 200, "{body}");
-    assert!(body.contains("\"parts\""), "{body}");
-    drop(viewer);
-    assert_eq!(std::fs::read(run.join("run.sqlite")).unwrap(), before);
-    let version: i64 = rusqlite::Connection::open(run.join("run.sqlite"))
-        .unwrap()
-        .pragma_query_value(None, "user_version", |r| r.get(0))
-        .unwrap();
-    assert_eq!(version, 1);
-    let _ = std::fs::remove_dir_all(dir);
 }

@@ -2,8 +2,6 @@
 //! printed text grows the identical creature through the language and the command, and
 //! hand-written files that fit the form are read back.
 
-use std::process::Command;
-
 use ontogeny::creature::{Creature, JointKind};
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::encoding::lsystem::{
@@ -334,19 +332,11 @@ fn files_outside_the_form_or_the_limits_are_refused_clearly() {
 fn the_printed_text_grows_and_evaluates_with_the_command() {
     let limits = LSystemLimits::default();
     let g = chain();
-    let dir = std::env::temp_dir().join(format!("ontogeny-genome-lsystem-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::util::scratch_dir("genome-lsystem-cli");
     let file = dir.join("genome.lsys");
     std::fs::write(&file, g.to_text()).unwrap();
     let out = dir.join("out");
-    let run = |args: &[&str]| {
-        let o = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        o
-    };
+    let run = crate::util::ontogeny_ok;
     run(&[
         "grow",
         file.to_str().unwrap(),

@@ -5,8 +5,6 @@
 //! 200 m; with today's default and with the fine reference setting the joint holds to a few
 //! millimetres and it walks about a metre.
 
-use std::process::Command;
-
 /// The fine reference setting as `eval` flags (`SimOptions::fine_reference`).
 const FINE: [&str; 10] = [
     "--substeps",
@@ -23,7 +21,7 @@ const FINE: [&str; 10] = [
 
 /// `ontogeny eval` of the fixture on the walker task, scored by distance, with `extra` flags.
 fn eval_fixture(extra: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+    crate::util::ontogeny_command()
         .args([
             "eval",
             "tests/fixtures/exploit-walker.json",
@@ -93,7 +91,7 @@ fn an_exploit_of_the_fast_setting_shows_in_its_joint_gap_and_fails_at_the_defaul
 #[test]
 fn a_resting_creature_keeps_its_joints_together() {
     // The snake at the fine reference: its joints hold to well under a centimetre.
-    let out = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+    let out = crate::util::ontogeny_command()
         .args([
             "eval",
             "examples/snake.lsys",

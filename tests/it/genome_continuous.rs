@@ -1,7 +1,7 @@
 //! The `lsystem-continuous` genome (Matos & Arita 3.2): limits kept by construction, text
 //! round trips, development through the language, reading hand-written files.
 
-use std::process::Command as Process;
+use crate::util::{ontogeny, scratch_dir};
 
 use ontogeny::creature::{Actuator, Creature, Role};
 use ontogeny::develop::{BuildOptions, grow};
@@ -79,13 +79,6 @@ fn genome_to_text_to_creature_is_the_creature_develop_gives() {
     assert!(checked >= 55, "only {checked} of 60 genomes developed");
 }
 
-fn ontogeny(args: &[&str]) -> std::process::Output {
-    Process::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
 #[test]
 fn the_printed_file_grows_and_evaluates_with_the_cli_into_the_same_creature() {
     let limits = ContinuousLimits::default();
@@ -96,9 +89,7 @@ fn the_printed_file_grows_and_evaluates_with_the_cli_into_the_same_creature() {
             walker_ready(&c).then_some((g, c))
         })
         .unwrap();
-    let dir =
-        std::env::temp_dir().join(format!("ontogeny-genome-continuous-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("genome-continuous-cli");
     let file = dir.join("genome.lsys");
     std::fs::write(&file, g.to_text()).unwrap();
     let file = file.to_str().unwrap();

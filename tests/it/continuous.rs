@@ -1,9 +1,7 @@
 //! Continuous developmental time (dL-systems, Matos & Arita section 3.1) and open L-systems
 //! (section 3.3), against the paper's listing and hand calculation.
 
-mod common;
-
-use common::squash;
+use crate::util::squash;
 use ontogeny::environment::Environment;
 use ontogeny::lang::DiagnosticKind;
 use ontogeny::lsystem::{DeriveOptions, LSystem, ModuleString, Timing};

@@ -3,8 +3,6 @@
 //! grows the identical creature through the language and the command, and any grammar's
 //! derived string seeds a genome.
 
-mod common;
-
 use ontogeny::creature::{Creature, JointKind};
 use ontogeny::encoding::command::Command as C;
 use ontogeny::encoding::lsystem::{Arg, Item, is_driven_walker};
@@ -37,7 +35,7 @@ fn axiom(g: &DirectGenome) -> String {
 
 /// The creature `ontogeny grow --max-modules --max-parts` makes of `text` with the limits.
 fn grown(text: &str, limits: &DirectLimits) -> Creature {
-    common::grown_with_caps(text, limits.max_modules, limits.max_parts)
+    crate::util::grown_with_caps(text, limits.max_modules, limits.max_parts)
 }
 
 fn example(name: &str) -> String {
@@ -343,7 +341,7 @@ fn mutation_rate_zero_changes_nothing_and_rate_one_changes_something() {
 #[test]
 fn everything_is_determined_by_the_random_source() {
     let limits = DirectLimits::default();
-    common::assert_determined_by_the_random_source::<DirectGenome>(&limits);
+    crate::util::assert_determined_by_the_random_source::<DirectGenome>(&limits);
     let (a, b) = parents();
     assert_eq!(a.graft(&b, &limits, &mut rng(5)), None);
 }
@@ -421,26 +419,32 @@ fn grammars_whose_strings_the_genome_cannot_hold_are_refused_with_the_reason() {
 fn the_printed_text_grows_and_evaluates_with_the_command() {
     let limits = DirectLimits::default();
     let g = DirectGenome::from_lsys(&example("hornby-walker"), &limits).unwrap();
-    let dir = std::env::temp_dir().join(format!("ontogeny-genome-direct-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::util::scratch_dir("genome-direct-cli");
     let file = dir.join("genome.lsys");
     std::fs::write(&file, g.to_text()).unwrap();
     let developed = serde_json::to_value(g.develop(&limits, 0).unwrap()).unwrap();
     let caps = ["--max-parts", "50", "--max-modules", "1000"];
     assert_eq!(
-        common::grow_creature_json(&file, &dir.join("genome"), &caps),
+        crate::util::grow_creature_json(&file, &dir.join("genome"), &caps),
         developed
     );
     // The same creature `ontogeny grow` makes of the example itself.
     let original = std::path::Path::new("examples/hornby-walker.lsys");
     assert_eq!(
-        common::grow_creature_json(original, &dir.join("original"), &[]),
+        crate::util::grow_creature_json(original, &dir.join("original"), &[]),
         developed
     );
     // `eval` scores the text as it scores the example.
     let fitness = |path: &str| -> f64 {
-        let o =
-            common::ontogeny_ok(&["eval", path, "--task", "walker", "--seconds", "1", "--json"]);
+        let o = crate::util::ontogeny_ok(&[
+            "eval",
+            path,
+            "--task",
+            "walker",
+            "--seconds",
+            "1",
+            "--json",
+        ]);
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         v["fitness"].as_f64().unwrap()
     };

@@ -2,10 +2,7 @@
 //! `rapier3d-mjcf` and compared with the creature — bodies, poses, joints, limits, masses,
 //! contacts, actuators and settings — plus the errors and the command line.
 
-mod common;
-use common::grown;
-
-use std::process::{Command, Output};
+use crate::util::{assert_bad_input, grown, ontogeny, scratch_dir};
 
 use nalgebra::{UnitQuaternion, Vector3};
 use ontogeny::creature::{Actuator, Creature, JointKind, NeuronFunction, Role};
@@ -535,13 +532,6 @@ fn the_model_name_is_escaped() {
     assert_eq!(robot.name.as_deref(), Some("a<b>&\"c\""));
 }
 
-fn ontogeny(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
 #[test]
 fn the_command_writes_to_standard_output_or_a_file() {
     let out = ontogeny(&["export", "examples/thrower.lsys", "--format", "mjcf"]);
@@ -559,9 +549,7 @@ fn the_command_writes_to_standard_output_or_a_file() {
     .unwrap();
     assert_eq!(printed, expected);
 
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("export-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("export-thrower");
     let path = dir.join("thrower.xml");
     let out = ontogeny(&[
         "export",
@@ -603,9 +591,7 @@ fn the_command_writes_to_standard_output_or_a_file() {
 #[test]
 fn the_command_reads_a_creature_json() {
     let c = grown("examples/quadruped.lsys");
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("export-json-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("export-json");
     let path = dir.join("creature.json");
     std::fs::write(&path, serde_json::to_string(&c).unwrap()).unwrap();
     let out = ontogeny(&["export", path.to_str().unwrap()]);
@@ -622,9 +608,7 @@ fn the_command_reads_a_creature_json() {
 
 #[test]
 fn bad_input_exits_2_with_a_message() {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("export-bad-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("export-bad");
     let garbage = dir.join("garbage.json");
     std::fs::write(&garbage, "{\"parts\": 3}").unwrap();
     let mut looped = creature_from_commands("forward(1) revolute2 forward(1)").unwrap();
@@ -651,10 +635,7 @@ fn bad_input_exits_2_with_a_message() {
     ] {
         let mut all = vec!["export"];
         all.extend(args.iter().copied());
-        let out = ontogeny(&all);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{all:?}: {stderr}");
-        assert!(stderr.contains(says), "{all:?}: {stderr}");
+        assert_bad_input(&all, says);
     }
 }
 

@@ -69,8 +69,7 @@ fn the_growth_gif_has_a_frame_per_growth_frame() {
     };
     let frames = grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
     assert_eq!(frames.len(), 5);
-    let dir = std::env::temp_dir().join(format!("ontogeny-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::util::scratch_dir("render-growth");
     let path = dir.join("growth.gif");
     write_gif(
         frames.iter().map(|f| &f.creature),
@@ -141,8 +140,7 @@ fn a_following_camera_keeps_a_travelling_creature_large() {
     for part in &mut far.parts {
         part.position.x += 40.0;
     }
-    let dir = std::env::temp_dir().join(format!("ontogeny-follow-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::util::scratch_dir("render-follow");
     let mut counts = Vec::new();
     for framing in [
         ontogeny::render::Framing::Still,
@@ -172,7 +170,7 @@ fn a_following_camera_keeps_a_travelling_creature_large() {
 #[test]
 fn drawing_a_gif_reports_its_progress_frame_by_frame() {
     let c = creature("forward(1) forward(1)");
-    let path = std::env::temp_dir().join(format!("ontogeny-progress-{}.gif", std::process::id()));
+    let path = crate::util::scratch_dir("render-progress").join("progress.gif");
     let mut seen = Vec::new();
     ontogeny::render::write_gif_with_progress(
         [&c, &c, &c, &c],
@@ -195,8 +193,7 @@ fn a_still_gif_is_one_checked_picture() {
     // Parts 0 and 3 cross: outlined red, the text red, a red frame round the picture.
     let crossing = creature("forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)");
     let fine = creature("forward(1) forward(1)");
-    let dir = std::env::temp_dir().join(format!("ontogeny-still-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = crate::util::scratch_dir("render-still");
     let mut red = Vec::new();
     for (name, c) in [("crossing", &crossing), ("fine", &fine)] {
         let path = dir.join(format!("{name}.gif"));

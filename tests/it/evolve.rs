@@ -5,7 +5,8 @@
 //! reference setting: the stored value recomputed, the switch that turns it off, a version-1
 //! database migrated on resume.
 
-mod common;
+mod cache;
+mod resume;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -19,9 +20,7 @@ use ontogeny::evolve::run::{Run, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::task::{Evaluation, TaskSpec};
 
-fn ontogeny() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-}
+use crate::util::{ontogeny_command, refused, scratch_dir, succeeded};
 
 /// Every encoding the tests run for.
 const ENCODINGS: [&str; 4] = ["lsystem", "lsystem-continuous", "direct", "graph"];
@@ -31,11 +30,9 @@ fn text_extension(encoding: &str) -> &'static str {
     if encoding == "graph" { "json" } else { "lsys" }
 }
 
+/// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-evolve-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir(&format!("evolve-{name}"))
 }
 
 /// A small, quick run of `encoding`: 12 individuals, `gens` generations, 1 s walks.
@@ -45,7 +42,7 @@ fn run_of(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Output {
 
 /// The command of [`run_of`], to run or spawn.
 fn evolve_command(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Command {
-    let mut c = ontogeny();
+    let mut c = ontogeny_command();
     c.args([
         "evolve",
         "--encoding",
@@ -187,7 +184,7 @@ fn writes_its_directory_and_database(encoding: &str) {
         }
     }
     // best.lsys (best.json) is a genome that grows and evaluates to the stored best fitness.
-    let eval = ontogeny()
+    let eval = ontogeny_command()
         .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
         .arg(out.join(&best))
         .output()
@@ -204,14 +201,14 @@ fn writes_its_directory_and_database(encoding: &str) {
         "{encoding}"
     );
     // `runs show` prints a row per generation; `replay` re-evaluates the best.
-    let show = ontogeny()
+    let show = ontogeny_command()
         .args(["runs", "show"])
         .arg(&out)
         .output()
         .unwrap();
     assert!(show.status.success());
     assert_eq!(String::from_utf8_lossy(&show.stdout).lines().count(), 2 + 4);
-    let replay = ontogeny()
+    let replay = ontogeny_command()
         .arg("replay")
         .arg(&out)
         .args(["--gen", "3"])
@@ -402,7 +399,7 @@ fn a_version_1_database_is_migrated_on_resume() {
     }
     // `runs show` reads it without changing it.
     let before = std::fs::read(old.join("run.sqlite")).unwrap();
-    let show = ontogeny()
+    let show = ontogeny_command()
         .args(["runs", "show"])
         .arg(&old)
         .output()
@@ -414,7 +411,7 @@ fn a_version_1_database_is_migrated_on_resume() {
     );
     assert_eq!(String::from_utf8_lossy(&show.stdout).lines().count(), 2 + 2);
     assert_eq!(std::fs::read(old.join("run.sqlite")).unwrap(), before);
-    let resumed = ontogeny()
+    let resumed = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&old)
@@ -523,7 +520,7 @@ fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
         done.is_some_and(|g| g < 3),
         "{encoding}: killed before the end: {done:?}"
     );
-    let resumed = ontogeny()
+    let resumed = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&killed)
@@ -536,7 +533,7 @@ fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
     );
     assert_eq!(contents(&whole), contents(&killed), "{encoding}");
     // A complete run has nothing to resume.
-    let again = ontogeny()
+    let again = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&killed)
@@ -563,19 +560,15 @@ fn bad_input_is_refused(encoding: &str) {
         format!("encoding = \"{encoding}\"\n\n[ga]\npopulation = 10\npopulaton = 12\n"),
     )
     .unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["evolve", "--config"])
         .arg(&config)
         .arg("--out")
         .arg(dir.join("x"))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("bad.toml:5:1") && err.contains("populaton"),
-        "{err}"
-    );
+    let err = refused(&o, "bad.toml:5:1");
+    assert!(err.contains("populaton"), "{err}");
     assert!(!dir.join("x").exists());
     // An out-of-range value.
     std::fs::write(
@@ -583,36 +576,31 @@ fn bad_input_is_refused(encoding: &str) {
         format!("encoding = \"{encoding}\"\n[ga]\nelite = 1.5\n"),
     )
     .unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["evolve", "--config"])
         .arg(&config)
         .arg("--out")
         .arg(dir.join("y"))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.contains("elite must be between 0 and 1"), "{err}");
+    refused(&o, "elite must be between 0 and 1");
     // --out naming an existing run is refused, and the run is untouched.
     let run = dir.join("run");
     assert!(run_of(encoding, &run, "1", &[]).status.success());
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
     let o = small_run(encoding, &run, &[]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--resume"));
+    refused(&o, "--resume");
     assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
     // A truncated database: a clear message, nothing overwritten.
     let half = before[..before.len() / 2].to_vec();
     std::fs::write(run.join("run.sqlite"), &half).unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
         .arg(&run)
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.contains("run.sqlite"), "{err}");
+    refused(&o, "run.sqlite");
     assert_eq!(half, std::fs::read(run.join("run.sqlite")).unwrap());
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -646,7 +634,7 @@ fn init_seeds_the_first_generation_with_a_grammar_and_its_mutants() {
             );
         }
         // Individual 0 is the grammar itself: it scores what `eval` gives the file.
-        let eval = ontogeny()
+        let eval = ontogeny_command()
             .args(["eval", "--task", "walker", "--seconds", "1", "--json"])
             .arg("examples/hornby-walker.lsys")
             .output()
@@ -660,12 +648,7 @@ fn init_seeds_the_first_generation_with_a_grammar_and_its_mutants() {
             "1",
             &["--init", &format!("examples/{refused}.lsys")],
         );
-        assert_eq!(o.status.code(), Some(2));
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(
-            err.contains(&format!("does not fit the {encoding} genome")),
-            "{err}"
-        );
+        crate::util::refused(&o, &format!("does not fit the {encoding} genome"));
         assert!(!dir.join("bad").exists());
         let _ = std::fs::remove_dir_all(dir);
     }
@@ -687,7 +670,7 @@ fn every_task_and_preset_runs_with(encoding: &str) {
         for preset in ["chaumont", "wwd"] {
             let out = dir.join(format!("{task}-{preset}"));
             // Two generations of 6, so that the preset's operators make the second.
-            let o = ontogeny()
+            let o = ontogeny_command()
                 .args(["evolve", "--encoding", encoding, "--task", task])
                 .args(["--preset", preset, "--pop", "6", "--gens", "2"])
                 .args(["--seconds", "0.5", "--seed", "3", "--config"])
@@ -722,7 +705,7 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
     let whole = dir.join("whole");
     // The small run of seed 4 (a seed whose generation 1 finds a new best that 2 and 3 keep).
     let seeded_run = |out: &Path| {
-        let output = ontogeny()
+        let output = ontogeny_command()
             .args([
                 "evolve",
                 "--encoding",
@@ -790,7 +773,7 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
             ))
             .unwrap();
         }
-        let resumed = ontogeny()
+        let resumed = ontogeny_command()
             .args(["evolve", "--resume"])
             .arg(&cut)
             .output()
@@ -812,504 +795,14 @@ fn an_elite_copy_of_the_best_is_not_walked_again() {
 
 /// Runs `ontogeny evolve --resume DIR`.
 fn resume(dir: &Path) -> Output {
-    ontogeny()
+    ontogeny_command()
         .args(["evolve", "--resume"])
         .arg(dir)
         .output()
         .unwrap()
 }
 
-fn succeeded(output: &Output) {
-    assert!(
-        output.status.success(),
-        "{}\n{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-}
-
-fn refused_with(output: &Output, words: &str) {
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains(words), "expected {words:?} in: {stderr}");
-}
-
-#[test]
-fn a_resume_whose_config_was_edited_is_refused_naming_the_keys_and_changes_nothing() {
-    let dir = scratch("edited");
-    let run = dir.join("run");
-    succeeded(&run_of("direct", &run, "2", &[]));
-    let config = std::fs::read_to_string(run.join("config.toml")).unwrap();
-    let edited = config
-        .replace("seed = 5\n", "seed = 6\n")
-        .replace("population = 12\n", "population = 13\n");
-    assert_ne!(edited, config);
-    std::fs::write(run.join("config.toml"), &edited).unwrap();
-    let before = contents(&run);
-    let database = std::fs::read(run.join("run.sqlite")).unwrap();
-    refused_with(
-        &resume(&run),
-        "ga.population, seed differ from the settings",
-    );
-    assert_eq!(contents(&run), before);
-    assert_eq!(std::fs::read(run.join("run.sqlite")).unwrap(), database);
-    // A change that does not change a setting (a comment, the layout) is no change.
-    std::fs::write(run.join("config.toml"), format!("# my notes\n\n{config}")).unwrap();
-    succeeded(&resume(&run));
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-/// Waits until the process `pid` holds the lock of `dir` (it wrote itself into `.lock`) and
-/// has made its run's store.
-fn wait_for_lock(dir: &Path, pid: u32) {
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
-    while !(std::fs::read_to_string(dir.join(".lock"))
-        .is_ok_and(|holder| holder.starts_with(&format!("pid {pid}:")))
-        && dir.join("config.toml").is_file())
-    {
-        assert!(std::time::Instant::now() < deadline, "no lock taken");
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
-}
-
-#[test]
-fn a_second_process_on_a_run_directory_is_refused_at_once_naming_the_holder() {
-    let dir = scratch("locked");
-    let run = dir.join("run");
-    let mut first = evolve_command("direct", &run, "1000", &[])
-        .stderr(std::process::Stdio::null())
-        .stdout(std::process::Stdio::null())
-        .spawn()
-        .unwrap();
-    wait_for_lock(&run, first.id());
-    let holder = format!("pid {}", first.id());
-    // Another start on the same directory, and a resume while it runs.
-    let again = run_of("direct", &run, "1000", &[]);
-    let resumed = resume(&run);
-    first.kill().unwrap();
-    let _ = first.wait();
-    for output in [&again, &resumed] {
-        refused_with(output, "is in use by another ontogeny process");
-        refused_with(output, &holder);
-    }
-    // The lock dies with its holder, however it died.
-    ontogeny::evolve::lock::DirectoryLock::acquire(&run).unwrap();
-    let _ = std::fs::remove_dir_all(dir);
-}
-
 /// The `config.toml` of the run in `dir`.
 fn config_text(dir: &Path) -> String {
     std::fs::read_to_string(dir.join("config.toml")).unwrap()
-}
-
-#[test]
-fn every_state_a_killed_start_leaves_is_one_resume_completes() {
-    let dir = scratch("start-states");
-    let whole = dir.join("whole");
-    succeeded(&run_of("lsystem", &whole, "2", &[]));
-    let config = config_text(&whole);
-    // An older ontogeny wrote config.toml first, then created the store in place: killed
-    // in between, it left config.toml alone, or beside an empty file, or beside an SQLite
-    // file in WAL mode with no table yet.
-    let alone = dir.join("config-alone");
-    let empty = dir.join("empty-store");
-    let tableless = dir.join("tableless-store");
-    for d in [&alone, &empty, &tableless] {
-        std::fs::create_dir_all(d).unwrap();
-        std::fs::write(d.join("config.toml"), &config).unwrap();
-    }
-    std::fs::write(empty.join("run.sqlite"), b"").unwrap();
-    {
-        let conn = rusqlite::Connection::open(tableless.join("run.sqlite")).unwrap();
-        conn.pragma_update(None, "journal_mode", "WAL").unwrap();
-    }
-    // This ontogeny creates the store whole, then config.toml: killed in between, the store
-    // alone (with no generation yet).
-    let store_alone = dir.join("store-alone");
-    {
-        let source = ontogeny::lang::Source::new("config.toml", config.clone());
-        let run_config = ontogeny::evolve::config::read_run_config(&source).unwrap();
-        Run::<LSystemGenome>::start(&store_alone, run_config, None).unwrap();
-    }
-    std::fs::remove_file(store_alone.join("config.toml")).unwrap();
-    for d in [&alone, &empty, &tableless, &store_alone] {
-        // `--out` refuses it as a run, and `--resume` completes it.
-        refused_with(&run_of("lsystem", d, "2", &[]), "already holds a run");
-        succeeded(&resume(d));
-        assert_eq!(contents(d), contents(&whole), "{}", d.display());
-        assert_eq!(config_text(d), config, "{}", d.display());
-    }
-    // Killed while building the store under its temporary name: no run; `--out` starts it.
-    let partial = dir.join("partial");
-    std::fs::create_dir_all(&partial).unwrap();
-    std::fs::write(partial.join("run.sqlite.partial"), b"SQLite format 3\0half").unwrap();
-    refused_with(&resume(&partial), "holds no run");
-    succeeded(&run_of("lsystem", &partial, "2", &[]));
-    assert_eq!(contents(&partial), contents(&whole));
-    assert!(!partial.join("run.sqlite.partial").exists());
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-/// `log.txt` without its wall-clock figures (" in 1.2 s").
-fn log_without_times(dir: &Path) -> String {
-    std::fs::read_to_string(dir.join("log.txt"))
-        .unwrap()
-        .lines()
-        .map(|line| match line.split_once(" simulated in ") {
-            Some((head, tail)) => {
-                let tail = tail.split_once(" s").map_or("", |(_, rest)| rest);
-                format!("{head} simulated{tail}\n")
-            }
-            None => format!("{line}\n"),
-        })
-        .collect()
-}
-
-#[test]
-fn log_and_plot_are_rewritten_from_the_store_on_every_resume() {
-    // The direct encoding has no crossover: the log counts the children made by mutation
-    // instead, and a resume counts on from the store, not from zero.
-    let dir = scratch("derived");
-    let whole = dir.join("whole");
-    succeeded(&run_of("direct", &whole, "4", &[]));
-    let log = log_without_times(&whole);
-    // A line per generation, then the note, said once.
-    assert_eq!(log.lines().count(), 4 + 1, "{log}");
-    assert!(
-        log.lines()
-            .last()
-            .unwrap()
-            .contains("children of generations 1 to 3 were made by mutation instead"),
-        "{log}"
-    );
-    assert_eq!(log.matches("made by mutation instead").count(), 1, "{log}");
-    // A kill inside a commit lost the last log line and left the plot a point short; another
-    // process damaged the best file. A resume of the finished run rewrites all three.
-    let damaged = dir.join("damaged");
-    std::fs::create_dir_all(&damaged).unwrap();
-    for file in ["config.toml", "run.sqlite"] {
-        std::fs::copy(whole.join(file), damaged.join(file)).unwrap();
-    }
-    let first_line: String = log.lines().next().unwrap().to_string();
-    std::fs::write(damaged.join("log.txt"), first_line).unwrap();
-    std::fs::write(damaged.join("best.lsys"), "").unwrap();
-    succeeded(&resume(&damaged));
-    assert_eq!(log_without_times(&damaged), log);
-    assert_eq!(
-        std::fs::read_to_string(damaged.join("best.lsys")).unwrap(),
-        std::fs::read_to_string(whole.join("best.lsys"))
-            .unwrap()
-            .replace(&whole.display().to_string(), &damaged.display().to_string())
-    );
-    assert!(damaged.join("fitness.svg").is_file());
-    // Killed after generation 1 and resumed: the same log as the uninterrupted run.
-    let killed = dir.join("killed");
-    succeeded(&run_of("direct", &killed, "4", &[]));
-    {
-        let conn = rusqlite::Connection::open(killed.join("run.sqlite")).unwrap();
-        conn.execute_batch(
-            "DELETE FROM individual WHERE generation >= 2;
-             DELETE FROM generation WHERE generation >= 2;",
-        )
-        .unwrap();
-    }
-    succeeded(&resume(&killed));
-    assert_eq!(contents(&killed), contents(&whole));
-    assert_eq!(log_without_times(&killed), log);
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn replay_reads_a_version_1_store_without_migrating_it() {
-    let dir = scratch("read-only");
-    let run = dir.join("run");
-    succeeded(&small_run("lsystem", &run, &[]));
-    common::make_version_1(&run.join("run.sqlite"));
-    let before = std::fs::read(run.join("run.sqlite")).unwrap();
-    succeeded(
-        &ontogeny()
-            .args(["replay"])
-            .arg(&run)
-            .args(["--gen", "0", "--rank", "2"])
-            .output()
-            .unwrap(),
-    );
-    assert_eq!(std::fs::read(run.join("run.sqlite")).unwrap(), before);
-    let store = RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
-    assert_eq!(store.schema_version(), 1);
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn a_finished_run_extended_with_gens_equals_a_run_started_with_that_many() {
-    let dir = scratch("extend");
-    let whole = dir.join("whole");
-    succeeded(&small_run("direct", &whole, &[]));
-    let extended = dir.join("extended");
-    succeeded(&run_of("direct", &extended, "2", &[]));
-    // Fewer generations than it has stored: refused, nothing changed.
-    let before = contents(&extended);
-    let shorter = ontogeny()
-        .args(["evolve", "--gens", "1", "--resume"])
-        .arg(&extended)
-        .output()
-        .unwrap();
-    refused_with(&shorter, "has 2 generations stored");
-    assert_eq!(contents(&extended), before);
-    let longer = ontogeny()
-        .args(["evolve", "--gens", "4", "--resume"])
-        .arg(&extended)
-        .output()
-        .unwrap();
-    succeeded(&longer);
-    assert_eq!(contents(&extended), contents(&whole));
-    let settings = |d: &Path| {
-        RunStore::open_read_only(&d.join("run.sqlite"))
-            .unwrap()
-            .run()
-            .unwrap()
-            .config
-    };
-    assert_eq!(settings(&extended), settings(&whole));
-    assert_eq!(config_text(&extended), config_text(&whole));
-    // Editing the count in config.toml extends it too: the one setting a resume may change.
-    let config = config_text(&extended);
-    std::fs::write(
-        extended.join("config.toml"),
-        config.replace("generations = 4\n", "generations = 5\n"),
-    )
-    .unwrap();
-    succeeded(&resume(&extended));
-    assert_eq!(
-        RunStore::open_read_only(&extended.join("run.sqlite"))
-            .unwrap()
-            .last_generation()
-            .unwrap(),
-        Some(4)
-    );
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() {
-    let dir = scratch("resume-population-0");
-    let run = dir.join("run");
-    assert!(run_of("direct", &run, "1", &[]).status.success());
-    // The input the config fuzz target found: the GA panicked (`clamp` with min > max).
-    let config = run.join("config.toml");
-    let edited: Vec<String> = std::fs::read_to_string(&config)
-        .unwrap()
-        .lines()
-        .map(|line| match line.split(" = ").next() {
-            Some("population") => "population = 0".to_string(),
-            Some("generations") => "generations = 3".to_string(),
-            _ => line.to_string(),
-        })
-        .collect();
-    std::fs::write(&config, edited.join("\n")).unwrap();
-    let before = std::fs::read(run.join("run.sqlite")).unwrap();
-    let o = ontogeny()
-        .args(["evolve", "--resume"])
-        .arg(&run)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(
-        err.contains("config.toml: [ga] population must be 2 to 100000, not 0"),
-        "{err}"
-    );
-    assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
-    // `replay` reads the run's settings from its store, not the edited file.
-    let o = ontogeny().arg("replay").arg(&run).output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-/// Every stored individual of the run in `dir`, in generation and index order.
-fn stored_individuals(dir: &Path) -> Vec<ontogeny::evolve::store::IndividualRecord> {
-    let store = RunStore::open_read_only(&dir.join("run.sqlite")).unwrap();
-    let last = store.last_generation().unwrap().unwrap();
-    (0..=last)
-        .flat_map(|g| store.individuals(g).unwrap())
-        .collect()
-}
-
-#[test]
-fn the_cache_changes_nothing_in_the_database_but_reused_for_every_encoding() {
-    for encoding in ENCODINGS {
-        let dir = scratch(&format!("cache-{encoding}"));
-        let (on, off) = (dir.join("on"), dir.join("off"));
-        succeeded(&small_run(encoding, &on, &[]));
-        succeeded(&small_run(encoding, &off, &["--no-cache"]));
-        assert_eq!(
-            contents_of(&on, true, CacheColumns::Key),
-            contents_of(&off, true, CacheColumns::Key),
-            "{encoding}"
-        );
-        assert!(config_text(&off).contains("cache = false"), "{encoding}");
-        let off = stored_individuals(&off);
-        assert!(off.iter().all(|i| !i.reused), "{encoding}");
-        // Every developed creature has a key; one that did not develop has none.
-        for i in &off {
-            let undeveloped = i.genome_json.contains(r#""message":"development: "#);
-            assert_eq!(i.evaluation_key.is_none(), undeveloped, "{encoding} {i:?}");
-        }
-        let _ = std::fs::remove_dir_all(dir);
-    }
-}
-
-#[test]
-fn an_lsystem_run_reuses_the_evaluation_of_an_identical_creature_bit_for_bit() {
-    let dir = scratch("cache-reuse");
-    let run = dir.join("run");
-    succeeded(&small_run("lsystem", &run, &[]));
-    let all = stored_individuals(&run);
-    let reused: Vec<_> = all.iter().filter(|i| i.reused).collect();
-    assert!(!reused.is_empty(), "no individual was reused");
-    for r in &reused {
-        assert_ne!(r.operator, "elite");
-        let first = all
-            .iter()
-            .find(|i| i.evaluation_key == r.evaluation_key && !i.reused)
-            .expect("a reused individual's key was evaluated before");
-        assert!((first.generation, first.index) < (r.generation, r.index));
-        assert_eq!(first.fitness.to_bits(), r.fitness.to_bits());
-        assert_eq!(
-            (
-                &first.status,
-                &first.terms_json,
-                first.parts,
-                first.joints,
-                first.neurons
-            ),
-            (&r.status, &r.terms_json, r.parts, r.joints, r.neurons)
-        );
-    }
-    // The log counts them per generation: evaluations, of which simulated.
-    let log = std::fs::read_to_string(run.join("log.txt")).unwrap();
-    let store = RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
-    for (line, g) in log.lines().zip(store.generations().unwrap()) {
-        let reused_here = reused.iter().filter(|i| i.generation == g.index).count() as u64;
-        let counts = format!(
-            "{} evaluations, {} simulated in",
-            g.evaluations,
-            g.evaluations - reused_here
-        );
-        assert!(line.contains(&counts), "{line} lacks {counts}");
-    }
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
-    let dir = scratch("fitness");
-    let out = dir.join("run");
-    let o = run_of("direct", &out, "2", &["--fitness", "hornby-pollack"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let label = "walker, hornby-pollack (m)";
-    let end = String::from_utf8_lossy(&o.stdout).to_string();
-    assert!(
-        end.contains(&format!("{label}: generation 1 best ")),
-        "{end}"
-    );
-    let progress = String::from_utf8_lossy(&o.stderr).to_string();
-    assert!(
-        progress.contains(&format!("generation 1: {label}: best ")),
-        "{progress}"
-    );
-    let config = std::fs::read_to_string(out.join("config.toml")).unwrap();
-    assert!(config.contains("fitness = \"hornby-pollack\""), "{config}");
-    let log = std::fs::read_to_string(out.join("log.txt")).unwrap();
-    let generations: Vec<&str> = log
-        .lines()
-        .filter(|l| l.starts_with("generation "))
-        .collect();
-    assert_eq!(generations.len(), 2, "{log}");
-    assert!(
-        generations
-            .iter()
-            .all(|line| line.contains(&format!(": {label}: best "))),
-        "{log}"
-    );
-    let show = ontogeny()
-        .args(["runs", "show"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    let shown = String::from_utf8_lossy(&show.stdout).to_string();
-    assert!(
-        shown.contains(&format!("direct encoding, {label}, seed 5")),
-        "{shown}"
-    );
-    // Without the flag, the task's default formula, named as such.
-    let default = dir.join("default");
-    let o = run_of("direct", &default, "1", &[]);
-    let end = String::from_utf8_lossy(&o.stdout).to_string();
-    assert!(
-        end.contains("walker, normalised (Chaumont eq. 1): generation 0"),
-        "{end}"
-    );
-    // A walker formula for another task is refused, and nothing is written.
-    let jump = ontogeny()
-        .args(["evolve", "--task", "jump", "--fitness", "distance", "--out"])
-        .arg(dir.join("jump"))
-        .output()
-        .unwrap();
-    assert_eq!(jump.status.code(), Some(2));
-    let refusal = String::from_utf8_lossy(&jump.stderr).to_string();
-    assert!(
-        refusal.contains("--fitness is for the walker task only"),
-        "{refusal}"
-    );
-    assert!(!dir.join("jump").exists());
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn a_version_2_database_is_migrated_to_version_3_on_resume() {
-    let dir = scratch("version-2");
-    let whole = dir.join("whole");
-    succeeded(&small_run("lsystem", &whole, &[]));
-    // The same run stopped after generation 1 by a version that knew schema 2: no reused
-    // or evaluation_key columns, no cache setting in config.toml.
-    let old = dir.join("old");
-    succeeded(&small_run("lsystem", &old, &[]));
-    let config = config_text(&old);
-    std::fs::write(
-        old.join("config.toml"),
-        config.replace("cache = true\n", ""),
-    )
-    .unwrap();
-    {
-        let conn = rusqlite::Connection::open(old.join("run.sqlite")).unwrap();
-        conn.execute_batch(
-            "DELETE FROM individual WHERE generation >= 2;
-             DELETE FROM generation WHERE generation >= 2;
-             ALTER TABLE individual DROP COLUMN reused;
-             ALTER TABLE individual DROP COLUMN evaluation_key;
-             PRAGMA user_version = 2;
-             PRAGMA wal_checkpoint(TRUNCATE);",
-        )
-        .unwrap();
-    }
-    succeeded(&resume(&old));
-    let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
-    assert_eq!(store.schema_version(), 3);
-    drop(store);
-    // The old rows: evaluated, no key; the new ones keyed as in the uninterrupted run.
-    let (migrated, fresh) = (stored_individuals(&old), stored_individuals(&whole));
-    for (m, f) in migrated.iter().zip(&fresh) {
-        if m.generation < 2 {
-            assert!(!m.reused && m.evaluation_key.is_none(), "{m:?}");
-        } else {
-            assert_eq!(m.evaluation_key, f.evaluation_key);
-        }
-    }
-    assert_eq!(
-        contents_of(&old, true, CacheColumns::Neither),
-        contents_of(&whole, true, CacheColumns::Neither)
-    );
-    let _ = std::fs::remove_dir_all(dir);
 }

@@ -2,8 +2,7 @@
 //! compactly; evaluations and derivations tell a progress callback how far they are; the
 //! command line shows no progress when standard error is not a terminal.
 
-mod common;
-use common::grown;
+use crate::util::{grown, ontogeny_reading};
 
 use nalgebra::{UnitQuaternion, Vector3};
 use ontogeny::creature::Creature;
@@ -168,7 +167,7 @@ fn progress_grows_by_thousandths_to_one_and_changes_nothing() {
 
 #[test]
 fn growth_tells_the_fraction_of_frames_built() {
-    let lsys = common::lsystem("axiom: A\nderivation length: 4\nA --> forward(1) A\n");
+    let lsys = crate::util::lsystem("axiom: A\nderivation length: 4\nA --> forward(1) A\n");
     let mut told = Vec::new();
     let frames = ontogeny::develop::grow_with_progress(
         &lsys,
@@ -181,7 +180,7 @@ fn growth_tells_the_fraction_of_frames_built() {
     assert_eq!(frames.len(), 5);
     assert_eq!(told, [0.0, 0.25, 0.5, 0.75, 1.0]);
     // Continuous time: frames at 0, 0.3, 0.6, 0.9 and the final time 1.
-    let lsys = common::lsystem("axiom: A(0)\ntime: 1\ndt: 0.3\nA(x) --> solve dx/dt = 1\n");
+    let lsys = crate::util::lsystem("axiom: A(0)\ntime: 1\ndt: 0.3\nA(x) --> solve dx/dt = 1\n");
     let mut fractions = Vec::new();
     lsys.for_each_frame(&Default::default(), None, |frame| {
         fractions.push(frame.fraction());
@@ -215,25 +214,9 @@ fn poses_are_written_at_f32_precision() {
     assert_eq!(back.parts[0].1, frame.parts[0].1);
 }
 
-/// Runs `ontogeny` with `input` on its standard input, standard error a pipe.
-fn ontogeny_reading(args: &[&str], input: &[u8]) -> std::process::Output {
-    use std::io::Write;
-    use std::process::{Command, Stdio};
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    child.stdin.take().unwrap().write_all(input).unwrap();
-    child.wait_with_output().unwrap()
-}
-
 #[test]
 fn an_hours_recording_off_a_terminal_says_its_rate_and_shows_no_progress() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-long-run-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = crate::util::scratch_dir("long-runs-hour").join("recording");
     // An hour's jump at 1/10 s per step: at most 101 + 36,000 steps, one in 4 recorded.
     let out = ontogeny_reading(
         &[
@@ -275,6 +258,6 @@ fn an_hours_recording_off_a_terminal_says_its_rate_and_shows_no_progress() {
     );
     let last = frames.last().unwrap()["t"].as_f64().unwrap();
     assert!(last > 3600.0, "{last}");
-    // (tests/cli.rs replays a recording written the same way.)
+    // (tests/it/cli.rs replays a recording written the same way.)
     std::fs::remove_dir_all(&dir).unwrap();
 }

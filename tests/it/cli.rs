@@ -1,40 +1,22 @@
 //! The `ontogeny` command as a user runs it: output formats and exit codes.
 
-use std::process::{Command, Output};
+mod limits;
+mod stepping;
 
-fn ontogeny(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use std::path::PathBuf;
 
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
+use crate::util::{
+    assert_bad_input, ontogeny, ontogeny_reading, refused, scratch_dir, stderr, stdout,
+};
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Runs `ontogeny` with `input` on its standard input.
-fn ontogeny_reading(args: &[&str], input: &[u8]) -> Output {
-    use std::io::Write;
-    use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    child.stdin.take().unwrap().write_all(input).unwrap();
-    child.wait_with_output().unwrap()
+/// A fresh scratch directory of this module's, named after `tag`.
+fn scratch(tag: &str) -> PathBuf {
+    scratch_dir(&format!("cli-{tag}"))
 }
 
 /// Grows the snake example into a fresh directory and returns it.
-fn grown_snake(tag: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-{tag}-{}", std::process::id()));
+fn grown_snake(tag: &str) -> PathBuf {
+    let dir = scratch(&format!("snake-{tag}"));
     let out = ontogeny(&[
         "grow",
         "examples/snake.lsys",
@@ -45,8 +27,9 @@ fn grown_snake(tag: &str) -> std::path::PathBuf {
     dir
 }
 
-fn temp_file(name: &str, text: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-cli-{}", std::process::id()));
+/// Writes `text` to the file `name` in a directory the module's tests share.
+fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-files");
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
@@ -111,9 +94,7 @@ fn derive_seed_flag_changes_stochastic_results_reproducibly() {
 fn bad_grammar_exits_2_with_a_located_message_and_no_panic() {
     let path = temp_file("bad.lsys", "axiom: A\nA(x) --> A(x +)\n");
     let out = ontogeny(&["derive", path.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = stderr(&out);
-    assert!(err.contains(&format!("{}:2:15", path.display())), "{err}");
+    let err = refused(&out, &format!("{}:2:15", path.display()));
     assert!(err.contains('^') && err.contains("expected"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
     assert!(stdout(&out).is_empty());
@@ -121,27 +102,25 @@ fn bad_grammar_exits_2_with_a_located_message_and_no_panic() {
 
 #[test]
 fn runaway_growth_exits_2() {
-    let out = ontogeny(&[
-        "derive",
-        "examples/algae.lsys",
-        "--steps",
-        "40",
-        "--max-modules",
-        "1000",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(
-        stderr(&out).contains("grew past 1000 modules"),
-        "{}",
-        stderr(&out)
+    assert_bad_input(
+        &[
+            "derive",
+            "examples/algae.lsys",
+            "--steps",
+            "40",
+            "--max-modules",
+            "1000",
+        ],
+        "grew past 1000 modules",
     );
 }
 
 #[test]
 fn missing_file_exits_2() {
-    let out = ontogeny(&["derive", "no-such-file.lsys"]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains("cannot read no-such-file.lsys"));
+    assert_bad_input(
+        &["derive", "no-such-file.lsys"],
+        "cannot read no-such-file.lsys",
+    );
 }
 
 #[test]
@@ -315,7 +294,7 @@ fn bad_continuous_flags_exit_2() {
 
 #[test]
 fn grow_writes_the_creature_its_frames_and_pictures() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-grow-{}", std::process::id()));
+    let dir = scratch("grow");
     let out = ontogeny(&[
         "grow",
         "examples/quadruped.lsys",
@@ -371,7 +350,7 @@ fn check_counts_names_used_in_odes_and_time_headers() {
 
 #[test]
 fn eval_prints_fitness_terms_and_records() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-eval-{}", std::process::id()));
+    let dir = scratch("eval");
     let out = ontogeny(&[
         "eval",
         "examples/thrower.lsys",
@@ -421,21 +400,19 @@ fn eval_prints_fitness_terms_and_records() {
 #[test]
 fn eval_rejects_bad_input_with_exit_2() {
     let path = temp_file("not-a-creature.json", "{\"parts\": 3}");
-    let out = ontogeny(&["eval", path.to_str().unwrap(), "--task", "walker"]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(stderr(&out).contains("not a creature"), "{}", stderr(&out));
+    assert_bad_input(
+        &["eval", path.to_str().unwrap(), "--task", "walker"],
+        "not a creature",
+    );
     // Well-formed JSON, but a joint to a part that does not exist, and a negative size.
     let grown = grown_snake("bad");
     let text = std::fs::read_to_string(grown.join("creature.json")).unwrap();
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value["joints"][0]["child"] = serde_json::json!(99);
     let bad = temp_file("bad-joint.json", &value.to_string());
-    let out = ontogeny(&["eval", bad.to_str().unwrap(), "--task", "walker"]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(
-        stderr(&out).contains("joint 0 does not join two of the 9 parts"),
-        "{}",
-        stderr(&out)
+    assert_bad_input(
+        &["eval", bad.to_str().unwrap(), "--task", "walker"],
+        "joint 0 does not join two of the 9 parts",
     );
     let mut value: serde_json::Value = serde_json::from_str(&text).unwrap();
     value["parts"][0]["size"] = serde_json::json!([-1.0, 1.0, 1.0]);
@@ -444,14 +421,10 @@ fn eval_rejects_bad_input_with_exit_2() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(!stderr(&out).contains("panicked"));
 
-    let out = ontogeny(&["replay", "/no/such/dir"]);
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "a missing file is bad input: {}",
-        stderr(&out)
+    assert_bad_input(
+        &["replay", "/no/such/dir"],
+        "cannot read /no/such/dir/recording.json",
     );
-    assert!(stderr(&out).contains("cannot read /no/such/dir/recording.json"));
 }
 
 #[test]
@@ -483,19 +456,16 @@ fn negative_option_values_are_values_not_flags() {
     assert!((x(&ahead) - x(&behind) - 8.0).abs() < 1e-5);
     // A negative number reaches the command's own range check (exit 2, its own words),
     // not clap's "unexpected argument".
-    let o = ontogeny(&[
-        "eval",
-        "examples/snake.lsys",
-        "--task",
-        "walker",
-        "--seconds",
-        "-1",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("--seconds must be in (0, 3600], not -1"),
-        "{}",
-        stderr(&o)
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/snake.lsys",
+            "--task",
+            "walker",
+            "--seconds",
+            "-1",
+        ],
+        "--seconds must be in (0, 3600], not -1",
     );
 }
 
@@ -510,8 +480,7 @@ fn a_dash_reads_the_grammar_from_standard_input() {
     }
     // Errors name the source <stdin>, with line and column.
     let o = ontogeny_reading(&["derive", "-"], b"axiom: a\na --> (\n");
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("<stdin>:2:"), "{}", stderr(&o));
+    refused(&o, "<stdin>:2:");
 }
 
 /// Each frame's delay (centiseconds) of a GIF.
@@ -530,7 +499,7 @@ fn gif_delays(path: &std::path::Path) -> Vec<u16> {
 
 #[test]
 fn replay_writes_the_frames_per_second_it_says() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-fps-{}", std::process::id()));
+    let dir = scratch("fps");
     let o = ontogeny(&[
         "eval",
         "examples/snake.lsys",
@@ -570,12 +539,9 @@ fn replay_writes_the_frames_per_second_it_says() {
         assert!(stdout(&o).contains(&format!("{} frames at {fps} frames/s", delays.len())));
     }
     // Beyond what GIF timing can show.
-    let o = ontogeny(&["replay", dir.to_str().unwrap(), "--fps", "60"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("--fps must be in (0, 50]"),
-        "{}",
-        stderr(&o)
+    assert_bad_input(
+        &["replay", dir.to_str().unwrap(), "--fps", "60"],
+        "--fps must be in (0, 50]",
     );
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -603,8 +569,7 @@ fn growing_nothing_says_so() {
 
 #[test]
 fn continuous_time_flags_for_a_discrete_file_are_refused_by_every_verb_that_grows_it() {
-    let snapshot =
-        std::env::temp_dir().join(format!("ontogeny-refused-{}.png", std::process::id()));
+    let snapshot = scratch("refused").join("refused.png");
     let snapshot = snapshot.to_str().unwrap();
     for verb in ["derive", "grow", "eval", "export", "view"] {
         for flag in [&["--dt", "0.3"][..], &["--timing", "exact"][..]] {
@@ -723,7 +688,7 @@ fn range_errors_name_only_the_flag_at_fault_and_its_value() {
         assert_eq!(stderr(&o), format!("error: {message}\n"), "{args:?}");
     }
     // evolve and compare say the same of --seconds, with no "the command line:" before it.
-    let dir = std::env::temp_dir().join(format!("ontogeny-seconds-{}", std::process::id()));
+    let dir = scratch("seconds");
     let out = dir.join("run");
     let out = out.to_str().unwrap();
     for args in [
@@ -795,7 +760,7 @@ fn eval_refuses_a_record_path_that_is_a_file_before_evaluating() {
 
 #[test]
 fn grow_and_eval_take_steps_and_note_a_missing_derivation_length() {
-    let dir = std::env::temp_dir().join(format!("ontogeny-steps-{}", std::process::id()));
+    let dir = scratch("steps");
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("no-length.lsys");
     std::fs::write(&file, "axiom: A\nA --> forward(1) revolute2 A\n").unwrap();
@@ -835,16 +800,17 @@ fn grow_and_eval_take_steps_and_note_a_missing_derivation_length() {
     let value: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
     assert_eq!(value["terms"]["N"].as_f64(), Some(3.0));
     // In continuous time, steps mean nothing: an error.
-    let o = ontogeny(&[
-        "eval",
-        "examples/continuous-walker.lsys",
-        "--task",
-        "walker",
-        "--steps",
-        "3",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--steps counts discrete steps"));
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/continuous-walker.lsys",
+            "--task",
+            "walker",
+            "--steps",
+            "3",
+        ],
+        "--steps counts discrete steps",
+    );
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -910,546 +876,4 @@ fn flags_the_task_does_not_use_are_warned_about() {
         "4,0,0",
     ]);
     assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
-}
-
-#[test]
-fn bench_fidelity_ranks_settings_and_counts_walks_and_creatures_at_rest() {
-    // Four creatures (the shipped walkers), one short walk each: the fast setting beside the
-    // default. Every row names its setting and gives rest as counts of the fine reference's.
-    let o = ontogeny(&[
-        "bench",
-        "--evaluations",
-        "1",
-        "--seconds",
-        "0.5",
-        "--fidelity",
-        "4",
-        "--runs",
-        "1",
-        "--fidelity-also",
-        "fast,1x4x1/4x8",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let out = stdout(&o);
-    let floor = out
-        .lines()
-        .find(|l| l.starts_with("noise floor"))
-        .unwrap_or_else(|| panic!("{out}"));
-    assert!(floor.contains("of 4 walks"), "{floor}");
-    assert!(
-        floor.contains("of 4 creatures (most of their walks)"),
-        "{floor}"
-    );
-    // The fidelity table: a named setting's row is named after it, another by its numbers.
-    let table = out
-        .split_once("Spearman")
-        .unwrap_or_else(|| panic!("no fidelity table: {out}"))
-        .1;
-    for setting in ["default", "fast", "1x4x1/4x8"] {
-        let row = table
-            .lines()
-            .find(|l| l.starts_with(setting))
-            .unwrap_or_else(|| panic!("no {setting} row: {out}"));
-        let fields: Vec<&str> = row.split_whitespace().collect();
-        assert_eq!(fields.len(), 6, "{row}");
-        for rest in &fields[3..5] {
-            let (rested, of) = rest.split_once('/').unwrap_or_else(|| panic!("{row}"));
-            let (rested, of): (usize, usize) = (rested.parse().unwrap(), of.parse().unwrap());
-            assert!(rested <= of && of <= 4, "{row}");
-        }
-    }
-    // The speed rows: the default, 2 substeps of 4 iterations and the fast setting, each
-    // named by its setting.
-    assert!(out.contains("\nmeasured: default "), "{out}");
-    assert!(
-        out.contains("\n2x4x1/2x4 (2 substeps, 4 iterations) "),
-        "{out}"
-    );
-    assert!(!out.contains("issue"), "{out}");
-    assert!(out.contains("\nfast "), "{out}");
-}
-
-/// A fresh scratch directory under the target's, named after `tag`.
-fn scratch(tag: &str) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("cli-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-#[test]
-fn evolve_refuses_a_step_setting_out_of_range_at_once_naming_the_key_and_writes_no_run() {
-    let dir = scratch("evolve-bad-sim");
-    let cases = [
-        ("substeps = 0", "[task.sim] substeps must be 1 to 64, not 0"),
-        (
-            "substeps = 4000000000",
-            "[task.sim] substeps must be 1 to 64, not 4000000000",
-        ),
-        (
-            "solver_iterations = 1000000000",
-            "[task.sim] solver_iterations must be 1 to 256, not 1000000000",
-        ),
-        (
-            "dt = 1e-9",
-            "[task.sim] dt must be in [0.001, 0.1] seconds, not 0.000000001",
-        ),
-        (
-            "friction = -1",
-            "[task.sim] friction must be finite and not negative, not -1",
-        ),
-    ];
-    for (line, message) in cases {
-        let config = dir.join("bad.toml");
-        std::fs::write(&config, format!("[task.sim]\n{line}\n")).unwrap();
-        let out = dir.join("run");
-        let o = ontogeny(&[
-            "evolve",
-            "--config",
-            config.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        assert_eq!(o.status.code(), Some(2), "{line}: {}", stderr(&o));
-        assert_eq!(
-            stderr(&o),
-            format!("error: {}: {message}\n", config.display()),
-            "{line}"
-        );
-        assert!(!out.exists(), "{line}: a run directory was written");
-    }
-    // A task's settings too, by their table.
-    let config = dir.join("bad.toml");
-    std::fs::write(&config, "[task.walker.rest]\nlimit = 1e12\n").unwrap();
-    let out = dir.join("run");
-    let o = ontogeny(&[
-        "evolve",
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("[task.walker.rest] limit must be in (0, 3600]"),
-        "{}",
-        stderr(&o)
-    );
-    assert!(!out.exists());
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn bench_refuses_a_stepping_flag_out_of_range_instead_of_clamping_it() {
-    for (flag, value, message) in [
-        ("--substeps", "0", "--substeps must be 1 to 64, not 0"),
-        (
-            "--rest-solver-iterations",
-            "300",
-            "--rest-solver-iterations must be 1 to 256, not 300",
-        ),
-    ] {
-        let o = ontogeny(&[
-            "bench",
-            "--evaluations",
-            "1",
-            "--seconds",
-            "0.1",
-            flag,
-            value,
-        ]);
-        assert_eq!(o.status.code(), Some(2), "{flag}: {}", stderr(&o));
-        assert_eq!(stderr(&o), format!("error: {message}\n"));
-        assert!(stdout(&o).is_empty(), "{flag} measured something");
-    }
-}
-
-/// The snake's fitness on a one-second walk with `flags`.
-fn snake_walk(flags: &[&str]) -> f64 {
-    let mut args = vec![
-        "eval",
-        "examples/snake.lsys",
-        "--task",
-        "walker",
-        "--seconds",
-        "1",
-        "--json",
-    ];
-    args.extend(flags);
-    let o = ontogeny(&args);
-    assert!(o.status.success(), "{flags:?}: {}", stderr(&o));
-    let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
-    json["fitness"].as_f64().unwrap()
-}
-
-#[test]
-fn eval_setting_names_the_stepping_flags_and_an_explicit_flag_overrides_it() {
-    let fast = [
-        "--substeps",
-        "1",
-        "--solver-iterations",
-        "2",
-        "--pgs-iterations",
-        "3",
-        "--rest-substeps",
-        "2",
-        "--rest-solver-iterations",
-        "4",
-    ];
-    let named = snake_walk(&["--setting", "fast"]);
-    assert_eq!(named, snake_walk(&fast));
-    assert_eq!(snake_walk(&["--setting", "default"]), snake_walk(&[]));
-    // An explicit flag beside the name replaces that one value of the setting.
-    let mut overridden = fast.to_vec();
-    overridden[1] = "3";
-    let over = snake_walk(&["--setting", "fast", "--substeps", "3"]);
-    assert_eq!(over, snake_walk(&overridden));
-    assert_ne!(over, named, "--substeps 3 changed nothing");
-    // An unknown name is refused, with the names that exist.
-    let o = ontogeny(&[
-        "eval",
-        "examples/snake.lsys",
-        "--task",
-        "walker",
-        "--setting",
-        "quick",
-    ]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("[possible values: fast, default, fine]"),
-        "{}",
-        stderr(&o)
-    );
-    // --fast is gone: --setting fast says it.
-    let o = ontogeny(&["eval", "examples/snake.lsys", "--task", "walker", "--fast"]);
-    assert_eq!(o.status.code(), Some(2));
-}
-
-/// The `[task.sim]` table of a run's or a comparison's settings file.
-fn sim_table(path: &std::path::Path) -> toml::Table {
-    let text = std::fs::read_to_string(path).unwrap();
-    let table: toml::Table = toml::from_str(&text).unwrap();
-    table["task"]["sim"].as_table().unwrap().clone()
-}
-
-/// The five stepping values of a `[task.sim]` table.
-fn stepping(sim: &toml::Table) -> [i64; 5] {
-    [
-        "substeps",
-        "solver_iterations",
-        "pgs_iterations",
-        "rest_substeps",
-        "rest_solver_iterations",
-    ]
-    .map(|key| sim[key].as_integer().unwrap_or_else(|| panic!("no {key}")))
-}
-
-#[test]
-fn a_config_names_its_step_setting_and_the_run_writes_every_value_back() {
-    let dir = scratch("evolve-setting");
-    let config = dir.join("fast.toml");
-    std::fs::write(&config, "[task.sim]\nsetting = \"fast\"\nsubsteps = 2\n").unwrap();
-    let out = dir.join("run");
-    let o = ontogeny(&[
-        "evolve",
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--pop",
-        "4",
-        "--gens",
-        "1",
-        "--seconds",
-        "0.2",
-        "--no-verify-best",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    // The fast setting with its substeps overridden, written out in full, without the name.
-    let sim = sim_table(&out.join("config.toml"));
-    assert_eq!(stepping(&sim), [2, 2, 3, 2, 4]);
-    assert!(!sim.contains_key("setting"), "{sim:?}");
-    // --setting on the command line replaces the config's stepping: here in a comparison's
-    // settings, which `--plan` writes without running anything.
-    let plan = dir.join("plan");
-    let o = ontogeny(&[
-        "compare",
-        "--encodings",
-        "direct",
-        "--evaluations",
-        "100",
-        "--pop",
-        "10",
-        "--config",
-        config.to_str().unwrap(),
-        "--setting",
-        "fine",
-        "--out",
-        plan.to_str().unwrap(),
-        "--plan",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(
-        stepping(&sim_table(&plan.join("evolve.toml"))),
-        [4, 8, 1, 4, 8]
-    );
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn compare_refuses_a_step_setting_out_of_range_and_writes_nothing() {
-    let dir = scratch("compare-bad-sim");
-    let config = dir.join("bad.toml");
-    std::fs::write(&config, "[task.sim]\nrest_substeps = 0\n").unwrap();
-    let out = dir.join("cmp");
-    let o = ontogeny(&[
-        "compare",
-        "--encodings",
-        "direct",
-        "--evaluations",
-        "100",
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert_eq!(
-        stderr(&o),
-        format!(
-            "error: {}: [task.sim] rest_substeps must be 1 to 64, not 0\n",
-            config.display()
-        )
-    );
-    assert!(!out.exists());
-    // A comparison's settings edited by hand afterwards are refused when it resumes.
-    let o = ontogeny(&[
-        "compare",
-        "--encodings",
-        "direct",
-        "--evaluations",
-        "100",
-        "--pop",
-        "10",
-        "--out",
-        out.to_str().unwrap(),
-        "--plan",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let settings = out.join("evolve.toml");
-    let text = std::fs::read_to_string(&settings)
-        .unwrap()
-        .replace("substeps = 4\n", "substeps = 0\n");
-    std::fs::write(&settings, text).unwrap();
-    let o = ontogeny(&["compare", "--resume", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains("[task.sim] substeps must be 1 to 64, not 0"),
-        "{}",
-        stderr(&o)
-    );
-    let _ = std::fs::remove_dir_all(dir);
-}
-
-/// A scratch directory of this test binary's own, made afresh.
-fn scratch_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-#[test]
-fn a_growth_of_a_billion_frames_is_refused_at_once_when_its_frames_are_written() {
-    let dir = scratch_dir("billion-frames");
-    let file = dir.join("long.lsys");
-    std::fs::write(
-        &file,
-        "axiom: forward(1)\nderivation length: 1000000000\nforward(x) --> forward(x)\n",
-    )
-    .unwrap();
-    let out = dir.join("out");
-    let o = ontogeny(&[
-        "grow",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    let said = stderr(&o);
-    assert!(
-        said.contains("1000000001 frames") && said.contains("--steps"),
-        "{said}"
-    );
-    assert!(!out.exists(), "nothing is written");
-    // --steps brings it within the limit; without --out only the last frame is kept.
-    let o = ontogeny(&["grow", file.to_str().unwrap(), "--steps", "20000"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stdout(&o).contains("in 20001 frame(s)"), "{}", stdout(&o));
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
-fn a_creature_file_with_more_parts_than_max_parts_is_refused_by_eval_and_export() {
-    let dir = scratch_dir("too-many-parts");
-    let file = dir.join("chain.lsys");
-    std::fs::write(
-        &file,
-        "axiom: { forward(0.5) }(100) { forward(0.5) }(100) forward(0.5)\n",
-    )
-    .unwrap();
-    let out = dir.join("grown");
-    let o = ontogeny(&[
-        "grow",
-        file.to_str().unwrap(),
-        "--max-parts",
-        "201",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let creature = out.join("creature.json");
-    let creature = creature.to_str().unwrap();
-    for args in [
-        &["eval", creature, "--task", "walker"][..],
-        &["export", creature],
-    ] {
-        let o = ontogeny(args);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        assert!(
-            stderr(&o).contains("201 parts, more than the 200 allowed (--max-parts)"),
-            "{args:?}: {}",
-            stderr(&o)
-        );
-    }
-    // --max-parts lifts the limit.
-    let o = ontogeny(&["export", creature, "--max-parts", "201"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-/// A fresh scratch directory under the test target's own temporary directory.
-fn target_scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-#[test]
-fn export_refuses_an_out_that_is_a_directory_and_leaves_it_intact() {
-    let dir = target_scratch("export-out-directory");
-    let taken = dir.join("model.xml");
-    std::fs::create_dir(&taken).unwrap();
-    std::fs::write(taken.join("kept"), "kept").unwrap();
-    let out = ontogeny(&[
-        "export",
-        "examples/snake.lsys",
-        "--out",
-        taken.to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(
-        stderr(&out).contains(&format!(
-            "{} exists and is not a regular file; refusing to replace it",
-            taken.display()
-        )),
-        "{}",
-        stderr(&out)
-    );
-    assert_eq!(std::fs::read_to_string(taken.join("kept")).unwrap(), "kept");
-    // A regular file is replaced whole, and nothing is left beside it.
-    let file = dir.join("model-file.xml");
-    std::fs::write(&file, "old").unwrap();
-    let out = ontogeny(&[
-        "export",
-        "examples/snake.lsys",
-        "--out",
-        file.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    assert!(std::fs::read_to_string(&file).unwrap().contains("<mujoco"));
-    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
-}
-
-#[cfg(unix)]
-#[test]
-fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
-    use std::os::unix::fs::FileTypeExt;
-    let dir = target_scratch("record-socket");
-    let socket = dir.join("behaviour.gif");
-    let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
-    let out = ontogeny(&[
-        "eval",
-        "examples/snake.lsys",
-        "--task",
-        "walker",
-        "--seconds",
-        "1",
-        "--record",
-        dir.to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(
-        stderr(&out).contains("behaviour.gif exists and is not a regular file"),
-        "{}",
-        stderr(&out)
-    );
-    assert!(
-        std::fs::symlink_metadata(&socket)
-            .unwrap()
-            .file_type()
-            .is_socket()
-    );
-    // Refused before anything was evaluated or written.
-    assert!(!dir.join("recording.json").exists());
-    assert!(stdout(&out).is_empty(), "{}", stdout(&out));
-}
-
-#[test]
-fn grow_out_refuses_a_picture_that_is_a_directory_and_writes_nothing() {
-    let dir = target_scratch("grow-out-directory");
-    std::fs::create_dir(dir.join("creature.png")).unwrap();
-    let out = ontogeny(&[
-        "grow",
-        "examples/snake.lsys",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
-    assert!(
-        stderr(&out).contains("creature.png exists and is not a regular file"),
-        "{}",
-        stderr(&out)
-    );
-    assert!(dir.join("creature.png").is_dir());
-    assert!(!dir.join("creature.json").exists());
-}
-
-#[test]
-fn eval_activation_sets_the_walker_s_first_activation_and_is_checked() {
-    let file = "tests/fixtures/late-toppler.lsys";
-    let fitness = |extra: &[&str]| -> f64 {
-        let mut args = vec!["eval", file, "--task", "walker", "--fitness", "distance"];
-        args.extend_from_slice(extra);
-        let o = ontogeny(&args);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let out = stdout(&o);
-        let line = out.lines().next().unwrap();
-        line.split("fitness ")
-            .nth(1)
-            .unwrap()
-            .split(' ')
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap()
-    };
-    // The default (1 s): toppled before the walk; 9 steps: toppled during it.
-    assert!(fitness(&[]) < 0.01);
-    assert!(fitness(&["--activation", "0.15"]) > 0.5);
-    let o = ontogeny(&["eval", file, "--task", "walker", "--activation", "-1"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--activation"), "{}", stderr(&o));
 }

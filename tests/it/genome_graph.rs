@@ -4,7 +4,6 @@
 //! built, simulated and driven by its neurons, and the command line runs it.
 
 use std::path::PathBuf;
-use std::process::Command;
 
 use nalgebra::{Matrix3, Vector3};
 use ontogeny::creature::{Creature, Face, JointKind, NeuronFunction};
@@ -14,6 +13,8 @@ use ontogeny::sim::{SimOptions, World};
 use ontogeny::task::{Status, WalkerOptions, walker};
 use proptest::prelude::*;
 use rand::SeedableRng;
+
+use crate::util::{assert_bad_input, ontogeny_command, refused, scratch_dir};
 
 fn rng(seed: u64) -> Rng {
     Rng::seed_from_u64(seed)
@@ -554,14 +555,10 @@ fn a_genome_outside_the_limits_does_not_develop_and_says_why() {
     assert!(e.0.starts_with("not a graph genome"), "{e}");
 }
 
-fn ontogeny() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-}
-
+/// A scratch directory of this module's, named after `name`: a fresh, empty directory's
+/// path, the directory itself not yet made.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-graph-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+    scratch_dir(&format!("genome-graph-{name}")).join("dir")
 }
 
 #[test]
@@ -572,7 +569,7 @@ fn genome_show_prints_nodes_connections_and_neurons() {
     let mut g = driven(JointKind::Universal, &[0.5, -0.5]);
     g.nodes[0].connections[0].reflection = true;
     std::fs::write(&file, g.to_text()).unwrap();
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["genome", "show"])
         .arg(&file)
         .output()
@@ -590,7 +587,7 @@ fn genome_show_prints_nodes_connections_and_neurons() {
         assert!(out.contains(want), "missing {want:?} in\n{out}");
     }
     // The same file evaluates as a creature.
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["eval", "--task", "walker", "--seconds", "1"])
         .arg(&file)
         .output()
@@ -598,13 +595,10 @@ fn genome_show_prints_nodes_connections_and_neurons() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // Bad input: exit code 2 and a message.
     std::fs::write(&file, "{\"nodes\": []}").unwrap();
-    let o = ontogeny()
-        .args(["genome", "show"])
-        .arg(&file)
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("0 nodes; 1 to 20 allowed"));
+    assert_bad_input(
+        &["genome", "show", file.to_str().unwrap()],
+        "0 nodes; 1 to 20 allowed",
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -612,7 +606,7 @@ fn genome_show_prints_nodes_connections_and_neurons() {
 fn evolve_with_the_graph_encoding_runs_resumes_and_throws() {
     let dir = scratch("evolve");
     let run = |extra: &[&str]| {
-        let mut cmd = ontogeny();
+        let mut cmd = ontogeny_command();
         cmd.args(["evolve", "--threads", "2"]).args(extra);
         cmd.output().unwrap()
     };
@@ -659,7 +653,7 @@ fn evolve_with_the_graph_encoding_runs_resumes_and_throws() {
     let best = std::fs::read_to_string(out.join("best.json")).unwrap();
     GraphGenome::from_text(&best, &GraphLimits::default()).expect("best.json is a genome");
     assert!(!out.join("best.lsys").exists());
-    let o = ontogeny()
+    let o = ontogeny_command()
         .args(["genome", "show"])
         .arg(out.join("best.json"))
         .output()
@@ -785,15 +779,12 @@ fn a_graph_genome_far_beyond_the_node_limit_is_refused_by_its_sizes_with_the_lim
         "{err}"
     );
     // The same for the command line: refused with exit code 2.
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("graph-100000-nodes");
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("genome-graph-100000-nodes");
     let file = dir.join("huge.json");
     std::fs::write(&file, &text).unwrap();
     for verb in [&["genome", "show"][..], &["eval", "--task", "walker"][..]] {
-        let o = ontogeny().args(verb).arg(&file).output().unwrap();
-        assert_eq!(o.status.code(), Some(2), "{verb:?}");
-        let said = String::from_utf8_lossy(&o.stderr);
-        assert!(said.contains("(max_nodes)"), "{verb:?}: {said}");
+        let o = ontogeny_command().args(verb).arg(&file).output().unwrap();
+        refused(&o, "(max_nodes)");
     }
     // Too many connections on one node, named the same way.
     let mut wide = node([0.5, 0.2, 0.2], JointKind::Revolute, 1);

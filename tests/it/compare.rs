@@ -3,19 +3,15 @@
 //! exits 2 without losing anything computed.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 use ontogeny::evolve::store::RunStore;
 
-fn ontogeny() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ontogeny"))
-}
+use crate::util::{ontogeny_command, refused, scratch_dir, succeeded};
 
+/// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ontogeny-compare-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    scratch_dir(&format!("compare-{name}"))
 }
 
 /// Every encoding the tests compare.
@@ -24,7 +20,7 @@ const ENCODINGS: &str = "lsystem,lsystem-continuous,direct";
 /// The tiny comparison's flags: 2 replicates, population 6, 16 evaluations (3 generations:
 /// 6 + 5 + 5, the elite of 1 not re-evaluated), 1 s walks.
 fn tiny(out: &Path) -> Command {
-    let mut c = ontogeny();
+    let mut c = ontogeny_command();
     c.args([
         "compare",
         "--encodings",
@@ -45,22 +41,6 @@ fn tiny(out: &Path) -> Command {
     ])
     .arg(out);
     c
-}
-
-fn ok(output: &Output) -> String {
-    assert!(
-        output.status.success(),
-        "{}\n{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn refused(output: &Output, words: &str) {
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains(words), "expected {words:?} in: {stderr}");
 }
 
 /// The report's numbers without wall-clock figures: `summary.csv` without its last column
@@ -103,7 +83,7 @@ fn evaluations_in(run: &Path) -> u64 {
 fn every_replicate_gets_exactly_the_same_evaluations() {
     let dir = scratch("budget");
     let out = dir.join("cmp");
-    let stdout = ok(&tiny(&out).output().unwrap());
+    let stdout = succeeded(&tiny(&out).output().unwrap());
     assert!(
         stdout.contains("6 replicates of 16 evaluations"),
         "{stdout}"
@@ -114,17 +94,21 @@ fn every_replicate_gets_exactly_the_same_evaluations() {
             // A budget of 17 buys 3 generations: 6 + 5 + 5 = 16 (a fourth would need 21).
             assert_eq!(evaluations_in(&run), 16, "{}", run.display());
             // Each replicate is an ordinary run directory.
-            let shown = ok(&ontogeny()
-                .args(["runs", "show"])
-                .arg(&run)
-                .output()
-                .unwrap());
+            let shown = succeeded(
+                &ontogeny_command()
+                    .args(["runs", "show"])
+                    .arg(&run)
+                    .output()
+                    .unwrap(),
+            );
             assert!(shown.contains(&format!("{encoding} encoding")), "{shown}");
-            let resumed = ok(&ontogeny()
-                .args(["evolve", "--resume"])
-                .arg(&run)
-                .output()
-                .unwrap());
+            let resumed = succeeded(
+                &ontogeny_command()
+                    .args(["evolve", "--resume"])
+                    .arg(&run)
+                    .output()
+                    .unwrap(),
+            );
             assert!(resumed.contains("nothing to resume"), "{resumed}");
         }
     }
@@ -170,11 +154,13 @@ fn every_replicate_gets_exactly_the_same_evaluations() {
     assert!(md.contains("| lsystem | direct |"), "{md}");
     // Resuming a complete comparison runs nothing and writes the same report.
     let before = numbers(&out);
-    ok(&ontogeny()
-        .args(["compare", "--resume"])
-        .arg(&out)
-        .output()
-        .unwrap());
+    succeeded(
+        &ontogeny_command()
+            .args(["compare", "--resume"])
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
     assert_eq!(numbers(&out), before);
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -183,22 +169,22 @@ fn every_replicate_gets_exactly_the_same_evaluations() {
 fn run_planned(line: &str) {
     let words: Vec<&str> = line.split_whitespace().collect();
     assert_eq!(words[0], "ontogeny", "{line}");
-    ok(&ontogeny().args(&words[1..]).output().unwrap());
+    succeeded(&ontogeny_command().args(&words[1..]).output().unwrap());
 }
 
 #[test]
 fn planned_replicates_merged_equal_a_direct_comparison() {
     let dir = scratch("plan");
     let direct = dir.join("direct");
-    ok(&tiny(&direct).output().unwrap());
+    succeeded(&tiny(&direct).output().unwrap());
     let planned = dir.join("planned");
-    let plan = ok(&tiny(&planned).arg("--plan").output().unwrap());
+    let plan = succeeded(&tiny(&planned).arg("--plan").output().unwrap());
     let lines: Vec<&str> = plan.lines().collect();
     assert_eq!(lines.len(), 6, "{plan}");
     // Nothing runs at --plan, and nothing is finished to merge yet.
     assert!(!planned.join("direct").exists());
     refused(
-        &ontogeny()
+        &ontogeny_command()
             .args(["compare", "--merge"])
             .arg(&planned)
             .output()
@@ -209,11 +195,13 @@ fn planned_replicates_merged_equal_a_direct_comparison() {
     for line in &lines[..3] {
         run_planned(line);
     }
-    let partial = ok(&ontogeny()
-        .args(["compare", "--merge"])
-        .arg(&planned)
-        .output()
-        .unwrap());
+    let partial = succeeded(
+        &ontogeny_command()
+            .args(["compare", "--merge"])
+            .arg(&planned)
+            .output()
+            .unwrap(),
+    );
     assert!(partial.contains("not yet in the report"), "{partial}");
     assert!(
         std::fs::read_to_string(planned.join("report.md"))
@@ -223,11 +211,13 @@ fn planned_replicates_merged_equal_a_direct_comparison() {
     for line in &lines[3..] {
         run_planned(line);
     }
-    ok(&ontogeny()
-        .args(["compare", "--merge"])
-        .arg(&planned)
-        .output()
-        .unwrap());
+    succeeded(
+        &ontogeny_command()
+            .args(["compare", "--merge"])
+            .arg(&planned)
+            .output()
+            .unwrap(),
+    );
     assert_eq!(numbers(&planned), numbers(&direct));
     // Replicate by replicate, the databases hold the same individuals.
     for encoding in ENCODINGS.split(',') {
@@ -242,7 +232,7 @@ fn planned_replicates_merged_equal_a_direct_comparison() {
 fn a_killed_comparison_resumes_to_the_same_report() {
     let dir = scratch("kill");
     let whole = dir.join("whole");
-    ok(&tiny(&whole).output().unwrap());
+    succeeded(&tiny(&whole).output().unwrap());
     let killed = dir.join("killed");
     let mut child = tiny(&killed)
         .stdout(std::process::Stdio::null())
@@ -261,11 +251,13 @@ fn a_killed_comparison_resumes_to_the_same_report() {
         !killed.join("report.md").exists(),
         "the comparison finished before it was killed"
     );
-    ok(&ontogeny()
-        .args(["compare", "--resume"])
-        .arg(&killed)
-        .output()
-        .unwrap());
+    succeeded(
+        &ontogeny_command()
+            .args(["compare", "--resume"])
+            .arg(&killed)
+            .output()
+            .unwrap(),
+    );
     assert_eq!(numbers(&killed), numbers(&whole));
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -275,7 +267,7 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
     let dir = scratch("bad");
     let out = dir.join("cmp");
     let with = |extra: &[&str]| {
-        let mut c = ontogeny();
+        let mut c = ontogeny_command();
         c.args([
             "compare",
             "--replicates",
@@ -345,7 +337,7 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
     );
     assert!(!out.exists(), "refused input wrote {}", out.display());
     refused(
-        &ontogeny()
+        &ontogeny_command()
             .args(["compare", "--resume"])
             .arg(&dir)
             .output()
@@ -353,7 +345,7 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
         "not a comparison directory",
     );
     // A comparison of one finished replicate per encoding.
-    ok(&with(&[
+    succeeded(&with(&[
         "--encodings",
         "lsystem,direct",
         "--evaluations",
@@ -370,27 +362,29 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
     let rep = out.join("direct/rep-1");
     let moved = dir.join("kept");
     std::fs::rename(&rep, &moved).unwrap();
-    let plan = ok(&ontogeny()
-        .args([
-            "compare",
-            "--plan",
-            "--encodings",
-            "lsystem,direct",
-            "--replicates",
-            "1",
-        ])
-        .args([
-            "--pop",
-            "6",
-            "--seconds",
-            "1",
-            "--evaluations",
-            "11",
-            "--out",
-        ])
-        .arg(dir.join("other"))
-        .output()
-        .unwrap());
+    let plan = succeeded(
+        &ontogeny_command()
+            .args([
+                "compare",
+                "--plan",
+                "--encodings",
+                "lsystem,direct",
+                "--replicates",
+                "1",
+            ])
+            .args([
+                "--pop",
+                "6",
+                "--seconds",
+                "1",
+                "--evaluations",
+                "11",
+                "--out",
+            ])
+            .arg(dir.join("other"))
+            .output()
+            .unwrap(),
+    );
     let direct_line = plan
         .lines()
         .find(|l| l.contains("--encoding direct"))
@@ -400,24 +394,26 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
         .skip_while(|w| *w != "--seed")
         .nth(1)
         .unwrap();
-    ok(&ontogeny()
-        .args([
-            "evolve",
-            "--encoding",
-            "direct",
-            "--pop",
-            "6",
-            "--gens",
-            "2",
-            "--seconds",
-            "2",
-        ])
-        .args(["--seed", seed, "--out"])
-        .arg(&rep)
-        .output()
-        .unwrap());
+    succeeded(
+        &ontogeny_command()
+            .args([
+                "evolve",
+                "--encoding",
+                "direct",
+                "--pop",
+                "6",
+                "--gens",
+                "2",
+                "--seconds",
+                "2",
+            ])
+            .args(["--seed", seed, "--out"])
+            .arg(&rep)
+            .output()
+            .unwrap(),
+    );
     refused(
-        &ontogeny()
+        &ontogeny_command()
             .args(["compare", "--merge"])
             .arg(&out)
             .output()
@@ -425,7 +421,7 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
         "is not replicate 1 of this comparison: its task.walker.seconds differs",
     );
     refused(
-        &ontogeny()
+        &ontogeny_command()
             .args(["compare", "--resume"])
             .arg(&out)
             .output()
@@ -437,11 +433,13 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
     assert!(rep.join("run.sqlite").is_file());
     std::fs::remove_dir_all(&rep).unwrap();
     std::fs::rename(&moved, &rep).unwrap();
-    ok(&ontogeny()
-        .args(["compare", "--merge"])
-        .arg(&out)
-        .output()
-        .unwrap());
+    succeeded(
+        &ontogeny_command()
+            .args(["compare", "--merge"])
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
     assert_eq!(numbers(&out), before);
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -450,7 +448,7 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
 fn a_second_process_on_a_comparison_is_refused_at_once_naming_the_holder() {
     let dir = scratch("locked");
     let out = dir.join("cmp");
-    let mut first = ontogeny()
+    let mut first = ontogeny_command()
         .args([
             "compare",
             "--encodings",
@@ -479,12 +477,12 @@ fn a_second_process_on_a_comparison_is_refused_at_once_naming_the_holder() {
         assert!(std::time::Instant::now() < deadline, "no lock taken");
         std::thread::sleep(std::time::Duration::from_millis(5));
     }
-    let resumed = ontogeny()
+    let resumed = ontogeny_command()
         .args(["compare", "--resume"])
         .arg(&out)
         .output()
         .unwrap();
-    let merged = ontogeny()
+    let merged = ontogeny_command()
         .args(["compare", "--merge"])
         .arg(&out)
         .output()
@@ -502,7 +500,7 @@ fn a_second_process_on_a_comparison_is_refused_at_once_naming_the_holder() {
 fn a_comparison_whose_files_were_edited_out_of_range_is_refused() {
     let dir = scratch("edited");
     let out = dir.join("c");
-    ok(&tiny(&out).arg("--plan").output().unwrap());
+    succeeded(&tiny(&out).arg("--plan").output().unwrap());
     let edit = |name: &str, key: &str, value: &str| {
         let path = out.join(name);
         let text = std::fs::read_to_string(&path).unwrap();
@@ -521,7 +519,7 @@ fn a_comparison_whose_files_were_edited_out_of_range_is_refused() {
     let original = edit("evolve.toml", "population", "0");
     for verb in ["--resume", "--merge"] {
         refused(
-            &ontogeny()
+            &ontogeny_command()
                 .args(["compare", verb])
                 .arg(&out)
                 .output()
@@ -532,7 +530,7 @@ fn a_comparison_whose_files_were_edited_out_of_range_is_refused() {
     std::fs::write(out.join("evolve.toml"), original).unwrap();
     edit("compare.toml", "replicates", "20000");
     refused(
-        &ontogeny()
+        &ontogeny_command()
             .args(["compare", "--merge"])
             .arg(&out)
             .output()
@@ -547,13 +545,13 @@ fn a_comparison_whose_files_were_edited_out_of_range_is_refused() {
 fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
     let dir = scratch("fitness");
     let out = dir.join("c");
-    let mut command = ontogeny();
+    let mut command = ontogeny_command();
     command
         .args(["compare", "--encodings", "direct", "--fitness", "distance"])
         .args(["--replicates", "1", "--evaluations", "6", "--pop", "6"])
         .args(["--seconds", "1", "--seed", "4", "--out"])
         .arg(&out);
-    let stdout = ok(&command.output().unwrap());
+    let stdout = succeeded(&command.output().unwrap());
     assert!(stdout.contains("; walker, distance (m)"), "{stdout}");
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
@@ -563,7 +561,7 @@ fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
     let shared = std::fs::read_to_string(out.join("evolve.toml")).unwrap();
     assert!(shared.contains("fitness = \"distance\""), "{shared}");
     // A walker formula for another task is refused.
-    let jump = ontogeny()
+    let jump = ontogeny_command()
         .args(["compare", "--encodings", "direct", "--task", "jump"])
         .args(["--fitness", "distance", "--evaluations", "6", "--out"])
         .arg(dir.join("jump"))
@@ -581,8 +579,8 @@ fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
 fn a_comparison_without_cache_reports_the_same_numbers_with_nothing_reused() {
     let dir = scratch("no-cache");
     let (on, off) = (dir.join("on"), dir.join("off"));
-    ok(&tiny(&on).output().unwrap());
-    ok(&tiny(&off).arg("--no-cache").output().unwrap());
+    succeeded(&tiny(&on).output().unwrap());
+    succeeded(&tiny(&off).arg("--no-cache").output().unwrap());
     // summary.csv: simulated and reused are the two columns before wall_seconds.
     let split = |dir: &Path| -> Vec<(String, u64, u64)> {
         let csv = std::fs::read_to_string(dir.join("summary.csv")).unwrap();

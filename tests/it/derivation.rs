@@ -1,8 +1,6 @@
 //! Derivations checked against The Algorithmic Beauty of Plants (ABOP) and hand calculation.
 
-mod common;
-
-use common::{derive, derive_with, lsystem, squash};
+use crate::util::{derive, derive_with, lsystem, squash};
 use ontogeny::lsystem::DeriveOptions;
 
 #[test]

@@ -1,0 +1,32 @@
+//! The integration tests, as one test binary: a module per concern, and the helpers they
+//! share in [`util`]. One binary links the library (and rapier) once, where a binary per
+//! file would link it once per file.
+//!
+//! Run one concern with a filter on its module: `cargo test --release --test it -- cli::`.
+//! Scratch files go under `CARGO_TARGET_TMPDIR` (`util::scratch_dir`). Proptest keeps the
+//! failing cases it finds in `tests/proptest-regressions/MODULE.txt`, its default place for a
+//! test binary whose `main.rs` is in `tests/it/`.
+
+mod brain;
+mod cli;
+mod compare;
+mod continuous;
+mod derivation;
+mod develop;
+mod dt_independence;
+mod errors;
+mod evaluate;
+mod evolve;
+mod export;
+mod fidelity;
+mod ga;
+mod genome_continuous;
+mod genome_direct;
+mod genome_graph;
+mod genome_lsystem;
+mod long_runs;
+mod never_panics;
+mod render;
+mod store;
+mod util;
+mod view;
