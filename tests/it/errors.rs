@@ -293,6 +293,18 @@ fn syntax_errors_in_plain_words() {
     );
     let shown = compile_error("derivation length 3\naxiom: a\n", DiagnosticKind::Syntax, 1);
     assert!(shown.contains("'derivation length: ...'"), "{shown}");
+    // A header in capitals reads as a module: the note says headers are lower case.
+    let shown = compile_error("Axiom: A\nA --> A B\n", DiagnosticKind::Syntax, 1);
+    assert!(
+        shown.contains("headers are written in lower case: 'axiom:'"),
+        "{shown}"
+    );
+    let shown = compile_error(
+        "axiom: a\nDerivation Length: 3\n",
+        DiagnosticKind::Syntax,
+        2,
+    );
+    assert!(shown.contains("'derivation length:'"), "{shown}");
     // A space between a module's name and its parameters.
     let shown = compile_error("axiom: a\na --> forward (1)\n", DiagnosticKind::Syntax, 2);
     assert!(

@@ -13,6 +13,7 @@ mod compare;
 mod continuous;
 mod derivation;
 mod develop;
+mod documents;
 mod dt_independence;
 mod errors;
 mod evaluate;
