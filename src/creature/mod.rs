@@ -409,6 +409,24 @@ pub struct Problem {
     pub t: Option<f64>,
 }
 
+impl std::fmt::Display for Problem {
+    /// The problem as `grow` and `eval` print it: `warning: MESSAGE [MODULE] at t = T`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let level = match self.severity {
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        };
+        write!(f, "{level}: {}", self.message)?;
+        if let Some(module) = &self.module {
+            write!(f, " [{module}]")?;
+        }
+        if let Some(t) = self.t {
+            write!(f, " at t = {t}")?;
+        }
+        Ok(())
+    }
+}
+
 impl Creature {
     /// Checks that the creature is well formed: finite, positive sizes; finite poses and
     /// densities; finite weights, neuron parameters and biases; joints, links, sensors and

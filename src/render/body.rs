@@ -24,7 +24,7 @@ pub(super) enum Checks {
 
 /// The radius of a joint's disc in metres: half the smaller joined part's middle dimension
 /// (its width, for a bar), so that a disc is as wide as the parts it joins.
-fn joint_radius(creature: &Creature, parent: usize, child: usize) -> f64 {
+pub(super) fn joint_radius(creature: &Creature, parent: usize, child: usize) -> f64 {
     let middle = |i: usize| {
         creature.parts.get(i).map(|p| {
             let mut d = [p.size.x, p.size.y, p.size.z];

@@ -52,20 +52,20 @@ impl View {
 /// How an animation's camera moves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Framing {
-    /// One view that holds every frame (growth: the creature grows in place).
+    /// One view that holds every image (growth: the creature grows in place).
     Still,
-    /// The camera follows the first `parts` parts of each frame (the creature, not a thrown
+    /// The camera follows the first `parts` parts of each image (the creature, not a thrown
     /// projectile drawn after them) and keeps the creature's own size in the picture, so a
     /// creature that travels far stays large; the ground's grid shows the motion.
     Following {
-        /// How many leading parts of each frame are the creature.
+        /// How many leading parts of each image are the creature.
         parts: usize,
     },
 }
 
 impl View {
-    /// One view per frame for `framing`.
-    pub(super) fn per_frame<'a>(
+    /// One view per image for `framing`.
+    pub(super) fn per_image<'a>(
         creatures: impl IntoIterator<Item = &'a Creature> + Clone,
         framing: Framing,
     ) -> Vec<View> {
@@ -84,7 +84,7 @@ impl View {
                         Some(corners.fold((first, first), |(lo, hi), x| (lo.inf(&x), hi.sup(&x))))
                     })
                     .collect();
-                // The creature's largest own extent, on each axis, over the frames.
+                // The creature's largest own extent, on each axis, over the images.
                 let extent = boxes
                     .iter()
                     .flatten()

@@ -16,10 +16,14 @@ use nalgebra::Vector3;
 use tiny_skia::{Color, Pixmap};
 
 use crate::creature::Creature;
-pub use animation::{write_gif, write_gif_with_progress, write_still_gif};
+pub use animation::{
+    MAX_FPS, MAX_GIF_IMAGES, Playback, evenly_in_time, playback, posed, trail, write_behaviour_gif,
+    write_gif, write_gif_with_progress, write_still_gif,
+};
 use body::{Checks, draw_body};
 use brain::draw_brain;
 pub use camera::{Framing, View};
+pub use text::wrap;
 
 /// Why a picture could not be made or written.
 #[derive(Debug, thiserror::Error)]
@@ -44,7 +48,7 @@ pub enum RenderError {
 /// What is drawn over a picture besides the creature.
 #[derive(Clone, Debug, Default)]
 pub struct Overlay {
-    /// Lines of text at the top left (a behaviour frame's time and phase, say).
+    /// Lines of text at the top left (a behaviour image's time and phase, say).
     pub label: Vec<String>,
     /// A target, in world coordinates (the aim task's): a bullseye with a line down to the
     /// ground.
@@ -139,11 +143,10 @@ pub fn write_png(
 
 #[cfg(test)]
 mod tests {
-    use super::palette::{
-        ACTUATOR, AXIS, GROWING_JOINT, INK, JOINT, MARK, NEURON, OSCILLATOR, SENSOR, TARGET, TRAIL,
-    };
+    use super::body::joint_radius;
+    use super::palette::{ACTUATOR, AXIS, INK, JOINT, MARK, OSCILLATOR, PANEL, TARGET, TRAIL};
     use super::*;
-    use crate::creature::Role;
+    use crate::creature::{Role, Severity};
     use crate::develop::creature_from_commands;
 
     fn creature(commands: &str) -> Creature {

@@ -31,7 +31,7 @@ pub(super) const INK: [u8; 3] = [20, 20, 20];
 /// The brain panel's background.
 pub(super) const PANEL: [u8; 3] = [248, 248, 250];
 
-/// The colours a GIF's palette holds exactly, whatever else the frame needs.
+/// The colours a GIF's palette holds exactly, whatever else the image needs.
 const KEY_COLOURS: [[u8; 3]; 13] = [
     SENSOR,
     ACTUATOR,

@@ -119,6 +119,22 @@ pub(super) fn length_label(metres: f64) -> String {
     }
 }
 
+/// `text` broken at spaces into lines of at most `width` characters (a longer word alone on
+/// its line).
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split_whitespace() {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= width => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,5 +150,18 @@ mod tests {
         assert_eq!(length_label(0.005), "5 mm");
         assert_eq!(fit("a long label", 48.0, 1.0), "a l...");
         assert_eq!(ascii("D_p − D_t · 2"), "D_p - D_t * 2");
+    }
+
+    #[test]
+    fn refusals_are_wrapped_at_spaces() {
+        assert_eq!(
+            wrap("self-intersecting: parts 0 and 3 interpenetrate", 20),
+            ["self-intersecting:", "parts 0 and 3", "interpenetrate"]
+        );
+        assert_eq!(
+            wrap("averyveryverylongword x", 5),
+            ["averyveryverylongword", "x"]
+        );
+        assert!(wrap("", 5).is_empty());
     }
 }
