@@ -40,7 +40,10 @@ pub(super) fn joint_radius(creature: &Creature, parent: usize, child: usize) -> 
 }
 
 /// Draws the body into the region `(x, y, w, h)` of `pixmap`, with `overlay` and, when
-/// `checks` is on, the marks of what makes the creature invalid and part numbers.
+/// `checks` is on, the marks of what makes the creature invalid and part numbers: the ground,
+/// the target's stem, shadows, the parts, the marks, the joints, the trail and the target,
+/// the part numbers, the scale bar, the top view and the text, in that order (later ones on
+/// top).
 pub(super) fn draw_body(
     pixmap: &mut Pixmap,
     creature: &Creature,
@@ -52,9 +55,49 @@ pub(super) fn draw_body(
     let (rx, ry, rw, rh) = region;
     let camera = Camera::new(view, rw as f64, rh as f64, 12.0);
     let shift = Transform::from_translate(rx, ry);
-
-    // Ground grid on the plane y = ground, one line per metre (or finer for small creatures).
     let ground = view.min.y.min(0.0);
+    draw_ground(pixmap, &camera, shift, view, ground);
+    if let Some(target) = overlay.target {
+        draw_target_stem(pixmap, &camera, shift, ground, target);
+    }
+    draw_shadows(pixmap, &camera, shift, ground, creature);
+    draw_parts(pixmap, &camera, shift, creature);
+    let pairs = if checks == Checks::On {
+        creature.interpenetrating_pairs()
+    } else {
+        Vec::new()
+    };
+    let marked = outline_marked(pixmap, &camera, shift, creature, &pairs);
+    draw_joints(pixmap, &camera, shift, creature, 0.05 * rw.min(rh));
+    draw_trail_and_target(pixmap, &camera, region, overlay);
+    if checks == Checks::On {
+        number_parts(pixmap, &camera, region, creature, &marked);
+    }
+    let text_scale = if rh >= 500.0 { 2.0 } else { 1.0 };
+    draw_scale_bar(pixmap, &camera, region, text_scale);
+    // The top view of projectile and target, in the top right corner.
+    let mut room = rw - 16.0;
+    if overlay.target.is_some() || !overlay.trail.is_empty() {
+        let side = (0.34 * rw.min(rh)).round();
+        draw_top_view(
+            pixmap,
+            creature,
+            overlay,
+            (rx + rw - side - 6.0, ry + 6.0, side, side),
+        );
+        room -= side + 6.0;
+    }
+    let text = Lines {
+        region,
+        room,
+        scale: text_scale,
+    };
+    write_text(pixmap, &text, overlay, creature, checks, &pairs);
+}
+
+/// The ground grid on the plane y = `ground`, one line per metre (or finer for small
+/// creatures), on a pale floor.
+fn draw_ground(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, view: &View, ground: f64) {
     let extent = (view.max - view.min).norm().max(1.0);
     let step = if extent > 8.0 {
         1.0
@@ -112,25 +155,39 @@ pub(super) fn draw_body(
         };
         pixmap.stroke_path(&path, &paint(190, 194, 186, 255), &stroke, shift, None);
     }
+}
 
-    // The target's foot on the ground and the line up to it.
-    if let Some(target) = overlay.target {
-        let (fx, fy, _) = camera.project(&Vector3::new(target.x, ground, target.z));
-        let (tx, ty, _) = camera.project(&target);
-        let mut pb = PathBuilder::new();
-        pb.push_oval(Rect::from_xywh(fx - 8.0, fy - 3.5, 16.0, 7.0).expect("finite"));
-        pb.move_to(fx, fy);
-        pb.line_to(tx, ty);
-        if let Some(path) = pb.finish() {
-            let stroke = Stroke {
-                width: 1.5,
-                ..Stroke::default()
-            };
-            pixmap.stroke_path(&path, &solid(TARGET), &stroke, shift, None);
-        }
+/// The aim task's target's foot on the ground and the line up to it.
+fn draw_target_stem(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    ground: f64,
+    target: Vector3<f64>,
+) {
+    let (fx, fy, _) = camera.project(&Vector3::new(target.x, ground, target.z));
+    let (tx, ty, _) = camera.project(&target);
+    let mut pb = PathBuilder::new();
+    pb.push_oval(Rect::from_xywh(fx - 8.0, fy - 3.5, 16.0, 7.0).expect("finite"));
+    pb.move_to(fx, fy);
+    pb.line_to(tx, ty);
+    if let Some(path) = pb.finish() {
+        let stroke = Stroke {
+            width: 1.5,
+            ..Stroke::default()
+        };
+        pixmap.stroke_path(&path, &solid(TARGET), &stroke, shift, None);
     }
+}
 
-    // Shadows: each part's footprint dropped onto the ground.
+/// Shadows: each part's footprint dropped onto the ground.
+fn draw_shadows(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    ground: f64,
+    creature: &Creature,
+) {
     for part in &creature.parts {
         let corners = part.corners();
         let mut pts: Vec<(f32, f32)> = corners
@@ -144,8 +201,11 @@ pub(super) fn draw_body(
             pixmap.fill_path(&path, &paint(0, 0, 0, 40), FillRule::Winding, shift, None);
         }
     }
+}
 
-    // Faces of every part, far to near (painter's algorithm), lit from above and to the side.
+/// The faces of every part, far to near (painter's algorithm), lit from above and to the
+/// side: the root part darker, growing parts orange.
+fn draw_parts(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, creature: &Creature) {
     const FACES: [[usize; 4]; 6] = [
         [0, 2, 6, 4],
         [1, 5, 7, 3],
@@ -204,13 +264,17 @@ pub(super) fn draw_body(
             pixmap.stroke_path(&path, &paint(30, 40, 60, 200), &outline, shift, None);
         }
     }
+}
 
-    // Interpenetrating parts: outlined in the marking colour.
-    let pairs = if checks == Checks::On {
-        creature.interpenetrating_pairs()
-    } else {
-        Vec::new()
-    };
+/// Outlines in the marking colour the parts of the interpenetrating `pairs`; returns them,
+/// each once, in order.
+fn outline_marked(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    creature: &Creature,
+    pairs: &[(usize, usize)],
+) -> Vec<usize> {
     let mut marked: Vec<usize> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
     marked.sort_unstable();
     marked.dedup();
@@ -231,11 +295,24 @@ pub(super) fn draw_body(
             pixmap.stroke_path(&path, &solid(MARK), &stroke, shift, None);
         }
     }
+    marked
+}
 
-    // Joints on top: a disc in the plane each movable joint turns in (red, orange while
-    // growing), its size following the parts it joins, with a line along each axis ending
-    // in a dot at the axis's positive end; fused joints are grey dots.
-    let most = 0.05 * rw.min(rh);
+/// The joints, on top of the parts: a disc in the plane each movable joint turns in (red,
+/// orange while growing), its size following the parts it joins (at most `most` pixels), with
+/// a line along each axis ending in a dot at the axis's positive end; fused joints are grey
+/// dots.
+fn draw_joints(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    creature: &Creature,
+    most: f32,
+) {
+    let outline = Stroke {
+        width: 1.0,
+        ..Stroke::default()
+    };
     for joint in &creature.joints {
         let (sx, sy, _) = camera.project(&joint.anchor);
         let radius = joint_radius(creature, joint.parent, joint.child);
@@ -298,8 +375,17 @@ pub(super) fn draw_body(
             }
         }
     }
+}
 
-    // The projectile's trail and the target's bullseye.
+/// The projectile's trail and the target's bullseye.
+fn draw_trail_and_target(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    region: (f32, f32, f32, f32),
+    overlay: &Overlay,
+) {
+    let (rx, ry, _, _) = region;
+    let shift = Transform::from_translate(rx, ry);
     if overlay.trail.len() >= 2 {
         let mut pb = PathBuilder::new();
         for (k, p) in overlay.trail.iter().enumerate() {
@@ -322,54 +408,67 @@ pub(super) fn draw_body(
         let (tx, ty, _) = camera.project(&target);
         draw_bullseye(pixmap, (rx + tx, ry + ty), 7.0);
     }
+}
 
-    // Part numbers, red for marked parts: every marked part's, and the others' where the part
-    // is large enough in the picture to hold its number and no other number is in the way.
-    if checks == Checks::On {
-        let mut taken: Vec<Rect> = Vec::new();
-        let order = marked
-            .iter()
-            .copied()
-            .chain((0..creature.parts.len()).filter(|i| !marked.contains(i)));
-        for index in order {
-            let part = &creature.parts[index];
-            let (px, py, _) = camera.project(&part.position);
-            let text = index.to_string();
-            let half = text_width(&text, 1.0) / 2.0;
-            let is_marked = marked.contains(&index);
-            let (mut lo, mut hi) = (
-                (f32::INFINITY, f32::INFINITY),
-                (f32::NEG_INFINITY, f32::NEG_INFINITY),
-            );
-            for c in part.corners() {
-                let (sx, sy, _) = camera.project(&c);
-                lo = (lo.0.min(sx), lo.1.min(sy));
-                hi = (hi.0.max(sx), hi.1.max(sy));
-            }
-            let roomy = hi.0 - lo.0 >= 2.0 * half + 8.0 && hi.1 - lo.1 >= 16.0;
-            let Some(boxed) = Rect::from_xywh(px - half - 2.0, py - 6.0, 2.0 * half + 4.0, 12.0)
-            else {
-                continue;
-            };
-            let clear = !taken.iter().any(|t| t.intersect(&boxed).is_some());
-            if !(is_marked || roomy && clear) {
-                continue;
-            }
-            taken.push(boxed);
-            let colour = if is_marked { MARK } else { INK };
-            draw_text(
-                pixmap,
-                (rx + px - half, ry + py - 4.0),
-                &text,
-                1.0,
-                colour,
-                true,
-            );
+/// Part numbers, red for `marked` parts: every marked part's, and the others' where the part
+/// is large enough in the picture to hold its number and no other number is in the way.
+fn number_parts(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    region: (f32, f32, f32, f32),
+    creature: &Creature,
+    marked: &[usize],
+) {
+    let (rx, ry, _, _) = region;
+    let mut taken: Vec<Rect> = Vec::new();
+    let order = marked
+        .iter()
+        .copied()
+        .chain((0..creature.parts.len()).filter(|i| !marked.contains(i)));
+    for index in order {
+        let part = &creature.parts[index];
+        let (px, py, _) = camera.project(&part.position);
+        let text = index.to_string();
+        let half = text_width(&text, 1.0) / 2.0;
+        let is_marked = marked.contains(&index);
+        let (mut lo, mut hi) = (
+            (f32::INFINITY, f32::INFINITY),
+            (f32::NEG_INFINITY, f32::NEG_INFINITY),
+        );
+        for c in part.corners() {
+            let (sx, sy, _) = camera.project(&c);
+            lo = (lo.0.min(sx), lo.1.min(sy));
+            hi = (hi.0.max(sx), hi.1.max(sy));
         }
+        let roomy = hi.0 - lo.0 >= 2.0 * half + 8.0 && hi.1 - lo.1 >= 16.0;
+        let Some(boxed) = Rect::from_xywh(px - half - 2.0, py - 6.0, 2.0 * half + 4.0, 12.0) else {
+            continue;
+        };
+        let clear = !taken.iter().any(|t| t.intersect(&boxed).is_some());
+        if !(is_marked || roomy && clear) {
+            continue;
+        }
+        taken.push(boxed);
+        let colour = if is_marked { MARK } else { INK };
+        draw_text(
+            pixmap,
+            (rx + px - half, ry + py - 4.0),
+            &text,
+            1.0,
+            colour,
+            true,
+        );
     }
+}
 
-    let text_scale = if rh >= 500.0 { 2.0 } else { 1.0 };
-    // The scale bar, bottom left.
+/// The scale bar, bottom left, with its length written at `text_scale`.
+fn draw_scale_bar(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    region: (f32, f32, f32, f32),
+    text_scale: f32,
+) {
+    let (rx, ry, rw, rh) = region;
     let length = scale_bar_length(camera.scale, 0.25 * rw as f64);
     let bar = (length * camera.scale) as f32;
     let (bx, by) = ((rx + 12.0).round() + 0.5, (ry + rh - 10.0).round() + 0.5);
@@ -395,21 +494,29 @@ pub(super) fn draw_body(
         INK,
         true,
     );
+}
 
-    // The top view of projectile and target, in the top right corner.
-    let mut room = rw - 16.0;
-    if overlay.target.is_some() || !overlay.trail.is_empty() {
-        let side = (0.34 * rw.min(rh)).round();
-        draw_top_view(
-            pixmap,
-            creature,
-            overlay,
-            (rx + rw - side - 6.0, ry + 6.0, side, side),
-        );
-        room -= side + 6.0;
-    }
+/// Where a picture's lines of text go: the region, the width they may take, and the font's
+/// scale.
+struct Lines {
+    region: (f32, f32, f32, f32),
+    room: f32,
+    scale: f32,
+}
 
-    // Lines of text, top left; with checks, the creature's validity and problems after them.
+/// Lines of text, top left: the overlay's label; with checks, the creature's counts and
+/// validity and its problems after them (as many as fit, then how many more), and a red
+/// frame round an invalid creature.
+fn write_text(
+    pixmap: &mut Pixmap,
+    text: &Lines,
+    overlay: &Overlay,
+    creature: &Creature,
+    checks: Checks,
+    pairs: &[(usize, usize)],
+) {
+    let (rx, ry, rw, rh) = text.region;
+    let (room, text_scale) = (text.room, text.scale);
     let line = 10.0 * text_scale + 2.0;
     let mut y = ry + 6.0;
     for text in &overlay.label {
@@ -435,7 +542,7 @@ pub(super) fn draw_body(
             };
             problems.push((format!("{level}: {}", p.message), colour));
         }
-        for (a, b) in &pairs {
+        for (a, b) in pairs {
             let message = format!("parts {a} and {b} interpenetrate");
             if !creature.problems.iter().any(|p| p.message == message) {
                 problems.push((format!("error: {message}"), MARK));
