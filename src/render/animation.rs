@@ -244,7 +244,7 @@ fn gif_encoder<W: std::io::Write>(
     Ok(encoder)
 }
 
-/// Writes a GIF of one image: the creature as built, checked as in [`checked_picture`]
+/// Writes a GIF of one image: the creature as built, checked as in [`checked_picture`](super::checked_picture)
 /// (interpenetrating parts outlined red, its validity and problems written), under the lines
 /// of `label`. It stands in for an animation when there is nothing to animate (an
 /// evaluation refused before simulating), so that the file opens and says why.
@@ -396,17 +396,17 @@ mod tests {
     }
 
     /// The images of the GIF at `path` as straight RGBA.
-    fn gif_frames(path: &Path) -> Vec<Vec<u8>> {
+    fn gif_images(path: &Path) -> Vec<Vec<u8>> {
         let mut options = gif::DecodeOptions::new();
         options.set_color_output(gif::ColorOutput::RGBA);
         let mut decoder = options
             .read_info(std::fs::File::open(path).unwrap())
             .unwrap();
-        let mut frames = Vec::new();
-        while let Some(frame) = decoder.read_next_frame().unwrap() {
-            frames.push(frame.buffer.to_vec());
+        let mut images = Vec::new();
+        while let Some(image) = decoder.read_next_frame().unwrap() {
+            images.push(image.buffer.to_vec());
         }
-        frames
+        images
     }
 
     use crate::render::palette::TARGET;
@@ -434,7 +434,7 @@ mod tests {
         }
         assert_ne!(gifs[0], gifs[1], "an aim GIF differs from a catapult one");
         let has_target = |name: &str| {
-            gif_frames(&dir.join(name).join("behaviour.gif"))
+            gif_images(&dir.join(name).join("behaviour.gif"))
                 .iter()
                 .map(|f| f.chunks_exact(4).filter(|p| p[..3] == TARGET).count())
                 .collect::<Vec<_>>()
@@ -445,10 +445,10 @@ mod tests {
             "{:?}",
             has_target("aim")
         );
-        // The projectile's trail grows: the last frame holds more of its colour than the first.
+        // The projectile's trail grows: the last image holds more of its colour than the first.
         let trail = |f: &Vec<u8>| f.chunks_exact(4).filter(|p| p[..3] == [190, 90, 0]).count();
-        let frames = gif_frames(&dir.join("catapult").join("behaviour.gif"));
-        assert!(trail(frames.last().unwrap()) > trail(&frames[0]) + 50);
+        let images = gif_images(&dir.join("catapult").join("behaviour.gif"));
+        assert!(trail(images.last().unwrap()) > trail(&images[0]) + 50);
 
         // A failed aim evaluation still records its target, and its GIF still shows it.
         let cut = CatapultOptions {
@@ -523,12 +523,12 @@ mod tests {
                 .unwrap();
         assert_eq!(json["status"], "self-intersecting");
         assert_eq!(json["message"], "parts 0 and 3 interpenetrate");
-        let frames = gif_frames(&dir.join("behaviour.gif"));
-        assert_eq!(frames.len(), 1, "one picture, not an empty GIF");
+        let images = gif_images(&dir.join("behaviour.gif"));
+        assert_eq!(images.len(), 1, "one picture, not an empty GIF");
         // The picture is checked: the interpenetrating parts are outlined and the text is
         // written in the marking red (render's `MARK`), thousands of pixels of it with the
         // frame round an invalid creature.
-        let red = frames[0]
+        let red = images[0]
             .chunks_exact(4)
             .filter(|p| p[..3] == [255, 0, 0])
             .count();
@@ -545,14 +545,14 @@ mod tests {
         } = playback(&recording(2.0), 10.0);
         assert_eq!(fps, 10.0);
         assert_eq!(chosen.len(), 21);
-        // Frame k shows the recording at k / 10 s: recorded frame 6k at 60 frames/s.
+        // Image k shows the recording at k / 10 s: sample 6k at 60 samples/s.
         assert!(chosen.iter().enumerate().all(|(k, &i)| i == 6 * k));
         assert!(delays.iter().all(|&d| d == 10));
     }
 
     #[test]
-    fn a_long_recording_stays_under_the_frame_cap() {
-        // An hour at 10 frames/s would be 36,001 frames.
+    fn a_long_recording_stays_under_the_image_cap() {
+        // An hour at 10 images/s would be 36,001 images.
         let Playback {
             shown: chosen,
             delays_cs: delays,

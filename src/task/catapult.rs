@@ -96,7 +96,7 @@ pub fn catapult(
     catapult_with_progress(creature, sim, options, record, &mut |_| {})
 }
 
-/// [`catapult`], telling `progress` the fraction done, as [`walker_with_progress`] does (the
+/// [`catapult`], telling `progress` the fraction done, as [`walker_with_progress`](super::walker_with_progress) does (the
 /// run counts as done when the projectile comes to rest).
 pub fn catapult_with_progress(
     creature: &Creature,

@@ -51,7 +51,7 @@ pub fn jump(
     jump_with_progress(creature, sim, options, record, &mut |_| {})
 }
 
-/// [`jump`], telling `progress` the fraction done, as [`walker_with_progress`] does.
+/// [`jump`], telling `progress` the fraction done, as [`walker_with_progress`](super::walker_with_progress) does.
 pub fn jump_with_progress(
     creature: &Creature,
     sim: &SimOptions,

@@ -89,7 +89,8 @@ pub struct Evaluation {
     pub terms: BTreeMap<String, f64>,
     /// What went wrong, when something did.
     pub message: Option<String>,
-    /// Poses per recorded frame, when recording was asked for.
+    /// The recorded samples (every part's pose at evenly spaced moments), when recording was
+    /// asked for.
     #[serde(skip_serializing_if = "Vec::is_empty", default)]
     pub recording: Vec<Sample>,
 }

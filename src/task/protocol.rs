@@ -55,7 +55,7 @@ pub(super) fn settle_steps(rest: &Rest, dt: f64) -> usize {
     steps_in(rest.limit, dt).saturating_add(1)
 }
 
-/// Which stage of a task's protocol a recorded frame belongs to.
+/// Which stage of a task's protocol a recorded sample belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Phase {
@@ -151,9 +151,9 @@ pub(super) struct Run<'p> {
     steps: usize,
     /// The most control steps the protocol can take (every phase at its longest).
     max_steps: usize,
-    /// Every how many steps the recording keeps a frame.
+    /// Every how many steps the recording keeps a sample.
     interval: usize,
-    /// The last step's frame when the interval skipped it: kept at the end of the run.
+    /// The last step's sample when the interval skipped it: kept at the end of the run.
     pending: Option<Sample>,
     /// Steps counted as done: every finished phase at its longest, so the fraction done
     /// grows steadily and ends at 1.
@@ -177,7 +177,7 @@ impl Run<'_> {
         })?;
         self.steps += 1;
         if self.record {
-            let frame = Sample {
+            let sample = Sample {
                 t: self.world.time(),
                 phase: Some(self.phase),
                 parts: (0..self.world.part_count())
@@ -186,20 +186,20 @@ impl Run<'_> {
                 projectile: self.world.projectile_state().map(|(p, _)| p),
                 projectile_size: self.projectile_size,
             };
-            self.keep(frame);
+            self.keep(sample);
         }
         self.tell();
         Ok(moved)
     }
 
-    /// Keeps the frame of step `steps` if the recording's interval falls on it; otherwise
+    /// Keeps the sample of step `steps` if the recording's interval falls on it; otherwise
     /// holds it back, in case it is the last.
-    fn keep(&mut self, frame: Sample) {
+    fn keep(&mut self, sample: Sample) {
         if (self.steps - 1).is_multiple_of(self.interval) {
-            self.recording.push(frame);
+            self.recording.push(sample);
             self.pending = None;
         } else {
-            self.pending = Some(frame);
+            self.pending = Some(sample);
         }
     }
 

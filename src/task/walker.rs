@@ -38,7 +38,7 @@ pub enum WalkerFitness {
     /// displacement of the whole creature's centre of mass over the measured walk, minus
     /// D_drag, the horizontal distance its parts slid along the ground while touching it
     /// (see [`crate::sim::DragMeter`]): stepping and rolling score, sliding does not. Held
-    /// at −[`MAX_TARGET_DISTANCE`] or above, so that it stays above [`FAILURE_FITNESS`].
+    /// at −[`MAX_TARGET_DISTANCE`] or above, so that it stays above [`FAILURE_FITNESS`](super::FAILURE_FITNESS).
     HornbyPollack,
 }
 
