@@ -120,7 +120,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let n = args.evaluations.max(1);
     let steps = (args.seconds / sim.dt).round();
     if let Some(file) = &args.creature {
-        let creature = super::eval::load_creature(
+        let creature = super::input::load_creature(
             file,
             &Default::default(),
             None,

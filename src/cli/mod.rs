@@ -47,6 +47,7 @@ mod evolve;
 mod export;
 mod genome;
 mod grow;
+mod input;
 mod physics;
 mod progress;
 mod replay;
