@@ -633,4 +633,25 @@ mod tests {
             assert!(err.contains("neuron 0") && err.contains("bias"), "{err}");
         }
     }
+
+    #[test]
+    fn a_problem_is_written_with_its_level_module_and_time() {
+        let problem = Problem {
+            severity: Severity::Warning,
+            message: "a joint without axes".into(),
+            module: Some("revolute1".into()),
+            t: Some(0.5),
+        };
+        assert_eq!(
+            problem.to_string(),
+            "warning: a joint without axes [revolute1] at t = 0.5"
+        );
+        let bare = Problem {
+            severity: Severity::Error,
+            module: None,
+            t: None,
+            ..problem
+        };
+        assert_eq!(bare.to_string(), "error: a joint without axes");
+    }
 }

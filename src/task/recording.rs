@@ -118,3 +118,60 @@ impl<'a> Recording<'a> {
         self.status.map(Status::name)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::develop::creature_from_commands;
+
+    #[test]
+    fn a_recording_is_written_in_its_key_order_and_reads_back() {
+        let creature = creature_from_commands("forward(1)").unwrap();
+        let evaluation = Evaluation {
+            task: "aim".into(),
+            fitness: 1.0,
+            status: Status::Ok,
+            terms: BTreeMap::from([
+                ("target_x".to_string(), 5.0),
+                ("target_y".to_string(), 0.5),
+                ("target_z".to_string(), 0.0),
+            ]),
+            message: None,
+            recording: vec![Sample {
+                t: 0.1,
+                phase: Some(Phase::Flying),
+                parts: vec![(Vector3::new(0.1, 0.2, 0.3), UnitQuaternion::identity())],
+                projectile: None,
+                projectile_size: None,
+            }],
+        };
+        let text = serde_json::to_string(&Recording::of(&creature, &evaluation)).unwrap();
+        let keys = ["creature", "task", "status", "message", "target", "frames"];
+        let at: Vec<usize> = keys
+            .iter()
+            .map(|k| text.find(&format!("\"{k}\":")).unwrap())
+            .collect();
+        assert!(at.windows(2).all(|w| w[0] < w[1]), "{text}");
+        assert!(
+            text.contains(r#""task":"aim","status":"ok","message":null,"target":[5.0,0.5,0.0]"#)
+        );
+        // Poses at f32 precision, as the physics computed them.
+        assert!(
+            text.contains(r#""parts":[[[0.1,0.2,0.3],[0.0,0.0,0.0,1.0]]]"#),
+            "{text}"
+        );
+        let back: Recording = serde_json::from_str(&text).unwrap();
+        assert_eq!(back.samples.as_ref(), evaluation.recording.as_slice());
+        assert_eq!(back.target_point(), Some(Vector3::new(5.0, 0.5, 0.0)));
+        // A file without task, status, message or target (hand-written, or from before they
+        // were recorded) still reads.
+        let old = format!(
+            r#"{{"creature": {}}}"#,
+            serde_json::to_string(&creature).unwrap()
+        );
+        let old: Recording = serde_json::from_str(&old).unwrap();
+        assert!(old.samples.is_empty() && old.status.is_none() && old.target.is_none());
+    }
+}

@@ -159,3 +159,17 @@ impl TaskSpec {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::TaskKind;
+
+    #[test]
+    fn task_names_are_the_ones_configs_spell_and_read_back() {
+        for task in TaskKind::ALL {
+            assert_eq!(serde_json::to_value(task).unwrap(), task.name());
+            assert_eq!(task.name().parse::<TaskKind>(), Ok(task));
+        }
+        assert!("walk".parse::<TaskKind>().is_err());
+    }
+}
