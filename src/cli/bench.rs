@@ -16,7 +16,7 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use super::eval::{ActuatorArg, SteppingArgs, flag_error};
+use super::physics::{SteppingArgs, actuator_parser, flag_error};
 use super::progress::Progress;
 
 /// Flags of `ontogeny bench`.
@@ -33,8 +33,8 @@ pub struct BenchArgs {
     #[command(flatten)]
     stepping: SteppingArgs,
     /// The actuator model measured (and of the fine reference).
-    #[arg(long, value_enum, default_value = "muscle")]
-    actuator: ActuatorArg,
+    #[arg(long, value_parser = actuator_parser(), default_value = "muscle")]
+    actuator: ontogeny::sim::ActuatorModel,
     /// Also measure fidelity: walk this many creatures (the shipped examples, then random
     /// command strings) `--runs` times with the setting and with a fine reference (1/240 s
     /// physics, 8 solver iterations), and print the Spearman rank correlation of their median
@@ -113,14 +113,14 @@ fn one_core(creature: &Creature, sim: &SimOptions, n: usize, seconds: f64) -> (f
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     task::check_duration("seconds", args.seconds).map_err(flag_error)?;
     let base = SimOptions {
-        actuator: args.actuator.model(),
+        actuator: args.actuator,
         ..SimOptions::default()
     };
     let sim = args.stepping.apply(&base)?;
     let n = args.evaluations.max(1);
     let steps = (args.seconds / sim.dt).round();
     if let Some(file) = &args.creature {
-        let creature = super::eval::load_creature(
+        let creature = super::input::load_creature(
             file,
             &Default::default(),
             None,

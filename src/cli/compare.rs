@@ -16,10 +16,10 @@ use ontogeny::lang::Source;
 use ontogeny::sim::StepSetting;
 use ontogeny::task::WalkerFitness;
 
-use super::eval::setting_parser;
+use super::physics::setting_parser;
 
 use super::evolve::{
-    EncodingArg, TaskArg, bad, check_seconds, config_error, encoding_names, encoding_parser,
+    EncodingArg, bad, check_seconds, config_error, encoding_names, encoding_parser,
     resolve_task, run_error, set_threads,
 };
 
@@ -30,8 +30,8 @@ pub struct CompareArgs {
     #[arg(long, value_parser = encoding_parser(), value_delimiter = ',', required_unless_present_any = ["resume", "merge"])]
     encodings: Vec<EncodingArg>,
     /// The task (default: the config's, else walker).
-    #[arg(long, value_enum)]
-    task: Option<TaskArg>,
+    #[arg(long, value_parser = super::physics::task_parser())]
+    task: Option<ontogeny::task::TaskKind>,
     /// The walker's fitness formula, as `eval --fitness` (walker only; default: the config's
     /// `[task.walker] fitness`, else normalised).
     #[arg(long, value_parser = super::walker_fitness_parser())]

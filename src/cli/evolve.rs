@@ -4,7 +4,7 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, Subcommand};
 use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, LSystemGenome, encoding_named};
 use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, encoding_of, read_config};
 use ontogeny::evolve::ga::Preset;
@@ -14,7 +14,7 @@ use ontogeny::lang::{Diagnostic, DiagnosticKind, Source};
 use ontogeny::sim::StepSetting;
 use ontogeny::task::{TaskKind, TaskSpec, WalkerFitness};
 
-use super::eval::{flag_error, setting_parser};
+use super::physics::{flag_error, setting_parser, task_parser};
 
 /// An encoding `--encoding` accepts: one of the library's registry ([`ENCODINGS`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,19 +49,6 @@ pub fn encoding_names() -> String {
         .join(", ")
 }
 
-/// The tasks `--task` accepts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum TaskArg {
-    /// Chaumont's walker.
-    Walker,
-    /// Walking with Dinosaurs' jump.
-    Jump,
-    /// Chaumont's catapult.
-    Catapult,
-    /// Chaumont's aiming catapult (needs a target in the config).
-    Aim,
-}
-
 /// `--seconds` checked against the evaluator's limit, (0, [`ontogeny::task::MAX_SECONDS`]].
 pub fn check_seconds(seconds: Option<f64>) -> anyhow::Result<()> {
     match seconds {
@@ -83,7 +70,7 @@ pub fn config_error(source: Option<&Source>, error: String) -> String {
 /// nothing else). `--fitness` for a task other than the walker is refused.
 pub fn resolve_task(
     file: Option<TaskSpec>,
-    task: Option<TaskArg>,
+    task: Option<TaskKind>,
     fitness: Option<WalkerFitness>,
     seconds: Option<f64>,
     setting: Option<StepSetting>,
@@ -93,12 +80,7 @@ pub fn resolve_task(
         spec.sim = setting.apply(&spec.sim);
     }
     if let Some(t) = task {
-        spec.task = match t {
-            TaskArg::Walker => TaskKind::Walker,
-            TaskArg::Jump => TaskKind::Jump,
-            TaskArg::Catapult => TaskKind::Catapult,
-            TaskArg::Aim => TaskKind::Aim,
-        };
+        spec.task = t;
     }
     if let Some(s) = seconds {
         match spec.task {
@@ -143,8 +125,8 @@ pub struct EvolveArgs {
     #[arg(long, value_parser = encoding_parser())]
     encoding: Option<EncodingArg>,
     /// The task (default: the config's, else walker).
-    #[arg(long, value_enum)]
-    task: Option<TaskArg>,
+    #[arg(long, value_parser = task_parser())]
+    task: Option<TaskKind>,
     /// The walker's fitness formula, as `eval --fitness` (walker only; default: the config's
     /// `[task.walker] fitness`, else normalised).
     #[arg(long, value_parser = super::walker_fitness_parser())]

@@ -7,7 +7,8 @@ use ontogeny::export::to_mjcf;
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 
 use super::derive::DevelopmentArgs;
-use super::eval::{PhysicsArgs, load_creature};
+use super::input::load_creature;
+use super::physics::PhysicsArgs;
 
 /// Export formats.
 #[derive(Clone, Copy, ValueEnum)]

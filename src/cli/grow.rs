@@ -6,14 +6,14 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use ontogeny::creature::{Creature, Problem, Role, Severity};
+use ontogeny::creature::{Creature, Problem, Role};
 use ontogeny::develop::{BuildOptions, GrowthFrame, for_each_growth_frame, kept_frame_plan};
 use ontogeny::lang::Diagnostic;
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions, FramePlan, LSystem};
 use serde::Serialize;
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
-use super::eval::{MAX_GIF_FRAMES, evenly_in_time};
+use ontogeny::render::{MAX_GIF_IMAGES, evenly_in_time};
 
 /// Flags of `ontogeny grow`.
 #[derive(Args)]
@@ -94,25 +94,9 @@ fn summarise(file: &str, t: f64, frames: usize, c: &Creature) -> Summary {
         valid: c.is_valid(),
         problems: no_part(c)
             .into_iter()
-            .chain(c.problems.iter().map(problem_line))
+            .chain(c.problems.iter().map(Problem::to_string))
             .collect(),
     }
-}
-
-/// A problem development found, as `grow` and `eval` print it: "warning: MESSAGE [MODULE] at
-/// t = T".
-pub(super) fn problem_line(p: &Problem) -> String {
-    let level = match p.severity {
-        Severity::Warning => "warning",
-        Severity::Error => "error",
-    };
-    let module = p
-        .module
-        .as_deref()
-        .map(|m| format!(" [{m}]"))
-        .unwrap_or_default();
-    let t = p.t.map(|t| format!(" at t = {t}")).unwrap_or_default();
-    format!("{level}: {}{module}{t}", p.message)
 }
 
 /// The problem of a creature without parts, which development does not list (growth may
@@ -123,11 +107,11 @@ fn no_part(c: &Creature) -> Option<String> {
     })
 }
 
-/// How long (centiseconds) each frame of a growth animation of `frames` frames shows: a
+/// How long (centiseconds) each image of a growth animation of `images` images shows: a
 /// quarter of a second, shorter for long animations so that the whole plays in at most
-/// 30 s, and never under 4 cs (browsers slow shorter frames down).
-fn growth_frame_delay(frames: usize) -> u16 {
-    (3000 / frames.max(1)).clamp(4, 25) as u16
+/// 30 s, and never under 4 cs (browsers slow shorter images down).
+fn growth_image_delay(images: usize) -> u16 {
+    (3000 / images.max(1)).clamp(4, 25) as u16
 }
 
 /// Draws `growth.gif` from `frames`, the frames [`growth_gif_steps`] chose (the first and
@@ -137,7 +121,7 @@ fn write_growth_gif(frames: &[GrowthFrame], total: u64, path: &Path) -> anyhow::
     if (frames.len() as u64) < total {
         eprintln!(
             "note: {total} frames of growth: {} shows {} of them, evenly spaced in developmental \
-             time, to keep to {MAX_GIF_FRAMES} frames",
+             time, to keep to {MAX_GIF_IMAGES} frames",
             path.display(),
             frames.len()
         );
@@ -156,7 +140,7 @@ fn write_growth_gif(frames: &[GrowthFrame], total: u64, path: &Path) -> anyhow::
         path,
         480,
         300,
-        &[growth_frame_delay(frames.len())],
+        &[growth_image_delay(frames.len())],
         ontogeny::render::Framing::Still,
         &mut |f| progress.set(f),
     )
@@ -165,12 +149,12 @@ fn write_growth_gif(frames: &[GrowthFrame], total: u64, path: &Path) -> anyhow::
     Ok(())
 }
 
-/// Which frames (by step) `growth.gif` shows: at most [`MAX_GIF_FRAMES`], evenly spaced in
+/// Which frames (by step) `growth.gif` shows: at most [`MAX_GIF_IMAGES`], evenly spaced in
 /// developmental time, the first and last kept; `wanted[step]` says whether frame `step` is one.
 fn growth_gif_steps(plan: &FramePlan) -> Vec<bool> {
     let times: Vec<f64> = (0..=plan.last_step()).map(|k| plan.time(k)).collect();
     let mut wanted = vec![false; times.len()];
-    for i in evenly_in_time(&times, MAX_GIF_FRAMES) {
+    for i in evenly_in_time(&times, MAX_GIF_IMAGES) {
         wanted[i] = true;
     }
     wanted
@@ -343,18 +327,18 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::growth_frame_delay;
+    use super::growth_image_delay;
 
     #[test]
     fn a_growth_animation_plays_in_at_most_half_a_minute() {
-        // Up to 120 frames: a quarter of a second each.
-        assert_eq!(growth_frame_delay(1), 25);
-        assert_eq!(growth_frame_delay(120), 25);
-        // 600 frames (the most a GIF holds): 5 cs each, 30 s in all.
-        assert_eq!(growth_frame_delay(600), 5);
-        assert!(growth_frame_delay(300) as usize * 300 <= 3000);
+        // Up to 120 images: a quarter of a second each.
+        assert_eq!(growth_image_delay(1), 25);
+        assert_eq!(growth_image_delay(120), 25);
+        // 600 images (the most a GIF holds): 5 cs each, 30 s in all.
+        assert_eq!(growth_image_delay(600), 5);
+        assert!(growth_image_delay(300) as usize * 300 <= 3000);
         // Never under 4 cs.
-        assert_eq!(growth_frame_delay(10_000), 4);
-        assert_eq!(growth_frame_delay(0), 25);
+        assert_eq!(growth_image_delay(10_000), 4);
+        assert_eq!(growth_image_delay(0), 25);
     }
 }

@@ -27,6 +27,8 @@ mod evolve;
 mod export;
 mod genome;
 mod grow;
+mod input;
+mod physics;
 mod progress;
 mod replay;
 mod view;

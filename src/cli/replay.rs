@@ -4,9 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use ontogeny::creature::Creature;
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
-use ontogeny::task::RecordedFrame;
+use ontogeny::render::MAX_FPS;
+use ontogeny::task::Recording;
 
 /// Flags of `ontogeny replay`.
 #[derive(Args)]
@@ -14,7 +14,7 @@ pub struct ReplayArgs {
     /// A directory written by `ontogeny eval --record DIR`, or a run directory written by
     /// `ontogeny evolve`.
     dir: PathBuf,
-    /// Frames per second of the animation, in (0, 50]; each frame shows the recording at
+    /// Frames per second of the animation, in (0, 50]; image k shows the recording at
     /// k / fps seconds, and plays back in real time.
     #[arg(long, default_value_t = 10.0)]
     fps: f64,
@@ -26,24 +26,14 @@ pub struct ReplayArgs {
     rank: usize,
 }
 
-#[derive(serde::Deserialize)]
-struct Recording {
-    creature: Creature,
-    frames: Vec<RecordedFrame>,
-    /// The aim task's target (absent or null for other tasks).
-    #[serde(default)]
-    target: Option<[f64; 3]>,
-}
-
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
 pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
-    if !(args.fps > 0.0 && args.fps <= super::eval::MAX_FPS) {
+    if !(args.fps > 0.0 && args.fps <= MAX_FPS) {
         anyhow::bail!(Diagnostic::without_location(
             DiagnosticKind::Semantic,
             format!(
                 "--fps must be in (0, {}], not {} (GIF frames last whole centiseconds)",
-                super::eval::MAX_FPS,
-                args.fps
+                MAX_FPS, args.fps
             ),
         ));
     }
@@ -67,23 +57,18 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
     })?;
     let gif = args.dir.join("behaviour.gif");
     super::check_outputs([&gif])?;
-    let target = recording
-        .target
-        .map(|[x, y, z]| nalgebra::Vector3::new(x, y, z));
-    super::eval::render_recording(
-        &recording.creature,
-        &recording.frames,
-        target,
+    let playback = super::eval::draw_recording(
+        &recording,
         &gif,
         args.fps,
+        "the evaluation was refused before simulating",
     )?;
-    let (shown, _, fps) = super::eval::animation_frames(&recording.frames, args.fps);
     say!(
         "wrote {} ({} frames at {} frames/s, of {} recorded)",
         gif.display(),
-        shown.len(),
-        ontogeny::lsystem::format_number(fps),
-        recording.frames.len()
+        playback.shown.len(),
+        ontogeny::lsystem::format_number(playback.fps),
+        recording.samples.len()
     );
     Ok(())
 }

@@ -106,7 +106,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             let data =
                 ontogeny::view::recording_data(&target.path).map_err(|e| bad(e.to_string()))?;
             frames = data["frames"].as_array().map(Vec::len);
-            if let Some(reason) = ontogeny::view::no_frames_reason(&data) {
+            if let Some(reason) = data["no_frames"].as_str() {
                 eprintln!(
                     "note: {}: {reason}; the page shows the creature as built",
                     target.path.display()

@@ -409,6 +409,24 @@ pub struct Problem {
     pub t: Option<f64>,
 }
 
+impl std::fmt::Display for Problem {
+    /// The problem as `grow` and `eval` print it: `warning: MESSAGE [MODULE] at t = T`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let level = match self.severity {
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        };
+        write!(f, "{level}: {}", self.message)?;
+        if let Some(module) = &self.module {
+            write!(f, " [{module}]")?;
+        }
+        if let Some(t) = self.t {
+            write!(f, " at t = {t}")?;
+        }
+        Ok(())
+    }
+}
+
 impl Creature {
     /// Checks that the creature is well formed: finite, positive sizes; finite poses and
     /// densities; finite weights, neuron parameters and biases; joints, links, sensors and
@@ -614,5 +632,26 @@ mod tests {
             let err = c.check_consistency().unwrap_err();
             assert!(err.contains("neuron 0") && err.contains("bias"), "{err}");
         }
+    }
+
+    #[test]
+    fn a_problem_is_written_with_its_level_module_and_time() {
+        let problem = Problem {
+            severity: Severity::Warning,
+            message: "a joint without axes".into(),
+            module: Some("revolute1".into()),
+            t: Some(0.5),
+        };
+        assert_eq!(
+            problem.to_string(),
+            "warning: a joint without axes [revolute1] at t = 0.5"
+        );
+        let bare = Problem {
+            severity: Severity::Error,
+            module: None,
+            t: None,
+            ..problem
+        };
+        assert_eq!(bare.to_string(), "error: a joint without axes");
     }
 }

@@ -2,11 +2,13 @@
 
 pub mod brain;
 pub mod drag;
+mod model_names;
 pub mod setting;
 pub mod world;
 
 pub use brain::BrainRuntime;
 pub use drag::DragMeter;
+pub use model_names::UnknownName;
 pub use setting::{
     MAX_DT, MAX_ITERATIONS, MAX_SUBSTEPS, MIN_DT, SettingError, SimTable, StepSetting,
     UnknownSetting,

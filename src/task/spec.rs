@@ -23,6 +23,28 @@ pub enum TaskKind {
 }
 
 impl TaskKind {
+    /// Every task, in the order `--help` lists them.
+    pub const ALL: [TaskKind; 4] = [
+        TaskKind::Walker,
+        TaskKind::Jump,
+        TaskKind::Catapult,
+        TaskKind::Aim,
+    ];
+
+    /// The task in a few words, for `--help`.
+    pub fn summary(self) -> &'static str {
+        match self {
+            TaskKind::Walker => {
+                "Chaumont et al.'s walker: distance of the root part, normalised by size (eq. 1)"
+            }
+            TaskKind::Jump => "Walking with Dinosaurs' jump: best height of the lowest point",
+            TaskKind::Catapult => {
+                "Chaumont et al.'s catapult: distance the projectile travels (eq. 2)"
+            }
+            TaskKind::Aim => "Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3)",
+        }
+    }
+
     /// The task's name as the CLI and the run store spell it.
     pub fn name(self) -> &'static str {
         match self {
@@ -31,6 +53,18 @@ impl TaskKind {
             TaskKind::Catapult => "catapult",
             TaskKind::Aim => "aim",
         }
+    }
+}
+
+impl std::str::FromStr for TaskKind {
+    type Err = String;
+
+    /// The task named `name` ([`TaskKind::name`]).
+    fn from_str(name: &str) -> Result<TaskKind, String> {
+        TaskKind::ALL
+            .into_iter()
+            .find(|t| t.name() == name)
+            .ok_or_else(|| format!("unknown task '{name}'"))
     }
 }
 
@@ -80,19 +114,62 @@ impl TaskSpec {
         format!("{}, {fitness}", self.task.name())
     }
 
-    /// Evaluates `creature` on the task; `record` keeps every frame.
+    /// Evaluates `creature` on the task; `record` keeps a recording (every step's sample, or
+    /// evenly spaced ones for a long run: see [`super::recording_interval`]).
     pub fn evaluate(&self, creature: &Creature, record: bool) -> Evaluation {
+        self.evaluate_with_progress(creature, record, &mut |_| {})
+    }
+
+    /// [`TaskSpec::evaluate`], telling `progress` the fraction done, as
+    /// [`super::walker_with_progress`] does.
+    pub fn evaluate_with_progress(
+        &self,
+        creature: &Creature,
+        record: bool,
+        progress: &mut dyn FnMut(f64),
+    ) -> Evaluation {
         match self.task {
-            TaskKind::Walker => super::walker(creature, &self.sim, &self.walker, record),
-            TaskKind::Jump => super::jump(creature, &self.sim, &self.jump, record),
+            TaskKind::Walker => {
+                super::walker_with_progress(creature, &self.sim, &self.walker, record, progress)
+            }
+            TaskKind::Jump => {
+                super::jump_with_progress(creature, &self.sim, &self.jump, record, progress)
+            }
             TaskKind::Catapult => {
                 let options = CatapultOptions {
                     target: None,
                     ..self.catapult.clone()
                 };
-                super::catapult(creature, &self.sim, &options, record)
+                super::catapult_with_progress(creature, &self.sim, &options, record, progress)
             }
-            TaskKind::Aim => super::catapult(creature, &self.sim, &self.catapult, record),
+            TaskKind::Aim => {
+                super::catapult_with_progress(creature, &self.sim, &self.catapult, record, progress)
+            }
         }
+    }
+
+    /// The most control steps the task can take (every phase at its longest), which sets how
+    /// densely a recording keeps samples ([`super::recording_interval`]).
+    pub fn max_steps(&self) -> usize {
+        let dt = self.sim.dt;
+        match self.task {
+            TaskKind::Walker => self.walker.max_steps(dt),
+            TaskKind::Jump => self.jump.max_steps(dt),
+            TaskKind::Catapult | TaskKind::Aim => self.catapult.max_steps(dt),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::TaskKind;
+
+    #[test]
+    fn task_names_are_the_ones_configs_spell_and_read_back() {
+        for task in TaskKind::ALL {
+            assert_eq!(serde_json::to_value(task).unwrap(), task.name());
+            assert_eq!(task.name().parse::<TaskKind>(), Ok(task));
+        }
+        assert!("walk".parse::<TaskKind>().is_err());
     }
 }

@@ -253,71 +253,64 @@ pub fn growth_data(dir: &Path) -> Result<Value, ViewError> {
     Ok(json!({ "kind": "growth", "file": dir.display().to_string(), "frames": frames }))
 }
 
-/// Reads a recording directory's `recording.json` (written by `eval --record`: `creature`,
-/// `task`, `status`, `message`, `target`, `frames` of part poses) into the page's data. A
-/// recording without frames (an evaluation refused before simulating) is data too: the page
-/// shows the creature as built and why nothing was recorded ([`no_frames_reason`]).
+/// Reads a recording directory's `recording.json` ([`crate::task::Recording`], written by
+/// `eval --record`) into the page's data: the recording's keys, with `kind`, `file` and, for a
+/// recording without samples (an evaluation refused before simulating), `no_frames`: why
+/// nothing was recorded ([`no_samples_reason`]); the page then shows the creature as built.
 pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
     let path = dir.join("recording.json");
     let text = std::fs::read_to_string(&path)
         .map_err(|e| ViewError::BadFile(format!("cannot read {}: {e}", path.display())))?;
-    let mut value: Value = serde_json::from_str(&text)
-        .map_err(|e| ViewError::BadFile(format!("{}: not JSON: {e}", path.display())))?;
-    let creature: crate::creature::Creature = value
-        .get("creature")
-        .cloned()
-        .ok_or_else(|| ViewError::BadFile(format!("{}: no creature", path.display())))
-        .and_then(|c| {
-            serde_json::from_value(c).map_err(|e| {
-                ViewError::BadFile(format!("{}: not a recording: {e}", path.display()))
-            })
-        })?;
-    let frames: Vec<crate::task::RecordedFrame> = value
-        .get("frames")
-        .cloned()
-        .map(serde_json::from_value)
-        .transpose()
-        .map_err(|e| ViewError::BadFile(format!("{}: not a recording: {e}", path.display())))?
-        .unwrap_or_default();
-    if let Some(bad) = frames
+    let recording: crate::task::Recording = serde_json::from_str(&text).map_err(|e| {
+        let what = if e.is_syntax() || e.is_eof() {
+            "not JSON"
+        } else {
+            "not a recording"
+        };
+        ViewError::BadFile(format!("{}: {what}: {e}", path.display()))
+    })?;
+    let parts = recording.creature.parts.len();
+    if let Some(bad) = recording
+        .samples
         .iter()
-        .position(|f| f.parts.len() != creature.parts.len())
+        .position(|s| s.parts.len() != parts)
     {
         return Err(ViewError::BadFile(format!(
-            "{}: frame {bad} has {} part poses for a creature of {} parts",
+            "{}: frame {bad} has {} part poses for a creature of {parts} parts",
             path.display(),
-            frames[bad].parts.len(),
-            creature.parts.len()
+            recording.samples[bad].parts.len(),
         )));
     }
+    // Through the recording's own text (not `serde_json::to_value`, which would widen its f32
+    // poses back to f64 digits).
+    let written = serde_json::to_string(&recording)
+        .map_err(|e| ViewError::BadFile(format!("{}: {e}", path.display())))?;
+    let mut value: Value = serde_json::from_str(&written)
+        .map_err(|e| ViewError::BadFile(format!("{}: {e}", path.display())))?;
     value["kind"] = json!("recording");
     value["file"] = json!(dir.display().to_string());
-    if frames.is_empty() {
-        value["frames"] = json!([]);
-    }
-    if let Some(reason) = no_frames_reason(&value) {
+    if let Some(reason) = no_samples_reason(&recording) {
         value["no_frames"] = json!(reason);
     }
     Ok(value)
 }
 
-/// Why a recording's data (from [`recording_data`]) has no frames, or `None` when it has
-/// some: the evaluation's status and message when the file holds them (files written before
-/// they were recorded do not).
-pub fn no_frames_reason(data: &Value) -> Option<String> {
-    if data["frames"].as_array().is_some_and(|f| !f.is_empty()) {
+/// Why a recording has no samples, or `None` when it has some: the evaluation's status and
+/// message when the file holds them (files written before they were recorded do not).
+pub fn no_samples_reason(recording: &crate::task::Recording) -> Option<String> {
+    if !recording.samples.is_empty() {
         return None;
     }
-    let status = data["status"].as_str();
-    let message = data["message"].as_str();
-    Some(match (status, message) {
-        (Some(s), Some(m)) => format!("no frames recorded: {s}: {m}"),
-        (Some(s), None) => format!("no frames recorded: {s}"),
-        (None, Some(m)) => format!("no frames recorded: {m}"),
-        (None, None) => {
-            "no frames recorded (the evaluation was refused before simulating)".to_string()
-        }
-    })
+    Some(
+        match (recording.status_name(), recording.message.as_deref()) {
+            (Some(s), Some(m)) => format!("no frames recorded: {s}: {m}"),
+            (Some(s), None) => format!("no frames recorded: {s}"),
+            (None, Some(m)) => format!("no frames recorded: {m}"),
+            (None, None) => {
+                "no frames recorded (the evaluation was refused before simulating)".to_string()
+            }
+        },
+    )
 }
 
 /// Reads a run directory's store into the page's data: `{"kind": "run", "file", "encoding",

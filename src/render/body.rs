@@ -1,0 +1,666 @@
+//! The body's 3/4 view: the ground grid, shadows, shaded parts, joints with their axes, the
+//! target and the projectile's trail, and, when the picture checks the creature, what makes it
+//! invalid (interpenetrating parts outlined, part numbers, problems written) and a scale bar.
+
+use nalgebra::Vector3;
+use tiny_skia::{FillRule, PathBuilder, Pixmap, Rect, Stroke, Transform};
+
+use super::Overlay;
+use super::camera::{Camera, View};
+use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, TARGET, TRAIL, paint, solid};
+use super::text::{draw_text, fit, length_label, scale_bar_length, text_width};
+use super::top_view::draw_top_view;
+use crate::creature::{Creature, Severity};
+
+/// Whether a picture checks the creature: marks interpenetrating parts, numbers the parts and
+/// writes its validity and problems.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Checks {
+    /// Checked.
+    On,
+    /// Not checked.
+    Off,
+}
+
+/// The radius of a joint's disc in metres: half the smaller joined part's middle dimension
+/// (its width, for a bar), so that a disc is as wide as the parts it joins.
+pub(super) fn joint_radius(creature: &Creature, parent: usize, child: usize) -> f64 {
+    let middle = |i: usize| {
+        creature.parts.get(i).map(|p| {
+            let mut d = [p.size.x, p.size.y, p.size.z];
+            d.sort_by(f64::total_cmp);
+            d[1]
+        })
+    };
+    let sizes: Vec<f64> = [middle(parent), middle(child)]
+        .into_iter()
+        .flatten()
+        .collect();
+    sizes.into_iter().fold(f64::INFINITY, f64::min).min(1e6) / 2.0
+}
+
+/// Draws the body into the region `(x, y, w, h)` of `pixmap`, with `overlay` and, when
+/// `checks` is on, the marks of what makes the creature invalid and part numbers: the ground,
+/// the target's stem, shadows, the parts, the marks, the joints, the trail and the target,
+/// the part numbers, the scale bar, the top view and the text, in that order (later ones on
+/// top).
+pub(super) fn draw_body(
+    pixmap: &mut Pixmap,
+    creature: &Creature,
+    view: &View,
+    region: (f32, f32, f32, f32),
+    overlay: &Overlay,
+    checks: Checks,
+) {
+    let (rx, ry, rw, rh) = region;
+    let camera = Camera::new(view, rw as f64, rh as f64, 12.0);
+    let shift = Transform::from_translate(rx, ry);
+    let ground = view.min.y.min(0.0);
+    draw_ground(pixmap, &camera, shift, view, ground);
+    if let Some(target) = overlay.target {
+        draw_target_stem(pixmap, &camera, shift, ground, target);
+    }
+    draw_shadows(pixmap, &camera, shift, ground, creature);
+    draw_parts(pixmap, &camera, shift, creature);
+    let pairs = if checks == Checks::On {
+        creature.interpenetrating_pairs()
+    } else {
+        Vec::new()
+    };
+    let marked = outline_marked(pixmap, &camera, shift, creature, &pairs);
+    draw_joints(pixmap, &camera, shift, creature, 0.05 * rw.min(rh));
+    draw_trail_and_target(pixmap, &camera, region, overlay);
+    if checks == Checks::On {
+        number_parts(pixmap, &camera, region, creature, &marked);
+    }
+    let text_scale = if rh >= 500.0 { 2.0 } else { 1.0 };
+    draw_scale_bar(pixmap, &camera, region, text_scale);
+    // The top view of projectile and target, in the top right corner.
+    let mut room = rw - 16.0;
+    if overlay.target.is_some() || !overlay.trail.is_empty() {
+        let side = (0.34 * rw.min(rh)).round();
+        draw_top_view(
+            pixmap,
+            creature,
+            overlay,
+            (rx + rw - side - 6.0, ry + 6.0, side, side),
+        );
+        room -= side + 6.0;
+    }
+    let text = Lines {
+        region,
+        room,
+        scale: text_scale,
+    };
+    write_text(pixmap, &text, overlay, creature, checks, &pairs);
+}
+
+/// The ground grid on the plane y = `ground`, one line per metre (or finer for small
+/// creatures), on a pale floor.
+fn draw_ground(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, view: &View, ground: f64) {
+    let extent = (view.max - view.min).norm().max(1.0);
+    let step = if extent > 8.0 {
+        1.0
+    } else if extent > 2.0 {
+        0.5
+    } else {
+        0.25
+    };
+    let pad = 0.25 * extent;
+    let (x0, x1) = (
+        ((view.min.x - pad) / step).floor() * step,
+        ((view.max.x + pad) / step).ceil() * step,
+    );
+    let (z0, z1) = (
+        ((view.min.z - pad) / step).floor() * step,
+        ((view.max.z + pad) / step).ceil() * step,
+    );
+    let floor: Vec<(f32, f32)> = [(x0, z0), (x1, z0), (x1, z1), (x0, z1)]
+        .iter()
+        .map(|c| {
+            let (sx, sy, _) = camera.project(&Vector3::new(c.0, ground, c.1));
+            (sx, sy)
+        })
+        .collect();
+    if let Some(path) = polygon(&floor) {
+        pixmap.fill_path(
+            &path,
+            &paint(232, 234, 228, 255),
+            FillRule::Winding,
+            shift,
+            None,
+        );
+    }
+    let mut grid = PathBuilder::new();
+    let mut segment = |from: (f64, f64), to: (f64, f64)| {
+        let (ax, ay, _) = camera.project(&Vector3::new(from.0, ground, from.1));
+        let (bx, by, _) = camera.project(&Vector3::new(to.0, ground, to.1));
+        grid.move_to(ax, ay);
+        grid.line_to(bx, by);
+    };
+    let mut x = x0;
+    while x <= x1 + 1e-9 {
+        segment((x, z0), (x, z1));
+        x += step;
+    }
+    let mut z = z0;
+    while z <= z1 + 1e-9 {
+        segment((x0, z), (x1, z));
+        z += step;
+    }
+    if let Some(path) = grid.finish() {
+        let stroke = Stroke {
+            width: 1.0,
+            ..Stroke::default()
+        };
+        pixmap.stroke_path(&path, &paint(190, 194, 186, 255), &stroke, shift, None);
+    }
+}
+
+/// The aim task's target's foot on the ground and the line up to it.
+fn draw_target_stem(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    ground: f64,
+    target: Vector3<f64>,
+) {
+    let (fx, fy, _) = camera.project(&Vector3::new(target.x, ground, target.z));
+    let (tx, ty, _) = camera.project(&target);
+    let mut pb = PathBuilder::new();
+    pb.push_oval(Rect::from_xywh(fx - 8.0, fy - 3.5, 16.0, 7.0).expect("finite"));
+    pb.move_to(fx, fy);
+    pb.line_to(tx, ty);
+    if let Some(path) = pb.finish() {
+        let stroke = Stroke {
+            width: 1.5,
+            ..Stroke::default()
+        };
+        pixmap.stroke_path(&path, &solid(TARGET), &stroke, shift, None);
+    }
+}
+
+/// Shadows: each part's footprint dropped onto the ground.
+fn draw_shadows(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    ground: f64,
+    creature: &Creature,
+) {
+    for part in &creature.parts {
+        let corners = part.corners();
+        let mut pts: Vec<(f32, f32)> = corners
+            .iter()
+            .map(|c| {
+                let (sx, sy, _) = camera.project(&Vector3::new(c.x, ground, c.z));
+                (sx, sy)
+            })
+            .collect();
+        if let Some(path) = convex_hull_path(&mut pts) {
+            pixmap.fill_path(&path, &paint(0, 0, 0, 40), FillRule::Winding, shift, None);
+        }
+    }
+}
+
+/// The faces of every part, far to near (painter's algorithm), lit from above and to the
+/// side: the root part darker, growing parts orange.
+fn draw_parts(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, creature: &Creature) {
+    const FACES: [[usize; 4]; 6] = [
+        [0, 2, 6, 4],
+        [1, 5, 7, 3],
+        [0, 4, 5, 1],
+        [2, 3, 7, 6],
+        [0, 1, 3, 2],
+        [4, 6, 7, 5],
+    ];
+    let light = Vector3::new(0.4, 0.85, 0.35).normalize();
+    let viewer = camera.towards_viewer();
+    let mut faces = Vec::new();
+    for (index, part) in creature.parts.iter().enumerate() {
+        let corners = part.corners();
+        let centre = part.position;
+        for face in FACES {
+            let mid = face.iter().map(|&k| corners[k]).sum::<Vector3<f64>>() / 4.0;
+            let normal = (mid - centre).normalize();
+            if normal.dot(&viewer) <= 1e-9 {
+                continue;
+            }
+            let depth = camera.project(&mid).2;
+            faces.push((depth, index, face, normal));
+        }
+    }
+    faces.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let outline = Stroke {
+        width: 1.0,
+        ..Stroke::default()
+    };
+    for (_, index, face, normal) in faces {
+        let part = &creature.parts[index];
+        let corners = part.corners();
+        let shade = 0.45 + 0.55 * normal.dot(&light).max(0.0);
+        let base = if part.growing {
+            (240.0, 150.0, 40.0)
+        } else if index == 0 {
+            (70.0, 110.0, 190.0)
+        } else {
+            (100.0, 150.0, 220.0)
+        };
+        let fill = paint(
+            (base.0 * shade) as u8,
+            (base.1 * shade) as u8,
+            (base.2 * shade) as u8,
+            255,
+        );
+        let points: Vec<(f32, f32)> = face
+            .iter()
+            .map(|&k| {
+                let (sx, sy, _) = camera.project(&corners[k]);
+                (sx, sy)
+            })
+            .collect();
+        if let Some(path) = polygon(&points) {
+            pixmap.fill_path(&path, &fill, FillRule::Winding, shift, None);
+            pixmap.stroke_path(&path, &paint(30, 40, 60, 200), &outline, shift, None);
+        }
+    }
+}
+
+/// Outlines in the marking colour the parts of the interpenetrating `pairs`; returns them,
+/// each once, in order.
+fn outline_marked(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    creature: &Creature,
+    pairs: &[(usize, usize)],
+) -> Vec<usize> {
+    let mut marked: Vec<usize> = pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+    marked.sort_unstable();
+    marked.dedup();
+    for &index in &marked {
+        let mut pts: Vec<(f32, f32)> = creature.parts[index]
+            .corners()
+            .iter()
+            .map(|c| {
+                let (sx, sy, _) = camera.project(c);
+                (sx, sy)
+            })
+            .collect();
+        if let Some(path) = convex_hull_path(&mut pts) {
+            let stroke = Stroke {
+                width: 3.0,
+                ..Stroke::default()
+            };
+            pixmap.stroke_path(&path, &solid(MARK), &stroke, shift, None);
+        }
+    }
+    marked
+}
+
+/// The joints, on top of the parts: a disc in the plane each movable joint turns in (red,
+/// orange while growing), its size following the parts it joins (at most `most` pixels), with
+/// a line along each axis ending in a dot at the axis's positive end; fused joints are grey
+/// dots.
+fn draw_joints(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    creature: &Creature,
+    most: f32,
+) {
+    let outline = Stroke {
+        width: 1.0,
+        ..Stroke::default()
+    };
+    for joint in &creature.joints {
+        let (sx, sy, _) = camera.project(&joint.anchor);
+        let radius = joint_radius(creature, joint.parent, joint.child);
+        let pixels = ((radius * camera.scale) as f32).clamp(4.0, most.max(4.0));
+        let radius = pixels as f64 / camera.scale;
+        if joint.kind.dof() == 0 || joint.axes.is_empty() {
+            let dot = (0.4 * pixels).clamp(2.0, 6.0);
+            if let Some(path) = PathBuilder::from_circle(sx, sy, dot) {
+                pixmap.fill_path(
+                    &path,
+                    &paint(90, 90, 90, 220),
+                    FillRule::Winding,
+                    shift,
+                    None,
+                );
+                pixmap.stroke_path(&path, &solid([255; 3]), &outline, shift, None);
+            }
+            continue;
+        }
+        let colour = if joint.growing { GROWING_JOINT } else { JOINT };
+        let axis = joint.axes[0].try_normalize(1e-12).unwrap_or(Vector3::x());
+        let helper = if axis.y.abs() < 0.9 {
+            Vector3::y()
+        } else {
+            Vector3::x()
+        };
+        let u = axis.cross(&helper).normalize();
+        let v = axis.cross(&u);
+        let rim: Vec<(f32, f32)> = (0..24)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 24.0;
+                let p = joint.anchor + (u * a.cos() + v * a.sin()) * radius;
+                let (px, py, _) = camera.project(&p);
+                (px, py)
+            })
+            .collect();
+        if let Some(path) = polygon(&rim) {
+            pixmap.fill_path(&path, &solid(colour), FillRule::Winding, shift, None);
+            pixmap.stroke_path(&path, &solid([255; 3]), &outline, shift, None);
+        }
+        if let Some(path) = PathBuilder::from_circle(sx, sy, 2.5) {
+            pixmap.fill_path(&path, &solid(colour), FillRule::Winding, shift, None);
+        }
+        let stroke = Stroke {
+            width: 2.0,
+            ..Stroke::default()
+        };
+        for axis in &joint.axes {
+            let Some(axis) = axis.try_normalize(1e-12) else {
+                continue;
+            };
+            let (ax, ay, _) = camera.project(&(joint.anchor - axis * 1.6 * radius));
+            let (bx, by, _) = camera.project(&(joint.anchor + axis * 1.6 * radius));
+            let mut pb = PathBuilder::new();
+            pb.move_to(ax, ay);
+            pb.line_to(bx, by);
+            pb.push_circle(bx, by, 2.5);
+            if let Some(path) = pb.finish() {
+                pixmap.stroke_path(&path, &solid(AXIS), &stroke, shift, None);
+            }
+        }
+    }
+}
+
+/// The projectile's trail and the target's bullseye.
+fn draw_trail_and_target(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    region: (f32, f32, f32, f32),
+    overlay: &Overlay,
+) {
+    let (rx, ry, _, _) = region;
+    let shift = Transform::from_translate(rx, ry);
+    if overlay.trail.len() >= 2 {
+        let mut pb = PathBuilder::new();
+        for (k, p) in overlay.trail.iter().enumerate() {
+            let (px, py, _) = camera.project(p);
+            if k == 0 {
+                pb.move_to(px, py);
+            } else {
+                pb.line_to(px, py);
+            }
+        }
+        if let Some(path) = pb.finish() {
+            let stroke = Stroke {
+                width: 2.0,
+                ..Stroke::default()
+            };
+            pixmap.stroke_path(&path, &solid(TRAIL), &stroke, shift, None);
+        }
+    }
+    if let Some(target) = overlay.target {
+        let (tx, ty, _) = camera.project(&target);
+        draw_bullseye(pixmap, (rx + tx, ry + ty), 7.0);
+    }
+}
+
+/// Part numbers, red for `marked` parts: every marked part's, and the others' where the part
+/// is large enough in the picture to hold its number and no other number is in the way.
+fn number_parts(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    region: (f32, f32, f32, f32),
+    creature: &Creature,
+    marked: &[usize],
+) {
+    let (rx, ry, _, _) = region;
+    let mut taken: Vec<Rect> = Vec::new();
+    let order = marked
+        .iter()
+        .copied()
+        .chain((0..creature.parts.len()).filter(|i| !marked.contains(i)));
+    for index in order {
+        let part = &creature.parts[index];
+        let (px, py, _) = camera.project(&part.position);
+        let text = index.to_string();
+        let half = text_width(&text, 1.0) / 2.0;
+        let is_marked = marked.contains(&index);
+        let (mut lo, mut hi) = (
+            (f32::INFINITY, f32::INFINITY),
+            (f32::NEG_INFINITY, f32::NEG_INFINITY),
+        );
+        for c in part.corners() {
+            let (sx, sy, _) = camera.project(&c);
+            lo = (lo.0.min(sx), lo.1.min(sy));
+            hi = (hi.0.max(sx), hi.1.max(sy));
+        }
+        let roomy = hi.0 - lo.0 >= 2.0 * half + 8.0 && hi.1 - lo.1 >= 16.0;
+        let Some(boxed) = Rect::from_xywh(px - half - 2.0, py - 6.0, 2.0 * half + 4.0, 12.0) else {
+            continue;
+        };
+        let clear = !taken.iter().any(|t| t.intersect(&boxed).is_some());
+        if !(is_marked || roomy && clear) {
+            continue;
+        }
+        taken.push(boxed);
+        let colour = if is_marked { MARK } else { INK };
+        draw_text(
+            pixmap,
+            (rx + px - half, ry + py - 4.0),
+            &text,
+            1.0,
+            colour,
+            true,
+        );
+    }
+}
+
+/// The scale bar, bottom left, with its length written at `text_scale`.
+fn draw_scale_bar(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    region: (f32, f32, f32, f32),
+    text_scale: f32,
+) {
+    let (rx, ry, rw, rh) = region;
+    let length = scale_bar_length(camera.scale, 0.25 * rw as f64);
+    let bar = (length * camera.scale) as f32;
+    let (bx, by) = ((rx + 12.0).round() + 0.5, (ry + rh - 10.0).round() + 0.5);
+    let mut pb = PathBuilder::new();
+    pb.move_to(bx, by - 4.0);
+    pb.line_to(bx, by);
+    pb.line_to(bx + bar, by);
+    pb.line_to(bx + bar, by - 4.0);
+    if let Some(path) = pb.finish() {
+        let stroke = Stroke {
+            width: 2.0,
+            ..Stroke::default()
+        };
+        let mut p = solid(INK);
+        p.anti_alias = false;
+        pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
+    }
+    draw_text(
+        pixmap,
+        (bx + bar + 6.0, by - 8.0 * text_scale),
+        &length_label(length),
+        text_scale,
+        INK,
+        true,
+    );
+}
+
+/// Where a picture's lines of text go: the region, the width they may take, and the font's
+/// scale.
+struct Lines {
+    region: (f32, f32, f32, f32),
+    room: f32,
+    scale: f32,
+}
+
+/// Lines of text, top left: the overlay's label; with checks, the creature's counts and
+/// validity and its problems after them (as many as fit, then how many more), and a red
+/// frame round an invalid creature.
+fn write_text(
+    pixmap: &mut Pixmap,
+    text: &Lines,
+    overlay: &Overlay,
+    creature: &Creature,
+    checks: Checks,
+    pairs: &[(usize, usize)],
+) {
+    let (rx, ry, rw, rh) = text.region;
+    let (room, text_scale) = (text.room, text.scale);
+    let line = 10.0 * text_scale + 2.0;
+    let mut y = ry + 6.0;
+    for text in &overlay.label {
+        draw_text(
+            pixmap,
+            (rx + 8.0, y),
+            &fit(text, room, text_scale),
+            text_scale,
+            INK,
+            true,
+        );
+        y += line;
+    }
+    if checks == Checks::On {
+        let mut problems: Vec<(String, [u8; 3])> = Vec::new();
+        if creature.parts.is_empty() {
+            problems.push(("error: no part".to_string(), MARK));
+        }
+        for p in &creature.problems {
+            let (level, colour) = match p.severity {
+                Severity::Error => ("error", MARK),
+                Severity::Warning => ("warning", TRAIL),
+            };
+            problems.push((format!("{level}: {}", p.message), colour));
+        }
+        for (a, b) in pairs {
+            let message = format!("parts {a} and {b} interpenetrate");
+            if !creature.problems.iter().any(|p| p.message == message) {
+                problems.push((format!("error: {message}"), MARK));
+            }
+        }
+        let valid = creature.is_valid() && pairs.is_empty();
+        let summary = format!(
+            "{} parts, {} joints, {} neurons: {}",
+            creature.parts.len(),
+            creature.joints.len(),
+            creature.brain.neurons.len(),
+            if valid { "valid" } else { "INVALID" }
+        );
+        draw_text(
+            pixmap,
+            (rx + 8.0, y),
+            &fit(&summary, room, text_scale),
+            text_scale,
+            if valid { INK } else { MARK },
+            true,
+        );
+        y += line;
+        let shown = ((rh - y - 24.0) / line).floor().max(0.0) as usize;
+        let total = problems.len();
+        for (k, (text, colour)) in problems.into_iter().enumerate() {
+            if k + 1 == shown && total > shown {
+                let rest = format!("... and {} more", total - k);
+                draw_text(pixmap, (rx + 8.0, y), &rest, text_scale, colour, true);
+                break;
+            }
+            if k >= shown {
+                break;
+            }
+            draw_text(
+                pixmap,
+                (rx + 8.0, y),
+                &fit(&text, room, text_scale),
+                text_scale,
+                colour,
+                true,
+            );
+            y += line;
+        }
+        if !valid && let Some(rect) = Rect::from_xywh(rx + 1.5, ry + 1.5, rw - 3.0, rh - 3.0) {
+            let stroke = Stroke {
+                width: 3.0,
+                ..Stroke::default()
+            };
+            let mut p = solid(MARK);
+            p.anti_alias = false;
+            pixmap.stroke_path(
+                &PathBuilder::from_rect(rect),
+                &p,
+                &stroke,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+}
+
+/// A target's bullseye centred on `(x, y)` (pixels), `radius` across its outer ring.
+pub(super) fn draw_bullseye(pixmap: &mut Pixmap, (x, y): (f32, f32), radius: f32) {
+    for (r, colour) in [
+        (radius, TARGET),
+        (radius * 0.62, [255; 3]),
+        (radius * 0.3, TARGET),
+    ] {
+        if let Some(path) = PathBuilder::from_circle(x, y, r) {
+            pixmap.fill_path(
+                &path,
+                &solid(colour),
+                FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+}
+
+/// The convex hull of `pts` as a closed path (gift wrapping; at most 8 points here).
+pub(super) fn convex_hull_path(pts: &mut [(f32, f32)]) -> Option<tiny_skia::Path> {
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let cross = |o: (f32, f32), a: (f32, f32), b: (f32, f32)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut hull: Vec<(f32, f32)> = Vec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &(f32, f32)>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
+        for &p in iter {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    if hull.len() < 3 {
+        return None;
+    }
+    polygon(&hull)
+}
+
+/// A closed polygon through `points`.
+fn polygon(points: &[(f32, f32)]) -> Option<tiny_skia::Path> {
+    let (first, rest) = points.split_first()?;
+    let mut pb = PathBuilder::new();
+    pb.move_to(first.0, first.1);
+    for p in rest {
+        pb.line_to(p.0, p.1);
+    }
+    pb.close();
+    pb.finish()
+}

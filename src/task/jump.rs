@@ -1,0 +1,84 @@
+//! The jump (Walking with Dinosaurs 3.3.3): its settings and its protocol.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use super::Evaluation;
+use super::protocol::{Phase, Rest, Watch, evaluate, settle_steps, steps_in};
+use crate::creature::Creature;
+use crate::sim::SimOptions;
+
+/// Settings of the jump task.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct JumpOptions {
+    /// Seconds with the controller on, after the creature has come to rest.
+    pub seconds: f64,
+    /// Creatures taller than this (m) are not simulated.
+    pub max_height: f64,
+    /// When the creature is at rest, before jumping.
+    pub rest: Rest,
+}
+
+impl Default for JumpOptions {
+    fn default() -> Self {
+        JumpOptions {
+            seconds: 10.0,
+            max_height: 15.0,
+            rest: Rest::default(),
+        }
+    }
+}
+
+impl JumpOptions {
+    /// The most control steps of `dt` the jump can take: the wait for rest at its time
+    /// limit, then the jump.
+    pub fn max_steps(&self, dt: f64) -> usize {
+        settle_steps(&self.rest, dt).saturating_add(steps_in(self.seconds, dt))
+    }
+}
+
+/// Jump (Walking with Dinosaurs 3.3.3): after coming to rest (and passing the height test
+/// again), the controller runs for `seconds`; the fitness is the best height of the
+/// creature's lowest point above the ground.
+pub fn jump(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &JumpOptions,
+    record: bool,
+) -> Evaluation {
+    jump_with_progress(creature, sim, options, record, &mut |_| {})
+}
+
+/// [`jump`], telling `progress` the fraction done, as [`walker_with_progress`](super::walker_with_progress) does.
+pub fn jump_with_progress(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &JumpOptions,
+    record: bool,
+    progress: &mut dyn FnMut(f64),
+) -> Evaluation {
+    let limits = (options.max_height, options.seconds);
+    let watch = Watch {
+        record,
+        max_steps: options.max_steps(sim.dt),
+        progress,
+    };
+    evaluate("jump", creature, sim, watch, limits, |run| {
+        run.settle(&options.rest, 0.0, sim.dt)?;
+        run.check_height(options.max_height)?;
+        let resting = run.world.lowest_point().max(0.0);
+        let mut best: f64 = 0.0;
+        run.phase = Phase::Measuring;
+        for _ in 0..steps_in(options.seconds, sim.dt) {
+            run.step(true)?;
+            best = best.max(run.world.lowest_point());
+        }
+        let terms = BTreeMap::from([
+            ("height".to_string(), best),
+            ("resting_lowest_point".to_string(), resting),
+        ]);
+        Ok((best, terms))
+    })
+}

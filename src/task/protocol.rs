@@ -1,0 +1,404 @@
+//! The protocol's common steps, shared by every task: screening a creature before it is
+//! simulated, building its world, stepping it with the controller on or off, waiting for it to
+//! come to rest, the height test, recording samples and telling progress. A task's own file
+//! says in what order these steps run and how its fitness is computed from them.
+
+use std::collections::BTreeMap;
+
+use nalgebra::Vector3;
+use serde::{Deserialize, Serialize};
+
+use super::recording::{Sample, recording_interval};
+use super::{Evaluation, Status};
+use crate::creature::{Creature, Severity};
+use crate::sim::{SimOptions, World};
+
+/// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
+/// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
+/// same at any time step) and drifts less than `drift` in all (Ontogeny's addition, so that
+/// a slowly toppling tower, whose parts creep below the speed threshold, is not at rest);
+/// within `limit` seconds.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Rest {
+    /// Δx, per 1/60 s (Chaumont: 1/300 m).
+    pub distance: f64,
+    /// How long every part must stay calm (s): 0.5 s, the 30 steps of 1/60 s of the first
+    /// implementation.
+    pub duration: f64,
+    /// The most any part's centre may drift over the calm window (m): 1 cm, three times Δx.
+    pub drift: f64,
+    /// A creature not at rest after this many seconds is unstable.
+    pub limit: f64,
+}
+
+impl Default for Rest {
+    fn default() -> Self {
+        Rest {
+            distance: 1.0 / 300.0,
+            duration: 0.5,
+            drift: 0.01,
+            limit: 10.0,
+        }
+    }
+}
+
+/// Whole control steps in `seconds` at time step `dt` (at least one when `seconds` > 0).
+pub(super) fn steps_in(seconds: f64, dt: f64) -> usize {
+    let steps = (seconds / dt - 1e-9).ceil().max(0.0) as usize;
+    if seconds > 0.0 { steps.max(1) } else { 0 }
+}
+
+/// The most control steps one wait for rest can take: the creature is unstable once it has
+/// stepped past `rest.limit`.
+pub(super) fn settle_steps(rest: &Rest, dt: f64) -> usize {
+    steps_in(rest.limit, dt).saturating_add(1)
+}
+
+/// Which stage of a task's protocol a recorded sample belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Phase {
+    /// Controller off, waiting for the creature to come to rest (walker, jump).
+    Settling,
+    /// The walker's first activation of the controller (1 s), before it settles again.
+    ControllerOn,
+    /// Controller on, the fitness being measured (walker, jump).
+    Measuring,
+    /// Catapult and aim: controller on, the projectile still held.
+    Throwing,
+    /// Catapult and aim: the projectile released, until it comes to rest.
+    Flying,
+}
+
+impl Phase {
+    /// The phase in words, as pictures label it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Phase::Settling => "settling",
+            Phase::ControllerOn => "controller on",
+            Phase::Measuring => "measuring",
+            Phase::Throwing => "throwing",
+            Phase::Flying => "projectile flying",
+        }
+    }
+}
+
+/// Checks that apply to every task before simulating. `seconds` is the task's duration.
+fn screen(task: &str, creature: &Creature, max_height: f64, seconds: f64) -> Option<Evaluation> {
+    if !(seconds.is_finite() && (0.0..=1e6).contains(&seconds)) {
+        return Some(Evaluation::failed(
+            task,
+            Status::Invalid,
+            format!("the task's duration must be 0 to 10^6 s, not {seconds}"),
+        ));
+    }
+    if creature.parts.is_empty() {
+        return Some(Evaluation::failed(
+            task,
+            Status::Invalid,
+            "the creature has no parts".into(),
+        ));
+    }
+    let errors: Vec<&str> = creature
+        .problems
+        .iter()
+        .filter(|p| p.severity == Severity::Error)
+        .map(|p| p.message.as_str())
+        .collect();
+    // Checked on the creature itself, not only trusted from its list of problems (a
+    // creature.json may come from anywhere).
+    let pairs = creature.interpenetrating_pairs();
+    if !pairs.is_empty() || errors.iter().any(|m| m.contains("interpenetrate")) {
+        let listed: Vec<String> = pairs
+            .iter()
+            .map(|(a, b)| format!("parts {a} and {b} interpenetrate"))
+            .collect();
+        let message = if listed.is_empty() {
+            errors.join("; ")
+        } else {
+            listed.join("; ")
+        };
+        return Some(Evaluation::failed(task, Status::SelfIntersecting, message));
+    }
+    if !errors.is_empty() {
+        return Some(Evaluation::failed(task, Status::Invalid, errors.join("; ")));
+    }
+    let (lo, hi) = creature.bounding_box();
+    too_tall(task, hi.y - lo.y, max_height, "")
+}
+
+/// Walking with Dinosaurs' height test, before simulating and again after settling.
+fn too_tall(task: &str, height: f64, max_height: f64, when: &str) -> Option<Evaluation> {
+    (height > max_height).then(|| {
+        Evaluation::failed(
+            task,
+            Status::TooTall,
+            format!("{height:.2} m tall{when}, more than {max_height} m"),
+        )
+    })
+}
+
+/// A running evaluation: the world plus the bookkeeping every protocol needs.
+pub(super) struct Run<'p> {
+    pub(super) world: World,
+    pub(super) projectile_size: Option<Vector3<f64>>,
+    record: bool,
+    recording: Vec<Sample>,
+    task: &'static str,
+    pub(super) phase: Phase,
+    /// Control steps taken.
+    steps: usize,
+    /// The most control steps the protocol can take (every phase at its longest).
+    max_steps: usize,
+    /// Every how many steps the recording keeps a sample.
+    interval: usize,
+    /// The last step's sample when the interval skipped it: kept at the end of the run.
+    pending: Option<Sample>,
+    /// Steps counted as done: every finished phase at its longest, so the fraction done
+    /// grows steadily and ends at 1.
+    counted: usize,
+    /// Steps taken when the current phase began.
+    phase_start: usize,
+    /// Told the fraction done, in steps of 0.001 (and 1 at the end).
+    progress: &'p mut dyn FnMut(f64),
+    /// The last fraction told, in thousandths.
+    told: Option<usize>,
+}
+
+impl Run<'_> {
+    pub(super) fn step(&mut self, controller: bool) -> Result<f64, Evaluation> {
+        let moved = self.world.step(controller).map_err(|e| {
+            Evaluation::failed(
+                self.task,
+                Status::Exploded,
+                format!("{e} at t = {:.3} s", self.world.time()),
+            )
+        })?;
+        self.steps += 1;
+        if self.record {
+            let sample = Sample {
+                t: self.world.time(),
+                phase: Some(self.phase),
+                parts: (0..self.world.part_count())
+                    .map(|i| self.world.part_pose(i))
+                    .collect(),
+                projectile: self.world.projectile_state().map(|(p, _)| p),
+                projectile_size: self.projectile_size,
+            };
+            self.keep(sample);
+        }
+        self.tell();
+        Ok(moved)
+    }
+
+    /// Keeps the sample of step `steps` if the recording's interval falls on it; otherwise
+    /// holds it back, in case it is the last.
+    fn keep(&mut self, sample: Sample) {
+        if (self.steps - 1).is_multiple_of(self.interval) {
+            self.recording.push(sample);
+            self.pending = None;
+        } else {
+            self.pending = Some(sample);
+        }
+    }
+
+    /// The recording, its last step included.
+    fn take_recording(&mut self) -> Vec<Sample> {
+        self.recording.extend(self.pending.take());
+        std::mem::take(&mut self.recording)
+    }
+
+    /// A phase that can take at most `longest` steps is over: it counts as that many.
+    fn end_phase(&mut self, longest: usize) {
+        self.counted = self.counted.saturating_add(longest);
+        self.phase_start = self.steps;
+        self.tell();
+    }
+
+    /// Tells the progress callback the fraction done, when it has grown by a thousandth.
+    fn tell(&mut self) {
+        let done = self.counted.saturating_add(self.steps - self.phase_start);
+        let thousandths = ((1000.0 * done as f64 / self.max_steps.max(1) as f64) as usize).min(999);
+        if self.told.is_none_or(|told| thousandths > told) {
+            self.told = Some(thousandths);
+            (self.progress)(thousandths as f64 / 1000.0);
+        }
+    }
+
+    /// Steps with the controller off for at least `at_least` seconds and until the creature
+    /// is at rest; `Unstable` if it is not within the time limit.
+    pub(super) fn settle(&mut self, rest: &Rest, at_least: f64, dt: f64) -> Result<(), Evaluation> {
+        self.phase = Phase::Settling;
+        self.world.set_resting(true);
+        let settled = self.wait_for_rest(rest, at_least, dt);
+        self.world.set_resting(false);
+        self.end_phase(settle_steps(rest, dt));
+        settled
+    }
+
+    fn wait_for_rest(&mut self, rest: &Rest, at_least: f64, dt: f64) -> Result<(), Evaluation> {
+        let threshold = rest.distance * dt * 60.0; // Δx is given per 1/60 s
+        let calm_needed = steps_in(rest.duration, dt);
+        let minimum = steps_in(at_least, dt);
+        let mut calm = 0;
+        let mut taken = 0;
+        let mut window: Vec<Vector3<f64>> = Vec::with_capacity(self.world.part_count());
+        while calm < calm_needed || taken < minimum {
+            if taken as f64 * dt > rest.limit + 1e-9 {
+                return Err(Evaluation::failed(
+                    self.task,
+                    Status::Unstable,
+                    format!(
+                        "not at rest after {} s (from t = {:.3} s)",
+                        rest.limit,
+                        self.world.time() - taken as f64 * dt
+                    ),
+                ));
+            }
+            if calm == 0 {
+                // A new calm window starts here.
+                window.clear();
+                window.extend((0..self.world.part_count()).map(|i| self.world.part_position(i)));
+            }
+            let moved = self.step(false)?;
+            taken += 1;
+            // Calm: every part moves less than Δx per 1/60 s (Chaumont), and none has drifted
+            // more than `drift` since the window began (a slowly toppling tower is not at rest).
+            let drifted = (0..window.len())
+                .any(|i| (self.world.part_position(i) - window[i]).norm() >= rest.drift);
+            calm = if moved < threshold && !drifted {
+                calm + 1
+            } else {
+                0
+            };
+        }
+        Ok(())
+    }
+
+    pub(super) fn run_for(
+        &mut self,
+        seconds: f64,
+        controller: bool,
+        dt: f64,
+    ) -> Result<(), Evaluation> {
+        let steps = steps_in(seconds, dt);
+        for _ in 0..steps {
+            self.step(controller)?;
+        }
+        self.end_phase(steps);
+        Ok(())
+    }
+
+    /// The height test again, on the settled creature.
+    pub(super) fn check_height(&self, max_height: f64) -> Result<(), Evaluation> {
+        let height = self.world.highest_point() - self.world.lowest_point();
+        match too_tall(self.task, height, max_height, " after settling") {
+            Some(failed) => Err(failed),
+            None => Ok(()),
+        }
+    }
+}
+
+/// How an evaluation is watched: whether it is recorded, the most control steps its protocol
+/// can take, and the callback told the fraction done.
+pub(super) struct Watch<'p> {
+    pub(super) record: bool,
+    pub(super) max_steps: usize,
+    pub(super) progress: &'p mut dyn FnMut(f64),
+}
+
+fn start<'p>(
+    task: &'static str,
+    creature: &Creature,
+    sim: &SimOptions,
+    watch: Watch<'p>,
+) -> Result<Run<'p>, Evaluation> {
+    let world = World::new(creature, sim)
+        .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
+    Ok(Run {
+        world,
+        projectile_size: None,
+        record: watch.record,
+        recording: Vec::new(),
+        task,
+        phase: Phase::Settling,
+        steps: 0,
+        max_steps: watch.max_steps,
+        interval: recording_interval(watch.max_steps),
+        pending: None,
+        counted: 0,
+        phase_start: 0,
+        progress: watch.progress,
+        told: None,
+    })
+}
+
+/// Screens the creature, builds its world and runs `protocol`, which returns the fitness and
+/// its terms (or a failed evaluation). The progress callback is told 1 at the end.
+pub(super) fn evaluate(
+    task: &'static str,
+    creature: &Creature,
+    sim: &SimOptions,
+    watch: Watch<'_>,
+    limits: (f64, f64),
+    protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
+) -> Evaluation {
+    let Watch {
+        record,
+        max_steps,
+        progress,
+    } = watch;
+    let watch = Watch {
+        record,
+        max_steps,
+        progress: &mut *progress,
+    };
+    let evaluation = evaluate_run(task, creature, sim, watch, limits, protocol);
+    progress(1.0);
+    evaluation
+}
+
+fn evaluate_run(
+    task: &'static str,
+    creature: &Creature,
+    sim: &SimOptions,
+    watch: Watch<'_>,
+    (max_height, seconds): (f64, f64),
+    protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
+) -> Evaluation {
+    if let Some(rejected) = screen(task, creature, max_height, seconds) {
+        return rejected;
+    }
+    let mut run = match start(task, creature, sim, watch) {
+        Ok(run) => run,
+        Err(failed) => return failed,
+    };
+    match protocol(&mut run) {
+        Ok((fitness, mut terms)) => {
+            // How far the solver let any joint come apart (m): a diagnostic of the step
+            // setting, not part of any fitness.
+            terms.insert("joint_gap".into(), run.world.peak_joint_gap());
+            // No NaN or infinity leaves an evaluation: JSON cannot hold them.
+            if let Some((name, _)) = terms.iter().find(|(_, v)| !v.is_finite()) {
+                return Evaluation::failed(task, Status::Invalid, format!("{name} is not finite"));
+            }
+            if !fitness.is_finite() {
+                return Evaluation::failed(task, Status::Invalid, "fitness is not finite".into());
+            }
+            Evaluation {
+                task: task.to_string(),
+                fitness,
+                status: Status::Ok,
+                terms,
+                message: None,
+                recording: run.take_recording(),
+            }
+        }
+        Err(mut failed) => {
+            // What was recorded up to the failure shows why it failed.
+            failed.recording = run.take_recording();
+            failed
+        }
+    }
+}
