@@ -80,8 +80,11 @@ pub const ENERGY_TOLERANCE: f64 = 10.0;
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 #[serde(from = "super::SimTable")]
 pub struct SimOptions {
-    /// Control step in seconds: the brain runs once per step; physics runs `substeps`
-    /// times per step, at `dt / substeps`.
+    /// The control step in seconds: the brain runs once per step; physics runs `substeps`
+    /// times per step, at `dt / substeps`. A config file names it `control_step` (`dt`, its
+    /// name in older files, is read as well), the command line `--time-step`; not to be
+    /// confused with the developmental time step (`--dt`, an L-system's `dt:`).
+    #[serde(rename = "control_step")]
     pub dt: f64,
     /// Physics substeps per control step.
     pub substeps: usize,
@@ -188,14 +191,14 @@ impl SimOptions {
 
 impl SimOptions {
     /// Checks every value against its range, so that a world can be built and stepped in a
-    /// bounded time: `dt` in [[`MIN_DT`], [`MAX_DT`]] seconds, substeps 1 to [`MAX_SUBSTEPS`],
+    /// bounded time: the control step `dt` (`control_step`) in [[`MIN_DT`], [`MAX_DT`]] seconds, substeps 1 to [`MAX_SUBSTEPS`],
     /// solver iterations and Gauss-Seidel passes 1 to [`MAX_ITERATIONS`], friction, strength,
     /// drop height and energy tolerance finite and not negative, speeds and the explosion
     /// distance finite and positive. The error names the key.
     pub fn check(&self) -> Result<(), SettingError> {
         if !(MIN_DT..=MAX_DT).contains(&self.dt) {
             return Err(SettingError::out_of_range(
-                "dt",
+                "control_step",
                 &format!("in [{MIN_DT}, {MAX_DT}] seconds"),
                 self.dt,
             ));
@@ -278,14 +281,14 @@ mod tests {
                     dt: 1e-9,
                     ..SimOptions::default()
                 },
-                "dt must be in [0.001, 0.1] seconds, not 0.000000001",
+                "control_step must be in [0.001, 0.1] seconds, not 0.000000001",
             ),
             (
                 SimOptions {
                     dt: f64::NAN,
                     ..SimOptions::default()
                 },
-                "dt must be in [0.001, 0.1] seconds, not NaN",
+                "control_step must be in [0.001, 0.1] seconds, not NaN",
             ),
             (
                 SimOptions {

@@ -215,8 +215,10 @@ pub fn check_real(
 pub struct SimTable {
     /// The named step setting the five stepping values start from.
     pub setting: Option<StepSetting>,
-    /// See [`SimOptions::dt`].
-    pub dt: Option<f64>,
+    /// See [`SimOptions::dt`]: the control step, `dt` in files written before it had its
+    /// own name (read as `control_step`; a table may not give both).
+    #[serde(alias = "dt")]
+    pub control_step: Option<f64>,
     /// See [`SimOptions::substeps`].
     pub substeps: Option<usize>,
     /// See [`SimOptions::solver_iterations`].
@@ -263,8 +265,10 @@ impl From<SimTable> for SimOptions {
         macro_rules! over {
             ($($field:ident),*) => {$(if let Some(v) = table.$field { options.$field = v; })*};
         }
+        if let Some(control_step) = table.control_step {
+            options.dt = control_step;
+        }
         over!(
-            dt,
             substeps,
             solver_iterations,
             pgs_iterations,
@@ -374,5 +378,18 @@ mod tests {
         assert!(e.to_string().contains("unknown variant `coarse`"), "{e}");
         let e = toml::from_str::<SimOptions>("substep = 2\n").unwrap_err();
         assert!(e.to_string().contains("unknown field `substep`"), "{e}");
+    }
+
+    #[test]
+    fn the_control_step_is_read_under_its_name_and_its_old_one_and_written_under_its_name() {
+        let new: SimOptions = toml::from_str("control_step = 0.02\n").unwrap();
+        let old: SimOptions = toml::from_str("dt = 0.02\n").unwrap();
+        assert_eq!((new.dt, old.dt), (0.02, 0.02));
+        let text = toml::to_string(&old).unwrap();
+        assert!(text.contains("control_step = 0.02"), "{text}");
+        assert!(!text.contains("dt ="), "{text}");
+        // Not both: one value, one key.
+        let e = toml::from_str::<SimOptions>("dt = 0.02\ncontrol_step = 0.02\n").unwrap_err();
+        assert!(e.to_string().contains("duplicate field"), "{e}");
     }
 }
