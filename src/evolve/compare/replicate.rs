@@ -136,12 +136,7 @@ pub fn read_replicate<G: Genome>(
         wall += g.wall_seconds;
         curve.push((evaluations, best));
     }
-    let reused = store
-        .reused_by_generation()
-        .map_err(|e| CompareError::Other(e.to_string()))?
-        .iter()
-        .map(|&(_, n)| n)
-        .sum();
+    let reused = generations.iter().map(|g| g.reused).sum();
     let record = store
         .best_individual()
         .map_err(|e| CompareError::Other(e.to_string()))?

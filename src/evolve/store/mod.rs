@@ -459,10 +459,17 @@ impl RunStore {
         } else {
             "NULL, NULL"
         };
+        // Before version 3 no evaluation was reused.
+        let reused = if self.version >= 3 {
+            "(SELECT count(*) FROM individual WHERE individual.generation = generation.generation \
+             AND reused = 1)"
+        } else {
+            "0"
+        };
         let read = || -> rusqlite::Result<Vec<GenerationRecord>> {
             let mut stmt = self.conn.prepare(&format!(
                 "SELECT generation, best, mean, median, sd, valid_fraction, evaluations, \
-                 wall_seconds, evaluations_per_second, {fine} FROM generation \
+                 wall_seconds, evaluations_per_second, {fine}, {reused} FROM generation \
                  ORDER BY generation"
             ))?;
             stmt.query_map([], |r| {
@@ -489,6 +496,7 @@ impl RunStore {
                         }),
                         None => None,
                     },
+                    reused: r.get::<_, i64>(11)?.max(0) as u64,
                 })
             })?
             .collect()

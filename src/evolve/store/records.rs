@@ -38,7 +38,9 @@ pub struct FineEvaluation {
     pub status: String,
 }
 
-/// One generation's statistics. Statistics of an empty sample (no valid individual) are NaN.
+/// One generation's statistics, as the genetic algorithm computes them
+/// ([`GenerationRecord::of`](crate::evolve::ga)) and the store keeps them. Statistics of an
+/// empty sample (no valid individual) are NaN.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GenerationRecord {
     /// The generation's index, from 0.
@@ -53,11 +55,16 @@ pub struct GenerationRecord {
     pub sd: f64,
     /// The fraction of individuals whose evaluation succeeded, in [0, 1].
     pub valid_fraction: f64,
-    /// How many evaluations the generation ran.
+    /// How many evaluations the generation ran (the elite is not evaluated again).
     pub evaluations: u64,
-    /// Wall-clock seconds the generation took.
+    /// Of which reused from an identical creature evaluated earlier in the run (the others
+    /// were simulated). Not a column of its own: the store counts its individuals' `reused`
+    /// flags (0 in a store older than schema version 3), and
+    /// [`RunStore::write_generation`](super::RunStore::write_generation) does not read it.
+    pub reused: u64,
+    /// Wall-clock seconds the generation took until it was stored (NaN before).
     pub wall_seconds: f64,
-    /// `evaluations / wall_seconds`.
+    /// `evaluations / wall_seconds` (NaN before the generation is stored).
     pub evaluations_per_second: f64,
     /// The best individual (rank 1) re-walked at the fine reference setting; `None` when it
     /// was not (the run's `verify_best` is off, or the generation predates schema version 2).
