@@ -1,5 +1,6 @@
 //! `ontogeny bench`: the evaluator's speed on this machine, and whether the default
-//! setting ranks creatures as a fine reference setting does.
+//! setting ranks creatures as a fine reference setting does (the experiment itself is
+//! [`ontogeny::evolve::fidelity`]; this verb times it and prints it).
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -7,13 +8,10 @@ use std::time::Instant;
 
 use clap::Args;
 use ontogeny::creature::Creature;
-use ontogeny::develop::{BuildOptions, creature_from_commands, grow};
-use ontogeny::evolve::stats::spearman;
-use ontogeny::lsystem::{DeriveOptions, LSystem};
+use ontogeny::develop::creature_from_commands;
+use ontogeny::evolve::fidelity::{FineReference, fidelity_creatures, setting_name};
 use ontogeny::sim::{JointModel, SimOptions, StepSetting, World};
-use ontogeny::task::{self, Status, WalkerOptions};
-use rand::{RngExt, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+use ontogeny::task::{self, WalkerOptions};
 use rayon::prelude::*;
 
 use super::physics::{SteppingArgs, actuator_parser, flag_error};
@@ -226,93 +224,6 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The shipped examples that grow into creatures, as (name, text).
-const SHIPPED: [(&str, &str); 4] = [
-    ("snake", include_str!("../../examples/snake.lsys")),
-    ("quadruped", include_str!("../../examples/quadruped.lsys")),
-    ("thrower", include_str!("../../examples/thrower.lsys")),
-    ("plastic", include_str!("../../examples/plastic.lsys")),
-];
-
-/// A random string of body and brain commands: a walker-like creature of 2 to 8 parts.
-fn random_commands(rng: &mut ChaCha8Rng) -> String {
-    let mut out = format!(
-        "width({:.2}) thickness({:.2}) forward({:.2})",
-        rng.random_range(0.2..0.6),
-        rng.random_range(0.1..0.3),
-        rng.random_range(0.3..1.0)
-    );
-    let parts = rng.random_range(1..8);
-    let mut open = 0;
-    for _ in 0..parts {
-        if rng.random_bool(0.3) {
-            out.push_str(" [");
-            open += 1;
-        }
-        let turn = ["left", "right", "up", "down", "clockwise"][rng.random_range(0..5)];
-        if rng.random_bool(0.6) {
-            out.push_str(&format!(" {turn}(1)"));
-        }
-        let joint = ["revolute1", "revolute2", "twist90", "revolute2"][rng.random_range(0..4)];
-        out.push_str(&format!(
-            " {joint} width({:.2}) thickness({:.2}) forward({:.2})",
-            rng.random_range(0.1..0.4),
-            rng.random_range(0.1..0.3),
-            rng.random_range(0.2..0.8)
-        ));
-        if rng.random_bool(0.5) {
-            out.push_str(&format!(" split({:.2})", rng.random_range(-1.0..1.0)));
-        }
-        out.push_str(&format!(" output({:.2})", rng.random_range(-1.0..1.0)));
-        if open > 0 && rng.random_bool(0.4) {
-            out.push_str(" ]");
-            open -= 1;
-        }
-    }
-    out.push_str(&" ]".repeat(open));
-    out
-}
-
-/// The creatures of the fidelity measurement: the shipped examples, then valid random ones.
-fn fidelity_creatures(count: usize, seed: u64) -> anyhow::Result<Vec<(String, Creature)>> {
-    let mut creatures = Vec::new();
-    for (name, text) in SHIPPED {
-        let lsys = LSystem::from_text(&format!("examples/{name}.lsys"), text)?;
-        let frames = grow(
-            &lsys,
-            &DeriveOptions::default(),
-            None,
-            &BuildOptions::default(),
-        )?;
-        if let Some(last) = frames.into_iter().last() {
-            creatures.push((name.to_string(), last.creature));
-        }
-    }
-    creatures.truncate(count);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut tries = 0;
-    while creatures.len() < count && tries < 100 * count {
-        tries += 1;
-        let commands = random_commands(&mut rng);
-        let creature = creature_from_commands(&commands)?;
-        if creature.is_valid() && creature.brain.neurons.len() > 1 {
-            creatures.push((commands, creature));
-        }
-    }
-    Ok(creatures)
-}
-
-/// The median of `values` (which must not be empty).
-fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    let n = values.len();
-    if n % 2 == 1 {
-        values[n / 2]
-    } else {
-        (values[n / 2 - 1] + values[n / 2]) / 2.0
-    }
-}
-
 /// A batch of walks run in parallel, counted into a progress bar on a terminal.
 struct Walks {
     done: AtomicUsize,
@@ -343,50 +254,6 @@ impl Walks {
             progress.finish();
         }
     }
-}
-
-/// One creature's walks with one setting, dropped from `runs` heights: the drop height plus
-/// `first + k` × 0.1 mm for k in 0..runs. Returns the median fitness and how many walks ended
-/// at rest (any status but `unstable`).
-fn ensemble(
-    creature: &Creature,
-    sim: &SimOptions,
-    options: &WalkerOptions,
-    (first, runs): (usize, usize),
-    walks: &Walks,
-) -> (f64, usize, Vec<task::Evaluation>) {
-    let walks: Vec<task::Evaluation> = (first..first + runs)
-        .map(|k| {
-            let nudged = SimOptions {
-                drop_height: sim.drop_height + 1e-4 * k as f64,
-                ..sim.clone()
-            };
-            let walk = task::walker(creature, &nudged, options, false);
-            walks.tick();
-            walk
-        })
-        .collect();
-    let mut fitness: Vec<f64> = walks.iter().map(|e| e.fitness).collect();
-    let rested = walks
-        .iter()
-        .filter(|e| e.status != Status::Unstable)
-        .count();
-    (median(&mut fitness), rested, walks)
-}
-
-/// Creatures at rest, given how many of each creature's `runs` walks came to rest with a
-/// setting (`measured`) and with the fine reference (`fine`): a creature is at rest when most
-/// of its walks are (so its median fitness is a rested walk's). Returns (creatures at rest
-/// with both, creatures at rest with the fine reference).
-fn creatures_at_rest(measured: &[usize], fine: &[usize], runs: usize) -> (usize, usize) {
-    let mostly = |at_rest: usize| 2 * at_rest > runs;
-    let fine_rested = fine.iter().filter(|&&f| mostly(f)).count();
-    let both = measured
-        .iter()
-        .zip(fine)
-        .filter(|&(&m, &f)| mostly(m) && mostly(f))
-        .count();
-    (both, fine_rested)
 }
 
 /// A stepping setting of `--fidelity-also`: a named one (`fast`, `default`, `fine`), or `SxIxP`
@@ -437,22 +304,6 @@ fn parse_setting(text: &str, base: &SimOptions) -> anyhow::Result<SimOptions> {
     Ok(sim)
 }
 
-/// A setting's short name: its name when it is a named setting (`fast`, `default`, `fine`),
-/// else `SxIxP/SxI`.
-fn setting_name(sim: &SimOptions) -> String {
-    if let Some(named) = StepSetting::of(sim) {
-        return named.name().to_string();
-    }
-    format!(
-        "{}x{}x{}/{}x{}",
-        sim.substeps,
-        sim.solver_iterations,
-        sim.pgs_iterations,
-        sim.rest_substeps,
-        sim.rest_solver_iterations
-    )
-}
-
 /// Walks every fidelity creature with `sim` (and every `--fidelity-also` setting) and with
 /// the fine reference, each `--runs` times from drop heights 0.1 mm apart; prints the rank
 /// correlation of their median fitness, a noise floor, how many walks each setting brings to
@@ -478,33 +329,15 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     );
     // The noise floor: the fine reference against itself, from other drop heights. No
     // setting can rank creatures more alike than the reference does itself.
-    type Ensemble = (f64, usize, Vec<task::Evaluation>);
     let walks = Walks::new("fine reference walks", 2 * runs * creatures.len());
-    let fine_results: Vec<(Ensemble, Ensemble)> = creatures
-        .par_iter()
-        .map(|(_, c)| {
-            (
-                ensemble(c, &fine, &options, (0, runs), &walks),
-                ensemble(c, &fine, &options, (runs, runs), &walks),
-            )
-        })
-        .collect();
+    let reference = FineReference::walk(&creatures, &fine, &options, runs, &|| walks.tick());
     walks.finish();
-    let reference: Vec<f64> = fine_results.iter().map(|(b, _)| b.0).collect();
-    let floor: Vec<f64> = fine_results.iter().map(|(_, c)| c.0).collect();
-    let first_fine: Vec<f64> = fine_results.iter().map(|(b, _)| b.2[0].fitness).collect();
-    let first_floor: Vec<f64> = fine_results.iter().map(|(_, c)| c.2[0].fitness).collect();
-    let rested = |e: &task::Evaluation| e.status != Status::Unstable;
-    let fine_rested: usize = fine_results
-        .iter()
-        .map(|(b, _)| b.2.iter().filter(|e| rested(e)).count())
-        .sum();
-    let fine_at_rest: Vec<usize> = fine_results.iter().map(|(b, _)| b.1).collect();
-    let (_, fine_creatures_rested) = creatures_at_rest(&fine_at_rest, &fine_at_rest, runs);
+    let fine_rested = reference.walks_rested;
+    let fine_creatures_rested = reference.creatures_rested;
     say!(
         "noise floor, fine against fine from other drop heights: {:.3} (medians), {:.3} (single walks); the fine reference brings {fine_rested} of {} walks and {fine_creatures_rested} of {} creatures (most of their walks) to rest",
-        spearman(&floor, &reference),
-        spearman(&first_floor, &first_fine),
+        reference.floor_medians,
+        reference.floor_single,
         creatures.len() * runs,
         creatures.len()
     );
@@ -521,10 +354,7 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     for setting in &settings {
         let walks = Walks::new(&setting_name(setting), runs * creatures.len());
         let started = Instant::now();
-        let results: Vec<Ensemble> = creatures
-            .par_iter()
-            .map(|(_, c)| ensemble(c, setting, &options, (0, runs), &walks))
-            .collect();
+        let ranked = reference.rank(setting, &creatures, &options, &|| walks.tick());
         let cost = started.elapsed().as_secs_f64();
         walks.finish();
         let default_cost = *default_cost.get_or_insert(cost);
@@ -537,55 +367,28 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
                 "at rest",
                 setting_name(setting)
             );
-            for ((name, _), (a, (b, _))) in creatures.iter().zip(results.iter().zip(&fine_results))
+            for ((name, _), (a, (b, _))) in creatures
+                .iter()
+                .zip(ranked.ensembles.iter().zip(&reference.ensembles))
             {
                 say!(
                     "{:>14.6} {:>14.6} {:>8} {:>8}  {name}",
-                    a.0,
-                    b.0,
-                    format!("{}/{runs}", a.1),
-                    format!("{}/{runs}", b.1),
+                    a.median,
+                    b.median,
+                    format!("{}/{runs}", a.rested),
+                    format!("{}/{runs}", b.rested),
                 );
             }
         }
-        let measured: Vec<f64> = results.iter().map(|a| a.0).collect();
-        let first_measured: Vec<f64> = results.iter().map(|a| a.2[0].fitness).collect();
-        let mut both_rested = 0;
-        for (a, (b, _)) in results.iter().zip(&fine_results) {
-            for (x, y) in a.2.iter().zip(&b.2) {
-                if rested(y) && rested(x) {
-                    both_rested += 1;
-                }
-            }
-        }
-        let at_rest: Vec<usize> = results.iter().map(|a| a.1).collect();
-        let (creatures_rested, _) = creatures_at_rest(&at_rest, &fine_at_rest, runs);
         say!(
             "{:<16} {:>10.3} {:>10.3} {:>16} {:>18} {:>9.2}×",
             setting_name(setting),
-            spearman(&measured, &reference),
-            spearman(&first_measured, &first_fine),
-            format!("{both_rested}/{fine_rested}"),
-            format!("{creatures_rested}/{fine_creatures_rested}"),
+            ranked.spearman,
+            ranked.single,
+            format!("{}/{fine_rested}", ranked.both_rested),
+            format!("{}/{fine_creatures_rested}", ranked.creatures_rested),
             cost / default_cost
         );
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::creatures_at_rest;
-
-    #[test]
-    fn a_creature_is_at_rest_when_most_of_its_walks_are() {
-        // Three walks each: 2 of 3 at rest counts, 1 of 3 does not; a creature the fine
-        // reference does not bring to rest is not counted for the setting either.
-        let fine = [3, 2, 1, 3, 0];
-        let measured = [2, 2, 3, 1, 3];
-        assert_eq!(creatures_at_rest(&measured, &fine, 3), (2, 3));
-        assert_eq!(creatures_at_rest(&fine, &fine, 3), (3, 3));
-        // An even number of walks: half is not most.
-        assert_eq!(creatures_at_rest(&[2, 3], &[4, 4], 4), (1, 2));
-    }
 }

@@ -8,9 +8,9 @@ use clap::Args;
 use ontogeny::encoding::Genome;
 use ontogeny::evolve::compare::{
     self, CompareError, Manifest, Replicate, ReplicateState, Shared, evaluations_of,
-    generations_for, read_replicate, replicate_dir, replicate_seed,
+    generations_for, read_replicate, replicate_config, replicate_dir, replicate_seed,
 };
-use ontogeny::evolve::config::{ConfigFile, RunConfig, check_settings, read_config};
+use ontogeny::evolve::config::{ConfigFile, check_settings, read_config};
 use ontogeny::evolve::run::{GenerationReport, Run};
 use ontogeny::lang::Source;
 use ontogeny::sim::StepSetting;
@@ -371,16 +371,7 @@ fn run_replicate<G: Genome>(
             }
             Run::<G>::start(
                 &dir,
-                RunConfig {
-                    encoding: G::NAME.to_string(),
-                    seed: replicate_seed(manifest.seed, k),
-                    init: None,
-                    verify_best: true,
-                    cache,
-                    ga: shared.ga.clone(),
-                    task: shared.task.clone(),
-                    limits: G::Limits::default(),
-                },
+                replicate_config::<G>(manifest, shared, k, cache),
                 None,
             )
             .map_err(run_error)?

@@ -129,10 +129,10 @@ impl SteppingArgs {
 }
 
 /// The bad-input error for a setting a flag gave: the message names the flag (`--time-step`
-/// for `dt`, `--seconds` for a task's duration, else the key in kebab case: `--substeps`).
+/// for `control_step`, `--seconds` for a task's duration, else the key in kebab case: `--substeps`).
 pub fn flag_error(error: SettingError) -> anyhow::Error {
     let flag = match error.key {
-        "dt" => "--time-step".to_string(),
+        "control_step" => "--time-step".to_string(),
         "seconds" | "max_seconds" => "--seconds".to_string(),
         key => format!("--{}", key.replace('_', "-")),
     };

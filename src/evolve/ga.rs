@@ -13,6 +13,7 @@ use std::collections::HashMap;
 
 use super::cache::EvaluationCache;
 use super::key::EvaluationKey;
+use super::store::GenerationRecord;
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::task::{Evaluation, Status, TaskSpec};
@@ -238,30 +239,15 @@ pub struct Individual<G> {
     pub reused: bool,
 }
 
-/// One generation's figures. Mean, median and standard deviation are over the individuals
-/// whose status is `ok` (NaN when there are none); the failure floor would swamp them.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct GenerationStats {
-    /// The best fitness (of any individual).
-    pub best: f64,
-    /// The mean fitness of valid individuals.
-    pub mean: f64,
-    /// The median fitness of valid individuals.
-    pub median: f64,
-    /// The standard deviation of valid individuals' fitness.
-    pub sd: f64,
-    /// The fraction of individuals whose status is `ok`.
-    pub valid_fraction: f64,
-    /// Evaluations made in this generation (the elite is not evaluated again).
-    pub evaluations: u64,
-    /// Of which reused from an identical creature evaluated earlier in the run (the others
-    /// were simulated).
-    pub reused: u64,
-}
+/// A generation's figures, under the name they had before they became one type with the run
+/// store's record of a generation: [`GenerationRecord`] itself.
+pub type GenerationStats = GenerationRecord;
 
-impl GenerationStats {
+impl GenerationRecord {
     /// The figures of `population`, `evaluations` of whom were evaluated this generation.
-    pub fn of<G>(population: &[Individual<G>], evaluations: u64) -> GenerationStats {
+    /// Mean, median and standard deviation are over the individuals whose status is `ok` (NaN
+    /// when there are none); the failure floor would swamp them. Its `index` is 0, `best_fine` `None` and the timings NaN, for the run to fill in.
+    pub fn of<G>(population: &[Individual<G>], evaluations: u64) -> GenerationRecord {
         let best = population
             .iter()
             .map(|i| i.evaluation.fitness)
@@ -285,7 +271,8 @@ impl GenerationStats {
             let var = valid.iter().map(|f| (f - mean).powi(2)).sum::<f64>() / n as f64;
             (mean, median, var.sqrt())
         };
-        GenerationStats {
+        GenerationRecord {
+            index: 0,
             best,
             mean,
             median,
@@ -293,6 +280,9 @@ impl GenerationStats {
             valid_fraction: n as f64 / population.len().max(1) as f64,
             evaluations,
             reused: population.iter().filter(|i| i.reused).count() as u64,
+            wall_seconds: f64::NAN,
+            evaluations_per_second: f64::NAN,
+            best_fine: None,
         }
     }
 }

@@ -284,6 +284,17 @@ impl ser::SerializeMap for &mut CanonicalHasher {
     }
 }
 
+/// The name a field is hashed under: its own, but for the control step
+/// ([`crate::sim::SimOptions::dt`], `control_step` in a config file), which is hashed under
+/// the name it had before (`dt`), so that the keys of older run stores still match and a
+/// resumed run reuses what it did before.
+fn hashed_name(key: &'static str) -> &'static str {
+    match key {
+        "control_step" => "dt",
+        key => key,
+    }
+}
+
 macro_rules! fields {
     ($trait:ident) => {
         impl ser::$trait for &mut CanonicalHasher {
@@ -294,11 +305,11 @@ macro_rules! fields {
                 key: &'static str,
                 value: &T,
             ) -> Result<(), HashError> {
-                self.bytes(25, key.as_bytes());
+                self.bytes(25, hashed_name(key).as_bytes());
                 value.serialize(&mut **self)
             }
             fn skip_field(&mut self, key: &'static str) -> Result<(), HashError> {
-                self.bytes(26, key.as_bytes());
+                self.bytes(26, hashed_name(key).as_bytes());
                 Ok(())
             }
             fn end(self) -> Result<(), HashError> {
@@ -341,5 +352,28 @@ mod tests {
             EvaluationKey::of(&creature, &TaskSpec::new(TaskKind::Jump)),
             key
         );
+    }
+
+    #[test]
+    fn the_control_step_is_hashed_under_its_old_name() {
+        // Run stores written when the control step was serialised as `dt` hold keys that a
+        // resumed run must still match.
+        #[derive(serde::Serialize)]
+        struct Old {
+            dt: f64,
+        }
+        #[derive(serde::Serialize)]
+        struct New {
+            #[serde(rename = "control_step")]
+            dt: f64,
+        }
+        let hash = |value: &dyn Fn(&mut CanonicalHasher) -> Result<(), HashError>| {
+            let mut hasher = CanonicalHasher(Sha256::new());
+            value(&mut hasher).unwrap();
+            hasher.0.finalize()
+        };
+        let old = hash(&|h| Old { dt: 0.02 }.serialize(h));
+        assert_eq!(hash(&|h| New { dt: 0.02 }.serialize(h)), old);
+        assert_ne!(hash(&|h| New { dt: 0.03 }.serialize(h)), old);
     }
 }

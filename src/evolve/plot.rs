@@ -427,6 +427,7 @@ mod tests {
             sd: 0.0,
             valid_fraction: 1.0,
             evaluations: 10,
+            reused: 0,
             wall_seconds: 1.0,
             evaluations_per_second: 10.0,
             best_fine: None,

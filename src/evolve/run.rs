@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use super::cache::EvaluationCache;
 use super::config::{RunConfig, check_settings, read_run_config};
-use super::ga::{Evolution, Fallbacks, GenerationStats, Individual, Operator, ranking};
+use super::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
 use super::key::EvaluationKey;
 use super::lock::{DirectoryLock, LockError};
 use super::plot::fitness_svg;
@@ -110,8 +110,8 @@ const PLOT_FILE: &str = "fitness.svg";
 pub struct GenerationReport {
     /// The generation's index.
     pub generation: u32,
-    /// Its figures.
-    pub stats: GenerationStats,
+    /// Its figures, as stored.
+    pub stats: GenerationRecord,
     /// Wall-clock seconds it took (development, evaluation and bookkeeping).
     pub wall_seconds: f64,
     /// Of which evaluating (development and physics).
@@ -578,8 +578,12 @@ impl<G: Genome> Run<G> {
             };
             previous_best = best.zip(best_fine.clone()).map(|(b, f)| (b as u32, f));
             let evaluation_seconds = started.elapsed().as_secs_f64();
-            let stats = GenerationStats::of(&population, evaluations);
-            self.record(generation, &population, &stats, best_fine.clone(), started)?;
+            let mut stats = GenerationRecord {
+                index: generation,
+                best_fine: best_fine.clone(),
+                ..GenerationRecord::of(&population, evaluations)
+            };
+            self.record(&population, &mut stats, started)?;
             let wall_seconds = started.elapsed().as_secs_f64();
             observer(&GenerationReport {
                 generation,
@@ -620,15 +624,14 @@ impl<G: Genome> Run<G> {
     }
 
     /// Stores a generation (one transaction), then rewrites `best.lsys` (or the encoding's
-    /// extension) and `fitness.svg`.
+    /// extension) and `fitness.svg`; `stats` gets its timings first.
     fn record(
         &mut self,
-        generation: u32,
         population: &[Individual<G>],
-        stats: &GenerationStats,
-        best_fine: Option<FineEvaluation>,
+        stats: &mut GenerationRecord,
         started: Instant,
     ) -> Result<(), RunError> {
+        let generation = stats.index;
         let individuals = population
             .iter()
             .enumerate()
@@ -653,22 +656,9 @@ impl<G: Genome> Run<G> {
                 })
             })
             .collect::<Result<Vec<_>, RunError>>()?;
-        let wall_seconds = started.elapsed().as_secs_f64();
-        self.store.write_generation(
-            &GenerationRecord {
-                index: generation,
-                best: stats.best,
-                mean: stats.mean,
-                median: stats.median,
-                sd: stats.sd,
-                valid_fraction: stats.valid_fraction,
-                evaluations: stats.evaluations,
-                wall_seconds,
-                evaluations_per_second: stats.evaluations as f64 / wall_seconds.max(1e-9),
-                best_fine: best_fine.clone(),
-            },
-            &individuals,
-        )?;
+        stats.wall_seconds = started.elapsed().as_secs_f64();
+        stats.evaluations_per_second = stats.evaluations as f64 / stats.wall_seconds.max(1e-9);
+        self.store.write_generation(stats, &individuals)?;
         self.write_derived_files()
     }
 
@@ -699,15 +689,9 @@ impl<G: Genome> Run<G> {
     pub fn write_derived_files(&self) -> Result<(), RunError> {
         let generations = self.store.generations()?;
         let fallbacks = self.fallbacks_by_generation()?;
-        let mut reused = vec![0u64; generations.len()];
-        for (generation, count) in self.store.reused_by_generation()? {
-            if let Some(r) = reused.get_mut(generation as usize) {
-                *r = count;
-            }
-        }
         let mut log = String::new();
         let fitness = self.config.task.fitness_label();
-        for (g, reused) in generations.iter().zip(&reused) {
+        for g in &generations {
             log.push_str(&format!(
                 "generation {}: {fitness}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations, {} simulated in {:.1} s\n",
                 g.index,
@@ -717,7 +701,7 @@ impl<G: Genome> Run<G> {
                 g.median,
                 g.valid_fraction * 100.0,
                 g.evaluations,
-                g.evaluations.saturating_sub(*reused),
+                g.evaluations.saturating_sub(g.reused),
                 g.wall_seconds,
             ));
         }

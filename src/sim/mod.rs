@@ -1,20 +1,32 @@
 //! Simulation: running a creature's brain against its body in a rapier3d world.
+//!
+//! The options and their one check are in [`options`], the named step settings and the
+//! `[task.sim]` table in [`setting`]; the world is built in [`build`], senses in [`sensors`],
+//! moves in [`actuators`], is audited for energy from nowhere in [`audit`], holds the
+//! catapult's projectile in [`projectile`], and steps in [`world`].
 
+pub mod actuators;
+pub mod audit;
 pub mod brain;
+pub mod build;
 pub mod drag;
 mod model_names;
+pub mod options;
+pub mod projectile;
+pub mod sensors;
 pub mod setting;
 pub mod world;
 
+pub use actuators::{ANGLE_DAMPING, ANGLE_STIFFNESS, SATURATION_DAMPING, max_torque};
+pub use audit::{ENERGY_WINDOW, JOINT_GAP_WARNING};
 pub use brain::BrainRuntime;
+pub use build::BuildError;
 pub use drag::DragMeter;
 pub use model_names::UnknownName;
-pub use setting::{
-    MAX_DT, MAX_ITERATIONS, MAX_SUBSTEPS, MIN_DT, SettingError, SimTable, StepSetting,
-    UnknownSetting,
+pub use options::{
+    ActuatorModel, DEFAULT_MUSCLE_SPEED, DEFAULT_STRENGTH, ENERGY_TOLERANCE, JointModel, MAX_DT,
+    MAX_ITERATIONS, MAX_SUBSTEPS, MIN_DT, SimOptions, StrengthFrom,
 };
-pub use world::{
-    ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, BuildError, DEFAULT_MUSCLE_SPEED,
-    DEFAULT_STRENGTH, ENERGY_TOLERANCE, Exploded, GRAVITY, JOINT_GAP_WARNING, JointModel,
-    SATURATION_DAMPING, SimOptions, StrengthFrom, TOUCH_DISTANCE, World, max_torque,
-};
+pub use sensors::TOUCH_DISTANCE;
+pub use setting::{SettingError, SimTable, StepSetting, UnknownSetting};
+pub use world::{Exploded, GRAVITY, World};

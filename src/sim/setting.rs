@@ -1,6 +1,7 @@
 //! The simulator's settings as a user gives them: the named step settings (`fast`, `default`,
-//! `fine`), the one range check of every [`SimOptions`] value, and the `[task.sim]` table as a
-//! person writes it (a named setting with any of its values overridden).
+//! `fine`), the error a value out of its range gets ([`SettingError`]; the range check itself
+//! is [`SimOptions::check`]), and the `[task.sim]` table as a person writes it (a named setting
+//! with any of its values overridden).
 //!
 //! What a setting means physically is documented on [`SimOptions`]; what a task does with it
 //! belongs to `task`.
@@ -10,19 +11,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use super::world::{ActuatorModel, JointModel, SimOptions, StrengthFrom};
-
-/// The shortest control step (s) a setting may have: 1 ms, a 1 kHz controller (its physics
-/// runs up to [`MAX_SUBSTEPS`] times finer). Shorter steps would make an evaluation of the
-/// longest task take billions of steps.
-pub const MIN_DT: f64 = 0.001;
-/// The longest control step (s) a setting may have: 0.1 s, a 10 Hz controller.
-pub const MAX_DT: f64 = 0.1;
-/// The most physics substeps per control step (walking or waiting for rest): 64, physics at
-/// 1/3840 s at the default control step.
-pub const MAX_SUBSTEPS: usize = 64;
-/// The most solver iterations per substep, and the most Gauss-Seidel passes per iteration.
-pub const MAX_ITERATIONS: usize = 256;
+use super::options::{ActuatorModel, JointModel, SimOptions, StrengthFrom};
 
 /// A named step setting: how finely the physics steps, in five values (substeps, solver
 /// iterations and Gauss-Seidel passes while walking; substeps and solver iterations while a
@@ -216,58 +205,6 @@ pub fn check_real(
     Err(SettingError::out_of_range(key, &range, value))
 }
 
-impl SimOptions {
-    /// Checks every value against its range, so that a world can be built and stepped in a
-    /// bounded time: `dt` in [[`MIN_DT`], [`MAX_DT`]] seconds, substeps 1 to [`MAX_SUBSTEPS`],
-    /// solver iterations and Gauss-Seidel passes 1 to [`MAX_ITERATIONS`], friction, strength,
-    /// drop height and energy tolerance finite and not negative, speeds and the explosion
-    /// distance finite and positive. The error names the key.
-    pub fn check(&self) -> Result<(), SettingError> {
-        if !(MIN_DT..=MAX_DT).contains(&self.dt) {
-            return Err(SettingError::out_of_range(
-                "dt",
-                &format!("in [{MIN_DT}, {MAX_DT}] seconds"),
-                self.dt,
-            ));
-        }
-        let counts = [
-            ("substeps", self.substeps, MAX_SUBSTEPS),
-            ("rest_substeps", self.rest_substeps, MAX_SUBSTEPS),
-            ("solver_iterations", self.solver_iterations, MAX_ITERATIONS),
-            (
-                "rest_solver_iterations",
-                self.rest_solver_iterations,
-                MAX_ITERATIONS,
-            ),
-            ("pgs_iterations", self.pgs_iterations, MAX_ITERATIONS),
-        ];
-        for (key, value, most) in counts {
-            if !(1..=most).contains(&value) {
-                return Err(SettingError::out_of_range(
-                    key,
-                    &format!("1 to {most}"),
-                    value,
-                ));
-            }
-        }
-        check_real("friction", self.friction, 0.0, false)?;
-        check_real("strength", self.strength, 0.0, false)?;
-        check_real("muscle_speed", self.muscle_speed, 0.0, true)?;
-        check_real("max_speed", self.max_speed, 0.0, true)?;
-        check_real("drop_height", self.drop_height, 0.0, false)?;
-        check_real("explosion_distance", self.explosion_distance, 0.0, true)?;
-        check_real("speed_limit", self.speed_limit, 0.0, true)?;
-        if !(self.energy_tolerance.is_finite() && self.energy_tolerance >= 0.0) {
-            return Err(SettingError::out_of_range(
-                "energy_tolerance",
-                "finite and not negative (0 turns the audit off)",
-                self.energy_tolerance,
-            ));
-        }
-        Ok(())
-    }
-}
-
 /// The `[task.sim]` table as a person writes it: a named step setting (`setting = "fast"`,
 /// default `default`) and any value over it. A key given beside `setting` overrides the
 /// setting's value. Read into [`SimOptions`], which holds every value resolved and is written
@@ -278,8 +215,10 @@ impl SimOptions {
 pub struct SimTable {
     /// The named step setting the five stepping values start from.
     pub setting: Option<StepSetting>,
-    /// See [`SimOptions::dt`].
-    pub dt: Option<f64>,
+    /// See [`SimOptions::dt`]: the control step, `dt` in files written before it had its
+    /// own name (read as `control_step`; a table may not give both).
+    #[serde(alias = "dt")]
+    pub control_step: Option<f64>,
     /// See [`SimOptions::substeps`].
     pub substeps: Option<usize>,
     /// See [`SimOptions::solver_iterations`].
@@ -326,8 +265,10 @@ impl From<SimTable> for SimOptions {
         macro_rules! over {
             ($($field:ident),*) => {$(if let Some(v) = table.$field { options.$field = v; })*};
         }
+        if let Some(control_step) = table.control_step {
+            options.dt = control_step;
+        }
         over!(
-            dt,
             substeps,
             solver_iterations,
             pgs_iterations,
@@ -403,93 +344,6 @@ mod tests {
     }
 
     #[test]
-    fn the_defaults_pass_the_check_and_every_named_setting_too() {
-        for setting in StepSetting::ALL {
-            assert_eq!(setting.apply(&SimOptions::default()).check(), Ok(()));
-        }
-    }
-
-    #[test]
-    fn the_check_names_the_key_and_its_range() {
-        let cases: [(SimOptions, &str); 8] = [
-            (
-                SimOptions {
-                    substeps: 0,
-                    ..SimOptions::default()
-                },
-                "substeps must be 1 to 64, not 0",
-            ),
-            (
-                SimOptions {
-                    substeps: 4_000_000_000,
-                    ..SimOptions::default()
-                },
-                "substeps must be 1 to 64, not 4000000000",
-            ),
-            (
-                SimOptions {
-                    solver_iterations: 1_000_000_000,
-                    ..SimOptions::default()
-                },
-                "solver_iterations must be 1 to 256, not 1000000000",
-            ),
-            (
-                SimOptions {
-                    dt: 1e-9,
-                    ..SimOptions::default()
-                },
-                "dt must be in [0.001, 0.1] seconds, not 0.000000001",
-            ),
-            (
-                SimOptions {
-                    dt: f64::NAN,
-                    ..SimOptions::default()
-                },
-                "dt must be in [0.001, 0.1] seconds, not NaN",
-            ),
-            (
-                SimOptions {
-                    friction: -1.0,
-                    ..SimOptions::default()
-                },
-                "friction must be finite and not negative, not -1",
-            ),
-            (
-                SimOptions {
-                    muscle_speed: f64::INFINITY,
-                    ..SimOptions::default()
-                },
-                "muscle_speed must be finite and positive, not inf",
-            ),
-            (
-                SimOptions {
-                    energy_tolerance: -2.0,
-                    ..SimOptions::default()
-                },
-                "energy_tolerance must be finite and not negative (0 turns the audit off), not -2",
-            ),
-        ];
-        for (options, message) in cases {
-            let e = options.check().unwrap_err();
-            assert_eq!(e.to_string(), message);
-            assert_eq!(
-                e.within("sim").within("task").to_string(),
-                format!("[task.sim] {message}")
-            );
-        }
-        let e = SimOptions {
-            rest_substeps: 65,
-            ..SimOptions::default()
-        }
-        .check()
-        .unwrap_err();
-        assert_eq!(
-            e.for_flag("--rest-substeps"),
-            "--rest-substeps must be 1 to 64, not 65"
-        );
-    }
-
-    #[test]
     fn a_table_takes_its_setting_and_overrides_it_with_its_own_keys() {
         let options: SimOptions =
             toml::from_str("setting = \"fast\"\nsubsteps = 3\nfriction = 0.5\n").unwrap();
@@ -524,5 +378,18 @@ mod tests {
         assert!(e.to_string().contains("unknown variant `coarse`"), "{e}");
         let e = toml::from_str::<SimOptions>("substep = 2\n").unwrap_err();
         assert!(e.to_string().contains("unknown field `substep`"), "{e}");
+    }
+
+    #[test]
+    fn the_control_step_is_read_under_its_name_and_its_old_one_and_written_under_its_name() {
+        let new: SimOptions = toml::from_str("control_step = 0.02\n").unwrap();
+        let old: SimOptions = toml::from_str("dt = 0.02\n").unwrap();
+        assert_eq!((new.dt, old.dt), (0.02, 0.02));
+        let text = toml::to_string(&old).unwrap();
+        assert!(text.contains("control_step = 0.02"), "{text}");
+        assert!(!text.contains("dt ="), "{text}");
+        // Not both: one value, one key.
+        let e = toml::from_str::<SimOptions>("dt = 0.02\ncontrol_step = 0.02\n").unwrap_err();
+        assert!(e.to_string().contains("duplicate field"), "{e}");
     }
 }

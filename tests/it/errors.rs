@@ -331,3 +331,112 @@ fn syntax_errors_in_plain_words() {
     let shown = compile_error("axiom: a\ntimer --> (\n", DiagnosticKind::Syntax, 2);
     assert!(!shown.contains("header"), "{shown}");
 }
+
+/// Runs `ontogeny ARGS` in a scratch directory holding `files` (name, text); expects exit code
+/// 2 and `message` on standard error.
+fn refused(args: &[&str], files: &[(&str, &str)], message: &str) {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "errors-refused-{}",
+        args.join("-").replace(['/', ' ', '='], "_")
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ontogeny"))
+        .args(args)
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(message), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A walker config whose `[task.sim]` table holds `sim` (one line).
+fn config_with_sim(sim: &str) -> String {
+    format!(
+        "encoding = \"lsystem\"\n[ga]\npopulation = 4\ngenerations = 1\n[task]\ntask = \"walker\"\n[task.sim]\n{sim}\n"
+    )
+}
+
+const NO_SUBSTEPS: &str = "substeps must be 1 to 64, not 0";
+
+#[test]
+fn zero_substeps_are_refused_by_the_world_itself() {
+    let creature = ontogeny::develop::creature_from_commands("forward(1)").unwrap();
+    let options = ontogeny::sim::SimOptions {
+        substeps: 0,
+        ..Default::default()
+    };
+    let e = ontogeny::sim::World::new(&creature, &options)
+        .err()
+        .expect("refused");
+    assert_eq!(e.to_string(), NO_SUBSTEPS);
+}
+
+#[test]
+fn an_evaluation_with_zero_substeps_is_invalid_and_says_why() {
+    let creature = ontogeny::develop::creature_from_commands("forward(1)").unwrap();
+    let mut spec = ontogeny::task::TaskSpec::new(ontogeny::task::TaskKind::Walker);
+    spec.sim.rest_substeps = 0;
+    let e = spec.evaluate(&creature, false);
+    assert_eq!(e.status, ontogeny::task::Status::Invalid);
+    assert!(
+        e.message
+            .unwrap()
+            .contains("rest_substeps must be 1 to 64, not 0")
+    );
+}
+
+#[test]
+fn zero_substeps_in_a_config_file_are_refused() {
+    refused(
+        &["evolve", "--config", "z.toml", "--out", "run"],
+        &[("z.toml", &config_with_sim("substeps = 0"))],
+        &format!("z.toml: [task.sim] {NO_SUBSTEPS}"),
+    );
+}
+
+#[test]
+fn zero_substeps_on_eval_are_refused() {
+    refused(
+        &["eval", "a.lsys", "--task", "walker", "--substeps", "0"],
+        &[("a.lsys", "axiom: forward(1)\n")],
+        &format!("--{NO_SUBSTEPS}"),
+    );
+}
+
+#[test]
+fn zero_substeps_on_bench_are_refused() {
+    refused(
+        &[
+            "bench",
+            "--evaluations",
+            "1",
+            "--seconds",
+            "1",
+            "--substeps",
+            "0",
+        ],
+        &[],
+        &format!("--{NO_SUBSTEPS}"),
+    );
+}
+
+#[test]
+fn a_control_step_out_of_range_is_named_as_the_config_file_names_it() {
+    refused(
+        &["evolve", "--config", "z.toml", "--out", "run"],
+        &[("z.toml", &config_with_sim("control_step = 0.5"))],
+        "z.toml: [task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5",
+    );
+    // The name older files use is read as the same key.
+    refused(
+        &["evolve", "--config", "z.toml", "--out", "run"],
+        &[("z.toml", &config_with_sim("dt = 0.5"))],
+        "z.toml: [task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5",
+    );
+}

@@ -40,6 +40,7 @@ fn generation(index: u32) -> GenerationRecord {
         sd: 1.5,
         valid_fraction: 0.75,
         evaluations: 4,
+        reused: 0,
         wall_seconds: 0.5,
         evaluations_per_second: 8.0,
         best_fine: None,
@@ -138,6 +139,7 @@ fn every_field_round_trips() {
         sd: f64::NAN,
         valid_fraction: 0.0,
         evaluations: 4,
+        reused: 0,
         wall_seconds: 0.0,
         evaluations_per_second: f64::INFINITY,
         // Verified, but the fine evaluation gave no number: NULL fitness, a status.

@@ -76,7 +76,7 @@ fn evolve_refuses_a_step_setting_out_of_range_at_once_naming_the_key_and_writes_
         ),
         (
             "dt = 1e-9",
-            "[task.sim] dt must be in [0.001, 0.1] seconds, not 0.000000001",
+            "[task.sim] control_step must be in [0.001, 0.1] seconds, not 0.000000001",
         ),
         (
             "friction = -1",

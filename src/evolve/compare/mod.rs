@@ -1,0 +1,71 @@
+//! Comparing encodings on equal terms (`ontogeny compare`): a comparison directory holds one
+//! full run directory per replicate of every encoding, all with the same genetic algorithm,
+//! task and evaluation budget, and a report of statistics over their champions.
+//!
+//! ```text
+//! runs/NAME/compare.toml             the comparison: encodings, replicates, budget, seed
+//! runs/NAME/evolve.toml              the shared settings ([ga] and [task]), an evolve config
+//! runs/NAME/<encoding>/rep-<k>/      replicate k (1-based): an ordinary run directory
+//! runs/NAME/report.md, summary.csv, fitness.svg, parts.svg
+//! ```
+//!
+//! This module knows no encoding by name: everything that depends on one is generic over
+//! [`Genome`].
+//!
+//! The comparison's directory and plan are in [`plan`], reading a finished replicate in
+//! [`replicate`], the statistics and the files of the report in [`report`].
+
+mod plan;
+mod replicate;
+mod report;
+
+pub use plan::{
+    MAX_REPLICATES, Manifest, Shared, create, evaluations_of, generations_for, lock, open,
+    replicate_config, replicate_dir, replicate_seed,
+};
+pub use replicate::{
+    Champion, Replicate, ReplicateState, distinct_shapes_per_part, read_replicate,
+};
+pub use report::{EncodingSummary, Pair, Report, report, write_report};
+
+use std::path::{Path, PathBuf};
+
+use super::plot;
+
+/// Why a comparison could not be planned, run or reported.
+#[derive(Debug, thiserror::Error)]
+pub enum CompareError {
+    /// Bad input: a budget below one generation, a replicate whose settings differ, ...
+    #[error("{0}")]
+    Input(String),
+    /// A file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// An output file was refused or could not be written (see [`crate::output`]).
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
+    /// Anything else (a database or a plot that fails).
+    #[error("{0}")]
+    Other(String),
+}
+
+impl From<plot::PlotError> for CompareError {
+    fn from(e: plot::PlotError) -> Self {
+        match e {
+            plot::PlotError::Output(e) => CompareError::Output(e),
+            other => CompareError::Other(other.to_string()),
+        }
+    }
+}
+
+pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CompareError + '_ {
+    move |source| CompareError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}

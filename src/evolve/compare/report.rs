@@ -1,0 +1,493 @@
+//! A comparison's report: each encoding's figures, the pairwise tests between encodings,
+//! and the files that show them (`report.md`, `summary.csv`, `fitness.svg`, `parts.svg`).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use super::CompareError;
+use super::plan::{Manifest, Shared, evaluations_of};
+use super::replicate::{Champion, Replicate};
+use crate::evolve::plot::{self, Band};
+use crate::evolve::stats;
+
+/// One encoding's figures.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EncodingSummary {
+    /// The encoding.
+    pub encoding: String,
+    /// Finished replicates.
+    pub replicates: usize,
+    /// The replicates' best fitness.
+    pub best: stats::Summary,
+    /// The mean of the replicates' final champions re-walked at the fine reference setting
+    /// ([`Champion::fine_fitness`]), over those that were and whose re-walk did not fail (NaN
+    /// if none): a failed re-walk scores the failure floor, which would swamp the mean.
+    pub mean_fine: f64,
+    /// How many replicates' champions were re-walked at the fine reference.
+    pub fine_replicates: usize,
+    /// How many of those re-walks failed (scored the failure floor: unstable, exploded, ...).
+    pub fine_failed: usize,
+    /// The champions' median parts, joints and neurons.
+    pub median_parts: f64,
+    /// See `median_parts`.
+    pub median_joints: f64,
+    /// See `median_parts`.
+    pub median_neurons: f64,
+    /// The champions' median distinct part shapes per part.
+    pub median_shapes_per_part: f64,
+    /// Evaluations per second over all its replicates.
+    pub evaluations_per_second: f64,
+    /// Evaluations its replicates simulated, in all.
+    pub simulated: u64,
+    /// Evaluations its replicates reused from an identical creature evaluated earlier in the
+    /// same run, in all.
+    pub reused: u64,
+}
+
+/// One pairwise test.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pair {
+    /// The first encoding.
+    pub a: String,
+    /// The second.
+    pub b: String,
+    /// The test of a's best fitness against b's.
+    pub test: stats::MannWhitney,
+    /// Holm-corrected p over all pairs.
+    pub holm_p: f64,
+    /// Vargha–Delaney A12 of a over b.
+    pub a12: f64,
+}
+
+/// The report's numbers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// Per encoding, in the manifest's order.
+    pub encodings: Vec<EncodingSummary>,
+    /// Every pair, in the manifest's order.
+    pub pairs: Vec<Pair>,
+    /// The evaluations every replicate made.
+    pub evaluations: u64,
+}
+
+/// The statistics of `replicates` (finished ones, any order) of the comparison.
+pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) -> Report {
+    let of = |e: &str| -> Vec<&Replicate> {
+        let mut v: Vec<&Replicate> = replicates.iter().filter(|r| r.encoding == e).collect();
+        v.sort_by_key(|r| r.k);
+        v
+    };
+    let encodings = manifest
+        .encodings
+        .iter()
+        .map(|e| {
+            let rs = of(e);
+            let pick = |f: fn(&Champion) -> f64| {
+                stats::median(&rs.iter().map(|r| f(&r.champion)).collect::<Vec<_>>())
+            };
+            let evaluations: u64 = rs.iter().map(|r| r.evaluations).sum();
+            let reused: u64 = rs.iter().map(|r| r.reused).sum();
+            let wall: f64 = rs.iter().map(|r| r.wall_seconds).sum();
+            let walked: Vec<f64> = rs
+                .iter()
+                .map(|r| r.champion.fine_fitness)
+                .filter(|f| !f.is_nan())
+                .collect();
+            let fine: Vec<f64> = walked
+                .iter()
+                .copied()
+                .filter(|&f| f > crate::task::FAILURE_FITNESS)
+                .collect();
+            EncodingSummary {
+                encoding: e.clone(),
+                replicates: rs.len(),
+                best: stats::summary(&rs.iter().map(|r| r.champion.fitness).collect::<Vec<_>>()),
+                mean_fine: if fine.is_empty() {
+                    f64::NAN
+                } else {
+                    fine.iter().sum::<f64>() / fine.len() as f64
+                },
+                fine_replicates: walked.len(),
+                fine_failed: walked.len() - fine.len(),
+                median_parts: pick(|c| c.parts as f64),
+                median_joints: pick(|c| c.joints as f64),
+                median_neurons: pick(|c| c.neurons as f64),
+                median_shapes_per_part: pick(|c| c.shapes_per_part),
+                evaluations_per_second: if wall > 0.0 {
+                    evaluations as f64 / wall
+                } else {
+                    f64::NAN
+                },
+                simulated: evaluations.saturating_sub(reused),
+                reused,
+            }
+        })
+        .collect();
+    let mut pairs = Vec::new();
+    for (i, a) in manifest.encodings.iter().enumerate() {
+        for b in &manifest.encodings[i + 1..] {
+            let best = |e: &str| -> Vec<f64> { of(e).iter().map(|r| r.champion.fitness).collect() };
+            let (x, y) = (best(a), best(b));
+            pairs.push(Pair {
+                a: a.clone(),
+                b: b.clone(),
+                test: stats::mann_whitney(&x, &y),
+                holm_p: f64::NAN,
+                a12: stats::a12(&x, &y),
+            });
+        }
+    }
+    let corrected = stats::holm(&pairs.iter().map(|p| p.test.p).collect::<Vec<_>>());
+    for (p, h) in pairs.iter_mut().zip(corrected) {
+        p.holm_p = h;
+    }
+    Report {
+        encodings,
+        pairs,
+        evaluations: evaluations_of(&shared.ga),
+    }
+}
+
+/// Writes `text` to `path` whole or not at all ([`crate::output::write`]): a reader never sees
+/// half a report.
+fn write_file(path: &Path, text: &str) -> Result<(), CompareError> {
+    Ok(crate::output::write(path, text)?)
+}
+
+/// A number for a table: NaN as "–".
+fn num(v: f64, decimals: usize) -> String {
+    if v.is_finite() {
+        format!("{v:.decimals$}")
+    } else {
+        "–".to_string()
+    }
+}
+
+/// Writes `report.md`, `summary.csv`, `fitness.svg` and `parts.svg` into `root`.
+/// `unfinished` lists the replicates not (yet) in the report.
+pub fn write_report(
+    root: &Path,
+    manifest: &Manifest,
+    shared: &Shared,
+    replicates: &[Replicate],
+    unfinished: &[String],
+) -> Result<Report, CompareError> {
+    let r = report(manifest, shared, replicates);
+    let mut md = String::new();
+    let task = shared.task.task.name();
+    let _ = writeln!(
+        md,
+        "# Comparison of {} on the {task} task\n\nFitness: {}.\n",
+        manifest.encodings.join(", "),
+        shared.task.fitness_label()
+    );
+    let _ = writeln!(
+        md,
+        "{} replicates per encoding, seed {}; every replicate made exactly {} evaluations \
+         (budget {}: population {}, {} generations, elite {} not re-evaluated; preset {}).\n",
+        manifest.replicates,
+        manifest.seed,
+        r.evaluations,
+        manifest.evaluations,
+        shared.ga.population,
+        shared.ga.generations,
+        shared.ga.survivors(),
+        serde_json::to_value(shared.ga.preset)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default()
+    );
+    if !unfinished.is_empty() {
+        let _ = writeln!(
+            md,
+            "**Incomplete**: not in this report: {}.\n",
+            unfinished.join(", ")
+        );
+    }
+    let _ = writeln!(
+        md,
+        "Best fitness of each replicate: mean, sample standard deviation and the 95% confidence \
+         interval of the mean (Student's t). Champions (each replicate's best individual): \
+         median parts, joints and neurons, and median distinct part shapes per part (lower is \
+         more regular). \"At the fine reference\": the mean of the replicates' final \
+         champions walked again with 4 physics substeps of 8 solver iterations (the stored \
+         best comes from the run's own stepping, 4 substeps of 4 iterations by default; a \
+         much lower value means the champions exploit it, or were lucky), over the replicates that recorded it when fewer. \
+         Simulated and reused: the evaluations of all its replicates, split into those \
+         simulated and those that reused the evaluation of an identical creature earlier in \
+         the same run.\n"
+    );
+    let _ = writeln!(
+        md,
+        "| encoding | n | mean best | at the fine reference | sd | 95% CI | parts | joints | neurons | shapes/part | simulated | reused | evaluations/s |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for e in &r.encodings {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} to {} | {} | {} | {} | {} | {} | {} | {} |",
+            e.encoding,
+            e.replicates,
+            num(e.best.mean, 4),
+            match (
+                e.fine_replicates == e.replicates || e.fine_replicates == 0,
+                e.fine_failed
+            ) {
+                (true, 0) => num(e.mean_fine, 4),
+                (false, 0) => format!(
+                    "{} ({} of {})",
+                    num(e.mean_fine, 4),
+                    e.fine_replicates,
+                    e.replicates
+                ),
+                (_, failed) => format!(
+                    "{} ({} of {}; {failed} failed)",
+                    num(e.mean_fine, 4),
+                    e.fine_replicates - failed,
+                    e.replicates
+                ),
+            },
+            num(e.best.sd, 4),
+            num(e.best.mean - e.best.ci95, 4),
+            num(e.best.mean + e.best.ci95, 4),
+            num(e.median_parts, 1),
+            num(e.median_joints, 1),
+            num(e.median_neurons, 1),
+            num(e.median_shapes_per_part, 3),
+            e.simulated,
+            e.reused,
+            num(e.evaluations_per_second, 1),
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\nPairwise two-sided Mann–Whitney U tests of the best fitness (exact distribution \
+         without ties and up to {} replicates, else the normal approximation with tie and \
+         continuity corrections), Holm-corrected over the {} pairs; A12 is Vargha and \
+         Delaney's probability that a replicate of the first encoding beats one of the second \
+         (0.5: no effect).\n",
+        stats::EXACT_MAX,
+        r.pairs.len()
+    );
+    let _ = writeln!(md, "| a | b | U | p | method | Holm p | A12 | effect |");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    for p in &r.pairs {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {} | {} |",
+            p.a,
+            p.b,
+            num(p.test.u, 1),
+            num(p.test.p, 4),
+            p.test.method.name(),
+            num(p.holm_p, 4),
+            num(p.a12, 3),
+            stats::a12_magnitude(p.a12)
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n![mean best fitness against evaluations](fitness.svg)\n\n![champions' parts](parts.svg)"
+    );
+    write_file(&root.join("report.md"), &md)?;
+
+    let mut csv = String::from(
+        "encoding,replicate,seed,evaluations,best_fitness,best_fine,parts,joints,neurons,shapes_per_part,simulated,reused,wall_seconds\n",
+    );
+    let mut sorted: Vec<&Replicate> = replicates.iter().collect();
+    let position = |e: &str| manifest.encodings.iter().position(|x| x == e);
+    sorted.sort_by_key(|r| (position(&r.encoding), r.k));
+    for rep in sorted {
+        let c = &rep.champion;
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
+            rep.encoding,
+            rep.k,
+            rep.seed,
+            rep.evaluations,
+            c.fitness,
+            c.fine_fitness,
+            c.parts,
+            c.joints,
+            c.neurons,
+            c.shapes_per_part,
+            rep.evaluations - rep.reused,
+            rep.reused,
+            rep.wall_seconds
+        );
+    }
+    write_file(&root.join("summary.csv"), &csv)?;
+
+    let bands: Vec<Band> = manifest
+        .encodings
+        .iter()
+        .map(|e| band(e, replicates))
+        .collect();
+    let title = format!("{task}: mean best fitness with 95% confidence bands");
+    plot::bands_svg(&root.join("fitness.svg"), &bands, &title)?;
+    let parts: Vec<(String, Vec<f64>)> = manifest
+        .encodings
+        .iter()
+        .map(|e| {
+            let mut v: Vec<(usize, f64)> = replicates
+                .iter()
+                .filter(|r| &r.encoding == e)
+                .map(|r| (r.k, r.champion.parts as f64))
+                .collect();
+            v.sort_by_key(|x| x.0);
+            (e.clone(), v.into_iter().map(|x| x.1).collect())
+        })
+        .collect();
+    plot::strip_svg(
+        &root.join("parts.svg"),
+        &parts,
+        "parts",
+        &format!("{task}: the champions' parts (bar: median)"),
+    )?;
+    Ok(r)
+}
+
+/// The mean best-so-far fitness of `encoding`'s replicates after each generation, with its
+/// 95% confidence band (the band is the mean where fewer than 2 replicates exist).
+fn band(encoding: &str, replicates: &[Replicate]) -> Band {
+    let rs: Vec<&Replicate> = replicates
+        .iter()
+        .filter(|r| r.encoding == encoding)
+        .collect();
+    let points = rs.first().map_or(0, |r| r.curve.len());
+    let mut out = Vec::with_capacity(points);
+    for g in 0..points {
+        let values: Vec<f64> = rs
+            .iter()
+            .filter_map(|r| r.curve.get(g))
+            .map(|p| p.1)
+            .collect();
+        let s = stats::summary(&values);
+        let half = if s.ci95.is_finite() { s.ci95 } else { 0.0 };
+        out.push((
+            rs[0].curve[g].0 as f64,
+            s.mean,
+            s.mean - half,
+            s.mean + half,
+        ));
+    }
+    Band {
+        name: encoding.to_string(),
+        points: out,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::evolve::ga::{GaSettings, Preset};
+    use crate::task::TaskSpec;
+
+    fn ga(population: usize, generations: usize) -> GaSettings {
+        GaSettings {
+            population,
+            generations,
+            ..GaSettings::preset(Preset::Chaumont)
+        }
+    }
+
+    fn replicate(encoding: &str, k: usize, best: f64, parts: u32) -> Replicate {
+        Replicate {
+            encoding: encoding.into(),
+            k,
+            seed: k as u64,
+            curve: vec![(6, best / 2.0), (11, best)],
+            evaluations: 11,
+            reused: 1,
+            wall_seconds: 2.0,
+            champion: Champion {
+                fitness: best,
+                fine_fitness: best / 4.0,
+                parts,
+                joints: parts.saturating_sub(1),
+                neurons: 2 * parts,
+                shapes_per_part: 1.0,
+            },
+        }
+    }
+
+    #[test]
+    fn the_report_by_hand() {
+        let manifest = Manifest {
+            encodings: vec!["a".into(), "b".into(), "c".into()],
+            replicates: 3,
+            evaluations: 11,
+            seed: 1,
+        };
+        let shared = Shared {
+            ga: ga(6, 2),
+            task: TaskSpec::new(crate::task::TaskKind::Walker),
+        };
+        // Replicate 1 of c was not re-walked at the fine reference (an old run).
+        let mut unverified = replicate("c", 1, 1.5, 1);
+        unverified.champion.fine_fitness = f64::NAN;
+        // b's third champion did not come to rest at the fine reference: the failure floor.
+        let mut failed = replicate("b", 3, 6.0, 2);
+        failed.champion.fine_fitness = crate::task::FAILURE_FITNESS;
+        let reps = vec![
+            replicate("a", 1, 1.0, 3),
+            replicate("a", 2, 2.0, 5),
+            replicate("a", 3, 3.0, 9),
+            replicate("b", 1, 4.0, 1),
+            replicate("b", 2, 5.0, 1),
+            failed,
+            unverified,
+            replicate("c", 2, 2.5, 1),
+            replicate("c", 3, 3.5, 2),
+        ];
+        let r = report(&manifest, &shared, &reps);
+        assert_eq!(r.evaluations, 11);
+        let a = &r.encodings[0];
+        assert_eq!(a.replicates, 3);
+        assert_eq!(a.best.mean, 2.0);
+        assert_eq!(a.best.sd, 1.0);
+        // The fine reference values 1/4, 2/4, 3/4: mean 0.5.
+        assert_eq!((a.mean_fine, a.fine_replicates), (0.5, 3));
+        // c's over its two verified replicates: (2.5 + 3.5) / 4 / 2.
+        let c = &r.encodings[2];
+        assert_eq!((c.mean_fine, c.fine_replicates), (0.75, 2));
+        // b's over the two re-walks that did not fail: (4 + 5) / 4 / 2; one failed.
+        let b = &r.encodings[1];
+        assert_eq!(
+            (b.mean_fine, b.fine_replicates, b.fine_failed),
+            (1.125, 3, 1)
+        );
+        assert_eq!((a.fine_failed, c.fine_failed), (0, 0));
+        assert_eq!(a.median_parts, 5.0);
+        assert_eq!(a.median_joints, 4.0);
+        assert_eq!(a.median_neurons, 10.0);
+        // 33 evaluations in 6 s.
+        assert_eq!(a.evaluations_per_second, 5.5);
+        // Of which one per replicate reused.
+        assert_eq!((a.simulated, a.reused), (30, 3));
+        // a against b: every b beats every a: U = 0, exact p = 2/C(6, 3) = 0.1, A12 = 0.
+        let ab = &r.pairs[0];
+        assert_eq!((ab.a.as_str(), ab.b.as_str()), ("a", "b"));
+        assert_eq!(ab.test.u, 0.0);
+        assert!((ab.test.p - 0.1).abs() < 1e-12);
+        assert_eq!(ab.a12, 0.0);
+        // a against c: a's 1, 2, 3 against 1.5, 2.5, 3.5: U = 0 + 1 + 2 = 3, A12 = 3/9.
+        let ac = &r.pairs[1];
+        assert_eq!(ac.test.u, 3.0);
+        assert!((ac.a12 - 1.0 / 3.0).abs() < 1e-12);
+        // b against c: U = 9, p = 0.1. Holm over p = (0.1, p_ac, 0.1): p_ac = 0.7 (U = 3 of
+        // 9: P(U ≤ 3) = 7/20 = 0.35, twice 0.7); sorted 0.1·3, 0.1·2 → 0.3, 0.3; 0.7.
+        assert!((ac.test.p - 0.7).abs() < 1e-12, "{}", ac.test.p);
+        assert!((r.pairs[0].holm_p - 0.3).abs() < 1e-12);
+        assert!((r.pairs[2].holm_p - 0.3).abs() < 1e-12);
+        assert!((r.pairs[1].holm_p - 0.7).abs() < 1e-12);
+        // The band: the mean of the best so far, 1, 2, 3 → 2 ± t(2)·1/√3.
+        let b = band("a", &reps);
+        assert_eq!(b.points.len(), 2);
+        assert_eq!(b.points[1].0, 11.0);
+        assert_eq!(b.points[1].1, 2.0);
+        let half = stats::t_quantile_975(2) / 3f64.sqrt();
+        assert!((b.points[1].3 - 2.0 - half).abs() < 1e-12);
+    }
+}

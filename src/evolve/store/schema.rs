@@ -1,0 +1,304 @@
+//! The run store's schema: the tables as SQL, the migrations from older versions, the
+//! columns each version has, and the checks that a file is an undamaged run store of a
+//! version this program reads (its header, its application id, its version and its tables).
+
+use std::fs;
+use std::io::Read;
+use std::path::Path;
+
+use rusqlite::Connection;
+
+use super::error::{StoreError, classify};
+
+/// The schema's version, kept in the database header (`PRAGMA user_version`). Raise it when
+/// the tables change, and teach [`RunStore::open`](super::RunStore::open) to migrate the older versions.
+///
+/// - 1: the first schema.
+/// - 2: `generation.best_fine` and `generation.best_fine_status`, the generation's best
+///   re-walked at the fine reference setting (NULL when not verified). A version-1 file is
+///   migrated when it is opened for writing; [`RunStore::open_read_only`](super::RunStore::open_read_only) reads it as it is.
+/// - 3: `individual.reused` (1 when the individual's evaluation was taken from an identical
+///   creature evaluated earlier in the run) and `individual.evaluation_key` (the key of its
+///   creature and the task, [`crate::evolve::key::EvaluationKey`], NULL when it did not
+///   develop). Versions 1 and 2 are migrated on writing: old rows get `reused` 0 and no key.
+pub const SCHEMA_VERSION: i64 = 3;
+
+/// The oldest schema version this program reads (and migrates when it writes).
+pub const OLDEST_SCHEMA_VERSION: i64 = 1;
+
+/// Marks the file as an Ontogeny run store (`PRAGMA application_id`): the bytes "Onto".
+pub const APPLICATION_ID: i64 = 0x4F6E_746F;
+
+/// The schema, created in one transaction by [`RunStore::create`](super::RunStore::create). A NaN in any REAL column
+/// is stored as NULL (SQLite has no NaN) and read back as NaN.
+pub(super) const SCHEMA: &str = "
+CREATE TABLE run (
+    id       INTEGER PRIMARY KEY CHECK (id = 1),
+    config   TEXT NOT NULL,
+    seed     TEXT NOT NULL CHECK (seed GLOB '[0-9]*' AND seed NOT GLOB '*[^0-9]*'),
+    encoding TEXT NOT NULL,
+    task     TEXT NOT NULL,
+    version  TEXT NOT NULL
+) STRICT;
+CREATE TABLE generation (
+    generation             INTEGER PRIMARY KEY CHECK (generation >= 0),
+    best                   REAL,
+    mean                   REAL,
+    median                 REAL,
+    sd                     REAL,
+    valid_fraction         REAL,
+    evaluations            INTEGER NOT NULL CHECK (evaluations >= 0),
+    wall_seconds           REAL,
+    evaluations_per_second REAL,
+    best_fine              REAL,
+    best_fine_status       TEXT
+) STRICT;
+CREATE TABLE individual (
+    generation  INTEGER NOT NULL REFERENCES generation (generation),
+    individual  INTEGER NOT NULL CHECK (individual >= 0),
+    parents     TEXT NOT NULL CHECK (json_valid(parents) AND json_type(parents) = 'array'),
+    operator    TEXT NOT NULL,
+    genome_text TEXT NOT NULL,
+    genome_json TEXT NOT NULL CHECK (json_valid(genome_json)),
+    fitness     REAL,
+    status      TEXT NOT NULL,
+    terms_json  TEXT NOT NULL CHECK (json_valid(terms_json)),
+    parts       INTEGER NOT NULL CHECK (parts >= 0),
+    joints      INTEGER NOT NULL CHECK (joints >= 0),
+    neurons     INTEGER NOT NULL CHECK (neurons >= 0),
+    reused      INTEGER NOT NULL CHECK (reused IN (0, 1)),
+    evaluation_key TEXT CHECK (evaluation_key IS NULL OR length(evaluation_key) = 64),
+    PRIMARY KEY (generation, individual)
+) STRICT;
+";
+
+/// Version 1 to 2: the columns of the fine reference check, NULL in every generation stored
+/// before (they were not verified).
+pub(super) const MIGRATE_1_TO_2: &str = "
+ALTER TABLE generation ADD COLUMN best_fine REAL;
+ALTER TABLE generation ADD COLUMN best_fine_status TEXT;
+";
+
+/// Version 2 to 3: whether an individual's evaluation was reused, and its evaluation key;
+/// rows stored before were all evaluated (`reused` 0) and have no key.
+pub(super) const MIGRATE_2_TO_3: &str = "
+ALTER TABLE individual ADD COLUMN reused INTEGER NOT NULL DEFAULT 0 CHECK (reused IN (0, 1));
+ALTER TABLE individual ADD COLUMN evaluation_key TEXT
+    CHECK (evaluation_key IS NULL OR length(evaluation_key) = 64);
+";
+
+/// The columns of the `generation` table (schema version 2 and later).
+const GENERATION_COLUMNS: [&str; 11] = [
+    "generation",
+    "best",
+    "mean",
+    "median",
+    "sd",
+    "valid_fraction",
+    "evaluations",
+    "wall_seconds",
+    "evaluations_per_second",
+    "best_fine",
+    "best_fine_status",
+];
+
+/// The columns of the `generation` table in schema version 1: all but the last two.
+const GENERATION_COLUMNS_V1: &[&str] = GENERATION_COLUMNS.split_at(9).0;
+
+/// The columns of the `individual` table (schema version 3).
+const INDIVIDUAL_COLUMN_NAMES: [&str; 14] = [
+    "generation",
+    "individual",
+    "parents",
+    "operator",
+    "genome_text",
+    "genome_json",
+    "fitness",
+    "status",
+    "terms_json",
+    "parts",
+    "joints",
+    "neurons",
+    "reused",
+    "evaluation_key",
+];
+
+/// The columns of the `individual` table before schema version 3: all but the last two.
+const INDIVIDUAL_COLUMNS_V2: &[&str] = INDIVIDUAL_COLUMN_NAMES.split_at(12).0;
+
+/// Each table's columns, in order, as `open` expects to find them (schema version 3).
+const TABLES: [(&str, &[&str]); 3] = [
+    (
+        "run",
+        &["id", "config", "seed", "encoding", "task", "version"],
+    ),
+    ("generation", &GENERATION_COLUMNS),
+    ("individual", &INDIVIDUAL_COLUMN_NAMES),
+];
+
+/// The columns every schema version's `individual` table has, as `SELECT` lists them.
+pub(super) const INDIVIDUAL_COLUMNS: &str = "generation, individual, parents, operator, genome_text, \
+     genome_json, fitness, status, terms_json, parts, joints, neurons";
+/// Checks the file exists and starts like an SQLite database, before SQLite sees it.
+pub(super) fn check_header(path: &Path) -> Result<(), StoreError> {
+    let mut file = match fs::File::open(path) {
+        Ok(f) => f,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(StoreError::Missing { path: path.into() });
+        }
+        Err(source) => {
+            return Err(StoreError::Io {
+                path: path.into(),
+                action: "cannot read it",
+                source,
+            });
+        }
+    };
+    let mut header = Vec::with_capacity(100);
+    (&mut file)
+        .take(100)
+        .read_to_end(&mut header)
+        .map_err(|source| StoreError::Io {
+            path: path.into(),
+            action: "cannot read it",
+            source,
+        })?;
+    let not = |reason: &str| StoreError::NotARunStore {
+        path: path.into(),
+        reason: reason.into(),
+    };
+    if header.is_empty() {
+        return Err(not("the file is empty"));
+    }
+    if !header.starts_with(b"SQLite format 3\0") {
+        return Err(not("file is not a database"));
+    }
+    if header.len() < 100 {
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail: format!(
+                "the file is {} bytes long, shorter than an SQLite header",
+                header.len()
+            ),
+        });
+    }
+    // The header's page size and page count (valid when the change counter at 24 matches the
+    // "version valid for" at 92) give the file's length: a shorter file was truncated.
+    let be32 = |at: usize| u32::from_be_bytes(header[at..at + 4].try_into().expect("4 bytes"));
+    let page_size = match u16::from_be_bytes([header[16], header[17]]) {
+        1 => 65536,
+        n => u64::from(n),
+    };
+    let pages = u64::from(be32(28));
+    let length = file.metadata().map(|m| m.len()).unwrap_or(u64::MAX);
+    if be32(24) == be32(92) && pages > 0 && page_size * pages > length {
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail: format!(
+                "the file is truncated ({length} bytes where its header says {})",
+                page_size * pages
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Checks, on a read-only connection, that the database is an undamaged run store of a
+/// schema this program reads; returns its version.
+pub(super) fn check_store(path: &Path, conn: &Connection) -> Result<i64, StoreError> {
+    let not = |reason: String| StoreError::NotARunStore {
+        path: path.into(),
+        reason,
+    };
+    let pragma = |name: &str| -> Result<i64, StoreError> {
+        conn.pragma_query_value(None, name, |r| r.get(0))
+            .map_err(|e| classify(path, &format!("cannot read {name}"), e))
+    };
+    let application_id = pragma("application_id")?;
+    if application_id != APPLICATION_ID {
+        return Err(not(if application_id == 0 {
+            "it is an SQLite database, but not one ontogeny wrote".into()
+        } else {
+            format!(
+                "it is an SQLite database of another program (application_id {application_id:#x})"
+            )
+        }));
+    }
+    let version = pragma("user_version")?;
+    if version > SCHEMA_VERSION {
+        return Err(StoreError::NewerSchema {
+            path: path.into(),
+            found: version,
+        });
+    }
+    if version < OLDEST_SCHEMA_VERSION {
+        return Err(StoreError::OlderSchema {
+            path: path.into(),
+            found: version,
+        });
+    }
+    let mut problems = Vec::new();
+    conn.pragma_query(None, "quick_check", |r| {
+        problems.push(r.get::<_, String>(0)?);
+        Ok(())
+    })
+    .map_err(|e| classify(path, "cannot check it", e))?;
+    if problems != ["ok"] {
+        let shown = problems.len().min(3);
+        let mut detail = problems[..shown].join("; ");
+        if problems.len() > shown {
+            detail.push_str(&format!(" (and {} more problems)", problems.len() - shown));
+        }
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail,
+        });
+    }
+    for (table, expected) in TABLES {
+        let expected = match table {
+            "generation" if version < 2 => GENERATION_COLUMNS_V1,
+            "individual" if version < 3 => INDIVIDUAL_COLUMNS_V2,
+            _ => expected,
+        };
+        let mut columns: Vec<String> = Vec::new();
+        conn.pragma(None, "table_info", table, |r| {
+            columns.push(r.get(1)?);
+            Ok(())
+        })
+        .map_err(|e| classify(path, "cannot read the schema", e))?;
+        if columns.is_empty() {
+            return Err(not(format!("it has no {table} table")));
+        }
+        if columns != expected {
+            let missing: Vec<&str> = expected
+                .iter()
+                .filter(|c| !columns.iter().any(|have| have == *c))
+                .copied()
+                .collect();
+            let extra: Vec<&str> = columns
+                .iter()
+                .filter(|c| !expected.contains(&c.as_str()))
+                .map(String::as_str)
+                .collect();
+            return Err(not(match (missing.as_slice(), extra.as_slice()) {
+                ([one], []) => format!("its {table} table lacks the column {one}"),
+                ([], []) => format!("its {table} table's columns are in another order"),
+                _ => format!(
+                    "its {table} table lacks the columns ({}) and has others ({})",
+                    missing.join(", "),
+                    extra.join(", ")
+                ),
+            }));
+        }
+    }
+    let runs: i64 = conn
+        .query_row("SELECT count(*) FROM run", [], |r| r.get(0))
+        .map_err(|e| classify(path, "cannot read the run table", e))?;
+    if runs != 1 {
+        return Err(StoreError::Corrupt {
+            path: path.into(),
+            detail: format!("the run table has {runs} rows, not 1"),
+        });
+    }
+    Ok(version)
+}

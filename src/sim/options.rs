@@ -1,0 +1,334 @@
+//! The simulator's options ([`SimOptions`]): every value a world is built and stepped with,
+//! their defaults, the models they choose between (joints, actuators, whose cross-section sets
+//! a joint's strength), and their one range check ([`SimOptions::check`]), which every path
+//! that reads options (a config file, a command-line flag, a `creature.json`, the library's
+//! [`World::new`](super::World::new)) goes through.
+
+use super::setting::{SettingError, StepSetting, check_real};
+
+/// The shortest control step (s) a setting may have: 1 ms, a 1 kHz controller (its physics
+/// runs up to [`MAX_SUBSTEPS`] times finer). Shorter steps would make an evaluation of the
+/// longest task take billions of steps.
+pub const MIN_DT: f64 = 0.001;
+/// The longest control step (s) a setting may have: 0.1 s, a 10 Hz controller.
+pub const MAX_DT: f64 = 0.1;
+/// The most physics substeps per control step (walking or waiting for rest): 64, physics at
+/// 1/3840 s at the default control step.
+pub const MAX_SUBSTEPS: usize = 64;
+/// The most solver iterations per substep, and the most Gauss-Seidel passes per iteration.
+pub const MAX_ITERATIONS: usize = 256;
+
+/// How joints are simulated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum JointModel {
+    /// Impulse-based constraints between free bodies (rapier's `ImpulseJointSet`).
+    Impulse,
+    /// Reduced coordinates (rapier's `MultibodyJointSet`).
+    Multibody,
+}
+
+/// How an actuator neuron's signal s ∈ [−1, 1] drives its joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ActuatorModel {
+    /// Chaumont et al. 5.3: the motor runs at saturation, its target velocity fixed high in
+    /// the signal's sign, its maximum torque |s| × the joint's strength.
+    Muscle,
+    /// Chaumont et al. 5.3's muscle applied as what a saturated motor gives: a torque of
+    /// s × the joint's strength about the joint's axis, equal and opposite on its two parts,
+    /// with no motor row in the joint's constraint.
+    MuscleTorque,
+    /// Hornby & Pollack: s sets the target angle inside the joint's range.
+    Angle,
+    /// Matos & Arita: s sets the target angular velocity (s × `max_speed`).
+    Velocity,
+}
+
+/// Which part's cross-section sets a joint's strength.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StrengthFrom {
+    /// The smaller of the two parts (Walking with Dinosaurs 3.4.4: "the smallest contact
+    /// area").
+    Smaller,
+    /// The bigger of the two parts (the default: Chaumont et al. 3.4, after Sims 1994, and
+    /// the assumption behind the size normalisation of their walker fitness, equation 1).
+    Bigger,
+}
+
+/// The default joint strength: maximum torque per square metre of cross-section (N·m/m²).
+///
+/// Calibrated so that a joint can hold a horizontal one-part limb of its own cross-section
+/// and the default density against gravity up to a length of
+/// L = √(2 · strength / (ρ g)) = √(2 · 10⁴ / (1000 · 9.81)) ≈ 1.43 m: a 1 m limb with a
+/// margin of 2.04 (the torque needed is ρ g A L² / 2).
+pub const DEFAULT_STRENGTH: f64 = 1.0e4;
+
+/// The muscle model's target speed V_des (rad/s), "fixed and high" (Chaumont et al. 5.3) so
+/// that a muscle is torque-limited, never speed-limited, in every shipped creature.
+pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
+
+/// The default [`SimOptions::energy_tolerance`] (J/kg): the energy a creature may gain from
+/// nothing within about [`ENERGY_WINDOW`], what lifting it by 1 m takes: three times the
+/// most the shipped and random creatures reach at the fast setting ([`SimOptions::fast`], 3.2 J/kg), well
+/// below what the exploits evolution found reach (27 J/kg). See the README's "energy audit".
+pub const ENERGY_TOLERANCE: f64 = 10.0;
+
+/// World settings. Read from a `[task.sim]` table through [`SimTable`](super::SimTable) (a named
+/// step setting and any value over it); checked by [`SimOptions::check`].
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+#[serde(from = "super::SimTable")]
+pub struct SimOptions {
+    /// The control step in seconds: the brain runs once per step; physics runs `substeps`
+    /// times per step, at `dt / substeps`. A config file names it `control_step` (`dt`, its
+    /// name in older files, is read as well), the command line `--time-step`; not to be
+    /// confused with the developmental time step (`--dt`, an L-system's `dt:`).
+    #[serde(rename = "control_step")]
+    pub dt: f64,
+    /// Physics substeps per control step.
+    pub substeps: usize,
+    /// Solver iterations per substep (rapier's `num_solver_iterations`: each one re-linearises
+    /// the constraints and integrates positions over a fraction of the substep).
+    pub solver_iterations: usize,
+    /// Gauss-Seidel passes inside each solver iteration (rapier's
+    /// `num_internal_pgs_iterations`): cheaper than solver iterations, as the constraints are
+    /// not rebuilt.
+    pub pgs_iterations: usize,
+    /// Physics substeps per control step while a task waits for the creature to come to rest
+    /// (controller off): Chaumont's rest test compares per-step motion with Δx, so it wants
+    /// a steadier solver than walking does.
+    pub rest_substeps: usize,
+    /// Solver iterations per substep while a task waits for rest (one PGS pass each).
+    pub rest_solver_iterations: usize,
+    /// Joint model.
+    pub joints: JointModel,
+    /// Whether parts of one creature that are not joint neighbours collide.
+    pub self_collision: bool,
+    /// Friction coefficient of the ground and the parts.
+    pub friction: f64,
+    /// Actuator model.
+    pub actuator: ActuatorModel,
+    /// Maximum joint torque per square metre of cross-section (N·m/m²), multiplied by the
+    /// joint's own strength.
+    pub strength: f64,
+    /// Whose cross-section: the smaller or the bigger of the two parts.
+    pub strength_from: StrengthFrom,
+    /// The muscle model's target speed V_des (rad/s), fixed and high so that the motor runs
+    /// at saturation (torque-limited).
+    pub muscle_speed: f64,
+    /// The velocity model's top speed (rad/s): a signal s asks for s × `max_speed`.
+    pub max_speed: f64,
+    /// Height of the creature's lowest point above the ground when it is dropped.
+    pub drop_height: f64,
+    /// A part moving farther than this in one control step means the world exploded.
+    pub explosion_distance: f64,
+    /// A part faster than this (m/s) means the world exploded.
+    pub speed_limit: f64,
+    /// Energy from nowhere (J per kg of creature) that means the world exploded: the sum,
+    /// over control steps, of every rise of the creature's mechanical energy (kinetic plus
+    /// gravitational) beyond the most work its motors could have done in that step. 0 turns
+    /// the audit off.
+    pub energy_tolerance: f64,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        // Physics at 1/240 s: 4 substeps of 4 solver iterations (one PGS pass each) while
+        // walking, 4 substeps of 8 iterations (the fine reference's own setting) while a task
+        // waits for rest. The champions evolved at the faster `SimOptions::fast` setting lost
+        // most of their distance at the fine reference; those of the few runs evolved at this
+        // one kept most of theirs (lucky walks aside), and this setting ranks random creatures
+        // about as alike to the fine reference as the reference ranks them to itself (see
+        // `ontogeny bench --fidelity` and the README's "Speed and fidelity").
+        let (substeps, solver_iterations, pgs_iterations, rest_substeps, rest_solver_iterations) =
+            StepSetting::Default.stepping();
+        SimOptions {
+            dt: 1.0 / 60.0,
+            substeps,
+            solver_iterations,
+            pgs_iterations,
+            rest_substeps,
+            rest_solver_iterations,
+            joints: JointModel::Impulse,
+            self_collision: true,
+            friction: 1.0,
+            actuator: ActuatorModel::Muscle,
+            strength: DEFAULT_STRENGTH,
+            strength_from: StrengthFrom::Bigger,
+            muscle_speed: DEFAULT_MUSCLE_SPEED,
+            max_speed: 5.0,
+            drop_height: 0.05,
+            explosion_distance: 2.0,
+            speed_limit: 100.0,
+            energy_tolerance: ENERGY_TOLERANCE,
+        }
+    }
+}
+
+impl SimOptions {
+    /// The fast setting ([`StepSetting::Fast`]), the default until evolution was found to
+    /// exploit it: one physics step of 1/60 s with 2 solver iterations of 3 Gauss-Seidel
+    /// passes while walking, 2 substeps of 4 iterations while waiting for rest; everything else
+    /// as `self`. About 4× cheaper than the default per walk (3.6× with the rest phases, 4.7×
+    /// controller on), and good for ranking random creatures (`bench --fidelity`), but evolved
+    /// creatures learn to walk on its errors (README, "Speed and fidelity").
+    pub fn fast(&self) -> SimOptions {
+        StepSetting::Fast.apply(self)
+    }
+
+    /// The fine reference setting ([`StepSetting::Fine`]): these settings with 4 physics
+    /// substeps of 8 solver iterations (one PGS pass each) both while walking and while waiting
+    /// for rest; the control step `dt` and everything else unchanged. At the default `dt` of
+    /// 1/60 s that is physics at 1/240 s. `ontogeny bench --fidelity` ranks stepping settings
+    /// against it, and `ontogeny evolve` re-walks each generation's best with it, since
+    /// evolution learns to exploit a coarse setting (see the README's *Speed and fidelity* and
+    /// *Evolve*).
+    pub fn fine_reference(&self) -> SimOptions {
+        StepSetting::Fine.apply(self)
+    }
+}
+
+impl SimOptions {
+    /// Checks every value against its range, so that a world can be built and stepped in a
+    /// bounded time: the control step `dt` (`control_step`) in [[`MIN_DT`], [`MAX_DT`]] seconds, substeps 1 to [`MAX_SUBSTEPS`],
+    /// solver iterations and Gauss-Seidel passes 1 to [`MAX_ITERATIONS`], friction, strength,
+    /// drop height and energy tolerance finite and not negative, speeds and the explosion
+    /// distance finite and positive. The error names the key.
+    pub fn check(&self) -> Result<(), SettingError> {
+        if !(MIN_DT..=MAX_DT).contains(&self.dt) {
+            return Err(SettingError::out_of_range(
+                "control_step",
+                &format!("in [{MIN_DT}, {MAX_DT}] seconds"),
+                self.dt,
+            ));
+        }
+        let counts = [
+            ("substeps", self.substeps, MAX_SUBSTEPS),
+            ("rest_substeps", self.rest_substeps, MAX_SUBSTEPS),
+            ("solver_iterations", self.solver_iterations, MAX_ITERATIONS),
+            (
+                "rest_solver_iterations",
+                self.rest_solver_iterations,
+                MAX_ITERATIONS,
+            ),
+            ("pgs_iterations", self.pgs_iterations, MAX_ITERATIONS),
+        ];
+        for (key, value, most) in counts {
+            if !(1..=most).contains(&value) {
+                return Err(SettingError::out_of_range(
+                    key,
+                    &format!("1 to {most}"),
+                    value,
+                ));
+            }
+        }
+        check_real("friction", self.friction, 0.0, false)?;
+        check_real("strength", self.strength, 0.0, false)?;
+        check_real("muscle_speed", self.muscle_speed, 0.0, true)?;
+        check_real("max_speed", self.max_speed, 0.0, true)?;
+        check_real("drop_height", self.drop_height, 0.0, false)?;
+        check_real("explosion_distance", self.explosion_distance, 0.0, true)?;
+        check_real("speed_limit", self.speed_limit, 0.0, true)?;
+        if !(self.energy_tolerance.is_finite() && self.energy_tolerance >= 0.0) {
+            return Err(SettingError::out_of_range(
+                "energy_tolerance",
+                "finite and not negative (0 turns the audit off)",
+                self.energy_tolerance,
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_defaults_pass_the_check_and_every_named_setting_too() {
+        for setting in StepSetting::ALL {
+            assert_eq!(setting.apply(&SimOptions::default()).check(), Ok(()));
+        }
+    }
+
+    #[test]
+    fn the_check_names_the_key_and_its_range() {
+        let cases: [(SimOptions, &str); 8] = [
+            (
+                SimOptions {
+                    substeps: 0,
+                    ..SimOptions::default()
+                },
+                "substeps must be 1 to 64, not 0",
+            ),
+            (
+                SimOptions {
+                    substeps: 4_000_000_000,
+                    ..SimOptions::default()
+                },
+                "substeps must be 1 to 64, not 4000000000",
+            ),
+            (
+                SimOptions {
+                    solver_iterations: 1_000_000_000,
+                    ..SimOptions::default()
+                },
+                "solver_iterations must be 1 to 256, not 1000000000",
+            ),
+            (
+                SimOptions {
+                    dt: 1e-9,
+                    ..SimOptions::default()
+                },
+                "control_step must be in [0.001, 0.1] seconds, not 0.000000001",
+            ),
+            (
+                SimOptions {
+                    dt: f64::NAN,
+                    ..SimOptions::default()
+                },
+                "control_step must be in [0.001, 0.1] seconds, not NaN",
+            ),
+            (
+                SimOptions {
+                    friction: -1.0,
+                    ..SimOptions::default()
+                },
+                "friction must be finite and not negative, not -1",
+            ),
+            (
+                SimOptions {
+                    muscle_speed: f64::INFINITY,
+                    ..SimOptions::default()
+                },
+                "muscle_speed must be finite and positive, not inf",
+            ),
+            (
+                SimOptions {
+                    energy_tolerance: -2.0,
+                    ..SimOptions::default()
+                },
+                "energy_tolerance must be finite and not negative (0 turns the audit off), not -2",
+            ),
+        ];
+        for (options, message) in cases {
+            let e = options.check().unwrap_err();
+            assert_eq!(e.to_string(), message);
+            assert_eq!(
+                e.within("sim").within("task").to_string(),
+                format!("[task.sim] {message}")
+            );
+        }
+        let e = SimOptions {
+            rest_substeps: 65,
+            ..SimOptions::default()
+        }
+        .check()
+        .unwrap_err();
+        assert_eq!(
+            e.for_flag("--rest-substeps"),
+            "--rest-substeps must be 1 to 64, not 65"
+        );
+    }
+}
