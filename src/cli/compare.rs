@@ -19,8 +19,8 @@ use ontogeny::task::WalkerFitness;
 use super::physics::setting_parser;
 
 use super::evolve::{
-    EncodingArg, bad, check_seconds, config_error, encoding_names, encoding_parser,
-    resolve_task, run_error, set_threads,
+    EncodingArg, bad, check_seconds, config_error, encoding_names, encoding_parser, resolve_task,
+    run_error, set_threads,
 };
 
 /// Flags of `ontogeny compare`.

@@ -239,10 +239,6 @@ pub struct Individual<G> {
     pub reused: bool,
 }
 
-/// A generation's figures, under the name they had before they became one type with the run
-/// store's record of a generation: [`GenerationRecord`] itself.
-pub type GenerationStats = GenerationRecord;
-
 impl GenerationRecord {
     /// The figures of `population`, `evaluations` of whom were evaluated this generation.
     /// Mean, median and standard deviation are over the individuals whose status is `ok` (NaN

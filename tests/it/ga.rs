@@ -5,9 +5,9 @@ use ontogeny::creature::Creature;
 use ontogeny::encoding::{DevelopError, Genome, Rng};
 use ontogeny::evolve::cache::EvaluationCache;
 use ontogeny::evolve::ga::{
-    Evolution, Fallbacks, GaSettings, GenerationStats, Individual, Operator, Preset, ranking,
-    schedule,
+    Evolution, Fallbacks, GaSettings, Individual, Operator, Preset, ranking, schedule,
 };
+use ontogeny::evolve::store::GenerationRecord;
 use ontogeny::task::{Status, TaskKind, TaskSpec};
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
@@ -153,7 +153,7 @@ fn a_developmental_error_is_an_invalid_evaluation_at_the_failure_floor() {
     assert_eq!(first[0].evaluation.status, Status::Invalid);
     assert_eq!(first[0].evaluation.fitness, ontogeny::task::FAILURE_FITNESS);
     assert_eq!(first[0].size, (0, 0, 0));
-    let stats = GenerationStats::of(&first, 4);
+    let stats = GenerationRecord::of(&first, 4);
     assert!(stats.valid_fraction < 1.0);
 }
 
@@ -198,7 +198,7 @@ fn generation_stats_by_hand() {
     }
     p[3].evaluation.status = Status::Unstable;
     p[3].evaluation.fitness = ontogeny::task::FAILURE_FITNESS;
-    let s = GenerationStats::of(&p, 4);
+    let s = GenerationRecord::of(&p, 4);
     assert_eq!(s.best, 3.0);
     assert_eq!(s.mean, 2.0);
     assert_eq!(s.median, 2.0);
