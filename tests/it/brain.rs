@@ -482,19 +482,20 @@ fn a_brain_that_used_to_give_nan_now_walks() {
     assert!(e.fitness.is_finite());
 }
 
-/// The README's text around `marker`, up to the next blank line.
-fn readme_paragraph(marker: &str) -> String {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+/// The text of the reference page `page` (under `docs/reference/`) around `marker`, up to the
+/// next blank line.
+fn reference_paragraph(page: &str, marker: &str) -> String {
+    let path = format!("{}/docs/reference/{page}", env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(path).unwrap();
     let start = readme
         .find(marker)
-        .unwrap_or_else(|| panic!("{marker} in README"));
+        .unwrap_or_else(|| panic!("{marker} in docs/reference/{page}"));
     let rest = &readme[start..];
     rest[..rest.find("\n\n").unwrap_or(rest.len())].to_string()
 }
 
 #[test]
-fn the_readme_names_every_neuron_function_and_setfuncs_choices() {
+fn the_reference_names_every_neuron_function_and_setfuncs_choices() {
     let name = |f: &NeuronFunction| {
         serde_json::to_value(f)
             .unwrap()
@@ -502,11 +503,11 @@ fn the_readme_names_every_neuron_function_and_setfuncs_choices() {
             .unwrap()
             .to_string()
     };
-    let paragraph = readme_paragraph("**Brain and body in the loop.**");
+    let paragraph = reference_paragraph("tasks.md", "Every control step: sensors are read");
     for f in NeuronFunction::ALL {
         assert!(
             paragraph.contains(&format!("`{}`", name(&f))),
-            "README's brain paragraph does not name `{}`",
+            "the reference's brain paragraph does not name `{}`",
             name(&f)
         );
     }
@@ -515,12 +516,12 @@ fn the_readme_names_every_neuron_function_and_setfuncs_choices() {
         .enumerate()
         .map(|(n, f)| format!("{n} `{}`", name(f)))
         .collect();
-    let row = readme_paragraph("| `setfunc(n)` |");
+    let row = reference_paragraph("commands.md", "| `setfunc` |");
     let row = row.lines().next().unwrap();
     for choice in &choices {
         assert!(
             row.contains(choice),
-            "README's setfunc row does not list {choice}: {row}"
+            "the reference's setfunc row does not list {choice}: {row}"
         );
     }
     assert!(row.contains(&format!("modulo {}", NeuronFunction::SETFUNC.len())));

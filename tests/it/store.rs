@@ -1,6 +1,6 @@
 //! The run store (`run.sqlite`) and the fitness plot: round trips, one transaction per
 //! generation, refusals that leave files untouched, a version-1 file read as it is and
-//! migrated when opened for writing, the README's example queries.
+//! migrated when opened for writing, the run store reference's example queries.
 
 mod migration;
 
@@ -456,7 +456,7 @@ fn open_refuses_another_schema() {
     );
 }
 
-/// The README's example queries, which must appear in it word for word.
+/// The run store reference's example queries, which must appear in it word for word.
 const BEST_PER_GENERATION: &str = "SELECT generation, individual, max(fitness) AS fitness, parts
 FROM individual GROUP BY generation ORDER BY generation;";
 const VALID_PER_OPERATOR: &str = "SELECT operator, count(*) AS individuals,
@@ -464,8 +464,12 @@ const VALID_PER_OPERATOR: &str = "SELECT operator, count(*) AS individuals,
 FROM individual GROUP BY operator ORDER BY operator;";
 
 #[test]
-fn the_readme_queries_work() {
-    let readme = fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+fn the_run_store_reference_s_queries_work() {
+    let readme = fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/reference/run-store.md"
+    ))
+    .unwrap();
     assert!(readme.contains(BEST_PER_GENERATION));
     assert!(readme.contains(VALID_PER_OPERATOR));
     let path = finished_store(&scratch("readme"));
