@@ -73,22 +73,72 @@ pub(super) fn refuse(message: impl Into<String>) -> DevelopError {
     ))
 }
 
+/// Writes every named constant (`define`) of `file` into its axiom, guards and successors as
+/// its value, where a rule's own parameter of that name does not hide it: the genome keeps
+/// numbers, not names.
+fn inline_constants(file: &mut lang::ast::LsysFile, constants: &[(&str, f64)]) {
+    fn inline(e: &mut Expr, constants: &[(&str, f64)], formals: &[String]) {
+        match e {
+            Expr::Name(n, span) => {
+                if !formals.contains(n)
+                    && let Some((_, v)) = constants.iter().find(|(c, _)| c == n)
+                {
+                    *e = Expr::Number(*v, *span);
+                }
+            }
+            Expr::Number(..) => {}
+            Expr::Unary { operand, .. } => inline(operand, constants, formals),
+            Expr::Binary { lhs, rhs, .. } => {
+                inline(lhs, constants, formals);
+                inline(rhs, constants, formals);
+            }
+            Expr::Call { args, .. } => {
+                for a in args {
+                    inline(a, constants, formals);
+                }
+            }
+        }
+    }
+    if constants.is_empty() {
+        return;
+    }
+    if let Some((axiom, _)) = &mut file.axiom {
+        for a in axiom.iter_mut().flat_map(|call| call.args.iter_mut()) {
+            inline(a, constants, &[]);
+        }
+    }
+    for rule in &mut file.rules {
+        let formals: Vec<String> = rule
+            .predecessor
+            .params
+            .iter()
+            .map(|(f, _)| f.clone())
+            .collect();
+        if let Some(g) = &mut rule.guard {
+            inline(g, constants, &formals);
+        }
+        for a in rule
+            .successor
+            .iter_mut()
+            .flat_map(|call| call.args.iter_mut())
+        {
+            inline(a, constants, &formals);
+        }
+    }
+}
+
 pub(super) fn from_lsys(text: &str, limits: &LSystemLimits) -> Result<LSystemGenome, DevelopError> {
     // The language's own checks first: a file that does not compile gets its located error.
     let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
     let source = Source::new("file.lsys", text);
-    let file = lang::parse(&source).map_err(|d| DevelopError(d.to_string()))?;
+    let mut file = lang::parse(&source).map_err(|d| DevelopError(d.to_string()))?;
+    inline_constants(&mut file, &lsys.constants().collect::<Vec<_>>());
     let snippet = |span: lang::Span| text.get(span.start..span.end).unwrap_or("?").to_string();
     let line = |span: lang::Span| source.line_col(span.start).0;
 
     if lsys.is_continuous() || file.environment.is_some() {
         return Err(refuse(
             "it develops in continuous time or has an environment; the genome derives discrete steps",
-        ));
-    }
-    if !file.defines.is_empty() {
-        return Err(refuse(
-            "it defines named constants; write their values in the rules",
         ));
     }
     let derivation_length = lsys.derivation_length().unwrap_or(0);
