@@ -85,6 +85,31 @@ impl CanonicalHasher {
     }
 }
 
+/// Serialiser methods for narrow integers: each widens to its 64-bit form, so a number
+/// hashes alike whatever width it is stored in.
+macro_rules! widened {
+    ($($method:ident($narrow:ty) => $wide:ident),* $(,)?) => {
+        $(
+            fn $method(self, v: $narrow) -> Result<(), HashError> {
+                self.$wide(v.into())
+            }
+        )*
+    };
+}
+
+/// Serialiser methods for numbers hashed as a type tag and the little-endian bytes of an
+/// integer (a float's bits, a character's code point).
+macro_rules! little_endian {
+    ($($method:ident($v:ident: $ty:ty) => $tag:expr, $bits:expr),* $(,)?) => {
+        $(
+            fn $method(self, $v: $ty) -> Result<(), HashError> {
+                self.bytes($tag, &$bits.to_le_bytes());
+                Ok(())
+            }
+        )*
+    };
+}
+
 impl ser::Serializer for &mut CanonicalHasher {
     type Ok = ();
     type Error = HashError;
@@ -100,51 +125,22 @@ impl ser::Serializer for &mut CanonicalHasher {
         self.bytes(1, &[v as u8]);
         Ok(())
     }
-    fn serialize_i8(self, v: i8) -> Result<(), HashError> {
-        self.serialize_i64(v.into())
+    widened! {
+        serialize_i8(i8) => serialize_i64,
+        serialize_i16(i16) => serialize_i64,
+        serialize_i32(i32) => serialize_i64,
+        serialize_u8(u8) => serialize_u64,
+        serialize_u16(u16) => serialize_u64,
+        serialize_u32(u32) => serialize_u64,
     }
-    fn serialize_i16(self, v: i16) -> Result<(), HashError> {
-        self.serialize_i64(v.into())
-    }
-    fn serialize_i32(self, v: i32) -> Result<(), HashError> {
-        self.serialize_i64(v.into())
-    }
-    fn serialize_i64(self, v: i64) -> Result<(), HashError> {
-        self.bytes(2, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_i128(self, v: i128) -> Result<(), HashError> {
-        self.bytes(3, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_u8(self, v: u8) -> Result<(), HashError> {
-        self.serialize_u64(v.into())
-    }
-    fn serialize_u16(self, v: u16) -> Result<(), HashError> {
-        self.serialize_u64(v.into())
-    }
-    fn serialize_u32(self, v: u32) -> Result<(), HashError> {
-        self.serialize_u64(v.into())
-    }
-    fn serialize_u64(self, v: u64) -> Result<(), HashError> {
-        self.bytes(4, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_u128(self, v: u128) -> Result<(), HashError> {
-        self.bytes(5, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_f32(self, v: f32) -> Result<(), HashError> {
-        self.bytes(6, &v.to_bits().to_le_bytes());
-        Ok(())
-    }
-    fn serialize_f64(self, v: f64) -> Result<(), HashError> {
-        self.bytes(7, &v.to_bits().to_le_bytes());
-        Ok(())
-    }
-    fn serialize_char(self, v: char) -> Result<(), HashError> {
-        self.bytes(8, &u32::from(v).to_le_bytes());
-        Ok(())
+    little_endian! {
+        serialize_i64(v: i64) => 2, v,
+        serialize_i128(v: i128) => 3, v,
+        serialize_u64(v: u64) => 4, v,
+        serialize_u128(v: u128) => 5, v,
+        serialize_f32(v: f32) => 6, v.to_bits(),
+        serialize_f64(v: f64) => 7, v.to_bits(),
+        serialize_char(v: char) => 8, u32::from(v),
     }
     fn serialize_str(self, v: &str) -> Result<(), HashError> {
         self.bytes(9, v.as_bytes());
