@@ -77,6 +77,11 @@ impl CanonicalHasher {
         self.0.update(bytes);
     }
 
+    fn variant(&mut self, tag: u8, index: u32, variant: &str) {
+        self.bytes(tag, &index.to_le_bytes());
+        self.bytes(tag, variant.as_bytes());
+    }
+
     fn length(&mut self, tag: u8, len: Option<usize>) {
         self.tag(tag);
         // Sequences of unknown length end with a terminator tag instead.
@@ -105,6 +110,26 @@ macro_rules! little_endian {
             fn $method(self, $v: $ty) -> Result<(), HashError> {
                 self.bytes($tag, &$bits.to_le_bytes());
                 Ok(())
+            }
+        )*
+    };
+}
+
+/// Serialiser methods for enum variants with fields: a type tag, the variant's index and
+/// name, then the number of fields.
+macro_rules! variants_with_length {
+    ($($method:ident => $tag:expr),* $(,)?) => {
+        $(
+            fn $method(
+                self,
+                _name: &'static str,
+                index: u32,
+                variant: &'static str,
+                len: usize,
+            ) -> Result<Self, HashError> {
+                self.variant($tag, index, variant);
+                self.length($tag, Some(len));
+                Ok(self)
             }
         )*
     };
@@ -172,8 +197,7 @@ impl ser::Serializer for &mut CanonicalHasher {
         index: u32,
         variant: &'static str,
     ) -> Result<(), HashError> {
-        self.bytes(15, &index.to_le_bytes());
-        self.bytes(15, variant.as_bytes());
+        self.variant(15, index, variant);
         Ok(())
     }
     fn serialize_newtype_struct<T: ?Sized + Serialize>(
@@ -191,8 +215,7 @@ impl ser::Serializer for &mut CanonicalHasher {
         variant: &'static str,
         value: &T,
     ) -> Result<(), HashError> {
-        self.bytes(17, &index.to_le_bytes());
-        self.bytes(17, variant.as_bytes());
+        self.variant(17, index, variant);
         value.serialize(self)
     }
     fn serialize_seq(self, len: Option<usize>) -> Result<Self, HashError> {
@@ -207,18 +230,6 @@ impl ser::Serializer for &mut CanonicalHasher {
         self.length(20, Some(len));
         Ok(self)
     }
-    fn serialize_tuple_variant(
-        self,
-        _name: &'static str,
-        index: u32,
-        variant: &'static str,
-        len: usize,
-    ) -> Result<Self, HashError> {
-        self.bytes(21, &index.to_le_bytes());
-        self.bytes(21, variant.as_bytes());
-        self.length(21, Some(len));
-        Ok(self)
-    }
     fn serialize_map(self, len: Option<usize>) -> Result<Self, HashError> {
         self.length(22, len);
         Ok(self)
@@ -227,17 +238,9 @@ impl ser::Serializer for &mut CanonicalHasher {
         self.length(23, Some(len));
         Ok(self)
     }
-    fn serialize_struct_variant(
-        self,
-        _name: &'static str,
-        index: u32,
-        variant: &'static str,
-        len: usize,
-    ) -> Result<Self, HashError> {
-        self.bytes(24, &index.to_le_bytes());
-        self.bytes(24, variant.as_bytes());
-        self.length(24, Some(len));
-        Ok(self)
+    variants_with_length! {
+        serialize_tuple_variant => 21,
+        serialize_struct_variant => 24,
     }
 }
 

@@ -9,6 +9,7 @@ mod body;
 mod brain;
 mod camera;
 mod palette;
+mod pen;
 mod text;
 mod top_view;
 
@@ -161,7 +162,7 @@ mod tests {
     }
 
     /// Every frame of the GIF at `path`, as straight RGBA.
-    fn gif_frames(path: &std::path::Path) -> Vec<Vec<u8>> {
+    pub(super) fn gif_frames(path: &std::path::Path) -> Vec<Vec<u8>> {
         let mut options = gif::DecodeOptions::new();
         options.set_color_output(gif::ColorOutput::RGBA);
         let mut decoder = options
