@@ -88,14 +88,20 @@ fn y_range(generations: &[GenerationRecord]) -> (f64, f64) {
         .iter()
         .flat_map(|g| shown.iter().map(move |((_, _, f), _)| f(g)))
         .filter(|&y| plotted(y));
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
-        (lo.min(y), hi.max(y))
-    });
+    let (lo, hi) = span(values.map(|y| (y, y)));
     if lo > hi {
         return (0.0, 1.0);
     }
     let pad = ((hi - lo) * 0.05).max(0.5);
     (lo - pad, hi + pad)
+}
+
+/// The lowest low and the highest high of `ranges` (low, high); (∞, −∞) when empty.
+fn span(ranges: impl Iterator<Item = (f64, f64)>) -> (f64, f64) {
+    ranges.fold(
+        (f64::INFINITY, f64::NEG_INFINITY),
+        |(lo, hi), (low, high)| (lo.min(low), hi.max(high)),
+    )
 }
 
 /// Splits a series into runs of consecutive plotted points.
@@ -293,21 +299,13 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
             .collect()
     };
     let all: Vec<(f64, f64, f64, f64)> = bands.iter().flat_map(shown).collect();
-    let (x0, x1) = all
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.0), b.max(p.0))
-        });
+    let (x0, x1) = span(all.iter().map(|p| (p.0, p.0)));
     let (x0, x1) = if x0 > x1 {
         (0.0, 1.0)
     } else {
         (x0, x1.max(x0 + 1.0))
     };
-    let (lo, hi) = all
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.2), b.max(p.3))
-        });
+    let (lo, hi) = span(all.iter().map(|p| (p.2, p.3)));
     // Fitness of a comparison may span hundredths: pad by 5% of the span, not a fixed amount.
     let (y0, y1) = if lo > hi {
         (0.0, 1.0)

@@ -11,7 +11,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use super::camera::{Framing, View};
 use super::palette::gif_image;
 use super::text::wrap;
-use super::{Checks, Overlay, RenderError, compose, picture};
+use super::{Overlay, RenderError, checked_with_label, picture};
 use crate::creature::{Creature, Part};
 use crate::task::Sample;
 
@@ -255,18 +255,7 @@ pub fn write_still_gif(
     width: u32,
     height: u32,
 ) -> Result<(), RenderError> {
-    let overlay = Overlay {
-        label: label.to_vec(),
-        ..Overlay::default()
-    };
-    let pixmap = compose(
-        creature,
-        &View::framing(creature),
-        width,
-        height,
-        &overlay,
-        Checks::On,
-    )?;
+    let pixmap = checked_with_label(creature, label.to_vec(), width, height)?;
     crate::output::write_with(path, |out| {
         let mut encoder = gif_encoder(out, width, height)?;
         encoder

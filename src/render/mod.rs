@@ -109,12 +109,24 @@ pub fn checked_picture(
     width: u32,
     height: u32,
 ) -> Result<Pixmap, RenderError> {
+    let label = if title.is_empty() {
+        Vec::new()
+    } else {
+        vec![title.to_string()]
+    };
+    checked_with_label(creature, label, width, height)
+}
+
+/// The creature framed whole and checked (see [`checked_picture`]), under the lines of
+/// `label`.
+fn checked_with_label(
+    creature: &Creature,
+    label: Vec<String>,
+    width: u32,
+    height: u32,
+) -> Result<Pixmap, RenderError> {
     let overlay = Overlay {
-        label: if title.is_empty() {
-            Vec::new()
-        } else {
-            vec![title.to_string()]
-        },
+        label,
         ..Overlay::default()
     };
     compose(
