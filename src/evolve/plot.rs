@@ -235,6 +235,13 @@ fn canvas(svg: &mut String) -> Result<DrawingArea<SVGBackend<'_>, Shift>, String
     Ok(root)
 }
 
+/// A chart of `x` against `y` drawn into SVG.
+type PlotChart<'a, 'b, X, Y> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<<X as AsRangedCoord>::CoordDescType, <Y as AsRangedCoord>::CoordDescType>,
+>;
+
 /// A chart of `x` against `y` on `root` under `title`, with the plots' caption, margin and
 /// label areas.
 fn chart<'a, 'b, X: AsRangedCoord, Y: AsRangedCoord>(
@@ -242,8 +249,7 @@ fn chart<'a, 'b, X: AsRangedCoord, Y: AsRangedCoord>(
     title: &str,
     x: X,
     y: Y,
-) -> Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<X::CoordDescType, Y::CoordDescType>>, String>
-{
+) -> Result<PlotChart<'a, 'b, X, Y>, String> {
     ChartBuilder::on(root)
         .caption(title, ("sans-serif", 24))
         .margin(20)

@@ -72,10 +72,10 @@ pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CompareError + '
 
 /// Test settings: the Chaumont preset with `population` and `generations`.
 #[cfg(test)]
-fn chaumont_ga(population: usize, generations: usize) -> crate::evolve::GaSettings {
-    crate::evolve::GaSettings {
+fn chaumont_ga(population: usize, generations: usize) -> crate::evolve::ga::GaSettings {
+    crate::evolve::ga::GaSettings {
         population,
         generations,
-        ..crate::evolve::GaSettings::preset(crate::evolve::ga::Preset::Chaumont)
+        ..crate::evolve::ga::GaSettings::preset(crate::evolve::ga::Preset::Chaumont)
     }
 }
