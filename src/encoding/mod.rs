@@ -129,6 +129,16 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     }
 }
 
+/// Every (item, slot) index pair of `items`, where item `i` has `slots(&items[i])` slots, in
+/// order: the places an operator can pick among (a node's connections, a production's pairs).
+pub(crate) fn index_pairs<T>(items: &[T], slots: impl Fn(&T) -> usize) -> Vec<(usize, usize)> {
+    items
+        .iter()
+        .enumerate()
+        .flat_map(|(i, item)| (0..slots(item)).map(move |j| (i, j)))
+        .collect()
+}
+
 /// A constant number written as such in a hand-written file (`0.5`, `-1`); with
 /// `nested_minus`, minus signs may nest (`-(-1)` is 1), else only one is read.
 pub(crate) fn number(e: &Expr, nested_minus: bool) -> Option<f64> {

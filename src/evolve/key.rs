@@ -77,12 +77,62 @@ impl CanonicalHasher {
         self.0.update(bytes);
     }
 
+    fn variant(&mut self, tag: u8, index: u32, variant: &str) {
+        self.bytes(tag, &index.to_le_bytes());
+        self.bytes(tag, variant.as_bytes());
+    }
+
     fn length(&mut self, tag: u8, len: Option<usize>) {
         self.tag(tag);
         // Sequences of unknown length end with a terminator tag instead.
         self.0
             .update((len.map_or(u64::MAX, |n| n as u64)).to_le_bytes());
     }
+}
+
+/// Serialiser methods for narrow integers: each widens to its 64-bit form, so a number
+/// hashes alike whatever width it is stored in.
+macro_rules! widened {
+    ($($method:ident($narrow:ty) => $wide:ident),* $(,)?) => {
+        $(
+            fn $method(self, v: $narrow) -> Result<(), HashError> {
+                self.$wide(v.into())
+            }
+        )*
+    };
+}
+
+/// Serialiser methods for numbers hashed as a type tag and the little-endian bytes of an
+/// integer (a float's bits, a character's code point).
+macro_rules! little_endian {
+    ($($method:ident($v:ident: $ty:ty) => $tag:expr, $bits:expr),* $(,)?) => {
+        $(
+            fn $method(self, $v: $ty) -> Result<(), HashError> {
+                self.bytes($tag, &$bits.to_le_bytes());
+                Ok(())
+            }
+        )*
+    };
+}
+
+/// Serialiser methods for enum variants with fields: a type tag, the variant's index and
+/// name, then the number of fields.
+macro_rules! variants_with_length {
+    ($($method:ident => $tag:expr),* $(,)?) => {
+        $(
+            fn $method(
+                self,
+                _name: &'static str,
+                index: u32,
+                variant: &'static str,
+                len: usize,
+            ) -> Result<Self, HashError> {
+                self.variant($tag, index, variant);
+                self.length($tag, Some(len));
+                Ok(self)
+            }
+        )*
+    };
 }
 
 impl ser::Serializer for &mut CanonicalHasher {
@@ -100,51 +150,22 @@ impl ser::Serializer for &mut CanonicalHasher {
         self.bytes(1, &[v as u8]);
         Ok(())
     }
-    fn serialize_i8(self, v: i8) -> Result<(), HashError> {
-        self.serialize_i64(v.into())
+    widened! {
+        serialize_i8(i8) => serialize_i64,
+        serialize_i16(i16) => serialize_i64,
+        serialize_i32(i32) => serialize_i64,
+        serialize_u8(u8) => serialize_u64,
+        serialize_u16(u16) => serialize_u64,
+        serialize_u32(u32) => serialize_u64,
     }
-    fn serialize_i16(self, v: i16) -> Result<(), HashError> {
-        self.serialize_i64(v.into())
-    }
-    fn serialize_i32(self, v: i32) -> Result<(), HashError> {
-        self.serialize_i64(v.into())
-    }
-    fn serialize_i64(self, v: i64) -> Result<(), HashError> {
-        self.bytes(2, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_i128(self, v: i128) -> Result<(), HashError> {
-        self.bytes(3, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_u8(self, v: u8) -> Result<(), HashError> {
-        self.serialize_u64(v.into())
-    }
-    fn serialize_u16(self, v: u16) -> Result<(), HashError> {
-        self.serialize_u64(v.into())
-    }
-    fn serialize_u32(self, v: u32) -> Result<(), HashError> {
-        self.serialize_u64(v.into())
-    }
-    fn serialize_u64(self, v: u64) -> Result<(), HashError> {
-        self.bytes(4, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_u128(self, v: u128) -> Result<(), HashError> {
-        self.bytes(5, &v.to_le_bytes());
-        Ok(())
-    }
-    fn serialize_f32(self, v: f32) -> Result<(), HashError> {
-        self.bytes(6, &v.to_bits().to_le_bytes());
-        Ok(())
-    }
-    fn serialize_f64(self, v: f64) -> Result<(), HashError> {
-        self.bytes(7, &v.to_bits().to_le_bytes());
-        Ok(())
-    }
-    fn serialize_char(self, v: char) -> Result<(), HashError> {
-        self.bytes(8, &u32::from(v).to_le_bytes());
-        Ok(())
+    little_endian! {
+        serialize_i64(v: i64) => 2, v,
+        serialize_i128(v: i128) => 3, v,
+        serialize_u64(v: u64) => 4, v,
+        serialize_u128(v: u128) => 5, v,
+        serialize_f32(v: f32) => 6, v.to_bits(),
+        serialize_f64(v: f64) => 7, v.to_bits(),
+        serialize_char(v: char) => 8, u32::from(v),
     }
     fn serialize_str(self, v: &str) -> Result<(), HashError> {
         self.bytes(9, v.as_bytes());
@@ -176,8 +197,7 @@ impl ser::Serializer for &mut CanonicalHasher {
         index: u32,
         variant: &'static str,
     ) -> Result<(), HashError> {
-        self.bytes(15, &index.to_le_bytes());
-        self.bytes(15, variant.as_bytes());
+        self.variant(15, index, variant);
         Ok(())
     }
     fn serialize_newtype_struct<T: ?Sized + Serialize>(
@@ -195,8 +215,7 @@ impl ser::Serializer for &mut CanonicalHasher {
         variant: &'static str,
         value: &T,
     ) -> Result<(), HashError> {
-        self.bytes(17, &index.to_le_bytes());
-        self.bytes(17, variant.as_bytes());
+        self.variant(17, index, variant);
         value.serialize(self)
     }
     fn serialize_seq(self, len: Option<usize>) -> Result<Self, HashError> {
@@ -211,18 +230,6 @@ impl ser::Serializer for &mut CanonicalHasher {
         self.length(20, Some(len));
         Ok(self)
     }
-    fn serialize_tuple_variant(
-        self,
-        _name: &'static str,
-        index: u32,
-        variant: &'static str,
-        len: usize,
-    ) -> Result<Self, HashError> {
-        self.bytes(21, &index.to_le_bytes());
-        self.bytes(21, variant.as_bytes());
-        self.length(21, Some(len));
-        Ok(self)
-    }
     fn serialize_map(self, len: Option<usize>) -> Result<Self, HashError> {
         self.length(22, len);
         Ok(self)
@@ -231,17 +238,9 @@ impl ser::Serializer for &mut CanonicalHasher {
         self.length(23, Some(len));
         Ok(self)
     }
-    fn serialize_struct_variant(
-        self,
-        _name: &'static str,
-        index: u32,
-        variant: &'static str,
-        len: usize,
-    ) -> Result<Self, HashError> {
-        self.bytes(24, &index.to_le_bytes());
-        self.bytes(24, variant.as_bytes());
-        self.length(24, Some(len));
-        Ok(self)
+    variants_with_length! {
+        serialize_tuple_variant => 21,
+        serialize_struct_variant => 24,
     }
 }
 

@@ -3,6 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
+use plotters::chart::MeshStyle;
+use plotters::coord::Shift;
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 
 use super::store::GenerationRecord;
@@ -74,12 +77,7 @@ pub fn fitness_svg(
     generations: &[GenerationRecord],
     title: &str,
 ) -> Result<(), PlotError> {
-    let mut svg = String::new();
-    draw(&mut svg, generations, title).map_err(|detail| PlotError::Draw {
-        path: path.into(),
-        detail,
-    })?;
-    write_svg(path, svg)
+    write_plot(path, |svg| draw(svg, generations, title))
 }
 
 /// The y range: the plotted values' span, padded by 5 % (at least ±0.5 around a single
@@ -90,14 +88,20 @@ fn y_range(generations: &[GenerationRecord]) -> (f64, f64) {
         .iter()
         .flat_map(|g| shown.iter().map(move |((_, _, f), _)| f(g)))
         .filter(|&y| plotted(y));
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
-        (lo.min(y), hi.max(y))
-    });
+    let (lo, hi) = span(values.map(|y| (y, y)));
     if lo > hi {
         return (0.0, 1.0);
     }
     let pad = ((hi - lo) * 0.05).max(0.5);
     (lo - pad, hi + pad)
+}
+
+/// The lowest low and the highest high of `ranges` (low, high); (∞, −∞) when empty.
+fn span(ranges: impl Iterator<Item = (f64, f64)>) -> (f64, f64) {
+    ranges.fold(
+        (f64::INFINITY, f64::NEG_INFINITY),
+        |(lo, hi), (low, high)| (lo.min(low), hi.max(high)),
+    )
 }
 
 /// Splits a series into runs of consecutive plotted points.
@@ -145,28 +149,18 @@ fn draw_line<'c, 'a, 'b>(
 }
 
 fn draw(svg: &mut String, generations: &[GenerationRecord], title: &str) -> Result<(), String> {
-    let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
+    let root = canvas(svg)?;
     let e = |e: &dyn std::fmt::Display| e.to_string();
-    root.fill(&WHITE).map_err(|x| e(&x))?;
     let first = generations.iter().map(|g| g.index).min().unwrap_or(0);
     let last = generations.iter().map(|g| g.index).max().unwrap_or(0);
     let (y0, y1) = y_range(generations);
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 24))
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(80)
-        .build_cartesian_2d(first..last.max(first + 1), y0..y1)
-        .map_err(|x| e(&x))?;
-    chart
-        .configure_mesh()
-        .x_desc("generation")
-        .y_desc("fitness")
-        .label_style(("sans-serif", 14))
-        .axis_desc_style(("sans-serif", 16))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(|x| e(&x))?;
+    let mut chart = chart(&root, title, first..last.max(first + 1), y0..y1)?;
+    draw_mesh(
+        chart
+            .configure_mesh()
+            .x_desc("generation")
+            .y_desc("fitness"),
+    )?;
     for ((name, colour, value), dashed) in series(generations) {
         let style = colour.stroke_width(2);
         let runs = segments(generations, value);
@@ -195,14 +189,7 @@ fn draw(svg: &mut String, generations: &[GenerationRecord], title: &str) -> Resu
             )
             .map_err(|x| e(&x))?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .draw()
-        .map_err(|x| e(&x))?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
@@ -227,26 +214,89 @@ const PALETTE: [RGBColor; 7] = [
     RGBColor(0, 0, 0),
 ];
 
-/// Writes `svg` to `path`, whole or not at all ([`crate::output::write`]).
-fn write_svg(path: &Path, svg: String) -> Result<(), PlotError> {
+/// Draws an SVG with `draw` and writes it to `path`, whole or not at all
+/// ([`crate::output::write`]).
+fn write_plot(
+    path: &Path,
+    draw: impl FnOnce(&mut String) -> Result<(), String>,
+) -> Result<(), PlotError> {
+    let mut svg = String::new();
+    draw(&mut svg).map_err(|detail| PlotError::Draw {
+        path: path.into(),
+        detail,
+    })?;
     Ok(crate::output::write(path, svg)?)
+}
+
+/// A plot's drawing area: 900 × 540 pixels of SVG, written into `svg`, filled white.
+fn canvas(svg: &mut String) -> Result<DrawingArea<SVGBackend<'_>, Shift>, String> {
+    let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
+    root.fill(&WHITE).map_err(|x| x.to_string())?;
+    Ok(root)
+}
+
+/// A chart of `x` against `y` drawn into SVG.
+type PlotChart<'a, 'b, X, Y> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<<X as AsRangedCoord>::CoordDescType, <Y as AsRangedCoord>::CoordDescType>,
+>;
+
+/// A chart of `x` against `y` on `root` under `title`, with the plots' caption, margin and
+/// label areas.
+fn chart<'a, 'b, X: AsRangedCoord, Y: AsRangedCoord>(
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    title: &str,
+    x: X,
+    y: Y,
+) -> Result<PlotChart<'a, 'b, X, Y>, String> {
+    ChartBuilder::on(root)
+        .caption(title, ("sans-serif", 24))
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x, y)
+        .map_err(|x| x.to_string())
+}
+
+/// Draws `mesh`, set up with what differs between plots, in their common style: sans-serif
+/// labels and light grid lines.
+fn draw_mesh<X, Y>(mesh: &mut MeshStyle<'_, '_, X, Y, SVGBackend<'_>>) -> Result<(), String>
+where
+    X: Ranged + ValueFormatter<X::ValueType>,
+    Y: Ranged + ValueFormatter<Y::ValueType>,
+{
+    mesh.label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 16))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|x| x.to_string())
+}
+
+/// Draws the legend of `chart` at `position` on a light background with a grey border.
+fn draw_legend<'a, 'b: 'a, X: Ranged, Y: Ranged>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
+    position: SeriesLabelPosition,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font(("sans-serif", 14))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(160, 160, 160))
+        .draw()
+        .map_err(|x| x.to_string())
 }
 
 /// Writes an SVG of one line per band (mean best fitness against evaluations) over its shaded
 /// 95% band, with a legend; values at or below the failure floor are left out.
 pub fn bands_svg(path: &Path, bands: &[Band], title: &str) -> Result<(), PlotError> {
-    let mut svg = String::new();
-    draw_bands(&mut svg, bands, title).map_err(|detail| PlotError::Draw {
-        path: path.into(),
-        detail,
-    })?;
-    write_svg(path, svg)
+    write_plot(path, |svg| draw_bands(svg, bands, title))
 }
 
 fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), String> {
-    let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
+    let root = canvas(svg)?;
     let e = |e: &dyn std::fmt::Display| e.to_string();
-    root.fill(&WHITE).map_err(|x| e(&x))?;
     let shown = |b: &Band| -> Vec<(f64, f64, f64, f64)> {
         b.points
             .iter()
@@ -255,21 +305,13 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
             .collect()
     };
     let all: Vec<(f64, f64, f64, f64)> = bands.iter().flat_map(shown).collect();
-    let (x0, x1) = all
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.0), b.max(p.0))
-        });
+    let (x0, x1) = span(all.iter().map(|p| (p.0, p.0)));
     let (x0, x1) = if x0 > x1 {
         (0.0, 1.0)
     } else {
         (x0, x1.max(x0 + 1.0))
     };
-    let (lo, hi) = all
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.2), b.max(p.3))
-        });
+    let (lo, hi) = span(all.iter().map(|p| (p.2, p.3)));
     // Fitness of a comparison may span hundredths: pad by 5% of the span, not a fixed amount.
     let (y0, y1) = if lo > hi {
         (0.0, 1.0)
@@ -279,22 +321,13 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
         let pad = (hi - lo) * 0.05;
         (lo - pad, hi + pad)
     };
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 24))
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(80)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|x| e(&x))?;
-    chart
-        .configure_mesh()
-        .x_desc("evaluations")
-        .y_desc("mean best fitness")
-        .label_style(("sans-serif", 14))
-        .axis_desc_style(("sans-serif", 16))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(|x| e(&x))?;
+    let mut chart = chart(&root, title, x0..x1, y0..y1)?;
+    draw_mesh(
+        chart
+            .configure_mesh()
+            .x_desc("evaluations")
+            .y_desc("mean best fitness"),
+    )?;
     for (i, band) in bands.iter().enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let points = shown(band);
@@ -312,14 +345,7 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
             .label(band.name.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .draw()
-        .map_err(|x| e(&x))?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
@@ -333,12 +359,7 @@ pub fn strip_svg(
     y_desc: &str,
     title: &str,
 ) -> Result<(), PlotError> {
-    let mut svg = String::new();
-    draw_strip(&mut svg, groups, y_desc, title).map_err(|detail| PlotError::Draw {
-        path: path.into(),
-        detail,
-    })?;
-    write_svg(path, svg)
+    write_plot(path, |svg| draw_strip(svg, groups, y_desc, title))
 }
 
 fn draw_strip(
@@ -347,9 +368,8 @@ fn draw_strip(
     y_desc: &str,
     title: &str,
 ) -> Result<(), String> {
-    let root = SVGBackend::with_string(svg, (900, 540)).into_drawing_area();
+    let root = canvas(svg)?;
     let e = |e: &dyn std::fmt::Display| e.to_string();
-    root.fill(&WHITE).map_err(|x| e(&x))?;
     let hi = groups
         .iter()
         .flat_map(|g| g.1.iter().copied())
@@ -357,31 +377,27 @@ fn draw_strip(
         .fold(0.0f64, f64::max);
     let n = groups.len().max(1);
     let names: Vec<String> = groups.iter().map(|g| g.0.clone()).collect();
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 24))
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(80)
-        .build_cartesian_2d(-0.5..(n as f64 - 0.5), 0.0..(hi * 1.1).max(1.0))
-        .map_err(|x| e(&x))?;
-    chart
-        .configure_mesh()
-        .disable_x_mesh()
-        .x_labels(n)
-        .x_label_formatter(&|x| {
-            let i = x.round();
-            if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < names.len() {
-                names[i as usize].clone()
-            } else {
-                String::new()
-            }
-        })
-        .y_desc(y_desc)
-        .label_style(("sans-serif", 14))
-        .axis_desc_style(("sans-serif", 16))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(|x| e(&x))?;
+    let mut chart = chart(
+        &root,
+        title,
+        -0.5..(n as f64 - 0.5),
+        0.0..(hi * 1.1).max(1.0),
+    )?;
+    draw_mesh(
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .x_labels(n)
+            .x_label_formatter(&|x| {
+                let i = x.round();
+                if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < names.len() {
+                    names[i as usize].clone()
+                } else {
+                    String::new()
+                }
+            })
+            .y_desc(y_desc),
+    )?;
     for (i, (_, values)) in groups.iter().enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let count = values.len().max(1) as f64;

@@ -344,19 +344,22 @@ mod tests {
         assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), 2.5);
     }
 
+    /// SciPy's documented example of `mannwhitneyu` (after Conover): males' and females'
+    /// values.
+    const MALES: [f64; 5] = [19.0, 22.0, 16.0, 29.0, 24.0];
+    const FEMALES: [f64; 4] = [20.0, 11.0, 17.0, 12.0];
+
     #[test]
     fn mann_whitney_of_a_published_example() {
         // SciPy's documentation of `mannwhitneyu` (after Conover): males against females,
         // U = 17, exact two-sided p = 0.1111 = 2 · 7/126 (7 of the C(9, 4) = 126 orders give
         // U ≥ 17); the normal approximation with continuity correction: 0.11134688653314041.
-        let males = [19.0, 22.0, 16.0, 29.0, 24.0];
-        let females = [20.0, 11.0, 17.0, 12.0];
-        let t = mann_whitney(&males, &females);
+        let t = mann_whitney(&MALES, &FEMALES);
         assert_eq!(t.u, 17.0);
         assert_eq!(t.method, PMethod::Exact);
         assert!((t.p - 14.0 / 126.0).abs() < 1e-12, "{}", t.p);
         // The other way round: U = 20 − 17 = 3, the same p.
-        let r = mann_whitney(&females, &males);
+        let r = mann_whitney(&FEMALES, &MALES);
         assert_eq!(r.u, 3.0);
         assert!((r.p - t.p).abs() < 1e-12);
         // A tie forces the normal approximation with the tie-corrected variance.
@@ -373,9 +376,7 @@ mod tests {
     fn mann_whitney_normal_approximation_of_the_published_example() {
         // SciPy's documented asymptotic p of the same example: 0.11134688653314041
         // (σ² = 5·4·10/12, z = (|17 − 10| − 0.5)/σ).
-        let males = [19.0, 22.0, 16.0, 29.0, 24.0];
-        let females = [20.0, 11.0, 17.0, 12.0];
-        let t = mann_whitney_normal(&males, &females);
+        let t = mann_whitney_normal(&MALES, &FEMALES);
         assert_eq!(t.u, 17.0);
         assert_eq!(t.method, PMethod::Normal);
         assert!((t.p - 0.11134688653314041).abs() < 1e-9, "{}", t.p);
@@ -449,9 +450,7 @@ mod tests {
         assert!((a12(&[2.0, 4.0], &[1.0, 2.0, 3.0]) - 0.75).abs() < 1e-12);
         assert_eq!(a12(&[5.0, 6.0], &[1.0]), 1.0);
         // A12 = U / mn on the published example: 17/20.
-        let males = [19.0, 22.0, 16.0, 29.0, 24.0];
-        let females = [20.0, 11.0, 17.0, 12.0];
-        assert!((a12(&males, &females) - 0.85).abs() < 1e-12);
+        assert!((a12(&MALES, &FEMALES) - 0.85).abs() < 1e-12);
         assert_eq!(a12_magnitude(0.85), "large");
         assert_eq!(a12_magnitude(0.40), "small");
         assert_eq!(a12_magnitude(0.64), "medium");

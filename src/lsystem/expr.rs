@@ -344,24 +344,10 @@ impl CExpr {
 fn call(func: Func, args: &[CExpr], span: Span, env: &mut EvalEnv<'_>) -> Result<f64, ExprError> {
     let mut arg = |i: usize| args[i].eval(env);
     Ok(match func {
-        Func::Sin => arg(0)?.sin(),
-        Func::Cos => arg(0)?.cos(),
-        Func::Tan => arg(0)?.tan(),
-        Func::Asin => arg(0)?.asin(),
-        Func::Acos => arg(0)?.acos(),
-        Func::Atan => arg(0)?.atan(),
         Func::Atan2 => {
             let y = arg(0)?;
             y.atan2(arg(1)?)
         }
-        Func::Sqrt => arg(0)?.sqrt(),
-        Func::Exp => arg(0)?.exp(),
-        Func::Ln => arg(0)?.ln(),
-        Func::Log => arg(0)?.log10(),
-        Func::Abs => arg(0)?.abs(),
-        Func::Floor => arg(0)?.floor(),
-        Func::Ceil => arg(0)?.ceil(),
-        Func::Round => arg(0)?.round(),
         Func::Min | Func::Max => {
             let mut best = args[0].eval(env)?;
             for a in &args[1..] {
@@ -404,5 +390,32 @@ fn call(func: Func, args: &[CExpr], span: Span, env: &mut EvalEnv<'_>) -> Result
             let z: f64 = StandardNormal.sample(env.rng);
             mean + sd * z
         }
+        // Every other function takes one number.
+        _ => match unary(func) {
+            Some(f) => f(arg(0)?),
+            None => f64::NAN,
+        },
+    })
+}
+
+/// The function of one number that `func` computes, if it is one (`None` for the others,
+/// which [`call`] computes itself).
+fn unary(func: Func) -> Option<fn(f64) -> f64> {
+    Some(match func {
+        Func::Sin => f64::sin,
+        Func::Cos => f64::cos,
+        Func::Tan => f64::tan,
+        Func::Asin => f64::asin,
+        Func::Acos => f64::acos,
+        Func::Atan => f64::atan,
+        Func::Sqrt => f64::sqrt,
+        Func::Exp => f64::exp,
+        Func::Ln => f64::ln,
+        Func::Log => f64::log10,
+        Func::Abs => f64::abs,
+        Func::Floor => f64::floor,
+        Func::Ceil => f64::ceil,
+        Func::Round => f64::round,
+        _ => return None,
     })
 }

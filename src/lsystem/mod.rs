@@ -342,39 +342,16 @@ impl LSystem {
     }
 
     fn failure(&self, failure: Failure, when: &str) -> Diagnostic {
+        let runtime =
+            |span, message| Diagnostic::at(DiagnosticKind::Runtime, &self.source, span, message);
         match failure {
-            Failure::Expr(e) => Diagnostic::at(
-                DiagnosticKind::Runtime,
-                &self.source,
-                e.span,
-                format!("{} while {when}", e.message),
-            ),
-            Failure::TooLong { span, limit } => Diagnostic::at(
-                DiagnosticKind::Runtime,
-                &self.source,
-                span.unwrap_or(self.axiom_span),
-                format!("the string grew past {limit} modules while {when}"),
-            )
+            Failure::Expr(e) => runtime(e.span, format!("{} while {when}", e.message)),
+            Failure::TooLong { span, limit } => runtime(span.unwrap_or(self.axiom_span), format!("the string grew past {limit} modules while {when}"))
             .with_note("raise the limit with --max-modules, or check for a runaway rule"),
-            Failure::SolveInDiscreteMode { span } => Diagnostic::at(
-                DiagnosticKind::Runtime,
-                &self.source,
-                span,
-                format!("a 'solve' rule matched while {when} in discrete steps"),
-            )
+            Failure::SolveInDiscreteMode { span } => runtime(span, format!("a 'solve' rule matched while {when} in discrete steps"))
             .with_note("differential rules grow in continuous time: add 'time: T' to the file or pass --time"),
-            Failure::Query { span, message } => Diagnostic::at(
-                DiagnosticKind::Runtime,
-                &self.source,
-                span.unwrap_or(self.axiom_span),
-                format!("{message} while {when}"),
-            ),
-            Failure::NoSettling { span, passes } => Diagnostic::at(
-                DiagnosticKind::Runtime,
-                &self.source,
-                span.unwrap_or(self.axiom_span),
-                format!("this rule keeps firing: more than {passes} rewriting passes at one instant while {when}"),
-            )
+            Failure::Query { span, message } => runtime(span.unwrap_or(self.axiom_span), format!("{message} while {when}")),
+            Failure::NoSettling { span, passes } => runtime(span.unwrap_or(self.axiom_span), format!("this rule keeps firing: more than {passes} rewriting passes at one instant while {when}"))
             .with_note("in continuous time a discrete rule must change its module so that it stops matching"),
         }
     }

@@ -11,7 +11,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use super::camera::{Framing, View};
 use super::palette::gif_image;
 use super::text::wrap;
-use super::{Checks, Overlay, RenderError, compose, picture};
+use super::{Overlay, RenderError, checked_with_label, picture};
 use crate::creature::{Creature, Part};
 use crate::task::Sample;
 
@@ -255,18 +255,7 @@ pub fn write_still_gif(
     width: u32,
     height: u32,
 ) -> Result<(), RenderError> {
-    let overlay = Overlay {
-        label: label.to_vec(),
-        ..Overlay::default()
-    };
-    let pixmap = compose(
-        creature,
-        &View::framing(creature),
-        width,
-        height,
-        &overlay,
-        Checks::On,
-    )?;
+    let pixmap = checked_with_label(creature, label.to_vec(), width, height)?;
     crate::output::write_with(path, |out| {
         let mut encoder = gif_encoder(out, width, height)?;
         encoder
@@ -346,6 +335,7 @@ mod tests {
     use super::*;
     use crate::develop::BuildOptions;
     use crate::lsystem::LSystem;
+    use crate::render::tests::gif_frames;
     use crate::sim::SimOptions;
     use crate::task::{self, CatapultOptions, Evaluation, Recording, WalkerOptions};
     use std::path::Path;
@@ -395,20 +385,6 @@ mod tests {
         .unwrap();
     }
 
-    /// The images of the GIF at `path` as straight RGBA.
-    fn gif_images(path: &Path) -> Vec<Vec<u8>> {
-        let mut options = gif::DecodeOptions::new();
-        options.set_color_output(gif::ColorOutput::RGBA);
-        let mut decoder = options
-            .read_info(std::fs::File::open(path).unwrap())
-            .unwrap();
-        let mut images = Vec::new();
-        while let Some(image) = decoder.read_next_frame().unwrap() {
-            images.push(image.buffer.to_vec());
-        }
-        images
-    }
-
     use crate::render::palette::TARGET;
 
     #[test]
@@ -434,7 +410,7 @@ mod tests {
         }
         assert_ne!(gifs[0], gifs[1], "an aim GIF differs from a catapult one");
         let has_target = |name: &str| {
-            gif_images(&dir.join(name).join("behaviour.gif"))
+            gif_frames(&dir.join(name).join("behaviour.gif"))
                 .iter()
                 .map(|f| f.chunks_exact(4).filter(|p| p[..3] == TARGET).count())
                 .collect::<Vec<_>>()
@@ -447,7 +423,7 @@ mod tests {
         );
         // The projectile's trail grows: the last image holds more of its colour than the first.
         let trail = |f: &Vec<u8>| f.chunks_exact(4).filter(|p| p[..3] == [190, 90, 0]).count();
-        let images = gif_images(&dir.join("catapult").join("behaviour.gif"));
+        let images = gif_frames(&dir.join("catapult").join("behaviour.gif"));
         assert!(trail(images.last().unwrap()) > trail(&images[0]) + 50);
 
         // A failed aim evaluation still records its target, and its GIF still shows it.
@@ -523,7 +499,7 @@ mod tests {
                 .unwrap();
         assert_eq!(json["status"], "self-intersecting");
         assert_eq!(json["message"], "parts 0 and 3 interpenetrate");
-        let images = gif_images(&dir.join("behaviour.gif"));
+        let images = gif_frames(&dir.join("behaviour.gif"));
         assert_eq!(images.len(), 1, "one picture, not an empty GIF");
         // The picture is checked: the interpenetrating parts are outlined and the text is
         // written in the marking red (render's `MARK`), thousands of pixels of it with the

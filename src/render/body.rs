@@ -3,11 +3,12 @@
 //! invalid (interpenetrating parts outlined, part numbers, problems written) and a scale bar.
 
 use nalgebra::Vector3;
-use tiny_skia::{FillRule, PathBuilder, Pixmap, Rect, Stroke, Transform};
+use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 
 use super::Overlay;
 use super::camera::{Camera, View};
 use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, TARGET, TRAIL, paint, solid};
+use super::pen::{fill, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
 use crate::creature::{Creature, Severity};
@@ -123,13 +124,7 @@ fn draw_ground(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, view: &Vi
         })
         .collect();
     if let Some(path) = polygon(&floor) {
-        pixmap.fill_path(
-            &path,
-            &paint(232, 234, 228, 255),
-            FillRule::Winding,
-            shift,
-            None,
-        );
+        fill(pixmap, &path, &paint(232, 234, 228, 255), shift);
     }
     let mut grid = PathBuilder::new();
     let mut segment = |from: (f64, f64), to: (f64, f64)| {
@@ -149,10 +144,7 @@ fn draw_ground(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, view: &Vi
         z += step;
     }
     if let Some(path) = grid.finish() {
-        let stroke = Stroke {
-            width: 1.0,
-            ..Stroke::default()
-        };
+        let stroke = stroke_width(1.0);
         pixmap.stroke_path(&path, &paint(190, 194, 186, 255), &stroke, shift, None);
     }
 }
@@ -172,10 +164,7 @@ fn draw_target_stem(
     pb.move_to(fx, fy);
     pb.line_to(tx, ty);
     if let Some(path) = pb.finish() {
-        let stroke = Stroke {
-            width: 1.5,
-            ..Stroke::default()
-        };
+        let stroke = stroke_width(1.5);
         pixmap.stroke_path(&path, &solid(TARGET), &stroke, shift, None);
     }
 }
@@ -198,7 +187,7 @@ fn draw_shadows(
             })
             .collect();
         if let Some(path) = convex_hull_path(&mut pts) {
-            pixmap.fill_path(&path, &paint(0, 0, 0, 40), FillRule::Winding, shift, None);
+            fill(pixmap, &path, &paint(0, 0, 0, 40), shift);
         }
     }
 }
@@ -231,10 +220,7 @@ fn draw_parts(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, creature: 
         }
     }
     faces.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let outline = Stroke {
-        width: 1.0,
-        ..Stroke::default()
-    };
+    let outline = stroke_width(1.0);
     for (_, index, face, normal) in faces {
         let part = &creature.parts[index];
         let corners = part.corners();
@@ -246,7 +232,7 @@ fn draw_parts(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, creature: 
         } else {
             (100.0, 150.0, 220.0)
         };
-        let fill = paint(
+        let colour = paint(
             (base.0 * shade) as u8,
             (base.1 * shade) as u8,
             (base.2 * shade) as u8,
@@ -260,7 +246,7 @@ fn draw_parts(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, creature: 
             })
             .collect();
         if let Some(path) = polygon(&points) {
-            pixmap.fill_path(&path, &fill, FillRule::Winding, shift, None);
+            fill(pixmap, &path, &colour, shift);
             pixmap.stroke_path(&path, &paint(30, 40, 60, 200), &outline, shift, None);
         }
     }
@@ -288,10 +274,7 @@ fn outline_marked(
             })
             .collect();
         if let Some(path) = convex_hull_path(&mut pts) {
-            let stroke = Stroke {
-                width: 3.0,
-                ..Stroke::default()
-            };
+            let stroke = stroke_width(3.0);
             pixmap.stroke_path(&path, &solid(MARK), &stroke, shift, None);
         }
     }
@@ -309,10 +292,7 @@ fn draw_joints(
     creature: &Creature,
     most: f32,
 ) {
-    let outline = Stroke {
-        width: 1.0,
-        ..Stroke::default()
-    };
+    let outline = stroke_width(1.0);
     for joint in &creature.joints {
         let (sx, sy, _) = camera.project(&joint.anchor);
         let radius = joint_radius(creature, joint.parent, joint.child);
@@ -321,13 +301,7 @@ fn draw_joints(
         if joint.kind.dof() == 0 || joint.axes.is_empty() {
             let dot = (0.4 * pixels).clamp(2.0, 6.0);
             if let Some(path) = PathBuilder::from_circle(sx, sy, dot) {
-                pixmap.fill_path(
-                    &path,
-                    &paint(90, 90, 90, 220),
-                    FillRule::Winding,
-                    shift,
-                    None,
-                );
+                fill(pixmap, &path, &paint(90, 90, 90, 220), shift);
                 pixmap.stroke_path(&path, &solid([255; 3]), &outline, shift, None);
             }
             continue;
@@ -350,16 +324,13 @@ fn draw_joints(
             })
             .collect();
         if let Some(path) = polygon(&rim) {
-            pixmap.fill_path(&path, &solid(colour), FillRule::Winding, shift, None);
+            fill(pixmap, &path, &solid(colour), shift);
             pixmap.stroke_path(&path, &solid([255; 3]), &outline, shift, None);
         }
         if let Some(path) = PathBuilder::from_circle(sx, sy, 2.5) {
-            pixmap.fill_path(&path, &solid(colour), FillRule::Winding, shift, None);
+            fill(pixmap, &path, &solid(colour), shift);
         }
-        let stroke = Stroke {
-            width: 2.0,
-            ..Stroke::default()
-        };
+        let stroke = stroke_width(2.0);
         for axis in &joint.axes {
             let Some(axis) = axis.try_normalize(1e-12) else {
                 continue;
@@ -386,23 +357,12 @@ fn draw_trail_and_target(
 ) {
     let (rx, ry, _, _) = region;
     let shift = Transform::from_translate(rx, ry);
-    if overlay.trail.len() >= 2 {
-        let mut pb = PathBuilder::new();
-        for (k, p) in overlay.trail.iter().enumerate() {
-            let (px, py, _) = camera.project(p);
-            if k == 0 {
-                pb.move_to(px, py);
-            } else {
-                pb.line_to(px, py);
-            }
-        }
-        if let Some(path) = pb.finish() {
-            let stroke = Stroke {
-                width: 2.0,
-                ..Stroke::default()
-            };
-            pixmap.stroke_path(&path, &solid(TRAIL), &stroke, shift, None);
-        }
+    let projected = overlay.trail.iter().map(|p| {
+        let (px, py, _) = camera.project(p);
+        (px, py)
+    });
+    if let Some(path) = polyline(projected) {
+        pixmap.stroke_path(&path, &solid(TRAIL), &stroke_width(2.0), shift, None);
     }
     if let Some(target) = overlay.target {
         let (tx, ty, _) = camera.project(&target);
@@ -478,10 +438,7 @@ fn draw_scale_bar(
     pb.line_to(bx + bar, by);
     pb.line_to(bx + bar, by - 4.0);
     if let Some(path) = pb.finish() {
-        let stroke = Stroke {
-            width: 2.0,
-            ..Stroke::default()
-        };
+        let stroke = stroke_width(2.0);
         let mut p = solid(INK);
         p.anti_alias = false;
         pixmap.stroke_path(&path, &p, &stroke, Transform::identity(), None);
@@ -587,10 +544,7 @@ fn write_text(
             y += line;
         }
         if !valid && let Some(rect) = Rect::from_xywh(rx + 1.5, ry + 1.5, rw - 3.0, rh - 3.0) {
-            let stroke = Stroke {
-                width: 3.0,
-                ..Stroke::default()
-            };
+            let stroke = stroke_width(3.0);
             let mut p = solid(MARK);
             p.anti_alias = false;
             pixmap.stroke_path(
@@ -612,13 +566,7 @@ pub(super) fn draw_bullseye(pixmap: &mut Pixmap, (x, y): (f32, f32), radius: f32
         (radius * 0.3, TARGET),
     ] {
         if let Some(path) = PathBuilder::from_circle(x, y, r) {
-            pixmap.fill_path(
-                &path,
-                &solid(colour),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill(pixmap, &path, &solid(colour), Transform::identity());
         }
     }
 }

@@ -1,9 +1,10 @@
 //! The drawing of a creature's neural network beside its body: neurons on a circle coloured
 //! by role, links by sign and weight.
 
-use tiny_skia::{FillRule, PathBuilder, Pixmap, Stroke, Transform};
+use tiny_skia::{PathBuilder, Pixmap, Transform};
 
 use super::palette::{ACTUATOR, NEURON, OSCILLATOR, PANEL, SENSOR, paint, solid};
+use super::pen::{fill, stroke_width};
 use crate::creature::{Creature, NeuronFunction, Role};
 
 /// Draws the brain into `(x, y, w, h)`: neurons on a circle — sensors green, actuators red,
@@ -38,10 +39,7 @@ pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32,
         } else {
             paint(210, 50, 50, 170)
         };
-        let stroke = Stroke {
-            width,
-            ..Stroke::default()
-        };
+        let stroke = stroke_width(width);
         let mut pb = PathBuilder::new();
         if link.from == link.to {
             pb.push_circle(ax, ay - dot * 1.6, dot * 1.2);
@@ -58,13 +56,7 @@ pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32,
             let len = (dx * dx + dy * dy).sqrt().max(1e-3);
             let (px, py) = (bx - dx / len * dot * 1.6, by - dy / len * dot * 1.6);
             if let Some(path) = PathBuilder::from_circle(px, py, width.max(2.0)) {
-                pixmap.fill_path(
-                    &path,
-                    &colour,
-                    FillRule::Winding,
-                    Transform::identity(),
-                    None,
-                );
+                fill(pixmap, &path, &colour, Transform::identity());
             }
         }
     }
@@ -77,17 +69,8 @@ pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32,
             _ => NEURON,
         });
         if let Some(path) = PathBuilder::from_circle(x, y, dot) {
-            pixmap.fill_path(
-                &path,
-                &colour,
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
-            let stroke = Stroke {
-                width: 1.0,
-                ..Stroke::default()
-            };
+            fill(pixmap, &path, &colour, Transform::identity());
+            let stroke = stroke_width(1.0);
             pixmap.stroke_path(
                 &path,
                 &paint(20, 20, 20, 255),

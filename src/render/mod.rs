@@ -9,6 +9,7 @@ mod body;
 mod brain;
 mod camera;
 mod palette;
+mod pen;
 mod text;
 mod top_view;
 
@@ -108,12 +109,24 @@ pub fn checked_picture(
     width: u32,
     height: u32,
 ) -> Result<Pixmap, RenderError> {
+    let label = if title.is_empty() {
+        Vec::new()
+    } else {
+        vec![title.to_string()]
+    };
+    checked_with_label(creature, label, width, height)
+}
+
+/// The creature framed whole and checked (see [`checked_picture`]), under the lines of
+/// `label`.
+fn checked_with_label(
+    creature: &Creature,
+    label: Vec<String>,
+    width: u32,
+    height: u32,
+) -> Result<Pixmap, RenderError> {
     let overlay = Overlay {
-        label: if title.is_empty() {
-            Vec::new()
-        } else {
-            vec![title.to_string()]
-        },
+        label,
         ..Overlay::default()
     };
     compose(
@@ -161,7 +174,7 @@ mod tests {
     }
 
     /// Every frame of the GIF at `path`, as straight RGBA.
-    fn gif_frames(path: &std::path::Path) -> Vec<Vec<u8>> {
+    pub(super) fn gif_frames(path: &std::path::Path) -> Vec<Vec<u8>> {
         let mut options = gif::DecodeOptions::new();
         options.set_color_output(gif::ColorOutput::RGBA);
         let mut decoder = options

@@ -1,9 +1,10 @@
 //! Text in pictures: the public-domain 8×8 bitmap font of `font8x8`, text fitted or wrapped to
 //! a width, and the round lengths and labels of scale bars.
 
-use tiny_skia::{FillRule, PathBuilder, Pixmap, Rect, Transform};
+use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 
 use super::palette::{paint, solid};
+use super::pen::fill;
 
 /// Text that fits the 8×8 font: ASCII, with the symbols messages use spelt out.
 fn ascii(text: &str) -> String {
@@ -89,7 +90,7 @@ pub(super) fn draw_text(
     if let Some(path) = pb.finish() {
         let mut p = solid(colour);
         p.anti_alias = false;
-        pixmap.fill_path(&path, &p, FillRule::Winding, Transform::identity(), None);
+        fill(pixmap, &path, &p, Transform::identity());
     }
 }
 

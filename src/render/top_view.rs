@@ -3,11 +3,12 @@
 //! stays visible when it leaves the camera's view.
 
 use nalgebra::Vector3;
-use tiny_skia::{FillRule, PathBuilder, Pixmap, Rect, Stroke, Transform};
+use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 
 use super::Overlay;
 use super::body::{convex_hull_path, draw_bullseye};
 use super::palette::{INK, TRAIL, paint, solid};
+use super::pen::{fill, polyline, stroke_width};
 use super::text::{draw_text, length_label, scale_bar_length};
 use crate::creature::Creature;
 
@@ -28,10 +29,7 @@ pub(super) fn draw_top_view(
         Transform::identity(),
         None,
     );
-    let thin = Stroke {
-        width: 1.0,
-        ..Stroke::default()
-    };
+    let thin = stroke_width(1.0);
     pixmap.stroke_path(
         &PathBuilder::from_rect(rect),
         &paint(120, 120, 120, 255),
@@ -70,43 +68,17 @@ pub(super) fn draw_top_view(
             } else {
                 paint(100, 150, 220, 255)
             };
-            pixmap.fill_path(
-                &path,
-                &colour,
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill(pixmap, &path, &colour, Transform::identity());
         }
     }
-    if overlay.trail.len() >= 2 {
-        let mut pb = PathBuilder::new();
-        for (k, p) in overlay.trail.iter().enumerate() {
-            let (px, py) = place(p);
-            if k == 0 {
-                pb.move_to(px, py);
-            } else {
-                pb.line_to(px, py);
-            }
-        }
-        if let Some(path) = pb.finish() {
-            let stroke = Stroke {
-                width: 1.5,
-                ..Stroke::default()
-            };
-            pixmap.stroke_path(&path, &solid(TRAIL), &stroke, Transform::identity(), None);
-        }
+    if let Some(path) = polyline(overlay.trail.iter().map(place)) {
+        let stroke = stroke_width(1.5);
+        pixmap.stroke_path(&path, &solid(TRAIL), &stroke, Transform::identity(), None);
     }
     if let Some(last) = overlay.trail.last() {
         let (px, py) = place(last);
         if let Some(path) = PathBuilder::from_circle(px, py, 3.0) {
-            pixmap.fill_path(
-                &path,
-                &solid(TRAIL),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill(pixmap, &path, &solid(TRAIL), Transform::identity());
         }
     }
     if let Some(target) = overlay.target {
@@ -121,10 +93,7 @@ pub(super) fn draw_top_view(
     pb.move_to(bx, by);
     pb.line_to(bx + bar, by);
     if let Some(path) = pb.finish() {
-        let stroke = Stroke {
-            width: 2.0,
-            ..Stroke::default()
-        };
+        let stroke = stroke_width(2.0);
         pixmap.stroke_path(&path, &solid(INK), &stroke, Transform::identity(), None);
     }
     draw_text(pixmap, (bx + bar + 3.0, by - 8.0), &label, 1.0, INK, false);

@@ -32,6 +32,20 @@ fn find<T: Copy>(
         })
 }
 
+/// `FromStr` for a choice with `ALL` and `name`: the choice named `text` ([`find`]), or an
+/// [`UnknownName`] that calls it `$what`.
+macro_rules! from_name {
+    ($choice:ident, $what:literal) => {
+        impl FromStr for $choice {
+            type Err = UnknownName;
+
+            fn from_str(text: &str) -> Result<$choice, UnknownName> {
+                find(&$choice::ALL, $choice::name, $what, text)
+            }
+        }
+    };
+}
+
 impl JointModel {
     /// Every joint model, in the order `--help` lists them.
     pub const ALL: [JointModel; 2] = [JointModel::Impulse, JointModel::Multibody];
@@ -53,14 +67,7 @@ impl JointModel {
     }
 }
 
-impl FromStr for JointModel {
-    type Err = UnknownName;
-
-    /// The joint model named `text` ([`JointModel::name`]).
-    fn from_str(text: &str) -> Result<JointModel, UnknownName> {
-        find(&JointModel::ALL, JointModel::name, "joint model", text)
-    }
-}
+from_name!(JointModel, "joint model");
 
 impl ActuatorModel {
     /// Every actuator model, in the order `--help` lists them.
@@ -97,19 +104,7 @@ impl ActuatorModel {
     }
 }
 
-impl FromStr for ActuatorModel {
-    type Err = UnknownName;
-
-    /// The actuator model named `text` ([`ActuatorModel::name`]).
-    fn from_str(text: &str) -> Result<ActuatorModel, UnknownName> {
-        find(
-            &ActuatorModel::ALL,
-            ActuatorModel::name,
-            "actuator model",
-            text,
-        )
-    }
-}
+from_name!(ActuatorModel, "actuator model");
 
 impl StrengthFrom {
     /// Both choices, in the order `--help` lists them.
@@ -134,19 +129,7 @@ impl StrengthFrom {
     }
 }
 
-impl FromStr for StrengthFrom {
-    type Err = UnknownName;
-
-    /// The choice named `text` ([`StrengthFrom::name`]).
-    fn from_str(text: &str) -> Result<StrengthFrom, UnknownName> {
-        find(
-            &StrengthFrom::ALL,
-            StrengthFrom::name,
-            "joint strength source",
-            text,
-        )
-    }
-}
+from_name!(StrengthFrom, "joint strength source");
 
 #[cfg(test)]
 mod tests {

@@ -13,7 +13,7 @@
 //!   opened in 3D.
 //!
 //! What this room owns: classifying PATH, turning each kind into the JSON the page reads, and
-//! serving it with the page and its vendored JavaScript (three.js, see `assets/three/LICENSE`).
+//! serving it with the page and its vendored JavaScript (three.js, see `vendor/three/LICENSE` at the repository root).
 //! What it does not own: developing a run's genomes (the command line passes a function that
 //! does, as it alone knows every encoding), nor driving a browser.
 
@@ -29,7 +29,7 @@ use crate::lsystem::{DeriveOptions, LSystem};
 
 pub use server::{Developer, Server, ServerError};
 
-/// The version of three.js vendored in `src/view/assets/three/`.
+/// The version of three.js vendored in `vendor/three/`.
 pub const THREE_VERSION: &str = "0.181.0";
 
 /// What kind of page a path opens.

@@ -23,10 +23,10 @@ use crate::lsystem::DeriveOptions;
 
 const INDEX_HTML: &str = include_str!("assets/index.html");
 const APP_JS: &str = include_str!("assets/app.js");
-const THREE_MODULE: &str = include_str!("assets/three/three.module.min.js");
-const THREE_CORE: &str = include_str!("assets/three/three.core.min.js");
-const ORBIT_CONTROLS: &str = include_str!("assets/three/OrbitControls.js");
-const THREE_LICENSE: &str = include_str!("assets/three/LICENSE");
+const THREE_MODULE: &str = include_str!("../../vendor/three/three.module.min.js");
+const THREE_CORE: &str = include_str!("../../vendor/three/three.core.min.js");
+const ORBIT_CONTROLS: &str = include_str!("../../vendor/three/OrbitControls.js");
+const THREE_LICENSE: &str = include_str!("../../vendor/three/LICENSE");
 
 /// The page's one inline script, its import map, which the policy lets run by a nonce.
 const IMPORT_MAP_TAG: &str = "<script type=\"importmap\">";

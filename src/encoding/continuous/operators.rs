@@ -285,6 +285,20 @@ pub(super) fn random_sequence(
     out
 }
 
+/// Fills `tokens` up to `len` with random motifs at the top level, using at most `growers`
+/// maturing tokens (it decreases as they are used).
+fn fill_with_motifs(
+    tokens: &mut Vec<Token>,
+    len: usize,
+    growers: &mut usize,
+    limits: &ContinuousLimits,
+    active: &[Grower],
+    rng: &mut Rng,
+) {
+    let rest = len - tokens.len();
+    tokens.extend(random_sequence(rest, rest, growers, 0, limits, active, rng));
+}
+
 /// A random rule for `grower`; `active` are the symbols the genome has rules for.
 pub(super) fn random_rule(
     grower: Grower,
@@ -305,16 +319,7 @@ pub(super) fn random_rule(
             random_param(Argument::Weight, limits, rng),
         ));
     }
-    let rest = len - successor.len();
-    successor.extend(random_sequence(
-        rest,
-        rest,
-        &mut growers,
-        0,
-        limits,
-        active,
-        rng,
-    ));
+    fill_with_motifs(&mut successor, len, &mut growers, limits, active, rng);
     Rule {
         grower,
         threshold,
@@ -342,16 +347,7 @@ pub(super) fn random_axiom(
         let room = len - axiom.len();
         axiom.extend(grower_motif(limits, active, room, rng));
     }
-    let rest = len - axiom.len();
-    axiom.extend(random_sequence(
-        rest,
-        rest,
-        &mut growers,
-        0,
-        limits,
-        active,
-        rng,
-    ));
+    fill_with_motifs(&mut axiom, len, &mut growers, limits, active, rng);
     axiom
 }
 

@@ -528,12 +528,7 @@ impl GraphGenome {
     ) -> Option<GraphGenome> {
         const MARK: usize = usize::MAX;
         let mut g = self.clone();
-        let sites: Vec<(usize, usize)> = g
-            .nodes
-            .iter()
-            .enumerate()
-            .flat_map(|(i, n)| (0..n.connections.len()).map(move |j| (i, j)))
-            .collect();
+        let sites = crate::encoding::index_pairs(&g.nodes, |n| n.connections.len());
         let (i, j) = if sites.is_empty() {
             // No connection to redirect: a new one from the root, if it has room.
             if limits.max_connections == 0 {

@@ -376,12 +376,7 @@ impl LSystemGenome {
         let params = limits.param_count();
         // The donor: one successor of the other parent.
         let donor: Vec<&Vec<Item>> = other.successors().collect();
-        let receivers: Vec<(usize, usize)> = child
-            .productions
-            .iter()
-            .enumerate()
-            .flat_map(|(i, p)| (0..p.pairs.len()).map(move |j| (i, j)))
-            .collect();
+        let receivers = crate::encoding::index_pairs(&child.productions, |p| p.pairs.len());
         if donor.is_empty() || receivers.is_empty() {
             return Some(child);
         }

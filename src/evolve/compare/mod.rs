@@ -69,3 +69,13 @@ pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CompareError + '
         source,
     }
 }
+
+/// Test settings: the Chaumont preset with `population` and `generations`.
+#[cfg(test)]
+fn chaumont_ga(population: usize, generations: usize) -> crate::evolve::ga::GaSettings {
+    crate::evolve::ga::GaSettings {
+        population,
+        generations,
+        ..crate::evolve::ga::GaSettings::preset(crate::evolve::ga::Preset::Chaumont)
+    }
+}

@@ -213,15 +213,7 @@ mod tests {
     use std::collections::BTreeSet;
 
     use super::*;
-    use crate::evolve::ga::Preset;
-
-    fn ga(population: usize, generations: usize) -> GaSettings {
-        GaSettings {
-            population,
-            generations,
-            ..GaSettings::preset(Preset::Chaumont)
-        }
-    }
+    use crate::evolve::compare::chaumont_ga as ga;
 
     #[test]
     fn the_budget_counts_what_the_ga_evaluates() {

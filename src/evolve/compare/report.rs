@@ -381,16 +381,8 @@ fn band(encoding: &str, replicates: &[Replicate]) -> Band {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::evolve::ga::{GaSettings, Preset};
+    use crate::evolve::compare::chaumont_ga as ga;
     use crate::task::TaskSpec;
-
-    fn ga(population: usize, generations: usize) -> GaSettings {
-        GaSettings {
-            population,
-            generations,
-            ..GaSettings::preset(Preset::Chaumont)
-        }
-    }
 
     fn replicate(encoding: &str, k: usize, best: f64, parts: u32) -> Replicate {
         Replicate {

@@ -94,6 +94,15 @@ pub enum StoreError {
     },
 }
 
+/// A file-system error of the store at `path` while it did `action` (e.g. "cannot read it").
+pub(super) fn io_error(path: &Path, action: &'static str, source: std::io::Error) -> StoreError {
+    StoreError::Io {
+        path: path.into(),
+        action,
+        source,
+    }
+}
+
 pub(super) fn sqlite(path: &Path, action: &str, source: rusqlite::Error) -> StoreError {
     StoreError::Sqlite {
         path: path.into(),

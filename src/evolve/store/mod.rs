@@ -26,7 +26,7 @@ use std::time::Duration;
 
 use rusqlite::{Connection, OpenFlags, OptionalExtension, TransactionBehavior, params};
 
-use error::{classify, sqlite, write_error};
+use error::{classify, io_error, sqlite, write_error};
 use records::{get_real, individual_from_row, real};
 use schema::{
     INDIVIDUAL_COLUMNS, MIGRATE_1_TO_2, MIGRATE_2_TO_3, SCHEMA, check_header, check_store,
@@ -81,11 +81,11 @@ impl RunStore {
         };
         if let Err(source) = placed.and_then(|()| sync_directory(path)) {
             remove_with_side_files(&partial);
-            return Err(StoreError::Io {
-                path: path.into(),
-                action: "cannot move the new store into place",
+            return Err(io_error(
+                path,
+                "cannot move the new store into place",
                 source,
-            });
+            ));
         }
         Self::open(path)
     }
@@ -135,11 +135,7 @@ impl RunStore {
                 return Err(StoreError::Exists { path: path.into() });
             }
             Err(source) => {
-                return Err(StoreError::Io {
-                    path: path.into(),
-                    action: "cannot create the file",
-                    source,
-                });
+                return Err(io_error(path, "cannot create the file", source));
             }
         }
         // A rollback journal while building: once committed, everything is in the main file
@@ -466,13 +462,15 @@ impl RunStore {
         } else {
             "0"
         };
-        let read = || -> rusqlite::Result<Vec<GenerationRecord>> {
-            let mut stmt = self.conn.prepare(&format!(
+        self.rows(
+            &format!(
                 "SELECT generation, best, mean, median, sd, valid_fraction, evaluations, \
                  wall_seconds, evaluations_per_second, {fine}, {reused} FROM generation \
                  ORDER BY generation"
-            ))?;
-            stmt.query_map([], |r| {
+            ),
+            [],
+            "cannot read the generations",
+            |r| {
                 Ok(GenerationRecord {
                     index: r.get(0)?,
                     best: get_real(r, 1)?,
@@ -498,42 +496,49 @@ impl RunStore {
                     },
                     reused: r.get::<_, i64>(11)?.max(0) as u64,
                 })
-            })?
-            .collect()
-        };
-        read().map_err(|e| classify(&self.path, "cannot read the generations", e))
+            },
+        )
     }
 
     /// A generation's individuals, in index order (empty if the generation is not stored).
     pub fn individuals(&self, generation: u32) -> Result<Vec<IndividualRecord>, StoreError> {
-        let read = || -> rusqlite::Result<Vec<IndividualRecord>> {
-            let mut stmt = self.conn.prepare(&format!(
+        self.rows(
+            &format!(
                 "SELECT {} FROM individual WHERE generation = ?1 ORDER BY individual",
                 self.individual_columns()
-            ))?;
-            stmt.query_map([generation], individual_from_row)?.collect()
-        };
-        read().map_err(|e| {
-            classify(
-                &self.path,
-                &format!("cannot read generation {generation}'s individuals"),
-                e,
-            )
-        })
+            ),
+            [generation],
+            &format!("cannot read generation {generation}'s individuals"),
+            individual_from_row,
+        )
     }
 
     /// The (generation, index) of every stored individual that `operator` made (its name as
     /// the store spells it, e.g. `mutation`), in generation and index order.
     pub fn individuals_made_by(&self, operator: &str) -> Result<Vec<(u32, u32)>, StoreError> {
-        let read = || -> rusqlite::Result<Vec<(u32, u32)>> {
-            let mut stmt = self.conn.prepare(
-                "SELECT generation, individual FROM individual WHERE operator = ?1 \
+        self.rows(
+            "SELECT generation, individual FROM individual WHERE operator = ?1 \
                  ORDER BY generation, individual",
-            )?;
-            stmt.query_map([operator], |r| Ok((r.get(0)?, r.get(1)?)))?
-                .collect()
+            [operator],
+            "cannot read the individuals' operators",
+            |r| Ok((r.get(0)?, r.get(1)?)),
+        )
+    }
+
+    /// The rows `row` makes of the query `sql` with `params`; a failure says the store
+    /// `action` (e.g. "cannot read the generations").
+    fn rows<T>(
+        &self,
+        sql: &str,
+        params: impl rusqlite::Params,
+        action: &str,
+        row: impl FnMut(&rusqlite::Row<'_>) -> rusqlite::Result<T>,
+    ) -> Result<Vec<T>, StoreError> {
+        let read = || -> rusqlite::Result<Vec<T>> {
+            let mut stmt = self.conn.prepare(sql)?;
+            stmt.query_map(params, row)?.collect()
         };
-        read().map_err(|e| classify(&self.path, "cannot read the individuals' operators", e))
+        read().map_err(|e| classify(&self.path, action, e))
     }
 
     /// The fittest individual of the whole run (ties go to the earliest generation, then the
@@ -570,12 +575,14 @@ impl RunStore {
         } else {
             "0, NULL"
         };
-        let read = || -> rusqlite::Result<Vec<StoredKey>> {
-            let mut stmt = self.conn.prepare(&format!(
+        self.rows(
+            &format!(
                 "SELECT generation, individual, fitness, {columns} FROM individual \
                  ORDER BY generation, individual"
-            ))?;
-            stmt.query_map([], |r| {
+            ),
+            [],
+            "cannot read the evaluation keys",
+            |r| {
                 Ok(StoredKey {
                     generation: r.get(0)?,
                     index: r.get(1)?,
@@ -583,10 +590,8 @@ impl RunStore {
                     reused: r.get(3)?,
                     evaluation_key: r.get(4)?,
                 })
-            })?
-            .collect()
-        };
-        read().map_err(|e| classify(&self.path, "cannot read the evaluation keys", e))
+            },
+        )
     }
 
     /// The key and `genome_json` of every stored individual that was evaluated (not reused)
@@ -596,16 +601,14 @@ impl RunStore {
         if self.version < 3 {
             return Ok(Vec::new());
         }
-        let read = || -> rusqlite::Result<Vec<(String, String)>> {
-            let mut stmt = self.conn.prepare(
-                "SELECT evaluation_key, genome_json FROM individual \
+        self.rows(
+            "SELECT evaluation_key, genome_json FROM individual \
                  WHERE evaluation_key IS NOT NULL AND reused = 0 \
                  ORDER BY generation, individual",
-            )?;
-            stmt.query_map([], |r| Ok((r.get(0)?, r.get(1)?)))?
-                .collect()
-        };
-        read().map_err(|e| classify(&self.path, "cannot read the stored evaluations", e))
+            [],
+            "cannot read the stored evaluations",
+            |r| Ok((r.get(0)?, r.get(1)?)),
+        )
     }
 
     /// How many individuals of each stored generation reused an evaluation, by generation
@@ -614,15 +617,13 @@ impl RunStore {
         if self.version < 3 {
             return Ok(Vec::new());
         }
-        let read = || -> rusqlite::Result<Vec<(u32, u64)>> {
-            let mut stmt = self.conn.prepare(
-                "SELECT generation, count(*) FROM individual WHERE reused = 1 \
+        self.rows(
+            "SELECT generation, count(*) FROM individual WHERE reused = 1 \
                  GROUP BY generation ORDER BY generation",
-            )?;
-            stmt.query_map([], |r| Ok((r.get(0)?, r.get::<_, i64>(1)?.max(0) as u64)))?
-                .collect()
-        };
-        read().map_err(|e| classify(&self.path, "cannot read the reused evaluations", e))
+            [],
+            "cannot read the reused evaluations",
+            |r| Ok((r.get(0)?, r.get::<_, i64>(1)?.max(0) as u64)),
+        )
     }
 }
 

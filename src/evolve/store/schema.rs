@@ -8,7 +8,7 @@ use std::path::Path;
 
 use rusqlite::Connection;
 
-use super::error::{StoreError, classify};
+use super::error::{StoreError, classify, io_error};
 
 /// The schema's version, kept in the database header (`PRAGMA user_version`). Raise it when
 /// the tables change, and teach [`RunStore::open`](super::RunStore::open) to migrate the older versions.
@@ -147,22 +147,14 @@ pub(super) fn check_header(path: &Path) -> Result<(), StoreError> {
             return Err(StoreError::Missing { path: path.into() });
         }
         Err(source) => {
-            return Err(StoreError::Io {
-                path: path.into(),
-                action: "cannot read it",
-                source,
-            });
+            return Err(io_error(path, "cannot read it", source));
         }
     };
     let mut header = Vec::with_capacity(100);
     (&mut file)
         .take(100)
         .read_to_end(&mut header)
-        .map_err(|source| StoreError::Io {
-            path: path.into(),
-            action: "cannot read it",
-            source,
-        })?;
+        .map_err(|source| io_error(path, "cannot read it", source))?;
     let not = |reason: &str| StoreError::NotARunStore {
         path: path.into(),
         reason: reason.into(),
