@@ -7,8 +7,8 @@
 //! one oscillator neuron and one link into it: a self-link of weight 1, which is the first
 //! current link.
 
-use super::command::BrainOp;
 use crate::creature::{Actuator, Brain, Link, Neuron, NeuronFunction, Role, Sensor};
+use crate::lang::commands::Command;
 
 /// The current link: source, target, and the link's index when it is actual.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,7 +115,7 @@ impl BrainBuilder {
     /// An `Err` is a warning: the command did nothing.
     pub fn apply(
         &mut self,
-        op: BrainOp,
+        op: Command,
         params: &[f64],
         current: &mut CurrentLink,
         part: Option<usize>,
@@ -154,7 +154,7 @@ impl BrainBuilder {
         }
         let (s, t) = (current.from, current.to);
         match op {
-            BrainOp::Split => {
+            Command::Split => {
                 let w = arg(1.0)?;
                 let m = self.add_neuron(NeuronFunction::Sigmoid, Role::Hidden, part);
                 match current.link {
@@ -166,15 +166,15 @@ impl BrainBuilder {
                 let new = self.add_link(m, t, w);
                 *current = self.current_of(new);
             }
-            BrainOp::Duplicate => {
+            Command::Duplicate => {
                 let w = arg(1.0)?;
                 self.add_link(s, t, w);
             }
-            BrainOp::Loop => {
+            Command::Loop => {
                 let w = arg(1.0)?;
                 self.add_link(t, t, w);
             }
-            BrainOp::Merge => {
+            Command::Merge => {
                 let n = index(0.0)?;
                 if s != t {
                     if self.neurons[s].role != Role::Hidden {
@@ -204,7 +204,7 @@ impl BrainBuilder {
                     self.current_of(inputs[n % inputs.len()])
                 };
             }
-            BrainOp::Next => {
+            Command::Next => {
                 let n = index(1.0)?;
                 let inputs = self.inputs(t);
                 if inputs.is_empty() {
@@ -216,7 +216,7 @@ impl BrainBuilder {
                     .map_or(n, |k| k + n);
                 *current = self.current_of(inputs[at % inputs.len()]);
             }
-            BrainOp::Parent => {
+            Command::Parent => {
                 // Hornby & Pollack: the from-neuron becomes the nth input neuron of the current
                 // from-neuron, the to-neuron stays, and when no link joins them the current
                 // link is virtual (Matos & Arita, Table 1: "changes the head neuron to its nth
@@ -241,7 +241,7 @@ impl BrainBuilder {
                     };
                 }
             }
-            BrainOp::Output => {
+            Command::Output => {
                 let w = arg(1.0)?;
                 let Some((joint, dof)) = joint.filter(|&(_, dof)| dof > 0) else {
                     return Err("output needs a part with a movable joint: ignored".into());
@@ -269,14 +269,14 @@ impl BrainBuilder {
                 );
                 self.add_link(t, o, w);
             }
-            BrainOp::Reverse => {
+            Command::Reverse => {
                 if let Some(l) = current.link {
                     let link = self.links[l].as_mut().expect("checked");
                     std::mem::swap(&mut link.from, &mut link.to);
                 }
                 std::mem::swap(&mut current.from, &mut current.to);
             }
-            BrainOp::SetFunc => {
+            Command::Setfunc => {
                 let n = index(0.0)?;
                 if matches!(self.neurons[t].role, Role::Sensor { .. }) {
                     return Err("a sensor neuron's output is its reading: setfunc ignored".into());
@@ -284,21 +284,21 @@ impl BrainBuilder {
                 let choices = NeuronFunction::SETFUNC;
                 self.neurons[t].function = choices[n % choices.len()];
             }
-            BrainOp::Bias => {
+            Command::Bias => {
                 let b = arg(1.0)?;
                 if matches!(self.neurons[t].role, Role::Sensor { .. }) {
                     return Err("a sensor neuron's output is its reading: bias ignored".into());
                 }
                 self.neurons[t].bias = b;
             }
-            BrainOp::Cut => {
+            Command::Cut => {
                 if let Some(l) = current.link.take() {
                     self.links[l] = None;
                 }
             }
-            BrainOp::Weight | BrainOp::Increase | BrainOp::Decrease => {
+            Command::Weight | Command::Increase | Command::Decrease => {
                 let mut w = arg(1.0)?;
-                if op == BrainOp::Decrease {
+                if op == Command::Decrease {
                     w = -w;
                 }
                 match current.link {
@@ -309,19 +309,19 @@ impl BrainBuilder {
                     }
                 }
             }
-            BrainOp::Touch | BrainOp::Angle | BrainOp::Chem | BrainOp::Target => {
+            Command::Touch | Command::Angle | Command::Chem | Command::Target => {
                 let sensor = match op {
-                    BrainOp::Touch => Sensor::Touch {
+                    Command::Touch => Sensor::Touch {
                         part: part.ok_or("touch needs a part to sense: ignored")?,
                         face: None,
                     },
-                    BrainOp::Angle => {
+                    Command::Angle => {
                         let (joint, _) = joint
                             .filter(|&(_, dof)| dof > 0)
                             .ok_or("angle needs a part with a movable joint: ignored")?;
                         Sensor::Angle { joint, dof: 0 }
                     }
-                    BrainOp::Chem => Sensor::Chemical {
+                    Command::Chem => Sensor::Chemical {
                         slot: self.slot(index(0.0)?)?,
                     },
                     _ => Sensor::Target,
@@ -329,8 +329,8 @@ impl BrainBuilder {
                 let i = self.add_neuron(NeuronFunction::Linear, Role::Sensor { sensor }, part);
                 self.add_link(i, t, 1.0);
             }
-            BrainOp::Secrete | BrainOp::Release => {
-                let actuator = if op == BrainOp::Secrete {
+            Command::Secrete | Command::Release => {
+                let actuator = if op == Command::Secrete {
                     Actuator::Secrete {
                         slot: self.slot(index(0.0)?)?,
                     }
@@ -340,6 +340,7 @@ impl BrainBuilder {
                 let o = self.add_neuron(NeuronFunction::Linear, Role::Actuator { actuator }, part);
                 self.add_link(t, o, 1.0);
             }
+            body => return Err(format!("'{}' is not a brain command", body.name())),
         }
         Ok(())
     }

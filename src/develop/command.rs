@@ -8,54 +8,6 @@ use nalgebra::Vector3;
 use crate::creature::JointKind;
 use crate::lang::commands::Command;
 
-/// An edge-encoding (brain) command.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BrainOp {
-    /// `split(w)`
-    Split,
-    /// `duplicate(w)`
-    Duplicate,
-    /// `loop(w)`
-    Loop,
-    /// `merge(n)`
-    Merge,
-    /// `next(n)`
-    Next,
-    /// `parent(n)`
-    Parent,
-    /// `output(w)`
-    Output,
-    /// `reverse`
-    Reverse,
-    /// `setfunc(n)`: the target's function, from [`NeuronFunction::SETFUNC`]
-    ///
-    /// [`NeuronFunction::SETFUNC`]: crate::creature::NeuronFunction::SETFUNC
-    SetFunc,
-    /// `bias(b)`: sets the target's bias (Ontogeny's addition; neither Hornby & Pollack nor
-    /// Matos & Arita have one)
-    Bias,
-    /// `cut`
-    Cut,
-    /// `weight(n)`: adds n to the weight (Matos & Arita's offset-weight)
-    Weight,
-    /// `increase(n)` (Hornby)
-    Increase,
-    /// `decrease(n)` (Hornby)
-    Decrease,
-    /// `touch`
-    Touch,
-    /// `angle`
-    Angle,
-    /// `chem(i)`
-    Chem,
-    /// `target`
-    Target,
-    /// `secrete(i)`
-    Secrete,
-    /// `release`
-    Release,
-}
-
 /// What a module makes the builder do.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Action {
@@ -94,8 +46,9 @@ pub enum Action {
     RepeatStart,
     /// `}(n)`
     RepeatEnd,
-    /// A brain command.
-    Brain(BrainOp),
+    /// A brain command (edge encoding, sensors and effectors): one of the table's commands
+    /// that are not the body's or a joint's.
+    Brain(Command),
 }
 
 /// The action a module name stands for; `None` for control tokens and anything else.
@@ -137,26 +90,7 @@ fn action(command: Command, maturing: bool) -> Action {
         Command::Twist180 => joint(JointKind::Twist, (-FRAC_PI_2, FRAC_PI_2)),
         Command::Width => Action::Width,
         Command::Thickness => Action::Thickness,
-        Command::Split => Action::Brain(BrainOp::Split),
-        Command::Duplicate => Action::Brain(BrainOp::Duplicate),
-        Command::Loop => Action::Brain(BrainOp::Loop),
-        Command::Merge => Action::Brain(BrainOp::Merge),
-        Command::Next => Action::Brain(BrainOp::Next),
-        Command::Parent => Action::Brain(BrainOp::Parent),
-        Command::Output => Action::Brain(BrainOp::Output),
-        Command::Reverse => Action::Brain(BrainOp::Reverse),
-        Command::Setfunc => Action::Brain(BrainOp::SetFunc),
-        Command::Bias => Action::Brain(BrainOp::Bias),
-        Command::Cut => Action::Brain(BrainOp::Cut),
-        Command::Weight => Action::Brain(BrainOp::Weight),
-        Command::Increase => Action::Brain(BrainOp::Increase),
-        Command::Decrease => Action::Brain(BrainOp::Decrease),
-        Command::Touch => Action::Brain(BrainOp::Touch),
-        Command::Angle => Action::Brain(BrainOp::Angle),
-        Command::Chem => Action::Brain(BrainOp::Chem),
-        Command::Target => Action::Brain(BrainOp::Target),
-        Command::Secrete => Action::Brain(BrainOp::Secrete),
-        Command::Release => Action::Brain(BrainOp::Release),
+        brain => Action::Brain(brain),
     }
 }
 
