@@ -1,9 +1,11 @@
-//! `ontogeny replay`
+//! `ontogeny replay`: a recording drawn again, or a run's individual re-evaluated with one.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
+use ontogeny::encoding::Genome;
+use ontogeny::evolve::run::{Run, encoding_of_run};
 use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::render::MAX_FPS;
 use ontogeny::task::Recording;
@@ -38,7 +40,7 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         ));
     }
     if args.dir.join("config.toml").exists() {
-        return super::evolve::replay_run(&args.dir, args.generation, args.rank, args.fps);
+        return replay_run(&args.dir, args.generation, args.rank, args.fps);
     }
     let path = args.dir.join("recording.json");
     let text = std::fs::read_to_string(&path)
@@ -69,6 +71,96 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         playback.shown.len(),
         ontogeny::lsystem::format_number(playback.fps),
         recording.samples.len()
+    );
+    Ok(())
+}
+
+/// `ontogeny replay RUN [--gen G] [--rank K]`: re-evaluates individual K (1 = best) of
+/// generation G (default: the last) with a recording, and writes its genome, `creature.png`,
+/// `recording.json` and `behaviour.gif` to `RUN/replay/gen-G-rank-K/`.
+pub fn replay_run(
+    dir: &Path,
+    generation: Option<u32>,
+    rank: usize,
+    fps: f64,
+) -> anyhow::Result<()> {
+    let encoding = encoding_of_run(dir).map_err(super::evolve::run_error)?;
+    with_genome!(
+        encoding.as_str(),
+        G => replay_typed::<G>(dir, generation, rank, fps),
+        |other| Err(super::bad(format!("{}: unknown encoding '{other}'", dir.display())))
+    )
+}
+
+fn replay_typed<G: Genome>(
+    dir: &Path,
+    generation: Option<u32>,
+    rank: usize,
+    fps: f64,
+) -> anyhow::Result<()> {
+    // Read-only: replaying never changes the run's store.
+    let run = Run::<G>::open_read_only(dir).map_err(super::evolve::run_error)?;
+    let last = run
+        .last_generation()
+        .map_err(super::evolve::run_error)?
+        .ok_or_else(|| super::bad(format!("{}: no complete generation yet", dir.display())))?;
+    let generation = generation.unwrap_or(last);
+    if generation > last {
+        return Err(super::bad(format!(
+            "--gen {generation}: {} has generations 0 to {last}",
+            dir.display()
+        )));
+    }
+    let population = run
+        .population(generation)
+        .map_err(super::evolve::run_error)?;
+    if rank == 0 || rank > population.len() {
+        return Err(super::bad(format!(
+            "--rank must be 1 to {}, not {rank}",
+            population.len()
+        )));
+    }
+    let order = ontogeny::evolve::ga::ranking(&population);
+    let individual = &population[order[rank - 1]];
+    let out = dir
+        .join("replay")
+        .join(format!("gen-{generation}-rank-{rank}"));
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let genome_name = format!("genome.{}", G::TEXT_EXTENSION);
+    let genome_path = out.join(&genome_name);
+    let png = out.join("creature.png");
+    super::check_outputs([
+        &genome_path,
+        &png,
+        &out.join("recording.json"),
+        &out.join("behaviour.gif"),
+    ])?;
+    ontogeny::output::write(&genome_path, individual.genome.to_text())?;
+    let limits = &run.config().limits;
+    let creature = individual
+        .genome
+        .develop(limits, individual.develop_seed)
+        .map_err(|e| super::bad(format!("the genome does not develop: {e}")))?;
+    let title = format!("generation {generation}, rank {rank}");
+    ontogeny::render::write_png(&creature, &title, &png, 960, 600)
+        .map_err(super::render_error(&png))?;
+    let evaluation = run.config().task.evaluate(&creature, true);
+    super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
+    let stored = individual.evaluation.fitness;
+    say!(
+        "generation {generation}, rank {rank}: {} fitness {:.6} ({}; stored {stored:.6})",
+        evaluation.task,
+        evaluation.fitness,
+        serde_json::to_value(evaluation.status)?
+            .as_str()
+            .unwrap_or("?")
+    );
+    if evaluation.fitness != stored {
+        say!("warning: the re-evaluation differs from the stored fitness");
+    }
+    say!(
+        "wrote {0}/{genome_name}, {0}/creature.png, {0}/recording.json and {0}/behaviour.gif",
+        out.display()
     );
     Ok(())
 }

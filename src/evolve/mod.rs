@@ -5,7 +5,8 @@
 //! ([`plot`]), the statistics that compare settings and encodings ([`stats`]), the evaluation
 //! cache and its keys ([`cache`], [`key`]), comparisons of encodings over replicated runs
 //! ([`compare`]), and the fidelity experiment that ranks step settings against the fine
-//! reference ([`fidelity`]).
+//! reference ([`fidelity`]); the settings of a run or comparison from the command line
+//! ([`settings`]) and what the command line says about them ([`text`]).
 
 pub mod cache;
 pub mod compare;
@@ -16,5 +17,7 @@ pub mod key;
 pub mod lock;
 pub mod plot;
 pub mod run;
+pub mod settings;
 pub mod stats;
 pub mod store;
+pub mod text;
