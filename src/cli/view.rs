@@ -84,7 +84,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         Kind::Lsys => {
             // --dt and --timing are refused for a discrete file, as by every verb that grows.
             if let Ok(lsys) = LSystem::from_path(&target.path) {
-                super::derive::check_continuous_flags(&lsys, &options)?;
+                ontogeny::lsystem::print::check_continuous_options(&lsys, &options)?;
             }
             match LSystem::from_path(&target.path).and_then(|lsys| {
                 ontogeny::develop::grow(
