@@ -6,7 +6,6 @@ use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
 use ontogeny::evolve::run::{Run, encoding_of_run};
-use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::render::MAX_FPS;
 use ontogeny::task::Recording;
 
@@ -31,13 +30,10 @@ pub struct ReplayArgs {
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
 pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
     if !(args.fps > 0.0 && args.fps <= MAX_FPS) {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!(
-                "--fps must be in (0, {}], not {} (GIF frames last whole centiseconds)",
-                MAX_FPS, args.fps
-            ),
-        ));
+        anyhow::bail!(super::bad(format!(
+            "--fps must be in (0, {}], not {} (GIF frames last whole centiseconds)",
+            MAX_FPS, args.fps
+        )));
     }
     if args.dir.join("config.toml").exists() {
         return replay_run(&args.dir, args.generation, args.rank, args.fps);
@@ -45,16 +41,12 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
     let path = args.dir.join("recording.json");
     let text = std::fs::read_to_string(&path)
         .with_context(|| format!("cannot read {}", path.display()))?;
-    let recording: Recording = serde_json::from_str(&text).map_err(|e| {
-        anyhow::Error::new(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("{}: not a recording: {e}", path.display()),
-        ))
-    })?;
+    let recording: Recording = serde_json::from_str(&text)
+        .map_err(|e| super::bad(format!("{}: not a recording: {e}", path.display())))?;
     recording.creature.check_consistency().map_err(|problem| {
-        anyhow::Error::new(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("{}: not a usable creature: {problem}", path.display()),
+        super::bad(format!(
+            "{}: not a usable creature: {problem}",
+            path.display()
         ))
     })?;
     let gif = args.dir.join("behaviour.gif");

@@ -5,9 +5,10 @@
 //! ([`plot`]), the statistics that compare settings and encodings ([`stats`]), the evaluation
 //! cache and its keys ([`cache`], [`key`]), comparisons of encodings over replicated runs
 //! ([`compare`]), and the fidelity experiment that ranks step settings against the fine
-//! reference ([`fidelity`]); the settings of a run or comparison from the command line
+//! reference ([`fidelity`]) and the bench's measurements ([`bench`]); the settings of a run or comparison from the command line
 //! ([`settings`]) and what the command line says about them ([`text`]).
 
+pub mod bench;
 pub mod cache;
 pub mod compare;
 pub mod config;
