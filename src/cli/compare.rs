@@ -7,8 +7,8 @@ use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
 use ontogeny::evolve::compare::{
-    self, CompareError, Manifest, Replicate, ReplicateState, Shared, evaluations_of,
-    read_replicate, replicate_config, replicate_dir,
+    self, CompareError, Manifest, ReplicateState, Shared, read_replicate, replicate_config,
+    replicate_dir,
 };
 use ontogeny::evolve::config::{ConfigFile, read_config};
 use ontogeny::evolve::run::{GenerationReport, Run};
@@ -163,62 +163,22 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
     .map_err(bad)
 }
 
-/// Evaluations a replicate has made after `generations` complete generations.
-fn made(shared: &Shared, generations: usize) -> u64 {
-    if generations == 0 {
-        return 0;
-    }
-    let mut ga = shared.ga.clone();
-    ga.generations = generations;
-    evaluations_of(&ga)
-}
-
-/// The state of replicate `k` of `encoding`.
-fn state(
-    root: &Path,
-    manifest: &Manifest,
-    shared: &Shared,
-    encoding: &str,
-    k: usize,
-) -> anyhow::Result<ReplicateState> {
-    with_genome!(
-        encoding,
-        G => read_replicate::<G>(root, manifest, shared, k).map_err(compare_error),
-        |other| Err(bad(format!("{}: unknown encoding '{other}'", root.join("compare.toml").display())))
-    )
-}
-
 /// Runs every replicate that is missing or unfinished: replicate 1 of every encoding, then
 /// replicate 2, ..., one at a time, each on all worker threads.
 /// A replicate started here caches evaluations when `cache` is on.
 fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> anyhow::Result<()> {
-    let per_replicate = evaluations_of(&shared.ga);
-    let total = per_replicate * (manifest.replicates * manifest.encodings.len()) as u64;
-    let mut done = 0u64;
-    let mut todo = Vec::new();
-    for k in 1..=manifest.replicates {
-        for encoding in &manifest.encodings {
-            match state(root, manifest, shared, encoding, k)? {
-                ReplicateState::Done(_) => done += per_replicate,
-                ReplicateState::Partial(g) => {
-                    done += made(shared, g);
-                    todo.push((encoding.clone(), k));
-                }
-                ReplicateState::Missing => todo.push((encoding.clone(), k)),
-            }
-        }
-    }
-    if todo.is_empty() {
+    let survey = compare::survey(root, manifest, shared).map_err(compare_error)?;
+    if survey.todo.is_empty() {
         eprintln!("{}: every replicate is complete", root.display());
         return Ok(());
     }
     let mut progress = ComparisonProgress {
-        total,
-        done,
-        at_start: done,
+        total: survey.total,
+        done: survey.done,
+        at_start: survey.done,
         started: Instant::now(),
     };
-    for (encoding, k) in todo {
+    for (encoding, k) in survey.todo {
         with_genome!(
             encoding.as_str(),
             G => run_replicate::<G>(root, manifest, shared, k, cache, &mut progress),
@@ -272,22 +232,7 @@ fn run_replicate<G: Genome>(
 /// Gathers the finished replicates and writes the report. `merging`: say what is missing
 /// rather than treat it as an error.
 fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> anyhow::Result<()> {
-    let mut finished: Vec<Replicate> = Vec::new();
-    let mut unfinished = Vec::new();
-    for encoding in &manifest.encodings {
-        for k in 1..=manifest.replicates {
-            match state(root, manifest, shared, encoding, k)? {
-                ReplicateState::Done(r) => finished.push(*r),
-                ReplicateState::Partial(g) => unfinished.push(format!(
-                    "{encoding} rep-{k} ({g} of {} generations)",
-                    shared.ga.generations
-                )),
-                ReplicateState::Missing => {
-                    unfinished.push(format!("{encoding} rep-{k} (not started)"))
-                }
-            }
-        }
-    }
+    let (finished, unfinished) = compare::gather(root, manifest, shared).map_err(compare_error)?;
     if finished.is_empty() {
         return Err(bad(format!(
             "{}: no replicate is finished yet (run the `compare --plan` commands, or `compare --resume {0}`)",

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
+use ontogeny::evolve::pick::{PickError, individual_by_rank};
 use ontogeny::evolve::run::{Run, encoding_of_run};
 use ontogeny::render::MAX_FPS;
 use ontogeny::task::Recording;
@@ -92,28 +93,11 @@ fn replay_typed<G: Genome>(
 ) -> anyhow::Result<()> {
     // Read-only: replaying never changes the run's store.
     let run = Run::<G>::open_read_only(dir).map_err(super::evolve::run_error)?;
-    let last = run
-        .last_generation()
-        .map_err(super::evolve::run_error)?
-        .ok_or_else(|| super::bad(format!("{}: no complete generation yet", dir.display())))?;
-    let generation = generation.unwrap_or(last);
-    if generation > last {
-        return Err(super::bad(format!(
-            "--gen {generation}: {} has generations 0 to {last}",
-            dir.display()
-        )));
-    }
-    let population = run
-        .population(generation)
-        .map_err(super::evolve::run_error)?;
-    if rank == 0 || rank > population.len() {
-        return Err(super::bad(format!(
-            "--rank must be 1 to {}, not {rank}",
-            population.len()
-        )));
-    }
-    let order = ontogeny::evolve::ga::ranking(&population);
-    let individual = &population[order[rank - 1]];
+    let (generation, individual) =
+        individual_by_rank(&run, dir, generation, rank).map_err(|e| match e {
+            PickError::Run(e) => super::evolve::run_error(e),
+            PickError::Input(message) => super::bad(message),
+        })?;
     let out = dir
         .join("replay")
         .join(format!("gen-{generation}-rank-{rank}"));
