@@ -7,10 +7,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use clap::Args;
-use ontogeny::creature::Creature;
-use ontogeny::develop::creature_from_commands;
+use ontogeny::evolve::bench::{chain, one_core, parse_stepping, time_evaluation};
 use ontogeny::evolve::fidelity::{FineReference, fidelity_creatures, setting_name};
-use ontogeny::sim::{JointModel, SimOptions, StepSetting, World};
+use ontogeny::sim::{JointModel, SimOptions, World};
 use ontogeny::task::{self, WalkerOptions};
 use rayon::prelude::*;
 
@@ -61,52 +60,6 @@ pub struct BenchArgs {
     creature: Option<std::path::PathBuf>,
 }
 
-/// A chain of `parts` parts on revolute2 hinges, each driven by an output from the
-/// oscillator: a walker-like creature of known size.
-fn chain(parts: usize) -> Creature {
-    let text = format!(
-        "width(0.3) thickness(0.2) forward(0.5) {{ revolute2 forward(0.5) output(1) }}({})",
-        parts.saturating_sub(1)
-    );
-    creature_from_commands(&text).expect("the bench creature compiles")
-}
-
-/// Runs one evaluation: `seconds` of controller-on stepping. Returns (total, physics) seconds.
-fn evaluate(creature: &Creature, sim: &SimOptions, seconds: f64) -> (f64, f64) {
-    let start = Instant::now();
-    let mut world = World::new(creature, sim).expect("the bench creature builds");
-    let steps = (seconds / sim.dt).round() as usize;
-    for _ in 0..steps {
-        if world.step(true).is_err() {
-            break;
-        }
-    }
-    (
-        start.elapsed().as_secs_f64(),
-        world.physics_time().as_secs_f64(),
-    )
-}
-
-/// One core's figures for one setting: evaluations per second, µs per control step, and the
-/// share of time outside rapier's pipeline (%).
-fn one_core(creature: &Creature, sim: &SimOptions, n: usize, seconds: f64) -> (f64, f64, f64) {
-    evaluate(creature, sim, 1.0); // warm up
-    let started = Instant::now();
-    let (mut total, mut physics) = (0.0, 0.0);
-    for _ in 0..n {
-        let (t, p) = evaluate(creature, sim, seconds);
-        total += t;
-        physics += p;
-    }
-    let rate = n as f64 / started.elapsed().as_secs_f64();
-    let steps = (seconds / sim.dt).round();
-    (
-        rate,
-        total / n as f64 / steps * 1e6,
-        (total - physics) / total * 100.0,
-    )
-}
-
 /// Measures and prints the figures the README reports.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     task::check_duration("seconds", args.seconds).map_err(flag_error)?;
@@ -124,16 +77,12 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             None,
             ontogeny::develop::BuildOptions::default().max_parts,
         )?;
-        World::new(&creature, &sim).map_err(|e| {
-            ontogeny::lang::Diagnostic::without_location(
-                ontogeny::lang::DiagnosticKind::Semantic,
-                format!("{}: cannot simulate: {e}", file.display()),
-            )
-        })?;
-        evaluate(&creature, &sim, 1.0); // warm up
+        World::new(&creature, &sim)
+            .map_err(|e| super::bad(format!("{}: cannot simulate: {e}", file.display())))?;
+        time_evaluation(&creature, &sim, 1.0); // warm up
         let started = Instant::now();
         for _ in 0..n {
-            evaluate(&creature, &sim, args.seconds);
+            time_evaluation(&creature, &sim, args.seconds);
         }
         let seconds = started.elapsed().as_secs_f64();
         say!(
@@ -194,7 +143,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
 
     let started = Instant::now();
     (0..n).into_par_iter().for_each(|_| {
-        evaluate(&walker, &sim, args.seconds);
+        time_evaluation(&walker, &sim, args.seconds);
     });
     let all_cores = n as f64 / started.elapsed().as_secs_f64();
     say!(
@@ -213,7 +162,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                 joints,
                 ..sim.clone()
             };
-            let (t, _) = evaluate(&creature, &sim, 5.0);
+            let (t, _) = time_evaluation(&creature, &sim, 5.0);
             row.push(t / (5.0 / sim.dt) * 1e6);
         }
         say!("{parts:>6} {:>10.1} {:>10.1}", row[0], row[1]);
@@ -256,54 +205,6 @@ impl Walks {
     }
 }
 
-/// A stepping setting of `--fidelity-also`: a named one (`fast`, `default`, `fine`), or `SxIxP`
-/// (substeps, solver iterations, PGS passes while walking), optionally followed by `/SxI`
-/// (substeps and iterations while waiting for rest); e.g. `1x2x3/2x4`. Checked as every
-/// setting is ([`SimOptions::check`]).
-fn parse_setting(text: &str, base: &SimOptions) -> anyhow::Result<SimOptions> {
-    if let Ok(named) = text.parse::<StepSetting>() {
-        return Ok(named.apply(base));
-    }
-    let bad = || {
-        ontogeny::lang::Diagnostic::without_location(
-            ontogeny::lang::DiagnosticKind::Semantic,
-            format!(
-                "--fidelity-also: '{text}' is not a setting such as fast, 1x2x3 or 1x2x3/2x4 (a named setting, or substeps x iterations x PGS passes / rest substeps x rest iterations)"
-            ),
-        )
-    };
-    let numbers = |part: &str, count: usize| -> anyhow::Result<Vec<usize>> {
-        let n: Vec<usize> = part
-            .split('x')
-            .map(|x| x.trim().parse::<usize>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| bad())?;
-        if n.len() != count {
-            return Err(bad().into());
-        }
-        Ok(n)
-    };
-    let (walking, resting) = match text.split_once('/') {
-        Some((w, r)) => (w, Some(r)),
-        None => (text, None),
-    };
-    let w = numbers(walking, 3)?;
-    let mut sim = SimOptions {
-        substeps: w[0],
-        solver_iterations: w[1],
-        pgs_iterations: w[2],
-        ..base.clone()
-    };
-    if let Some(r) = resting {
-        let r = numbers(r, 2)?;
-        sim.rest_substeps = r[0];
-        sim.rest_solver_iterations = r[1];
-    }
-    sim.check()
-        .map_err(|e| super::evolve::bad(format!("--fidelity-also {text}: {e}")))?;
-    Ok(sim)
-}
-
 /// Walks every fidelity creature with `sim` (and every `--fidelity-also` setting) and with
 /// the fine reference, each `--runs` times from drop heights 0.1 mm apart; prints the rank
 /// correlation of their median fitness, a noise floor, how many walks each setting brings to
@@ -314,7 +215,7 @@ fn fidelity(args: &BenchArgs, sim: &SimOptions) -> anyhow::Result<()> {
     let fine = sim.fine_reference();
     let mut settings = vec![sim.clone()];
     for text in &args.fidelity_also {
-        settings.push(parse_setting(text, sim)?);
+        settings.push(parse_stepping(text, sim).map_err(super::bad)?);
     }
     let creatures = fidelity_creatures(args.fidelity, args.seed)?;
     let options = WalkerOptions {

@@ -7,21 +7,18 @@ use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
 use ontogeny::evolve::compare::{
-    self, CompareError, Manifest, Replicate, ReplicateState, Shared, evaluations_of,
-    generations_for, read_replicate, replicate_config, replicate_dir, replicate_seed,
+    self, CompareError, Manifest, ReplicateState, Shared, read_replicate, replicate_config,
+    replicate_dir,
 };
-use ontogeny::evolve::config::{ConfigFile, check_settings, read_config};
+use ontogeny::evolve::config::{ConfigFile, read_config};
 use ontogeny::evolve::run::{GenerationReport, Run};
-use ontogeny::lang::Source;
+use ontogeny::evolve::settings::{self, RunFlags};
+use ontogeny::evolve::text::{self, ComparisonProgress};
 use ontogeny::sim::StepSetting;
 use ontogeny::task::WalkerFitness;
 
+use super::evolve::{EncodingArg, bad, encoding_names, encoding_parser, run_error, set_threads};
 use super::physics::setting_parser;
-
-use super::evolve::{
-    EncodingArg, bad, check_seconds, config_error, encoding_names, encoding_parser, resolve_task,
-    run_error, set_threads,
-};
 
 /// Flags of `ontogeny compare`.
 #[derive(Args)]
@@ -121,21 +118,13 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     // same settings.
     let (manifest, shared) = compare::open(root).map_err(compare_error)?;
     if args.plan {
-        for k in 1..=manifest.replicates {
-            for encoding in &manifest.encodings {
-                say!(
-                    "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}{}",
-                    quote(&root.join("evolve.toml")),
-                    replicate_seed(manifest.seed, k),
-                    quote(&replicate_dir(root, encoding, k)),
-                    if args.no_cache { " --no-cache" } else { "" }
-                );
-            }
+        for command in text::plan_commands(root, &manifest, args.no_cache) {
+            say!("{command}");
         }
         eprintln!(
             "{} commands, one per replicate; when they are done: ontogeny compare --merge {}",
             manifest.replicates * manifest.encodings.len(),
-            quote(root)
+            text::shell_word(root)
         );
         return Ok(());
     }
@@ -143,165 +132,53 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     report(root, &manifest, &shared, false)
 }
 
-/// A path as a shell word: as it is when it is plain, else in single quotes.
-fn quote(path: &Path) -> String {
-    let s = path.display().to_string();
-    if !s.is_empty()
-        && s.bytes()
-            .all(|b| b.is_ascii_alphanumeric() || b"/._-+=:,".contains(&b))
-    {
-        s
-    } else {
-        format!("'{}'", s.replace('\'', r"'\''"))
-    }
-}
-
 /// The comparison the flags describe, checked.
 fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
-    let mut encodings: Vec<String> = Vec::new();
-    for e in &args.encodings {
-        if encodings.iter().any(|x| x == e.name()) {
-            return Err(bad(format!("--encodings names {} twice", e.name())));
-        }
-        encodings.push(e.name().to_string());
-    }
-    if encodings.is_empty() {
-        return Err(bad(format!(
-            "--encodings needs at least one of {}",
-            encoding_names()
-        )));
-    }
-    let replicates = args.replicates.unwrap_or(10);
-    if !(1..=compare::MAX_REPLICATES).contains(&replicates) {
-        return Err(bad(format!(
-            "--replicates must be 1 to {}, not {replicates}",
-            compare::MAX_REPLICATES
-        )));
-    }
-    let source = match &args.config {
-        Some(path) => {
-            Some(Source::read(path).with_context(|| format!("cannot read {}", path.display()))?)
-        }
-        None => None,
-    };
+    let source = super::evolve::read_source(args.config.as_deref())?;
     let file: ConfigFile<toml::Value> = match &source {
         Some(s) => read_config(s)?,
         None => ConfigFile::default(),
     };
-    let where_from = source
-        .as_ref()
-        .map_or("the command line".to_string(), |s| s.name().to_string());
-    let refuse = |what: &str, why: &str| {
-        bad(format!(
-            "{where_from}: {what} has no place in a comparison's config: {why}"
-        ))
+    let encodings: Vec<&str> = args.encodings.iter().map(|e| e.name()).collect();
+    let flags = RunFlags {
+        preset: args.preset,
+        population: args.pop,
+        generations: None,
+        task: args.task,
+        fitness: args.fitness,
+        seconds: args.seconds,
+        setting: args.setting,
     };
-    if file.encoding.is_some() {
-        return Err(refuse("encoding", "--encodings names them"));
-    }
-    if file.init.is_some() {
-        return Err(refuse("init", "every replicate starts from random genomes"));
-    }
-    if file.limits.is_some() {
-        return Err(refuse(
-            "[limits]",
-            "every encoding runs with its default limits",
-        ));
-    }
-    if file.ga.generations.is_some() {
-        return Err(refuse(
-            "[ga] generations",
-            "--evaluations sets the generations",
-        ));
-    }
-    let mut overrides = file.ga.clone();
-    if let Some(p) = args.preset {
-        overrides.preset = Some(p);
-    }
-    if args.pop.is_some() {
-        overrides.population = args.pop;
-    }
-    let mut ga = overrides.resolve();
-    ga.generations = 1;
-    check_seconds(args.seconds)?;
-    let task = resolve_task(
-        file.task.clone(),
-        args.task,
-        args.fitness,
-        args.seconds,
-        args.setting,
-    )?;
-    check_settings(&ga, &task).map_err(|e| bad(config_error(source.as_deref(), e)))?;
     let budget = args.evaluations.expect("clap requires --evaluations");
-    ga.generations =
-        generations_for(&ga, budget).map_err(|e| bad(format!("--evaluations: {e}")))?;
-    Ok((
-        Manifest {
-            encodings,
-            replicates,
-            evaluations: budget,
-            seed: args.seed.or(file.seed).unwrap_or(1),
-        },
-        Shared { ga, task },
-    ))
-}
-
-/// Evaluations a replicate has made after `generations` complete generations.
-fn made(shared: &Shared, generations: usize) -> u64 {
-    if generations == 0 {
-        return 0;
-    }
-    let mut ga = shared.ga.clone();
-    ga.generations = generations;
-    evaluations_of(&ga)
-}
-
-/// The state of replicate `k` of `encoding`.
-fn state(
-    root: &Path,
-    manifest: &Manifest,
-    shared: &Shared,
-    encoding: &str,
-    k: usize,
-) -> anyhow::Result<ReplicateState> {
-    with_genome!(
-        encoding,
-        G => read_replicate::<G>(root, manifest, shared, k).map_err(compare_error),
-        |other| Err(bad(format!("{}: unknown encoding '{other}'", root.join("compare.toml").display())))
+    settings::plan_comparison(
+        &encodings,
+        &encoding_names(),
+        args.replicates,
+        budget,
+        args.seed,
+        &file,
+        source.as_deref(),
+        &flags,
     )
+    .map_err(bad)
 }
 
 /// Runs every replicate that is missing or unfinished: replicate 1 of every encoding, then
 /// replicate 2, ..., one at a time, each on all worker threads.
 /// A replicate started here caches evaluations when `cache` is on.
 fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> anyhow::Result<()> {
-    let per_replicate = evaluations_of(&shared.ga);
-    let total = per_replicate * (manifest.replicates * manifest.encodings.len()) as u64;
-    let mut done = 0u64;
-    let mut todo = Vec::new();
-    for k in 1..=manifest.replicates {
-        for encoding in &manifest.encodings {
-            match state(root, manifest, shared, encoding, k)? {
-                ReplicateState::Done(_) => done += per_replicate,
-                ReplicateState::Partial(g) => {
-                    done += made(shared, g);
-                    todo.push((encoding.clone(), k));
-                }
-                ReplicateState::Missing => todo.push((encoding.clone(), k)),
-            }
-        }
-    }
-    if todo.is_empty() {
+    let survey = compare::survey(root, manifest, shared).map_err(compare_error)?;
+    if survey.todo.is_empty() {
         eprintln!("{}: every replicate is complete", root.display());
         return Ok(());
     }
-    let mut progress = Progress {
-        total,
-        done,
-        at_start: done,
+    let mut progress = ComparisonProgress {
+        total: survey.total,
+        done: survey.done,
+        at_start: survey.done,
         started: Instant::now(),
     };
-    for (encoding, k) in todo {
+    for (encoding, k) in survey.todo {
         with_genome!(
             encoding.as_str(),
             G => run_replicate::<G>(root, manifest, shared, k, cache, &mut progress),
@@ -311,51 +188,13 @@ fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> an
     Ok(())
 }
 
-/// The comparison's progress, in evaluations.
-struct Progress {
-    total: u64,
-    done: u64,
-    at_start: u64,
-    started: Instant,
-}
-
-impl Progress {
-    fn line(&mut self, label: &str, r: &GenerationReport, generations: usize) -> String {
-        self.done += r.stats.evaluations;
-        let elapsed = self.started.elapsed().as_secs_f64();
-        let rate = (self.done - self.at_start) as f64 / elapsed.max(1e-9);
-        let left = (self.total - self.done.min(self.total)) as f64 / rate.max(1e-9);
-        format!(
-            "{label} generation {}/{generations}: best {:.4}, {:.1} evaluations/s; comparison {}/{} evaluations ({:.1}%), about {} left",
-            r.generation + 1,
-            r.stats.best,
-            r.stats.evaluations as f64 / r.wall_seconds.max(1e-9),
-            self.done,
-            self.total,
-            self.done as f64 / self.total.max(1) as f64 * 100.0,
-            duration(left)
-        )
-    }
-}
-
-fn duration(seconds: f64) -> String {
-    let s = seconds.round() as u64;
-    if s >= 3600 {
-        format!("{}h{:02}m", s / 3600, s % 3600 / 60)
-    } else if s >= 60 {
-        format!("{}m{:02}s", s / 60, s % 60)
-    } else {
-        format!("{s}s")
-    }
-}
-
 fn run_replicate<G: Genome>(
     root: &Path,
     manifest: &Manifest,
     shared: &Shared,
     k: usize,
     cache: bool,
-    progress: &mut Progress,
+    progress: &mut ComparisonProgress,
 ) -> anyhow::Result<()> {
     let dir = replicate_dir(root, G::NAME, k);
     let mut run = match read_replicate::<G>(root, manifest, shared, k).map_err(compare_error)? {
@@ -393,22 +232,7 @@ fn run_replicate<G: Genome>(
 /// Gathers the finished replicates and writes the report. `merging`: say what is missing
 /// rather than treat it as an error.
 fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> anyhow::Result<()> {
-    let mut finished: Vec<Replicate> = Vec::new();
-    let mut unfinished = Vec::new();
-    for encoding in &manifest.encodings {
-        for k in 1..=manifest.replicates {
-            match state(root, manifest, shared, encoding, k)? {
-                ReplicateState::Done(r) => finished.push(*r),
-                ReplicateState::Partial(g) => unfinished.push(format!(
-                    "{encoding} rep-{k} ({g} of {} generations)",
-                    shared.ga.generations
-                )),
-                ReplicateState::Missing => {
-                    unfinished.push(format!("{encoding} rep-{k} (not started)"))
-                }
-            }
-        }
-    }
+    let (finished, unfinished) = compare::gather(root, manifest, shared).map_err(compare_error)?;
     if finished.is_empty() {
         return Err(bad(format!(
             "{}: no replicate is finished yet (run the `compare --plan` commands, or `compare --resume {0}`)",
@@ -420,49 +244,7 @@ fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> a
     }
     let r = compare::write_report(root, manifest, shared, &finished, &unfinished)
         .map_err(compare_error)?;
-    say!(
-        "{}: {} replicates of {} evaluations each; {}",
-        root.display(),
-        finished.len(),
-        r.evaluations,
-        shared.task.fitness_label()
-    );
-    for e in &r.encodings {
-        say!(
-            "  {:<20} n {:>3}  best {:.4} ± {:.4} (sd {:.4}; at the fine reference {:.4}{})  parts {}  shapes/part {:.3}",
-            e.encoding,
-            e.replicates,
-            e.best.mean,
-            e.best.ci95,
-            e.best.sd,
-            e.mean_fine,
-            if e.fine_failed > 0 {
-                format!(", {} re-walk(s) failed", e.fine_failed)
-            } else {
-                String::new()
-            },
-            e.median_parts,
-            e.median_shapes_per_part
-        );
-    }
-    for p in &r.pairs {
-        say!(
-            "  {} vs {}: U {} p {:.4} (Holm {:.4}) A12 {:.3} ({})",
-            p.a,
-            p.b,
-            p.test.u,
-            p.test.p,
-            p.holm_p,
-            p.a12,
-            ontogeny::evolve::stats::a12_magnitude(p.a12)
-        );
-    }
-    if !unfinished.is_empty() {
-        say!("not yet in the report: {}", unfinished.join(", "));
-    }
-    say!(
-        "wrote {0}/report.md, {0}/summary.csv, {0}/fitness.svg and {0}/parts.svg",
-        root.display()
-    );
+    let summary = text::comparison_summary(root, shared, &r, finished.len(), &unfinished);
+    say!("{summary}");
     Ok(())
 }

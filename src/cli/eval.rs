@@ -8,10 +8,10 @@ use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::Creature;
 use ontogeny::develop::BuildOptions;
-use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::render::Playback;
 use ontogeny::sim::{JointModel, SimOptions};
-use ontogeny::task::{self, Evaluation, Recording, TaskKind, TaskSpec, WalkerFitness};
+use ontogeny::task::flags::{self, TaskFlags};
+use ontogeny::task::{Evaluation, Recording, TaskKind, TaskSpec, WalkerFitness};
 
 use super::derive::DevelopmentArgs;
 use super::input::load_creature;
@@ -56,7 +56,7 @@ pub struct EvalArgs {
     activation: Option<f64>,
     /// The aim task's target relative to the projectile's start, as X,Y,Z metres (aim only)
     /// [default: 5,0,0].
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = flags::parse_point, allow_hyphen_values = true)]
     target: Option<[f64; 3]>,
     /// The projectile: edge length of the cube in metres, positive (catapult and aim)
     /// [default: 0.2].
@@ -74,41 +74,6 @@ pub struct EvalArgs {
     json: bool,
 }
 
-/// The flags given that the chosen task does not use, each with the tasks it is for.
-fn inapplicable_flags(args: &EvalArgs) -> Vec<String> {
-    let mut out = Vec::new();
-    let task = args.task;
-    if args.fitness.is_some() && task != TaskKind::Walker {
-        out.push("--fitness is for the walker task only".to_string());
-    }
-    if args.target.is_some() && task != TaskKind::Aim {
-        out.push("--target is for the aim task only (the catapult has no target)".to_string());
-    }
-    let throwing = matches!(task, TaskKind::Catapult | TaskKind::Aim);
-    if args.projectile_size.is_some() && !throwing {
-        out.push("--projectile-size is for the catapult and aim tasks only".to_string());
-    }
-    if args.projectile_density.is_some() && !throwing {
-        out.push("--projectile-density is for the catapult and aim tasks only".to_string());
-    }
-    out
-}
-
-fn parse_point(text: &str) -> Result<[f64; 3], String> {
-    let values: Vec<f64> = text
-        .split(',')
-        .map(|v| {
-            v.trim()
-                .parse::<f64>()
-                .map_err(|_| format!("'{v}' is not a number"))
-        })
-        .collect::<Result<_, _>>()?;
-    match values.as_slice() {
-        [x, y, z] if values.iter().all(|v| v.is_finite()) => Ok([*x, *y, *z]),
-        _ => Err(format!("'{text}' is not X,Y,Z")),
-    }
-}
-
 /// How the input is named in reports: its path, or `<stdin>` for `-` (as in diagnostics).
 fn input_name(file: &Path) -> String {
     if file.as_os_str() == "-" {
@@ -118,39 +83,26 @@ fn input_name(file: &Path) -> String {
     }
 }
 
-/// The task and its settings the flags ask for, checked ([`TaskSpec::check`]); an error names
-/// the flag at fault.
+/// The task and its settings the flags ask for, checked; an error names the flag at fault.
 fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
     let physics = args.physics.sim_options()?;
-    if let Some(seconds) = args.seconds {
-        task::check_duration("seconds", seconds).map_err(flag_error)?;
-    }
-    let mut spec = TaskSpec::new(args.task);
-    spec.sim = SimOptions {
+    let sim = SimOptions {
         joints: args.joints,
         ..physics
     };
-    spec.walker.fitness = args.fitness.unwrap_or(WalkerFitness::Normalised);
-    if let Some(a) = args.activation {
-        spec.walker.activation = a;
+    task_flags(args).spec(sim).map_err(flag_error)
+}
+
+fn task_flags(args: &EvalArgs) -> TaskFlags {
+    TaskFlags {
+        task: args.task,
+        seconds: args.seconds,
+        fitness: args.fitness,
+        activation: args.activation,
+        target: args.target,
+        projectile_size: args.projectile_size,
+        projectile_density: args.projectile_density,
     }
-    if let Some(s) = args.seconds {
-        spec.walker.seconds = s;
-        spec.jump.seconds = s;
-        spec.catapult.max_seconds = s;
-    }
-    if let Some(size) = args.projectile_size {
-        spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);
-    }
-    if let Some(density) = args.projectile_density {
-        spec.catapult.projectile_density = density;
-    }
-    if spec.task == TaskKind::Aim {
-        let [x, y, z] = args.target.unwrap_or([5.0, 0.0, 0.0]);
-        spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
-    }
-    spec.check().map_err(flag_error)?;
-    Ok(spec)
 }
 
 /// Evaluates the creature and prints the result.
@@ -160,51 +112,26 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     // A place to record into, checked before the evaluation runs.
     if let Some(dir) = &args.record {
         if dir.exists() && !dir.is_dir() {
-            anyhow::bail!(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                format!(
-                    "--record {}: a file is there; give a directory (made if missing)",
-                    dir.display()
-                ),
-            ));
+            anyhow::bail!(super::bad(format!(
+                "--record {}: a file is there; give a directory (made if missing)",
+                dir.display()
+            )));
         }
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
     }
-    let sim = &spec.sim;
-    let record = args.record.is_some();
-    for flag in inapplicable_flags(args) {
+    for flag in task_flags(args).inapplicable() {
         eprintln!("warning: {flag}; ignored");
     }
-    let what = match spec.task {
-        TaskKind::Walker => format!("walker, {} s", spec.walker.seconds),
-        TaskKind::Jump => format!("jump, {} s", spec.jump.seconds),
-        TaskKind::Catapult => "catapult".to_string(),
-        TaskKind::Aim => "aim".to_string(),
-    };
-    let mut progress = Progress::new(what);
-    let max_steps = spec.max_steps();
-    let interval = task::recording_interval(max_steps);
-    if record && interval > 1 {
-        eprintln!(
-            "note: this evaluation may take {max_steps} steps ({:.1} s): recording.json keeps one step in {interval} (a frame every {:.3} s), to stay under {} frames",
-            max_steps as f64 * sim.dt,
-            interval as f64 * sim.dt,
-            task::MAX_RECORDED_SAMPLES
-        );
+    let mut progress = Progress::new(flags::progress_label(&spec));
+    if let Some(note) = flags::recording_note(&spec).filter(|_| args.record.is_some()) {
+        eprintln!("{note}");
     }
     let evaluation =
-        spec.evaluate_with_progress(&creature, record, &mut |fraction| progress.set(fraction));
+        spec.evaluate_with_progress(&creature, args.record.is_some(), &mut |f| progress.set(f));
     progress.finish();
-    if let Some(&gap) = evaluation.terms.get("joint_gap")
-        && gap > ontogeny::sim::JOINT_GAP_WARNING
-    {
-        eprintln!(
-            "warning: the solver let a joint come {:.1} cm apart: this step setting is too coarse \
-             for this creature, and its fitness may not hold at a finer one (try --substeps 16 \
-             --solver-iterations 8; README, \"Speed and fidelity\")",
-            gap * 100.0
-        );
+    if let Some(warning) = flags::joint_gap_warning(&evaluation) {
+        eprintln!("{warning}");
     }
     if let Some(dir) = &args.record {
         write_recording(dir, &creature, &evaluation)?;
@@ -216,18 +143,9 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     say!(
-        "{}: {} fitness {:.6} ({})",
-        input_name(&args.file),
-        evaluation.task,
-        evaluation.fitness,
-        evaluation.status.name()
+        "{}",
+        flags::evaluation_text(&input_name(&args.file), &evaluation)
     );
-    for (name, value) in &evaluation.terms {
-        say!("  {name} = {value:.6}");
-    }
-    if let Some(message) = &evaluation.message {
-        say!("  {message}");
-    }
     if let Some(dir) = &args.record {
         say!(
             "wrote {0}/recording.json and {0}/behaviour.gif",
@@ -286,21 +204,7 @@ pub fn draw_recording(
     let playback = ontogeny::render::playback(samples, fps);
     let size = (480, 300);
     let target = recording.target_point();
-    if samples.is_empty() {
-        ontogeny::render::write_behaviour_gif(
-            &recording.creature,
-            samples,
-            target,
-            &playback,
-            why,
-            path,
-            size,
-            &mut |_| {},
-        )
-        .map_err(super::render_error(path))?;
-        return Ok(playback);
-    }
-    if playback.fps < fps {
+    if !samples.is_empty() && playback.fps < fps {
         eprintln!(
             "note: {} s recorded: {} is drawn at {:.3} frames/s instead of {fps}, to keep to {} frames",
             seconds_text(samples.last().map_or(0.0, |s| s.t)),

@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use ontogeny::export::to_mjcf;
-use ontogeny::lang::{Diagnostic, DiagnosticKind};
 
 use super::derive::DevelopmentArgs;
 use super::input::load_creature;
@@ -64,12 +63,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let text = match args.format {
         FormatArg::Mjcf => to_mjcf(&creature, &sim, &name),
     }
-    .map_err(|e| {
-        Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("{}: cannot export: {e}", args.file.display()),
-        )
-    })?;
+    .map_err(|e| super::bad(format!("{}: cannot export: {e}", args.file.display())))?;
     match &args.out {
         Some(path) => {
             ontogeny::output::write(path, &text)?;

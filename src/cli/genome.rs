@@ -6,7 +6,6 @@ use anyhow::Context;
 use clap::{Args, Subcommand};
 use ontogeny::creature::Severity;
 use ontogeny::encoding::{GraphGenome, GraphLimits};
-use ontogeny::lang::{Diagnostic, DiagnosticKind};
 
 /// Subcommands of `ontogeny genome`.
 #[derive(Subcommand)]
@@ -30,12 +29,8 @@ pub struct GenomeArgs {
 pub(super) fn read_graph(file: &std::path::Path) -> anyhow::Result<GraphGenome> {
     let text =
         std::fs::read_to_string(file).with_context(|| format!("cannot read {}", file.display()))?;
-    GraphGenome::from_text(&text, &GraphLimits::default()).map_err(|e| {
-        anyhow::Error::new(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("{}: {e}", file.display()),
-        ))
-    })
+    GraphGenome::from_text(&text, &GraphLimits::default())
+        .map_err(|e| super::bad(format!("{}: {e}", file.display())))
 }
 
 /// Runs `ontogeny genome`.

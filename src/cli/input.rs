@@ -6,7 +6,6 @@ use std::path::Path;
 use anyhow::Context;
 use ontogeny::creature::{Creature, Severity};
 use ontogeny::develop::{BuildOptions, grow_last};
-use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
@@ -44,16 +43,12 @@ pub(super) fn load_creature(
             let genome = super::genome::read_graph(file)?;
             return Ok(genome.creature(ontogeny::encoding::GraphLimits::default().max_parts));
         }
-        let creature: Creature = serde_json::from_str(&text).map_err(|e| {
-            anyhow::Error::new(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                format!("{}: not a creature: {e}", file.display()),
-            ))
-        })?;
+        let creature: Creature = serde_json::from_str(&text)
+            .map_err(|e| super::bad(format!("{}: not a creature: {e}", file.display())))?;
         creature.check_file(max_parts).map_err(|problem| {
-            anyhow::Error::new(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                format!("{}: not a usable creature: {problem}", file.display()),
+            super::bad(format!(
+                "{}: not a usable creature: {problem}",
+                file.display()
             ))
         })?;
         return Ok(creature);

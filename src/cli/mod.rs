@@ -31,13 +31,14 @@ mod input;
 mod physics;
 mod progress;
 mod replay;
+mod runs;
 mod view;
 
 use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{Command, CommandFactory, FromArgMatches, Parser, Subcommand};
-use ontogeny::lang::Diagnostic;
+use ontogeny::lang::{Diagnostic, DiagnosticKind};
 
 /// Grow virtual creatures from L-systems and evolve them in physics.
 #[derive(Parser)]
@@ -73,7 +74,7 @@ enum Verb {
     /// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
     Compare(compare::CompareArgs),
     /// Inspect run directories.
-    Runs(evolve::RunsArgs),
+    Runs(runs::RunsArgs),
     /// Inspect genome files (`genome show FILE`: a graph genome, readably).
     Genome(genome::GenomeArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core (the setting
@@ -122,7 +123,7 @@ pub fn main() -> ExitCode {
         Verb::Replay(args) => replay::run(&args),
         Verb::Evolve(args) => evolve::run(&args),
         Verb::Compare(args) => compare::run(&args),
-        Verb::Runs(args) => evolve::runs(&args),
+        Verb::Runs(args) => runs::run(&args),
         Verb::Genome(args) => genome::run(&args),
         Verb::Bench(args) => bench::run(&args),
         Verb::View(args) => view::run(&args),
@@ -131,6 +132,14 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => report(error),
     }
+}
+
+/// A bad-input error (exit code 2) with `message`.
+pub fn bad(message: impl Into<String>) -> anyhow::Error {
+    anyhow::Error::new(Diagnostic::without_location(
+        DiagnosticKind::Semantic,
+        message.into(),
+    ))
 }
 
 /// Refuses, before any work is done, output files that could not be written: each must be

@@ -5,7 +5,6 @@
 
 use clap::Args;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
-use ontogeny::lang::{Diagnostic, DiagnosticKind};
 use ontogeny::sim::{ActuatorModel, SettingError, SimOptions, StepSetting, StrengthFrom};
 use ontogeny::task::TaskKind;
 
@@ -136,10 +135,7 @@ pub fn flag_error(error: SettingError) -> anyhow::Error {
         "seconds" | "max_seconds" => "--seconds".to_string(),
         key => format!("--{}", key.replace('_', "-")),
     };
-    anyhow::Error::new(Diagnostic::without_location(
-        DiagnosticKind::Semantic,
-        error.for_flag(&flag),
-    ))
+    super::bad(error.for_flag(&flag))
 }
 
 impl PhysicsArgs {

@@ -1,10 +1,12 @@
-//! `ontogeny replay`
+//! `ontogeny replay`: a recording drawn again, or a run's individual re-evaluated with one.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
-use ontogeny::lang::{Diagnostic, DiagnosticKind};
+use ontogeny::encoding::Genome;
+use ontogeny::evolve::pick::{PickError, individual_by_rank};
+use ontogeny::evolve::run::{Run, encoding_of_run};
 use ontogeny::render::MAX_FPS;
 use ontogeny::task::Recording;
 
@@ -29,30 +31,23 @@ pub struct ReplayArgs {
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
 pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
     if !(args.fps > 0.0 && args.fps <= MAX_FPS) {
-        anyhow::bail!(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!(
-                "--fps must be in (0, {}], not {} (GIF frames last whole centiseconds)",
-                MAX_FPS, args.fps
-            ),
-        ));
+        anyhow::bail!(super::bad(format!(
+            "--fps must be in (0, {}], not {} (GIF frames last whole centiseconds)",
+            MAX_FPS, args.fps
+        )));
     }
     if args.dir.join("config.toml").exists() {
-        return super::evolve::replay_run(&args.dir, args.generation, args.rank, args.fps);
+        return replay_run(&args.dir, args.generation, args.rank, args.fps);
     }
     let path = args.dir.join("recording.json");
     let text = std::fs::read_to_string(&path)
         .with_context(|| format!("cannot read {}", path.display()))?;
-    let recording: Recording = serde_json::from_str(&text).map_err(|e| {
-        anyhow::Error::new(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("{}: not a recording: {e}", path.display()),
-        ))
-    })?;
+    let recording: Recording = serde_json::from_str(&text)
+        .map_err(|e| super::bad(format!("{}: not a recording: {e}", path.display())))?;
     recording.creature.check_consistency().map_err(|problem| {
-        anyhow::Error::new(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("{}: not a usable creature: {problem}", path.display()),
+        super::bad(format!(
+            "{}: not a usable creature: {problem}",
+            path.display()
         ))
     })?;
     let gif = args.dir.join("behaviour.gif");
@@ -69,6 +64,79 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         playback.shown.len(),
         ontogeny::lsystem::format_number(playback.fps),
         recording.samples.len()
+    );
+    Ok(())
+}
+
+/// `ontogeny replay RUN [--gen G] [--rank K]`: re-evaluates individual K (1 = best) of
+/// generation G (default: the last) with a recording, and writes its genome, `creature.png`,
+/// `recording.json` and `behaviour.gif` to `RUN/replay/gen-G-rank-K/`.
+pub fn replay_run(
+    dir: &Path,
+    generation: Option<u32>,
+    rank: usize,
+    fps: f64,
+) -> anyhow::Result<()> {
+    let encoding = encoding_of_run(dir).map_err(super::evolve::run_error)?;
+    with_genome!(
+        encoding.as_str(),
+        G => replay_typed::<G>(dir, generation, rank, fps),
+        |other| Err(super::bad(format!("{}: unknown encoding '{other}'", dir.display())))
+    )
+}
+
+fn replay_typed<G: Genome>(
+    dir: &Path,
+    generation: Option<u32>,
+    rank: usize,
+    fps: f64,
+) -> anyhow::Result<()> {
+    // Read-only: replaying never changes the run's store.
+    let run = Run::<G>::open_read_only(dir).map_err(super::evolve::run_error)?;
+    let (generation, individual) =
+        individual_by_rank(&run, dir, generation, rank).map_err(|e| match e {
+            PickError::Run(e) => super::evolve::run_error(e),
+            PickError::Input(message) => super::bad(message),
+        })?;
+    let out = dir
+        .join("replay")
+        .join(format!("gen-{generation}-rank-{rank}"));
+    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    let genome_name = format!("genome.{}", G::TEXT_EXTENSION);
+    let genome_path = out.join(&genome_name);
+    let png = out.join("creature.png");
+    super::check_outputs([
+        &genome_path,
+        &png,
+        &out.join("recording.json"),
+        &out.join("behaviour.gif"),
+    ])?;
+    ontogeny::output::write(&genome_path, individual.genome.to_text())?;
+    let limits = &run.config().limits;
+    let creature = individual
+        .genome
+        .develop(limits, individual.develop_seed)
+        .map_err(|e| super::bad(format!("the genome does not develop: {e}")))?;
+    let title = format!("generation {generation}, rank {rank}");
+    ontogeny::render::write_png(&creature, &title, &png, 960, 600)
+        .map_err(super::render_error(&png))?;
+    let evaluation = run.config().task.evaluate(&creature, true);
+    super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
+    let stored = individual.evaluation.fitness;
+    say!(
+        "generation {generation}, rank {rank}: {} fitness {:.6} ({}; stored {stored:.6})",
+        evaluation.task,
+        evaluation.fitness,
+        serde_json::to_value(evaluation.status)?
+            .as_str()
+            .unwrap_or("?")
+    );
+    if evaluation.fitness != stored {
+        say!("warning: the re-evaluation differs from the stored fitness");
+    }
+    say!(
+        "wrote {0}/{genome_name}, {0}/creature.png, {0}/recording.json and {0}/behaviour.gif",
+        out.display()
     );
     Ok(())
 }

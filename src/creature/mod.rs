@@ -6,8 +6,10 @@
 //! are in world coordinates: Y is up, the ground is the plane y = 0, lengths are in metres.
 
 mod geometry;
+mod summary;
 
 pub use geometry::boxes_intersect;
+pub use summary::Summary;
 
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};

@@ -5,8 +5,10 @@
 //! ([`plot`]), the statistics that compare settings and encodings ([`stats`]), the evaluation
 //! cache and its keys ([`cache`], [`key`]), comparisons of encodings over replicated runs
 //! ([`compare`]), and the fidelity experiment that ranks step settings against the fine
-//! reference ([`fidelity`]).
+//! reference ([`fidelity`]) and the bench's measurements ([`bench`]); a run's individual picked by rank ([`pick`]); the settings of a run or comparison from the command line
+//! ([`settings`]) and what the command line says about them ([`text`]).
 
+pub mod bench;
 pub mod cache;
 pub mod compare;
 pub mod config;
@@ -14,7 +16,10 @@ pub mod fidelity;
 pub mod ga;
 pub mod key;
 pub mod lock;
+pub mod pick;
 pub mod plot;
 pub mod run;
+pub mod settings;
 pub mod stats;
 pub mod store;
+pub mod text;

@@ -17,6 +17,7 @@ mod continuous;
 mod derive;
 pub mod expr;
 mod open;
+pub mod print;
 mod string;
 
 pub use crate::lang::ast::Timing;

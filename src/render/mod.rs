@@ -8,6 +8,7 @@ mod animation;
 mod body;
 mod brain;
 mod camera;
+pub mod growth;
 mod palette;
 mod pen;
 mod text;

@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 mod catapult;
 mod check;
 mod compact;
+pub mod flags;
 mod jump;
 mod protocol;
 mod recording;

@@ -17,7 +17,9 @@
 //! What it does not own: developing a run's genomes (the command line passes a function that
 //! does, as it alone knows every encoding), nor driving a browser.
 
+mod open;
 mod server;
+pub mod snapshot;
 
 use std::path::{Path, PathBuf};
 
@@ -27,6 +29,7 @@ use crate::develop::{BuildOptions, build};
 use crate::lang::Diagnostic;
 use crate::lsystem::{DeriveOptions, LSystem};
 
+pub use open::{PageFlags, ignored_flags, run_developer};
 pub use server::{Developer, Server, ServerError};
 
 /// The version of three.js vendored in `vendor/three/`.

@@ -13,11 +13,13 @@
 //! [`Genome`].
 //!
 //! The comparison's directory and plan are in [`plan`], reading a finished replicate in
-//! [`replicate`], the statistics and the files of the report in [`report`].
+//! [`replicate`], the statistics and the files of the report in [`report`], where a comparison stands in
+//! [`survey`].
 
 mod plan;
 mod replicate;
 mod report;
+mod survey;
 
 pub use plan::{
     MAX_REPLICATES, Manifest, Shared, create, evaluations_of, generations_for, lock, open,
@@ -27,6 +29,7 @@ pub use replicate::{
     Champion, Replicate, ReplicateState, distinct_shapes_per_part, read_replicate,
 };
 pub use report::{EncodingSummary, Pair, Report, report, write_report};
+pub use survey::{Survey, gather, replicate_state, survey};
 
 use std::path::{Path, PathBuf};
 

@@ -1,0 +1,118 @@
+//! A creature summarised as `ontogeny grow` reports it: parts, joints by kind, brain, mass,
+//! bounding box, validity and problems; as JSON (serde) or as text.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::{Creature, Problem, Role};
+
+/// What `grow` says about a creature: the last frame of growing `file`, at developmental
+/// time `t`, after `frames` frames.
+#[derive(Clone, Debug, Serialize)]
+pub struct Summary {
+    /// The grammar's name.
+    pub file: String,
+    /// Developmental time of the frame.
+    pub t: f64,
+    /// Frames grown.
+    pub frames: usize,
+    /// Parts.
+    pub parts: usize,
+    /// Joints by kind (`revolute1`, ...).
+    pub joints: BTreeMap<String, usize>,
+    /// Neurons.
+    pub neurons: usize,
+    /// Links between neurons.
+    pub links: usize,
+    /// Sensor neurons.
+    pub sensors: usize,
+    /// Actuator neurons.
+    pub actuators: usize,
+    /// Mass (kg).
+    pub mass: f64,
+    /// The axis-aligned bounding box, lowest then highest corner.
+    pub bounding_box: [[f64; 3]; 2],
+    /// Whether the creature can be simulated.
+    pub valid: bool,
+    /// Its problems, as people read them.
+    pub problems: Vec<String>,
+}
+
+impl Summary {
+    /// The summary of `c`, the last of `frames` frames of growing `file` to time `t`.
+    pub fn of(file: &str, t: f64, frames: usize, c: &Creature) -> Summary {
+        let mut joints = BTreeMap::new();
+        for j in &c.joints {
+            let name = serde_json::to_value(j.kind)
+                .ok()
+                .and_then(|v| v.as_str().map(str::to_string))
+                .unwrap_or_default();
+            *joints.entry(name).or_insert(0) += 1;
+        }
+        let (lo, hi) = c.bounding_box();
+        let count = |f: fn(&Role) -> bool| c.brain.neurons.iter().filter(|n| f(&n.role)).count();
+        Summary {
+            file: file.to_string(),
+            t,
+            frames,
+            parts: c.parts.len(),
+            joints,
+            neurons: c.brain.neurons.len(),
+            links: c.brain.links.len(),
+            sensors: count(|r| matches!(r, Role::Sensor { .. })),
+            actuators: count(|r| matches!(r, Role::Actuator { .. })),
+            mass: c.mass(),
+            bounding_box: [[lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]],
+            valid: c.is_valid(),
+            problems: no_part(c)
+                .into_iter()
+                .chain(c.problems.iter().map(Problem::to_string))
+                .collect(),
+        }
+    }
+
+    /// The summary as text, a line for each of: the growth, parts and joints, brain, mass and
+    /// bounding box, validity, and each problem.
+    pub fn text(&self) -> String {
+        let s = self;
+        let joints: Vec<String> = s.joints.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        let [lo, hi] = s.bounding_box;
+        let mut lines = vec![
+            format!(
+                "{}: grown to t = {} in {} frame(s)",
+                s.file,
+                crate::lsystem::format_number(s.t),
+                s.frames
+            ),
+            format!(
+                "parts: {}   joints: {}",
+                s.parts,
+                if joints.is_empty() {
+                    "none".to_string()
+                } else {
+                    joints.join(", ")
+                }
+            ),
+            format!(
+                "brain: {} neurons ({} sensors, {} actuators), {} links",
+                s.neurons, s.sensors, s.actuators, s.links
+            ),
+            format!(
+                "mass: {:.4}   bounding box: ({:.3}, {:.3}, {:.3}) to ({:.3}, {:.3}, {:.3})",
+                s.mass, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+            ),
+            format!("valid: {}", if s.valid { "yes" } else { "no" }),
+        ];
+        lines.extend(s.problems.iter().map(|p| format!("  {p}")));
+        lines.join("\n")
+    }
+}
+
+/// The problem of a creature without parts, which development does not list (growth may
+/// start from nothing): there is nothing to simulate.
+fn no_part(c: &Creature) -> Option<String> {
+    c.parts.is_empty().then(|| {
+        "error: no part: the string builds nothing (a part comes from forward or its maturing twin mforward; see README \"Building creatures\")".to_string()
+    })
+}

@@ -1,0 +1,219 @@
+//! A run's and a comparison's settings from the command line: the flags of `ontogeny evolve`
+//! and `ontogeny compare` over a config file over the preset, resolved and checked. Errors are
+//! messages for people, naming the flag or the file at fault.
+
+use std::path::{Path, PathBuf};
+
+use crate::encoding::Genome;
+use crate::lang::Source;
+use crate::sim::StepSetting;
+use crate::task::{TaskKind, TaskSpec, WalkerFitness};
+
+use super::compare::{self, Manifest, Shared, generations_for};
+use super::config::{ConfigFile, RunConfig, check_settings};
+use super::ga::{GaSettings, Preset};
+
+/// The flags that set a run's genetic algorithm and task, shared by `evolve` and `compare`
+/// (each `None` when not given).
+#[derive(Clone, Debug, Default)]
+pub struct RunFlags {
+    /// `--preset`.
+    pub preset: Option<Preset>,
+    /// `--pop`.
+    pub population: Option<usize>,
+    /// `--gens`.
+    pub generations: Option<usize>,
+    /// `--task`.
+    pub task: Option<TaskKind>,
+    /// `--fitness`.
+    pub fitness: Option<WalkerFitness>,
+    /// `--seconds`.
+    pub seconds: Option<f64>,
+    /// `--setting`.
+    pub setting: Option<StepSetting>,
+}
+
+/// A settings error, prefixed with the config file's name when there is one.
+pub fn config_error(source: Option<&Source>, error: String) -> String {
+    match source {
+        Some(s) => format!("{}: {error}", s.name()),
+        None => error,
+    }
+}
+
+/// The task of a config file (default: the walker), with `--task`, `--fitness`, `--seconds`
+/// and `--setting` over it (a named setting replaces the file's five stepping values, and
+/// nothing else). `--fitness` for a task other than the walker is refused.
+pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec, String> {
+    let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+    if let Some(setting) = flags.setting {
+        spec.sim = setting.apply(&spec.sim);
+    }
+    if let Some(t) = flags.task {
+        spec.task = t;
+    }
+    if let Some(s) = flags.seconds {
+        match spec.task {
+            TaskKind::Walker => spec.walker.seconds = s,
+            TaskKind::Jump => spec.jump.seconds = s,
+            TaskKind::Catapult | TaskKind::Aim => spec.catapult.max_seconds = s,
+        }
+    }
+    if let Some(fitness) = flags.fitness {
+        if spec.task != TaskKind::Walker {
+            return Err(format!(
+                "--fitness is for the walker task only, and the task is {}",
+                spec.task.name()
+            ));
+        }
+        spec.walker.fitness = fitness;
+    }
+    Ok(spec)
+}
+
+/// The genetic algorithm and the task of a config file (`source` its text, when there is one)
+/// with the flags over them, checked together ([`check_settings`]).
+pub fn resolve_ga_and_task<L>(
+    file: &ConfigFile<L>,
+    source: Option<&Source>,
+    flags: &RunFlags,
+) -> Result<(GaSettings, TaskSpec), String> {
+    let mut overrides = file.ga.clone();
+    if let Some(p) = flags.preset {
+        overrides.preset = Some(p);
+    }
+    if flags.population.is_some() {
+        overrides.population = flags.population;
+    }
+    if flags.generations.is_some() {
+        overrides.generations = flags.generations;
+    }
+    let ga = overrides.resolve();
+    if let Some(s) = flags.seconds {
+        crate::task::check_duration("seconds", s).map_err(|e| e.for_flag("--seconds"))?;
+    }
+    let task = resolve_task(file.task.clone(), flags)?;
+    check_settings(&ga, &task).map_err(|e| config_error(source, e))?;
+    Ok((ga, task))
+}
+
+/// The grammar that seeds a run's first generation: `--init` (relative to the working
+/// directory), else the config file's `init` (relative to the file).
+pub fn init_path(
+    flag: Option<&Path>,
+    file: Option<&Path>,
+    source: Option<&Source>,
+) -> Option<PathBuf> {
+    match (flag, file, source) {
+        (Some(p), _, _) => Some(p.to_path_buf()),
+        (None, Some(p), Some(s)) => Some(
+            Path::new(s.name())
+                .parent()
+                .unwrap_or(Path::new("."))
+                .join(p),
+        ),
+        _ => None,
+    }
+}
+
+/// Refuses a seed grammar (`text`, read from `path`) that the encoding `G` cannot start from.
+pub fn check_init<G: Genome>(text: &str, limits: &G::Limits, path: &Path) -> Result<(), String> {
+    G::from_lsys(text, limits).map(drop).map_err(|e| {
+        format!(
+            "{}: cannot seed the {} encoding: {}",
+            path.display(),
+            G::NAME,
+            e.0
+        )
+    })
+}
+
+/// The settings of a new run: a config file with the flags over it (`seed`, and whether to
+/// re-walk the best and to cache, as `--no-verify-best` and `--no-cache` leave them).
+pub fn run_config<G: Genome>(
+    file: ConfigFile<G::Limits>,
+    source: Option<&Source>,
+    flags: &RunFlags,
+    seed: Option<u64>,
+    verify_best: bool,
+    cache: bool,
+) -> Result<RunConfig<G::Limits>, String> {
+    let (ga, task) = resolve_ga_and_task(&file, source, flags)?;
+    Ok(RunConfig {
+        encoding: G::NAME.to_string(),
+        seed: seed.or(file.seed).unwrap_or(1),
+        init: None,
+        verify_best: verify_best && file.verify_best.unwrap_or(true),
+        cache: cache && file.cache.unwrap_or(true),
+        ga,
+        task,
+        limits: file.limits.unwrap_or_default(),
+    })
+}
+
+/// The comparison `compare`'s flags describe over its config file (`source` its text), checked:
+/// `encodings` each named once, 1 to [`compare::MAX_REPLICATES`] replicates (default 10), a
+/// config without the settings a comparison sets itself, and generations as many as fit in
+/// the `budget` of evaluations.
+#[allow(clippy::too_many_arguments)]
+pub fn plan_comparison(
+    encodings: &[&str],
+    all_encodings: &str,
+    replicates: Option<usize>,
+    budget: u64,
+    seed: Option<u64>,
+    file: &ConfigFile<toml::Value>,
+    source: Option<&Source>,
+    flags: &RunFlags,
+) -> Result<(Manifest, Shared), String> {
+    let mut names: Vec<String> = Vec::new();
+    for e in encodings {
+        if names.iter().any(|x| x == e) {
+            return Err(format!("--encodings names {e} twice"));
+        }
+        names.push(e.to_string());
+    }
+    if names.is_empty() {
+        return Err(format!("--encodings needs at least one of {all_encodings}"));
+    }
+    let replicates = replicates.unwrap_or(10);
+    if !(1..=compare::MAX_REPLICATES).contains(&replicates) {
+        return Err(format!(
+            "--replicates must be 1 to {}, not {replicates}",
+            compare::MAX_REPLICATES
+        ));
+    }
+    let where_from = source.map_or("the command line".to_string(), |s| s.name().to_string());
+    let refuse = |what: &str, why: &str| {
+        Err(format!(
+            "{where_from}: {what} has no place in a comparison's config: {why}"
+        ))
+    };
+    if file.encoding.is_some() {
+        return refuse("encoding", "--encodings names them");
+    }
+    if file.init.is_some() {
+        return refuse("init", "every replicate starts from random genomes");
+    }
+    if file.limits.is_some() {
+        return refuse("[limits]", "every encoding runs with its default limits");
+    }
+    if file.ga.generations.is_some() {
+        return refuse("[ga] generations", "--evaluations sets the generations");
+    }
+    let one_generation = RunFlags {
+        generations: Some(1),
+        ..flags.clone()
+    };
+    let (mut ga, task) = resolve_ga_and_task(file, source, &one_generation)?;
+    ga.generations = generations_for(&ga, budget).map_err(|e| format!("--evaluations: {e}"))?;
+    Ok((
+        Manifest {
+            encodings: names,
+            replicates,
+            evaluations: budget,
+            seed: seed.or(file.seed).unwrap_or(1),
+        },
+        Shared { ga, task },
+    ))
+}

@@ -1,0 +1,154 @@
+//! A task from `ontogeny eval`'s flags: its specification built and checked
+//! ([`TaskFlags::spec`]), the flags the task does not use, and what `eval` says before and
+//! after the evaluation (its progress label, the note on a long recording, the warning on a
+//! coarse step setting, the result as text).
+
+use crate::sim::{SettingError, SimOptions};
+
+use super::{Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness};
+
+/// The task flags of `ontogeny eval` (each `None` when not given).
+#[derive(Clone, Debug)]
+pub struct TaskFlags {
+    /// `--task`.
+    pub task: TaskKind,
+    /// `--seconds`.
+    pub seconds: Option<f64>,
+    /// `--fitness`.
+    pub fitness: Option<WalkerFitness>,
+    /// `--activation`.
+    pub activation: Option<f64>,
+    /// `--target`.
+    pub target: Option<[f64; 3]>,
+    /// `--projectile-size`.
+    pub projectile_size: Option<f64>,
+    /// `--projectile-density`.
+    pub projectile_density: Option<f64>,
+}
+
+impl TaskFlags {
+    /// The task's specification with the simulator's settings `sim`, checked
+    /// ([`TaskSpec::check`]); an error's key names the setting at fault.
+    pub fn spec(&self, sim: SimOptions) -> Result<TaskSpec, SettingError> {
+        if let Some(seconds) = self.seconds {
+            super::check_duration("seconds", seconds)?;
+        }
+        let mut spec = TaskSpec::new(self.task);
+        spec.sim = sim;
+        spec.walker.fitness = self.fitness.unwrap_or(WalkerFitness::Normalised);
+        if let Some(a) = self.activation {
+            spec.walker.activation = a;
+        }
+        if let Some(s) = self.seconds {
+            spec.walker.seconds = s;
+            spec.jump.seconds = s;
+            spec.catapult.max_seconds = s;
+        }
+        if let Some(size) = self.projectile_size {
+            spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);
+        }
+        if let Some(density) = self.projectile_density {
+            spec.catapult.projectile_density = density;
+        }
+        if spec.task == TaskKind::Aim {
+            let [x, y, z] = self.target.unwrap_or([5.0, 0.0, 0.0]);
+            spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
+        }
+        spec.check()?;
+        Ok(spec)
+    }
+
+    /// The flags given that the task does not use, each with the tasks it is for.
+    pub fn inapplicable(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let task = self.task;
+        if self.fitness.is_some() && task != TaskKind::Walker {
+            out.push("--fitness is for the walker task only".to_string());
+        }
+        if self.target.is_some() && task != TaskKind::Aim {
+            out.push("--target is for the aim task only (the catapult has no target)".to_string());
+        }
+        let throwing = matches!(task, TaskKind::Catapult | TaskKind::Aim);
+        if self.projectile_size.is_some() && !throwing {
+            out.push("--projectile-size is for the catapult and aim tasks only".to_string());
+        }
+        if self.projectile_density.is_some() && !throwing {
+            out.push("--projectile-density is for the catapult and aim tasks only".to_string());
+        }
+        out
+    }
+}
+
+/// Parses `X,Y,Z`: three finite numbers.
+pub fn parse_point(text: &str) -> Result<[f64; 3], String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|v| {
+            v.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("'{v}' is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    match values.as_slice() {
+        [x, y, z] if values.iter().all(|v| v.is_finite()) => Ok([*x, *y, *z]),
+        _ => Err(format!("'{text}' is not X,Y,Z")),
+    }
+}
+
+/// What an evaluation of `spec` is, for a progress bar: `walker, 20 s`, `catapult`.
+pub fn progress_label(spec: &TaskSpec) -> String {
+    match spec.task {
+        TaskKind::Walker => format!("walker, {} s", spec.walker.seconds),
+        TaskKind::Jump => format!("jump, {} s", spec.jump.seconds),
+        TaskKind::Catapult => "catapult".to_string(),
+        TaskKind::Aim => "aim".to_string(),
+    }
+}
+
+/// The note for a recorded evaluation of `spec` long enough that its recording keeps only
+/// one step in several.
+pub fn recording_note(spec: &TaskSpec) -> Option<String> {
+    let max_steps = spec.max_steps();
+    let interval = super::recording_interval(max_steps);
+    let dt = spec.sim.dt;
+    (interval > 1).then(|| {
+        format!(
+            "note: this evaluation may take {max_steps} steps ({:.1} s): recording.json keeps one step in {interval} (a frame every {:.3} s), to stay under {} frames",
+            max_steps as f64 * dt,
+            interval as f64 * dt,
+            MAX_RECORDED_SAMPLES
+        )
+    })
+}
+
+/// The warning for an evaluation in which the solver let a joint come apart more than
+/// [`crate::sim::JOINT_GAP_WARNING`].
+pub fn joint_gap_warning(evaluation: &Evaluation) -> Option<String> {
+    let gap = *evaluation.terms.get("joint_gap")?;
+    (gap > crate::sim::JOINT_GAP_WARNING).then(|| {
+        format!(
+            "warning: the solver let a joint come {:.1} cm apart: this step setting is too coarse \
+             for this creature, and its fitness may not hold at a finer one (try --substeps 16 \
+             --solver-iterations 8; README, \"Speed and fidelity\")",
+            gap * 100.0
+        )
+    })
+}
+
+/// The evaluation of the creature named `name` as text: fitness and status, each term, and
+/// the message if any.
+pub fn evaluation_text(name: &str, evaluation: &Evaluation) -> String {
+    let mut lines = vec![format!(
+        "{name}: {} fitness {:.6} ({})",
+        evaluation.task,
+        evaluation.fitness,
+        evaluation.status.name()
+    )];
+    for (name, value) in &evaluation.terms {
+        lines.push(format!("  {name} = {value:.6}"));
+    }
+    if let Some(message) = &evaluation.message {
+        lines.push(format!("  {message}"));
+    }
+    lines.join("\n")
+}
