@@ -28,8 +28,8 @@ use std::collections::HashSet;
 pub use ast::LsysFile;
 pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
 
-use ast::{ModuleCall, PatternModule, Rule};
-use parser::{RawCall, RawPattern};
+use ast::{Expr, ModuleCall, PatternModule, Rule};
+use parser::RawModule;
 
 /// The builder's commands (Hornby & Pollack; Matos & Arita), known names for word splitting:
 /// the names of [`commands::COMMANDS`]. Each also has a maturing twin prefixed `m`
@@ -67,13 +67,13 @@ pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
     };
 
     if let Some((calls, span)) = raw.axiom {
-        let modules = splitter.calls(calls, &mut file.split_words);
+        let modules = splitter.modules(calls, &mut file.split_words);
         file.axiom = Some((modules, span));
     }
     for rule in raw.rules {
-        let left = splitter.patterns(rule.left, &mut file.split_words);
-        let right = splitter.patterns(rule.right, &mut file.split_words);
-        let successor = splitter.calls(rule.successor, &mut file.split_words);
+        let left = splitter.modules(rule.left, &mut file.split_words);
+        let right = splitter.modules(rule.right, &mut file.split_words);
+        let successor = splitter.modules(rule.successor, &mut file.split_words);
         file.rules.push(Rule {
             left,
             predecessor: rule.predecessor,
@@ -164,46 +164,56 @@ impl Splitter<'_> {
             .collect())
     }
 
-    fn calls(
+    /// Every module of `raw` with its word split into the modules it names.
+    fn modules<M: Splittable>(
         &self,
-        calls: Vec<RawCall>,
+        raw: Vec<RawModule<M>>,
         split_words: &mut Vec<(String, Vec<String>, Span)>,
-    ) -> Vec<ModuleCall> {
-        let mut out = Vec::with_capacity(calls.len());
-        for raw in calls {
+    ) -> Vec<M> {
+        let mut out = Vec::with_capacity(raw.len());
+        for raw in raw {
             if !raw.is_word {
-                out.push(raw.call);
+                out.push(raw.module);
                 continue;
             }
-            let ModuleCall { name, args, span } = raw.call;
-            let make = |name, span, args| ModuleCall { name, args, span };
-            match self.split_module(&name, raw.name_span, span.end, args, split_words, make) {
+            let (name, params, span) = raw.module.into_parts();
+            match self.split_module(&name, raw.name_span, span.end, params, split_words, M::new) {
                 Ok(pieces) => out.extend(pieces),
-                Err(args) => out.push(ModuleCall { name, args, span }),
+                Err(params) => out.push(M::new(name, span, params)),
             }
         }
         out
     }
+}
 
-    fn patterns(
-        &self,
-        patterns: Vec<RawPattern>,
-        split_words: &mut Vec<(String, Vec<String>, Span)>,
-    ) -> Vec<PatternModule> {
-        let mut out = Vec::with_capacity(patterns.len());
-        for raw in patterns {
-            if !raw.is_word {
-                out.push(raw.pattern);
-                continue;
-            }
-            let PatternModule { name, params, span } = raw.pattern;
-            let make = |name, span, params| PatternModule { name, params, span };
-            match self.split_module(&name, raw.name_span, span.end, params, split_words, make) {
-                Ok(pieces) => out.extend(pieces),
-                Err(params) => out.push(PatternModule { name, params, span }),
-            }
-        }
-        out
+/// A module whose written word may name several modules: a call or a pattern, taken apart
+/// into its name, parameters and span and made again from them.
+trait Splittable: Sized {
+    /// Its arguments (a call's) or formal parameters (a pattern's).
+    type Params: Default;
+    /// Its name, parameters and span.
+    fn into_parts(self) -> (String, Self::Params, Span);
+    /// The module of this name, span and parameters.
+    fn new(name: String, span: Span, params: Self::Params) -> Self;
+}
+
+impl Splittable for ModuleCall {
+    type Params = Vec<Expr>;
+    fn into_parts(self) -> (String, Vec<Expr>, Span) {
+        (self.name, self.args, self.span)
+    }
+    fn new(name: String, span: Span, args: Vec<Expr>) -> Self {
+        ModuleCall { name, args, span }
+    }
+}
+
+impl Splittable for PatternModule {
+    type Params = Vec<(String, Span)>;
+    fn into_parts(self) -> (String, Vec<(String, Span)>, Span) {
+        (self.name, self.params, self.span)
+    }
+    fn new(name: String, span: Span, params: Vec<(String, Span)>) -> Self {
+        PatternModule { name, params, span }
     }
 }
 

@@ -21,21 +21,20 @@ const MAX_OPERATORS: usize = 1000;
 /// Deepest an expression tree may be (keeps evaluation's recursion bounded).
 const MAX_EXPR_DEPTH: usize = 256;
 
-/// A module in an axiom or successor before its word is split.
-pub(super) struct RawCall {
-    pub call: ModuleCall,
+/// A module before its word is split: a call (in an axiom or successor) or a pattern.
+pub(super) struct RawModule<M> {
+    pub module: M,
     /// Where the name alone stands.
     pub name_span: Span,
     /// Whether the name is a word (splittable) rather than a special character.
     pub is_word: bool,
 }
 
+/// A module in an axiom or successor before its word is split.
+pub(super) type RawCall = RawModule<ModuleCall>;
+
 /// A module in a pattern before its word is split.
-pub(super) struct RawPattern {
-    pub pattern: PatternModule,
-    pub name_span: Span,
-    pub is_word: bool,
-}
+pub(super) type RawPattern = RawModule<PatternModule>;
 
 /// A rule whose module lists are still raw words.
 pub(super) struct RawRule {
@@ -565,7 +564,7 @@ impl Builder<'_> {
                         .into_inner()
                         .next()
                         .expect("grammar: predecessor module");
-                    rule.predecessor = self.pattern(p).pattern;
+                    rule.predecessor = self.pattern(p).module;
                 }
                 Rule::right_context => {
                     rule.right = part.into_inner().map(|p| self.pattern(p)).collect()
@@ -623,7 +622,7 @@ impl Builder<'_> {
             })
             .unwrap_or_default();
         RawPattern {
-            pattern: PatternModule {
+            module: PatternModule {
                 name: name.as_str().to_string(),
                 params,
                 span,
@@ -654,7 +653,7 @@ impl Builder<'_> {
             None => Vec::new(),
         };
         Ok(RawCall {
-            call: ModuleCall {
+            module: ModuleCall {
                 name: name.as_str().to_string(),
                 args,
                 span,
