@@ -60,7 +60,7 @@ pub struct BenchArgs {
     creature: Option<std::path::PathBuf>,
 }
 
-/// Measures and prints the figures the README reports.
+/// Measures and prints the figures docs/results/speed.md reports.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     task::check_duration("seconds", args.seconds).map_err(flag_error)?;
     let base = SimOptions {

@@ -24,7 +24,7 @@ joint, one box geom per part (sizes are half-extents), the joints as hinges with
 (radians; a joint of 2 or 3 degrees of freedom is 2 or 3 hinges), one actuator per driven \
 degree of freedom matching --actuator, contact exclusions between jointed parts, and the \
 density, friction and time step of the simulator. Ontogeny's Y-up world is rotated so that Z \
-is up. The README's \"Export to MuJoCo\" section details every mapping.
+is up. docs/guide/exporting.md details every mapping.
 
 Examples:
   ontogeny export examples/quadruped.lsys --out quadruped.xml

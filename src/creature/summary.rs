@@ -113,6 +113,6 @@ impl Summary {
 /// start from nothing): there is nothing to simulate.
 fn no_part(c: &Creature) -> Option<String> {
     c.parts.is_empty().then(|| {
-        "error: no part: the string builds nothing (a part comes from forward or its maturing twin mforward; see README \"Building creatures\")".to_string()
+        "error: no part: the string builds nothing (a part comes from forward or its maturing twin mforward; see docs/reference/commands.md)".to_string()
     })
 }

@@ -84,7 +84,7 @@ impl RunTally {
             && exploits_stepping(r.stats.best, f.fitness)
         {
             lines.push(format!(
-                "warning: the champion scores {:.6} at the fine reference setting, down more than half of its {:.6}: it may exploit the simulator's step setting (see the README's \"Evolve\", \"Re-walking the best at the fine reference\")",
+                "warning: the champion scores {:.6} at the fine reference setting, down more than half of its {:.6}: it may exploit the simulator's step setting (see docs/guide/evolving.md, \"Re-walking the best at the fine reference\")",
                 f.fitness, r.stats.best
             ));
         }

@@ -1,6 +1,6 @@
 //! MuJoCo's MJCF: a creature as a `<mujoco>` model, with the settings of [`SimOptions`].
 //!
-//! What is mapped, and how (the README's "Export to MuJoCo" says the same for users):
+//! What is mapped, and how (docs/guide/exporting.md says the same for users):
 //!
 //! - **Axes.** MuJoCo is Z up; Ontogeny is Y up. The whole model is rotated +90° about x:
 //!   Ontogeny's (x, y, z) is MuJoCo's (x, −z, y). The ground is a `plane` at z = 0 and

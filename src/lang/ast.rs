@@ -158,7 +158,7 @@ pub struct Derivative {
     pub rhs: Expr,
 }
 
-/// How continuous development rewrites modules at events (see the README).
+/// How continuous development rewrites modules at events (see docs/reference/language.md).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Timing {
     /// Settle at every event and at t = 0: development does not depend on `dt`.

@@ -8,8 +8,8 @@ use super::world::{Exploded, GRAVITY, JointHandle, World};
 
 /// A joint gap (m) beyond which `ontogeny eval` warns that the step setting is too coarse for
 /// the creature: the fine reference keeps the evolved walkers measured under 1.1 cm, while
-/// the champions that exploited the fast setting reach 7 to 23 cm. See the README's
-/// "Speed and fidelity".
+/// the champions that exploited the fast setting reach 7 to 23 cm. See
+/// docs/results/speed.md.
 pub const JOINT_GAP_WARNING: f64 = 0.05;
 
 /// The memory (s) of the energy audit: unexplained energy gained this long ago counts for

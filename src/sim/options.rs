@@ -72,7 +72,7 @@ pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 /// The default [`SimOptions::energy_tolerance`] (J/kg): the energy a creature may gain from
 /// nothing within about [`ENERGY_WINDOW`], what lifting it by 1 m takes: three times the
 /// most the shipped and random creatures reach at the fast setting ([`SimOptions::fast`], 3.2 J/kg), well
-/// below what the exploits evolution found reach (27 J/kg). See the README's "energy audit".
+/// below what the exploits evolution found reach (27 J/kg). See docs/reference/tasks.md, the energy audit.
 pub const ENERGY_TOLERANCE: f64 = 10.0;
 
 /// World settings. Read from a `[task.sim]` table through [`SimTable`](super::SimTable) (a named
@@ -140,7 +140,7 @@ impl Default for SimOptions {
         // most of their distance at the fine reference; those of the few runs evolved at this
         // one kept most of theirs (lucky walks aside), and this setting ranks random creatures
         // about as alike to the fine reference as the reference ranks them to itself (see
-        // `ontogeny bench --fidelity` and the README's "Speed and fidelity").
+        // `ontogeny bench --fidelity` and docs/results/speed.md).
         let (substeps, solver_iterations, pgs_iterations, rest_substeps, rest_solver_iterations) =
             StepSetting::Default.stepping();
         SimOptions {
@@ -172,7 +172,7 @@ impl SimOptions {
     /// passes while walking, 2 substeps of 4 iterations while waiting for rest; everything else
     /// as `self`. About 4× cheaper than the default per walk (3.6× with the rest phases, 4.7×
     /// controller on), and good for ranking random creatures (`bench --fidelity`), but evolved
-    /// creatures learn to walk on its errors (README, "Speed and fidelity").
+    /// creatures learn to walk on its errors (docs/results/speed.md).
     pub fn fast(&self) -> SimOptions {
         StepSetting::Fast.apply(self)
     }
@@ -182,8 +182,8 @@ impl SimOptions {
     /// for rest; the control step `dt` and everything else unchanged. At the default `dt` of
     /// 1/60 s that is physics at 1/240 s. `ontogeny bench --fidelity` ranks stepping settings
     /// against it, and `ontogeny evolve` re-walks each generation's best with it, since
-    /// evolution learns to exploit a coarse setting (see the README's *Speed and fidelity* and
-    /// *Evolve*).
+    /// evolution learns to exploit a coarse setting (see docs/results/speed.md and
+    /// docs/guide/evolving.md).
     pub fn fine_reference(&self) -> SimOptions {
         StepSetting::Fine.apply(self)
     }

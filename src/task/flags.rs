@@ -129,7 +129,7 @@ pub fn joint_gap_warning(evaluation: &Evaluation) -> Option<String> {
         format!(
             "warning: the solver let a joint come {:.1} cm apart: this step setting is too coarse \
              for this creature, and its fitness may not hold at a finer one (try --substeps 16 \
-             --solver-iterations 8; README, \"Speed and fidelity\")",
+             --solver-iterations 8; docs/results/speed.md)",
             gap * 100.0
         )
     })

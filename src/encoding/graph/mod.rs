@@ -170,7 +170,7 @@ pub struct Connection {
     /// The face of the parent part the child grows from.
     pub face: Face,
     /// Where on the face, each coordinate in [−1, 1] across the face's two other axes (its
-    /// thickness and width for the end faces; see the README).
+    /// thickness and width for the end faces; see docs/reference/genomes.md).
     pub position: [f64; 2],
     /// The child's turn relative to the face's normal: two bends in [`BEND_RANGE`] and a roll
     /// about its length in [`ROLL_RANGE`] (radians).
@@ -290,7 +290,7 @@ pub enum JointSet {
     /// `rigid`, `revolute` and `twist`: at most one degree of freedom, as Chaumont et al.
     /// built their creatures (section 5.1: "To ensure a maximum of stability, each (ball and
     /// socket) joint has only one degree of freedom"). Evolution turns the multi-axis joints
-    /// into exploits of the impulse solver (see the README's *Speed and fidelity*).
+    /// into exploits of the impulse solver (see docs/results/speed.md).
     #[default]
     OneAxis,
     /// Sims' seven kinds, `universal`, `bend-twist`, `twist-bend` and `spherical` included.
