@@ -53,6 +53,7 @@ fn evolve_config<G: Genome>(source: &Source) {
         seed: file.seed.unwrap_or(1),
         init: None,
         verify_best: file.verify_best.unwrap_or(true),
+        cache: file.cache.unwrap_or(true),
         ga,
         task,
         limits: file.limits.unwrap_or_default(),

@@ -69,7 +69,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     };
     let sim = args.stepping.apply(&base)?;
     let n = args.evaluations.max(1);
-    let steps = (args.seconds / sim.dt).round();
+    let steps = (args.seconds / sim.control_step).round();
     if let Some(file) = &args.creature {
         let creature = super::input::load_creature(
             file,
@@ -89,7 +89,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             "{}: {} s at {} s ({} substeps), {n} evaluations, one core: {:.2} evaluations/s ({:.1} µs per step)",
             file.display(),
             args.seconds,
-            sim.dt,
+            sim.control_step,
             sim.substeps,
             n as f64 / seconds,
             seconds / n as f64 / steps * 1e6
@@ -163,7 +163,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                 ..sim.clone()
             };
             let (t, _) = time_evaluation(&creature, &sim, 5.0);
-            row.push(t / (5.0 / sim.dt) * 1e6);
+            row.push(t / (5.0 / sim.control_step) * 1e6);
         }
         say!("{parts:>6} {:>10.1} {:>10.1}", row[0], row[1]);
     }

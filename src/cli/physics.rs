@@ -16,7 +16,7 @@ pub struct PhysicsArgs {
     actuator: ActuatorModel,
     /// Control time step in seconds, in [0.001, 0.1]; the physics runs `--substeps` times per
     /// step.
-    #[arg(long, default_value_t = SimOptions::default().dt)]
+    #[arg(long, default_value_t = SimOptions::default().control_step)]
     time_step: f64,
     #[command(flatten)]
     stepping: SteppingArgs,
@@ -143,7 +143,7 @@ impl PhysicsArgs {
     /// naming the flag that is out of range.
     pub fn sim_options(&self) -> anyhow::Result<SimOptions> {
         let base = SimOptions {
-            dt: self.time_step,
+            control_step: self.time_step,
             strength: self.strength,
             muscle_speed: self.muscle_speed,
             self_collision: !self.no_self_collision,

@@ -23,7 +23,7 @@ pub fn chain(parts: usize) -> Creature {
 pub fn time_evaluation(creature: &Creature, sim: &SimOptions, seconds: f64) -> (f64, f64) {
     let start = Instant::now();
     let mut world = World::new(creature, sim).expect("the bench creature builds");
-    let steps = (seconds / sim.dt).round() as usize;
+    let steps = (seconds / sim.control_step).round() as usize;
     for _ in 0..steps {
         if world.step(true).is_err() {
             break;
@@ -48,7 +48,7 @@ pub fn one_core(creature: &Creature, sim: &SimOptions, n: usize, seconds: f64) -
         physics += p;
     }
     let rate = n as f64 / started.elapsed().as_secs_f64();
-    let steps = (seconds / sim.dt).round();
+    let steps = (seconds / sim.control_step).round();
     (
         rate,
         total / n as f64 / steps * 1e6,

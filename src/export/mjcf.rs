@@ -345,7 +345,7 @@ pub fn to_mjcf(
     let _ = writeln!(
         w,
         "  <option timestep=\"{}\" iterations=\"{}\" gravity=\"0 0 {}\" integrator=\"implicitfast\">",
-        numbers(&[options.dt / substeps as f64]),
+        numbers(&[options.control_step / substeps as f64]),
         options.solver_iterations.max(1),
         numbers(&[-GRAVITY])
     );
@@ -360,7 +360,7 @@ pub fn to_mjcf(
     let _ = writeln!(
         w,
         "    <numeric name=\"ontogeny_control_step\" data=\"{}\"/>",
-        numbers(&[options.dt])
+        numbers(&[options.control_step])
     );
     let _ = writeln!(
         w,

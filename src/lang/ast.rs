@@ -169,19 +169,20 @@ pub enum Timing {
     Iterative,
 }
 
-/// A production or interpretation rule.
+/// A production or interpretation rule, its modules of type `Pattern` (contexts) and `Call`
+/// (successor): [`Rule`] once the modules' words are split, the parser's raw words before.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Rule {
+pub struct RuleOf<Pattern, Call> {
     /// Left context, in string order (`B C` in `BC < S`).
-    pub left: Vec<PatternModule>,
+    pub left: Vec<Pattern>,
     /// The module the rule rewrites.
     pub predecessor: PatternModule,
     /// Right context, in string order; may contain `[` and `]`.
-    pub right: Vec<PatternModule>,
+    pub right: Vec<Pattern>,
     /// The condition after `:`.
     pub guard: Option<Expr>,
     /// What the predecessor becomes (empty for a `solve` rule).
-    pub successor: Vec<ModuleCall>,
+    pub successor: Vec<Call>,
     /// For a differential rule, its ODEs: the module stays and its parameters grow.
     pub solve: Option<Vec<Derivative>>,
     /// The weight after the successor (stochastic rules).
@@ -191,6 +192,9 @@ pub struct Rule {
     /// The whole rule.
     pub span: Span,
 }
+
+/// A production or interpretation rule.
+pub type Rule = RuleOf<PatternModule, ModuleCall>;
 
 /// `define NAME = expr`
 #[derive(Clone, Debug, PartialEq)]

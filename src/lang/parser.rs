@@ -7,8 +7,8 @@ use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 
 use super::ast::{
-    BinaryOp, Define, Derivative, Expr, LsysFile, ModuleCall, PatternModule, Section, Timing,
-    UnaryOp,
+    BinaryOp, Define, Derivative, Expr, LsysFile, ModuleCall, PatternModule, RuleOf, Section,
+    Timing, UnaryOp,
 };
 use super::source::{Diagnostic, DiagnosticKind, Source, Span};
 
@@ -37,17 +37,7 @@ pub(super) type RawCall = RawModule<ModuleCall>;
 pub(super) type RawPattern = RawModule<PatternModule>;
 
 /// A rule whose module lists are still raw words.
-pub(super) struct RawRule {
-    pub left: Vec<RawPattern>,
-    pub predecessor: PatternModule,
-    pub right: Vec<RawPattern>,
-    pub guard: Option<Expr>,
-    pub successor: Vec<RawCall>,
-    pub solve: Option<Vec<Derivative>>,
-    pub probability: Option<Expr>,
-    pub section: Section,
-    pub span: Span,
-}
+pub(super) type RawRule = RuleOf<RawPattern, RawCall>;
 
 /// The file before words are split.
 #[derive(Default)]

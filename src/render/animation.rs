@@ -216,7 +216,7 @@ pub fn write_behaviour_gif(
     let framing = Framing::Following {
         parts: creature.parts.len(),
     };
-    write_gif_with_progress(
+    write_gif(
         poses.iter(),
         &overlays,
         path,
@@ -277,31 +277,10 @@ fn finish_gif<W: std::io::Write>(encoder: gif::Encoder<W>) -> Result<(), RenderE
 /// Writes an animated GIF of a sequence of creatures, framed as `framing` says, looping:
 /// image i is drawn with `overlays[i]` (none beyond the slice) and lasts `delays_cs[i]`
 /// hundredths of a second (the last delay for images beyond the slice, 10 if it is empty).
-pub fn write_gif<'a>(
-    creatures: impl IntoIterator<Item = &'a Creature> + Clone,
-    overlays: &[Overlay],
-    path: &std::path::Path,
-    width: u32,
-    height: u32,
-    delays_cs: &[u16],
-    framing: Framing,
-) -> Result<(), RenderError> {
-    write_gif_with_progress(
-        creatures,
-        overlays,
-        path,
-        width,
-        height,
-        delays_cs,
-        framing,
-        &mut |_| {},
-    )
-}
-
-/// [`write_gif`], calling `progress` with the fraction of images written (0 to 1) after
-/// each one, so that the caller can show how far drawing has got.
+/// `progress` is told the fraction of images written (0 to 1) after each one, so that the
+/// caller can show how far drawing has got.
 #[allow(clippy::too_many_arguments)]
-pub fn write_gif_with_progress<'a>(
+pub fn write_gif<'a>(
     creatures: impl IntoIterator<Item = &'a Creature> + Clone,
     overlays: &[Overlay],
     path: &std::path::Path,

@@ -52,7 +52,7 @@ pub fn write_growth_gif(
             ..Default::default()
         })
         .collect();
-    super::write_gif_with_progress(
+    super::write_gif(
         frames.iter().map(|frame| &frame.creature),
         &labels,
         path,

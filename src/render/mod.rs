@@ -20,7 +20,7 @@ use tiny_skia::{Color, Pixmap};
 use crate::creature::Creature;
 pub use animation::{
     MAX_FPS, MAX_GIF_IMAGES, Playback, evenly_in_time, playback, posed, trail, write_behaviour_gif,
-    write_gif, write_gif_with_progress, write_still_gif,
+    write_gif, write_still_gif,
 };
 use body::{Checks, draw_body};
 use brain::draw_brain;
@@ -206,13 +206,28 @@ mod tests {
         c
     }
 
+    /// Writes a one-image GIF of `c` drawn with `overlay`.
+    fn still_gif(c: &Creature, overlay: Overlay, path: &std::path::Path) {
+        write_gif(
+            [c],
+            &[overlay],
+            path,
+            480,
+            300,
+            &[10],
+            Framing::Still,
+            &mut |_| {},
+        )
+        .unwrap();
+    }
+
     #[test]
     fn legend_colours_survive_the_gif_palette() {
         let c = arm();
         let view = View::framing(&c);
         let pixmap = picture(&c, &view, 480, 300, &Overlay::default()).unwrap();
         let path = temp("legend.gif");
-        write_gif([&c], &[], &path, 480, 300, &[10], Framing::Still).unwrap();
+        still_gif(&c, Overlay::default(), &path);
         let frames = gif_frames(&path);
         assert_eq!(frames.len(), 1);
         // Every pixel that is exactly a legend colour in the picture is that colour in the
@@ -263,8 +278,8 @@ mod tests {
         assert!(count(aimed_pic.data(), TARGET) > 20);
         // Through a GIF: the target's colour in the aim animation only.
         let (a, b) = (temp("aim.gif"), temp("catapult.gif"));
-        write_gif([&c], &[aimed], &a, 480, 300, &[10], Framing::Still).unwrap();
-        write_gif([&c], &[thrown], &b, 480, 300, &[10], Framing::Still).unwrap();
+        still_gif(&c, aimed, &a);
+        still_gif(&c, thrown, &b);
         assert!(count(&gif_frames(&a)[0], TARGET) > 20);
         assert_eq!(count(&gif_frames(&b)[0], TARGET), 0);
     }

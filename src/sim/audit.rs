@@ -103,10 +103,10 @@ impl World {
         let energy = self.mechanical_energy();
         // The motors' work over the step is at most the larger of their power bounds at its
         // two ends × dt (a speed through zero in between only lowers it).
-        let allowed = power_before.max(self.motor_power_bound()) * self.options.dt;
+        let allowed = power_before.max(self.motor_power_bound()) * self.options.control_step;
         // Summed with a memory of ENERGY_WINDOW seconds: a slow trickle of solver error
         // fades, a burst does not.
-        let fade = (-self.options.dt / ENERGY_WINDOW).exp();
+        let fade = (-self.options.control_step / ENERGY_WINDOW).exp();
         self.unexplained_energy =
             self.unexplained_energy * fade + (energy - self.energy - allowed).max(0.0);
         self.peak_unexplained = self.peak_unexplained.max(self.unexplained_energy);

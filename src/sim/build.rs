@@ -97,7 +97,7 @@ impl World {
             .check_consistency()
             .map_err(BuildError::Malformed)?;
         let params = IntegrationParameters {
-            dt: (options.dt / options.substeps as f64) as Real,
+            dt: (options.control_step / options.substeps as f64) as Real,
             num_solver_iterations: options.solver_iterations,
             num_internal_pgs_iterations: options.pgs_iterations,
             ..IntegrationParameters::default()

@@ -81,11 +81,11 @@ pub const ENERGY_TOLERANCE: f64 = 10.0;
 #[serde(from = "super::SimTable")]
 pub struct SimOptions {
     /// The control step in seconds: the brain runs once per step; physics runs `substeps`
-    /// times per step, at `dt / substeps`. A config file names it `control_step` (`dt`, its
+    /// times per step, at `control_step / substeps`. A config file names it `control_step` (`dt`, its
     /// name in older files, is read as well), the command line `--time-step`; not to be
     /// confused with the developmental time step (`--dt`, an L-system's `dt:`).
     #[serde(rename = "control_step")]
-    pub dt: f64,
+    pub control_step: f64,
     /// Physics substeps per control step.
     pub substeps: usize,
     /// Solver iterations per substep (rapier's `num_solver_iterations`: each one re-linearises
@@ -144,7 +144,7 @@ impl Default for SimOptions {
         let (substeps, solver_iterations, pgs_iterations, rest_substeps, rest_solver_iterations) =
             StepSetting::Default.stepping();
         SimOptions {
-            dt: 1.0 / 60.0,
+            control_step: 1.0 / 60.0,
             substeps,
             solver_iterations,
             pgs_iterations,
@@ -196,11 +196,11 @@ impl SimOptions {
     /// drop height and energy tolerance finite and not negative, speeds and the explosion
     /// distance finite and positive. The error names the key.
     pub fn check(&self) -> Result<(), SettingError> {
-        if !(MIN_DT..=MAX_DT).contains(&self.dt) {
+        if !(MIN_DT..=MAX_DT).contains(&self.control_step) {
             return Err(SettingError::out_of_range(
                 "control_step",
                 &format!("in [{MIN_DT}, {MAX_DT}] seconds"),
-                self.dt,
+                self.control_step,
             ));
         }
         let counts = [
@@ -254,61 +254,40 @@ mod tests {
 
     #[test]
     fn the_check_names_the_key_and_its_range() {
+        // A default with one value changed.
+        let with = |change: fn(&mut SimOptions)| {
+            let mut options = SimOptions::default();
+            change(&mut options);
+            options
+        };
         let cases: [(SimOptions, &str); 8] = [
+            (with(|o| o.substeps = 0), "substeps must be 1 to 64, not 0"),
             (
-                SimOptions {
-                    substeps: 0,
-                    ..SimOptions::default()
-                },
-                "substeps must be 1 to 64, not 0",
-            ),
-            (
-                SimOptions {
-                    substeps: 4_000_000_000,
-                    ..SimOptions::default()
-                },
+                with(|o| o.substeps = 4_000_000_000),
                 "substeps must be 1 to 64, not 4000000000",
             ),
             (
-                SimOptions {
-                    solver_iterations: 1_000_000_000,
-                    ..SimOptions::default()
-                },
+                with(|o| o.solver_iterations = 1_000_000_000),
                 "solver_iterations must be 1 to 256, not 1000000000",
             ),
             (
-                SimOptions {
-                    dt: 1e-9,
-                    ..SimOptions::default()
-                },
+                with(|o| o.control_step = 1e-9),
                 "control_step must be in [0.001, 0.1] seconds, not 0.000000001",
             ),
             (
-                SimOptions {
-                    dt: f64::NAN,
-                    ..SimOptions::default()
-                },
+                with(|o| o.control_step = f64::NAN),
                 "control_step must be in [0.001, 0.1] seconds, not NaN",
             ),
             (
-                SimOptions {
-                    friction: -1.0,
-                    ..SimOptions::default()
-                },
+                with(|o| o.friction = -1.0),
                 "friction must be finite and not negative, not -1",
             ),
             (
-                SimOptions {
-                    muscle_speed: f64::INFINITY,
-                    ..SimOptions::default()
-                },
+                with(|o| o.muscle_speed = f64::INFINITY),
                 "muscle_speed must be finite and positive, not inf",
             ),
             (
-                SimOptions {
-                    energy_tolerance: -2.0,
-                    ..SimOptions::default()
-                },
+                with(|o| o.energy_tolerance = -2.0),
                 "energy_tolerance must be finite and not negative (0 turns the audit off), not -2",
             ),
         ];

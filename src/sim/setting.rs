@@ -266,7 +266,7 @@ impl From<SimTable> for SimOptions {
             ($($field:ident),*) => {$(if let Some(v) = table.$field { options.$field = v; })*};
         }
         if let Some(control_step) = table.control_step {
-            options.dt = control_step;
+            options.control_step = control_step;
         }
         over!(
             substeps,
@@ -322,12 +322,12 @@ mod tests {
         assert_eq!(StepSetting::of(&odd), None);
         // A setting leaves everything but the stepping alone.
         let coarse = SimOptions {
-            dt: 0.02,
+            control_step: 0.02,
             friction: 0.5,
             ..base
         };
         let fine = StepSetting::Fine.apply(&coarse);
-        assert_eq!((fine.dt, fine.friction), (0.02, 0.5));
+        assert_eq!((fine.control_step, fine.friction), (0.02, 0.5));
     }
 
     #[test]
@@ -384,7 +384,7 @@ mod tests {
     fn the_control_step_is_read_under_its_name_and_its_old_one_and_written_under_its_name() {
         let new: SimOptions = toml::from_str("control_step = 0.02\n").unwrap();
         let old: SimOptions = toml::from_str("dt = 0.02\n").unwrap();
-        assert_eq!((new.dt, old.dt), (0.02, 0.02));
+        assert_eq!((new.control_step, old.control_step), (0.02, 0.02));
         let text = toml::to_string(&old).unwrap();
         assert!(text.contains("control_step = 0.02"), "{text}");
         assert!(!text.contains("dt ="), "{text}");

@@ -106,7 +106,7 @@ impl World {
     pub fn set_resting(&mut self, resting: bool) {
         self.resting = resting;
         let (substeps, iterations, pgs) = self.stepping();
-        self.params.dt = (self.options.dt / substeps as f64) as Real;
+        self.params.dt = (self.options.control_step / substeps as f64) as Real;
         self.params.num_solver_iterations = iterations;
         self.params.num_internal_pgs_iterations = pgs;
     }
@@ -191,7 +191,7 @@ impl World {
     pub fn step(&mut self, controller: bool) -> Result<f64, Exploded> {
         if controller {
             self.read_sensors();
-            self.brain.step(self.time, self.options.dt);
+            self.brain.step(self.time, self.options.control_step);
         }
         self.drive(controller);
         let power_before = self.motor_power_bound();
@@ -218,7 +218,7 @@ impl World {
             );
         }
         self.physics_time += started.elapsed();
-        self.time += self.options.dt;
+        self.time += self.options.control_step;
         self.audit_energy(power_before)?;
         self.peak_joint_gap = self.peak_joint_gap.max(self.joint_gap());
         let mut largest: f64 = 0.0;
@@ -284,7 +284,7 @@ mod tests {
 
     /// Steps `world` for `steps` control steps; the distance dragged along the ground.
     fn drag_over(world: &mut World, steps: usize) -> f64 {
-        let dt = world.options.dt;
+        let dt = world.options.control_step;
         let mut meter = crate::sim::DragMeter::start(world);
         for _ in 0..steps {
             world.step(false).unwrap();

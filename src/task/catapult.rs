@@ -122,7 +122,7 @@ pub fn catapult_with_progress(
     }
     let watch = Watch {
         record,
-        max_steps: options.max_steps(sim.dt),
+        max_steps: options.max_steps(sim.control_step),
         progress,
     };
     // The target in the world, once the projectile is placed: kept in the terms of a failed
@@ -142,9 +142,9 @@ pub fn catapult_with_progress(
         let mut trajectory = Vec::new();
         let mut calm = 0;
         let mut step = 0usize;
-        let limit = steps_in(options.max_seconds, sim.dt);
-        let release_step = steps_in(options.release_delay, sim.dt);
-        let calm_needed = steps_in(options.rest_duration, sim.dt);
+        let limit = steps_in(options.max_seconds, sim.control_step);
+        let release_step = steps_in(options.release_delay, sim.control_step);
+        let calm_needed = steps_in(options.rest_duration, sim.control_step);
         let mut at_rest = false;
         while step < limit {
             run.step(true)?;
@@ -194,7 +194,10 @@ pub fn catapult_with_progress(
         let mut terms = BTreeMap::from([
             ("D_p".to_string(), distance),
             ("release_step".to_string(), released_at as f64),
-            ("release_time".to_string(), released_at as f64 * sim.dt),
+            (
+                "release_time".to_string(),
+                released_at as f64 * sim.control_step,
+            ),
             ("seconds".to_string(), run.world.time()),
         ]);
         let fitness = match target {

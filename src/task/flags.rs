@@ -110,7 +110,7 @@ pub fn progress_label(spec: &TaskSpec) -> String {
 pub fn recording_note(spec: &TaskSpec) -> Option<String> {
     let max_steps = spec.max_steps();
     let interval = super::recording_interval(max_steps);
-    let dt = spec.sim.dt;
+    let dt = spec.sim.control_step;
     (interval > 1).then(|| {
         format!(
             "note: this evaluation may take {max_steps} steps ({:.1} s): recording.json keeps one step in {interval} (a frame every {:.3} s), to stay under {} frames",

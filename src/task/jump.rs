@@ -62,16 +62,16 @@ pub fn jump_with_progress(
     let limits = (options.max_height, options.seconds);
     let watch = Watch {
         record,
-        max_steps: options.max_steps(sim.dt),
+        max_steps: options.max_steps(sim.control_step),
         progress,
     };
     evaluate("jump", creature, sim, watch, limits, |run| {
-        run.settle(&options.rest, 0.0, sim.dt)?;
+        run.settle(&options.rest, 0.0, sim.control_step)?;
         run.check_height(options.max_height)?;
         let resting = run.world.lowest_point().max(0.0);
         let mut best: f64 = 0.0;
         run.phase = Phase::Measuring;
-        for _ in 0..steps_in(options.seconds, sim.dt) {
+        for _ in 0..steps_in(options.seconds, sim.control_step) {
             run.step(true)?;
             best = best.max(run.world.lowest_point());
         }

@@ -151,7 +151,7 @@ impl TaskSpec {
     /// The most control steps the task can take (every phase at its longest), which sets how
     /// densely a recording keeps samples ([`super::recording_interval`]).
     pub fn max_steps(&self) -> usize {
-        let dt = self.sim.dt;
+        let dt = self.sim.control_step;
         match self.task {
             TaskKind::Walker => self.walker.max_steps(dt),
             TaskKind::Jump => self.jump.max_steps(dt),

@@ -195,16 +195,16 @@ pub fn walker_with_progress(
     let limits = (options.max_height, options.seconds);
     let watch = Watch {
         record,
-        max_steps: options.max_steps(sim.dt),
+        max_steps: options.max_steps(sim.control_step),
         progress,
     };
     evaluate("walker", creature, sim, watch, limits, |run| {
-        run.settle(&options.rest, 0.0, sim.dt)?;
+        run.settle(&options.rest, 0.0, sim.control_step)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
         run.phase = Phase::ControllerOn;
-        run.run_for(options.activation, true, sim.dt)?;
-        run.settle(&options.rest, options.second_settle, sim.dt)?;
+        run.run_for(options.activation, true, sim.control_step)?;
+        run.settle(&options.rest, options.second_settle, sim.control_step)?;
         let measure_from = run.world.time();
         run.phase = Phase::Measuring;
         let from = run.world.part_position(0);
@@ -215,12 +215,12 @@ pub fn walker_with_progress(
         // Hornby & Pollack's D_drag, measured only when it is the fitness.
         let mut drag =
             (options.fitness == WalkerFitness::HornbyPollack).then(|| DragMeter::start(&run.world));
-        let steps = steps_in(options.seconds, sim.dt);
+        let steps = steps_in(options.seconds, sim.control_step);
         let start_time = run.world.time();
         for _ in 0..steps {
             run.step(true)?;
             if let Some(drag) = &mut drag {
-                drag.after_step(&run.world, sim.dt);
+                drag.after_step(&run.world, sim.control_step);
             }
             let elapsed = run.world.time() - start_time;
             if elapsed + 1e-9 >= (gains.len() + 1) as f64 {

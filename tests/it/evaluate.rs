@@ -599,7 +599,7 @@ fn a_muscle_runs_at_saturation_its_torque_not_its_speed_limited() {
     // The sensor is read before the brain updates, so the torque acts from the first step.
     for k in 1..=15 {
         world.step(true).unwrap();
-        let expected = alpha * k as f64 * sim.dt;
+        let expected = alpha * k as f64 * sim.control_step;
         let speed = world.joint_speed(0).abs();
         assert!(
             (speed - expected).abs() < 0.03 * expected,
@@ -667,7 +667,7 @@ fn iterative_move_weights_the_gains_of_each_second() {
 #[test]
 fn durations_are_seconds_at_any_time_step() {
     let sim = SimOptions {
-        dt: 1.0 / 120.0,
+        control_step: 1.0 / 120.0,
         ..SimOptions::default()
     };
     let options = task::CatapultOptions {

@@ -288,7 +288,7 @@ fn fine_values_are_recomputed<G: Genome>(out: &Path) {
         (fine.sim.rest_substeps, fine.sim.rest_solver_iterations),
         (4, 8)
     );
-    assert_eq!(fine.sim.dt, config.task.sim.dt);
+    assert_eq!(fine.sim.control_step, config.task.sim.control_step);
     let store = RunStore::open_read_only(&out.join("run.sqlite")).unwrap();
     let mut differs = false;
     for g in store.generations().unwrap() {

@@ -185,7 +185,7 @@ fn compare(c: &Creature, options: &SimOptions) -> (MjcfRobot, Model, String) {
     assert!(xml.contains("<flag filterparent=\"disable\"/>"));
 
     // Settings: the physics step, Z-up gravity.
-    assert!((model.option.timestep - options.dt / options.substeps as f64).abs() < 1e-15);
+    assert!((model.option.timestep - options.control_step / options.substeps as f64).abs() < 1e-15);
     assert_eq!(model.option.gravity, [0.0, 0.0, -GRAVITY]);
     assert!(xml.contains(&format!("iterations=\"{}\"", options.solver_iterations)));
     (robot, model, xml)
@@ -211,7 +211,7 @@ fn the_shipped_examples_read_back_as_they_were_exported() {
 fn quadruped_settings_follow_the_simulator_options() {
     let c = grown("examples/quadruped.lsys");
     let options = SimOptions {
-        dt: 0.01,
+        control_step: 0.01,
         substeps: 5,
         solver_iterations: 7,
         friction: 0.6,
@@ -514,7 +514,7 @@ fn loops_and_bad_creatures_are_errors() {
         Err(ExportError::Malformed(_))
     ));
     let bad = SimOptions {
-        dt: 0.0,
+        control_step: 0.0,
         ..SimOptions::default()
     };
     let c = creature_from_commands("forward(1)").unwrap();
@@ -577,7 +577,7 @@ fn the_command_writes_to_standard_output_or_a_file() {
     let written = std::fs::read_to_string(&path).unwrap();
     let options = SimOptions {
         actuator: ActuatorModel::Angle,
-        dt: 0.01,
+        control_step: 0.01,
         substeps: 4,
         solver_iterations: 9,
         strength_from: StrengthFrom::Bigger,

@@ -360,7 +360,7 @@ fn driven(kind: JointKind, drive: &[f64]) -> GraphGenome {
 fn relative_pose(g: &GraphGenome) -> nalgebra::UnitQuaternion<f64> {
     let c = develop(g);
     let mut world = World::new(&c, &SimOptions::default()).expect("builds");
-    for _ in 0..(0.5 / SimOptions::default().dt).round() as usize {
+    for _ in 0..(0.5 / SimOptions::default().control_step).round() as usize {
         world.step(true).expect("no explosion");
     }
     let (_, root) = world.part_pose(0);

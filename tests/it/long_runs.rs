@@ -68,11 +68,11 @@ fn a_short_run_keeps_every_step() {
     let e = task::walker(&passive_pair(), &sim, &options, true);
     assert_eq!(e.status, Status::Ok, "{:?}", e.message);
     let end = e.terms["measured_from"] + 2.0;
-    let steps = (end / sim.dt).round() as usize;
+    let steps = (end / sim.control_step).round() as usize;
     assert_eq!(e.recording.len(), steps);
     for (i, frame) in e.recording.iter().enumerate() {
         assert!(
-            (frame.t - (i + 1) as f64 * sim.dt).abs() < 1e-9,
+            (frame.t - (i + 1) as f64 * sim.control_step).abs() < 1e-9,
             "{i}: {}",
             frame.t
         );
@@ -84,14 +84,14 @@ fn a_long_run_keeps_at_most_the_bound_evenly_spaced_first_and_last_included() {
     // An hour's walk at 1/10 s per step (36,000 steps of walking and the waits for rest):
     // one step in 4 is kept.
     let sim = SimOptions {
-        dt: 0.1,
+        control_step: 0.1,
         ..SimOptions::default()
     };
     let options = WalkerOptions {
         seconds: 3600.0,
         ..WalkerOptions::default()
     };
-    let interval = recording_interval(options.max_steps(sim.dt));
+    let interval = recording_interval(options.max_steps(sim.control_step));
     assert_eq!(interval, 4);
     let e = task::walker(&passive_pair(), &sim, &options, true);
     assert_eq!(e.status, Status::Ok, "{:?}", e.message);
@@ -99,14 +99,14 @@ fn a_long_run_keeps_at_most_the_bound_evenly_spaced_first_and_last_included() {
     assert!(frames.len() <= MAX_RECORDED_FRAMES, "{}", frames.len());
     // The steps taken: to the end of the measured walk.
     let end = e.terms["measured_from"] + 3600.0;
-    let steps = (end / sim.dt).round() as usize;
+    let steps = (end / sim.control_step).round() as usize;
     assert_eq!(
         frames.len(),
         steps.div_ceil(interval) + usize::from(!(steps - 1).is_multiple_of(interval))
     );
     // The first step, then every 4th, evenly 0.4 s apart; the last step closes the recording.
     assert!((frames[0].t - 0.1).abs() < 1e-9, "{}", frames[0].t);
-    let spacing = interval as f64 * sim.dt;
+    let spacing = interval as f64 * sim.control_step;
     let (last, evenly) = frames.split_last().unwrap();
     for pair in evenly.windows(2) {
         assert!(

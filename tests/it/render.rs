@@ -79,6 +79,7 @@ fn the_growth_gif_has_a_frame_per_growth_frame() {
         100,
         &[20],
         ontogeny::render::Framing::Still,
+        &mut |_| {},
     )
     .unwrap();
     let mut decoder = gif::DecodeOptions::new()
@@ -149,7 +150,17 @@ fn a_following_camera_keeps_a_travelling_creature_large() {
         },
     ] {
         let path = dir.join("travel.gif");
-        write_gif([&start, &far], &[], &path, 240, 150, &[10], framing).unwrap();
+        write_gif(
+            [&start, &far],
+            &[],
+            &path,
+            240,
+            150,
+            &[10],
+            framing,
+            &mut |_| {},
+        )
+        .unwrap();
         counts.push(blue_pixels_per_frame(&path, 240));
     }
     let (still, following) = (&counts[0], &counts[1]);
@@ -172,7 +183,7 @@ fn drawing_a_gif_reports_its_progress_frame_by_frame() {
     let c = creature("forward(1) forward(1)");
     let path = crate::util::scratch_dir("render-progress").join("progress.gif");
     let mut seen = Vec::new();
-    ontogeny::render::write_gif_with_progress(
+    ontogeny::render::write_gif(
         [&c, &c, &c, &c],
         &[],
         &path,

@@ -118,7 +118,7 @@ fn recorded_frames_carry_the_protocols_phases() {
     // ends at `settled_at`.
     assert_eq!(runs[1].1, 60);
     assert_eq!(runs[3].1, 120);
-    assert!((runs[0].1 as f64 * sim.dt - walk.terms["settled_at"]).abs() < 1e-9);
+    assert!((runs[0].1 as f64 * sim.control_step - walk.terms["settled_at"]).abs() < 1e-9);
 
     let throw = task::catapult(
         &grown("examples/thrower.lsys"),
