@@ -102,6 +102,20 @@ pub fn write_with<E: From<OutputError>>(
     Ok(())
 }
 
+/// The line that tells the user which files a command wrote (a message, for standard
+/// error): `wrote A`, `wrote A and B`, `wrote A, B and C`.
+pub fn wrote<P: AsRef<Path>>(paths: &[P]) -> String {
+    let names: Vec<String> = paths
+        .iter()
+        .map(|p| p.as_ref().display().to_string())
+        .collect();
+    match names.split_last() {
+        None => "wrote nothing".to_string(),
+        Some((last, [])) => format!("wrote {last}"),
+        Some((last, rest)) => format!("wrote {} and {last}", rest.join(", ")),
+    }
+}
+
 /// Moves the file `source` (written by another program, e.g. a browser's screenshot) to
 /// `target` as [`write`] would write it; `source` is left in place for its owner to remove.
 pub fn copy_into_place(source: &Path, target: &Path) -> Result<(), OutputError> {
@@ -122,6 +136,13 @@ mod tests {
             .prefix("ontogeny-output-unit-")
             .tempdir()
             .unwrap()
+    }
+
+    #[test]
+    fn the_files_written_are_listed_in_one_line() {
+        assert_eq!(wrote(&["a"]), "wrote a");
+        assert_eq!(wrote(&["a", "b"]), "wrote a and b");
+        assert_eq!(wrote(&["d/a", "d/b", "d/c"]), "wrote d/a, d/b and d/c");
     }
 
     #[test]

@@ -118,6 +118,8 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     // same settings.
     let (manifest, shared) = compare::open(root).map_err(compare_error)?;
     if args.plan {
+        let files = ["compare.toml", "evolve.toml"].map(|f| root.join(f));
+        eprintln!("{}", ontogeny::output::wrote(&files));
         for command in text::plan_commands(root, &manifest, args.no_cache) {
             say!("{command}");
         }
@@ -244,7 +246,11 @@ fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> a
     }
     let r = compare::write_report(root, manifest, shared, &finished, &unfinished)
         .map_err(compare_error)?;
-    let summary = text::comparison_summary(root, shared, &r, finished.len(), &unfinished);
-    say!("{summary}");
-    Ok(())
+    super::print(text::comparison_summary(
+        root,
+        shared,
+        &r,
+        finished.len(),
+        &unfinished,
+    ))
 }

@@ -135,6 +135,8 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     }
     if let Some(dir) = &args.record {
         write_recording(dir, &creature, &evaluation)?;
+        let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
+        eprintln!("{}", ontogeny::output::wrote(&files));
     }
     if args.json {
         let mut shown = evaluation.clone();
@@ -146,12 +148,6 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         "{}",
         flags::evaluation_text(&input_name(&args.file), &evaluation)
     );
-    if let Some(dir) = &args.record {
-        say!(
-            "wrote {0}/recording.json and {0}/behaviour.gif",
-            dir.display()
-        );
-    }
     Ok(())
 }
 

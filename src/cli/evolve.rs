@@ -268,15 +268,29 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     let mut tally = RunTally::default();
     let mut last: Option<GenerationReport> = None;
     let fitness = run.config().task.fitness_label();
+    let ga = run.config().ga.clone();
+    let threads = rayon::current_num_threads();
+    let start = text::start_line(G::NAME, &fitness, &ga, first as usize, threads);
+    eprintln!("{start}");
     let mut observer = |r: &GenerationReport| {
         tally.add(r);
         let line = text::generation_line(&fitness, r);
+        let left = text::evaluations_from(&ga, r.generation as usize + 1);
+        let estimate = (last.is_none() && left > 0).then(|| text::estimate_line(r, left));
         match &bar {
             Some(bar) => {
+                if let Some(e) = estimate {
+                    bar.println(e);
+                }
                 bar.set_message(line);
                 bar.inc(1);
             }
-            None => eprintln!("generation {}: {line}", r.generation),
+            None => {
+                eprintln!("generation {}: {line}", r.generation);
+                if let Some(e) = estimate {
+                    eprintln!("{e}");
+                }
+            }
         }
         last = Some(r.clone());
     };
@@ -286,8 +300,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     }
     let wall = started.elapsed().as_secs_f64();
     if let Some(r) = last {
-        let lines = tally.closing_lines(dir, &fitness, G::NAME, G::TEXT_EXTENSION, &r, wall);
-        say!("{lines}");
+        super::print(tally.closing_lines(dir, &fitness, G::NAME, G::TEXT_EXTENSION, &r, wall))?;
     }
     Ok(())
 }

@@ -157,16 +157,15 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         };
         write_out(dir, &grown, &last, &shown, &summary)?;
     }
-    if args.json {
-        say!("{}", serde_json::to_string_pretty(&summary)?);
-        return Ok(());
-    }
-    say!("{}", summary.text());
     if let Some(dir) = &args.out {
-        say!(
-            "wrote {0}/creature.json, {0}/frames.jsonl, {0}/creature.png and {0}/growth.gif",
-            dir.display()
+        eprintln!(
+            "{}",
+            ontogeny::output::wrote(&OUT_FILES.map(|f| dir.join(f)))
         );
+    }
+    match args.json {
+        true => say!("{}", serde_json::to_string_pretty(&summary)?),
+        false => say!("{}", summary.text()),
     }
     Ok(())
 }

@@ -73,9 +73,10 @@ enum Verb {
     /// Compare encodings on equal terms: replicated runs of each with the same evaluation
     /// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
     Compare(compare::CompareArgs),
-    /// Inspect run directories.
+    /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
+    /// directory (`runs list DIR`).
     Runs(runs::RunsArgs),
-    /// Inspect genome files (`genome show FILE`: a graph genome, readably).
+    /// Inspect genome files (`genome show FILE`: any encoding's genome, readably).
     Genome(genome::GenomeArgs),
     /// Measure the evaluator on this machine: evaluations per second on one core (the setting
     /// measured, 2 substeps of 4 iterations and the fast one) and on all cores, its overhead over
@@ -132,6 +133,17 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => report(error),
     }
+}
+
+/// Prints `lines`: results on standard output, messages on standard error.
+fn print(lines: Vec<ontogeny::evolve::text::Line>) -> anyhow::Result<()> {
+    for line in lines {
+        match line {
+            ontogeny::evolve::text::Line::Result(l) => say!("{l}"),
+            ontogeny::evolve::text::Line::Message(l) => eprintln!("{l}"),
+        }
+    }
+    Ok(())
 }
 
 /// A bad-input error (exit code 2) with `message`.

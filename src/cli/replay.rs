@@ -58,9 +58,9 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         args.fps,
         "the evaluation was refused before simulating",
     )?;
-    say!(
-        "wrote {} ({} frames at {} frames/s, of {} recorded)",
-        gif.display(),
+    eprintln!(
+        "{} ({} frames at {} frames/s, of {} recorded)",
+        ontogeny::output::wrote(&[&gif]),
         playback.shown.len(),
         ontogeny::lsystem::format_number(playback.fps),
         recording.samples.len()
@@ -132,11 +132,14 @@ fn replay_typed<G: Genome>(
             .unwrap_or("?")
     );
     if evaluation.fitness != stored {
-        say!("warning: the re-evaluation differs from the stored fitness");
+        eprintln!("warning: the re-evaluation differs from the stored fitness");
     }
-    say!(
-        "wrote {0}/{genome_name}, {0}/creature.png, {0}/recording.json and {0}/behaviour.gif",
-        out.display()
-    );
+    let files = [
+        genome_name.as_str(),
+        "creature.png",
+        "recording.json",
+        "behaviour.gif",
+    ];
+    eprintln!("{}", ontogeny::output::wrote(&files.map(|f| out.join(f))));
     Ok(())
 }

@@ -144,7 +144,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             SnapshotError::Output(e) => anyhow::Error::new(e),
             e => anyhow::Error::new(e),
         })?;
-        say!("wrote {}", out.display());
+        eprintln!("{}", ontogeny::output::wrote(&[out]));
         if let Some(d) = grammar_error {
             // The picture shows the error; the exit code says it too.
             return Err(anyhow::Error::new(d));

@@ -302,6 +302,25 @@ impl Genome for DirectGenome {
     fn from_lsys(text: &str, limits: &DirectLimits) -> Result<Self, DevelopError> {
         from_lsys(text, limits)
     }
+
+    /// Its text form alone: an axiom has no rules to summarise.
+    fn show(&self) -> String {
+        self.to_text().trim_end().to_string()
+    }
+
+    /// Its text form is an axiom alone: a grammar with rules is some other file (which
+    /// [`Genome::from_lsys`] would derive).
+    fn read_text(text: &str, limits: &DirectLimits) -> Result<Self, DevelopError> {
+        let lsys =
+            LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
+        let report = lsys.check();
+        if report.productions + report.interpretation_rules > 0 || lsys.is_continuous() {
+            return Err(DevelopError(
+                "a direct genome's file is an axiom alone, without rules".into(),
+            ));
+        }
+        from_lsys(text, limits)
+    }
 }
 
 /// Any grammar, derived as `ontogeny grow` derives it (its own derivation length or time,

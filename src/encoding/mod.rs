@@ -17,6 +17,7 @@ mod draw;
 pub mod graph;
 pub mod lsystem;
 mod registry;
+mod show;
 
 /// The building commands genomes write (the language's one table of commands).
 pub use crate::lang::commands as command;
@@ -25,6 +26,7 @@ pub use direct::{DirectGenome, DirectLimits};
 pub use graph::{GraphGenome, GraphLimits, JointSet};
 pub use lsystem::{LSystemGenome, LSystemLimits};
 pub use registry::{ENCODINGS, EncodingInfo, encoding_named};
+pub use show::{ShowError, show_genome_file};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.
@@ -115,6 +117,31 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
         }
         out.push_str(&self.to_text());
         out
+    }
+
+    /// A genome read back from its text form ([`Genome::to_text`], a run's `best.lsys` or
+    /// `best.json`), checked against `limits`; by default [`Genome::from_lsys`].
+    fn read_text(text: &str, limits: &Self::Limits) -> Result<Self, DevelopError> {
+        Self::from_lsys(text, limits)
+    }
+
+    /// The genome for people (`ontogeny genome show`): by default its text form, then the
+    /// summary `ontogeny check` gives of that grammar but its first two lines (file and
+    /// axiom): derivation length or time, symbols, rules, and findings placed in the grammar
+    /// shown (`grammar:LINE:COLUMN`).
+    fn show(&self) -> String {
+        let text = self.to_text();
+        let summary = match crate::lsystem::LSystem::from_text("grammar", &text) {
+            Ok(lsys) => lsys
+                .check()
+                .text()
+                .lines()
+                .skip(2)
+                .collect::<Vec<_>>()
+                .join("\n"),
+            Err(d) => format!("the text does not compile: {d}"),
+        };
+        format!("{}\n{summary}", text.trim_end())
     }
 
     /// A genome read from a hand-written `.lsys` file, to seed a first generation with its

@@ -6,7 +6,8 @@
 //! cache and its keys ([`cache`], [`key`]), comparisons of encodings over replicated runs
 //! ([`compare`]), and the fidelity experiment that ranks step settings against the fine
 //! reference ([`fidelity`]) and the bench's measurements ([`bench`]); a run's individual picked by rank ([`pick`]); the settings of a run or comparison from the command line
-//! ([`settings`]) and what the command line says about them ([`text`]).
+//! ([`settings`]) and what the command line says about them ([`text`]); the runs and comparisons under a
+//! directory ([`listing`]).
 
 pub mod bench;
 pub mod cache;
@@ -15,6 +16,7 @@ pub mod config;
 pub mod fidelity;
 pub mod ga;
 pub mod key;
+pub mod listing;
 pub mod lock;
 pub mod pick;
 pub mod plot;

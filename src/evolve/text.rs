@@ -1,11 +1,12 @@
 //! What the command line says about runs and comparisons, as text: a generation's progress
 //! line, a run's closing lines, a run's generation table (`runs show`), a comparison's progress
-//! line and its report's summary. Every function returns text (lines joined by newlines, no
+//! line and its report's summary, and a run's generations as CSV or JSON. Every function returns text (lines joined by newlines, no
 //! final newline); printing is the caller's.
 
 use std::path::Path;
 
 use super::compare::{Manifest, Report, Shared};
+use super::ga::GaSettings;
 use super::run::{GenerationReport, exploits_stepping};
 use super::store::{RunStore, StoreError};
 
@@ -23,6 +24,76 @@ pub fn generation_line(fitness: &str, r: &GenerationReport) -> String {
         r.stats.valid_fraction * 100.0,
         r.stats.evaluations as f64 / r.wall_seconds.max(1e-9)
     )
+}
+
+/// The evaluations a run of `ga` makes in its generations from `first` on (see
+/// [`evaluations_of`](super::compare::evaluations_of)).
+pub fn evaluations_from(ga: &GaSettings, first: usize) -> u64 {
+    let before = GaSettings {
+        generations: first,
+        ..ga.clone()
+    };
+    let made = if first == 0 {
+        0
+    } else {
+        super::compare::evaluations_of(&before)
+    };
+    super::compare::evaluations_of(ga).saturating_sub(made)
+}
+
+/// What a run is about to do, said before it starts: its size (population × generations =
+/// evaluations), encoding, task and threads, from generation `first` on; its time is
+/// estimated once a generation is measured ([`estimate_line`]).
+pub fn start_line(
+    encoding: &str,
+    fitness: &str,
+    ga: &GaSettings,
+    first: usize,
+    threads: usize,
+) -> String {
+    let evaluations = super::compare::evaluations_of(ga);
+    let size = format!(
+        "population {} × {} generations = {evaluations} evaluations (the elite of {} is not evaluated again)",
+        ga.population,
+        ga.generations,
+        ga.survivors()
+    );
+    let left = if first == 0 {
+        String::new()
+    } else {
+        format!(
+            "; generations {first} to {} left, {} evaluations",
+            ga.generations.saturating_sub(1),
+            evaluations_from(ga, first)
+        )
+    };
+    format!(
+        "evolving {encoding} on {fitness}: {size}{left}; {threads} thread{}; the time it takes is estimated after the first generation",
+        if threads == 1 { "" } else { "s" }
+    )
+}
+
+/// The time a run has left, estimated from the generation `r` just measured: its rate, over
+/// `left` evaluations still to make. Evaluations reused from identical creatures make later
+/// generations quicker; larger creatures slower: it is an estimate.
+pub fn estimate_line(r: &GenerationReport, left: u64) -> String {
+    let rate = r.stats.evaluations as f64 / r.wall_seconds.max(1e-9);
+    format!(
+        "generation {} took {} ({rate:.1} evaluations/s): about {} left for the other {left} evaluations at that rate",
+        r.generation,
+        duration(r.wall_seconds),
+        duration(left as f64 / rate.max(1e-9))
+    )
+}
+
+/// A line the command line prints: a result (standard output) or a message for the user
+/// (standard error: notes, warnings, the files written).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Line {
+    /// What the command was asked for.
+    Result(String),
+    /// Something the user should know about it.
+    Message(String),
 }
 
 /// The evaluations of a run's generations run by one command, counted as they come.
@@ -47,7 +118,8 @@ impl RunTally {
     /// The closing lines of a run of the encoding `encoding` (its genomes' files end in
     /// `extension`) in `dir`, whose last generation is `last`, after `wall` seconds: a note on
     /// children made by fallback, the final line (best, fine reference, counts, speed), a
-    /// warning when the champion may exploit the step setting, and the files written.
+    /// warning when the champion may exploit the step setting, and the files written; all
+    /// but the final line are messages.
     pub fn closing_lines(
         &self,
         dir: &Path,
@@ -56,21 +128,21 @@ impl RunTally {
         extension: &str,
         last: &GenerationReport,
         wall: f64,
-    ) -> String {
+    ) -> Vec<Line> {
         let r = last;
         let mut lines = Vec::new();
         let fallbacks = r.fallbacks.crossover + r.fallbacks.graft;
         if fallbacks > 0 {
-            lines.push(format!(
+            lines.push(Line::Message(format!(
                 "note: the {encoding} encoding lacks an operator of the schedule; {fallbacks} children of this run were made by mutation instead (see log.txt)"
-            ));
+            )));
         }
         let fine = match &r.best_fine {
             Some(f) if f.status == "ok" => format!(" (fine reference {:.6})", f.fitness),
             Some(f) => format!(" (fine reference {:.6}, {})", f.fitness, f.status),
             None => String::new(),
         };
-        lines.push(format!(
+        lines.push(Line::Result(format!(
             "{}: {fitness}: generation {} best {:.6}{fine}; {} evaluations, {} simulated in {wall:.1} s ({:.1} evaluations/s), {:.1}% of the time outside evaluation",
             dir.display(),
             r.generation,
@@ -79,20 +151,19 @@ impl RunTally {
             self.evaluations - self.reused,
             self.evaluations as f64 / wall.max(1e-9),
             (wall - self.evaluating).max(0.0) / wall.max(1e-9) * 100.0
-        ));
+        )));
         if let Some(f) = &r.best_fine
             && exploits_stepping(r.stats.best, f.fitness)
         {
-            lines.push(format!(
+            lines.push(Line::Message(format!(
                 "warning: the champion scores {:.6} at the fine reference setting, down more than half of its {:.6}: it may exploit the simulator's step setting (see docs/guide/evolving.md, \"Re-walking the best at the fine reference\")",
                 f.fitness, r.stats.best
-            ));
+            )));
         }
-        lines.push(format!(
-            "wrote {0}/run.sqlite, {0}/fitness.svg, {0}/best.{extension} and {0}/log.txt",
-            dir.display()
-        ));
-        lines.join("\n")
+        let best = format!("best.{extension}");
+        let files = ["run.sqlite", "fitness.svg", &best, "log.txt"].map(|f| dir.join(f));
+        lines.push(Line::Message(crate::output::wrote(&files)));
+        lines
     }
 }
 
@@ -153,6 +224,73 @@ pub fn generation_table(dir: &Path) -> Result<String, StoreError> {
     Ok(lines.join("\n"))
 }
 
+/// The columns of [`generation_csv`], in order.
+pub const GENERATION_CSV_COLUMNS: &str = "generation,best,best_fine,best_fine_status,mean,median,sd,valid_fraction,evaluations,reused,wall_seconds,evaluations_per_second";
+
+/// The generations of the run in `dir` as CSV (`ontogeny runs show --csv`): a header
+/// ([`GENERATION_CSV_COLUMNS`]) and a row per generation, every number in full (the shortest
+/// text that reads back to the same value); a value that is missing or not a number (the fine
+/// reference where it was not re-walked, a statistic of no valid individual) is empty.
+pub fn generation_csv(dir: &Path) -> Result<String, StoreError> {
+    let store = RunStore::open_read_only(&dir.join("run.sqlite"))?;
+    let cell = |v: f64| {
+        if v.is_finite() {
+            v.to_string()
+        } else {
+            String::new()
+        }
+    };
+    let mut lines = vec![GENERATION_CSV_COLUMNS.to_string()];
+    for g in store.generations()? {
+        let (fine, status) = match &g.best_fine {
+            Some(f) => (cell(f.fitness), f.status.clone()),
+            None => (String::new(), String::new()),
+        };
+        lines.push(format!(
+            "{},{},{fine},{status},{},{},{},{},{},{},{},{}",
+            g.index,
+            cell(g.best),
+            cell(g.mean),
+            cell(g.median),
+            cell(g.sd),
+            cell(g.valid_fraction),
+            g.evaluations,
+            g.reused,
+            cell(g.wall_seconds),
+            cell(g.evaluations_per_second)
+        ));
+    }
+    Ok(lines.join("\n"))
+}
+
+/// The run in `dir` as one JSON object (`ontogeny runs show --json`): `dir`, `encoding`,
+/// `task` (its name), `fitness` (the task and fitness as progress lines name them), `seed`,
+/// `version`, `planned_generations`, `settings` (the run's `config.toml` as an object) and
+/// `generations`, an array of objects with the fields of [`GenerationRecord`]
+/// (`generation`, `best`, ..., `best_fine` as `{fitness, status}` or `null`; a number that is
+/// not one is `null`).
+///
+/// [`GenerationRecord`]: super::store::GenerationRecord
+pub fn generation_json(dir: &Path) -> Result<String, StoreError> {
+    let store = RunStore::open_read_only(&dir.join("run.sqlite"))?;
+    let run = store.run()?;
+    let settings = toml::from_str::<toml::Table>(&run.config)
+        .ok()
+        .and_then(|t| serde_json::to_value(t).ok());
+    let value = serde_json::json!({
+        "dir": dir.display().to_string(),
+        "encoding": run.encoding,
+        "task": run.task,
+        "fitness": run.task_spec().map(|spec| spec.fitness_label()),
+        "seed": run.seed,
+        "version": run.version,
+        "planned_generations": run.planned_generations(),
+        "settings": settings,
+        "generations": store.generations()?,
+    });
+    Ok(serde_json::to_string_pretty(&value).unwrap_or_default())
+}
+
 /// A duration for people: `42s`, `3m07s`, `2h05m`.
 pub fn duration(seconds: f64) -> String {
     let s = seconds.round() as u64;
@@ -200,29 +338,40 @@ impl ComparisonProgress {
 }
 
 /// The summary of a comparison's report `r` written in `root` from `finished` replicates
-/// (`unfinished` names the others): a line per encoding, a line per pair, what is missing
-/// and the files written.
+/// (`unfinished` names the others): a line per encoding, a line per pair, why there are no
+/// statistics, what is missing (results); and the files written (a message).
 pub fn comparison_summary(
     root: &Path,
     shared: &Shared,
     r: &Report,
     finished: usize,
     unfinished: &[String],
-) -> String {
+) -> Vec<Line> {
+    let fewest = r.encodings.iter().map(|e| e.replicates).min().unwrap_or(0);
+    let most = r.encodings.iter().map(|e| e.replicates).max().unwrap_or(0);
     let mut lines = vec![format!(
-        "{}: {finished} replicates of {} evaluations each; {}",
+        "{}: {finished} replicate{} of {} evaluations each ({} per encoding); {}",
         root.display(),
+        if finished == 1 { "" } else { "s" },
         r.evaluations,
+        if fewest == most {
+            fewest.to_string()
+        } else {
+            format!("{fewest} to {most}")
+        },
         shared.task.fitness_label()
     )];
     for e in &r.encodings {
+        let spread = if r.too_few.contains(&e.encoding) {
+            String::from("no spread")
+        } else {
+            format!("± {:.4}, sd {:.4}", e.best.ci95, e.best.sd)
+        };
         lines.push(format!(
-            "  {:<20} n {:>3}  best {:.4} ± {:.4} (sd {:.4}; at the fine reference {:.4}{})  parts {}  shapes/part {:.3}",
+            "  {:<20} n {:>3}  best {:.4} ({spread}; at the fine reference {:.4}{})  parts {}  shapes/part {:.3}",
             e.encoding,
             e.replicates,
             e.best.mean,
-            e.best.ci95,
-            e.best.sd,
             e.mean_fine,
             if e.fine_failed > 0 {
                 format!(", {} re-walk(s) failed", e.fine_failed)
@@ -245,14 +394,19 @@ pub fn comparison_summary(
             super::stats::a12_magnitude(p.a12)
         ));
     }
+    if !r.too_few.is_empty() {
+        lines.push(format!(
+            "no statistics {}",
+            super::compare::too_few_note(&r.too_few)
+        ));
+    }
     if !unfinished.is_empty() {
         lines.push(format!("not yet in the report: {}", unfinished.join(", ")));
     }
-    lines.push(format!(
-        "wrote {0}/report.md, {0}/summary.csv, {0}/fitness.svg and {0}/parts.svg",
-        root.display()
-    ));
-    lines.join("\n")
+    let files = ["report.md", "summary.csv", "fitness.svg", "parts.svg"].map(|f| root.join(f));
+    let mut lines: Vec<Line> = lines.into_iter().map(Line::Result).collect();
+    lines.push(Line::Message(crate::output::wrote(&files)));
+    lines
 }
 
 /// The `ontogeny evolve` commands of a comparison's `--plan`, one per replicate, with
@@ -283,5 +437,105 @@ pub fn shell_word(path: &Path) -> String {
         s
     } else {
         format!("'{}'", s.replace('\'', r"'\''"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::evolve::ga::Preset;
+    use crate::evolve::store::{FineEvaluation, GenerationRecord};
+
+    /// Generation `generation` of 10 evaluations in 2 s, best 10, re-walked at the fine
+    /// reference to `fine`.
+    fn report(generation: u32, fine: f64) -> GenerationReport {
+        let stats = GenerationRecord {
+            index: generation,
+            best: 10.0,
+            mean: 5.0,
+            median: 5.0,
+            sd: 1.0,
+            valid_fraction: 1.0,
+            evaluations: 10,
+            reused: 0,
+            wall_seconds: 2.0,
+            evaluations_per_second: 5.0,
+            best_fine: None,
+        };
+        GenerationReport {
+            generation,
+            stats,
+            wall_seconds: 2.0,
+            evaluation_seconds: 2.0,
+            fallbacks: crate::evolve::ga::Fallbacks {
+                crossover: 3,
+                graft: 0,
+            },
+            best_fine: Some(FineEvaluation {
+                fitness: fine,
+                status: "ok".into(),
+            }),
+        }
+    }
+
+    #[test]
+    fn a_run_ends_with_its_result_alone_on_standard_output() {
+        let lines = RunTally::default().closing_lines(
+            Path::new("runs/x"),
+            "walker, distance (m)",
+            "lsystem",
+            "lsys",
+            &report(3, 1.0),
+            2.0,
+        );
+        let results: Vec<&Line> = lines
+            .iter()
+            .filter(|l| matches!(l, Line::Result(_)))
+            .collect();
+        assert_eq!(results.len(), 1);
+        assert!(
+            matches!(results[0], Line::Result(l) if l.starts_with("runs/x: walker, distance (m): generation 3 best 10.000000"))
+        );
+        let messages: Vec<&str> = lines
+            .iter()
+            .filter_map(|l| match l {
+                Line::Message(m) => Some(m.as_str()),
+                Line::Result(_) => None,
+            })
+            .collect();
+        // The fallbacks' note, the exploit warning (1 is below half of 10), the files.
+        assert_eq!(messages.len(), 3, "{messages:?}");
+        assert!(messages[0].starts_with("note: the lsystem encoding lacks an operator"));
+        assert!(messages[1].starts_with("warning: the champion scores 1.000000"));
+        assert_eq!(
+            messages[2],
+            "wrote runs/x/run.sqlite, runs/x/fitness.svg, runs/x/best.lsys and runs/x/log.txt"
+        );
+    }
+
+    #[test]
+    fn a_run_says_its_size_and_estimates_its_time_from_a_measured_generation() {
+        let ga = GaSettings {
+            population: 10,
+            generations: 4,
+            ..GaSettings::preset(Preset::Chaumont)
+        };
+        // 10, then 8 per generation (the elite of 2 carried over): 34 in all.
+        assert_eq!(evaluations_from(&ga, 0), 34);
+        assert_eq!(evaluations_from(&ga, 1), 24);
+        assert_eq!(evaluations_from(&ga, 4), 0);
+        assert_eq!(
+            start_line("direct", "jump, height (m)", &ga, 0, 2),
+            "evolving direct on jump, height (m): population 10 × 4 generations = 34 evaluations (the elite of 2 is not evaluated again); 2 threads; the time it takes is estimated after the first generation"
+        );
+        assert!(
+            start_line("direct", "jump, height (m)", &ga, 2, 1)
+                .contains("; generations 2 to 3 left, 16 evaluations; 1 thread;")
+        );
+        // 10 evaluations in 2 s: 24 more take about 5 s.
+        assert_eq!(
+            estimate_line(&report(0, 10.0), 24),
+            "generation 0 took 2s (5.0 evaluations/s): about 5s left for the other 24 evaluations at that rate"
+        );
     }
 }

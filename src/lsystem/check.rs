@@ -82,6 +82,88 @@ pub struct Report {
     pub findings: Vec<Finding>,
 }
 
+/// `n` and `word`, with an `s` unless `n` is 1 (`1 production`, `2 productions`).
+fn count(n: usize, word: &str) -> String {
+    format!("{n} {word}{}", if n == 1 { "" } else { "s" })
+}
+
+impl Report {
+    /// The report for people, as `ontogeny check` prints it: the file, its axiom, its
+    /// development (derivation length or continuous time), environment, symbols, rules,
+    /// constants and findings, a line each (no final newline).
+    pub fn text(&self) -> String {
+        let mut lines = vec![
+            format!("{}: ok", self.file),
+            format!("axiom: {}", self.axiom),
+        ];
+        lines.push(match (self.time, self.derivation_length) {
+            (Some(time), _) => format!(
+                "continuous time: 0 to {time}, dt = {}, timing {}, {}",
+                self.dt,
+                self.timing,
+                count(self.differential_rules, "differential rule")
+            ),
+            (None, Some(n)) => format!("derivation length: {n}"),
+            (None, None) => {
+                "derivation length: not given (derive prints the axiom only unless --steps)".into()
+            }
+        });
+        if self.time.is_none() && self.differential_rules > 0 {
+            lines.push(format!(
+                "note: {} differential rule(s) but no 'time:': derive them with --time T",
+                self.differential_rules
+            ));
+        }
+        if !self.environment.is_empty() {
+            let values: Vec<String> = self.environment.iter().map(f64::to_string).collect();
+            lines.push(format!("environment: {}", values.join(" ")));
+        }
+        let symbols: Vec<String> = self
+            .symbols
+            .iter()
+            .map(|s| {
+                let arities: Vec<String> = s.arities.iter().map(usize::to_string).collect();
+                let arity = match s.arities.as_slice() {
+                    [0] => String::new(),
+                    _ => format!("({})", arities.join("|")),
+                };
+                let mark = if s.rewritten { "*" } else { "" };
+                format!("{}{arity}{mark}", s.name)
+            })
+            .collect();
+        lines.push(format!(
+            "symbols ({}, * = rewritten by a production): {}",
+            symbols.len(),
+            symbols.join(" ")
+        ));
+        lines.push(format!(
+            "rules: {}, {}",
+            count(self.productions, "production"),
+            count(self.interpretation_rules, "interpretation rule")
+        ));
+        if !self.constants.is_empty() {
+            let constants: Vec<String> = self
+                .constants
+                .iter()
+                .map(|(n, v)| format!("{n} = {v}"))
+                .collect();
+            lines.push(format!("constants: {}", constants.join(", ")));
+        }
+        if self.findings.is_empty() {
+            lines.push("findings: none".into());
+        } else {
+            lines.push(format!("findings ({}):", self.findings.len()));
+            for f in &self.findings {
+                lines.push(format!(
+                    "  {}:{}:{}: {}",
+                    self.file, f.line, f.column, f.message
+                ));
+            }
+        }
+        lines.join("\n")
+    }
+}
+
 /// The checks `check` runs, in order: each adds its findings (the report sorts them by place).
 const PASSES: [fn(&LSystem, &mut Findings); 5] = [
     rules_that_never_fire,

@@ -536,7 +536,9 @@ fn replay_writes_the_frames_per_second_it_says() {
             assert_eq!(start, (100.0 * k as f64 / fps).round() as u64, "fps {fps}");
             start += *d as u64;
         }
-        assert!(stdout(&o).contains(&format!("{} frames at {fps} frames/s", delays.len())));
+        // What was written is a message, on standard error.
+        let said = stderr(&o);
+        assert!(said.contains(&format!("{} frames at {fps} frames/s", delays.len())));
     }
     // Beyond what GIF timing can show.
     assert_bad_input(

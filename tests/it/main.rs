@@ -27,6 +27,7 @@ mod genome_graph;
 mod genome_lsystem;
 mod long_runs;
 mod never_panics;
+mod outputs;
 mod render;
 mod store;
 mod util;

@@ -492,4 +492,12 @@ impl Genome for GraphGenome {
     fn annotated_text(&self, _note: &str) -> String {
         self.to_text() // JSON has no comments
     }
+
+    fn read_text(text: &str, limits: &GraphLimits) -> Result<Self, DevelopError> {
+        GraphGenome::from_text(text, limits)
+    }
+
+    fn show(&self) -> String {
+        self.describe().trim_end().to_string()
+    }
 }

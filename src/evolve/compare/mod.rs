@@ -28,7 +28,10 @@ pub use plan::{
 pub use replicate::{
     Champion, Replicate, ReplicateState, distinct_shapes_per_part, read_replicate,
 };
-pub use report::{EncodingSummary, Pair, Report, report, write_report};
+pub use report::{
+    EncodingSummary, MIN_REPLICATES_FOR_STATISTICS, Pair, Report, report, too_few_note,
+    write_report,
+};
 pub use survey::{Survey, gather, replicate_state, survey};
 
 use std::path::{Path, PathBuf};

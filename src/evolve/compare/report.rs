@@ -59,13 +59,22 @@ pub struct Pair {
     pub a12: f64,
 }
 
+/// The fewest replicates of an encoding that statistics are given for: below it, an
+/// encoding's figures have no spread (standard deviation, confidence interval) and its pairs
+/// are not tested.
+pub const MIN_REPLICATES_FOR_STATISTICS: usize = 2;
+
 /// The report's numbers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
     /// Per encoding, in the manifest's order.
     pub encodings: Vec<EncodingSummary>,
-    /// Every pair, in the manifest's order.
+    /// Every pair of encodings with at least [`MIN_REPLICATES_FOR_STATISTICS`] replicates
+    /// each, in the manifest's order.
     pub pairs: Vec<Pair>,
+    /// The encodings with fewer than [`MIN_REPLICATES_FOR_STATISTICS`] replicates: no
+    /// statistics, and no test of their pairs.
+    pub too_few: Vec<String>,
     /// The evaluations every replicate made.
     pub evaluations: u64,
 }
@@ -122,10 +131,18 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
                 reused,
             }
         })
+        .collect::<Vec<EncodingSummary>>();
+    let too_few: Vec<String> = encodings
+        .iter()
+        .filter(|e| e.replicates < MIN_REPLICATES_FOR_STATISTICS)
+        .map(|e| e.encoding.clone())
         .collect();
     let mut pairs = Vec::new();
     for (i, a) in manifest.encodings.iter().enumerate() {
         for b in &manifest.encodings[i + 1..] {
+            if too_few.contains(a) || too_few.contains(b) {
+                continue;
+            }
             let best = |e: &str| -> Vec<f64> { of(e).iter().map(|r| r.champion.fitness).collect() };
             let (x, y) = (best(a), best(b));
             pairs.push(Pair {
@@ -144,6 +161,7 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
     Report {
         encodings,
         pairs,
+        too_few,
         evaluations: evaluations_of(&shared.ga),
     }
 }
@@ -183,9 +201,10 @@ pub fn write_report(
     );
     let _ = writeln!(
         md,
-        "{} replicates per encoding, seed {}; every replicate made exactly {} evaluations \
+        "{} replicate{} per encoding, seed {}; every replicate made exactly {} evaluations \
          (budget {}: population {}, {} generations, elite {} not re-evaluated; preset {}).\n",
         manifest.replicates,
+        if manifest.replicates == 1 { "" } else { "s" },
         manifest.seed,
         r.evaluations,
         manifest.evaluations,
@@ -259,31 +278,36 @@ pub fn write_report(
             num(e.evaluations_per_second, 1),
         );
     }
-    let _ = writeln!(
-        md,
-        "\nPairwise two-sided Mann–Whitney U tests of the best fitness (exact distribution \
-         without ties and up to {} replicates, else the normal approximation with tie and \
-         continuity corrections), Holm-corrected over the {} pairs; A12 is Vargha and \
-         Delaney's probability that a replicate of the first encoding beats one of the second \
-         (0.5: no effect).\n",
-        stats::EXACT_MAX,
-        r.pairs.len()
-    );
-    let _ = writeln!(md, "| a | b | U | p | method | Holm p | A12 | effect |");
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
-    for p in &r.pairs {
+    if !r.too_few.is_empty() {
+        let _ = writeln!(md, "\n**No statistics** {}.", too_few_note(&r.too_few));
+    }
+    if !r.pairs.is_empty() {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {} | {} | {} |",
-            p.a,
-            p.b,
-            num(p.test.u, 1),
-            num(p.test.p, 4),
-            p.test.method.name(),
-            num(p.holm_p, 4),
-            num(p.a12, 3),
-            stats::a12_magnitude(p.a12)
+            "\nPairwise two-sided Mann–Whitney U tests of the best fitness (exact distribution \
+             without ties and up to {} replicates, else the normal approximation with tie and \
+             continuity corrections), Holm-corrected over the {} pairs; A12 is Vargha and \
+             Delaney's probability that a replicate of the first encoding beats one of the second \
+             (0.5: no effect).\n",
+            stats::EXACT_MAX,
+            r.pairs.len()
         );
+        let _ = writeln!(md, "| a | b | U | p | method | Holm p | A12 | effect |");
+        let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+        for p in &r.pairs {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {} | {} | {} | {} |",
+                p.a,
+                p.b,
+                num(p.test.u, 1),
+                num(p.test.p, 4),
+                p.test.method.name(),
+                num(p.holm_p, 4),
+                num(p.a12, 3),
+                stats::a12_magnitude(p.a12)
+            );
+        }
     }
     let _ = writeln!(
         md,
@@ -346,6 +370,15 @@ pub fn write_report(
         &format!("{task}: the champions' parts (bar: median)"),
     )?;
     Ok(r)
+}
+
+/// Why `encodings` have no statistics, after "no statistics": for the report and the summary.
+pub fn too_few_note(encodings: &[String]) -> String {
+    format!(
+        "for {}: fewer than {MIN_REPLICATES_FOR_STATISTICS} finished replicates, so no standard deviation, \
+         confidence interval or pairwise test (run more with `--replicates`)",
+        encodings.join(", ")
+    )
 }
 
 /// The mean best-so-far fitness of `encoding`'s replicates after each generation, with its

@@ -25,12 +25,19 @@ impl RunRecord {
         let config: toml::Table = toml::from_str(&self.config).ok()?;
         config.get("task")?.clone().try_into().ok()
     }
+
+    /// The generations its settings plan (`[ga] generations` of [`RunRecord::config`]);
+    /// `None` when the text cannot be read as one.
+    pub fn planned_generations(&self) -> Option<u64> {
+        let config: toml::Table = toml::from_str(&self.config).ok()?;
+        u64::try_from(config.get("ga")?.get("generations")?.as_integer()?).ok()
+    }
 }
 
 /// The evaluation of a generation's best individual at the fine reference setting
 /// ([`crate::sim::SimOptions::fine_reference`]): a check that its fitness is not an artefact
 /// of the evaluator's coarse stepping.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct FineEvaluation {
     /// Its fitness at the fine reference (NaN if the evaluation gave none).
     pub fitness: f64,
@@ -40,10 +47,11 @@ pub struct FineEvaluation {
 
 /// One generation's statistics, as the genetic algorithm computes them
 /// ([`GenerationRecord::of`](crate::evolve::ga)) and the store keeps them. Statistics of an
-/// empty sample (no valid individual) are NaN.
-#[derive(Debug, Clone, PartialEq)]
+/// empty sample (no valid individual) are NaN (`null` in JSON).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct GenerationRecord {
     /// The generation's index, from 0.
+    #[serde(rename = "generation")]
     pub index: u32,
     /// The best fitness.
     pub best: f64,
