@@ -236,48 +236,46 @@ pub fn write_report(
          simulated and those that reused the evaluation of an identical creature earlier in \
          the same run.\n"
     );
-    let _ = writeln!(
-        md,
-        "| encoding | n | mean best | at the fine reference | sd | 95% CI | parts | joints | neurons | shapes/part | simulated | reused | evaluations/s |"
-    );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for e in &r.encodings {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} | {} | {} to {} | {} | {} | {} | {} | {} | {} | {} |",
-            e.encoding,
-            e.replicates,
+    let rows = r.encodings.iter().map(|e| {
+        vec![
+            e.encoding.clone(),
+            e.replicates.to_string(),
             num(e.best.mean, 4),
-            match (
-                e.fine_replicates == e.replicates || e.fine_replicates == 0,
-                e.fine_failed
-            ) {
-                (true, 0) => num(e.mean_fine, 4),
-                (false, 0) => format!(
-                    "{} ({} of {})",
-                    num(e.mean_fine, 4),
-                    e.fine_replicates,
-                    e.replicates
-                ),
-                (_, failed) => format!(
-                    "{} ({} of {}; {failed} failed)",
-                    num(e.mean_fine, 4),
-                    e.fine_replicates - failed,
-                    e.replicates
-                ),
-            },
+            fine_cell(e),
             num(e.best.sd, 4),
-            num(e.best.mean - e.best.ci95, 4),
-            num(e.best.mean + e.best.ci95, 4),
+            format!(
+                "{} to {}",
+                num(e.best.mean - e.best.ci95, 4),
+                num(e.best.mean + e.best.ci95, 4)
+            ),
             num(e.median_parts, 1),
             num(e.median_joints, 1),
             num(e.median_neurons, 1),
             num(e.median_shapes_per_part, 3),
-            e.simulated,
-            e.reused,
+            e.simulated.to_string(),
+            e.reused.to_string(),
             num(e.evaluations_per_second, 1),
-        );
-    }
+        ]
+    });
+    markdown_table(
+        &mut md,
+        &[
+            "encoding",
+            "n",
+            "mean best",
+            "at the fine reference",
+            "sd",
+            "95% CI",
+            "parts",
+            "joints",
+            "neurons",
+            "shapes/part",
+            "simulated",
+            "reused",
+            "evaluations/s",
+        ],
+        rows,
+    );
     if !r.too_few.is_empty() {
         let _ = writeln!(md, "\n**No statistics** {}.", too_few_note(&r.too_few));
     }
@@ -292,22 +290,23 @@ pub fn write_report(
             stats::EXACT_MAX,
             r.pairs.len()
         );
-        let _ = writeln!(md, "| a | b | U | p | method | Holm p | A12 | effect |");
-        let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
-        for p in &r.pairs {
-            let _ = writeln!(
-                md,
-                "| {} | {} | {} | {} | {} | {} | {} | {} |",
-                p.a,
-                p.b,
+        let rows = r.pairs.iter().map(|p| {
+            vec![
+                p.a.clone(),
+                p.b.clone(),
                 num(p.test.u, 1),
                 num(p.test.p, 4),
-                p.test.method.name(),
+                p.test.method.name().to_string(),
                 num(p.holm_p, 4),
                 num(p.a12, 3),
-                stats::a12_magnitude(p.a12)
-            );
-        }
+                stats::a12_magnitude(p.a12).to_string(),
+            ]
+        });
+        markdown_table(
+            &mut md,
+            &["a", "b", "U", "p", "method", "Holm p", "A12", "effect"],
+            rows,
+        );
     }
     let _ = writeln!(
         md,
@@ -514,5 +513,32 @@ mod tests {
         assert_eq!(b.points[1].1, 2.0);
         let half = stats::t_quantile_975(2) / 3f64.sqrt();
         assert!((b.points[1].3 - 2.0 - half).abs() < 1e-12);
+    }
+}
+
+/// The report's "at the fine reference" cell: the champions' mean re-walked at the fine
+/// reference, saying over how many replicates when not all, and how many failed.
+fn fine_cell(e: &EncodingSummary) -> String {
+    let mean = num(e.mean_fine, 4);
+    match (
+        e.fine_replicates == e.replicates || e.fine_replicates == 0,
+        e.fine_failed,
+    ) {
+        (true, 0) => mean,
+        (false, 0) => format!("{mean} ({} of {})", e.fine_replicates, e.replicates),
+        (_, failed) => format!(
+            "{mean} ({} of {}; {failed} failed)",
+            e.fine_replicates - failed,
+            e.replicates
+        ),
+    }
+}
+
+/// Appends a Markdown table: its header, the separator line, one line per row.
+fn markdown_table(md: &mut String, header: &[&str], rows: impl Iterator<Item = Vec<String>>) {
+    let _ = writeln!(md, "| {} |", header.join(" | "));
+    let _ = writeln!(md, "|{}", "---|".repeat(header.len()));
+    for row in rows {
+        let _ = writeln!(md, "| {} |", row.join(" | "));
     }
 }
