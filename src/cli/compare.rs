@@ -162,7 +162,7 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
         source.as_deref(),
         &flags,
     )
-    .map_err(bad)
+    .map_err(anyhow::Error::new)
 }
 
 /// Runs every replicate that is missing or unfinished: replicate 1 of every encoding, then

@@ -3,15 +3,14 @@
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, LSystemGenome, encoding_named};
-use ontogeny::evolve::config::{ConfigFile, encoding_of, read_config};
+use ontogeny::evolve::config::{ConfigFile, encoding_of, read_config, read_config_source};
 use ontogeny::evolve::ga::Preset;
 use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run};
 use ontogeny::evolve::settings::{self, RunFlags};
 use ontogeny::evolve::text::{self, RunTally};
-use ontogeny::lang::Source;
+use ontogeny::lang::{Source, read_grammar};
 use ontogeny::sim::StepSetting;
 use ontogeny::task::{TaskKind, WalkerFitness};
 
@@ -185,8 +184,7 @@ fn run_flags(args: &EvolveArgs) -> RunFlags {
 
 /// The config file at `path`, if one is given.
 pub fn read_source(path: Option<&Path>) -> anyhow::Result<Option<std::sync::Arc<Source>>> {
-    path.map(|p| Source::read(p).with_context(|| format!("cannot read {}", p.display())))
-        .transpose()
+    Ok(path.map(read_config_source).transpose()?)
 }
 
 /// Resolves the settings (command line over config file over preset) and starts the run.
@@ -207,18 +205,13 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         args.seed,
         !args.no_verify_best,
         !args.no_cache,
-    )
-    .map_err(bad)?;
-    let init_text = match &init_path {
-        Some(p) => Some(
-            std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?,
-        ),
-        None => None,
-    };
-    if let (Some(text), Some(path)) = (&init_text, &init_path) {
-        settings::check_init::<G>(text, &config.limits, path).map_err(bad)?;
+    )?;
+    let init = init_path.as_deref().map(read_grammar).transpose()?;
+    if let (Some(init), Some(path)) = (&init, &init_path) {
+        settings::check_init::<G>(init.text(), &config.limits, path).map_err(bad)?;
     }
-    let mut run = Run::<G>::start(out, config, init_text.as_deref()).map_err(run_error)?;
+    let init_text = init.as_ref().map(|s| s.text());
+    let mut run = Run::<G>::start(out, config, init_text).map_err(run_error)?;
     go(&mut run, out)
 }
 

@@ -6,6 +6,7 @@ use std::path::Path;
 use anyhow::Context;
 use ontogeny::creature::{Creature, Severity};
 use ontogeny::develop::{BuildOptions, grow_last};
+use ontogeny::lang::FileKind;
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
@@ -36,12 +37,15 @@ pub(super) fn load_creature(
         }
         let text = std::fs::read_to_string(file)
             .with_context(|| format!("cannot read {}", file.display()))?;
-        // A graph genome (a run's best.json) develops with the default limits. Only the
-        // presence of "nodes" is looked at here: the file is not held as a whole a second
-        // time.
-        if is_graph_genome(&text) {
-            let genome = super::genome::read_graph(file)?;
-            return Ok(genome.creature(ontogeny::encoding::GraphLimits::default().max_parts));
+        // A graph genome (a run's best.json) develops with the default limits; a file that is
+        // neither it nor a creature (a recording, ...) is refused with what it is.
+        match FileKind::of(file, text.as_bytes()) {
+            FileKind::GraphGenome => {
+                let genome = super::genome::read_graph(file)?;
+                return Ok(genome.creature(ontogeny::encoding::GraphLimits::default().max_parts));
+            }
+            FileKind::Creature | FileKind::Json | FileKind::Grammar => {}
+            other => return Err(other.refusal(file, "a creature").into()),
         }
         let creature: Creature = serde_json::from_str(&text)
             .map_err(|e| super::bad(format!("{}: not a creature: {e}", file.display())))?;
@@ -74,14 +78,4 @@ pub(super) fn load_creature(
         }
     }
     Ok(creature)
-}
-
-/// Whether a `.json` file's text is a graph genome (an object with `nodes`) rather than a
-/// creature, read without building anything of it.
-fn is_graph_genome(text: &str) -> bool {
-    #[derive(serde::Deserialize)]
-    struct Probe {
-        nodes: Option<serde::de::IgnoredAny>,
-    }
-    serde_json::from_str::<Probe>(text).is_ok_and(|p| p.nodes.is_some())
 }

@@ -4,13 +4,17 @@
 //! run.
 
 use std::collections::BTreeSet;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
+use super::config_errors::{key_span, setting_diagnostic, toml_diagnostic};
 use super::ga::{GaSettings, Preset};
-use crate::encoding::encoding_named;
-use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
+use crate::encoding::{ENCODINGS, encoding_named};
+use crate::lang::suggest::did_you_mean;
+use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source};
+use crate::sim::SettingError;
 use crate::task::TaskSpec;
 
 /// Every setting of a run, resolved: what `config.toml` holds in a run directory.
@@ -141,36 +145,57 @@ impl<L> Default for ConfigFile<L> {
     }
 }
 
-/// A diagnostic for a TOML error in `source`, at its place when it has one.
-fn toml_diagnostic(source: &Source, error: &toml::de::Error) -> Diagnostic {
-    let message = error.message().to_string();
-    match error.span() {
-        Some(span) => Diagnostic::at(
-            DiagnosticKind::Semantic,
-            source,
-            Span::new(span.start, span.end.max(span.start + 1)),
-            message,
-        ),
+/// The `encoding` a configuration text names, if any (read before the rest, which depends on
+/// it): one of the registry's ([`crate::encoding::ENCODINGS`]), else an error at the name,
+/// with the names allowed and the closest of them.
+pub fn encoding_of(source: &Source) -> Result<Option<String>, Diagnostic> {
+    let table: toml::Table =
+        toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
+    let names = ENCODINGS.iter().map(|e| e.name);
+    let wrong = |message: String| match key_span(source, &["encoding"]) {
+        Some(span) => Diagnostic::at(DiagnosticKind::Semantic, source, span, message),
         None => Diagnostic::without_location(
             DiagnosticKind::Semantic,
             format!("{}: {message}", source.name()),
         ),
+    };
+    let allowed = names.clone().collect::<Vec<_>>().join(", ");
+    match table.get("encoding") {
+        None => Ok(None),
+        Some(toml::Value::String(s)) if encoding_named(s).is_some() => Ok(Some(s.clone())),
+        Some(toml::Value::String(s)) => Err(wrong(format!(
+            "encoding must be one of {allowed}, not \"{s}\"{}",
+            did_you_mean(s, names)
+        ))),
+        Some(other) => Err(wrong(format!(
+            "encoding must be one of {allowed}, in double quotes, not {other}"
+        ))),
     }
 }
 
-/// The `encoding` a configuration text names, if any (read before the rest, which depends on
-/// it).
-pub fn encoding_of(source: &Source) -> Result<Option<String>, Diagnostic> {
-    let table: toml::Table =
-        toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
-    match table.get("encoding") {
-        None => Ok(None),
-        Some(toml::Value::String(s)) => Ok(Some(s.clone())),
-        Some(_) => Err(Diagnostic::without_location(
+/// Reads the configuration file at `path` (`-`: standard input), refusing, with what it is
+/// and which command takes it, a file that is something else: a grammar (whose place is
+/// `--init`), a MuJoCo model, a recording, ... ([`FileKind`]).
+pub fn read_config_source(path: &Path) -> Result<Arc<Source>, Diagnostic> {
+    let cannot = |e: std::io::Error| {
+        Diagnostic::without_location(
             DiagnosticKind::Semantic,
-            format!("{}: encoding must be a string", source.name()),
-        )),
+            format!("cannot read {}: {e}", path.display()),
+        )
+    };
+    let bytes = Source::read_bytes(path).map_err(cannot)?;
+    let kind = FileKind::of(path, &bytes);
+    if !matches!(kind, FileKind::Grammar | FileKind::Config) {
+        return Err(kind.refusal(path, "a configuration"));
     }
+    let source = Source::from_bytes(path, bytes).map_err(cannot)?;
+    // A text that is no TOML but is a grammar, or is named like one.
+    let grammar = path.extension().is_some_and(|e| e == "lsys")
+        || crate::lang::parse(&source).is_ok_and(|file| !file.rules.is_empty());
+    if grammar && toml::from_str::<toml::Table>(source.text()).is_err() {
+        return Err(FileKind::Grammar.refusal(path, "a configuration"));
+    }
+    Ok(source)
 }
 
 /// Reads a configuration file whose limits are `L`.
@@ -186,9 +211,7 @@ pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>
 /// configuration file's do when a run starts: an edited file may hold anything.
 pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
     let config: RunConfig<L> = parse_run_config(source)?;
-    check_settings(&config.ga, &config.task).map_err(|e| {
-        Diagnostic::without_location(DiagnosticKind::Semantic, format!("{}: {e}", source.name()))
-    })?;
+    check_settings(&config.ga, &config.task).map_err(|e| setting_diagnostic(source, &e))?;
     Ok(config)
 }
 
@@ -255,8 +278,8 @@ fn differing_keys(prefix: &str, a: &toml::Table, b: &toml::Table, out: &mut Vec<
 }
 
 /// Checks the values a configuration may get wrong ([`GaSettings::check`] and
-/// [`TaskSpec::check`]); the message names the setting (`[task.sim] substeps ...`).
-pub fn check_settings(ga: &GaSettings, task: &TaskSpec) -> Result<(), String> {
-    ga.check().map_err(|e| format!("[ga] {e}"))?;
-    task.check().map_err(|e| e.to_string())
+/// [`TaskSpec::check`]); the error names the setting in its table (`[task.sim] substeps ...`).
+pub fn check_settings(ga: &GaSettings, task: &TaskSpec) -> Result<(), SettingError> {
+    ga.check().map_err(|e| e.within("ga"))?;
+    task.check()
 }

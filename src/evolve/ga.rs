@@ -16,6 +16,7 @@ use super::key::EvaluationKey;
 use super::store::GenerationRecord;
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
+use crate::sim::SettingError;
 use crate::task::{Evaluation, Status, TaskSpec};
 
 /// The operators' schedule of a published genetic algorithm.
@@ -115,25 +116,28 @@ impl GaSettings {
         }
     }
 
-    /// Checks every value; the message names the setting.
-    pub fn check(&self) -> Result<(), String> {
-        let fraction = |name: &str, v: f64| {
+    /// Checks every value; the error names the setting (its key in the `[ga]` table, or the
+    /// two keys whose sum is out of range).
+    pub fn check(&self) -> Result<(), SettingError> {
+        let fraction = |key: &'static str, v: f64| {
             if (0.0..=1.0).contains(&v) {
                 Ok(())
             } else {
-                Err(format!("{name} must be between 0 and 1, not {v}"))
+                Err(SettingError::out_of_range(key, "between 0 and 1", v))
             }
         };
         if !(2..=100_000).contains(&self.population) {
-            return Err(format!(
-                "population must be 2 to 100000, not {}",
-                self.population
+            return Err(SettingError::out_of_range(
+                "population",
+                "2 to 100000",
+                self.population,
             ));
         }
         if !(1..=100_000).contains(&self.generations) {
-            return Err(format!(
-                "generations must be 1 to 100000, not {}",
-                self.generations
+            return Err(SettingError::out_of_range(
+                "generations",
+                "1 to 100000",
+                self.generations,
             ));
         }
         fraction("elite", self.elite)?;
@@ -150,19 +154,28 @@ impl GaSettings {
             self.mutation_rate_after_mating,
         )?;
         if self.asexual + self.crossover > 1.0 + 1e-12 {
-            return Err(format!(
-                "asexual + crossover must be at most 1, not {}",
-                self.asexual + self.crossover
+            return Err(SettingError::out_of_range(
+                "asexual + crossover",
+                "at most 1",
+                self.asexual + self.crossover,
             ));
         }
         if self.elite + self.breeders > 1.0 + 1e-12 {
-            return Err("elite + breeders must be at most 1".into());
+            return Err(SettingError::out_of_range(
+                "elite + breeders",
+                "at most 1",
+                self.elite + self.breeders,
+            ));
         }
         if self.survivors() == 0 {
-            return Err(format!(
-                "elite {} of a population of {} keeps nobody to breed from",
-                self.elite, self.population
-            ));
+            return Err(SettingError {
+                table: String::new(),
+                key: "elite",
+                problem: format!(
+                    "{} of a population of {} keeps nobody to breed from",
+                    self.elite, self.population
+                ),
+            });
         }
         Ok(())
     }

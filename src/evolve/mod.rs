@@ -1,6 +1,6 @@
 //! Evolution and comparison: the genetic algorithm ([`ga`]: presets as data, a generational
 //! loop over any [`crate::encoding::Genome`], parallel evaluation), a run's configuration
-//! ([`config`]), its directory ([`run`]), its database ([`store`], the only code that knows
+//! ([`config`], its errors in words: [`config_errors`]), its directory ([`run`]), its database ([`store`], the only code that knows
 //! SQL), the lock that keeps a directory one process's ([`lock`]), its fitness plot
 //! ([`plot`]), the statistics that compare settings and encodings ([`stats`]), the evaluation
 //! cache and its keys ([`cache`], [`key`]), comparisons of encodings over replicated runs
@@ -13,6 +13,7 @@ pub mod bench;
 pub mod cache;
 pub mod compare;
 pub mod config;
+pub mod config_errors;
 pub mod fidelity;
 pub mod ga;
 pub mod key;

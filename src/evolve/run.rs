@@ -312,8 +312,12 @@ impl<G: Genome> Run<G> {
         let stored = self.store.last_generation()?.map_or(0, |g| g as usize + 1);
         let mut ga = self.config.ga.clone();
         ga.generations = generations;
-        ga.check()
-            .map_err(|e| RunError::Extend(format!("--gens: {e}")))?;
+        ga.check().map_err(|e| {
+            RunError::Extend(match e.key {
+                "generations" => e.for_flag("--gens"),
+                _ => format!("--gens: {e}"),
+            })
+        })?;
         if generations < stored {
             return Err(RunError::Extend(format!(
                 "{} has {stored} generations stored; it can go on to more, not stop at {generations}",

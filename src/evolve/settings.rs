@@ -5,12 +5,13 @@
 use std::path::{Path, PathBuf};
 
 use crate::encoding::Genome;
-use crate::lang::Source;
+use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::sim::StepSetting;
 use crate::task::{TaskKind, TaskSpec, WalkerFitness};
 
 use super::compare::{self, Manifest, Shared, generations_for};
 use super::config::{ConfigFile, RunConfig, check_settings};
+use super::config_errors::setting_diagnostic;
 use super::ga::{GaSettings, Preset};
 
 /// The flags that set a run's genetic algorithm and task, shared by `evolve` and `compare`
@@ -33,12 +34,10 @@ pub struct RunFlags {
     pub setting: Option<StepSetting>,
 }
 
-/// A settings error, prefixed with the config file's name when there is one.
-pub fn config_error(source: Option<&Source>, error: String) -> String {
-    match source {
-        Some(s) => format!("{}: {error}", s.name()),
-        None => error,
-    }
+/// A message about the command line's or a config file's settings as a diagnostic (exit code
+/// 2 on the command line).
+fn plain(message: String) -> Diagnostic {
+    Diagnostic::without_location(DiagnosticKind::Semantic, message)
 }
 
 /// The task of a config file (default: the walker), with `--task`, `--fitness`, `--seconds`
@@ -72,12 +71,14 @@ pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec
 }
 
 /// The genetic algorithm and the task of a config file (`source` its text, when there is one)
-/// with the flags over them, checked together ([`check_settings`]).
+/// with the flags over them, checked together ([`check_settings`]). A value out of range is
+/// named after its flag when a flag gave it (`--pop must be 2 to 100000, not 1`), else after
+/// its key, at its place in the file.
 pub fn resolve_ga_and_task<L>(
     file: &ConfigFile<L>,
     source: Option<&Source>,
     flags: &RunFlags,
-) -> Result<(GaSettings, TaskSpec), String> {
+) -> Result<(GaSettings, TaskSpec), Diagnostic> {
     let mut overrides = file.ga.clone();
     if let Some(p) = flags.preset {
         overrides.preset = Some(p);
@@ -90,10 +91,21 @@ pub fn resolve_ga_and_task<L>(
     }
     let ga = overrides.resolve();
     if let Some(s) = flags.seconds {
-        crate::task::check_duration("seconds", s).map_err(|e| e.for_flag("--seconds"))?;
+        crate::task::check_duration("seconds", s).map_err(|e| plain(e.for_flag("--seconds")))?;
     }
-    let task = resolve_task(file.task.clone(), flags)?;
-    check_settings(&ga, &task).map_err(|e| config_error(source, e))?;
+    let task = resolve_task(file.task.clone(), flags).map_err(plain)?;
+    check_settings(&ga, &task).map_err(|e| {
+        let flag = match (e.table.as_str(), e.key) {
+            ("ga", "population") if flags.population.is_some() => Some("--pop"),
+            ("ga", "generations") if flags.generations.is_some() => Some("--gens"),
+            _ => None,
+        };
+        match (flag, source) {
+            (Some(flag), _) => plain(e.for_flag(flag)),
+            (None, Some(source)) => setting_diagnostic(source, &e),
+            (None, None) => plain(e.to_string()),
+        }
+    })?;
     Ok((ga, task))
 }
 
@@ -137,7 +149,7 @@ pub fn run_config<G: Genome>(
     seed: Option<u64>,
     verify_best: bool,
     cache: bool,
-) -> Result<RunConfig<G::Limits>, String> {
+) -> Result<RunConfig<G::Limits>, Diagnostic> {
     let (ga, task) = resolve_ga_and_task(&file, source, flags)?;
     Ok(RunConfig {
         encoding: G::NAME.to_string(),
@@ -165,48 +177,67 @@ pub fn plan_comparison(
     file: &ConfigFile<toml::Value>,
     source: Option<&Source>,
     flags: &RunFlags,
-) -> Result<(Manifest, Shared), String> {
+) -> Result<(Manifest, Shared), Diagnostic> {
     let mut names: Vec<String> = Vec::new();
     for e in encodings {
         if names.iter().any(|x| x == e) {
-            return Err(format!("--encodings names {e} twice"));
+            return Err(plain(format!("--encodings names {e} twice")));
         }
         names.push(e.to_string());
     }
     if names.is_empty() {
-        return Err(format!("--encodings needs at least one of {all_encodings}"));
+        return Err(plain(format!(
+            "--encodings needs at least one of {all_encodings}"
+        )));
     }
     let replicates = replicates.unwrap_or(10);
     if !(1..=compare::MAX_REPLICATES).contains(&replicates) {
-        return Err(format!(
+        return Err(plain(format!(
             "--replicates must be 1 to {}, not {replicates}",
             compare::MAX_REPLICATES
-        ));
+        )));
     }
-    let where_from = source.map_or("the command line".to_string(), |s| s.name().to_string());
-    let refuse = |what: &str, why: &str| {
-        Err(format!(
-            "{where_from}: {what} has no place in a comparison's config: {why}"
-        ))
+    // A key the file sets that a comparison sets itself: refused at its place in the file.
+    let refuse = |path: &[&str], what: &str, why: &str| {
+        let message = format!("{what} has no place in a comparison's config: {why}");
+        let at = source.and_then(|s| Some((s, super::config_errors::key_span(s, path)?)));
+        Err(match (at, source) {
+            (Some((s, span)), _) => Diagnostic::at(DiagnosticKind::Semantic, s, span, message),
+            (None, Some(s)) => plain(format!("{}: {message}", s.name())),
+            (None, None) => plain(message),
+        })
     };
     if file.encoding.is_some() {
-        return refuse("encoding", "--encodings names them");
+        return refuse(&["encoding"], "encoding", "--encodings names them");
     }
     if file.init.is_some() {
-        return refuse("init", "every replicate starts from random genomes");
+        return refuse(
+            &["init"],
+            "init",
+            "every replicate starts from random genomes",
+        );
     }
     if file.limits.is_some() {
-        return refuse("[limits]", "every encoding runs with its default limits");
+        return refuse(
+            &["limits"],
+            "[limits]",
+            "every encoding runs with its default limits",
+        );
     }
     if file.ga.generations.is_some() {
-        return refuse("[ga] generations", "--evaluations sets the generations");
+        return refuse(
+            &["ga", "generations"],
+            "[ga] generations",
+            "--evaluations sets the generations",
+        );
     }
     let one_generation = RunFlags {
         generations: Some(1),
         ..flags.clone()
     };
     let (mut ga, task) = resolve_ga_and_task(file, source, &one_generation)?;
-    ga.generations = generations_for(&ga, budget).map_err(|e| format!("--evaluations: {e}"))?;
+    ga.generations =
+        generations_for(&ga, budget).map_err(|e| plain(format!("--evaluations: {e}")))?;
     Ok((
         Manifest {
             encodings: names,

@@ -20,12 +20,15 @@
 
 pub mod ast;
 pub mod commands;
+pub mod file_kind;
 mod parser;
 pub mod source;
+pub mod suggest;
 
 use std::collections::HashSet;
 
 pub use ast::LsysFile;
+pub use file_kind::{FileKind, read_grammar};
 pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
 
 use ast::{Expr, ModuleCall, PatternModule, Rule};

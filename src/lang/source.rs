@@ -55,14 +55,23 @@ impl Source {
     /// Reads a file; the path becomes the source's name. The path `-` reads standard input,
     /// named `<stdin>`.
     pub fn read(path: &std::path::Path) -> std::io::Result<Arc<Source>> {
-        let from_stdin = path.as_os_str() == "-";
-        let bytes = if from_stdin {
+        Source::from_bytes(path, Source::read_bytes(path)?)
+    }
+
+    /// The bytes of the file at `path` (`-`: standard input).
+    pub fn read_bytes(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+        if path.as_os_str() == "-" {
             let mut bytes = Vec::new();
             std::io::Read::read_to_end(&mut std::io::stdin(), &mut bytes)?;
-            bytes
+            Ok(bytes)
         } else {
-            std::fs::read(path)?
-        };
+            std::fs::read(path)
+        }
+    }
+
+    /// The source of `bytes` read from `path` (`-`: standard input, named `<stdin>`), which
+    /// must be UTF-8 text.
+    pub fn from_bytes(path: &std::path::Path, bytes: Vec<u8>) -> std::io::Result<Arc<Source>> {
         let text = String::from_utf8(bytes).map_err(|e| {
             std::io::Error::new(
                 std::io::ErrorKind::InvalidData,
@@ -72,7 +81,7 @@ impl Source {
                 ),
             )
         })?;
-        let name = if from_stdin {
+        let name = if path.as_os_str() == "-" {
             "<stdin>".to_string()
         } else {
             path.display().to_string()

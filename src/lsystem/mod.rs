@@ -104,15 +104,10 @@ impl LSystem {
         LSystem::parse(Source::new(name, text))
     }
 
-    /// Reads, parses and compiles a file.
+    /// Reads, parses and compiles a file; a file that is not a grammar (a MuJoCo model, a
+    /// recording, ...) is refused with what it is ([`crate::lang::read_grammar`]).
     pub fn from_path(path: &std::path::Path) -> Result<LSystem, Diagnostic> {
-        let source = Source::read(path).map_err(|e| {
-            Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                format!("cannot read {}: {e}", path.display()),
-            )
-        })?;
-        LSystem::parse(source)
+        LSystem::parse(crate::lang::read_grammar(path)?)
     }
 
     /// The source the system was read from.

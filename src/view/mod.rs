@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 use serde_json::{Value, json};
 
 use crate::develop::{BuildOptions, build};
-use crate::lang::Diagnostic;
+use crate::lang::{Diagnostic, FileKind};
 use crate::lsystem::{DeriveOptions, LSystem};
 
 pub use open::{PageFlags, ignored_flags, run_developer};
@@ -100,6 +100,15 @@ impl Target {
         if path.is_file() {
             if path.extension().is_some_and(|e| e == "lsys") {
                 return target(Kind::Lsys);
+            }
+            // A file view cannot show is told what it is and which command takes it.
+            let kind = std::fs::read(path).map(|bytes| FileKind::of(path, &bytes));
+            if let Some(kind) = kind.ok().filter(|k| *k != FileKind::Grammar) {
+                return Err(ViewError::NotViewable(format!(
+                    "{shown} is {}, not an .lsys file: {}",
+                    kind.describe(),
+                    kind.advice(path)
+                )));
             }
             return Err(ViewError::NotViewable(format!(
                 "{shown}: not an .lsys file (view shows an .lsys file, or a directory written \

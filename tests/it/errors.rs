@@ -396,7 +396,7 @@ fn zero_substeps_in_a_config_file_are_refused() {
     refused(
         &["evolve", "--config", "z.toml", "--out", "run"],
         &[("z.toml", &config_with_sim("substeps = 0"))],
-        &format!("z.toml: [task.sim] {NO_SUBSTEPS}"),
+        &format!("[task.sim] {NO_SUBSTEPS}\n --> z.toml:8:12"),
     );
 }
 
@@ -431,12 +431,190 @@ fn a_control_step_out_of_range_is_named_as_the_config_file_names_it() {
     refused(
         &["evolve", "--config", "z.toml", "--out", "run"],
         &[("z.toml", &config_with_sim("control_step = 0.5"))],
-        "z.toml: [task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5",
+        "[task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5\n --> z.toml:8:16",
     );
     // The name older files use is read as the same key.
     refused(
         &["evolve", "--config", "z.toml", "--out", "run"],
         &[("z.toml", &config_with_sim("dt = 0.5"))],
         "z.toml: [task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5",
+    );
+}
+
+#[test]
+fn a_config_value_of_the_wrong_type_is_said_in_words_at_its_key() {
+    refused(
+        &["evolve", "--config", "words.toml", "--out", "run"],
+        &[(
+            "words.toml",
+            "encoding = \"lsystem\"\n[ga]\npopulation = \"twenty\"\n",
+        )],
+        "error: [ga] population must be a whole number, not \"twenty\"\n --> words.toml:3:14",
+    );
+    refused(
+        &["evolve", "--config", "words-bool.toml", "--out", "run"],
+        &[("words-bool.toml", "verify_best = \"yes\"\n")],
+        "verify_best must be true or false, not \"yes\"",
+    );
+    refused(
+        &[
+            "compare",
+            "--config",
+            "words-real.toml",
+            "--encodings",
+            "direct",
+            "--evaluations",
+            "8",
+            "--out",
+            "c",
+        ],
+        &[("words-real.toml", "[task.walker]\nseconds = \"long\"\n")],
+        "[task.walker] seconds must be a number, not \"long\"\n --> words-real.toml:2:11",
+    );
+}
+
+#[test]
+fn a_misspelt_name_in_a_config_lists_the_names_and_suggests_the_closest() {
+    refused(
+        &["evolve", "--config", "enc.toml", "--out", "run"],
+        &[("enc.toml", "encoding = \"lsytem\"\n")],
+        "encoding must be one of lsystem, lsystem-continuous, direct, graph, not \"lsytem\" \
+         (did you mean lsystem?)\n --> enc.toml:1:12",
+    );
+    refused(
+        &["evolve", "--config", "task.toml", "--out", "run"],
+        &[("task.toml", "[task]\ntask = \"walkr\"\n")],
+        "[task] task must be one of walker, jump, catapult, aim, not \"walkr\" \
+         (did you mean walker?)\n --> task.toml:2:8",
+    );
+    refused(
+        &["evolve", "--config", "actuator.toml", "--out", "run"],
+        &[("actuator.toml", "[task.sim]\nactuator = \"muscl\"\n")],
+        "(did you mean muscle?)",
+    );
+    refused(
+        &["evolve", "--config", "key.toml", "--out", "run"],
+        &[("key.toml", "[ga]\npopulaton = 10\n")],
+        "unknown key populaton in [ga] (did you mean population?)\n --> key.toml:2:1",
+    );
+}
+
+#[test]
+fn a_value_out_of_range_names_the_flag_that_gave_it() {
+    let dir = crate::util::scratch_dir("errors-flag-out-of-range");
+    let run = dir.join("run");
+    let run = run.to_str().unwrap();
+    crate::util::assert_bad_input(
+        &["evolve", "--pop", "1", "--out", run],
+        "error: --pop must be 2 to 100000, not 1",
+    );
+    crate::util::assert_bad_input(
+        &["evolve", "--gens", "0", "--out", run],
+        "error: --gens must be 1 to 100000, not 0",
+    );
+    crate::util::assert_bad_input(
+        &[
+            "compare",
+            "--pop",
+            "1",
+            "--encodings",
+            "direct",
+            "--evaluations",
+            "8",
+            "--out",
+            run,
+        ],
+        "error: --pop must be 2 to 100000, not 1",
+    );
+    assert!(!std::path::Path::new(run).exists());
+}
+
+#[test]
+fn a_value_out_of_range_in_a_config_is_pointed_at_in_the_file() {
+    refused(
+        &["evolve", "--config", "range.toml", "--out", "run"],
+        &[("range.toml", "seed = 3\n[ga]\npopulation = 1\n")],
+        "error: [ga] population must be 2 to 100000, not 1\n --> range.toml:3:14",
+    );
+}
+
+#[test]
+fn a_file_that_is_not_a_grammar_is_told_what_it_is_and_which_command_takes_it() {
+    let frame = r#"{"step":0,"t":0.0,"creature":{"parts":[],"joints":[]}}"#;
+    let files = [
+        (
+            "quadruped.xml",
+            "<?xml version=\"1.0\"?>\n<mujoco model=\"q\">\n</mujoco>\n",
+        ),
+        ("frames.jsonl", &format!("{frame}\n{frame}\n")),
+        ("creature.json", r#"{"parts": [], "joints": []}"#),
+        ("recording.json", r#"{"creature": {}, "frames": []}"#),
+        ("run.sqlite", "SQLite format 3\0"),
+    ];
+    refused(
+        &["grow", "quadruped.xml"],
+        &files,
+        "error: quadruped.xml is a MuJoCo model (MJCF), not a grammar: Ontogeny writes MJCF \
+         (`ontogeny export`) but does not read it",
+    );
+    refused(
+        &["eval", "frames.jsonl", "--task", "walker"],
+        &files,
+        "error: frames.jsonl is the frames of a growth (written by `ontogeny grow --out DIR`), \
+         not a grammar: show the growth with `ontogeny view .`",
+    );
+    refused(
+        &["derive", "creature.json"],
+        &files,
+        "creature.json is a creature, not a grammar: `ontogeny eval creature.json --task walker`",
+    );
+    refused(
+        &["check", "run.sqlite"],
+        &files,
+        "run.sqlite is a run's store (SQLite, written by `ontogeny evolve`), not a grammar",
+    );
+    refused(
+        &["eval", "recording.json", "--task", "walker"],
+        &files,
+        "recording.json is a recording (written by `ontogeny eval --record DIR`), not a \
+         creature: play it with `ontogeny view .`",
+    );
+    refused(
+        &["evolve", "--init", "frames.jsonl", "--out", "run"],
+        &files,
+        "frames.jsonl is the frames of a growth",
+    );
+    refused(
+        &["view", "frames.jsonl"],
+        &files,
+        "frames.jsonl is the frames of a growth (written by `ontogeny grow --out DIR`), not an \
+         .lsys file: show the growth with `ontogeny view .`",
+    );
+}
+
+#[test]
+fn a_grammar_given_as_a_config_points_to_init() {
+    let grammar = [("walker.lsys", "axiom: A\nA --> forward(1) A\n")];
+    let advice = "walker.lsys is a grammar, not a configuration: to start a run from its \
+                  mutants: `ontogeny evolve --init walker.lsys --out DIR`";
+    refused(
+        &["evolve", "--config", "walker.lsys", "--out", "run"],
+        &grammar,
+        advice,
+    );
+    refused(
+        &[
+            "compare",
+            "--config",
+            "walker.lsys",
+            "--encodings",
+            "direct",
+            "--evaluations",
+            "8",
+            "--out",
+            "c",
+        ],
+        &grammar,
+        advice,
     );
 }

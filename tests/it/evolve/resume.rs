@@ -278,10 +278,8 @@ fn a_run_whose_config_was_edited_to_a_population_of_zero_is_refused_on_resume() 
         .arg(&run)
         .output()
         .unwrap();
-    refused(
-        &o,
-        "config.toml: [ga] population must be 2 to 100000, not 0",
-    );
+    let said = refused(&o, "[ga] population must be 2 to 100000, not 0\n");
+    assert!(said.contains("config.toml:"), "the file at fault: {said}");
     assert_eq!(before, std::fs::read(run.join("run.sqlite")).unwrap());
     // `replay` reads the run's settings from its store, not the edited file.
     let o = ontogeny_command().arg("replay").arg(&run).output().unwrap();
