@@ -13,7 +13,7 @@ use super::config_errors::{key_span, setting_diagnostic, toml_diagnostic};
 use super::ga::{GaSettings, Preset};
 use crate::encoding::{ENCODINGS, encoding_named};
 use crate::lang::suggest::did_you_mean;
-use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source};
+use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
 use crate::task::TaskSpec;
 
@@ -177,18 +177,11 @@ pub fn encoding_of(source: &Source) -> Result<Option<String>, Diagnostic> {
 /// and which command takes it, a file that is something else: a grammar (whose place is
 /// `--init`), a MuJoCo model, a recording, ... ([`FileKind`]).
 pub fn read_config_source(path: &Path) -> Result<Arc<Source>, Diagnostic> {
-    let cannot = |e: std::io::Error| {
-        Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("cannot read {}: {e}", path.display()),
-        )
-    };
-    let bytes = Source::read_bytes(path).map_err(cannot)?;
-    let kind = FileKind::of(path, &bytes);
-    if !matches!(kind, FileKind::Grammar | FileKind::Config) {
-        return Err(kind.refusal(path, "a configuration"));
-    }
-    let source = Source::from_bytes(path, bytes).map_err(cannot)?;
+    let source = read_as(
+        path,
+        &[FileKind::Grammar, FileKind::Config],
+        "a configuration",
+    )?;
     // A text that is no TOML but is a grammar, or is named like one.
     let grammar = path.extension().is_some_and(|e| e == "lsys")
         || crate::lang::parse(&source).is_ok_and(|file| !file.rules.is_empty());

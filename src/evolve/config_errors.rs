@@ -206,41 +206,43 @@ mod tests {
         toml_diagnostic(&source, &error).to_string()
     }
 
+    /// Asserts that the diagnostic of the config `text` says every one of `parts`.
+    fn says(text: &str, parts: &[&str]) {
+        let message = diagnostic(text);
+        for part in parts {
+            assert!(message.contains(part), "{part:?} not in {message}");
+        }
+    }
+
     #[test]
     fn a_value_of_the_wrong_type_is_named_in_words_at_its_key() {
-        let message = diagnostic("[ga]\npopulation = \"twenty\"\n");
-        assert!(
-            message.contains("[ga] population must be a whole number, not \"twenty\""),
-            "{message}"
+        says(
+            "[ga]\npopulation = \"twenty\"\n",
+            &[
+                "[ga] population must be a whole number, not \"twenty\"",
+                "run.toml:2:14",
+                "e.g. population = 300",
+            ],
         );
-        assert!(message.contains("run.toml:2:14"), "{message}");
-        assert!(message.contains("e.g. population = 300"), "{message}");
-        let message = diagnostic("[task.walker]\nseconds = \"long\"\n");
-        assert!(
-            message.contains("[task.walker] seconds must be a number"),
-            "{message}"
+        says(
+            "[task.walker]\nseconds = \"long\"\n",
+            &["[task.walker] seconds must be a number"],
         );
-        let message = diagnostic("cache = 1\n");
-        assert!(
-            message.contains("cache must be true or false, not 1"),
-            "{message}"
-        );
+        says("cache = 1\n", &["cache must be true or false, not 1"]);
     }
 
     #[test]
     fn a_name_not_allowed_lists_the_names_and_the_closest() {
-        let message = diagnostic("[task]\ntask = \"walkr\"\n");
-        assert!(
-            message.contains(
+        says(
+            "[task]\ntask = \"walkr\"\n",
+            &[
                 "[task] task must be one of walker, jump, catapult, aim, not \"walkr\" \
-                 (did you mean walker?)"
-            ),
-            "{message}"
+               (did you mean walker?)",
+            ],
         );
-        let message = diagnostic("[ga]\npopulaton = 3\n");
-        assert!(
-            message.contains("unknown key populaton in [ga] (did you mean population?)"),
-            "{message}"
+        says(
+            "[ga]\npopulaton = 3\n",
+            &["unknown key populaton in [ga] (did you mean population?)"],
         );
     }
 

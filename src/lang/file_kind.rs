@@ -189,6 +189,17 @@ fn json_kind(text: &str, lines: bool) -> Option<FileKind> {
 /// Reads the grammar at `path` (`-`: standard input), refusing, with what it is and which
 /// command takes it, a file that is something else ([`FileKind::of`]).
 pub fn read_grammar(path: &Path) -> Result<Arc<Source>, Diagnostic> {
+    read_as(path, &[FileKind::Grammar], "a grammar")
+}
+
+/// Reads the file at `path` (`-`: standard input) as a source when it is of one of the
+/// `accepted` kinds; any other is refused with what it is, which command takes it, and that
+/// `expected` (e.g. "a grammar") was expected.
+pub fn read_as(
+    path: &Path,
+    accepted: &[FileKind],
+    expected: &str,
+) -> Result<Arc<Source>, Diagnostic> {
     let cannot = |e: std::io::Error| {
         Diagnostic::without_location(
             DiagnosticKind::Semantic,
@@ -196,10 +207,11 @@ pub fn read_grammar(path: &Path) -> Result<Arc<Source>, Diagnostic> {
         )
     };
     let bytes = Source::read_bytes(path).map_err(cannot)?;
-    match FileKind::of(path, &bytes) {
-        FileKind::Grammar => Source::from_bytes(path, bytes).map_err(cannot),
-        other => Err(other.refusal(path, "a grammar")),
+    let kind = FileKind::of(path, &bytes);
+    if !accepted.contains(&kind) {
+        return Err(kind.refusal(path, expected));
     }
+    Source::from_bytes(path, bytes).map_err(cannot)
 }
 
 #[cfg(test)]

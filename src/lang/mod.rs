@@ -28,7 +28,7 @@ pub mod suggest;
 use std::collections::HashSet;
 
 pub use ast::LsysFile;
-pub use file_kind::{FileKind, read_grammar};
+pub use file_kind::{FileKind, read_as, read_grammar};
 pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
 
 use ast::{Expr, ModuleCall, PatternModule, Rule};

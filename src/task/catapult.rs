@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Phase, Watch, evaluate, steps_in};
+use super::protocol::{Bounds, Phase, evaluate, steps_in};
 use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
 use crate::creature::Creature;
 use crate::sim::SimOptions;
@@ -54,6 +54,15 @@ impl CatapultOptions {
     /// The most control steps of `dt` the catapult and aim tasks can take: `max_seconds`.
     pub fn max_steps(&self, dt: f64) -> usize {
         steps_in(self.max_seconds, dt)
+    }
+}
+
+impl Bounds for CatapultOptions {
+    fn limits(&self) -> (f64, f64) {
+        (self.max_height, self.max_seconds)
+    }
+    fn max_steps(&self, dt: f64) -> usize {
+        CatapultOptions::max_steps(self, dt)
     }
 }
 
@@ -110,7 +119,6 @@ pub fn catapult_with_progress(
     } else {
         "catapult"
     };
-    let limits = (options.max_height, options.max_seconds);
     if let Some(target) = options.target
         && !(target.iter().all(|v| v.is_finite()) && target.norm() <= MAX_TARGET_DISTANCE)
     {
@@ -120,15 +128,10 @@ pub fn catapult_with_progress(
             format!("the target must be within {MAX_TARGET_DISTANCE} m of the projectile"),
         );
     }
-    let watch = Watch {
-        record,
-        max_steps: options.max_steps(sim.control_step),
-        progress,
-    };
     // The target in the world, once the projectile is placed: kept in the terms of a failed
     // evaluation too, so that its recording can show the target.
     let placed_target = std::cell::Cell::new(None);
-    let mut evaluation = evaluate(task, creature, sim, watch, limits, |run| {
+    let mut evaluation = evaluate(task, creature, sim, options, (record, progress), |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::Evaluation;
-use super::protocol::{Phase, Rest, Watch, evaluate, settle_steps, steps_in};
+use super::protocol::{Bounds, Phase, Rest, evaluate, settle_steps, steps_in};
 use crate::creature::Creature;
 use crate::sim::SimOptions;
 
@@ -39,6 +39,15 @@ impl JumpOptions {
     }
 }
 
+impl Bounds for JumpOptions {
+    fn limits(&self) -> (f64, f64) {
+        (self.max_height, self.seconds)
+    }
+    fn max_steps(&self, dt: f64) -> usize {
+        JumpOptions::max_steps(self, dt)
+    }
+}
+
 /// Jump (Walking with Dinosaurs 3.3.3): after coming to rest (and passing the height test
 /// again), the controller runs for `seconds`; the fitness is the best height of the
 /// creature's lowest point above the ground.
@@ -59,13 +68,7 @@ pub fn jump_with_progress(
     record: bool,
     progress: &mut dyn FnMut(f64),
 ) -> Evaluation {
-    let limits = (options.max_height, options.seconds);
-    let watch = Watch {
-        record,
-        max_steps: options.max_steps(sim.control_step),
-        progress,
-    };
-    evaluate("jump", creature, sim, watch, limits, |run| {
+    evaluate("jump", creature, sim, options, (record, progress), |run| {
         run.settle(&options.rest, 0.0, sim.control_step)?;
         run.check_height(options.max_height)?;
         let resting = run.world.lowest_point().max(0.0);

@@ -300,6 +300,14 @@ impl Run<'_> {
     }
 }
 
+/// What a task's settings bound: the tallest creature simulated (m), the seconds its
+/// measurement may last (screened before simulating) and the most control steps of `dt` the
+/// whole protocol can take.
+pub(super) trait Bounds {
+    fn limits(&self) -> (f64, f64);
+    fn max_steps(&self, dt: f64) -> usize;
+}
+
 /// How an evaluation is watched: whether it is recorded, the most control steps its protocol
 /// can take, and the callback told the fraction done.
 pub(super) struct Watch<'p> {
@@ -334,27 +342,23 @@ fn start<'p>(
     })
 }
 
-/// Screens the creature, builds its world and runs `protocol`, which returns the fitness and
-/// its terms (or a failed evaluation). The progress callback is told 1 at the end.
+/// Screens the creature, builds its world and runs `protocol` on it, within the `bounds` of
+/// the task's settings; `protocol` returns the fitness and its terms (or a failed
+/// evaluation). The progress callback is told 1 at the end.
 pub(super) fn evaluate(
     task: &'static str,
     creature: &Creature,
     sim: &SimOptions,
-    watch: Watch<'_>,
-    limits: (f64, f64),
+    bounds: &impl Bounds,
+    (record, progress): (bool, &mut dyn FnMut(f64)),
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
 ) -> Evaluation {
-    let Watch {
-        record,
-        max_steps,
-        progress,
-    } = watch;
     let watch = Watch {
         record,
-        max_steps,
+        max_steps: bounds.max_steps(sim.control_step),
         progress: &mut *progress,
     };
-    let evaluation = evaluate_run(task, creature, sim, watch, limits, protocol);
+    let evaluation = evaluate_run(task, creature, sim, watch, bounds.limits(), protocol);
     progress(1.0);
     evaluation
 }

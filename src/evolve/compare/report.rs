@@ -410,6 +410,33 @@ fn band(encoding: &str, replicates: &[Replicate]) -> Band {
     }
 }
 
+/// The report's "at the fine reference" cell: the champions' mean re-walked at the fine
+/// reference, saying over how many replicates when not all, and how many failed.
+fn fine_cell(e: &EncodingSummary) -> String {
+    let mean = num(e.mean_fine, 4);
+    match (
+        e.fine_replicates == e.replicates || e.fine_replicates == 0,
+        e.fine_failed,
+    ) {
+        (true, 0) => mean,
+        (false, 0) => format!("{mean} ({} of {})", e.fine_replicates, e.replicates),
+        (_, failed) => format!(
+            "{mean} ({} of {}; {failed} failed)",
+            e.fine_replicates - failed,
+            e.replicates
+        ),
+    }
+}
+
+/// Appends a Markdown table: its header, the separator line, one line per row.
+fn markdown_table(md: &mut String, header: &[&str], rows: impl Iterator<Item = Vec<String>>) {
+    let _ = writeln!(md, "| {} |", header.join(" | "));
+    let _ = writeln!(md, "|{}", "---|".repeat(header.len()));
+    for row in rows {
+        let _ = writeln!(md, "| {} |", row.join(" | "));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -513,32 +540,5 @@ mod tests {
         assert_eq!(b.points[1].1, 2.0);
         let half = stats::t_quantile_975(2) / 3f64.sqrt();
         assert!((b.points[1].3 - 2.0 - half).abs() < 1e-12);
-    }
-}
-
-/// The report's "at the fine reference" cell: the champions' mean re-walked at the fine
-/// reference, saying over how many replicates when not all, and how many failed.
-fn fine_cell(e: &EncodingSummary) -> String {
-    let mean = num(e.mean_fine, 4);
-    match (
-        e.fine_replicates == e.replicates || e.fine_replicates == 0,
-        e.fine_failed,
-    ) {
-        (true, 0) => mean,
-        (false, 0) => format!("{mean} ({} of {})", e.fine_replicates, e.replicates),
-        (_, failed) => format!(
-            "{mean} ({} of {}; {failed} failed)",
-            e.fine_replicates - failed,
-            e.replicates
-        ),
-    }
-}
-
-/// Appends a Markdown table: its header, the separator line, one line per row.
-fn markdown_table(md: &mut String, header: &[&str], rows: impl Iterator<Item = Vec<String>>) {
-    let _ = writeln!(md, "| {} |", header.join(" | "));
-    let _ = writeln!(md, "|{}", "---|".repeat(header.len()));
-    for row in rows {
-        let _ = writeln!(md, "| {} |", row.join(" | "));
     }
 }
