@@ -80,6 +80,9 @@ pub struct Recording<'a> {
     /// What went wrong, when something did.
     #[serde(default)]
     pub message: Option<String>,
+    /// The evaluation's fitness (absent from files written before it was recorded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fitness: Option<f64>,
     /// The aim task's target in the world (null for other tasks).
     #[serde(default)]
     pub target: Option<[f64; 3]>,
@@ -103,6 +106,7 @@ impl<'a> Recording<'a> {
             task: evaluation.task.clone(),
             status: Some(evaluation.status),
             message: evaluation.message.clone(),
+            fitness: Some(evaluation.fitness),
             target,
             samples: Cow::Borrowed(&evaluation.recording),
         }
