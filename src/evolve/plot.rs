@@ -268,6 +268,9 @@ where
         .map_err(|x| x.to_string())
 }
 
+/// A part of a plot's SVG drawing.
+type Area<'b> = DrawingArea<SVGBackend<'b>, Shift>;
+
 /// An entry of a plot's legend: a line of a colour, solid or dashed, over a shaded band or
 /// not.
 struct LegendEntry {
@@ -280,16 +283,10 @@ struct LegendEntry {
 /// `root` under `title`, split into the chart's area and, on its right, the legend's, wide
 /// enough for the longest entry: the legend hides no data.
 fn beside_legend<'b>(
-    root: &DrawingArea<SVGBackend<'b>, Shift>,
+    root: &Area<'b>,
     title: &str,
     entries: &[LegendEntry],
-) -> Result<
-    (
-        DrawingArea<SVGBackend<'b>, Shift>,
-        DrawingArea<SVGBackend<'b>, Shift>,
-    ),
-    String,
-> {
+) -> Result<(Area<'b>, Area<'b>), String> {
     let titled = root
         .titled(title, ("sans-serif", 24))
         .map_err(|x| x.to_string())?;

@@ -152,15 +152,17 @@ mod tests {
             }],
         };
         let text = serde_json::to_string(&Recording::of(&creature, &evaluation)).unwrap();
-        let keys = ["creature", "task", "status", "message", "target", "frames"];
+        let keys = [
+            "creature", "task", "status", "message", "fitness", "target", "frames",
+        ];
         let at: Vec<usize> = keys
             .iter()
             .map(|k| text.find(&format!("\"{k}\":")).unwrap())
             .collect();
         assert!(at.windows(2).all(|w| w[0] < w[1]), "{text}");
-        assert!(
-            text.contains(r#""task":"aim","status":"ok","message":null,"target":[5.0,0.5,0.0]"#)
-        );
+        assert!(text.contains(
+            r#""task":"aim","status":"ok","message":null,"fitness":1.0,"target":[5.0,0.5,0.0]"#
+        ));
         // Poses at f32 precision, as the physics computed them.
         assert!(
             text.contains(r#""parts":[[[0.1,0.2,0.3],[0.0,0.0,0.0,1.0]]]"#),
