@@ -61,7 +61,8 @@ fn plotted(y: f64) -> bool {
 }
 
 /// Writes an SVG plot of best, mean and median fitness per generation to `path` (three
-/// labelled lines with a legend; axes "generation" and "fitness"), under `title`. When some
+/// labelled lines with a legend beside the chart; axes "generation" and `y_desc`, what the
+/// fitness measures and its unit), under `title`. When some
 /// generation's best was re-walked at the fine reference setting
 /// ([`GenerationRecord::best_fine`]), a fourth, dashed line ([`FINE_LABEL`]) shows it.
 ///
@@ -76,8 +77,9 @@ pub fn fitness_svg(
     path: &Path,
     generations: &[GenerationRecord],
     title: &str,
+    y_desc: &str,
 ) -> Result<(), PlotError> {
-    write_plot(path, |svg| draw(svg, generations, title))
+    write_plot(path, |svg| draw(svg, generations, title, y_desc))
 }
 
 /// The y range: the plotted values' span, padded by 5 % (at least ±0.5 around a single
@@ -134,62 +136,58 @@ type Chart<'a, 'b> = ChartContext<
 >;
 
 /// Draws one run of points as a line, dashed (6 pixels, 4 apart) or solid.
-fn draw_line<'c, 'a, 'b>(
-    chart: &'c mut Chart<'a, 'b>,
+fn draw_line(
+    chart: &mut Chart<'_, '_>,
     run: Vec<(u32, f64)>,
     style: ShapeStyle,
     dashed: bool,
-) -> Result<&'c mut plotters::chart::SeriesAnno<'a, SVGBackend<'b>>, String> {
+) -> Result<(), String> {
     if dashed {
         chart.draw_series(DashedLineSeries::new(run, 6, 4, style))
     } else {
         chart.draw_series(LineSeries::new(run, style))
     }
+    .map(|_| ())
     .map_err(|x| x.to_string())
 }
 
-fn draw(svg: &mut String, generations: &[GenerationRecord], title: &str) -> Result<(), String> {
+fn draw(
+    svg: &mut String,
+    generations: &[GenerationRecord],
+    title: &str,
+    y_desc: &str,
+) -> Result<(), String> {
     let root = canvas(svg)?;
     let e = |e: &dyn std::fmt::Display| e.to_string();
     let first = generations.iter().map(|g| g.index).min().unwrap_or(0);
     let last = generations.iter().map(|g| g.index).max().unwrap_or(0);
     let (y0, y1) = y_range(generations);
-    let mut chart = chart(&root, title, first..last.max(first + 1), y0..y1)?;
-    draw_mesh(
-        chart
-            .configure_mesh()
-            .x_desc("generation")
-            .y_desc("fitness"),
-    )?;
-    for ((name, colour, value), dashed) in series(generations) {
-        let style = colour.stroke_width(2);
-        let runs = segments(generations, value);
-        // The legend's entry hangs on one series, even an empty one.
-        draw_line(
-            &mut chart,
-            runs.first().cloned().unwrap_or_default(),
-            style,
+    let shown = series(generations);
+    let entries: Vec<LegendEntry> = shown
+        .iter()
+        .map(|&((name, colour, _), dashed)| LegendEntry {
+            name: name.to_string(),
+            colour,
             dashed,
-        )?
-        .label(name)
-        .legend(move |(x, y)| {
-            let gap = if dashed { (9, 15) } else { (12, 12) };
-            EmptyElement::at((x, y))
-                + PathElement::new(vec![(0, 0), (gap.0, 0)], style)
-                + PathElement::new(vec![(gap.1, 0), (24, 0)], style)
-        });
-        for run in runs.iter().skip(1) {
-            draw_line(&mut chart, run.clone(), style, dashed)?;
+            band: false,
+        })
+        .collect();
+    let (area, legend) = beside_legend(&root, title, &entries)?;
+    let mut chart = chart(&area, first..last.max(first + 1), y0..y1)?;
+    draw_mesh(chart.configure_mesh().x_desc("generation").y_desc(y_desc))?;
+    for ((_, colour, value), dashed) in shown {
+        let style = colour.stroke_width(2);
+        for run in segments(generations, value) {
+            if run.len() == 1 {
+                chart
+                    .draw_series(std::iter::once(Circle::new(run[0], 3, colour.filled())))
+                    .map_err(|x| e(&x))?;
+            } else {
+                draw_line(&mut chart, run, style, dashed)?;
+            }
         }
-        chart
-            .draw_series(
-                runs.iter()
-                    .filter(|run| run.len() == 1)
-                    .map(|run| Circle::new(run[0], 3, colour.filled())),
-            )
-            .map_err(|x| e(&x))?;
     }
-    draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
+    draw_legend(&legend, &entries)?;
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
@@ -242,16 +240,13 @@ type PlotChart<'a, 'b, X, Y> = ChartContext<
     Cartesian2d<<X as AsRangedCoord>::CoordDescType, <Y as AsRangedCoord>::CoordDescType>,
 >;
 
-/// A chart of `x` against `y` on `root` under `title`, with the plots' caption, margin and
-/// label areas.
+/// A chart of `x` against `y` on `area`, with the plots' margin and label areas.
 fn chart<'a, 'b, X: AsRangedCoord, Y: AsRangedCoord>(
-    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
-    title: &str,
+    area: &'a DrawingArea<SVGBackend<'b>, Shift>,
     x: X,
     y: Y,
 ) -> Result<PlotChart<'a, 'b, X, Y>, String> {
-    ChartBuilder::on(root)
-        .caption(title, ("sans-serif", 24))
+    ChartBuilder::on(area)
         .margin(20)
         .x_label_area_size(50)
         .y_label_area_size(80)
@@ -273,28 +268,81 @@ where
         .map_err(|x| x.to_string())
 }
 
-/// Draws the legend of `chart` at `position` on a light background with a grey border.
-fn draw_legend<'a, 'b: 'a, X: Ranged, Y: Ranged>(
-    chart: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
-    position: SeriesLabelPosition,
+/// A part of a plot's SVG drawing.
+type Area<'b> = DrawingArea<SVGBackend<'b>, Shift>;
+
+/// An entry of a plot's legend: a line of a colour, solid or dashed, over a shaded band or
+/// not.
+struct LegendEntry {
+    name: String,
+    colour: RGBColor,
+    dashed: bool,
+    band: bool,
+}
+
+/// `root` under `title`, split into the chart's area and, on its right, the legend's, wide
+/// enough for the longest entry: the legend hides no data.
+fn beside_legend<'b>(
+    root: &Area<'b>,
+    title: &str,
+    entries: &[LegendEntry],
+) -> Result<(Area<'b>, Area<'b>), String> {
+    let titled = root
+        .titled(title, ("sans-serif", 24))
+        .map_err(|x| x.to_string())?;
+    let longest = entries
+        .iter()
+        .map(|e| e.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    let width = (longest as i32 * 13 / 2 + 52).clamp(110, 320);
+    let (w, _) = titled.dim_in_pixel();
+    Ok(titled.split_horizontally(w as i32 - width))
+}
+
+/// Draws the legend's `entries` down `area`, from the height of the chart's top.
+fn draw_legend(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    entries: &[LegendEntry],
 ) -> Result<(), String> {
-    chart
-        .configure_series_labels()
-        .position(position)
-        .label_font(("sans-serif", 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .draw()
-        .map_err(|x| x.to_string())
+    let e = |e: &dyn std::fmt::Display| e.to_string();
+    let font = ("sans-serif", 14).into_font().color(&BLACK);
+    for (k, entry) in entries.iter().enumerate() {
+        let y = 28 + 22 * k as i32;
+        let style = entry.colour.stroke_width(2);
+        if entry.band {
+            area.draw(&Rectangle::new(
+                [(4, y - 7), (32, y + 7)],
+                entry.colour.mix(0.18).filled(),
+            ))
+            .map_err(|x| e(&x))?;
+        }
+        let pieces: &[(i32, i32)] = if entry.dashed {
+            &[(4, 13), (19, 28), (34, 36)]
+        } else {
+            &[(4, 32)]
+        };
+        for &(a, b) in pieces {
+            area.draw(&PathElement::new(
+                vec![(a.min(32), y), (b.min(32), y)],
+                style,
+            ))
+            .map_err(|x| e(&x))?;
+        }
+        area.draw(&Text::new(entry.name.clone(), (40, y - 8), font.clone()))
+            .map_err(|x| e(&x))?;
+    }
+    Ok(())
 }
 
-/// Writes an SVG of one line per band (mean best fitness against evaluations) over its shaded
-/// 95% band, with a legend; values at or below the failure floor are left out.
-pub fn bands_svg(path: &Path, bands: &[Band], title: &str) -> Result<(), PlotError> {
-    write_plot(path, |svg| draw_bands(svg, bands, title))
+/// Writes an SVG of one line per band (mean best fitness against evaluations, whole numbers
+/// on the x axis) over its shaded 95% band, with a legend beside the chart; `y_desc` says what
+/// the fitness measures. Values at or below the failure floor are left out.
+pub fn bands_svg(path: &Path, bands: &[Band], title: &str, y_desc: &str) -> Result<(), PlotError> {
+    write_plot(path, |svg| draw_bands(svg, bands, title, y_desc))
 }
 
-fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), String> {
+fn draw_bands(svg: &mut String, bands: &[Band], title: &str, y_desc: &str) -> Result<(), String> {
     let root = canvas(svg)?;
     let e = |e: &dyn std::fmt::Display| e.to_string();
     let shown = |b: &Band| -> Vec<(f64, f64, f64, f64)> {
@@ -321,18 +369,35 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
         let pad = (hi - lo) * 0.05;
         (lo - pad, hi + pad)
     };
-    let mut chart = chart(&root, title, x0..x1, y0..y1)?;
+    let entries: Vec<LegendEntry> = bands
+        .iter()
+        .enumerate()
+        .map(|(i, b)| LegendEntry {
+            name: b.name.clone(),
+            colour: PALETTE[i % PALETTE.len()],
+            dashed: false,
+            band: true,
+        })
+        .collect();
+    let (area, legend) = beside_legend(&root, title, &entries)?;
+    // Evaluations are whole numbers: an integer axis labels them so.
+    let whole = |x: f64| x.round() as i64;
+    let (x0, x1) = (
+        x0.floor() as i64,
+        (x1.ceil() as i64).max(x0.floor() as i64 + 1),
+    );
+    let mut chart = chart(&area, x0..x1, y0..y1)?;
     draw_mesh(
         chart
             .configure_mesh()
             .x_desc("evaluations")
-            .y_desc("mean best fitness"),
+            .y_desc(format!("mean best fitness: {y_desc}")),
     )?;
     for (i, band) in bands.iter().enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let points = shown(band);
-        let mut outline: Vec<(f64, f64)> = points.iter().map(|p| (p.0, p.3)).collect();
-        outline.extend(points.iter().rev().map(|p| (p.0, p.2)));
+        let mut outline: Vec<(i64, f64)> = points.iter().map(|p| (whole(p.0), p.3)).collect();
+        outline.extend(points.iter().rev().map(|p| (whole(p.0), p.2)));
         if points.len() > 1 {
             chart
                 .draw_series(std::iter::once(Polygon::new(outline, colour.mix(0.18))))
@@ -340,19 +405,20 @@ fn draw_bands(svg: &mut String, bands: &[Band], title: &str) -> Result<(), Strin
         }
         let style = colour.stroke_width(2);
         chart
-            .draw_series(LineSeries::new(points.iter().map(|p| (p.0, p.1)), style))
-            .map_err(|x| e(&x))?
-            .label(band.name.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+            .draw_series(LineSeries::new(
+                points.iter().map(|p| (whole(p.0), p.1)),
+                style,
+            ))
+            .map_err(|x| e(&x))?;
     }
-    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    draw_legend(&legend, &entries)?;
     root.present().map_err(|x| e(&x))?;
     Ok(())
 }
 
-/// Writes an SVG strip chart: one column per group (its name below it), a dot per value
-/// (spread sideways so equal values stay visible) and a bar at the median; `y_desc` names the
-/// values.
+/// Writes an SVG strip chart of counts: one column per group (its name below it), a dot per
+/// value (spread sideways so equal values stay visible) and a bar at the median, whole numbers
+/// on the y axis; `y_desc` names the values.
 pub fn strip_svg(
     path: &Path,
     groups: &[(String, Vec<f64>)],
@@ -377,12 +443,8 @@ fn draw_strip(
         .fold(0.0f64, f64::max);
     let n = groups.len().max(1);
     let names: Vec<String> = groups.iter().map(|g| g.0.clone()).collect();
-    let mut chart = chart(
-        &root,
-        title,
-        -0.5..(n as f64 - 0.5),
-        0.0..(hi * 1.1).max(1.0),
-    )?;
+    let area = root.titled(title, ("sans-serif", 24)).map_err(|x| e(&x))?;
+    let mut chart = chart(&area, -0.5..(n as f64 - 0.5), 0.0..(hi * 1.1).max(1.0))?;
     draw_mesh(
         chart
             .configure_mesh()
@@ -392,6 +454,14 @@ fn draw_strip(
                 let i = x.round();
                 if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < names.len() {
                     names[i as usize].clone()
+                } else {
+                    String::new()
+                }
+            })
+            // Counts: whole numbers only on the axis.
+            .y_label_formatter(&|y| {
+                if (y - y.round()).abs() < 1e-9 {
+                    format!("{}", y.round())
                 } else {
                     String::new()
                 }
@@ -478,6 +548,56 @@ mod tests {
         );
     }
 
+    /// The x of the text `text` in `svg` (plotters writes a text's words on a line of their
+    /// own, after its tag).
+    fn text_x(svg: &str, text: &str) -> f64 {
+        let lines: Vec<&str> = svg.lines().collect();
+        let k = lines.iter().position(|l| l.trim() == text).unwrap();
+        let tag = lines[k - 1];
+        let x = tag.split("x=\"").nth(1).unwrap().split('"').next().unwrap();
+        x.parse().unwrap()
+    }
+
+    /// The largest x of the chart's frame and data lines.
+    fn rightmost_line(svg: &str) -> f64 {
+        svg.split("points=\"")
+            .skip(1)
+            .flat_map(|rest| rest.split('"').next().unwrap().split_whitespace())
+            .map(|p| p.split(',').next().unwrap().parse::<f64>().unwrap())
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    #[test]
+    fn the_legend_is_beside_the_chart_and_the_y_axis_names_the_fitness() {
+        let scratch = tempfile::tempdir().unwrap();
+        let path = scratch.path().join("fitness.svg");
+        let gs: Vec<GenerationRecord> = (0..5)
+            .map(|g| generation(g, 1.0 + g as f64, 0.5, 0.4))
+            .collect();
+        fitness_svg(&path, &gs, "title", "fitness: distance (m)").unwrap();
+        let svg = fs::read_to_string(&path).unwrap();
+        assert!(svg.lines().any(|l| l.trim() == "fitness: distance (m)"));
+        let right = rightmost_line(&svg);
+        for name in ["best", "mean", "median"] {
+            assert!(text_x(&svg, name) > right, "{name} over the chart");
+        }
+        // A comparison: whole numbers of evaluations on its x axis, the legend beside.
+        let bands = [Band {
+            name: "lsystem".into(),
+            points: vec![
+                (10.0, 1.0, 0.5, 1.5),
+                (12.0, 2.0, 1.5, 2.5),
+                (14.0, 3.0, 2.0, 4.0),
+            ],
+        }];
+        bands_svg(&path, &bands, "title", "distance (m)").unwrap();
+        let svg = fs::read_to_string(&path).unwrap();
+        let texts: Vec<&str> = svg.lines().map(str::trim).collect();
+        assert!(texts.contains(&"12") && !texts.contains(&"12.0"), "{svg}");
+        assert!(texts.contains(&"mean best fitness: distance (m)"));
+        assert!(text_x(&svg, "lsystem") > rightmost_line(&svg));
+    }
+
     #[test]
     fn comparison_plots_draw_every_series() {
         let scratch = tempfile::tempdir().unwrap();
@@ -497,7 +617,7 @@ mod tests {
             },
         ];
         let path = dir.join("bands.svg");
-        bands_svg(&path, &bands, "title").unwrap();
+        bands_svg(&path, &bands, "title", "distance (m)").unwrap();
         let svg = fs::read_to_string(&path).unwrap();
         assert!(svg.contains("first-encoding") && svg.contains("second-encoding"));
         assert!(svg.contains("<polygon"), "a band is drawn");

@@ -743,10 +743,13 @@ impl<G: Genome> Run<G> {
             G::NAME,
             self.config.task.task.name()
         );
-        fitness_svg(&self.dir.join(PLOT_FILE), &generations, &title).map_err(|e| match e {
-            super::plot::PlotError::Output(e) => RunError::Output(e),
-            other => RunError::Plot(other.to_string()),
-        })?;
+        let y_desc = format!("fitness: {}", self.config.task.fitness_measure());
+        fitness_svg(&self.dir.join(PLOT_FILE), &generations, &title, &y_desc).map_err(
+            |e| match e {
+                super::plot::PlotError::Output(e) => RunError::Output(e),
+                other => RunError::Plot(other.to_string()),
+            },
+        )?;
         Ok(())
     }
 }

@@ -9,7 +9,7 @@ use super::Overlay;
 use super::camera::{Camera, View};
 use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, TARGET, TRAIL, paint, solid};
 use super::pen::{fill, polyline, stroke_width};
-use super::text::{draw_text, fit, length_label, scale_bar_length, text_width};
+use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
 use crate::creature::{Creature, Severity};
 
@@ -462,7 +462,8 @@ struct Lines {
 }
 
 /// Lines of text, top left: the overlay's label; with checks, the creature's counts and
-/// validity and its problems after them (as many as fit, then how many more), and a red
+/// validity and its problems after them (wrapped, repeated ones once, at most a few, then
+/// how many more), and a red
 /// frame round an invalid creature.
 fn write_text(
     pixmap: &mut Pixmap,
@@ -522,17 +523,9 @@ fn write_text(
             true,
         );
         y += line;
-        let shown = ((rh - y - 24.0) / line).floor().max(0.0) as usize;
-        let total = problems.len();
-        for (k, (text, colour)) in problems.into_iter().enumerate() {
-            if k + 1 == shown && total > shown {
-                let rest = format!("... and {} more", total - k);
-                draw_text(pixmap, (rx + 8.0, y), &rest, text_scale, colour, true);
-                break;
-            }
-            if k >= shown {
-                break;
-            }
+        let room_lines = ((rh - y - 24.0) / line).floor().max(0.0) as usize;
+        let columns = (room / (8.0 * text_scale)).floor().max(8.0) as usize;
+        for (text, colour) in listed_lines(problems, columns, room_lines) {
             draw_text(
                 pixmap,
                 (rx + 8.0, y),

@@ -1,15 +1,46 @@
 //! The drawing of a creature's neural network beside its body: neurons on a circle coloured
-//! by role, links by sign and weight.
+//! by role and labelled with what they do, links by sign and weight.
 
 use tiny_skia::{PathBuilder, Pixmap, Transform};
 
-use super::palette::{ACTUATOR, NEURON, OSCILLATOR, PANEL, SENSOR, paint, solid};
+use super::palette::{ACTUATOR, INK, NEURON, OSCILLATOR, PANEL, SENSOR, paint, solid};
 use super::pen::{fill, stroke_width};
-use crate::creature::{Creature, NeuronFunction, Role};
+use super::text::{draw_text, fit, text_width};
+use crate::creature::{Actuator, Creature, Neuron, NeuronFunction, Role, Sensor};
+
+/// A neuron function's name as files spell it (`"sum-greater"`).
+fn function_name(function: NeuronFunction) -> String {
+    serde_json::to_value(function)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
+}
+
+/// What a neuron does, in a few characters: a sensor what it reads (`"touch p1"`,
+/// `"angle j0.1"`), an actuator its function and what it drives (`"sigmoid j0.1"`), a hidden
+/// neuron its function (`"oscillator"`), as the viewer labels them.
+pub(super) fn neuron_label(neuron: &Neuron) -> String {
+    let function = function_name(neuron.function);
+    match neuron.role {
+        Role::Sensor { sensor } => match sensor {
+            Sensor::Touch { part, .. } => format!("touch p{part}"),
+            Sensor::Angle { joint, dof } => format!("angle j{joint}.{dof}"),
+            Sensor::Chemical { slot } => format!("chemical {slot}"),
+            Sensor::Target => "target".to_string(),
+        },
+        Role::Actuator { actuator } => match actuator {
+            Actuator::Joint { joint, dof } => format!("{function} j{joint}.{dof}"),
+            Actuator::Secrete { slot } => format!("{function} secrete {slot}"),
+            Actuator::Release => format!("{function} release"),
+        },
+        Role::Hidden => function,
+    }
+}
 
 /// Draws the brain into `(x, y, w, h)`: neurons on a circle — sensors green, actuators red,
 /// oscillators purple, other neurons blue — and links as lines, dark for positive weights and
-/// red for negative, thicker for larger weights, with a dot at the receiving end.
+/// red for negative, thicker for larger weights, with a dot at the receiving end — each
+/// neuron labelled with what it does ([`neuron_label`]).
 pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32, f32, f32, f32)) {
     let (rx, ry, rw, rh) = region;
     if let Some(rect) = tiny_skia::Rect::from_xywh(rx, ry, rw, rh) {
@@ -79,5 +110,51 @@ pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32,
                 None,
             );
         }
+    }
+    let mut placed: Vec<(f32, f32, f32)> = Vec::new();
+    for (i, neuron) in neurons.iter().enumerate() {
+        let (x, y) = place(i);
+        // Centred above a neuron in the upper half of the circle, below one in the lower
+        // half, inside the panel.
+        let label = fit(&neuron_label(neuron), rw - 4.0, 1.0);
+        let width = text_width(&label, 1.0);
+        let left = (x - width / 2.0).clamp(rx + 2.0, (rx + rw - width - 2.0).max(rx + 2.0));
+        let upper = n > 1 && y < cy - 1.0;
+        let mut top = if upper { y - dot - 12.0 } else { y + dot + 4.0 };
+        // A line further out while it would cover a label already written.
+        let covers = |top: f32, placed: &[(f32, f32, f32)]| {
+            placed.iter().any(|&(l, t, w)| {
+                left < l + w + 4.0 && l < left + width + 4.0 && (top - t).abs() < 10.0
+            })
+        };
+        for _ in 0..3 {
+            if !covers(top, &placed) {
+                break;
+            }
+            top += if upper { -10.0 } else { 10.0 };
+        }
+        placed.push((left, top, width));
+        draw_text(pixmap, (left, top), &label, 1.0, INK, true);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::develop::creature_from_commands;
+
+    #[test]
+    fn neurons_are_labelled_with_what_they_do() {
+        let c = creature_from_commands("forward(1) revolute2 forward(1) output(1)").unwrap();
+        let labels: Vec<String> = c.brain.neurons.iter().map(neuron_label).collect();
+        assert!(labels.iter().any(|l| l.ends_with(" j0.0")), "{labels:?}");
+        let mut hidden = c.brain.neurons[0].clone();
+        hidden.role = Role::Hidden;
+        hidden.function = NeuronFunction::SumGreater;
+        assert_eq!(neuron_label(&hidden), "sum-greater");
+        hidden.role = Role::Sensor {
+            sensor: Sensor::Angle { joint: 2, dof: 1 },
+        };
+        assert_eq!(neuron_label(&hidden), "angle j2.1");
     }
 }

@@ -102,8 +102,8 @@ fn compose(
 
 /// The `creature.png` picture: the body and brain with the creature checked — parts that
 /// interpenetrate outlined red, every part numbered, `title`, the counts and validity and
-/// every problem written at the top left (a red frame round an invalid creature) — and a
-/// scale bar.
+/// the problems written at the top left (wrapped; repeated ones once; the first few, then how
+/// many more; a red frame round an invalid creature) — and a scale bar.
 pub fn checked_picture(
     creature: &Creature,
     title: &str,

@@ -136,6 +136,53 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
     lines
 }
 
+/// The most problems a picture lists before "... and N more".
+pub(super) const MAX_LISTED: usize = 5;
+
+/// The lines that list `items` (text and colour) in `rows` lines of `columns` characters:
+/// repeated items once with how many times, each wrapped at spaces (its later lines indented),
+/// at most [`MAX_LISTED`] of them, and "... and N more" (in the colour of the first left out)
+/// for those that do not fit.
+pub(super) fn listed_lines<C: Copy + PartialEq>(
+    items: Vec<(String, C)>,
+    columns: usize,
+    rows: usize,
+) -> Vec<(String, C)> {
+    let mut grouped: Vec<(String, C, usize)> = Vec::new();
+    for (text, colour) in items {
+        match grouped.iter_mut().find(|g| g.0 == text && g.1 == colour) {
+            Some(g) => g.2 += 1,
+            None => grouped.push((text, colour, 1)),
+        }
+    }
+    let total: usize = grouped.iter().map(|g| g.2).sum();
+    let mut lines = Vec::new();
+    let mut listed = 0;
+    for (k, (text, colour, times)) in grouped.iter().enumerate() {
+        let text = if *times > 1 {
+            format!("{text} ({times} times)")
+        } else {
+            text.clone()
+        };
+        let mut wrapped = wrap(&text, columns.saturating_sub(2).max(1));
+        for line in wrapped.iter_mut().skip(1) {
+            line.insert_str(0, "  ");
+        }
+        let last = k + 1 == grouped.len();
+        // Room for this item, and for the "more" line unless it is the last.
+        let needed = wrapped.len() + usize::from(!last);
+        if k >= MAX_LISTED || lines.len() + needed > rows {
+            if rows > lines.len() {
+                lines.push((format!("... and {} more", total - listed), *colour));
+            }
+            break;
+        }
+        lines.extend(wrapped.into_iter().map(|l| (l, *colour)));
+        listed += times;
+    }
+    lines
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -164,5 +211,47 @@ mod tests {
             ["averyveryverylongword", "x"]
         );
         assert!(wrap("", 5).is_empty());
+    }
+
+    #[test]
+    fn long_lists_are_wrapped_grouped_and_cut_with_how_many_more() {
+        let item = |t: &str| (t.to_string(), 0u8);
+        // A long warning goes onto more lines, its later ones indented.
+        let lines = listed_lines(
+            vec![item("warning: the first part has nothing to be jointed to")],
+            26,
+            10,
+        );
+        let texts: Vec<&str> = lines.iter().map(|l| l.0.as_str()).collect();
+        assert_eq!(
+            texts,
+            [
+                "warning: the first part",
+                "  has nothing to be",
+                "  jointed to"
+            ]
+        );
+        // The same warning 57 times is one line; ten different ones are five and the rest.
+        let mut many = vec![item("warning: '}' unmatched"); 57];
+        many.extend((0..10).map(|k| item(&format!("warning: {k}"))));
+        let lines = listed_lines(many, 40, 30);
+        let texts: Vec<&str> = lines.iter().map(|l| l.0.as_str()).collect();
+        assert_eq!(
+            texts,
+            [
+                "warning: '}' unmatched (57 times)",
+                "warning: 0",
+                "warning: 1",
+                "warning: 2",
+                "warning: 3",
+                "... and 6 more"
+            ]
+        );
+        // Too few rows: as many as fit with the last row saying how many more.
+        let lines = listed_lines((0..4).map(|k| item(&format!("w{k}"))).collect(), 40, 3);
+        let texts: Vec<&str> = lines.iter().map(|l| l.0.as_str()).collect();
+        assert_eq!(texts, ["w0", "w1", "... and 2 more"]);
+        // All that fit: no "more".
+        assert_eq!(listed_lines(vec![item("a"), item("b")], 40, 2).len(), 2);
     }
 }

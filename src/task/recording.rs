@@ -80,6 +80,9 @@ pub struct Recording<'a> {
     /// What went wrong, when something did.
     #[serde(default)]
     pub message: Option<String>,
+    /// The evaluation's fitness (absent from files written before it was recorded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fitness: Option<f64>,
     /// The aim task's target in the world (null for other tasks).
     #[serde(default)]
     pub target: Option<[f64; 3]>,
@@ -103,6 +106,7 @@ impl<'a> Recording<'a> {
             task: evaluation.task.clone(),
             status: Some(evaluation.status),
             message: evaluation.message.clone(),
+            fitness: Some(evaluation.fitness),
             target,
             samples: Cow::Borrowed(&evaluation.recording),
         }
@@ -148,15 +152,17 @@ mod tests {
             }],
         };
         let text = serde_json::to_string(&Recording::of(&creature, &evaluation)).unwrap();
-        let keys = ["creature", "task", "status", "message", "target", "frames"];
+        let keys = [
+            "creature", "task", "status", "message", "fitness", "target", "frames",
+        ];
         let at: Vec<usize> = keys
             .iter()
             .map(|k| text.find(&format!("\"{k}\":")).unwrap())
             .collect();
         assert!(at.windows(2).all(|w| w[0] < w[1]), "{text}");
-        assert!(
-            text.contains(r#""task":"aim","status":"ok","message":null,"target":[5.0,0.5,0.0]"#)
-        );
+        assert!(text.contains(
+            r#""task":"aim","status":"ok","message":null,"fitness":1.0,"target":[5.0,0.5,0.0]"#
+        ));
         // Poses at f32 precision, as the physics computed them.
         assert!(
             text.contains(r#""parts":[[[0.1,0.2,0.3],[0.0,0.0,0.0,1.0]]]"#),

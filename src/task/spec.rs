@@ -105,13 +105,30 @@ impl TaskSpec {
     /// `"walker, distance (m)"`, `"walker, normalised (Chaumont eq. 1)"`,
     /// `"jump, height (m)"`, `"catapult, distance (m)"`, `"aim, distance − miss (m)"`.
     pub fn fitness_label(&self) -> String {
-        let fitness = match self.task {
+        format!("{}, {}", self.task.name(), self.fitness_measure())
+    }
+
+    /// What the fitness measures and in which unit, as plots label their axis:
+    /// `"distance (m)"`, `"normalised (Chaumont eq. 1)"`, `"distance − miss (m)"`.
+    pub fn fitness_measure(&self) -> &'static str {
+        match self.task {
             TaskKind::Walker => self.walker.fitness.label(),
             TaskKind::Jump => "height (m)",
             TaskKind::Catapult => "distance (m)",
             TaskKind::Aim => "distance − miss (m)",
-        };
-        format!("{}, {fitness}", self.task.name())
+        }
+    }
+
+    /// The lowest fitness an evaluation that succeeds can score, when the formula has one:
+    /// 0 for distances and heights (the walker's formulas but Hornby & Pollack's, the jump,
+    /// the catapult); none for the aim task (D_p − D_t) and Hornby & Pollack's walker, which
+    /// can be negative.
+    pub fn fitness_floor(&self) -> Option<f64> {
+        match self.task {
+            TaskKind::Walker => self.walker.fitness.floor(),
+            TaskKind::Jump | TaskKind::Catapult => Some(0.0),
+            TaskKind::Aim => None,
+        }
     }
 
     /// Evaluates `creature` on the task; `record` keeps a recording (every step's sample, or

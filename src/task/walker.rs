@@ -82,6 +82,18 @@ impl WalkerFitness {
     }
 }
 
+impl WalkerFitness {
+    /// The lowest score the formula can give an evaluation that succeeds: 0 for those made
+    /// of distances (D_w, iterative move and its variants), none for Hornby & Pollack's,
+    /// which drag can make negative.
+    pub fn floor(self) -> Option<f64> {
+        match self {
+            WalkerFitness::HornbyPollack => None,
+            _ => Some(0.0),
+        }
+    }
+}
+
 impl std::str::FromStr for WalkerFitness {
     type Err = String;
 

@@ -523,12 +523,18 @@ fn the_fitness_plot_names_its_series_and_axes() {
     gs[5].best = FAILURE_FLOOR;
     gs[5].mean = f64::NAN;
     gs[5].median = f64::NAN;
-    fitness_svg(&path, &gs, "walker & lsystem").unwrap();
+    fitness_svg(&path, &gs, "walker & lsystem", "fitness: distance (m)").unwrap();
     let svg = fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<svg"), "{}", &svg[..svg.len().min(80)]);
     // plotters writes each text on a line of its own.
     let texts: Vec<&str> = svg.lines().map(str::trim).collect();
-    for text in ["best", "mean", "median", "generation", "fitness"] {
+    for text in [
+        "best",
+        "mean",
+        "median",
+        "generation",
+        "fitness: distance (m)",
+    ] {
         assert!(texts.contains(&text), "no text {text} in the SVG");
     }
     assert!(svg.contains("walker &amp; lsystem"));
@@ -543,7 +549,7 @@ fn the_fitness_plot_names_its_series_and_axes() {
     for (k, g) in gs.iter_mut().enumerate().skip(10) {
         g.best_fine = fine(-(k as f64) + 9.0, "ok");
     }
-    fitness_svg(&path, &gs, "fine").unwrap();
+    fitness_svg(&path, &gs, "fine", "fitness").unwrap();
     let with_fine = fs::read_to_string(&path).unwrap();
     let texts: Vec<&str> = with_fine.lines().map(str::trim).collect();
     assert!(
@@ -564,7 +570,7 @@ fn the_fitness_plot_names_its_series_and_axes() {
     );
 
     // No generation yet, or none with a valid individual: still a picture, not an error.
-    fitness_svg(&path, &[], "empty").unwrap();
+    fitness_svg(&path, &[], "empty", "fitness").unwrap();
     assert!(fs::read_to_string(&path).unwrap().contains("\nmedian\n"));
     let failed = GenerationRecord {
         best: FAILURE_FLOOR,
@@ -572,10 +578,10 @@ fn the_fitness_plot_names_its_series_and_axes() {
         median: f64::NAN,
         ..generation(0)
     };
-    fitness_svg(&path, &[failed], "failed").unwrap();
+    fitness_svg(&path, &[failed], "failed", "fitness").unwrap();
 
     // An unwritable place is an error naming the file.
-    let err = fitness_svg(&dir.join("no/such/dir/fitness.svg"), &gs, "x").unwrap_err();
+    let err = fitness_svg(&dir.join("no/such/dir/fitness.svg"), &gs, "x", "y").unwrap_err();
     assert!(err.to_string().contains("fitness.svg"), "{err}");
 }
 

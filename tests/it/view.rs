@@ -399,6 +399,15 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     assert_eq!(page.number("parts"), parts);
     assert_eq!(page.number("frames"), frames);
     assert_eq!(page.number("frame"), 20);
+    // The page says how the evaluation went: its status and fitness, as recorded.
+    assert!(recording["fitness"].is_f64());
+    let status = recording["status"].as_str().unwrap();
+    assert!(
+        page.dom.contains(&format!("status: {status}")),
+        "{}",
+        page.dom
+    );
+    assert!(page.dom.contains("fitness: "), "{}", page.dom);
     drop(viewer);
     assert_snapshot(&browser, &rec, &dir.join("recording.png"));
 

@@ -345,10 +345,11 @@ pub fn write_report(
     let bands: Vec<Band> = manifest
         .encodings
         .iter()
-        .map(|e| band(e, replicates))
+        .map(|e| band(e, replicates, shared.task.fitness_floor()))
         .collect();
     let title = format!("{task}: mean best fitness with 95% confidence bands");
-    plot::bands_svg(&root.join("fitness.svg"), &bands, &title)?;
+    let y_desc = shared.task.fitness_measure();
+    plot::bands_svg(&root.join("fitness.svg"), &bands, &title, y_desc)?;
     let parts: Vec<(String, Vec<f64>)> = manifest
         .encodings
         .iter()
@@ -381,8 +382,9 @@ pub fn too_few_note(encodings: &[String]) -> String {
 }
 
 /// The mean best-so-far fitness of `encoding`'s replicates after each generation, with its
-/// 95% confidence band (the band is the mean where fewer than 2 replicates exist).
-fn band(encoding: &str, replicates: &[Replicate]) -> Band {
+/// 95% confidence band (the band is the mean where fewer than 2 replicates exist), held at or
+/// above `floor`, the lowest fitness the task can score, when it has one.
+fn band(encoding: &str, replicates: &[Replicate], floor: Option<f64>) -> Band {
     let rs: Vec<&Replicate> = replicates
         .iter()
         .filter(|r| r.encoding == encoding)
@@ -400,7 +402,7 @@ fn band(encoding: &str, replicates: &[Replicate]) -> Band {
         out.push((
             rs[0].curve[g].0 as f64,
             s.mean,
-            s.mean - half,
+            floor.map_or(s.mean - half, |floor| (s.mean - half).max(floor)),
             s.mean + half,
         ));
     }
@@ -534,11 +536,16 @@ mod tests {
         assert!((r.pairs[2].holm_p - 0.3).abs() < 1e-12);
         assert!((r.pairs[1].holm_p - 0.7).abs() < 1e-12);
         // The band: the mean of the best so far, 1, 2, 3 → 2 ± t(2)·1/√3.
-        let b = band("a", &reps);
+        let b = band("a", &reps, None);
         assert_eq!(b.points.len(), 2);
         assert_eq!(b.points[1].0, 11.0);
         assert_eq!(b.points[1].1, 2.0);
         let half = stats::t_quantile_975(2) / 3f64.sqrt();
         assert!((b.points[1].3 - 2.0 - half).abs() < 1e-12);
+        // 2 − 2.48 is below 0: a fitness that cannot be negative has its band held at 0.
+        assert!(b.points[1].2 < 0.0);
+        let held = band("a", &reps, Some(0.0));
+        assert_eq!(held.points[1].2, 0.0);
+        assert_eq!(held.points[1].3, b.points[1].3);
     }
 }

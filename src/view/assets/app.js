@@ -419,6 +419,16 @@ function phaseLabel(phase) {
   return { 'controller-on': 'controller on', flying: 'projectile flying' }[phase] || String(phase).replace(/-/g, ' ');
 }
 
+// The evaluation's outcome as the recording holds it: status (and message) and fitness.
+function outcome(data) {
+  const lines = [];
+  if (data.status) lines.push(`status: ${data.status}` + (data.message ? ` (${data.message})` : ''));
+  if (typeof data.fitness === 'number') {
+    lines.push(data.status === 'ok' || !data.status ? `fitness: ${fmt(data.fitness)}` : `fitness: ${data.fitness} (the failure floor)`);
+  }
+  return lines;
+}
+
 function showRecording(data) {
   body.dataset.kind = 'recording';
   $('file').textContent = data.file + (data.task ? `  (${data.task})` : '');
@@ -432,7 +442,7 @@ function showRecording(data) {
     body.dataset.frames = '0';
     playButton.style.display = 'none';
     slider.style.display = 'none';
-    describe(data.creature, [`task: ${data.task || '?'}`, 'recorded frames: 0 (the starting pose is shown)']);
+    describe(data.creature, [`task: ${data.task || '?'}`, ...outcome(data), 'recorded frames: 0 (the starting pose is shown)']);
     $('string').textContent = '';
     showError({ message: data.no_frames || 'no frames recorded' });
     finish();
@@ -516,7 +526,7 @@ function showRecording(data) {
     $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${f.t.toFixed(3)} s` +
       (f.phase ? `   ${phaseLabel(f.phase)}` : '');
   };
-  describe(data.creature, [`task: ${data.task || '?'}`, `recorded frames: ${frames.length}`,
+  describe(data.creature, [`task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
     `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);
   $('string').textContent = '';
   // Play at the speed of simulated time.
