@@ -224,8 +224,11 @@ fn resume<G: Genome>(dir: &Path, generations: Option<usize>) -> anyhow::Result<(
     let total = run.config().ga.generations as u32;
     match done {
         Some(g) if g + 1 >= total => {
+            // Its log, plot and best genome are drawn again from the store, as this
+            // version draws them.
+            run.write_derived_files().map_err(run_error)?;
             say!(
-                "{}: complete ({total} generations); nothing to resume",
+                "{}: complete ({total} generations); nothing to resume; its log.txt, fitness.svg and best genome written again",
                 dir.display()
             );
             return Ok(());

@@ -532,7 +532,10 @@ fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
         String::from_utf8_lossy(&resumed.stderr)
     );
     assert_eq!(contents(&whole), contents(&killed), "{encoding}");
-    // A complete run has nothing to resume.
+    // A complete run has nothing to resume; its derived files are written again, the same.
+    let plot = killed.join("fitness.svg");
+    let drawn = std::fs::read(&plot).unwrap();
+    std::fs::remove_file(&plot).unwrap();
     let again = ontogeny_command()
         .arg("evolve")
         .arg("--resume")
@@ -541,6 +544,7 @@ fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
         .unwrap();
     assert!(again.status.success());
     assert!(String::from_utf8_lossy(&again.stdout).contains("nothing to resume"));
+    assert_eq!(std::fs::read(&plot).unwrap(), drawn, "{encoding}");
     let _ = std::fs::remove_dir_all(dir);
 }
 
