@@ -29,6 +29,7 @@ mod long_runs;
 mod never_panics;
 mod outputs;
 mod render;
+mod rooms;
 mod store;
 mod util;
 mod view;
