@@ -401,3 +401,32 @@ fn a_run_page_plays_an_individuals_walk_in_chromium() {
         Some("generation 0 has no rank 9 (it has ranks 1 to 4)")
     );
 }
+
+#[test]
+fn a_walks_play_button_plays_it_and_opening_another_individual_leaves_it() {
+    let Some(browser) = browser() else { return };
+    let run = tiny_run("walk-button");
+    let viewer = Viewer::start(&run);
+    let walk = get_json(&viewer, "/walk.json?gen=0&rank=2");
+    let frames = walk["frames"].as_array().unwrap().len();
+    let mut page = LivePage::open(&browser, &viewer.url);
+    let state = "JSON.stringify([document.body.dataset.ready, document.body.dataset.walk || '', \
+                 document.body.dataset.frames || '', document.body.dataset.error || '', \
+                 document.getElementById('play').style.display])";
+    let opened = page.wait_for(state, |s| s.starts_with("[\"yes\""));
+    assert_eq!(opened, r#"["yes","","","","none"]"#);
+    // The second row's button: rank 2.
+    page.eval("document.querySelectorAll('#individuals button.walk')[1].click(); ''");
+    let playing = page.wait_for(state, |s| s.contains("0/2"));
+    assert_eq!(playing, format!(r#"["yes","0/2","{frames}","",""]"#));
+    // A click on the first row (not its button) opens that individual, without a player.
+    let best = get_json(&viewer, "/generation.json?gen=0")["individuals"][0]["index"].clone();
+    page.eval("document.querySelectorAll('#individuals tr.clickable')[0].click(); ''");
+    let opened = format!(r#"["","none","{best}"]"#);
+    let left = page.wait_for(
+        "JSON.stringify([document.body.dataset.walk || '', \
+         document.getElementById('play').style.display, document.body.dataset.individual])",
+        |s| s == opened,
+    );
+    assert_eq!(left, opened);
+}
