@@ -29,8 +29,8 @@ use crate::develop::{BuildOptions, build};
 use crate::lang::{Diagnostic, FileKind};
 use crate::lsystem::{DeriveOptions, LSystem};
 
-pub use open::{PageFlags, ignored_flags, run_developer};
-pub use server::{Developer, Server, ServerError};
+pub use open::{Developer, PageFlags, ignored_flags, run_developer};
+pub use server::{Server, ServerError};
 
 /// The version of three.js vendored in `vendor/three/`.
 pub const THREE_VERSION: &str = "0.181.0";
@@ -76,6 +76,9 @@ pub enum ViewError {
     /// A request for data that is not there (an individual past the end of its generation).
     #[error("{0}")]
     NotFound(String),
+    /// The server is doing as much of this as it does at once (evaluating walks): try again.
+    #[error("{0}")]
+    Busy(String),
 }
 
 /// A path and the kind of page it opens.
@@ -281,27 +284,32 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
         };
         ViewError::BadFile(format!("{}: {what}: {e}", path.display()))
     })?;
+    recording_value(&recording, &dir.display().to_string())
+        .map_err(|e| ViewError::BadFile(format!("{}: {e}", path.display())))
+}
+
+/// The page's data for `recording`, titled `file`: the recording's keys, with `kind`
+/// (`recording`), `file` and, for a recording without samples, `no_frames` (see
+/// [`recording_data`]); or why its samples do not fit its creature.
+fn recording_value(recording: &crate::task::Recording, file: &str) -> Result<Value, String> {
     let parts = recording.creature.parts.len();
     if let Some(bad) = recording
         .samples
         .iter()
         .position(|s| s.parts.len() != parts)
     {
-        return Err(ViewError::BadFile(format!(
-            "{}: frame {bad} has {} part poses for a creature of {parts} parts",
-            path.display(),
+        return Err(format!(
+            "frame {bad} has {} part poses for a creature of {parts} parts",
             recording.samples[bad].parts.len(),
-        )));
+        ));
     }
     // Through the recording's own text (not `serde_json::to_value`, which would widen its f32
     // poses back to f64 digits).
-    let written = serde_json::to_string(&recording)
-        .map_err(|e| ViewError::BadFile(format!("{}: {e}", path.display())))?;
-    let mut value: Value = serde_json::from_str(&written)
-        .map_err(|e| ViewError::BadFile(format!("{}: {e}", path.display())))?;
+    let written = serde_json::to_string(recording).map_err(|e| e.to_string())?;
+    let mut value: Value = serde_json::from_str(&written).map_err(|e| e.to_string())?;
     value["kind"] = json!("recording");
-    value["file"] = json!(dir.display().to_string());
-    if let Some(reason) = no_samples_reason(&recording) {
+    value["file"] = json!(file);
+    if let Some(reason) = no_samples_reason(recording) {
         value["no_frames"] = json!(reason);
     }
     Ok(value)
@@ -354,22 +362,19 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
     }))
 }
 
-/// A generation's individuals, best first: `[{"rank", "index", "fitness", "status",
+/// A generation's individuals, best first in the GA's order ([`crate::evolve::ga::ranking`],
+/// the ranks of `ontogeny replay --rank`): `[{"rank", "index", "fitness", "status",
 /// "operator", "parts", "joints", "neurons"}]`.
 pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewError> {
     let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
-    let mut individuals = store
+    // In index order, so their ranks are those of the GA and of `replay --rank`.
+    let individuals = store
         .individuals(generation)
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
-    individuals.sort_by(|a, b| {
-        b.fitness
-            .partial_cmp(&a.fitness)
-            .unwrap_or(std::cmp::Ordering::Equal)
-            .then(a.index.cmp(&b.index))
-    });
-    let rows: Vec<Value> = individuals
-        .iter()
+    let rows: Vec<Value> = crate::evolve::ga::ranking_by(&individuals, |i| i.fitness)
+        .into_iter()
+        .map(|k| &individuals[k])
         .enumerate()
         .map(|(rank, i)| {
             json!({

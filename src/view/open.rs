@@ -1,12 +1,30 @@
-//! What opening a page involves beyond its data: a run's individuals developed on request
-//! ([`run_developer`]), and the warnings for the flags that do nothing for the page
-//! ([`ignored_flags`]).
+//! What opening a page involves beyond its data: a run's individuals developed and their walks
+//! played on request ([`run_developer`]), and the warnings for the flags that do nothing for
+//! the page ([`ignored_flags`]).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use super::{Developer, Kind, Target};
+use serde_json::{Value, json};
+
+use super::{Kind, Target, ViewError};
+use crate::creature::Creature;
 use crate::encoding::Genome;
+use crate::evolve::pick::{PickError, individual_by_rank};
 use crate::evolve::run::Run;
+use crate::task::Recording;
+
+/// What the server asks of a run's individuals, which only code that knows the run's encoding
+/// can answer ([`run_developer`] makes one for an encoding).
+pub struct Developer {
+    /// Develops individual `(generation, index)` into a creature, or says why not.
+    pub develop: Box<dyn Fn(u32, u32) -> Result<Creature, String> + Send + Sync>,
+    /// Re-evaluates the individual of rank `(generation, rank)` (rank 1 the best, in the order
+    /// `ontogeny replay --rank` uses) with a recording, and returns the page's data for it:
+    /// the shape [`super::recording_data`] gives a recording directory, with `generation`,
+    /// `rank` and `stored_fitness` (the fitness the run stored for it). It takes as long as an
+    /// evaluation does.
+    pub walk: Box<dyn Fn(u32, u32) -> Result<Value, ViewError> + Send + Sync>,
+}
 
 /// The flags of `ontogeny view` that may do nothing for a page.
 #[derive(Clone, Debug, Default)]
@@ -58,22 +76,75 @@ pub fn ignored_flags(flags: &PageFlags, target: &Target, frames: Option<usize>) 
     warnings
 }
 
-/// A function that develops individual `(generation, index)` of the run in `dir`, whose
-/// genomes are `G`s.
+/// The [`Developer`] of the run in `dir`, whose genomes are `G`s.
 pub fn run_developer<G: Genome + 'static>(dir: PathBuf) -> Developer {
-    Box::new(move |generation, index| {
-        // Read-only: the viewer never changes a run's files.
-        let run = Run::<G>::open_read_only(&dir).map_err(|e| e.to_string())?;
-        let population = run.population(generation).map_err(|e| e.to_string())?;
-        let individual = population.get(index as usize).ok_or_else(|| {
-            format!(
-                "generation {generation} has {} individual(s); there is no individual {index}",
-                population.len()
-            )
+    let walk_dir = dir.clone();
+    Developer {
+        develop: Box::new(move |generation, index| {
+            // Read-only: the viewer never changes a run's files.
+            let run = Run::<G>::open_read_only(&dir).map_err(|e| e.to_string())?;
+            let population = run.population(generation).map_err(|e| e.to_string())?;
+            let individual = population.get(index as usize).ok_or_else(|| {
+                format!(
+                    "generation {generation} has {} individual(s); there is no individual {index}",
+                    population.len()
+                )
+            })?;
+            individual
+                .genome
+                .develop(&run.config().limits, individual.develop_seed)
+                .map_err(|e| format!("the genome does not develop: {e}"))
+        }),
+        walk: Box::new(move |generation, rank| walk::<G>(&walk_dir, generation, rank)),
+    }
+}
+
+/// The individual of rank `rank` of `generation` of the run in `dir`, re-evaluated with a
+/// recording as `ontogeny replay DIR --gen G --rank R` does: the page's data (see
+/// [`Developer::walk`]). A generation or rank the run lacks is refused, saying which it has.
+fn walk<G: Genome>(dir: &Path, generation: u32, rank: u32) -> Result<Value, ViewError> {
+    let unreadable = |e: &dyn std::fmt::Display| ViewError::BadFile(e.to_string());
+    if rank == 0 {
+        return Err(ViewError::BadRequest(
+            "rank=0: ranks start at 1, the best".to_string(),
+        ));
+    }
+    // Read-only: the viewer never changes a run's files.
+    let run = Run::<G>::open_read_only(dir).map_err(|e| unreadable(&e))?;
+    match run.last_generation().map_err(|e| unreadable(&e))? {
+        None => {
+            return Err(ViewError::NotFound(
+                "the run has no complete generation yet".to_string(),
+            ));
+        }
+        Some(last) if generation > last => {
+            return Err(ViewError::NotFound(format!(
+                "there is no generation {generation}: the run has generations 0 to {last}"
+            )));
+        }
+        Some(_) => {}
+    }
+    let count = super::run_population_size(dir, generation)?;
+    if rank as usize > count {
+        return Err(ViewError::NotFound(format!(
+            "generation {generation} has {count} individual(s); there is no rank {rank}"
+        )));
+    }
+    let (_, individual) =
+        individual_by_rank(&run, dir, Some(generation), rank as usize).map_err(|e| match e {
+            PickError::Run(e) => unreadable(&e),
+            PickError::Input(message) => ViewError::NotFound(message),
         })?;
-        individual
-            .genome
-            .develop(&run.config().limits, individual.develop_seed)
-            .map_err(|e| format!("the genome does not develop: {e}"))
-    })
+    let title = format!("generation {generation}, rank {rank}");
+    let creature = individual
+        .genome
+        .develop(&run.config().limits, individual.develop_seed)
+        .map_err(|e| ViewError::BadFile(format!("{title}: the genome does not develop: {e}")))?;
+    let evaluation = run.config().task.evaluate(&creature, true);
+    let mut value = super::recording_value(&Recording::of(&creature, &evaluation), &title)
+        .map_err(|e| ViewError::BadFile(format!("{title}: {e}")))?;
+    value["generation"] = json!(generation);
+    value["rank"] = json!(rank);
+    value["stored_fitness"] = super::finite(individual.evaluation.fitness);
+    Ok(value)
 }

@@ -7,18 +7,20 @@
 //! `X-Content-Type-Options: nosniff`). One thread gathers requests from every connection
 //! without waiting on any, and a fixed pool of [`WORKERS`] threads answers them (one request
 //! per connection), so no number of connections makes more threads, and idle ones keep no one
-//! waiting; a connection that sends no request within [`REQUEST_TIMEOUT`] is dropped.
+//! waiting; a connection that sends no request within [`REQUEST_TIMEOUT`] is dropped. A
+//! run's individual's walk takes as long as its evaluation: at most [`MAX_WALKS`] are
+//! evaluated at once, so the other workers stay free for the page's quick requests.
 
 use std::collections::VecDeque;
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::SyncSender;
 use std::time::{Duration, Instant};
 
 use serde_json::{Value, json};
 
-use super::{Kind, Target, ViewError};
-use crate::creature::Creature;
+use super::{Developer, Kind, Target, ViewError};
 use crate::lsystem::DeriveOptions;
 
 const INDEX_HTML: &str = include_str!("assets/index.html");
@@ -46,8 +48,8 @@ pub const MAX_PENDING: usize = 256;
 /// The longest wait between two looks for new connections and requests when there are none.
 const MAX_PAUSE: Duration = Duration::from_millis(20);
 
-/// Develops a run's individual `(generation, index)` into a creature, or says why not.
-pub type Developer = Box<dyn Fn(u32, u32) -> Result<Creature, String> + Send + Sync>;
+/// The most walks (`/walk.json`) evaluated at once; more are refused as busy (503).
+pub const MAX_WALKS: usize = WORKERS / 2;
 
 /// Why the server could not start.
 #[derive(Debug, thiserror::Error)]
@@ -72,6 +74,17 @@ pub struct Server {
     options: DeriveOptions,
     steps: Option<u64>,
     developer: Option<Developer>,
+    /// How many walks are being evaluated now.
+    walks: AtomicUsize,
+}
+
+/// A walk being evaluated: counted in [`Server::walks`] while it lives.
+struct WalkSlot<'a>(&'a AtomicUsize);
+
+impl Drop for WalkSlot<'_> {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::SeqCst);
+    }
 }
 
 /// An answer: status, content type, body, and extra headers.
@@ -126,6 +139,7 @@ impl Server {
             options,
             steps,
             developer,
+            walks: AtomicUsize::new(0),
         })
     }
 
@@ -228,6 +242,7 @@ impl Server {
             "/data.json" => json_answer(self.data()),
             "/generation.json" => json_answer(self.generation(query)),
             "/individual.json" => json_answer(self.individual(query)),
+            "/walk.json" => json_answer(self.walk(query)),
             _ => Answer::text(404, "not found"),
         }
     }
@@ -272,16 +287,43 @@ impl Server {
                 "generation {generation} has {count} individual(s); there is no individual {index}"
             )));
         }
-        let creature = developer(generation, index).map_err(ViewError::BadFile)?;
+        let creature = (developer.develop)(generation, index).map_err(ViewError::BadFile)?;
         Ok(super::creature_data(
             &format!("generation {generation}, individual {index}"),
             &creature,
         ))
     }
+
+    /// The walk of a run's individual picked by generation and rank (1 the best): evaluated
+    /// again with a recording, as `ontogeny replay --gen G --rank R` does.
+    fn walk(&self, query: &str) -> Result<Value, ViewError> {
+        let (Some(generation), Some(rank)) = (number(query, "gen")?, number(query, "rank")?) else {
+            return Err(ViewError::BadRequest(
+                "walk.json needs ?gen=G&rank=R".into(),
+            ));
+        };
+        let developer = self
+            .developer
+            .as_ref()
+            .filter(|_| self.target.kind == Kind::Run)
+            .ok_or_else(|| ViewError::NotFound("not a run".into()))?;
+        let _slot = self
+            .walks
+            .fetch_update(Ordering::SeqCst, Ordering::SeqCst, |n| {
+                (n < MAX_WALKS).then_some(n + 1)
+            })
+            .map(|_| WalkSlot(&self.walks))
+            .map_err(|_| {
+                ViewError::Busy(format!(
+                    "busy: {MAX_WALKS} walks are being evaluated; try again when one is done"
+                ))
+            })?;
+        (developer.walk)(generation, rank)
+    }
 }
 
 /// A JSON answer: 200 with the value, or `{"error": {"message"}}` with 400 (a bad query), 404
-/// (nothing there) or 500 (a file that cannot be read).
+/// (nothing there), 503 (busy) or 500 (a file that cannot be read).
 fn json_answer(value: Result<Value, ViewError>) -> Answer {
     let json_type = "application/json";
     match value {
@@ -290,6 +332,7 @@ fn json_answer(value: Result<Value, ViewError>) -> Answer {
             let status = match e {
                 ViewError::BadRequest(_) => 400,
                 ViewError::NotFound(_) => 404,
+                ViewError::Busy(_) => 503,
                 ViewError::NotViewable(_) | ViewError::BadFile(_) => 500,
             };
             let body = json!({ "error": { "message": e.to_string() } }).to_string();
@@ -503,6 +546,7 @@ fn response_bytes(answer: &Answer, with_body: bool) -> Vec<u8> {
         403 => "Forbidden",
         404 => "Not Found",
         405 => "Method Not Allowed",
+        503 => "Service Unavailable",
         _ => "Internal Server Error",
     };
     let mut head = format!(

@@ -1,6 +1,8 @@
 // The page of `ontogeny view`: a creature in 3D (three.js), its brain, and the controls of
 // the kind of page the server shows (growth, recording, run). Everything the tests read is on
-// document.body.dataset: kind, parts (parts drawn now), frame, frames, ready, error, webgl.
+// document.body.dataset: kind, parts (parts drawn now), frame, frames, ready, error, webgl; on a
+// run page also generation and individual (the one shown), and walk ("G/R" while the walk of
+// rank R of generation G is shown).
 import * as THREE from 'three';
 import { OrbitControls } from '/three/OrbitControls.js';
 
@@ -429,9 +431,14 @@ function outcome(data) {
   return lines;
 }
 
-function showRecording(data) {
-  body.dataset.kind = 'recording';
-  $('file').textContent = data.file + (data.task ? `  (${data.task})` : '');
+// Plays a recording: a recording page's, or (with `heading`, the lines that name it) the walk of
+// a run's individual, shown inside the run page.
+function showRecording(data, heading) {
+  if (!heading) {
+    body.dataset.kind = 'recording';
+    $('file').textContent = data.file + (data.task ? `  (${data.task})` : '');
+  }
+  const named = heading || [];
   const frames = data.frames;
   const meshes = drawCreature(data.creature);
   drawBrain(data.creature.brain);
@@ -442,13 +449,15 @@ function showRecording(data) {
     body.dataset.frames = '0';
     playButton.style.display = 'none';
     slider.style.display = 'none';
-    describe(data.creature, [`task: ${data.task || '?'}`, ...outcome(data), 'recorded frames: 0 (the starting pose is shown)']);
+    describe(data.creature, [...named, `task: ${data.task || '?'}`, ...outcome(data), 'recorded frames: 0 (the starting pose is shown)']);
     $('string').textContent = '';
     showError({ message: data.no_frames || 'no frames recorded' });
     finish();
     return;
   }
   const markers = creatureGroup.children.filter((m) => m.userData.joint);
+  playButton.style.display = '';
+  slider.style.display = '';
   slider.max = String(frames.length - 1);
   body.dataset.frames = String(frames.length);
   // Frame the first pose; the camera then follows the creature's centre.
@@ -526,7 +535,7 @@ function showRecording(data) {
     $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${f.t.toFixed(3)} s` +
       (f.phase ? `   ${phaseLabel(f.phase)}` : '');
   };
-  describe(data.creature, [`task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
+  describe(data.creature, [...named, `task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
     `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);
   $('string').textContent = '';
   // Play at the speed of simulated time.
@@ -540,6 +549,17 @@ function showRecording(data) {
   setFrame(initialFrame(frames.length, 0));
   finish();
   if (!still && params.get('frame') === null) setPlaying(true);
+}
+
+// Leaves a played walk: no player, no target or projectile.
+function stopRecording() {
+  setPlaying(false);
+  playButton.style.display = 'none';
+  slider.style.display = 'none';
+  $('frame-label').textContent = '';
+  clearGroup(extrasGroup);
+  onFrame = () => {};
+  delete body.dataset.walk;
 }
 
 // ---------------------------------------------------------------- run pages
@@ -568,6 +588,7 @@ function showRun(data) {
     body.dataset.generations = String(generations.length);
   }
   let selectedGeneration = null;
+  let walkRank = null;
   async function openGeneration(gen, index) {
     rows.forEach((r) => r && r.classList.remove('selected'));
     if (rows[gen]) rows[gen].classList.add('selected');
@@ -575,34 +596,86 @@ function showRun(data) {
     const list = await fetchJson(`/generation.json?gen=${gen}`);
     $('individuals-title').textContent = `Generation ${gen}: individuals, best first`;
     const t = $('individuals');
-    t.innerHTML = '<tr><th>rank</th><th>#</th><th>fitness</th><th>status</th><th>parts</th></tr>';
-    const byIndex = [];
+    t.innerHTML = '<tr><th>rank</th><th>#</th><th>fitness</th><th>status</th><th>parts</th><th></th></tr>';
+    const byIndex = [], byRank = [];
     for (const ind of list.individuals) {
       const tr = document.createElement('tr');
       tr.className = 'clickable';
-      tr.innerHTML = `<td>${ind.rank}</td><td>${ind.index}</td><td>${fitnessText(ind)}</td><td>${escape(ind.status)}</td><td>${ind.parts}</td>`;
+      tr.innerHTML = `<td>${ind.rank}</td><td>${ind.index}</td><td>${fitnessText(ind)}</td><td>${escape(ind.status)}</td><td>${ind.parts}</td>` +
+        `<td><button type="button" class="walk" title="evaluate it again and play its ${escape(data.task)}">play</button></td>`;
       tr.addEventListener('click', () => openIndividual(gen, ind, tr));
+      tr.querySelector('button.walk').addEventListener('click', (event) => {
+        event.stopPropagation();
+        playWalk(gen, ind, tr);
+      });
       t.appendChild(tr);
       byIndex[ind.index] = [ind, tr];
+      byRank[ind.rank] = [ind, tr];
+    }
+    if (walkRank !== null) {
+      // ?walk=R: the walk of rank R, once.
+      const rank = walkRank;
+      walkRank = null;
+      if (byRank[rank]) return playWalk(gen, byRank[rank][0], byRank[rank][1]);
+      showError({ message: `generation ${gen} has no rank ${rank} (it has ranks 1 to ${list.individuals.length})` });
+      finish();
+      return;
     }
     const chosen = index !== null && byIndex[index] ? byIndex[index] : (list.individuals.length ? byIndex[list.individuals[0].index] : null);
     if (chosen) await openIndividual(gen, chosen[0], chosen[1]);
   }
-  async function openIndividual(gen, ind, tr) {
+  // The individual shown or being evaluated: an answer for an earlier one is dropped.
+  let shown = 0;
+  function select(tr) {
     for (const r of $('individuals').querySelectorAll('tr')) r.classList.remove('selected');
     tr.classList.add('selected');
+    stopRecording();
+    return ++shown;
+  }
+  const named = (gen, ind) => `generation ${gen}, individual ${ind.index} (rank ${ind.rank})`;
+  // Evaluates the individual again with a recording (as replay --gen G --rank R does) and
+  // plays it.
+  async function playWalk(gen, ind, tr) {
+    const request = select(tr);
+    showError(null);
+    $('status').textContent = `evaluating ${named(gen, ind)}…`;
+    $('info').textContent = `${named(gen, ind)}\nevaluating its ${data.task} again, with a recording…`;
+    body.dataset.ready = 'no';
+    try {
+      const walk = await fetchJson(`/walk.json?gen=${gen}&rank=${ind.rank}`);
+      if (request !== shown) return;
+      $('status').textContent = '';
+      const heading = [named(gen, ind)];
+      if (walk.stored_fitness !== walk.fitness) {
+        heading.push(`note: the run stored fitness ${walk.stored_fitness}; this evaluation differs`);
+      }
+      showRecording(walk, heading);
+      body.dataset.generation = String(gen);
+      body.dataset.individual = String(ind.index);
+      body.dataset.walk = `${gen}/${ind.rank}`;
+    } catch (e) {
+      if (request !== shown) return;
+      $('status').textContent = '';
+      showError({ message: `${named(gen, ind)}: ${e.message}` });
+      finish();
+    }
+  }
+  async function openIndividual(gen, ind, tr) {
+    const request = select(tr);
     try {
       const one = await fetchJson(`/individual.json?gen=${gen}&index=${ind.index}`);
+      if (request !== shown) return;
       showError(null);
       const c = one.frames[0].creature;
       const box = boundsOf([c]);
       frame(box, Math.min(box.min.y, 0));
       drawCreature(c);
       drawBrain(c.brain);
-      describe(c, [`generation ${gen}, individual ${ind.index} (rank ${ind.rank})`, ind.status === 'ok' ? `fitness: ${fmt(ind.fitness)}` : `fitness: ${ind.fitness} (the failure floor)`, `status: ${ind.status}`]);
+      describe(c, [named(gen, ind), ind.status === 'ok' ? `fitness: ${fmt(ind.fitness)}` : `fitness: ${ind.fitness} (the failure floor)`, `status: ${ind.status}`]);
       body.dataset.generation = String(gen);
       body.dataset.individual = String(ind.index);
     } catch (e) {
+      if (request !== shown) return;
       clearGroup(creatureGroup);
       body.dataset.parts = '0';
       showError({ message: `generation ${gen}, individual ${ind.index}: ${e.message}` });
@@ -639,6 +712,7 @@ function showRun(data) {
   const last = data.generations[data.generations.length - 1].index;
   const gen = params.has('gen') ? Number(params.get('gen')) : last;
   const index = params.has('index') ? Number(params.get('index')) : null;
+  walkRank = params.has('walk') ? Number(params.get('walk')) : null;
   if (!data.generations.some((g) => g.index === gen)) {
     showError({ message: `no generation ${params.get('gen')} (the run has ${first === last ? first : `${first}–${last}`})` });
     finish();

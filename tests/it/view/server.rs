@@ -1,6 +1,7 @@
 //! The viewer's server: it answers only its own host and only reads, idle connections cost no
 //! thread, out-of-range query numbers are refused, `--snapshot` refuses a target that is not a
-//! regular file, and a version-1 run is shown without being migrated.
+//! regular file, a version-1 run is shown without being migrated, and a run's individual's walk
+//! is evaluated again and played in the run page.
 
 use super::*;
 
@@ -232,4 +233,200 @@ fn the_viewer_opens_a_version_1_run_without_migrating_it() {
         .unwrap();
     assert_eq!(version, 1);
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A tiny run made by `ontogeny evolve` (4 direct walkers, one generation) in scratch
+/// directory `name`.
+fn tiny_run(name: &str) -> PathBuf {
+    let run = scratch(name).join("run");
+    let out = ontogeny_command()
+        .args([
+            "evolve",
+            "--encoding",
+            "direct",
+            "--task",
+            "walker",
+            "--pop",
+            "4",
+            "--gens",
+            "1",
+            "--seconds",
+            "1",
+            "--seed",
+            "3",
+            "--out",
+        ])
+        .arg(&run)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    run
+}
+
+/// `GET path` from `viewer`, answered 200, as JSON.
+fn get_json(viewer: &Viewer, path: &str) -> serde_json::Value {
+    let (status, body) = viewer.get(path);
+    assert_eq!(status, 200, "{path}: {body}");
+    serde_json::from_str(&body).unwrap()
+}
+
+#[test]
+fn a_walk_is_its_individual_evaluated_again_with_the_fitness_the_run_stored() {
+    let run = tiny_run("walk");
+    let shown = crate::util::ontogeny_ok(&["runs", "show", run.to_str().unwrap(), "--json"]);
+    let shown: serde_json::Value = serde_json::from_str(&crate::util::stdout(&shown)).unwrap();
+    let best = shown["generations"][0]["best"].as_f64().unwrap();
+    let viewer = Viewer::start(&run);
+    let walk = get_json(&viewer, "/walk.json?gen=0&rank=1");
+    assert_eq!(walk["kind"], "recording");
+    assert_eq!(walk["task"], "walker");
+    assert_eq!(
+        (walk["generation"].clone(), walk["rank"].clone()),
+        (0.into(), 1.into())
+    );
+    assert_eq!(walk["fitness"].as_f64(), Some(best), "{}", walk["file"]);
+    assert_eq!(walk["stored_fitness"].as_f64(), Some(best));
+    let parts = walk["creature"]["parts"].as_array().unwrap().len();
+    let frames = walk["frames"].as_array().unwrap();
+    assert!(
+        parts > 0 && frames.len() > 1,
+        "{parts} parts, {} frames",
+        frames.len()
+    );
+    assert!(
+        frames
+            .iter()
+            .all(|f| f["parts"].as_array().unwrap().len() == parts)
+    );
+    // Rank R is the same individual in the page's table and in the walk.
+    let table = get_json(&viewer, "/generation.json?gen=0");
+    for individual in table["individuals"].as_array().unwrap() {
+        let rank = individual["rank"].as_u64().unwrap();
+        let walk = get_json(&viewer, &format!("/walk.json?gen=0&rank={rank}"));
+        assert_eq!(walk["stored_fitness"], individual["fitness"], "rank {rank}");
+        assert_eq!(walk["fitness"], individual["fitness"], "rank {rank}");
+        assert_eq!(walk["status"], individual["status"], "rank {rank}");
+    }
+}
+
+#[test]
+fn a_walk_of_a_generation_or_rank_the_run_lacks_is_refused() {
+    let run = tiny_run("walk-refused");
+    let viewer = Viewer::start(&run);
+    for (query, status, message) in [
+        (
+            "gen=0&rank=5",
+            404,
+            "generation 0 has 4 individual(s); there is no rank 5",
+        ),
+        ("gen=0&rank=0", 400, "rank=0: ranks start at 1, the best"),
+        (
+            "gen=1&rank=1",
+            404,
+            "there is no generation 1: the run has generations 0 to 0",
+        ),
+        ("gen=0", 400, "walk.json needs ?gen=G&rank=R"),
+        (
+            "gen=0&rank=-1",
+            400,
+            "rank=-1: not a whole number from 0 to 4294967295",
+        ),
+        (
+            "gen=4294967296&rank=1",
+            400,
+            "not a whole number from 0 to 4294967295",
+        ),
+    ] {
+        let (got, body) = viewer.get(&format!("/walk.json?{query}"));
+        assert_eq!(got, status, "{query}: {body}");
+        let error: serde_json::Value = serde_json::from_str(&body).unwrap();
+        assert!(
+            error["error"]["message"]
+                .as_str()
+                .unwrap()
+                .contains(message),
+            "{query}: {body}"
+        );
+    }
+    drop(viewer);
+    let viewer = Viewer::start(&example("algae.lsys"));
+    let (status, body) = viewer.get("/walk.json?gen=0&rank=1");
+    assert_eq!(status, 404, "{body}");
+    assert!(body.contains("not a run"), "{body}");
+}
+
+#[test]
+fn a_run_page_plays_an_individuals_walk_in_chromium() {
+    let Some(browser) = browser() else { return };
+    let run = tiny_run("walk-page");
+    let viewer = Viewer::start(&run);
+    let walk = get_json(&viewer, "/walk.json?gen=0&rank=2");
+    let page = Page::load(&browser, &format!("{}?gen=0&walk=2&still=1", viewer.url));
+    page.assert_ready();
+    assert_eq!(page.data("kind").as_deref(), Some("run"));
+    assert_eq!(page.data("walk").as_deref(), Some("0/2"));
+    assert_eq!(
+        page.number("parts"),
+        walk["creature"]["parts"].as_array().unwrap().len()
+    );
+    assert_eq!(
+        page.number("frames"),
+        walk["frames"].as_array().unwrap().len()
+    );
+    assert_eq!(page.number("frame"), 0);
+    // A play button on every individual's row, and the walk's outcome beside it.
+    assert_eq!(
+        page.dom.matches("class=\"walk\"").count(),
+        4,
+        "{}",
+        page.dom
+    );
+    assert!(page.dom.contains("(rank 2)"), "{}", page.dom);
+    assert!(page.dom.contains("task: walker"), "{}", page.dom);
+    assert!(
+        page.dom
+            .contains(&format!("status: {}", walk["status"].as_str().unwrap())),
+        "{}",
+        page.dom
+    );
+    // A rank the generation lacks: said, and the page is ready.
+    let page = Page::load(&browser, &format!("{}?gen=0&walk=9&still=1", viewer.url));
+    assert_eq!(page.data("ready").as_deref(), Some("yes"), "{}", page.body);
+    assert_eq!(
+        page.data("error").as_deref(),
+        Some("generation 0 has no rank 9 (it has ranks 1 to 4)")
+    );
+}
+
+#[test]
+fn a_walks_play_button_plays_it_and_opening_another_individual_leaves_it() {
+    let Some(browser) = browser() else { return };
+    let run = tiny_run("walk-button");
+    let viewer = Viewer::start(&run);
+    let walk = get_json(&viewer, "/walk.json?gen=0&rank=2");
+    let frames = walk["frames"].as_array().unwrap().len();
+    let mut page = LivePage::open(&browser, &viewer.url);
+    let state = "JSON.stringify([document.body.dataset.ready, document.body.dataset.walk || '', \
+                 document.body.dataset.frames || '', document.body.dataset.error || '', \
+                 document.getElementById('play').style.display])";
+    let opened = page.wait_for(state, |s| s.starts_with("[\"yes\""));
+    assert_eq!(opened, r#"["yes","","","","none"]"#);
+    // The second row's button: rank 2.
+    page.eval("document.querySelectorAll('#individuals button.walk')[1].click(); ''");
+    let playing = page.wait_for(state, |s| s.contains("0/2"));
+    assert_eq!(playing, format!(r#"["yes","0/2","{frames}","",""]"#));
+    // A click on the first row (not its button) opens that individual, without a player.
+    let best = get_json(&viewer, "/generation.json?gen=0")["individuals"][0]["index"].clone();
+    page.eval("document.querySelectorAll('#individuals tr.clickable')[0].click(); ''");
+    let opened = format!(r#"["","none","{best}"]"#);
+    let left = page.wait_for(
+        "JSON.stringify([document.body.dataset.walk || '', \
+         document.getElementById('play').style.display, document.body.dataset.individual])",
+        |s| s == opened,
+    );
+    assert_eq!(left, opened);
 }
