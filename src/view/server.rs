@@ -268,19 +268,32 @@ impl Server {
         }
     }
 
-    /// One of a run's individuals, developed.
-    fn individual(&self, query: &str) -> Result<Value, ViewError> {
-        let (Some(generation), Some(index)) = (number(query, "gen")?, number(query, "index")?)
-        else {
-            return Err(ViewError::BadRequest(
-                "individual.json needs ?gen=G&index=I".into(),
-            ));
+    /// A query about a run's individual: `?gen=G&KEY=K` (`page` names the page in the
+    /// message when one is missing), and the run's developer; a target that is no run is
+    /// refused.
+    fn run_query(
+        &self,
+        query: &str,
+        key: &str,
+        page: &str,
+    ) -> Result<(u32, u32, &super::Developer), ViewError> {
+        let (Some(generation), Some(k)) = (number(query, "gen")?, number(query, key)?) else {
+            let letter = key[..1].to_uppercase();
+            return Err(ViewError::BadRequest(format!(
+                "{page} needs ?gen=G&{key}={letter}"
+            )));
         };
         let developer = self
             .developer
             .as_ref()
             .filter(|_| self.target.kind == Kind::Run)
             .ok_or_else(|| ViewError::NotFound("not a run".into()))?;
+        Ok((generation, k, developer))
+    }
+
+    /// One of a run's individuals, developed.
+    fn individual(&self, query: &str) -> Result<Value, ViewError> {
+        let (generation, index, developer) = self.run_query(query, "index", "individual.json")?;
         let count = super::run_population_size(&self.target.path, generation)?;
         if index as usize >= count {
             return Err(ViewError::NotFound(format!(
@@ -297,16 +310,7 @@ impl Server {
     /// The walk of a run's individual picked by generation and rank (1 the best): evaluated
     /// again with a recording, as `ontogeny replay --gen G --rank R` does.
     fn walk(&self, query: &str) -> Result<Value, ViewError> {
-        let (Some(generation), Some(rank)) = (number(query, "gen")?, number(query, "rank")?) else {
-            return Err(ViewError::BadRequest(
-                "walk.json needs ?gen=G&rank=R".into(),
-            ));
-        };
-        let developer = self
-            .developer
-            .as_ref()
-            .filter(|_| self.target.kind == Kind::Run)
-            .ok_or_else(|| ViewError::NotFound("not a run".into()))?;
+        let (generation, rank, developer) = self.run_query(query, "rank", "walk.json")?;
         let _slot = self
             .walks
             .fetch_update(Ordering::SeqCst, Ordering::SeqCst, |n| {
