@@ -40,7 +40,7 @@ pub(super) fn neuron_label(neuron: &Neuron) -> String {
 /// Draws the brain into `(x, y, w, h)`: neurons on a circle — sensors green, actuators red,
 /// oscillators purple, other neurons blue — and links as lines, dark for positive weights and
 /// red for negative, thicker for larger weights, with a dot at the receiving end — each
-/// neuron labelled with what it does ([`neuron_label`]).
+/// neuron labelled with what it does ([`neuron_label`]) where the label has room.
 pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32, f32, f32, f32)) {
     let (rx, ry, rw, rh) = region;
     if let Some(rect) = tiny_skia::Rect::from_xywh(rx, ry, rw, rh) {
@@ -132,6 +132,11 @@ pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32,
                 break;
             }
             top += if upper { -10.0 } else { 10.0 };
+        }
+        // A dense brain: a label with no free place, or outside the panel, is left out
+        // rather than drawn over others.
+        if covers(top, &placed) || top < ry + 1.0 || top + 9.0 > ry + rh {
+            continue;
         }
         placed.push((left, top, width));
         draw_text(pixmap, (left, top), &label, 1.0, INK, true);

@@ -137,7 +137,7 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
 }
 
 /// The most problems a picture lists before "... and N more".
-pub(super) const MAX_LISTED: usize = 5;
+pub(super) const MAX_LISTED: usize = 3;
 
 /// The lines that list `items` (text and colour) in `rows` lines of `columns` characters:
 /// repeated items once with how many times, each wrapped at spaces (its later lines indented),
@@ -231,7 +231,7 @@ mod tests {
                 "  jointed to"
             ]
         );
-        // The same warning 57 times is one line; ten different ones are five and the rest.
+        // The same warning 57 times is one line; ten different ones are three and the rest.
         let mut many = vec![item("warning: '}' unmatched"); 57];
         many.extend((0..10).map(|k| item(&format!("warning: {k}"))));
         let lines = listed_lines(many, 40, 30);
@@ -242,9 +242,7 @@ mod tests {
                 "warning: '}' unmatched (57 times)",
                 "warning: 0",
                 "warning: 1",
-                "warning: 2",
-                "warning: 3",
-                "... and 6 more"
+                "... and 8 more"
             ]
         );
         // Too few rows: as many as fit with the last row saying how many more.
