@@ -227,14 +227,14 @@ fn resume<G: Genome>(dir: &Path, generations: Option<usize>) -> anyhow::Result<(
             // Its log, plot and best genome are drawn again from the store, as this
             // version draws them.
             run.write_derived_files().map_err(run_error)?;
-            say!(
+            eprintln!(
                 "{}: complete ({total} generations); nothing to resume; its log.txt, fitness.svg and best genome written again",
                 dir.display()
             );
             return Ok(());
         }
-        Some(g) => say!("{}: resuming after generation {g}", dir.display()),
-        None => say!("{}: resuming from the first generation", dir.display()),
+        Some(g) => eprintln!("{}: resuming after generation {g}", dir.display()),
+        None => eprintln!("{}: resuming from the first generation", dir.display()),
     }
     go(&mut run, dir)
 }

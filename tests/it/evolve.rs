@@ -543,7 +543,7 @@ fn killed_mid_generation_resumes_to_the_same_result(encoding: &str) {
         .output()
         .unwrap();
     assert!(again.status.success());
-    assert!(String::from_utf8_lossy(&again.stdout).contains("nothing to resume"));
+    assert!(String::from_utf8_lossy(&again.stderr).contains("nothing to resume"));
     assert_eq!(std::fs::read(&plot).unwrap(), drawn, "{encoding}");
     let _ = std::fs::remove_dir_all(dir);
 }

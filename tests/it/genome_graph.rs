@@ -649,7 +649,7 @@ fn evolve_with_the_graph_encoding_runs_resumes_and_throws() {
     std::fs::write(&config, text.replace("generations = 1", "generations = 2")).unwrap();
     let o = run(&["--resume", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("resuming after generation 0"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("resuming after generation 0"));
     let best = std::fs::read_to_string(out.join("best.json")).unwrap();
     GraphGenome::from_text(&best, &GraphLimits::default()).expect("best.json is a genome");
     assert!(!out.join("best.lsys").exists());
