@@ -210,3 +210,29 @@ pub fn make_version_1(path: &Path) {
     )
     .unwrap();
 }
+
+/// A tiny run of `encoding` into `out`: walkers, a population of 6, 2 generations of 1 s walks
+/// (and `extra` flags); asserts that it succeeded.
+pub fn tiny_run(encoding: &str, out: &Path, extra: &[&str]) -> Output {
+    let output = ontogeny_command()
+        .args([
+            "evolve",
+            "--encoding",
+            encoding,
+            "--task",
+            "walker",
+            "--pop",
+            "6",
+            "--gens",
+            "2",
+            "--seconds",
+            "1",
+        ])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    succeeded(&output);
+    output
+}

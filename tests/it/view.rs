@@ -17,7 +17,7 @@ use std::process::{Child, Command, Stdio};
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 
-use crate::util::{assert_bad_input, ontogeny_command, refused, scratch_dir};
+use crate::util::{assert_bad_input, ontogeny_command, refused, scratch_dir, tiny_run};
 
 /// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {
@@ -412,31 +412,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
     assert_snapshot(&browser, &rec, &dir.join("recording.png"));
 
     let run = dir.join("run");
-    let out = ontogeny_command()
-        .args([
-            "evolve",
-            "--encoding",
-            "lsystem",
-            "--task",
-            "walker",
-            "--pop",
-            "6",
-            "--gens",
-            "2",
-            "--seconds",
-            "1",
-            "--seed",
-            "5",
-            "--out",
-        ])
-        .arg(&run)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    tiny_run("lsystem", &run, &["--seed", "5"]);
     let store = ontogeny::evolve::store::RunStore::open(&run.join("run.sqlite")).unwrap();
     let generation0 = store.individuals(0).unwrap();
     let viewer = Viewer::start(&run);

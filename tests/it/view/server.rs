@@ -106,32 +106,7 @@ fn idle_connections_neither_make_threads_nor_keep_the_page_waiting() {
 #[test]
 fn a_query_number_out_of_range_is_refused_not_wrapped() {
     let dir = scratch("query-range");
-    let run = dir.join("run");
-    let out = ontogeny_command()
-        .args([
-            "evolve",
-            "--encoding",
-            "direct",
-            "--task",
-            "walker",
-            "--pop",
-            "4",
-            "--gens",
-            "1",
-            "--seconds",
-            "0.2",
-            "--seed",
-            "3",
-            "--out",
-        ])
-        .arg(&run)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let run = tiny_run_of(dir.join("run"), "0.2");
     let viewer = Viewer::start(&run);
     let (status, body) = viewer.get("/individual.json?gen=0&index=4294967295");
     assert_eq!(status, 404, "{body}");
@@ -198,27 +173,7 @@ fn a_snapshot_refuses_a_target_that_is_not_a_regular_file() {
 fn the_viewer_opens_a_version_1_run_without_migrating_it() {
     let dir = scratch("read-only-run");
     let run = dir.join("run");
-    let out = ontogeny_command()
-        .args([
-            "evolve",
-            "--encoding",
-            "direct",
-            "--pop",
-            "6",
-            "--gens",
-            "2",
-            "--seconds",
-            "1",
-            "--out",
-        ])
-        .arg(&run)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    crate::util::tiny_run("direct", &run, &[]);
     crate::util::make_version_1(&run.join("run.sqlite"));
     let before = std::fs::read(run.join("run.sqlite")).unwrap();
     let viewer = Viewer::start(&run);
@@ -238,7 +193,11 @@ fn the_viewer_opens_a_version_1_run_without_migrating_it() {
 /// A tiny run made by `ontogeny evolve` (4 direct walkers, one generation) in scratch
 /// directory `name`.
 fn tiny_run(name: &str) -> PathBuf {
-    let run = scratch(name).join("run");
+    tiny_run_of(scratch(name).join("run"), "1")
+}
+
+/// [`tiny_run`] into `run`, with walks of `seconds`.
+fn tiny_run_of(run: PathBuf, seconds: &str) -> PathBuf {
     let out = ontogeny_command()
         .args([
             "evolve",
@@ -251,7 +210,7 @@ fn tiny_run(name: &str) -> PathBuf {
             "--gens",
             "1",
             "--seconds",
-            "1",
+            seconds,
             "--seed",
             "3",
             "--out",
