@@ -93,18 +93,20 @@ impl DirectoryLock {
 mod tests {
     use super::*;
 
-    fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("ontogeny-lock-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    /// A private scratch directory, removed when dropped.
+    fn scratch() -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix("ontogeny-lock-unit-")
+            .tempdir()
+            .unwrap()
     }
 
     #[test]
     fn a_second_lock_on_a_directory_is_refused_naming_the_holder_until_the_first_is_dropped() {
-        let dir = scratch("twice");
-        let first = DirectoryLock::acquire(&dir).unwrap();
-        let refused = DirectoryLock::acquire(&dir).unwrap_err();
+        let scratch = scratch();
+        let dir = scratch.path();
+        let first = DirectoryLock::acquire(dir).unwrap();
+        let refused = DirectoryLock::acquire(dir).unwrap_err();
         let message = refused.to_string();
         assert!(matches!(refused, LockError::Held { .. }), "{message}");
         assert!(
@@ -112,7 +114,6 @@ mod tests {
             "{message}"
         );
         drop(first);
-        DirectoryLock::acquire(&dir).unwrap();
-        std::fs::remove_dir_all(&dir).unwrap();
+        DirectoryLock::acquire(dir).unwrap();
     }
 }

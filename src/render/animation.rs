@@ -369,7 +369,8 @@ mod tests {
     #[test]
     fn an_aim_recording_shows_its_target_and_a_catapult_one_does_not() {
         let creature = thrower();
-        let dir = std::env::temp_dir().join(format!("ontogeny-aim-gif-{}", std::process::id()));
+        let scratch = tempfile::tempdir().unwrap();
+        let dir = scratch.path();
         let sim = SimOptions::default();
         let mut gifs = Vec::new();
         for (name, target) in [("catapult", None), ("aim", Some([5.0, 0.0, 0.0]))] {
@@ -471,8 +472,9 @@ mod tests {
         );
         assert_eq!(evaluation.status, task::Status::SelfIntersecting);
         assert!(evaluation.recording.is_empty());
-        let dir = std::env::temp_dir().join(format!("ontogeny-refused-{}", std::process::id()));
-        write_recording_at(&dir, &creature, &evaluation);
+        let scratch = tempfile::tempdir().unwrap();
+        let dir = scratch.path();
+        write_recording_at(dir, &creature, &evaluation);
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.join("recording.json")).unwrap())
                 .unwrap();

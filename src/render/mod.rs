@@ -188,10 +188,12 @@ mod tests {
         frames
     }
 
-    fn temp(name: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("ontogeny-render-unit-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
+    /// A private scratch directory, removed when dropped.
+    fn scratch() -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix("ontogeny-render-unit-")
+            .tempdir()
+            .unwrap()
     }
 
     /// A thrower-like creature with an actuator, posed with a projectile-like growing part.
@@ -226,7 +228,8 @@ mod tests {
         let c = arm();
         let view = View::framing(&c);
         let pixmap = picture(&c, &view, 480, 300, &Overlay::default()).unwrap();
-        let path = temp("legend.gif");
+        let dir = scratch();
+        let path = dir.path().join("legend.gif");
         still_gif(&c, Overlay::default(), &path);
         let frames = gif_frames(&path);
         assert_eq!(frames.len(), 1);
@@ -277,7 +280,8 @@ mod tests {
         // The target, 12 m off, is outside the camera's view but in the top view.
         assert!(count(aimed_pic.data(), TARGET) > 20);
         // Through a GIF: the target's colour in the aim animation only.
-        let (a, b) = (temp("aim.gif"), temp("catapult.gif"));
+        let dir = scratch();
+        let (a, b) = (dir.path().join("aim.gif"), dir.path().join("catapult.gif"));
         still_gif(&c, aimed, &a);
         still_gif(&c, thrown, &b);
         assert!(count(&gif_frames(&a)[0], TARGET) > 20);
