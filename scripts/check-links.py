@@ -5,6 +5,7 @@ A link resolves when its file exists (relative to the page) and, for a link with
 into a Markdown page, when that page has a heading with that anchor (mdBook's and GitHub's
 rule: the heading's text, lower case, spaces to hyphens, other punctuation dropped).
 mdBook's `{{#include FILE}}` is checked as a link. Links inside code are ignored.
+Every page under docs/ must also be in the book: listed in docs/SUMMARY.md.
 Usage: python3 scripts/check-links.py [--allow-missing PATH ...]; exits 1 on a broken link.
 """
 import os
@@ -84,6 +85,13 @@ def main():
             elif frag and file.endswith('.md') and frag not in anchors(file):
                 print(f'{where}: {target}: no heading with anchor #{frag} in {rel}')
                 broken += 1
+    summary = os.path.join(ROOT, 'docs', 'SUMMARY.md')
+    listed = {os.path.normpath(os.path.join(os.path.dirname(summary), t.partition('#')[0]))
+              for t in LINK.findall(strip_code(open(summary, encoding='utf-8').read()))}
+    for page in pages():
+        if page.startswith(os.path.join(ROOT, 'docs')) and page != summary and page not in listed:
+            print(f'{os.path.relpath(page, ROOT)}: not listed in docs/SUMMARY.md, so not in the book')
+            broken += 1
     print(f'{checked} relative links checked, {broken} broken')
     return 1 if broken else 0
 
