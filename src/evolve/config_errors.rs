@@ -11,7 +11,7 @@ use toml::de::{DeTable, DeValue};
 use super::ga::{GaSettings, Preset};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
-use crate::sim::SettingError;
+use crate::sim::{RENAMED_KEYS, SettingError};
 use crate::task::{TaskKind, TaskSpec};
 
 /// A diagnostic for a TOML error in `source`, in words, at its place when it has one.
@@ -44,13 +44,24 @@ pub fn toml_diagnostic(source: &Source, error: &toml::de::Error) -> Diagnostic {
 }
 
 /// A setting out of range, as a config file `source` set it: at its key when the file sets it
-/// there, else after the file's name (a setting of the preset's, or of two keys at once).
+/// there (under its older name too, [`RENAMED_KEYS`]), else after the file's name (a setting
+/// of the preset's, or of two keys at once).
 pub fn setting_diagnostic(source: &Source, error: &SettingError) -> Diagnostic {
-    let mut path: Vec<&str> = error.table.split('.').filter(|t| !t.is_empty()).collect();
-    path.push(error.key);
-    match key_span(source, &path) {
-        Some(span) => Diagnostic::at(DiagnosticKind::Semantic, source, span, error.to_string()),
-        None => Diagnostic::without_location(
+    let table: Vec<&str> = error.table.split('.').filter(|t| !t.is_empty()).collect();
+    let at = |key: &str| key_span(source, &[table.as_slice(), &[key]].concat());
+    let before = RENAMED_KEYS
+        .iter()
+        .find(|(today, _)| *today == error.key)
+        .and_then(|&(today, before)| Some((at(before)?, before, today)));
+    match (at(error.key), before) {
+        (Some(span), _) => {
+            Diagnostic::at(DiagnosticKind::Semantic, source, span, error.to_string())
+        }
+        (None, Some((span, before, today))) => {
+            Diagnostic::at(DiagnosticKind::Semantic, source, span, error.to_string())
+                .with_note(format!("`{before}` is the older name of `{today}`"))
+        }
+        (None, None) => Diagnostic::without_location(
             DiagnosticKind::Semantic,
             format!("{}: {error}", source.name()),
         ),

@@ -283,15 +283,15 @@ impl ser::SerializeMap for &mut CanonicalHasher {
     }
 }
 
-/// The name a field is hashed under: its own, but for the control step
-/// ([`crate::sim::SimOptions::dt`], `control_step` in a config file), which is hashed under
-/// the name it had before (`dt`), so that the keys of older run stores still match and a
-/// resumed run reuses what it did before.
+/// The name a field is hashed under: its own, but for a renamed one
+/// ([`crate::sim::RENAMED_KEYS`]: the control step, [`crate::sim::SimOptions::control_step`]),
+/// which is hashed under the name it had before (`dt`), so that the keys of older run stores
+/// still match and a resumed run reuses what it did before.
 fn hashed_name(key: &'static str) -> &'static str {
-    match key {
-        "control_step" => "dt",
-        key => key,
-    }
+    crate::sim::RENAMED_KEYS
+        .iter()
+        .find(|(today, _)| *today == key)
+        .map_or(key, |(_, before)| before)
 }
 
 macro_rules! fields {

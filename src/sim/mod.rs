@@ -28,5 +28,5 @@ pub use options::{
     MAX_ITERATIONS, MAX_SUBSTEPS, MIN_DT, SimOptions, StrengthFrom,
 };
 pub use sensors::TOUCH_DISTANCE;
-pub use setting::{SettingError, SimTable, StepSetting, UnknownSetting};
+pub use setting::{RENAMED_KEYS, SettingError, SimTable, StepSetting, UnknownSetting};
 pub use world::{Exploded, GRAVITY, World};

@@ -205,6 +205,10 @@ pub fn check_real(
     Err(SettingError::out_of_range(key, &range, value))
 }
 
+/// The keys of `[task.sim]` that have been renamed, as (today's name, the older name that
+/// files written before may still use; serde reads both).
+pub const RENAMED_KEYS: &[(&str, &str)] = &[("control_step", "dt")];
+
 /// The `[task.sim]` table as a person writes it: a named step setting (`setting = "fast"`,
 /// default `default`) and any value over it. A key given beside `setting` overrides the
 /// setting's value. Read into [`SimOptions`], which holds every value resolved and is written
@@ -215,8 +219,8 @@ pub fn check_real(
 pub struct SimTable {
     /// The named step setting the five stepping values start from.
     pub setting: Option<StepSetting>,
-    /// See [`SimOptions::dt`]: the control step, `dt` in files written before it had its
-    /// own name (read as `control_step`; a table may not give both).
+    /// See [`SimOptions::control_step`]: the control step, `dt` in files written before it
+    /// had its own name (read as `control_step`; a table may not give both; [`RENAMED_KEYS`]).
     #[serde(alias = "dt")]
     pub control_step: Option<f64>,
     /// See [`SimOptions::substeps`].

@@ -333,8 +333,8 @@ fn syntax_errors_in_plain_words() {
 }
 
 /// Runs `ontogeny ARGS` in a scratch directory holding `files` (name, text); expects exit code
-/// 2 and `message` on standard error.
-fn refused(args: &[&str], files: &[(&str, &str)], message: &str) {
+/// 2 and `message` on standard error, which it returns.
+fn refused(args: &[&str], files: &[(&str, &str)], message: &str) -> String {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "errors-refused-{}",
         args.join("-").replace(['/', ' ', '='], "_")
@@ -353,6 +353,7 @@ fn refused(args: &[&str], files: &[(&str, &str)], message: &str) {
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains(message), "{stderr}");
     let _ = std::fs::remove_dir_all(&dir);
+    stderr.into_owned()
 }
 
 /// A walker config whose `[task.sim]` table holds `sim` (one line).
@@ -433,11 +434,15 @@ fn a_control_step_out_of_range_is_named_as_the_config_file_names_it() {
         &[("z.toml", &config_with_sim("control_step = 0.5"))],
         "[task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5\n --> z.toml:8:16",
     );
-    // The name older files use is read as the same key.
-    refused(
+    // The name older files use is read as the same key, and pointed at where the file sets it.
+    let said = refused(
         &["evolve", "--config", "z.toml", "--out", "run"],
         &[("z.toml", &config_with_sim("dt = 0.5"))],
-        "z.toml: [task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5",
+        "[task.sim] control_step must be in [0.001, 0.1] seconds, not 0.5\n --> z.toml:8:6",
+    );
+    assert!(
+        said.contains("`dt` is the older name of `control_step`"),
+        "{said}"
     );
 }
 
