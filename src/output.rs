@@ -1,7 +1,7 @@
 //! Writing output files: whole or not at all, and never over something that is not a file.
 //!
 //! Every file Ontogeny writes for its user (pictures, animations, plots, recordings, exported
-//! models, reports) goes through [`write`] or [`write_with`]: the content goes to a fresh
+//! models, reports) goes through [`write`](fn@write) or [`write_with`]: the content goes to a fresh
 //! temporary file in the target's own directory, which is then renamed over the target. A
 //! reader sees the old file or the new one, never half of one, and a failure leaves the old one
 //! as it was. A target that exists and is not a regular file (a directory, a device such as
@@ -35,7 +35,7 @@ pub enum OutputError {
 }
 
 /// Refuses a target that exists and is not a regular file; a missing target, or a regular
-/// file (which [`write`] replaces), passes. A symbolic link is refused whatever it points to,
+/// file (which [`write`](fn@write) replaces), passes. A symbolic link is refused whatever it points to,
 /// since replacing it would cut the link and following it would write somewhere else.
 pub fn check_target(path: &Path) -> Result<(), OutputError> {
     match std::fs::symlink_metadata(path) {
@@ -117,7 +117,7 @@ pub fn wrote<P: AsRef<Path>>(paths: &[P]) -> String {
 }
 
 /// Moves the file `source` (written by another program, e.g. a browser's screenshot) to
-/// `target` as [`write`] would write it; `source` is left in place for its owner to remove.
+/// `target` as [`write`](fn@write) would write it; `source` is left in place for its owner to remove.
 pub fn copy_into_place(source: &Path, target: &Path) -> Result<(), OutputError> {
     let bytes = std::fs::read(source).map_err(|e| OutputError::Io {
         path: source.into(),

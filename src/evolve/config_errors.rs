@@ -1,6 +1,6 @@
 //! A configuration file's errors as a person reads them: TOML's and serde's messages ("invalid
 //! type: string \"twenty\", expected usize", "unknown variant `walkr`") said in plain words
-//! after the key they concern ("[ga] population must be a whole number, not \"twenty\""), with
+//! after the key they concern ("\[ga\] population must be a whole number, not \"twenty\""), with
 //! the names allowed and the closest of them, and a setting out of range pointed at in the file
 //! where the file set it.
 

@@ -5,7 +5,7 @@
 //! ([`plot`]), the statistics that compare settings and encodings ([`stats`]), the evaluation
 //! cache and its keys ([`cache`], [`key`]), comparisons of encodings over replicated runs
 //! ([`compare`]), and the fidelity experiment that ranks step settings against the fine
-//! reference ([`fidelity`]) and the bench's measurements ([`bench`]); a run's individual picked by rank ([`pick`]); the settings of a run or comparison from the command line
+//! reference ([`fidelity`]) and the bench's measurements ([`bench`](mod@bench)); a run's individual picked by rank ([`pick`]); the settings of a run or comparison from the command line
 //! ([`settings`]) and what the command line says about them ([`text`]); the runs and comparisons under a
 //! directory ([`listing`]).
 

@@ -153,7 +153,7 @@ pub fn posed(creature: &Creature, sample: &Sample) -> Creature {
 }
 
 /// The projectile's trail up to sample `until` (included): its positions so far, oldest
-/// first, thinned to at most about [`MAX_TRAIL_POINTS`], the latest always kept.
+/// first, thinned to at most about `MAX_TRAIL_POINTS`, the latest always kept.
 pub fn trail(samples: &[Sample], until: usize) -> Vec<Vector3<f64>> {
     let flown: Vec<_> = samples[..=until]
         .iter()

@@ -70,7 +70,7 @@ pub const DEFAULT_STRENGTH: f64 = 1.0e4;
 pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 
 /// The default [`SimOptions::energy_tolerance`] (J/kg): the energy a creature may gain from
-/// nothing within about [`ENERGY_WINDOW`], what lifting it by 1 m takes: three times the
+/// nothing within about [`ENERGY_WINDOW`](crate::sim::ENERGY_WINDOW), what lifting it by 1 m takes: three times the
 /// most the shipped and random creatures reach at the fast setting ([`SimOptions::fast`], 3.2 J/kg), well
 /// below what the exploits evolution found reach (27 J/kg). See docs/reference/tasks.md, the energy audit.
 pub const ENERGY_TOLERANCE: f64 = 10.0;

@@ -21,7 +21,7 @@ pub enum WalkerFitness {
     /// The raw distance D_w.
     Distance,
     /// Walking with Dinosaurs' iterative move: "distance gained late in the process" counts
-    /// more, which "favour[s] creatures that move a certain distance continuous but slow
+    /// more, which "favour\[s\] creatures that move a certain distance continuous but slow
     /// compared to one doing the same distance fast and then stopping" (3.3.3). The gain g_k
     /// of second k = 1..K of the measured walk is the horizontal distance the creature's centre
     /// of mass moves during that second; the fitness is Σ_k w_k · g_k with w_k = 2k / (K + 1),

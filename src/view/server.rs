@@ -5,7 +5,7 @@
 //! name to 127.0.0.1 gets 403), only reads (GET and HEAD; anything else gets 405), and tells
 //! the browser to run nothing but the page's own scripts (`Content-Security-Policy`,
 //! `X-Content-Type-Options: nosniff`). One thread gathers requests from every connection
-//! without waiting on any, and a fixed pool of [`WORKERS`] threads answers them (one request
+//! without waiting on any, and a fixed pool of `WORKERS` threads answers them (one request
 //! per connection), so no number of connections makes more threads, and idle ones keep no one
 //! waiting; a connection that sends no request within [`REQUEST_TIMEOUT`] is dropped. A
 //! run's individual's walk takes as long as its evaluation: at most [`MAX_WALKS`] are
@@ -156,7 +156,7 @@ impl Server {
     }
 
     /// Answers requests until the process ends: one thread gathers the connections' requests
-    /// (without blocking on any of them), [`WORKERS`] threads answer them.
+    /// (without blocking on any of them), `WORKERS` threads answer them.
     pub fn run(&self) {
         let (requests, queue) = std::sync::mpsc::sync_channel::<(TcpStream, Vec<u8>)>(WORKERS);
         let queue = std::sync::Mutex::new(queue);

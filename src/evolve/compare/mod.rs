@@ -10,10 +10,10 @@
 //! ```
 //!
 //! This module knows no encoding by name: everything that depends on one is generic over
-//! [`Genome`].
+//! [`Genome`](crate::encoding::Genome).
 //!
-//! The comparison's directory and plan are in [`plan`], reading a finished replicate in
-//! [`replicate`], the statistics and the files of the report in [`report`], where a comparison stands in
+//! The comparison's directory and plan are in `plan`, reading a finished replicate in
+//! `replicate`, the statistics and the files of the report in [`report`], where a comparison stands in
 //! [`survey`].
 
 mod plan;

@@ -9,8 +9,8 @@
 //! last commits on a power cut) costs one `fsync` per generation, which is nothing beside the
 //! seconds a generation's evaluations take.
 //!
-//! The schema and its migrations are in [`schema`], the row records in [`records`], the errors
-//! in [`error`]; this file holds the store itself.
+//! The schema and its migrations are in `schema`, the row records in `records`, the errors
+//! in `error`; this file holds the store itself.
 
 mod error;
 mod records;
