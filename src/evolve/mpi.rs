@@ -117,7 +117,9 @@ struct Master {
 static MASTER: Mutex<Option<Master>> = Mutex::new(None);
 
 fn master() -> MutexGuard<'static, Option<Master>> {
-    MASTER.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+    MASTER
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// Whether this process is rank 0 of a job of several ranks that it joined.
@@ -356,9 +358,7 @@ impl Master {
                     });
                     let worker = &mut self.workers[rank as usize - 1];
                     worker.threads = request.threads.max(1) as usize;
-                    worker.in_flight = worker
-                        .in_flight
-                        .saturating_sub(request.evaluations.len());
+                    worker.in_flight = worker.in_flight.saturating_sub(request.evaluations.len());
                     worker.waiting = true;
                     for (index, evaluation) in request.evaluations {
                         let _ = slots[index as usize].set(evaluation);
