@@ -111,6 +111,8 @@ struct Master {
     dispatch: Duration,
     /// Bytes of jobs sent.
     bytes: u64,
+    /// Wall time spent in batches (from the first job handed out to the last evaluation in).
+    batches: Duration,
 }
 
 /// Rank 0's state, when this process is rank 0 of a job of several ranks.
@@ -166,6 +168,7 @@ pub fn join() -> Result<Option<Membership>, ClusterError> {
             local: 0,
             dispatch: Duration::ZERO,
             bytes: 0,
+            batches: Duration::ZERO,
         });
     }
     Ok(Some(Membership {
@@ -183,10 +186,11 @@ impl Drop for Membership {
         if std::env::var_os(TIMING_VARIABLE).is_some() {
             let per = state.dispatch.as_secs_f64() * 1e6 / state.remote.max(1) as f64;
             eprintln!(
-                "MPI: {} ranks; {} evaluations on other ranks, {} on rank 0; rank 0 spent {per:.0} µs per remote evaluation on encoding, messages and decoding ({} bytes per job)",
+                "MPI: {} ranks; {} evaluations on other ranks, {} on rank 0, in {:.2} s; rank 0 spent {per:.0} µs per remote evaluation on encoding, messages and decoding ({} bytes per job)",
                 world.size(),
                 state.remote,
                 state.local,
+                state.batches.as_secs_f64(),
                 state.bytes / state.remote.max(1),
             );
         }
@@ -209,13 +213,8 @@ fn take(queue: &AtomicUsize, count: usize, size: usize) -> Range<usize> {
 }
 
 /// Waits (polling, with sleeps growing to a millisecond) for a message with `tag` from
-/// `source` (any rank when `None`), or until `stop` says so; returns its sender and bytes.
-fn receive(
-    world: &SimpleCommunicator,
-    source: Option<i32>,
-    tag: i32,
-    mut stop: impl FnMut() -> bool,
-) -> Option<(i32, Vec<u8>)> {
+/// `source` (any rank when `None`); returns its sender and bytes.
+fn receive(world: &SimpleCommunicator, source: Option<i32>, tag: i32) -> (i32, Vec<u8>) {
     let mut pause = MIN_PAUSE;
     loop {
         let probe = match source {
@@ -226,10 +225,7 @@ fn receive(
         };
         if let Some(matched) = probe {
             let (bytes, status) = matched.matched_receive_vec::<u8>();
-            return Some((status.source_rank(), bytes));
-        }
-        if stop() {
-            return None;
+            return (status.source_rank(), bytes);
         }
         std::thread::sleep(pause);
         pause = (pause * 2).min(MAX_PAUSE);
@@ -300,6 +296,7 @@ impl Master {
         creatures: &[&Creature],
     ) -> Vec<Evaluation> {
         let size = creatures.len();
+        let batch_started = Instant::now();
         let encoded = encode(task);
         if encoded != self.task {
             self.task = encoded;
@@ -371,6 +368,7 @@ impl Master {
             });
         });
         self.local += (size as u64).saturating_sub(self.remote - remote_before);
+        self.batches += batch_started.elapsed();
         slots
             .into_iter()
             .map(|slot| slot.into_inner().expect("every job is evaluated"))
@@ -418,11 +416,10 @@ impl Master {
     /// Waits for every worker to ask for work, then tells each to stop.
     fn stop(&mut self, world: &SimpleCommunicator) {
         while self.workers.iter().any(|w| !w.waiting) {
-            if let Some((rank, _)) = receive(world, None, REQUEST, || false) {
-                let worker = &mut self.workers[rank as usize - 1];
-                worker.waiting = true;
-                worker.in_flight = 0;
-            }
+            let (rank, _) = receive(world, None, REQUEST);
+            let worker = &mut self.workers[rank as usize - 1];
+            worker.waiting = true;
+            worker.in_flight = 0;
         }
         let bytes = encode(&Reply::<Creature, TaskSpec>::Stop);
         for rank in 1..world.size() {
@@ -456,7 +453,7 @@ fn serve(world: &SimpleCommunicator) -> Result<(), String> {
             evaluations: std::mem::take(&mut evaluations),
         };
         master.send_with_tag(&encode(&request)[..], REQUEST);
-        let (_, bytes) = receive(world, Some(0), REPLY, || false).expect("waits until a reply");
+        let (_, bytes) = receive(world, Some(0), REPLY);
         let reply: Reply<Creature, TaskSpec> =
             rmp_serde::from_slice(&bytes).unwrap_or_else(|e| fail(world, &format!("a job: {e}")));
         let jobs = match reply {
