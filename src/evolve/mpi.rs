@@ -489,3 +489,81 @@ fn serve(world: &SimpleCommunicator) -> Result<(), String> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::develop::{BuildOptions, grow};
+    use crate::lsystem::{DeriveOptions, LSystem};
+    use crate::task::{Status, TaskKind};
+
+    /// A creature with real numbers in it: the shipped Hornby & Pollack walker, grown.
+    fn walker() -> Creature {
+        let lsys = LSystem::from_text(
+            "hornby-walker.lsys",
+            include_str!("../../examples/hornby-walker.lsys"),
+        )
+        .unwrap();
+        let frames = grow(
+            &lsys,
+            &DeriveOptions::default(),
+            None,
+            &BuildOptions::default(),
+        )
+        .unwrap();
+        frames.into_iter().last().unwrap().creature
+    }
+
+    #[test]
+    fn a_job_and_its_evaluation_cross_between_ranks_bit_for_bit() {
+        let creature = walker();
+        assert!(!creature.parts.is_empty());
+        let mut task = TaskSpec::new(TaskKind::Walker);
+        task.walker.seconds = 1.0 / 3.0;
+        let sent: Reply<&Creature, &TaskSpec> = Reply::Work {
+            task: Some(&task),
+            jobs: vec![(7, &creature)],
+        };
+        let bytes = encode(&sent);
+        let Reply::Work {
+            task: Some(received_task),
+            jobs,
+        } = rmp_serde::from_slice::<Reply<Creature, TaskSpec>>(&bytes).unwrap()
+        else {
+            panic!("not the work sent");
+        };
+        assert_eq!(jobs, vec![(7, creature.clone())]);
+        assert_eq!(encode(&received_task), encode(&task));
+        // The task evaluates the received creature as it does the original.
+        let evaluation = task.evaluate(&creature, false);
+        assert_eq!(received_task.evaluate(&jobs[0].1, false), evaluation);
+        // Every f64, even those JSON cannot carry, comes back with the same bits.
+        let odd = [
+            f64::NAN,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            0.1 + 0.2,
+            5e-324,
+        ];
+        let mut strange = Evaluation {
+            status: Status::Unstable,
+            ..evaluation
+        };
+        for (i, value) in odd.iter().enumerate() {
+            strange.terms.insert(format!("t{i}"), *value);
+        }
+        let request = Request {
+            threads: 3,
+            evaluations: vec![(7, strange.clone())],
+        };
+        let back: Request = rmp_serde::from_slice(&encode(&request)).unwrap();
+        assert_eq!(back.threads, 3);
+        let (index, returned) = &back.evaluations[0];
+        assert_eq!(*index, 7);
+        assert_eq!(returned.fitness.to_bits(), strange.fitness.to_bits());
+        for (name, value) in &strange.terms {
+            assert_eq!(returned.terms[name].to_bits(), value.to_bits(), "{name}");
+        }
+    }
+}
