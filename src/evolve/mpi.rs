@@ -12,8 +12,9 @@
 //! at most one job per thread. The exchange with each worker strictly alternates — it sends a
 //! request (the evaluations it finished and how many threads it has), rank 0 answers with jobs
 //! (or holds the answer while it has none, or says stop) — so two sends never cross and no
-//! message size can deadlock. Both sides wait by polling with short sleeps, never in MPI's
-//! busy-waiting blocking calls, so a rank that waits leaves its core to the evaluations.
+//! message size can deadlock; rank 0 sends without waiting for the receiver. Both sides look
+//! for messages by polling with short sleeps, not in MPI's busy-waiting blocking receive, so
+//! a rank that waits leaves its cores to the evaluations.
 //! Messages are MessagePack, which carries every `f64` and `f32` exactly (NaN included): an
 //! evaluation made on a worker is bit-identical to one made on rank 0.
 //!
@@ -92,7 +93,8 @@ struct Worker {
     threads: usize,
     /// Jobs sent and not yet evaluated.
     in_flight: usize,
-    /// Whether it waits for an answer rank 0 holds back (it has no job and there is none).
+    /// Whether it waits for an answer: it sent a request rank 0 has not answered (rank 0
+    /// holds the answer back while the worker has no job and there is none to give).
     waiting: bool,
     /// The version of the task it has (0: none).
     task_version: u64,
