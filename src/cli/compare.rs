@@ -97,6 +97,9 @@ fn compare_error(e: CompareError) -> anyhow::Error {
 /// Runs `ontogeny compare`.
 pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
+    let Some(_cluster) = ontogeny::evolve::evaluator::join_cluster()? else {
+        return Ok(()); // a worker rank of an MPI job: it evaluated what rank 0 sent
+    };
     if let Some(root) = &args.merge {
         let _lock = compare::lock(root).map_err(compare_error)?;
         let (manifest, shared) = compare::open(root).map_err(compare_error)?;

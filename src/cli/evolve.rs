@@ -147,6 +147,9 @@ pub fn set_threads(threads: Option<usize>) -> anyhow::Result<()> {
 /// Runs `ontogeny evolve`.
 pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
+    let Some(_cluster) = ontogeny::evolve::evaluator::join_cluster()? else {
+        return Ok(()); // a worker rank of an MPI job: it evaluated what rank 0 sent
+    };
     if let Some(dir) = &args.resume {
         let encoding = encoding_of_run(dir).map_err(run_error)?;
         return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens), |other| Err(bad(

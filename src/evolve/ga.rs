@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
 use super::cache::EvaluationCache;
+use super::evaluator::Evaluator;
 use super::key::EvaluationKey;
 use super::store::GenerationRecord;
 use crate::creature::Creature;
@@ -407,18 +408,30 @@ impl<G: Genome> Evolution<G> {
                 _ => Source::Simulated,
             })
             .collect();
-        let simulated: Vec<Option<Evaluation>> = developed
-            .par_iter()
-            .zip(sources.par_iter())
-            .map(|(d, source)| {
-                matches!(source, Source::Simulated).then(|| match &d.creature {
-                    Ok(creature) => self.task.evaluate(creature, false),
-                    Err(e) => {
-                        Evaluation::invalid(self.task.task.name(), format!("development: {e}"))
-                    }
-                })
+        let mut simulated: Vec<Option<Evaluation>> = developed
+            .iter()
+            .zip(&sources)
+            .map(|(d, source)| match (source, &d.creature) {
+                (Source::Simulated, Err(e)) => Some(Evaluation::invalid(
+                    self.task.task.name(),
+                    format!("development: {e}"),
+                )),
+                _ => None,
             })
             .collect();
+        let (jobs, creatures): (Vec<usize>, Vec<&Creature>) = developed
+            .iter()
+            .zip(&sources)
+            .enumerate()
+            .filter_map(|(index, (d, source))| match (source, &d.creature) {
+                (Source::Simulated, Ok(creature)) => Some((index, creature)),
+                _ => None,
+            })
+            .unzip();
+        let evaluations = Evaluator::current().evaluate(&self.task, &creatures);
+        for (index, evaluation) in jobs.into_iter().zip(evaluations) {
+            simulated[index] = Some(evaluation);
+        }
         let mut born = Vec::with_capacity(developed.len());
         for (d, source) in developed.into_iter().zip(sources) {
             let (evaluation, reused) = match source {

@@ -70,7 +70,7 @@ fn small_run(encoding: &str, out: &Path, extra: &[&str]) -> Output {
 }
 
 /// Everything the store holds of a run but wall-clock times, as one comparable string.
-fn contents(dir: &Path) -> String {
+pub(crate) fn contents(dir: &Path) -> String {
     contents_of(dir, true, CacheColumns::Both)
 }
 

@@ -26,6 +26,8 @@ mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
 mod long_runs;
+#[cfg(feature = "mpi")]
+mod mpi;
 mod never_panics;
 mod outputs;
 mod render;

@@ -1,0 +1,86 @@
+//! Where evaluations run: on this process's threads (rayon), or — in a build with the `mpi`
+//! feature started by an MPI launcher (`mpirun`, `srun`) — over every rank of the job
+//! ([`super::mpi`]). The genetic algorithm hands a batch of creatures to
+//! [`Evaluator::evaluate`] and gets their evaluations back in the same order. An evaluation is
+//! a pure function of the creature and the task, so where it runs never changes a result.
+//!
+//! A verb that evaluates joins the cluster first with [`join_cluster`]: on a worker rank that
+//! call serves rank 0's jobs until rank 0 is done and returns `None` (the verb then has nothing
+//! to do); everywhere else it returns the [`Cluster`] to hold while the verb runs.
+
+use rayon::prelude::*;
+
+use crate::creature::Creature;
+use crate::task::{Evaluation, TaskSpec};
+
+/// What evaluates a batch of creatures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Evaluator {
+    /// This process's worker threads (rayon).
+    Local,
+    /// Every rank of an MPI job, rank 0 (this process) included, each with its threads.
+    #[cfg(feature = "mpi")]
+    Mpi,
+}
+
+impl Evaluator {
+    /// This process's evaluator: [`Evaluator::Mpi`] on rank 0 of an MPI job of several ranks
+    /// that [`join_cluster`] joined, [`Evaluator::Local`] otherwise.
+    pub fn current() -> Evaluator {
+        #[cfg(feature = "mpi")]
+        if super::mpi::is_master() {
+            return Evaluator::Mpi;
+        }
+        Evaluator::Local
+    }
+
+    /// The evaluations of `creatures` on `task`, in order.
+    pub fn evaluate(self, task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
+        match self {
+            Evaluator::Local => evaluate_locally(task, creatures),
+            #[cfg(feature = "mpi")]
+            Evaluator::Mpi => super::mpi::evaluate(task, creatures),
+        }
+    }
+}
+
+/// The evaluations of `creatures` on `task`, in order, on this process's worker threads.
+pub fn evaluate_locally(task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
+    creatures
+        .par_iter()
+        .map(|creature| task.evaluate(creature, false))
+        .collect()
+}
+
+/// Why a process could not take its part in an MPI job.
+#[derive(Debug, thiserror::Error)]
+#[error("MPI: {0}")]
+pub struct ClusterError(pub String);
+
+/// This process's part in the job, held while a verb evaluates: on rank 0 of an MPI job, when
+/// dropped, it tells the other ranks to stop and ends MPI. Without an MPI launcher (or in a
+/// build without the `mpi` feature) it does nothing.
+#[derive(Debug)]
+pub struct Cluster {
+    #[cfg(feature = "mpi")]
+    _membership: Option<super::mpi::Membership>,
+}
+
+/// Joins the MPI job this process was started in, if any (see the module's documentation):
+/// `Ok(None)` on a worker rank once rank 0 has told it to stop.
+pub fn join_cluster() -> Result<Option<Cluster>, ClusterError> {
+    #[cfg(feature = "mpi")]
+    {
+        if !super::mpi::launched() {
+            return Ok(Some(Cluster { _membership: None }));
+        }
+        match super::mpi::join()? {
+            Some(membership) => Ok(Some(Cluster {
+                _membership: Some(membership),
+            })),
+            None => Ok(None),
+        }
+    }
+    #[cfg(not(feature = "mpi"))]
+    Ok(Some(Cluster {}))
+}

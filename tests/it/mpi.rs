@@ -1,0 +1,173 @@
+//! One population evaluated over the ranks of an MPI job (the `mpi` feature; these tests run
+//! `mpirun` on this machine only): two and three ranks give the database of one process for
+//! two encodings, a killed worker rank ends the job with a message and a nonzero exit code
+//! and `evolve --resume` (one process or two ranks) then finishes the run to the result of an
+//! uninterrupted one, and a rank 0 that refuses its input ends every rank.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::evolve::contents;
+use crate::util::{ontogeny_command, refused, scratch_dir, succeeded};
+
+/// A fresh, empty scratch directory of this module's, named after `name`.
+fn scratch(name: &str) -> PathBuf {
+    scratch_dir(&format!("mpi-{name}"))
+}
+
+/// `command` (an `ontogeny` command) started by `mpirun` as `ranks` processes on this machine
+/// alone: more processes than cores allowed, waiting ranks yielding their core, root allowed.
+fn under_mpirun(ranks: usize, command: &Command) -> Command {
+    let mut mpirun = Command::new("mpirun");
+    mpirun
+        .args(["--oversubscribe", "--mca", "mpi_yield_when_idle", "1"])
+        .args(["--mca", "btl", "self,vader,tcp"])
+        .args(["--mca", "btl_tcp_if_include", "lo"])
+        .args(["-np", &ranks.to_string()])
+        .arg(command.get_program())
+        .args(command.get_args())
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1");
+    mpirun
+}
+
+/// `ontogeny evolve` of `encoding` into `out`: walkers, 8 individuals, `gens` generations of
+/// `seconds` s walks, seed 5.
+fn evolve(encoding: &str, out: &Path, gens: &str, seconds: &str) -> Command {
+    let mut command = ontogeny_command();
+    command
+        .args([
+            "evolve",
+            "--encoding",
+            encoding,
+            "--task",
+            "walker",
+            "--pop",
+            "8",
+        ])
+        .args(["--gens", gens, "--seconds", seconds, "--seed", "5", "--out"])
+        .arg(out);
+    command
+}
+
+/// The small run: 3 generations of 1 s walks.
+fn small(encoding: &str, out: &Path) -> Command {
+    evolve(encoding, out, "3", "1")
+}
+
+#[test]
+fn two_and_three_ranks_give_the_run_of_one_process() {
+    for encoding in ["lsystem", "graph"] {
+        let dir = scratch(&format!("ranks-{encoding}"));
+        let one = dir.join("one");
+        let alone = succeeded(&small(encoding, &one).output().unwrap());
+        for ranks in [2, 3] {
+            let many = dir.join(format!("ranks-{ranks}"));
+            let output = under_mpirun(ranks, &small(encoding, &many))
+                .output()
+                .unwrap();
+            let printed = succeeded(&output);
+            // Rank 0 alone speaks: its results, not one copy per rank.
+            assert_eq!(
+                printed.lines().count(),
+                alone.lines().count(),
+                "{encoding}, {ranks} ranks: {printed}"
+            );
+            assert_eq!(contents(&one), contents(&many), "{encoding}, {ranks} ranks");
+        }
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}
+
+/// The run the kill test interrupts: long enough to be killed in its middle.
+fn long(out: &Path) -> Command {
+    evolve("lsystem", out, "6", "4")
+}
+
+/// The process id of the rank `rank` of the job whose ranks run `binary` with `out` among
+/// their arguments, once it exists.
+fn rank_process(out: &Path, rank: u32) -> Option<u32> {
+    let wanted = format!("OMPI_COMM_WORLD_RANK={rank}");
+    std::fs::read_dir("/proc").ok()?.find_map(|entry| {
+        let pid: u32 = entry.ok()?.file_name().to_str()?.parse().ok()?;
+        let command_line = std::fs::read(format!("/proc/{pid}/cmdline")).ok()?;
+        let environment = std::fs::read(format!("/proc/{pid}/environ")).ok()?;
+        let is_rank = String::from_utf8_lossy(&command_line)
+            .split('\0')
+            .any(|a| Path::new(a) == out)
+            && String::from_utf8_lossy(&environment)
+                .split('\0')
+                .any(|v| v == wanted);
+        is_rank.then_some(pid)
+    })
+}
+
+#[test]
+fn a_killed_worker_rank_ends_the_job_and_the_run_resumes_to_the_same_result() {
+    let dir = scratch("kill");
+    let whole = dir.join("whole");
+    succeeded(&long(&whole).output().unwrap());
+    let killed = dir.join("killed");
+    let job = under_mpirun(3, &long(&killed))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Once generation 1 is stored, SIGKILL rank 2 while generation 2 is evaluated.
+    let log = killed.join("log.txt");
+    let deadline = Instant::now() + Duration::from_secs(120);
+    while std::fs::read_to_string(&log).map_or(0, |t| t.lines().count()) < 2
+        && Instant::now() < deadline
+    {
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    let worker = rank_process(&killed, 2).expect("rank 2 runs");
+    let status = Command::new("kill")
+        .args(["-9", &worker.to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let ended: Output = job.wait_with_output().unwrap();
+    assert!(!ended.status.success());
+    let said = String::from_utf8_lossy(&ended.stderr);
+    assert!(
+        said.contains("rank 2") && said.contains("signal 9"),
+        "{said}"
+    );
+    let store = ontogeny::evolve::store::RunStore::open(&killed.join("run.sqlite")).unwrap();
+    let stored = store.last_generation().unwrap();
+    drop(store);
+    assert!(
+        stored.is_some_and(|g| g < 5),
+        "killed before the end: {stored:?}"
+    );
+    // The run store is the checkpoint: resumed by one process, or by two ranks.
+    let copy = dir.join("copy");
+    std::fs::create_dir(&copy).unwrap();
+    for file in std::fs::read_dir(&killed).unwrap() {
+        let file = file.unwrap();
+        std::fs::copy(file.path(), copy.join(file.file_name())).unwrap();
+    }
+    let mut resume = ontogeny_command();
+    resume.arg("evolve").arg("--resume").arg(&killed);
+    succeeded(&resume.output().unwrap());
+    assert_eq!(contents(&whole), contents(&killed));
+    let mut resume = ontogeny_command();
+    resume.arg("evolve").arg("--resume").arg(&copy);
+    succeeded(&under_mpirun(2, &resume).output().unwrap());
+    assert_eq!(contents(&whole), contents(&copy));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_rank_0_that_refuses_its_input_ends_every_rank_with_exit_code_2() {
+    let dir = scratch("refused");
+    let mut resume = ontogeny_command();
+    resume
+        .arg("evolve")
+        .arg("--resume")
+        .arg(dir.join("missing"));
+    let output = under_mpirun(3, &resume).output().unwrap();
+    refused(&output, "missing");
+}
