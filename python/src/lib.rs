@@ -231,7 +231,11 @@ impl PyCreature {
     /// The problems development reported (errors make the creature invalid), one line each.
     #[getter]
     fn problems(&self) -> Vec<String> {
-        self.creature.problems.iter().map(|p| p.to_string()).collect()
+        self.creature
+            .problems
+            .iter()
+            .map(|p| p.to_string())
+            .collect()
     }
 
     /// Notes and warnings from growing it (a grammar without a derivation length, the
@@ -484,7 +488,8 @@ fn task_spec(
         projectile_density: None,
     };
     let sim = setting_named(setting)?.apply(&SimOptions::default());
-    sim.check().map_err(|e| value_error(e.for_flag("setting")))?;
+    sim.check()
+        .map_err(|e| value_error(e.for_flag("setting")))?;
     let spec = flags.spec(sim).map_err(|e| {
         let name = match e.key {
             "seconds" | "max_seconds" => "seconds",
@@ -541,10 +546,7 @@ fn evaluate_many(
 ) -> PyResult<Vec<PyEvaluation>> {
     let spec = task_spec(py, task, seconds, fitness, setting, target)?;
     let pool = thread_pool(threads)?;
-    let bodies: Vec<Arc<Creature>> = creatures
-        .iter()
-        .map(|c| Arc::clone(&c.creature))
-        .collect();
+    let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
     drop(creatures);
     let outcomes: Vec<Outcome> = py.detach(|| {
         pool.install(|| {
@@ -629,8 +631,7 @@ fn evolve(
         .map(read_config_source)
         .transpose()
         .map_err(diagnostic_error)?;
-    let name =
-        settings::new_run_encoding(encoding, source.as_deref()).map_err(diagnostic_error)?;
+    let name = settings::new_run_encoding(encoding, source.as_deref()).map_err(diagnostic_error)?;
     let start = NewRun {
         out: &out,
         source: source.as_deref(),
