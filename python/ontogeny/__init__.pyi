@@ -29,7 +29,7 @@ class Creature:
         """Each part's edge lengths (length, thickness, width), metres: parts × 3."""
     @property
     def positions(self) -> npt.NDArray[np.float64]:
-        """Each part's centre (metres; z is up): parts × 3."""
+        """Each part's centre (metres; y is up): parts × 3."""
     @property
     def orientations(self) -> npt.NDArray[np.float64]:
         """Each part's orientation, a unit quaternion (w, x, y, z): parts × 4."""

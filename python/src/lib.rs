@@ -198,7 +198,7 @@ impl PyCreature {
         rows(self.creature.parts.iter().map(|p| p.size.into())).into_pyarray(py)
     }
 
-    /// Each part's centre in world coordinates (metres; z is up): parts × 3.
+    /// Each part's centre in world coordinates (metres; y is up): parts × 3.
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         rows(self.creature.parts.iter().map(|p| p.position.into())).into_pyarray(py)
