@@ -177,3 +177,13 @@ def test_a_run_reads_into_pandas(tmp_path):
     assert isinstance(frame, pd.DataFrame)
     assert list(frame["generation"]) == [0, 1]
     assert len(run.to_pandas("individuals")) == 12
+
+
+def test_a_runs_best_genome_loads_and_evaluates_as_the_command_line(tmp_path, cli):
+    ontogeny.evolve(out=tmp_path / "graph", encoding="graph", pop=6, gens=2, seconds=1, setting="fast")
+    best = tmp_path / "graph" / "best.json"
+    ours = ontogeny.evaluate(ontogeny.load(best), seconds=1, setting="fast")
+    theirs = cli.json("eval", best, "--task", "walker", "--seconds", "1", "--setting", "fast", "--json")
+    assert (ours.fitness, ours.status) == (theirs["fitness"], theirs["status"])
+    text = best.read_text()
+    assert ontogeny.genome(text, "graph").to_json() == ontogeny.load(best).to_json()
