@@ -4,13 +4,13 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, LSystemGenome, encoding_named};
-use ontogeny::evolve::config::{ConfigFile, encoding_of, read_config, read_config_source};
+use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, encoding_named};
+use ontogeny::evolve::config::read_config_source;
 use ontogeny::evolve::ga::Preset;
 use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run};
 use ontogeny::evolve::settings::{self, RunFlags};
 use ontogeny::evolve::text::{self, RunTally};
-use ontogeny::lang::{Source, read_grammar};
+use ontogeny::lang::Source;
 use ontogeny::sim::StepSetting;
 use ontogeny::task::{TaskKind, WalkerFitness};
 
@@ -157,11 +157,8 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
         )));
     }
     let source = read_source(args.config.as_deref())?;
-    let encoding = match (args.encoding, &source) {
-        (Some(e), _) => e.name().to_string(),
-        (None, Some(s)) => encoding_of(s)?.unwrap_or_else(|| LSystemGenome::NAME.to_string()),
-        (None, None) => LSystemGenome::NAME.to_string(),
-    };
+    let encoding =
+        settings::new_run_encoding(args.encoding.map(EncodingArg::name), source.as_deref())?;
     with_genome!(
         encoding.as_str(),
         G => start::<G>(args, source.as_deref()),
@@ -196,23 +193,14 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         .out
         .as_ref()
         .expect("clap requires --out without --resume");
-    let file: ConfigFile<G::Limits> = match source {
-        Some(s) => read_config(s)?,
-        None => ConfigFile::default(),
-    };
-    let init_path = settings::init_path(args.init.as_deref(), file.init.as_deref(), source);
-    let config = settings::run_config::<G>(
-        file,
+    let (config, init) = settings::new_run::<G>(
         source,
         &run_flags(args),
+        args.init.as_deref(),
         args.seed,
         !args.no_verify_best,
         !args.no_cache,
     )?;
-    let init = init_path.as_deref().map(read_grammar).transpose()?;
-    if let (Some(init), Some(path)) = (&init, &init_path) {
-        settings::check_init::<G>(init.text(), &config.limits, path).map_err(bad)?;
-    }
     let init_text = init.as_ref().map(|s| s.text());
     let mut run = Run::<G>::start(out, config, init_text).map_err(run_error)?;
     go(&mut run, out)

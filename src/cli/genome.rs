@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
-use ontogeny::encoding::{GraphGenome, GraphLimits, ShowError, show_genome_file};
+use ontogeny::encoding::{ShowError, show_genome_file};
 
 /// Subcommands of `ontogeny genome`.
 #[derive(Subcommand)]
@@ -23,14 +23,6 @@ pub enum GenomeVerb {
 pub struct GenomeArgs {
     #[command(subcommand)]
     verb: GenomeVerb,
-}
-
-/// Reads a graph genome from `file`, checked against the default limits.
-pub(super) fn read_graph(file: &std::path::Path) -> anyhow::Result<GraphGenome> {
-    let text =
-        std::fs::read_to_string(file).with_context(|| format!("cannot read {}", file.display()))?;
-    GraphGenome::from_text(&text, &GraphLimits::default())
-        .map_err(|e| super::bad(format!("{}: {e}", file.display())))
 }
 
 /// Runs `ontogeny genome`.

@@ -3,9 +3,10 @@
 //! messages for people, naming the flag or the file at fault.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-use crate::encoding::Genome;
-use crate::lang::{Diagnostic, DiagnosticKind, Source};
+use crate::encoding::{Genome, LSystemGenome};
+use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
 use crate::task::{TaskKind, TaskSpec, WalkerFitness};
 
@@ -161,6 +162,45 @@ pub fn run_config<G: Genome>(
         task,
         limits: file.limits.unwrap_or_default(),
     })
+}
+
+/// The encoding of a new run: `flag` (`--encoding`), else the config file's (`source`), else
+/// the L-system genome's.
+pub fn new_run_encoding(flag: Option<&str>, source: Option<&Source>) -> Result<String, Diagnostic> {
+    Ok(match (flag, source) {
+        (Some(e), _) => e.to_string(),
+        (None, Some(s)) => {
+            super::config::encoding_of(s)?.unwrap_or_else(|| LSystemGenome::NAME.to_string())
+        }
+        (None, None) => LSystemGenome::NAME.to_string(),
+    })
+}
+
+/// A new run's settings and the grammar that seeds its first generation, if any.
+pub type NewRun<L> = (RunConfig<L>, Option<Arc<Source>>);
+
+/// A new run's settings ([`run_config`]) from its config file (`source`, if any) and the
+/// flags over it, with the grammar that seeds its first generation (`init`, `--init`, else
+/// the file's `init`), read and checked ([`check_init`]).
+pub fn new_run<G: Genome>(
+    source: Option<&Source>,
+    flags: &RunFlags,
+    init: Option<&Path>,
+    seed: Option<u64>,
+    verify_best: bool,
+    cache: bool,
+) -> Result<NewRun<G::Limits>, Diagnostic> {
+    let file: ConfigFile<G::Limits> = match source {
+        Some(s) => super::config::read_config(s)?,
+        None => ConfigFile::default(),
+    };
+    let init_path = init_path(init, file.init.as_deref(), source);
+    let config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
+    let init = init_path.as_deref().map(read_grammar).transpose()?;
+    if let (Some(init), Some(path)) = (&init, &init_path) {
+        check_init::<G>(init.text(), &config.limits, path).map_err(plain)?;
+    }
+    Ok((config, init))
 }
 
 /// The comparison `compare`'s flags describe over its config file (`source` its text), checked:

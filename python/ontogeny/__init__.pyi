@@ -1,0 +1,156 @@
+"""Type stubs of the ``ontogeny`` package (the compiled ``ontogeny._ontogeny`` and its
+pure-Python helpers)."""
+
+from os import PathLike
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+_Path = Union[str, PathLike]
+_Env = Optional[Sequence[Tuple[int, float]]]
+
+class Creature:
+    """A creature: box parts joined by joints, and a brain."""
+
+    @property
+    def parts(self) -> int:
+        """The number of parts (boxes)."""
+    @property
+    def joints(self) -> int:
+        """The number of joints."""
+    @property
+    def neurons(self) -> int:
+        """The number of neurons."""
+    @property
+    def sizes(self) -> npt.NDArray[np.float64]:
+        """Each part's edge lengths (length, thickness, width), metres: parts × 3."""
+    @property
+    def positions(self) -> npt.NDArray[np.float64]:
+        """Each part's centre (metres; y is up): parts × 3."""
+    @property
+    def orientations(self) -> npt.NDArray[np.float64]:
+        """Each part's orientation, a unit quaternion (w, x, y, z): parts × 4."""
+    @property
+    def valid(self) -> bool:
+        """Whether it has parts and its development reported no error."""
+    @property
+    def problems(self) -> List[str]:
+        """The problems development reported, one line each."""
+    @property
+    def notes(self) -> List[str]:
+        """Notes and warnings from growing it, one line each."""
+    def to_json(self) -> str:
+        """The creature as JSON (``creature.json``)."""
+
+class Evaluation:
+    """The outcome of an evaluation."""
+
+    @property
+    def task(self) -> str: ...
+    @property
+    def fitness(self) -> float:
+        """The fitness; -999999 unless the status is ``ok``."""
+    @property
+    def status(self) -> str:
+        """``ok``, ``unstable``, ``exploded``, ``self-intersecting``, ``too-tall`` or
+        ``invalid``."""
+    @property
+    def terms(self) -> Dict[str, float]:
+        """The terms behind the fitness, by name."""
+    @property
+    def message(self) -> Optional[str]:
+        """What went wrong, when something did."""
+    @property
+    def trajectory(self) -> Optional[npt.NDArray[np.float64]]:
+        """Every part's centre at each recorded moment: frames × parts × 3 (``record=True``)."""
+    @property
+    def times(self) -> Optional[npt.NDArray[np.float64]]:
+        """The simulated time of each recorded moment, seconds (``record=True``)."""
+    def to_json(self) -> str:
+        """As ``ontogeny eval --json`` prints it."""
+
+def grow(
+    text: str,
+    *,
+    steps: Optional[int] = None,
+    time: Optional[float] = None,
+    dt: Optional[float] = None,
+    seed: Optional[int] = None,
+    env: _Env = None,
+) -> Creature:
+    """Grows grammar text to its last frame, as ``ontogeny grow`` does."""
+
+def load(
+    path: _Path,
+    *,
+    steps: Optional[int] = None,
+    time: Optional[float] = None,
+    dt: Optional[float] = None,
+    seed: Optional[int] = None,
+    env: _Env = None,
+) -> Creature:
+    """Reads a creature from an ``.lsys``, a ``creature.json`` or a graph genome's
+    ``.json``, as ``ontogeny eval FILE`` does."""
+
+def genome(text: str, encoding: str = "direct", *, seed: int = 0) -> Creature:
+    """Develops a genome's text (``direct``: an axiom alone; ``lsystem``, ``continuous``:
+    ``best.lsys``; ``graph``: ``best.json``) within the encoding's default limits."""
+
+def derive(
+    text: str,
+    *,
+    steps: Optional[int] = None,
+    time: Optional[float] = None,
+    dt: Optional[float] = None,
+    seed: Optional[int] = None,
+    env: _Env = None,
+) -> List[Tuple[float, str, List[float]]]:
+    """The frames ``(time, modules, env)`` of the derivation, the axiom first."""
+
+def evaluate(
+    creature: Creature,
+    task: str = "walker",
+    *,
+    seconds: Optional[float] = None,
+    fitness: Optional[str] = None,
+    setting: str = "default",
+    target: Optional[Tuple[float, float, float]] = None,
+    record: bool = False,
+) -> Evaluation:
+    """Evaluates a creature on a task, as ``ontogeny eval --task TASK`` does."""
+
+def evaluate_many(
+    creatures: Sequence[Creature],
+    task: str = "walker",
+    *,
+    threads: Optional[int] = None,
+    seconds: Optional[float] = None,
+    fitness: Optional[str] = None,
+    setting: str = "default",
+    target: Optional[Tuple[float, float, float]] = None,
+    record: bool = False,
+) -> List[Evaluation]:
+    """Evaluates creatures in parallel without the GIL; results in order, equal to
+    ``evaluate``'s one by one."""
+
+class Run:
+    """A run directory's records, read read-only."""
+
+    def __init__(self, path: _Path) -> None: ...
+    @property
+    def path(self) -> str: ...
+    def settings(self) -> Dict[str, Any]:
+        """``encoding``, ``task``, ``seed``, ``version`` and ``config``."""
+    def generations(self) -> List[Dict[str, Any]]:
+        """Every generation's record, a dict each."""
+    def individuals(self, generation: Optional[int] = None) -> List[Dict[str, Any]]:
+        """One generation's individuals (default: every generation's), a dict each."""
+    def to_pandas(self, table: str = "generations") -> Any:
+        """``"generations"`` or ``"individuals"`` as a pandas ``DataFrame``."""
+
+def evolve(config: Optional[_Path] = None, *, out: _Path, **overrides: Any) -> Run:
+    """Runs an evolution into ``out``, as ``ontogeny evolve`` does; ``overrides`` are its
+    flags by long name (``gens=3``, ``pop=6``, ``seed=1``, ``encoding="direct"``, ...)."""

@@ -1,0 +1,189 @@
+"""The Python package against the command line: equal results, equal batches, errors as
+exceptions, arrays of the documented shapes."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import ontogeny
+
+CHAIN = "benches/chain10.lsys"
+TWO_BOXES = "axiom: forward(1) revolute forward(1) output(1)\n"
+
+
+def test_evaluate_equals_the_command_lines_eval_bit_for_bit(root, cli):
+    creature = ontogeny.load(root / CHAIN)
+    ours = ontogeny.evaluate(creature, "walker", seconds=2)
+    theirs = cli.json("eval", CHAIN, "--task", "walker", "--seconds", "2", "--json")
+    assert ours.fitness == theirs["fitness"]
+    assert ours.status == theirs["status"]
+    assert ours.terms == theirs["terms"]
+    assert json.loads(ours.to_json()) == theirs
+
+
+def test_every_task_setting_and_fitness_equals_the_command_line(root, cli):
+    creature = ontogeny.load(root / "examples/thrower.lsys")
+    cases = [
+        (dict(task="jump", seconds=1, setting="fast"), ["--task", "jump", "--seconds", "1", "--setting", "fast"]),
+        (dict(task="walker", seconds=1, fitness="distance"), ["--task", "walker", "--seconds", "1", "--fitness", "distance"]),
+        (dict(task="aim", seconds=2, target=(3, 1, 0)), ["--task", "aim", "--seconds", "2", "--target", "3,1,0"]),
+    ]
+    for kwargs, flags in cases:
+        ours = ontogeny.evaluate(creature, **kwargs)
+        theirs = cli.json("eval", "examples/thrower.lsys", *flags, "--json")
+        assert (ours.fitness, ours.status, ours.terms) == (
+            theirs["fitness"],
+            theirs["status"],
+            theirs["terms"],
+        ), kwargs
+
+
+def test_a_grown_creature_is_the_command_lines(root, cli):
+    text = (root / "examples/quadruped.lsys").read_text()
+    creature = ontogeny.grow(text)
+    theirs = cli.json("grow", "examples/quadruped.lsys", "--json")
+    assert creature.parts == theirs["parts"]
+    assert creature.neurons == theirs["neurons"]
+    assert creature.joints == sum(theirs["joints"].values())
+    assert json.loads(creature.to_json()) == json.loads(ontogeny.load(root / "examples/quadruped.lsys").to_json())
+
+
+def test_a_creature_json_loads_back_to_the_same_evaluation(tmp_path):
+    creature = ontogeny.grow(TWO_BOXES)
+    path = tmp_path / "creature.json"
+    path.write_text(creature.to_json())
+    again = ontogeny.load(path)
+    assert ontogeny.evaluate(again, seconds=1).fitness == ontogeny.evaluate(creature, seconds=1).fitness
+
+
+def test_derive_gives_the_command_lines_frames(root, cli):
+    frames = ontogeny.derive((root / "examples/algae.lsys").read_text())
+    lines = cli("derive", "examples/algae.lsys").splitlines()
+    assert [f"{int(t)}: {modules}" for t, modules, env in frames] == lines
+
+
+def test_evaluate_many_equals_evaluate_one_by_one_in_order(root):
+    creatures = [
+        ontogeny.load(root / CHAIN),
+        ontogeny.grow(TWO_BOXES),
+        ontogeny.load(root / "examples/quadruped.lsys"),
+        ontogeny.grow("axiom: forward(0.5)\n"),
+    ]
+    alone = [ontogeny.evaluate(c, seconds=1) for c in creatures]
+    together = ontogeny.evaluate_many(creatures, seconds=1, threads=2)
+    assert [(e.fitness, e.status, e.terms) for e in together] == [
+        (e.fitness, e.status, e.terms) for e in alone
+    ]
+    assert ontogeny.evaluate_many([], seconds=1) == []
+
+
+def test_a_direct_genome_develops_as_its_grammar_grows():
+    text = "axiom: forward(1) [ revolute forward(0.5) output(1) ] revolute forward(1) output(1)\n"
+    a = ontogeny.genome(text, "direct")
+    b = ontogeny.grow(text)
+    assert a.to_json() == b.to_json()
+    assert ontogeny.evaluate(a, seconds=1).fitness == ontogeny.evaluate(b, seconds=1).fitness
+
+
+def test_arrays_have_the_documented_shapes(root):
+    creature = ontogeny.load(root / CHAIN)
+    assert creature.sizes.shape == (10, 3)
+    assert creature.positions.shape == (10, 3)
+    assert creature.orientations.shape == (10, 4)
+    assert creature.sizes.dtype == np.float64
+    recorded = ontogeny.evaluate(creature, seconds=1, record=True)
+    frames = recorded.times.shape[0]
+    assert frames > 10
+    assert recorded.trajectory.shape == (frames, 10, 3)
+    assert np.all(np.diff(recorded.times) > 0)
+    plain = ontogeny.evaluate(creature, seconds=1)
+    assert plain.trajectory is None and plain.times is None
+    assert plain.fitness == recorded.fitness
+
+
+def test_a_malformed_grammar_raises_value_error_with_its_line_and_column(tmp_path):
+    with pytest.raises(ValueError, match=r"<string>:3:4"):
+        ontogeny.grow("axiom: A\nderivation length: 2\nA -> A B\n")
+    path = tmp_path / "bad.lsys"
+    path.write_text("axiom: forward(\n")
+    with pytest.raises(ValueError, match=str(path) + r":\d+:\d+"):
+        ontogeny.load(path)
+
+
+def test_a_runaway_grammar_and_nan_parameters_raise_value_error():
+    with pytest.raises(ValueError, match="grew past"):
+        ontogeny.grow("axiom: A\nderivation length: 100\nA --> A A\n")
+    with pytest.raises(ValueError, match="division by zero"):
+        ontogeny.grow("axiom: forward(0/0)\n")
+    with pytest.raises(ValueError, match="seconds"):
+        ontogeny.evaluate(ontogeny.grow(TWO_BOXES), seconds=math.nan)
+
+
+def test_a_missing_file_raises_file_not_found(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        ontogeny.load(tmp_path / "nothing.lsys")
+    with pytest.raises(FileNotFoundError):
+        ontogeny.Run(tmp_path / "no-run")
+
+
+def test_unknown_names_raise_value_error_listing_the_known_ones():
+    creature = ontogeny.grow(TWO_BOXES)
+    with pytest.raises(ValueError, match="unknown task 'swim'.*walker"):
+        ontogeny.evaluate(creature, "swim")
+    with pytest.raises(ValueError, match="unknown fitness"):
+        ontogeny.evaluate(creature, fitness="speed")
+    with pytest.raises(ValueError, match="unknown setting"):
+        ontogeny.evaluate(creature, setting="coarse")
+    with pytest.raises(ValueError, match="unknown encoding"):
+        ontogeny.genome("axiom: forward(1)\n", "dna")
+    with pytest.raises(ValueError, match="threads"):
+        ontogeny.evaluate_many([creature], threads=0)
+
+
+def test_a_file_that_is_not_a_creature_raises_value_error(tmp_path):
+    path = tmp_path / "other.json"
+    path.write_text('{"hello": 1}')
+    with pytest.raises(ValueError, match="not a creature"):
+        ontogeny.load(path)
+
+
+def test_an_evolution_equals_the_command_lines_and_reads_back(tmp_path, cli):
+    flags = dict(pop=6, gens=2, seed=3, seconds=1, encoding="direct", setting="fast")
+    run = ontogeny.evolve(out=tmp_path / "py", threads=2, **flags)
+    cli(
+        "evolve", "--out", tmp_path / "cli", "--threads", "1",
+        *[a for k, v in flags.items() for a in (f"--{k}", str(v))],
+    )
+    theirs = cli.json("runs", "show", tmp_path / "cli", "--json")["generations"]
+    ours = run.generations()
+    assert len(ours) == 2
+    assert [g["best"] for g in ours] == [g["best"] for g in theirs]
+    assert [g["mean"] for g in ours] == [g["mean"] for g in theirs]
+    individuals = run.individuals(1)
+    assert len(individuals) == 6
+    assert {"fitness", "status", "genome_text", "parts", "terms"} <= set(individuals[0])
+    assert len(run.individuals()) == 12
+    assert ontogeny.Run(tmp_path / "py").settings()["encoding"] == "direct"
+    with pytest.raises(ValueError, match="already holds a run"):
+        ontogeny.evolve(out=tmp_path / "py", **flags)
+
+
+def test_a_run_reads_into_pandas(tmp_path):
+    pd = pytest.importorskip("pandas")
+    run = ontogeny.evolve(out=tmp_path / "run", pop=6, gens=2, seconds=1, encoding="direct", setting="fast")
+    frame = run.to_pandas()
+    assert isinstance(frame, pd.DataFrame)
+    assert list(frame["generation"]) == [0, 1]
+    assert len(run.to_pandas("individuals")) == 12
+
+
+def test_a_runs_best_genome_loads_and_evaluates_as_the_command_line(tmp_path, cli):
+    ontogeny.evolve(out=tmp_path / "graph", encoding="graph", pop=6, gens=2, seconds=1, setting="fast")
+    best = tmp_path / "graph" / "best.json"
+    ours = ontogeny.evaluate(ontogeny.load(best), seconds=1, setting="fast")
+    theirs = cli.json("eval", best, "--task", "walker", "--seconds", "1", "--setting", "fast", "--json")
+    assert (ours.fitness, ours.status) == (theirs["fitness"], theirs["status"])
+    text = best.read_text()
+    assert ontogeny.genome(text, "graph").to_json() == ontogeny.load(best).to_json()

@@ -1,0 +1,158 @@
+//! Reading the creature a file describes, whatever its kind: an L-system (`.lsys`, a grammar
+//! or a direct genome, grown to its last frame), a `creature.json`, or a graph genome's JSON
+//! (a run's `best.json`), each checked before use. `ontogeny eval`, `export` and `bench` and
+//! the Python package read their creature through [`load_creature`].
+
+use std::path::{Path, PathBuf};
+
+use crate::creature::{Creature, Severity};
+use crate::develop::{BuildOptions, grow_last};
+use crate::lang::{Diagnostic, DiagnosticKind, FileKind};
+use crate::lsystem::{DeriveOptions, LSystem, print};
+
+use super::{GraphGenome, GraphLimits};
+
+/// How an L-system file is grown into its creature (a JSON file ignores all but `max_parts`).
+#[derive(Clone, Debug)]
+pub struct LoadOptions {
+    /// The derivation's options (seed, environment, continuous time, most modules).
+    pub derive: DeriveOptions,
+    /// Discrete derivation steps (default: the file's `derivation length:`).
+    pub steps: Option<u64>,
+    /// Most parts: a creature grown from an L-system with more is invalid, a
+    /// `creature.json` with more is refused.
+    pub max_parts: usize,
+}
+
+impl Default for LoadOptions {
+    fn default() -> Self {
+        LoadOptions {
+            derive: DeriveOptions::default(),
+            steps: None,
+            max_parts: BuildOptions::default().max_parts,
+        }
+    }
+}
+
+/// A creature read from a file, with the notes and warnings to show its reader (a grammar
+/// without a derivation length, the builder's warnings).
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    /// The creature (an L-system's may be invalid: its problems say why).
+    pub creature: Creature,
+    /// Notes and warnings, one line each, in the order they arose.
+    pub notes: Vec<String>,
+}
+
+/// Why a file gave no creature.
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    /// The file could not be read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        source: std::io::Error,
+    },
+    /// The file is not a usable creature: a malformed grammar (with its line and column), a
+    /// file of another kind, a creature out of bounds.
+    #[error("{0}")]
+    Bad(Diagnostic),
+}
+
+impl From<Diagnostic> for LoadError {
+    fn from(d: Diagnostic) -> Self {
+        LoadError::Bad(d)
+    }
+}
+
+fn bad(message: String) -> LoadError {
+    LoadError::Bad(Diagnostic::without_location(
+        DiagnosticKind::Semantic,
+        message,
+    ))
+}
+
+/// Reads the creature `file` describes: an L-system grown to its last frame with `options`
+/// (invalid beyond `max_parts` parts; `progress` sees the growth's fraction done), a
+/// `creature.json`, which must be well formed and have at most `max_parts` parts, or a graph
+/// genome's JSON (checked against the default limits before it develops, and developed with
+/// them). A file is a JSON file by its `.json` extension.
+pub fn load_creature(
+    file: &Path,
+    options: &LoadOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Loaded, LoadError> {
+    if file.extension().is_some_and(|e| e == "json") {
+        let text = std::fs::read_to_string(file).map_err(|source| LoadError::Read {
+            path: file.to_path_buf(),
+            source,
+        })?;
+        return creature_json(file, &text, options.max_parts).map(|creature| Loaded {
+            creature,
+            notes: Vec::new(),
+        });
+    }
+    let lsys = LSystem::from_path(file)?;
+    grow_grammar(&lsys, options, progress)
+}
+
+/// The creature of a JSON file's `text`: a graph genome (developed with the default limits),
+/// or a creature, well formed and with at most `max_parts` parts; a file that is neither (a
+/// recording, ...) is refused with what it is.
+fn creature_json(file: &Path, text: &str, max_parts: usize) -> Result<Creature, LoadError> {
+    match FileKind::of(file, text.as_bytes()) {
+        FileKind::GraphGenome => {
+            let limits = GraphLimits::default();
+            let genome = GraphGenome::from_text(text, &limits)
+                .map_err(|e| bad(format!("{}: {e}", file.display())))?;
+            return Ok(genome.creature(limits.max_parts));
+        }
+        FileKind::Creature | FileKind::Json | FileKind::Grammar => {}
+        other => return Err(other.refusal(file, "a creature").into()),
+    }
+    let creature: Creature = serde_json::from_str(text)
+        .map_err(|e| bad(format!("{}: not a creature: {e}", file.display())))?;
+    creature.check_file(max_parts).map_err(|problem| {
+        bad(format!(
+            "{}: not a usable creature: {problem}",
+            file.display()
+        ))
+    })?;
+    Ok(creature)
+}
+
+/// Grows `lsys` to its last frame with `options`, as `ontogeny grow` does; the notes are the
+/// mode's ([`print::check_mode`]) and the builder's warnings (its errors make the creature
+/// invalid, which an evaluation reports).
+pub fn grow_grammar(
+    lsys: &LSystem,
+    options: &LoadOptions,
+    progress: &mut dyn FnMut(f64),
+) -> Result<Loaded, LoadError> {
+    let mut notes: Vec<String> =
+        print::check_mode(lsys, &options.derive, options.steps, "building")?
+            .into_iter()
+            .collect();
+    let build_options = BuildOptions {
+        max_parts: options.max_parts,
+        ..BuildOptions::default()
+    };
+    let creature = grow_last(
+        lsys,
+        &options.derive,
+        options.steps,
+        &build_options,
+        progress,
+    )?
+    .creature;
+    notes.extend(
+        creature
+            .problems
+            .iter()
+            .filter(|p| p.severity == Severity::Warning)
+            .map(|p| p.to_string()),
+    );
+    Ok(Loaded { creature, notes })
+}
