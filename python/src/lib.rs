@@ -152,6 +152,21 @@ fn derive_options(
     }
 }
 
+/// How to grow a creature from a grammar: `steps` discrete steps, or the derivation options.
+fn load_options(
+    steps: Option<u64>,
+    seed: Option<u64>,
+    time: Option<f64>,
+    dt: Option<f64>,
+    env: Option<Vec<(usize, f64)>>,
+) -> LoadOptions {
+    LoadOptions {
+        derive: derive_options(seed, time, dt, env),
+        steps,
+        ..LoadOptions::default()
+    }
+}
+
 /// The name a grammar given as text goes by in messages.
 const TEXT_NAME: &str = "<string>";
 
@@ -282,11 +297,7 @@ fn grow(
     env: Option<Vec<(usize, f64)>>,
 ) -> PyResult<PyCreature> {
     let lsys = LSystem::from_text(TEXT_NAME, text).map_err(diagnostic_error)?;
-    let options = LoadOptions {
-        derive: derive_options(seed, time, dt, env),
-        steps,
-        ..LoadOptions::default()
-    };
+    let options = load_options(steps, seed, time, dt, env);
     let loaded = py
         .detach(|| grow_grammar(&lsys, &options, &mut |_| {}))
         .map_err(load_error)?;
@@ -307,11 +318,7 @@ fn load(
     env: Option<Vec<(usize, f64)>>,
 ) -> PyResult<PyCreature> {
     require_exists(&path)?;
-    let options = LoadOptions {
-        derive: derive_options(seed, time, dt, env),
-        steps,
-        ..LoadOptions::default()
-    };
+    let options = load_options(steps, seed, time, dt, env);
     let loaded = py
         .detach(|| load_creature(&path, &options, &mut |_| {}))
         .map_err(load_error)?;
