@@ -1,6 +1,6 @@
 //! Where evaluations run: on this process's threads (rayon), or — in a build with the `mpi`
 //! feature started by an MPI launcher (`mpirun`, `srun`) — over every rank of the job
-//! ([`super::mpi`]). The genetic algorithm hands a batch of creatures to
+//! (`evolve::mpi`, with the feature). The genetic algorithm hands a batch of creatures to
 //! [`Evaluator::evaluate`] and gets their evaluations back in the same order. An evaluation is
 //! a pure function of the creature and the task, so where it runs never changes a result.
 //!
@@ -24,7 +24,7 @@ pub enum Evaluator {
 }
 
 impl Evaluator {
-    /// This process's evaluator: [`Evaluator::Mpi`] on rank 0 of an MPI job of several ranks
+    /// This process's evaluator: `Evaluator::Mpi` on rank 0 of an MPI job of several ranks
     /// that [`join_cluster`] joined, [`Evaluator::Local`] otherwise.
     pub fn current() -> Evaluator {
         #[cfg(feature = "mpi")]
