@@ -95,17 +95,14 @@ fn evolve_refuses_a_step_setting_out_of_range_at_once_naming_the_key_and_writes_
             out.to_str().unwrap(),
         ]);
         assert_eq!(o.status.code(), Some(2), "{line}: {}", stderr(&o));
-        // The key is pointed at where the file sets it (`dt`, the old name of
-        // `control_step`, is named after the file).
+        // The key is pointed at where the file sets it (`dt` too, the old name of
+        // `control_step`).
         let key = line.split(" = ").next().unwrap();
-        let expected = match key {
-            "dt" => format!("error: {}: {message}\n", config.display()),
-            _ => format!(
-                "error: {message}\n --> {}:2:{}\n",
-                config.display(),
-                key.len() + 4
-            ),
-        };
+        let expected = format!(
+            "error: {message}\n --> {}:2:{}\n",
+            config.display(),
+            key.len() + 4
+        );
         assert!(stderr(&o).starts_with(&expected), "{line}: {}", stderr(&o));
         assert!(!out.exists(), "{line}: a run directory was written");
     }
