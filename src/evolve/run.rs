@@ -118,9 +118,6 @@ pub struct GenerationReport {
     pub evaluation_seconds: f64,
     /// Children made by mutation so far because the encoding lacks an operator.
     pub fallbacks: Fallbacks,
-    /// The best individual re-walked at the fine reference setting (`None` when the run's
-    /// `verify_best` is off).
-    pub best_fine: Option<FineEvaluation>,
 }
 
 /// A run: its directory, settings, genetic algorithm and store.
@@ -584,7 +581,7 @@ impl<G: Genome> Run<G> {
             let evaluation_seconds = started.elapsed().as_secs_f64();
             let mut stats = GenerationRecord {
                 index: generation,
-                best_fine: best_fine.clone(),
+                best_fine,
                 ..GenerationRecord::of(&population, evaluations)
             };
             self.record(&population, &mut stats, started)?;
@@ -595,7 +592,6 @@ impl<G: Genome> Run<G> {
                 wall_seconds,
                 evaluation_seconds,
                 fallbacks: fallbacks.clone(),
-                best_fine,
             });
         }
         Ok(())

@@ -13,7 +13,7 @@ use super::store::{RunStore, StoreError};
 /// A generation's progress line: its best (and the best's fine reference), mean, valid share
 /// and speed, after the task's `fitness` label.
 pub fn generation_line(fitness: &str, r: &GenerationReport) -> String {
-    let fine = match &r.best_fine {
+    let fine = match &r.stats.best_fine {
         Some(f) => format!(" (fine reference {:.4})", f.fitness),
         None => String::new(),
     };
@@ -137,7 +137,7 @@ impl RunTally {
                 "note: the {encoding} encoding lacks an operator of the schedule; {fallbacks} children of this run were made by mutation instead (see log.txt)"
             )));
         }
-        let fine = match &r.best_fine {
+        let fine = match &r.stats.best_fine {
             Some(f) if f.status == "ok" => format!(" (fine reference {:.6})", f.fitness),
             Some(f) => format!(" (fine reference {:.6}, {})", f.fitness, f.status),
             None => String::new(),
@@ -152,7 +152,7 @@ impl RunTally {
             self.evaluations as f64 / wall.max(1e-9),
             (wall - self.evaluating).max(0.0) / wall.max(1e-9) * 100.0
         )));
-        if let Some(f) = &r.best_fine
+        if let Some(f) = &r.stats.best_fine
             && exploits_stepping(r.stats.best, f.fitness)
         {
             lines.push(Line::Message(format!(
@@ -460,7 +460,10 @@ mod tests {
             reused: 0,
             wall_seconds: 2.0,
             evaluations_per_second: 5.0,
-            best_fine: None,
+            best_fine: Some(FineEvaluation {
+                fitness: fine,
+                status: "ok".into(),
+            }),
         };
         GenerationReport {
             generation,
@@ -471,10 +474,6 @@ mod tests {
                 crossover: 3,
                 graft: 0,
             },
-            best_fine: Some(FineEvaluation {
-                fitness: fine,
-                status: "ok".into(),
-            }),
         }
     }
 
