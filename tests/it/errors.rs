@@ -243,74 +243,82 @@ fn lone_carriage_returns_end_lines_in_error_positions() {
 
 #[test]
 fn syntax_errors_in_plain_words() {
-    // The ways to start a value (a sign, a name, a number, ...) are "a value", once.
-    let shown = compile_error("axiom: a\na --> b(1 +)\n", DiagnosticKind::Syntax, 2);
-    assert!(shown.contains("expected a value, found ')'"), "{shown}");
-    // An arrow where a value should be is named whole.
-    let shown = compile_error("axiom: A(1)\nA(x) : x > --> B\n", DiagnosticKind::Syntax, 2);
-    assert!(shown.contains("expected a value, found '-->'"), "{shown}");
-    // The binary operators are "an operator"; in an argument list ',' and ')' are named.
+    // (grammar, the line the error is on, what the message says)
+    let cases = [
+        // The ways to start a value (a sign, a name, a number, ...) are "a value", once.
+        ("axiom: a\na --> b(1 +)\n", 2, "expected a value, found ')'"),
+        // An arrow where a value should be is named whole.
+        (
+            "axiom: A(1)\nA(x) : x > --> B\n",
+            2,
+            "expected a value, found '-->'",
+        ),
+        // The binary operators are "an operator"; in an argument list ',' and ')' are named.
+        (
+            "axiom: A\nA --> B(1 2)\n",
+            2,
+            "expected an operator, ',', or ')', found '2'",
+        ),
+        (
+            "axiom: A\nA --> B(1, f(2 33))\n",
+            2,
+            "expected an operator, ',', or ')', found '33'",
+        ),
+        // A bracketing parenthesis closes with ')' alone.
+        (
+            "axiom: A\nA : (1 2) --> B\n",
+            2,
+            "expected an operator or ')', found '2'",
+        ),
+        // Outside parentheses, the line may end instead.
+        (
+            "axiom: A\nA --> B : 0.5 : 2\n",
+            2,
+            "expected end of line or an operator, found ':'",
+        ),
+        // A header line with an error is reported as that header, not as a rule.
+        (
+            "seed: x\naxiom: A\n",
+            1,
+            "expected a whole number, found 'x'\n --> bad.lsys:1:7",
+        ),
+        (
+            "axiom: A\ntiming: fast\n",
+            2,
+            "expected 'exact' or 'iterative', found 'fast'",
+        ),
+        // A header without its colon.
+        ("axiom a\n", 1, "a header ends with a colon: 'axiom: ...'"),
+        (
+            "derivation length 3\naxiom: a\n",
+            1,
+            "'derivation length: ...'",
+        ),
+        // A header in capitals reads as a module: the note says headers are lower case.
+        (
+            "Axiom: A\nA --> A B\n",
+            1,
+            "headers are written in lower case: 'axiom:'",
+        ),
+        (
+            "axiom: a\nDerivation Length: 3\n",
+            2,
+            "'derivation length:'",
+        ),
+        // A space between a module's name and its parameters.
+        (
+            "axiom: a\na --> forward (1)\n",
+            2,
+            "parameters follow a module's name with no space between: 'forward(...)'",
+        ),
+    ];
+    for (text, line, expected) in cases {
+        let shown = compile_error(text, DiagnosticKind::Syntax, line);
+        assert!(shown.contains(expected), "{text:?}: {shown}");
+    }
+    // An argument list names its own closers, not every operator.
     let shown = compile_error("axiom: A\nA --> B(1 2)\n", DiagnosticKind::Syntax, 2);
-    assert!(
-        shown.contains("expected an operator, ',', or ')', found '2'"),
-        "{shown}"
-    );
     assert!(!shown.contains("'||'"), "{shown}");
-    let shown = compile_error("axiom: A\nA --> B(1, f(2 33))\n", DiagnosticKind::Syntax, 2);
-    assert!(
-        shown.contains("expected an operator, ',', or ')', found '33'"),
-        "{shown}"
-    );
-    // A bracketing parenthesis closes with ')' alone.
-    let shown = compile_error("axiom: A\nA : (1 2) --> B\n", DiagnosticKind::Syntax, 2);
-    assert!(
-        shown.contains("expected an operator or ')', found '2'"),
-        "{shown}"
-    );
-    // Outside parentheses, the line may end instead.
-    let shown = compile_error("axiom: A\nA --> B : 0.5 : 2\n", DiagnosticKind::Syntax, 2);
-    assert!(
-        shown.contains("expected end of line or an operator, found ':'"),
-        "{shown}"
-    );
-    // A header line with an error is reported as that header, not as a rule.
-    let shown = compile_error("seed: x\naxiom: A\n", DiagnosticKind::Syntax, 1);
-    assert!(
-        shown.contains("expected a whole number, found 'x'"),
-        "{shown}"
-    );
-    assert!(shown.contains("bad.lsys:1:7"), "{shown}");
-    let shown = compile_error("axiom: A\ntiming: fast\n", DiagnosticKind::Syntax, 2);
-    assert!(
-        shown.contains("expected 'exact' or 'iterative', found 'fast'"),
-        "{shown}"
-    );
-    // A header without its colon.
-    let shown = compile_error("axiom a\n", DiagnosticKind::Syntax, 1);
-    assert!(
-        shown.contains("a header ends with a colon: 'axiom: ...'"),
-        "{shown}"
-    );
-    let shown = compile_error("derivation length 3\naxiom: a\n", DiagnosticKind::Syntax, 1);
-    assert!(shown.contains("'derivation length: ...'"), "{shown}");
-    // A header in capitals reads as a module: the note says headers are lower case.
-    let shown = compile_error("Axiom: A\nA --> A B\n", DiagnosticKind::Syntax, 1);
-    assert!(
-        shown.contains("headers are written in lower case: 'axiom:'"),
-        "{shown}"
-    );
-    let shown = compile_error(
-        "axiom: a\nDerivation Length: 3\n",
-        DiagnosticKind::Syntax,
-        2,
-    );
-    assert!(shown.contains("'derivation length:'"), "{shown}");
-    // A space between a module's name and its parameters.
-    let shown = compile_error("axiom: a\na --> forward (1)\n", DiagnosticKind::Syntax, 2);
-    assert!(
-        shown.contains("parameters follow a module's name with no space between: 'forward(...)'"),
-        "{shown}"
-    );
     // ... also when the module ends an axiom line (the line is read as the header it is).
     for (text, word, column) in [
         ("axiom: forward (1)\n", "forward", 16),
