@@ -20,7 +20,7 @@ use ontogeny::evolve::run::{Run, exploits_stepping};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::task::{Evaluation, TaskSpec};
 
-use crate::util::{ontogeny_command, refused, scratch_dir, succeeded};
+use crate::util::{evolve_walkers, ontogeny_command, refused, scratch_dir, succeeded};
 
 /// Every encoding the tests run for.
 const ENCODINGS: [&str; 4] = ["lsystem", "lsystem-continuous", "direct", "graph"];
@@ -42,25 +42,10 @@ fn run_of(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Output {
 
 /// The command of [`run_of`], to run or spawn.
 fn evolve_command(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Command {
-    let mut c = ontogeny_command();
-    c.args([
-        "evolve",
-        "--encoding",
-        encoding,
-        "--task",
-        "walker",
-        "--pop",
-        "12",
-        "--gens",
-        gens,
-        "--seconds",
-        "1",
-        "--seed",
-        "5",
-        "--out",
-    ])
-    .arg(out)
-    .args(extra);
+    let mut c = evolve_walkers(encoding, "12");
+    c.args(["--gens", gens, "--seconds", "1", "--seed", "5", "--out"])
+        .arg(out)
+        .args(extra);
     c
 }
 

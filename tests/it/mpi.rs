@@ -9,7 +9,7 @@ use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use crate::evolve::contents;
-use crate::util::{ontogeny_command, refused, scratch_dir, succeeded};
+use crate::util::{evolve_walkers, ontogeny_command, refused, scratch_dir, succeeded};
 
 /// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {
@@ -35,17 +35,8 @@ fn under_mpirun(ranks: usize, command: &Command) -> Command {
 /// `ontogeny evolve` of `encoding` into `out`: walkers, 8 individuals, `gens` generations of
 /// `seconds` s walks, seed 5.
 fn evolve(encoding: &str, out: &Path, gens: &str, seconds: &str) -> Command {
-    let mut command = ontogeny_command();
+    let mut command = evolve_walkers(encoding, "8");
     command
-        .args([
-            "evolve",
-            "--encoding",
-            encoding,
-            "--task",
-            "walker",
-            "--pop",
-            "8",
-        ])
         .args(["--gens", gens, "--seconds", seconds, "--seed", "5", "--out"])
         .arg(out);
     command

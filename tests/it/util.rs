@@ -211,23 +211,27 @@ pub fn make_version_1(path: &Path) {
     .unwrap();
 }
 
+/// `ontogeny evolve --encoding ENCODING --task walker --pop POP`, for a test to add the run's
+/// size, seed and directory to.
+pub fn evolve_walkers(encoding: &str, pop: &str) -> Command {
+    let mut command = ontogeny_command();
+    command.args([
+        "evolve",
+        "--encoding",
+        encoding,
+        "--task",
+        "walker",
+        "--pop",
+        pop,
+    ]);
+    command
+}
+
 /// A tiny run of `encoding` into `out`: walkers, a population of 6, 2 generations of 1 s walks
 /// (and `extra` flags); asserts that it succeeded.
 pub fn tiny_run(encoding: &str, out: &Path, extra: &[&str]) -> Output {
-    let output = ontogeny_command()
-        .args([
-            "evolve",
-            "--encoding",
-            encoding,
-            "--task",
-            "walker",
-            "--pop",
-            "6",
-            "--gens",
-            "2",
-            "--seconds",
-            "1",
-        ])
+    let output = evolve_walkers(encoding, "6")
+        .args(["--gens", "2", "--seconds", "1"])
         .args(extra)
         .arg("--out")
         .arg(out)
