@@ -11,7 +11,8 @@
 //! [`export`] writes a creature with the simulator's settings in other simulators' formats
 //! (MuJoCo's MJCF). [`view`] serves a local web page that shows creatures growing, recordings
 //! playing and runs' progress in the browser. [`output`] writes every file for the user whole or
-//! not at all, and never over something that is not a regular file.
+//! not at all, never over something that is not a regular file, and into a folder only when it
+//! is new, empty or Ontogeny's own; [`input`] reads every file with a cap on its size.
 
 #![warn(missing_docs)]
 
@@ -21,6 +22,7 @@ pub mod encoding;
 pub mod environment;
 pub mod evolve;
 pub mod export;
+pub mod input;
 pub mod lang;
 pub mod lsystem;
 pub mod output;

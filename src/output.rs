@@ -119,7 +119,7 @@ pub fn wrote<P: AsRef<Path>>(paths: &[P]) -> String {
 /// Moves the file `source` (written by another program, e.g. a browser's screenshot) to
 /// `target` as [`write`](fn@write) would write it; `source` is left in place for its owner to remove.
 pub fn copy_into_place(source: &Path, target: &Path) -> Result<(), OutputError> {
-    let bytes = std::fs::read(source).map_err(|e| OutputError::Io {
+    let bytes = crate::input::read(source).map_err(|e| OutputError::Io {
         path: source.into(),
         source: e,
     })?;

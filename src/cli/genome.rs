@@ -29,7 +29,7 @@ pub struct GenomeArgs {
 pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
     match &args.verb {
         GenomeVerb::Show { file } => {
-            let text = std::fs::read_to_string(file)
+            let text = ontogeny::input::read_to_string(file)
                 .with_context(|| format!("cannot read {}", file.display()))?;
             let shown = show_genome_file(file, &text).map_err(|e| match e {
                 ShowError::Grammar(d) => anyhow::Error::new(d),

@@ -40,7 +40,7 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         return replay_run(&args.dir, args.generation, args.rank, args.fps);
     }
     let path = args.dir.join("recording.json");
-    let text = std::fs::read_to_string(&path)
+    let text = ontogeny::input::read_to_string(&path)
         .with_context(|| format!("cannot read {}", path.display()))?;
     let recording: Recording = serde_json::from_str(&text)
         .map_err(|e| super::bad(format!("{}: not a recording: {e}", path.display())))?;

@@ -85,7 +85,7 @@ pub fn load_creature(
     progress: &mut dyn FnMut(f64),
 ) -> Result<Loaded, LoadError> {
     if file.extension().is_some_and(|e| e == "json") {
-        let text = std::fs::read_to_string(file).map_err(|source| LoadError::Read {
+        let text = crate::input::read_to_string(file).map_err(|source| LoadError::Read {
             path: file.to_path_buf(),
             source,
         })?;

@@ -66,7 +66,8 @@ impl DirectoryLock {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
                 let mut holder = String::new();
-                let _ = file.read_to_string(&mut holder);
+                // The holder writes a line; a file grown past that is not read on.
+                let _ = (&mut file).take(4096).read_to_string(&mut holder);
                 let holder = holder.trim();
                 return Err(LockError::Held {
                     dir: dir.to_path_buf(),

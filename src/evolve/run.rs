@@ -358,7 +358,7 @@ impl<G: Genome> Run<G> {
         match &config.init {
             Some(file) => {
                 let path = dir.join(file);
-                let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+                let text = crate::input::read_to_string(&path).map_err(io(&path))?;
                 Ok(Some(
                     G::from_lsys(&text, &config.limits).map_err(|e| RunError::Corrupt(e.0))?,
                 ))

@@ -52,35 +52,23 @@ impl Source {
         })
     }
 
-    /// Reads a file; the path becomes the source's name. The path `-` reads standard input,
+    /// Reads a file ([`crate::input::read`]: within the cap on an input's size, a byte-order
+    /// mark left out); the path becomes the source's name. The path `-` reads standard input,
     /// named `<stdin>`.
     pub fn read(path: &std::path::Path) -> std::io::Result<Arc<Source>> {
         Source::from_bytes(path, Source::read_bytes(path)?)
     }
 
-    /// The bytes of the file at `path` (`-`: standard input).
+    /// The bytes of the file at `path` (`-`: standard input), as [`crate::input::read`] reads
+    /// them.
     pub fn read_bytes(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
-        if path.as_os_str() == "-" {
-            let mut bytes = Vec::new();
-            std::io::Read::read_to_end(&mut std::io::stdin(), &mut bytes)?;
-            Ok(bytes)
-        } else {
-            std::fs::read(path)
-        }
+        crate::input::read(path)
     }
 
     /// The source of `bytes` read from `path` (`-`: standard input, named `<stdin>`), which
     /// must be UTF-8 text.
     pub fn from_bytes(path: &std::path::Path, bytes: Vec<u8>) -> std::io::Result<Arc<Source>> {
-        let text = String::from_utf8(bytes).map_err(|e| {
-            std::io::Error::new(
-                std::io::ErrorKind::InvalidData,
-                format!(
-                    "not UTF-8 text (invalid byte at offset {})",
-                    e.utf8_error().valid_up_to()
-                ),
-            )
-        })?;
+        let text = crate::input::text(bytes)?;
         let name = if path.as_os_str() == "-" {
             "<stdin>".to_string()
         } else {

@@ -105,7 +105,7 @@ impl Target {
                 return target(Kind::Lsys);
             }
             // A file view cannot show is told what it is and which command takes it.
-            let kind = std::fs::read(path).map(|bytes| FileKind::of(path, &bytes));
+            let kind = crate::input::read(path).map(|bytes| FileKind::of(path, &bytes));
             if let Some(kind) = kind.ok().filter(|k| *k != FileKind::Grammar) {
                 return Err(ViewError::NotViewable(format!(
                     "{shown} is {}, not an .lsys file: {}",
@@ -239,7 +239,7 @@ fn grow_with_strings(
 /// [`lsys_data`]; the module strings are not stored there, so `string` is null).
 pub fn growth_data(dir: &Path) -> Result<Value, ViewError> {
     let path = dir.join("frames.jsonl");
-    let text = std::fs::read_to_string(&path)
+    let text = crate::input::read_to_string(&path)
         .map_err(|e| ViewError::BadFile(format!("cannot read {}: {e}", path.display())))?;
     let mut frames = Vec::new();
     for (i, line) in text.lines().enumerate() {
@@ -274,7 +274,7 @@ pub fn growth_data(dir: &Path) -> Result<Value, ViewError> {
 /// nothing was recorded ([`no_samples_reason`]); the page then shows the creature as built.
 pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
     let path = dir.join("recording.json");
-    let text = std::fs::read_to_string(&path)
+    let text = crate::input::read_to_string(&path)
         .map_err(|e| ViewError::BadFile(format!("cannot read {}: {e}", path.display())))?;
     let recording: crate::task::Recording = serde_json::from_str(&text).map_err(|e| {
         let what = if e.is_syntax() || e.is_eof() {

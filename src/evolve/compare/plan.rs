@@ -196,7 +196,7 @@ pub fn open(root: &Path) -> Result<(Manifest, Shared), CompareError> {
     let manifest: Manifest = toml::from_str(source.text())
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
     let path = root.join("evolve.toml");
-    let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+    let text = crate::input::read_to_string(&path).map_err(io(&path))?;
     let shared: Shared = toml::from_str(&text)
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
     // Both files may have been edited: their values get the checks of a new comparison's.
