@@ -1,4 +1,5 @@
-//! Writing output files: whole or not at all, and never over something that is not a file.
+//! Writing outputs: files whole or not at all, never over something that is not a file, and
+//! folders only when they are new, empty or Ontogeny's own.
 //!
 //! Every file Ontogeny writes for its user (pictures, animations, plots, recordings, exported
 //! models, reports) goes through [`write`](fn@write) or [`write_with`]: the content goes to a fresh
@@ -8,7 +9,15 @@
 //! `/dev/null`, a fifo, a socket, or a symbolic link, which is refused rather than followed or
 //! replaced) is refused before anything is written.
 //!
-//! What this room does not own: deciding where outputs go, or creating their directories.
+//! Every folder a verb writes its outputs into is first made ready by
+//! [`prepare_folder`] ([`folder`]): it must be missing, empty, or marked as Ontogeny's for the
+//! same kind of output, so that no file of the user's is replaced.
+//!
+//! What this module does not own: deciding where outputs go.
+
+pub mod folder;
+
+pub use folder::{FolderKind, check_folder, prepare_folder};
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -21,6 +30,45 @@ pub enum OutputError {
     #[error("{} exists and is not a regular file; refusing to replace it", path.display())]
     NotARegularFile {
         /// The target.
+        path: PathBuf,
+    },
+    /// The target is a symbolic link to nothing: neither followed nor replaced.
+    #[error(
+        "{} is a symbolic link to {}, which does not exist; refusing to write through it: \
+         remove the link, or choose another path",
+        path.display(),
+        target.display()
+    )]
+    DanglingLink {
+        /// The target.
+        path: PathBuf,
+        /// Where the link points.
+        target: PathBuf,
+    },
+    /// An output folder exists and holds files Ontogeny did not write there for this kind of
+    /// output ([`folder`]).
+    #[error(
+        "{} already holds files that {verb} did not write there ({found}); refusing to write \
+         into it: {advice}",
+        path.display()
+    )]
+    NotOurFolder {
+        /// The folder.
+        path: PathBuf,
+        /// One of the files found in it.
+        found: String,
+        /// The command that writes this kind of folder.
+        verb: &'static str,
+        /// What to do instead.
+        advice: String,
+    },
+    /// An output folder's path is taken by something that is not a folder.
+    #[error(
+        "{} exists and is not a folder; refusing to write into it: choose a new or empty folder",
+        path.display()
+    )]
+    NotAFolder {
+        /// The path.
         path: PathBuf,
     },
     /// The file could not be written (or its temporary file made, or renamed into place).
@@ -36,10 +84,15 @@ pub enum OutputError {
 
 /// Refuses a target that exists and is not a regular file; a missing target, or a regular
 /// file (which [`write`](fn@write) replaces), passes. A symbolic link is refused whatever it points to,
-/// since replacing it would cut the link and following it would write somewhere else.
+/// since replacing it would cut the link and following it would write somewhere else; one that
+/// points nowhere is refused as such ([`OutputError::DanglingLink`]).
 pub fn check_target(path: &Path) -> Result<(), OutputError> {
     match std::fs::symlink_metadata(path) {
         Ok(metadata) if metadata.file_type().is_file() => Ok(()),
+        Ok(metadata) if metadata.is_symlink() && !path.exists() => Err(OutputError::DanglingLink {
+            path: path.into(),
+            target: std::fs::read_link(path).unwrap_or_default(),
+        }),
         Ok(_) => Err(OutputError::NotARegularFile { path: path.into() }),
         Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
         Err(source) => Err(OutputError::Io {
@@ -231,6 +284,24 @@ mod tests {
         );
         assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
         assert_eq!(std::fs::read_to_string(&file).unwrap(), "kept");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_dangling_link_is_refused_in_words_and_left_as_it_is() {
+        let dir = scratch();
+        let link = dir.path().join("out.mjcf");
+        std::os::unix::fs::symlink("missing/model.xml", &link).unwrap();
+        assert_eq!(
+            write(&link, "x").unwrap_err().to_string(),
+            format!(
+                "{} is a symbolic link to missing/model.xml, which does not exist; refusing to \
+                 write through it: remove the link, or choose another path",
+                link.display()
+            )
+        );
+        assert!(std::fs::symlink_metadata(&link).unwrap().is_symlink());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 
     #[cfg(unix)]

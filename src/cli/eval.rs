@@ -4,10 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::Creature;
 use ontogeny::develop::BuildOptions;
+use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
 use ontogeny::sim::{JointModel, SimOptions};
 use ontogeny::task::flags::{self, TaskFlags};
@@ -111,13 +111,8 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let spec = task_spec(args)?;
     // A place to record into, checked before the evaluation runs.
     if let Some(dir) = &args.record {
-        if dir.exists() && !dir.is_dir() {
-            anyhow::bail!(super::bad(format!(
-                "--record {}: a file is there; give a directory (made if missing)",
-                dir.display()
-            )));
-        }
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        // Missing, empty, or a recording's: never a folder of the user's files.
+        ontogeny::output::check_folder(dir, FolderKind::Recording)?;
         super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
     }
     for flag in task_flags(args).inapplicable() {
@@ -134,6 +129,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         eprintln!("{warning}");
     }
     if let Some(dir) = &args.record {
+        ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
         write_recording(dir, &creature, &evaluation)?;
         let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
         eprintln!("{}", ontogeny::output::wrote(&files));
@@ -156,14 +152,14 @@ fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> 
 }
 
 /// Writes `DIR/recording.json` ([`Recording`]) and `DIR/behaviour.gif` (`fps` images per
-/// simulated second).
+/// simulated second) into `dir`, a folder made ready for them
+/// ([`ontogeny::output::prepare_folder`]).
 pub fn write_recording_at(
     dir: &Path,
     creature: &Creature,
     evaluation: &Evaluation,
     fps: f64,
 ) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let recording = Recording::of(creature, evaluation);
     ontogeny::output::write(
         &dir.join("recording.json"),

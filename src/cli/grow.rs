@@ -9,6 +9,7 @@ use ontogeny::creature::Summary;
 use ontogeny::develop::{BuildOptions, GrowthFrame, for_each_growth_frame, kept_frame_plan};
 use ontogeny::lang::Diagnostic;
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions, LSystem};
+use ontogeny::output::FolderKind;
 
 use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
 use ontogeny::render::growth::{growth_gif_note, growth_gif_steps, write_growth_gif};
@@ -50,7 +51,7 @@ fn write_out(
     shown: &[GrowthFrame],
     summary: &Summary,
 ) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    ontogeny::output::prepare_folder(dir, FolderKind::Growth)?;
     super::check_outputs(OUT_FILES.map(|f| dir.join(f)))?;
     let path = dir.join("creature.json");
     ontogeny::output::write(&path, serde_json::to_string_pretty(&last.creature)?)?;
@@ -112,8 +113,10 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         ..BuildOptions::default()
     };
     let steps = discrete_steps(&lsys, &options, args.development.steps, "growing")?;
-    // Outputs that are not regular files are refused before anything is grown.
+    // A folder of the user's, and outputs that are not regular files, are refused before
+    // anything is grown.
     if let Some(dir) = &args.out {
+        ontogeny::output::check_folder(dir, FolderKind::Growth)?;
         super::check_outputs(OUT_FILES.map(|f| dir.join(f)))?;
     }
     // With --out every frame is written: refused at once when there are too many.

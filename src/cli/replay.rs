@@ -101,7 +101,7 @@ fn replay_typed<G: Genome>(
     let out = dir
         .join("replay")
         .join(format!("gen-{generation}-rank-{rank}"));
-    std::fs::create_dir_all(&out).with_context(|| format!("cannot create {}", out.display()))?;
+    ontogeny::output::prepare_folder(&out, ontogeny::output::FolderKind::Replay)?;
     let genome_name = format!("genome.{}", G::TEXT_EXTENSION);
     let genome_path = out.join(&genome_name);
     let png = out.join("creature.png");

@@ -171,7 +171,11 @@ impl<G: Genome> Run<G> {
         init_text: Option<&str>,
     ) -> Result<Run<G>, RunError> {
         checked_settings(&config, "the run's settings")?;
-        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        // A run there is refused as one; a folder of the user's files as theirs.
+        if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&dir.join(STORE_FILE)) {
+            return Err(RunError::Exists(dir.to_path_buf()));
+        }
+        output::prepare_folder(dir, output::FolderKind::Run)?;
         let lock = DirectoryLock::acquire(dir)?;
         let store_path = dir.join(STORE_FILE);
         if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&store_path) {

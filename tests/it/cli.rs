@@ -749,7 +749,7 @@ fn eval_refuses_a_record_path_that_is_a_file_before_evaluating() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
         stderr(&o).starts_with(&format!(
-            "error: --record {}: a file is there; give a directory",
+            "error: {} exists and is not a folder; refusing to write into it",
             file.display()
         )),
         "{}",

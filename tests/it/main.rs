@@ -20,6 +20,7 @@ mod evaluate;
 mod evolve;
 mod export;
 mod fidelity;
+mod files;
 mod ga;
 mod genome_continuous;
 mod genome_direct;

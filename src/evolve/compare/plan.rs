@@ -163,14 +163,21 @@ pub fn create(
     manifest: &Manifest,
     shared: &Shared,
 ) -> Result<DirectoryLock, CompareError> {
-    std::fs::create_dir_all(root).map_err(io(root))?;
-    let lock = acquire(root)?;
     let path = root.join("compare.toml");
-    if path.exists() {
-        return Err(CompareError::Input(format!(
+    let exists = || {
+        CompareError::Input(format!(
             "{} already holds a comparison: complete it with `ontogeny compare --resume {0}`, or choose another --out",
             root.display()
-        )));
+        ))
+    };
+    if path.exists() {
+        return Err(exists());
+    }
+    // Missing, empty or a comparison's: never a folder of the user's files.
+    crate::output::prepare_folder(root, crate::output::FolderKind::Comparison)?;
+    let lock = acquire(root)?;
+    if path.exists() {
+        return Err(exists());
     }
     let settings = root.join("evolve.toml");
     let text = toml::to_string(shared).map_err(|e| CompareError::Other(e.to_string()))?;

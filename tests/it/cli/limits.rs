@@ -101,6 +101,8 @@ fn export_refuses_an_out_that_is_a_directory_and_leaves_it_intact() {
 fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
     use std::os::unix::fs::FileTypeExt;
     let dir = scratch("record-socket");
+    // A recording's folder (one of the user's files would be refused as theirs).
+    ontogeny::output::prepare_folder(&dir, ontogeny::output::FolderKind::Recording).unwrap();
     let socket = dir.join("behaviour.gif");
     let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
     let out = ontogeny(&[
@@ -128,6 +130,8 @@ fn eval_record_refuses_a_socket_before_evaluating_and_leaves_it_in_place() {
 #[test]
 fn grow_out_refuses_a_picture_that_is_a_directory_and_writes_nothing() {
     let dir = scratch("grow-out-directory");
+    // A growth's folder (one of the user's files would be refused as theirs).
+    ontogeny::output::prepare_folder(&dir, ontogeny::output::FolderKind::Growth).unwrap();
     std::fs::create_dir(dir.join("creature.png")).unwrap();
     assert_bad_input(
         &[
