@@ -19,7 +19,7 @@ use super::cache::EvaluationCache;
 use super::config::{RunConfig, check_settings, read_run_config};
 use super::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
 use super::key::EvaluationKey;
-use super::lock::{DirectoryLock, LockError};
+use super::lock::{DirectoryLock, LOCK_FILE, LockError};
 use super::plot::fitness_svg;
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
@@ -149,6 +149,34 @@ pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
     Ok(RunStore::open_read_only(&store)?.run()?.encoding)
 }
 
+/// Makes `dir` ready for a new run ([`output::prepare_folder`]): missing, empty, or a run's
+/// folder (one this version marked, or one an older version's killed start left, holding only
+/// the lock and the store's temporary file). A run an older version made, which carries no
+/// mark, is refused as a run; a folder of the user's files as theirs.
+fn claim_folder(dir: &Path) -> Result<(), RunError> {
+    let kind = output::FolderKind::Run;
+    if output::folder::is_marked(dir, kind) {
+        return Ok(());
+    }
+    if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&dir.join(STORE_FILE)) {
+        return Err(RunError::Exists(dir.to_path_buf()));
+    }
+    let partial = format!("{STORE_FILE}.partial");
+    let left_by_a_start = |name: &str| name == LOCK_FILE || name.starts_with(&partial);
+    let entries = std::fs::read_dir(dir).map(|entries| {
+        entries
+            .map(|e| e.map(|e| e.file_name().to_string_lossy().into_owned()))
+            .collect::<Result<Vec<_>, _>>()
+    });
+    if let Ok(Ok(names)) = entries
+        && !names.is_empty()
+        && names.iter().all(|n| left_by_a_start(n))
+    {
+        output::folder::mark(dir, kind)?;
+    }
+    Ok(output::prepare_folder(dir, kind)?)
+}
+
 /// The run's settings in range ([`check_settings`]); the error names `name`, where they come
 /// from, and the key.
 fn checked_settings<L>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
@@ -171,11 +199,7 @@ impl<G: Genome> Run<G> {
         init_text: Option<&str>,
     ) -> Result<Run<G>, RunError> {
         checked_settings(&config, "the run's settings")?;
-        // A run there is refused as one; a folder of the user's files as theirs.
-        if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&dir.join(STORE_FILE)) {
-            return Err(RunError::Exists(dir.to_path_buf()));
-        }
-        output::prepare_folder(dir, output::FolderKind::Run)?;
+        claim_folder(dir)?;
         let lock = DirectoryLock::acquire(dir)?;
         let store_path = dir.join(STORE_FILE);
         if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&store_path) {

@@ -136,11 +136,20 @@ pub fn check_folder(path: &Path, kind: FolderKind) -> Result<(), OutputError> {
 /// otherwise creates it (with its parents) if it is missing and marks it as `kind`'s.
 pub fn prepare_folder(path: &Path, kind: FolderKind) -> Result<(), OutputError> {
     check_folder(path, kind)?;
-    let io_error = |path: PathBuf| move |source| OutputError::Io { path, source };
-    std::fs::create_dir_all(path).map_err(io_error(path.into()))?;
+    std::fs::create_dir_all(path).map_err(|source| OutputError::Io {
+        path: path.into(),
+        source,
+    })?;
     if is_marked(path, kind) {
         return Ok(());
     }
+    mark(path, kind)
+}
+
+/// Marks the existing folder `path` as `kind`'s, for a verb that has recognised it as its own
+/// otherwise (a folder an older version made, which carries no mark).
+pub fn mark(path: &Path, kind: FolderKind) -> Result<(), OutputError> {
+    let io_error = |path: PathBuf| move |source| OutputError::Io { path, source };
     let mark = path.join(kind.mark());
     let mut file = std::fs::File::create(&mark).map_err(io_error(mark.clone()))?;
     writeln!(

@@ -74,3 +74,18 @@ fn the_room_check_sees_paths_and_skips_comments() {
     );
     assert!(rooms_used("//! the genetic algorithm (`crate::evolve`)").is_empty());
 }
+
+#[test]
+fn the_reader_and_the_writer_beside_the_rooms_import_no_room() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = vec![src.join("input.rs"), src.join("output.rs")];
+    rust_files(&src.join("output"), &mut files);
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(
+            rooms_used(&text).is_empty(),
+            "{} uses a room, so a room before it could not use it",
+            file.display()
+        );
+    }
+}

@@ -170,11 +170,14 @@ pub fn create(
             root.display()
         ))
     };
-    if path.exists() {
+    // A comparison an older version made carries no mark: refused as a comparison. One this
+    // version made is refused as one below, once its lock is free.
+    let kind = crate::output::FolderKind::Comparison;
+    if !crate::output::folder::is_marked(root, kind) && path.exists() {
         return Err(exists());
     }
     // Missing, empty or a comparison's: never a folder of the user's files.
-    crate::output::prepare_folder(root, crate::output::FolderKind::Comparison)?;
+    crate::output::prepare_folder(root, kind)?;
     let lock = acquire(root)?;
     if path.exists() {
         return Err(exists());
