@@ -23,9 +23,17 @@ use crate::util::tiny_run;
 /// The browser the tests drive: `$ONTOGENY_BROWSER`, else the first Chromium on the `PATH`.
 /// A browser test runs only when asked for by name, so a missing browser fails it.
 pub(crate) fn chromium() -> PathBuf {
-    std::env::var_os("ONTOGENY_BROWSER")
+    let named = std::env::var_os("ONTOGENY_BROWSER")
         .filter(|p| !p.is_empty())
-        .map(PathBuf::from)
+        .map(PathBuf::from);
+    if let Some(path) = &named {
+        assert!(
+            path.is_file(),
+            "ONTOGENY_BROWSER names {}, which is no file",
+            path.display()
+        );
+    }
+    named
         .or_else(|| {
             let dirs = std::env::var_os("PATH")?;
             [
