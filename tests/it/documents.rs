@@ -302,11 +302,19 @@ fn documented_commands_run() {
     });
 }
 
+/// A rule of [`CUT_DOWN`]: the start of the commands it cuts down, the sizes it replaces
+/// (from, to) and the flags it adds (flag, value).
+type CutDown = (
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    &'static [(&'static str, &'static str)],
+);
+
 /// How the slow commands are cut down to seconds: a command that starts with the first text
 /// has each size of the second that it gives replaced, and gets each flag of the third that it
 /// does not give already. Walks of 0.2 s, populations of 4 and small budgets; the generations
 /// are kept, so that resuming, extending and replaying a generation run as documented.
-const CUT_DOWN: &[(&str, &[(&str, &str)], &[(&str, &str)])] = &[
+const CUT_DOWN: &[CutDown] = &[
     (
         "ontogeny evolve --config ",
         &[],
