@@ -21,6 +21,7 @@ use std::time::{Duration, Instant};
 use serde_json::{Value, json};
 
 use super::{Developer, Kind, Target, ViewError};
+use crate::evolve::store::{RunStore, StoreError};
 use crate::lsystem::DeriveOptions;
 
 const INDEX_HTML: &str = include_str!("assets/index.html");
@@ -247,14 +248,32 @@ impl Server {
         }
     }
 
-    /// One of a run's generations, its individuals best first.
+    /// One of a run's generations, its individuals best first; a generation the run lacks is
+    /// not found (404), as for `/walk.json`.
     fn generation(&self, query: &str) -> Result<Value, ViewError> {
         let generation = number(query, "gen")?
             .ok_or_else(|| ViewError::BadRequest("generation.json needs ?gen=G".into()))?;
         if self.target.kind != Kind::Run {
             return Err(ViewError::NotFound("not a run".into()));
         }
+        self.stored_generation(generation)?;
         super::run_generation_data(&self.target.path, generation)
+    }
+
+    /// Refuses (404) a generation that the run has not stored whole, saying which it has.
+    fn stored_generation(&self, generation: u32) -> Result<(), ViewError> {
+        let unreadable = |e: StoreError| ViewError::BadFile(e.to_string());
+        let store =
+            RunStore::open_read_only(&self.target.path.join("run.sqlite")).map_err(unreadable)?;
+        match store.last_generation().map_err(unreadable)? {
+            None => Err(ViewError::NotFound(
+                "the run has no complete generation yet".to_string(),
+            )),
+            Some(last) if generation > last => Err(ViewError::NotFound(format!(
+                "there is no generation {generation}: the run has generations 0 to {last}"
+            ))),
+            Some(_) => Ok(()),
+        }
     }
 
     /// The page's data for the target, read afresh (so an edited file shows its changes).
@@ -294,6 +313,7 @@ impl Server {
     /// One of a run's individuals, developed.
     fn individual(&self, query: &str) -> Result<Value, ViewError> {
         let (generation, index, developer) = self.run_query(query, "index", "individual.json")?;
+        self.stored_generation(generation)?;
         let count = super::run_population_size(&self.target.path, generation)?;
         if index as usize >= count {
             return Err(ViewError::NotFound(format!(

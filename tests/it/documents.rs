@@ -1,19 +1,20 @@
 //! The documents cannot drift. The building commands' reference page lists exactly the
 //! commands of the one command table (`ontogeny::lang::commands`). Every `ontogeny` command
-//! shown in the README and the guide is run against the built binary, in order, in a scratch directory that holds the repository's
-//! `examples/`, `docs/` and `tests/fixtures/`.
+//! shown in the README and the guide is run against the built binary, in order, in a scratch
+//! directory that holds the repository's `examples/`, `docs/` and `tests/fixtures/`.
 //!
 //! A command is a line of a fenced `sh` block that starts with `ontogeny` or `cargo run
 //! --release --` (continued over lines ending in `\`; text after ` # ` is a comment). A block
 //! is marked by an HTML comment on the line before its fence:
 //! - `<!-- slow -->`: its commands take over a minute, or need the output of one that does;
-//!   they run only in
-//!   `documented_slow_commands_run`, which is ignored (`cargo test --release -- --ignored`);
+//!   `documented_slow_commands_run_cut_down_to_seconds` runs them, in order, with their sizes
+//!   cut down ([`CUT_DOWN`]): the same verbs, files, flags and sequence, in seconds;
 //! - `<!-- fails -->`: its commands show a refusal; each must exit with code 2;
 //! - `<!-- not run -->`: shown, never run (a cluster script, a command needing a display).
 //!
 //! `ontogeny view` without `--snapshot` serves until stopped: it is started, must say where it
-//! serves within ten seconds, and is then stopped.
+//! serves within ten seconds, and is then stopped. `ontogeny view ... --snapshot` needs
+//! Chromium: it runs only in [`browser`], ignored unless asked for.
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -256,18 +257,19 @@ fn run(dir: &Path, d: &Documented) -> (Option<i32>, String) {
     (output.status.code(), said)
 }
 
-/// Runs the documented commands of the given marks, in order, in one scratch directory;
+/// Whether a documented command needs a browser: `ontogeny view ... --snapshot`.
+fn needs_browser(d: &Documented) -> bool {
+    d.command.starts_with("ontogeny view ") && d.command.contains("--snapshot")
+}
+
+/// Runs the documented commands that `chosen` picks, in order, in one scratch directory;
 /// panics listing every command that did not do what its mark says.
-fn run_documented(name: &str, marks: &[Mark]) {
+fn run_documented(name: &str, chosen: impl Fn(&Documented) -> bool) {
     let dir = workplace(name);
     let mut failures = Vec::new();
     let mut count = 0;
     for d in documented() {
-        if d.mark == Mark::NotRun {
-            continue;
-        }
-        // A command that needs the output of a slow one is marked slow too.
-        if !marks.contains(&d.mark) {
+        if d.mark == Mark::NotRun || !chosen(&d) {
             continue;
         }
         count += 1;
@@ -294,13 +296,196 @@ fn run_documented(name: &str, marks: &[Mark]) {
 
 #[test]
 fn documented_commands_run() {
-    run_documented("doc-commands", &[Mark::Quick, Mark::Fails]);
+    // A command that needs the output of a slow one is marked slow too.
+    run_documented("doc-commands", |d| {
+        matches!(d.mark, Mark::Quick | Mark::Fails) && !needs_browser(d)
+    });
+}
+
+/// A rule of [`CUT_DOWN`]: the start of the commands it cuts down, the sizes it replaces
+/// (from, to) and the flags it adds (flag, value).
+type CutDown = (
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    &'static [(&'static str, &'static str)],
+);
+
+/// How the slow commands are cut down to seconds: a command that starts with the first text
+/// has each size of the second that it gives replaced, and gets each flag of the third that it
+/// does not give already. Walks of 0.2 s, populations of 4 and small budgets; the generations
+/// are kept, so that resuming, extending and replaying a generation run as documented.
+const CUT_DOWN: &[CutDown] = &[
+    (
+        "ontogeny evolve --config ",
+        &[],
+        &[("--pop", "4"), ("--seconds", "0.2")],
+    ),
+    (
+        "ontogeny evolve --encoding ",
+        &[("--pop 60", "--pop 4")],
+        &[("--seconds", "0.2")],
+    ),
+    (
+        "ontogeny compare --encodings ",
+        &[
+            ("--replicates 10", "--replicates 2"),
+            ("--evaluations 8100", "--evaluations 8"),
+            ("--pop 100", "--pop 4"),
+        ],
+        &[("--seconds", "0.2")],
+    ),
+    (
+        "ontogeny bench",
+        &[("--fidelity 40", "--fidelity 2 --runs 1")],
+        &[("--evaluations", "1"), ("--seconds", "0.2")],
+    ),
+];
+
+/// `command` cut down by its rule of [`CUT_DOWN`], with what of the table it used (the
+/// rule's start and the sizes it replaced); the command as it is, using nothing, when it only
+/// goes on from what an earlier one made (`--resume`, `--merge`, `replay`); an error for a
+/// slow command that no rule cuts down.
+fn cut_down(command: &str) -> Result<(String, Vec<&'static str>), String> {
+    let goes_on = command.starts_with("ontogeny replay ")
+        || command.contains(" --resume ")
+        || command.contains(" --merge ");
+    if goes_on {
+        return Ok((command.to_string(), Vec::new()));
+    }
+    let (start, sizes, flags) = CUT_DOWN
+        .iter()
+        .find(|(start, _, _)| command.starts_with(start))
+        .ok_or_else(|| format!("no rule of CUT_DOWN cuts down the slow command `{command}`"))?;
+    let mut used = vec![*start];
+    let mut cut = command.to_string();
+    for (from, to) in *sizes {
+        if cut.contains(from) {
+            cut = cut.replace(from, to);
+            used.push(from);
+        }
+    }
+    for (flag, value) in *flags {
+        if !cut.split_whitespace().any(|word| word == *flag) {
+            cut = format!("{cut} {flag} {value}");
+        }
+    }
+    Ok((cut, used))
 }
 
 #[test]
-#[ignore = "runs the documents' commands that take over a minute (about N minutes)"]
-fn documented_slow_commands_run() {
-    run_documented("doc-commands-slow", &[Mark::Quick, Mark::Fails, Mark::Slow]);
+fn documented_slow_commands_run_cut_down_to_seconds() {
+    // Each document's in a scratch directory of its own, as a reader following it has (the
+    // README and the guide both evolve `runs/walker`).
+    let mut dir = PathBuf::new();
+    let mut document = String::new();
+    let mut used = Vec::new();
+    let mut failures = Vec::new();
+    let mut count = 0;
+    for d in documented().into_iter().filter(|d| d.mark == Mark::Slow) {
+        let (command, uses) = cut_down(&d.command).unwrap_or_else(|e| panic!("{}: {e}", d.place));
+        let file = d.place.rsplit_once(':').map_or("", |(file, _)| file);
+        if file != document {
+            document = file.to_string();
+            dir = workplace("doc-commands-slow");
+        }
+        used.extend(uses);
+        count += 1;
+        let cut = Documented { command, ..d };
+        let (code, said) = run(&dir, &cut);
+        if code != Some(0) {
+            failures.push(format!(
+                "{} `{}`: exit {code:?}\n{}",
+                cut.place,
+                cut.command,
+                said.lines().take(8).collect::<Vec<_>>().join("\n")
+            ));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(count > 0, "no slow documented commands found");
+    assert!(
+        failures.is_empty(),
+        "{} of {count} slow documented commands failed:\n\n{}",
+        failures.len(),
+        failures.join("\n\n")
+    );
+    // Every rule and size of the table still cuts down some command.
+    let stale: Vec<&str> = CUT_DOWN
+        .iter()
+        .flat_map(|(start, sizes, _)| std::iter::once(*start).chain(sizes.iter().map(|s| s.0)))
+        .filter(|text| !used.contains(text))
+        .collect();
+    assert!(
+        stale.is_empty(),
+        "CUT_DOWN cuts down no command with {stale:?}"
+    );
+}
+
+#[test]
+fn a_slow_command_is_cut_down_by_its_rule_and_one_that_goes_on_is_run_as_it_is() {
+    assert_eq!(
+        cut_down("ontogeny bench --evaluations 1 --fidelity 40"),
+        Ok((
+            "ontogeny bench --evaluations 1 --fidelity 2 --runs 1 --seconds 0.2".to_string(),
+            vec!["ontogeny bench", "--fidelity 40"]
+        ))
+    );
+    assert_eq!(
+        cut_down("ontogeny bench"),
+        Ok((
+            "ontogeny bench --evaluations 1 --seconds 0.2".to_string(),
+            vec!["ontogeny bench"]
+        ))
+    );
+    assert_eq!(
+        cut_down("ontogeny evolve --resume runs/walker --gens 60"),
+        Ok((
+            "ontogeny evolve --resume runs/walker --gens 60".to_string(),
+            vec![]
+        ))
+    );
+    assert_eq!(
+        cut_down("ontogeny eval x.lsys"),
+        Err("no rule of CUT_DOWN cuts down the slow command `ontogeny eval x.lsys`".to_string())
+    );
+}
+
+/// The documented commands that need Chromium.
+mod browser {
+    use super::*;
+
+    #[test]
+    #[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+    fn the_documented_snapshot_commands_write_their_pictures() {
+        // `view --snapshot` is given the browser the test found.
+        let chromium = crate::view::browser::chromium();
+        let pictures: Vec<String> = documented()
+            .into_iter()
+            .filter(needs_browser)
+            .filter_map(|d| {
+                let words: Vec<&str> = d.command.split_whitespace().collect();
+                let at = words.iter().position(|w| *w == "--snapshot")?;
+                words.get(at + 1).map(|w| w.to_string())
+            })
+            .collect();
+        assert!(!pictures.is_empty(), "no documented --snapshot command");
+        let dir = workplace("doc-commands-browser");
+        let mut failures = Vec::new();
+        for d in documented().into_iter().filter(needs_browser) {
+            let place = d.place.clone();
+            let command = format!("{} --browser '{}'", d.command, chromium.display());
+            let (code, said) = run(&dir, &Documented { command, ..d });
+            if code != Some(0) {
+                failures.push(format!("{place}: exit {code:?}\n{said}"));
+            }
+        }
+        for picture in &pictures {
+            let png = tiny_skia::Pixmap::load_png(dir.join(picture));
+            assert!(png.is_ok(), "{picture} is no picture: {png:?}");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    }
 }
 
 #[test]

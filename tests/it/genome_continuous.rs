@@ -304,51 +304,26 @@ fn developmental_errors_are_errors_not_panics() {
 }
 
 #[test]
-fn random_genomes_often_develop_into_walkers() {
-    // The README's figure is measured over 1000 seeds (see `valid_fraction_over_1000_seeds`).
+fn of_random_genomes_from_seeds_0_to_999_619_develop_into_walkers_and_847_are_valid() {
+    // The figures docs/reference/genomes.md quotes: 61.9 % walker-ready, 84.7 % valid, none
+    // fails to develop, the median creature has 5 parts. (benches/develop.rs times this.)
     let limits = ContinuousLimits::default();
-    let ready = (0..200u64)
-        .filter(|&seed| {
-            ContinuousGenome::random(&limits, &mut rng(seed))
-                .develop(&limits, 0)
-                .is_ok_and(|c| walker_ready(&c))
-        })
-        .count();
-    assert!(ready >= 100, "{ready} of 200");
-}
-
-/// Prints the fraction of random genomes that develop into walker-ready creatures over
-/// 1000 seeds, and the slowest development. Run with
-/// `cargo test --release --test genome_continuous -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn valid_fraction_over_1000_seeds() {
-    let limits = ContinuousLimits::default();
-    let (mut ready, mut valid, mut errors, mut slowest, mut total) = (0, 0, 0, 0.0f64, 0.0);
+    let (mut ready, mut valid, mut errors) = (0, 0, 0);
     let mut parts = Vec::new();
     for seed in 0..1000u64 {
-        let g = ContinuousGenome::random(&limits, &mut rng(seed));
-        let start = std::time::Instant::now();
-        let c = g.develop(&limits, 0);
-        let took = start.elapsed().as_secs_f64();
-        slowest = slowest.max(took);
-        total += took;
-        match c {
+        match ContinuousGenome::random(&limits, &mut rng(seed)).develop(&limits, 0) {
             Ok(c) => {
                 valid += usize::from(c.is_valid());
-                parts.push(c.parts.len());
                 ready += usize::from(walker_ready(&c));
+                parts.push(c.parts.len());
             }
             Err(_) => errors += 1,
         }
     }
     parts.sort();
-    println!(
-        "walker-ready {ready}/1000, valid {valid}, errors {errors}, median parts {}, \
-         mean develop {:.3} ms, slowest {:.3} ms",
-        parts[parts.len() / 2],
-        total / 1000.0 * 1e3,
-        slowest * 1e3
+    assert_eq!(
+        (ready, valid, errors, parts[parts.len() / 2]),
+        (619, 847, 0, 5)
     );
 }
 

@@ -26,6 +26,7 @@ mod genome_continuous;
 mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
+mod key;
 mod long_runs;
 #[cfg(feature = "mpi")]
 mod mpi;

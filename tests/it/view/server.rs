@@ -1,7 +1,9 @@
 //! The viewer's server: it answers only its own host and only reads, idle connections cost no
-//! thread, out-of-range query numbers are refused, `--snapshot` refuses a target that is not a
-//! regular file, a version-1 run is shown without being migrated, and a run's individual's walk
-//! is evaluated again and played in the run page.
+//! thread, an oversized request head and a client too slow to send its request are dropped
+//! without an answer, walks past the limit are refused as busy (503), a file that no longer
+//! reads is a server error (500), out-of-range query numbers and generations the run lacks are
+//! refused, `--snapshot` refuses a target that is not a regular file, a version-1 run is shown
+//! without being migrated, and a run's individual's walk is evaluated again.
 
 use super::*;
 
@@ -192,7 +194,7 @@ fn the_viewer_opens_a_version_1_run_without_migrating_it() {
 
 /// A tiny run made by `ontogeny evolve` (4 direct walkers, one generation) in scratch
 /// directory `name`.
-fn tiny_run(name: &str) -> PathBuf {
+pub(super) fn tiny_run(name: &str) -> PathBuf {
     tiny_run_of(scratch(name).join("run"), "1")
 }
 
@@ -227,7 +229,7 @@ fn tiny_run_of(run: PathBuf, seconds: &str) -> PathBuf {
 }
 
 /// `GET path` from `viewer`, answered 200, as JSON.
-fn get_json(viewer: &Viewer, path: &str) -> serde_json::Value {
+pub(super) fn get_json(viewer: &Viewer, path: &str) -> serde_json::Value {
     let (status, body) = viewer.get(path);
     assert_eq!(status, 200, "{path}: {body}");
     serde_json::from_str(&body).unwrap()
@@ -318,74 +320,164 @@ fn a_walk_of_a_generation_or_rank_the_run_lacks_is_refused() {
     assert!(body.contains("not a run"), "{body}");
 }
 
-#[test]
-fn a_run_page_plays_an_individuals_walk_in_chromium() {
-    let Some(browser) = browser() else { return };
-    let run = tiny_run("walk-page");
-    let viewer = Viewer::start(&run);
-    let walk = get_json(&viewer, "/walk.json?gen=0&rank=2");
-    let page = Page::load(&browser, &format!("{}?gen=0&walk=2&still=1", viewer.url));
-    page.assert_ready();
-    assert_eq!(page.data("kind").as_deref(), Some("run"));
-    assert_eq!(page.data("walk").as_deref(), Some("0/2"));
-    assert_eq!(
-        page.number("parts"),
-        walk["creature"]["parts"].as_array().unwrap().len()
-    );
-    assert_eq!(
-        page.number("frames"),
-        walk["frames"].as_array().unwrap().len()
-    );
-    assert_eq!(page.number("frame"), 0);
-    // A play button on every individual's row, and the walk's outcome beside it.
-    assert_eq!(
-        page.dom.matches("class=\"walk\"").count(),
-        4,
-        "{}",
-        page.dom
-    );
-    assert!(page.dom.contains("(rank 2)"), "{}", page.dom);
-    assert!(page.dom.contains("task: walker"), "{}", page.dom);
-    assert!(
-        page.dom
-            .contains(&format!("status: {}", walk["status"].as_str().unwrap())),
-        "{}",
-        page.dom
-    );
-    // A rank the generation lacks: said, and the page is ready.
-    let page = Page::load(&browser, &format!("{}?gen=0&walk=9&still=1", viewer.url));
-    assert_eq!(page.data("ready").as_deref(), Some("yes"), "{}", page.body);
-    assert_eq!(
-        page.data("error").as_deref(),
-        Some("generation 0 has no rank 9 (it has ranks 1 to 4)")
-    );
+/// The viewer's `host:port`.
+fn address(viewer: &Viewer) -> String {
+    viewer
+        .url
+        .trim_start_matches("http://")
+        .trim_end_matches('/')
+        .to_string()
+}
+
+/// Everything the server sends on `stream` until it closes it; a connection it resets (a
+/// request it dropped unread) has sent what came before.
+fn read_until_closed(stream: &mut std::net::TcpStream) -> Vec<u8> {
+    let mut received = Vec::new();
+    let mut chunk = [0u8; 4096];
+    loop {
+        match stream.read(&mut chunk) {
+            Ok(0) | Err(_) => return received,
+            Ok(n) => received.extend_from_slice(&chunk[..n]),
+        }
+    }
 }
 
 #[test]
-fn a_walks_play_button_plays_it_and_opening_another_individual_leaves_it() {
-    let Some(browser) = browser() else { return };
-    let run = tiny_run("walk-button");
+fn a_request_head_over_16_kib_is_dropped_without_an_answer() {
+    let viewer = Viewer::start(&example("algae.lsys"));
+    let host = address(&viewer);
+    let mut stream = std::net::TcpStream::connect(&host).unwrap();
+    // 17 KiB of headers and no blank line: more than the server reads of any head.
+    let mut head = format!("GET /data.json HTTP/1.1\r\nHost: {host}\r\n");
+    while head.len() <= 17 * 1024 {
+        head.push_str(
+            "X-Padding: aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\r\n",
+        );
+    }
+    // The server may close the connection before it has taken every byte.
+    let _ = stream.write_all(head.as_bytes());
+    let received = read_until_closed(&mut stream);
+    assert_eq!(String::from_utf8_lossy(&received), "");
+    // The viewer still answers the next request.
+    assert_eq!(viewer.get("/version").0, 200);
+}
+
+#[test]
+fn a_client_that_never_finishes_its_request_is_dropped_and_others_are_answered_meanwhile() {
+    let viewer = Viewer::start(&example("algae.lsys"));
+    let host = address(&viewer);
+    let mut slow = std::net::TcpStream::connect(&host).unwrap();
+    slow.write_all(format!("GET /data.json HTTP/1.1\r\nHost: {host}\r\n").as_bytes())
+        .unwrap();
+    // While it dawdles, another client is answered.
+    let (status, body) = viewer.get("/data.json");
+    assert_eq!(status, 200, "{body}");
+    // Its head never ends: the server closes the connection (after its 5 s for a request)
+    // without an answer.
+    let received = read_until_closed(&mut slow);
+    assert_eq!(String::from_utf8_lossy(&received), "");
+}
+
+#[test]
+fn walks_past_the_limit_at_once_are_refused_as_busy() {
+    // The server's 4 workers evaluate at most 2 walks at once. 20 s walks: each takes a while to evaluate again.
+    let dir = scratch("busy");
+    let run = tiny_run_of(dir.join("run"), "20");
     let viewer = Viewer::start(&run);
-    let walk = get_json(&viewer, "/walk.json?gen=0&rank=2");
-    let frames = walk["frames"].as_array().unwrap().len();
-    let mut page = LivePage::open(&browser, &viewer.url);
-    let state = "JSON.stringify([document.body.dataset.ready, document.body.dataset.walk || '', \
-                 document.body.dataset.frames || '', document.body.dataset.error || '', \
-                 document.getElementById('play').style.display])";
-    let opened = page.wait_for(state, |s| s.starts_with("[\"yes\""));
-    assert_eq!(opened, r#"["yes","","","","none"]"#);
-    // The second row's button: rank 2.
-    page.eval("document.querySelectorAll('#individuals button.walk')[1].click(); ''");
-    let playing = page.wait_for(state, |s| s.contains("0/2"));
-    assert_eq!(playing, format!(r#"["yes","0/2","{frames}","",""]"#));
-    // A click on the first row (not its button) opens that individual, without a player.
-    let best = get_json(&viewer, "/generation.json?gen=0")["individuals"][0]["index"].clone();
-    page.eval("document.querySelectorAll('#individuals tr.clickable')[0].click(); ''");
-    let opened = format!(r#"["","none","{best}"]"#);
-    let left = page.wait_for(
-        "JSON.stringify([document.body.dataset.walk || '', \
-         document.getElementById('play').style.display, document.body.dataset.individual])",
-        |s| s == opened,
+    let host = address(&viewer);
+    // Six walks asked for at once: two are evaluated, the others find both slots taken.
+    let mut streams: Vec<std::net::TcpStream> = (1..=6)
+        .map(|i| {
+            let mut stream = std::net::TcpStream::connect(&host).unwrap();
+            let rank = 1 + i % 4;
+            write!(
+                stream,
+                "GET /walk.json?gen=0&rank={rank} HTTP/1.1\r\nHost: {host}\r\n\r\n"
+            )
+            .unwrap();
+            stream
+        })
+        .collect();
+    let answers: Vec<String> = streams
+        .iter_mut()
+        .map(|s| String::from_utf8_lossy(&read_until_closed(s)).into_owned())
+        .collect();
+    let busy = answers
+        .iter()
+        .filter(|a| a.starts_with("HTTP/1.1 503 Service Unavailable\r\n"))
+        .count();
+    let walked = answers
+        .iter()
+        .filter(|a| a.starts_with("HTTP/1.1 200 OK\r\n"))
+        .count();
+    assert_eq!(busy + walked, 6, "{answers:#?}");
+    assert!(busy >= 1 && walked >= 2, "{answers:#?}");
+    for answer in answers.iter().filter(|a| a.contains(" 503 ")) {
+        let body = answer.split_once("\r\n\r\n").unwrap().1;
+        assert_eq!(
+            body,
+            r#"{"error":{"message":"busy: 2 walks are being evaluated; try again when one is done"}}"#
+        );
+    }
+    // Once they are done, a walk is evaluated again.
+    assert_eq!(viewer.get("/walk.json?gen=0&rank=1").0, 200);
+    drop(viewer);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_file_that_no_longer_reads_is_a_server_error_naming_it() {
+    let dir = scratch("unreadable");
+    let creature = ontogeny::develop::creature_from_commands("forward(1)").unwrap();
+    let pose = serde_json::json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+    let recording = dir.join("recording.json");
+    std::fs::write(
+        &recording,
+        serde_json::json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose]}]})
+            .to_string(),
+    )
+    .unwrap();
+    let viewer = Viewer::start(&dir);
+    assert_eq!(viewer.get("/data.json").0, 200);
+    // Overwritten with something that is not JSON, then removed, while the viewer serves it.
+    std::fs::write(&recording, "not json").unwrap();
+    let (status, body) = viewer.get("/data.json");
+    assert_eq!(status, 500, "{body}");
+    let message = serde_json::from_str::<serde_json::Value>(&body).unwrap()["error"]["message"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(
+        message.starts_with(&format!("{}: ", recording.display())),
+        "{message}"
     );
-    assert_eq!(left, opened);
+    std::fs::remove_file(&recording).unwrap();
+    let (status, body) = viewer.get("/data.json");
+    assert_eq!(status, 500, "{body}");
+    assert!(
+        body.contains(&format!("cannot read {}: ", recording.display())),
+        "{body}"
+    );
+    // The page itself is still served.
+    assert_eq!(viewer.get("/").0, 200);
+}
+
+#[test]
+fn a_generation_the_run_lacks_is_not_found_on_every_page_that_asks_for_one() {
+    let run = tiny_run("generation-range");
+    let viewer = Viewer::start(&run);
+    let lacks = |g: &str| format!("there is no generation {g}: the run has generations 0 to 0");
+    for (page, g) in [
+        ("generation.json?gen=", "4294967295"),
+        ("generation.json?gen=", "1"),
+        ("individual.json?index=0&gen=", "4294967295"),
+        ("walk.json?rank=1&gen=", "4294967295"),
+    ] {
+        let (status, body) = viewer.get(&format!("/{page}{g}"));
+        assert_eq!(status, 404, "{page}{g}: {body}");
+        let error: serde_json::Value = serde_json::from_str(&body).unwrap();
+        assert_eq!(error["error"]["message"], lacks(g), "{page}{g}");
+    }
+    let table = get_json(&viewer, "/generation.json?gen=0");
+    assert_eq!(table["individuals"].as_array().unwrap().len(), 4);
 }
