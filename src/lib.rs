@@ -11,10 +11,12 @@
 //! [`export`] writes a creature with the simulator's settings in other simulators' formats
 //! (MuJoCo's MJCF). [`view`] serves a local web page that shows creatures growing, recordings
 //! playing and runs' progress in the browser. [`output`] writes every file for the user whole or
-//! not at all, and never over something that is not a regular file.
+//! not at all, and never over something that is not a regular file. [`cancel`] lets a caller
+//! stop long work (growth, evaluation, evolution) from another thread.
 
 #![warn(missing_docs)]
 
+pub mod cancel;
 pub mod creature;
 pub mod develop;
 pub mod encoding;

@@ -5,19 +5,25 @@
 //! (`grow`, `derive`, `eval`, `evolve`, `runs`), so that its results are the command line's,
 //! bit for bit. Bad input raises a Python exception (`ValueError` with the command line's
 //! message, which names the file, line and column of a grammar; `FileNotFoundError` or
-//! `OSError` for a file that cannot be read); nothing crashes the interpreter.
+//! `OSError` for a file that cannot be read); nothing crashes the interpreter. The long calls
+//! (`grow`, `derive`, `evaluate`, `evaluate_many`, `evolve`, `resume`) stop on Ctrl-C and
+//! raise `KeyboardInterrupt` ([`interrupt`]).
+
+mod interrupt;
 
 use std::ffi::CString;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use interrupt::{interrupted_error, interruptible};
 use numpy::IntoPyArray;
 use numpy::ndarray::{Array1, Array2, Array3};
 use numpy::{PyArray1, PyArray2, PyArray3};
+use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
 use ontogeny::encoding::{Genome, LoadError, LoadOptions, grow_grammar, load_creature};
 use ontogeny::evolve::config::read_config_source;
-use ontogeny::evolve::run::{GenerationReport, Run, RunError};
+use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run};
 use ontogeny::evolve::settings::{self, RunFlags};
 use ontogeny::evolve::store::RunStore;
 use ontogeny::evolve::text;
@@ -25,7 +31,7 @@ use ontogeny::lang::Diagnostic;
 use ontogeny::lsystem::{DeriveOptions, LSystem, print};
 use ontogeny::sim::{SimOptions, StepSetting};
 use ontogeny::task::flags::TaskFlags;
-use ontogeny::task::{Evaluation as Outcome, TaskKind, TaskSpec, WalkerFitness};
+use ontogeny::task::{Evaluation as Outcome, TaskKind, TaskSpec, WalkerFitness, Watch};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -59,12 +65,14 @@ fn load_error(e: LoadError) -> PyErr {
 }
 
 /// A run's failure as Python sees it: a file that cannot be read or written is an `OSError`,
-/// anything else (a bad configuration, a run already there, a locked run) a `ValueError`.
+/// an interrupted run `KeyboardInterrupt`, anything else (a bad configuration, a run already
+/// there, a locked run) a `ValueError`.
 fn run_error(e: RunError) -> PyErr {
     match e {
         RunError::Io { path, source } => {
             PyOSError::new_err(format!("{}: {source}", path.display()))
         }
+        RunError::Interrupted(e) => interrupted_error(e),
         other => value_error(other),
     }
 }
@@ -298,9 +306,14 @@ fn grow(
 ) -> PyResult<PyCreature> {
     let lsys = LSystem::from_text(TEXT_NAME, text).map_err(diagnostic_error)?;
     let options = load_options(steps, seed, time, dt, env);
-    let loaded = py
-        .detach(|| grow_grammar(&lsys, &options, &mut |_| {}))
-        .map_err(load_error)?;
+    let loaded = interruptible(py, |cancel| {
+        let options = LoadOptions {
+            cancel: cancel.clone(),
+            ..options
+        };
+        grow_grammar(&lsys, &options, &mut |_| {})
+    })?
+    .map_err(load_error)?;
     Ok(PyCreature::new(loaded.creature, loaded.notes))
 }
 
@@ -367,9 +380,10 @@ fn derive(
     let options = derive_options(seed, time, dt, env);
     let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
     warn_all(py, &note.into_iter().collect::<Vec<_>>())?;
-    py.detach(|| {
+    interruptible(py, |cancel| {
         let mut frames = Vec::new();
         lsys.for_each_frame(&options, steps, |frame| {
+            cancel.check()?;
             frames.push((
                 frame.t,
                 lsys.display(frame.string).to_string(),
@@ -378,7 +392,7 @@ fn derive(
             Ok::<(), Diagnostic>(())
         })
         .map(|()| frames)
-    })
+    })?
     .map_err(diagnostic_error)
 }
 
@@ -530,8 +544,24 @@ fn evaluate(
 ) -> PyResult<PyEvaluation> {
     let spec = task_spec(py, task, seconds, fitness, setting, target)?;
     let body = Arc::clone(&creature.creature);
-    let outcome = py.detach(|| spec.evaluate(&body, record));
+    let outcome = interruptible(py, |cancel| watched(&spec, &body, record, cancel))?
+        .map_err(interrupted_error)?;
     Ok(PyEvaluation { outcome })
+}
+
+/// `spec`'s evaluation of `creature`, stopped by `cancel`.
+fn watched(
+    spec: &TaskSpec,
+    creature: &Creature,
+    record: bool,
+    cancel: &Cancel,
+) -> Result<Outcome, ontogeny::cancel::Interrupted> {
+    let watch = Watch {
+        record,
+        progress: &mut |_| {},
+        cancel: Some(cancel),
+    };
+    spec.evaluate_watched(creature, watch)
 }
 
 /// Evaluates many creatures on one task in parallel (on `threads` worker threads, default one
@@ -555,14 +585,15 @@ fn evaluate_many(
     let pool = thread_pool(threads)?;
     let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
     drop(creatures);
-    let outcomes: Vec<Outcome> = py.detach(|| {
+    let outcomes: Vec<Outcome> = interruptible(py, |cancel| {
         pool.install(|| {
             bodies
                 .par_iter()
-                .map(|c| spec.evaluate(c, record))
-                .collect()
+                .map(|c| watched(&spec, c, record, cancel))
+                .collect::<Result<_, _>>()
         })
-    });
+    })?
+    .map_err(interrupted_error)?;
     Ok(outcomes
         .into_iter()
         .map(|outcome| PyEvaluation { outcome })
@@ -649,16 +680,83 @@ fn evolve(
         cache,
         progress,
     };
-    py.detach(|| {
+    interruptible(py, |cancel| {
         pool.install(|| {
             ontogeny::with_genome!(
                 name.as_str(),
-                G => start.run::<G>(),
+                G => start.run::<G>(cancel),
                 |other: &str| Err(value_error(format!("unknown encoding '{other}'")))
             )
         })
-    })?;
+    })??;
     Ok(out)
+}
+
+/// Goes on with the run in the directory `path` (one that `evolve` started, interrupted or
+/// finished), as `ontogeny evolve --resume PATH [--gens GENS]` does: from its last stored
+/// generation to its last generation, or to `gens` generations in all (extending a finished
+/// run); returns the run's directory. A resumed run ends as an uninterrupted one would.
+#[pyfunction]
+#[pyo3(signature = (path, *, gens=None, threads=None, progress=false))]
+fn resume(
+    py: Python<'_>,
+    path: PathBuf,
+    gens: Option<usize>,
+    threads: Option<usize>,
+    progress: bool,
+) -> PyResult<PathBuf> {
+    require_exists(&path)?;
+    let pool = thread_pool(threads)?;
+    let name = encoding_of_run(&path).map_err(run_error)?;
+    interruptible(py, |cancel| {
+        pool.install(|| {
+            ontogeny::with_genome!(
+                name.as_str(),
+                G => resume_run::<G>(&path, gens, progress, cancel),
+                |other: &str| Err(value_error(format!(
+                    "{}: unknown encoding '{other}'",
+                    path.display()
+                )))
+            )
+        })
+    })??;
+    Ok(path)
+}
+
+/// Resumes the run in `dir`, extended to `generations` if given, and runs it to its end;
+/// a finished run gets its derived files written again, as the command line does.
+fn resume_run<G: Genome>(
+    dir: &Path,
+    generations: Option<usize>,
+    progress: bool,
+    cancel: &Cancel,
+) -> PyResult<()> {
+    let mut run = Run::<G>::resume(dir).map_err(run_error)?;
+    if let Some(generations) = generations {
+        run.extend(generations).map_err(run_error)?;
+    }
+    let done = run.last_generation().map_err(run_error)?;
+    if done.is_some_and(|g| g as usize + 1 >= run.config().ga.generations) {
+        return run.write_derived_files().map_err(run_error);
+    }
+    run_to_end(&mut run, progress, cancel)
+}
+
+/// Runs `run`'s remaining generations, a line per generation on standard error with
+/// `progress`, until `cancel` stops it.
+fn run_to_end<G: Genome>(run: &mut Run<G>, progress: bool, cancel: &Cancel) -> PyResult<()> {
+    let fitness = run.config().task.fitness_label();
+    let mut observer = |r: &GenerationReport| {
+        if progress {
+            eprintln!(
+                "generation {}: {}",
+                r.generation,
+                text::generation_line(&fitness, r)
+            );
+        }
+    };
+    run.set_cancel(cancel.clone());
+    run.run(&mut observer).map_err(run_error)
 }
 
 /// What `evolve` starts a run with.
@@ -675,8 +773,8 @@ struct NewRun<'a> {
 
 impl NewRun<'_> {
     /// Starts the run and runs it to its last generation, a line per generation on standard
-    /// error with `progress`.
-    fn run<G: Genome>(&self) -> PyResult<()> {
+    /// error with `progress`, until `cancel` stops it.
+    fn run<G: Genome>(&self, cancel: &Cancel) -> PyResult<()> {
         let (config, init) = settings::new_run::<G>(
             self.source,
             self.flags,
@@ -686,19 +784,9 @@ impl NewRun<'_> {
             self.cache,
         )
         .map_err(diagnostic_error)?;
-        let fitness = config.task.fitness_label();
         let mut run = Run::<G>::start(self.out, config, init.as_ref().map(|s| s.text()))
             .map_err(run_error)?;
-        let mut observer = |r: &GenerationReport| {
-            if self.progress {
-                eprintln!(
-                    "generation {}: {}",
-                    r.generation,
-                    text::generation_line(&fitness, r)
-                );
-            }
-        };
-        run.run(&mut observer).map_err(run_error)
+        run_to_end(&mut run, self.progress, cancel)
     }
 }
 
@@ -814,5 +902,6 @@ fn _ontogeny(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(evaluate, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_many, m)?)?;
     m.add_function(wrap_pyfunction!(evolve, m)?)?;
+    m.add_function(wrap_pyfunction!(resume, m)?)?;
     Ok(())
 }
