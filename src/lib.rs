@@ -12,10 +12,12 @@
 //! (MuJoCo's MJCF). [`view`] serves a local web page that shows creatures growing, recordings
 //! playing and runs' progress in the browser. [`output`] writes every file for the user whole or
 //! not at all, never over something that is not a regular file, and into a folder only when it
-//! is new, empty or Ontogeny's own; [`input`] reads every file with a cap on its size.
+//! is new, empty or Ontogeny's own; [`input`] reads every file with a cap on its size. [`cancel`] lets a
+//! caller stop long work (growth, evaluation, evolution) from another thread.
 
 #![warn(missing_docs)]
 
+pub mod cancel;
 pub mod creature;
 pub mod develop;
 pub mod encoding;

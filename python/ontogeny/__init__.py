@@ -4,7 +4,9 @@ evolve them, with the Rust engine of the ``ontogeny`` command line.
 Results are the command line's, bit for bit: ``ontogeny.evaluate(ontogeny.load(path))`` gives
 the fitness ``ontogeny eval PATH --task walker --json`` prints. Bad input raises
 ``ValueError`` (with the file, line and column of a grammar), a missing file
-``FileNotFoundError``.
+``FileNotFoundError``. Ctrl-C stops a long call (``grow``, ``derive``, ``evaluate``,
+``evaluate_many``, ``evolve``, ``resume``) within a fraction of a second with
+``KeyboardInterrupt``; an interrupted evolution goes on with ``resume``.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from ._ontogeny import (
     load,
 )
 from ._ontogeny import evolve as _evolve
+from ._ontogeny import resume as _resume
 
 __all__ = [
     "Creature",
@@ -38,6 +41,7 @@ __all__ = [
     "genome",
     "grow",
     "load",
+    "resume",
 ]
 
 
@@ -82,5 +86,23 @@ def evolve(
     ``threads``, ``init``, and ``verify_best=False`` / ``cache=False`` for
     ``--no-verify-best`` / ``--no-cache``; ``progress=True`` prints a line per generation on
     standard error. The results do not depend on ``threads``.
+
+    Ctrl-C stops it with ``KeyboardInterrupt``, dropping the generation under way; the run
+    keeps every generation stored before it, and :func:`resume` goes on from there.
     """
     return Run(_evolve(config, out=out, **overrides))
+
+
+def resume(
+    path: Union[str, PathLike],
+    *,
+    gens: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: bool = False,
+) -> Run:
+    """Goes on with the run in the directory ``path``, as ``ontogeny evolve --resume PATH
+    [--gens GENS]`` does, and returns the :class:`Run`: from its last stored generation (after
+    Ctrl-C or a kill) to its last one, or to ``gens`` generations in all, which extends a
+    finished run. It ends exactly as an uninterrupted run would, whatever ``threads``.
+    """
+    return Run(_resume(path, gens=gens, threads=threads, progress=progress))

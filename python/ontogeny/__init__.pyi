@@ -154,3 +154,13 @@ class Run:
 def evolve(config: Optional[_Path] = None, *, out: _Path, **overrides: Any) -> Run:
     """Runs an evolution into ``out``, as ``ontogeny evolve`` does; ``overrides`` are its
     flags by long name (``gens=3``, ``pop=6``, ``seed=1``, ``encoding="direct"``, ...)."""
+
+def resume(
+    path: _Path,
+    *,
+    gens: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: bool = False,
+) -> Run:
+    """Goes on with the run in ``path`` (interrupted, or finished and extended to ``gens``
+    generations), as ``ontogeny evolve --resume PATH`` does."""

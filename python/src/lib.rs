@@ -5,27 +5,33 @@
 //! (`grow`, `derive`, `eval`, `evolve`, `runs`), so that its results are the command line's,
 //! bit for bit. Bad input raises a Python exception (`ValueError` with the command line's
 //! message, which names the file, line and column of a grammar; `FileNotFoundError` or
-//! `OSError` for a file that cannot be read); nothing crashes the interpreter.
+//! `OSError` for a file that cannot be read); nothing crashes the interpreter. The long calls
+//! (`grow`, `derive`, `evaluate`, `evaluate_many`, `evolve`, `resume`) stop on Ctrl-C and
+//! raise `KeyboardInterrupt` ([`interrupt`]).
+
+mod interrupt;
+mod resume;
 
 use std::ffi::CString;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use interrupt::{interrupted_error, interruptible};
 use numpy::IntoPyArray;
 use numpy::ndarray::{Array1, Array2, Array3};
 use numpy::{PyArray1, PyArray2, PyArray3};
+use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
 use ontogeny::encoding::{Genome, LoadError, LoadOptions, grow_grammar, load_creature};
 use ontogeny::evolve::config::read_config_source;
-use ontogeny::evolve::run::{GenerationReport, Run, RunError};
+use ontogeny::evolve::run::{Run, RunError};
 use ontogeny::evolve::settings::{self, RunFlags};
 use ontogeny::evolve::store::RunStore;
-use ontogeny::evolve::text;
 use ontogeny::lang::Diagnostic;
 use ontogeny::lsystem::{DeriveOptions, LSystem, print};
 use ontogeny::sim::{SimOptions, StepSetting};
 use ontogeny::task::flags::TaskFlags;
-use ontogeny::task::{Evaluation as Outcome, TaskKind, TaskSpec, WalkerFitness};
+use ontogeny::task::{Evaluation as Outcome, TaskKind, TaskSpec, WalkerFitness, Watch};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -59,12 +65,14 @@ fn load_error(e: LoadError) -> PyErr {
 }
 
 /// A run's failure as Python sees it: a file that cannot be read or written is an `OSError`,
-/// anything else (a bad configuration, a run already there, a locked run) a `ValueError`.
+/// an interrupted run `KeyboardInterrupt`, anything else (a bad configuration, a run already
+/// there, a locked run) a `ValueError`.
 fn run_error(e: RunError) -> PyErr {
     match e {
         RunError::Io { path, source } => {
             PyOSError::new_err(format!("{}: {source}", path.display()))
         }
+        RunError::Interrupted(e) => interrupted_error(e),
         other => value_error(other),
     }
 }
@@ -298,9 +306,14 @@ fn grow(
 ) -> PyResult<PyCreature> {
     let lsys = LSystem::from_text(TEXT_NAME, text).map_err(diagnostic_error)?;
     let options = load_options(steps, seed, time, dt, env);
-    let loaded = py
-        .detach(|| grow_grammar(&lsys, &options, &mut |_| {}))
-        .map_err(load_error)?;
+    let loaded = interruptible(py, |cancel| {
+        let options = LoadOptions {
+            cancel: cancel.clone(),
+            ..options
+        };
+        grow_grammar(&lsys, &options, &mut |_| {})
+    })?
+    .map_err(load_error)?;
     Ok(PyCreature::new(loaded.creature, loaded.notes))
 }
 
@@ -367,9 +380,10 @@ fn derive(
     let options = derive_options(seed, time, dt, env);
     let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
     warn_all(py, &note.into_iter().collect::<Vec<_>>())?;
-    py.detach(|| {
+    interruptible(py, |cancel| {
         let mut frames = Vec::new();
         lsys.for_each_frame(&options, steps, |frame| {
+            cancel.check()?;
             frames.push((
                 frame.t,
                 lsys.display(frame.string).to_string(),
@@ -378,7 +392,7 @@ fn derive(
             Ok::<(), Diagnostic>(())
         })
         .map(|()| frames)
-    })
+    })?
     .map_err(diagnostic_error)
 }
 
@@ -530,8 +544,24 @@ fn evaluate(
 ) -> PyResult<PyEvaluation> {
     let spec = task_spec(py, task, seconds, fitness, setting, target)?;
     let body = Arc::clone(&creature.creature);
-    let outcome = py.detach(|| spec.evaluate(&body, record));
+    let outcome = interruptible(py, |cancel| watched(&spec, &body, record, cancel))?
+        .map_err(interrupted_error)?;
     Ok(PyEvaluation { outcome })
+}
+
+/// `spec`'s evaluation of `creature`, stopped by `cancel`.
+fn watched(
+    spec: &TaskSpec,
+    creature: &Creature,
+    record: bool,
+    cancel: &Cancel,
+) -> Result<Outcome, ontogeny::cancel::Interrupted> {
+    let watch = Watch {
+        record,
+        progress: &mut |_| {},
+        cancel: Some(cancel),
+    };
+    spec.evaluate_watched(creature, watch)
 }
 
 /// Evaluates many creatures on one task in parallel (on `threads` worker threads, default one
@@ -555,14 +585,15 @@ fn evaluate_many(
     let pool = thread_pool(threads)?;
     let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
     drop(creatures);
-    let outcomes: Vec<Outcome> = py.detach(|| {
+    let outcomes: Vec<Outcome> = interruptible(py, |cancel| {
         pool.install(|| {
             bodies
                 .par_iter()
-                .map(|c| spec.evaluate(c, record))
-                .collect()
+                .map(|c| watched(&spec, c, record, cancel))
+                .collect::<Result<_, _>>()
         })
-    });
+    })?
+    .map_err(interrupted_error)?;
     Ok(outcomes
         .into_iter()
         .map(|outcome| PyEvaluation { outcome })
@@ -649,15 +680,15 @@ fn evolve(
         cache,
         progress,
     };
-    py.detach(|| {
+    interruptible(py, |cancel| {
         pool.install(|| {
             ontogeny::with_genome!(
                 name.as_str(),
-                G => start.run::<G>(),
+                G => start.run::<G>(cancel),
                 |other: &str| Err(value_error(format!("unknown encoding '{other}'")))
             )
         })
-    })?;
+    })??;
     Ok(out)
 }
 
@@ -675,8 +706,8 @@ struct NewRun<'a> {
 
 impl NewRun<'_> {
     /// Starts the run and runs it to its last generation, a line per generation on standard
-    /// error with `progress`.
-    fn run<G: Genome>(&self) -> PyResult<()> {
+    /// error with `progress`, until `cancel` stops it.
+    fn run<G: Genome>(&self, cancel: &Cancel) -> PyResult<()> {
         let (config, init) = settings::new_run::<G>(
             self.source,
             self.flags,
@@ -686,19 +717,9 @@ impl NewRun<'_> {
             self.cache,
         )
         .map_err(diagnostic_error)?;
-        let fitness = config.task.fitness_label();
         let mut run = Run::<G>::start(self.out, config, init.as_ref().map(|s| s.text()))
             .map_err(run_error)?;
-        let mut observer = |r: &GenerationReport| {
-            if self.progress {
-                eprintln!(
-                    "generation {}: {}",
-                    r.generation,
-                    text::generation_line(&fitness, r)
-                );
-            }
-        };
-        run.run(&mut observer).map_err(run_error)
+        resume::run_to_end(&mut run, self.progress, cancel)
     }
 }
 
@@ -814,5 +835,6 @@ fn _ontogeny(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(evaluate, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_many, m)?)?;
     m.add_function(wrap_pyfunction!(evolve, m)?)?;
+    m.add_function(wrap_pyfunction!(resume::resume, m)?)?;
     Ok(())
 }

@@ -37,6 +37,7 @@ pub(super) fn load_creature(
         derive: derive_options(development, seed, DEFAULT_MAX_MODULES),
         steps: development.steps,
         max_parts,
+        ..LoadOptions::default()
     };
     let mut progress = Progress::new("growing");
     let loaded = load(file, &options, &mut |f| progress.set(f)).map_err(|e| match e {

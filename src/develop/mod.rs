@@ -29,7 +29,7 @@ pub const MIN_PART_LENGTH: f64 = 1e-6;
 /// brain commands) cannot run for years. `{ { ... }(100) }(100)` over 100 modules is this.
 pub const MAX_REPEATED_MODULES: usize = 1_000_000;
 
-/// Builder settings.
+/// Builder settings, and the token that stops a growth.
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
     /// More parts than this is an error (the creature is invalid).
@@ -42,6 +42,9 @@ pub struct BuildOptions {
     pub default_length: f64,
     /// Most repetitions of one `{ ... }(n)` block.
     pub max_repeat: usize,
+    /// Set, it stops a growth before its next frame ([`for_each_growth_frame`]) with a
+    /// diagnostic of kind [`Interrupted`](crate::lang::DiagnosticKind::Interrupted).
+    pub cancel: crate::cancel::Cancel,
 }
 
 impl Default for BuildOptions {
@@ -52,6 +55,7 @@ impl Default for BuildOptions {
             default_thickness: 0.25,
             default_length: 1.0,
             max_repeat: 100,
+            cancel: crate::cancel::Cancel::default(),
         }
     }
 }
@@ -568,7 +572,7 @@ pub fn kept_frame_plan(
 /// interpreted (an error at any frame is an error), the frames `wanted(step, last)` asks
 /// for are built and shown to `visit` in order, and `progress` is told the fraction of the
 /// frames done after each one. Memory stays that of one frame whatever the derivation
-/// length.
+/// length. `build_options.cancel`, set, stops it before the next frame.
 pub fn for_each_growth_frame<E: From<crate::lang::Diagnostic>>(
     lsys: &crate::lsystem::LSystem,
     options: &crate::lsystem::DeriveOptions,
@@ -579,6 +583,10 @@ pub fn for_each_growth_frame<E: From<crate::lang::Diagnostic>>(
     mut visit: impl FnMut(GrowthFrame) -> Result<(), E>,
 ) -> Result<(), E> {
     lsys.for_each_frame(options, steps, |frame| {
+        build_options
+            .cancel
+            .check()
+            .map_err(crate::lang::Diagnostic::from)?;
         let fraction = frame.fraction();
         let shown = lsys.interpret(frame.string, frame.t, options)?;
         if wanted(frame.step, frame.last) {

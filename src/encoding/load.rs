@@ -22,6 +22,9 @@ pub struct LoadOptions {
     /// Most parts: a creature grown from an L-system with more is invalid, a
     /// `creature.json` with more is refused.
     pub max_parts: usize,
+    /// Set, it stops the growth of an L-system before its next frame (see
+    /// [`BuildOptions::cancel`]).
+    pub cancel: crate::cancel::Cancel,
 }
 
 impl Default for LoadOptions {
@@ -30,6 +33,7 @@ impl Default for LoadOptions {
             derive: DeriveOptions::default(),
             steps: None,
             max_parts: BuildOptions::default().max_parts,
+            cancel: crate::cancel::Cancel::default(),
         }
     }
 }
@@ -137,6 +141,7 @@ pub fn grow_grammar(
             .collect();
     let build_options = BuildOptions {
         max_parts: options.max_parts,
+        cancel: options.cancel.clone(),
         ..BuildOptions::default()
     };
     let creature = grow_last(

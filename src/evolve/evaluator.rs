@@ -10,8 +10,9 @@
 
 use rayon::prelude::*;
 
+use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
-use crate::task::{Evaluation, TaskSpec};
+use crate::task::{Evaluation, TaskSpec, Watch};
 
 /// What evaluates a batch of creatures.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,12 +35,34 @@ impl Evaluator {
         Evaluator::Local
     }
 
-    /// The evaluations of `creatures` on `task`, in order.
-    pub fn evaluate(self, task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
+    /// The evaluations of `creatures` on `task`, in order; `Interrupted` once `cancel` is
+    /// set (on this process's threads, every evaluation stops at its next control step and no
+    /// new one starts; a batch sent to MPI ranks runs to its end first).
+    pub fn evaluate(
+        self,
+        task: &TaskSpec,
+        creatures: &[&Creature],
+        cancel: &Cancel,
+    ) -> Result<Vec<Evaluation>, Interrupted> {
         match self {
-            Evaluator::Local => evaluate_locally(task, creatures),
+            Evaluator::Local => creatures
+                .par_iter()
+                .map(|creature| {
+                    cancel.check()?;
+                    let watch = Watch {
+                        record: false,
+                        progress: &mut |_| {},
+                        cancel: Some(cancel),
+                    };
+                    task.evaluate_watched(creature, watch)
+                })
+                .collect(),
             #[cfg(feature = "mpi")]
-            Evaluator::Mpi => super::mpi::evaluate(task, creatures),
+            Evaluator::Mpi => {
+                let evaluations = super::mpi::evaluate(task, creatures);
+                cancel.check()?;
+                Ok(evaluations)
+            }
         }
     }
 }

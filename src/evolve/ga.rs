@@ -15,6 +15,7 @@ use super::cache::EvaluationCache;
 use super::evaluator::Evaluator;
 use super::key::EvaluationKey;
 use super::store::GenerationRecord;
+use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::sim::SettingError;
@@ -387,9 +388,12 @@ impl<G: Genome> Evolution<G> {
         &self,
         unborn: Vec<Unborn<G>>,
         cache: &mut EvaluationCache,
-    ) -> Vec<Individual<G>> {
-        let developed: Vec<Developed<G>> =
-            unborn.into_par_iter().map(|u| self.develop(u)).collect();
+        cancel: &Cancel,
+    ) -> Result<Vec<Individual<G>>, Interrupted> {
+        let developed: Vec<Developed<G>> = unborn
+            .into_par_iter()
+            .map(|u| cancel.check().map(|()| self.develop(u)))
+            .collect::<Result<_, _>>()?;
         let mut first_with: HashMap<EvaluationKey, usize> = HashMap::new();
         let sources: Vec<Source> = developed
             .iter()
@@ -428,7 +432,7 @@ impl<G: Genome> Evolution<G> {
                 _ => None,
             })
             .unzip();
-        let evaluations = Evaluator::current().evaluate(&self.task, &creatures);
+        let evaluations = Evaluator::current().evaluate(&self.task, &creatures, cancel)?;
         for (index, evaluation) in jobs.into_iter().zip(evaluations) {
             simulated[index] = Some(evaluation);
         }
@@ -471,12 +475,17 @@ impl<G: Genome> Evolution<G> {
                 reused,
             });
         }
-        born
+        Ok(born)
     }
 
     /// Generation 0: random genomes (or mutants of the `init` genome), evaluated in parallel
-    /// (identical creatures once, when `cache` is on).
-    pub fn first_generation(&self, cache: &mut EvaluationCache) -> Vec<Individual<G>> {
+    /// (identical creatures once, when `cache` is on); `Interrupted`, with `cache` as it was,
+    /// once `cancel` is set.
+    pub fn first_generation(
+        &self,
+        cache: &mut EvaluationCache,
+        cancel: &Cancel,
+    ) -> Result<Vec<Individual<G>>, Interrupted> {
         let unborn: Vec<Unborn<G>> = (0..self.settings.population as u32)
             .into_par_iter()
             .map(|index| {
@@ -499,7 +508,7 @@ impl<G: Genome> Evolution<G> {
                 }
             })
             .collect();
-        self.evaluate_all(unborn, cache)
+        self.evaluate_all(unborn, cache, cancel)
     }
 
     /// The next generation, number `generation`, from `previous` (in any order): the elite
@@ -507,14 +516,16 @@ impl<G: Genome> Evolution<G> {
     /// evaluated in parallel. Returns it, best first among the elite, and the number of
     /// evaluations made. `fallbacks` counts children made by mutation because the encoding
     /// lacks the scheduled operator. A child identical to a creature of `cache` reuses its
-    /// evaluation.
+    /// evaluation. `Interrupted`, with `cache` and `fallbacks` as they were, once `cancel` is
+    /// set.
     pub fn next_generation(
         &self,
         previous: &[Individual<G>],
         generation: u32,
         fallbacks: &mut Fallbacks,
         cache: &mut EvaluationCache,
-    ) -> (Vec<Individual<G>>, u64) {
+        cancel: &Cancel,
+    ) -> Result<(Vec<Individual<G>>, u64), Interrupted> {
         let order = ranking(previous);
         let population = self.settings.population;
         let survivors = self.settings.survivors().min(previous.len());
@@ -529,7 +540,7 @@ impl<G: Genome> Evolution<G> {
             .collect();
         let children = population - survivors;
         let adaptive_rate = self.adaptive_rate(previous);
-        let unborn: Vec<(Unborn<G>, Option<Operator>)> = (0..children)
+        let (unborn, fell_back): (Vec<Unborn<G>>, Vec<Option<Operator>>) = (0..children)
             .into_par_iter()
             .map(|k| {
                 let index = (survivors + k) as u32;
@@ -546,16 +557,14 @@ impl<G: Genome> Evolution<G> {
                 )
                 .into_unborn(develop_seed)
             })
-            .collect();
-        for (_, fell_back) in &unborn {
-            if let Some(op) = fell_back {
-                fallbacks.count(*op);
-            }
+            .unzip();
+        let born = self.evaluate_all(unborn, cache, cancel)?;
+        for op in fell_back.into_iter().flatten() {
+            fallbacks.count(op);
         }
-        let born = self.evaluate_all(unborn.into_iter().map(|(u, _)| u).collect(), cache);
         let evaluations = born.len() as u64;
         next.extend(born);
-        (next, evaluations)
+        Ok((next, evaluations))
     }
 
     /// Walking with Dinosaurs' mutation rate: the base rate × 0.25 / σ, clamped to [½, 4] ×

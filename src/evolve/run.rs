@@ -24,10 +24,11 @@ use super::plot::fitness_svg;
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
 };
+use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::{Genome, Purpose};
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
-use crate::task::{Evaluation, TaskKind, TaskSpec};
+use crate::task::{Evaluation, TaskKind, TaskSpec, Watch};
 
 /// Why a run could not start, resume or go on.
 #[derive(Debug, thiserror::Error)]
@@ -86,6 +87,10 @@ pub enum RunError {
     /// A file of the run could not be written, or its target is not a regular file.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// The run's cancellation token was set ([`Run::set_cancel`]): the generation under way
+    /// was dropped, and the run resumes after its last stored generation.
+    #[error(transparent)]
+    Interrupted(#[from] Interrupted),
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
@@ -130,6 +135,8 @@ pub struct Run<G: Genome> {
     cache: EvaluationCache,
     /// The directory's lock, held while the run may write (`None` when opened read-only).
     _lock: Option<DirectoryLock>,
+    /// Stops [`Run::run`] between evaluations once set.
+    cancel: Cancel,
 }
 
 /// The encoding of the run in `dir`, as its store records it (or, for a start interrupted
@@ -422,7 +429,16 @@ impl<G: Genome> Run<G> {
             config,
             store,
             _lock: lock,
+            cancel: Cancel::default(),
         }
+    }
+
+    /// Lets `cancel` stop [`Run::run`]: once it is set, the evaluations under way stop at
+    /// their next control step, the generation they belong to is dropped (nothing of it is
+    /// stored), and `run` returns [`RunError::Interrupted`]. The run then resumes from its
+    /// last stored generation ([`Run::resume`]) and ends as an uninterrupted run would.
+    pub fn set_cancel(&mut self, cancel: Cancel) {
+        self.cancel = cancel;
     }
 
     /// The run's settings.
@@ -531,7 +547,8 @@ impl<G: Genome> Run<G> {
         Ok(())
     }
 
-    /// Runs the remaining generations, calling `observer` after each.
+    /// Runs the remaining generations, calling `observer` after each; stops with
+    /// [`RunError::Interrupted`] once the token of [`Run::set_cancel`] is set.
     pub fn run(&mut self, observer: &mut dyn FnMut(&GenerationReport)) -> Result<(), RunError> {
         let generations = self.config.ga.generations as u32;
         let (mut population, first) = match self.store.last_generation()? {
@@ -569,9 +586,12 @@ impl<G: Genome> Run<G> {
             .cloned()
             .unwrap_or_default();
         for generation in first..generations {
+            self.cancel.check()?;
             let started = Instant::now();
             let (next, evaluations) = if generation == 0 {
-                let p = self.evolution.first_generation(&mut self.cache);
+                let p = self
+                    .evolution
+                    .first_generation(&mut self.cache, &self.cancel)?;
                 let n = p.len() as u64;
                 (p, n)
             } else {
@@ -580,7 +600,8 @@ impl<G: Genome> Run<G> {
                     generation,
                     &mut fallbacks,
                     &mut self.cache,
-                )
+                    &self.cancel,
+                )?
             };
             population = next;
             let best = ranking(&population).first().copied();
@@ -594,7 +615,7 @@ impl<G: Genome> Run<G> {
                         _ => match b.key.and_then(|k| self.cache.fine(&k).cloned()) {
                             Some(fine) => fine,
                             None => {
-                                let fine = self.fine_evaluation(b);
+                                let fine = self.fine_evaluation(b, &self.cancel)?;
                                 if let Some(key) = b.key {
                                     self.cache.insert_fine(key, &fine);
                                 }
@@ -635,20 +656,32 @@ impl<G: Genome> Run<G> {
     }
 
     /// `individual` developed again (same limits and development seed as in the run) and
-    /// evaluated with [`Run::fine_task`]: a pure function of the genome and the task.
-    pub fn fine_evaluation(&self, individual: &Individual<G>) -> FineEvaluation {
+    /// evaluated with [`Run::fine_task`]: a pure function of the genome and the task;
+    /// `Interrupted` once `cancel` is set.
+    pub fn fine_evaluation(
+        &self,
+        individual: &Individual<G>,
+        cancel: &Cancel,
+    ) -> Result<FineEvaluation, Interrupted> {
         let task = self.fine_task();
         let evaluation = match individual
             .genome
             .develop(&self.evolution.limits, individual.develop_seed)
         {
-            Ok(creature) => task.evaluate(&creature, false),
+            Ok(creature) => task.evaluate_watched(
+                &creature,
+                Watch {
+                    record: false,
+                    progress: &mut |_| {},
+                    cancel: Some(cancel),
+                },
+            )?,
             Err(e) => Evaluation::invalid(task.task.name(), format!("development: {e}")),
         };
-        FineEvaluation {
+        Ok(FineEvaluation {
             fitness: evaluation.fitness,
             status: status_text(&evaluation),
-        }
+        })
     }
 
     /// Stores a generation (one transaction), then rewrites `best.lsys` (or the encoding's

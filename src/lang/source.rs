@@ -130,6 +130,9 @@ pub enum DiagnosticKind {
     Semantic,
     /// Something went wrong while deriving (division by zero, runaway growth, ...).
     Runtime,
+    /// The work was stopped by its caller's [`Cancel`](crate::cancel::Cancel) token, not by
+    /// anything in the text.
+    Interrupted,
 }
 
 /// Where in a file a diagnostic points.
@@ -244,3 +247,11 @@ impl fmt::Display for Diagnostic {
 }
 
 impl std::error::Error for Diagnostic {}
+
+/// Interrupted work as a diagnostic of kind [`DiagnosticKind::Interrupted`], for the loops
+/// whose error is a [`Diagnostic`] (growth).
+impl From<crate::cancel::Interrupted> for Diagnostic {
+    fn from(interrupted: crate::cancel::Interrupted) -> Self {
+        Diagnostic::without_location(DiagnosticKind::Interrupted, interrupted.to_string())
+    }
+}

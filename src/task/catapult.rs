@@ -6,8 +6,9 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Phase, evaluate, steps_in};
+use super::protocol::{Bounds, Phase, Watch, evaluate, steps_in, uninterrupted};
 use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
+use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::SimOptions;
 
@@ -114,6 +115,22 @@ pub fn catapult_with_progress(
     record: bool,
     progress: &mut dyn FnMut(f64),
 ) -> Evaluation {
+    let watch = Watch {
+        record,
+        progress,
+        cancel: None,
+    };
+    uninterrupted(catapult_watched(creature, sim, options, watch))
+}
+
+/// [`catapult`], watched: recorded, told its progress and stopped by a token as `watch`
+/// says.
+pub(super) fn catapult_watched(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &CatapultOptions,
+    watch: Watch<'_>,
+) -> Result<Evaluation, Interrupted> {
     let task: &'static str = if options.target.is_some() {
         "aim"
     } else {
@@ -122,16 +139,16 @@ pub fn catapult_with_progress(
     if let Some(target) = options.target
         && !(target.iter().all(|v| v.is_finite()) && target.norm() <= MAX_TARGET_DISTANCE)
     {
-        return Evaluation::failed(
+        return Ok(Evaluation::failed(
             task,
             Status::Invalid,
             format!("the target must be within {MAX_TARGET_DISTANCE} m of the projectile"),
-        );
+        ));
     }
     // The target in the world, once the projectile is placed: kept in the terms of a failed
     // evaluation too, so that its recording can show the target.
     let placed_target = std::cell::Cell::new(None);
-    let mut evaluation = evaluate(task, creature, sim, options, (record, progress), |run| {
+    let mut evaluation = evaluate(task, creature, sim, options, watch, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);
@@ -215,7 +232,7 @@ pub fn catapult_with_progress(
             None => distance,
         };
         Ok((fitness, terms))
-    });
+    })?;
     if let Some(target) = placed_target.get() {
         for (name, value) in [
             ("target_x", target.x),
@@ -225,5 +242,5 @@ pub fn catapult_with_progress(
             evaluation.terms.entry(name.to_string()).or_insert(value);
         }
     }
-    evaluation
+    Ok(evaluation)
 }

@@ -5,7 +5,10 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::Evaluation;
-use super::protocol::{Bounds, Phase, Rest, evaluate, settle_steps, steps_in};
+use super::protocol::{
+    Bounds, Phase, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted,
+};
+use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::SimOptions;
 
@@ -68,7 +71,22 @@ pub fn jump_with_progress(
     record: bool,
     progress: &mut dyn FnMut(f64),
 ) -> Evaluation {
-    evaluate("jump", creature, sim, options, (record, progress), |run| {
+    let watch = Watch {
+        record,
+        progress,
+        cancel: None,
+    };
+    uninterrupted(jump_watched(creature, sim, options, watch))
+}
+
+/// [`jump`], watched: recorded, told its progress and stopped by a token as `watch` says.
+pub(super) fn jump_watched(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &JumpOptions,
+    watch: Watch<'_>,
+) -> Result<Evaluation, Interrupted> {
+    evaluate("jump", creature, sim, options, watch, |run| {
         run.settle(&options.rest, 0.0, sim.control_step)?;
         run.check_height(options.max_height)?;
         let resting = run.world.lowest_point().max(0.0);

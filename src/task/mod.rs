@@ -24,7 +24,7 @@ mod walker;
 pub use catapult::{CatapultOptions, catapult, catapult_with_progress, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
 pub use jump::{JumpOptions, jump, jump_with_progress};
-pub use protocol::{Phase, Rest};
+pub use protocol::{Phase, Rest, Watch};
 pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, RecordedFrame, Recording, Sample, recording_interval,
 };

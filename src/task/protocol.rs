@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::recording::{Sample, recording_interval};
 use super::{Evaluation, Status};
+use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
 use crate::sim::{SimOptions, World};
 
@@ -164,10 +165,23 @@ pub(super) struct Run<'p> {
     progress: &'p mut dyn FnMut(f64),
     /// The last fraction told, in thousandths.
     told: Option<usize>,
+    /// Checked before every control step (one atomic load beside a step of physics).
+    cancel: Option<&'p Cancel>,
+    /// Whether a step found `cancel` set: the evaluation is then interrupted, whatever its
+    /// protocol made of the failed step.
+    interrupted: bool,
 }
 
 impl Run<'_> {
     pub(super) fn step(&mut self, controller: bool) -> Result<f64, Evaluation> {
+        if self.cancel.is_some_and(Cancel::is_cancelled) {
+            self.interrupted = true;
+            return Err(Evaluation::failed(
+                self.task,
+                Status::Invalid,
+                Interrupted.to_string(),
+            ));
+        }
         let moved = self.world.step(controller).map_err(|e| {
             Evaluation::failed(
                 self.task,
@@ -216,8 +230,12 @@ impl Run<'_> {
         self.tell();
     }
 
-    /// Tells the progress callback the fraction done, when it has grown by a thousandth.
+    /// Tells the progress callback the fraction done, when it has grown by a thousandth (an
+    /// interrupted evaluation tells nothing more).
     fn tell(&mut self) {
+        if self.interrupted {
+            return;
+        }
         let done = self.counted.saturating_add(self.steps - self.phase_start);
         let thousandths = ((1000.0 * done as f64 / self.max_steps.max(1) as f64) as usize).min(999);
         if self.told.is_none_or(|told| thousandths > told) {
@@ -308,12 +326,21 @@ pub(super) trait Bounds {
     fn max_steps(&self, dt: f64) -> usize;
 }
 
-/// How an evaluation is watched: whether it is recorded, the most control steps its protocol
-/// can take, and the callback told the fraction done.
-pub(super) struct Watch<'p> {
-    pub(super) record: bool,
-    pub(super) max_steps: usize,
-    pub(super) progress: &'p mut dyn FnMut(f64),
+/// How an evaluation is watched from outside: whether it is recorded, the callback told the
+/// fraction done, and the token that stops it.
+pub struct Watch<'p> {
+    /// Whether to keep a recording (see [`super::recording_interval`]).
+    pub record: bool,
+    /// Told the fraction done: from 0, growing by thousandths as the protocol steps (a phase
+    /// that ends early counts as done at its longest), and 1 at the end.
+    pub progress: &'p mut dyn FnMut(f64),
+    /// Set, it stops the evaluation before its next control step with [`Interrupted`].
+    pub cancel: Option<&'p Cancel>,
+}
+
+/// The evaluation of a watch without a token, which nothing can interrupt.
+pub(super) fn uninterrupted(evaluation: Result<Evaluation, Interrupted>) -> Evaluation {
+    evaluation.expect("an evaluation without a cancellation token is never interrupted")
 }
 
 fn start<'p>(
@@ -321,6 +348,7 @@ fn start<'p>(
     creature: &Creature,
     sim: &SimOptions,
     watch: Watch<'p>,
+    max_steps: usize,
 ) -> Result<Run<'p>, Evaluation> {
     let world = World::new(creature, sim)
         .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
@@ -332,63 +360,91 @@ fn start<'p>(
         task,
         phase: Phase::Settling,
         steps: 0,
-        max_steps: watch.max_steps,
-        interval: recording_interval(watch.max_steps),
+        max_steps,
+        interval: recording_interval(max_steps),
         pending: None,
         counted: 0,
         phase_start: 0,
         progress: watch.progress,
         told: None,
+        cancel: watch.cancel,
+        interrupted: false,
     })
 }
 
 /// Screens the creature, builds its world and runs `protocol` on it, within the `bounds` of
 /// the task's settings; `protocol` returns the fitness and its terms (or a failed
-/// evaluation). The progress callback is told 1 at the end.
+/// evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
+/// token stopped it.
 pub(super) fn evaluate(
     task: &'static str,
     creature: &Creature,
     sim: &SimOptions,
     bounds: &impl Bounds,
-    (record, progress): (bool, &mut dyn FnMut(f64)),
+    watch: Watch<'_>,
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
-) -> Evaluation {
+) -> Result<Evaluation, Interrupted> {
+    let Watch {
+        record,
+        progress,
+        cancel,
+    } = watch;
     let watch = Watch {
         record,
-        max_steps: bounds.max_steps(sim.control_step),
         progress: &mut *progress,
+        cancel,
     };
-    let evaluation = evaluate_run(task, creature, sim, watch, bounds.limits(), protocol);
+    let max_steps = bounds.max_steps(sim.control_step);
+    let evaluation = evaluate_run(
+        task,
+        creature,
+        sim,
+        (watch, max_steps),
+        bounds.limits(),
+        protocol,
+    )?;
     progress(1.0);
-    evaluation
+    Ok(evaluation)
 }
 
 fn evaluate_run(
     task: &'static str,
     creature: &Creature,
     sim: &SimOptions,
-    watch: Watch<'_>,
+    (watch, max_steps): (Watch<'_>, usize),
     (max_height, seconds): (f64, f64),
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
-) -> Evaluation {
+) -> Result<Evaluation, Interrupted> {
     if let Some(rejected) = screen(task, creature, max_height, seconds) {
-        return rejected;
+        return Ok(rejected);
     }
-    let mut run = match start(task, creature, sim, watch) {
+    let mut run = match start(task, creature, sim, watch, max_steps) {
         Ok(run) => run,
-        Err(failed) => return failed,
+        Err(failed) => return Ok(failed),
     };
-    match protocol(&mut run) {
+    let outcome = protocol(&mut run);
+    if run.interrupted {
+        return Err(Interrupted);
+    }
+    Ok(match outcome {
         Ok((fitness, mut terms)) => {
             // How far the solver let any joint come apart (m): a diagnostic of the step
             // setting, not part of any fitness.
             terms.insert("joint_gap".into(), run.world.peak_joint_gap());
             // No NaN or infinity leaves an evaluation: JSON cannot hold them.
             if let Some((name, _)) = terms.iter().find(|(_, v)| !v.is_finite()) {
-                return Evaluation::failed(task, Status::Invalid, format!("{name} is not finite"));
+                return Ok(Evaluation::failed(
+                    task,
+                    Status::Invalid,
+                    format!("{name} is not finite"),
+                ));
             }
             if !fitness.is_finite() {
-                return Evaluation::failed(task, Status::Invalid, "fitness is not finite".into());
+                return Ok(Evaluation::failed(
+                    task,
+                    Status::Invalid,
+                    "fitness is not finite".into(),
+                ));
             }
             Evaluation {
                 task: task.to_string(),
@@ -404,5 +460,5 @@ fn evaluate_run(
             failed.recording = run.take_recording();
             failed
         }
-    }
+    })
 }

@@ -3,7 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{CatapultOptions, Evaluation, JumpOptions, WalkerOptions};
+use super::{CatapultOptions, Evaluation, JumpOptions, WalkerOptions, Watch};
+use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::SimOptions;
 
@@ -145,22 +146,36 @@ impl TaskSpec {
         record: bool,
         progress: &mut dyn FnMut(f64),
     ) -> Evaluation {
+        let watch = Watch {
+            record,
+            progress,
+            cancel: None,
+        };
+        super::protocol::uninterrupted(self.evaluate_watched(creature, watch))
+    }
+
+    /// [`TaskSpec::evaluate`], watched as `watch` says: recorded, told its progress, and
+    /// stopped before its next control step with [`Interrupted`] once its token is set (an
+    /// interrupted evaluation has no result: nothing of it is kept).
+    pub fn evaluate_watched(
+        &self,
+        creature: &Creature,
+        watch: Watch<'_>,
+    ) -> Result<Evaluation, Interrupted> {
         match self.task {
             TaskKind::Walker => {
-                super::walker_with_progress(creature, &self.sim, &self.walker, record, progress)
+                super::walker::walker_watched(creature, &self.sim, &self.walker, watch)
             }
-            TaskKind::Jump => {
-                super::jump_with_progress(creature, &self.sim, &self.jump, record, progress)
-            }
+            TaskKind::Jump => super::jump::jump_watched(creature, &self.sim, &self.jump, watch),
             TaskKind::Catapult => {
                 let options = CatapultOptions {
                     target: None,
                     ..self.catapult.clone()
                 };
-                super::catapult_with_progress(creature, &self.sim, &options, record, progress)
+                super::catapult::catapult_watched(creature, &self.sim, &options, watch)
             }
             TaskKind::Aim => {
-                super::catapult_with_progress(creature, &self.sim, &self.catapult, record, progress)
+                super::catapult::catapult_watched(creature, &self.sim, &self.catapult, watch)
             }
         }
     }

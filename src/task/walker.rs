@@ -7,8 +7,11 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Phase, Rest, evaluate, settle_steps, steps_in};
+use super::protocol::{
+    Bounds, Phase, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted,
+};
 use super::{Evaluation, MAX_TARGET_DISTANCE};
+use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{DragMeter, SimOptions, World};
 
@@ -213,87 +216,95 @@ pub fn walker_with_progress(
     record: bool,
     progress: &mut dyn FnMut(f64),
 ) -> Evaluation {
-    evaluate(
-        "walker",
-        creature,
-        sim,
-        options,
-        (record, progress),
-        |run| {
-            run.settle(&options.rest, 0.0, sim.control_step)?;
-            let settled_at = run.world.time();
-            run.check_height(options.max_height)?;
-            run.phase = Phase::ControllerOn;
-            run.run_for(options.activation, true, sim.control_step)?;
-            run.settle(&options.rest, options.second_settle, sim.control_step)?;
-            let measure_from = run.world.time();
-            run.phase = Phase::Measuring;
-            let from = run.world.part_position(0);
-            // Iterative move: the centre of mass's horizontal gain over every whole second.
-            let mut gains = Vec::new();
-            let mut last_second = centre_of_mass(&run.world, creature);
-            let centre_from = last_second;
-            // Hornby & Pollack's D_drag, measured only when it is the fitness.
-            let mut drag = (options.fitness == WalkerFitness::HornbyPollack)
-                .then(|| DragMeter::start(&run.world));
-            let steps = steps_in(options.seconds, sim.control_step);
-            let start_time = run.world.time();
-            for _ in 0..steps {
-                run.step(true)?;
-                if let Some(drag) = &mut drag {
-                    drag.after_step(&run.world, sim.control_step);
-                }
-                let elapsed = run.world.time() - start_time;
-                if elapsed + 1e-9 >= (gains.len() + 1) as f64 {
-                    let centre = centre_of_mass(&run.world, creature);
-                    let d = centre - last_second;
-                    gains.push((d.x * d.x + d.z * d.z).sqrt());
-                    last_second = centre;
+    let watch = Watch {
+        record,
+        progress,
+        cancel: None,
+    };
+    uninterrupted(walker_watched(creature, sim, options, watch))
+}
+
+/// [`walker`], watched: recorded, told its progress and stopped by a token as `watch` says.
+pub(super) fn walker_watched(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &WalkerOptions,
+    watch: Watch<'_>,
+) -> Result<Evaluation, Interrupted> {
+    evaluate("walker", creature, sim, options, watch, |run| {
+        run.settle(&options.rest, 0.0, sim.control_step)?;
+        let settled_at = run.world.time();
+        run.check_height(options.max_height)?;
+        run.phase = Phase::ControllerOn;
+        run.run_for(options.activation, true, sim.control_step)?;
+        run.settle(&options.rest, options.second_settle, sim.control_step)?;
+        let measure_from = run.world.time();
+        run.phase = Phase::Measuring;
+        let from = run.world.part_position(0);
+        // Iterative move: the centre of mass's horizontal gain over every whole second.
+        let mut gains = Vec::new();
+        let mut last_second = centre_of_mass(&run.world, creature);
+        let centre_from = last_second;
+        // Hornby & Pollack's D_drag, measured only when it is the fitness.
+        let mut drag =
+            (options.fitness == WalkerFitness::HornbyPollack).then(|| DragMeter::start(&run.world));
+        let steps = steps_in(options.seconds, sim.control_step);
+        let start_time = run.world.time();
+        for _ in 0..steps {
+            run.step(true)?;
+            if let Some(drag) = &mut drag {
+                drag.after_step(&run.world, sim.control_step);
+            }
+            let elapsed = run.world.time() - start_time;
+            if elapsed + 1e-9 >= (gains.len() + 1) as f64 {
+                let centre = centre_of_mass(&run.world, creature);
+                let d = centre - last_second;
+                gains.push((d.x * d.x + d.z * d.z).sqrt());
+                last_second = centre;
+            }
+        }
+        let iterative = iterative_move(&gains);
+        let to = run.world.part_position(0);
+        let d = to - from;
+        let distance = (d.x * d.x + d.z * d.z).sqrt();
+        let (c_l, c_s, c_v) = size_coefficients(creature);
+        let n = creature.parts.len() as f64;
+        let centre_moved = centre_of_mass(&run.world, creature) - centre_from;
+        let displacement = centre_moved.x.hypot(centre_moved.z);
+        let dragged = drag.map_or(0.0, |drag| drag.dragged());
+        let fitness = match options.fitness {
+            WalkerFitness::Normalised => distance * (c_v / (c_s * c_l)) * options.kappa.powf(n),
+            WalkerFitness::Distance => distance,
+            WalkerFitness::IterativeMove => iterative,
+            WalkerFitness::BoxLover => iterative * n,
+            WalkerFitness::FatLover => iterative * creature.mass(),
+            WalkerFitness::DwarfSlayer => {
+                if n < 3.0 {
+                    0.0
+                } else {
+                    iterative
                 }
             }
-            let iterative = iterative_move(&gains);
-            let to = run.world.part_position(0);
-            let d = to - from;
-            let distance = (d.x * d.x + d.z * d.z).sqrt();
-            let (c_l, c_s, c_v) = size_coefficients(creature);
-            let n = creature.parts.len() as f64;
-            let centre_moved = centre_of_mass(&run.world, creature) - centre_from;
-            let displacement = centre_moved.x.hypot(centre_moved.z);
-            let dragged = drag.map_or(0.0, |drag| drag.dragged());
-            let fitness = match options.fitness {
-                WalkerFitness::Normalised => distance * (c_v / (c_s * c_l)) * options.kappa.powf(n),
-                WalkerFitness::Distance => distance,
-                WalkerFitness::IterativeMove => iterative,
-                WalkerFitness::BoxLover => iterative * n,
-                WalkerFitness::FatLover => iterative * creature.mass(),
-                WalkerFitness::DwarfSlayer => {
-                    if n < 3.0 {
-                        0.0
-                    } else {
-                        iterative
-                    }
-                }
-                WalkerFitness::HornbyPollack => (displacement - dragged).max(-MAX_TARGET_DISTANCE),
-            };
-            let mut terms = BTreeMap::from([
-                ("D_w".to_string(), distance),
-                ("C_l".to_string(), c_l),
-                ("C_s".to_string(), c_s),
-                ("C_v".to_string(), c_v),
-                ("N".to_string(), n),
-                ("kappa".to_string(), options.kappa),
-                ("settled_at".to_string(), settled_at),
-                ("iterative_move".to_string(), iterative),
-                ("mass".to_string(), creature.mass()),
-                ("measured_from".to_string(), measure_from),
-            ]);
-            if options.fitness == WalkerFitness::HornbyPollack {
-                terms.insert("displacement".into(), displacement);
-                terms.insert("drag".into(), dragged);
-            }
-            Ok((fitness, terms))
-        },
-    )
+            WalkerFitness::HornbyPollack => (displacement - dragged).max(-MAX_TARGET_DISTANCE),
+        };
+        let mut terms = BTreeMap::from([
+            ("D_w".to_string(), distance),
+            ("C_l".to_string(), c_l),
+            ("C_s".to_string(), c_s),
+            ("C_v".to_string(), c_v),
+            ("N".to_string(), n),
+            ("kappa".to_string(), options.kappa),
+            ("settled_at".to_string(), settled_at),
+            ("iterative_move".to_string(), iterative),
+            ("mass".to_string(), creature.mass()),
+            ("measured_from".to_string(), measure_from),
+        ]);
+        if options.fitness == WalkerFitness::HornbyPollack {
+            terms.insert("displacement".into(), displacement);
+            terms.insert("drag".into(), dragged);
+        }
+        Ok((fitness, terms))
+    })
 }
 
 /// The mass-weighted centre of the creature's parts in `world`.

@@ -1,6 +1,7 @@
 //! The genetic algorithm on a toy genome: the presets' proportions, elitism, fallbacks for
 //! missing operators, and bit-identical results on any number of threads.
 
+use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
 use ontogeny::encoding::{DevelopError, Genome, Rng};
 use ontogeny::evolve::cache::EvaluationCache;
@@ -106,12 +107,21 @@ fn chaumont_proportions_are_exact() {
 #[test]
 fn a_generation_keeps_the_elite_and_makes_the_rest_by_the_schedule() {
     let evo = evolution(Preset::Chaumont, 20);
-    let first = evo.first_generation(&mut EvaluationCache::new(true));
+    let first = evo
+        .first_generation(&mut EvaluationCache::new(true), &Cancel::new())
+        .unwrap();
     assert_eq!(first.len(), 20);
     assert!(first.iter().all(|i| i.operator == Operator::Random));
     let mut fallbacks = Fallbacks::default();
-    let (next, evaluations) =
-        evo.next_generation(&first, 1, &mut fallbacks, &mut EvaluationCache::new(true));
+    let (next, evaluations) = evo
+        .next_generation(
+            &first,
+            1,
+            &mut fallbacks,
+            &mut EvaluationCache::new(true),
+            &Cancel::new(),
+        )
+        .unwrap();
     assert_eq!(next.len(), 20);
     // 20% elite: 4 kept, not evaluated again, best first and unchanged.
     assert_eq!(evaluations, 16);
@@ -148,7 +158,9 @@ fn a_developmental_error_is_an_invalid_evaluation_at_the_failure_floor() {
         init: Some(bad),
         ..evo
     };
-    let first = init.first_generation(&mut EvaluationCache::new(true));
+    let first = init
+        .first_generation(&mut EvaluationCache::new(true), &Cancel::new())
+        .unwrap();
     assert_eq!(first[0].operator, Operator::Init);
     assert_eq!(first[0].evaluation.status, Status::Invalid);
     assert_eq!(first[0].evaluation.fitness, ontogeny::task::FAILURE_FITNESS);
@@ -167,7 +179,9 @@ fn runs_are_identical_on_one_and_two_threads() {
                 .build()
                 .unwrap();
             pool.install(|| {
-                let mut population = evo.first_generation(&mut EvaluationCache::new(true));
+                let mut population = evo
+                    .first_generation(&mut EvaluationCache::new(true), &Cancel::new())
+                    .unwrap();
                 let mut out = vec![json(&population)];
                 for g in 1..3 {
                     population = evo
@@ -176,7 +190,9 @@ fn runs_are_identical_on_one_and_two_threads() {
                             g,
                             &mut Fallbacks::default(),
                             &mut EvaluationCache::new(true),
+                            &Cancel::new(),
                         )
+                        .unwrap()
                         .0;
                     out.push(json(&population));
                 }
@@ -190,7 +206,9 @@ fn runs_are_identical_on_one_and_two_threads() {
 #[test]
 fn generation_stats_by_hand() {
     let evo = evolution(Preset::Chaumont, 4);
-    let mut p = evo.first_generation(&mut EvaluationCache::new(true));
+    let mut p = evo
+        .first_generation(&mut EvaluationCache::new(true), &Cancel::new())
+        .unwrap();
     let fitness = [3.0, 1.0, 2.0, 4.0];
     for (i, f) in p.iter_mut().zip(fitness) {
         i.evaluation.fitness = f;
