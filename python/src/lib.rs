@@ -332,9 +332,14 @@ fn load(
 ) -> PyResult<PyCreature> {
     require_exists(&path)?;
     let options = load_options(steps, seed, time, dt, env);
-    let loaded = py
-        .detach(|| load_creature(&path, &options, &mut |_| {}))
-        .map_err(load_error)?;
+    let loaded = interruptible(py, |cancel| {
+        let options = LoadOptions {
+            cancel: cancel.clone(),
+            ..options
+        };
+        load_creature(&path, &options, &mut |_| {})
+    })?
+    .map_err(load_error)?;
     Ok(PyCreature::new(loaded.creature, loaded.notes))
 }
 
