@@ -16,7 +16,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::cache::EvaluationCache;
-use super::config::{RunConfig, check_settings, read_run_config};
+use super::config::{RunConfig, check_settings, read_run_config, with_generations};
 use super::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
 use super::key::EvaluationKey;
 use super::lock::{DirectoryLock, LockError};
@@ -324,11 +324,24 @@ impl<G: Genome> Run<G> {
         if generations == self.config.ga.generations {
             return Ok(());
         }
+        // Only the count changes, in the store's copy and in config.toml: the comments and
+        // layout a person gave the file stay.
+        let config_path = self.dir.join(CONFIG_FILE);
+        let file = std::fs::read_to_string(&config_path).map_err(io(&config_path))?;
+        let edit = |text: &str, name: &Path| {
+            with_generations(text, generations).map_err(|e| {
+                RunError::Extend(format!(
+                    "{}: cannot set [ga] generations to {generations}: {e}",
+                    name.display()
+                ))
+            })
+        };
+        let file = edit(&file, &config_path)?;
+        let stored = edit(&self.store.run()?.config, &self.dir.join(STORE_FILE))?;
+        self.store.set_config(&stored)?;
+        output::write(&config_path, file.as_bytes())?;
         self.config.ga.generations = generations;
         self.evolution.settings.generations = generations;
-        let text = self.config.to_toml().map_err(RunError::Corrupt)?;
-        self.store.set_config(&text)?;
-        output::write(&self.dir.join(CONFIG_FILE), text.as_bytes())?;
         Ok(())
     }
 
