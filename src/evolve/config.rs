@@ -347,9 +347,14 @@ fn parse_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>
 /// `text` (a run's `config.toml`) with `[ga] generations` set to `generations`, and nothing
 /// else changed: comments, layout, the order of keys and the way the other values are
 /// written stay as they are ([`toml_edit`]), and so do the comment and spacing around the
-/// value itself. An error says why the text has no such key to change.
+/// value itself. A bare seed above 2^63 − 1 (see [`parse_table`]) is put in quotes, as TOML
+/// holds no such integer. An error says why the text has no such key to change.
 pub fn with_generations(text: &str, generations: usize) -> Result<String, String> {
-    let mut document: toml_edit::DocumentMut = text.parse().map_err(|e| format!("{e}"))?;
+    let mut document: toml_edit::DocumentMut = text.parse().or_else(|e| {
+        quoted_large_seed(text)
+            .and_then(|quoted| quoted.parse().ok())
+            .ok_or_else(|| format!("{e}"))
+    })?;
     let count = i64::try_from(generations)
         .map_err(|_| format!("{generations} generations is more than TOML holds"))?;
     let value = document

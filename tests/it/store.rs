@@ -3,6 +3,7 @@
 //! migrated when opened for writing, the run store reference's example queries.
 
 mod migration;
+mod run_config;
 
 use std::fs;
 use std::path::{Path, PathBuf};
