@@ -119,13 +119,16 @@ pub struct EvolveArgs {
     no_cache: bool,
 }
 
-/// The command line's error for a run's.
+/// The command line's error for a run's: bad input (exit code 2), or, for a store or a plot
+/// that could not be written, ontogeny's own failure (exit code 1).
 pub fn run_error(e: RunError) -> anyhow::Error {
     match e {
         RunError::Config(d) => anyhow::Error::new(d),
         RunError::Io { path, source } => {
             anyhow::Error::new(source).context(format!("{}", path.display()))
         }
+        RunError::Store(e) if !e.is_bad_input() => anyhow::anyhow!("{e}"),
+        e @ RunError::Plot(_) => anyhow::anyhow!("{e}"),
         other => bad(other.to_string()),
     }
 }

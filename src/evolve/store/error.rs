@@ -94,6 +94,26 @@ pub enum StoreError {
     },
 }
 
+impl StoreError {
+    /// Whether the error is the input's: a file that is no run store, is damaged, is missing
+    /// or already there, or of a schema this program does not read (the command line exits
+    /// with 2). Otherwise it is ontogeny's own failure to create, read or write a store
+    /// (exit code 1): the disk is full, SQLite refused, a record did not fit the schema.
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            StoreError::Exists { .. }
+            | StoreError::Missing { .. }
+            | StoreError::NotARunStore { .. }
+            | StoreError::Corrupt { .. }
+            | StoreError::NewerSchema { .. }
+            | StoreError::OlderSchema { .. } => true,
+            StoreError::InvalidRecord { .. } | StoreError::Io { .. } | StoreError::Sqlite { .. } => {
+                false
+            }
+        }
+    }
+}
+
 /// A file-system error of the store at `path` while it did `action` (e.g. "cannot read it").
 pub(super) fn io_error(path: &Path, action: &'static str, source: std::io::Error) -> StoreError {
     StoreError::Io {
