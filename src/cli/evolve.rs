@@ -109,6 +109,11 @@ pub struct EvolveArgs {
     /// Seed the first generation with mutants of this hand-written grammar.
     #[arg(long, value_name = "FILE.lsys")]
     init: Option<PathBuf>,
+    /// With --resume: go on with a run whose last generation another evaluator version (an
+    /// ontogeny whose physics or task protocol differ) made; the store records where the
+    /// version changes.
+    #[arg(long, requires = "resume")]
+    allow_evaluator_change: bool,
     /// Do not re-walk each generation's best at the fine reference setting (the config's
     /// `verify_best = false`).
     #[arg(long)]
@@ -155,7 +160,7 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     };
     if let Some(dir) = &args.resume {
         let encoding = encoding_of_run(dir).map_err(run_error)?;
-        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens), |other| Err(bad(
+        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change), |other| Err(bad(
             format!("{}: unknown encoding '{other}'", dir.display())
         )));
     }
@@ -209,8 +214,12 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
     go(&mut run, out)
 }
 
-fn resume<G: Genome>(dir: &Path, generations: Option<usize>) -> anyhow::Result<()> {
-    let mut run = Run::<G>::resume(dir).map_err(run_error)?;
+fn resume<G: Genome>(
+    dir: &Path,
+    generations: Option<usize>,
+    allow_evaluator_change: bool,
+) -> anyhow::Result<()> {
+    let mut run = Run::<G>::resume_with(dir, allow_evaluator_change).map_err(run_error)?;
     if let Some(generations) = generations {
         run.extend(generations).map_err(run_error)?;
     }

@@ -38,6 +38,21 @@ pub enum StoreError {
         /// What SQLite found.
         detail: String,
     },
+    /// A record does not match the checksum stored with it, or a generation lacks some of
+    /// its individuals: the file was damaged (a flipped bit, an edit) where SQLite's own
+    /// checks do not look. Nothing of it is used.
+    #[error(
+        "{}: the record of {what} is damaged ({detail}); nothing was used or written: the run cannot go on from it (a copy made before the damage can)",
+        path.display()
+    )]
+    Damaged {
+        /// The database's path.
+        path: PathBuf,
+        /// Which record: "individual 3 of generation 1", "generation 1", "the run".
+        what: String,
+        /// What is wrong with it.
+        detail: String,
+    },
     /// The run store was written by a newer schema than this program reads.
     #[error(
         "{} was written by a newer schema (version {found}); this ontogeny reads version {SCHEMA_VERSION}: update ontogeny",
@@ -105,6 +120,7 @@ impl StoreError {
             | StoreError::Missing { .. }
             | StoreError::NotARunStore { .. }
             | StoreError::Corrupt { .. }
+            | StoreError::Damaged { .. }
             | StoreError::NewerSchema { .. }
             | StoreError::OlderSchema { .. } => true,
             StoreError::InvalidRecord { .. } | StoreError::Io { .. } | StoreError::Sqlite { .. } => {

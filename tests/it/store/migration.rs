@@ -1,5 +1,7 @@
-//! Older run stores: version 1 and version 2 files read as they are and migrated when opened
-//! for writing, a schema older than version 1 refused, and the cache's columns read back.
+//! Older run stores: version 1, 2 and 3 files read as they are and migrated when opened for
+//! writing (their records checksummed as they are), a migration that fails part-way leaving
+//! the file as it was, a schema older than version 1 refused, and the cache's columns read
+//! back.
 
 use super::*;
 
@@ -251,7 +253,7 @@ fn reused_flags_and_evaluation_keys_read_back_as_written() {
 }
 
 #[test]
-fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_writing() {
+fn a_version_2_store_is_read_as_it_is_and_migrated_to_the_current_version_when_opened_for_writing() {
     let dir = scratch("version-2");
     let path = dir.join("run.sqlite");
     version_1_store(&path);
@@ -259,12 +261,14 @@ fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_
     RunStore::open(&path).unwrap();
     {
         let conn = rusqlite::Connection::open(&path).unwrap();
-        conn.execute_batch(
-            "ALTER TABLE individual DROP COLUMN reused;
+        conn.execute_batch(&format!(
+            "{}
+             ALTER TABLE individual DROP COLUMN reused;
              ALTER TABLE individual DROP COLUMN evaluation_key;
              PRAGMA user_version = 2;
              PRAGMA wal_checkpoint(TRUNCATE);",
-        )
+            crate::util::DROP_VERSION_4
+        ))
         .unwrap();
     }
     let before = fs::read(&path).unwrap();
@@ -282,7 +286,7 @@ fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_
     );
     // Migrated: old rows were all evaluated and have no key; new rows keep theirs.
     let mut store = RunStore::open(&path).unwrap();
-    assert_eq!(store.schema_version(), 3);
+    assert_eq!(store.schema_version(), SCHEMA_VERSION);
     let (_, _, migrated) = held(&store);
     assert_eq!(migrated, old);
     let mut new = individuals(2, [1.0; 4]);
