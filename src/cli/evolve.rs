@@ -112,7 +112,7 @@ pub struct EvolveArgs {
     /// With --resume: go on with a run whose last generation another evaluator version (an
     /// ontogeny whose physics or task protocol differ) made; the store records where the
     /// version changes.
-    #[arg(long, requires = "resume")]
+    #[arg(long)]
     allow_evaluator_change: bool,
     /// Do not re-walk each generation's best at the fine reference setting (the config's
     /// `verify_best = false`).
@@ -163,6 +163,11 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
         return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change), |other| Err(bad(
             format!("{}: unknown encoding '{other}'", dir.display())
         )));
+    }
+    if args.allow_evaluator_change {
+        return Err(bad(
+            "--allow-evaluator-change goes with --resume: a new run has one evaluator",
+        ));
     }
     let source = read_source(args.config.as_deref())?;
     let encoding =

@@ -2,6 +2,7 @@
 //! generation, refusals that leave files untouched, a version-1 file read as it is and
 //! migrated when opened for writing, the run store reference's example queries.
 
+mod integrity;
 mod migration;
 mod run_config;
 

@@ -120,10 +120,21 @@ impl RunStore {
             // An empty file, unless a write-ahead log beside it holds committed pages.
             return fs::metadata(side_file(path, "-wal")).map_or(true, |m| m.len() == 0);
         }
-        let Ok(conn) = Connection::open_with_flags(
-            path,
-            OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
-        ) else {
+        // Without a write-ahead log beside it, read as immutable: no side file is made.
+        let opened = if side_file(path, "-wal").exists() {
+            Connection::open_with_flags(
+                path,
+                OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+            )
+        } else {
+            Connection::open_with_flags(
+                immutable_uri(path),
+                OpenFlags::SQLITE_OPEN_READ_ONLY
+                    | OpenFlags::SQLITE_OPEN_NO_MUTEX
+                    | OpenFlags::SQLITE_OPEN_URI,
+            )
+        };
+        let Ok(conn) = opened else {
             return false;
         };
         conn.query_row("SELECT count(*) FROM sqlite_master", [], |r| {
