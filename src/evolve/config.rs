@@ -235,8 +235,14 @@ fn quoted_large_seed(text: &str) -> Option<String> {
                 .find(|c: char| !c.is_ascii_digit())
                 .unwrap_or(digits.len());
             if end > 0
-                && digits[..end].parse::<u64>().is_ok_and(|s| s > i64::MAX as u64)
-                && digits[end..].trim_start().chars().next().is_none_or(|c| c == '#')
+                && digits[..end]
+                    .parse::<u64>()
+                    .is_ok_and(|s| s > i64::MAX as u64)
+                && digits[end..]
+                    .trim_start()
+                    .chars()
+                    .next()
+                    .is_none_or(|c| c == '#')
             {
                 let at = line.len() - digits.len();
                 out.push_str(&line[..at]);

@@ -39,7 +39,11 @@ pub(super) fn checksum<'a>(table: &str, values: impl IntoIterator<Item = ValueRe
                 hasher.update(x.to_bits().to_be_bytes());
             }
             ValueRef::Text(bytes) | ValueRef::Blob(bytes) => {
-                hasher.update([if matches!(value, ValueRef::Text(_)) { 3 } else { 4 }]);
+                hasher.update([if matches!(value, ValueRef::Text(_)) {
+                    3
+                } else {
+                    4
+                }]);
                 hasher.update((bytes.len() as u64).to_be_bytes());
                 hasher.update(bytes);
             }

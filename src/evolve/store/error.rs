@@ -123,9 +123,9 @@ impl StoreError {
             | StoreError::Damaged { .. }
             | StoreError::NewerSchema { .. }
             | StoreError::OlderSchema { .. } => true,
-            StoreError::InvalidRecord { .. } | StoreError::Io { .. } | StoreError::Sqlite { .. } => {
-                false
-            }
+            StoreError::InvalidRecord { .. }
+            | StoreError::Io { .. }
+            | StoreError::Sqlite { .. } => false,
         }
     }
 }

@@ -485,7 +485,6 @@ impl RunStore {
         tx.commit()
             .map_err(|e| write_error(&path, g, "the commit".into(), e))
     }
-
 }
 
 /// The file SQLite keeps beside `path` with `suffix` (`-wal`, `-shm`, `-journal`).

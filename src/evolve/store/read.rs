@@ -29,7 +29,11 @@ impl RunStore {
 
     /// The run's record.
     pub fn run(&self) -> Result<RunRecord, StoreError> {
-        let checksum = if self.checksummed() { "checksum" } else { "NULL" };
+        let checksum = if self.checksummed() {
+            "checksum"
+        } else {
+            "NULL"
+        };
         let read = |r: &Row<'_>| -> Result<(String, String, String, String, String), StoreError> {
             if self.checksummed() {
                 verify_row(&self.path, "run", r, RUN_COLUMNS.len(), || "the run".into())?;
@@ -99,7 +103,10 @@ impl RunStore {
         // Version 1 has no fine reference columns (none was verified); versions before 4 no
         // evaluator (version 1), count or checksum.
         let columns = match self.version {
-            1 => format!("{}, NULL, NULL, 1, NULL, NULL", GENERATION_COLUMNS[..9].join(", ")),
+            1 => format!(
+                "{}, NULL, NULL, 1, NULL, NULL",
+                GENERATION_COLUMNS[..9].join(", ")
+            ),
             2 | 3 => format!("{}, 1, NULL, NULL", GENERATION_COLUMNS[..11].join(", ")),
             _ => format!("{}, checksum", GENERATION_COLUMNS.join(", ")),
         };
@@ -120,14 +127,19 @@ impl RunStore {
             "cannot read the generations",
             |r| {
                 if self.checksummed() {
-                    verify_row(&self.path, "generation", r, GENERATION_COLUMNS.len(), || {
-                        match r.get::<_, i64>(0) {
+                    verify_row(
+                        &self.path,
+                        "generation",
+                        r,
+                        GENERATION_COLUMNS.len(),
+                        || match r.get::<_, i64>(0) {
                             Ok(g) => format!("generation {g}"),
                             Err(_) => "a generation".into(),
-                        }
-                    })?;
+                        },
+                    )?;
                 }
-                generation_row(r).map_err(|e| classify(&self.path, "cannot read the generations", e))
+                generation_row(r)
+                    .map_err(|e| classify(&self.path, "cannot read the generations", e))
             },
         )
     }
@@ -153,7 +165,11 @@ impl RunStore {
         let expected = match counted {
             Some(row) => row.individuals.unwrap_or(0),
             None if individuals.is_empty() => return Ok(individuals),
-            None => return Err(damaged("its individuals are stored, its record is not".into())),
+            None => {
+                return Err(damaged(
+                    "its individuals are stored, its record is not".into(),
+                ));
+            }
         };
         if individuals.len() as u64 != expected {
             return Err(damaged(format!(
@@ -318,12 +334,16 @@ impl RunStore {
             action,
             |r| {
                 if self.checksummed() {
-                    verify_row(&self.path, "individual", r, INDIVIDUAL_COLUMNS_ALL.len(), || {
-                        match (r.get::<_, i64>(1), r.get::<_, i64>(0)) {
+                    verify_row(
+                        &self.path,
+                        "individual",
+                        r,
+                        INDIVIDUAL_COLUMNS_ALL.len(),
+                        || match (r.get::<_, i64>(1), r.get::<_, i64>(0)) {
                             (Ok(i), Ok(g)) => format!("individual {i} of generation {g}"),
                             _ => "an individual".into(),
-                        }
-                    })?;
+                        },
+                    )?;
                 }
                 individual_from_row(r).map_err(|e| classify(&self.path, action, e))
             },
@@ -355,7 +375,11 @@ impl RunStore {
 fn generation_row(r: &Row<'_>) -> rusqlite::Result<GenerationRow> {
     let whole = |i: usize| -> rusqlite::Result<u64> {
         u64::try_from(r.get::<_, i64>(i)?).map_err(|e| {
-            rusqlite::Error::FromSqlConversionFailure(i, rusqlite::types::Type::Integer, Box::new(e))
+            rusqlite::Error::FromSqlConversionFailure(
+                i,
+                rusqlite::types::Type::Integer,
+                Box::new(e),
+            )
         })
     };
     Ok(GenerationRow {

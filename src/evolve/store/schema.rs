@@ -22,7 +22,7 @@ use super::error::{StoreError, classify, io_error};
 ///   creature evaluated earlier in the run) and `individual.evaluation_key` (the key of its
 ///   creature and the task, [`crate::evolve::key::EvaluationKey`], NULL when it did not
 ///   develop). Versions 1 and 2 are migrated on writing: old rows get `reused` 0 and no key.
-/// - 4: a `checksum` in every row of every table ([`super::checksum`]), verified whenever a
+/// - 4: a `checksum` in every row of every table (a truncated SHA-256 of its values), verified whenever a
 ///   row is read; `generation.evaluator`, the evaluator's behaviour version that made the
 ///   generation ([`crate::evolve::evaluator_version`]), and `generation.individuals`, how
 ///   many individuals it has. Older versions are migrated on writing: their rows are

@@ -169,7 +169,10 @@ fn a_version_2_database_is_migrated_to_version_3_on_resume() {
     }
     succeeded(&resume(&old));
     let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
-    assert_eq!(store.schema_version(), ontogeny::evolve::store::SCHEMA_VERSION);
+    assert_eq!(
+        store.schema_version(),
+        ontogeny::evolve::store::SCHEMA_VERSION
+    );
     drop(store);
     // The old rows: evaluated, no key; the new ones keyed as in the uninterrupted run.
     let (migrated, fresh) = (stored_individuals(&old), stored_individuals(&whole));

@@ -57,12 +57,8 @@ fn develop_seed_at(path: &Path, bytes: &[u8]) -> (usize, usize) {
     let store = RunStore::open_read_only(path).unwrap();
     let json = store.individuals(1).unwrap()[2].genome_json.clone();
     let at = json.find("\"develop_seed\":").unwrap();
-    let end = json[at + 15..]
-        .find(|c: char| !c.is_ascii_digit())
-        .unwrap()
-        + at
-        + 15;
-    let needle = json[at..end].as_bytes();
+    let end = json[at + 15..].find(|c: char| !c.is_ascii_digit()).unwrap() + at + 15;
+    let needle = &json.as_bytes()[at..end];
     let offset = bytes
         .windows(needle.len())
         .position(|w| w == needle)
@@ -127,7 +123,11 @@ fn two_hundred_bits_flipped_anywhere_in_the_file_are_refused_or_change_nothing_r
         }
         // A resume's open either refuses it or reads exactly the clean records.
         if let Ok(store) = RunStore::open(&copy) {
-            assert_eq!(everything(&store).unwrap(), expected, "byte {byte} bit {bit}");
+            assert_eq!(
+                everything(&store).unwrap(),
+                expected,
+                "byte {byte} bit {bit}"
+            );
         }
     }
     assert_eq!(refused + unchanged, 200);
@@ -217,7 +217,10 @@ fn a_generation_that_lost_an_individual_or_whose_record_was_edited_is_refused() 
     // A value changed by hand, without its checksum: the run row, a generation's.
     for (edit, what) in [
         ("UPDATE run SET config = config || '#'", "the run"),
-        ("UPDATE generation SET best = 99 WHERE generation = 0", "generation 0"),
+        (
+            "UPDATE generation SET best = 99 WHERE generation = 0",
+            "generation 0",
+        ),
     ] {
         let path = finished_store(&scratch(&format!("edited-{what}")));
         rusqlite::Connection::open(&path)
@@ -276,7 +279,14 @@ fn a_run_made_by_another_evaluator_version_resumes_only_when_allowed_and_records
     );
     // The flag belongs to a resume: a new run refuses it, before anything is made.
     let alone = crate::util::evolve_walkers("direct", "6")
-        .args(["--gens", "1", "--seconds", "1", "--allow-evaluator-change", "--out"])
+        .args([
+            "--gens",
+            "1",
+            "--seconds",
+            "1",
+            "--allow-evaluator-change",
+            "--out",
+        ])
         .arg(dir.join("new"))
         .output()
         .unwrap();

@@ -253,7 +253,8 @@ fn reused_flags_and_evaluation_keys_read_back_as_written() {
 }
 
 #[test]
-fn a_version_2_store_is_read_as_it_is_and_migrated_to_the_current_version_when_opened_for_writing() {
+fn a_version_2_store_is_read_as_it_is_and_migrated_to_the_current_version_when_opened_for_writing()
+{
     let dir = scratch("version-2");
     let path = dir.join("run.sqlite");
     version_1_store(&path);
@@ -326,7 +327,9 @@ fn a_version_3_store_is_checksummed_as_it_is_when_migrated_and_its_damage_is_the
     // Its records now carry checksums: a fitness changed behind the store's back is refused.
     rusqlite::Connection::open(&path)
         .unwrap()
-        .execute_batch("UPDATE individual SET fitness = 5.0 WHERE generation = 1 AND individual = 2")
+        .execute_batch(
+            "UPDATE individual SET fitness = 5.0 WHERE generation = 1 AND individual = 2",
+        )
         .unwrap();
     let err = RunStore::open_read_only(&path)
         .unwrap()

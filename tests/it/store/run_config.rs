@@ -80,7 +80,10 @@ fn a_config_file_may_give_a_seed_above_2_pow_63_in_quotes_or_bare() {
         succeeded(&extend(&run, "3"));
     }
     // A seed below 0, or a string that is no number, is refused at its place in the file.
-    for (line, shown) in [("seed = -1\n", "not -1"), ("seed = \"12x\"\n", "not \"12x\"")] {
+    for (line, shown) in [
+        ("seed = -1\n", "not -1"),
+        ("seed = \"12x\"\n", "not \"12x\""),
+    ] {
         let config = dir.join("bad.toml");
         fs::write(&config, line).unwrap();
         let output = crate::util::evolve_walkers("direct", "6")
@@ -131,12 +134,18 @@ fn extending_a_run_changes_only_the_count_in_config_toml() {
     tiny_run("direct", &run, &[]);
     let path = run.join("config.toml");
     let text = fs::read_to_string(&path).unwrap();
-    assert!(text.contains("\n[ga]\n") && text.contains("\ngenerations = 2\n"), "{text}");
+    assert!(
+        text.contains("\n[ga]\n") && text.contains("\ngenerations = 2\n"),
+        "{text}"
+    );
     // A person's comments, blank lines, spacing and a comment after the count itself.
     let edited = format!(
         "# my walkers, second try\n\n{}",
         text.replace("\n[ga]\n", "\n\n[ga]   # the schedule\n")
-            .replace("\ngenerations = 2\n", "\ngenerations    =   2   # more later\n")
+            .replace(
+                "\ngenerations = 2\n",
+                "\ngenerations    =   2   # more later\n"
+            )
             .replace("\npopulation = 6\n", "\n  population = 6\n")
     );
     fs::write(&path, &edited).unwrap();
