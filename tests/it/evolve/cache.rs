@@ -140,7 +140,7 @@ fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
 }
 
 #[test]
-fn a_version_2_database_is_migrated_to_version_3_on_resume() {
+fn a_version_2_database_is_migrated_to_the_current_version_on_resume() {
     let dir = scratch("version-2");
     let whole = dir.join("whole");
     succeeded(&small_run("lsystem", &whole, &[]));
