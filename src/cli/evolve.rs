@@ -109,6 +109,11 @@ pub struct EvolveArgs {
     /// Seed the first generation with mutants of this hand-written grammar.
     #[arg(long, value_name = "FILE.lsys")]
     init: Option<PathBuf>,
+    /// With --resume: go on with a run whose last generation another evaluator version (an
+    /// ontogeny whose physics or task protocol differ) made; the store records where the
+    /// version changes.
+    #[arg(long)]
+    allow_evaluator_change: bool,
     /// Do not re-walk each generation's best at the fine reference setting (the config's
     /// `verify_best = false`).
     #[arg(long)]
@@ -119,13 +124,16 @@ pub struct EvolveArgs {
     no_cache: bool,
 }
 
-/// The command line's error for a run's.
+/// The command line's error for a run's: bad input (exit code 2), or, for a store or a plot
+/// that could not be written, ontogeny's own failure (exit code 1).
 pub fn run_error(e: RunError) -> anyhow::Error {
     match e {
         RunError::Config(d) => anyhow::Error::new(d),
         RunError::Io { path, source } => {
             anyhow::Error::new(source).context(format!("{}", path.display()))
         }
+        RunError::Store(e) if !e.is_bad_input() => anyhow::anyhow!("{e}"),
+        e @ RunError::Plot(_) => anyhow::anyhow!("{e}"),
         other => bad(other.to_string()),
     }
 }
@@ -152,9 +160,14 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     };
     if let Some(dir) = &args.resume {
         let encoding = encoding_of_run(dir).map_err(run_error)?;
-        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens), |other| Err(bad(
+        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change), |other| Err(bad(
             format!("{}: unknown encoding '{other}'", dir.display())
         )));
+    }
+    if args.allow_evaluator_change {
+        return Err(bad(
+            "--allow-evaluator-change goes with --resume: a new run has one evaluator",
+        ));
     }
     let source = read_source(args.config.as_deref())?;
     let encoding =
@@ -206,8 +219,12 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
     go(&mut run, out)
 }
 
-fn resume<G: Genome>(dir: &Path, generations: Option<usize>) -> anyhow::Result<()> {
-    let mut run = Run::<G>::resume(dir).map_err(run_error)?;
+fn resume<G: Genome>(
+    dir: &Path,
+    generations: Option<usize>,
+    allow_evaluator_change: bool,
+) -> anyhow::Result<()> {
+    let mut run = Run::<G>::resume_with(dir, allow_evaluator_change).map_err(run_error)?;
     if let Some(generations) = generations {
         run.extend(generations).map_err(run_error)?;
     }

@@ -189,14 +189,25 @@ fn report(error: anyhow::Error) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     let _ = writeln!(std::io::stderr(), "error: {error:#}");
-    // A file that cannot be read or written, or an output refused (a target that is not a
-    // regular file), is the user's to fix; anything else is ours.
+    ExitCode::from(exit_code(&error))
+}
+
+/// The exit code of an error that is not a diagnostic: a file that cannot be read or
+/// written, or an output refused (a target that is not a regular file), is the user's to fix
+/// (2); anything else is ours (1).
+fn exit_code(error: &anyhow::Error) -> u8 {
+    if error.downcast_ref::<Diagnostic>().is_some() {
+        return 2;
+    }
+    let io = error
+        .chain()
+        .any(|cause| cause.downcast_ref::<std::io::Error>().is_some());
     let refused = error.chain().any(|cause| {
         cause
             .downcast_ref::<ontogeny::output::OutputError>()
             .is_some()
     });
-    ExitCode::from(if io.is_some() || refused { 2 } else { 1 })
+    if io || refused { 2 } else { 1 }
 }
 
 #[cfg(test)]
@@ -208,5 +219,38 @@ mod tests {
     #[test]
     fn the_command_line_is_well_formed() {
         allow_negative_numbers(Cli::command()).debug_assert();
+    }
+
+    /// A store or a plot ontogeny cannot write is its own failure; a damaged or foreign
+    /// store is the input's.
+    #[test]
+    fn a_store_or_plot_that_cannot_be_written_exits_1_and_a_damaged_store_exits_2() {
+        use ontogeny::evolve::run::RunError;
+        use ontogeny::evolve::store::StoreError;
+        let path = std::path::PathBuf::from("runs/a/run.sqlite");
+        let code = |e: RunError| exit_code(&evolve::run_error(e));
+        let full = StoreError::Sqlite {
+            path: path.clone(),
+            action: "cannot write generation 3 (nothing of it was stored): the commit".into(),
+            source: rusqlite::Error::SqliteFailure(
+                rusqlite::ffi::Error::new(rusqlite::ffi::SQLITE_FULL),
+                None,
+            ),
+        };
+        assert_eq!(code(RunError::Store(full)), 1);
+        let cannot_move = StoreError::Io {
+            path: path.clone(),
+            action: "cannot move the new store into place",
+            source: std::io::Error::from(std::io::ErrorKind::StorageFull),
+        };
+        assert_eq!(code(RunError::Store(cannot_move)), 1);
+        assert_eq!(code(RunError::Plot("cannot draw".into())), 1);
+        let damaged = StoreError::Corrupt {
+            path: path.clone(),
+            detail: "the file is truncated".into(),
+        };
+        assert_eq!(code(RunError::Store(damaged)), 2);
+        assert_eq!(code(RunError::Store(StoreError::Missing { path })), 2);
+        assert_eq!(code(RunError::Extend("--gens must be 1 or more".into())), 2);
     }
 }

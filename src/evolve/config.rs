@@ -23,7 +23,9 @@ use crate::task::TaskSpec;
 pub struct RunConfig<L> {
     /// The encoding's name (`lsystem`, `lsystem-continuous`, ...).
     pub encoding: String,
-    /// The run's seed.
+    /// The run's seed: any 64-bit unsigned number, written as a TOML integer up to
+    /// 2^63 − 1 and as a string of digits above (TOML's integers are signed), see [`seed`].
+    #[serde(with = "seed")]
     pub seed: u64,
     /// A grammar whose mutants seed the first generation, relative to the run directory.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -45,6 +47,63 @@ pub struct RunConfig<L> {
     pub task: TaskSpec,
     /// The encoding's limits.
     pub limits: L,
+}
+
+/// A seed in TOML, whose integers are signed 64-bit: a seed up to 2^63 − 1 is written as an
+/// integer, a larger one as a string of decimal digits (`seed = "18446744073709551615"`), so
+/// every seed the command line accepts reads back. Either form is read, in a run's
+/// `config.toml` and in a configuration file.
+pub mod seed {
+    use serde::{Deserializer, Serializer, de};
+
+    /// Writes `seed` as an integer when TOML holds it, else as a string of digits.
+    pub fn serialize<S: Serializer>(seed: &u64, serializer: S) -> Result<S::Ok, S::Error> {
+        match i64::try_from(*seed) {
+            Ok(small) => serializer.serialize_i64(small),
+            Err(_) => serializer.serialize_str(&seed.to_string()),
+        }
+    }
+
+    /// Reads a seed written as a whole number from 0 to 2^64 − 1, or as a string of its
+    /// decimal digits.
+    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<u64, D::Error> {
+        deserializer.deserialize_any(SeedVisitor)
+    }
+
+    /// [`deserialize`] for an optional key.
+    pub fn deserialize_option<'de, D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<Option<u64>, D::Error> {
+        deserialize(deserializer).map(Some)
+    }
+
+    /// The message of a seed that is neither.
+    const EXPECTED: &str = "a whole number from 0 to 18446744073709551615 (in quotes above 9223372036854775807, e.g. seed = \"9223372036854775808\")";
+
+    struct SeedVisitor;
+
+    impl de::Visitor<'_> for SeedVisitor {
+        type Value = u64;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str(EXPECTED)
+        }
+
+        fn visit_i64<E: de::Error>(self, v: i64) -> Result<u64, E> {
+            u64::try_from(v).map_err(|_| E::custom(format!("seed must be {EXPECTED}, not {v}")))
+        }
+
+        fn visit_u64<E: de::Error>(self, v: u64) -> Result<u64, E> {
+            Ok(v)
+        }
+
+        fn visit_str<E: de::Error>(self, v: &str) -> Result<u64, E> {
+            match v.parse::<u64>() {
+                Ok(seed) if v.bytes().all(|b| b.is_ascii_digit()) => Ok(seed),
+                _ => Err(E::custom(format!("seed must be {EXPECTED}, not \"{v}\""))),
+            }
+        }
+    }
 }
 
 /// The default of [`RunConfig::verify_best`]: on.
@@ -112,7 +171,8 @@ impl GaOverrides {
 pub struct ConfigFile<L> {
     /// The encoding's name.
     pub encoding: Option<String>,
-    /// The run's seed.
+    /// The run's seed (an integer, or a string of digits for a seed of 2^63 or more).
+    #[serde(default, deserialize_with = "seed::deserialize_option")]
     pub seed: Option<u64>,
     /// A grammar whose mutants seed the first generation (relative to the config file).
     pub init: Option<PathBuf>,
@@ -145,12 +205,65 @@ impl<L> Default for ConfigFile<L> {
     }
 }
 
+/// Parses `text` as a TOML table. A top-level `seed` above 2^63 − 1 written as a bare integer
+/// (as an ontogeny older than the string form of [`seed`] wrote it into a run's
+/// `config.toml` and store) does not fit a [`toml::Value`]: such a text is read as if the
+/// seed were in quotes. Any other error is the text's own, with its place in it.
+pub fn parse_table(text: &str) -> Result<toml::Table, toml::de::Error> {
+    toml::from_str(text).or_else(|error| {
+        quoted_large_seed(text)
+            .and_then(|quoted| toml::from_str(&quoted).ok())
+            .ok_or(error)
+    })
+}
+
+/// `text` with its top-level `seed = DIGITS` in quotes, when DIGITS is above 2^63 − 1.
+fn quoted_large_seed(text: &str) -> Option<String> {
+    let mut out = String::with_capacity(text.len() + 2);
+    let mut done = false;
+    let mut top_level = true;
+    for line in text.split_inclusive('\n') {
+        let trimmed = line.trim_start();
+        top_level &= !trimmed.starts_with('[');
+        if top_level
+            && !done
+            && let Some(rest) = trimmed.strip_prefix("seed")
+            && let Some(value) = rest.trim_start().strip_prefix('=')
+        {
+            let digits = value.trim_start();
+            let end = digits
+                .find(|c: char| !c.is_ascii_digit())
+                .unwrap_or(digits.len());
+            if end > 0
+                && digits[..end]
+                    .parse::<u64>()
+                    .is_ok_and(|s| s > i64::MAX as u64)
+                && digits[end..]
+                    .trim_start()
+                    .chars()
+                    .next()
+                    .is_none_or(|c| c == '#')
+            {
+                let at = line.len() - digits.len();
+                out.push_str(&line[..at]);
+                out.push('"');
+                out.push_str(&digits[..end]);
+                out.push('"');
+                out.push_str(&digits[end..]);
+                done = true;
+                continue;
+            }
+        }
+        out.push_str(line);
+    }
+    done.then_some(out)
+}
+
 /// The `encoding` a configuration text names, if any (read before the rest, which depends on
 /// it): one of the registry's ([`crate::encoding::ENCODINGS`]), else an error at the name,
 /// with the names allowed and the closest of them.
 pub fn encoding_of(source: &Source) -> Result<Option<String>, Diagnostic> {
-    let table: toml::Table =
-        toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
+    let table = parse_table(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
     let names = ENCODINGS.iter().map(|e| e.name);
     let wrong = |message: String| match key_span(source, &["encoding"]) {
         Some(span) => Diagnostic::at(DiagnosticKind::Semantic, source, span, message),
@@ -185,7 +298,7 @@ pub fn read_config_source(path: &Path) -> Result<Arc<Source>, Diagnostic> {
     // A text that is no TOML but is a grammar, or is named like one.
     let grammar = path.extension().is_some_and(|e| e == "lsys")
         || crate::lang::parse(&source).is_ok_and(|file| !file.rules.is_empty());
-    if grammar && toml::from_str::<toml::Table>(source.text()).is_err() {
+    if grammar && parse_table(source.text()).is_err() {
         return Err(FileKind::Grammar.refusal(path, "a configuration"));
     }
     Ok(source)
@@ -210,8 +323,7 @@ pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig
 
 /// [`read_run_config`] without the checks of the settings.
 fn parse_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
-    let mut table: toml::Table =
-        toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
+    let mut table = parse_table(source.text()).map_err(|e| toml_diagnostic(source, &e))?;
     let older_runs = table
         .get("encoding")
         .and_then(|e| e.as_str())
@@ -236,6 +348,30 @@ fn parse_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>
         }
         _ => toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e)),
     }
+}
+
+/// `text` (a run's `config.toml`) with `[ga] generations` set to `generations`, and nothing
+/// else changed: comments, layout, the order of keys and the way the other values are
+/// written stay as they are ([`toml_edit`]), and so do the comment and spacing around the
+/// value itself. A bare seed above 2^63 − 1 (see [`parse_table`]) is put in quotes, as TOML
+/// holds no such integer. An error says why the text has no such key to change.
+pub fn with_generations(text: &str, generations: usize) -> Result<String, String> {
+    let mut document: toml_edit::DocumentMut = text.parse().or_else(|e| {
+        quoted_large_seed(text)
+            .and_then(|quoted| quoted.parse().ok())
+            .ok_or_else(|| format!("{e}"))
+    })?;
+    let count = i64::try_from(generations)
+        .map_err(|_| format!("{generations} generations is more than TOML holds"))?;
+    let value = document
+        .get_mut("ga")
+        .and_then(|ga| ga.get_mut("generations"))
+        .and_then(toml_edit::Item::as_value_mut)
+        .ok_or("it has no [ga] generations to change")?;
+    let decor = value.decor().clone();
+    *value = toml_edit::Value::from(count);
+    *value.decor_mut() = decor;
+    Ok(document.to_string())
 }
 
 impl<L: Serialize> RunConfig<L> {

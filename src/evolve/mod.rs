@@ -4,7 +4,8 @@
 //! SQL), the lock that keeps a directory one process's ([`lock`]), its fitness plot
 //! ([`plot`]), the statistics that compare settings and encodings ([`stats`]), the evaluation
 //! cache and its keys ([`cache`], [`key`]), where evaluations run ([`evaluator`]: this
-//! process's threads, or every rank of an MPI job with the `mpi` feature), comparisons of encodings over replicated runs
+//! process's threads, or every rank of an MPI job with the `mpi` feature) and the version of
+//! their behaviour that a run records ([`evaluator_version`]), comparisons of encodings over replicated runs
 //! ([`compare`]), and the fidelity experiment that ranks step settings against the fine
 //! reference ([`fidelity`]) and the bench's measurements ([`bench`](mod@bench)); a run's individual picked by rank ([`pick`]); the settings of a run or comparison from the command line
 //! ([`settings`]) and what the command line says about them ([`text`]); the runs and comparisons under a
@@ -16,6 +17,7 @@ pub mod compare;
 pub mod config;
 pub mod config_errors;
 pub mod evaluator;
+pub mod evaluator_version;
 pub mod fidelity;
 pub mod ga;
 pub mod key;

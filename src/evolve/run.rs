@@ -16,7 +16,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::cache::EvaluationCache;
-use super::config::{RunConfig, check_settings, read_run_config};
+use super::config::{RunConfig, check_settings, read_run_config, with_generations};
+use super::evaluator_version::EVALUATOR_VERSION;
 use super::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
 use super::key::EvaluationKey;
 use super::lock::{DirectoryLock, LOCK_FILE, LockError};
@@ -59,6 +60,22 @@ pub enum RunError {
         path: PathBuf,
         /// The settings that differ, as dotted TOML keys.
         keys: Vec<String>,
+    },
+    /// The run's last generation was evaluated by another evaluator than this program's:
+    /// going on would mix two evaluators' results in one run.
+    #[error(
+        "{}: its last generation ({generation}) was evaluated by evaluator version {stored}, and this ontogeny evaluates with version {current}: going on would mix the evaluations of two evaluators in one run. Resume it with an ontogeny of evaluator version {stored}, start a new run with --out, or pass --allow-evaluator-change to go on with version {current} (the store records the generation where the version changes)",
+        dir.display()
+    )]
+    EvaluatorChanged {
+        /// The run directory.
+        dir: PathBuf,
+        /// The run's last stored generation.
+        generation: u32,
+        /// The evaluator version that made it.
+        stored: u32,
+        /// This program's ([`EVALUATOR_VERSION`]).
+        current: u32,
     },
     /// A bad configuration.
     #[error("{0}")]
@@ -244,11 +261,21 @@ impl<G: Genome> Run<G> {
         Ok(run)
     }
 
-    /// Opens the run in `dir` to go on with it: takes the directory's lock, checks that
-    /// `config.toml` holds the settings the store was created with (writing it from the store
-    /// if a start was killed before it), migrates an older store, and rewrites the derived
-    /// files from the store.
+    /// Opens the run in `dir` to go on with it: takes the directory's lock, verifies every
+    /// record of the store against its checksum, checks that `config.toml` holds the
+    /// settings the store was created with (writing it from the store if a start was killed
+    /// before it) and that this program's evaluator made the last generation, migrates an
+    /// older store, and rewrites the derived files from the store. A refused resume writes
+    /// nothing.
     pub fn resume(dir: &Path) -> Result<Run<G>, RunError> {
+        Self::resume_with(dir, false)
+    }
+
+    /// [`Run::resume`]; with `allow_evaluator_change`, a run whose last generation another
+    /// evaluator version made goes on with this program's ([`EVALUATOR_VERSION`]): its
+    /// generations from then on record the new version, and the evaluations of the old one
+    /// are not reused (an elite keeps the evaluation it was carried over with).
+    pub fn resume_with(dir: &Path, allow_evaluator_change: bool) -> Result<Run<G>, RunError> {
         let config_path = dir.join(CONFIG_FILE);
         let store_path = dir.join(STORE_FILE);
         // A directory with neither is no run: leave it untouched (no lock file either).
@@ -288,8 +315,23 @@ impl<G: Genome> Run<G> {
             run.write_derived_files()?;
             return Ok(run);
         }
-        // Read-only until the settings are checked: a refused resume changes nothing.
-        let stored = RunStore::open_read_only(&store_path)?.run()?;
+        // Read-only until the records and settings are checked: a refused resume changes
+        // nothing.
+        let checked = RunStore::open_read_only(&store_path)?;
+        checked.verify()?;
+        let stored = checked.run()?;
+        if let Some(&(generation, version)) = checked.evaluators()?.last()
+            && version != EVALUATOR_VERSION
+            && !allow_evaluator_change
+        {
+            return Err(RunError::EvaluatorChanged {
+                dir: dir.to_path_buf(),
+                generation,
+                stored: version,
+                current: EVALUATOR_VERSION,
+            });
+        }
+        drop(checked);
         let source = Source::new(
             format!(
                 "{} (the settings the run started with)",
@@ -359,11 +401,24 @@ impl<G: Genome> Run<G> {
         if generations == self.config.ga.generations {
             return Ok(());
         }
+        // Only the count changes, in the store's copy and in config.toml: the comments and
+        // layout a person gave the file stay.
+        let config_path = self.dir.join(CONFIG_FILE);
+        let file = std::fs::read_to_string(&config_path).map_err(io(&config_path))?;
+        let edit = |text: &str, name: &Path| {
+            with_generations(text, generations).map_err(|e| {
+                RunError::Extend(format!(
+                    "{}: cannot set [ga] generations to {generations}: {e}",
+                    name.display()
+                ))
+            })
+        };
+        let file = edit(&file, &config_path)?;
+        let stored = edit(&self.store.run()?.config, &self.dir.join(STORE_FILE))?;
+        self.store.set_config(&stored)?;
+        output::write(&config_path, file.as_bytes())?;
         self.config.ga.generations = generations;
         self.evolution.settings.generations = generations;
-        let text = self.config.to_toml().map_err(RunError::Corrupt)?;
-        self.store.set_config(&text)?;
-        output::write(&self.dir.join(CONFIG_FILE), text.as_bytes())?;
         Ok(())
     }
 
@@ -520,10 +575,15 @@ impl<G: Genome> Run<G> {
                 cache.insert(key, &stored.evaluation);
             }
             let keys = self.store.keys()?;
+            let evaluators = self.store.evaluators()?;
             for generation in self.store.generations()? {
                 let Some(fine) = &generation.best_fine else {
                     continue;
                 };
+                // Only this program's evaluator's values (a run gone on under another).
+                if !evaluators.contains(&(generation.index, EVALUATOR_VERSION)) {
+                    continue;
+                }
                 let members = keys.iter().filter(|k| k.generation == generation.index);
                 // The best as [`ranking`] orders them: highest fitness, then lowest index. A
                 // NaN fitness (stored as NULL, its sign lost) could rank otherwise: skip.
@@ -575,6 +635,7 @@ impl<G: Genome> Run<G> {
         // genome, its development seed and the task.
         let mut previous_best: Option<(u32, FineEvaluation)> = None;
         if first > 0
+            && self.store.evaluators()?.last().map(|&(_, v)| v) == Some(EVALUATOR_VERSION)
             && let Some(&best) = ranking(&population).first()
             && let Some(stored) = self.store.generations()?.pop().and_then(|g| g.best_fine)
         {

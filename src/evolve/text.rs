@@ -274,7 +274,7 @@ pub fn generation_csv(dir: &Path) -> Result<String, StoreError> {
 pub fn generation_json(dir: &Path) -> Result<String, StoreError> {
     let store = RunStore::open_read_only(&dir.join("run.sqlite"))?;
     let run = store.run()?;
-    let settings = toml::from_str::<toml::Table>(&run.config)
+    let settings = super::config::parse_table(&run.config)
         .ok()
         .and_then(|t| serde_json::to_value(t).ok());
     let value = serde_json::json!({

@@ -2,7 +2,9 @@
 //! generation, refusals that leave files untouched, a version-1 file read as it is and
 //! migrated when opened for writing, the run store reference's example queries.
 
+mod integrity;
 mod migration;
+mod run_config;
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -585,23 +587,19 @@ fn the_fitness_plot_names_its_series_and_axes() {
     assert!(err.to_string().contains("fitness.svg"), "{err}");
 }
 
-/// The environment variable that turns [`durability_child`] into a writer.
+/// The environment variable that turns [`kill_9_keeps_every_committed_generation`], run
+/// again in a child process, into the writer it kills: the store's path.
 const CHILD_STORE: &str = "ONTOGENY_STORE_CHILD";
 
-/// Not a test on its own: run by [`kill_9_keeps_every_committed_generation`] in a child
-/// process (with `ONTOGENY_STORE_CHILD` set to a store's path), it resumes the store and
-/// writes generations of 50 individuals for ever, printing `committed N` after each.
-#[test]
-fn durability_child() {
+/// The child of [`kill_9_keeps_every_committed_generation`]: resumes the store at `path` (or
+/// creates it) and writes generations of 50 individuals for ever, printing `committed N`
+/// after each.
+fn write_generations_for_ever(path: &Path) -> ! {
     use std::io::Write;
-    let Some(path) = std::env::var_os(CHILD_STORE) else {
-        return;
-    };
-    let path = PathBuf::from(path);
     let mut store = if path.exists() {
-        RunStore::open(&path).unwrap()
+        RunStore::open(path).unwrap()
     } else {
-        RunStore::create(&path, &run_record()).unwrap()
+        RunStore::create(path, &run_record()).unwrap()
     };
     let mut g = store.last_generation().unwrap().map_or(0, |last| last + 1);
     loop {
@@ -624,6 +622,10 @@ fn durability_child() {
 fn kill_9_keeps_every_committed_generation() {
     use std::io::{BufRead, BufReader};
     use std::process::{Command, Stdio};
+    // Run again as the child (below), this test is the writer that is killed.
+    if let Some(path) = std::env::var_os(CHILD_STORE) {
+        write_generations_for_ever(Path::new(&path));
+    }
     let path = scratch("kill").join("run.sqlite");
     let mut seen = 0;
     // Three lives: each child resumes the store its killed predecessor left.
@@ -631,7 +633,7 @@ fn kill_9_keeps_every_committed_generation() {
         let mut child = Command::new(std::env::current_exe().unwrap())
             .args([
                 "--exact",
-                "store::durability_child",
+                "store::kill_9_keeps_every_committed_generation",
                 "--nocapture",
                 "--test-threads=1",
             ])

@@ -196,10 +196,25 @@ pub fn grow_creature_json(file: &Path, out: &Path, extra: &[&str]) -> serde_json
     serde_json::from_str(&std::fs::read_to_string(out.join("creature.json")).unwrap()).unwrap()
 }
 
+/// The SQL that takes a run store of the current schema back to version 3: the checksums,
+/// the evaluator versions and the counts of individuals dropped. A test that edits a store's
+/// records by hand runs it after, and sets `user_version` to 3: the resume migrates the
+/// store again, checksumming the records as they are, as it does a store an older ontogeny
+/// wrote.
+pub const DROP_VERSION_4: &str = "
+    ALTER TABLE run DROP COLUMN checksum;
+    ALTER TABLE generation DROP COLUMN checksum;
+    ALTER TABLE generation DROP COLUMN individuals;
+    ALTER TABLE generation DROP COLUMN evaluator;
+    ALTER TABLE individual DROP COLUMN checksum;
+";
+
 /// Turns the run store at `path` back into schema version 1, as an older ontogeny wrote it:
-/// the fine reference columns dropped, the version set to 1, the log folded in.
+/// the checksums, evaluator versions and counts of individuals, the cache's columns and the
+/// fine reference columns dropped, the version set to 1, the log folded in.
 pub fn make_version_1(path: &Path) {
     let conn = rusqlite::Connection::open(path).unwrap();
+    conn.execute_batch(DROP_VERSION_4).unwrap();
     conn.execute_batch(
         "ALTER TABLE generation DROP COLUMN best_fine;
          ALTER TABLE generation DROP COLUMN best_fine_status;

@@ -38,6 +38,21 @@ pub enum StoreError {
         /// What SQLite found.
         detail: String,
     },
+    /// A record does not match the checksum stored with it, or a generation lacks some of
+    /// its individuals: the file was damaged (a flipped bit, an edit) where SQLite's own
+    /// checks do not look. Nothing of it is used.
+    #[error(
+        "{}: the record of {what} is damaged ({detail}); nothing was used or written: the run cannot go on from it (a copy made before the damage can)",
+        path.display()
+    )]
+    Damaged {
+        /// The database's path.
+        path: PathBuf,
+        /// Which record: "individual 3 of generation 1", "generation 1", "the run".
+        what: String,
+        /// What is wrong with it.
+        detail: String,
+    },
     /// The run store was written by a newer schema than this program reads.
     #[error(
         "{} was written by a newer schema (version {found}); this ontogeny reads version {SCHEMA_VERSION}: update ontogeny",
@@ -92,6 +107,27 @@ pub enum StoreError {
         #[source]
         source: rusqlite::Error,
     },
+}
+
+impl StoreError {
+    /// Whether the error is the input's: a file that is no run store, is damaged, is missing
+    /// or already there, or of a schema this program does not read (the command line exits
+    /// with 2). Otherwise it is ontogeny's own failure to create, read or write a store
+    /// (exit code 1): the disk is full, SQLite refused, a record did not fit the schema.
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            StoreError::Exists { .. }
+            | StoreError::Missing { .. }
+            | StoreError::NotARunStore { .. }
+            | StoreError::Corrupt { .. }
+            | StoreError::Damaged { .. }
+            | StoreError::NewerSchema { .. }
+            | StoreError::OlderSchema { .. } => true,
+            StoreError::InvalidRecord { .. }
+            | StoreError::Io { .. }
+            | StoreError::Sqlite { .. } => false,
+        }
+    }
 }
 
 /// A file-system error of the store at `path` while it did `action` (e.g. "cannot read it").

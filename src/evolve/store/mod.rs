@@ -9,10 +9,18 @@
 //! last commits on a power cut) costs one `fsync` per generation, which is nothing beside the
 //! seconds a generation's evaluations take.
 //!
-//! The schema and its migrations are in `schema`, the row records in `records`, the errors
-//! in `error`; this file holds the store itself.
+//! Integrity: every row carries a checksum written with it (`checksum`), verified whenever
+//! the row is read back; a damaged record is an error naming it ([`StoreError::Damaged`]),
+//! never data. Each generation records the evaluator version that made it
+//! ([`crate::evolve::evaluator_version`]).
+//!
+//! The schema and its migrations are in `schema`, the row records in `records`, the
+//! checksums in `checksum`, the errors in `error`; the reads (each verifying what it reads)
+//! in `read`; this file holds the store itself and its writes.
 
+mod checksum;
 mod error;
+mod read;
 mod records;
 mod schema;
 
@@ -24,12 +32,16 @@ use std::fs::{self, OpenOptions};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use rusqlite::{Connection, OpenFlags, OptionalExtension, TransactionBehavior, params};
+use rusqlite::types::Value;
+use rusqlite::{Connection, OpenFlags, TransactionBehavior, params_from_iter};
 
+use crate::evolve::evaluator_version::EVALUATOR_VERSION;
+use checksum::checksum_of;
 use error::{classify, io_error, sqlite, write_error};
-use records::{get_real, individual_from_row, real};
+use records::real;
 use schema::{
-    INDIVIDUAL_COLUMNS, MIGRATE_1_TO_2, MIGRATE_2_TO_3, SCHEMA, check_header, check_store,
+    GENERATION_COLUMNS, INDIVIDUAL_COLUMNS_ALL, MIGRATE_1_TO_2, MIGRATE_2_TO_3, MIGRATE_3_TO_4,
+    RUN_COLUMNS, SCHEMA, check_header, check_store, checksum_rows,
 };
 
 /// An open run store.
@@ -40,6 +52,9 @@ pub struct RunStore {
     /// The schema version of the open file: [`SCHEMA_VERSION`], except for an older file
     /// opened with [`RunStore::open_read_only`].
     version: i64,
+    /// The evaluator version recorded with each generation written
+    /// ([`RunStore::set_evaluator_version`]).
+    evaluator: u32,
 }
 
 impl RunStore {
@@ -105,10 +120,21 @@ impl RunStore {
             // An empty file, unless a write-ahead log beside it holds committed pages.
             return fs::metadata(side_file(path, "-wal")).map_or(true, |m| m.len() == 0);
         }
-        let Ok(conn) = Connection::open_with_flags(
-            path,
-            OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
-        ) else {
+        // Without a write-ahead log beside it, read as immutable: no side file is made.
+        let opened = if side_file(path, "-wal").exists() {
+            Connection::open_with_flags(
+                path,
+                OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+            )
+        } else {
+            Connection::open_with_flags(
+                immutable_uri(path),
+                OpenFlags::SQLITE_OPEN_READ_ONLY
+                    | OpenFlags::SQLITE_OPEN_NO_MUTEX
+                    | OpenFlags::SQLITE_OPEN_URI,
+            )
+        };
+        let Ok(conn) = opened else {
             return false;
         };
         conn.query_row("SELECT count(*) FROM sqlite_master", [], |r| {
@@ -155,16 +181,13 @@ impl RunStore {
             .and_then(|()| tx.pragma_update(None, "user_version", SCHEMA_VERSION))
             .and_then(|()| tx.execute_batch(SCHEMA))
             .and_then(|()| {
+                let values = run_values(run);
                 tx.execute(
-                    "INSERT INTO run (id, config, seed, encoding, task, version) \
-                     VALUES (1, ?1, ?2, ?3, ?4, ?5)",
-                    params![
-                        run.config,
-                        run.seed.to_string(),
-                        run.encoding,
-                        run.task,
-                        run.version
-                    ],
+                    &format!(
+                        "INSERT INTO run ({}, checksum) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+                        RUN_COLUMNS.join(", ")
+                    ),
+                    params_from_iter(with_checksum("run", values)),
                 )
             })
             .and_then(|_| tx.commit())
@@ -177,9 +200,20 @@ impl RunStore {
     /// this program reads and not corrupt (`PRAGMA quick_check`); never modifies a file it
     /// rejects. A store of an older schema is migrated to [`SCHEMA_VERSION`] in one
     /// transaction, keeping everything stored (columns added since are NULL in old rows).
+    ///
+    /// Every record is verified against its checksum first ([`RunStore::verify`]), on a
+    /// read-only connection: a damaged store is refused before anything is written to it.
     pub fn open(path: &Path) -> Result<RunStore, StoreError> {
         let (ro, version) = Self::checked_read_only(path)?;
-        ro.close()
+        let ro = RunStore {
+            conn: ro,
+            path: path.into(),
+            version,
+            evaluator: EVALUATOR_VERSION,
+        };
+        ro.verify()?;
+        ro.conn
+            .close()
             .map_err(|(_, e)| classify(path, "cannot close it", e))?;
         let mut store = Self::connect(path)?;
         if version < SCHEMA_VERSION {
@@ -199,6 +233,7 @@ impl RunStore {
             conn,
             path: path.into(),
             version,
+            evaluator: EVALUATOR_VERSION,
         })
     }
 
@@ -220,6 +255,10 @@ impl RunStore {
                 }
                 if version < 3 {
                     tx.execute_batch(MIGRATE_2_TO_3)?;
+                }
+                if version < 4 {
+                    tx.execute_batch(MIGRATE_3_TO_4)?;
+                    checksum_rows(&tx)?;
                 }
                 tx.pragma_update(None, "user_version", SCHEMA_VERSION)
             };
@@ -303,6 +342,7 @@ impl RunStore {
             conn,
             path: path.into(),
             version: SCHEMA_VERSION,
+            evaluator: EVALUATOR_VERSION,
         })
     }
 
@@ -317,34 +357,26 @@ impl RunStore {
         &self.path
     }
 
-    /// The run's record.
-    pub fn run(&self) -> Result<RunRecord, StoreError> {
-        let (config, seed, encoding, task, version): (String, String, String, String, String) =
-            self.conn
-                .query_row(
-                    "SELECT config, seed, encoding, task, version FROM run WHERE id = 1",
-                    [],
-                    |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?, r.get(4)?)),
-                )
-                .map_err(|e| classify(&self.path, "cannot read the run row", e))?;
-        let seed = seed.parse().map_err(|_| StoreError::Corrupt {
-            path: self.path.clone(),
-            detail: format!("the run's seed {seed:?} is not a whole number below 2^64"),
-        })?;
-        Ok(RunRecord {
-            config,
-            seed,
-            encoding,
-            task,
-            version,
-        })
+    /// Sets the evaluator version recorded with every generation this store writes from now
+    /// on: [`EVALUATOR_VERSION`], this program's, unless set. (A tool that stores generations
+    /// another evaluator made sets it, as the tests of a resume across evaluators do.)
+    pub fn set_evaluator_version(&mut self, version: u32) {
+        self.evaluator = version;
     }
 
     /// Replaces the text of the run's settings (`run.config`): a run extended to more
-    /// generations records the count it now runs to.
+    /// generations records the count it now runs to. The run's record is verified first.
     pub fn set_config(&mut self, config: &str) -> Result<(), StoreError> {
+        let run = RunRecord {
+            config: config.to_string(),
+            ..self.run()?
+        };
+        let checksum = checksum_of("run", &run_values(&run));
         self.conn
-            .execute("UPDATE run SET config = ?1 WHERE id = 1", [config])
+            .execute(
+                "UPDATE run SET config = ?1, checksum = ?2 WHERE id = 1",
+                [config, &checksum],
+            )
             .map(|_| ())
             .map_err(|e| classify(&self.path, "cannot record the run's settings", e))
     }
@@ -381,249 +413,77 @@ impl RunStore {
                 generation.evaluations
             ))
         })?;
+        let count = i64::try_from(individuals.len())
+            .map_err(|_| invalid(format!("{} individuals is too many", individuals.len())))?;
         let path = self.path.clone();
         let tx = self
             .conn
             .transaction()
             .map_err(|e| classify(&path, "cannot start a transaction", e))?;
+        let values = vec![
+            Value::from(g),
+            real_value(generation.best),
+            real_value(generation.mean),
+            real_value(generation.median),
+            real_value(generation.sd),
+            real_value(generation.valid_fraction),
+            Value::from(evaluations),
+            real_value(generation.wall_seconds),
+            real_value(generation.evaluations_per_second),
+            generation
+                .best_fine
+                .as_ref()
+                .map_or(Value::Null, |f| real_value(f.fitness)),
+            generation
+                .best_fine
+                .as_ref()
+                .map_or(Value::Null, |f| Value::from(f.status.clone())),
+            Value::from(self.evaluator),
+            Value::from(count),
+        ];
         tx.execute(
-            "INSERT INTO generation (generation, best, mean, median, sd, valid_fraction, \
-             evaluations, wall_seconds, evaluations_per_second, best_fine, best_fine_status) \
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
-            params![
-                g,
-                real(generation.best),
-                real(generation.mean),
-                real(generation.median),
-                real(generation.sd),
-                real(generation.valid_fraction),
-                evaluations,
-                real(generation.wall_seconds),
-                real(generation.evaluations_per_second),
-                generation.best_fine.as_ref().and_then(|f| real(f.fitness)),
-                generation.best_fine.as_ref().map(|f| f.status.as_str()),
-            ],
+            &format!(
+                "INSERT INTO generation ({}, checksum) VALUES ({})",
+                GENERATION_COLUMNS.join(", "),
+                placeholders(GENERATION_COLUMNS.len() + 1)
+            ),
+            params_from_iter(with_checksum("generation", values)),
         )
         .map_err(|e| write_error(&path, g, "the generation row".into(), e))?;
         {
             let mut insert = tx
                 .prepare(&format!(
-                    "INSERT INTO individual ({INDIVIDUAL_COLUMNS}, reused, evaluation_key) \
-                     VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)"
+                    "INSERT INTO individual ({}, checksum) VALUES ({})",
+                    INDIVIDUAL_COLUMNS_ALL.join(", "),
+                    placeholders(INDIVIDUAL_COLUMNS_ALL.len() + 1)
                 ))
                 .map_err(|e| classify(&path, "cannot prepare the insert", e))?;
             for i in individuals {
                 let parents = serde_json::to_string(&i.parents).expect("a Vec<u32> serialises");
+                let values = vec![
+                    Value::from(i.generation),
+                    Value::from(i.index),
+                    Value::from(parents),
+                    Value::from(i.operator.clone()),
+                    Value::from(i.genome_text.clone()),
+                    Value::from(i.genome_json.clone()),
+                    real_value(i.fitness),
+                    Value::from(i.status.clone()),
+                    Value::from(i.terms_json.clone()),
+                    Value::from(i.parts),
+                    Value::from(i.joints),
+                    Value::from(i.neurons),
+                    Value::from(i.reused),
+                    i.evaluation_key.clone().map_or(Value::Null, Value::from),
+                ];
                 insert
-                    .execute(params![
-                        i.generation,
-                        i.index,
-                        parents,
-                        i.operator,
-                        i.genome_text,
-                        i.genome_json,
-                        real(i.fitness),
-                        i.status,
-                        i.terms_json,
-                        i.parts,
-                        i.joints,
-                        i.neurons,
-                        i.reused,
-                        i.evaluation_key,
-                    ])
+                    .execute(params_from_iter(with_checksum("individual", values)))
                     .map_err(|e| write_error(&path, g, format!("individual {}", i.index), e))?;
             }
         }
         // Dropping an uncommitted transaction (any `?` above) rolls it back.
         tx.commit()
             .map_err(|e| write_error(&path, g, "the commit".into(), e))
-    }
-
-    /// The index of the last complete generation, if any. Every stored generation is complete,
-    /// since each is written in one transaction.
-    pub fn last_generation(&self) -> Result<Option<u32>, StoreError> {
-        self.conn
-            .query_row("SELECT max(generation) FROM generation", [], |r| r.get(0))
-            .map_err(|e| classify(&self.path, "cannot read the last generation", e))
-    }
-
-    /// Every stored generation, in index order.
-    pub fn generations(&self) -> Result<Vec<GenerationRecord>, StoreError> {
-        // A version-1 file (read-only) has no fine reference columns: none was verified.
-        let fine = if self.version >= 2 {
-            "best_fine, best_fine_status"
-        } else {
-            "NULL, NULL"
-        };
-        // Before version 3 no evaluation was reused.
-        let reused = if self.version >= 3 {
-            "(SELECT count(*) FROM individual WHERE individual.generation = generation.generation \
-             AND reused = 1)"
-        } else {
-            "0"
-        };
-        self.rows(
-            &format!(
-                "SELECT generation, best, mean, median, sd, valid_fraction, evaluations, \
-                 wall_seconds, evaluations_per_second, {fine}, {reused} FROM generation \
-                 ORDER BY generation"
-            ),
-            [],
-            "cannot read the generations",
-            |r| {
-                Ok(GenerationRecord {
-                    index: r.get(0)?,
-                    best: get_real(r, 1)?,
-                    mean: get_real(r, 2)?,
-                    median: get_real(r, 3)?,
-                    sd: get_real(r, 4)?,
-                    valid_fraction: get_real(r, 5)?,
-                    evaluations: u64::try_from(r.get::<_, i64>(6)?).map_err(|e| {
-                        rusqlite::Error::FromSqlConversionFailure(
-                            6,
-                            rusqlite::types::Type::Integer,
-                            Box::new(e),
-                        )
-                    })?,
-                    wall_seconds: get_real(r, 7)?,
-                    evaluations_per_second: get_real(r, 8)?,
-                    best_fine: match r.get::<_, Option<String>>(10)? {
-                        Some(status) => Some(FineEvaluation {
-                            fitness: get_real(r, 9)?,
-                            status,
-                        }),
-                        None => None,
-                    },
-                    reused: r.get::<_, i64>(11)?.max(0) as u64,
-                })
-            },
-        )
-    }
-
-    /// A generation's individuals, in index order (empty if the generation is not stored).
-    pub fn individuals(&self, generation: u32) -> Result<Vec<IndividualRecord>, StoreError> {
-        self.rows(
-            &format!(
-                "SELECT {} FROM individual WHERE generation = ?1 ORDER BY individual",
-                self.individual_columns()
-            ),
-            [generation],
-            &format!("cannot read generation {generation}'s individuals"),
-            individual_from_row,
-        )
-    }
-
-    /// The (generation, index) of every stored individual that `operator` made (its name as
-    /// the store spells it, e.g. `mutation`), in generation and index order.
-    pub fn individuals_made_by(&self, operator: &str) -> Result<Vec<(u32, u32)>, StoreError> {
-        self.rows(
-            "SELECT generation, individual FROM individual WHERE operator = ?1 \
-                 ORDER BY generation, individual",
-            [operator],
-            "cannot read the individuals' operators",
-            |r| Ok((r.get(0)?, r.get(1)?)),
-        )
-    }
-
-    /// The rows `row` makes of the query `sql` with `params`; a failure says the store
-    /// `action` (e.g. "cannot read the generations").
-    fn rows<T>(
-        &self,
-        sql: &str,
-        params: impl rusqlite::Params,
-        action: &str,
-        row: impl FnMut(&rusqlite::Row<'_>) -> rusqlite::Result<T>,
-    ) -> Result<Vec<T>, StoreError> {
-        let read = || -> rusqlite::Result<Vec<T>> {
-            let mut stmt = self.conn.prepare(sql)?;
-            stmt.query_map(params, row)?.collect()
-        };
-        read().map_err(|e| classify(&self.path, action, e))
-    }
-
-    /// The fittest individual of the whole run (ties go to the earliest generation, then the
-    /// lowest index); `None` before the first generation. NaN fitness never wins.
-    pub fn best_individual(&self) -> Result<Option<IndividualRecord>, StoreError> {
-        self.conn
-            .query_row(
-                &format!(
-                    "SELECT {} FROM individual WHERE fitness IS NOT NULL \
-                     ORDER BY fitness DESC, generation, individual LIMIT 1",
-                    self.individual_columns()
-                ),
-                [],
-                individual_from_row,
-            )
-            .optional()
-            .map_err(|e| classify(&self.path, "cannot read the best individual", e))
-    }
-
-    /// The columns an [`IndividualRecord`] is read from: a store older than version 3
-    /// (opened read-only) reads `reused` as 0 and no key.
-    fn individual_columns(&self) -> String {
-        if self.version >= 3 {
-            format!("{INDIVIDUAL_COLUMNS}, reused, evaluation_key")
-        } else {
-            format!("{INDIVIDUAL_COLUMNS}, 0, NULL")
-        }
-    }
-
-    /// Every stored individual's key, fitness and reuse, in generation and index order.
-    pub fn keys(&self) -> Result<Vec<StoredKey>, StoreError> {
-        let columns = if self.version >= 3 {
-            "reused, evaluation_key"
-        } else {
-            "0, NULL"
-        };
-        self.rows(
-            &format!(
-                "SELECT generation, individual, fitness, {columns} FROM individual \
-                 ORDER BY generation, individual"
-            ),
-            [],
-            "cannot read the evaluation keys",
-            |r| {
-                Ok(StoredKey {
-                    generation: r.get(0)?,
-                    index: r.get(1)?,
-                    fitness: get_real(r, 2)?,
-                    reused: r.get(3)?,
-                    evaluation_key: r.get(4)?,
-                })
-            },
-        )
-    }
-
-    /// The key and `genome_json` of every stored individual that was evaluated (not reused)
-    /// and has a key, in generation and index order: the evaluations a resumed run's cache
-    /// holds.
-    pub fn evaluations_by_key(&self) -> Result<Vec<(String, String)>, StoreError> {
-        if self.version < 3 {
-            return Ok(Vec::new());
-        }
-        self.rows(
-            "SELECT evaluation_key, genome_json FROM individual \
-                 WHERE evaluation_key IS NOT NULL AND reused = 0 \
-                 ORDER BY generation, individual",
-            [],
-            "cannot read the stored evaluations",
-            |r| Ok((r.get(0)?, r.get(1)?)),
-        )
-    }
-
-    /// How many individuals of each stored generation reused an evaluation, by generation
-    /// index (generations with none are absent).
-    pub fn reused_by_generation(&self) -> Result<Vec<(u32, u64)>, StoreError> {
-        if self.version < 3 {
-            return Ok(Vec::new());
-        }
-        self.rows(
-            "SELECT generation, count(*) FROM individual WHERE reused = 1 \
-                 GROUP BY generation ORDER BY generation",
-            [],
-            "cannot read the reused evaluations",
-            |r| Ok((r.get(0)?, r.get::<_, i64>(1)?.max(0) as u64)),
-        )
     }
 }
 
@@ -667,4 +527,36 @@ fn immutable_uri(path: &Path) -> String {
     }
     uri.push_str("?immutable=1");
     uri
+}
+
+/// A run record's values, in the order of the `run` table's columns ([`RUN_COLUMNS`]).
+fn run_values(run: &RunRecord) -> Vec<Value> {
+    vec![
+        Value::Integer(1),
+        Value::from(run.config.clone()),
+        Value::from(run.seed.to_string()),
+        Value::from(run.encoding.clone()),
+        Value::from(run.task.clone()),
+        Value::from(run.version.clone()),
+    ]
+}
+
+/// `values` of a row of `table`, followed by their checksum.
+fn with_checksum(table: &str, mut values: Vec<Value>) -> Vec<Value> {
+    let checksum = checksum_of(table, &values);
+    values.push(Value::from(checksum));
+    values
+}
+
+/// A REAL column's value: NaN as NULL ([`real`]).
+fn real_value(x: f64) -> Value {
+    real(x).map_or(Value::Null, Value::Real)
+}
+
+/// `?1, ?2, ..., ?n`.
+fn placeholders(n: usize) -> String {
+    (1..=n)
+        .map(|i| format!("?{i}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }

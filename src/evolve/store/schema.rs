@@ -8,6 +8,7 @@ use std::path::Path;
 
 use rusqlite::Connection;
 
+use super::checksum::checksum;
 use super::error::{StoreError, classify, io_error};
 
 /// The schema's version, kept in the database header (`PRAGMA user_version`). Raise it when
@@ -21,7 +22,12 @@ use super::error::{StoreError, classify, io_error};
 ///   creature evaluated earlier in the run) and `individual.evaluation_key` (the key of its
 ///   creature and the task, [`crate::evolve::key::EvaluationKey`], NULL when it did not
 ///   develop). Versions 1 and 2 are migrated on writing: old rows get `reused` 0 and no key.
-pub const SCHEMA_VERSION: i64 = 3;
+/// - 4: a `checksum` in every row of every table (a truncated SHA-256 of its values), verified whenever a
+///   row is read; `generation.evaluator`, the evaluator's behaviour version that made the
+///   generation ([`crate::evolve::evaluator_version`]), and `generation.individuals`, how
+///   many individuals it has. Older versions are migrated on writing: their rows are
+///   checksummed as they are, their generations taken as evaluator version 1.
+pub const SCHEMA_VERSION: i64 = 4;
 
 /// The oldest schema version this program reads (and migrates when it writes).
 pub const OLDEST_SCHEMA_VERSION: i64 = 1;
@@ -38,7 +44,8 @@ CREATE TABLE run (
     seed     TEXT NOT NULL CHECK (seed GLOB '[0-9]*' AND seed NOT GLOB '*[^0-9]*'),
     encoding TEXT NOT NULL,
     task     TEXT NOT NULL,
-    version  TEXT NOT NULL
+    version  TEXT NOT NULL,
+    checksum TEXT NOT NULL CHECK (length(checksum) = 16)
 ) STRICT;
 CREATE TABLE generation (
     generation             INTEGER PRIMARY KEY CHECK (generation >= 0),
@@ -51,7 +58,10 @@ CREATE TABLE generation (
     wall_seconds           REAL,
     evaluations_per_second REAL,
     best_fine              REAL,
-    best_fine_status       TEXT
+    best_fine_status       TEXT,
+    evaluator              INTEGER NOT NULL CHECK (evaluator >= 1),
+    individuals            INTEGER NOT NULL CHECK (individuals >= 0),
+    checksum               TEXT NOT NULL CHECK (length(checksum) = 16)
 ) STRICT;
 CREATE TABLE individual (
     generation  INTEGER NOT NULL REFERENCES generation (generation),
@@ -68,6 +78,7 @@ CREATE TABLE individual (
     neurons     INTEGER NOT NULL CHECK (neurons >= 0),
     reused      INTEGER NOT NULL CHECK (reused IN (0, 1)),
     evaluation_key TEXT CHECK (evaluation_key IS NULL OR length(evaluation_key) = 64),
+    checksum    TEXT NOT NULL CHECK (length(checksum) = 16),
     PRIMARY KEY (generation, individual)
 ) STRICT;
 ";
@@ -87,8 +98,54 @@ ALTER TABLE individual ADD COLUMN evaluation_key TEXT
     CHECK (evaluation_key IS NULL OR length(evaluation_key) = 64);
 ";
 
-/// The columns of the `generation` table (schema version 2 and later).
-const GENERATION_COLUMNS: [&str; 11] = [
+/// Version 3 to 4: a checksum in every row (computed, as the rows are, by
+/// [`checksum_rows`] in the same transaction), the evaluator's version of each generation
+/// (1 for every generation stored before it was recorded) and its count of individuals.
+pub(super) const MIGRATE_3_TO_4: &str = "
+ALTER TABLE run ADD COLUMN checksum TEXT CHECK (checksum IS NULL OR length(checksum) = 16);
+ALTER TABLE generation ADD COLUMN evaluator INTEGER NOT NULL DEFAULT 1 CHECK (evaluator >= 1);
+ALTER TABLE generation ADD COLUMN individuals INTEGER NOT NULL DEFAULT 0
+    CHECK (individuals >= 0);
+ALTER TABLE generation ADD COLUMN checksum TEXT
+    CHECK (checksum IS NULL OR length(checksum) = 16);
+ALTER TABLE individual ADD COLUMN checksum TEXT
+    CHECK (checksum IS NULL OR length(checksum) = 16);
+UPDATE generation SET individuals =
+    (SELECT count(*) FROM individual WHERE individual.generation = generation.generation);
+";
+
+/// Fills the `checksum` column of every row of every table (the last step of
+/// [`MIGRATE_3_TO_4`]), on the migration's transaction.
+pub(super) fn checksum_rows(conn: &Connection) -> rusqlite::Result<()> {
+    for (table, columns) in [
+        ("run", RUN_COLUMNS),
+        ("generation", GENERATION_COLUMNS),
+        ("individual", INDIVIDUAL_COLUMNS_ALL),
+    ] {
+        let mut update = conn.prepare(&format!(
+            "UPDATE {table} SET checksum = ?1 WHERE rowid = ?2"
+        ))?;
+        let mut select = conn.prepare(&format!(
+            "SELECT rowid, {} FROM {table}",
+            columns.join(", ")
+        ))?;
+        let mut rows = select.query([])?;
+        while let Some(row) = rows.next()? {
+            let values = (1..=columns.len())
+                .map(|i| row.get_ref(i))
+                .collect::<rusqlite::Result<Vec<_>>>()?;
+            let rowid: i64 = row.get(0)?;
+            update.execute(rusqlite::params![checksum(table, values), rowid])?;
+        }
+    }
+    Ok(())
+}
+
+/// The columns of the `run` table a checksum covers (all but `checksum`).
+pub(super) const RUN_COLUMNS: &[&str] = &["id", "config", "seed", "encoding", "task", "version"];
+
+/// The columns of the `generation` table (schema version 4), `checksum` last.
+const GENERATION_COLUMN_NAMES: [&str; 14] = [
     "generation",
     "best",
     "mean",
@@ -100,13 +157,22 @@ const GENERATION_COLUMNS: [&str; 11] = [
     "evaluations_per_second",
     "best_fine",
     "best_fine_status",
+    "evaluator",
+    "individuals",
+    "checksum",
 ];
 
-/// The columns of the `generation` table in schema version 1: all but the last two.
-const GENERATION_COLUMNS_V1: &[&str] = GENERATION_COLUMNS.split_at(9).0;
+/// The columns of the `generation` table a checksum covers (all but `checksum`).
+pub(super) const GENERATION_COLUMNS: &[&str] = GENERATION_COLUMN_NAMES.split_at(13).0;
 
-/// The columns of the `individual` table (schema version 3).
-const INDIVIDUAL_COLUMN_NAMES: [&str; 14] = [
+/// The columns of the `generation` table in schema version 1: the first nine.
+const GENERATION_COLUMNS_V1: &[&str] = GENERATION_COLUMN_NAMES.split_at(9).0;
+
+/// The columns of the `generation` table in schema versions 2 and 3: the first eleven.
+const GENERATION_COLUMNS_V2: &[&str] = GENERATION_COLUMN_NAMES.split_at(11).0;
+
+/// The columns of the `individual` table (schema version 4), `checksum` last.
+const INDIVIDUAL_COLUMN_NAMES: [&str; 15] = [
     "generation",
     "individual",
     "parents",
@@ -121,18 +187,24 @@ const INDIVIDUAL_COLUMN_NAMES: [&str; 14] = [
     "neurons",
     "reused",
     "evaluation_key",
+    "checksum",
 ];
 
-/// The columns of the `individual` table before schema version 3: all but the last two.
+/// The columns of the `individual` table a checksum covers (all but `checksum`).
+pub(super) const INDIVIDUAL_COLUMNS_ALL: &[&str] = INDIVIDUAL_COLUMN_NAMES.split_at(14).0;
+
+/// The columns of the `individual` table before schema version 3: the first twelve.
 const INDIVIDUAL_COLUMNS_V2: &[&str] = INDIVIDUAL_COLUMN_NAMES.split_at(12).0;
 
-/// Each table's columns, in order, as `open` expects to find them (schema version 3).
+/// Each table's columns, in order, as `open` expects to find them (schema version 4).
 const TABLES: [(&str, &[&str]); 3] = [
     (
         "run",
-        &["id", "config", "seed", "encoding", "task", "version"],
+        &[
+            "id", "config", "seed", "encoding", "task", "version", "checksum",
+        ],
     ),
-    ("generation", &GENERATION_COLUMNS),
+    ("generation", &GENERATION_COLUMN_NAMES),
     ("individual", &INDIVIDUAL_COLUMN_NAMES),
 ];
 
@@ -248,9 +320,12 @@ pub(super) fn check_store(path: &Path, conn: &Connection) -> Result<i64, StoreEr
     }
     for (table, expected) in TABLES {
         let expected = match table {
+            _ if version >= 4 => expected,
+            "run" => RUN_COLUMNS,
             "generation" if version < 2 => GENERATION_COLUMNS_V1,
+            "generation" => GENERATION_COLUMNS_V2,
             "individual" if version < 3 => INDIVIDUAL_COLUMNS_V2,
-            _ => expected,
+            _ => INDIVIDUAL_COLUMNS_ALL,
         };
         let mut columns: Vec<String> = Vec::new();
         conn.pragma(None, "table_info", table, |r| {

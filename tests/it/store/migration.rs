@@ -1,5 +1,7 @@
-//! Older run stores: version 1 and version 2 files read as they are and migrated when opened
-//! for writing, a schema older than version 1 refused, and the cache's columns read back.
+//! Older run stores: version 1, 2 and 3 files read as they are and migrated when opened for
+//! writing (their records checksummed as they are), a migration that fails part-way leaving
+//! the file as it was, a schema older than version 1 refused, and the cache's columns read
+//! back.
 
 use super::*;
 
@@ -251,7 +253,8 @@ fn reused_flags_and_evaluation_keys_read_back_as_written() {
 }
 
 #[test]
-fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_writing() {
+fn a_version_2_store_is_read_as_it_is_and_migrated_to_the_current_version_when_opened_for_writing()
+{
     let dir = scratch("version-2");
     let path = dir.join("run.sqlite");
     version_1_store(&path);
@@ -259,12 +262,14 @@ fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_
     RunStore::open(&path).unwrap();
     {
         let conn = rusqlite::Connection::open(&path).unwrap();
-        conn.execute_batch(
-            "ALTER TABLE individual DROP COLUMN reused;
+        conn.execute_batch(&format!(
+            "{}
+             ALTER TABLE individual DROP COLUMN reused;
              ALTER TABLE individual DROP COLUMN evaluation_key;
              PRAGMA user_version = 2;
              PRAGMA wal_checkpoint(TRUNCATE);",
-        )
+            crate::util::DROP_VERSION_4
+        ))
         .unwrap();
     }
     let before = fs::read(&path).unwrap();
@@ -282,7 +287,7 @@ fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_
     );
     // Migrated: old rows were all evaluated and have no key; new rows keep theirs.
     let mut store = RunStore::open(&path).unwrap();
-    assert_eq!(store.schema_version(), 3);
+    assert_eq!(store.schema_version(), SCHEMA_VERSION);
     let (_, _, migrated) = held(&store);
     assert_eq!(migrated, old);
     let mut new = individuals(2, [1.0; 4]);
@@ -292,4 +297,86 @@ fn a_version_2_store_is_read_as_it_is_and_migrated_to_version_3_when_opened_for_
     store.write_generation(&generation(2), &new).unwrap();
     assert_eq!(store.individuals(2).unwrap(), new);
     assert_eq!(store.reused_by_generation().unwrap(), vec![(2, 1)]);
+}
+
+/// A store of generations 0 and 1 ([`finished_store`]) taken back to schema version 3.
+fn version_3_store(dir: &Path) -> PathBuf {
+    let path = finished_store(dir);
+    let conn = rusqlite::Connection::open(&path).unwrap();
+    conn.execute_batch(crate::util::DROP_VERSION_4).unwrap();
+    conn.execute_batch("PRAGMA user_version = 3; PRAGMA wal_checkpoint(TRUNCATE);")
+        .unwrap();
+    path
+}
+
+#[test]
+fn a_version_3_store_is_checksummed_as_it_is_when_migrated_and_its_damage_is_then_refused() {
+    let dir = scratch("version-3");
+    let path = version_3_store(&dir);
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), 3);
+    let before = held(&store);
+    assert_eq!(store.evaluators().unwrap(), [(0, 1), (1, 1)]);
+    drop(store);
+    let store = RunStore::open(&path).unwrap();
+    assert_eq!(store.schema_version(), SCHEMA_VERSION);
+    assert_eq!(held(&store), before);
+    assert_eq!(store.evaluators().unwrap(), [(0, 1), (1, 1)]);
+    store.verify().unwrap();
+    drop(store);
+    // Its records now carry checksums: a fitness changed behind the store's back is refused.
+    rusqlite::Connection::open(&path)
+        .unwrap()
+        .execute_batch(
+            "UPDATE individual SET fitness = 5.0 WHERE generation = 1 AND individual = 2",
+        )
+        .unwrap();
+    let err = RunStore::open_read_only(&path)
+        .unwrap()
+        .individuals(1)
+        .unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("the record of individual 2 of generation 1 is damaged"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_migration_that_fails_part_way_leaves_the_store_as_it_was() {
+    let dir = scratch("migration-fails");
+    let path = version_3_store(&dir);
+    // The last step, checksumming the individuals, fails after the columns were added and
+    // the generations checksummed.
+    rusqlite::Connection::open(&path)
+        .unwrap()
+        .execute_batch(
+            "CREATE TRIGGER refuse BEFORE UPDATE OF checksum ON individual
+             BEGIN SELECT RAISE(ABORT, 'the disk is gone'); END;",
+        )
+        .unwrap();
+    let before = fs::read(&path).unwrap();
+    let err = RunStore::open(&path).unwrap_err();
+    let message = err.to_string();
+    assert!(
+        message.contains(
+            "cannot migrate the schema from version 3 to 4 (nothing was changed): the disk is gone"
+        ),
+        "{message}"
+    );
+    // Ontogeny's own failure, not the input's: the command line exits with 1.
+    assert!(!err.is_bad_input());
+    assert_eq!(fs::read(&path).unwrap(), before);
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), 3);
+    drop(store);
+    // Without the obstacle, the same file migrates.
+    rusqlite::Connection::open(&path)
+        .unwrap()
+        .execute_batch("DROP TRIGGER refuse; PRAGMA wal_checkpoint(TRUNCATE);")
+        .unwrap();
+    assert_eq!(
+        RunStore::open(&path).unwrap().schema_version(),
+        SCHEMA_VERSION
+    );
 }
