@@ -37,10 +37,12 @@ pub const MAX_INPUT_VARIABLE: &str = "ONTOGENY_MAX_INPUT";
 const BYTE_ORDER_MARK: &[u8] = b"\xEF\xBB\xBF";
 
 /// The cap on an input's size in bytes: [`MAX_INPUT_VARIABLE`] when it is set, else
-/// [`DEFAULT_MAX_INPUT`]. A value that is not a size is an error that says what it should be.
+/// [`DEFAULT_MAX_INPUT`] (set to nothing, it counts as unset). A value that is not a size is
+/// an error that says what it should be.
 pub fn max_input() -> io::Result<u64> {
     match std::env::var_os(MAX_INPUT_VARIABLE) {
         None => Ok(DEFAULT_MAX_INPUT),
+        Some(value) if value.is_empty() => Ok(DEFAULT_MAX_INPUT),
         Some(value) => {
             let text = value.to_string_lossy();
             parse_size(&text).ok_or_else(|| {

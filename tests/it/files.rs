@@ -461,6 +461,11 @@ fn the_environment_variable_sets_the_cap_and_a_file_under_it_is_read() {
         crate::util::succeeded(&check(Some("2048"))),
         "0: A\n1: AB\n2: ABB\n"
     );
+    assert_eq!(
+        crate::util::succeeded(&check(Some(""))),
+        "0: A\n1: AB\n2: ABB\n",
+        "set to nothing, the variable counts as unset"
+    );
     refused(
         &check(Some("lots")),
         "ONTOGENY_MAX_INPUT must be a size in bytes, above 0 (e.g. 200000000, or 512M; \
