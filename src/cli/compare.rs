@@ -122,11 +122,11 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     let (manifest, shared) = compare::open(root).map_err(compare_error)?;
     if args.plan {
         let files = ["compare.toml", "evolve.toml"].map(|f| root.join(f));
-        eprintln!("{}", ontogeny::output::wrote(&files));
+        tell!("{}", ontogeny::output::wrote(&files));
         for command in text::plan_commands(root, &manifest, args.no_cache) {
             say!("{command}");
         }
-        eprintln!(
+        tell!(
             "{} commands, one per replicate; when they are done: ontogeny compare --merge {}",
             manifest.replicates * manifest.encodings.len(),
             text::shell_word(root)
@@ -174,7 +174,7 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
 fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> anyhow::Result<()> {
     let survey = compare::survey(root, manifest, shared).map_err(compare_error)?;
     if survey.todo.is_empty() {
-        eprintln!("{}: every replicate is complete", root.display());
+        tell!("{}: every replicate is complete", root.display());
         return Ok(());
     }
     let mut progress = ComparisonProgress {
@@ -229,7 +229,7 @@ fn run_replicate<G: Genome>(
     );
     let generations = shared.ga.generations;
     let mut observer = |r: &GenerationReport| {
-        eprintln!("{}", progress.line(&label, r, generations));
+        tell!("{}", progress.line(&label, r, generations));
     };
     run.run(&mut observer).map_err(run_error)
 }

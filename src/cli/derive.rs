@@ -153,7 +153,7 @@ pub fn discrete_steps(
     doing: &str,
 ) -> anyhow::Result<Option<u64>> {
     if let Some(note) = print::check_mode(lsys, options, steps, doing)? {
-        eprintln!("{note}");
+        tell!("{note}");
     }
     Ok(steps)
 }

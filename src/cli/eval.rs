@@ -116,23 +116,23 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
     }
     for flag in task_flags(args).inapplicable() {
-        eprintln!("warning: {flag}; ignored");
+        tell!("warning: {flag}; ignored");
     }
     let mut progress = Progress::new(flags::progress_label(&spec));
     if let Some(note) = flags::recording_note(&spec).filter(|_| args.record.is_some()) {
-        eprintln!("{note}");
+        tell!("{note}");
     }
     let evaluation =
         spec.evaluate_with_progress(&creature, args.record.is_some(), &mut |f| progress.set(f));
     progress.finish();
     if let Some(warning) = flags::joint_gap_warning(&evaluation) {
-        eprintln!("{warning}");
+        tell!("{warning}");
     }
     if let Some(dir) = &args.record {
         ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
         write_recording(dir, &creature, &evaluation)?;
         let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
-        eprintln!("{}", ontogeny::output::wrote(&files));
+        tell!("{}", ontogeny::output::wrote(&files));
     }
     if args.json {
         let mut shown = evaluation.clone();
@@ -197,7 +197,7 @@ pub fn draw_recording(
     let size = (480, 300);
     let target = recording.target_point();
     if !samples.is_empty() && playback.fps < fps {
-        eprintln!(
+        tell!(
             "note: {} s recorded: {} is drawn at {:.3} frames/s instead of {fps}, to keep to {} frames",
             seconds_text(samples.last().map_or(0.0, |s| s.t)),
             path.display(),

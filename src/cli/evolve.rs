@@ -235,14 +235,14 @@ fn resume<G: Genome>(
             // Its log, plot and best genome are drawn again from the store, as this
             // version draws them.
             run.write_derived_files().map_err(run_error)?;
-            eprintln!(
+            tell!(
                 "{}: complete ({total} generations); nothing to resume; its log.txt, fitness.svg and best genome written again",
                 dir.display()
             );
             return Ok(());
         }
-        Some(g) => eprintln!("{}: resuming after generation {g}", dir.display()),
-        None => eprintln!("{}: resuming from the first generation", dir.display()),
+        Some(g) => tell!("{}: resuming after generation {g}", dir.display()),
+        None => tell!("{}: resuming from the first generation", dir.display()),
     }
     go(&mut run, dir)
 }
@@ -275,7 +275,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     let ga = run.config().ga.clone();
     let threads = rayon::current_num_threads();
     let start = text::start_line(G::NAME, &fitness, &ga, first as usize, threads);
-    eprintln!("{start}");
+    tell!("{start}");
     let mut observer = |r: &GenerationReport| {
         tally.add(r);
         let line = text::generation_line(&fitness, r);
@@ -290,9 +290,9 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
                 bar.inc(1);
             }
             None => {
-                eprintln!("generation {}: {line}", r.generation);
+                tell!("generation {}: {line}", r.generation);
                 if let Some(e) = estimate {
-                    eprintln!("{e}");
+                    tell!("{e}");
                 }
             }
         }

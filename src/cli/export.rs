@@ -67,7 +67,7 @@ pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     match &args.out {
         Some(path) => {
             ontogeny::output::write(path, &text)?;
-            eprintln!("{}", ontogeny::output::wrote(&[path]));
+            tell!("{}", ontogeny::output::wrote(&[path]));
         }
         None => {
             use std::io::Write as _;

@@ -80,7 +80,7 @@ fn write_out(
         .map_err(super::render_error(&path))?;
     let path = dir.join("growth.gif");
     if let Some(note) = growth_gif_note(shown.len(), last.step + 1, &path) {
-        eprintln!("{note}");
+        tell!("{note}");
     }
     let mut progress = super::progress::Progress::new("drawing growth.gif");
     write_growth_gif(shown, &path, &mut |f| progress.set(f)).map_err(super::render_error(&path))
@@ -161,7 +161,7 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
         write_out(dir, &grown, &last, &shown, &summary)?;
     }
     if let Some(dir) = &args.out {
-        eprintln!(
+        tell!(
             "{}",
             ontogeny::output::wrote(&OUT_FILES.map(|f| dir.join(f)))
         );

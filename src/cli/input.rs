@@ -26,7 +26,7 @@ pub(super) fn load_creature(
             flags.push("--seed");
         }
         if !flags.is_empty() {
-            eprintln!(
+            tell!(
                 "warning: {} grow a creature from a grammar; {} is not one: ignored",
                 flags.join(", "),
                 file.display()
@@ -48,7 +48,7 @@ pub(super) fn load_creature(
     })?;
     progress.finish();
     for note in loaded.notes {
-        eprintln!("{note}");
+        tell!("{note}");
     }
     Ok(loaded.creature)
 }

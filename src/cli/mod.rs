@@ -9,6 +9,16 @@ macro_rules! say {
     }};
 }
 
+/// Writes a line to standard error, as `eprintln!` does, but never fails: a reader that has
+/// closed the pipe (`ontogeny check bad.lsys 2>&1 | head -1`) loses the message, and the
+/// command goes on to its exit code instead of panicking.
+macro_rules! tell {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr().lock(), $($arg)*);
+    }};
+}
+
 /// Runs `$body` with `$G` standing for the genome type of the encoding named `$name`, or
 /// `$unknown(name)` when no encoding has that name: the library's registry of encodings
 /// ([`ontogeny::encoding::ENCODINGS`]), under the name every verb uses.
@@ -140,7 +150,7 @@ fn print(lines: Vec<ontogeny::evolve::text::Line>) -> anyhow::Result<()> {
     for line in lines {
         match line {
             ontogeny::evolve::text::Line::Result(l) => say!("{l}"),
-            ontogeny::evolve::text::Line::Message(l) => eprintln!("{l}"),
+            ontogeny::evolve::text::Line::Message(l) => tell!("{l}"),
         }
     }
     Ok(())
@@ -178,7 +188,7 @@ fn render_error(
 
 fn report(error: anyhow::Error) -> ExitCode {
     if let Some(diagnostic) = error.downcast_ref::<Diagnostic>() {
-        eprintln!("{diagnostic}");
+        tell!("{diagnostic}");
         return ExitCode::from(2);
     }
     let io = error

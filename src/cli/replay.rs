@@ -58,7 +58,7 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         args.fps,
         "the evaluation was refused before simulating",
     )?;
-    eprintln!(
+    tell!(
         "{} ({} frames at {} frames/s, of {} recorded)",
         ontogeny::output::wrote(&[&gif]),
         playback.shown.len(),
@@ -132,7 +132,7 @@ fn replay_typed<G: Genome>(
             .unwrap_or("?")
     );
     if evaluation.fitness != stored {
-        eprintln!("warning: the re-evaluation differs from the stored fitness");
+        tell!("warning: the re-evaluation differs from the stored fitness");
     }
     let files = [
         genome_name.as_str(),
@@ -140,6 +140,6 @@ fn replay_typed<G: Genome>(
         "recording.json",
         "behaviour.gif",
     ];
-    eprintln!("{}", ontogeny::output::wrote(&files.map(|f| out.join(f))));
+    tell!("{}", ontogeny::output::wrote(&files.map(|f| out.join(f))));
     Ok(())
 }

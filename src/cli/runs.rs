@@ -51,7 +51,7 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
             let found =
                 listing::list(dir).with_context(|| format!("cannot read {}", dir.display()))?;
             if found.is_empty() {
-                eprintln!("{}: no run or comparison here", dir.display());
+                tell!("{}: no run or comparison here", dir.display());
             }
             for listed in found {
                 say!("{}", listed.line());

@@ -83,7 +83,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
                 ontogeny::view::recording_data(&target.path).map_err(|e| bad(e.to_string()))?;
             frames = data["frames"].as_array().map(Vec::len);
             if let Some(reason) = data["no_frames"].as_str() {
-                eprintln!(
+                tell!(
                     "note: {}: {reason}; the page shows the creature as built",
                     target.path.display()
                 );
@@ -115,7 +115,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         frame: args.frame,
     };
     for warning in ignored_flags(&flags, &target, frames) {
-        eprintln!("warning: {warning}");
+        tell!("warning: {warning}");
     }
     let port = args.port.unwrap_or(if args.snapshot.is_some() {
         0
@@ -144,7 +144,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             SnapshotError::Output(e) => anyhow::Error::new(e),
             e => anyhow::Error::new(e),
         })?;
-        eprintln!("{}", ontogeny::output::wrote(&[out]));
+        tell!("{}", ontogeny::output::wrote(&[out]));
         if let Some(d) = grammar_error {
             // The picture shows the error; the exit code says it too.
             return Err(anyhow::Error::new(d));
@@ -152,8 +152,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     if let Some(d) = &grammar_error {
-        eprintln!("{d}");
-        eprintln!("(the page shows this error until the file is fixed and saved)");
+        tell!("{d}");
+        tell!("(the page shows this error until the file is fixed and saved)");
     }
     let url = if query.is_empty() {
         server.url()

@@ -879,3 +879,22 @@ fn flags_the_task_does_not_use_are_warned_about() {
     ]);
     assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
 }
+
+#[test]
+fn a_closed_standard_error_loses_the_message_and_keeps_the_exit_code() {
+    // `ontogeny check bad.lsys 2>&1 | head -0`: the reader is gone before the message is
+    // written, so writing it fails; the command must still exit 2, not panic (101).
+    let dir = crate::util::scratch_dir("closed-stderr");
+    let file = dir.join("bad.lsys");
+    std::fs::write(&file, "axiom: A(\n").unwrap();
+    let mut child = crate::util::ontogeny_command()
+        .args(["check", file.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stderr.take());
+    drop(child.stdout.take());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(2));
+}
