@@ -72,13 +72,13 @@ pub enum OutputError {
         path: PathBuf,
     },
     /// The file could not be written (or its temporary file made, or renamed into place).
-    #[error("cannot write {}: {source}", path.display())]
+    #[error("cannot write {}: {cause}", path.display())]
     Io {
         /// The target.
         path: PathBuf,
-        /// What went wrong.
-        #[source]
-        source: io::Error,
+        /// What went wrong: part of the message, and so not a `source` that a chain of causes
+        /// would print a second time.
+        cause: io::Error,
     },
 }
 
@@ -97,7 +97,7 @@ pub fn check_target(path: &Path) -> Result<(), OutputError> {
         Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
         Err(source) => Err(OutputError::Io {
             path: path.into(),
-            source,
+            cause: source,
         }),
     }
 }
@@ -108,7 +108,7 @@ pub fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), OutputError> {
         out.write_all(bytes.as_ref())
             .map_err(|source| OutputError::Io {
                 path: path.into(),
-                source,
+                cause: source,
             })
     })
 }
@@ -123,7 +123,7 @@ pub fn write_with<E: From<OutputError>>(
     check_target(path)?;
     let io_error = |source| OutputError::Io {
         path: path.into(),
-        source,
+        cause: source,
     };
     let directory = match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent,
@@ -141,7 +141,23 @@ pub fn write_with<E: From<OutputError>>(
     // process's umask), not the private ones of a temporary file.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    let temporary = builder.tempfile_in(directory).map_err(io_error)?;
+    if !directory.is_dir() {
+        let what = if directory.exists() {
+            "is not a folder"
+        } else {
+            "does not exist"
+        };
+        let cause = io::Error::new(
+            io::ErrorKind::NotFound,
+            format!("{} {what}", directory.display()),
+        );
+        return Err(io_error(cause).into());
+    }
+    // tempfile's errors name the temporary file, which the user never asked for: keep the
+    // system's words alone.
+    let temporary = builder
+        .tempfile_in(directory)
+        .map_err(|e| io_error(e.raw_os_error().map_or(e, io::Error::from_raw_os_error)))?;
     let mut out = BufWriter::new(temporary.reopen().map_err(io_error)?);
     fill(&mut out)?;
     out.into_inner()
@@ -174,7 +190,7 @@ pub fn wrote<P: AsRef<Path>>(paths: &[P]) -> String {
 pub fn copy_into_place(source: &Path, target: &Path) -> Result<(), OutputError> {
     let bytes = crate::input::read(source).map_err(|e| OutputError::Io {
         path: source.into(),
-        source: e,
+        cause: e,
     })?;
     write(target, bytes)
 }
@@ -189,6 +205,25 @@ mod tests {
             .prefix("ontogeny-output-unit-")
             .tempdir()
             .unwrap()
+    }
+
+    #[test]
+    fn a_file_in_a_missing_folder_is_refused_in_words_that_name_the_folder_once() {
+        let dir = scratch();
+        let path = dir.path().join("nodir").join("x.xml");
+        let error = write(&path, "x").unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            format!(
+                "cannot write {}: {} does not exist",
+                path.display(),
+                dir.path().join("nodir").display()
+            )
+        );
+        assert!(
+            std::error::Error::source(&error).is_none(),
+            "no cause printed twice"
+        );
     }
 
     #[test]
@@ -225,11 +260,11 @@ mod tests {
         let result = write_with(&path, |out| {
             out.write_all(b"half").map_err(|source| OutputError::Io {
                 path: path.clone(),
-                source,
+                cause: source,
             })?;
             Err(OutputError::Io {
                 path: path.clone(),
-                source: io::Error::other("the encoder failed"),
+                cause: io::Error::other("the encoder failed"),
             })
         });
         assert!(result.is_err());

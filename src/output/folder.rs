@@ -95,7 +95,7 @@ pub fn is_marked(path: &Path, kind: FolderKind) -> bool {
 pub fn check_folder(path: &Path, kind: FolderKind) -> Result<(), OutputError> {
     let io_error = |source| OutputError::Io {
         path: path.into(),
-        source,
+        cause: source,
     };
     let metadata = match std::fs::metadata(path) {
         Ok(m) => m,
@@ -138,7 +138,7 @@ pub fn prepare_folder(path: &Path, kind: FolderKind) -> Result<(), OutputError> 
     check_folder(path, kind)?;
     std::fs::create_dir_all(path).map_err(|source| OutputError::Io {
         path: path.into(),
-        source,
+        cause: source,
     })?;
     if is_marked(path, kind) {
         return Ok(());
@@ -149,7 +149,12 @@ pub fn prepare_folder(path: &Path, kind: FolderKind) -> Result<(), OutputError> 
 /// Marks the existing folder `path` as `kind`'s, for a verb that has recognised it as its own
 /// otherwise (a folder an older version made, which carries no mark).
 pub fn mark(path: &Path, kind: FolderKind) -> Result<(), OutputError> {
-    let io_error = |path: PathBuf| move |source| OutputError::Io { path, source };
+    let io_error = |path: PathBuf| {
+        move |source| OutputError::Io {
+            path,
+            cause: source,
+        }
+    };
     let mark = path.join(kind.mark());
     let mut file = std::fs::File::create(&mark).map_err(io_error(mark.clone()))?;
     writeln!(
