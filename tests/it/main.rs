@@ -25,6 +25,7 @@ mod genome_continuous;
 mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
+mod limits;
 mod long_runs;
 #[cfg(feature = "mpi")]
 mod mpi;
