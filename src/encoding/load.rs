@@ -123,8 +123,9 @@ fn creature_json(file: &Path, text: &str, max_parts: usize) -> Result<Creature, 
     Ok(creature)
 }
 
-/// Grows `lsys` to its last frame with `options`, as `ontogeny grow` does; the notes are the
-/// mode's ([`print::check_mode`]) and the builder's warnings (its errors make the creature
+/// Grows `lsys` to its last frame with `options`, as `ontogeny grow` does, cut short where
+/// the creature is decided ([`grow_last`]); the notes are the mode's ([`print::check_mode`]),
+/// the shortcut taken, if any, and the builder's warnings (its errors make the creature
 /// invalid, which an evaluation reports).
 pub fn grow_grammar(
     lsys: &LSystem,
@@ -139,14 +140,15 @@ pub fn grow_grammar(
         max_parts: options.max_parts,
         ..BuildOptions::default()
     };
-    let creature = grow_last(
+    let last = grow_last(
         lsys,
         &options.derive,
         options.steps,
         &build_options,
         progress,
-    )?
-    .creature;
+    )?;
+    notes.extend(last.shortcut.map(|s| format!("note: {s}")));
+    let creature = last.frame.creature;
     notes.extend(
         creature
             .problems
