@@ -104,10 +104,12 @@ pub fn load_creature(
 fn creature_json(file: &Path, text: &str, max_parts: usize) -> Result<Creature, LoadError> {
     match FileKind::of(file, text.as_bytes()) {
         FileKind::GraphGenome => {
-            let limits = GraphLimits::default();
-            let genome = GraphGenome::from_text(text, &limits)
-                .map_err(|e| bad(format!("{}: {e}", file.display())))?;
-            return Ok(genome.creature(limits.max_parts));
+            return graph_genome(file, text);
+        }
+        // A graph genome broken as JSON (a NaN, text after its end) is no JSON file: it is
+        // read as the graph genome it names itself, for its error's place.
+        FileKind::Json | FileKind::Grammar if looks_like_graph_genome(text) => {
+            return graph_genome(file, text);
         }
         FileKind::Creature | FileKind::Json | FileKind::Grammar => {}
         other => return Err(other.refusal(file, "a creature").into()),
@@ -121,6 +123,20 @@ fn creature_json(file: &Path, text: &str, max_parts: usize) -> Result<Creature, 
         ))
     })?;
     Ok(creature)
+}
+
+/// The creature of a graph genome's JSON `text` (read from `file`), developed with the
+/// default limits; an error in the JSON is placed at its line and column.
+fn graph_genome(file: &Path, text: &str) -> Result<Creature, LoadError> {
+    let limits = GraphLimits::default();
+    let genome = GraphGenome::from_file_text(&file.display().to_string(), text, &limits)?;
+    Ok(genome.creature(limits.max_parts))
+}
+
+/// Whether a text that does not read as JSON is a graph genome all the same: it has the
+/// genome's `"nodes"` and not a creature's `"parts"`.
+fn looks_like_graph_genome(text: &str) -> bool {
+    text.contains("\"nodes\"") && !text.contains("\"parts\"")
 }
 
 /// Grows `lsys` to its last frame with `options`, as `ontogeny grow` does, cut short where

@@ -571,7 +571,7 @@ impl Derivation<'_> {
         self.work.spend(
             self.current.len(),
             &format!(
-                "at step {} of {} modules",
+                "at step {} (a string of {} modules)",
                 self.step + 1,
                 self.current.len()
             ),
