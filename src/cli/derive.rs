@@ -30,7 +30,7 @@ pub struct DevelopmentArgs {
     #[arg(long = "env", value_name = "INDEX=VALUE", value_parser = print::parse_env_assignment)]
     env: Vec<(usize, f64)>,
     /// The work budget: the most modules all rewriting passes may read together (about
-    /// modules × steps; default 50000000). A derivation that would pass it stops with an
+    /// modules × steps; default 20000000). A derivation that would pass it stops with an
     /// error.
     #[arg(long, value_name = "N")]
     max_work: Option<u64>,
@@ -129,7 +129,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
     let quiet = args.last || !std::io::stdout().is_terminal();
     let mut progress =
         super::progress::Progress::on("deriving", quiet && std::io::stderr().is_terminal());
-    lsys.for_each_frame(&options, args.development.steps, |frame| {
+    lsys.for_each_frame_until(&options, args.development.steps, |frame| {
         progress.set(frame.fraction());
         if args.events {
             for event in &frame.events {
@@ -156,7 +156,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
             let line = print::frame_line(&lsys, &options, step, string, frame.env, args.json)?;
             writeln!(out, "{line}")?;
         }
-        Ok::<(), anyhow::Error>(())
+        Ok::<bool, anyhow::Error>(true)
     })?;
     progress.finish();
     out.flush()?;

@@ -18,7 +18,7 @@ use crate::lang::{Diagnostic, DiagnosticKind};
 
 /// The default work budget of a derivation ([`DeriveOptions::max_work`]): the modules all
 /// its rewriting passes may read together: under a second of rewriting.
-pub const DEFAULT_MAX_WORK: u64 = 50_000_000;
+pub const DEFAULT_MAX_WORK: u64 = 20_000_000;
 
 /// The work a derivation has done, against its budget.
 #[derive(Clone, Copy, Debug)]

@@ -433,24 +433,37 @@ impl FramePlan {
 impl LSystem {
     /// Runs the system and shows every frame to `visit`: every derivation step in discrete
     /// mode (`steps`, else the file's derivation length, else 0), every observation time in
-    /// continuous mode (a file with `time:`, or `options.time`). A discrete derivation that
-    /// reaches a fixed point ([`LSystem::steps_are_pure`]) shows the frames to it, then the
-    /// last frame (with [`Frame::fixed_since`]): the frames between are the same string.
+    /// continuous mode (a file with `time:`, or `options.time`). Past a fixed point of a
+    /// discrete derivation ([`LSystem::steps_are_pure`]) the frames show the same string,
+    /// derived no more.
     pub fn for_each_frame<E: From<Diagnostic>>(
         &self,
         options: &DeriveOptions,
         steps: Option<u64>,
         mut visit: impl FnMut(Frame<'_>) -> Result<(), E>,
     ) -> Result<(), E> {
-        self.for_each_frame_until(options, steps, |frame| visit(frame).map(|()| true))
+        self.frames(options, steps, false, |frame| visit(frame).map(|()| true))
     }
 
-    /// [`for_each_frame`](Self::for_each_frame), stopped as soon as `visit` returns false
-    /// (its result is decided).
+    /// [`for_each_frame`](Self::for_each_frame) cut short where the result is decided: a
+    /// discrete derivation that reaches a fixed point shows the frames to it, then at once
+    /// the last frame (with [`Frame::fixed_since`]); and the frames stop as soon as `visit`
+    /// returns false.
     pub fn for_each_frame_until<E: From<Diagnostic>>(
         &self,
         options: &DeriveOptions,
         steps: Option<u64>,
+        visit: impl FnMut(Frame<'_>) -> Result<bool, E>,
+    ) -> Result<(), E> {
+        self.frames(options, steps, true, visit)
+    }
+
+    /// The frames, `jump`ing from a fixed point to the last frame or not.
+    fn frames<E: From<Diagnostic>>(
+        &self,
+        options: &DeriveOptions,
+        steps: Option<u64>,
+        jump: bool,
         mut visit: impl FnMut(Frame<'_>) -> Result<bool, E>,
     ) -> Result<(), E> {
         if options.time.is_some() || self.is_continuous() {
@@ -474,12 +487,13 @@ impl LSystem {
         let steps = steps.or(self.derivation_length).unwrap_or(0);
         let pure = self.steps_are_pure();
         let mut d = self.derivation(options)?;
+        let mut fixed = false;
         for step in 0..=steps {
-            if step > 0 {
+            if step > 0 && !fixed {
                 d.step()?;
+                // A fixed point: every later frame is this one.
+                fixed = pure && d.unchanged();
             }
-            // A fixed point: every later frame is this one; show the last at once.
-            let fixed = pure && step > 0 && step < steps && d.unchanged();
             let go_on = visit(Frame {
                 step,
                 t: step as f64,
@@ -493,7 +507,7 @@ impl LSystem {
             if !go_on {
                 return Ok(());
             }
-            if fixed {
+            if jump && fixed && step < steps {
                 visit(Frame {
                     step: steps,
                     t: steps as f64,

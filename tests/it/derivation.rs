@@ -289,13 +289,13 @@ const ONE_PART_A_STEP: &str = "axiom: A\nderivation length: 1000000\nA --> forwa
 /// A grammar whose every step leaves the axiom as it is, for a billion steps.
 const STILL: &str = "axiom: A\nderivation length: 1000000000\nA --> A\n";
 
-/// The steps `for_each_frame` shows, with the step each last frame's fixed point began.
+/// The steps `for_each_frame_until` shows, cut short, with the step each last frame's fixed point began.
 fn frames_shown(text: &str, steps: Option<u64>) -> Vec<(u64, String, Option<u64>)> {
     let lsys = lsystem(text);
     let mut shown = Vec::new();
-    lsys.for_each_frame(&DeriveOptions::default(), steps, |f| {
+    lsys.for_each_frame_until(&DeriveOptions::default(), steps, |f| {
         shown.push((f.step, lsys.display(f.string), f.fixed_since));
-        Ok::<(), ontogeny::lang::Diagnostic>(())
+        Ok::<bool, ontogeny::lang::Diagnostic>(true)
     })
     .unwrap();
     shown
@@ -325,7 +325,7 @@ fn a_step_that_reads_the_time_or_chance_is_never_taken_for_a_fixed_point() {
     assert_eq!(shown.len(), 7);
     assert_eq!(shown[6], (6, "B".to_string(), None));
     // A stochastic rule that may keep its module is never a fixed point either.
-    let shown = frames_shown("axiom: A\nA --> (0.5) A\nA --> (0.5) A\n", Some(20));
+    let shown = frames_shown("axiom: A\nA --> A : 0.5\nA --> A : 0.5\n", Some(20));
     assert_eq!(shown.len(), 21);
 }
 
