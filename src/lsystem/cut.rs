@@ -121,7 +121,7 @@ mod tests {
         let pure = |text: &str| LSystem::from_text("t", text).unwrap().steps_are_pure();
         assert!(pure("axiom: A\nA --> A B\n"));
         assert!(pure("axiom: A(1)\nA(x) : x < 3 --> A(x + 1)\n"));
-        assert!(!pure("axiom: A\nA --> (0.5) A\nA --> (0.5) B\n"));
+        assert!(!pure("axiom: A\nA --> A : 0.5\nA --> B : 0.5\n"));
         assert!(!pure("axiom: A(0)\nA(x) : t < 3 --> A(x)\n"));
         assert!(!pure("axiom: A(0)\nA(x) --> A(uniform(0, 1))\n"));
     }
@@ -133,7 +133,7 @@ mod tests {
             "axiom: forward(1) [ left forward(1) ] A forward(1)\nA --> forward(1) A\n",
         )
         .unwrap();
-        assert_eq!(lsys.settled_prefix(lsys.axiom()), 6);
+        assert_eq!(lsys.settled_prefix(lsys.axiom()), 5);
         let lsys = LSystem::from_text(
             "t",
             "axiom: forward(1) B\nB --> B\ninterpretation:\nforward(x) --> forward(x)\n",
