@@ -6,8 +6,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use ontogeny::encoding::{
-    ContinuousGenome, ContinuousLimits, DirectGenome, DirectLimits, Genome, GraphGenome,
-    GraphLimits, LSystemGenome, LSystemLimits,
+    CheckedLimits, ContinuousGenome, ContinuousLimits, DirectGenome, DirectLimits, Genome,
+    GraphGenome, GraphLimits, LSystemGenome, LSystemLimits,
 };
 use ontogeny::evolve::compare::{self, evaluations_of, generations_for};
 use ontogeny::evolve::config::{
@@ -66,7 +66,7 @@ fn evolve_config<G: Genome>(source: &Source) {
 }
 
 /// `evolve --resume DIR`: the run directory's `config.toml`.
-fn run_config<L: DeserializeOwned>(source: &Source) {
+fn run_config<L: DeserializeOwned + CheckedLimits>(source: &Source) {
     match read_run_config::<L>(source) {
         // The genetic algorithm starts from these settings as they are.
         Ok(config) => use_settings(&config.ga),

@@ -4,7 +4,9 @@ use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions, LSystem, Timing, print};
+use ontogeny::lsystem::{
+    DEFAULT_MAX_MODULES, DEFAULT_MAX_WORK, DeriveOptions, LSystem, Timing, print,
+};
 
 /// Flags shared by the verbs that develop an L-system (the default: the file's own settings).
 #[derive(Args, Default)]
@@ -27,6 +29,11 @@ pub struct DevelopmentArgs {
     /// Override an initial environment value, e.g. `--env 0=1` (repeatable).
     #[arg(long = "env", value_name = "INDEX=VALUE", value_parser = print::parse_env_assignment)]
     env: Vec<(usize, f64)>,
+    /// The work budget: the most modules all rewriting passes may read together (about
+    /// modules × steps; default 20000000). A derivation that would pass it stops with an
+    /// error.
+    #[arg(long, value_name = "N")]
+    max_work: Option<u64>,
 }
 
 impl DevelopmentArgs {
@@ -49,6 +56,9 @@ impl DevelopmentArgs {
         if !self.env.is_empty() {
             out.push("--env");
         }
+        if self.max_work.is_some() {
+            out.push("--max-work");
+        }
         out
     }
 }
@@ -69,6 +79,7 @@ pub fn derive_options(
             TimingArg::Exact => Timing::Exact,
             TimingArg::Iterative => Timing::Iterative,
         }),
+        max_work: args.max_work.unwrap_or(DEFAULT_MAX_WORK),
     }
 }
 
@@ -118,12 +129,20 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
     let quiet = args.last || !std::io::stdout().is_terminal();
     let mut progress =
         super::progress::Progress::on("deriving", quiet && std::io::stderr().is_terminal());
-    lsys.for_each_frame(&options, args.development.steps, |frame| {
+    lsys.for_each_frame_until(&options, args.development.steps, |frame| {
         progress.set(frame.fraction());
         if args.events {
             for event in &frame.events {
                 writeln!(out, "{}", print::event_line(event, args.json)?)?;
             }
+        }
+        if let Some(step) = frame.fixed_since {
+            eprintln!(
+                "note: fixed point at step {step}: steps {} to {} give the same string, so \
+                 they were not derived",
+                step + 1,
+                frame.step
+            );
         }
         if !args.last || frame.last {
             let interpreted;
@@ -137,7 +156,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
             let line = print::frame_line(&lsys, &options, step, string, frame.env, args.json)?;
             writeln!(out, "{line}")?;
         }
-        Ok::<(), anyhow::Error>(())
+        Ok::<bool, anyhow::Error>(true)
     })?;
     progress.finish();
     out.flush()?;

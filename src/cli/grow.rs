@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::Summary;
-use ontogeny::develop::{BuildOptions, GrowthFrame, for_each_growth_frame, kept_frame_plan};
+use ontogeny::develop::{
+    BuildOptions, GrowthFrame, for_each_growth_frame, grow_last, kept_frame_plan,
+};
 use ontogeny::lang::Diagnostic;
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions, LSystem};
 use ontogeny::output::FolderKind;
@@ -127,26 +129,37 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     let mut progress = super::progress::Progress::new("growing");
     let mut shown = Vec::new();
     let mut last = None;
-    for_each_growth_frame(
-        &lsys,
-        &options,
-        steps,
-        &build_options,
-        |step, is_last| {
-            is_last
-                || gif_steps
-                    .as_ref()
-                    .is_some_and(|wanted| wanted.get(step as usize) == Some(&true))
-        },
-        &mut |f| progress.set(f),
-        |frame| {
-            if gif_steps.is_some() {
-                shown.push(frame.clone());
-            }
-            last = Some(frame);
-            Ok::<(), Diagnostic>(())
-        },
-    )?;
+    if gif_steps.is_none() {
+        // Only the last creature is wanted: grown cut short where it is decided.
+        let grown = grow_last(&lsys, &options, steps, &build_options, &mut |f| {
+            progress.set(f)
+        })?;
+        if let Some(shortcut) = grown.shortcut {
+            eprintln!("note: {shortcut}");
+        }
+        last = Some(grown.frame);
+    } else {
+        for_each_growth_frame(
+            &lsys,
+            &options,
+            steps,
+            &build_options,
+            |step, is_last| {
+                is_last
+                    || gif_steps
+                        .as_ref()
+                        .is_some_and(|wanted| wanted.get(step as usize) == Some(&true))
+            },
+            &mut |f| progress.set(f),
+            |frame| {
+                if gif_steps.is_some() {
+                    shown.push(frame.clone());
+                }
+                last = Some(frame);
+                Ok::<(), Diagnostic>(())
+            },
+        )?;
+    }
     progress.finish();
     let last = last.expect("at least the first frame");
     let frames = last.step as usize + 1;

@@ -7,6 +7,7 @@
 
 mod brain;
 mod command;
+mod shortcut;
 
 use nalgebra::{Unit, UnitQuaternion, Vector3};
 
@@ -14,6 +15,7 @@ use crate::creature::{Creature, Joint, JointKind, Part, Problem, Severity};
 use crate::environment::Environment;
 use crate::lsystem::{ModuleString, SymbolTable, format_number};
 pub use command::{Action, command_of};
+pub use shortcut::{LastFrame, Shortcut, grow_last};
 
 use brain::BrainBuilder;
 
@@ -604,36 +606,6 @@ pub fn for_each_growth_frame<E: From<crate::lang::Diagnostic>>(
         }
         progress(fraction);
         Ok(())
-    })
-}
-
-/// The last frame of [`grow`], building only that one (see [`for_each_growth_frame`]): what
-/// a verb that needs only the grown creature calls. Its `step` + 1 is the number of frames.
-pub fn grow_last(
-    lsys: &crate::lsystem::LSystem,
-    options: &crate::lsystem::DeriveOptions,
-    steps: Option<u64>,
-    build_options: &BuildOptions,
-    progress: &mut dyn FnMut(f64),
-) -> Result<GrowthFrame, crate::lang::Diagnostic> {
-    let mut last = None;
-    for_each_growth_frame(
-        lsys,
-        options,
-        steps,
-        build_options,
-        |_, is_last| is_last,
-        progress,
-        |frame| {
-            last = Some(frame);
-            Ok::<(), crate::lang::Diagnostic>(())
-        },
-    )?;
-    last.ok_or_else(|| {
-        crate::lang::Diagnostic::without_location(
-            crate::lang::DiagnosticKind::Runtime,
-            "development produced no frame".to_string(),
-        )
     })
 }
 

@@ -108,10 +108,12 @@ pub fn load_creature(
 fn creature_json(file: &Path, text: &str, max_parts: usize) -> Result<Creature, LoadError> {
     match FileKind::of(file, text.as_bytes()) {
         FileKind::GraphGenome => {
-            let limits = GraphLimits::default();
-            let genome = GraphGenome::from_text(text, &limits)
-                .map_err(|e| bad(format!("{}: {e}", file.display())))?;
-            return Ok(genome.creature(limits.max_parts));
+            return graph_genome(file, text);
+        }
+        // A graph genome broken as JSON (a NaN, text after its end) is no JSON file: it is
+        // read as the graph genome it names itself, for its error's place.
+        FileKind::Json | FileKind::Grammar if looks_like_graph_genome(text) => {
+            return graph_genome(file, text);
         }
         FileKind::Creature | FileKind::Json | FileKind::Grammar => {}
         other => return Err(other.refusal(file, "a creature").into()),
@@ -127,8 +129,23 @@ fn creature_json(file: &Path, text: &str, max_parts: usize) -> Result<Creature, 
     Ok(creature)
 }
 
-/// Grows `lsys` to its last frame with `options`, as `ontogeny grow` does; the notes are the
-/// mode's ([`print::check_mode`]) and the builder's warnings (its errors make the creature
+/// The creature of a graph genome's JSON `text` (read from `file`), developed with the
+/// default limits; an error in the JSON is placed at its line and column.
+fn graph_genome(file: &Path, text: &str) -> Result<Creature, LoadError> {
+    let limits = GraphLimits::default();
+    let genome = GraphGenome::from_file_text(&file.display().to_string(), text, &limits)?;
+    Ok(genome.creature(limits.max_parts))
+}
+
+/// Whether a text that does not read as JSON is a graph genome all the same: it has the
+/// genome's `"nodes"` and not a creature's `"parts"`.
+fn looks_like_graph_genome(text: &str) -> bool {
+    text.contains("\"nodes\"") && !text.contains("\"parts\"")
+}
+
+/// Grows `lsys` to its last frame with `options`, as `ontogeny grow` does, cut short where
+/// the creature is decided ([`grow_last`]); the notes are the mode's ([`print::check_mode`]),
+/// the shortcut taken, if any, and the builder's warnings (its errors make the creature
 /// invalid, which an evaluation reports).
 pub fn grow_grammar(
     lsys: &LSystem,
@@ -144,14 +161,15 @@ pub fn grow_grammar(
         cancel: options.cancel.clone(),
         ..BuildOptions::default()
     };
-    let creature = grow_last(
+    let last = grow_last(
         lsys,
         &options.derive,
         options.steps,
         &build_options,
         progress,
-    )?
-    .creature;
+    )?;
+    notes.extend(last.shortcut.map(|s| format!("note: {s}")));
+    let creature = last.frame.creature;
     notes.extend(
         creature
             .problems

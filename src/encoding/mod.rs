@@ -15,6 +15,7 @@ pub mod continuous;
 pub mod direct;
 mod draw;
 pub mod graph;
+pub mod limits;
 pub mod load;
 pub mod lsystem;
 mod registry;
@@ -25,6 +26,7 @@ pub use crate::lang::commands as command;
 pub use continuous::{ContinuousGenome, ContinuousLimits};
 pub use direct::{DirectGenome, DirectLimits};
 pub use graph::{GraphGenome, GraphLimits, JointSet};
+pub use limits::CheckedLimits;
 pub use load::{LoadError, LoadOptions, Loaded, grow_grammar, load_creature};
 pub use lsystem::{LSystemGenome, LSystemLimits};
 pub use registry::{ENCODINGS, EncodingInfo, encoding_named};
@@ -58,8 +60,16 @@ pub enum Purpose {
 /// bounded number of times, as the graph genome does when its parts interpenetrate). Development never panics: a genome that
 /// does not develop gives a [`DevelopError`].
 pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned {
-    /// The encoding's limits and settings (serialisable: they are part of a run's config).
-    type Limits: Clone + std::fmt::Debug + Default + Send + Sync + Serialize + DeserializeOwned;
+    /// The encoding's limits and settings (serialisable: they are part of a run's config),
+    /// each key within its documented range ([`CheckedLimits`]).
+    type Limits: Clone
+        + std::fmt::Debug
+        + Default
+        + Send
+        + Sync
+        + Serialize
+        + DeserializeOwned
+        + CheckedLimits;
 
     /// The encoding's name, as the CLI and the run store spell it.
     const NAME: &'static str;

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use super::config_errors::{key_span, setting_diagnostic, toml_diagnostic};
 use super::ga::{GaSettings, Preset};
-use crate::encoding::{ENCODINGS, encoding_named};
+use crate::encoding::{CheckedLimits, ENCODINGS, encoding_named};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
@@ -313,12 +313,28 @@ pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>
 /// so a key it lacks was added to the program later, and the run keeps what it ran with: its
 /// encoding says what that was ([`crate::encoding::Genome::LIMITS_OF_OLDER_RUNS`]: a `graph`
 /// run begun before `[limits] joint_kinds` existed drew all of Sims' joint kinds and resumes
-/// with `joint_kinds = "sims"`). Its settings get the checks of [`check_settings`], as a
-/// configuration file's do when a run starts: an edited file may hold anything.
-pub fn read_run_config<L: DeserializeOwned>(source: &Source) -> Result<RunConfig<L>, Diagnostic> {
+/// with `joint_kinds = "sims"`). Its settings get the checks of [`check_settings`], and its
+/// limits those of [`check_limits`], as a configuration file's do when a run starts: an
+/// edited file may hold anything.
+pub fn read_run_config<L: DeserializeOwned + CheckedLimits>(
+    source: &Source,
+) -> Result<RunConfig<L>, Diagnostic> {
     let config: RunConfig<L> = parse_run_config(source)?;
     check_settings(&config.ga, &config.task).map_err(|e| setting_diagnostic(source, &e))?;
+    check_limits(&config.limits, Some(source))?;
     Ok(config)
+}
+
+/// Checks an encoding's limits against their ranges ([`CheckedLimits`]); the error names
+/// the key in `[limits]`, at its line and column in `source` when the file sets it there.
+pub fn check_limits<L: CheckedLimits>(
+    limits: &L,
+    source: Option<&Source>,
+) -> Result<(), Diagnostic> {
+    limits.check_ranges().map_err(|e| match source {
+        Some(source) => setting_diagnostic(source, &e),
+        None => Diagnostic::without_location(DiagnosticKind::Semantic, e.to_string()),
+    })
 }
 
 /// [`read_run_config`] without the checks of the settings.

@@ -26,7 +26,7 @@ use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
 };
 use crate::cancel::{Cancel, Interrupted};
-use crate::encoding::{Genome, Purpose};
+use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
 use crate::task::{Evaluation, TaskKind, TaskSpec, Watch};
@@ -201,15 +201,17 @@ fn claim_folder(dir: &Path) -> Result<(), RunError> {
     Ok(output::prepare_folder(dir, kind)?)
 }
 
-/// The run's settings in range ([`check_settings`]); the error names `name`, where they come
-/// from, and the key.
-fn checked_settings<L>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
-    check_settings(&config.ga, &config.task).map_err(|e| {
-        RunError::Config(Diagnostic::without_location(
-            DiagnosticKind::Semantic,
-            format!("{name}: {e}"),
-        ))
-    })
+/// The run's settings and limits in range ([`check_settings`], [`CheckedLimits`]); the error
+/// names `name`, where they come from, and the key.
+fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
+    check_settings(&config.ga, &config.task)
+        .and_then(|()| config.limits.check_ranges())
+        .map_err(|e| {
+            RunError::Config(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("{name}: {e}"),
+            ))
+        })
 }
 
 impl<G: Genome> Run<G> {

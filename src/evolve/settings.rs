@@ -196,6 +196,7 @@ pub fn new_run<G: Genome>(
     };
     let init_path = init_path(init, file.init.as_deref(), source);
     let config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
+    super::config::check_limits(&config.limits, source)?;
     let init = init_path.as_deref().map(read_grammar).transpose()?;
     if let (Some(init), Some(path)) = (&init, &init_path) {
         check_init::<G>(init.text(), &config.limits, path).map_err(plain)?;

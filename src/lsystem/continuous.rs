@@ -70,6 +70,8 @@ pub struct Development<'l> {
     /// come from this stream so that they do not disturb the rewriting stream.
     classify_rng: ChaCha8Rng,
     ws: Workspace,
+    /// The work of the rewriting passes so far, against [`DeriveOptions::max_work`].
+    work: super::cut::WorkBudget,
     events: Vec<Event>,
     /// The first matching rule of every module, and the growing modules, as of the last
     /// change to the string; rebuilt after every rewrite (or every interval when guards can
@@ -130,6 +132,7 @@ impl<'l> Development<'l> {
             rng,
             classify_rng,
             ws: Workspace::default(),
+            work: super::cut::WorkBudget::new(options),
             events: Vec::new(),
             cache: Cache::default(),
         };
@@ -223,6 +226,8 @@ impl<'l> Development<'l> {
     /// One parallel pass: modules whose first matching rule is discrete are rewritten.
     /// Returns how many were.
     fn pass(&mut self) -> Result<super::derive::PassStats, Diagnostic> {
+        let when = format!("at t = {} with {} modules", self.t, self.string.len());
+        self.work.spend(self.string.len(), &when)?;
         let pass = self.pass_rules();
         let stats = pass
             .rewrite(&self.string, &mut self.scratch, &mut self.ws, &mut self.rng)

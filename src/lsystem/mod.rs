@@ -14,6 +14,7 @@
 pub mod check;
 mod compile;
 mod continuous;
+mod cut;
 mod derive;
 pub mod expr;
 mod open;
@@ -22,6 +23,7 @@ mod string;
 
 pub use crate::lang::ast::Timing;
 pub use continuous::{Development, Event, MAX_PASSES_PER_INSTANT};
+pub use cut::DEFAULT_MAX_WORK;
 
 use std::sync::Arc;
 
@@ -35,6 +37,7 @@ pub use string::{
 use crate::environment::Environment;
 use crate::lang::{self, Diagnostic, DiagnosticKind, LsysFile, Source, Span};
 use compile::RuleSet;
+use cut::WorkBudget;
 use derive::{Failure, Pass, Workspace};
 
 /// The default limit on the length of a derived string.
@@ -77,6 +80,10 @@ pub struct DeriveOptions {
     pub dt: Option<f64>,
     /// Overrides the file's `timing:`.
     pub timing: Option<Timing>,
+    /// The work budget: the most modules all rewriting passes may read together (about
+    /// modules × steps); a derivation that would pass it stops with an error naming
+    /// `--max-work`.
+    pub max_work: u64,
 }
 
 impl Default for DeriveOptions {
@@ -88,6 +95,7 @@ impl Default for DeriveOptions {
             time: None,
             dt: None,
             timing: None,
+            max_work: DEFAULT_MAX_WORK,
         }
     }
 }
@@ -307,6 +315,8 @@ impl LSystem {
             rng,
             workspace: Workspace::default(),
             max_modules: options.max_modules,
+            work: WorkBudget::new(options),
+            stepped: false,
         }
     }
 
@@ -368,6 +378,10 @@ pub struct Frame<'a> {
     pub events: Vec<Event>,
     /// Whether this is the last frame.
     pub last: bool,
+    /// On a last frame reached by a shortcut: the step since which the string has not
+    /// changed (a fixed point, see [`LSystem::steps_are_pure`]); the frames between it and
+    /// this one, all the same, were not derived.
+    pub fixed_since: Option<u64>,
     /// The step of the last frame: `step / final_step` is the fraction of the frames shown
     /// so far (see [`Frame::fraction`]).
     pub final_step: u64,
@@ -419,45 +433,93 @@ impl FramePlan {
 impl LSystem {
     /// Runs the system and shows every frame to `visit`: every derivation step in discrete
     /// mode (`steps`, else the file's derivation length, else 0), every observation time in
-    /// continuous mode (a file with `time:`, or `options.time`).
+    /// continuous mode (a file with `time:`, or `options.time`). Past a fixed point of a
+    /// discrete derivation ([`LSystem::steps_are_pure`]) the frames show the same string,
+    /// derived no more.
     pub fn for_each_frame<E: From<Diagnostic>>(
         &self,
         options: &DeriveOptions,
         steps: Option<u64>,
         mut visit: impl FnMut(Frame<'_>) -> Result<(), E>,
     ) -> Result<(), E> {
+        self.frames(options, steps, false, |frame| visit(frame).map(|()| true))
+    }
+
+    /// [`for_each_frame`](Self::for_each_frame) cut short where the result is decided: a
+    /// discrete derivation that reaches a fixed point shows the frames to it, then at once
+    /// the last frame (with [`Frame::fixed_since`]); and the frames stop as soon as `visit`
+    /// returns false.
+    pub fn for_each_frame_until<E: From<Diagnostic>>(
+        &self,
+        options: &DeriveOptions,
+        steps: Option<u64>,
+        visit: impl FnMut(Frame<'_>) -> Result<bool, E>,
+    ) -> Result<(), E> {
+        self.frames(options, steps, true, visit)
+    }
+
+    /// The frames, `jump`ing from a fixed point to the last frame or not.
+    fn frames<E: From<Diagnostic>>(
+        &self,
+        options: &DeriveOptions,
+        steps: Option<u64>,
+        jump: bool,
+        mut visit: impl FnMut(Frame<'_>) -> Result<bool, E>,
+    ) -> Result<(), E> {
         if options.time.is_some() || self.is_continuous() {
             let mut dev = self.development(options)?;
             loop {
-                visit(Frame {
+                let go_on = visit(Frame {
                     step: dev.frame_number(),
                     t: dev.time(),
                     events: dev.take_events(),
                     string: dev.current(),
                     env: dev.environment(),
                     last: dev.frame_number() == dev.frame_count(),
+                    fixed_since: None,
                     final_step: dev.frame_count(),
                 })?;
-                if !dev.advance()? {
+                if !go_on || !dev.advance()? {
                     return Ok(());
                 }
             }
         }
         let steps = steps.or(self.derivation_length).unwrap_or(0);
+        let pure = self.steps_are_pure();
         let mut d = self.derivation(options)?;
+        let mut fixed = false;
         for step in 0..=steps {
-            if step > 0 {
+            if step > 0 && !fixed {
                 d.step()?;
+                // A fixed point: every later frame is this one.
+                fixed = pure && d.unchanged();
             }
-            visit(Frame {
+            let go_on = visit(Frame {
                 step,
                 t: step as f64,
                 string: d.current(),
                 env: d.environment(),
                 events: Vec::new(),
                 last: step == steps,
+                fixed_since: None,
                 final_step: steps,
             })?;
+            if !go_on {
+                return Ok(());
+            }
+            if jump && fixed && step < steps {
+                visit(Frame {
+                    step: steps,
+                    t: steps as f64,
+                    string: d.current(),
+                    env: d.environment(),
+                    events: Vec::new(),
+                    last: true,
+                    fixed_since: Some(step),
+                    final_step: steps,
+                })?;
+                return Ok(());
+            }
         }
         Ok(())
     }
@@ -473,6 +535,9 @@ pub struct Derivation<'l> {
     rng: ChaCha8Rng,
     workspace: Workspace,
     max_modules: usize,
+    work: WorkBudget,
+    /// Whether a step was taken (then `next` holds the string before it).
+    stepped: bool,
 }
 
 impl Derivation<'_> {
@@ -508,8 +573,23 @@ impl Derivation<'_> {
         self.step
     }
 
-    /// Rewrites the current string once, in parallel.
+    /// Whether the last step left the string as it was, bit for bit (false before any
+    /// step).
+    pub fn unchanged(&self) -> bool {
+        self.stepped && self.current.same_bits(&self.next)
+    }
+
+    /// Rewrites the current string once, in parallel (refused when it would pass the work
+    /// budget, [`DeriveOptions::max_work`]).
     pub fn step(&mut self) -> Result<&ModuleString, Diagnostic> {
+        self.work.spend(
+            self.current.len(),
+            &format!(
+                "at step {} (a string of {} modules)",
+                self.step + 1,
+                self.current.len()
+            ),
+        )?;
         let pass = Pass {
             rules: &self.lsys.productions,
             ignored: &self.lsys.ignored,
@@ -527,6 +607,7 @@ impl Derivation<'_> {
             return Err(self.lsys.failure(f, &when));
         }
         std::mem::swap(&mut self.current, &mut self.next);
+        self.stepped = true;
         self.step += 1;
         self.exchange()?;
         Ok(&self.current)

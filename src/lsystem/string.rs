@@ -90,6 +90,30 @@ impl Default for ModuleString {
 }
 
 impl ModuleString {
+    /// Whether `other` holds the same modules with the same parameters, bit for bit (`0` and
+    /// `-0` differ, a NaN equals itself).
+    pub fn same_bits(&self, other: &ModuleString) -> bool {
+        self.syms == other.syms
+            && self.bounds == other.bounds
+            && self.params.len() == other.params.len()
+            && self
+                .params
+                .iter()
+                .zip(&other.params)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+
+    /// The first `n` modules (all of them when there are fewer).
+    pub fn prefix(&self, n: usize) -> ModuleString {
+        let n = n.min(self.len());
+        let end = self.bounds[n] as usize;
+        ModuleString {
+            syms: self.syms[..n].to_vec(),
+            params: self.params[..end].to_vec(),
+            bounds: self.bounds[..=n].to_vec(),
+        }
+    }
+
     /// An empty string.
     pub fn new() -> Self {
         ModuleString {

@@ -1,6 +1,7 @@
 //! Derivations checked against The Algorithmic Beauty of Plants (ABOP) and hand calculation.
 
 use crate::util::{derive, derive_with, lsystem, squash};
+use ontogeny::develop::{BuildOptions, Shortcut, grow, grow_last};
 use ontogeny::lsystem::DeriveOptions;
 
 #[test]
@@ -278,4 +279,169 @@ fn numbers_in_patterns_must_match() {
     assert_eq!(derive(text, 1)[1], "XA(2)B(0)C(1,5)C(2,5)");
     let text = "axiom: B(0) C(2, 5)\nB(z) > C(2, y) --> B(y)\nA(-1.5) --> Y\n";
     assert_eq!(derive(text, 1)[1], "B(5)C(2,5)");
+}
+
+// ---- derivations cut short where their result is decided, and bounded by a budget ----
+
+/// A grammar that grows one part a step, for a million steps: quadratic work if derived.
+const ONE_PART_A_STEP: &str = "axiom: A\nderivation length: 1000000\nA --> forward(0.1) A\n";
+
+/// A grammar whose every step leaves the axiom as it is, for a billion steps.
+const STILL: &str = "axiom: A\nderivation length: 1000000000\nA --> A\n";
+
+/// The steps `for_each_frame_until` shows, cut short, with the step each last frame's fixed point began.
+fn frames_shown(text: &str, steps: Option<u64>) -> Vec<(u64, String, Option<u64>)> {
+    let lsys = lsystem(text);
+    let mut shown = Vec::new();
+    lsys.for_each_frame_until(&DeriveOptions::default(), steps, |f| {
+        shown.push((f.step, lsys.display(f.string), f.fixed_since));
+        Ok::<bool, ontogeny::lang::Diagnostic>(true)
+    })
+    .unwrap();
+    shown
+}
+
+#[test]
+fn a_string_that_a_step_leaves_as_it_was_is_a_fixed_point_at_step_1() {
+    assert_eq!(
+        frames_shown(STILL, None),
+        [
+            (0, "A".to_string(), None),
+            (1, "A".to_string(), None),
+            (1_000_000_000, "A".to_string(), Some(1)),
+        ]
+    );
+    // A string that settles later is a fixed point at the step that changed nothing.
+    let shown = frames_shown("axiom: A(0)\nA(x) : x < 3 --> A(x + 1)\n", Some(50));
+    let steps: Vec<u64> = shown.iter().map(|s| s.0).collect();
+    assert_eq!(steps, [0, 1, 2, 3, 4, 50]);
+    assert_eq!(shown[5], (50, "A(3)".to_string(), Some(4)));
+}
+
+#[test]
+fn a_step_that_reads_the_time_or_chance_is_never_taken_for_a_fixed_point() {
+    // Unchanged at steps 1 to 3, then B: a fixed point at step 1 would have kept A.
+    let shown = frames_shown("axiom: A\nA : t >= 3 --> B\n", Some(6));
+    assert_eq!(shown.len(), 7);
+    assert_eq!(shown[6], (6, "B".to_string(), None));
+    // A stochastic rule that may keep its module is never a fixed point either.
+    let shown = frames_shown("axiom: A\nA --> A : 0.5\nA --> A : 0.5\n", Some(20));
+    assert_eq!(shown.len(), 21);
+}
+
+#[test]
+fn derive_says_where_the_fixed_point_is_and_prints_the_last_step() {
+    let dir = crate::util::scratch_dir("derivation-fixed-point");
+    let file = dir.join("still.lsys");
+    std::fs::write(&file, STILL).unwrap();
+    let out = crate::util::ontogeny_ok(&["derive", file.to_str().unwrap(), "--last"]);
+    assert_eq!(crate::util::stdout(&out), "1000000000: A\n");
+    assert!(
+        crate::util::stderr(&out).contains(
+            "note: fixed point at step 1: steps 2 to 1000000000 give the same string, so they \
+             were not derived"
+        ),
+        "{}",
+        crate::util::stderr(&out)
+    );
+}
+
+#[test]
+fn growing_one_part_a_step_stops_at_the_part_limit_at_step_201() {
+    let lsys = lsystem(ONE_PART_A_STEP);
+    let build_options = BuildOptions::default();
+    let last = grow_last(
+        &lsys,
+        &DeriveOptions::default(),
+        None,
+        &build_options,
+        &mut |_| {},
+    )
+    .unwrap();
+    assert_eq!(
+        last.shortcut,
+        Some(Shortcut::PartLimit {
+            step: 201,
+            limit: 200
+        })
+    );
+    // The last frame is the millionth step's, invalid at its 201st part.
+    assert_eq!((last.frame.step, last.frame.t), (1_000_000, 1e6));
+    assert_eq!(last.frame.creature.parts.len(), 201);
+    assert!(!last.frame.creature.is_valid());
+}
+
+#[test]
+fn the_creature_the_part_limit_decides_is_the_one_every_step_builds() {
+    // Each step grows the main axis and a new branch, whose growth ends two steps later.
+    let text = "axiom: A\nA --> forward(0.1) [ left B(2) ] A\n\
+                B(n) : n > 0 --> forward(0.2) B(n - 1)\nB(n) : n <= 0 --> leaf\n";
+    let lsys = lsystem(text);
+    let build_options = BuildOptions {
+        max_parts: 30,
+        ..BuildOptions::default()
+    };
+    let options = DeriveOptions::default();
+    let last = grow_last(&lsys, &options, Some(40), &build_options, &mut |_| {}).unwrap();
+    let every = grow(&lsys, &options, Some(40), &build_options).unwrap();
+    assert!(
+        matches!(last.shortcut, Some(Shortcut::PartLimit { limit: 30, step }) if step < 40),
+        "{:?}",
+        last.shortcut
+    );
+    assert_eq!(Some(&last.frame), every.last());
+}
+
+#[test]
+fn eval_notes_the_part_limit_step_and_grows_no_further() {
+    let dir = crate::util::scratch_dir("derivation-part-limit");
+    let file = dir.join("line.lsys");
+    std::fs::write(&file, ONE_PART_A_STEP).unwrap();
+    let out = crate::util::ontogeny_ok(&["eval", file.to_str().unwrap(), "--task", "walker"]);
+    assert!(
+        crate::util::stderr(&out).contains(
+            "note: more than 200 parts (--max-parts) at step 201, which no later step can undo"
+        ),
+        "{}",
+        crate::util::stderr(&out)
+    );
+    assert!(
+        crate::util::stdout(&out).contains("(invalid)"),
+        "{}",
+        crate::util::stdout(&out)
+    );
+}
+
+#[test]
+fn the_work_budget_stops_a_derivation_at_the_step_that_would_pass_it() {
+    // Step n reads the n modules before it: 44 steps read 990, the 45th would pass 1000.
+    let lsys = lsystem(ONE_PART_A_STEP);
+    let options = DeriveOptions {
+        max_work: 1000,
+        ..DeriveOptions::default()
+    };
+    let e = lsys
+        .for_each_frame(&options, None, |_| Ok::<(), ontogeny::lang::Diagnostic>(()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(
+            "at step 45 (a string of 45 modules), the derivation would rewrite more than 1000 \
+             modules in all (modules × steps, the work budget): raise it with --max-work"
+        ),
+        "{e}"
+    );
+    let dir = crate::util::scratch_dir("derivation-budget");
+    let file = dir.join("line.lsys");
+    std::fs::write(&file, ONE_PART_A_STEP).unwrap();
+    crate::util::assert_bad_input(
+        &[
+            "derive",
+            file.to_str().unwrap(),
+            "--last",
+            "--max-work",
+            "1000",
+        ],
+        "at step 45 (a string of 45 modules)",
+    );
 }

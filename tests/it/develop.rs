@@ -794,11 +794,11 @@ fn growth_that_keeps_every_frame_is_refused_before_deriving_past_the_frame_limit
     // Keeping only the last frame has no such limit, and it is grow's last frame.
     let lsys = LSystem::from_text("long.lsys", &text(MAX_KEPT_FRAMES + 5)).unwrap();
     let last = grow_last(&lsys, &options, None, &build_options, &mut |_| {}).unwrap();
-    assert_eq!(last.step, MAX_KEPT_FRAMES + 5);
+    assert_eq!(last.frame.step, MAX_KEPT_FRAMES + 5);
     let lsys = LSystem::from_path(std::path::Path::new("examples/snake.lsys")).unwrap();
     let all = grow(&lsys, &options, None, &build_options).unwrap();
     let last = grow_last(&lsys, &options, None, &build_options, &mut |_| {}).unwrap();
-    assert_eq!(Some(&last), all.last());
+    assert_eq!(Some(&last.frame), all.last());
 }
 
 #[test]

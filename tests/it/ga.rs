@@ -22,6 +22,13 @@ struct Toy {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 struct ToyLimits;
 
+/// The toy has no limits to range.
+impl ontogeny::encoding::CheckedLimits for ToyLimits {
+    fn check_ranges(&self) -> Result<(), ontogeny::sim::SettingError> {
+        Ok(())
+    }
+}
+
 impl Genome for Toy {
     type Limits = ToyLimits;
     const NAME: &'static str = "toy";

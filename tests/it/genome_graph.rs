@@ -802,3 +802,41 @@ fn a_graph_genome_far_beyond_the_node_limit_is_refused_by_its_sizes_with_the_lim
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_graph_genome_with_a_nan_or_text_after_it_is_refused_at_its_line_and_column() {
+    use rand::SeedableRng;
+    let limits = ontogeny::encoding::GraphLimits::default();
+    let mut rng = ontogeny::encoding::Rng::seed_from_u64(3);
+    let genome =
+        <ontogeny::encoding::GraphGenome as ontogeny::encoding::Genome>::random(&limits, &mut rng);
+    let text = serde_json::to_string_pretty(&genome).unwrap();
+    let dir = crate::util::scratch_dir("genome-graph-broken-json");
+    // The first size of the root part made NaN, which JSON cannot hold.
+    let at = text.find("\"size\": [").unwrap() + "\"size\": [".len();
+    let at = at + text[at..].find(|c: char| c.is_ascii_digit()).unwrap();
+    let end = at + text[at..].find([',', '\n']).unwrap();
+    let nan = format!("{}NaN{}", &text[..at], &text[end..]);
+    let line = text[..at].lines().count();
+    let column = at - text[..at].rfind('\n').unwrap();
+    let file = dir.join("nan.json");
+    std::fs::write(&file, &nan).unwrap();
+    let said = crate::util::assert_bad_input(
+        &["eval", file.to_str().unwrap(), "--task", "walker"],
+        "not a graph genome: NaN is not a number JSON can hold",
+    );
+    assert!(
+        said.contains(&format!("nan.json:{line}:{column}")),
+        "{said}"
+    );
+    assert!(!said.contains("not a creature"), "{said}");
+    // Text after the genome's closing brace.
+    let file = dir.join("junk.json");
+    std::fs::write(&file, format!("{text}\njunk\n")).unwrap();
+    let said = crate::util::assert_bad_input(
+        &["eval", file.to_str().unwrap(), "--task", "walker"],
+        "not a graph genome: text after the end of the genome",
+    );
+    let line = text.lines().count() + 1;
+    assert!(said.contains(&format!("junk.json:{line}:1")), "{said}");
+}

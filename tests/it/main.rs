@@ -28,6 +28,7 @@ mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
 mod key;
+mod limits;
 mod long_runs;
 #[cfg(feature = "mpi")]
 mod mpi;

@@ -2,19 +2,98 @@
 //! readable description `ontogeny genome show` prints.
 
 use super::*;
+use crate::lang::{self, Diagnostic, DiagnosticKind, Span};
+
+/// What is wrong at the place of a JSON error `e` in `text`, in words: a number JSON cannot
+/// hold (`NaN`, `Infinity`), text after the genome's end, else serde's message without its
+/// place.
+fn json_error_in_words(text: &str, e: &serde_json::Error) -> String {
+    let source = lang::Source::new("genome", text);
+    let rest = &text[json_error_offset(&source, e)..];
+    for word in ["NaN", "-NaN", "Infinity", "-Infinity", "inf", "-inf"] {
+        if rest.starts_with(word) {
+            return format!("{word} is not a number JSON can hold (a genome's numbers are finite)");
+        }
+    }
+    let message = e.to_string();
+    let message = message
+        .rsplit_once(" at line ")
+        .map_or(message.as_str(), |(m, _)| m);
+    match message {
+        "trailing characters" => "text after the end of the genome".to_string(),
+        other => other.to_string(),
+    }
+}
+
+/// The byte offset in `source` of the place serde reports `e` at (its line and column,
+/// both from 1), on a character boundary.
+fn json_error_offset(source: &lang::Source, e: &serde_json::Error) -> usize {
+    let text = source.text();
+    let line_start: usize = text
+        .split_inclusive('\n')
+        .take(e.line().saturating_sub(1))
+        .map(str::len)
+        .sum();
+    let mut at = (line_start + e.column().saturating_sub(1)).min(text.len());
+    while !text.is_char_boundary(at) {
+        at -= 1;
+    }
+    at
+}
 
 impl GraphGenome {
     /// The genome read from its JSON text form, checked against `limits`. Its sizes (nodes,
     /// connections, neurons, inputs) are checked first, on a reading that keeps nothing but
     /// counts, so that a file far beyond the limits is refused before it is built.
     pub fn from_text(text: &str, limits: &GraphLimits) -> Result<GraphGenome, DevelopError> {
+        GraphGenome::read_json(text, limits).map_err(|e| match e {
+            Err(e) => DevelopError(format!(
+                "not a graph genome: line {}, column {}: {}",
+                e.line(),
+                e.column(),
+                json_error_in_words(text, &e)
+            )),
+            Ok(problem) => DevelopError(problem),
+        })
+    }
+
+    /// [`GraphGenome::from_text`] for the file `name`: an error in the JSON itself (a `NaN`,
+    /// text after the genome, a missing comma) is pointed at in the file, at its line and
+    /// column; a genome beyond the limits names its file.
+    pub fn from_file_text(
+        name: &str,
+        text: &str,
+        limits: &GraphLimits,
+    ) -> Result<GraphGenome, Diagnostic> {
+        GraphGenome::read_json(text, limits).map_err(|e| match e {
+            Err(e) => {
+                let source = lang::Source::new(name, text);
+                let at = json_error_offset(&source, &e);
+                Diagnostic::at(
+                    DiagnosticKind::Syntax,
+                    &source,
+                    Span::new(at, at + 1),
+                    format!("not a graph genome: {}", json_error_in_words(text, &e)),
+                )
+            }
+            Ok(problem) => {
+                Diagnostic::without_location(DiagnosticKind::Semantic, format!("{name}: {problem}"))
+            }
+        })
+    }
+
+    /// The genome in `text`, checked against `limits`: `Err(Err(e))` when the text is no
+    /// genome's JSON, `Err(Ok(problem))` when the genome is beyond the limits or malformed.
+    fn read_json(
+        text: &str,
+        limits: &GraphLimits,
+    ) -> Result<GraphGenome, Result<String, serde_json::Error>> {
         // A text that is not even shaped like a genome gets the full reading's message.
         if let Ok(shape) = serde_json::from_str::<GenomeShape>(text) {
-            shape.check(limits).map_err(DevelopError)?;
+            shape.check(limits).map_err(Ok)?;
         }
-        let g: GraphGenome = serde_json::from_str(text)
-            .map_err(|e| DevelopError(format!("not a graph genome: {e}")))?;
-        g.check(limits).map_err(DevelopError)?;
+        let g: GraphGenome = serde_json::from_str(text).map_err(Err)?;
+        g.check(limits).map_err(Ok)?;
         Ok(g)
     }
 
