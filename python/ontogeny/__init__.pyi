@@ -108,7 +108,9 @@ def derive(
     seed: Optional[int] = None,
     env: _Env = None,
 ) -> List[Tuple[float, str, List[float]]]:
-    """The frames ``(time, modules, env)`` of the derivation, the axiom first."""
+    """The frames ``(time, modules, env)`` of the derivation, the axiom first. A derivation
+    that reaches a fixed point stops there: the frames to it, then the last frame, with a
+    warning that says so."""
 
 def evaluate(
     creature: Creature,

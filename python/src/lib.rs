@@ -385,20 +385,32 @@ fn derive(
     let options = derive_options(seed, time, dt, env);
     let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
     warn_all(py, &note.into_iter().collect::<Vec<_>>())?;
-    interruptible(py, |cancel| {
+    let (frames, fixed) = interruptible(py, |cancel| {
         let mut frames = Vec::new();
-        lsys.for_each_frame(&options, steps, |frame| {
+        let mut fixed = None;
+        lsys.for_each_frame_until(&options, steps, |frame| {
             cancel.check()?;
+            if let Some(step) = frame.fixed_since {
+                fixed = Some(format!(
+                    "fixed point at step {step}: steps {} to {} give the same string, so they \
+                     were not derived (the last frame is step {})",
+                    step + 1,
+                    frame.step,
+                    frame.step
+                ));
+            }
             frames.push((
                 frame.t,
                 lsys.display(frame.string).to_string(),
                 frame.env.values().to_vec(),
             ));
-            Ok::<(), Diagnostic>(())
+            Ok::<bool, Diagnostic>(true)
         })
-        .map(|()| frames)
+        .map(|()| (frames, fixed))
     })?
-    .map_err(diagnostic_error)
+    .map_err(diagnostic_error)?;
+    warn_all(py, &fixed.into_iter().collect::<Vec<_>>())?;
+    Ok(frames)
 }
 
 /// The outcome of an evaluation: its fitness, status, the terms behind the fitness and, when

@@ -137,7 +137,7 @@ pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
             }
         }
         if let Some(step) = frame.fixed_since {
-            eprintln!(
+            tell!(
                 "note: fixed point at step {step}: steps {} to {} give the same string, so \
                  they were not derived",
                 step + 1,

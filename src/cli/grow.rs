@@ -135,7 +135,7 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
             progress.set(f)
         })?;
         if let Some(shortcut) = grown.shortcut {
-            eprintln!("note: {shortcut}");
+            tell!("note: {shortcut}");
         }
         last = Some(grown.frame);
     } else {
