@@ -67,6 +67,7 @@ fn grow(genome: &str, derive: DeriveOptions, steps: Option<u64>, max_parts: usiz
         derive,
         steps,
         max_parts,
+        ..LoadOptions::default()
     };
     match grow_grammar(&lsys, &options, &mut |_| {}) {
         Ok(loaded) => {
