@@ -72,6 +72,7 @@ pub fn grow_last(
     let mut watch = PartWatch::new(lsys, build_options);
     let mut last = None;
     lsys.for_each_frame_until(options, steps, |frame| {
+        build_options.cancel.check().map_err(Diagnostic::from)?;
         progress(frame.fraction());
         if frame.last {
             let shown = lsys.interpret(frame.string, frame.t, options)?;
