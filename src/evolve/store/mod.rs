@@ -121,19 +121,7 @@ impl RunStore {
             return fs::metadata(side_file(path, "-wal")).map_or(true, |m| m.len() == 0);
         }
         // Without a write-ahead log beside it, read as immutable: no side file is made.
-        let opened = if side_file(path, "-wal").exists() {
-            Connection::open_with_flags(
-                path,
-                OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
-            )
-        } else {
-            Connection::open_with_flags(
-                immutable_uri(path),
-                OpenFlags::SQLITE_OPEN_READ_ONLY
-                    | OpenFlags::SQLITE_OPEN_NO_MUTEX
-                    | OpenFlags::SQLITE_OPEN_URI,
-            )
-        };
+        let opened = open_read_only(path, side_file(path, "-wal").exists());
         let Ok(conn) = opened else {
             return false;
         };
@@ -296,20 +284,7 @@ impl RunStore {
         // Every check runs on a read-only connection, so a rejected file is left as it was.
         // Without a log, `immutable=1` also keeps SQLite from creating `-shm` and `-wal`
         // files beside it.
-        let ro = if wal {
-            Connection::open_with_flags(
-                path,
-                OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
-            )
-        } else {
-            Connection::open_with_flags(
-                immutable_uri(path),
-                OpenFlags::SQLITE_OPEN_READ_ONLY
-                    | OpenFlags::SQLITE_OPEN_NO_MUTEX
-                    | OpenFlags::SQLITE_OPEN_URI,
-            )
-        }
-        .map_err(|e| classify(path, "cannot open it", e))?;
+        let ro = open_read_only(path, wal).map_err(|e| classify(path, "cannot open it", e))?;
         let version = check_store(path, &ro)?;
         Ok((ro, version))
     }
@@ -507,6 +482,24 @@ fn sync_directory(path: &Path) -> std::io::Result<()> {
     match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => fs::File::open(dir)?.sync_all(),
         _ => fs::File::open(".")?.sync_all(),
+    }
+}
+
+/// A read-only connection to `path`: through its write-ahead log when `wal` (a log beside it
+/// holds commits), else as immutable, so that SQLite makes no side file beside it.
+fn open_read_only(path: &Path, wal: bool) -> rusqlite::Result<Connection> {
+    if wal {
+        Connection::open_with_flags(
+            path,
+            OpenFlags::SQLITE_OPEN_READ_ONLY | OpenFlags::SQLITE_OPEN_NO_MUTEX,
+        )
+    } else {
+        Connection::open_with_flags(
+            immutable_uri(path),
+            OpenFlags::SQLITE_OPEN_READ_ONLY
+                | OpenFlags::SQLITE_OPEN_NO_MUTEX
+                | OpenFlags::SQLITE_OPEN_URI,
+        )
     }
 }
 
