@@ -31,7 +31,10 @@ def interrupt(call, *, when=lambda: time.sleep(0.3)):
     """Runs ``call`` while a timer thread waits for ``when()`` to return, then sends this
     process SIGINT (Ctrl-C); asserts that ``call`` raised ``KeyboardInterrupt``, and returns
     the seconds from the signal to the exception."""
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    # Python's own Ctrl-C handler, as an interactive session has it: a process started in the
+    # background by a non-interactive shell (as CI may be) inherits SIGINT ignored, and
+    # Python then leaves it ignored.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     sent = []
     done = threading.Event()
 
@@ -50,6 +53,7 @@ def interrupt(call, *, when=lambda: time.sleep(0.3)):
     finally:
         done.set()
         timer.join()
+        signal.signal(signal.SIGINT, previous)
     assert sent, "the call ended before the signal was sent"
     return raised - sent[0]
 
