@@ -28,6 +28,7 @@ pub mod mpi;
 pub mod pick;
 pub mod plot;
 pub mod run;
+pub mod run_folder;
 pub mod settings;
 pub mod stats;
 pub mod store;

@@ -20,8 +20,9 @@ use super::config::{RunConfig, check_settings, read_run_config, with_generations
 use super::evaluator_version::EVALUATOR_VERSION;
 use super::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
 use super::key::EvaluationKey;
-use super::lock::{DirectoryLock, LOCK_FILE, LockError};
+use super::lock::{DirectoryLock, LockError};
 use super::plot::fitness_svg;
+use super::run_folder::{CONFIG_FILE, Claim, LOG_FILE, PLOT_FILE, STORE_FILE, claim_folder};
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
 };
@@ -121,12 +122,6 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
 /// generations, as no choice of the genetic algorithm depends on it.
 pub const RESUMABLE_KEYS: [&str; 1] = ["ga.generations"];
 
-/// The names of a run directory's files.
-const CONFIG_FILE: &str = "config.toml";
-const STORE_FILE: &str = "run.sqlite";
-const LOG_FILE: &str = "log.txt";
-const PLOT_FILE: &str = "fitness.svg";
-
 /// What happened in one generation, for progress displays.
 #[derive(Clone, Debug)]
 pub struct GenerationReport {
@@ -173,34 +168,6 @@ pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
     Ok(RunStore::open_read_only(&store)?.run()?.encoding)
 }
 
-/// Makes `dir` ready for a new run ([`output::prepare_folder`]): missing, empty, or a run's
-/// folder (one this version marked, or one an older version's killed start left, holding only
-/// the lock and the store's temporary file). A run an older version made, which carries no
-/// mark, is refused as a run; a folder of the user's files as theirs.
-fn claim_folder(dir: &Path) -> Result<(), RunError> {
-    let kind = output::FolderKind::Run;
-    if output::folder::is_marked(dir, kind) {
-        return Ok(());
-    }
-    if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&dir.join(STORE_FILE)) {
-        return Err(RunError::Exists(dir.to_path_buf()));
-    }
-    let partial = format!("{STORE_FILE}.partial");
-    let left_by_a_start = |name: &str| name == LOCK_FILE || name.starts_with(&partial);
-    let entries = std::fs::read_dir(dir).map(|entries| {
-        entries
-            .map(|e| e.map(|e| e.file_name().to_string_lossy().into_owned()))
-            .collect::<Result<Vec<_>, _>>()
-    });
-    if let Ok(Ok(names)) = entries
-        && !names.is_empty()
-        && names.iter().all(|n| left_by_a_start(n))
-    {
-        output::folder::mark(dir, kind)?;
-    }
-    Ok(output::prepare_folder(dir, kind)?)
-}
-
 /// The run's settings and limits in range ([`check_settings`], [`CheckedLimits`]); the error
 /// names `name`, where they come from, and the key.
 fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
@@ -225,7 +192,9 @@ impl<G: Genome> Run<G> {
         init_text: Option<&str>,
     ) -> Result<Run<G>, RunError> {
         checked_settings(&config, "the run's settings")?;
-        claim_folder(dir)?;
+        if claim_folder(dir)? == Claim::HoldsARun {
+            return Err(RunError::Exists(dir.to_path_buf()));
+        }
         let lock = DirectoryLock::acquire(dir)?;
         let store_path = dir.join(STORE_FILE);
         if dir.join(CONFIG_FILE).exists() || !RunStore::is_vacant(&store_path) {
