@@ -74,7 +74,6 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         let creature = super::input::load_creature(
             file,
             &Default::default(),
-            None,
             ontogeny::develop::BuildOptions::default().max_parts,
         )?;
         World::new(&creature, &sim)

@@ -3,7 +3,6 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use ontogeny::lsystem::LSystem;
 
 /// Flags of `ontogeny check`.
 #[derive(Args)]
@@ -13,11 +12,13 @@ pub struct CheckArgs {
     /// Print the report as one JSON object.
     #[arg(long)]
     json: bool,
+    #[command(flatten)]
+    defines: super::grammar::DefineArgs,
 }
 
 /// Checks the file and prints the report.
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
-    let lsys = LSystem::from_path(&args.file)?;
+    let lsys = args.defines.load(&args.file)?;
     let report = lsys.check();
     if args.json {
         say!("{}", serde_json::to_string_pretty(&report)?);

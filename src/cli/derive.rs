@@ -34,6 +34,10 @@ pub struct DevelopmentArgs {
     /// error.
     #[arg(long, value_name = "N")]
     max_work: Option<u64>,
+    #[command(flatten)]
+    pub defines: super::grammar::DefineArgs,
+    #[command(flatten)]
+    pub seed: super::grammar::SeedArgs,
 }
 
 impl DevelopmentArgs {
@@ -59,18 +63,18 @@ impl DevelopmentArgs {
         if self.max_work.is_some() {
             out.push("--max-work");
         }
+        if !self.defines.defines.is_empty() {
+            out.push("--define");
+        }
+        out.extend(self.seed.given());
         out
     }
 }
 
 /// The derivation options the flags ask for.
-pub fn derive_options(
-    args: &DevelopmentArgs,
-    seed: Option<u64>,
-    max_modules: usize,
-) -> DeriveOptions {
+pub fn derive_options(args: &DevelopmentArgs, max_modules: usize) -> DeriveOptions {
     DeriveOptions {
-        seed,
+        seed: args.seed.seed(),
         max_modules,
         env: args.env.clone(),
         time: args.time,
@@ -93,9 +97,6 @@ pub struct DeriveArgs {
     /// Also print a line for every event (time, module, rule line) in continuous mode.
     #[arg(long)]
     events: bool,
-    /// Seed for stochastic rules and random functions (default: the file's `seed:`, else 0).
-    #[arg(long)]
-    seed: Option<u64>,
     /// Stop with an error when the string grows longer than this.
     #[arg(long, default_value_t = DEFAULT_MAX_MODULES)]
     max_modules: usize,
@@ -121,8 +122,8 @@ enum TimingArg {
 
 /// Derives the file and prints the steps.
 pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
-    let lsys = LSystem::from_path(&args.file)?;
-    let options = derive_options(&args.development, args.seed, args.max_modules);
+    let lsys = args.development.defines.load(&args.file)?;
+    let options = derive_options(&args.development, args.max_modules);
     discrete_steps(&lsys, &options, args.development.steps, "printing")?;
     let mut out = BufWriter::new(std::io::stdout().lock());
     // A bar only when the frames are not printing to the terminal themselves.

@@ -32,9 +32,6 @@ pub struct EvalArgs {
     /// 60).
     #[arg(long)]
     seconds: Option<f64>,
-    /// Seed for growing the creature from an L-system.
-    #[arg(long)]
-    seed: Option<u64>,
     #[command(flatten)]
     development: DevelopmentArgs,
     /// Most parts: a creature grown from an L-system with more is invalid, a
@@ -107,7 +104,7 @@ fn task_flags(args: &EvalArgs) -> TaskFlags {
 
 /// Evaluates the creature and prints the result.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
-    let creature = load_creature(&args.file, &args.development, args.seed, args.max_parts)?;
+    let creature = load_creature(&args.file, &args.development, args.max_parts)?;
     let spec = task_spec(args)?;
     // A place to record into, checked before the evaluation runs.
     if let Some(dir) = &args.record {

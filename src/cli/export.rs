@@ -38,9 +38,6 @@ pub struct ExportArgs {
     /// Write the model to this file (default: standard output).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
-    /// Seed for growing the creature from an L-system.
-    #[arg(long)]
-    seed: Option<u64>,
     #[command(flatten)]
     development: DevelopmentArgs,
     /// Most parts: a creature grown from an L-system with more is invalid, a
@@ -53,7 +50,7 @@ pub struct ExportArgs {
 
 /// Exports the creature.
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
-    let creature = load_creature(&args.file, &args.development, args.seed, args.max_parts)?;
+    let creature = load_creature(&args.file, &args.development, args.max_parts)?;
     let sim = args.physics.sim_options()?;
     let name = args
         .file

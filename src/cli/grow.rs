@@ -23,9 +23,6 @@ pub struct GrowArgs {
     file: PathBuf,
     #[command(flatten)]
     development: DevelopmentArgs,
-    /// Seed for stochastic rules and random functions (default: the file's `seed:`, else 0).
-    #[arg(long)]
-    seed: Option<u64>,
     /// Stop with an error when the string grows longer than this.
     #[arg(long, default_value_t = DEFAULT_MAX_MODULES)]
     max_modules: usize,
@@ -108,8 +105,8 @@ struct Grown<'a> {
 /// held: the last one, and with `--out` the ones `growth.gif` shows (at most
 /// [`ontogeny::develop::MAX_KEPT_FRAMES`] frames may be written).
 pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
-    let lsys = LSystem::from_path(&args.file)?;
-    let options = derive_options(&args.development, args.seed, args.max_modules);
+    let lsys = args.development.defines.load(&args.file)?;
+    let options = derive_options(&args.development, args.max_modules);
     let build_options = BuildOptions {
         max_parts: args.max_parts,
         ..BuildOptions::default()

@@ -12,19 +12,15 @@ use super::derive::{DevelopmentArgs, derive_options};
 use super::progress::Progress;
 
 /// Loads a creature from `file` ([`ontogeny::encoding::load_creature`]) with the development
-/// flags and seed, printing its notes and warnings; the development flags given for a JSON
+/// flags (seed and defines included), printing its notes and warnings; the development flags given for a JSON
 /// file, which is not grown, are ignored with a warning.
 pub(super) fn load_creature(
     file: &Path,
     development: &DevelopmentArgs,
-    seed: Option<u64>,
     max_parts: usize,
 ) -> anyhow::Result<Creature> {
     if file.extension().is_some_and(|e| e == "json") {
-        let mut flags = development.given();
-        if seed.is_some() {
-            flags.push("--seed");
-        }
+        let flags = development.given();
         if !flags.is_empty() {
             tell!(
                 "warning: {} grow a creature from a grammar; {} is not one: ignored",
@@ -34,7 +30,8 @@ pub(super) fn load_creature(
         }
     }
     let options = LoadOptions {
-        derive: derive_options(development, seed, DEFAULT_MAX_MODULES),
+        derive: derive_options(development, DEFAULT_MAX_MODULES),
+        defines: development.defines.defines.clone(),
         steps: development.steps,
         max_parts,
         ..LoadOptions::default()

@@ -36,6 +36,7 @@ mod eval;
 mod evolve;
 mod export;
 mod genome;
+mod grammar;
 mod grow;
 mod input;
 mod physics;

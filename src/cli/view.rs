@@ -41,15 +41,12 @@ pub struct ViewArgs {
     browser: Option<PathBuf>,
     #[command(flatten)]
     development: DevelopmentArgs,
-    /// For an `.lsys` file: the seed of stochastic rules (default: the file's `seed:`, else 0).
-    #[arg(long)]
-    seed: Option<u64>,
 }
 
 /// Serves the page (or renders it with `--snapshot`).
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let target = Target::classify(&args.path).map_err(|e| bad(e.to_string()))?;
-    let options = derive_options(&args.development, args.seed, DEFAULT_MAX_MODULES);
+    let options = derive_options(&args.development, DEFAULT_MAX_MODULES);
     // A page that cannot be made at all is bad input; a grammar with an error is shown in the
     // page (watch mode lets the user fix it), and reported here too.
     let mut grammar_error = None;
@@ -61,8 +58,12 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             // --dt and --timing are refused for a discrete file, as by every verb that grows.
             if let Ok(lsys) = LSystem::from_path(&target.path) {
                 ontogeny::lsystem::print::check_continuous_options(&lsys, &options)?;
+                // A grammar that reads but not with the --define values given: the flags
+                // are wrong, not the file.
+                args.development.defines.load(&target.path)?;
             }
-            match LSystem::from_path(&target.path).and_then(|lsys| {
+            let defines = &args.development.defines.defines;
+            match LSystem::from_path_with(&target.path, defines).and_then(|lsys| {
                 ontogeny::develop::grow(
                     &lsys,
                     &options,
@@ -104,10 +105,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             developer = Some(developer_of?);
         }
     }
-    let mut growth = args.development.given();
-    if args.seed.is_some() {
-        growth.push("--seed");
-    }
+    let growth = args.development.given();
     let flags = PageFlags {
         growth,
         size: args.size.is_some(),
@@ -133,6 +131,12 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let mut query = Vec::new();
     if let Some(f) = args.frame {
         query.push(format!("frame={f}"));
+    }
+    // The page's URL carries the defines' values, as its sliders set them.
+    if target.kind == Kind::Lsys {
+        query.extend(ontogeny::view::define_query(
+            &args.development.defines.defines,
+        ));
     }
     if let Some(out) = &args.snapshot {
         query.push("still=1".to_string());

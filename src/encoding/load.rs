@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use crate::creature::{Creature, Severity};
 use crate::develop::{BuildOptions, grow_last};
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind};
-use crate::lsystem::{DeriveOptions, LSystem, print};
+use crate::lsystem::{DefineOverride, DeriveOptions, LSystem, print};
 
 use super::{GraphGenome, GraphLimits};
 
@@ -17,6 +17,8 @@ use super::{GraphGenome, GraphLimits};
 pub struct LoadOptions {
     /// The derivation's options (seed, environment, continuous time, most modules).
     pub derive: DeriveOptions,
+    /// Values in place of the grammar's defines ([`LSystem::parse_with`]).
+    pub defines: Vec<DefineOverride>,
     /// Discrete derivation steps (default: the file's `derivation length:`).
     pub steps: Option<u64>,
     /// Most parts: a creature grown from an L-system with more is invalid, a
@@ -31,6 +33,7 @@ impl Default for LoadOptions {
     fn default() -> Self {
         LoadOptions {
             derive: DeriveOptions::default(),
+            defines: Vec::new(),
             steps: None,
             max_parts: BuildOptions::default().max_parts,
             cancel: crate::cancel::Cancel::default(),
@@ -98,7 +101,7 @@ pub fn load_creature(
             notes: Vec::new(),
         });
     }
-    let lsys = LSystem::from_path(file)?;
+    let lsys = LSystem::from_path_with(file, &options.defines)?;
     grow_grammar(&lsys, options, progress)
 }
 

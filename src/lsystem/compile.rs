@@ -8,6 +8,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::LSystem;
+use super::defines::{DefineOverride, override_of, unknown_define};
 use super::expr::{self, CExpr, EvalEnv, ExprError, Resolved};
 use super::string::{ModuleString, POP, PUSH, SymbolId, SymbolTable};
 use crate::environment::Environment;
@@ -115,7 +116,13 @@ impl RuleSet {
     }
 }
 
-pub(crate) fn compile(source: Arc<Source>, file: LsysFile) -> Result<LSystem, Diagnostic> {
+/// Compiles `file`, read from `source`, with `overrides` in place of the values its defines
+/// give (see [`super::defines`]).
+pub(crate) fn compile(
+    source: Arc<Source>,
+    file: LsysFile,
+    overrides: &[DefineOverride],
+) -> Result<LSystem, Diagnostic> {
     let mut c = Compiler {
         source: &source,
         symbols: SymbolTable::default(),
@@ -125,7 +132,15 @@ pub(crate) fn compile(source: Arc<Source>, file: LsysFile) -> Result<LSystem, Di
     };
     let seed = file.seed.map_or(0, |(s, _)| s);
 
-    // Constants, in order; each may use the ones before it.
+    if let Some(unknown) = overrides
+        .iter()
+        .find(|o| !file.defines.iter().any(|d| d.name == o.name))
+    {
+        return Err(unknown_define(&source, &unknown.name, &file.defines));
+    }
+
+    // Constants, in order; each may use the ones before it. An overridden one is still
+    // evaluated, so that the random draws of those after it do not change.
     let mut define_rng = ChaCha8Rng::seed_from_u64(seed);
     define_rng.set_stream(2);
     for define in &file.defines {
@@ -140,6 +155,7 @@ pub(crate) fn compile(source: Arc<Source>, file: LsysFile) -> Result<LSystem, Di
             ));
         }
         let value = c.constant_expr(&define.value, &mut define_rng)?;
+        let value = override_of(overrides, &define.name).unwrap_or(value);
         c.constants
             .push((define.name.clone(), value, define.name_span));
     }

@@ -15,6 +15,7 @@ pub mod check;
 mod compile;
 mod continuous;
 mod cut;
+pub(crate) mod defines;
 mod derive;
 pub mod expr;
 mod open;
@@ -24,6 +25,7 @@ mod string;
 pub use crate::lang::ast::Timing;
 pub use continuous::{Development, Event, MAX_PASSES_PER_INSTANT};
 pub use cut::DEFAULT_MAX_WORK;
+pub use defines::{DefineOverride, Slider, default_range};
 
 use std::sync::Arc;
 
@@ -103,8 +105,18 @@ impl Default for DeriveOptions {
 impl LSystem {
     /// Parses and compiles an L-system.
     pub fn parse(source: Arc<Source>) -> Result<LSystem, Diagnostic> {
+        LSystem::parse_with(source, &[])
+    }
+
+    /// Parses and compiles an L-system with `overrides` in place of the values of its
+    /// defines; a define that uses an overridden one is computed from the new value. An
+    /// override that names no define of the grammar is an error that lists its defines.
+    pub fn parse_with(
+        source: Arc<Source>,
+        overrides: &[DefineOverride],
+    ) -> Result<LSystem, Diagnostic> {
         let file = lang::parse(&source)?;
-        compile::compile(source, file)
+        compile::compile(source, file, overrides)
     }
 
     /// Parses and compiles `text`, reported under `name`.
@@ -115,7 +127,29 @@ impl LSystem {
     /// Reads, parses and compiles a file; a file that is not a grammar (a MuJoCo model, a
     /// recording, ...) is refused with what it is ([`crate::lang::read_grammar`]).
     pub fn from_path(path: &std::path::Path) -> Result<LSystem, Diagnostic> {
-        LSystem::parse(crate::lang::read_grammar(path)?)
+        LSystem::from_path_with(path, &[])
+    }
+
+    /// Like [`LSystem::from_path`], with `overrides` in place of the values of its defines
+    /// ([`LSystem::parse_with`]).
+    pub fn from_path_with(
+        path: &std::path::Path,
+        overrides: &[DefineOverride],
+    ) -> Result<LSystem, Diagnostic> {
+        LSystem::parse_with(crate::lang::read_grammar(path)?, overrides)
+    }
+
+    /// The grammar's defines as sliders, in file order: each one's value as compiled, and a
+    /// range from its line's `# range A..B` comment, else around its value
+    /// ([`default_range`]).
+    pub fn sliders(&self) -> Vec<Slider> {
+        self.constants
+            .iter()
+            .map(|(name, value, span)| {
+                let (line, _) = self.source.line_col(span.start);
+                defines::slider(name, *value, self.source.line_text(line))
+            })
+            .collect()
     }
 
     /// The source the system was read from.

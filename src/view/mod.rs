@@ -27,7 +27,7 @@ use serde_json::{Value, json};
 
 use crate::develop::{BuildOptions, build};
 use crate::lang::{Diagnostic, FileKind};
-use crate::lsystem::{DeriveOptions, LSystem};
+use crate::lsystem::{DefineOverride, DeriveOptions, LSystem};
 
 pub use open::{Developer, PageFlags, ignored_flags, run_developer};
 pub use server::{Server, ServerError};
@@ -197,20 +197,126 @@ pub fn diagnostic_json(d: &Diagnostic) -> Value {
 /// when the file does not parse or derive (the page shows it with its line and column).
 pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Value {
     let file = path.display().to_string();
-    match grow_with_strings(path, options, steps) {
-        Ok(frames) => json!({ "kind": "lsys", "file": file, "frames": frames }),
+    match grow_with_strings(path, options, steps, &[]) {
+        Ok((frames, _)) => json!({ "kind": "lsys", "file": file, "frames": frames }),
         Err(d) => json!({ "kind": "lsys", "file": file, "error": diagnostic_json(&d) }),
     }
 }
 
-/// Like [`crate::develop::grow`], keeping each frame's module string (as derived, before the
-/// interpretation rules).
+/// The prefix of a define's key in the page's query string: `define.GROWTH=1.5`.
+pub const DEFINE_KEY: &str = "define.";
+
+/// The query string's pairs that carry `defines` (`define.NAME=VALUE`, see [`DEFINE_KEY`]).
+pub fn define_query(defines: &[DefineOverride]) -> Vec<String> {
+    defines
+        .iter()
+        .map(|d| format!("{DEFINE_KEY}{}={}", d.name, d.value))
+        .collect()
+}
+
+/// The defines a query string sets (`define.NAME=VALUE` pairs; other keys are not read); a
+/// value that is not a number is a bad request.
+pub fn defines_of_query(query: &str) -> Result<Vec<DefineOverride>, ViewError> {
+    query
+        .split('&')
+        .filter_map(|pair| pair.strip_prefix(DEFINE_KEY))
+        .map(|pair| {
+            let pair = percent_decoded(pair);
+            pair.parse::<DefineOverride>()
+                .map_err(|e| ViewError::BadRequest(format!("{DEFINE_KEY}{pair}: {e}")))
+        })
+        .collect()
+}
+
+/// `text` with its `%XX` escapes decoded (a define's name and number need no others).
+fn percent_decoded(text: &str) -> String {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = bytes
+            .get(i + 1..i + 3)
+            .and_then(|h| std::str::from_utf8(h).ok())
+            .and_then(|h| u8::from_str_radix(h, 16).ok());
+        match (bytes[i], hex) {
+            (b'%', Some(byte)) => {
+                out.push(byte);
+                i += 3;
+            }
+            (byte, _) => {
+                out.push(byte);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// Like [`lsys_data`], with `defines` in place of the values of the grammar's defines, and
+/// the defines as sliders (`"defines": [{"name", "value", "min", "max", "step", "note",
+/// "set"}]`, ranges from the file's own values, see [`LSystem::sliders`]; `set`: named in
+/// `defines`). A define the grammar does not have is a bad request that lists the ones it has.
+pub fn lsys_data_with(
+    path: &Path,
+    options: &DeriveOptions,
+    steps: Option<u64>,
+    defines: &[DefineOverride],
+) -> Result<Value, ViewError> {
+    let Ok(plain) = LSystem::from_path(path) else {
+        return Ok(lsys_data(path, options, steps));
+    };
+    if let Some(unknown) = defines
+        .iter()
+        .find(|d| !plain.constants().any(|(name, _)| name == d.name))
+    {
+        let error = crate::lsystem::defines::unknown_define(
+            plain.source(),
+            &unknown.name,
+            &plain.file().defines,
+        );
+        return Err(ViewError::BadRequest(error.to_string()));
+    }
+    let file = path.display().to_string();
+    let (mut data, grown) = match grow_with_strings(path, options, steps, defines) {
+        Ok((frames, values)) => (
+            json!({ "kind": "lsys", "file": file, "frames": frames }),
+            values,
+        ),
+        Err(d) => (
+            json!({ "kind": "lsys", "file": file, "error": diagnostic_json(&d) }),
+            Vec::new(),
+        ),
+    };
+    let sliders: Vec<Value> = plain
+        .sliders()
+        .into_iter()
+        .map(|mut slider| {
+            let given = crate::lsystem::defines::override_of(defines, &slider.name);
+            if let Some(&(_, v)) = grown.iter().find(|(n, _)| *n == slider.name) {
+                slider.value = v;
+            } else if let Some(v) = given {
+                slider.value = v;
+            }
+            slider.min = slider.min.min(slider.value);
+            slider.max = slider.max.max(slider.value);
+            let mut value = json!(slider);
+            value["set"] = json!(given.is_some());
+            value
+        })
+        .collect();
+    data["defines"] = json!(sliders);
+    Ok(data)
+}
+
+/// Like [`crate::develop::grow`] with `defines` set, keeping each frame's module string (as
+/// derived, before the interpretation rules); with the values of the grammar's defines.
 fn grow_with_strings(
     path: &Path,
     options: &DeriveOptions,
     steps: Option<u64>,
-) -> Result<Vec<Value>, Diagnostic> {
-    let lsys = LSystem::from_path(path)?;
+    defines: &[DefineOverride],
+) -> Result<(Vec<Value>, Vec<(String, f64)>), Diagnostic> {
+    let lsys = LSystem::from_path_with(path, defines)?;
     // The page holds every frame: refused at once when there are too many.
     crate::develop::kept_frame_plan(&lsys, options, steps)?;
     let build_options = BuildOptions::default();
@@ -232,7 +338,8 @@ fn grow_with_strings(
         ));
         Ok::<(), Diagnostic>(())
     })?;
-    Ok(frames)
+    let values = lsys.constants().map(|(n, v)| (n.to_string(), v)).collect();
+    Ok((frames, values))
 }
 
 /// Reads a `grow --out` directory's `frames.jsonl` into the page's data (the same shape as

@@ -240,7 +240,7 @@ impl Server {
             "/three/OrbitControls.js" => Answer::new(200, js, ORBIT_CONTROLS),
             "/three/LICENSE" => Answer::text(200, THREE_LICENSE),
             "/version" => Answer::text(200, &self.target.version()),
-            "/data.json" => json_answer(self.data()),
+            "/data.json" => json_answer(self.data(query)),
             "/generation.json" => json_answer(self.generation(query)),
             "/individual.json" => json_answer(self.individual(query)),
             "/walk.json" => json_answer(self.walk(query)),
@@ -276,11 +276,15 @@ impl Server {
         }
     }
 
-    /// The page's data for the target, read afresh (so an edited file shows its changes).
-    fn data(&self) -> Result<Value, ViewError> {
+    /// The page's data for the target, read afresh (so an edited file shows its changes); an
+    /// `.lsys` file is grown with the defines the query sets (`?define.NAME=VALUE`).
+    fn data(&self, query: &str) -> Result<Value, ViewError> {
         let path = &self.target.path;
         match self.target.kind {
-            Kind::Lsys => Ok(super::lsys_data(path, &self.options, self.steps)),
+            Kind::Lsys => {
+                let defines = super::defines_of_query(query)?;
+                super::lsys_data_with(path, &self.options, self.steps, &defines)
+            }
             Kind::Growth => super::growth_data(path),
             Kind::Recording => super::recording_data(path),
             Kind::Run => super::run_data(path),
