@@ -81,7 +81,7 @@ fn derive_seed_flag_changes_stochastic_results_reproducibly() {
         stdout(&ontogeny(&[
             "derive",
             "examples/stochastic-plant.lsys",
-            "--seed",
+            "--grammar-seed",
             seed,
             "--last",
         ]))
@@ -858,12 +858,12 @@ fn flags_the_task_does_not_use_are_warned_about() {
         "0.5",
         "--steps",
         "3",
-        "--seed",
+        "--grammar-seed",
         "4",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
-        stderr(&o).contains("warning: --steps, --seed grow a creature from a grammar;"),
+        stderr(&o).contains("warning: --steps, --grammar-seed grow a creature from a grammar;"),
         "{}",
         stderr(&o)
     );

@@ -12,6 +12,7 @@ mod cancel;
 mod cli;
 mod compare;
 mod continuous;
+mod defines;
 mod derivation;
 mod develop;
 mod documents;

@@ -218,11 +218,18 @@ fn flags_that_do_not_apply_are_warned_about() {
     let err = view_warnings(
         &dir,
         &[
-            "--steps", "3", "--seed", "1", "--size", "300x200", "--frame", "2",
+            "--steps",
+            "3",
+            "--grammar-seed",
+            "1",
+            "--size",
+            "300x200",
+            "--frame",
+            "2",
         ],
     );
     for expected in [
-        "warning: --steps, --seed grow a creature from a grammar",
+        "warning: --steps, --grammar-seed grow a creature from a grammar",
         "warning: --size sets the size of a --snapshot picture: ignored",
         "warning: --frame 2: there are 2 frames (0 to 1, or -2 to -1): showing the last",
     ] {
