@@ -274,7 +274,7 @@ pub fn lsys_data_with(
             &unknown.name,
             &plain.file().defines,
         );
-        return Err(ViewError::BadRequest(error.to_string()));
+        return Err(ViewError::BadRequest(error.message));
     }
     let file = path.display().to_string();
     let (mut data, grown) = match grow_with_strings(path, options, steps, defines) {

@@ -3,6 +3,7 @@
 //! in [`browser`], ignored unless asked for.
 
 pub(crate) mod browser;
+mod defines;
 mod server;
 
 use std::io::{BufRead, BufReader, Read, Write};

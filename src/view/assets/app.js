@@ -5,6 +5,7 @@
 // rank R of generation G is shown).
 import * as THREE from 'three';
 import { OrbitControls } from '/three/OrbitControls.js';
+import { definesQuery, showDefines } from '/defines.js';
 
 const params = new URLSearchParams(location.search);
 const still = params.has('still');
@@ -346,6 +347,7 @@ let growthFramed = false;
 function showGrowth(data, keepFrame) {
   body.dataset.kind = data.kind;
   $('file').textContent = data.file;
+  if (data.defines) showDefines(data.defines, regrowLsys);
   if (data.error) {
     showError(data.error);
     if (!growthFramed) { playButton.style.display = 'none'; slider.style.display = 'none'; }
@@ -383,6 +385,15 @@ function showGrowth(data, keepFrame) {
   finish();
 }
 
+// Grows the .lsys file again with the values its sliders set.
+async function regrowLsys() {
+  try {
+    showGrowth(await fetchJson('/data.json' + definesQuery()), true);
+  } catch (e) {
+    showError({ message: e.message });
+  }
+}
+
 let stepPlay = () => {};
 let playInterval = 600;
 playButton.addEventListener('click', () => setPlaying(!playing));
@@ -403,7 +414,7 @@ function watch(kind) {
     try {
       const v = await (await fetch('/version', { cache: 'no-store' })).text();
       if (version !== null && v !== version) {
-        const data = await fetchJson('/data.json');
+        const data = await fetchJson('/data.json' + definesQuery());
         if (kind === 'lsys' || kind === 'growth') showGrowth(data, true);
         $('status').textContent = body.dataset.error ? $('status').textContent : 'reloaded ' + new Date().toLocaleTimeString();
       }
@@ -782,7 +793,7 @@ function drawPlot(generations) {
 // ---------------------------------------------------------------- start
 
 resize();
-fetchJson('/data.json').then((data) => {
+fetchJson('/data.json' + definesQuery()).then((data) => {
   if (data.kind === 'lsys' || data.kind === 'growth') { showGrowth(data, false); watch(data.kind); }
   else if (data.kind === 'recording') showRecording(data);
   else if (data.kind === 'run') showRun(data);

@@ -695,3 +695,38 @@ fn a_walks_play_button_plays_it_and_opening_another_individual_leaves_it() {
     );
     assert_eq!(left, opened);
 }
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_defines_slider_regrows_the_creature_and_the_address_carries_its_value() {
+    let browser = chromium();
+    let viewer = Viewer::start(&super::defines::row_file("browser-sliders"));
+    // Opened at an address that sets PARTS: four parts, LENGTH following it.
+    let mut page = LivePage::open(&browser, &format!("{}?define.PARTS=4", viewer.url));
+    let state = "JSON.stringify([document.body.dataset.ready, document.body.dataset.parts, \
+                 document.body.dataset.defines, location.search, \
+                 document.querySelector('input[data-define=PARTS]').value, \
+                 document.getElementById('slider').style.display])";
+    let opened = page.wait_for(state, |s| s.starts_with("[\"yes\""));
+    assert_eq!(
+        opened,
+        r#"["yes","4","{\"PARTS\":4,\"LENGTH\":1}","?define.PARTS=4","4",""]"#
+    );
+    // Dragged to 3: three parts, LENGTH 0.75, the address says so, the frame slider stays.
+    page.eval(
+        "const s = document.querySelector('input[data-define=PARTS]'); s.value = '3'; \
+         s.dispatchEvent(new Event('input')); ''",
+    );
+    let dragged = page.wait_for(state, |s| s.contains(r#""3","{"#));
+    assert_eq!(
+        dragged,
+        r#"["yes","3","{\"PARTS\":3,\"LENGTH\":0.75}","?define.PARTS=3","3",""]"#
+    );
+    // Back to the file's own values (two parts): the address sets nothing.
+    page.eval("document.getElementById('defines-reset').click(); ''");
+    let reset = page.wait_for(state, |s| s.contains(r#""2","{"#));
+    assert_eq!(
+        reset,
+        r#"["yes","2","{\"PARTS\":2,\"LENGTH\":0.5}","","2",""]"#
+    );
+}
