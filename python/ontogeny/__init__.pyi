@@ -80,8 +80,10 @@ def grow(
     dt: Optional[float] = None,
     seed: Optional[int] = None,
     env: _Env = None,
+    defines: Optional[Dict[str, float]] = None,
 ) -> Creature:
-    """Grows grammar text to its last frame, as ``ontogeny grow`` does."""
+    """Grows grammar text to its last frame, as ``ontogeny grow`` does. ``defines`` sets
+    the grammar's defines as ``--define NAME=VALUE`` does (``defines={"GROWTH": 1.5}``)."""
 
 def load(
     path: _Path,
@@ -91,9 +93,11 @@ def load(
     dt: Optional[float] = None,
     seed: Optional[int] = None,
     env: _Env = None,
+    defines: Optional[Dict[str, float]] = None,
 ) -> Creature:
     """Reads a creature from an ``.lsys``, a ``creature.json`` or a graph genome's
-    ``.json``, as ``ontogeny eval FILE`` does."""
+    ``.json``, as ``ontogeny eval FILE`` does; ``defines`` sets an ``.lsys`` file's defines
+    as ``--define NAME=VALUE`` does."""
 
 def genome(text: str, encoding: str = "direct", *, seed: int = 0) -> Creature:
     """Develops a genome's text (``direct``: an axiom alone; ``lsystem``, ``continuous``:
@@ -107,8 +111,10 @@ def derive(
     dt: Optional[float] = None,
     seed: Optional[int] = None,
     env: _Env = None,
+    defines: Optional[Dict[str, float]] = None,
 ) -> List[Tuple[float, str, List[float]]]:
-    """The frames ``(time, modules, env)`` of the derivation, the axiom first. A derivation
+    """The frames ``(time, modules, env)`` of the derivation, the axiom first (``defines``
+    sets the grammar's defines, as ``--define`` does). A derivation
     that reaches a fixed point stops there: the frames to it, then the last frame, with a
     warning that says so."""
 

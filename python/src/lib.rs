@@ -27,8 +27,8 @@ use ontogeny::evolve::config::read_config_source;
 use ontogeny::evolve::run::{Run, RunError};
 use ontogeny::evolve::settings::{self, RunFlags};
 use ontogeny::evolve::store::RunStore;
-use ontogeny::lang::Diagnostic;
-use ontogeny::lsystem::{DeriveOptions, LSystem, print};
+use ontogeny::lang::{Diagnostic, Source};
+use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, print};
 use ontogeny::sim::{SimOptions, StepSetting};
 use ontogeny::task::flags::TaskFlags;
 use ontogeny::task::{Evaluation as Outcome, TaskKind, TaskSpec, WalkerFitness, Watch};
@@ -175,6 +175,30 @@ fn load_options(
     }
 }
 
+/// The `defines={NAME: VALUE}` keyword as overrides of a grammar's defines (in name order;
+/// a value that is not a finite number is a `ValueError`).
+fn define_overrides(
+    defines: Option<std::collections::BTreeMap<String, f64>>,
+) -> PyResult<Vec<DefineOverride>> {
+    defines
+        .unwrap_or_default()
+        .into_iter()
+        .map(|(name, value)| {
+            if !value.is_finite() {
+                return Err(value_error(format!(
+                    "defines: the value of {name}, {value}, is not a finite number"
+                )));
+            }
+            Ok(DefineOverride { name, value })
+        })
+        .collect()
+}
+
+/// Compiles grammar `text` with `defines` in place of the values of its defines.
+fn grammar_text(text: &str, defines: &[DefineOverride]) -> PyResult<LSystem> {
+    LSystem::parse_with(Source::new(TEXT_NAME, text), defines).map_err(diagnostic_error)
+}
+
 /// The name a grammar given as text goes by in messages.
 const TEXT_NAME: &str = "<string>";
 
@@ -294,7 +318,8 @@ fn rows(points: impl Iterator<Item = [f64; 3]>) -> Array2<f64> {
 /// Grows a creature from grammar text (an `.lsys` file's content), to its last frame, as
 /// `ontogeny grow` does.
 #[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None))]
+#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[allow(clippy::too_many_arguments)]
 fn grow(
     py: Python<'_>,
     text: &str,
@@ -303,8 +328,9 @@ fn grow(
     dt: Option<f64>,
     seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
+    defines: Option<std::collections::BTreeMap<String, f64>>,
 ) -> PyResult<PyCreature> {
-    let lsys = LSystem::from_text(TEXT_NAME, text).map_err(diagnostic_error)?;
+    let lsys = grammar_text(text, &define_overrides(defines)?)?;
     let options = load_options(steps, seed, time, dt, env);
     let loaded = interruptible(py, |cancel| {
         let options = LoadOptions {
@@ -320,7 +346,8 @@ fn grow(
 /// Reads a creature from a file, as `ontogeny eval FILE` does: an `.lsys` grammar (or a
 /// direct genome, grown to its last frame), a `creature.json`, or a graph genome's `.json`.
 #[pyfunction]
-#[pyo3(signature = (path, *, steps=None, time=None, dt=None, seed=None, env=None))]
+#[pyo3(signature = (path, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[allow(clippy::too_many_arguments)]
 fn load(
     py: Python<'_>,
     path: PathBuf,
@@ -329,9 +356,13 @@ fn load(
     dt: Option<f64>,
     seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
+    defines: Option<std::collections::BTreeMap<String, f64>>,
 ) -> PyResult<PyCreature> {
     require_exists(&path)?;
-    let options = load_options(steps, seed, time, dt, env);
+    let options = LoadOptions {
+        defines: define_overrides(defines)?,
+        ..load_options(steps, seed, time, dt, env)
+    };
     let loaded = interruptible(py, |cancel| {
         let options = LoadOptions {
             cancel: cancel.clone(),
@@ -371,7 +402,8 @@ fn genome(py: Python<'_>, text: &str, encoding: &str, seed: u64) -> PyResult<PyC
 /// the axiom first: the frame's time (its step in discrete time), its module string as text,
 /// and the environment's values.
 #[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None))]
+#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[allow(clippy::too_many_arguments)]
 fn derive(
     py: Python<'_>,
     text: &str,
@@ -380,8 +412,9 @@ fn derive(
     dt: Option<f64>,
     seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
+    defines: Option<std::collections::BTreeMap<String, f64>>,
 ) -> PyResult<Vec<(f64, String, Vec<f64>)>> {
-    let lsys = LSystem::from_text(TEXT_NAME, text).map_err(diagnostic_error)?;
+    let lsys = grammar_text(text, &define_overrides(defines)?)?;
     let options = derive_options(seed, time, dt, env);
     let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
     warn_all(py, &note.into_iter().collect::<Vec<_>>())?;

@@ -64,6 +64,33 @@ def test_derive_gives_the_command_lines_frames(root, cli):
     assert [f"{int(t)}: {modules}" for t, modules, env in frames] == lines
 
 
+ROW = """\
+define PARTS = 2
+define LENGTH = PARTS * 0.25
+axiom: S(PARTS)
+derivation length: 4
+S(n) : n > 0 --> forward(LENGTH) S(n - 1)
+"""
+
+
+def test_defines_set_a_grammars_defines_as_the_command_lines_define_does(tmp_path, cli):
+    assert ontogeny.grow(ROW).parts == 2
+    grown = ontogeny.grow(ROW, defines={"PARTS": 3})
+    assert grown.parts == 3
+    # LENGTH follows PARTS: three parts 0.75 long.
+    assert grown.sizes[:, 0].tolist() == [0.75, 0.75, 0.75]
+    path = tmp_path / "row.lsys"
+    path.write_text(ROW)
+    assert ontogeny.load(path, defines={"PARTS": 4}).parts == 4
+    frames = ontogeny.derive(ROW, defines={"PARTS": 1, "LENGTH": 2})
+    assert frames[-1][1] == "forward(2) S(0)"
+    assert cli("derive", path, "--last", "--define", "PARTS=1", "--define", "LENGTH=2") == "4: forward(2) S(0)\n"
+    with pytest.raises(ValueError, match=r"cannot set PART: the grammar has no define by that name \(did you mean PARTS\?\); its defines are PARTS, LENGTH"):
+        ontogeny.grow(ROW, defines={"PART": 3})
+    with pytest.raises(ValueError, match=r"defines: the value of PARTS, nan, is not a finite number"):
+        ontogeny.grow(ROW, defines={"PARTS": float("nan")})
+
+
 def test_evaluate_many_equals_evaluate_one_by_one_in_order(root):
     creatures = [
         ontogeny.load(root / CHAIN),
