@@ -308,6 +308,9 @@ pub fn lsys_data_with(
     Ok(data)
 }
 
+/// The values of a grammar's defines, by name, in file order.
+type DefineValues = Vec<(String, f64)>;
+
 /// Like [`crate::develop::grow`] with `defines` set, keeping each frame's module string (as
 /// derived, before the interpretation rules); with the values of the grammar's defines.
 fn grow_with_strings(
@@ -315,7 +318,7 @@ fn grow_with_strings(
     options: &DeriveOptions,
     steps: Option<u64>,
     defines: &[DefineOverride],
-) -> Result<(Vec<Value>, Vec<(String, f64)>), Diagnostic> {
+) -> Result<(Vec<Value>, DefineValues), Diagnostic> {
     let lsys = LSystem::from_path_with(path, defines)?;
     // The page holds every frame: refused at once when there are too many.
     crate::develop::kept_frame_plan(&lsys, options, steps)?;
