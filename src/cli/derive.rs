@@ -122,6 +122,7 @@ enum TimingArg {
 /// Derives the file and prints the steps.
 pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
     let lsys = LSystem::from_path(&args.file)?;
+    super::tell_findings(&lsys);
     let options = derive_options(&args.development, args.seed, args.max_modules);
     discrete_steps(&lsys, &options, args.development.steps, "printing")?;
     let mut out = BufWriter::new(std::io::stdout().lock());
