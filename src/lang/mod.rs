@@ -53,6 +53,23 @@ pub fn is_builtin_command(name: &str) -> bool {
             .is_some_and(|rest| BUILTIN_COMMANDS.contains(&rest))
 }
 
+/// How many parameters the built-in command (or maturing twin) `name` takes, and what the
+/// one it takes means; `None` when `name` is not a built-in command. A maturing twin takes
+/// one: the command's own (`mforward(l)`), or its age when the command takes none
+/// (`mrevolute1(x)`).
+pub fn builtin_parameters(name: &str) -> Option<(usize, &'static str)> {
+    use commands::Command;
+    if let Some(command) = Command::from_name(name) {
+        return Some((command.parameters(), command.argument().describe()));
+    }
+    let twin = name.strip_prefix('m').and_then(Command::from_name)?;
+    let what = match twin.argument() {
+        commands::Argument::None => "its age",
+        argument => argument.describe(),
+    };
+    Some((1, what))
+}
+
 /// The letters of the textbook turtle (*The Algorithmic Beauty of Plants*): `F` builds a part,
 /// `f` moves without building. Known names for word splitting, as the built-in commands are.
 pub const TEXTBOOK_LETTERS: &[&str] = &["F", "f"];
@@ -309,7 +326,7 @@ mod tests {
     fn known_words_are_one_module_and_others_split_by_longest_prefix() {
         let src = Source::new(
             "t",
-            "module ar, al\naxiom: forward(1) revolute2 aral Fx(2)\nF --> F\n",
+            "axiom: forward(1) revolute2 aral Fx(2)\nar --> ar\nal --> al\n",
         );
         let file = parse(&src).unwrap();
         let (axiom, _) = file.axiom.unwrap();
@@ -318,6 +335,17 @@ mod tests {
             ["forward", "revolute2", "ar", "al", "F", "x"]
         );
         assert!(axiom[5].args.len() == 1 && axiom[4].args.is_empty());
+    }
+
+    #[test]
+    fn a_file_that_declares_its_modules_refuses_a_word_not_made_of_known_names() {
+        let src = Source::new("t", "module ar, al\naxiom: aral FF x Fx(2)\n");
+        let err = parse(&src).unwrap_err();
+        assert_eq!(
+            err.message,
+            "'Fx' is not a declared module: it would be read as the modules F x"
+        );
+        assert_eq!(err.location.unwrap().column, 17);
     }
 
     #[test]

@@ -192,11 +192,19 @@ pub fn diagnostic_json(d: &Diagnostic) -> Value {
     json!({ "message": d.message, "location": location, "text": d.to_string() })
 }
 
+/// A grammar's finding as the page shows it: as [`diagnostic_json`], its `text` headed
+/// `warning:`.
+fn finding_json(d: &Diagnostic) -> Value {
+    let mut value = diagnostic_json(d);
+    value["text"] = json!(d.warning());
+    value
+}
+
 /// Grows an `.lsys` file and returns the page's data: `{"kind": "lsys", "file", "findings":
 /// [...], "problems": [...], "frames": [{"step", "t", "string", "creature"}]}`, or `{"kind":
 /// "lsys", "file", "error": {...}}` when the file does not parse or derive (the page shows it
 /// with its line and column). `findings` are the grammar's ([`LSystem::findings`], shaped as
-/// [`diagnostic_json`]); `problems` are the builder's problems of every frame, each once
+/// [`diagnostic_json`], the text headed `warning:`); `problems` are the builder's problems of every frame, each once
 /// ([`problems_json`]).
 pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Value {
     let file = path.display().to_string();
@@ -208,7 +216,7 @@ pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Va
         Ok((findings, frames)) => json!({
             "kind": "lsys",
             "file": file,
-            "findings": findings.iter().map(diagnostic_json).collect::<Vec<_>>(),
+            "findings": findings.iter().map(finding_json).collect::<Vec<_>>(),
             "problems": problems_json(&frames),
             "frames": frames,
         }),

@@ -22,6 +22,7 @@ mod evolve;
 mod export;
 mod fidelity;
 mod files;
+mod findings;
 mod ga;
 mod genome_continuous;
 mod genome_direct;
