@@ -626,7 +626,7 @@ fn saving_the_file_redraws_the_open_page() {
 #[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
 fn a_grammars_findings_are_shown_beside_the_creature_and_follow_its_edits() {
     let browser = chromium();
-    let dir = scratch("findings");
+    let dir = scratch("findings-page");
     let file = dir.join("typo.lsys");
     let typo = "derivation length: 3\naxiom: forward(1) A\nA --> ] A Tial\nTail --> forward(1)\n";
     std::fs::write(&file, typo).unwrap();
@@ -638,7 +638,7 @@ fn a_grammars_findings_are_shown_beside_the_creature_and_follow_its_edits() {
     assert_eq!(page.number("findings"), 2, "{}", page.body);
     let shown = format!(
         "warning: 'Tial' is read as the modules T i a l (did you mean `Tail`?)\n \
-         --> {}:3:11\n  |\n3 | A --&gt; ] A Tial\n  |           ^^^^\n\
+         --&gt; {}:3:11\n  |\n3 | A --&gt; ] A Tial\n  |           ^^^^\n\
          warning: ']' with nothing to pop: ignored []] (at 3 frames, from t = 1)</pre>",
         file.display()
     );
