@@ -278,9 +278,13 @@ function describe(creature, extra) {
     `neurons: ${creature.brain.neurons.length}   links: ${creature.brain.links.length}`,
     `mass: ${mass.toPrecision(4)} kg`,
   ];
+  // A problem met several times in this frame is listed once, with its count.
+  const seen = new Map();
   for (const p of creature.problems || []) {
-    lines.push(`${p.severity}: ${p.message}` + (p.module ? ` [${p.module}]` : ''));
+    const line = `${p.severity}: ${p.message}` + (p.module ? ` [${p.module}]` : '');
+    seen.set(line, (seen.get(line) || 0) + 1);
   }
+  for (const [line, n] of seen) lines.push(n > 1 ? `${line} (${n} times)` : line);
   if (extra) lines.push('', ...extra);
   $('info').textContent = lines.join('\n');
 }

@@ -643,6 +643,13 @@ fn a_grammars_findings_are_shown_beside_the_creature_and_follow_its_edits() {
         file.display()
     );
     assert!(page.dom.contains(&shown), "{}", page.dom);
+    // The last frame's three pops are one line of the creature's description.
+    assert!(
+        page.dom
+            .contains("warning: ']' with nothing to pop: ignored []] (3 times)</div>"),
+        "{}",
+        page.dom
+    );
 
     // Left open: every save brings the findings of the file as it is now.
     let mut page = LivePage::open(&browser, &viewer.url);
