@@ -76,7 +76,7 @@ pub const TEXTBOOK_LETTERS: &[&str] = &["F", "f"];
 
 /// Parses an L-system file into its syntax tree, splitting words into modules. In a file that
 /// declares its modules, a word that is not made of known names is an error
-/// ([`undeclared_word`]).
+/// (`undeclared_word`).
 pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
     let raw = parser::parse_raw(source)?;
     let mut file = raw.file;

@@ -204,8 +204,8 @@ fn finding_json(d: &Diagnostic) -> Value {
 /// [...], "problems": [...], "frames": [{"step", "t", "string", "creature"}]}`, or `{"kind":
 /// "lsys", "file", "error": {...}}` when the file does not parse or derive (the page shows it
 /// with its line and column). `findings` are the grammar's ([`LSystem::findings`], shaped as
-/// [`diagnostic_json`], the text headed `warning:`); `problems` are the builder's problems of every frame, each once
-/// ([`problems_json`]).
+/// [`diagnostic_json`], the text headed `warning:`); `problems` are the builder's problems of
+/// every frame, each once, with the number of frames it came up in.
 pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Value {
     let file = path.display().to_string();
     let grown = LSystem::from_path(path).and_then(|lsys| {
