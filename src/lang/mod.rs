@@ -169,13 +169,15 @@ impl Splitter<'_> {
     }
 
     /// The known name of two or more characters closest to `word` ([`suggest::closest`]):
-    /// what a word that is not made of known names was probably meant to be.
+    /// what a word that is not made of known names was probably meant to be. Of names
+    /// equally close, the file's own (in alphabetical order) come before the built-in
+    /// commands, so that the answer never depends on the order of a set.
     fn suggestion(&self, word: &str) -> Option<String> {
+        let mut own: Vec<&str> = self.known.iter().map(String::as_str).collect();
+        own.sort_unstable();
         let twins: Vec<String> = BUILTIN_COMMANDS.iter().map(|c| format!("m{c}")).collect();
-        let names = self
-            .known
-            .iter()
-            .map(String::as_str)
+        let names = own
+            .into_iter()
             .chain(BUILTIN_COMMANDS.iter().copied())
             .chain(twins.iter().map(String::as_str))
             .filter(|n| n.chars().count() > 1);
