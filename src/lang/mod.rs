@@ -347,7 +347,7 @@ mod tests {
             err.message,
             "'Fx' is not a declared module: it would be read as the modules F x"
         );
-        assert_eq!(err.location.unwrap().column, 17);
+        assert_eq!(err.location.unwrap().column, 18);
     }
 
     #[test]
