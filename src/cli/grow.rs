@@ -106,6 +106,7 @@ struct Grown<'a> {
 /// [`ontogeny::develop::MAX_KEPT_FRAMES`] frames may be written).
 pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     let lsys = args.development.defines.load(&args.file)?;
+    super::tell_findings(&lsys);
     let options = derive_options(&args.development, args.max_modules);
     let build_options = BuildOptions {
         max_parts: args.max_parts,

@@ -157,6 +157,16 @@ fn print(lines: Vec<ontogeny::evolve::text::Line>) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Prints the grammar's findings ([`LSystem::findings`]) on standard error, as warnings
+/// located with a caret: what every verb that reads a grammar shows.
+///
+/// [`LSystem::findings`]: ontogeny::lsystem::LSystem::findings
+fn tell_findings(lsys: &ontogeny::lsystem::LSystem) {
+    for finding in lsys.findings() {
+        tell!("{}", finding.warning());
+    }
+}
+
 /// A bad-input error (exit code 2) with `message`.
 pub fn bad(message: impl Into<String>) -> anyhow::Error {
     anyhow::Error::new(Diagnostic::without_location(

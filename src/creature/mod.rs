@@ -6,6 +6,7 @@
 //! are in world coordinates: Y is up, the ground is the plane y = 0, lengths are in metres.
 
 mod geometry;
+pub mod repeats;
 mod summary;
 
 pub use geometry::boxes_intersect;

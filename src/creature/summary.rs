@@ -65,10 +65,11 @@ impl Summary {
             mass: c.mass(),
             bounding_box: [[lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]],
             valid: c.is_valid(),
-            problems: no_part(c)
-                .into_iter()
-                .chain(c.problems.iter().map(Problem::to_string))
-                .collect(),
+            problems: super::repeats::said_once(
+                no_part(c)
+                    .into_iter()
+                    .chain(c.problems.iter().map(Problem::to_string)),
+            ),
         }
     }
 

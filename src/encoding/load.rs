@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::creature::repeats::said_once;
 use crate::creature::{Creature, Severity};
 use crate::develop::{BuildOptions, grow_last};
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind};
@@ -147,18 +148,22 @@ fn looks_like_graph_genome(text: &str) -> bool {
 }
 
 /// Grows `lsys` to its last frame with `options`, as `ontogeny grow` does, cut short where
-/// the creature is decided ([`grow_last`]); the notes are the mode's ([`print::check_mode`]),
-/// the shortcut taken, if any, and the builder's warnings (its errors make the creature
-/// invalid, which an evaluation reports).
+/// the creature is decided ([`grow_last`]); the notes are the grammar's findings
+/// ([`LSystem::findings`]), the mode's ([`print::check_mode`]), the shortcut taken, if any,
+/// and the builder's warnings, each once (its errors make the creature invalid, which an
+/// evaluation reports).
 pub fn grow_grammar(
     lsys: &LSystem,
     options: &LoadOptions,
     progress: &mut dyn FnMut(f64),
 ) -> Result<Loaded, LoadError> {
-    let mut notes: Vec<String> =
-        print::check_mode(lsys, &options.derive, options.steps, "building")?
-            .into_iter()
-            .collect();
+    let mut notes: Vec<String> = lsys.findings().iter().map(|d| d.warning()).collect();
+    notes.extend(print::check_mode(
+        lsys,
+        &options.derive,
+        options.steps,
+        "building",
+    )?);
     let build_options = BuildOptions {
         max_parts: options.max_parts,
         cancel: options.cancel.clone(),
@@ -173,12 +178,12 @@ pub fn grow_grammar(
     )?;
     notes.extend(last.shortcut.map(|s| format!("note: {s}")));
     let creature = last.frame.creature;
-    notes.extend(
+    notes.extend(said_once(
         creature
             .problems
             .iter()
             .filter(|p| p.severity == Severity::Warning)
             .map(|p| p.to_string()),
-    );
+    ));
     Ok(Loaded { creature, notes })
 }

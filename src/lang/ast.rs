@@ -232,6 +232,32 @@ pub struct LsysFile {
     pub ignore: Vec<(String, Span)>,
     /// Rules in file order, productions and interpretation rules together.
     pub rules: Vec<Rule>,
-    /// Words that were split into several modules: (word, the modules, place).
-    pub split_words: Vec<(String, Vec<String>, Span)>,
+    /// Words that were split into several modules, in file order.
+    pub split_words: Vec<SplitWord>,
+}
+
+/// A word of a module list read as several modules (`FF` as `F F`, `Tial` as `T i a l`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SplitWord {
+    /// The word as written.
+    pub word: String,
+    /// The modules it is read as, in order.
+    pub pieces: Vec<String>,
+    /// Whether each piece is a known name (declared, a rule's predecessor or a built-in
+    /// command); a piece that is not is a single character taken because nothing known
+    /// starts there.
+    pub known: Vec<bool>,
+    /// When some piece is not known: the known name closest to the word, which it was
+    /// probably meant to be (`forward` for `foward`).
+    pub suggestion: Option<String>,
+    /// Where the word stands.
+    pub span: Span,
+}
+
+impl SplitWord {
+    /// Whether every piece is a known name (`FF` with a rule for `F`): the classic
+    /// one-letter notation, not a mistake.
+    pub fn all_known(&self) -> bool {
+        self.known.iter().all(|&k| k)
+    }
 }

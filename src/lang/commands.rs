@@ -69,6 +69,22 @@ pub enum Argument {
     Bias,
 }
 
+impl Argument {
+    /// What the argument is, in words, for messages: `a part's length (m)`.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Argument::None => "no argument",
+            Argument::Length => "a part's length in metres",
+            Argument::Size => "a part's width or thickness in metres",
+            Argument::Turn => "a turn, in quarter turns",
+            Argument::Weight => "a link weight",
+            Argument::Index => "an index",
+            Argument::Function => "a transfer function number",
+            Argument::Bias => "a neuron's bias",
+        }
+    }
+}
+
 /// What a command acts on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CommandKind {
@@ -270,6 +286,12 @@ impl Command {
     /// Whether it takes an argument.
     pub fn has_argument(self) -> bool {
         self.argument() != Argument::None
+    }
+
+    /// How many parameters it takes: none for [`Argument::None`], else one (the builder reads
+    /// no other). Its maturing twin takes one whatever the command (its length or age).
+    pub fn parameters(self) -> usize {
+        usize::from(self.has_argument())
     }
 
     /// What it acts on.

@@ -17,6 +17,12 @@
 //! White space always separates modules, and a predecessor is always one module. So with
 //! predecessors `a` and `b`, `ab` is `a b`; with `module forward`, `forward(1)` is one module;
 //! and `F2` with no known name `F2` is the two modules `F` and `2`.
+//!
+//! A word that step 2 cuts into pieces that are not all known names (`Tial` read as `T i a
+//! l`, `foward` as `f o w a r d`) is most likely a typo: it is recorded in
+//! [`LsysFile::split_words`] with the known name it is closest to, and every verb shows it
+//! (see `LSystem::findings`). In a file that declares its modules with `module`, such a word
+//! is an error. The textbook turtle's letters `F` and `f` are known names too.
 
 pub mod ast;
 pub mod commands;
@@ -31,7 +37,7 @@ pub use ast::LsysFile;
 pub use file_kind::{FileKind, read_as, read_grammar};
 pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
 
-use ast::{Expr, ModuleCall, PatternModule, Rule};
+use ast::{Expr, ModuleCall, PatternModule, Rule, SplitWord};
 use parser::RawModule;
 
 /// The builder's commands (Hornby & Pollack; Matos & Arita), known names for word splitting:
@@ -47,7 +53,30 @@ pub fn is_builtin_command(name: &str) -> bool {
             .is_some_and(|rest| BUILTIN_COMMANDS.contains(&rest))
 }
 
-/// Parses an L-system file into its syntax tree, splitting words into modules.
+/// How many parameters the built-in command (or maturing twin) `name` takes, and what the
+/// one it takes means; `None` when `name` is not a built-in command. A maturing twin takes
+/// one: the command's own (`mforward(l)`), or its age when the command takes none
+/// (`mrevolute1(x)`).
+pub fn builtin_parameters(name: &str) -> Option<(usize, &'static str)> {
+    use commands::Command;
+    if let Some(command) = Command::from_name(name) {
+        return Some((command.parameters(), command.argument().describe()));
+    }
+    let twin = name.strip_prefix('m').and_then(Command::from_name)?;
+    let what = match twin.argument() {
+        commands::Argument::None => "its age",
+        argument => argument.describe(),
+    };
+    Some((1, what))
+}
+
+/// The letters of the textbook turtle (*The Algorithmic Beauty of Plants*): `F` builds a part,
+/// `f` moves without building. Known names for word splitting, as the built-in commands are.
+pub const TEXTBOOK_LETTERS: &[&str] = &["F", "f"];
+
+/// Parses an L-system file into its syntax tree, splitting words into modules. In a file that
+/// declares its modules, a word that is not made of known names is an error
+/// (`undeclared_word`).
 pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
     let raw = parser::parse_raw(source)?;
     let mut file = raw.file;
@@ -89,7 +118,43 @@ pub fn parse(source: &Source) -> Result<LsysFile, Diagnostic> {
             span: rule.span,
         });
     }
+    file.split_words.sort_by_key(|w| w.span.start);
+    if let Some(diagnostic) = undeclared_word(source, &file) {
+        return Err(diagnostic);
+    }
     Ok(file)
+}
+
+/// The error for the first word of a file that declares its modules (`module Torso, Legs`)
+/// that is not made entirely of known names (declared modules, rules' predecessors, built-in
+/// commands, the textbook letters): `None` when there is none, or the file declares nothing.
+/// A word made of known names (`FF` as `F F`) and a word of one character stay allowed.
+fn undeclared_word(source: &Source, file: &LsysFile) -> Option<Diagnostic> {
+    let (_, declared_at) = file.declared_modules.first()?;
+    let word = file.split_words.iter().find(|w| !w.all_known())?;
+    let (line, _) = source.line_col(declared_at.start);
+    Some(
+        Diagnostic::at(
+            DiagnosticKind::Semantic,
+            source,
+            word.span,
+            format!(
+                "'{}' is not a declared module: it would be read as the modules {}{}",
+                word.word,
+                word.pieces.join(" "),
+                did_you_mean(word.suggestion.as_deref())
+            ),
+        )
+        .with_note(format!(
+            "this file declares its modules (line {line}): a word must be a declared module, a \
+             rule's predecessor or a built-in command, or be written of them ('FF' is 'F F')"
+        )),
+    )
+}
+
+/// ` (did you mean `NAME`?)`, or nothing.
+pub fn did_you_mean(name: Option<&str>) -> String {
+    name.map_or(String::new(), |n| format!(" (did you mean `{n}`?)"))
 }
 
 struct Splitter<'k> {
@@ -100,7 +165,23 @@ struct Splitter<'k> {
 
 impl Splitter<'_> {
     fn is_known(&self, name: &str) -> bool {
-        self.known.contains(name) || is_builtin_command(name)
+        self.known.contains(name) || is_builtin_command(name) || TEXTBOOK_LETTERS.contains(&name)
+    }
+
+    /// The known name of two or more characters closest to `word` ([`suggest::closest`]):
+    /// what a word that is not made of known names was probably meant to be. Of names
+    /// equally close, the file's own (in alphabetical order) come before the built-in
+    /// commands, so that the answer never depends on the order of a set.
+    fn suggestion(&self, word: &str) -> Option<String> {
+        let mut own: Vec<&str> = self.known.iter().map(String::as_str).collect();
+        own.sort_unstable();
+        let twins: Vec<String> = BUILTIN_COMMANDS.iter().map(|c| format!("m{c}")).collect();
+        let names = own
+            .into_iter()
+            .chain(BUILTIN_COMMANDS.iter().copied())
+            .chain(twins.iter().map(String::as_str))
+            .filter(|n| n.chars().count() > 1);
+        suggest::closest(word, names).map(str::to_string)
     }
 
     /// Cuts `word` into module names (byte ranges into the word).
@@ -131,7 +212,7 @@ impl Splitter<'_> {
         name_span: Span,
         end: usize,
         params: P,
-        split_words: &mut Vec<(String, Vec<String>, Span)>,
+        split_words: &mut Vec<SplitWord>,
         make: impl Fn(String, Span, P) -> T,
     ) -> Result<Vec<T>, P>
     where
@@ -141,14 +222,22 @@ impl Splitter<'_> {
         if pieces.len() == 1 {
             return Err(params);
         }
-        split_words.push((
-            word.to_string(),
-            pieces
-                .iter()
-                .map(|&(a, b)| word[a..b].to_string())
-                .collect(),
-            name_span,
-        ));
+        let names: Vec<String> = pieces
+            .iter()
+            .map(|&(a, b)| word[a..b].to_string())
+            .collect();
+        let known: Vec<bool> = names.iter().map(|n| self.is_known(n)).collect();
+        let suggestion = match known.iter().all(|&k| k) {
+            true => None,
+            false => self.suggestion(word),
+        };
+        split_words.push(SplitWord {
+            word: word.to_string(),
+            pieces: names,
+            known,
+            suggestion,
+            span: name_span,
+        });
         let last = pieces.len() - 1;
         let mut params = Some(params);
         Ok(pieces
@@ -171,7 +260,7 @@ impl Splitter<'_> {
     fn modules<M: Splittable>(
         &self,
         raw: Vec<RawModule<M>>,
-        split_words: &mut Vec<(String, Vec<String>, Span)>,
+        split_words: &mut Vec<SplitWord>,
     ) -> Vec<M> {
         let mut out = Vec::with_capacity(raw.len());
         for raw in raw {
@@ -239,7 +328,7 @@ mod tests {
     fn known_words_are_one_module_and_others_split_by_longest_prefix() {
         let src = Source::new(
             "t",
-            "module ar, al\naxiom: forward(1) revolute2 aral Fx(2)\nF --> F\n",
+            "axiom: forward(1) revolute2 aral Fx(2)\nar --> ar\nal --> al\n",
         );
         let file = parse(&src).unwrap();
         let (axiom, _) = file.axiom.unwrap();
@@ -248,6 +337,17 @@ mod tests {
             ["forward", "revolute2", "ar", "al", "F", "x"]
         );
         assert!(axiom[5].args.len() == 1 && axiom[4].args.is_empty());
+    }
+
+    #[test]
+    fn a_file_that_declares_its_modules_refuses_a_word_not_made_of_known_names() {
+        let src = Source::new("t", "module ar, al\naxiom: aral FF x Fx(2)\n");
+        let err = parse(&src).unwrap_err();
+        assert_eq!(
+            err.message,
+            "'Fx' is not a declared module: it would be read as the modules F x"
+        );
+        assert_eq!(err.location.unwrap().column, 18);
     }
 
     #[test]

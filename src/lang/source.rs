@@ -220,9 +220,23 @@ impl Diagnostic {
     }
 }
 
-impl fmt::Display for Diagnostic {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "error: {}", self.message)?;
+impl Diagnostic {
+    /// The diagnostic shown as a warning: as its `Display`, headed `warning:` instead of
+    /// `error:` (for findings that do not stop the work, such as a word read as modules that
+    /// are not known names).
+    pub fn warning(&self) -> String {
+        struct Warning<'a>(&'a Diagnostic);
+        impl fmt::Display for Warning<'_> {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                self.0.render(f, "warning")
+            }
+        }
+        Warning(self).to_string()
+    }
+
+    /// The message headed by `level`, then the place with a caret under it, then the notes.
+    fn render(&self, f: &mut fmt::Formatter<'_>, level: &str) -> fmt::Result {
+        write!(f, "{level}: {}", self.message)?;
         if let Some(loc) = &self.location {
             let gutter = loc.line.to_string().len();
             let pad = " ".repeat(gutter);
@@ -243,6 +257,12 @@ impl fmt::Display for Diagnostic {
             write!(f, "\n  = {note}")?;
         }
         Ok(())
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.render(f, "error")
     }
 }
 

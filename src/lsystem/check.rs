@@ -7,8 +7,8 @@ use serde::Serialize;
 
 use super::LSystem;
 use super::compile::{CompiledRule, PatternEl, RuleSet};
-use crate::lang::Span;
-use crate::lang::ast::{self, Expr, Section};
+use crate::lang::ast::{self, Expr, Section, SplitWord};
+use crate::lang::{Diagnostic, DiagnosticKind, Span};
 
 /// What kind of finding a [`Finding`] is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -20,8 +20,11 @@ pub enum FindingKind {
     UnusedParameter,
     /// A constant no expression reads.
     UnusedConstant,
-    /// A word read as several modules.
+    /// A word read as several modules, all of them known names (`FF` as `F F`).
     SplitWord,
+    /// A word read as several modules that are not all known names (`Tial` as `T i a l`):
+    /// most likely a typo. Every verb that reads the grammar shows it ([`LSystem::findings`]).
+    UnknownWord,
     /// A successor or the axiom whose `[` and `]` do not pair up: the derived string is
     /// balanced only if other rules close (or open) the branch.
     UnbalancedBrackets,
@@ -392,16 +395,48 @@ fn unbalanced_brackets(system: &LSystem, findings: &mut Findings) {
 
 /// Words the parser read as several modules.
 fn split_words(system: &LSystem, findings: &mut Findings) {
-    for (word, pieces, span) in &system.file.split_words {
-        findings.push(
-            FindingKind::SplitWord,
-            *span,
-            format!("'{word}' is read as the modules {}", pieces.join(" ")),
-        );
+    for word in &system.file.split_words {
+        let kind = match word.all_known() {
+            true => FindingKind::SplitWord,
+            false => FindingKind::UnknownWord,
+        };
+        findings.push(kind, word.span, split_word_message(word));
     }
 }
 
+/// What is said of a word read as several modules: `'Tial' is read as the modules T i a l
+/// (did you mean `Tail`?)`.
+fn split_word_message(word: &SplitWord) -> String {
+    format!(
+        "'{}' is read as the modules {}{}",
+        word.word,
+        word.pieces.join(" "),
+        crate::lang::did_you_mean(word.suggestion.as_deref())
+    )
+}
+
 impl LSystem {
+    /// The findings every verb that reads the grammar shows, as warnings located in its
+    /// source (`grow`, `eval`, `derive`, `export`, the viewer's page; `check` lists them with
+    /// the rest): the words read as several modules that are not all known names, most
+    /// likely typos (`Tial` for `Tail`, `foward` for `forward`). In a file that declares its
+    /// modules these are errors instead, and the file does not parse.
+    pub fn findings(&self) -> Vec<Diagnostic> {
+        self.file
+            .split_words
+            .iter()
+            .filter(|w| !w.all_known())
+            .map(|w| {
+                Diagnostic::at(
+                    DiagnosticKind::Semantic,
+                    &self.source,
+                    w.span,
+                    split_word_message(w),
+                )
+            })
+            .collect()
+    }
+
     /// Analyses the system without deriving it: the named passes in order, their findings
     /// sorted by place.
     pub fn check(&self) -> Report {

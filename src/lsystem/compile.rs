@@ -415,6 +415,26 @@ impl Compiler<'_> {
         if (call.name == "[" || call.name == "]") && !call.args.is_empty() {
             return Err(self.error(call.span, "brackets take no parameters"));
         }
+        // A built-in command a rule rewrites takes what its rule takes (checked above): the
+        // builder reads its first parameters (`mforward(x, l)`, a limb growing to l).
+        if let Some((takes, what)) = crate::lang::builtin_parameters(&call.name)
+            && call.args.len() > takes
+            && !self.arity.contains_key(&call.name)
+        {
+            let takes = match takes {
+                0 => "none".to_string(),
+                n => format!("{n} ({what})"),
+            };
+            return Err(self.error(
+                call.span,
+                format!(
+                    "'{}' is given {} parameter{}, but the built-in command takes {takes}",
+                    call.name,
+                    call.args.len(),
+                    plural(call.args.len())
+                ),
+            ));
+        }
         Ok(self.symbols.intern(&call.name))
     }
 

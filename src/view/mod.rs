@@ -192,13 +192,28 @@ pub fn diagnostic_json(d: &Diagnostic) -> Value {
     json!({ "message": d.message, "location": location, "text": d.to_string() })
 }
 
-/// Grows an `.lsys` file and returns the page's data: `{"kind": "lsys", "file", "frames":
-/// [{"step", "t", "string", "creature"}]}`, or `{"kind": "lsys", "file", "error": {...}}`
-/// when the file does not parse or derive (the page shows it with its line and column).
+/// A grammar's finding as the page shows it: as [`diagnostic_json`], its `text` headed
+/// `warning:`.
+fn finding_json(d: &Diagnostic) -> Value {
+    let mut value = diagnostic_json(d);
+    value["text"] = json!(d.warning());
+    value
+}
+
+/// Grows an `.lsys` file and returns the page's data: `{"kind": "lsys", "file", "findings":
+/// [...], "problems": [...], "frames": [{"step", "t", "string", "creature"}]}`, or `{"kind":
+/// "lsys", "file", "error": {...}}` when the file does not parse or derive (the page shows it
+/// with its line and column). `findings` are the grammar's ([`LSystem::findings`], shaped as
+/// [`diagnostic_json`], the text headed `warning:`); `problems` are the builder's problems of
+/// every frame, each once, with the number of frames it came up in.
 pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Value {
     let file = path.display().to_string();
-    match grow_with_strings(path, options, steps, &[]) {
-        Ok((frames, _)) => json!({ "kind": "lsys", "file": file, "frames": frames }),
+    let grown = LSystem::from_path(path).and_then(|lsys| {
+        let (frames, _) = grow_with_strings(&lsys, options, steps)?;
+        Ok((lsys.findings(), frames))
+    });
+    match grown {
+        Ok((findings, frames)) => grown_json(&file, &findings, frames),
         Err(d) => json!({ "kind": "lsys", "file": file, "error": diagnostic_json(&d) }),
     }
 }
@@ -277,11 +292,12 @@ pub fn lsys_data_with(
         return Err(ViewError::BadRequest(error.message));
     }
     let file = path.display().to_string();
-    let (mut data, grown) = match grow_with_strings(path, options, steps, defines) {
-        Ok((frames, values)) => (
-            json!({ "kind": "lsys", "file": file, "frames": frames }),
-            values,
-        ),
+    let grown = LSystem::from_path_with(path, defines).and_then(|lsys| {
+        let (frames, values) = grow_with_strings(&lsys, options, steps)?;
+        Ok((lsys.findings(), frames, values))
+    });
+    let (mut data, grown) = match grown {
+        Ok((findings, frames, values)) => (grown_json(&file, &findings, frames), values),
         Err(d) => (
             json!({ "kind": "lsys", "file": file, "error": diagnostic_json(&d) }),
             Vec::new(),
@@ -311,17 +327,79 @@ pub fn lsys_data_with(
 /// The values of a grammar's defines, by name, in file order.
 type DefineValues = Vec<(String, f64)>;
 
-/// Like [`crate::develop::grow`] with `defines` set, keeping each frame's module string (as
-/// derived, before the interpretation rules); with the values of the grammar's defines.
+/// The builder's problems over all `frames` (frame JSON, as [`frame_json`] makes), each once
+/// in the order they first arose, with the number of frames it came up in and the first
+/// frame's time: `{"severity", "message", "module", "frames", "t", "text"}`, `text` as the
+/// page shows it (`warning: ']' with nothing to pop: ignored []] (at 40 frames, from t =
+/// 1)`).
+fn problems_json(frames: &[Value]) -> Vec<Value> {
+    use crate::creature::repeats::counted;
+    let key = |p: &Value| [&p["severity"], &p["message"], &p["module"]].map(Value::to_string);
+    let mut first = std::collections::HashMap::new();
+    let each = frames.iter().flat_map(|frame| {
+        let problems = frame["creature"]["problems"]
+            .as_array()
+            .into_iter()
+            .flatten();
+        // A problem said several times in one frame counts once for it.
+        counted(problems.map(|p| {
+            first.entry(key(p)).or_insert_with(|| p.clone());
+            key(p)
+        }))
+        .into_iter()
+        .map(|(k, _)| k)
+        .collect::<Vec<_>>()
+    });
+    let counts = counted(each.collect::<Vec<_>>());
+    counts
+        .into_iter()
+        .map(|(k, n)| (first[&k].clone(), n))
+        .map(|(p, n)| {
+            let mut text = format!(
+                "{}: {}",
+                p["severity"].as_str().unwrap_or("warning"),
+                p["message"].as_str().unwrap_or_default()
+            );
+            if let Some(module) = p["module"].as_str() {
+                text.push_str(&format!(" [{module}]"));
+            }
+            let at = match (n, p["t"].as_f64()) {
+                (1, Some(t)) => format!(" at t = {t}"),
+                (1, None) => String::new(),
+                (n, Some(t)) => format!(" (at {n} frames, from t = {t})"),
+                (n, None) => format!(" (at {n} frames)"),
+            };
+            text.push_str(&at);
+            json!({
+                "severity": p["severity"], "message": p["message"], "module": p["module"],
+                "frames": n, "t": p["t"], "text": text,
+            })
+        })
+        .collect()
+}
+
+/// The page's data for a grown `.lsys` file: its `findings` ([`LSystem::findings`], shaped as
+/// [`finding_json`]), the builder's `problems` over all frames ([`problems_json`]) and the
+/// `frames`.
+fn grown_json(file: &str, findings: &[Diagnostic], frames: Vec<Value>) -> Value {
+    json!({
+        "kind": "lsys",
+        "file": file,
+        "findings": findings.iter().map(finding_json).collect::<Vec<_>>(),
+        "problems": problems_json(&frames),
+        "frames": frames,
+    })
+}
+
+/// Like [`crate::develop::grow`], keeping each frame's module string (as derived, before the
+/// interpretation rules); with the values of the grammar's defines.
 fn grow_with_strings(
-    path: &Path,
+    lsys: &LSystem,
     options: &DeriveOptions,
     steps: Option<u64>,
-    defines: &[DefineOverride],
 ) -> Result<(Vec<Value>, DefineValues), Diagnostic> {
-    let lsys = LSystem::from_path_with(path, defines)?;
     // The page holds every frame: refused at once when there are too many.
-    crate::develop::kept_frame_plan(&lsys, options, steps)?;
+    crate::develop::kept_frame_plan(lsys, options, steps)?;
     let build_options = BuildOptions::default();
     let mut frames = Vec::new();
     lsys.for_each_frame(options, steps, |frame| {

@@ -23,6 +23,7 @@ mod evolve;
 mod export;
 mod fidelity;
 mod files;
+mod findings;
 mod ga;
 mod genome_continuous;
 mod genome_direct;

@@ -1,6 +1,7 @@
 // The page of `ontogeny view`: a creature in 3D (three.js), its brain, and the controls of
 // the kind of page the server shows (growth, recording, run). Everything the tests read is on
-// document.body.dataset: kind, parts (parts drawn now), frame, frames, ready, error, webgl; on a
+// document.body.dataset: kind, parts (parts drawn now), frame, frames, ready, error, findings
+// (how many findings and problems the Findings box lists, on a grammar's page), webgl; on a
 // run page also generation and individual (the one shown), and walk ("G/R" while the walk of
 // rank R of generation G is shown).
 import * as THREE from 'three';
@@ -278,9 +279,13 @@ function describe(creature, extra) {
     `neurons: ${creature.brain.neurons.length}   links: ${creature.brain.links.length}`,
     `mass: ${mass.toPrecision(4)} kg`,
   ];
+  // A problem met several times in this frame is listed once, with its count.
+  const seen = new Map();
   for (const p of creature.problems || []) {
-    lines.push(`${p.severity}: ${p.message}` + (p.module ? ` [${p.module}]` : ''));
+    const line = `${p.severity}: ${p.message}` + (p.module ? ` [${p.module}]` : '');
+    seen.set(line, (seen.get(line) || 0) + 1);
   }
+  for (const [line, n] of seen) lines.push(n > 1 ? `${line} (${n} times)` : line);
   if (extra) lines.push('', ...extra);
   $('info').textContent = lines.join('\n');
 }
@@ -328,6 +333,16 @@ function showError(error) {
   $('status').textContent = 'error ' + (error.location ? `at line ${error.location.line}, column ${error.location.column}` : '');
 }
 
+// A grammar's findings (located, with the caret) and its builder's problems over all frames
+// (each once, with the frames it came up in), beside the creature; none hides the box.
+function showFindings(data) {
+  const lines = (data.findings || []).map((f) => f.text)
+    .concat((data.problems || []).map((p) => p.text));
+  $('findings').textContent = lines.join('\n');
+  if (lines.length) body.dataset.findings = String(lines.length);
+  else delete body.dataset.findings;
+}
+
 function finish() {
   document.title = `ontogeny view: ${body.dataset.parts} parts`;
   body.dataset.ready = 'yes';
@@ -348,6 +363,7 @@ function showGrowth(data, keepFrame) {
   body.dataset.kind = data.kind;
   $('file').textContent = data.file;
   if (data.defines) showDefines(data.defines, regrowLsys);
+  showFindings(data);
   if (data.error) {
     showError(data.error);
     if (!growthFramed) { playButton.style.display = 'none'; slider.style.display = 'none'; }

@@ -1,9 +1,9 @@
 //! The viewer in headless Chromium: every kind of page must draw the expected number of parts
 //! (the page exposes it as `data-parts` on its body and in its title), scrub to the frame the
-//! URL asks for (`?frame=N`), show a grammar's error with its line and column, play a run's
-//! individual's walk, and save a screenshot with `--snapshot`; and a page left open (driven
-//! through Chromium's DevTools protocol) must redraw when its `.lsys` file is saved (watch
-//! mode).
+//! URL asks for (`?frame=N`), show a grammar's error with its line and column and its
+//! findings beside the creature, play a run's individual's walk, and save a screenshot with
+//! `--snapshot`; and a page left open (driven through Chromium's DevTools protocol) must
+//! redraw when its `.lsys` file is saved (watch mode).
 //!
 //! Every test here needs Chromium, so each is ignored, with that reason, in a plain `cargo test
 //! --release`; `.ci/run` runs them by name (`cargo test --release --test it -- --ignored
@@ -619,6 +619,60 @@ fn saving_the_file_redraws_the_open_page() {
     std::fs::write(&file, "axiom: forward(1) forward(1) forward(1)\n").unwrap();
     let fixed = page.wait_for(state, |s| !s.contains("line 2"));
     assert_eq!(fixed, r#"["yes","1","3",""]"#);
+    drop(viewer);
+}
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_grammars_findings_are_shown_beside_the_creature_and_follow_its_edits() {
+    let browser = chromium();
+    let dir = scratch("findings-page");
+    let file = dir.join("typo.lsys");
+    let typo = "derivation length: 3\naxiom: forward(1) A\nA --> ] A Tial\nTail --> forward(1)\n";
+    std::fs::write(&file, typo).unwrap();
+    let viewer = Viewer::start(&file);
+
+    // Drawn once: the typo with its place and caret, and the builder's problem with its count.
+    let page = Page::load(&browser, &viewer.url);
+    page.assert_ready();
+    assert_eq!(page.number("findings"), 2, "{}", page.body);
+    let shown = format!(
+        "warning: 'Tial' is read as the modules T i a l (did you mean `Tail`?)\n \
+         --&gt; {}:3:11\n  |\n3 | A --&gt; ] A Tial\n  |           ^^^^\n\
+         warning: ']' with nothing to pop: ignored []] (at 3 frames, from t = 1)</pre>",
+        file.display()
+    );
+    assert!(page.dom.contains(&shown), "{}", page.dom);
+    // The last frame's three pops are one line of the creature's description.
+    assert!(
+        page.dom
+            .contains("warning: ']' with nothing to pop: ignored []] (3 times)</div>"),
+        "{}",
+        page.dom
+    );
+
+    // Left open: every save brings the findings of the file as it is now.
+    let mut page = LivePage::open(&browser, &viewer.url);
+    let state = "JSON.stringify([document.body.dataset.ready, \
+                 document.body.dataset.findings || '', document.getElementById('findings').textContent])";
+    let first = page.wait_for(state, |s| s.starts_with(r#"["yes","2""#));
+    assert!(
+        first.starts_with(r#"["yes","2","warning: 'Tial'"#),
+        "{first}"
+    );
+    std::fs::write(
+        &file,
+        "derivation length: 3\naxiom: forward(1) A\nA --> A Tail\nTail --> forward(1)\n",
+    )
+    .unwrap();
+    let fixed = page.wait_for(state, |s| s.contains(r#""yes","","#));
+    assert_eq!(fixed, r#"["yes","",""]"#);
+    std::fs::write(&file, typo.replace("] ", "")).unwrap();
+    let again = page.wait_for(state, |s| s.contains(r#""yes","1","#));
+    assert!(
+        again.starts_with(r#"["yes","1","warning: 'Tial' is read as the modules T i a l"#),
+        "{again}"
+    );
     drop(viewer);
 }
 

@@ -481,3 +481,53 @@ fn a_generation_the_run_lacks_is_not_found_on_every_page_that_asks_for_one() {
     let table = get_json(&viewer, "/generation.json?gen=0");
     assert_eq!(table["individuals"].as_array().unwrap().len(), 4);
 }
+
+#[test]
+fn a_grammars_findings_and_its_builders_problems_come_with_its_frames_and_follow_its_edits() {
+    let dir = scratch("findings");
+    let file = dir.join("typo.lsys");
+    std::fs::write(
+        &file,
+        "derivation length: 3\naxiom: forward(1) A\nA --> ] A Tial\nTail --> forward(1)\n",
+    )
+    .unwrap();
+    let viewer = Viewer::start(&file);
+    let data = get_json(&viewer, "/data.json");
+    let findings = data["findings"].as_array().unwrap();
+    assert_eq!(findings.len(), 1, "{data}");
+    let finding = &findings[0];
+    assert_eq!(
+        finding["message"],
+        "'Tial' is read as the modules T i a l (did you mean `Tail`?)"
+    );
+    assert_eq!(
+        (&finding["location"]["line"], &finding["location"]["column"]),
+        (&serde_json::json!(3), &serde_json::json!(11))
+    );
+    assert_eq!(
+        finding["text"],
+        format!(
+            "warning: 'Tial' is read as the modules T i a l (did you mean `Tail`?)\n \
+             --> {}:3:11\n  |\n3 | A --> ] A Tial\n  |           ^^^^",
+            file.display()
+        )
+    );
+    // Frames 1 to 3 each pop with nothing to pop (frame 3 three times): once, with its count.
+    let problems = data["problems"].as_array().unwrap();
+    assert_eq!(problems.len(), 1, "{data}");
+    assert_eq!(
+        problems[0]["text"],
+        "warning: ']' with nothing to pop: ignored []] (at 3 frames, from t = 1)"
+    );
+    assert_eq!(problems[0]["frames"], 3);
+
+    // Fixed, the file has nothing to say.
+    std::fs::write(
+        &file,
+        "derivation length: 3\naxiom: forward(1) A\nA --> A Tail\nTail --> forward(1)\n",
+    )
+    .unwrap();
+    let data = get_json(&viewer, "/data.json");
+    assert_eq!(data["findings"], serde_json::json!([]), "{data}");
+    assert_eq!(data["problems"], serde_json::json!([]), "{data}");
+}
