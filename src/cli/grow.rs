@@ -110,8 +110,11 @@ struct Grown<'a> {
 pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     let lsys = LSystem::from_path(&args.file)?;
     let options = derive_options(&args.development, args.seed, args.max_modules);
+    // A picture: overlapping parts and a body in pieces are warnings here, errors where
+    // physics needs the creature (`eval`, `evolve`).
     let build_options = BuildOptions {
         max_parts: args.max_parts,
+        for_picture: true,
         ..BuildOptions::default()
     };
     let steps = discrete_steps(&lsys, &options, args.development.steps, "growing")?;

@@ -41,6 +41,10 @@ pub struct ViewArgs {
     browser: Option<PathBuf>,
     #[command(flatten)]
     development: DevelopmentArgs,
+    /// For an `.lsys` file: a creature with more parts than this is invalid (raise it for
+    /// plants of thousands of parts).
+    #[arg(long, default_value_t = ontogeny::develop::BuildOptions::default().max_parts)]
+    max_parts: usize,
     /// For an `.lsys` file: the seed of stochastic rules (default: the file's `seed:`, else 0).
     #[arg(long)]
     seed: Option<u64>,
@@ -67,7 +71,11 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
                     &lsys,
                     &options,
                     args.development.steps,
-                    &ontogeny::develop::BuildOptions::default(),
+                    &ontogeny::develop::BuildOptions {
+                        max_parts: args.max_parts,
+                        for_picture: true,
+                        ..Default::default()
+                    },
                 )
             }) {
                 Ok(grown) => frames = Some(grown.len()),
@@ -129,7 +137,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         args.development.steps,
         developer,
     )
-    .map_err(|e| bad(e.to_string()))?;
+    .map_err(|e| bad(e.to_string()))?
+    .with_max_parts(args.max_parts);
     let mut query = Vec::new();
     if let Some(f) = args.frame {
         query.push(format!("frame={f}"));

@@ -24,6 +24,7 @@ pub mod file_kind;
 mod parser;
 pub mod source;
 pub mod suggest;
+pub mod textbook;
 
 use std::collections::HashSet;
 
@@ -34,9 +35,9 @@ pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
 use ast::{Expr, ModuleCall, PatternModule, Rule};
 use parser::RawModule;
 
-/// The builder's commands (Hornby & Pollack; Matos & Arita), known names for word splitting:
-/// the names of [`commands::COMMANDS`]. Each also has a maturing twin prefixed `m`
-/// (`mforward`, `mrevolute1`, ...).
+/// The builder's commands (Hornby & Pollack; Matos & Arita; the textbook turtle's symbols),
+/// known names for word splitting: the names of [`commands::COMMANDS`]. Each but the
+/// textbook's symbols also has a maturing twin prefixed `m` (`mforward`, `mrevolute1`, ...).
 pub const BUILTIN_COMMANDS: &[&str] = &commands::NAMES;
 
 /// Whether `name` is a built-in command or its maturing twin.
@@ -44,7 +45,8 @@ pub fn is_builtin_command(name: &str) -> bool {
     BUILTIN_COMMANDS.contains(&name)
         || name
             .strip_prefix('m')
-            .is_some_and(|rest| BUILTIN_COMMANDS.contains(&rest))
+            .and_then(commands::Command::from_name)
+            .is_some_and(commands::Command::has_maturing_twin)
 }
 
 /// Parses an L-system file into its syntax tree, splitting words into modules.

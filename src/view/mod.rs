@@ -195,9 +195,16 @@ pub fn diagnostic_json(d: &Diagnostic) -> Value {
 /// Grows an `.lsys` file and returns the page's data: `{"kind": "lsys", "file", "frames":
 /// [{"step", "t", "string", "creature"}]}`, or `{"kind": "lsys", "file", "error": {...}}`
 /// when the file does not parse or derive (the page shows it with its line and column).
-pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Value {
+/// A creature of more than `max_parts` parts is invalid; the page is a picture, so parts
+/// that overlap and a body in pieces are warnings.
+pub fn lsys_data(
+    path: &Path,
+    options: &DeriveOptions,
+    steps: Option<u64>,
+    max_parts: usize,
+) -> Value {
     let file = path.display().to_string();
-    match grow_with_strings(path, options, steps) {
+    match grow_with_strings(path, options, steps, max_parts) {
         Ok(frames) => json!({ "kind": "lsys", "file": file, "frames": frames }),
         Err(d) => json!({ "kind": "lsys", "file": file, "error": diagnostic_json(&d) }),
     }
@@ -209,11 +216,17 @@ fn grow_with_strings(
     path: &Path,
     options: &DeriveOptions,
     steps: Option<u64>,
+    max_parts: usize,
 ) -> Result<Vec<Value>, Diagnostic> {
     let lsys = LSystem::from_path(path)?;
     // The page holds every frame: refused at once when there are too many.
     crate::develop::kept_frame_plan(&lsys, options, steps)?;
-    let build_options = BuildOptions::default();
+    let build_options = BuildOptions {
+        max_parts,
+        for_picture: true,
+        ..BuildOptions::default()
+    }
+    .with_headers(&lsys);
     let mut frames = Vec::new();
     lsys.for_each_frame(options, steps, |frame| {
         let shown = lsys.interpret(frame.string, frame.t, options)?;
@@ -473,7 +486,7 @@ mod tests {
             "axiom: A\nderivation length: 2\nA --> forward(1) B\nB --> forward(0.5)\n",
         )
         .unwrap();
-        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        let data = lsys_data(&file, &DeriveOptions::default(), None, 200);
         let frames = data["frames"].as_array().unwrap();
         let strings: Vec<&str> = frames
             .iter()
@@ -488,7 +501,7 @@ mod tests {
             .collect();
         assert_eq!(lengths, [1.0, 0.5]);
         // --steps overrides the file's derivation length.
-        let one = lsys_data(&file, &DeriveOptions::default(), Some(1));
+        let one = lsys_data(&file, &DeriveOptions::default(), Some(1), 200);
         assert_eq!(one["frames"].as_array().unwrap().len(), 2);
     }
 
@@ -498,7 +511,7 @@ mod tests {
         let dir = scratch.path().to_path_buf();
         let file = dir.join("bad.lsys");
         std::fs::write(&file, "axiom: A\nA --> forward(1\n").unwrap();
-        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        let data = lsys_data(&file, &DeriveOptions::default(), None, 200);
         assert!(data.get("frames").is_none());
         let error = &data["error"];
         assert_eq!(error["location"]["line"], 2);

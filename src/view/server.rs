@@ -74,6 +74,8 @@ pub struct Server {
     target: Target,
     options: DeriveOptions,
     steps: Option<u64>,
+    /// The most parts an `.lsys` target's creature may have (`view --max-parts`).
+    max_parts: usize,
     developer: Option<Developer>,
     /// How many walks are being evaluated now.
     walks: AtomicUsize,
@@ -139,9 +141,17 @@ impl Server {
             target,
             options,
             steps,
+            max_parts: crate::develop::BuildOptions::default().max_parts,
             developer,
             walks: AtomicUsize::new(0),
         })
+    }
+
+    /// The server with the most parts an `.lsys` target's creature may have (default
+    /// [`BuildOptions::default`](crate::develop::BuildOptions::default)'s).
+    pub fn with_max_parts(mut self, max_parts: usize) -> Server {
+        self.max_parts = max_parts;
+        self
     }
 
     /// The address it listens on.
@@ -280,7 +290,12 @@ impl Server {
     fn data(&self) -> Result<Value, ViewError> {
         let path = &self.target.path;
         match self.target.kind {
-            Kind::Lsys => Ok(super::lsys_data(path, &self.options, self.steps)),
+            Kind::Lsys => Ok(super::lsys_data(
+                path,
+                &self.options,
+                self.steps,
+                self.max_parts,
+            )),
             Kind::Growth => super::growth_data(path),
             Kind::Recording => super::recording_data(path),
             Kind::Run => super::run_data(path),
