@@ -390,9 +390,19 @@ fn unbalanced_brackets(system: &LSystem, findings: &mut Findings) {
     }
 }
 
-/// Words the parser read as several modules.
+/// Words the parser read as several modules, but for the textbook's one-letter notation: a
+/// word of one-letter names that are all known (`FF`, `FX` with a rule for `X`).
 fn split_words(system: &LSystem, findings: &mut Findings) {
-    for (word, pieces, span) in &system.file.split_words {
+    let file = &system.file;
+    let known = |name: &str| {
+        crate::lang::is_builtin_command(name)
+            || file.rules.iter().any(|r| r.predecessor.name == name)
+            || file.declared_modules.iter().any(|(n, _)| n == name)
+    };
+    for (word, pieces, span) in &file.split_words {
+        if pieces.iter().all(|p| p.chars().count() == 1 && known(p)) {
+            continue;
+        }
         findings.push(
             FindingKind::SplitWord,
             *span,
