@@ -99,12 +99,16 @@ impl BuildOptions {
         self.turtle.step.unwrap_or(self.default_length)
     }
 
-    /// How bad a problem that only physics cares about is.
-    fn physics_severity(&self) -> Severity {
+    /// A problem that only physics cares about, as these options report it: an error, or
+    /// in a picture a warning that says it is an error for physics.
+    fn physics_problem(&self, message: String) -> (Severity, String) {
         if self.for_picture {
-            Severity::Warning
+            (
+                Severity::Warning,
+                format!("{message} (fine for a picture; an error for eval and evolve)"),
+            )
         } else {
-            Severity::Error
+            (Severity::Error, message)
         }
     }
 }
@@ -616,19 +620,19 @@ impl<'a> Builder<'a> {
             });
         }
         if self.pieces > 0 {
+            let (severity, message) = self.options.physics_problem(format!(
+                "the body is in {} pieces: 'f' moves the turtle without building and leaves a gap",
+                self.pieces + 1
+            ));
             self.creature.problems.push(Problem {
-                severity: self.options.physics_severity(),
-                message: format!(
-                    "the body is in {} pieces: 'f' moves the turtle without building and leaves \
-                     a gap (fine for a picture; a creature for physics is one piece)",
-                    self.pieces + 1
-                ),
+                severity,
+                message,
                 module: self.first_gap.take(),
                 t: self.t,
             });
         }
         self.creature.brain = self.brain.finish();
-        overlap::report(&mut self.creature, self.t, self.options.physics_severity());
+        overlap::report(&mut self.creature, self.t, self.options);
         self.creature
     }
 }

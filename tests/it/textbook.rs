@@ -382,18 +382,22 @@ fn f_parts_are_rigid_unless_a_joint_command_comes_before_them() {
 fn a_gap_left_by_f_is_a_warning_in_a_picture_and_an_error_for_physics() {
     let lsys = lsystem("axiom: F f F\n");
     let message = "the body is in 2 pieces: 'f' moves the turtle without building and leaves \
-                   a gap (fine for a picture; a creature for physics is one piece)";
+                   a gap";
     let picture = plant(&lsys, 200);
     assert_eq!(picture.parts.len(), 2);
     assert!(near(picture.parts[1].position, [2.5, 0.0, 0.0]));
     assert!(picture.joints.is_empty());
     assert_eq!(picture.problems.len(), 1, "{:?}", picture.problems);
     assert_eq!(picture.problems[0].severity, Severity::Warning);
-    assert_eq!(picture.problems[0].message, message);
+    assert_eq!(
+        picture.problems[0].message,
+        format!("{message} (fine for a picture; an error for eval and evolve)")
+    );
     assert_eq!(picture.problems[0].module.as_deref(), Some("f"));
     assert!(picture.is_valid());
     let physics = plant_for_physics(&lsys);
     assert_eq!(physics.problems[0].severity, Severity::Error);
+    assert_eq!(physics.problems[0].message, message);
     assert!(!physics.is_valid());
 }
 
@@ -407,7 +411,13 @@ fn thick_parts_that_overlap_are_a_warning_in_a_picture_and_an_error_for_physics(
         .iter()
         .map(|p| (p.severity, p.message.as_str()))
         .collect();
-    assert_eq!(shown, [(Severity::Warning, "parts 1 and 2 interpenetrate")]);
+    assert_eq!(
+        shown,
+        [(
+            Severity::Warning,
+            "parts 1 and 2 interpenetrate (fine for a picture; an error for eval and evolve)"
+        )]
+    );
     let physics = plant_for_physics(&lsys);
     assert_eq!(physics.problems[0].severity, Severity::Error);
     assert!(!physics.is_valid());
