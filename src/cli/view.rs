@@ -41,10 +41,10 @@ pub struct ViewArgs {
     browser: Option<PathBuf>,
     #[command(flatten)]
     development: DevelopmentArgs,
-    /// For an `.lsys` file: a creature with more parts than this is invalid (raise it for
-    /// plants of thousands of parts).
-    #[arg(long, default_value_t = ontogeny::develop::BuildOptions::default().max_parts)]
-    max_parts: usize,
+    /// For an `.lsys` file: a creature with more parts than this is invalid (default 200;
+    /// raise it for plants of thousands of parts).
+    #[arg(long)]
+    max_parts: Option<usize>,
     /// For an `.lsys` file: the seed of stochastic rules (default: the file's `seed:`, else 0).
     #[arg(long)]
     seed: Option<u64>,
@@ -52,6 +52,9 @@ pub struct ViewArgs {
 
 /// Serves the page (or renders it with `--snapshot`).
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    let max_parts = args
+        .max_parts
+        .unwrap_or(ontogeny::develop::BuildOptions::default().max_parts);
     let target = Target::classify(&args.path).map_err(|e| bad(e.to_string()))?;
     let options = derive_options(&args.development, args.seed, DEFAULT_MAX_MODULES);
     // A page that cannot be made at all is bad input; a grammar with an error is shown in the
@@ -72,7 +75,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
                     &options,
                     args.development.steps,
                     &ontogeny::develop::BuildOptions {
-                        max_parts: args.max_parts,
+                        max_parts,
                         for_picture: true,
                         ..Default::default()
                     },
@@ -116,6 +119,9 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     if args.seed.is_some() {
         growth.push("--seed");
     }
+    if args.max_parts.is_some() {
+        growth.push("--max-parts");
+    }
     let flags = PageFlags {
         growth,
         size: args.size.is_some(),
@@ -138,7 +144,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         developer,
     )
     .map_err(|e| bad(e.to_string()))?
-    .with_max_parts(args.max_parts);
+    .with_max_parts(max_parts);
     let mut query = Vec::new();
     if let Some(f) = args.frame {
         query.push(format!("frame={f}"));
