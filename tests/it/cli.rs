@@ -338,11 +338,15 @@ fn grow_reports_interpenetrating_parts_as_an_error_for_eval_and_evolve() {
         ),
         "{text}"
     );
-    // `eval` needs a valid creature: it is invalid there.
+    // `eval` needs a valid creature: it is refused there.
     let out = ontogeny(&["eval", path.to_str().unwrap(), "--task", "walker"]);
     let text = stdout(&out);
-    assert!(text.contains("(invalid)"), "{text}");
-    assert!(text.contains("parts 0 and 3 interpenetrate"), "{text}");
+    assert!(
+        text.contains(
+            "walker fitness -999999.000000 (self-intersecting)\n  parts 0 and 3 interpenetrate\n"
+        ),
+        "{text}"
+    );
 }
 
 #[test]

@@ -481,3 +481,42 @@ fn a_generation_the_run_lacks_is_not_found_on_every_page_that_asks_for_one() {
     let table = get_json(&viewer, "/generation.json?gen=0");
     assert_eq!(table["individuals"].as_array().unwrap().len(), 4);
 }
+
+#[test]
+fn max_parts_lets_the_page_hold_a_plant_of_thousands_of_parts() {
+    let frames = |viewer: &Viewer| -> Vec<(usize, bool)> {
+        get_json(viewer, "/data.json")["frames"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| {
+                let c = &f["creature"];
+                let errors = c["problems"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .any(|p| p["severity"] == "error");
+                (c["parts"].as_array().unwrap().len(), errors)
+            })
+            .collect()
+    };
+    let viewer = Viewer::start_with(&example("abop-1.24a.lsys"), &["--max-parts", "5000"]);
+    // 5^k parts at step k; overlaps are warnings in a picture, so no frame has an error.
+    let shown = frames(&viewer);
+    assert_eq!(
+        shown,
+        [
+            (1, false),
+            (5, false),
+            (25, false),
+            (125, false),
+            (625, false),
+            (3125, false)
+        ]
+    );
+    drop(viewer);
+    // Without it the page stops at the default limit, with an error.
+    let viewer = Viewer::start(&example("abop-1.24a.lsys"));
+    let last = *frames(&viewer).last().unwrap();
+    assert_eq!(last, (201, true));
+}
