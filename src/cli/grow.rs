@@ -108,8 +108,11 @@ pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
     let lsys = args.development.defines.load(&args.file)?;
     super::tell_findings(&lsys);
     let options = derive_options(&args.development, args.max_modules);
+    // A picture: overlapping parts and a body in pieces are warnings here, errors where
+    // physics needs the creature (`eval`, `evolve`).
     let build_options = BuildOptions {
         max_parts: args.max_parts,
+        for_picture: true,
         ..BuildOptions::default()
     };
     let steps = discrete_steps(&lsys, &options, args.development.steps, "growing")?;

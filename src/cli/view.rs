@@ -41,10 +41,17 @@ pub struct ViewArgs {
     browser: Option<PathBuf>,
     #[command(flatten)]
     development: DevelopmentArgs,
+    /// For an `.lsys` file: a creature with more parts than this is invalid (default 200;
+    /// raise it for plants of thousands of parts).
+    #[arg(long)]
+    max_parts: Option<usize>,
 }
 
 /// Serves the page (or renders it with `--snapshot`).
 pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
+    let max_parts = args
+        .max_parts
+        .unwrap_or(ontogeny::develop::BuildOptions::default().max_parts);
     let target = Target::classify(&args.path).map_err(|e| bad(e.to_string()))?;
     let options = derive_options(&args.development, DEFAULT_MAX_MODULES);
     // A page that cannot be made at all is bad input; a grammar with an error is shown in the
@@ -68,7 +75,11 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
                     &lsys,
                     &options,
                     args.development.steps,
-                    &ontogeny::develop::BuildOptions::default(),
+                    &ontogeny::develop::BuildOptions {
+                        max_parts,
+                        for_picture: true,
+                        ..Default::default()
+                    },
                 )
             }) {
                 Ok(grown) => frames = Some(grown.len()),
@@ -105,7 +116,10 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             developer = Some(developer_of?);
         }
     }
-    let growth = args.development.given();
+    let mut growth = args.development.given();
+    if args.max_parts.is_some() {
+        growth.push("--max-parts");
+    }
     let flags = PageFlags {
         growth,
         size: args.size.is_some(),
@@ -127,7 +141,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         args.development.steps,
         developer,
     )
-    .map_err(|e| bad(e.to_string()))?;
+    .map_err(|e| bad(e.to_string()))?
+    .with_max_parts(max_parts);
     let mut query = Vec::new();
     if let Some(f) = args.frame {
         query.push(format!("frame={f}"));

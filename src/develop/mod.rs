@@ -3,7 +3,10 @@
 //! edge-encoding builder that wires the brain — into a [`Creature`].
 //!
 //! The turtle carries a frame: its heading is its local x axis, its up its local y, and its
-//! right-hand side its local z. A turn of 1 is 90°.
+//! right-hand side its local z. It starts at the origin heading along +x, lying on the
+//! ground (its up is the world's up, +y); a file's `heading: up` starts it heading up (+y),
+//! its up along +z (towards the pictures' camera), its right along +x. Ontogeny's turns (`left(n)`, ...) are quarter turns; the textbook's
+//! (`+(δ)`, ...) are in degrees, by default the file's `angle:`.
 
 mod brain;
 mod command;
@@ -13,7 +16,8 @@ use nalgebra::{Unit, UnitQuaternion, Vector3};
 
 use crate::creature::{Creature, Joint, JointKind, Part, Problem, Severity};
 use crate::environment::Environment;
-use crate::lsystem::{ModuleString, SymbolTable, format_number};
+use crate::lang::ast::Heading;
+use crate::lsystem::{ModuleString, SymbolTable, TurtleHeaders, format_number};
 pub use command::{Action, command_of};
 pub use shortcut::{LastFrame, Shortcut, grow_last};
 
@@ -31,6 +35,12 @@ pub const MIN_PART_LENGTH: f64 = 1e-6;
 /// brain commands) cannot run for years. `{ { ... }(100) }(100)` over 100 modules is this.
 pub const MAX_REPEATED_MODULES: usize = 1_000_000;
 
+/// What a bare `!` multiplies the width and thickness of the next parts by.
+pub const DIAMETER_FACTOR: f64 = 0.7;
+
+/// The textbook turtle's default angle (degrees) when a file has no `angle:`.
+pub const DEFAULT_ANGLE: f64 = 90.0;
+
 /// Builder settings, and the token that stops a growth.
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -44,6 +54,12 @@ pub struct BuildOptions {
     pub default_length: f64,
     /// Most repetitions of one `{ ... }(n)` block.
     pub max_repeat: usize,
+    /// The textbook turtle's settings (a file's `angle:`, `step:`, `heading:`; see
+    /// [`BuildOptions::with_headers`]).
+    pub turtle: TurtleHeaders,
+    /// Built for a picture, not for physics: parts that overlap and a body in several
+    /// pieces (after `f`) are warnings, not errors.
+    pub for_picture: bool,
     /// Set, it stops a growth before its next frame ([`for_each_growth_frame`]) with a
     /// diagnostic of kind [`Interrupted`](crate::lang::DiagnosticKind::Interrupted).
     pub cancel: crate::cancel::Cancel,
@@ -57,7 +73,42 @@ impl Default for BuildOptions {
             default_thickness: 0.25,
             default_length: 1.0,
             max_repeat: 100,
+            turtle: TurtleHeaders::default(),
+            for_picture: false,
             cancel: crate::cancel::Cancel::default(),
+        }
+    }
+}
+
+impl BuildOptions {
+    /// These options with the textbook turtle's settings of `lsys`'s file.
+    pub fn with_headers(&self, lsys: &crate::lsystem::LSystem) -> BuildOptions {
+        BuildOptions {
+            turtle: lsys.turtle(),
+            ..self.clone()
+        }
+    }
+
+    /// The textbook turns' default angle, in degrees.
+    fn angle(&self) -> f64 {
+        self.turtle.angle.unwrap_or(DEFAULT_ANGLE)
+    }
+
+    /// The textbook `F` and `f`'s default length.
+    fn step(&self) -> f64 {
+        self.turtle.step.unwrap_or(self.default_length)
+    }
+
+    /// A problem that only physics cares about, as these options report it: an error, or
+    /// in a picture a warning that says it is an error for physics.
+    fn physics_problem(&self, message: String) -> (Severity, String) {
+        if self.for_picture {
+            (
+                Severity::Warning,
+                format!("{message} (fine for a picture; an error for eval and evolve)"),
+            )
+        } else {
+            (Severity::Error, message)
         }
     }
 }
@@ -81,6 +132,8 @@ struct TurtleState {
     width: f64,
     thickness: f64,
     link: brain::CurrentLink,
+    /// `f` moved the turtle: the next part starts a new piece, joined to nothing.
+    gap: bool,
 }
 
 /// Builds a creature from a module string.
@@ -110,6 +163,10 @@ pub struct Builder<'a> {
     /// once (the rest of the string is not interpreted, so the work stays bounded by the
     /// limit however long the string is).
     stopped: bool,
+    /// The pieces the body is in beyond the first (parts after an `f`), and the first `f`
+    /// that made one.
+    pieces: usize,
+    first_gap: Option<String>,
 }
 
 /// Builds the creature a module string describes. `t` is its developmental time (for
@@ -151,12 +208,21 @@ impl<'a> Builder<'a> {
             joint_of: Vec::new(),
             state: TurtleState {
                 position: Vector3::zeros(),
-                orientation: UnitQuaternion::identity(),
+                orientation: match options.turtle.heading {
+                    Heading::Ground => UnitQuaternion::identity(),
+                    // Heading +y, up +z, right +x: a plane plant faces the pictures' camera.
+                    Heading::Up => UnitQuaternion::from_basis_unchecked(&[
+                        Vector3::y(),
+                        Vector3::z(),
+                        Vector3::x(),
+                    ]),
+                },
                 part: None,
                 pending: None,
                 width: options.default_width,
                 thickness: options.default_thickness,
                 link: brain.initial_link(),
+                gap: false,
             },
             stack: Vec::new(),
             brain,
@@ -165,6 +231,8 @@ impl<'a> Builder<'a> {
             interpreted: 0,
             most_interpreted: usize::MAX,
             stopped: false,
+            pieces: 0,
+            first_gap: None,
         }
     }
 
@@ -268,13 +336,30 @@ impl<'a> Builder<'a> {
                         "']' with nothing to pop: ignored".to_string(),
                     ),
                 },
-                Action::Forward { maturing } => {
-                    let length = arg(self.options.default_length);
+                Action::Forward { maturing, textbook } => {
+                    let length = if textbook {
+                        arg(self.options.step())
+                    } else {
+                        arg(self.options.default_length)
+                    };
                     self.forward(string, i, length, maturing);
                 }
+                Action::Move => self.move_without_building(string, i, arg(self.options.step())),
                 Action::Backward => self.backward(string, i),
-                Action::Turn { axis, sign } => {
-                    let angle = sign * arg(1.0) * std::f64::consts::FRAC_PI_2;
+                Action::TurnAround => {
+                    self.state.orientation *=
+                        UnitQuaternion::from_axis_angle(&Vector3::y_axis(), std::f64::consts::PI);
+                }
+                Action::Turn {
+                    axis,
+                    sign,
+                    degrees,
+                } => {
+                    let angle = if degrees {
+                        sign * arg(self.options.angle()).to_radians()
+                    } else {
+                        sign * arg(1.0) * std::f64::consts::FRAC_PI_2
+                    };
                     if !angle.is_finite() {
                         self.problem(
                             Severity::Warning,
@@ -313,6 +398,22 @@ impl<'a> Builder<'a> {
                         self.state.thickness = v;
                     }
                 }
+                Action::Diameter => match params.first() {
+                    None => {
+                        self.state.width *= DIAMETER_FACTOR;
+                        self.state.thickness *= DIAMETER_FACTOR;
+                    }
+                    Some(&w) if w.is_finite() && w > 0.0 => {
+                        self.state.width = w;
+                        self.state.thickness = w;
+                    }
+                    Some(_) => self.problem(
+                        Severity::Warning,
+                        string,
+                        i,
+                        "'!' needs a positive width: ignored".into(),
+                    ),
+                },
                 Action::Brain(op) => {
                     let joint = self.state.part.and_then(|p| self.joint_of[p]);
                     let joint_info = joint.map(|j| (j, self.creature.joints[j].kind.dof()));
@@ -364,11 +465,15 @@ impl<'a> Builder<'a> {
         let start = self.state.position;
         let size = Vector3::new(length, self.state.thickness, self.state.width);
         let centre = start + heading * (length / 2.0);
-        let parent = self.state.part.or(if self.creature.parts.is_empty() {
+        let parent = if self.state.gap {
             None
         } else {
-            Some(0)
-        });
+            self.state.part.or(if self.creature.parts.is_empty() {
+                None
+            } else {
+                Some(0)
+            })
+        };
 
         // An identical part already there: move onto it (Hornby).
         if let Some(existing) = (0..self.creature.parts.len()).find(|&k| {
@@ -444,16 +549,46 @@ impl<'a> Builder<'a> {
                 strength: 1.0,
                 growing: growing || maturing,
             });
-        } else if self.state.pending.take().is_some() {
+        } else {
+            if index > 0 {
+                self.pieces += 1;
+            }
+            if self.state.pending.take().is_some() {
+                self.problem(
+                    Severity::Warning,
+                    string,
+                    i,
+                    "the first part of a piece has nothing to be jointed to: its joint command \
+                     is ignored"
+                        .into(),
+                );
+            }
+        }
+        self.state.gap = false;
+        self.state.part = Some(index);
+        self.state.position = start + heading * length;
+    }
+
+    /// `f(l)`: moves the turtle `length` along its heading without building; the next part
+    /// starts a new piece of the body.
+    fn move_without_building(&mut self, string: &ModuleString, i: usize, length: f64) {
+        if !length.is_finite() {
             self.problem(
                 Severity::Warning,
                 string,
                 i,
-                "the first part has nothing to be jointed to: its joint command is ignored".into(),
+                "f needs a finite length: ignored".into(),
             );
+            return;
         }
-        self.state.part = Some(index);
-        self.state.position = start + heading * length;
+        let heading = self.state.orientation * Vector3::x();
+        self.state.position += heading * length;
+        self.state.gap = true;
+        if self.first_gap.is_none() {
+            let mut one = ModuleString::new();
+            one.push(string.sym(i), string.params(i));
+            self.first_gap = Some(one.display(self.symbols));
+        }
     }
 
     fn backward(&mut self, string: &ModuleString, i: usize) {
@@ -484,8 +619,20 @@ impl<'a> Builder<'a> {
                 t: self.t,
             });
         }
+        if self.pieces > 0 {
+            let (severity, message) = self.options.physics_problem(format!(
+                "the body is in {} pieces: 'f' moves the turtle without building and leaves a gap",
+                self.pieces + 1
+            ));
+            self.creature.problems.push(Problem {
+                severity,
+                message,
+                module: self.first_gap.take(),
+                t: self.t,
+            });
+        }
         self.creature.brain = self.brain.finish();
-        overlap::report(&mut self.creature, self.t);
+        overlap::report(&mut self.creature, self.t, self.options);
         self.creature
     }
 }
@@ -520,7 +667,7 @@ pub fn creature_from_commands(commands: &str) -> Result<Creature, crate::lang::D
         lsys.symbols(),
         &Environment::default(),
         None,
-        &BuildOptions::default(),
+        &BuildOptions::default().with_headers(&lsys),
     ))
 }
 
@@ -584,6 +731,7 @@ pub fn for_each_growth_frame<E: From<crate::lang::Diagnostic>>(
     progress: &mut dyn FnMut(f64),
     mut visit: impl FnMut(GrowthFrame) -> Result<(), E>,
 ) -> Result<(), E> {
+    let build_options = &build_options.with_headers(lsys);
     lsys.for_each_frame(options, steps, |frame| {
         build_options
             .cancel

@@ -69,6 +69,7 @@ pub fn grow_last(
 ) -> Result<LastFrame, Diagnostic> {
     let plan = lsys.frame_plan(options, steps)?;
     let (last_step, last_t) = (plan.last_step(), plan.time(plan.last_step()));
+    let build_options = &build_options.with_headers(lsys);
     let mut watch = PartWatch::new(lsys, build_options);
     let mut last = None;
     lsys.for_each_frame_until(options, steps, |frame| {

@@ -169,6 +169,17 @@ pub enum Timing {
     Iterative,
 }
 
+/// How the turtle starts (`heading:`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Heading {
+    /// Along +x, lying on the ground, its up along +y (Ontogeny's creatures).
+    #[default]
+    Ground,
+    /// Heading up (+y), as the textbook's plants grow; its up along +z (towards the camera of
+    /// pictures, so that a plant drawn in a plane faces it), its left along −x.
+    Up,
+}
+
 /// A production or interpretation rule, its modules of type `Pattern` (contexts) and `Call`
 /// (successor): [`Rule`] once the modules' words are split, the parser's raw words before.
 #[derive(Clone, Debug, PartialEq)]
@@ -228,6 +239,12 @@ pub struct LsysFile {
     pub timing: Option<(Timing, Span)>,
     /// `environment: v0 v1 ...`: the chemical array's initial values.
     pub environment: Option<(Vec<f64>, Span)>,
+    /// `angle: expr`: the textbook turns' default angle, in degrees.
+    pub angle: Option<Expr>,
+    /// `step: expr`: the textbook `F` and `f`'s default length.
+    pub step: Option<Expr>,
+    /// `heading: up | ground`
+    pub heading: Option<(Heading, Span)>,
     /// `ignore: ...` (all such lines together)
     pub ignore: Vec<(String, Span)>,
     /// Rules in file order, productions and interpretation rules together.

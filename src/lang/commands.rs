@@ -2,8 +2,10 @@
 //! reference page `docs/reference/commands.md`), from which the parser's built-in names, the builder's
 //! reading of a module and the genomes' vocabularies all derive.
 //!
-//! Each command also has a maturing twin prefixed `m` (`mforward`, `mrevolute1`, ...) that the
-//! language knows; [`CommandInfo::grows`] says whether the twin grows (Matos & Arita).
+//! Each of Ontogeny's own commands also has a maturing twin prefixed `m` (`mforward`,
+//! `mrevolute1`, ...) that the language knows; [`CommandInfo::grows`] says whether the twin
+//! grows (Matos & Arita). The textbook turtle's symbols ([`CommandKind::Textbook`]: `F`, `f`,
+//! `+`, ...) come last and have no twin.
 
 use serde::{Deserialize, Serialize};
 
@@ -46,6 +48,36 @@ pub enum Command {
     Target,
     Secrete,
     Release,
+    /// `F(l)`: the textbook's part along the heading.
+    #[serde(rename = "F")]
+    Segment,
+    /// `f(l)`: the textbook's move without building.
+    #[serde(rename = "f")]
+    Move,
+    /// `+(δ)`
+    #[serde(rename = "+")]
+    TurnLeft,
+    /// `-(δ)`
+    #[serde(rename = "-")]
+    TurnRight,
+    /// `&(δ)`
+    #[serde(rename = "&")]
+    PitchDown,
+    /// `^(δ)`
+    #[serde(rename = "^")]
+    PitchUp,
+    /// `\(δ)`
+    #[serde(rename = "\\")]
+    RollLeft,
+    /// `/(δ)`
+    #[serde(rename = "/")]
+    RollRight,
+    /// `|`
+    #[serde(rename = "|")]
+    TurnAround,
+    /// `!(w)`
+    #[serde(rename = "!")]
+    Diameter,
 }
 
 /// What a command's argument means.
@@ -67,6 +99,8 @@ pub enum Argument {
     Function,
     /// A neuron's bias.
     Bias,
+    /// A turn in degrees (the textbook's; default the file's `angle:`).
+    Degrees,
 }
 
 impl Argument {
@@ -81,6 +115,7 @@ impl Argument {
             Argument::Index => "an index",
             Argument::Function => "a transfer function number",
             Argument::Bias => "a neuron's bias",
+            Argument::Degrees => "a turn in degrees",
         }
     }
 }
@@ -98,6 +133,10 @@ pub enum CommandKind {
     Environment,
     /// The task (`target`, `release`).
     Task,
+    /// The textbook turtle's symbols (*The Algorithmic Beauty of Plants*, chapter 1): `F`,
+    /// `f`, `+`, `-`, `&`, `^`, `\`, `/`, `|`, `!`. Genomes do not write them and they have
+    /// no maturing twin.
+    Textbook,
 }
 
 /// One row of the table.
@@ -136,8 +175,8 @@ use Argument as A;
 use CommandKind as K;
 
 /// Every command, in the order of [`Command`]'s variants: the building commands genomes
-/// write first, the environment and task commands last.
-pub const COMMANDS: [CommandInfo; 34] = [
+/// write first, then the environment and task commands, and the textbook's symbols last.
+pub const COMMANDS: [CommandInfo; 44] = [
     row(Command::Forward, "forward", A::Length, K::Body, true),
     row(Command::Backward, "backward", A::None, K::Body, false),
     row(Command::Left, "left", A::Turn, K::Body, true),
@@ -178,6 +217,16 @@ pub const COMMANDS: [CommandInfo; 34] = [
     row(Command::Target, "target", A::None, K::Task, false),
     row(Command::Secrete, "secrete", A::Index, K::Environment, false),
     row(Command::Release, "release", A::None, K::Task, false),
+    row(Command::Segment, "F", A::Length, K::Textbook, false),
+    row(Command::Move, "f", A::Length, K::Textbook, false),
+    row(Command::TurnLeft, "+", A::Degrees, K::Textbook, false),
+    row(Command::TurnRight, "-", A::Degrees, K::Textbook, false),
+    row(Command::PitchDown, "&", A::Degrees, K::Textbook, false),
+    row(Command::PitchUp, "^", A::Degrees, K::Textbook, false),
+    row(Command::RollLeft, "\\", A::Degrees, K::Textbook, false),
+    row(Command::RollRight, "/", A::Degrees, K::Textbook, false),
+    row(Command::TurnAround, "|", A::None, K::Textbook, false),
+    row(Command::Diameter, "!", A::Size, K::Textbook, false),
 ];
 
 /// How many of [`COMMANDS`], from the first, build the creature (body, joints, brain).
@@ -186,7 +235,7 @@ const BUILDING_COUNT: usize = {
     while n < COMMANDS.len()
         && !matches!(
             COMMANDS[n].kind,
-            CommandKind::Environment | CommandKind::Task
+            CommandKind::Environment | CommandKind::Task | CommandKind::Textbook
         )
     {
         n += 1;
@@ -267,6 +316,17 @@ impl Command {
         self.info().name
     }
 
+    /// Whether it is one of the textbook turtle's symbols ([`CommandKind::Textbook`]).
+    pub fn is_textbook(self) -> bool {
+        self.kind() == CommandKind::Textbook
+    }
+
+    /// Whether it has a maturing twin prefixed `m` that the language knows (every command
+    /// but the textbook's symbols).
+    pub fn has_maturing_twin(self) -> bool {
+        !self.is_textbook()
+    }
+
     /// The command a name stands for (not its maturing twin).
     pub fn from_name(name: &str) -> Option<Command> {
         COMMANDS.iter().find(|c| c.name == name).map(|c| c.command)
@@ -315,5 +375,10 @@ mod tests {
         assert_eq!(Command::from_name("mforward"), None);
         assert_eq!(Command::building_from_name("chem"), None);
         assert_eq!(Command::building_from_name("angle"), Some(Command::Angle));
+        assert_eq!(Command::from_name("F"), Some(Command::Segment));
+        assert_eq!(Command::from_name("\\"), Some(Command::RollLeft));
+        assert_eq!(Command::building_from_name("F"), None);
+        assert!(!Command::TurnAround.has_argument());
+        assert!(Command::TurnLeft.has_argument());
     }
 }

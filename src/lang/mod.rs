@@ -30,6 +30,7 @@ pub mod file_kind;
 mod parser;
 pub mod source;
 pub mod suggest;
+pub mod textbook;
 
 use std::collections::HashSet;
 
@@ -40,9 +41,9 @@ pub use source::{Diagnostic, DiagnosticKind, Location, Source, Span};
 use ast::{Expr, ModuleCall, PatternModule, Rule, SplitWord};
 use parser::RawModule;
 
-/// The builder's commands (Hornby & Pollack; Matos & Arita), known names for word splitting:
-/// the names of [`commands::COMMANDS`]. Each also has a maturing twin prefixed `m`
-/// (`mforward`, `mrevolute1`, ...).
+/// The builder's commands (Hornby & Pollack; Matos & Arita; the textbook turtle's symbols),
+/// known names for word splitting: the names of [`commands::COMMANDS`]. Each but the
+/// textbook's symbols also has a maturing twin prefixed `m` (`mforward`, `mrevolute1`, ...).
 pub const BUILTIN_COMMANDS: &[&str] = &commands::NAMES;
 
 /// Whether `name` is a built-in command or its maturing twin.
@@ -50,7 +51,8 @@ pub fn is_builtin_command(name: &str) -> bool {
     BUILTIN_COMMANDS.contains(&name)
         || name
             .strip_prefix('m')
-            .is_some_and(|rest| BUILTIN_COMMANDS.contains(&rest))
+            .and_then(commands::Command::from_name)
+            .is_some_and(commands::Command::has_maturing_twin)
 }
 
 /// How many parameters the built-in command (or maturing twin) `name` takes, and what the

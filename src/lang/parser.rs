@@ -7,8 +7,8 @@ use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 
 use super::ast::{
-    BinaryOp, Define, Derivative, Expr, LsysFile, ModuleCall, PatternModule, RuleOf, Section,
-    Timing, UnaryOp,
+    BinaryOp, Define, Derivative, Expr, Heading, LsysFile, ModuleCall, PatternModule, RuleOf,
+    Section, Timing, UnaryOp,
 };
 use super::source::{Diagnostic, DiagnosticKind, Source, Span};
 
@@ -101,6 +101,10 @@ fn human_rule_name(grammar_rule: &Rule) -> String {
         Rule::timing_stmt => "'timing: exact' or 'timing: iterative'",
         Rule::timing_mode => "'exact' or 'iterative'",
         Rule::environment_stmt => "'environment:' and numbers",
+        Rule::angle_stmt => "'angle: degrees'",
+        Rule::step_stmt => "'step: length'",
+        Rule::heading_stmt => "'heading: up' or 'heading: ground'",
+        Rule::heading_value => "'up' or 'ground'",
         Rule::signed_number => "a number",
         Rule::solve => "'solve' and ODEs",
         Rule::kw_solve => "'solve'",
@@ -369,7 +373,7 @@ fn found_token(text: &str, at: usize) -> String {
 }
 
 /// The headers a line may start with, each followed by a colon.
-const HEADERS: [(&str, Rule); 8] = [
+const HEADERS: [(&str, Rule); 11] = [
     ("axiom", Rule::axiom_stmt),
     ("derivation length", Rule::length_stmt),
     ("seed", Rule::seed_stmt),
@@ -378,6 +382,9 @@ const HEADERS: [(&str, Rule); 8] = [
     ("dt", Rule::dt_stmt),
     ("timing", Rule::timing_stmt),
     ("environment", Rule::environment_stmt),
+    ("angle", Rule::angle_stmt),
+    ("step", Rule::step_stmt),
+    ("heading", Rule::heading_stmt),
 ];
 
 /// "a", "a or b", "a, b, or c".
@@ -467,6 +474,32 @@ impl Builder<'_> {
                     return Err(self.twice(what, span, first));
                 }
                 *slot = Some(value);
+            }
+            Rule::angle_stmt | Rule::step_stmt => {
+                let is_angle = pair.as_rule() == Rule::angle_stmt;
+                let value = self.expr(pair.into_inner().next().expect("grammar: value"), 0)?;
+                let (slot, what) = if is_angle {
+                    (&mut self.raw.file.angle, "angle")
+                } else {
+                    (&mut self.raw.file.step, "step")
+                };
+                if let Some(first) = slot {
+                    let first = first.span();
+                    return Err(self.twice(what, span, first));
+                }
+                *slot = Some(value);
+            }
+            Rule::heading_stmt => {
+                if let Some((_, first)) = self.raw.file.heading {
+                    return Err(self.twice("heading", span, first));
+                }
+                let value = pair.into_inner().next().expect("grammar: heading value");
+                let heading = if value.as_str() == "up" {
+                    Heading::Up
+                } else {
+                    Heading::Ground
+                };
+                self.raw.file.heading = Some((heading, span));
             }
             Rule::timing_stmt => {
                 if let Some((_, first)) = self.raw.file.timing {

@@ -393,9 +393,14 @@ fn unbalanced_brackets(system: &LSystem, findings: &mut Findings) {
     }
 }
 
-/// Words the parser read as several modules.
+/// Words the parser read as several modules, but for the textbook's one-letter notation: a
+/// word of one-letter names that are all known (`FF`, `FX` with a rule for `X`).
 fn split_words(system: &LSystem, findings: &mut Findings) {
     for word in &system.file.split_words {
+        // The classic one-letter notation (`FF`, or `FX` where `X` has a rule) says nothing.
+        if word.all_known() && word.pieces.iter().all(|p| p.chars().count() == 1) {
+            continue;
+        }
         let kind = match word.all_known() {
             true => FindingKind::SplitWord,
             false => FindingKind::UnknownWord,

@@ -235,6 +235,28 @@ pub(crate) fn compile(
         None => None,
     };
     let timing = file.timing.map(|(t, _)| t).unwrap_or(Timing::Exact);
+    let mut turtle = super::TurtleHeaders {
+        heading: file.heading.map(|(h, _)| h).unwrap_or_default(),
+        ..Default::default()
+    };
+    if let Some(e) = &file.angle {
+        let v = c.constant_expr(e, &mut settings_rng)?;
+        if !v.is_finite() {
+            return Err(c.error(
+                e.span(),
+                format!("angle must be a finite number of degrees, not {v}"),
+            ));
+        }
+        turtle.angle = Some(v);
+    }
+    if let Some(e) = &file.step {
+        let v = c.constant_expr(e, &mut settings_rng)?;
+        if !(v.is_finite() && v > 0.0) {
+            return Err(c.error(e.span(), format!("step must be more than 0, not {v}")));
+        }
+        turtle.step = Some(v);
+    }
+    crate::lang::textbook::check_supported(&file, &source)?;
     c.environment_len = environment.len();
     c.check_queries(axiom_calls(&file))?;
 
@@ -281,6 +303,7 @@ pub(crate) fn compile(
         time,
         dt,
         timing,
+        turtle,
         file,
         source,
     })

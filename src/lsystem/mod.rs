@@ -65,6 +65,18 @@ pub struct LSystem {
     time: Option<f64>,
     dt: Option<f64>,
     timing: Timing,
+    turtle: TurtleHeaders,
+}
+
+/// The file's headers for the textbook turtle (`angle:`, `step:`, `heading:`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TurtleHeaders {
+    /// `angle:`: the default angle of `+ - & ^ \ /`, in degrees.
+    pub angle: Option<f64>,
+    /// `step:`: the default length of `F` and `f`.
+    pub step: Option<f64>,
+    /// `heading:`: how the turtle starts.
+    pub heading: crate::lang::ast::Heading,
 }
 
 /// Settings of one derivation. `None` fields fall back to the file's headers.
@@ -180,6 +192,11 @@ impl LSystem {
     /// The file's `derivation length:`, if given.
     pub fn derivation_length(&self) -> Option<u64> {
         self.derivation_length
+    }
+
+    /// The file's headers for the textbook turtle.
+    pub fn turtle(&self) -> TurtleHeaders {
+        self.turtle
     }
 
     /// Named constants with their values.

@@ -63,7 +63,13 @@ pub(super) fn draw_body(
     }
     draw_shadows(pixmap, &camera, shift, ground, creature);
     draw_parts(pixmap, &camera, shift, creature);
-    let pairs = if checks == Checks::On {
+    // Parts that the builder found overlapping and reported as a warning (a picture of a
+    // plant) are not marked again.
+    let overlaps_warned = creature
+        .problems
+        .iter()
+        .any(|p| p.severity == Severity::Warning && p.message.contains("interpenetrate"));
+    let pairs = if checks == Checks::On && !overlaps_warned {
         creature.interpenetrating_pairs()
     } else {
         Vec::new()

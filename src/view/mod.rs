@@ -205,11 +205,18 @@ fn finding_json(d: &Diagnostic) -> Value {
 /// "lsys", "file", "error": {...}}` when the file does not parse or derive (the page shows it
 /// with its line and column). `findings` are the grammar's ([`LSystem::findings`], shaped as
 /// [`diagnostic_json`], the text headed `warning:`); `problems` are the builder's problems of
-/// every frame, each once, with the number of frames it came up in.
-pub fn lsys_data(path: &Path, options: &DeriveOptions, steps: Option<u64>) -> Value {
+/// every frame, each once, with the number of frames it came up in. A creature of more than
+/// `max_parts` parts is invalid; the page is a picture, so parts that overlap and a body in
+/// pieces are warnings.
+pub fn lsys_data(
+    path: &Path,
+    options: &DeriveOptions,
+    steps: Option<u64>,
+    max_parts: usize,
+) -> Value {
     let file = path.display().to_string();
     let grown = LSystem::from_path(path).and_then(|lsys| {
-        let (frames, _) = grow_with_strings(&lsys, options, steps)?;
+        let (frames, _) = grow_with_strings(&lsys, options, steps, max_parts)?;
         Ok((lsys.findings(), frames))
     });
     match grown {
@@ -275,10 +282,11 @@ pub fn lsys_data_with(
     path: &Path,
     options: &DeriveOptions,
     steps: Option<u64>,
+    max_parts: usize,
     defines: &[DefineOverride],
 ) -> Result<Value, ViewError> {
     let Ok(plain) = LSystem::from_path(path) else {
-        return Ok(lsys_data(path, options, steps));
+        return Ok(lsys_data(path, options, steps, max_parts));
     };
     if let Some(unknown) = defines
         .iter()
@@ -293,7 +301,7 @@ pub fn lsys_data_with(
     }
     let file = path.display().to_string();
     let grown = LSystem::from_path_with(path, defines).and_then(|lsys| {
-        let (frames, values) = grow_with_strings(&lsys, options, steps)?;
+        let (frames, values) = grow_with_strings(&lsys, options, steps, max_parts)?;
         Ok((lsys.findings(), frames, values))
     });
     let (mut data, grown) = match grown {
@@ -397,10 +405,16 @@ fn grow_with_strings(
     lsys: &LSystem,
     options: &DeriveOptions,
     steps: Option<u64>,
+    max_parts: usize,
 ) -> Result<(Vec<Value>, DefineValues), Diagnostic> {
     // The page holds every frame: refused at once when there are too many.
     crate::develop::kept_frame_plan(lsys, options, steps)?;
-    let build_options = BuildOptions::default();
+    let build_options = BuildOptions {
+        max_parts,
+        for_picture: true,
+        ..BuildOptions::default()
+    }
+    .with_headers(lsys);
     let mut frames = Vec::new();
     lsys.for_each_frame(options, steps, |frame| {
         let shown = lsys.interpret(frame.string, frame.t, options)?;
@@ -661,7 +675,7 @@ mod tests {
             "axiom: A\nderivation length: 2\nA --> forward(1) B\nB --> forward(0.5)\n",
         )
         .unwrap();
-        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        let data = lsys_data(&file, &DeriveOptions::default(), None, 200);
         let frames = data["frames"].as_array().unwrap();
         let strings: Vec<&str> = frames
             .iter()
@@ -676,7 +690,7 @@ mod tests {
             .collect();
         assert_eq!(lengths, [1.0, 0.5]);
         // --steps overrides the file's derivation length.
-        let one = lsys_data(&file, &DeriveOptions::default(), Some(1));
+        let one = lsys_data(&file, &DeriveOptions::default(), Some(1), 200);
         assert_eq!(one["frames"].as_array().unwrap().len(), 2);
     }
 
@@ -686,7 +700,7 @@ mod tests {
         let dir = scratch.path().to_path_buf();
         let file = dir.join("bad.lsys");
         std::fs::write(&file, "axiom: A\nA --> forward(1\n").unwrap();
-        let data = lsys_data(&file, &DeriveOptions::default(), None);
+        let data = lsys_data(&file, &DeriveOptions::default(), None, 200);
         assert!(data.get("frames").is_none());
         let error = &data["error"];
         assert_eq!(error["location"]["line"], 2);

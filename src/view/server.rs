@@ -75,6 +75,8 @@ pub struct Server {
     target: Target,
     options: DeriveOptions,
     steps: Option<u64>,
+    /// The most parts an `.lsys` target's creature may have (`view --max-parts`).
+    max_parts: usize,
     developer: Option<Developer>,
     /// How many walks are being evaluated now.
     walks: AtomicUsize,
@@ -140,9 +142,17 @@ impl Server {
             target,
             options,
             steps,
+            max_parts: crate::develop::BuildOptions::default().max_parts,
             developer,
             walks: AtomicUsize::new(0),
         })
+    }
+
+    /// The server with the most parts an `.lsys` target's creature may have (default
+    /// [`BuildOptions::default`](crate::develop::BuildOptions::default)'s).
+    pub fn with_max_parts(mut self, max_parts: usize) -> Server {
+        self.max_parts = max_parts;
+        self
     }
 
     /// The address it listens on.
@@ -285,7 +295,7 @@ impl Server {
         match self.target.kind {
             Kind::Lsys => {
                 let defines = super::defines_of_query(query)?;
-                super::lsys_data_with(path, &self.options, self.steps, &defines)
+                super::lsys_data_with(path, &self.options, self.steps, self.max_parts, &defines)
             }
             Kind::Growth => super::growth_data(path),
             Kind::Recording => super::recording_data(path),

@@ -322,17 +322,29 @@ fn grow_writes_the_creature_its_frames_and_pictures() {
 }
 
 #[test]
-fn grow_reports_an_invalid_creature() {
+fn grow_reports_interpenetrating_parts_as_an_error_for_eval_and_evolve() {
     let path = temp_file(
         "crossing.lsys",
         "axiom: forward(1) left(1) forward(1) left(1) forward(1) left(1) forward(2)\n",
     );
+    // `grow` makes a picture: the overlap is a warning that says what physics makes of it.
     let out = ontogeny(&["grow", path.to_str().unwrap()]);
     assert!(out.status.success());
     let text = stdout(&out);
-    assert!(text.contains("valid: no"), "{text}");
     assert!(
-        text.contains("error: parts 0 and 3 interpenetrate"),
+        text.contains(
+            "warning: parts 0 and 3 interpenetrate (fine for a picture; an error for eval and \
+             evolve)"
+        ),
+        "{text}"
+    );
+    // `eval` needs a valid creature: it is refused there.
+    let out = ontogeny(&["eval", path.to_str().unwrap(), "--task", "walker"]);
+    let text = stdout(&out);
+    assert!(
+        text.contains(
+            "walker fitness -999999.000000 (self-intersecting)\n  parts 0 and 3 interpenetrate\n"
+        ),
         "{text}"
     );
 }

@@ -529,13 +529,15 @@ fn the_commands_reference_lists_the_command_table() {
     use ontogeny::lang::commands::Command;
     let page = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/reference/commands.md");
     let text = std::fs::read_to_string(page).unwrap();
-    // The rows of the page's table: `| `name` | argument | meaning |`.
+    // The rows of the page's table: `| `name` | argument | meaning |` (a `|` in a cell is
+    // written `\|`, as tables need).
     let rows: Vec<(String, String)> = text
         .lines()
         .filter_map(|line| {
+            let line = line.replace("\\|", "\u{1}");
             let cells: Vec<&str> = line.split('|').map(str::trim).collect();
             let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
-            Some((name.to_string(), cells.get(2)?.to_string()))
+            Some((name.replace('\u{1}', "|"), cells.get(2)?.to_string()))
         })
         .collect();
     let listed: Vec<&str> = rows.iter().map(|(name, _)| name.as_str()).collect();

@@ -39,5 +39,6 @@ mod outputs;
 mod render;
 mod rooms;
 mod store;
+mod textbook;
 mod util;
 mod view;

@@ -31,10 +31,16 @@ struct Viewer {
 
 impl Viewer {
     fn start(path: &Path) -> Viewer {
+        Viewer::start_with(path, &[])
+    }
+
+    /// A viewer of `path` with more flags.
+    fn start_with(path: &Path, flags: &[&str]) -> Viewer {
         let mut child = ontogeny_command()
             .arg("view")
             .arg(path)
             .args(["--port", "0"])
+            .args(flags)
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
             .spawn()

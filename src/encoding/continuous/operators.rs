@@ -48,6 +48,8 @@ pub(super) fn range_of(kind: Argument, limits: &ContinuousLimits) -> (f64, f64) 
         Argument::Length => (limits.min_threshold, limits.max_threshold),
         Argument::Size => (0.1, 1.0),
         Argument::Turn => (-1.0, 1.0),
+        // The textbook's turns, which genomes do not write.
+        Argument::Degrees => (-90.0, 90.0),
         Argument::Weight | Argument::Bias => (-2.0, 2.0),
         Argument::Index => (0.0, 3.0),
         Argument::Function => (0.0, 2.0),

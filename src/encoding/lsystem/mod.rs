@@ -138,6 +138,8 @@ fn range(argument: Argument) -> (f64, f64) {
         Argument::Length => (0.2, 1.2),
         Argument::Size => (0.1, 0.5),
         Argument::Turn => (0.5, 1.0),
+        // The textbook's turns, which genomes do not write.
+        Argument::Degrees => (45.0, 90.0),
         Argument::Weight => (-2.0, 2.0),
         Argument::Index => (0.0, 3.0),
         Argument::Function => (0.0, 2.0),

@@ -89,9 +89,25 @@ const quat = (q) => new THREE.Quaternion(q[0], q[1], q[2], q[3]); // nalgebra: [
 function clearGroup(group) {
   for (const child of [...group.children]) {
     group.remove(child);
+    if (child.userData.shared) continue; // its geometry and material serve every creature
     child.geometry?.dispose();
     child.material?.dispose();
   }
+}
+
+// Parts and joint markers share one unit geometry each, scaled per mesh, and one material
+// per colour: a plant of thousands of parts makes no geometry or material per part.
+const UNIT_BOX = new THREE.BoxGeometry(1, 1, 1);
+const UNIT_SPHERE = new THREE.SphereGeometry(1, 16, 12);
+const sharedMaterials = new Map();
+function sharedMaterial(kind, color) {
+  const key = `${kind}:${color}`;
+  if (!sharedMaterials.has(key)) {
+    sharedMaterials.set(key, kind === 'part'
+      ? new THREE.MeshStandardMaterial({ color, roughness: 0.7, metalness: 0.0 })
+      : new THREE.MeshBasicMaterial({ color, depthTest: false }));
+  }
+  return sharedMaterials.get(key);
 }
 
 // Draws a creature's parts and joints; returns the part meshes (in part order).
@@ -99,9 +115,9 @@ function drawCreature(creature) {
   clearGroup(creatureGroup);
   const meshes = creature.parts.map((p, i) => {
     const color = p.growing ? COLORS.growing : (i === 0 ? COLORS.root : COLORS.part);
-    const mesh = new THREE.Mesh(
-      new THREE.BoxGeometry(p.size[0], p.size[1], p.size[2]),
-      new THREE.MeshStandardMaterial({ color, roughness: 0.7, metalness: 0.0 }));
+    const mesh = new THREE.Mesh(UNIT_BOX, sharedMaterial('part', color));
+    mesh.userData.shared = true;
+    mesh.scale.set(p.size[0], p.size[1], p.size[2]);
     mesh.position.copy(v3(p.position));
     mesh.quaternion.copy(quat(p.orientation));
     mesh.castShadow = true;
@@ -117,9 +133,9 @@ function drawCreature(creature) {
     const color = j.growing ? COLORS.jointGrowing : (j.kind === 'rigid' ? COLORS.fused : COLORS.joint);
     const r = (j.kind === 'rigid' ? 0.15 : 0.3) * scale;
     // Drawn over the parts, as they sit inside them.
-    const marker = new THREE.Mesh(
-      new THREE.SphereGeometry(r, 16, 12),
-      new THREE.MeshBasicMaterial({ color, depthTest: false }));
+    const marker = new THREE.Mesh(UNIT_SPHERE, sharedMaterial('marker', color));
+    marker.userData.shared = true;
+    marker.scale.setScalar(r);
     marker.renderOrder = 1;
     marker.position.copy(v3(j.anchor));
     marker.userData.joint = { parent: j.parent, child: j.child };

@@ -189,6 +189,17 @@ fn growth_pages_draw_every_frame_in_chromium() {
 
 #[test]
 #[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_textbook_plant_of_thousands_of_parts_draws_in_chromium() {
+    let browser = chromium();
+    let viewer = Viewer::start_with(&example("abop-1.24a.lsys"), &["--max-parts", "5000"]);
+    let page = Page::load(&browser, &format!("{}?still=1", viewer.url));
+    page.assert_ready();
+    assert_eq!(page.number("parts"), 3125);
+    assert_eq!(page.title, "ontogeny view: 3125 parts");
+}
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
 fn a_grammar_error_is_shown_in_the_page_with_its_line_and_column() {
     let browser = chromium();
     let dir = scratch("error");

@@ -530,4 +530,41 @@ fn a_grammars_findings_and_its_builders_problems_come_with_its_frames_and_follow
     let data = get_json(&viewer, "/data.json");
     assert_eq!(data["findings"], serde_json::json!([]), "{data}");
     assert_eq!(data["problems"], serde_json::json!([]), "{data}");
+
+fn max_parts_lets_the_page_hold_a_plant_of_thousands_of_parts() {
+    let frames = |viewer: &Viewer| -> Vec<(usize, bool)> {
+        get_json(viewer, "/data.json")["frames"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| {
+                let c = &f["creature"];
+                let errors = c["problems"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .any(|p| p["severity"] == "error");
+                (c["parts"].as_array().unwrap().len(), errors)
+            })
+            .collect()
+    };
+    let viewer = Viewer::start_with(&example("abop-1.24a.lsys"), &["--max-parts", "5000"]);
+    // 5^k parts at step k; overlaps are warnings in a picture, so no frame has an error.
+    let shown = frames(&viewer);
+    assert_eq!(
+        shown,
+        [
+            (1, false),
+            (5, false),
+            (25, false),
+            (125, false),
+            (625, false),
+            (3125, false)
+        ]
+    );
+    drop(viewer);
+    // Without it the page stops at the default limit, with an error.
+    let viewer = Viewer::start(&example("abop-1.24a.lsys"));
+    let last = *frames(&viewer).last().unwrap();
+    assert_eq!(last, (201, true));
 }
