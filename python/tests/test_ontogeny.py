@@ -82,12 +82,13 @@ def test_defines_set_a_grammars_defines_as_the_command_lines_define_does(tmp_pat
     path = tmp_path / "row.lsys"
     path.write_text(ROW)
     assert ontogeny.load(path, defines={"PARTS": 4}).parts == 4
-    frames = ontogeny.derive(ROW, defines={"PARTS": 1, "LENGTH": 2})
+    with pytest.warns(UserWarning, match="fixed point at step 2"):
+        frames = ontogeny.derive(ROW, defines={"PARTS": 1, "LENGTH": 2})
     assert frames[-1][1] == "forward(2) S(0)"
     assert cli("derive", path, "--last", "--define", "PARTS=1", "--define", "LENGTH=2") == "4: forward(2) S(0)\n"
     with pytest.raises(ValueError, match=r"cannot set PART: the grammar has no define by that name \(did you mean PARTS\?\); its defines are PARTS, LENGTH"):
         ontogeny.grow(ROW, defines={"PART": 3})
-    with pytest.raises(ValueError, match=r"defines: the value of PARTS, nan, is not a finite number"):
+    with pytest.raises(ValueError, match=r"defines: the value of PARTS, NaN, is not a finite number"):
         ontogeny.grow(ROW, defines={"PARTS": float("nan")})
 
 
