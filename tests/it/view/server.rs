@@ -530,7 +530,9 @@ fn a_grammars_findings_and_its_builders_problems_come_with_its_frames_and_follow
     let data = get_json(&viewer, "/data.json");
     assert_eq!(data["findings"], serde_json::json!([]), "{data}");
     assert_eq!(data["problems"], serde_json::json!([]), "{data}");
+}
 
+#[test]
 fn max_parts_lets_the_page_hold_a_plant_of_thousands_of_parts() {
     let frames = |viewer: &Viewer| -> Vec<(usize, bool)> {
         get_json(viewer, "/data.json")["frames"]
