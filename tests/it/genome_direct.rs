@@ -401,11 +401,21 @@ fn grammars_whose_strings_the_genome_cannot_hold_are_refused_with_the_reason() {
         "'{': not a command the genome uses",
     );
     refused("axiom: forward(1) ]\n", "brackets of its derived string");
-    refused("axiom: forward(1, 2)\n", "it has 2 arguments");
-    refused("axiom: revolute1(1)\n", "'revolute1' takes none");
-    // A file that does not compile keeps the language's located error.
+    // A file that does not compile keeps the language's located error: a syntax error, or a
+    // built-in command given more parameters than it takes.
     let e = DirectGenome::from_lsys("axiom: A(1\n", &limits).unwrap_err();
     assert!(e.0.contains("file.lsys:1"), "{e}");
+    for (text, message) in [
+        ("axiom: forward(1, 2)\n", "'forward' is given 2 parameters"),
+        ("axiom: revolute1(1)\n", "'revolute1' is given 1 parameter"),
+    ] {
+        let e = DirectGenome::from_lsys(text, &limits).unwrap_err();
+        assert!(
+            e.0.starts_with(&format!("error: {message}, but the built-in command takes"))
+                && e.0.contains("file.lsys:1:8"),
+            "{e}"
+        );
+    }
     // Control symbols build nothing and go; derived values are kept exactly.
     let g = DirectGenome::from_lsys(
         "derivation length: 2\naxiom: A(0.1)\nA(x) --> forward(x * 3) B A(x + 1)\n",

@@ -289,9 +289,10 @@ fn files_outside_the_form_or_the_limits_are_refused_clearly() {
     refused("A(x) --> chem(0)", "'chem' is neither a production");
     refused("A(x) --> { forward(1) }(3)", "'{' is neither a production");
     refused("A(x) --> [ forward(1)", "brackets are not balanced");
+    // The language itself refuses a built-in command given too many parameters, at the call.
     refused(
         "A(x) --> forward(x, 2)",
-        "'forward' takes at most one argument",
+        "error: 'forward' is given 2 parameters, but the built-in command takes 1",
     );
     refused("A(x) --> A(x / 2)", "the argument 'x / 2' is not");
     refused("A(x) --> A(x + x)", "the argument 'x + x' is not");
