@@ -85,19 +85,24 @@ fn a_typo_is_warned_about_with_its_place_and_the_name_meant_by_grow_derive_and_e
 }
 
 #[test]
-fn a_word_of_known_names_is_no_typo_and_is_said_only_by_check() {
-    // `ab` is the predecessors `a` and `b`; `FF` is two textbook `F`s.
+fn a_word_of_known_names_is_no_typo_and_only_check_notes_one_of_longer_names() {
+    // `ab` is the predecessors `a` and `b`; `FF` is two textbook `F`s: the one-letter notation,
+    // about which nothing is said. `TailTail` is two `Tail`s: not a typo, a note of check's.
     let file = grammar(
         "known",
-        "derivation length: 1\naxiom: a FF\na --> ab\nb --> a\n",
+        "module Tail\nderivation length: 1\naxiom: a FF TailTail\na --> ab\nb --> a\nTail --> forward(1)\n",
     );
     let o = run("grow", &file, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
     let o = run("check", &file, &[]);
+    let out = stdout(&o);
     assert!(
-        stdout(&o).contains("'FF' is read as the modules F F\n"),
-        "{}",
-        stdout(&o)
+        out.contains(&format!(
+            "findings (1):\n  {}:3:13: 'TailTail' is read as the modules Tail Tail\n",
+            file.display()
+        )),
+        "{out}"
     );
 }
 
