@@ -195,7 +195,6 @@ pub fn draw_recording(
     let samples = &recording.samples;
     let playback = ontogeny::render::playback(samples, fps);
     let size = (480, 300);
-    let target = recording.target_point();
     if !samples.is_empty() && playback.fps < fps {
         tell!(
             "note: {} s recorded: {} is drawn at {:.3} frames/s instead of {fps}, to keep to {} frames",
@@ -211,9 +210,7 @@ pub fn draw_recording(
         .to_string_lossy();
     let mut progress = Progress::new(format!("drawing {name}"));
     ontogeny::render::write_behaviour_gif(
-        &recording.creature,
-        samples,
-        target,
+        recording,
         &playback,
         why,
         path,

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use super::{DevelopError, ENCODINGS, EncodingInfo, Genome};
-use crate::creature::{Creature, Summary};
+use crate::creature::{Creature, Summary, counted};
 use crate::lang::Diagnostic;
 use crate::lsystem::LSystem;
 
@@ -108,12 +108,12 @@ fn develops_into(creature: &Creature) -> String {
     let s = Summary::of("", 0.0, 1, creature);
     let kinds: Vec<String> = s.joints.iter().map(|(k, n)| format!("{n} {k}")).collect();
     let mut lines = vec![format!(
-        "develops into {} parts, {} joints ({}), {} neurons, {} links; {}",
-        s.parts,
-        creature.joints.len(),
+        "develops into {}, {} ({}), {}, {}; {}",
+        counted(s.parts, "part"),
+        counted(creature.joints.len(), "joint"),
         kinds.join(", "),
-        s.neurons,
-        s.links,
+        counted(s.neurons, "neuron"),
+        counted(s.links, "link"),
         if s.valid { "valid" } else { "invalid" }
     )];
     lines.extend(creature.problems.iter().map(ToString::to_string));

@@ -11,9 +11,10 @@ use nalgebra::{UnitQuaternion, Vector3};
 use super::camera::{Framing, View};
 use super::palette::gif_image;
 use super::text::wrap;
+use super::walk::{root_path, walked, walked_label};
 use super::{Overlay, RenderError, checked_with_label, picture};
 use crate::creature::{Creature, Part};
-use crate::task::Sample;
+use crate::task::{Recording, Sample};
 
 /// The largest rate (images per second) an animation takes: GIF delays are whole
 /// centiseconds, and browsers slow images shorter than 2 cs down to 10.
@@ -169,30 +170,32 @@ pub fn trail(samples: &[Sample], until: usize) -> Vec<Vector3<f64>> {
     trail
 }
 
-/// Writes `behaviour.gif`, the animation of `samples` of `creature` as `playback` plays them:
-/// each image labelled with its simulated time and the protocol's phase, the projectile's
-/// trail so far drawn, and `target` (the aim task's, in world coordinates) when there is
-/// one; the camera follows the creature. `progress` is told the fraction of images written.
+/// Writes `behaviour.gif`, the animation of `recording`'s samples as `playback` plays them:
+/// each image labelled with its simulated time and the protocol's phase (and, for a walker,
+/// the distance walked so far, with the root's path drawn on the ground), the projectile's
+/// trail so far drawn, and the aim task's target when there is one; the camera follows the
+/// creature. `progress` is told the fraction of images written.
 ///
 /// A recording without samples (an evaluation refused before simulating) is drawn as one
 /// image of the creature as built, checked, saying that nothing was recorded and `why`.
-#[allow(clippy::too_many_arguments)]
 pub fn write_behaviour_gif(
-    creature: &Creature,
-    samples: &[Sample],
-    target: Option<Vector3<f64>>,
+    recording: &Recording,
     playback: &Playback,
     why: &str,
     path: &std::path::Path,
     (width, height): (u32, u32),
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), RenderError> {
+    let creature: &Creature = &recording.creature;
+    let samples: &[Sample] = &recording.samples;
     if samples.is_empty() {
         let label: Vec<String> = std::iter::once("no frames recorded (starting pose)".to_string())
             .chain(wrap(why, STILL_LINE))
             .collect();
         return write_still_gif(creature, &label, path, width, height);
     }
+    let target = recording.target_point();
+    let walks = recording.task == "walker";
     let poses: Vec<Creature> = playback
         .shown
         .iter()
@@ -203,13 +206,20 @@ pub fn write_behaviour_gif(
         .iter()
         .map(|&i| {
             let sample = &samples[i];
+            let walked = walks.then(|| walked(samples, i)).flatten();
             Overlay {
-                // The time, and the protocol's phase below it.
+                // The time, the protocol's phase below it, then the distance walked.
                 label: std::iter::once(format!("t = {:.2} s", sample.t))
                     .chain(sample.phase.map(|p| p.label().to_string()))
+                    .chain(walked.map(walked_label))
                     .collect(),
                 target,
                 trail: trail(samples, i),
+                path: if walks {
+                    root_path(samples, i)
+                } else {
+                    Vec::new()
+                },
             }
         })
         .collect();
@@ -350,12 +360,9 @@ mod tests {
             evaluation.status.name(),
             evaluation.message.as_deref().unwrap_or("")
         );
-        let samples = &recording.samples;
         write_behaviour_gif(
-            creature,
-            samples,
-            recording.target_point(),
-            &playback(samples, 10.0),
+            &recording,
+            &playback(&recording.samples, 10.0),
             &why,
             &dir.join("behaviour.gif"),
             (480, 300),

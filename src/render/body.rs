@@ -7,11 +7,13 @@ use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 
 use super::Overlay;
 use super::camera::{Camera, View};
-use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, TARGET, TRAIL, paint, solid};
+use super::palette::{
+    AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL, paint, solid,
+};
 use super::pen::{fill, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
-use crate::creature::{Creature, Severity};
+use crate::creature::{Creature, Severity, counted};
 
 /// Whether a picture checks the creature: marks interpenetrating parts, numbers the parts and
 /// writes its validity and problems.
@@ -61,6 +63,7 @@ pub(super) fn draw_body(
     if let Some(target) = overlay.target {
         draw_target_stem(pixmap, &camera, shift, ground, target);
     }
+    draw_path(pixmap, &camera, shift, ground, &overlay.path);
     draw_shadows(pixmap, &camera, shift, ground, creature);
     draw_parts(pixmap, &camera, shift, creature);
     let pairs = if checks == Checks::On {
@@ -166,6 +169,31 @@ fn draw_target_stem(
     if let Some(path) = pb.finish() {
         let stroke = stroke_width(1.5);
         pixmap.stroke_path(&path, &solid(TARGET), &stroke, shift, None);
+    }
+}
+
+/// A walker's path on the ground (at y = `ground`), with a dot where it started.
+fn draw_path(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    ground: f64,
+    path: &[Vector3<f64>],
+) {
+    let projected: Vec<(f32, f32)> = path
+        .iter()
+        .map(|p| {
+            let (sx, sy, _) = camera.project(&Vector3::new(p.x, ground, p.z));
+            (sx, sy)
+        })
+        .collect();
+    if let Some(line) = polyline(projected.iter().copied()) {
+        pixmap.stroke_path(&line, &solid(PATH), &stroke_width(3.0), shift, None);
+    }
+    if let Some(&(x, y)) = projected.first()
+        && let Some(dot) = PathBuilder::from_circle(x, y, 4.0)
+    {
+        fill(pixmap, &dot, &solid(PATH), shift);
     }
 }
 
@@ -508,10 +536,10 @@ fn write_text(
         }
         let valid = creature.is_valid() && pairs.is_empty();
         let summary = format!(
-            "{} parts, {} joints, {} neurons: {}",
-            creature.parts.len(),
-            creature.joints.len(),
-            creature.brain.neurons.len(),
+            "{}, {}, {}: {}",
+            counted(creature.parts.len(), "part"),
+            counted(creature.joints.len(), "joint"),
+            counted(creature.brain.neurons.len(), "neuron"),
             if valid { "valid" } else { "INVALID" }
         );
         draw_text(

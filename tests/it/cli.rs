@@ -600,9 +600,24 @@ fn continuous_time_flags_for_a_discrete_file_are_refused_by_every_verb_that_grow
     let o = ontogeny(&["grow", "examples/thrower.lsys", "--time", "2", "--dt", "1"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
-        stdout(&o).contains("grown to t = 2 in 3 frame(s)"),
+        stdout(&o).contains("grown to t = 2 in 3 frames"),
         "{}",
         stdout(&o)
+    );
+}
+
+#[test]
+fn grow_counts_one_neuron_in_the_singular() {
+    let o = ontogeny_reading(
+        &["grow", "-"],
+        b"axiom: forward(1) revolute2 forward(1)\n",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains(" in 1 frame\n"), "{out}");
+    assert!(
+        out.contains("brain: 1 neuron (0 sensors, 0 actuators), 1 link\n"),
+        "{out}"
     );
 }
 

@@ -197,7 +197,7 @@ function placeSun(centre, size) {
 
 function functionName(f) { return typeof f === 'string' ? f : Object.keys(f || {})[0] || '?'; }
 
-function drawBrain(brain) {
+function drawBrain(brain, joints) {
   const canvas = $('brain');
   const g = canvas.getContext('2d');
   const W = canvas.width, H = canvas.height;
@@ -248,20 +248,31 @@ function drawBrain(brain) {
       functionName(n.function) === 'oscillator' ? '#8a3fbf' : '#3f6fd0';
     g.beginPath(); g.arc(x, y, r, 0, 2 * Math.PI); g.fill();
     g.fillStyle = '#222'; g.font = '10px system-ui'; g.textAlign = 'left';
-    g.fillText(String(i) + ' ' + neuronLabel(n), x + r + 3, y + 3);
+    g.fillText(String(i) + ' ' + neuronLabel(n, joints || []), x + r + 3, y + 3);
   });
   g.fillStyle = '#556'; g.font = '10px system-ui'; g.textAlign = 'center';
   ['sensors', 'hidden', 'actuators'].forEach((t, c) => g.fillText(t, W * (0.1 + 0.33 * c), 10));
 }
 
-function neuronLabel(n) {
+// A joint's degree of freedom as labels name it: 'hinge j3', or 'universal j2 axis 1' for a
+// joint of several axes (as the pictures do).
+const DOFS = { rigid: 0, revolute: 1, twist: 1, universal: 2, 'bend-twist': 2, 'twist-bend': 2, spherical: 3 };
+function jointLabel(joints, joint, dof) {
+  const j = joints[joint];
+  if (!j) return 'joint j' + joint;
+  const name = { revolute: 'hinge', spherical: 'ball' }[j.kind] || j.kind;
+  return name + ' j' + joint + ((DOFS[j.kind] || 0) > 1 ? ' axis ' + dof : '');
+}
+
+function neuronLabel(n, joints) {
   if (n.role.kind === 'sensor') {
     const s = n.role.sensor;
-    return s.type + (s.part !== undefined ? ' p' + s.part : '') + (s.joint !== undefined ? ' j' + s.joint + '.' + s.dof : '') + (s.slot !== undefined ? ' ' + s.slot : '');
+    if (s.joint !== undefined) return s.type + ' ' + jointLabel(joints, s.joint, s.dof);
+    return s.type + (s.part !== undefined ? ' p' + s.part : '') + (s.slot !== undefined ? ' ' + s.slot : '');
   }
   if (n.role.kind === 'actuator') {
     const a = n.role.actuator;
-    return a.joint !== undefined ? 'joint ' + a.joint + '.' + a.dof : a.type + (a.slot !== undefined ? ' ' + a.slot : '');
+    return a.joint !== undefined ? jointLabel(joints, a.joint, a.dof) : a.type + (a.slot !== undefined ? ' ' + a.slot : '');
   }
   return functionName(n.function);
 }
@@ -369,7 +380,7 @@ function showGrowth(data, keepFrame) {
   onFrame = (i) => {
     const f = frames[i];
     drawCreature(f.creature);
-    drawBrain(f.creature.brain);
+    drawBrain(f.creature.brain, f.creature.joints);
     describe(f.creature);
     $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${+f.t.toFixed(4)}`;
     $('string').textContent = f.string !== null && f.string !== undefined ? f.string
@@ -441,7 +452,7 @@ function showRecording(data, heading) {
   const named = heading || [];
   const frames = data.frames;
   const meshes = drawCreature(data.creature);
-  drawBrain(data.creature.brain);
+  drawBrain(data.creature.brain, data.creature.joints);
   if (!frames.length) {
     // Refused before simulating: the creature as built, and why.
     const box = boundsOf([data.creature]);
@@ -670,7 +681,7 @@ function showRun(data) {
       const box = boundsOf([c]);
       frame(box, Math.min(box.min.y, 0));
       drawCreature(c);
-      drawBrain(c.brain);
+      drawBrain(c.brain, c.joints);
       describe(c, [named(gen, ind), ind.status === 'ok' ? `fitness: ${fmt(ind.fitness)}` : `fitness: ${ind.fitness} (the failure floor)`, `status: ${ind.status}`]);
       body.dataset.generation = String(gen);
       body.dataset.individual = String(ind.index);
