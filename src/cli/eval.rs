@@ -209,14 +209,9 @@ pub fn draw_recording(
         .unwrap_or(path.as_os_str())
         .to_string_lossy();
     let mut progress = Progress::new(format!("drawing {name}"));
-    ontogeny::render::write_behaviour_gif(
-        recording,
-        &playback,
-        why,
-        path,
-        size,
-        &mut |f| progress.set(f),
-    )
+    ontogeny::render::write_behaviour_gif(recording, &playback, why, path, size, &mut |f| {
+        progress.set(f)
+    })
     .map_err(super::render_error(path))?;
     progress.finish();
     Ok(playback)

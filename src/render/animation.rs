@@ -371,7 +371,7 @@ mod tests {
         .unwrap();
     }
 
-    use crate::render::palette::TARGET;
+    use crate::render::palette::{PATH, TARGET};
 
     #[test]
     fn an_aim_recording_shows_its_target_and_a_catapult_one_does_not() {
@@ -429,6 +429,48 @@ mod tests {
         assert!(json["target"].is_array(), "{}", json["target"]);
         assert!(has_target("failed").iter().all(|&n| n > 20));
         let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn a_walk_shows_its_distance_so_far_and_its_path_on_the_ground() {
+        let lsys = LSystem::from_path(Path::new("examples/quadruped.lsys")).unwrap();
+        let options = crate::lsystem::DeriveOptions::default();
+        let frames = crate::develop::grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
+        let creature = frames.into_iter().last().unwrap().creature;
+        let walk = WalkerOptions {
+            seconds: 2.0,
+            ..WalkerOptions::default()
+        };
+        let evaluation = task::walker(&creature, &SimOptions::default(), &walk, true);
+        assert_eq!(
+            evaluation.status,
+            task::Status::Ok,
+            "{:?}",
+            evaluation.message
+        );
+        let samples = &evaluation.recording;
+        // The distance the last image shows is the evaluation's D_w (poses are recorded at
+        // f32 precision).
+        let last = crate::render::walked(samples, samples.len() - 1).unwrap();
+        let d_w = evaluation.terms["D_w"];
+        assert!(d_w > 0.05, "{d_w}");
+        assert!((last - d_w).abs() < 1e-4, "{last} {d_w}");
+        // Nothing is walked before the measured walk starts.
+        let start = crate::render::walk_start(samples).unwrap();
+        assert!(start > 0);
+        assert_eq!(crate::render::walked(samples, start - 1), None);
+        assert_eq!(crate::render::walked(samples, start), Some(0.0));
+        // The GIF draws the path on the ground once the walk has started, not before.
+        let scratch = tempfile::tempdir().unwrap();
+        write_recording_at(scratch.path(), &creature, &evaluation);
+        let images = gif_frames(&scratch.path().join("behaviour.gif"));
+        let path = |f: &Vec<u8>| f.chunks_exact(4).filter(|p| p[..3] == PATH).count();
+        assert_eq!(path(&images[0]), 0);
+        assert!(
+            path(images.last().unwrap()) > 20,
+            "{}",
+            path(images.last().unwrap())
+        );
     }
 
     #[test]

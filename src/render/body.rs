@@ -7,9 +7,7 @@ use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 
 use super::Overlay;
 use super::camera::{Camera, View};
-use super::palette::{
-    AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL, paint, solid,
-};
+use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL, paint, solid};
 use super::pen::{fill, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
@@ -310,7 +308,8 @@ fn outline_marked(
 }
 
 /// The joints, on top of the parts: a disc in the plane each movable joint turns in (red,
-/// orange while growing), its size following the parts it joins (at most `most` pixels), with
+/// orange while growing), its size following the parts it joins and never larger (at most
+/// `most` pixels), with
 /// a line along each axis ending in a dot at the axis's positive end; fused joints are grey
 /// dots.
 fn draw_joints(
@@ -324,7 +323,8 @@ fn draw_joints(
     for joint in &creature.joints {
         let (sx, sy, _) = camera.project(&joint.anchor);
         let radius = joint_radius(creature, joint.parent, joint.child);
-        let pixels = ((radius * camera.scale) as f32).clamp(4.0, most.max(4.0));
+        // No larger than the parts joined (nor than `most`), and at least a visible dot.
+        let pixels = ((radius * camera.scale) as f32).min(most).max(1.5);
         let radius = pixels as f64 / camera.scale;
         if joint.kind.dof() == 0 || joint.axes.is_empty() {
             let dot = (0.4 * pixels).clamp(2.0, 6.0);

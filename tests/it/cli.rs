@@ -608,10 +608,7 @@ fn continuous_time_flags_for_a_discrete_file_are_refused_by_every_verb_that_grow
 
 #[test]
 fn grow_counts_one_neuron_in_the_singular() {
-    let o = ontogeny_reading(
-        &["grow", "-"],
-        b"axiom: forward(1) revolute2 forward(1)\n",
-    );
+    let o = ontogeny_reading(&["grow", "-"], b"axiom: forward(1) revolute2 forward(1)\n");
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
     assert!(out.contains(" in 1 frame\n"), "{out}");

@@ -14,7 +14,7 @@ const $ = (id) => document.getElementById(id);
 const COLORS = {
   root: 0x1f3f7a, part: 0x4f86d9, growing: 0xf08c1e,
   joint: 0xdd2222, jointGrowing: 0xf08c1e, fused: 0x999999,
-  projectile: 0x8a5a2b, trail: 0x8a5a2b, target: 0xdd2222,
+  projectile: 0x8a5a2b, trail: 0x8a5a2b, target: 0xdd2222, path: 0x0078d7,
 };
 
 // ---------------------------------------------------------------- the 3D scene
@@ -92,6 +92,12 @@ function clearGroup(group) {
   }
 }
 
+// Half the middle dimension of the smaller of the parts a joint joins (a bar's width).
+function jointRadius(creature, j) {
+  const middle = (p) => (p ? [...p.size].sort((a, b) => a - b)[1] : Infinity);
+  return Math.min(middle(creature.parts[j.parent]), middle(creature.parts[j.child])) / 2;
+}
+
 // Draws a creature's parts and joints; returns the part meshes (in part order).
 function drawCreature(creature) {
   clearGroup(creatureGroup);
@@ -113,7 +119,8 @@ function drawCreature(creature) {
   const scale = Math.min(typicalSize(creature), 0.1 * diagonal);
   for (const j of creature.joints) {
     const color = j.growing ? COLORS.jointGrowing : (j.kind === 'rigid' ? COLORS.fused : COLORS.joint);
-    const r = (j.kind === 'rigid' ? 0.15 : 0.3) * scale;
+    // Never larger than the parts it joins: at most half the smaller one's middle dimension.
+    const r = Math.min((j.kind === 'rigid' ? 0.15 : 0.3) * scale, jointRadius(creature, j));
     // Drawn over the parts, as they sit inside them.
     const marker = new THREE.Mesh(
       new THREE.SphereGeometry(r, 16, 12),
@@ -178,8 +185,33 @@ function frame(box, groundY) {
   const divisions = Math.min(200, Math.round(extent / step));
   grid = new THREE.GridHelper(divisions * step, divisions, 0xaab3bf, 0xc3cad3);
   grid.position.set(centre.x, groundY + 0.0005 * size, centre.z);
+  grid.userData.step = step;
   scene.add(grid);
   placeSun(centre, size);
+}
+
+// Keeps the ground under a travelling creature: the floor moves with it, the grid by whole
+// squares (so that its lines stay still and show the motion).
+function keepGroundUnder(centre) {
+  ground.position.x = centre.x;
+  ground.position.z = centre.z;
+  if (grid) {
+    const step = grid.userData.step || 1;
+    grid.position.x = Math.round(centre.x / step) * step;
+    grid.position.z = Math.round(centre.z / step) * step;
+  }
+}
+
+// A walk's measured distance as the walker task measures D_w: the root part's centre,
+// horizontally, from the pose before the first measuring frame. Returns that frame's index
+// (null without a measured walk) and the distance at each frame (null before it).
+function walkOf(frames) {
+  const first = frames.findIndex((f) => f.phase === 'measuring');
+  if (first < 0) return { start: null, walked: frames.map(() => null) };
+  const start = Math.max(0, first - 1);
+  const [x0, , z0] = frames[start].parts[0][0];
+  const walked = frames.map((f, i) => (i < start ? null : Math.hypot(f.parts[0][0][0] - x0, f.parts[0][0][2] - z0)));
+  return { start, walked };
 }
 
 function placeSun(centre, size) {
@@ -520,6 +552,17 @@ function showRecording(data, heading) {
     });
     extrasGroup.add(trail);
   }
+  // A walker's walk: the distance so far and the root's path on the ground.
+  const walk = data.task === 'walker' ? walkOf(frames) : { start: null, walked: [] };
+  let path = null;
+  if (walk.start !== null) {
+    const positions = new Float32Array(frames.length * 3);
+    frames.forEach((f, i) => positions.set([f.parts[0][0][0], 0.002, f.parts[0][0][2]], i * 3));
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    path = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: COLORS.path }));
+    extrasGroup.add(path);
+  }
   onFrame = (i) => {
     const f = frames[i];
     f.parts.forEach(([p, q], k) => {
@@ -537,14 +580,24 @@ function showRecording(data, heading) {
       // The trail so far: frames 0..i that had a projectile.
       trail.geometry.setDrawRange(0, i + 1);
     }
+    if (path) {
+      // The root's path from the walk's start to this frame (nothing before the start).
+      path.geometry.setDrawRange(walk.start, Math.max(0, i - walk.start + 1));
+    }
+    // The camera follows the creature across the ground, not up and down: the ground stays
+    // in view whatever the creature does.
     const centre = centreOf(f);
     const delta = centre.clone().sub(followed);
+    delta.y = 0;
     camera.position.add(delta);
     if (controls) { controls.target.add(delta); controls.update(); }
-    followed = centre;
+    followed.add(delta);
+    keepGroundUnder(centre);
     placeSun(centre, sunSize);
+    const walked = walk.walked[i];
     $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${f.t.toFixed(3)} s` +
-      (f.phase ? `   ${phaseLabel(f.phase)}` : '');
+      (f.phase ? `   ${phaseLabel(f.phase)}` : '') + (walked != null ? `   walked ${walked.toFixed(2)} m` : '');
+    body.dataset.walked = walked != null ? walked.toFixed(6) : '';
   };
   describe(data.creature, [...named, `task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
     `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);

@@ -695,3 +695,61 @@ fn a_walks_play_button_plays_it_and_opening_another_individual_leaves_it() {
     );
     assert_eq!(left, opened);
 }
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_walker_recording_shows_the_distance_walked_so_far_in_chromium() {
+    let browser = chromium();
+    let dir = scratch("walked");
+    let rec = dir.join("rec");
+    let out = ontogeny_command()
+        .arg("eval")
+        .arg(example("quadruped.lsys"))
+        .args([
+            "--task",
+            "walker",
+            "--fitness",
+            "distance",
+            "--seconds",
+            "1",
+        ])
+        .arg("--record")
+        .arg(&rec)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let recording: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(rec.join("recording.json")).unwrap())
+            .unwrap();
+    let frames = recording["frames"].as_array().unwrap();
+    let first_measuring = frames
+        .iter()
+        .position(|f| f["phase"] == "measuring")
+        .unwrap();
+    let viewer = Viewer::start(&rec);
+    // At the last frame the page shows D_w, the fitness (distance) the evaluation measured.
+    let last = frames.len() - 1;
+    let page = Page::load(&browser, &format!("{}?frame={last}", viewer.url));
+    page.assert_ready();
+    let walked: f64 = page.data("walked").unwrap().parse().unwrap();
+    let fitness = recording["fitness"].as_f64().unwrap();
+    assert!(fitness > 0.05, "{fitness}");
+    assert!((walked - fitness).abs() < 1e-4, "{walked} {fitness}");
+    assert!(
+        page.dom.contains(&format!("walked {fitness:.2} m")),
+        "{}",
+        page.dom
+    );
+    // Before the walk is measured, nothing is said.
+    let page = Page::load(
+        &browser,
+        &format!("{}?frame={}", viewer.url, first_measuring - 2),
+    );
+    page.assert_ready();
+    assert_eq!(page.data("walked").as_deref(), Some(""));
+    assert!(!page.dom.contains("walked "), "{}", page.dom);
+}
