@@ -334,8 +334,10 @@ pub fn no_samples_reason(recording: &crate::task::Recording) -> Option<String> {
 }
 
 /// Reads a run directory's store into the page's data: `{"kind": "run", "file", "encoding",
-/// "task", "generations": [{"index", "best", "mean", "median", "sd", "valid_fraction",
-/// "evaluations"}]}`.
+/// "task", "fitness" (what the fitness measures and its unit, as `fitness.svg`'s y axis says,
+/// `"fitness: distance (m)"`), "generations": [{"index", "best", "mean", "median", "sd",
+/// "valid_fraction", "evaluations", "best_fine" (the best re-walked at the fine reference, or
+/// null)}]}`.
 pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
     let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
@@ -349,6 +351,7 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
                 "index": g.index, "best": finite(g.best), "mean": finite(g.mean),
                 "median": finite(g.median), "sd": finite(g.sd),
                 "valid_fraction": finite(g.valid_fraction), "evaluations": g.evaluations,
+                "best_fine": g.best_fine.as_ref().map_or(Value::Null, |f| finite(f.fitness)),
             })
         })
         .collect();
@@ -358,6 +361,9 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
         "encoding": run.encoding,
         "task": run.task,
         "seed": run.seed,
+        "fitness": run
+            .task_spec()
+            .map(|spec| format!("fitness: {}", spec.fitness_measure())),
         "generations": generations,
     }))
 }

@@ -636,7 +636,7 @@ function showRun(data) {
   const rows = [];
   // The plot and the table of generations; called again when the run goes on.
   function listGenerations(generations) {
-    drawPlot(generations);
+    drawPlot(generations, data.fitness);
     const table = $('generations');
     table.innerHTML = '<tr><th>gen</th><th>best</th><th>mean</th><th>median</th><th>valid</th></tr>';
     rows.length = 0;
@@ -806,13 +806,19 @@ function fmt(x) {
   return a !== 0 && (a >= 1e5 || a < 1e-3) ? x.toExponential(2) : (+x.toFixed(3)).toString();
 }
 
-function drawPlot(generations) {
+// The run's fitness per generation: best and mean, and (dashed, in the best's colour) the best
+// re-walked at the fine reference where the run did that, as fitness.svg draws them; the y
+// axis says what the fitness measures and its unit (`yLabel`).
+function drawPlot(generations, yLabel) {
   const canvas = $('plot');
   const g = canvas.getContext('2d');
-  const W = canvas.width, H = canvas.height, L = 44, R = 8, T = 10, B = 24;
+  const W = canvas.width, H = canvas.height, L = 56, R = 8, T = 10, B = 24;
   g.clearRect(0, 0, W, H);
+  const fine = generations.some((x) => x.best_fine !== undefined && x.best_fine !== null);
+  body.dataset.plotFine = fine ? 'yes' : 'no';
+  body.dataset.plotY = yLabel || '';
   // Failed evaluations score a floor far below the rest: plot what is above it.
-  const values = generations.flatMap((x) => [x.best, x.mean]).filter((v) => v !== null && v > -1e5);
+  const values = generations.flatMap((x) => [x.best, x.mean, x.best_fine]).filter((v) => v !== null && v !== undefined && v > -1e5);
   if (!values.length) return;
   let lo = Math.min(...values), hi = Math.max(...values);
   if (hi - lo < 1e-9) { lo -= 1; hi += 1; }
@@ -825,22 +831,29 @@ function drawPlot(generations) {
   g.textAlign = 'right'; g.fillText(fmt(hi), L - 3, T + 8); g.fillText(fmt(lo), L - 3, H - B);
   g.textAlign = 'center'; g.fillText('generation', (L + W) / 2, H - 4);
   g.fillText('0', L, H - B + 11); g.fillText(String(generations.length - 1), W - R, H - B + 11);
-  const line = (key, color) => {
-    g.strokeStyle = color; g.lineWidth = 2; g.beginPath();
+  if (yLabel) {
+    g.save(); g.translate(10, (T + H - B) / 2); g.rotate(-Math.PI / 2);
+    g.fillText(yLabel, 0, 0); g.restore();
+  }
+  const line = (key, color, dashed) => {
+    g.strokeStyle = color; g.lineWidth = 2; g.setLineDash(dashed ? [6, 4] : []); g.beginPath();
     let started = false;
     generations.forEach((x, i) => {
       const v = x[key];
-      if (v === null || v <= -1e5) { started = false; return; }
+      if (v === null || v === undefined || v <= -1e5) { started = false; return; }
       if (started) g.lineTo(X(i), Y(v)); else g.moveTo(X(i), Y(v));
       started = true;
     });
     g.stroke();
+    g.setLineDash([]);
   };
-  line('mean', '#8aa4d6');
-  line('best', '#1f3f7a');
+  line('mean', '#e69f00');
+  line('best', '#0072b2');
+  if (fine) line('best_fine', '#0072b2', true);
   g.textAlign = 'left';
-  g.fillStyle = '#1f3f7a'; g.fillText('best', L + 6, T + 10);
-  g.fillStyle = '#8aa4d6'; g.fillText('mean', L + 36, T + 10);
+  g.fillStyle = '#0072b2'; g.fillText('best', L + 6, T + 10);
+  g.fillStyle = '#e69f00'; g.fillText('mean', L + 36, T + 10);
+  if (fine) { g.fillStyle = '#0072b2'; g.fillText('- - fine reference', L + 70, T + 10); }
 }
 
 // ---------------------------------------------------------------- start

@@ -642,6 +642,11 @@ fn a_run_page_plays_an_individuals_walk_in_chromium() {
         walk["frames"].as_array().unwrap().len()
     );
     assert_eq!(page.number("frame"), 0);
+    // The fitness plot names what the fitness measures and draws the fine reference line.
+    let data = get_json(&viewer, "/data.json");
+    assert_eq!(page.data("plot-y").as_deref(), data["fitness"].as_str());
+    assert!(page.data("plot-y").unwrap().starts_with("fitness: "));
+    assert_eq!(page.data("plot-fine").as_deref(), Some("yes"));
     // A play button on every individual's row, and the walk's outcome beside it.
     assert_eq!(
         page.dom.matches("class=\"walk\"").count(),

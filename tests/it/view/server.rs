@@ -481,3 +481,27 @@ fn a_generation_the_run_lacks_is_not_found_on_every_page_that_asks_for_one() {
     let table = get_json(&viewer, "/generation.json?gen=0");
     assert_eq!(table["individuals"].as_array().unwrap().len(), 4);
 }
+
+#[test]
+fn a_run_page_says_what_the_fitness_measures_and_the_fine_reference_of_each_best() {
+    let run = tiny_run("plot-data");
+    let store = ontogeny::evolve::store::RunStore::open(&run.join("run.sqlite")).unwrap();
+    let generations = store.generations().unwrap();
+    let spec = store.run().unwrap().task_spec().unwrap();
+    let viewer = Viewer::start(&run);
+    let data = get_json(&viewer, "/data.json");
+    // The y axis of fitness.svg.
+    assert_eq!(
+        data["fitness"],
+        format!("fitness: {}", spec.fitness_measure())
+    );
+    let pages = data["generations"].as_array().unwrap();
+    assert_eq!(pages.len(), generations.len());
+    assert!(generations.iter().any(|g| g.best_fine.is_some()));
+    for (page, g) in pages.iter().zip(&generations) {
+        match &g.best_fine {
+            Some(fine) => assert_eq!(page["best_fine"].as_f64(), Some(fine.fitness)),
+            None => assert!(page["best_fine"].is_null(), "{page}"),
+        }
+    }
+}
