@@ -78,8 +78,9 @@ pub struct Playback {
 /// How an animation at `fps` images per second of simulated time plays `samples`: image k
 /// shows the sample nearest time k / fps, and its delay is chosen so that image k starts at
 /// round(100 k / fps) cs: played back, the animation keeps the simulation's time, whatever
-/// the ratio of `fps` to the recording's rate. A recording too long for [`MAX_GIF_IMAGES`]
-/// is played at a lower rate.
+/// the ratio of `fps` to the recording's rate. The last image shows the last sample (one more
+/// image when the rate steps past it). A recording too long for [`MAX_GIF_IMAGES`] is played
+/// at a lower rate.
 pub fn playback(samples: &[Sample], fps: f64) -> Playback {
     let (Some(first), Some(last)) = (samples.first(), samples.last()) else {
         return Playback {
@@ -109,9 +110,20 @@ pub fn playback(samples: &[Sample], fps: f64) -> Playback {
         shown.push(next);
     }
     let start = |k: usize| (100.0 * k as f64 / fps).round() as u64;
-    let delays_cs = (0..count)
+    let mut delays_cs: Vec<u16> = (0..count)
         .map(|k| (start(k + 1) - start(k)).clamp(2, u16::MAX as u64) as u16)
         .collect();
+    // The last image shows the last sample (the end of the evaluation: a walker's D_w), one
+    // more image when the rate stepped past it.
+    let last = samples.len() - 1;
+    if shown.last() != Some(&last) {
+        if shown.len() < MAX_GIF_IMAGES {
+            shown.push(last);
+            delays_cs.push(*delays_cs.last().unwrap_or(&10));
+        } else if let Some(end) = shown.last_mut() {
+            *end = last;
+        }
+    }
     Playback {
         shown,
         delays_cs,
@@ -455,6 +467,11 @@ mod tests {
         let d_w = evaluation.terms["D_w"];
         assert!(d_w > 0.05, "{d_w}");
         assert!((last - d_w).abs() < 1e-4, "{last} {d_w}");
+        // The GIF's last image shows the last sample: it says D_w.
+        assert_eq!(
+            playback(samples, 10.0).shown.last(),
+            Some(&(samples.len() - 1))
+        );
         // Nothing is walked before the measured walk starts.
         let start = crate::render::walk_start(samples).unwrap();
         assert!(start > 0);

@@ -17,6 +17,7 @@
 //! What it does not own: developing a run's genomes (the command line passes a function that
 //! does, as it alone knows every encoding), nor driving a browser.
 
+mod comparison;
 mod open;
 mod server;
 pub mod snapshot;
@@ -29,6 +30,7 @@ use crate::develop::{BuildOptions, build};
 use crate::lang::{Diagnostic, FileKind};
 use crate::lsystem::{DeriveOptions, LSystem};
 
+pub use comparison::{COMPARISON_PLOTS, comparison_data};
 pub use open::{Developer, PageFlags, ignored_flags, run_developer};
 pub use server::{Server, ServerError};
 
@@ -46,6 +48,8 @@ pub enum Kind {
     Recording,
     /// A run directory written by `ontogeny evolve` (`config.toml` and `run.sqlite`).
     Run,
+    /// A comparison directory written by `ontogeny compare` (`compare.toml`).
+    Comparison,
 }
 
 impl Kind {
@@ -56,6 +60,7 @@ impl Kind {
             Kind::Growth => "growth",
             Kind::Recording => "recording",
             Kind::Run => "run",
+            Kind::Comparison => "comparison",
         }
     }
 }
@@ -123,7 +128,9 @@ impl Target {
                 "{shown}: no such file or directory"
             )));
         }
-        if path.join("config.toml").is_file() && path.join("run.sqlite").is_file() {
+        if comparison::is_comparison(path) {
+            target(Kind::Comparison)
+        } else if path.join("config.toml").is_file() && path.join("run.sqlite").is_file() {
             target(Kind::Run)
         } else if path.join("recording.json").is_file() {
             target(Kind::Recording)
@@ -132,8 +139,8 @@ impl Target {
         } else {
             Err(ViewError::NotViewable(format!(
                 "{shown}: not a directory view can show (it has no frames.jsonl from grow \
-                 --out, no recording.json from eval --record, and no config.toml and \
-                 run.sqlite from evolve)"
+                 --out, no recording.json from eval --record, no config.toml and \
+                 run.sqlite from evolve, and no compare.toml from compare)"
             )))
         }
     }
@@ -151,6 +158,7 @@ impl Target {
                 fingerprint(&self.path.join("run.sqlite")),
                 fingerprint(&self.path.join("run.sqlite-wal"))
             ),
+            Kind::Comparison => fingerprint(&self.path.join("report.md")),
         }
     }
 }

@@ -856,6 +856,51 @@ function drawPlot(generations, yLabel) {
   if (fine) { g.fillStyle = '#0072b2'; g.fillText('- - fine reference', L + 70, T + 10); }
 }
 
+// ---------------------------------------------------------------- comparison pages
+
+// A comparison: its replicates on the left (encoding, k, generations stored, best and its
+// fine reference), its plots and report where the 3D view would be.
+function showComparison(data) {
+  body.dataset.kind = 'comparison';
+  $('file').textContent = `${data.file}  (${data.encodings.join(' vs ')}; ${data.fitness})`;
+  playButton.style.display = 'none';
+  slider.style.display = 'none';
+  const left = $('left');
+  left.innerHTML = '<h2>Replicates</h2>';
+  const table = document.createElement('table');
+  table.id = 'replicates';
+  table.innerHTML = '<tr><th>encoding</th><th>rep</th><th>gens</th><th>best</th><th>fine ref.</th></tr>';
+  for (const r of data.runs) {
+    const tr = document.createElement('tr');
+    tr.title = `ontogeny view ${r.dir}`;
+    tr.innerHTML = `<td>${r.encoding}</td><td>${r.k}</td><td>${r.generations}</td><td>${fmt(r.best)}</td><td>${fmt(r.best_fine)}</td>`;
+    table.appendChild(tr);
+  }
+  left.appendChild(table);
+  const note = document.createElement('p');
+  note.textContent = `Each replicate is a run: open one with ontogeny view ${data.file}/ENCODING/rep-K.`;
+  left.appendChild(note);
+  const panel = document.createElement('div');
+  panel.id = 'comparison';
+  for (const name of data.plots) {
+    const img = document.createElement('img');
+    img.src = '/plot/' + name;
+    img.alt = name;
+    panel.appendChild(img);
+  }
+  const report = document.createElement('pre');
+  report.id = 'report';
+  report.textContent = data.report === null
+    ? 'No report yet: compare writes report.md when its replicates are finished (compare --resume, or compare --merge after --plan).'
+    : data.report;
+  panel.appendChild(report);
+  $('scene').appendChild(panel);
+  body.dataset.runs = String(data.runs.length);
+  body.dataset.plots = String(data.plots.length);
+  document.title = `ontogeny view: comparison of ${data.encodings.join(', ')}`;
+  body.dataset.ready = 'yes';
+}
+
 // ---------------------------------------------------------------- start
 
 resize();
@@ -863,6 +908,7 @@ fetchJson('/data.json').then((data) => {
   if (data.kind === 'lsys' || data.kind === 'growth') { showGrowth(data, false); watch(data.kind); }
   else if (data.kind === 'recording') showRecording(data);
   else if (data.kind === 'run') showRun(data);
+  else if (data.kind === 'comparison') showComparison(data);
   resize();
 }).catch((e) => {
   showError({ message: e.message });

@@ -17,7 +17,7 @@ use std::process::{Child, Command};
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 
-use super::server::{get_json, tiny_run as tiny_walker_run};
+use super::server::{get_json, tiny_comparison, tiny_run as tiny_walker_run};
 use crate::util::tiny_run;
 
 /// The browser the tests drive: `$ONTOGENY_BROWSER`, else the first Chromium on the `PATH`.
@@ -757,4 +757,44 @@ fn a_walker_recording_shows_the_distance_walked_so_far_in_chromium() {
     page.assert_ready();
     assert_eq!(page.data("walked").as_deref(), Some(""));
     assert!(!page.dom.contains("walked "), "{}", page.dom);
+}
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_comparison_page_shows_its_report_plots_and_replicates_in_chromium() {
+    let browser = chromium();
+    let cmp = tiny_comparison("comparison-page");
+    let viewer = Viewer::start(&cmp);
+    let page = Page::load(&browser, &viewer.url);
+    assert_eq!(page.data("ready").as_deref(), Some("yes"), "{}", page.body);
+    assert_eq!(page.data("kind").as_deref(), Some("comparison"));
+    assert_eq!(page.number("runs"), 2);
+    assert_eq!(page.number("plots"), 2);
+    assert!(
+        page.dom.contains("<img src=\"/plot/fitness.svg\""),
+        "{}",
+        page.dom
+    );
+    assert!(
+        page.dom.contains("<img src=\"/plot/parts.svg\""),
+        "{}",
+        page.dom
+    );
+    // The report's first line, and a row per replicate.
+    let report = std::fs::read_to_string(cmp.join("report.md")).unwrap();
+    let first = report.lines().next().unwrap().replace('&', "&amp;");
+    assert!(page.dom.contains(&first), "{first}: {}", page.dom);
+    assert!(
+        page.dom.contains("<td>direct</td><td>1</td>"),
+        "{}",
+        page.dom
+    );
+    assert!(
+        page.dom.contains("<td>lsystem</td><td>1</td>"),
+        "{}",
+        page.dom
+    );
+    drop(viewer);
+    let png = cmp.parent().unwrap().join("comparison.png");
+    assert_snapshot(&browser, &cmp, &png);
 }
