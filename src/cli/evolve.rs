@@ -175,10 +175,11 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
         ));
     }
     let mut source = read_source(args.config.as_deref())?;
-    if source.is_none() && args.preset.is_none() && args.pop.is_none() && args.gens.is_none() {
+    let example =
+        source.is_none() && args.preset.is_none() && args.pop.is_none() && args.gens.is_none();
+    if example {
         // Chaumont's full schedule is 300 × 100 walks (hours): with nothing said about the
         // run's size, the README's walker example starts instead, and says so.
-        tell!("{DEFAULT_RUN_NOTE}");
         source = Some(ontogeny::lang::Source::new(
             DEFAULT_CONFIG_NAME,
             DEFAULT_CONFIG,
@@ -188,7 +189,7 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
         settings::new_run_encoding(args.encoding.map(EncodingArg::name), source.as_deref())?;
     with_genome!(
         encoding.as_str(),
-        G => start::<G>(args, source.as_deref()),
+        G => start::<G>(args, source.as_deref(), example),
         |other| Err(bad(format!(
             "unknown encoding '{other}' ({})",
             encoding_names()
@@ -224,8 +225,13 @@ pub fn read_source(path: Option<&Path>) -> anyhow::Result<Option<std::sync::Arc<
     Ok(path.map(read_config_source).transpose()?)
 }
 
-/// Resolves the settings (command line over config file over preset) and starts the run.
-fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Result<()> {
+/// Resolves the settings (command line over config file over preset) and starts the run;
+/// `example` says that `source` is the built-in walker example, noted once the settings hold.
+fn start<G: Genome>(
+    args: &EvolveArgs,
+    source: Option<&Source>,
+    example: bool,
+) -> anyhow::Result<()> {
     let out = args
         .out
         .as_ref()
@@ -238,6 +244,9 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         !args.no_verify_best,
         !args.no_cache,
     )?;
+    if example {
+        tell!("{DEFAULT_RUN_NOTE}");
+    }
     let init_text = init.as_ref().map(|s| s.text());
     let mut run = Run::<G>::start(out, config, init_text).map_err(run_error)?;
     go(&mut run, out, args.json)

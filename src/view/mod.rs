@@ -68,7 +68,7 @@ impl Kind {
 /// Errors of the viewer.
 #[derive(Debug, thiserror::Error)]
 pub enum ViewError {
-    /// PATH is none of the four kinds.
+    /// PATH is none of the five kinds.
     #[error("{0}")]
     NotViewable(String),
     /// A file of the directory cannot be read or makes no sense.
@@ -96,7 +96,7 @@ pub struct Target {
 }
 
 impl Target {
-    /// Tells what `path` is: a `.lsys` file, or a grow, recording or run directory.
+    /// Tells what `path` is: a `.lsys` file, or a grow, recording, run or comparison directory.
     pub fn classify(path: &Path) -> Result<Target, ViewError> {
         let shown = path.display();
         let target = |kind| {

@@ -196,13 +196,16 @@ fn bench_json_prints_one_creatures_speed_and_is_refused_with_fidelity() {
 #[test]
 fn evolve_with_nothing_about_the_runs_size_starts_the_walker_example_and_says_so() {
     let dir = scratch("default");
-    // Refused for its --seconds after saying what it would start: nothing is written.
+    // A folder of the user's: refused once the settings are resolved, after the note.
+    let mine = dir.join("mine");
+    std::fs::create_dir_all(&mine).unwrap();
+    std::fs::write(mine.join("notes.txt"), "mine").unwrap();
     let o = ontogeny_command()
-        .args(["evolve", "--seconds", "5000", "--out"])
-        .arg(dir.join("run"))
+        .args(["evolve", "--out"])
+        .arg(&mine)
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
         stderr(&o).starts_with(
             "note: no --config, --preset, --pop or --gens: starting the walker example (examples/evolve-walker.toml, built in"
@@ -210,14 +213,21 @@ fn evolve_with_nothing_about_the_runs_size_starts_the_walker_example_and_says_so
         "{}",
         stderr(&o)
     );
-    assert!(!dir.join("run").exists());
-    // With a size, no note.
-    let o = ontogeny_command()
-        .args(["evolve", "--pop", "4", "--seconds", "5000", "--out"])
-        .arg(dir.join("run"))
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(2));
-    assert!(!stderr(&o).contains("note: no --config"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(mine.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    // With a size, no note; settings out of range are refused before any note.
+    for args in [&["--pop", "4"][..], &["--seconds", "5000"][..]] {
+        let o = ontogeny_command()
+            .arg("evolve")
+            .args(args)
+            .arg("--out")
+            .arg(&mine)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(!stderr(&o).contains("note: no --config"), "{}", stderr(&o));
+    }
     let _ = std::fs::remove_dir_all(dir);
 }

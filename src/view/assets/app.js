@@ -202,9 +202,8 @@ function keepGroundUnder(centre) {
   }
 }
 
-// A walk's measured distance as the walker task measures D_w: the root part's centre,
-// horizontally, from the pose before the first measuring frame. Returns that frame's index
-// (null without a measured walk) and the distance at each frame (null before it).
+// A walk as the walker task measures D_w (the root's centre, horizontally, from the pose before
+// the first measuring frame): that frame (null if none) and the distance at each frame.
 function walkOf(frames) {
   const first = frames.findIndex((f) => f.phase === 'measuring');
   if (first < 0) return { start: null, walked: frames.map(() => null) };
@@ -865,36 +864,16 @@ function showComparison(data) {
   $('file').textContent = `${data.file}  (${data.encodings.join(' vs ')}; ${data.fitness})`;
   playButton.style.display = 'none';
   slider.style.display = 'none';
-  const left = $('left');
-  left.innerHTML = '<h2>Replicates</h2>';
-  const table = document.createElement('table');
-  table.id = 'replicates';
-  table.innerHTML = '<tr><th>encoding</th><th>rep</th><th>gens</th><th>best</th><th>fine ref.</th></tr>';
-  for (const r of data.runs) {
-    const tr = document.createElement('tr');
-    tr.title = `ontogeny view ${r.dir}`;
-    tr.innerHTML = `<td>${r.encoding}</td><td>${r.k}</td><td>${r.generations}</td><td>${fmt(r.best)}</td><td>${fmt(r.best_fine)}</td>`;
-    table.appendChild(tr);
-  }
-  left.appendChild(table);
-  const note = document.createElement('p');
-  note.textContent = `Each replicate is a run: open one with ontogeny view ${data.file}/ENCODING/rep-K.`;
-  left.appendChild(note);
+  const rows = data.runs.map((r) => `<tr><td>${r.encoding}</td><td>${r.k}</td><td>${r.generations}</td><td>${fmt(r.best)}</td><td>${fmt(r.best_fine)}</td></tr>`);
+  $('left').innerHTML = '<h2>Replicates</h2><table id="replicates"><tr><th>encoding</th><th>rep</th><th>gens</th><th>best</th><th>fine ref.</th></tr>' +
+    rows.join('') + '</table><p>Each replicate is a run: open one with <code>ontogeny view DIR/ENCODING/rep-K</code>.</p>';
   const panel = document.createElement('div');
   panel.id = 'comparison';
-  for (const name of data.plots) {
-    const img = document.createElement('img');
-    img.src = '/plot/' + name;
-    img.alt = name;
-    panel.appendChild(img);
-  }
-  const report = document.createElement('pre');
-  report.id = 'report';
-  report.textContent = data.report === null
+  panel.innerHTML = data.plots.map((name) => `<img src="/plot/${name}" alt="${name}">`).join('') + '<pre id="report"></pre>';
+  $('scene').appendChild(panel);
+  $('report').textContent = data.report === null
     ? 'No report yet: compare writes report.md when its replicates are finished (compare --resume, or compare --merge after --plan).'
     : data.report;
-  panel.appendChild(report);
-  $('scene').appendChild(panel);
   body.dataset.runs = String(data.runs.length);
   body.dataset.plots = String(data.plots.length);
   document.title = `ontogeny view: comparison of ${data.encodings.join(', ')}`;
