@@ -13,8 +13,19 @@ use ontogeny::sim::{JointModel, SimOptions, World};
 use ontogeny::task::{self, WalkerOptions};
 use rayon::prelude::*;
 
+use serde_json::json;
+
 use super::physics::{SteppingArgs, actuator_parser, flag_error};
 use super::progress::Progress;
+
+/// `say!` unless the output is JSON (`$json`): the text lines of the figures.
+macro_rules! text {
+    ($json:expr, $($arg:tt)*) => {
+        if !$json {
+            say!($($arg)*);
+        }
+    };
+}
 
 /// Flags of `ontogeny bench`.
 #[derive(Args)]
@@ -58,11 +69,19 @@ pub struct BenchArgs {
     /// `creature.json`) on one core, instead of the chains.
     #[arg(long, value_name = "FILE")]
     creature: Option<std::path::PathBuf>,
+    /// Print the speed figures as one JSON object instead of text (not with --fidelity).
+    #[arg(long)]
+    json: bool,
 }
 
 /// Measures and prints the figures docs/results/speed.md reports.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     task::check_duration("seconds", args.seconds).map_err(flag_error)?;
+    if args.json && args.fidelity > 0 {
+        return Err(super::bad(
+            "--json is for the speed figures: give it without --fidelity",
+        ));
+    }
     let base = SimOptions {
         actuator: args.actuator,
         ..SimOptions::default()
@@ -84,7 +103,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             time_evaluation(&creature, &sim, args.seconds);
         }
         let seconds = started.elapsed().as_secs_f64();
-        say!(
+        text!(
+            args.json,
             "{}: {} s at {} s ({} substeps), {n} evaluations, one core: {:.2} evaluations/s ({:.1} µs per step)",
             file.display(),
             args.seconds,
@@ -93,6 +113,18 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             n as f64 / seconds,
             seconds / n as f64 / steps * 1e6
         );
+        if args.json {
+            let object = json!({
+                "creature": file.display().to_string(),
+                "seconds": args.seconds,
+                "control_step": sim.control_step,
+                "substeps": sim.substeps,
+                "evaluations": n,
+                "evaluations_per_second": n as f64 / seconds,
+                "us_per_step": seconds / n as f64 / steps * 1e6,
+            });
+            say!("{}", serde_json::to_string_pretty(&object)?);
+        }
         return Ok(());
     }
     let reference = SimOptions {
@@ -105,13 +137,15 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     };
     let fast = base.fast();
     let walker = chain(10);
-    say!(
+    text!(
+        args.json,
         "10-part walker, {} s at 1/60 s, {} evaluations per row; {} threads available",
         args.seconds,
         n,
         rayon::current_num_threads()
     );
-    say!(
+    text!(
+        args.json,
         "{:<44} {:>12} {:>10} {:>10}",
         "setting (one core)",
         "evaluations/s",
@@ -119,21 +153,25 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "overhead"
     );
     let (measured, measured_step, measured_overhead) = one_core(&walker, &sim, n, args.seconds);
-    say!(
+    text!(
+        args.json,
         "{:<44} {measured:>12.1} {measured_step:>10.1} {measured_overhead:>9.1}%",
         format!("measured: {}", setting_name(&sim))
     );
     let (slow, slow_step, slow_overhead) = one_core(&walker, &reference, n, args.seconds);
-    say!(
+    text!(
+        args.json,
         "{:<44} {slow:>12.1} {slow_step:>10.1} {slow_overhead:>9.1}%",
         format!("{} (2 substeps, 4 iterations)", setting_name(&reference))
     );
     let (quick, quick_step, quick_overhead) = one_core(&walker, &fast, n, args.seconds);
-    say!(
+    text!(
+        args.json,
         "{:<44} {quick:>12.1} {quick_step:>10.1} {quick_overhead:>9.1}%",
         setting_name(&fast)
     );
-    say!(
+    text!(
+        args.json,
         "ratio:     {:.2}× the evaluations/s of {} (fast: {:.2}×)",
         measured / slow,
         setting_name(&reference),
@@ -145,14 +183,25 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         time_evaluation(&walker, &sim, args.seconds);
     });
     let all_cores = n as f64 / started.elapsed().as_secs_f64();
-    say!(
+    text!(
+        args.json,
         "all cores: {all_cores:.1} evaluations/s (speed-up {:.2} on {} threads)",
         all_cores / measured,
         rayon::current_num_threads()
     );
 
-    say!("\nµs per step, controller on, by joint model (chains of N parts):");
-    say!("{:>6} {:>10} {:>10}", "parts", "impulse", "multibody");
+    text!(
+        args.json,
+        "\nµs per step, controller on, by joint model (chains of N parts):"
+    );
+    text!(
+        args.json,
+        "{:>6} {:>10} {:>10}",
+        "parts",
+        "impulse",
+        "multibody"
+    );
+    let mut joint_models = Vec::new();
     for parts in [2, 5, 10, 20, 30] {
         let creature = chain(parts);
         let mut row = Vec::new();
@@ -164,7 +213,40 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
             let (t, _) = time_evaluation(&creature, &sim, 5.0);
             row.push(t / (5.0 / sim.control_step) * 1e6);
         }
-        say!("{parts:>6} {:>10.1} {:>10.1}", row[0], row[1]);
+        text!(args.json, "{parts:>6} {:>10.1} {:>10.1}", row[0], row[1]);
+        joint_models.push(json!({
+            "parts": parts,
+            "impulse_us_per_step": row[0],
+            "multibody_us_per_step": row[1],
+        }));
+    }
+    if args.json {
+        let setting = |name: String, (rate, step, overhead): (f64, f64, f64)| {
+            json!({
+                "setting": name,
+                "evaluations_per_second": rate,
+                "us_per_step": step,
+                "overhead_percent": overhead,
+            })
+        };
+        let object = json!({
+            "seconds": args.seconds,
+            "evaluations": n,
+            "threads": rayon::current_num_threads(),
+            "settings": [
+                setting(setting_name(&sim), (measured, measured_step, measured_overhead)),
+                setting(setting_name(&reference), (slow, slow_step, slow_overhead)),
+                setting(setting_name(&fast), (quick, quick_step, quick_overhead)),
+            ],
+            "ratio": measured / slow,
+            "fast_ratio": quick / slow,
+            "all_cores": {
+                "evaluations_per_second": all_cores,
+                "speed_up": all_cores / measured,
+            },
+            "joint_models": joint_models,
+        });
+        say!("{}", serde_json::to_string_pretty(&object)?);
     }
     if args.fidelity > 0 {
         fidelity(args, &sim)?;

@@ -81,6 +81,10 @@ pub struct CompareArgs {
     /// Write the report of the comparison in DIR from its finished replicates (runs nothing).
     #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "threads"])]
     merge: Option<PathBuf>,
+    /// Print the report's summary as one JSON object (each encoding's figures, the pairwise
+    /// tests, the files written) instead of text.
+    #[arg(long, conflicts_with = "plan")]
+    json: bool,
 }
 
 fn compare_error(e: CompareError) -> anyhow::Error {
@@ -103,13 +107,13 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     if let Some(root) = &args.merge {
         let _lock = compare::lock(root).map_err(compare_error)?;
         let (manifest, shared) = compare::open(root).map_err(compare_error)?;
-        return report(root, &manifest, &shared, true);
+        return report(root, &manifest, &shared, true, args.json);
     }
     if let Some(root) = &args.resume {
         let _lock = compare::lock(root).map_err(compare_error)?;
         let (manifest, shared) = compare::open(root).map_err(compare_error)?;
         run_all(root, &manifest, &shared, !args.no_cache)?;
-        return report(root, &manifest, &shared, false);
+        return report(root, &manifest, &shared, false, args.json);
     }
     let root = args
         .out
@@ -134,7 +138,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     run_all(root, &manifest, &shared, !args.no_cache)?;
-    report(root, &manifest, &shared, false)
+    report(root, &manifest, &shared, false, args.json)
 }
 
 /// The comparison the flags describe, checked.
@@ -236,7 +240,13 @@ fn run_replicate<G: Genome>(
 
 /// Gathers the finished replicates and writes the report. `merging`: say what is missing
 /// rather than treat it as an error.
-fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> anyhow::Result<()> {
+fn report(
+    root: &Path,
+    manifest: &Manifest,
+    shared: &Shared,
+    merging: bool,
+    json: bool,
+) -> anyhow::Result<()> {
     let (finished, unfinished) = compare::gather(root, manifest, shared).map_err(compare_error)?;
     if finished.is_empty() {
         return Err(bad(format!(
@@ -249,6 +259,14 @@ fn report(root: &Path, manifest: &Manifest, shared: &Shared, merging: bool) -> a
     }
     let r = compare::write_report(root, manifest, shared, &finished, &unfinished)
         .map_err(compare_error)?;
+    if json {
+        let files = ["report.md", "summary.csv", "fitness.svg", "parts.svg"].map(|f| root.join(f));
+        tell!("{}", ontogeny::output::wrote(&files));
+        let object =
+            ontogeny::evolve::json::comparison_json(root, shared, &r, finished.len(), &unfinished);
+        say!("{}", serde_json::to_string_pretty(&object)?);
+        return Ok(());
+    }
     super::print(text::comparison_summary(
         root,
         shared,

@@ -192,7 +192,6 @@ pub fn draw_recording(
     let samples = &recording.samples;
     let playback = ontogeny::render::playback(samples, fps);
     let size = (480, 300);
-    let target = recording.target_point();
     if !samples.is_empty() && playback.fps < fps {
         tell!(
             "note: {} s recorded: {} is drawn at {:.3} frames/s instead of {fps}, to keep to {} frames",
@@ -207,16 +206,9 @@ pub fn draw_recording(
         .unwrap_or(path.as_os_str())
         .to_string_lossy();
     let mut progress = Progress::new(format!("drawing {name}"));
-    ontogeny::render::write_behaviour_gif(
-        &recording.creature,
-        samples,
-        target,
-        &playback,
-        why,
-        path,
-        size,
-        &mut |f| progress.set(f),
-    )
+    ontogeny::render::write_behaviour_gif(recording, &playback, why, path, size, &mut |f| {
+        progress.set(f)
+    })
     .map_err(super::render_error(path))?;
     progress.finish();
     Ok(playback)

@@ -122,6 +122,11 @@ pub struct EvolveArgs {
     /// run (the config's `cache = false`); results are the same either way.
     #[arg(long)]
     no_cache: bool,
+    /// Print the final line as one JSON object (the run's directory, encoding and fitness, the
+    /// last generation's best and its fine reference, the counts and speed, the files
+    /// written); progress and messages still go to standard error.
+    #[arg(long)]
+    json: bool,
 }
 
 /// The command line's error for a run's: bad input (exit code 2), or, for a store or a plot
@@ -160,7 +165,7 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     };
     if let Some(dir) = &args.resume {
         let encoding = encoding_of_run(dir).map_err(run_error)?;
-        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change), |other| Err(bad(
+        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change, args.json), |other| Err(bad(
             format!("{}: unknown encoding '{other}'", dir.display())
         )));
     }
@@ -169,18 +174,38 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
             "--allow-evaluator-change goes with --resume: a new run has one evaluator",
         ));
     }
-    let source = read_source(args.config.as_deref())?;
+    let mut source = read_source(args.config.as_deref())?;
+    let example =
+        source.is_none() && args.preset.is_none() && args.pop.is_none() && args.gens.is_none();
+    if example {
+        // Chaumont's full schedule is 300 × 100 walks (hours): with nothing said about the
+        // run's size, the README's walker example starts instead, and says so.
+        source = Some(ontogeny::lang::Source::new(
+            DEFAULT_CONFIG_NAME,
+            DEFAULT_CONFIG,
+        ));
+    }
     let encoding =
         settings::new_run_encoding(args.encoding.map(EncodingArg::name), source.as_deref())?;
     with_genome!(
         encoding.as_str(),
-        G => start::<G>(args, source.as_deref()),
+        G => start::<G>(args, source.as_deref(), example),
         |other| Err(bad(format!(
             "unknown encoding '{other}' ({})",
             encoding_names()
         )))
     )
 }
+
+/// The configuration a new run starts from when no `--config`, `--preset`, `--pop` or
+/// `--gens` is given: the README's walker example (100 × 40 walks of 20 s, distance).
+const DEFAULT_CONFIG: &str = include_str!("../../examples/evolve-walker.toml");
+
+/// The name [`DEFAULT_CONFIG`] goes by in messages.
+const DEFAULT_CONFIG_NAME: &str = "examples/evolve-walker.toml (built in)";
+
+/// What a new run started from [`DEFAULT_CONFIG`] says on standard error.
+pub const DEFAULT_RUN_NOTE: &str = "note: no --config, --preset, --pop or --gens: starting the walker example (examples/evolve-walker.toml, built in: the lsystem genome, Chaumont's schedule, 100 creatures × 40 generations of 20-second walks, fitness distance; about a minute on two cores); other flags apply over it; --preset chaumont runs Chaumont's full 300 × 100";
 
 /// The run's flags that set its genetic algorithm and task.
 fn run_flags(args: &EvolveArgs) -> RunFlags {
@@ -200,8 +225,13 @@ pub fn read_source(path: Option<&Path>) -> anyhow::Result<Option<std::sync::Arc<
     Ok(path.map(read_config_source).transpose()?)
 }
 
-/// Resolves the settings (command line over config file over preset) and starts the run.
-fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Result<()> {
+/// Resolves the settings (command line over config file over preset) and starts the run;
+/// `example` says that `source` is the built-in walker example, noted once the settings hold.
+fn start<G: Genome>(
+    args: &EvolveArgs,
+    source: Option<&Source>,
+    example: bool,
+) -> anyhow::Result<()> {
     let out = args
         .out
         .as_ref()
@@ -214,15 +244,19 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         !args.no_verify_best,
         !args.no_cache,
     )?;
+    if example {
+        tell!("{DEFAULT_RUN_NOTE}");
+    }
     let init_text = init.as_ref().map(|s| s.text());
     let mut run = Run::<G>::start(out, config, init_text).map_err(run_error)?;
-    go(&mut run, out)
+    go(&mut run, out, args.json)
 }
 
 fn resume<G: Genome>(
     dir: &Path,
     generations: Option<usize>,
     allow_evaluator_change: bool,
+    json: bool,
 ) -> anyhow::Result<()> {
     let mut run = Run::<G>::resume_with(dir, allow_evaluator_change).map_err(run_error)?;
     if let Some(generations) = generations {
@@ -244,11 +278,12 @@ fn resume<G: Genome>(
         Some(g) => tell!("{}: resuming after generation {g}", dir.display()),
         None => tell!("{}: resuming from the first generation", dir.display()),
     }
-    go(&mut run, dir)
+    go(&mut run, dir, json)
 }
 
-/// Runs the remaining generations with a progress bar on a terminal, log lines otherwise.
-fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
+/// Runs the remaining generations with a progress bar on a terminal, log lines otherwise;
+/// the final line as JSON when `json` is set.
+fn go<G: Genome>(run: &mut Run<G>, dir: &Path, json: bool) -> anyhow::Result<()> {
     let total = run.config().ga.generations as u64;
     let first = run
         .last_generation()
@@ -304,7 +339,27 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path) -> anyhow::Result<()> {
     }
     let wall = started.elapsed().as_secs_f64();
     if let Some(r) = last {
-        super::print(tally.closing_lines(dir, &fitness, G::NAME, G::TEXT_EXTENSION, &r, wall))?;
+        let lines = tally.closing_lines(dir, &fitness, G::NAME, G::TEXT_EXTENSION, &r, wall);
+        if json {
+            // The messages as ever; the final line as JSON.
+            for line in lines {
+                if let ontogeny::evolve::text::Line::Message(m) = line {
+                    tell!("{m}");
+                }
+            }
+            let object = ontogeny::evolve::json::run_json(
+                &tally,
+                dir,
+                &fitness,
+                G::NAME,
+                G::TEXT_EXTENSION,
+                &r,
+                wall,
+            );
+            say!("{}", serde_json::to_string_pretty(&object)?);
+        } else {
+            super::print(lines)?;
+        }
     }
     Ok(())
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
-use ontogeny::encoding::{ShowError, show_genome_file};
+use ontogeny::encoding::{ShowError, read_genome_file};
 
 /// Subcommands of `ontogeny genome`.
 #[derive(Subcommand)]
@@ -15,6 +15,11 @@ pub enum GenomeVerb {
     Show {
         /// The genome file (`.lsys` of the L-system and direct genomes, `.json` of the graph).
         file: PathBuf,
+        /// Print it as one JSON object: the file, its encoding, the genome as text, and the
+        /// creature it develops into summarised as `grow --json` does (null, with the error,
+        /// when it does not develop).
+        #[arg(long)]
+        json: bool,
     },
 }
 
@@ -28,14 +33,18 @@ pub struct GenomeArgs {
 /// Runs `ontogeny genome`.
 pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
     match &args.verb {
-        GenomeVerb::Show { file } => {
+        GenomeVerb::Show { file, json } => {
             let text = ontogeny::input::read_to_string(file)
                 .with_context(|| format!("cannot read {}", file.display()))?;
-            let shown = show_genome_file(file, &text).map_err(|e| match e {
+            let shown = read_genome_file(file, &text).map_err(|e| match e {
                 ShowError::Grammar(d) => anyhow::Error::new(d),
                 ShowError::NotAGenome(m) => super::bad(m),
             })?;
-            say!("{shown}");
+            if *json {
+                say!("{}", serde_json::to_string_pretty(&shown.json())?);
+            } else {
+                say!("{}", shown.text());
+            }
             Ok(())
         }
     }

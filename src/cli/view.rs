@@ -101,6 +101,9 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
                 );
             }
         }
+        Kind::Comparison => {
+            ontogeny::view::comparison_data(&target.path).map_err(|e| bad(e.to_string()))?;
+        }
         Kind::Run => {
             let data = ontogeny::view::run_data(&target.path).map_err(|e| bad(e.to_string()))?;
             let encoding = data["encoding"].as_str().unwrap_or_default().to_string();

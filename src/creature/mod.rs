@@ -10,7 +10,7 @@ pub mod repeats;
 mod summary;
 
 pub use geometry::boxes_intersect;
-pub use summary::Summary;
+pub use summary::{Summary, counted};
 
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};

@@ -7,6 +7,16 @@ use serde::Serialize;
 
 use super::{Creature, Problem, Role};
 
+/// `n` and the noun, singular for one (`"1 neuron"`, `"3 neurons"`); `noun` is the singular
+/// and the plural adds an `s`.
+pub fn counted(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 /// What `grow` says about a creature: the last frame of growing `file`, at developmental
 /// time `t`, after `frames` frames.
 #[derive(Clone, Debug, Serialize)]
@@ -81,10 +91,10 @@ impl Summary {
         let [lo, hi] = s.bounding_box;
         let mut lines = vec![
             format!(
-                "{}: grown to t = {} in {} frame(s)",
+                "{}: grown to t = {} in {}",
                 s.file,
                 crate::lsystem::format_number(s.t),
-                s.frames
+                counted(s.frames, "frame")
             ),
             format!(
                 "parts: {}   joints: {}",
@@ -96,8 +106,11 @@ impl Summary {
                 }
             ),
             format!(
-                "brain: {} neurons ({} sensors, {} actuators), {} links",
-                s.neurons, s.sensors, s.actuators, s.links
+                "brain: {} ({}, {}), {}",
+                counted(s.neurons, "neuron"),
+                counted(s.sensors, "sensor"),
+                counted(s.actuators, "actuator"),
+                counted(s.links, "link")
             ),
             format!(
                 "mass: {:.4}   bounding box: ({:.3}, {:.3}, {:.3}) to ({:.3}, {:.3}, {:.3})",
@@ -116,4 +129,16 @@ fn no_part(c: &Creature) -> Option<String> {
     c.parts.is_empty().then(|| {
         "error: no part: the string builds nothing (a part comes from forward or its maturing twin mforward; see docs/reference/commands.md)".to_string()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_of_a_thing_is_counted_in_the_singular() {
+        assert_eq!(counted(1, "neuron"), "1 neuron");
+        assert_eq!(counted(0, "neuron"), "0 neurons");
+        assert_eq!(counted(2, "link"), "2 links");
+    }
 }

@@ -30,7 +30,7 @@ pub use limits::CheckedLimits;
 pub use load::{LoadError, LoadOptions, Loaded, grow_grammar, load_creature};
 pub use lsystem::{LSystemGenome, LSystemLimits};
 pub use registry::{ENCODINGS, EncodingInfo, encoding_named};
-pub use show::{ShowError, show_genome_file};
+pub use show::{ShowError, ShownGenome, read_genome_file, show_genome_file};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.

@@ -20,6 +20,7 @@ pub mod evaluator;
 pub mod evaluator_version;
 pub mod fidelity;
 pub mod ga;
+pub mod json;
 pub mod key;
 pub mod listing;
 pub mod lock;

@@ -11,9 +11,10 @@ use nalgebra::{UnitQuaternion, Vector3};
 use super::camera::{Framing, View};
 use super::palette::gif_image;
 use super::text::wrap;
+use super::walk::{root_path, walked, walked_label};
 use super::{Overlay, RenderError, checked_with_label, picture};
 use crate::creature::{Creature, Part};
-use crate::task::Sample;
+use crate::task::{Recording, Sample};
 
 /// The largest rate (images per second) an animation takes: GIF delays are whole
 /// centiseconds, and browsers slow images shorter than 2 cs down to 10.
@@ -77,8 +78,9 @@ pub struct Playback {
 /// How an animation at `fps` images per second of simulated time plays `samples`: image k
 /// shows the sample nearest time k / fps, and its delay is chosen so that image k starts at
 /// round(100 k / fps) cs: played back, the animation keeps the simulation's time, whatever
-/// the ratio of `fps` to the recording's rate. A recording too long for [`MAX_GIF_IMAGES`]
-/// is played at a lower rate.
+/// the ratio of `fps` to the recording's rate. The last image shows the last sample (one more
+/// image when the rate steps past it). A recording too long for [`MAX_GIF_IMAGES`] is played
+/// at a lower rate.
 pub fn playback(samples: &[Sample], fps: f64) -> Playback {
     let (Some(first), Some(last)) = (samples.first(), samples.last()) else {
         return Playback {
@@ -108,9 +110,20 @@ pub fn playback(samples: &[Sample], fps: f64) -> Playback {
         shown.push(next);
     }
     let start = |k: usize| (100.0 * k as f64 / fps).round() as u64;
-    let delays_cs = (0..count)
+    let mut delays_cs: Vec<u16> = (0..count)
         .map(|k| (start(k + 1) - start(k)).clamp(2, u16::MAX as u64) as u16)
         .collect();
+    // The last image shows the last sample (the end of the evaluation: a walker's D_w), one
+    // more image when the rate stepped past it.
+    let last = samples.len() - 1;
+    if shown.last() != Some(&last) {
+        if shown.len() < MAX_GIF_IMAGES {
+            shown.push(last);
+            delays_cs.push(*delays_cs.last().unwrap_or(&10));
+        } else if let Some(end) = shown.last_mut() {
+            *end = last;
+        }
+    }
     Playback {
         shown,
         delays_cs,
@@ -169,30 +182,32 @@ pub fn trail(samples: &[Sample], until: usize) -> Vec<Vector3<f64>> {
     trail
 }
 
-/// Writes `behaviour.gif`, the animation of `samples` of `creature` as `playback` plays them:
-/// each image labelled with its simulated time and the protocol's phase, the projectile's
-/// trail so far drawn, and `target` (the aim task's, in world coordinates) when there is
-/// one; the camera follows the creature. `progress` is told the fraction of images written.
+/// Writes `behaviour.gif`, the animation of `recording`'s samples as `playback` plays them:
+/// each image labelled with its simulated time and the protocol's phase (and, for a walker,
+/// the distance walked so far, with the root's path drawn on the ground), the projectile's
+/// trail so far drawn, and the aim task's target when there is one; the camera follows the
+/// creature. `progress` is told the fraction of images written.
 ///
 /// A recording without samples (an evaluation refused before simulating) is drawn as one
 /// image of the creature as built, checked, saying that nothing was recorded and `why`.
-#[allow(clippy::too_many_arguments)]
 pub fn write_behaviour_gif(
-    creature: &Creature,
-    samples: &[Sample],
-    target: Option<Vector3<f64>>,
+    recording: &Recording,
     playback: &Playback,
     why: &str,
     path: &std::path::Path,
     (width, height): (u32, u32),
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), RenderError> {
+    let creature: &Creature = &recording.creature;
+    let samples: &[Sample] = &recording.samples;
     if samples.is_empty() {
         let label: Vec<String> = std::iter::once("no frames recorded (starting pose)".to_string())
             .chain(wrap(why, STILL_LINE))
             .collect();
         return write_still_gif(creature, &label, path, width, height);
     }
+    let target = recording.target_point();
+    let walks = recording.task == "walker";
     let poses: Vec<Creature> = playback
         .shown
         .iter()
@@ -203,13 +218,20 @@ pub fn write_behaviour_gif(
         .iter()
         .map(|&i| {
             let sample = &samples[i];
+            let walked = walks.then(|| walked(samples, i)).flatten();
             Overlay {
-                // The time, and the protocol's phase below it.
+                // The time, the protocol's phase below it, then the distance walked.
                 label: std::iter::once(format!("t = {:.2} s", sample.t))
                     .chain(sample.phase.map(|p| p.label().to_string()))
+                    .chain(walked.map(walked_label))
                     .collect(),
                 target,
                 trail: trail(samples, i),
+                path: if walks {
+                    root_path(samples, i)
+                } else {
+                    Vec::new()
+                },
             }
         })
         .collect();
@@ -350,12 +372,9 @@ mod tests {
             evaluation.status.name(),
             evaluation.message.as_deref().unwrap_or("")
         );
-        let samples = &recording.samples;
         write_behaviour_gif(
-            creature,
-            samples,
-            recording.target_point(),
-            &playback(samples, 10.0),
+            &recording,
+            &playback(&recording.samples, 10.0),
             &why,
             &dir.join("behaviour.gif"),
             (480, 300),
@@ -364,7 +383,7 @@ mod tests {
         .unwrap();
     }
 
-    use crate::render::palette::TARGET;
+    use crate::render::palette::{PATH, TARGET};
 
     #[test]
     fn an_aim_recording_shows_its_target_and_a_catapult_one_does_not() {
@@ -422,6 +441,53 @@ mod tests {
         assert!(json["target"].is_array(), "{}", json["target"]);
         assert!(has_target("failed").iter().all(|&n| n > 20));
         let _ = std::fs::remove_dir_all(dir);
+    }
+
+    #[test]
+    fn a_walk_shows_its_distance_so_far_and_its_path_on_the_ground() {
+        let lsys = LSystem::from_path(Path::new("examples/quadruped.lsys")).unwrap();
+        let options = crate::lsystem::DeriveOptions::default();
+        let frames = crate::develop::grow(&lsys, &options, None, &BuildOptions::default()).unwrap();
+        let creature = frames.into_iter().last().unwrap().creature;
+        let walk = WalkerOptions {
+            seconds: 2.0,
+            ..WalkerOptions::default()
+        };
+        let evaluation = task::walker(&creature, &SimOptions::default(), &walk, true);
+        assert_eq!(
+            evaluation.status,
+            task::Status::Ok,
+            "{:?}",
+            evaluation.message
+        );
+        let samples = &evaluation.recording;
+        // The distance the last image shows is the evaluation's D_w (poses are recorded at
+        // f32 precision).
+        let last = crate::render::walked(samples, samples.len() - 1).unwrap();
+        let d_w = evaluation.terms["D_w"];
+        assert!(d_w > 0.05, "{d_w}");
+        assert!((last - d_w).abs() < 1e-4, "{last} {d_w}");
+        // The GIF's last image shows the last sample: it says D_w.
+        assert_eq!(
+            playback(samples, 10.0).shown.last(),
+            Some(&(samples.len() - 1))
+        );
+        // Nothing is walked before the measured walk starts.
+        let start = crate::render::walk_start(samples).unwrap();
+        assert!(start > 0);
+        assert_eq!(crate::render::walked(samples, start - 1), None);
+        assert_eq!(crate::render::walked(samples, start), Some(0.0));
+        // The GIF draws the path on the ground once the walk has started, not before.
+        let scratch = tempfile::tempdir().unwrap();
+        write_recording_at(scratch.path(), &creature, &evaluation);
+        let images = gif_frames(&scratch.path().join("behaviour.gif"));
+        let path = |f: &Vec<u8>| f.chunks_exact(4).filter(|p| p[..3] == PATH).count();
+        assert_eq!(path(&images[0]), 0);
+        assert!(
+            path(images.last().unwrap()) > 20,
+            "{}",
+            path(images.last().unwrap())
+        );
     }
 
     #[test]

@@ -7,11 +7,11 @@ use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 
 use super::Overlay;
 use super::camera::{Camera, View};
-use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, TARGET, TRAIL, paint, solid};
+use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL, paint, solid};
 use super::pen::{fill, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
-use crate::creature::{Creature, Severity};
+use crate::creature::{Creature, Severity, counted};
 
 /// Whether a picture checks the creature: marks interpenetrating parts, numbers the parts and
 /// writes its validity and problems.
@@ -61,6 +61,7 @@ pub(super) fn draw_body(
     if let Some(target) = overlay.target {
         draw_target_stem(pixmap, &camera, shift, ground, target);
     }
+    draw_path(pixmap, &camera, shift, ground, &overlay.path);
     draw_shadows(pixmap, &camera, shift, ground, creature);
     draw_parts(pixmap, &camera, shift, creature);
     // Parts that the builder found overlapping and reported as a warning (a picture of a
@@ -172,6 +173,31 @@ fn draw_target_stem(
     if let Some(path) = pb.finish() {
         let stroke = stroke_width(1.5);
         pixmap.stroke_path(&path, &solid(TARGET), &stroke, shift, None);
+    }
+}
+
+/// A walker's path on the ground (at y = `ground`), with a dot where it started.
+fn draw_path(
+    pixmap: &mut Pixmap,
+    camera: &Camera,
+    shift: Transform,
+    ground: f64,
+    path: &[Vector3<f64>],
+) {
+    let projected: Vec<(f32, f32)> = path
+        .iter()
+        .map(|p| {
+            let (sx, sy, _) = camera.project(&Vector3::new(p.x, ground, p.z));
+            (sx, sy)
+        })
+        .collect();
+    if let Some(line) = polyline(projected.iter().copied()) {
+        pixmap.stroke_path(&line, &solid(PATH), &stroke_width(3.0), shift, None);
+    }
+    if let Some(&(x, y)) = projected.first()
+        && let Some(dot) = PathBuilder::from_circle(x, y, 4.0)
+    {
+        fill(pixmap, &dot, &solid(PATH), shift);
     }
 }
 
@@ -288,7 +314,8 @@ fn outline_marked(
 }
 
 /// The joints, on top of the parts: a disc in the plane each movable joint turns in (red,
-/// orange while growing), its size following the parts it joins (at most `most` pixels), with
+/// orange while growing), its size following the parts it joins and never larger (at most
+/// `most` pixels), with
 /// a line along each axis ending in a dot at the axis's positive end; fused joints are grey
 /// dots.
 fn draw_joints(
@@ -302,7 +329,8 @@ fn draw_joints(
     for joint in &creature.joints {
         let (sx, sy, _) = camera.project(&joint.anchor);
         let radius = joint_radius(creature, joint.parent, joint.child);
-        let pixels = ((radius * camera.scale) as f32).clamp(4.0, most.max(4.0));
+        // No larger than the parts joined (nor than `most`), and at least a visible dot.
+        let pixels = ((radius * camera.scale) as f32).min(most).max(1.5);
         let radius = pixels as f64 / camera.scale;
         if joint.kind.dof() == 0 || joint.axes.is_empty() {
             let dot = (0.4 * pixels).clamp(2.0, 6.0);
@@ -514,10 +542,10 @@ fn write_text(
         }
         let valid = creature.is_valid() && pairs.is_empty();
         let summary = format!(
-            "{} parts, {} joints, {} neurons: {}",
-            creature.parts.len(),
-            creature.joints.len(),
-            creature.brain.neurons.len(),
+            "{}, {}, {}: {}",
+            counted(creature.parts.len(), "part"),
+            counted(creature.joints.len(), "joint"),
+            counted(creature.brain.neurons.len(), "neuron"),
             if valid { "valid" } else { "INVALID" }
         );
         draw_text(

@@ -6,7 +6,7 @@ use tiny_skia::{PathBuilder, Pixmap, Transform};
 use super::palette::{ACTUATOR, INK, NEURON, OSCILLATOR, PANEL, SENSOR, paint, solid};
 use super::pen::{fill, stroke_width};
 use super::text::{draw_text, fit, text_width};
-use crate::creature::{Actuator, Creature, Neuron, NeuronFunction, Role, Sensor};
+use crate::creature::{Actuator, Creature, JointKind, Neuron, NeuronFunction, Role, Sensor};
 
 /// A neuron function's name as files spell it (`"sum-greater"`).
 fn function_name(function: NeuronFunction) -> String {
@@ -16,22 +16,44 @@ fn function_name(function: NeuronFunction) -> String {
         .unwrap_or_default()
 }
 
-/// What a neuron does, in a few characters: a sensor what it reads (`"touch p1"`,
-/// `"angle j0.1"`), an actuator its function and what it drives (`"sigmoid j0.1"`), a hidden
-/// neuron its function (`"oscillator"`), as the viewer labels them.
-pub(super) fn neuron_label(neuron: &Neuron) -> String {
+/// What a joint's degree of freedom is called in a label: the joint's kind and number
+/// (`"hinge j3"`), with the axis when the joint has more than one (`"universal j2 axis 1"`).
+fn joint_label(creature: &Creature, joint: usize, dof: usize) -> String {
+    let Some(kind) = creature.joints.get(joint).map(|j| j.kind) else {
+        return format!("joint j{joint}");
+    };
+    let name = match kind {
+        JointKind::Revolute => "hinge".to_string(),
+        JointKind::Spherical => "ball".to_string(),
+        kind => serde_json::to_value(kind)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default(),
+    };
+    if kind.dof() > 1 {
+        format!("{name} j{joint} axis {dof}")
+    } else {
+        format!("{name} j{joint}")
+    }
+}
+
+/// What a neuron of `creature` does, in a few words: a sensor what it reads (`"touch p1"`,
+/// `"angle hinge j0"`), an actuator the joint it drives (`"hinge j3"`, `"universal j2 axis 1"`)
+/// or what else it does (`"secrete 0"`), a hidden neuron its function (`"oscillator"`), as the
+/// viewer labels them.
+pub(super) fn neuron_label(creature: &Creature, neuron: &Neuron) -> String {
     let function = function_name(neuron.function);
     match neuron.role {
         Role::Sensor { sensor } => match sensor {
             Sensor::Touch { part, .. } => format!("touch p{part}"),
-            Sensor::Angle { joint, dof } => format!("angle j{joint}.{dof}"),
+            Sensor::Angle { joint, dof } => format!("angle {}", joint_label(creature, joint, dof)),
             Sensor::Chemical { slot } => format!("chemical {slot}"),
             Sensor::Target => "target".to_string(),
         },
         Role::Actuator { actuator } => match actuator {
-            Actuator::Joint { joint, dof } => format!("{function} j{joint}.{dof}"),
-            Actuator::Secrete { slot } => format!("{function} secrete {slot}"),
-            Actuator::Release => format!("{function} release"),
+            Actuator::Joint { joint, dof } => joint_label(creature, joint, dof),
+            Actuator::Secrete { slot } => format!("secrete {slot}"),
+            Actuator::Release => "release".to_string(),
         },
         Role::Hidden => function,
     }
@@ -116,7 +138,7 @@ pub(super) fn draw_brain(pixmap: &mut Pixmap, creature: &Creature, region: (f32,
         let (x, y) = place(i);
         // Centred above a neuron in the upper half of the circle, below one in the lower
         // half, inside the panel.
-        let label = fit(&neuron_label(neuron), rw - 4.0, 1.0);
+        let label = fit(&neuron_label(creature, neuron), rw - 4.0, 1.0);
         let width = text_width(&label, 1.0);
         let left = (x - width / 2.0).clamp(rx + 2.0, (rx + rw - width - 2.0).max(rx + 2.0));
         let upper = n > 1 && y < cy - 1.0;
@@ -149,17 +171,41 @@ mod tests {
     use crate::develop::creature_from_commands;
 
     #[test]
-    fn neurons_are_labelled_with_what_they_do() {
+    fn neurons_are_labelled_with_the_joint_they_drive() {
         let c = creature_from_commands("forward(1) revolute2 forward(1) output(1)").unwrap();
-        let labels: Vec<String> = c.brain.neurons.iter().map(neuron_label).collect();
-        assert!(labels.iter().any(|l| l.ends_with(" j0.0")), "{labels:?}");
+        let labels: Vec<String> = c
+            .brain
+            .neurons
+            .iter()
+            .map(|n| neuron_label(&c, n))
+            .collect();
+        assert!(labels.contains(&"hinge j0".to_string()), "{labels:?}");
+        assert!(
+            labels.iter().all(|l| !l.starts_with("linear")),
+            "{labels:?}"
+        );
         let mut hidden = c.brain.neurons[0].clone();
         hidden.role = Role::Hidden;
         hidden.function = NeuronFunction::SumGreater;
-        assert_eq!(neuron_label(&hidden), "sum-greater");
+        assert_eq!(neuron_label(&c, &hidden), "sum-greater");
         hidden.role = Role::Sensor {
-            sensor: Sensor::Angle { joint: 2, dof: 1 },
+            sensor: Sensor::Angle { joint: 0, dof: 0 },
         };
-        assert_eq!(neuron_label(&hidden), "angle j2.1");
+        assert_eq!(neuron_label(&c, &hidden), "angle hinge j0");
+        // A joint of two axes names the axis.
+        let mut two = c.clone();
+        two.joints[0].kind = JointKind::Universal;
+        hidden.role = Role::Sensor {
+            sensor: Sensor::Angle { joint: 0, dof: 1 },
+        };
+        assert_eq!(neuron_label(&two, &hidden), "angle universal j0 axis 1");
+        hidden.role = Role::Actuator {
+            actuator: Actuator::Joint { joint: 0, dof: 0 },
+        };
+        assert_eq!(neuron_label(&c, &hidden), "hinge j0");
+        hidden.role = Role::Actuator {
+            actuator: Actuator::Joint { joint: 7, dof: 0 },
+        };
+        assert_eq!(neuron_label(&c, &hidden), "joint j7");
     }
 }

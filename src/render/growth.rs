@@ -38,13 +38,26 @@ pub fn growth_gif_note(shown: usize, total: u64, path: &Path) -> Option<String> 
     })
 }
 
-/// Draws a growth animation of `frames` (480 × 300), each labelled with its developmental
-/// time, telling `progress` how far it is (0 to 1).
+/// The frames a growth animation shows of `frames`: from the first that has a part (the
+/// frames before it, an axiom that builds nothing yet, would show empty ground), or all of
+/// them when none has.
+pub fn growth_gif_frames(frames: &[GrowthFrame]) -> &[GrowthFrame] {
+    let first = frames
+        .iter()
+        .position(|f| !f.creature.parts.is_empty())
+        .unwrap_or(0);
+    &frames[first..]
+}
+
+/// Draws a growth animation of `frames` (480 × 300) from the first frame with a part
+/// ([`growth_gif_frames`]), each labelled with its developmental time, telling `progress` how
+/// far it is (0 to 1).
 pub fn write_growth_gif(
     frames: &[GrowthFrame],
     path: &Path,
     progress: &mut dyn FnMut(f64),
 ) -> Result<(), RenderError> {
+    let frames = growth_gif_frames(frames);
     let labels: Vec<Overlay> = frames
         .iter()
         .map(|frame| Overlay {
@@ -66,7 +79,37 @@ pub fn write_growth_gif(
 
 #[cfg(test)]
 mod tests {
-    use super::growth_image_delay;
+    use super::*;
+    use crate::creature::Creature;
+    use crate::develop::creature_from_commands;
+
+    #[test]
+    fn a_growth_animation_starts_at_the_first_part() {
+        let frame = |step: u64, creature: Creature| GrowthFrame {
+            step,
+            t: step as f64,
+            creature,
+        };
+        let empty = || creature_from_commands("split").unwrap();
+        let one = creature_from_commands("forward(1)").unwrap();
+        assert!(empty().parts.is_empty());
+        let frames = vec![
+            frame(0, empty()),
+            frame(1, empty()),
+            frame(2, one.clone()),
+            frame(3, empty()),
+        ];
+        let shown = growth_gif_frames(&frames);
+        assert_eq!(shown.iter().map(|f| f.step).collect::<Vec<_>>(), [2, 3]);
+        // Nothing ever built: every frame is shown.
+        let nothing = vec![frame(0, empty()), frame(1, empty())];
+        assert_eq!(growth_gif_frames(&nothing).len(), 2);
+        // The GIF holds the shown frames only.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("growth.gif");
+        write_growth_gif(&frames, &path, &mut |_| {}).unwrap();
+        assert_eq!(crate::render::tests::gif_frames(&path).len(), 2);
+    }
 
     #[test]
     fn a_growth_animation_plays_in_at_most_half_a_minute() {

@@ -13,6 +13,7 @@ mod palette;
 mod pen;
 mod text;
 mod top_view;
+mod walk;
 
 use nalgebra::Vector3;
 use tiny_skia::{Color, Pixmap};
@@ -26,6 +27,7 @@ use body::{Checks, draw_body};
 use brain::draw_brain;
 pub use camera::{Framing, View};
 pub use text::wrap;
+pub use walk::{root_path, walk_start, walked, walked_label};
 
 /// Why a picture could not be made or written.
 #[derive(Debug, thiserror::Error)]
@@ -59,6 +61,9 @@ pub struct Overlay {
     /// trail, a top view in the corner shows them even when they are out of the camera's
     /// view.
     pub trail: Vec<Vector3<f64>>,
+    /// A walker's path on the ground so far (its root part's centre at y = 0), oldest first,
+    /// drawn as a line on the ground.
+    pub path: Vec<Vector3<f64>>,
 }
 
 /// A picture of the creature: the body in a 3/4 view on the left, its brain on the right,

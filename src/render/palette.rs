@@ -24,6 +24,8 @@ pub(super) const AXIS: [u8; 3] = [25, 25, 25];
 pub(super) const TARGET: [u8; 3] = [225, 0, 200];
 /// A projectile's trail.
 pub(super) const TRAIL: [u8; 3] = [190, 90, 0];
+/// A walker's path on the ground.
+pub(super) const PATH: [u8; 3] = [0, 120, 215];
 /// What makes a creature invalid: interpenetrating parts, problem text.
 pub(super) const MARK: [u8; 3] = [255, 0, 0];
 /// Text.
@@ -32,7 +34,7 @@ pub(super) const INK: [u8; 3] = [20, 20, 20];
 pub(super) const PANEL: [u8; 3] = [248, 248, 250];
 
 /// The colours a GIF's palette holds exactly, whatever else the image needs.
-const KEY_COLOURS: [[u8; 3]; 13] = [
+const KEY_COLOURS: [[u8; 3]; 14] = [
     SENSOR,
     ACTUATOR,
     OSCILLATOR,
@@ -42,6 +44,7 @@ const KEY_COLOURS: [[u8; 3]; 13] = [
     AXIS,
     TARGET,
     TRAIL,
+    PATH,
     MARK,
     INK,
     PANEL,

@@ -17,6 +17,7 @@
 //! What it does not own: developing a run's genomes (the command line passes a function that
 //! does, as it alone knows every encoding), nor driving a browser.
 
+mod comparison;
 mod open;
 mod server;
 pub mod snapshot;
@@ -29,6 +30,7 @@ use crate::develop::{BuildOptions, build};
 use crate::lang::{Diagnostic, FileKind};
 use crate::lsystem::{DefineOverride, DeriveOptions, LSystem};
 
+pub use comparison::{COMPARISON_PLOTS, comparison_data};
 pub use open::{Developer, PageFlags, ignored_flags, run_developer};
 pub use server::{Server, ServerError};
 
@@ -46,6 +48,8 @@ pub enum Kind {
     Recording,
     /// A run directory written by `ontogeny evolve` (`config.toml` and `run.sqlite`).
     Run,
+    /// A comparison directory written by `ontogeny compare` (`compare.toml`).
+    Comparison,
 }
 
 impl Kind {
@@ -56,6 +60,7 @@ impl Kind {
             Kind::Growth => "growth",
             Kind::Recording => "recording",
             Kind::Run => "run",
+            Kind::Comparison => "comparison",
         }
     }
 }
@@ -63,7 +68,7 @@ impl Kind {
 /// Errors of the viewer.
 #[derive(Debug, thiserror::Error)]
 pub enum ViewError {
-    /// PATH is none of the four kinds.
+    /// PATH is none of the five kinds.
     #[error("{0}")]
     NotViewable(String),
     /// A file of the directory cannot be read or makes no sense.
@@ -91,7 +96,7 @@ pub struct Target {
 }
 
 impl Target {
-    /// Tells what `path` is: a `.lsys` file, or a grow, recording or run directory.
+    /// Tells what `path` is: a `.lsys` file, or a grow, recording, run or comparison directory.
     pub fn classify(path: &Path) -> Result<Target, ViewError> {
         let shown = path.display();
         let target = |kind| {
@@ -123,7 +128,9 @@ impl Target {
                 "{shown}: no such file or directory"
             )));
         }
-        if path.join("config.toml").is_file() && path.join("run.sqlite").is_file() {
+        if comparison::is_comparison(path) {
+            target(Kind::Comparison)
+        } else if path.join("config.toml").is_file() && path.join("run.sqlite").is_file() {
             target(Kind::Run)
         } else if path.join("recording.json").is_file() {
             target(Kind::Recording)
@@ -132,8 +139,8 @@ impl Target {
         } else {
             Err(ViewError::NotViewable(format!(
                 "{shown}: not a directory view can show (it has no frames.jsonl from grow \
-                 --out, no recording.json from eval --record, and no config.toml and \
-                 run.sqlite from evolve)"
+                 --out, no recording.json from eval --record, no config.toml and \
+                 run.sqlite from evolve, and no compare.toml from compare)"
             )))
         }
     }
@@ -151,6 +158,7 @@ impl Target {
                 fingerprint(&self.path.join("run.sqlite")),
                 fingerprint(&self.path.join("run.sqlite-wal"))
             ),
+            Kind::Comparison => fingerprint(&self.path.join("report.md")),
         }
     }
 }
@@ -536,8 +544,10 @@ pub fn no_samples_reason(recording: &crate::task::Recording) -> Option<String> {
 }
 
 /// Reads a run directory's store into the page's data: `{"kind": "run", "file", "encoding",
-/// "task", "generations": [{"index", "best", "mean", "median", "sd", "valid_fraction",
-/// "evaluations"}]}`.
+/// "task", "fitness" (what the fitness measures and its unit, as `fitness.svg`'s y axis says,
+/// `"fitness: distance (m)"`), "generations": [{"index", "best", "mean", "median", "sd",
+/// "valid_fraction", "evaluations", "best_fine" (the best re-walked at the fine reference, or
+/// null)}]}`.
 pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
     let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
@@ -551,6 +561,7 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
                 "index": g.index, "best": finite(g.best), "mean": finite(g.mean),
                 "median": finite(g.median), "sd": finite(g.sd),
                 "valid_fraction": finite(g.valid_fraction), "evaluations": g.evaluations,
+                "best_fine": g.best_fine.as_ref().map_or(Value::Null, |f| finite(f.fitness)),
             })
         })
         .collect();
@@ -560,6 +571,9 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
         "encoding": run.encoding,
         "task": run.task,
         "seed": run.seed,
+        "fitness": run
+            .task_spec()
+            .map(|spec| format!("fitness: {}", spec.fitness_measure())),
         "generations": generations,
     }))
 }

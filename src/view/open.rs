@@ -60,6 +60,10 @@ pub fn ignored_flags(flags: &PageFlags, target: &Target, frames: Option<usize>) 
                 "--frame {k}: a run page has no frames (open an individual with ?gen=G&index=I \
                  in its address): ignored"
             ));
+        } else if target.kind == Kind::Comparison {
+            warnings.push(format!(
+                "--frame {k}: a comparison page has no frames: ignored"
+            ));
         } else if let Some(n) = frames {
             let n = n as i64;
             if n == 0 {

@@ -256,7 +256,19 @@ impl Server {
             "/generation.json" => json_answer(self.generation(query)),
             "/individual.json" => json_answer(self.individual(query)),
             "/walk.json" => json_answer(self.walk(query)),
-            _ => Answer::text(404, "not found"),
+            _ => match path.strip_prefix("/plot/") {
+                // A comparison's plots, by name: nothing else of its directory is served.
+                Some(name)
+                    if self.target.kind == Kind::Comparison
+                        && super::COMPARISON_PLOTS.contains(&name) =>
+                {
+                    match std::fs::read(self.target.path.join(name)) {
+                        Ok(svg) => Answer::new(200, "image/svg+xml", svg),
+                        Err(_) => Answer::text(404, "not found"),
+                    }
+                }
+                _ => Answer::text(404, "not found"),
+            },
         }
     }
 
@@ -300,6 +312,7 @@ impl Server {
             Kind::Growth => super::growth_data(path),
             Kind::Recording => super::recording_data(path),
             Kind::Run => super::run_data(path),
+            Kind::Comparison => super::comparison_data(path),
         }
     }
 

@@ -536,12 +536,20 @@ fn replay_writes_the_frames_per_second_it_says() {
         let o = ontogeny(&["replay", dir.to_str().unwrap(), "--fps", &fps.to_string()]);
         assert!(o.status.success(), "{}", stderr(&o));
         let delays = gif_delays(&dir.join("behaviour.gif"));
-        // One frame per 1/fps s of the recording, the first at its start.
-        assert_eq!(
-            delays.len(),
-            (span * fps + 1e-9).floor() as usize + 1,
-            "fps {fps}"
-        );
+        // One frame per 1/fps s of the recording, the first at its start, and the last
+        // sample at the end: one frame more when the last of those is nearer another sample.
+        let regular = (span * fps + 1e-9).floor() as usize + 1;
+        let t = times[0] + (regular - 1) as f64 / fps;
+        let nearest = (0..times.len())
+            .min_by(|&a, &b| {
+                (times[a] - t)
+                    .abs()
+                    .total_cmp(&(times[b] - t).abs())
+                    .then(b.cmp(&a))
+            })
+            .unwrap();
+        let extra = usize::from(nearest != times.len() - 1);
+        assert_eq!(delays.len(), regular + extra, "fps {fps}");
         // Played back, frame k starts at round(100 k / fps) cs: real time.
         let mut start = 0u64;
         for (k, d) in delays.iter().enumerate() {
@@ -612,9 +620,21 @@ fn continuous_time_flags_for_a_discrete_file_are_refused_by_every_verb_that_grow
     let o = ontogeny(&["grow", "examples/thrower.lsys", "--time", "2", "--dt", "1"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
-        stdout(&o).contains("grown to t = 2 in 3 frame(s)"),
+        stdout(&o).contains("grown to t = 2 in 3 frames"),
         "{}",
         stdout(&o)
+    );
+}
+
+#[test]
+fn grow_counts_one_neuron_in_the_singular() {
+    let o = ontogeny_reading(&["grow", "-"], b"axiom: forward(1) revolute2 forward(1)\n");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains(" in 1 frame\n"), "{out}");
+    assert!(
+        out.contains("brain: 1 neuron (0 sensors, 0 actuators), 1 link\n"),
+        "{out}"
     );
 }
 

@@ -582,7 +582,7 @@ fn genome_show_prints_nodes_connections_and_neurons() {
         "-> node 1 on the front face at (0, 0), turned (0, 0, 0) rad, scale 1, reflected",
         "node 1: part 0.5 x 0.2 x 0.2 m, universal joint limits [-1, 1] [-1, 1]",
         "neuron 1: constant(-0.5) bias 0 inputs [1 × angle 1] -> joint dof 1",
-        "develops into 2 parts, 1 joints (1 universal), 4 neurons, 2 links; valid",
+        "develops into 2 parts, 1 joint (1 universal), 4 neurons, 2 links; valid",
     ] {
         assert!(out.contains(want), "missing {want:?} in\n{out}");
     }

@@ -29,6 +29,7 @@ mod genome_continuous;
 mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
+mod json;
 mod key;
 mod limits;
 mod long_runs;

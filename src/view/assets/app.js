@@ -16,7 +16,7 @@ const $ = (id) => document.getElementById(id);
 const COLORS = {
   root: 0x1f3f7a, part: 0x4f86d9, growing: 0xf08c1e,
   joint: 0xdd2222, jointGrowing: 0xf08c1e, fused: 0x999999,
-  projectile: 0x8a5a2b, trail: 0x8a5a2b, target: 0xdd2222,
+  projectile: 0x8a5a2b, trail: 0x8a5a2b, target: 0xdd2222, path: 0x0078d7,
 };
 
 // ---------------------------------------------------------------- the 3D scene
@@ -110,6 +110,12 @@ function sharedMaterial(kind, color) {
   return sharedMaterials.get(key);
 }
 
+// Half the middle dimension of the smaller of the parts a joint joins (a bar's width).
+function jointRadius(creature, j) {
+  const middle = (p) => (p ? [...p.size].sort((a, b) => a - b)[1] : Infinity);
+  return Math.min(middle(creature.parts[j.parent]), middle(creature.parts[j.child])) / 2;
+}
+
 // Draws a creature's parts and joints; returns the part meshes (in part order).
 function drawCreature(creature) {
   clearGroup(creatureGroup);
@@ -131,7 +137,8 @@ function drawCreature(creature) {
   const scale = Math.min(typicalSize(creature), 0.1 * diagonal);
   for (const j of creature.joints) {
     const color = j.growing ? COLORS.jointGrowing : (j.kind === 'rigid' ? COLORS.fused : COLORS.joint);
-    const r = (j.kind === 'rigid' ? 0.15 : 0.3) * scale;
+    // Never larger than the parts it joins: at most half the smaller one's middle dimension.
+    const r = Math.min((j.kind === 'rigid' ? 0.15 : 0.3) * scale, jointRadius(creature, j));
     // Drawn over the parts, as they sit inside them.
     const marker = new THREE.Mesh(UNIT_SPHERE, sharedMaterial('marker', color));
     marker.userData.shared = true;
@@ -196,8 +203,32 @@ function frame(box, groundY) {
   const divisions = Math.min(200, Math.round(extent / step));
   grid = new THREE.GridHelper(divisions * step, divisions, 0xaab3bf, 0xc3cad3);
   grid.position.set(centre.x, groundY + 0.0005 * size, centre.z);
+  grid.userData.step = step;
   scene.add(grid);
   placeSun(centre, size);
+}
+
+// Keeps the ground under a travelling creature: the floor moves with it, the grid by whole
+// squares (so that its lines stay still and show the motion).
+function keepGroundUnder(centre) {
+  ground.position.x = centre.x;
+  ground.position.z = centre.z;
+  if (grid) {
+    const step = grid.userData.step || 1;
+    grid.position.x = Math.round(centre.x / step) * step;
+    grid.position.z = Math.round(centre.z / step) * step;
+  }
+}
+
+// A walk as the walker task measures D_w (the root's centre, horizontally, from the pose before
+// the first measuring frame): that frame (null if none) and the distance at each frame.
+function walkOf(frames) {
+  const first = frames.findIndex((f) => f.phase === 'measuring');
+  if (first < 0) return { start: null, walked: frames.map(() => null) };
+  const start = Math.max(0, first - 1);
+  const [x0, , z0] = frames[start].parts[0][0];
+  const walked = frames.map((f, i) => (i < start ? null : Math.hypot(f.parts[0][0][0] - x0, f.parts[0][0][2] - z0)));
+  return { start, walked };
 }
 
 function placeSun(centre, size) {
@@ -215,7 +246,7 @@ function placeSun(centre, size) {
 
 function functionName(f) { return typeof f === 'string' ? f : Object.keys(f || {})[0] || '?'; }
 
-function drawBrain(brain) {
+function drawBrain(brain, joints) {
   const canvas = $('brain');
   const g = canvas.getContext('2d');
   const W = canvas.width, H = canvas.height;
@@ -266,20 +297,31 @@ function drawBrain(brain) {
       functionName(n.function) === 'oscillator' ? '#8a3fbf' : '#3f6fd0';
     g.beginPath(); g.arc(x, y, r, 0, 2 * Math.PI); g.fill();
     g.fillStyle = '#222'; g.font = '10px system-ui'; g.textAlign = 'left';
-    g.fillText(String(i) + ' ' + neuronLabel(n), x + r + 3, y + 3);
+    g.fillText(String(i) + ' ' + neuronLabel(n, joints || []), x + r + 3, y + 3);
   });
   g.fillStyle = '#556'; g.font = '10px system-ui'; g.textAlign = 'center';
   ['sensors', 'hidden', 'actuators'].forEach((t, c) => g.fillText(t, W * (0.1 + 0.33 * c), 10));
 }
 
-function neuronLabel(n) {
+// A joint's degree of freedom as labels name it: 'hinge j3', or 'universal j2 axis 1' for a
+// joint of several axes (as the pictures do).
+const DOFS = { rigid: 0, revolute: 1, twist: 1, universal: 2, 'bend-twist': 2, 'twist-bend': 2, spherical: 3 };
+function jointLabel(joints, joint, dof) {
+  const j = joints[joint];
+  if (!j) return 'joint j' + joint;
+  const name = { revolute: 'hinge', spherical: 'ball' }[j.kind] || j.kind;
+  return name + ' j' + joint + ((DOFS[j.kind] || 0) > 1 ? ' axis ' + dof : '');
+}
+
+function neuronLabel(n, joints) {
   if (n.role.kind === 'sensor') {
     const s = n.role.sensor;
-    return s.type + (s.part !== undefined ? ' p' + s.part : '') + (s.joint !== undefined ? ' j' + s.joint + '.' + s.dof : '') + (s.slot !== undefined ? ' ' + s.slot : '');
+    if (s.joint !== undefined) return s.type + ' ' + jointLabel(joints, s.joint, s.dof);
+    return s.type + (s.part !== undefined ? ' p' + s.part : '') + (s.slot !== undefined ? ' ' + s.slot : '');
   }
   if (n.role.kind === 'actuator') {
     const a = n.role.actuator;
-    return a.joint !== undefined ? 'joint ' + a.joint + '.' + a.dof : a.type + (a.slot !== undefined ? ' ' + a.slot : '');
+    return a.joint !== undefined ? jointLabel(joints, a.joint, a.dof) : a.type + (a.slot !== undefined ? ' ' + a.slot : '');
   }
   return functionName(n.function);
 }
@@ -403,7 +445,7 @@ function showGrowth(data, keepFrame) {
   onFrame = (i) => {
     const f = frames[i];
     drawCreature(f.creature);
-    drawBrain(f.creature.brain);
+    drawBrain(f.creature.brain, f.creature.joints);
     describe(f.creature);
     $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${+f.t.toFixed(4)}`;
     $('string').textContent = f.string !== null && f.string !== undefined ? f.string
@@ -484,7 +526,7 @@ function showRecording(data, heading) {
   const named = heading || [];
   const frames = data.frames;
   const meshes = drawCreature(data.creature);
-  drawBrain(data.creature.brain);
+  drawBrain(data.creature.brain, data.creature.joints);
   if (!frames.length) {
     // Refused before simulating: the creature as built, and why.
     const box = boundsOf([data.creature]);
@@ -552,6 +594,17 @@ function showRecording(data, heading) {
     });
     extrasGroup.add(trail);
   }
+  // A walker's walk: the distance so far and the root's path on the ground.
+  const walk = data.task === 'walker' ? walkOf(frames) : { start: null, walked: [] };
+  let path = null;
+  if (walk.start !== null) {
+    const positions = new Float32Array(frames.length * 3);
+    frames.forEach((f, i) => positions.set([f.parts[0][0][0], 0.002, f.parts[0][0][2]], i * 3));
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    path = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: COLORS.path }));
+    extrasGroup.add(path);
+  }
   onFrame = (i) => {
     const f = frames[i];
     f.parts.forEach(([p, q], k) => {
@@ -569,14 +622,24 @@ function showRecording(data, heading) {
       // The trail so far: frames 0..i that had a projectile.
       trail.geometry.setDrawRange(0, i + 1);
     }
+    if (path) {
+      // The root's path from the walk's start to this frame (nothing before the start).
+      path.geometry.setDrawRange(walk.start, Math.max(0, i - walk.start + 1));
+    }
+    // The camera follows the creature across the ground, not up and down: the ground stays
+    // in view whatever the creature does.
     const centre = centreOf(f);
     const delta = centre.clone().sub(followed);
+    delta.y = 0;
     camera.position.add(delta);
     if (controls) { controls.target.add(delta); controls.update(); }
-    followed = centre;
+    followed.add(delta);
+    keepGroundUnder(centre);
     placeSun(centre, sunSize);
+    const walked = walk.walked[i];
     $('frame-label').textContent = `frame ${i + 1} of ${frames.length}   t = ${f.t.toFixed(3)} s` +
-      (f.phase ? `   ${phaseLabel(f.phase)}` : '');
+      (f.phase ? `   ${phaseLabel(f.phase)}` : '') + (walked != null ? `   walked ${walked.toFixed(2)} m` : '');
+    body.dataset.walked = walked != null ? walked.toFixed(6) : '';
   };
   describe(data.creature, [...named, `task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
     `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);
@@ -615,7 +678,7 @@ function showRun(data) {
   const rows = [];
   // The plot and the table of generations; called again when the run goes on.
   function listGenerations(generations) {
-    drawPlot(generations);
+    drawPlot(generations, data.fitness);
     const table = $('generations');
     table.innerHTML = '<tr><th>gen</th><th>best</th><th>mean</th><th>median</th><th>valid</th></tr>';
     rows.length = 0;
@@ -713,7 +776,7 @@ function showRun(data) {
       const box = boundsOf([c]);
       frame(box, Math.min(box.min.y, 0));
       drawCreature(c);
-      drawBrain(c.brain);
+      drawBrain(c.brain, c.joints);
       describe(c, [named(gen, ind), ind.status === 'ok' ? `fitness: ${fmt(ind.fitness)}` : `fitness: ${ind.fitness} (the failure floor)`, `status: ${ind.status}`]);
       body.dataset.generation = String(gen);
       body.dataset.individual = String(ind.index);
@@ -785,13 +848,19 @@ function fmt(x) {
   return a !== 0 && (a >= 1e5 || a < 1e-3) ? x.toExponential(2) : (+x.toFixed(3)).toString();
 }
 
-function drawPlot(generations) {
+// The run's fitness per generation: best and mean, and (dashed, in the best's colour) the best
+// re-walked at the fine reference where the run did that, as fitness.svg draws them; the y
+// axis says what the fitness measures and its unit (`yLabel`).
+function drawPlot(generations, yLabel) {
   const canvas = $('plot');
   const g = canvas.getContext('2d');
-  const W = canvas.width, H = canvas.height, L = 44, R = 8, T = 10, B = 24;
+  const W = canvas.width, H = canvas.height, L = 56, R = 8, T = 10, B = 24;
   g.clearRect(0, 0, W, H);
+  const fine = generations.some((x) => x.best_fine !== undefined && x.best_fine !== null);
+  body.dataset.plotFine = fine ? 'yes' : 'no';
+  body.dataset.plotY = yLabel || '';
   // Failed evaluations score a floor far below the rest: plot what is above it.
-  const values = generations.flatMap((x) => [x.best, x.mean]).filter((v) => v !== null && v > -1e5);
+  const values = generations.flatMap((x) => [x.best, x.mean, x.best_fine]).filter((v) => v !== null && v !== undefined && v > -1e5);
   if (!values.length) return;
   let lo = Math.min(...values), hi = Math.max(...values);
   if (hi - lo < 1e-9) { lo -= 1; hi += 1; }
@@ -804,22 +873,54 @@ function drawPlot(generations) {
   g.textAlign = 'right'; g.fillText(fmt(hi), L - 3, T + 8); g.fillText(fmt(lo), L - 3, H - B);
   g.textAlign = 'center'; g.fillText('generation', (L + W) / 2, H - 4);
   g.fillText('0', L, H - B + 11); g.fillText(String(generations.length - 1), W - R, H - B + 11);
-  const line = (key, color) => {
-    g.strokeStyle = color; g.lineWidth = 2; g.beginPath();
+  if (yLabel) {
+    g.save(); g.translate(10, (T + H - B) / 2); g.rotate(-Math.PI / 2);
+    g.fillText(yLabel, 0, 0); g.restore();
+  }
+  const line = (key, color, dashed) => {
+    g.strokeStyle = color; g.lineWidth = 2; g.setLineDash(dashed ? [6, 4] : []); g.beginPath();
     let started = false;
     generations.forEach((x, i) => {
       const v = x[key];
-      if (v === null || v <= -1e5) { started = false; return; }
+      if (v === null || v === undefined || v <= -1e5) { started = false; return; }
       if (started) g.lineTo(X(i), Y(v)); else g.moveTo(X(i), Y(v));
       started = true;
     });
     g.stroke();
+    g.setLineDash([]);
   };
-  line('mean', '#8aa4d6');
-  line('best', '#1f3f7a');
+  line('mean', '#e69f00');
+  line('best', '#0072b2');
+  if (fine) line('best_fine', '#0072b2', true);
   g.textAlign = 'left';
-  g.fillStyle = '#1f3f7a'; g.fillText('best', L + 6, T + 10);
-  g.fillStyle = '#8aa4d6'; g.fillText('mean', L + 36, T + 10);
+  g.fillStyle = '#0072b2'; g.fillText('best', L + 6, T + 10);
+  g.fillStyle = '#e69f00'; g.fillText('mean', L + 36, T + 10);
+  if (fine) { g.fillStyle = '#0072b2'; g.fillText('- - fine reference', L + 70, T + 10); }
+}
+
+// ---------------------------------------------------------------- comparison pages
+
+// A comparison: its replicates on the left (encoding, k, generations stored, best and its
+// fine reference), its plots and report where the 3D view would be.
+function showComparison(data) {
+  body.dataset.kind = 'comparison';
+  $('file').textContent = `${data.file}  (${data.encodings.join(' vs ')}; ${data.fitness})`;
+  playButton.style.display = 'none';
+  slider.style.display = 'none';
+  const rows = data.runs.map((r) => `<tr><td>${r.encoding}</td><td>${r.k}</td><td>${r.generations}</td><td>${fmt(r.best)}</td><td>${fmt(r.best_fine)}</td></tr>`);
+  $('left').innerHTML = '<h2>Replicates</h2><table id="replicates"><tr><th>encoding</th><th>rep</th><th>gens</th><th>best</th><th>fine ref.</th></tr>' +
+    rows.join('') + '</table><p>Each replicate is a run: open one with <code>ontogeny view DIR/ENCODING/rep-K</code>.</p>';
+  const panel = document.createElement('div');
+  panel.id = 'comparison';
+  panel.innerHTML = data.plots.map((name) => `<img src="/plot/${name}" alt="${name}">`).join('') + '<pre id="report"></pre>';
+  $('scene').appendChild(panel);
+  $('report').textContent = data.report === null
+    ? 'No report yet: compare writes report.md when its replicates are finished (compare --resume, or compare --merge after --plan).'
+    : data.report;
+  body.dataset.runs = String(data.runs.length);
+  body.dataset.plots = String(data.plots.length);
+  document.title = `ontogeny view: comparison of ${data.encodings.join(', ')}`;
+  body.dataset.ready = 'yes';
 }
 
 // ---------------------------------------------------------------- start
@@ -829,6 +930,7 @@ fetchJson('/data.json' + definesQuery()).then((data) => {
   if (data.kind === 'lsys' || data.kind === 'growth') { showGrowth(data, false); watch(data.kind); }
   else if (data.kind === 'recording') showRecording(data);
   else if (data.kind === 'run') showRun(data);
+  else if (data.kind === 'comparison') showComparison(data);
   resize();
 }).catch((e) => {
   showError({ message: e.message });

@@ -17,7 +17,7 @@ use std::process::{Child, Command};
 use ontogeny::develop::{BuildOptions, grow};
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 
-use super::server::{get_json, tiny_run as tiny_walker_run};
+use super::server::{get_json, tiny_comparison, tiny_run as tiny_walker_run};
 use crate::util::tiny_run;
 
 /// The browser the tests drive: `$ONTOGENY_BROWSER`, else the first Chromium on the `PATH`.
@@ -707,6 +707,11 @@ fn a_run_page_plays_an_individuals_walk_in_chromium() {
         walk["frames"].as_array().unwrap().len()
     );
     assert_eq!(page.number("frame"), 0);
+    // The fitness plot names what the fitness measures and draws the fine reference line.
+    let data = get_json(&viewer, "/data.json");
+    assert_eq!(page.data("plot-y").as_deref(), data["fitness"].as_str());
+    assert!(page.data("plot-y").unwrap().starts_with("fitness: "));
+    assert_eq!(page.data("plot-fine").as_deref(), Some("yes"));
     // A play button on every individual's row, and the walk's outcome beside it.
     assert_eq!(
         page.dom.matches("class=\"walk\"").count(),
@@ -794,4 +799,102 @@ fn a_defines_slider_regrows_the_creature_and_the_address_carries_its_value() {
         reset,
         r#"["yes","2","{\"PARTS\":2,\"LENGTH\":0.5}","","2",""]"#
     );
+}
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_walker_recording_shows_the_distance_walked_so_far_in_chromium() {
+    let browser = chromium();
+    let dir = scratch("walked");
+    let rec = dir.join("rec");
+    let out = ontogeny_command()
+        .arg("eval")
+        .arg(example("quadruped.lsys"))
+        .args([
+            "--task",
+            "walker",
+            "--fitness",
+            "distance",
+            "--seconds",
+            "1",
+        ])
+        .arg("--record")
+        .arg(&rec)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let recording: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(rec.join("recording.json")).unwrap())
+            .unwrap();
+    let frames = recording["frames"].as_array().unwrap();
+    let first_measuring = frames
+        .iter()
+        .position(|f| f["phase"] == "measuring")
+        .unwrap();
+    let viewer = Viewer::start(&rec);
+    // At the last frame the page shows D_w, the fitness (distance) the evaluation measured.
+    let last = frames.len() - 1;
+    let page = Page::load(&browser, &format!("{}?frame={last}", viewer.url));
+    page.assert_ready();
+    let walked: f64 = page.data("walked").unwrap().parse().unwrap();
+    let fitness = recording["fitness"].as_f64().unwrap();
+    assert!(fitness > 0.05, "{fitness}");
+    assert!((walked - fitness).abs() < 1e-4, "{walked} {fitness}");
+    assert!(
+        page.dom.contains(&format!("walked {fitness:.2} m")),
+        "{}",
+        page.dom
+    );
+    // Before the walk is measured, nothing is said.
+    let page = Page::load(
+        &browser,
+        &format!("{}?frame={}", viewer.url, first_measuring - 2),
+    );
+    page.assert_ready();
+    assert_eq!(page.data("walked").as_deref(), Some(""));
+    assert!(!page.dom.contains("walked "), "{}", page.dom);
+}
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_comparison_page_shows_its_report_plots_and_replicates_in_chromium() {
+    let browser = chromium();
+    let cmp = tiny_comparison("comparison-page");
+    let viewer = Viewer::start(&cmp);
+    let page = Page::load(&browser, &viewer.url);
+    assert_eq!(page.data("ready").as_deref(), Some("yes"), "{}", page.body);
+    assert_eq!(page.data("kind").as_deref(), Some("comparison"));
+    assert_eq!(page.number("runs"), 2);
+    assert_eq!(page.number("plots"), 2);
+    assert!(
+        page.dom.contains("<img src=\"/plot/fitness.svg\""),
+        "{}",
+        page.dom
+    );
+    assert!(
+        page.dom.contains("<img src=\"/plot/parts.svg\""),
+        "{}",
+        page.dom
+    );
+    // The report's first line, and a row per replicate.
+    let report = std::fs::read_to_string(cmp.join("report.md")).unwrap();
+    let first = report.lines().next().unwrap().replace('&', "&amp;");
+    assert!(page.dom.contains(&first), "{first}: {}", page.dom);
+    assert!(
+        page.dom.contains("<td>direct</td><td>1</td>"),
+        "{}",
+        page.dom
+    );
+    assert!(
+        page.dom.contains("<td>lsystem</td><td>1</td>"),
+        "{}",
+        page.dom
+    );
+    drop(viewer);
+    let png = cmp.parent().unwrap().join("comparison.png");
+    assert_snapshot(&browser, &cmp, &png);
 }

@@ -570,3 +570,95 @@ fn max_parts_lets_the_page_hold_a_plant_of_thousands_of_parts() {
     let last = *frames(&viewer).last().unwrap();
     assert_eq!(last, (201, true));
 }
+
+#[test]
+fn a_run_page_says_what_the_fitness_measures_and_the_fine_reference_of_each_best() {
+    let run = tiny_run("plot-data");
+    let store = ontogeny::evolve::store::RunStore::open(&run.join("run.sqlite")).unwrap();
+    let generations = store.generations().unwrap();
+    let spec = store.run().unwrap().task_spec().unwrap();
+    let viewer = Viewer::start(&run);
+    let data = get_json(&viewer, "/data.json");
+    // The y axis of fitness.svg.
+    assert_eq!(
+        data["fitness"],
+        format!("fitness: {}", spec.fitness_measure())
+    );
+    let pages = data["generations"].as_array().unwrap();
+    assert_eq!(pages.len(), generations.len());
+    assert!(generations.iter().any(|g| g.best_fine.is_some()));
+    for (page, g) in pages.iter().zip(&generations) {
+        match &g.best_fine {
+            Some(fine) => assert_eq!(page["best_fine"].as_f64(), Some(fine.fitness)),
+            None => assert!(page["best_fine"].is_null(), "{page}"),
+        }
+    }
+}
+
+/// A tiny comparison made by `ontogeny compare` (direct against lsystem, one replicate each, 9
+/// evaluations of half-second walks) in scratch directory `name`.
+pub(super) fn tiny_comparison(name: &str) -> PathBuf {
+    let out = scratch(name).join("cmp");
+    let o = ontogeny_command()
+        .args([
+            "compare",
+            "--encodings",
+            "direct,lsystem",
+            "--task",
+            "walker",
+            "--replicates",
+            "1",
+            "--evaluations",
+            "9",
+            "--pop",
+            "4",
+            "--seconds",
+            "0.5",
+            "--seed",
+            "2",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    out
+}
+
+#[test]
+fn a_comparison_is_shown_with_its_report_its_plots_and_its_replicates() {
+    let cmp = tiny_comparison("comparison");
+    let viewer = Viewer::start(&cmp);
+    let data = get_json(&viewer, "/data.json");
+    assert_eq!(data["kind"], "comparison");
+    assert_eq!(data["encodings"], serde_json::json!(["direct", "lsystem"]));
+    assert_eq!(data["fitness"], "walker, normalised (Chaumont eq. 1)");
+    let report = std::fs::read_to_string(cmp.join("report.md")).unwrap();
+    assert_eq!(data["report"], report);
+    assert_eq!(
+        data["plots"],
+        serde_json::json!(["fitness.svg", "parts.svg"])
+    );
+    let runs = data["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    for (run, encoding) in runs.iter().zip(["direct", "lsystem"]) {
+        assert_eq!(run["encoding"], encoding);
+        assert_eq!(run["k"], 1);
+        let dir = cmp.join(encoding).join("rep-1");
+        assert_eq!(run["dir"], dir.display().to_string());
+        let store = ontogeny::evolve::store::RunStore::open(&dir.join("run.sqlite")).unwrap();
+        let generations = store.generations().unwrap();
+        assert_eq!(run["generations"], generations.len());
+        assert_eq!(run["best"].as_f64(), Some(generations.last().unwrap().best));
+    }
+    // Its plots are served, and nothing else of the folder.
+    let (status, svg) = viewer.get("/plot/fitness.svg");
+    assert_eq!(status, 200);
+    assert_eq!(
+        svg,
+        std::fs::read_to_string(cmp.join("fitness.svg")).unwrap()
+    );
+    assert_eq!(viewer.get("/plot/parts.svg").0, 200);
+    assert_eq!(viewer.get("/plot/report.md").0, 404);
+    assert_eq!(viewer.get("/plot/../compare.toml").0, 404);
+}

@@ -1,0 +1,128 @@
+//! What the command line says about runs and comparisons as JSON, for scripts: a run's final
+//! line (`evolve --json`) and a comparison's summary (`compare --json`), each one object with
+//! the figures the text gives, every number in full, and `null` for a number that is not one
+//! (NaN: no value).
+
+use std::path::Path;
+
+use serde_json::{Value, json};
+
+use super::compare::{Report, Shared};
+use super::run::GenerationReport;
+use super::text::RunTally;
+
+/// `x`, or `null` when it is not finite.
+fn number(x: f64) -> Value {
+    if x.is_finite() { json!(x) } else { Value::Null }
+}
+
+/// The object `evolve --json` prints at the end of a run in `dir` of the encoding `encoding`
+/// (its genomes' files end in `extension`) whose last generation is `last`, after `wall`
+/// seconds, `fitness` naming the task and what its fitness measures:
+/// `{"dir", "encoding", "fitness", "generation", "best", "best_fine": {"fitness",
+/// "status"} | null, "evaluations", "simulated", "seconds", "evaluations_per_second",
+/// "outside_evaluation" (the share of the time, 0 to 1), "files"}` — the final line's
+/// figures.
+pub fn run_json(
+    tally: &RunTally,
+    dir: &Path,
+    fitness: &str,
+    encoding: &str,
+    extension: &str,
+    last: &GenerationReport,
+    wall: f64,
+) -> Value {
+    let best = format!("best.{extension}");
+    let files: Vec<String> = ["run.sqlite", "fitness.svg", &best, "log.txt"]
+        .iter()
+        .map(|f| dir.join(f).display().to_string())
+        .collect();
+    json!({
+        "dir": dir.display().to_string(),
+        "encoding": encoding,
+        "fitness": fitness,
+        "generation": last.generation,
+        "best": number(last.stats.best),
+        "best_fine": last.stats.best_fine.as_ref().map(|f| json!({
+            "fitness": number(f.fitness),
+            "status": f.status,
+        })),
+        "evaluations": tally.evaluations,
+        "simulated": tally.evaluations - tally.reused,
+        "seconds": wall,
+        "evaluations_per_second": tally.evaluations as f64 / wall.max(1e-9),
+        "outside_evaluation": (wall - tally.evaluating).max(0.0) / wall.max(1e-9),
+        "files": files,
+    })
+}
+
+/// The object `compare --json` prints: the comparison in `root` (`finished` replicates in its
+/// report, `unfinished` named) as its summary gives it: `{"dir", "fitness", "evaluations"
+/// (each replicate's), "replicates", "unfinished", "encodings": [{"encoding", "replicates",
+/// "best": {"mean", "sd", "ci95"}, "mean_fine", "fine_replicates", "fine_failed",
+/// "median_parts", "median_joints", "median_neurons", "median_shapes_per_part",
+/// "evaluations_per_second", "simulated", "reused"}], "pairs": [{"a", "b", "u", "p",
+/// "holm_p", "a12", "a12_magnitude"}], "too_few", "files"}`.
+pub fn comparison_json(
+    root: &Path,
+    shared: &Shared,
+    r: &Report,
+    finished: usize,
+    unfinished: &[String],
+) -> Value {
+    let encodings: Vec<Value> = r
+        .encodings
+        .iter()
+        .map(|e| {
+            json!({
+                "encoding": e.encoding,
+                "replicates": e.replicates,
+                "best": {
+                    "mean": number(e.best.mean),
+                    "sd": number(e.best.sd),
+                    "ci95": number(e.best.ci95),
+                },
+                "mean_fine": number(e.mean_fine),
+                "fine_replicates": e.fine_replicates,
+                "fine_failed": e.fine_failed,
+                "median_parts": number(e.median_parts),
+                "median_joints": number(e.median_joints),
+                "median_neurons": number(e.median_neurons),
+                "median_shapes_per_part": number(e.median_shapes_per_part),
+                "evaluations_per_second": number(e.evaluations_per_second),
+                "simulated": e.simulated,
+                "reused": e.reused,
+            })
+        })
+        .collect();
+    let pairs: Vec<Value> = r
+        .pairs
+        .iter()
+        .map(|p| {
+            json!({
+                "a": p.a,
+                "b": p.b,
+                "u": number(p.test.u),
+                "p": number(p.test.p),
+                "holm_p": number(p.holm_p),
+                "a12": number(p.a12),
+                "a12_magnitude": super::stats::a12_magnitude(p.a12),
+            })
+        })
+        .collect();
+    let files: Vec<String> = ["report.md", "summary.csv", "fitness.svg", "parts.svg"]
+        .iter()
+        .map(|f| root.join(f).display().to_string())
+        .collect();
+    json!({
+        "dir": root.display().to_string(),
+        "fitness": shared.task.fitness_label(),
+        "evaluations": r.evaluations,
+        "replicates": finished,
+        "unfinished": unfinished,
+        "encodings": encodings,
+        "pairs": pairs,
+        "too_few": r.too_few,
+        "files": files,
+    })
+}
