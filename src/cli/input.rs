@@ -20,6 +20,18 @@ pub(super) fn load_creature(
     seed: Option<u64>,
     max_parts: usize,
 ) -> anyhow::Result<Creature> {
+    load_creature_with(file, development, seed, max_parts, DEFAULT_MAX_MODULES)
+}
+
+/// [`load_creature`] with a derived string's most modules, `max_modules` (a run's limit, for
+/// its champion).
+pub(super) fn load_creature_with(
+    file: &Path,
+    development: &DevelopmentArgs,
+    seed: Option<u64>,
+    max_parts: usize,
+    max_modules: usize,
+) -> anyhow::Result<Creature> {
     if file.extension().is_some_and(|e| e == "json") {
         let mut flags = development.given();
         if seed.is_some() {
@@ -34,7 +46,7 @@ pub(super) fn load_creature(
         }
     }
     let options = LoadOptions {
-        derive: derive_options(development, seed, DEFAULT_MAX_MODULES),
+        derive: derive_options(development, seed, max_modules),
         steps: development.steps,
         max_parts,
         ..LoadOptions::default()

@@ -33,6 +33,8 @@ pub struct RunFlags {
     pub seconds: Option<f64>,
     /// `--setting`.
     pub setting: Option<StepSetting>,
+    /// `--target` (the aim task's, metres from the projectile's start).
+    pub target: Option<[f64; 3]>,
 }
 
 /// A message about the command line's or a config file's settings as a diagnostic (exit code
@@ -42,8 +44,9 @@ fn plain(message: String) -> Diagnostic {
 }
 
 /// The task of a config file (default: the walker), with `--task`, `--fitness`, `--seconds`
-/// and `--setting` over it (a named setting replaces the file's five stepping values, and
-/// nothing else). `--fitness` for a task other than the walker is refused.
+/// `--setting` and `--target` over it (a named setting replaces the file's five stepping
+/// values, and nothing else). `--fitness` for a task other than the walker, and `--target`
+/// for a task other than aim, are refused.
 pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec, String> {
     let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
     if let Some(setting) = flags.setting {
@@ -67,6 +70,15 @@ pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec
             ));
         }
         spec.walker.fitness = fitness;
+    }
+    if let Some([x, y, z]) = flags.target {
+        if spec.task != TaskKind::Aim {
+            return Err(format!(
+                "--target is for the aim task only, and the task is {}",
+                spec.task.name()
+            ));
+        }
+        spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
     }
     Ok(spec)
 }
