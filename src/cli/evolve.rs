@@ -211,7 +211,7 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         .out
         .as_ref()
         .expect("clap requires --out without --resume");
-    let (config, init) = settings::new_run::<G>(
+    let (config, init, notes) = settings::new_run_with_notes::<G>(
         source,
         &run_flags(args),
         args.init.as_deref(),
@@ -219,6 +219,9 @@ fn start<G: Genome>(args: &EvolveArgs, source: Option<&Source>) -> anyhow::Resul
         !args.no_verify_best,
         !args.no_cache,
     )?;
+    for note in notes {
+        tell!("{note}");
+    }
     let init_text = init.as_ref().map(|s| s.text());
     let mut run = Run::<G>::start(out, config, init_text).map_err(run_error)?;
     go(&mut run, out)

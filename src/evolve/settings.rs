@@ -141,9 +141,15 @@ pub fn init_path(
     }
 }
 
-/// Refuses a seed grammar (`text`, read from `path`) that the encoding `G` cannot start from.
-pub fn check_init<G: Genome>(text: &str, limits: &G::Limits, path: &Path) -> Result<(), String> {
-    G::from_lsys(text, limits).map(drop).map_err(|e| {
+/// The seed a grammar (`text`, read from `path`) gives the encoding `G` under `limits`
+/// ([`Genome::seed_from_lsys`]: the limits widened to fit it, notes on what was rewritten),
+/// or its refusal, which lists what cannot be represented.
+pub fn check_init<G: Genome>(
+    text: &str,
+    limits: &G::Limits,
+    path: &Path,
+) -> Result<crate::encoding::Seed<G>, String> {
+    G::seed_from_lsys(text, limits).map_err(|e| {
         format!(
             "{}: cannot seed the {} encoding: {}",
             path.display(),
@@ -202,18 +208,40 @@ pub fn new_run<G: Genome>(
     verify_best: bool,
     cache: bool,
 ) -> Result<NewRun<G::Limits>, Diagnostic> {
+    new_run_with_notes::<G>(source, flags, init, seed, verify_best, cache)
+        .map(|(config, init, _)| (config, init))
+}
+
+/// [`new_run`] with the notes on its seed, if it has one: what of the grammar was rewritten
+/// for the genome, and which limits were widened to fit it (the run's config records the
+/// widened limits).
+pub fn new_run_with_notes<G: Genome>(
+    source: Option<&Source>,
+    flags: &RunFlags,
+    init: Option<&Path>,
+    seed: Option<u64>,
+    verify_best: bool,
+    cache: bool,
+) -> Result<(RunConfig<G::Limits>, Option<Arc<Source>>, Vec<String>), Diagnostic> {
     let file: ConfigFile<G::Limits> = match source {
         Some(s) => super::config::read_config(s)?,
         None => ConfigFile::default(),
     };
     let init_path = init_path(init, file.init.as_deref(), source);
-    let config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
+    let mut config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
     super::config::check_limits(&config.limits, source)?;
     let init = init_path.as_deref().map(read_grammar).transpose()?;
+    let mut notes = Vec::new();
     if let (Some(init), Some(path)) = (&init, &init_path) {
-        check_init::<G>(init.text(), &config.limits, path).map_err(plain)?;
+        let seed = check_init::<G>(init.text(), &config.limits, path).map_err(plain)?;
+        config.limits = seed.limits;
+        notes = seed
+            .notes
+            .into_iter()
+            .map(|n| format!("note: {}: {n}", path.display()))
+            .collect();
     }
-    Ok((config, init))
+    Ok((config, init, notes))
 }
 
 /// The comparison `compare`'s flags describe over its config file (`source` its text), checked:
