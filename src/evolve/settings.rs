@@ -197,6 +197,9 @@ pub fn new_run_encoding(flag: Option<&str>, source: Option<&Source>) -> Result<S
 /// A new run's settings and the grammar that seeds its first generation, if any.
 pub type NewRun<L> = (RunConfig<L>, Option<Arc<Source>>);
 
+/// [`NewRun`] with the notes on its seed.
+pub type NewRunWithNotes<L> = (RunConfig<L>, Option<Arc<Source>>, Vec<String>);
+
 /// A new run's settings ([`run_config`]) from its config file (`source`, if any) and the
 /// flags over it, with the grammar that seeds its first generation (`init`, `--init`, else
 /// the file's `init`), read and checked ([`check_init`]).
@@ -222,7 +225,7 @@ pub fn new_run_with_notes<G: Genome>(
     seed: Option<u64>,
     verify_best: bool,
     cache: bool,
-) -> Result<(RunConfig<G::Limits>, Option<Arc<Source>>, Vec<String>), Diagnostic> {
+) -> Result<NewRunWithNotes<G::Limits>, Diagnostic> {
     let file: ConfigFile<G::Limits> = match source {
         Some(s) => super::config::read_config(s)?,
         None => ConfigFile::default(),

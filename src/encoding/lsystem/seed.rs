@@ -384,13 +384,13 @@ fn items(
             }
         }
     }
-    if !super::is_balanced(&out) {
-        if let Some(first) = calls.first() {
-            reasons.push(format!(
-                "{}: the successor's brackets are not balanced",
-                place(first.span)
-            ));
-        }
+    if !super::is_balanced(&out)
+        && let Some(first) = calls.first()
+    {
+        reasons.push(format!(
+            "{}: the successor's brackets are not balanced",
+            place(first.span)
+        ));
     }
     out
 }
