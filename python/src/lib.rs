@@ -712,6 +712,7 @@ fn evolve(
         fitness: fitness.map(fitness_named).transpose()?,
         seconds,
         setting: setting.map(setting_named).transpose()?,
+        target: None,
     };
     let pool = thread_pool(threads)?;
     let source = config

@@ -157,6 +157,7 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
         fitness: args.fitness,
         seconds: args.seconds,
         setting: args.setting,
+        target: None,
     };
     let budget = args.evaluations.expect("clap requires --evaluations");
     settings::plan_comparison(

@@ -4,18 +4,20 @@
 
 use std::path::{Path, PathBuf};
 
+use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::Creature;
 use ontogeny::develop::BuildOptions;
+use ontogeny::evolve::champion::ChampionRecord;
 use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
 use ontogeny::sim::{JointModel, SimOptions};
 use ontogeny::task::flags::{self, TaskFlags};
-use ontogeny::task::{Evaluation, Recording, TaskKind, TaskSpec, WalkerFitness};
+use ontogeny::task::{Evaluation, Recording, TaskKind, TaskSpec};
 
 use super::derive::DevelopmentArgs;
-use super::input::load_creature;
-use super::physics::{PhysicsArgs, flag_error, names_parser, task_parser};
+use super::input::load_creature_with;
+use super::physics::{FitnessArgs, PhysicsArgs, flag_error, names_parser, task_parser};
 use super::progress::Progress;
 
 /// Flags of `ontogeny eval`.
@@ -24,9 +26,9 @@ pub struct EvalArgs {
     /// An L-system file (`.lsys`, grown to its last frame), a `creature.json` or a graph
     /// genome (`.json`); `-` reads an L-system from standard input.
     file: PathBuf,
-    /// The task.
+    /// The task [default: the one a run's champion file records, else walker].
     #[arg(long, value_parser = task_parser())]
-    task: TaskKind,
+    task: Option<TaskKind>,
     /// Seconds of evaluation, in (0, 3600] (walker: measured walking, default 20; jump:
     /// default 10; catapult and aim: the cap on waiting for the projectile to rest, default
     /// 60).
@@ -43,9 +45,8 @@ pub struct EvalArgs {
     joints: JointModel,
     #[command(flatten)]
     physics: PhysicsArgs,
-    /// Walker fitness formula (walker only) [default: normalised].
-    #[arg(long, value_parser = super::walker_fitness_parser())]
-    fitness: Option<WalkerFitness>,
+    #[command(flatten)]
+    fitness: FitnessArgs,
     /// Seconds of the walker's first activation of the controller, between its two waits
     /// for rest, in [0, 3600] (walker only) [default: 1, Chaumont et al.'s final protocol;
     /// 0.15 is their first attempt, 9 steps of 1/60 s].
@@ -92,9 +93,9 @@ fn task_spec(args: &EvalArgs) -> anyhow::Result<TaskSpec> {
 
 fn task_flags(args: &EvalArgs) -> TaskFlags {
     TaskFlags {
-        task: args.task,
+        task: args.task.unwrap_or_default(),
         seconds: args.seconds,
-        fitness: args.fitness,
+        fitness: args.fitness.fitness,
         activation: args.activation,
         target: args.target,
         projectile_size: args.projectile_size,
@@ -102,10 +103,182 @@ fn task_flags(args: &EvalArgs) -> TaskFlags {
     }
 }
 
+/// The flags given on the command line (by clap's id), set once by `main`: a champion file's
+/// record gives every other setting.
+static GIVEN: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+
+/// Records which of `eval`'s flags the command line gave (`matches`, its subcommand's).
+pub fn set_given(matches: &clap::ArgMatches) {
+    let given = matches
+        .ids()
+        .filter(|id| {
+            matches.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine)
+        })
+        .map(|id| id.to_string())
+        .collect();
+    let _ = GIVEN.set(given);
+}
+
+fn given(id: &str) -> bool {
+    GIVEN.get().is_some_and(|g| g.iter().any(|i| i == id))
+}
+
+/// Whether a flag that sets the simulator (`--setting`, `--joints`, `--strength`, ...) was
+/// given.
+fn physics_given() -> bool {
+    use clap::Args as _;
+    let physics = PhysicsArgs::augment_args(clap::Command::new("physics"));
+    given("joints") || physics.get_arguments().any(|a| given(a.get_id().as_str()))
+}
+
+/// What the evaluation uses: the task, the grammar's seed, the most parts and modules.
+struct Inputs {
+    spec: TaskSpec,
+    seed: Option<u64>,
+    max_parts: usize,
+    max_modules: usize,
+}
+
+/// The inputs the flags give, over the record of `file` when it is a run's champion (the
+/// flags that differ from the record said on standard error).
+fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
+    let max_modules = ontogeny::lsystem::DEFAULT_MAX_MODULES;
+    let record = if args.file.as_os_str() == "-" {
+        None
+    } else {
+        let text = ontogeny::input::read_to_string(&args.file)
+            .with_context(|| format!("cannot read {}", args.file.display()))?;
+        ChampionRecord::of_text(&text)
+            .map_err(|e| super::bad(format!("{}: {e}", args.file.display())))?
+    };
+    let Some(record) = record else {
+        return Ok(Inputs {
+            spec: task_spec(args)?,
+            seed: args.development.seed.seed(),
+            max_parts: args.max_parts,
+            max_modules,
+        });
+    };
+    let name = input_name(&args.file);
+    let mut notes = Vec::new();
+    let mut differs = |flag: &str, what: String| {
+        notes.push(format!(
+            "note: {flag} differs from the evaluation {name} records ({what}); the flag's is used"
+        ))
+    };
+    let recorded = &record.task;
+    if args.task.is_some_and(|t| t != recorded.task) {
+        differs("--task", recorded.task.name().to_string());
+        for n in notes {
+            tell!("{n}");
+        }
+        return Ok(Inputs {
+            spec: task_spec(args)?,
+            seed: args.development.seed.seed().or(Some(record.grammar_seed)),
+            max_parts: args.max_parts,
+            max_modules: record.max_modules.unwrap_or(max_modules),
+        });
+    }
+    let flags = task_flags(args);
+    let mut spec = recorded.clone();
+    if physics_given() {
+        let sim = SimOptions {
+            joints: args.joints,
+            ..args.physics.sim_options()?
+        };
+        if serde_json::to_value(&sim)? != serde_json::to_value(&spec.sim)? {
+            differs("a physics flag", "its [task.sim] values".to_string());
+        }
+        spec.sim = sim;
+    }
+    if let Some(f) = flags.fitness.filter(|_| spec.task == TaskKind::Walker) {
+        if f != spec.walker.fitness {
+            differs("--fitness", spec.walker.fitness.name().to_string());
+        }
+        spec.walker.fitness = f;
+    }
+    if let Some(s) = flags.seconds {
+        let (field, shown) = match spec.task {
+            TaskKind::Walker => (&mut spec.walker.seconds, "seconds"),
+            TaskKind::Jump => (&mut spec.jump.seconds, "seconds"),
+            TaskKind::Catapult | TaskKind::Aim => (&mut spec.catapult.max_seconds, "seconds"),
+        };
+        if *field != s {
+            differs("--seconds", format!("{} {shown}", *field));
+        }
+        *field = s;
+    }
+    if let Some(a) = flags.activation.filter(|_| spec.task == TaskKind::Walker) {
+        if a != spec.walker.activation {
+            differs("--activation", format!("{} s", spec.walker.activation));
+        }
+        spec.walker.activation = a;
+    }
+    if let Some([x, y, z]) = flags.target.filter(|_| spec.task == TaskKind::Aim) {
+        let target = nalgebra::Vector3::new(x, y, z);
+        if spec.catapult.target != Some(target) {
+            let shown = spec
+                .catapult
+                .target
+                .map_or("none".to_string(), |t| format!("{},{},{}", t.x, t.y, t.z));
+            differs("--target", shown);
+        }
+        spec.catapult.target = Some(target);
+    }
+    if let Some(size) = flags.projectile_size {
+        spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);
+    }
+    if let Some(density) = flags.projectile_density {
+        spec.catapult.projectile_density = density;
+    }
+    spec.check().map_err(flag_error)?;
+    let seed = match args.development.seed.seed() {
+        Some(s) if s != record.grammar_seed => {
+            differs("--grammar-seed", format!("grammar seed {}", record.grammar_seed));
+            s
+        }
+        _ => record.grammar_seed,
+    };
+    let max_parts = match record.max_parts {
+        Some(m) if !given("max_parts") => m,
+        Some(m) if m != args.max_parts => {
+            differs("--max-parts", m.to_string());
+            args.max_parts
+        }
+        _ => args.max_parts,
+    };
+    let changed = !notes.is_empty();
+    for n in notes {
+        tell!("{n}");
+    }
+    tell!(
+        "note: {name} records its evaluation ({}); {}",
+        recorded.fitness_label(),
+        if changed {
+            "the flags above change it"
+        } else {
+            "repeating it"
+        }
+    );
+    Ok(Inputs {
+        spec,
+        seed: Some(seed),
+        max_parts,
+        max_modules: record.max_modules.unwrap_or(max_modules),
+    })
+}
+
 /// Evaluates the creature and prints the result.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
-    let creature = load_creature(&args.file, &args.development, args.max_parts)?;
-    let spec = task_spec(args)?;
+    let inputs = inputs(args)?;
+    let creature = load_creature_with(
+        &args.file,
+        &args.development,
+        inputs.seed,
+        inputs.max_parts,
+        inputs.max_modules,
+    )?;
+    let spec = inputs.spec;
     // A place to record into, checked before the evaluation runs.
     if let Some(dir) = &args.record {
         // Missing, empty, or a recording's: never a folder of the user's files.

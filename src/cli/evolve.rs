@@ -68,7 +68,7 @@ pub struct EvolveArgs {
     out: Option<PathBuf>,
     /// Continue the run in DIR where it stopped (any other flag but --threads and --gens is
     /// refused).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "fitness", "preset", "pop", "seed", "config", "init", "seconds", "setting", "no_verify_best", "no_cache"])]
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "fitness", "preset", "pop", "seed", "config", "init", "seconds", "setting", "target", "no_verify_best", "no_cache"])]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_parser = encoding_parser())]
@@ -96,6 +96,10 @@ pub struct EvolveArgs {
     /// Seconds of the task's measurement (walker: walking, default 20), in (0, 3600].
     #[arg(long)]
     seconds: Option<f64>,
+    /// The aim task's target relative to the projectile's start, as X,Y,Z metres, as `eval
+    /// --target` (aim only; default: the config's `[task.catapult] target`).
+    #[arg(long, value_name = "X,Y,Z", value_parser = ontogeny::task::flags::parse_point, allow_hyphen_values = true)]
+    target: Option<[f64; 3]>,
     /// The named step setting (default: the config's `[task.sim]`, else default); it replaces
     /// the config's five stepping values.
     #[arg(long, value_name = "NAME", value_parser = setting_parser())]
@@ -217,6 +221,7 @@ fn run_flags(args: &EvolveArgs) -> RunFlags {
         fitness: args.fitness,
         seconds: args.seconds,
         setting: args.setting,
+        target: args.target,
     }
 }
 
@@ -236,7 +241,7 @@ fn start<G: Genome>(
         .out
         .as_ref()
         .expect("clap requires --out without --resume");
-    let (config, init) = settings::new_run::<G>(
+    let (config, init, notes) = settings::new_run_with_notes::<G>(
         source,
         &run_flags(args),
         args.init.as_deref(),
@@ -246,6 +251,9 @@ fn start<G: Genome>(
     )?;
     if example {
         tell!("{DEFAULT_RUN_NOTE}");
+    }
+    for note in notes {
+        tell!("{note}");
     }
     let init_text = init.as_ref().map(|s| s.text());
     let mut run = Run::<G>::start(out, config, init_text).map_err(run_error)?;

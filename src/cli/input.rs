@@ -6,7 +6,7 @@ use std::path::Path;
 
 use ontogeny::creature::Creature;
 use ontogeny::encoding::{LoadError, LoadOptions, load_creature as load};
-use ontogeny::lsystem::DEFAULT_MAX_MODULES;
+use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions};
 
 use super::derive::{DevelopmentArgs, derive_options};
 use super::progress::Progress;
@@ -19,6 +19,24 @@ pub(super) fn load_creature(
     development: &DevelopmentArgs,
     max_parts: usize,
 ) -> anyhow::Result<Creature> {
+    load_creature_with(
+        file,
+        development,
+        development.seed.seed(),
+        max_parts,
+        DEFAULT_MAX_MODULES,
+    )
+}
+
+/// [`load_creature`] with a derived string's most modules, `max_modules` (a run's limit, for
+/// its champion).
+pub(super) fn load_creature_with(
+    file: &Path,
+    development: &DevelopmentArgs,
+    seed: Option<u64>,
+    max_parts: usize,
+    max_modules: usize,
+) -> anyhow::Result<Creature> {
     if file.extension().is_some_and(|e| e == "json") {
         let flags = development.given();
         if !flags.is_empty() {
@@ -30,7 +48,10 @@ pub(super) fn load_creature(
         }
     }
     let options = LoadOptions {
-        derive: derive_options(development, DEFAULT_MAX_MODULES),
+        derive: DeriveOptions {
+            seed,
+            ..derive_options(development, max_modules)
+        },
         defines: development.defines.defines.clone(),
         steps: development.steps,
         max_parts,

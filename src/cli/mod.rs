@@ -125,6 +125,9 @@ fn allow_negative_numbers(command: Command) -> Command {
 /// Runs the command line and turns the outcome into an exit code.
 pub fn main() -> ExitCode {
     let matches = allow_negative_numbers(Cli::command()).get_matches();
+    if let Some(("eval", eval)) = matches.subcommand() {
+        eval::set_given(eval);
+    }
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let result = match cli.verb {
         Verb::Derive(args) => derive::run(&args),

@@ -102,7 +102,26 @@ pub struct SteppingArgs {
     rest_solver_iterations: Option<usize>,
 }
 
+/// `--fitness`: the walker's fitness formula, shared by `eval` and `replay`.
+#[derive(Args)]
+pub struct FitnessArgs {
+    /// Walker fitness formula (walker only) [default: a run's or a champion file's own, else
+    /// normalised].
+    #[arg(long, value_parser = super::walker_fitness_parser())]
+    pub fitness: Option<ontogeny::task::WalkerFitness>,
+}
+
 impl SteppingArgs {
+    /// Whether any of the stepping flags (`--setting` and the five values) was given.
+    pub fn any_given(&self) -> bool {
+        self.setting.is_some()
+            || self.substeps.is_some()
+            || self.solver_iterations.is_some()
+            || self.pgs_iterations.is_some()
+            || self.rest_substeps.is_some()
+            || self.rest_solver_iterations.is_some()
+    }
+
     /// `base` with the named setting's stepping and the given stepping flags over it, checked
     /// ([`SimOptions::check`]); an error names the flag at fault.
     pub fn apply(&self, base: &SimOptions) -> anyhow::Result<SimOptions> {

@@ -1,6 +1,6 @@
 //! `ontogeny replay`: a recording drawn again, or a run's individual re-evaluated with one.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
@@ -8,7 +8,9 @@ use ontogeny::encoding::Genome;
 use ontogeny::evolve::pick::{PickError, individual_by_rank};
 use ontogeny::evolve::run::{Run, encoding_of_run};
 use ontogeny::render::MAX_FPS;
-use ontogeny::task::Recording;
+use ontogeny::task::{Recording, TaskKind, TaskSpec};
+
+use super::physics::{FitnessArgs, SteppingArgs};
 
 /// Flags of `ontogeny replay`.
 #[derive(Args)]
@@ -26,6 +28,13 @@ pub struct ReplayArgs {
     /// For a run: the individual's rank in its generation, 1 for the best.
     #[arg(long, default_value_t = 1)]
     rank: usize,
+    /// For a run: re-evaluate at this step setting, as `eval` does [default: the run's
+    /// `[task.sim]`].
+    #[command(flatten)]
+    stepping: SteppingArgs,
+    /// For a run: re-evaluate with this fitness formula.
+    #[command(flatten)]
+    fitness: FitnessArgs,
 }
 
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
@@ -37,7 +46,13 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         )));
     }
     if args.dir.join("config.toml").exists() {
-        return replay_run(&args.dir, args.generation, args.rank, args.fps);
+        return replay_run(args);
+    }
+    if args.stepping.any_given() || args.fitness.fitness.is_some() {
+        anyhow::bail!(super::bad(format!(
+            "{}: the step setting and --fitness re-evaluate a run's individual; a recording is drawn as it was recorded",
+            args.dir.display()
+        )));
     }
     let path = args.dir.join("recording.json");
     let text = ontogeny::input::read_to_string(&path)
@@ -71,28 +86,43 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
 /// `ontogeny replay RUN [--gen G] [--rank K]`: re-evaluates individual K (1 = best) of
 /// generation G (default: the last) with a recording, and writes its genome, `creature.png`,
 /// `recording.json` and `behaviour.gif` to `RUN/replay/gen-G-rank-K/`.
-pub fn replay_run(
-    dir: &Path,
-    generation: Option<u32>,
-    rank: usize,
-    fps: f64,
-) -> anyhow::Result<()> {
+pub fn replay_run(args: &ReplayArgs) -> anyhow::Result<()> {
+    let dir = &args.dir;
     let encoding = encoding_of_run(dir).map_err(super::evolve::run_error)?;
     with_genome!(
         encoding.as_str(),
-        G => replay_typed::<G>(dir, generation, rank, fps),
+        G => replay_typed::<G>(args),
         |other| Err(super::bad(format!("{}: unknown encoding '{other}'", dir.display())))
     )
 }
 
-fn replay_typed<G: Genome>(
-    dir: &Path,
-    generation: Option<u32>,
-    rank: usize,
-    fps: f64,
-) -> anyhow::Result<()> {
+/// The run's task with the step setting and fitness flags over it (`None` when none is
+/// given).
+fn changed_task(args: &ReplayArgs, task: &TaskSpec) -> anyhow::Result<Option<TaskSpec>> {
+    if !args.stepping.any_given() && args.fitness.fitness.is_none() {
+        return Ok(None);
+    }
+    let mut task = task.clone();
+    if args.stepping.any_given() {
+        task.sim = args.stepping.apply(&task.sim)?;
+    }
+    if let Some(f) = args.fitness.fitness {
+        if task.task != TaskKind::Walker {
+            anyhow::bail!(super::bad(format!(
+                "--fitness is for the walker task only, and the run's task is {}",
+                task.task.name()
+            )));
+        }
+        task.walker.fitness = f;
+    }
+    Ok(Some(task))
+}
+
+fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
+    let (dir, generation, rank, fps) = (&args.dir, args.generation, args.rank, args.fps);
     // Read-only: replaying never changes the run's store.
     let run = Run::<G>::open_read_only(dir).map_err(super::evolve::run_error)?;
+    let changed = changed_task(args, &run.config().task)?;
     let (generation, individual) =
         individual_by_rank(&run, dir, generation, rank).map_err(|e| match e {
             PickError::Run(e) => super::evolve::run_error(e),
@@ -120,7 +150,8 @@ fn replay_typed<G: Genome>(
     let title = format!("generation {generation}, rank {rank}");
     ontogeny::render::write_png(&creature, &title, &png, 960, 600)
         .map_err(super::render_error(&png))?;
-    let evaluation = run.config().task.evaluate(&creature, true);
+    let task = changed.as_ref().unwrap_or(&run.config().task);
+    let evaluation = task.evaluate(&creature, true);
     super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
     let stored = individual.evaluation.fitness;
     say!(
@@ -131,7 +162,13 @@ fn replay_typed<G: Genome>(
             .as_str()
             .unwrap_or("?")
     );
-    if evaluation.fitness != stored {
+    if changed.is_some() {
+        tell!(
+            "note: re-evaluated as the flags ask ({}), not as the run evaluated it ({}); the stored fitness is the run's",
+            task.fitness_label(),
+            run.config().task.fitness_label()
+        );
+    } else if evaluation.fitness != stored {
         tell!("warning: the re-evaluation differs from the stored fitness");
     }
     let files = [

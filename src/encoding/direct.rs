@@ -328,17 +328,64 @@ impl Genome for DirectGenome {
 /// its last string: commands and brackets in order, control symbols (which build nothing)
 /// dropped.
 fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopError> {
-    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
+    let modules =
+        derived_items(text, limits.modules()).map_err(|problems| refuse(problems.join("; ")))?;
+    let genome = DirectGenome { modules };
+    genome.check(limits).map_err(refuse)?;
+    Ok(genome)
+}
+
+/// The building commands and brackets of the last string `text` derives (as `ontogeny grow`
+/// derives it, `max_modules` capping the string), in order, control symbols dropped; `Err`
+/// lists every reason they are not that (a module no genome builds with, named with where
+/// the file writes it first; unbalanced brackets; no building command at all).
+pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>, Vec<String>> {
+    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| vec![d.to_string()])?;
+    let source = lang::Source::new("file.lsys", text);
+    let written = lang::parse(&source).ok();
+    // Where the file writes module `name` first (line and column), if it does.
+    let place = |name: &str| -> String {
+        let file = written.as_ref();
+        let calls = file
+            .into_iter()
+            .flat_map(|f| f.axiom.iter().flat_map(|(a, _)| a.iter()))
+            .chain(
+                file.into_iter()
+                    .flat_map(|f| f.rules.iter().flat_map(|r| r.successor.iter())),
+            );
+        let mut first: Option<usize> = None;
+        for call in calls.filter(|c| c.name == name) {
+            first = Some(first.map_or(call.span.start, |f| f.min(call.span.start)));
+        }
+        match first {
+            Some(at) => {
+                let (line, column) = source.line_col(at);
+                format!("line {line}, column {column}: ")
+            }
+            None => String::new(),
+        }
+    };
     let options = DeriveOptions {
-        max_modules: limits.modules(),
+        max_modules,
         ..DeriveOptions::default()
     };
-    let modules = last_frame(&lsys, &options, |shown, _, _| {
+    let (modules, mut problems) = last_frame(&lsys, &options, |shown, _, _| {
         let symbols = lsys.symbols();
         let mut modules = Vec::new();
+        let mut problems: Vec<String> = Vec::new();
+        let mut said: Vec<String> = Vec::new();
         for (k, m) in shown.iter().enumerate() {
             let name = symbols.name(m.sym);
-            let at = || format!("module {} of the derived string, '{}'", k + 1, name);
+            let mut problem = |what: String| {
+                if !said.iter().any(|s| s == name) {
+                    said.push(name.to_string());
+                    problems.push(format!(
+                        "{}'{name}' (first at module {} of the derived string) {what}",
+                        place(name),
+                        k + 1
+                    ));
+                }
+            };
             let item = match (name, Command::building_from_name(name)) {
                 ("[", _) => Item::Push,
                 ("]", _) => Item::Pop,
@@ -348,12 +395,12 @@ fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopE
                         Item::Command(c, Some(Arg::Const(*v)))
                     }
                     [v] if c.has_argument() => {
-                        return Err(refuse(format!("{}: its argument is {v}", at())));
+                        problem(format!("has the argument {v}"));
+                        continue;
                     }
                     _ => {
-                        return Err(refuse(format!(
-                            "{}: it has {} arguments; the genome's '{}' takes {}",
-                            at(),
+                        problem(format!(
+                            "has {} arguments; the genome's '{}' takes {}",
                             m.params.len(),
                             c.name(),
                             if c.has_argument() {
@@ -361,35 +408,37 @@ fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopE
                             } else {
                                 "none"
                             }
-                        )));
+                        ));
+                        continue;
                     }
                 },
                 _ if lang::is_builtin_command(name) || name == "{" || name == "}" => {
-                    return Err(refuse(format!(
-                        "{}: not a command the genome uses (not used: repeat blocks, maturing \
-                         m-commands, chem, secrete, target, release)",
-                        at()
-                    )));
+                    problem(
+                        "is not a command the genome uses (not used: repeat blocks, maturing \
+                         m-commands, chem, secrete, target, release)"
+                            .to_string(),
+                    );
+                    continue;
                 }
                 // A control symbol: the builder skips it.
                 _ => continue,
             };
             modules.push(item);
         }
-        Ok(modules)
+        (modules, problems)
     })
-    .map_err(|d| refuse(d.to_string()))??;
-    let genome = DirectGenome { modules };
-    if genome.modules.is_empty() {
-        return Err(refuse("its derived string has no building command"));
+    .map_err(|d| vec![d.to_string()])?;
+    if modules.is_empty() && problems.is_empty() {
+        problems.push("its derived string has no building command".to_string());
     }
-    if !is_balanced(&genome.modules) {
-        return Err(refuse(
-            "the brackets of its derived string are not balanced",
-        ));
+    if !is_balanced(&modules) {
+        problems.push("the brackets of its derived string are not balanced".to_string());
     }
-    genome.check(limits).map_err(refuse)?;
-    Ok(genome)
+    if problems.is_empty() {
+        Ok(modules)
+    } else {
+        Err(problems)
+    }
 }
 
 #[cfg(test)]

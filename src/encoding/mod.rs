@@ -166,6 +166,28 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
             Self::NAME
         )))
     }
+
+    /// [`Genome::from_lsys`] for a run's seed: the genome, the run's `limits` widened where
+    /// the seed is bigger (its mutants keep within them), and notes on what was rewritten or
+    /// widened. By default the limits are kept and nothing is noted.
+    fn seed_from_lsys(text: &str, limits: &Self::Limits) -> Result<Seed<Self>, DevelopError> {
+        Self::from_lsys(text, limits).map(|genome| Seed {
+            genome,
+            limits: limits.clone(),
+            notes: Vec::new(),
+        })
+    }
+}
+
+/// A genome read from a hand-written grammar to seed a run ([`Genome::seed_from_lsys`]).
+#[derive(Clone, Debug)]
+pub struct Seed<G: Genome> {
+    /// The genome.
+    pub genome: G,
+    /// The run's limits, widened to fit the genome.
+    pub limits: G::Limits,
+    /// What was rewritten or widened, for people.
+    pub notes: Vec<String>,
 }
 
 /// Every (item, slot) index pair of `items`, where item `i` has `slots(&items[i])` slots, in

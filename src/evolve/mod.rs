@@ -1,7 +1,7 @@
 //! Evolution and comparison: the genetic algorithm ([`ga`]: presets as data, a generational
 //! loop over any [`crate::encoding::Genome`], parallel evaluation), a run's configuration
 //! ([`config`], its errors in words: [`config_errors`]), its directory ([`run`]), its database ([`store`], the only code that knows
-//! SQL), the lock that keeps a directory one process's ([`lock`]), its fitness plot
+//! SQL), the record of a champion's evaluation in its file ([`champion`]), the lock that keeps a directory one process's ([`lock`]), its fitness plot
 //! ([`plot`]), the statistics that compare settings and encodings ([`stats`]), the evaluation
 //! cache and its keys ([`cache`], [`key`]), where evaluations run ([`evaluator`]: this
 //! process's threads, or every rank of an MPI job with the `mpi` feature) and the version of
@@ -13,6 +13,7 @@
 
 pub mod bench;
 pub mod cache;
+pub mod champion;
 pub mod compare;
 pub mod config;
 pub mod config_errors;

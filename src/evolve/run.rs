@@ -815,13 +815,23 @@ impl<G: Genome> Run<G> {
                     None => String::new(),
                 };
                 let note = format!(
-                    "The best individual of {} after generation {} ({fitness}): fitness {} ({}){fine}.\nGrow it with `ontogeny grow`, evaluate it with `ontogeny eval`.",
+                    "The best individual of {} after generation {} ({fitness}): fitness {} ({}){fine}.\nGrow it with `ontogeny grow`; `ontogeny eval` on this file repeats its evaluation, whose every input the line below records.",
                     self.dir.display(),
                     last.index,
                     b.evaluation.fitness,
                     status_name(b),
                 );
-                let text = b.genome.annotated_text(&note);
+                let record = super::champion::ChampionRecord::new(
+                    b.evaluation.fitness,
+                    &self.config.task,
+                    b.develop_seed,
+                    &self.config.limits,
+                );
+                let text = if G::TEXT_EXTENSION == "json" {
+                    record.into_json(&b.genome.to_text(), &note)
+                } else {
+                    b.genome.annotated_text(&record.comment(&note))
+                };
                 let name = format!("best.{}", G::TEXT_EXTENSION);
                 output::write(&self.dir.join(name), text.as_bytes())?;
             }

@@ -33,6 +33,8 @@ pub struct RunFlags {
     pub seconds: Option<f64>,
     /// `--setting`.
     pub setting: Option<StepSetting>,
+    /// `--target` (the aim task's, metres from the projectile's start).
+    pub target: Option<[f64; 3]>,
 }
 
 /// A message about the command line's or a config file's settings as a diagnostic (exit code
@@ -42,8 +44,9 @@ fn plain(message: String) -> Diagnostic {
 }
 
 /// The task of a config file (default: the walker), with `--task`, `--fitness`, `--seconds`
-/// and `--setting` over it (a named setting replaces the file's five stepping values, and
-/// nothing else). `--fitness` for a task other than the walker is refused.
+/// `--setting` and `--target` over it (a named setting replaces the file's five stepping
+/// values, and nothing else). `--fitness` for a task other than the walker, and `--target`
+/// for a task other than aim, are refused.
 pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec, String> {
     let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
     if let Some(setting) = flags.setting {
@@ -67,6 +70,15 @@ pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec
             ));
         }
         spec.walker.fitness = fitness;
+    }
+    if let Some([x, y, z]) = flags.target {
+        if spec.task != TaskKind::Aim {
+            return Err(format!(
+                "--target is for the aim task only, and the task is {}",
+                spec.task.name()
+            ));
+        }
+        spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
     }
     Ok(spec)
 }
@@ -129,9 +141,15 @@ pub fn init_path(
     }
 }
 
-/// Refuses a seed grammar (`text`, read from `path`) that the encoding `G` cannot start from.
-pub fn check_init<G: Genome>(text: &str, limits: &G::Limits, path: &Path) -> Result<(), String> {
-    G::from_lsys(text, limits).map(drop).map_err(|e| {
+/// The seed a grammar (`text`, read from `path`) gives the encoding `G` under `limits`
+/// ([`Genome::seed_from_lsys`]: the limits widened to fit it, notes on what was rewritten),
+/// or its refusal, which lists what cannot be represented.
+pub fn check_init<G: Genome>(
+    text: &str,
+    limits: &G::Limits,
+    path: &Path,
+) -> Result<crate::encoding::Seed<G>, String> {
+    G::seed_from_lsys(text, limits).map_err(|e| {
         format!(
             "{}: cannot seed the {} encoding: {}",
             path.display(),
@@ -179,6 +197,9 @@ pub fn new_run_encoding(flag: Option<&str>, source: Option<&Source>) -> Result<S
 /// A new run's settings and the grammar that seeds its first generation, if any.
 pub type NewRun<L> = (RunConfig<L>, Option<Arc<Source>>);
 
+/// [`NewRun`] with the notes on its seed.
+pub type NewRunWithNotes<L> = (RunConfig<L>, Option<Arc<Source>>, Vec<String>);
+
 /// A new run's settings ([`run_config`]) from its config file (`source`, if any) and the
 /// flags over it, with the grammar that seeds its first generation (`init`, `--init`, else
 /// the file's `init`), read and checked ([`check_init`]).
@@ -190,18 +211,40 @@ pub fn new_run<G: Genome>(
     verify_best: bool,
     cache: bool,
 ) -> Result<NewRun<G::Limits>, Diagnostic> {
+    new_run_with_notes::<G>(source, flags, init, seed, verify_best, cache)
+        .map(|(config, init, _)| (config, init))
+}
+
+/// [`new_run`] with the notes on its seed, if it has one: what of the grammar was rewritten
+/// for the genome, and which limits were widened to fit it (the run's config records the
+/// widened limits).
+pub fn new_run_with_notes<G: Genome>(
+    source: Option<&Source>,
+    flags: &RunFlags,
+    init: Option<&Path>,
+    seed: Option<u64>,
+    verify_best: bool,
+    cache: bool,
+) -> Result<NewRunWithNotes<G::Limits>, Diagnostic> {
     let file: ConfigFile<G::Limits> = match source {
         Some(s) => super::config::read_config(s)?,
         None => ConfigFile::default(),
     };
     let init_path = init_path(init, file.init.as_deref(), source);
-    let config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
+    let mut config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
     super::config::check_limits(&config.limits, source)?;
     let init = init_path.as_deref().map(read_grammar).transpose()?;
+    let mut notes = Vec::new();
     if let (Some(init), Some(path)) = (&init, &init_path) {
-        check_init::<G>(init.text(), &config.limits, path).map_err(plain)?;
+        let seed = check_init::<G>(init.text(), &config.limits, path).map_err(plain)?;
+        config.limits = seed.limits;
+        notes = seed
+            .notes
+            .into_iter()
+            .map(|n| format!("note: {}: {n}", path.display()))
+            .collect();
     }
-    Ok((config, init))
+    Ok((config, init, notes))
 }
 
 /// The comparison `compare`'s flags describe over its config file (`source` its text), checked:

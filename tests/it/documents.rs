@@ -15,6 +15,7 @@
 //! `ontogeny view` without `--snapshot` serves until stopped: it is started, must say where it
 //! serves within ten seconds, and is then stopped. `ontogeny view ... --snapshot` needs
 //! Chromium: it runs only in [`browser`], ignored unless asked for.
+//! The fitness figures the reference quotes for shipped files are evaluated again.
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -551,6 +552,66 @@ fn the_commands_reference_lists_the_command_table() {
             argument != "—",
             command.has_argument(),
             "`{name}`: the page's argument column ({argument}) against the table"
+        );
+    }
+}
+
+/// Every fitness the reference documents (and the examples' own comments) quote for a
+/// shipped file, evaluated again: the quoted text is in the document, and `eval` with the
+/// flags gives that number at the quoted precision.
+#[test]
+fn the_fitness_figures_the_documents_quote_for_shipped_files_are_what_eval_gives() {
+    let quadruped: &[&str] = &[];
+    let figures: [(&str, &str, &str, &[&str], usize); 5] = [
+        (
+            "docs/reference/genomes.md",
+            "gives it 0.002242",
+            "examples/hornby-walker.lsys",
+            quadruped,
+            6,
+        ),
+        (
+            "docs/reference/genomes.md",
+            "the quadruped 0.318288",
+            "examples/quadruped.lsys",
+            quadruped,
+            6,
+        ),
+        (
+            "docs/reference/genomes.md",
+            "`quadruped.lsys` gets 0.318288",
+            "examples/quadruped.lsys",
+            quadruped,
+            6,
+        ),
+        (
+            "docs/reference/genomes.md",
+            "walker fitness 0.002964",
+            "examples/continuous-walker.lsys",
+            quadruped,
+            6,
+        ),
+        (
+            "examples/quadruped.lsys",
+            "D_w = 5.38 m",
+            "examples/quadruped.lsys",
+            &["--fitness", "distance"],
+            2,
+        ),
+    ];
+    for (document, quoted, file, flags, digits) in figures {
+        let text = std::fs::read_to_string(document).unwrap();
+        assert!(
+            text.contains(quoted),
+            "{document} no longer says '{quoted}'"
+        );
+        let o = crate::util::ontogeny_ok(&[&["eval", file, "--json"][..], flags].concat());
+        let value: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let fitness = value["fitness"].as_f64().unwrap();
+        let shown = format!("{fitness:.digits$}");
+        assert!(
+            quoted.contains(&shown),
+            "{document} quotes '{quoted}' for {file}; eval gives {fitness}"
         );
     }
 }

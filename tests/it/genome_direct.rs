@@ -391,16 +391,24 @@ fn grammars_whose_strings_the_genome_cannot_hold_are_refused_with_the_reason() {
     };
     refused(
         &example("plastic"),
-        "'mforward': not a command the genome uses",
+        "line 12, column 20: 'mforward' (first at module 10 of the derived string) is not a command the genome uses",
     );
     refused(&example("algae"), "has no building command");
     refused(&example("stochastic-plant"), "grew past 1000 modules");
-    refused("axiom: forward(1) chem(0)\n", "'chem': not a command");
+    refused(
+        "axiom: forward(1) chem(0)\n",
+        "'chem' (first at module 2 of the derived string) is not a command",
+    );
     refused(
         "axiom: { forward(1) }(3)\n",
-        "'{': not a command the genome uses",
+        "'{' (first at module 1 of the derived string) is not a command the genome uses",
     );
     refused("axiom: forward(1) ]\n", "brackets of its derived string");
+    // Every problem at once, each where the file writes it.
+    refused(
+        "derivation length: 1\naxiom: A\nA --> chem(0) forward(1) secrete(1)\n",
+        "line 3, column 7: 'chem' (first at module 1 of the derived string) is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release); line 3, column 26: 'secrete' (first at module 3",
+    );
     // A file that does not compile keeps the language's located error: a syntax error, or a
     // built-in command given more parameters than it takes.
     let e = DirectGenome::from_lsys("axiom: A(1\n", &limits).unwrap_err();

@@ -41,6 +41,7 @@ mod text;
 
 pub use develop::face_frame;
 use operators::param_range;
+pub use text::{CHAMPION_KEY, without_champion};
 use text::{GenomeShape, kind_name};
 
 /// Random values are rounded to this many parts of a unit, so that genomes stay readable.

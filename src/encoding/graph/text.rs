@@ -41,6 +41,28 @@ fn json_error_offset(source: &lang::Source, e: &serde_json::Error) -> usize {
     at
 }
 
+/// The member of a run's `best.json` that records its champion's evaluation, beside the
+/// genome.
+pub const CHAMPION_KEY: &str = "champion";
+
+/// `text` without a JSON object's `"champion"` member (a text without one, or that is no
+/// JSON object, is returned as it is), so that the genome's reading sees only the genome.
+pub fn without_champion(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.contains(&format!("\"{CHAMPION_KEY}\"")) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    match serde_json::from_str::<serde_json::Value>(text) {
+        Ok(serde_json::Value::Object(mut map)) if map.contains_key(CHAMPION_KEY) => {
+            map.remove(CHAMPION_KEY);
+            let mut out =
+                serde_json::to_string_pretty(&serde_json::Value::Object(map)).unwrap_or_default();
+            out.push('\n');
+            std::borrow::Cow::Owned(out)
+        }
+        _ => std::borrow::Cow::Borrowed(text),
+    }
+}
+
 impl GraphGenome {
     /// The genome read from its JSON text form, checked against `limits`. Its sizes (nodes,
     /// connections, neurons, inputs) are checked first, on a reading that keeps nothing but
@@ -88,6 +110,8 @@ impl GraphGenome {
         text: &str,
         limits: &GraphLimits,
     ) -> Result<GraphGenome, Result<String, serde_json::Error>> {
+        // A champion's record (`"champion"`, written by a run) is not the genome's.
+        let text = &*without_champion(text);
         // A text that is not even shaped like a genome gets the full reading's message.
         if let Ok(shape) = serde_json::from_str::<GenomeShape>(text) {
             shape.check(limits).map_err(Ok)?;

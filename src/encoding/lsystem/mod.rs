@@ -24,6 +24,7 @@ use crate::lsystem::{DeriveOptions, LSystem, ModuleString};
 
 mod develop;
 mod operators;
+mod seed;
 mod text;
 
 pub use develop::is_driven_walker;
@@ -31,7 +32,6 @@ pub(crate) use develop::{develop_text, last_frame};
 pub(crate) use operators::{
     balance, is_balanced, perturb_argument, pick_run, random_command, random_run,
 };
-use text::from_lsys;
 pub(crate) use text::push_item_text;
 
 /// Random constants are rounded to this many parts of a unit, so printed genomes stay
@@ -410,7 +410,14 @@ impl Genome for LSystemGenome {
     }
 
     fn from_lsys(text: &str, limits: &LSystemLimits) -> Result<Self, DevelopError> {
-        from_lsys(text, limits)
+        seed::seed_from_lsys(text, limits).map(|s| s.genome)
+    }
+
+    fn seed_from_lsys(
+        text: &str,
+        limits: &LSystemLimits,
+    ) -> Result<super::Seed<Self>, DevelopError> {
+        seed::seed_from_lsys(text, limits)
     }
 }
 

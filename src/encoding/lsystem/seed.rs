@@ -1,0 +1,511 @@
+//! A hand-written grammar as the L-system genome that seeds a run (`evolve --init`): its
+//! rules kept as the genome's productions where they fit, rewritten into the genome's
+//! forms where an equivalent exists (`-s` is `s * -1`, `2 * 0.5` is `1`, an axiom of several
+//! modules becomes a first production, one derivation step more), else the string it
+//! derives as one production (the same creature); the run's limits widened to fit the seed;
+//! what cannot be represented listed all at once, each with its line and column.
+
+use super::*;
+use crate::encoding::Seed;
+use crate::encoding::direct::derived_items;
+
+/// The most items a successor may hold under any limits (`max_successor`'s range).
+const MOST_SUCCESSOR: usize = 256;
+
+pub(super) fn refuse(message: impl Into<String>) -> DevelopError {
+    DevelopError(format!(
+        "this file does not fit the lsystem genome: {}",
+        message.into()
+    ))
+}
+
+/// Writes every named constant (`define`) of `file` into its axiom, guards and successors as
+/// its value, where a rule's own parameter of that name does not hide it: the genome keeps
+/// numbers, not names.
+fn inline_constants(file: &mut lang::ast::LsysFile, constants: &[(&str, f64)]) {
+    fn inline(e: &mut Expr, constants: &[(&str, f64)], formals: &[String]) {
+        match e {
+            Expr::Name(n, span) => {
+                if !formals.contains(n)
+                    && let Some((_, v)) = constants.iter().find(|(c, _)| c == n)
+                {
+                    *e = Expr::Number(*v, *span);
+                }
+            }
+            Expr::Number(..) => {}
+            Expr::Unary { operand, .. } => inline(operand, constants, formals),
+            Expr::Binary { lhs, rhs, .. } => {
+                inline(lhs, constants, formals);
+                inline(rhs, constants, formals);
+            }
+            Expr::Call { args, .. } => {
+                for a in args {
+                    inline(a, constants, formals);
+                }
+            }
+        }
+    }
+    if constants.is_empty() {
+        return;
+    }
+    if let Some((axiom, _)) = &mut file.axiom {
+        for a in axiom.iter_mut().flat_map(|call| call.args.iter_mut()) {
+            inline(a, constants, &[]);
+        }
+    }
+    for rule in &mut file.rules {
+        let formals: Vec<String> = rule
+            .predecessor
+            .params
+            .iter()
+            .map(|(f, _)| f.clone())
+            .collect();
+        if let Some(g) = &mut rule.guard {
+            inline(g, constants, &formals);
+        }
+        for a in rule
+            .successor
+            .iter_mut()
+            .flat_map(|call| call.args.iter_mut())
+        {
+            inline(a, constants, &formals);
+        }
+    }
+}
+
+/// The value of an expression without names (`2 * 0.5`, `-(1)`), computed as the language
+/// computes it; `None` when it names anything or is not finite.
+fn constant(e: &Expr) -> Option<f64> {
+    let v = match e {
+        Expr::Number(v, _) => *v,
+        Expr::Unary {
+            op: lang::ast::UnaryOp::Neg,
+            operand,
+            ..
+        } => -constant(operand)?,
+        Expr::Binary { op, lhs, rhs, .. } => {
+            let (a, b) = (constant(lhs)?, constant(rhs)?);
+            match op {
+                BinaryOp::Add => a + b,
+                BinaryOp::Sub => a - b,
+                BinaryOp::Mul => a * b,
+                BinaryOp::Div => a / b,
+                _ => return None,
+            }
+        }
+        _ => return None,
+    };
+    v.is_finite().then_some(v)
+}
+
+/// An argument in the genome's forms, exactly equal to `e` for every value of the
+/// parameters (`formals`): a number, `s`, `s ± c`, `c + s`, `s * c`, `c * s`, `-s` (as
+/// `s * -1`).
+fn argument(e: &Expr, formals: &[String]) -> Option<Arg> {
+    if let Some(v) = constant(e) {
+        return Some(Arg::Const(v));
+    }
+    let param = |e: &Expr| match e {
+        Expr::Name(n, _) => formals.iter().position(|f| f == n),
+        _ => None,
+    };
+    match e {
+        Expr::Name(..) => param(e).map(|i| Arg::Plus(i, 0.0)),
+        Expr::Unary {
+            op: lang::ast::UnaryOp::Neg,
+            operand,
+            ..
+        } => param(operand).map(|i| Arg::Times(i, -1.0)),
+        Expr::Binary { op, lhs, rhs, .. } => {
+            let (i, c, swapped) = match (param(lhs), constant(rhs), param(rhs), constant(lhs)) {
+                (Some(i), Some(c), _, _) => (i, c, false),
+                (_, _, Some(i), Some(c)) => (i, c, true),
+                _ => return None,
+            };
+            match op {
+                BinaryOp::Add => Some(Arg::Plus(i, c)),
+                BinaryOp::Sub if !swapped => Some(Arg::Plus(i, -c)),
+                BinaryOp::Mul => Some(Arg::Times(i, c)),
+                _ => None,
+            }
+        }
+        _ => None,
+    }
+}
+
+/// The file's rules as the genome's productions, with notes on what was rewritten; `Err`
+/// lists every reason they cannot be (each with its line and column).
+fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>), Vec<String>> {
+    let source = Source::new("file.lsys", text);
+    let mut file = lang::parse(&source).map_err(|d| vec![d.to_string()])?;
+    inline_constants(&mut file, &lsys.constants().collect::<Vec<_>>());
+    let snippet = |span: lang::Span| text.get(span.start..span.end).unwrap_or("?").to_string();
+    let place = |span: lang::Span| {
+        let (line, column) = source.line_col(span.start);
+        format!("line {line}, column {column}")
+    };
+    let mut reasons: Vec<String> = Vec::new();
+    let mut notes: Vec<String> = Vec::new();
+    if lsys.is_continuous() {
+        reasons.push("it develops in continuous time; the genome derives discrete steps".into());
+    }
+    if let Some((_, span)) = &file.environment {
+        reasons.push(format!(
+            "{}: it has an environment; the genome has none",
+            place(*span)
+        ));
+    }
+    let Some((axiom, axiom_span)) = &file.axiom else {
+        return Err(vec!["it has no axiom".into()]);
+    };
+    let rewritten_names: Vec<&String> = file
+        .rules
+        .iter()
+        .filter(|r| r.section == Section::Productions)
+        .map(|r| &r.predecessor.name)
+        .collect();
+    // The axiom is kept as P0's starting values when it is one call of a production with
+    // numbers; else it becomes the successor of a new first production.
+    let kept_axiom = match axiom.as_slice() {
+        [start] if rewritten_names.contains(&&start.name) => {
+            let values: Option<Vec<f64>> = start.args.iter().map(constant).collect();
+            let arity = file
+                .rules
+                .iter()
+                .find(|r| r.predecessor.name == start.name)
+                .map(|r| r.predecessor.params.len());
+            values.filter(|v| Some(v.len()) == arity)
+        }
+        _ => None,
+    };
+    let mut names: Vec<String> = Vec::new();
+    match &kept_axiom {
+        Some(_) => names.push(axiom[0].name.clone()),
+        None => {
+            names.push(String::new()); // the new first production
+            notes.push(format!(
+                "the axiom '{}' becomes the successor of a first production P0, derived one step more",
+                snippet(*axiom_span)
+            ));
+        }
+    }
+    for name in rewritten_names {
+        if !names.contains(name) {
+            names.push(name.clone());
+        }
+    }
+    let mut params = 0usize;
+    let mut productions: Vec<Production> = vec![Production { pairs: Vec::new() }; names.len()];
+    for rule in &file.rules {
+        let at = place(rule.span);
+        if rule.section == Section::Interpretation {
+            reasons.push(format!(
+                "{at}: interpretation rules are not part of the genome"
+            ));
+            continue;
+        }
+        if !rule.left.is_empty() || !rule.right.is_empty() {
+            reasons.push(format!(
+                "{at}: context-sensitive rules are not part of the genome"
+            ));
+        }
+        if rule.probability.is_some() {
+            reasons.push(format!("{at}: stochastic rules are not part of the genome"));
+        }
+        if rule.solve.is_some() {
+            reasons.push(format!(
+                "{at}: differential rules are not part of the genome"
+            ));
+        }
+        let name = &rule.predecessor.name;
+        if Command::building_from_name(name).is_some() || lang::is_builtin_command(name) {
+            reasons.push(format!(
+                "{at}: a rule rewrites the building command '{name}'; productions must be control symbols"
+            ));
+            continue;
+        }
+        let k = names.iter().position(|n| n == name).expect("collected");
+        let formals: Vec<String> = rule
+            .predecessor
+            .params
+            .iter()
+            .map(|(f, _)| f.clone())
+            .collect();
+        params = params.max(formals.len());
+        if let Some(f) = formals.iter().find(|f| lang::ast::is_constant_formal(f)) {
+            reasons.push(format!(
+                "{at}: the predecessor matches the number {f}; write a condition instead"
+            ));
+        }
+        let condition = match &rule.guard {
+            None => None,
+            Some(g) => {
+                let read = || {
+                    let Expr::Binary { op, lhs, rhs, .. } = g else {
+                        return None;
+                    };
+                    let compare = match op {
+                        BinaryOp::Lt => Compare::Less,
+                        BinaryOp::Le => Compare::LessEqual,
+                        BinaryOp::Gt => Compare::Greater,
+                        BinaryOp::Ge => Compare::GreaterEqual,
+                        _ => return None,
+                    };
+                    let param = |e: &Expr| match e {
+                        Expr::Name(n, _) => formals.iter().position(|f| f == n),
+                        _ => None,
+                    };
+                    match (param(lhs), constant(rhs), param(rhs), constant(lhs)) {
+                        (Some(p), Some(c), _, _) => Some((p, c, compare)),
+                        (_, _, Some(p), Some(c)) => Some((p, c, compare.flipped())),
+                        _ => None,
+                    }
+                };
+                match read() {
+                    Some((param, value, compare)) => Some(Condition {
+                        param,
+                        compare,
+                        value,
+                    }),
+                    None => {
+                        reasons.push(format!(
+                            "{}: the condition '{}' is not a parameter compared with a number",
+                            place(g.span()),
+                            snippet(g.span())
+                        ));
+                        None
+                    }
+                }
+            }
+        };
+        let successor = items(
+            &rule.successor,
+            &names,
+            &formals,
+            &place,
+            &snippet,
+            &mut reasons,
+        );
+        productions[k].pairs.push(Pair {
+            condition,
+            successor,
+        });
+    }
+    let start = match kept_axiom {
+        Some(values) => values,
+        None => {
+            productions[0].pairs.push(Pair {
+                condition: None,
+                successor: items(axiom, &names, &[], &place, &snippet, &mut reasons),
+            });
+            Vec::new()
+        }
+    };
+    if !reasons.is_empty() {
+        return Err(reasons);
+    }
+    // Every production takes the most parameters any takes; calls and the start are padded
+    // with 0 (a parameter a rule does not name is never read).
+    let params = params.max(start.len());
+    for pair in productions.iter_mut().flat_map(|p| p.pairs.iter_mut()) {
+        for item in &mut pair.successor {
+            if let Item::Call(_, args) = item {
+                args.resize(params, Arg::Const(0.0));
+            }
+        }
+    }
+    // A production without a rule (a module that only the axiom rewrites into) keeps
+    // itself, as the file's module does.
+    let mut start = start;
+    start.resize(params, 0.0);
+    let derivation_length = lsys.derivation_length().unwrap_or(0) + u64::from(names[0].is_empty());
+    let genome = LSystemGenome {
+        start,
+        derivation_length,
+        productions,
+    };
+    Ok((genome, notes))
+}
+
+/// The successor `calls` as the genome's items; a module that is neither a production, a
+/// building command of the genome's nor a bracket, and has no rule, builds nothing and is
+/// dropped; what cannot be represented goes to `reasons`.
+fn items(
+    calls: &[ModuleCall],
+    names: &[String],
+    formals: &[String],
+    place: &dyn Fn(lang::Span) -> String,
+    snippet: &dyn Fn(lang::Span) -> String,
+    reasons: &mut Vec<String>,
+) -> Vec<Item> {
+    let mut out = Vec::new();
+    let arg = |e: &Expr, reasons: &mut Vec<String>| {
+        argument(e, formals).unwrap_or_else(|| {
+            reasons.push(format!(
+                "{}: the argument '{}' is not a number, a parameter, or a parameter plus, minus or times a number",
+                place(e.span()),
+                snippet(e.span())
+            ));
+            Arg::Const(0.0)
+        })
+    };
+    for call in calls {
+        match call.name.as_str() {
+            "[" => out.push(Item::Push),
+            "]" => out.push(Item::Pop),
+            name => {
+                if let Some(c) = Command::building_from_name(name) {
+                    match call.args.as_slice() {
+                        [] => out.push(Item::Command(c, None)),
+                        [a] if c.argument() != Argument::None => {
+                            out.push(Item::Command(c, Some(arg(a, reasons))));
+                        }
+                        _ => reasons.push(format!(
+                            "{}: '{}' takes {} argument",
+                            place(call.span),
+                            c.name(),
+                            if c.argument() == Argument::None {
+                                "no"
+                            } else {
+                                "at most one"
+                            }
+                        )),
+                    }
+                } else if let Some(k) = names.iter().position(|n| n == name) {
+                    let args = call.args.iter().map(|a| arg(a, reasons)).collect();
+                    out.push(Item::Call(k, args));
+                } else if lang::is_builtin_command(name) || name == "{" || name == "}" {
+                    reasons.push(format!(
+                        "{}: '{name}' is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release)",
+                        place(call.span)
+                    ));
+                }
+                // else: a control symbol without a rule, which builds nothing.
+            }
+        }
+    }
+    if !super::is_balanced(&out)
+        && let Some(first) = calls.first()
+    {
+        reasons.push(format!(
+            "{}: the successor's brackets are not balanced",
+            place(first.span)
+        ));
+    }
+    out
+}
+
+/// The limits widened to fit `genome` (each the larger of the limit and the seed's size),
+/// with a note naming each widened limit.
+fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Option<String>) {
+    let mut out = limits.clone();
+    let most_pairs = genome.productions.iter().map(|p| p.pairs.len()).max();
+    let longest = genome
+        .productions
+        .iter()
+        .flat_map(|p| p.pairs.iter().map(|q| q.successor.len()))
+        .max();
+    out.max_productions = out.max_productions.max(genome.productions.len());
+    out.max_pairs = out.max_pairs.max(most_pairs.unwrap_or(1));
+    out.params = out.params.max(genome.start.len());
+    out.max_successor = out.max_successor.max(longest.unwrap_or(0));
+    out.derivation_length = out.derivation_length.max(genome.derivation_length);
+    let changes: Vec<String> = [
+        (
+            "max_productions",
+            limits.max_productions,
+            out.max_productions,
+        ),
+        ("max_pairs", limits.max_pairs, out.max_pairs),
+        ("params", limits.params, out.params),
+        ("max_successor", limits.max_successor, out.max_successor),
+        (
+            "derivation_length",
+            limits.derivation_length as usize,
+            out.derivation_length as usize,
+        ),
+    ]
+    .iter()
+    .filter(|(_, was, now)| was != now)
+    .map(|(key, was, now)| format!("{key} {was} → {now}"))
+    .collect();
+    let note = (!changes.is_empty()).then(|| {
+        format!(
+            "the run's limits are widened to fit the seed ({}); its mutants keep within them",
+            changes.join(", ")
+        )
+    });
+    (out, note)
+}
+
+/// The genome `text` seeds a run with under `limits`: see the module's comment.
+pub(super) fn seed_from_lsys(
+    text: &str,
+    limits: &LSystemLimits,
+) -> Result<Seed<LSystemGenome>, DevelopError> {
+    // The language's own checks first: a file that does not compile gets its located error.
+    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
+    let (genome, mut notes) = match structural(text, &lsys) {
+        Ok((mut genome, notes)) => {
+            // Every production takes at least the limits' parameters, as random genomes do.
+            let params = genome.start.len().max(limits.param_count());
+            genome.start.resize(params, 0.0);
+            for pair in genome
+                .productions
+                .iter_mut()
+                .flat_map(|p| p.pairs.iter_mut())
+            {
+                for item in &mut pair.successor {
+                    if let Item::Call(_, args) = item {
+                        args.resize(params, Arg::Const(0.0));
+                    }
+                }
+            }
+            (genome, notes)
+        }
+        Err(reasons) => match derived_items(text, limits.max_modules) {
+            Ok(items) if items.len() <= MOST_SUCCESSOR => {
+                let shown = match reasons.as_slice() {
+                    [a, b, c, _, ..] => format!("{a}; {b}; {c}; and {} more", reasons.len() - 3),
+                    _ => reasons.join("; "),
+                };
+                let note = format!(
+                    "its rules cannot be the genome's ({shown}): the run starts from the string it derives, as production P0's one successor (the same creature)"
+                );
+                let genome = LSystemGenome {
+                    start: vec![0.0; limits.param_count()],
+                    derivation_length: 1,
+                    productions: vec![Production {
+                        pairs: vec![Pair {
+                            condition: None,
+                            successor: items,
+                        }],
+                    }],
+                };
+                (genome, vec![note])
+            }
+            Ok(items) => {
+                return Err(refuse(format!(
+                    "its rules cannot be the genome's ({}), and the string it derives has {} building modules, more than a successor may hold ({MOST_SUCCESSOR})",
+                    reasons.join("; "),
+                    items.len()
+                )));
+            }
+            Err(problems) => {
+                return Err(refuse(format!(
+                    "its rules cannot be the genome's:\n  {}\nnor can the string it derives:\n  {}",
+                    reasons.join("\n  "),
+                    problems.join("\n  ")
+                )));
+            }
+        },
+    };
+    let (limits, widening) = widened(&genome, limits);
+    notes.extend(widening);
+    genome.check(&limits).map_err(refuse)?;
+    Ok(Seed {
+        genome,
+        limits,
+        notes,
+    })
+}

@@ -1,0 +1,260 @@
+//! A champion's file records every input of its evaluation, and `eval` on it repeats that
+//! evaluation; `evolve --init` seeds a run from any shipped grammar that builds a creature,
+//! its individual 0 scoring what `eval` gives the file; `replay` re-evaluates with
+//! `--setting` and `--fitness`; `evolve --target` sets the aim task's target.
+
+use std::path::Path;
+
+use ontogeny::evolve::store::RunStore;
+
+use super::scratch;
+use crate::util::{ontogeny_command, ontogeny_ok, refused, stderr, succeeded};
+
+/// The fitness `eval ARGS --json` prints, and its standard error.
+fn eval_fitness(args: &[&str]) -> (f64, String) {
+    let mut all = vec!["eval"];
+    all.extend_from_slice(args);
+    all.push("--json");
+    let o = ontogeny_ok(&all);
+    let value: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    (value["fitness"].as_f64().unwrap(), stderr(&o))
+}
+
+/// The fitness a champion file's record gives it.
+fn recorded_fitness(path: &Path) -> f64 {
+    let text = std::fs::read_to_string(path).unwrap();
+    let record = ontogeny::evolve::champion::ChampionRecord::of_text(&text)
+        .unwrap()
+        .unwrap_or_else(|| panic!("{} has no record", path.display()));
+    record.fitness
+}
+
+#[test]
+fn eval_on_every_shipped_champion_prints_the_fitness_its_header_records() {
+    let mut champions: Vec<_> = std::fs::read_dir("docs/evolve")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.file_name().unwrap().to_string_lossy().contains("-best."))
+        .collect();
+    champions.sort();
+    assert_eq!(champions.len(), 9);
+    for path in champions {
+        let file = path.to_str().unwrap();
+        let (fitness, notes) = eval_fitness(&[file]);
+        assert_eq!(fitness, recorded_fitness(&path), "{file}");
+        assert!(notes.contains("records its evaluation"), "{file}: {notes}");
+        // The header's human line says the same number.
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.contains(&format!("fitness {fitness} (ok)")), "{file}");
+    }
+}
+
+#[test]
+fn a_fresh_champion_is_evaluated_as_its_run_evaluated_it_and_flags_override_with_a_note() {
+    let dir = scratch("champion-fresh");
+    for (encoding, extension) in [("lsystem", "lsys"), ("graph", "json")] {
+        let out = dir.join(encoding);
+        let o = ontogeny_command()
+            .args([
+                "evolve",
+                "--encoding",
+                encoding,
+                "--pop",
+                "4",
+                "--gens",
+                "1",
+            ])
+            .args([
+                "--seconds",
+                "1.5",
+                "--fitness",
+                "distance",
+                "--setting",
+                "fast",
+            ])
+            .args(["--seed", "3", "--out"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        succeeded(&o);
+        let best = out.join(format!("best.{extension}"));
+        let file = best.to_str().unwrap();
+        let (fitness, notes) = eval_fitness(&[file]);
+        assert_eq!(fitness, recorded_fitness(&best), "{encoding}");
+        assert!(
+            notes.contains(&format!(
+                "note: {file} records its evaluation (walker, distance (m)); repeating it"
+            )),
+            "{notes}"
+        );
+        // A flag that differs from the record is used, and said.
+        let (_, notes) = eval_fitness(&[file, "--seconds", "1"]);
+        assert!(
+            notes.contains(&format!(
+                "note: --seconds differs from the evaluation {file} records (1.5 seconds); the flag's is used"
+            )),
+            "{notes}"
+        );
+        assert!(notes.contains("the flags above change it"), "{notes}");
+        // The same evaluation spelt out in flags gives the same number.
+        let (spelt, _) = eval_fitness(&[
+            file,
+            "--task",
+            "walker",
+            "--fitness",
+            "distance",
+            "--seconds",
+            "1.5",
+            "--setting",
+            "fast",
+        ]);
+        assert_eq!(spelt, fitness, "{encoding}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn eval_without_a_task_evaluates_a_walker() {
+    let (default, _) = eval_fitness(&["examples/hornby-walker.lsys", "--seconds", "1"]);
+    let (walker, _) = eval_fitness(&[
+        "examples/hornby-walker.lsys",
+        "--seconds",
+        "1",
+        "--task",
+        "walker",
+    ]);
+    assert_eq!(default, walker);
+}
+
+#[test]
+fn init_on_every_shipped_grammar_that_builds_a_creature_seeds_a_run_whose_individual_0_scores_as_eval()
+ {
+    let dir = scratch("champion-init");
+    for name in [
+        "quadruped",
+        "snake",
+        "thrower",
+        "hornby-walker",
+        "continuous-walker",
+        "syntax-tour",
+        "algae",
+    ] {
+        let file = format!("examples/{name}.lsys");
+        let out = dir.join(name);
+        let o = ontogeny_command()
+            .args(["evolve", "--init", &file, "--pop", "2", "--gens", "1"])
+            .args([
+                "--seconds",
+                "1",
+                "--fitness",
+                "distance",
+                "--no-verify-best",
+            ])
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        succeeded(&o);
+        let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+        let first = store.individuals(0).unwrap();
+        let (fitness, _) = eval_fitness(&[&file, "--seconds", "1", "--fitness", "distance"]);
+        assert_eq!(first[0].fitness, fitness, "{name}");
+    }
+    // A grammar whose rules and derived string both escape the genome: every reason at once.
+    let o = ontogeny_command()
+        .args(["evolve", "--init", "examples/parametric.lsys", "--pop", "2"])
+        .arg("--out")
+        .arg(dir.join("bad"))
+        .output()
+        .unwrap();
+    let message = refused(
+        &o,
+        "examples/parametric.lsys: cannot seed the lsystem encoding",
+    );
+    assert!(
+        message.contains("line 6, column 31: the argument 'x + y'"),
+        "{message}"
+    );
+    assert!(
+        message.contains("line 7, column 29: the argument 'x / y'"),
+        "{message}"
+    );
+    assert!(
+        message.contains("its derived string has no building command"),
+        "{message}"
+    );
+    assert!(!dir.join("bad").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn replay_re_evaluates_with_another_setting_and_fitness_and_evolve_takes_an_aim_target() {
+    let dir = scratch("champion-replay");
+    let out = dir.join("aim");
+    let o = ontogeny_command()
+        .args([
+            "evolve",
+            "--encoding",
+            "graph",
+            "--task",
+            "aim",
+            "--target",
+            "3,0,1",
+        ])
+        .args(["--pop", "4", "--gens", "1", "--seconds", "5", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    succeeded(&o);
+    let config = std::fs::read_to_string(out.join("config.toml")).unwrap();
+    assert!(config.contains("target = [3.0, 0.0, 1.0]"), "{config}");
+    // --fitness is the walker's.
+    let o = ontogeny_command()
+        .args(["replay", "--fitness", "distance"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        "--fitness is for the walker task only, and the run's task is aim",
+    );
+    let walker = dir.join("walker");
+    let o = ontogeny_command()
+        .args([
+            "evolve",
+            "--pop",
+            "4",
+            "--gens",
+            "1",
+            "--seconds",
+            "1",
+            "--fitness",
+            "distance",
+            "--out",
+        ])
+        .arg(&walker)
+        .output()
+        .unwrap();
+    succeeded(&o);
+    let o = ontogeny_command()
+        .args(["replay", "--setting", "fine", "--fitness", "normalised"])
+        .arg(&walker)
+        .output()
+        .unwrap();
+    let notes = succeeded(&o);
+    assert!(
+        stderr(&o).contains("note: re-evaluated as the flags ask (walker, normalised (Chaumont eq. 1)), not as the run evaluated it (walker, distance (m))"),
+        "{notes}"
+    );
+    // --target is the aim task's.
+    let o = ontogeny_command()
+        .args(["evolve", "--target", "3,0,1", "--pop", "4", "--out"])
+        .arg(dir.join("no"))
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        "--target is for the aim task only, and the task is walker",
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
