@@ -234,7 +234,10 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
     spec.check().map_err(flag_error)?;
     let seed = match args.development.seed.seed() {
         Some(s) if s != record.grammar_seed => {
-            differs("--grammar-seed", format!("grammar seed {}", record.grammar_seed));
+            differs(
+                "--grammar-seed",
+                format!("grammar seed {}", record.grammar_seed),
+            );
             s
         }
         _ => record.grammar_seed,

@@ -402,7 +402,8 @@ pub enum Severity {
 /// Something development found wrong with the creature.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Problem {
-    /// How serious.
+    /// How serious (a picture's warning about what physics refuses ends in
+    /// [`Problem::PICTURE_ONLY`]).
     pub severity: Severity,
     /// In words.
     pub message: String,
@@ -410,6 +411,17 @@ pub struct Problem {
     pub module: Option<String>,
     /// The developmental time, if any.
     pub t: Option<f64>,
+}
+
+impl Problem {
+    /// The end of a warning about what is fine in a picture and an error where physics needs
+    /// the creature (parts that overlap, a body in pieces).
+    pub const PICTURE_ONLY: &str = " (fine for a picture; an error for eval and evolve)";
+
+    /// Whether this is a picture's warning about what physics refuses.
+    pub fn is_picture_only(&self) -> bool {
+        self.message.ends_with(Self::PICTURE_ONLY)
+    }
 }
 
 impl std::fmt::Display for Problem {

@@ -45,6 +45,9 @@ pub struct Summary {
     pub bounding_box: [[f64; 3]; 2],
     /// Whether the creature can be simulated.
     pub valid: bool,
+    /// Whether it has a picture's warning about what physics refuses
+    /// ([`Problem::is_picture_only`]).
+    pub picture_only: bool,
     /// Its problems, as people read them.
     pub problems: Vec<String>,
 }
@@ -75,6 +78,7 @@ impl Summary {
             mass: c.mass(),
             bounding_box: [[lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]],
             valid: c.is_valid(),
+            picture_only: c.problems.iter().any(Problem::is_picture_only),
             problems: super::repeats::said_once(
                 no_part(c)
                     .into_iter()
@@ -116,7 +120,14 @@ impl Summary {
                 "mass: {:.4}   bounding box: ({:.3}, {:.3}, {:.3}) to ({:.3}, {:.3}, {:.3})",
                 s.mass, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
             ),
-            format!("valid: {}", if s.valid { "yes" } else { "no" }),
+            format!(
+                "valid: {}",
+                match (s.valid, s.picture_only) {
+                    (false, _) => "no",
+                    (true, false) => "yes",
+                    (true, true) => "as a picture only (eval and evolve refuse it)",
+                }
+            ),
         ];
         lines.extend(s.problems.iter().map(|p| format!("  {p}")));
         lines.join("\n")

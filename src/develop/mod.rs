@@ -105,7 +105,7 @@ impl BuildOptions {
         if self.for_picture {
             (
                 Severity::Warning,
-                format!("{message} (fine for a picture; an error for eval and evolve)"),
+                format!("{message}{}", crate::creature::Problem::PICTURE_ONLY),
             )
         } else {
             (Severity::Error, message)

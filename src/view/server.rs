@@ -27,6 +27,7 @@ use crate::lsystem::DeriveOptions;
 const INDEX_HTML: &str = include_str!("assets/index.html");
 const APP_JS: &str = include_str!("assets/app.js");
 const DEFINES_JS: &str = include_str!("assets/defines.js");
+const BRAIN_JS: &str = include_str!("assets/brain.js");
 const THREE_MODULE: &str = include_str!("../../vendor/three/three.module.min.js");
 const THREE_CORE: &str = include_str!("../../vendor/three/three.core.min.js");
 const ORBIT_CONTROLS: &str = include_str!("../../vendor/three/OrbitControls.js");
@@ -247,6 +248,7 @@ impl Server {
             }
             "/app.js" => Answer::new(200, js, APP_JS),
             "/defines.js" => Answer::new(200, js, DEFINES_JS),
+            "/brain.js" => Answer::new(200, js, BRAIN_JS),
             "/three/three.module.min.js" => Answer::new(200, js, THREE_MODULE),
             "/three/three.core.min.js" => Answer::new(200, js, THREE_CORE),
             "/three/OrbitControls.js" => Answer::new(200, js, ORBIT_CONTROLS),

@@ -338,6 +338,10 @@ fn grow_reports_interpenetrating_parts_as_an_error_for_eval_and_evolve() {
         ),
         "{text}"
     );
+    assert!(
+        text.contains("valid: as a picture only (eval and evolve refuse it)\n"),
+        "{text}"
+    );
     // `eval` needs a valid creature: it is refused there.
     let out = ontogeny(&["eval", path.to_str().unwrap(), "--task", "walker"]);
     let text = stdout(&out);

@@ -413,6 +413,12 @@ impl Genome for LSystemGenome {
         seed::seed_from_lsys(text, limits).map(|s| s.genome)
     }
 
+    /// A genome file as this genome writes it: its productions as they stand, nothing
+    /// rewritten (unlike a run's seed, [`Genome::from_lsys`]), within `limits`.
+    fn read_text(text: &str, limits: &LSystemLimits) -> Result<Self, DevelopError> {
+        seed::genome_as_written(text, limits)
+    }
+
     fn seed_from_lsys(
         text: &str,
         limits: &LSystemLimits,

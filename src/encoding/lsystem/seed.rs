@@ -439,6 +439,27 @@ fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Op
 }
 
 /// The genome `text` seeds a run with under `limits`: see the module's comment.
+/// A genome file read as the genome writes it ([`LSystemGenome::text`]): refused when it
+/// would need rewriting (another encoding's file, or a hand-written grammar), or does not fit
+/// `limits`.
+pub(super) fn genome_as_written(
+    text: &str,
+    limits: &LSystemLimits,
+) -> Result<LSystemGenome, DevelopError> {
+    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
+    match structural(text, &lsys) {
+        Ok((genome, notes)) if notes.is_empty() => {
+            genome.check(limits).map_err(refuse)?;
+            Ok(genome)
+        }
+        Ok((_, notes)) => Err(refuse(format!(
+            "not as the genome writes it: {}",
+            notes.join("; ")
+        ))),
+        Err(reasons) => Err(refuse(reasons.join("; "))),
+    }
+}
+
 pub(super) fn seed_from_lsys(
     text: &str,
     limits: &LSystemLimits,
