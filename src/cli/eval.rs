@@ -38,7 +38,7 @@ pub struct EvalArgs {
     development: DevelopmentArgs,
     /// Most parts: a creature grown from an L-system with more is invalid, a
     /// `creature.json` with more is refused.
-    #[arg(long, default_value_t = BuildOptions::default().max_parts)]
+    #[arg(long, default_value_t = BuildOptions::default().max_parts, value_parser = super::parse_part_count)]
     max_parts: usize,
     /// Joint model.
     #[arg(long, value_parser = names_parser(JointModel::ALL, JointModel::name, JointModel::summary), default_value = "impulse")]

@@ -42,7 +42,7 @@ pub struct ExportArgs {
     development: DevelopmentArgs,
     /// Most parts: a creature grown from an L-system with more is invalid, a
     /// `creature.json` with more is refused.
-    #[arg(long, default_value_t = ontogeny::develop::BuildOptions::default().max_parts)]
+    #[arg(long, default_value_t = ontogeny::develop::BuildOptions::default().max_parts, value_parser = super::parse_part_count)]
     max_parts: usize,
     #[command(flatten)]
     physics: PhysicsArgs,

@@ -27,7 +27,7 @@ pub struct GrowArgs {
     #[arg(long, default_value_t = DEFAULT_MAX_MODULES)]
     max_modules: usize,
     /// A creature with more parts than this is invalid.
-    #[arg(long, default_value_t = BuildOptions::default().max_parts)]
+    #[arg(long, default_value_t = BuildOptions::default().max_parts, value_parser = super::parse_part_count)]
     max_parts: usize,
     /// Write creature.json (the final creature), frames.jsonl (one creature per frame),
     /// creature.png (a 3/4 view of the body and a drawing of the brain) and growth.gif (the

@@ -41,8 +41,9 @@ pub(super) fn load_creature_with(
         let flags = development.given();
         if !flags.is_empty() {
             tell!(
-                "warning: {} grow a creature from a grammar; {} is not one: ignored",
+                "warning: {} {} a creature from a grammar; {} is not one: ignored",
                 flags.join(", "),
+                if flags.len() == 1 { "grows" } else { "grow" },
                 file.display()
             );
         }

@@ -110,6 +110,15 @@ fn walker_fitness_parser()
         .try_map(|name| name.parse::<WalkerFitness>())
 }
 
+/// Reads a count of parts (`--max-parts`): a whole number of at least 1.
+fn parse_part_count(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(0) => Err("a creature has at least one part: give 1 or more".to_string()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 fn allow_negative_numbers(command: Command) -> Command {
     let verbs: Vec<String> = command
         .get_subcommands()

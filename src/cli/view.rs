@@ -17,8 +17,8 @@ const DEFAULT_PORT: u16 = 8750;
 /// Flags of `ontogeny view`.
 #[derive(Args)]
 pub struct ViewArgs {
-    /// An `.lsys` file, or a directory written by `grow --out`, `eval --record` (or `replay`)
-    /// or `evolve`.
+    /// An `.lsys` file, or a directory written by `grow --out`, `eval --record` (or `replay`),
+    /// `evolve` or `compare`.
     path: PathBuf,
     /// The port to listen on at 127.0.0.1 (0: any free port). Default 8750; with --snapshot,
     /// any free port.
@@ -43,7 +43,7 @@ pub struct ViewArgs {
     development: DevelopmentArgs,
     /// For an `.lsys` file: a creature with more parts than this is invalid (default 200;
     /// raise it for plants of thousands of parts).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse_part_count)]
     max_parts: Option<usize>,
 }
 

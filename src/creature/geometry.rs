@@ -9,6 +9,32 @@ use super::{Creature, Part};
 /// not count.
 const MARGIN: f64 = 1e-6;
 
+/// The most pairs of interpenetrating parts named one by one: beyond them, one message counts
+/// the pairs and names the first few (a plant of thousands of parts has thousands of such
+/// pairs).
+const NAMED_PAIRS: usize = 5;
+
+/// What interpenetrating `pairs` are, in words: a message for each pair (`parts 0 and 3
+/// interpenetrate`), or one that counts them and names the first few when there are more than
+/// five.
+pub fn interpenetration_messages(pairs: &[(usize, usize)]) -> Vec<String> {
+    if pairs.len() <= NAMED_PAIRS {
+        return pairs
+            .iter()
+            .map(|(a, b)| format!("parts {a} and {b} interpenetrate"))
+            .collect();
+    }
+    let named: Vec<String> = pairs[..NAMED_PAIRS]
+        .iter()
+        .map(|(a, b)| format!("{a} and {b}"))
+        .collect();
+    vec![format!(
+        "{} pairs of parts interpenetrate (parts {}, ...)",
+        pairs.len(),
+        named.join(", ")
+    )]
+}
+
 impl Creature {
     /// The pairs of parts that interpenetrate other than in a joint's own contact region.
     ///

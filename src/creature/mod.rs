@@ -9,7 +9,7 @@ mod geometry;
 pub mod repeats;
 mod summary;
 
-pub use geometry::boxes_intersect;
+pub use geometry::{boxes_intersect, interpenetration_messages};
 pub use summary::{Summary, counted};
 
 use nalgebra::{UnitQuaternion, Vector3};

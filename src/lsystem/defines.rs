@@ -95,7 +95,7 @@ pub struct Slider {
     pub min: f64,
     /// The slider's high end.
     pub max: f64,
-    /// The slider's step: the comment's `step S`, else a hundredth of the range.
+    /// The slider's step: the comment's `step S`, else [`default_step`].
     pub step: f64,
     /// Why the define's `# range` comment was not used, when it was not.
     pub note: Option<String>,
@@ -137,8 +137,20 @@ pub fn slider(name: &str, value: f64, line: &str) -> Slider {
         value,
         min,
         max,
-        step: step.unwrap_or((max - min) / 100.0),
+        step: step.unwrap_or_else(|| default_step(value, min, max)),
         note,
+    }
+}
+
+/// A slider's step when its comment gives none: 1 for a whole value on a whole range at least
+/// 10 wide (a count, such as a derivation length, takes whole values only), else a hundredth
+/// of the range.
+pub fn default_step(value: f64, min: f64, max: f64) -> f64 {
+    let whole = |x: f64| x.fract() == 0.0;
+    if whole(value) && whole(min) && whole(max) && max - min >= 10.0 {
+        1.0
+    } else {
+        (max - min) / 100.0
     }
 }
 
@@ -210,6 +222,13 @@ mod tests {
         assert_eq!((s.min, s.max, s.step), (-1.0, 1.0, 0.02));
         let s = slider("A", 0.5, "define A = 0.5 # the angle");
         assert_eq!((s.min, s.max, s.step, s.note), (0.0, 1.0, 0.01, None));
+        // A whole number on a whole range 10 or more wide is a count: whole steps.
+        let s = slider("N", 3.0, "define N = 3 # range 0..10");
+        assert_eq!((s.min, s.max, s.step), (0.0, 10.0, 1.0));
+        let s = slider("N", 5.0, "define N = 5");
+        assert_eq!((s.min, s.max, s.step), (0.0, 10.0, 1.0));
+        let s = slider("L", 2.0, "define L = 2");
+        assert_eq!((s.min, s.max, s.step), (0.0, 4.0, 0.04));
     }
 
     #[test]

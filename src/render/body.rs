@@ -317,7 +317,10 @@ fn outline_marked(
 /// orange while growing), its size following the parts it joins and never larger (at most
 /// `most` pixels), with
 /// a line along each axis ending in a dot at the axis's positive end; fused joints are grey
-/// dots.
+/// dots, unless the creature has more than [`MOST_PARTS_WITH_FUSED_DOTS`] parts.
+/// The most parts a creature may have for its fused joints to be drawn (as grey dots).
+const MOST_PARTS_WITH_FUSED_DOTS: usize = 100;
+
 fn draw_joints(
     pixmap: &mut Pixmap,
     camera: &Camera,
@@ -326,7 +329,12 @@ fn draw_joints(
     most: f32,
 ) {
     let outline = stroke_width(1.0);
+    // A plant of hundreds of parts would be covered in the dots of its fused joints.
+    let fused_dots = creature.parts.len() <= MOST_PARTS_WITH_FUSED_DOTS;
     for joint in &creature.joints {
+        if !fused_dots && (joint.kind.dof() == 0 || joint.axes.is_empty()) {
+            continue;
+        }
         let (sx, sy, _) = camera.project(&joint.anchor);
         let radius = joint_radius(creature, joint.parent, joint.child);
         // No larger than the parts joined (nor than `most`), and at least a visible dot.
@@ -546,7 +554,11 @@ fn write_text(
             counted(creature.parts.len(), "part"),
             counted(creature.joints.len(), "joint"),
             counted(creature.brain.neurons.len(), "neuron"),
-            if valid { "valid" } else { "INVALID" }
+            match (valid, creature.problems.iter().any(|p| p.is_picture_only())) {
+                (false, _) => "INVALID",
+                (true, false) => "valid",
+                (true, true) => "valid as a picture only",
+            }
         );
         draw_text(
             pixmap,

@@ -66,8 +66,9 @@ pub struct Overlay {
     pub path: Vec<Vector3<f64>>,
 }
 
-/// A picture of the creature: the body in a 3/4 view on the left, its brain on the right,
-/// with `overlay` drawn over the body.
+/// A picture of the creature: the body in a 3/4 view on the left, its brain on the right
+/// (none for a creature with no joint that moves, such as a plant), with
+/// `overlay` drawn over the body.
 pub fn picture(
     creature: &Creature,
     view: &View,
@@ -92,7 +93,9 @@ fn compose(
     let mut pixmap = Pixmap::new(width, height).ok_or(RenderError::Size(width, height))?;
     pixmap.fill(Color::from_rgba8(255, 255, 255, 255));
     let (w, h) = (width as f32, height as f32);
-    let brain_w = (w * 0.3).round();
+    // A brain with no joint to drive (a plant's) gets no panel.
+    let moves = creature.joints.iter().any(|j| j.kind.dof() > 0);
+    let brain_w = if moves { (w * 0.3).round() } else { 0.0 };
     draw_body(
         &mut pixmap,
         creature,
@@ -101,7 +104,9 @@ fn compose(
         overlay,
         checks,
     );
-    draw_brain(&mut pixmap, creature, (w - brain_w, 0.0, brain_w, h));
+    if brain_w > 0.0 {
+        draw_brain(&mut pixmap, creature, (w - brain_w, 0.0, brain_w, h));
+    }
     Ok(pixmap)
 }
 
@@ -226,6 +231,18 @@ mod tests {
             &mut |_| {},
         )
         .unwrap();
+    }
+
+    #[test]
+    fn a_creature_with_no_joint_that_moves_gets_no_brain_panel() {
+        let panel = |c: &Creature| {
+            let pixmap = picture(c, &View::framing(c), 480, 300, &Overlay::default()).unwrap();
+            count(pixmap.data(), PANEL)
+        };
+        // Rigidly joined parts, as a plant's: the body has the whole picture.
+        assert_eq!(panel(&creature("forward forward forward")), 0);
+        // A hinge to drive: the brain panel, a third of the picture, is there.
+        assert!(panel(&arm()) > 480 * 300 / 5);
     }
 
     #[test]

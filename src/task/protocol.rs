@@ -111,14 +111,18 @@ fn screen(task: &str, creature: &Creature, max_height: f64, seconds: f64) -> Opt
     // creature.json may come from anywhere).
     let pairs = creature.interpenetrating_pairs();
     if !pairs.is_empty() || errors.iter().any(|m| m.contains("interpenetrate")) {
-        let listed: Vec<String> = pairs
-            .iter()
-            .map(|(a, b)| format!("parts {a} and {b} interpenetrate"))
-            .collect();
+        let listed = crate::creature::interpenetration_messages(&pairs);
+        // The creature's other errors too (more parts than the limit, say).
+        let others = errors.iter().filter(|m| !m.contains("interpenetrate"));
         let message = if listed.is_empty() {
             errors.join("; ")
         } else {
-            listed.join("; ")
+            listed
+                .iter()
+                .map(String::as_str)
+                .chain(others.copied())
+                .collect::<Vec<_>>()
+                .join("; ")
         };
         return Some(Evaluation::failed(task, Status::SelfIntersecting, message));
     }

@@ -46,8 +46,13 @@ pub fn ignored_flags(flags: &PageFlags, target: &Target, frames: Option<usize>) 
     let mut warnings = Vec::new();
     if target.kind != Kind::Lsys && !flags.growth.is_empty() {
         warnings.push(format!(
-            "{} grow a creature from a grammar; {} is not an .lsys file: ignored",
+            "{} {} a creature from a grammar; {} is not an .lsys file: ignored",
             flags.growth.join(", "),
+            if flags.growth.len() == 1 {
+                "grows"
+            } else {
+                "grow"
+            },
             target.path.display()
         ));
     }

@@ -513,7 +513,10 @@ fn grow_and_view_take_max_parts_for_plants_of_thousands_of_parts() {
         "5000",
     ]));
     assert!(said.contains("parts: 3125 "), "{said}");
-    assert!(said.contains("valid: yes"), "{said}");
+    assert!(
+        said.contains("valid: as a picture only (eval and evolve refuse it)"),
+        "{said}"
+    );
     assert!(
         said.contains("warning: 1562 pairs of parts interpenetrate"),
         "{said}"
@@ -526,4 +529,38 @@ fn grow_and_view_take_max_parts_for_plants_of_thousands_of_parts() {
     );
     let help = stdout(&ontogeny_ok(&["view", "--help"]));
     assert!(help.contains("--max-parts <MAX_PARTS>"), "{help}");
+}
+
+#[test]
+fn eval_counts_a_plants_overlapping_pairs_and_names_the_part_limit_it_met() {
+    // 1,562 pairs: counted, the first five named, not listed one by one.
+    let said = stdout(&ontogeny_ok(&[
+        "eval",
+        "examples/abop-1.24a.lsys",
+        "--max-parts",
+        "5000",
+    ]));
+    assert!(
+        said.contains(
+            "fitness -999999.000000 (self-intersecting)\n  1562 pairs of parts interpenetrate \
+             (parts 1 and 2, 3 and 4, 5 and 10, 6 and 7, 8 and 9, ...)\n"
+        ),
+        "{said}"
+    );
+    // At the default limit, the limit it met is said too.
+    let said = stdout(&ontogeny_ok(&["eval", "examples/abop-1.24a.lsys"]));
+    assert!(
+        said.contains("...); more than 200 parts (--max-parts): building stopped here\n"),
+        "{said}"
+    );
+}
+
+#[test]
+fn a_part_limit_of_zero_is_refused_by_every_verb_that_builds() {
+    for verb in ["grow", "eval", "export", "view"] {
+        assert_bad_input(
+            &[verb, "examples/abop-1.24a.lsys", "--max-parts", "0"],
+            "a creature has at least one part: give 1 or more",
+        );
+    }
 }
