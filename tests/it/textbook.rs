@@ -463,6 +463,11 @@ fn textbook_symbols_left_out_are_refused_by_name_at_their_place() {
              support; a repeat block is written '{ … }(n)'",
             "t.lsys:2:11",
         ),
+        (
+            "axiom: F }\n",
+            "'}' closes no '{': a repeat block is written '{ … }(n)'",
+            "t.lsys:1:10",
+        ),
     ] {
         let file = dir.join("t.lsys");
         std::fs::write(&file, text).unwrap();
