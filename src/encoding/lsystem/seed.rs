@@ -7,7 +7,8 @@
 
 use super::*;
 use crate::encoding::Seed;
-use crate::encoding::direct::derived_items;
+use crate::encoding::direct::{NOT_USED, derived_items, textbook_items};
+use crate::lsystem::TurtleHeaders;
 
 /// The most items a successor may hold under any limits (`max_successor`'s range).
 const MOST_SUCCESSOR: usize = 256;
@@ -155,6 +156,13 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
             place(*span)
         ));
     }
+    if let Some((lang::ast::Heading::Up, span)) = &file.heading {
+        reasons.push(format!(
+            "{}: its turtle starts heading up ('heading: up'); the genome's starts on the ground",
+            place(*span)
+        ));
+    }
+    let turtle = lsys.turtle();
     let Some((axiom, axiom_span)) = &file.axiom else {
         return Err(vec!["it has no axiom".into()]);
     };
@@ -282,6 +290,7 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
             &rule.successor,
             &names,
             &formals,
+            &turtle,
             &place,
             &snippet,
             &mut reasons,
@@ -296,7 +305,7 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
         None => {
             productions[0].pairs.push(Pair {
                 condition: None,
-                successor: items(axiom, &names, &[], &place, &snippet, &mut reasons),
+                successor: items(axiom, &names, &[], &turtle, &place, &snippet, &mut reasons),
             });
             Vec::new()
         }
@@ -329,11 +338,13 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
 
 /// The successor `calls` as the genome's items; a module that is neither a production, a
 /// building command of the genome's nor a bracket, and has no rule, builds nothing and is
-/// dropped; what cannot be represented goes to `reasons`.
+/// dropped; the textbook's symbols become their exact equivalents
+/// ([`textbook_items`]); what cannot be represented goes to `reasons`.
 fn items(
     calls: &[ModuleCall],
     names: &[String],
     formals: &[String],
+    turtle: &TurtleHeaders,
     place: &dyn Fn(lang::Span) -> String,
     snippet: &dyn Fn(lang::Span) -> String,
     reasons: &mut Vec<String>,
@@ -371,12 +382,21 @@ fn items(
                             }
                         )),
                     }
+                } else if let Some(c) = Command::from_name(name).filter(|c| c.is_textbook()) {
+                    let argument = match call.args.as_slice() {
+                        [] => None,
+                        [a, ..] => Some(arg(a, reasons)),
+                    };
+                    match textbook_items(c, argument, turtle) {
+                        Ok(items) => out.extend(items),
+                        Err(why) => reasons.push(format!("{}: {why}", place(call.span))),
+                    }
                 } else if let Some(k) = names.iter().position(|n| n == name) {
                     let args = call.args.iter().map(|a| arg(a, reasons)).collect();
                     out.push(Item::Call(k, args));
                 } else if lang::is_builtin_command(name) || name == "{" || name == "}" {
                     reasons.push(format!(
-                        "{}: '{name}' is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release)",
+                        "{}: '{name}' is not a command the genome uses ({NOT_USED})",
                         place(call.span)
                     ));
                 }

@@ -258,3 +258,75 @@ fn replay_re_evaluates_with_another_setting_and_fitness_and_evolve_takes_an_aim_
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Individual 0's fitness in a run `evolve --init FILE` seeds (walker, distance, 1 s), and
+/// the run's standard error.
+fn seeded_fitness(file: &Path, out: &Path, extra: &[&str]) -> (f64, String) {
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(file)
+        .args(["--pop", "2", "--gens", "1", "--seconds", "1"])
+        .args(["--fitness", "distance", "--no-verify-best"])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    succeeded(&o);
+    let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+    (store.individuals(0).unwrap()[0].fitness, stderr(&o))
+}
+
+#[test]
+fn init_rewrites_the_textbook_symbols_into_the_genomes_commands_and_grows_the_same_creature() {
+    let dir = scratch("champion-init-textbook");
+    // Through the rules (a production with a textbook successor) and through the derived
+    // string (a rule the genome cannot write: a stochastic one).
+    let rules = "angle: 90\nstep: 0.5\nderivation length: 1\nmodule Leg\n\
+                 axiom: !(0.2) F [ + Leg ] [ + | Leg ] F(0.3)\n\
+                 Leg --> revolute1 F(0.4) output(1)\n";
+    let derived = "angle: 180\nderivation length: 1\nmodule Leg\n\
+                   axiom: !(0.3) F(0.5) [ +(90) Leg ] [ -(-270) Leg ] F(0.3)\n\
+                   Leg --> revolute1 F(0.4) output(1) : 1\n";
+    for (name, text) in [("rules", rules), ("derived", derived)] {
+        let file = dir.join(format!("{name}.lsys"));
+        std::fs::write(&file, text).unwrap();
+        let (first, said) = seeded_fitness(&file, &dir.join(name), &[]);
+        let path = file.to_str().unwrap();
+        let (fitness, _) = eval_fitness(&[path, "--seconds", "1", "--fitness", "distance"]);
+        assert_eq!(first, fitness, "{name}: {said}");
+        assert!(fitness > 0.0, "{name}: a valid walker");
+        assert_eq!(
+            said.contains("its rules cannot be the genome's"),
+            name == "derived"
+        );
+    }
+    // The first best's file writes the genome's commands, never the textbook's.
+    let best = std::fs::read_to_string(dir.join("rules/best.lsys")).unwrap();
+    assert!(
+        best.contains("width(0.2) thickness(0.2) forward(0.5) [ left(1)"),
+        "{best}"
+    );
+    assert!(best.contains("[ left(1) left(2) P1"), "{best}");
+    // What has no equivalent is refused, every reason at once, each where it is written.
+    let bad = dir.join("bad.lsys");
+    std::fs::write(&bad, "angle: 25.7\nheading: up\naxiom: ! F f(0.2) + F\n").unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&bad)
+        .arg("--out")
+        .arg(dir.join("bad"))
+        .output()
+        .unwrap();
+    let message = refused(&o, "cannot seed the lsystem encoding");
+    for reason in [
+        "line 2, column 1: its turtle starts heading up ('heading: up'); the genome's starts on the ground",
+        "line 3, column 8: a bare '!' scales the width by 0.7; the genome sets widths, it does not scale them",
+        "line 3, column 12: 'f' moves without building and leaves a gap; the genome builds one body",
+        "line 3, column 19: '+' turns by 25.7°, not a multiple of 90°; the genome turns by quarter turns",
+    ] {
+        assert!(message.contains(reason), "{reason} in {message}");
+    }
+    assert!(!dir.join("bad").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
