@@ -28,7 +28,7 @@ mod seed;
 mod text;
 
 pub use develop::is_driven_walker;
-pub(crate) use develop::{develop_text, last_frame};
+pub(crate) use develop::{develop_text, grown_size, last_frame};
 pub(crate) use operators::{
     balance, is_balanced, perturb_argument, pick_run, random_command, random_run,
 };

@@ -8,6 +8,7 @@
 use super::*;
 use crate::encoding::Seed;
 use crate::encoding::direct::{NOT_USED, derived_items, textbook_items};
+use crate::encoding::limits::{CheckedLimits, MOST_MODULES};
 use crate::lsystem::TurtleHeaders;
 
 /// The most items a successor may hold under any limits (`max_successor`'s range).
@@ -430,6 +431,10 @@ fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Op
     out.params = out.params.max(genome.start.len());
     out.max_successor = out.max_successor.max(longest.unwrap_or(0));
     out.derivation_length = out.derivation_length.max(genome.derivation_length);
+    if let Some((modules, parts)) = grown_size(&genome.to_text()) {
+        out.max_modules = out.max_modules.max(modules);
+        out.max_parts = out.max_parts.max(parts);
+    }
     let changes: Vec<String> = [
         (
             "max_productions",
@@ -444,6 +449,8 @@ fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Op
             limits.derivation_length as usize,
             out.derivation_length as usize,
         ),
+        ("max_modules", limits.max_modules, out.max_modules),
+        ("max_parts", limits.max_parts, out.max_parts),
     ]
     .iter()
     .filter(|(_, was, now)| was != now)
@@ -504,7 +511,7 @@ pub(super) fn seed_from_lsys(
             }
             (genome, notes)
         }
-        Err(reasons) => match derived_items(text, limits.max_modules) {
+        Err(reasons) => match derived_items(text, MOST_MODULES) {
             Ok(items) if items.len() <= MOST_SUCCESSOR => {
                 let shown = match reasons.as_slice() {
                     [a, b, c, _, ..] => format!("{a}; {b}; {c}; and {} more", reasons.len() - 3),
@@ -542,6 +549,12 @@ pub(super) fn seed_from_lsys(
         },
     };
     let (limits, widening) = widened(&genome, limits);
+    if let Err(e) = limits.check_ranges() {
+        return Err(refuse(format!(
+            "its seed needs more than any run may hold: {}",
+            e.to_string().trim_start_matches("[limits] ")
+        )));
+    }
     notes.extend(widening);
     genome.check(&limits).map_err(refuse)?;
     Ok(Seed {

@@ -330,3 +330,54 @@ fn init_rewrites_the_textbook_symbols_into_the_genomes_commands_and_grows_the_sa
     assert!(!dir.join("bad").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn init_widens_the_parts_and_modules_limits_to_the_seed_and_refuses_a_seed_beyond_any_run_once() {
+    let dir = scratch("champion-init-limits");
+    // 60 hinged parts from a string of over 1,000 modules (1,024 control symbols C).
+    let big = dir.join("big.lsys");
+    std::fs::write(
+        &big,
+        "derivation length: 60\nmodule A, C\naxiom: A(0) C(0)\n\
+         A(n) : n < 60 --> revolute1 forward(0.3) A(n + 1)\n\
+         C(n) : n < 10 --> C(n + 1) C(n + 1)\n",
+    )
+    .unwrap();
+    let (_, said) = seeded_fitness(&big, &dir.join("big"), &[]);
+    assert!(
+        said.contains(
+            "the run's limits are widened to fit the seed (derivation_length 6 → 61, \
+             max_modules 1000 → 1145, max_parts 50 → 60); its mutants keep within them"
+        ),
+        "{said}"
+    );
+    let store = RunStore::open(&dir.join("big/run.sqlite")).unwrap();
+    let first = store.individuals(0).unwrap();
+    assert_eq!(first[0].status, "ok", "{}", first[0].genome_text);
+    // A derivation length beyond the limit's range (0 to 64): refused once, without a note.
+    let long = dir.join("long.lsys");
+    std::fs::write(
+        &long,
+        "derivation length: 120\nmodule A\naxiom: A(0)\nA(n) : n < 3 --> revolute1 forward(0.3) A(n + 1)\n",
+    )
+    .unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&long)
+        .arg("--out")
+        .arg(dir.join("long"))
+        .output()
+        .unwrap();
+    let said = refused(&o, "");
+    assert_eq!(
+        said.trim_end(),
+        format!(
+            "error: {}: cannot seed the lsystem encoding: this file does not fit the lsystem \
+             genome: its seed needs more than any run may hold: derivation_length must be 0 to \
+             64, not 120",
+            long.display()
+        )
+    );
+    assert!(!dir.join("long").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
