@@ -337,7 +337,7 @@ fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopE
 }
 
 /// What a grammar may write that the genomes do not, for the messages that refuse it.
-pub(crate) const NOT_USED: &str = "not used: repeat blocks, maturing m-commands, chem, secrete, \
+pub(crate) const NOT_USED: &str = "not used: repeat blocks, maturing m-commands but mforward, chem, secrete, \
      target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of \
      90°, and heading: up";
 
@@ -479,6 +479,18 @@ pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>,
                         ));
                         continue;
                     }
+                },
+                // `mforward(x, ...)` builds what `forward(x)` builds (a part drawn growing; physics
+                // does not tell them apart), or nothing while it is a bud.
+                ("mforward", None) => match m.params.first() {
+                    Some(v) if !v.is_finite() => {
+                        problem(format!("has the argument {v}"));
+                        continue;
+                    }
+                    Some(v) if v.abs() >= crate::develop::MIN_PART_LENGTH => {
+                        Item::Command(Command::Forward, Some(Arg::Const(*v)))
+                    }
+                    _ => continue,
                 },
                 (_, None) if textbook.is_some() => {
                     let Some(c) = textbook else { continue };

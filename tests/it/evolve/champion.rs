@@ -137,6 +137,7 @@ fn init_on_every_shipped_grammar_that_builds_a_creature_seeds_a_run_whose_indivi
         "hornby-walker",
         "continuous-walker",
         "syntax-tour",
+        "plastic",
         "algae",
     ] {
         let file = format!("examples/{name}.lsys");
