@@ -23,7 +23,7 @@ use super::lsystem::{
     Arg, Item, LSystemLimits, MAX_RUN, balance, is_balanced, last_frame, perturb_argument,
     pick_run, push_item_text, random_command, random_run,
 };
-use super::{DevelopError, Genome, Rng};
+use super::{DevelopError, Genome, Rng, Seed};
 use crate::creature::Creature;
 use crate::lang;
 use crate::lang::commands::Command;
@@ -301,7 +301,19 @@ impl Genome for DirectGenome {
     }
 
     fn from_lsys(text: &str, limits: &DirectLimits) -> Result<Self, DevelopError> {
-        from_lsys(text, limits)
+        from_lsys("file.lsys", text, limits)
+    }
+
+    fn seed_from_lsys(
+        name: &str,
+        text: &str,
+        limits: &DirectLimits,
+    ) -> Result<Seed<Self>, DevelopError> {
+        from_lsys(name, text, limits).map(|genome| Seed {
+            genome,
+            limits: limits.clone(),
+            notes: Vec::new(),
+        })
     }
 
     /// Its text form alone: an axiom has no rules to summarise.
@@ -320,7 +332,7 @@ impl Genome for DirectGenome {
                 "a direct genome's file is an axiom alone, without rules".into(),
             ));
         }
-        from_lsys(text, limits)
+        from_lsys("file.lsys", text, limits)
     }
 }
 
@@ -328,12 +340,19 @@ impl Genome for DirectGenome {
 /// seed and interpretation rules; `max_modules` caps the string), gives the direct genome of
 /// its last string: commands and brackets in order, control symbols (which build nothing)
 /// dropped.
-fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopError> {
-    let modules =
-        derived_items(text, limits.modules()).map_err(|problems| refuse(problems.join("; ")))?;
+fn from_lsys(name: &str, text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopError> {
+    let modules = derived_items(name, text, limits.modules())
+        .map_err(|problems| refuse(problems.join("; ")))?;
     let genome = DirectGenome { modules };
     genome.check(limits).map_err(refuse)?;
     Ok(genome)
+}
+
+/// A diagnostic's text without its notes that name a command-line flag: `evolve` and
+/// `genome show`, which read grammars as genomes, have none of `grow`'s.
+pub(crate) fn without_flags(mut d: lang::Diagnostic) -> String {
+    d.notes.retain(|n| !n.contains("--"));
+    d.to_string()
 }
 
 /// What a grammar may write that the genomes do not, for the messages that refuse it.
@@ -405,9 +424,13 @@ pub(crate) fn textbook_items(
 /// derives it, `max_modules` capping the string), in order, control symbols dropped; `Err`
 /// lists every reason they are not that (a module no genome builds with, named with where
 /// the file writes it first; unbalanced brackets; no building command at all).
-pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>, Vec<String>> {
-    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| vec![d.to_string()])?;
-    let source = lang::Source::new("file.lsys", text);
+pub(crate) fn derived_items(
+    name: &str,
+    text: &str,
+    max_modules: usize,
+) -> Result<Vec<Item>, Vec<String>> {
+    let lsys = LSystem::from_text(name, text).map_err(|d| vec![without_flags(d)])?;
+    let source = lang::Source::new(name, text);
     let written = lang::parse(&source).ok();
     // Where the file writes module `name` first (line and column), if it does.
     let place = |name: &str| -> String {
@@ -516,7 +539,7 @@ pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>,
         }
         (modules, problems)
     })
-    .map_err(|d| vec![d.to_string()])?;
+    .map_err(|d| vec![without_flags(d)])?;
     if turtle.heading == lang::ast::Heading::Up {
         problems.push(
             "its turtle starts heading up ('heading: up'); the genome's starts on the ground"

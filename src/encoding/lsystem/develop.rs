@@ -77,9 +77,9 @@ pub fn is_driven_walker(creature: &Creature) -> bool {
 /// The most modules any string `text` derives holds, and the parts of its last creature,
 /// grown as [`develop_text`] grows it under the widest limits that any run may set
 /// ([`MOST_MODULES`](crate::encoding::limits::MOST_MODULES),
-/// [`MOST_PARTS`](crate::encoding::limits::MOST_PARTS)); `None` when it does not grow.
-pub(crate) fn grown_size(text: &str) -> Option<(usize, usize)> {
-    let lsys = LSystem::from_text("genome.lsys", text).ok()?;
+/// [`MOST_PARTS`](crate::encoding::limits::MOST_PARTS)); `Err` says why it does not grow.
+pub(crate) fn grown_size(text: &str) -> Result<(usize, usize), String> {
+    let lsys = LSystem::from_text("genome.lsys", text).map_err(|d| d.message)?;
     let options = DeriveOptions {
         seed: Some(0),
         max_modules: crate::encoding::limits::MOST_MODULES,
@@ -106,6 +106,8 @@ pub(crate) fn grown_size(text: &str) -> Option<(usize, usize)> {
         }
         Ok::<(), lang::Diagnostic>(())
     })
-    .ok()?;
-    Some((most, parts?))
+    .map_err(|d| d.message)?;
+    parts
+        .map(|parts| (most, parts))
+        .ok_or_else(|| "it makes no frame".to_string())
 }

@@ -7,7 +7,7 @@
 
 use super::*;
 use crate::encoding::Seed;
-use crate::encoding::direct::{NOT_USED, derived_items, textbook_items};
+use crate::encoding::direct::{NOT_USED, derived_items, textbook_items, without_flags};
 use crate::encoding::limits::{CheckedLimits, MOST_MODULES};
 use crate::lsystem::TurtleHeaders;
 
@@ -137,8 +137,12 @@ fn argument(e: &Expr, formals: &[String]) -> Option<Arg> {
 
 /// The file's rules as the genome's productions, with notes on what was rewritten; `Err`
 /// lists every reason they cannot be (each with its line and column).
-fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>), Vec<String>> {
-    let source = Source::new("file.lsys", text);
+fn structural(
+    name: &str,
+    text: &str,
+    lsys: &LSystem,
+) -> Result<(LSystemGenome, Vec<String>), Vec<String>> {
+    let source = Source::new(name, text);
     let mut file = lang::parse(&source).map_err(|d| vec![d.to_string()])?;
     inline_constants(&mut file, &lsys.constants().collect::<Vec<_>>());
     let snippet = |span: lang::Span| text.get(span.start..span.end).unwrap_or("?").to_string();
@@ -418,7 +422,11 @@ fn items(
 
 /// The limits widened to fit `genome` (each the larger of the limit and the seed's size),
 /// with a note naming each widened limit.
-fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Option<String>) {
+fn widened(
+    genome: &LSystemGenome,
+    limits: &LSystemLimits,
+    grown: Option<(usize, usize)>,
+) -> (LSystemLimits, Option<String>) {
     let mut out = limits.clone();
     let most_pairs = genome.productions.iter().map(|p| p.pairs.len()).max();
     let longest = genome
@@ -431,8 +439,10 @@ fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Op
     out.params = out.params.max(genome.start.len());
     out.max_successor = out.max_successor.max(longest.unwrap_or(0));
     out.derivation_length = out.derivation_length.max(genome.derivation_length);
-    if let Some((modules, parts)) = grown_size(&genome.to_text()) {
+    if let Some((modules, parts)) = grown {
         out.max_modules = out.max_modules.max(modules);
+        // A creature of more parts than any run may hold is invalid whatever the limits.
+        let parts = parts.min(crate::encoding::limits::MOST_PARTS);
         out.max_parts = out.max_parts.max(parts);
     }
     let changes: Vec<String> = [
@@ -473,8 +483,8 @@ pub(super) fn genome_as_written(
     text: &str,
     limits: &LSystemLimits,
 ) -> Result<LSystemGenome, DevelopError> {
-    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
-    match structural(text, &lsys) {
+    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(without_flags(d)))?;
+    match structural("file.lsys", text, &lsys) {
         Ok((genome, notes)) if notes.is_empty() => {
             genome.check(limits).map_err(refuse)?;
             Ok(genome)
@@ -487,13 +497,17 @@ pub(super) fn genome_as_written(
     }
 }
 
+/// `grow`: grow the seed and widen the limits on modules and parts to fit it (a run's seed),
+/// else only check it (a genome read back).
 pub(super) fn seed_from_lsys(
+    name: &str,
     text: &str,
     limits: &LSystemLimits,
+    grow: bool,
 ) -> Result<Seed<LSystemGenome>, DevelopError> {
     // The language's own checks first: a file that does not compile gets its located error.
-    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
-    let (genome, mut notes) = match structural(text, &lsys) {
+    let lsys = LSystem::from_text(name, text).map_err(|d| DevelopError(without_flags(d)))?;
+    let (genome, mut notes) = match structural(name, text, &lsys) {
         Ok((mut genome, notes)) => {
             // Every production takes at least the limits' parameters, as random genomes do.
             let params = genome.start.len().max(limits.param_count());
@@ -511,7 +525,7 @@ pub(super) fn seed_from_lsys(
             }
             (genome, notes)
         }
-        Err(reasons) => match derived_items(text, MOST_MODULES) {
+        Err(reasons) => match derived_items(name, text, MOST_MODULES) {
             Ok(items) if items.len() <= MOST_SUCCESSOR => {
                 let shown = match reasons.as_slice() {
                     [a, b, c, _, ..] => format!("{a}; {b}; {c}; and {} more", reasons.len() - 3),
@@ -548,8 +562,20 @@ pub(super) fn seed_from_lsys(
             }
         },
     };
-    let (limits, widening) = widened(&genome, limits);
-    if let Err(e) = limits.check_ranges() {
+    // A run's seed is grown, and the limits on modules and parts widened to fit it; a
+    // genome read back is only checked.
+    let grown = match grow.then(|| grown_size(&genome.to_text())) {
+        Some(Err(why)) => {
+            return Err(refuse(format!(
+                "it does not grow within the most any run may hold ({MOST_MODULES} modules, {} parts): {why}",
+                crate::encoding::limits::MOST_PARTS
+            )));
+        }
+        Some(Ok(size)) => Some(size),
+        None => None,
+    };
+    let (limits, widening) = widened(&genome, limits, grown);
+    if grow && let Err(e) = limits.check_ranges() {
         return Err(refuse(format!(
             "its seed needs more than any run may hold: {}",
             e.to_string().trim_start_matches("[limits] ")

@@ -382,3 +382,42 @@ fn init_widens_the_parts_and_modules_limits_to_the_seed_and_refuses_a_seed_beyon
     assert!(!dir.join("long").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn init_messages_name_the_real_file_and_no_flag_that_evolve_lacks() {
+    let dir = scratch("champion-init-names");
+    let bad = dir.join("arity.lsys");
+    std::fs::write(&bad, "axiom: forward(1, 2) revolute1\n").unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&bad)
+        .arg("--out")
+        .arg(dir.join("arity"))
+        .output()
+        .unwrap();
+    let said = refused(&o, &format!(" --> {}:1:8", bad.display()));
+    assert!(!said.contains("file.lsys"), "{said}");
+    // A runaway grammar: refused with the most any run may hold, without grow's flag.
+    let runaway = dir.join("runaway.lsys");
+    std::fs::write(
+        &runaway,
+        "derivation length: 30\naxiom: A\nA --> A A forward\n",
+    )
+    .unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&runaway)
+        .arg("--out")
+        .arg(dir.join("runaway"))
+        .output()
+        .unwrap();
+    let said = refused(
+        &o,
+        "this file does not fit the lsystem genome: it does not grow within the most any run \
+         may hold (100000 modules, 1000 parts): the string grew past 100000 modules while \
+         deriving step 16",
+    );
+    assert!(!said.contains("--max-modules"), "{said}");
+    assert!(!dir.join("runaway").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
