@@ -12,6 +12,7 @@
 //! Every operator keeps the genome within [`DirectLimits`] by construction and never retries
 //! a draw.
 
+use std::f64::consts::FRAC_PI_2;
 use std::ops::Range;
 
 use rand::RngExt;
@@ -22,7 +23,7 @@ use super::lsystem::{
     Arg, Item, LSystemLimits, MAX_RUN, balance, is_balanced, last_frame, perturb_argument,
     pick_run, push_item_text, random_command, random_run,
 };
-use super::{DevelopError, Genome, Rng};
+use super::{DevelopError, Genome, Rng, Seed};
 use crate::creature::Creature;
 use crate::lang;
 use crate::lang::commands::Command;
@@ -300,7 +301,19 @@ impl Genome for DirectGenome {
     }
 
     fn from_lsys(text: &str, limits: &DirectLimits) -> Result<Self, DevelopError> {
-        from_lsys(text, limits)
+        from_lsys("file.lsys", text, limits)
+    }
+
+    fn seed_from_lsys(
+        name: &str,
+        text: &str,
+        limits: &DirectLimits,
+    ) -> Result<Seed<Self>, DevelopError> {
+        from_lsys(name, text, limits).map(|genome| Seed {
+            genome,
+            limits: limits.clone(),
+            notes: Vec::new(),
+        })
     }
 
     /// Its text form alone: an axiom has no rules to summarise.
@@ -319,7 +332,7 @@ impl Genome for DirectGenome {
                 "a direct genome's file is an axiom alone, without rules".into(),
             ));
         }
-        from_lsys(text, limits)
+        from_lsys("file.lsys", text, limits)
     }
 }
 
@@ -327,21 +340,97 @@ impl Genome for DirectGenome {
 /// seed and interpretation rules; `max_modules` caps the string), gives the direct genome of
 /// its last string: commands and brackets in order, control symbols (which build nothing)
 /// dropped.
-fn from_lsys(text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopError> {
-    let modules =
-        derived_items(text, limits.modules()).map_err(|problems| refuse(problems.join("; ")))?;
+fn from_lsys(name: &str, text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopError> {
+    let modules = derived_items(name, text, limits.modules())
+        .map_err(|problems| refuse(problems.join("; ")))?;
     let genome = DirectGenome { modules };
     genome.check(limits).map_err(refuse)?;
     Ok(genome)
+}
+
+/// A diagnostic's text without its notes that name a command-line flag: `evolve` and
+/// `genome show`, which read grammars as genomes, have none of `grow`'s.
+pub(crate) fn without_flags(mut d: lang::Diagnostic) -> String {
+    d.notes.retain(|n| !n.contains("--"));
+    d.to_string()
+}
+
+/// What a grammar may write that the genomes do not, for the messages that refuse it.
+pub(crate) const NOT_USED: &str = "not used: repeat blocks, maturing m-commands but mforward, chem, secrete, \
+     target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of \
+     90°, and heading: up";
+
+/// The genome's items that build exactly what the textbook's command `c` with argument `arg`
+/// builds under the file's `turtle` headers: `F(l)` is `forward(l)` (by default the file's
+/// `step:`), `+(δ)` `-(δ)` `^(δ)` `&(δ)` `/(δ)` `\(δ)` with δ a multiple of 90° are `left`
+/// `right` `up` `down` `clockwise` `counterclockwise` by δ/90 quarter turns (by default the
+/// file's `angle:`), `|` is `left(2)`, `!(w)` is `width(w) thickness(w)`; `Err` says why there
+/// are none.
+pub(crate) fn textbook_items(
+    c: Command,
+    arg: Option<Arg>,
+    turtle: &crate::lsystem::TurtleHeaders,
+) -> Result<Vec<Item>, String> {
+    let name = c.name();
+    let quarter = |to: Command, default: f64| match arg.unwrap_or(Arg::Const(default)) {
+        Arg::Const(d) if (d / 90.0).fract() == 0.0 && d.to_radians() == d / 90.0 * FRAC_PI_2 => {
+            Ok(vec![Item::Command(to, Some(Arg::Const(d / 90.0)))])
+        }
+        Arg::Const(d) => Err(format!(
+            "'{name}' turns by {d}°, not a multiple of 90°; the genome turns by quarter turns"
+        )),
+        _ => Err(format!(
+            "'{name}' turns by a parameter's degrees; the genome turns by quarter turns"
+        )),
+    };
+    let angle = turtle.angle.unwrap_or(crate::develop::DEFAULT_ANGLE);
+    match c {
+        Command::Segment => {
+            let step = turtle
+                .step
+                .unwrap_or(crate::develop::BuildOptions::default().default_length);
+            Ok(vec![Item::Command(
+                Command::Forward,
+                Some(arg.unwrap_or(Arg::Const(step))),
+            )])
+        }
+        Command::TurnLeft => quarter(Command::Left, angle),
+        Command::TurnRight => quarter(Command::Right, angle),
+        Command::PitchUp => quarter(Command::Up, angle),
+        Command::PitchDown => quarter(Command::Down, angle),
+        Command::RollRight => quarter(Command::Clockwise, angle),
+        Command::RollLeft => quarter(Command::Counterclockwise, angle),
+        Command::TurnAround => Ok(vec![Item::Command(Command::Left, Some(Arg::Const(2.0)))]),
+        Command::Diameter => match arg {
+            Some(w) => Ok(vec![
+                Item::Command(Command::Width, Some(w)),
+                Item::Command(Command::Thickness, Some(w)),
+            ]),
+            None => Err(format!(
+                "a bare '!' scales the width by {}; the genome sets widths, it does not scale them",
+                crate::develop::DIAMETER_FACTOR
+            )),
+        },
+        Command::Move => Err(
+            "'f' moves without building and leaves a gap; the genome builds one body".to_string(),
+        ),
+        _ => Err(format!(
+            "'{name}' is not a command the genome uses ({NOT_USED})"
+        )),
+    }
 }
 
 /// The building commands and brackets of the last string `text` derives (as `ontogeny grow`
 /// derives it, `max_modules` capping the string), in order, control symbols dropped; `Err`
 /// lists every reason they are not that (a module no genome builds with, named with where
 /// the file writes it first; unbalanced brackets; no building command at all).
-pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>, Vec<String>> {
-    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| vec![d.to_string()])?;
-    let source = lang::Source::new("file.lsys", text);
+pub(crate) fn derived_items(
+    name: &str,
+    text: &str,
+    max_modules: usize,
+) -> Result<Vec<Item>, Vec<String>> {
+    let lsys = LSystem::from_text(name, text).map_err(|d| vec![without_flags(d)])?;
+    let source = lang::Source::new(name, text);
     let written = lang::parse(&source).ok();
     // Where the file writes module `name` first (line and column), if it does.
     let place = |name: &str| -> String {
@@ -369,6 +458,7 @@ pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>,
         max_modules,
         ..DeriveOptions::default()
     };
+    let turtle = lsys.turtle();
     let (modules, mut problems) = last_frame(&lsys, &options, |shown, _, _| {
         let symbols = lsys.symbols();
         let mut modules = Vec::new();
@@ -386,6 +476,7 @@ pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>,
                     ));
                 }
             };
+            let textbook = Command::from_name(name).filter(|c| c.is_textbook());
             let item = match (name, Command::building_from_name(name)) {
                 ("[", _) => Item::Push,
                 ("]", _) => Item::Pop,
@@ -412,12 +503,33 @@ pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>,
                         continue;
                     }
                 },
+                // `mforward(x, ...)` builds what `forward(x)` builds (a part drawn growing; physics
+                // does not tell them apart), or nothing while it is a bud.
+                ("mforward", None) => match m.params.first() {
+                    Some(v) if !v.is_finite() => {
+                        problem(format!("has the argument {v}"));
+                        continue;
+                    }
+                    Some(v) if v.abs() >= crate::develop::MIN_PART_LENGTH => {
+                        Item::Command(Command::Forward, Some(Arg::Const(*v)))
+                    }
+                    _ => continue,
+                },
+                (_, None) if textbook.is_some() => {
+                    let Some(c) = textbook else { continue };
+                    if let Some(v) = m.params.iter().find(|v| !v.is_finite()) {
+                        problem(format!("has the argument {v}"));
+                        continue;
+                    }
+                    let arg = m.params.first().map(|v| Arg::Const(*v));
+                    match textbook_items(c, arg, &turtle) {
+                        Ok(items) => modules.extend(items),
+                        Err(why) => problem(format!("cannot be written: {why}")),
+                    }
+                    continue;
+                }
                 _ if lang::is_builtin_command(name) || name == "{" || name == "}" => {
-                    problem(
-                        "is not a command the genome uses (not used: repeat blocks, maturing \
-                         m-commands, chem, secrete, target, release)"
-                            .to_string(),
-                    );
+                    problem(format!("is not a command the genome uses ({NOT_USED})"));
                     continue;
                 }
                 // A control symbol: the builder skips it.
@@ -427,7 +539,13 @@ pub(crate) fn derived_items(text: &str, max_modules: usize) -> Result<Vec<Item>,
         }
         (modules, problems)
     })
-    .map_err(|d| vec![d.to_string()])?;
+    .map_err(|d| vec![without_flags(d)])?;
+    if turtle.heading == lang::ast::Heading::Up {
+        problems.push(
+            "its turtle starts heading up ('heading: up'); the genome's starts on the ground"
+                .to_string(),
+        );
+    }
     if modules.is_empty() && problems.is_empty() {
         problems.push("its derived string has no building command".to_string());
     }

@@ -169,8 +169,14 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
 
     /// [`Genome::from_lsys`] for a run's seed: the genome, the run's `limits` widened where
     /// the seed is bigger (its mutants keep within them), and notes on what was rewritten or
-    /// widened. By default the limits are kept and nothing is noted.
-    fn seed_from_lsys(text: &str, limits: &Self::Limits) -> Result<Seed<Self>, DevelopError> {
+    /// widened. By default the limits are kept and nothing is noted. `name` is the file's,
+    /// for the locations in messages.
+    fn seed_from_lsys(
+        name: &str,
+        text: &str,
+        limits: &Self::Limits,
+    ) -> Result<Seed<Self>, DevelopError> {
+        let _ = name;
         Self::from_lsys(text, limits).map(|genome| Seed {
             genome,
             limits: limits.clone(),

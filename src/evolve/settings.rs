@@ -149,7 +149,7 @@ pub fn check_init<G: Genome>(
     limits: &G::Limits,
     path: &Path,
 ) -> Result<crate::encoding::Seed<G>, String> {
-    G::seed_from_lsys(text, limits).map_err(|e| {
+    G::seed_from_lsys(&path.display().to_string(), text, limits).map_err(|e| {
         format!(
             "{}: cannot seed the {} encoding: {}",
             path.display(),

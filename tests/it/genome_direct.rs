@@ -390,8 +390,8 @@ fn grammars_whose_strings_the_genome_cannot_hold_are_refused_with_the_reason() {
         assert!(e.0.contains(reason), "{e}");
     };
     refused(
-        &example("plastic"),
-        "line 12, column 20: 'mforward' (first at module 10 of the derived string) is not a command the genome uses",
+        "axiom: forward(1) mleft(1)\n",
+        "line 1, column 19: 'mleft' (first at module 2 of the derived string) is not a command the genome uses",
     );
     refused(&example("algae"), "has no building command");
     refused(&example("stochastic-plant"), "grew past 1000 modules");
@@ -407,7 +407,7 @@ fn grammars_whose_strings_the_genome_cannot_hold_are_refused_with_the_reason() {
     // Every problem at once, each where the file writes it.
     refused(
         "derivation length: 1\naxiom: A\nA --> chem(0) forward(1) secrete(1)\n",
-        "line 3, column 7: 'chem' (first at module 1 of the derived string) is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release); line 3, column 26: 'secrete' (first at module 3",
+        "line 3, column 7: 'chem' (first at module 1 of the derived string) is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up); line 3, column 26: 'secrete' (first at module 3",
     );
     // A file that does not compile keeps the language's located error: a syntax error, or a
     // built-in command given more parameters than it takes.

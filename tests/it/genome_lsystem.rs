@@ -255,7 +255,7 @@ fn every_shipped_example_that_builds_seeds_a_genome_and_the_rest_say_every_reaso
         ("continuous-walker", 1, 1),
         ("syntax-tour", 1, 1),
     ] {
-        let seed = LSystemGenome::seed_from_lsys(&example(name), &limits).unwrap();
+        let seed = LSystemGenome::seed_from_lsys("file.lsys", &example(name), &limits).unwrap();
         assert_eq!(seed.genome.productions.len(), productions, "{name}");
         assert_eq!(seed.genome.derivation_length, derivation_length, "{name}");
         seed.genome.check(&seed.limits).unwrap();
@@ -265,7 +265,7 @@ fn every_shipped_example_that_builds_seeds_a_genome_and_the_rest_say_every_reaso
             assert_eq!(c, grown(&example(name), &seed.limits), "{name}");
         }
     }
-    let algae = LSystemGenome::seed_from_lsys(&example("algae"), &limits).unwrap();
+    let algae = LSystemGenome::seed_from_lsys("file.lsys", &example("algae"), &limits).unwrap();
     assert_eq!(algae.limits.derivation_length, 7);
     assert_eq!(
         algae.notes,
@@ -289,7 +289,7 @@ fn a_grammar_is_rewritten_into_the_genomes_forms_and_its_limits_widened_to_fit()
     let limits = LSystemLimits::default();
     let seed = |body: &str| {
         let text = format!("derivation length: 2\naxiom: A(1)\n{body}\n");
-        LSystemGenome::seed_from_lsys(&text, &limits).unwrap()
+        LSystemGenome::seed_from_lsys("file.lsys", &text, &limits).unwrap()
     };
     let forward = ontogeny::encoding::command::Command::Forward;
     // `-x` is `x * -1`, `0.5 + x` is `x + 0.5`, a constant expression its value.
@@ -339,11 +339,11 @@ fn a_grammar_is_rewritten_into_the_genomes_forms_and_its_limits_widened_to_fit()
     assert_eq!(
         e.0,
         "this file does not fit the lsystem genome: its rules cannot be the genome's:\n  \
-         line 3, column 21: 'chem' is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release)\n  \
+         line 3, column 21: 'chem' is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n  \
          line 3, column 10: the successor's brackets are not balanced\n  \
-         line 4, column 7: 'mforward' is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release)\n\
+         line 4, column 7: 'mforward' is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n\
          nor can the string it derives:\n  \
-         line 3, column 21: 'chem' (first at module 2 of the derived string) is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release)\n  \
+         line 3, column 21: 'chem' (first at module 2 of the derived string) is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n  \
          the brackets of its derived string are not balanced"
     );
     let e = LSystemGenome::from_lsys("axiom: A(1\n", &limits).unwrap_err();

@@ -73,3 +73,41 @@ pub fn is_driven_walker(creature: &Creature) -> bool {
     });
     creature.is_valid() && creature.parts.len() >= 2 && driven
 }
+
+/// The most modules any string `text` derives holds, and the parts of its last creature,
+/// grown as [`develop_text`] grows it under the widest limits that any run may set
+/// ([`MOST_MODULES`](crate::encoding::limits::MOST_MODULES),
+/// [`MOST_PARTS`](crate::encoding::limits::MOST_PARTS)); `Err` says why it does not grow.
+pub(crate) fn grown_size(text: &str) -> Result<(usize, usize), String> {
+    let lsys = LSystem::from_text("genome.lsys", text).map_err(|d| d.message)?;
+    let options = DeriveOptions {
+        seed: Some(0),
+        max_modules: crate::encoding::limits::MOST_MODULES,
+        ..DeriveOptions::default()
+    };
+    let build_options = BuildOptions {
+        max_parts: crate::encoding::limits::MOST_PARTS,
+        ..BuildOptions::default()
+    };
+    let mut most = 0;
+    let mut parts = None;
+    lsys.for_each_frame(&options, None, |frame| {
+        most = most.max(frame.string.len());
+        if frame.last {
+            let shown = lsys.interpret(frame.string, frame.t, &options)?;
+            let creature = build(
+                &shown,
+                lsys.symbols(),
+                frame.env,
+                Some(frame.t),
+                &build_options,
+            );
+            parts = Some(creature.parts.len());
+        }
+        Ok::<(), lang::Diagnostic>(())
+    })
+    .map_err(|d| d.message)?;
+    parts
+        .map(|parts| (most, parts))
+        .ok_or_else(|| "it makes no frame".to_string())
+}

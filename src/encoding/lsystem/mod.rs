@@ -28,7 +28,7 @@ mod seed;
 mod text;
 
 pub use develop::is_driven_walker;
-pub(crate) use develop::{develop_text, last_frame};
+pub(crate) use develop::{develop_text, grown_size, last_frame};
 pub(crate) use operators::{
     balance, is_balanced, perturb_argument, pick_run, random_command, random_run,
 };
@@ -410,7 +410,7 @@ impl Genome for LSystemGenome {
     }
 
     fn from_lsys(text: &str, limits: &LSystemLimits) -> Result<Self, DevelopError> {
-        seed::seed_from_lsys(text, limits).map(|s| s.genome)
+        seed::seed_from_lsys("file.lsys", text, limits, false).map(|s| s.genome)
     }
 
     /// A genome file as this genome writes it: its productions as they stand, nothing
@@ -420,10 +420,11 @@ impl Genome for LSystemGenome {
     }
 
     fn seed_from_lsys(
+        name: &str,
         text: &str,
         limits: &LSystemLimits,
     ) -> Result<super::Seed<Self>, DevelopError> {
-        seed::seed_from_lsys(text, limits)
+        seed::seed_from_lsys(name, text, limits, true)
     }
 }
 

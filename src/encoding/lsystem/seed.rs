@@ -7,7 +7,9 @@
 
 use super::*;
 use crate::encoding::Seed;
-use crate::encoding::direct::derived_items;
+use crate::encoding::direct::{NOT_USED, derived_items, textbook_items, without_flags};
+use crate::encoding::limits::{CheckedLimits, MOST_MODULES};
+use crate::lsystem::TurtleHeaders;
 
 /// The most items a successor may hold under any limits (`max_successor`'s range).
 const MOST_SUCCESSOR: usize = 256;
@@ -135,8 +137,12 @@ fn argument(e: &Expr, formals: &[String]) -> Option<Arg> {
 
 /// The file's rules as the genome's productions, with notes on what was rewritten; `Err`
 /// lists every reason they cannot be (each with its line and column).
-fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>), Vec<String>> {
-    let source = Source::new("file.lsys", text);
+fn structural(
+    name: &str,
+    text: &str,
+    lsys: &LSystem,
+) -> Result<(LSystemGenome, Vec<String>), Vec<String>> {
+    let source = Source::new(name, text);
     let mut file = lang::parse(&source).map_err(|d| vec![d.to_string()])?;
     inline_constants(&mut file, &lsys.constants().collect::<Vec<_>>());
     let snippet = |span: lang::Span| text.get(span.start..span.end).unwrap_or("?").to_string();
@@ -155,6 +161,13 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
             place(*span)
         ));
     }
+    if let Some((lang::ast::Heading::Up, span)) = &file.heading {
+        reasons.push(format!(
+            "{}: its turtle starts heading up ('heading: up'); the genome's starts on the ground",
+            place(*span)
+        ));
+    }
+    let turtle = lsys.turtle();
     let Some((axiom, axiom_span)) = &file.axiom else {
         return Err(vec!["it has no axiom".into()]);
     };
@@ -282,6 +295,7 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
             &rule.successor,
             &names,
             &formals,
+            &turtle,
             &place,
             &snippet,
             &mut reasons,
@@ -296,7 +310,7 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
         None => {
             productions[0].pairs.push(Pair {
                 condition: None,
-                successor: items(axiom, &names, &[], &place, &snippet, &mut reasons),
+                successor: items(axiom, &names, &[], &turtle, &place, &snippet, &mut reasons),
             });
             Vec::new()
         }
@@ -329,11 +343,13 @@ fn structural(text: &str, lsys: &LSystem) -> Result<(LSystemGenome, Vec<String>)
 
 /// The successor `calls` as the genome's items; a module that is neither a production, a
 /// building command of the genome's nor a bracket, and has no rule, builds nothing and is
-/// dropped; what cannot be represented goes to `reasons`.
+/// dropped; the textbook's symbols become their exact equivalents
+/// ([`textbook_items`]); what cannot be represented goes to `reasons`.
 fn items(
     calls: &[ModuleCall],
     names: &[String],
     formals: &[String],
+    turtle: &TurtleHeaders,
     place: &dyn Fn(lang::Span) -> String,
     snippet: &dyn Fn(lang::Span) -> String,
     reasons: &mut Vec<String>,
@@ -371,12 +387,21 @@ fn items(
                             }
                         )),
                     }
+                } else if let Some(c) = Command::from_name(name).filter(|c| c.is_textbook()) {
+                    let argument = match call.args.as_slice() {
+                        [] => None,
+                        [a, ..] => Some(arg(a, reasons)),
+                    };
+                    match textbook_items(c, argument, turtle) {
+                        Ok(items) => out.extend(items),
+                        Err(why) => reasons.push(format!("{}: {why}", place(call.span))),
+                    }
                 } else if let Some(k) = names.iter().position(|n| n == name) {
                     let args = call.args.iter().map(|a| arg(a, reasons)).collect();
                     out.push(Item::Call(k, args));
                 } else if lang::is_builtin_command(name) || name == "{" || name == "}" {
                     reasons.push(format!(
-                        "{}: '{name}' is not a command the genome uses (not used: repeat blocks, maturing m-commands, chem, secrete, target, release)",
+                        "{}: '{name}' is not a command the genome uses ({NOT_USED})",
                         place(call.span)
                     ));
                 }
@@ -397,7 +422,11 @@ fn items(
 
 /// The limits widened to fit `genome` (each the larger of the limit and the seed's size),
 /// with a note naming each widened limit.
-fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Option<String>) {
+fn widened(
+    genome: &LSystemGenome,
+    limits: &LSystemLimits,
+    grown: Option<(usize, usize)>,
+) -> (LSystemLimits, Option<String>) {
     let mut out = limits.clone();
     let most_pairs = genome.productions.iter().map(|p| p.pairs.len()).max();
     let longest = genome
@@ -410,6 +439,12 @@ fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Op
     out.params = out.params.max(genome.start.len());
     out.max_successor = out.max_successor.max(longest.unwrap_or(0));
     out.derivation_length = out.derivation_length.max(genome.derivation_length);
+    if let Some((modules, parts)) = grown {
+        out.max_modules = out.max_modules.max(modules);
+        // A creature of more parts than any run may hold is invalid whatever the limits.
+        let parts = parts.min(crate::encoding::limits::MOST_PARTS);
+        out.max_parts = out.max_parts.max(parts);
+    }
     let changes: Vec<String> = [
         (
             "max_productions",
@@ -424,6 +459,8 @@ fn widened(genome: &LSystemGenome, limits: &LSystemLimits) -> (LSystemLimits, Op
             limits.derivation_length as usize,
             out.derivation_length as usize,
         ),
+        ("max_modules", limits.max_modules, out.max_modules),
+        ("max_parts", limits.max_parts, out.max_parts),
     ]
     .iter()
     .filter(|(_, was, now)| was != now)
@@ -446,8 +483,8 @@ pub(super) fn genome_as_written(
     text: &str,
     limits: &LSystemLimits,
 ) -> Result<LSystemGenome, DevelopError> {
-    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
-    match structural(text, &lsys) {
+    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(without_flags(d)))?;
+    match structural("file.lsys", text, &lsys) {
         Ok((genome, notes)) if notes.is_empty() => {
             genome.check(limits).map_err(refuse)?;
             Ok(genome)
@@ -460,13 +497,17 @@ pub(super) fn genome_as_written(
     }
 }
 
+/// `grow`: grow the seed and widen the limits on modules and parts to fit it (a run's seed),
+/// else only check it (a genome read back).
 pub(super) fn seed_from_lsys(
+    name: &str,
     text: &str,
     limits: &LSystemLimits,
+    grow: bool,
 ) -> Result<Seed<LSystemGenome>, DevelopError> {
     // The language's own checks first: a file that does not compile gets its located error.
-    let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
-    let (genome, mut notes) = match structural(text, &lsys) {
+    let lsys = LSystem::from_text(name, text).map_err(|d| DevelopError(without_flags(d)))?;
+    let (genome, mut notes) = match structural(name, text, &lsys) {
         Ok((mut genome, notes)) => {
             // Every production takes at least the limits' parameters, as random genomes do.
             let params = genome.start.len().max(limits.param_count());
@@ -484,7 +525,7 @@ pub(super) fn seed_from_lsys(
             }
             (genome, notes)
         }
-        Err(reasons) => match derived_items(text, limits.max_modules) {
+        Err(reasons) => match derived_items(name, text, MOST_MODULES) {
             Ok(items) if items.len() <= MOST_SUCCESSOR => {
                 let shown = match reasons.as_slice() {
                     [a, b, c, _, ..] => format!("{a}; {b}; {c}; and {} more", reasons.len() - 3),
@@ -521,7 +562,25 @@ pub(super) fn seed_from_lsys(
             }
         },
     };
-    let (limits, widening) = widened(&genome, limits);
+    // A run's seed is grown, and the limits on modules and parts widened to fit it; a
+    // genome read back is only checked.
+    let grown = match grow.then(|| grown_size(&genome.to_text())) {
+        Some(Err(why)) => {
+            return Err(refuse(format!(
+                "it does not grow within the most any run may hold ({MOST_MODULES} modules, {} parts): {why}",
+                crate::encoding::limits::MOST_PARTS
+            )));
+        }
+        Some(Ok(size)) => Some(size),
+        None => None,
+    };
+    let (limits, widening) = widened(&genome, limits, grown);
+    if grow && let Err(e) = limits.check_ranges() {
+        return Err(refuse(format!(
+            "its seed needs more than any run may hold: {}",
+            e.to_string().trim_start_matches("[limits] ")
+        )));
+    }
     notes.extend(widening);
     genome.check(&limits).map_err(refuse)?;
     Ok(Seed {

@@ -137,6 +137,7 @@ fn init_on_every_shipped_grammar_that_builds_a_creature_seeds_a_run_whose_indivi
         "hornby-walker",
         "continuous-walker",
         "syntax-tour",
+        "plastic",
         "algae",
     ] {
         let file = format!("examples/{name}.lsys");
@@ -256,5 +257,167 @@ fn replay_re_evaluates_with_another_setting_and_fitness_and_evolve_takes_an_aim_
         &o,
         "--target is for the aim task only, and the task is walker",
     );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Individual 0's fitness in a run `evolve --init FILE` seeds (walker, distance, 1 s), and
+/// the run's standard error.
+fn seeded_fitness(file: &Path, out: &Path, extra: &[&str]) -> (f64, String) {
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(file)
+        .args(["--pop", "2", "--gens", "1", "--seconds", "1"])
+        .args(["--fitness", "distance", "--no-verify-best"])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    succeeded(&o);
+    let store = RunStore::open(&out.join("run.sqlite")).unwrap();
+    (store.individuals(0).unwrap()[0].fitness, stderr(&o))
+}
+
+#[test]
+fn init_rewrites_the_textbook_symbols_into_the_genomes_commands_and_grows_the_same_creature() {
+    let dir = scratch("champion-init-textbook");
+    // Through the rules (a production with a textbook successor) and through the derived
+    // string (a rule the genome cannot write: a stochastic one).
+    let rules = "angle: 90\nstep: 0.5\nderivation length: 1\nmodule Leg\n\
+                 axiom: !(0.2) F [ + Leg ] [ + | Leg ] F(0.3)\n\
+                 Leg --> revolute1 F(0.4) output(1)\n";
+    let derived = "angle: 180\nderivation length: 1\nmodule Leg\n\
+                   axiom: !(0.3) F(0.5) [ +(90) Leg ] [ -(-270) Leg ] F(0.3)\n\
+                   Leg --> revolute1 F(0.4) output(1) : 1\n";
+    for (name, text) in [("rules", rules), ("derived", derived)] {
+        let file = dir.join(format!("{name}.lsys"));
+        std::fs::write(&file, text).unwrap();
+        let (first, said) = seeded_fitness(&file, &dir.join(name), &[]);
+        let path = file.to_str().unwrap();
+        let (fitness, _) = eval_fitness(&[path, "--seconds", "1", "--fitness", "distance"]);
+        assert_eq!(first, fitness, "{name}: {said}");
+        assert!(fitness > 0.0, "{name}: a valid walker");
+        assert_eq!(
+            said.contains("its rules cannot be the genome's"),
+            name == "derived"
+        );
+    }
+    // The first best's file writes the genome's commands, never the textbook's.
+    let best = std::fs::read_to_string(dir.join("rules/best.lsys")).unwrap();
+    assert!(
+        best.contains("width(0.2) thickness(0.2) forward(0.5) [ left(1)"),
+        "{best}"
+    );
+    assert!(best.contains("[ left(1) left(2) P1"), "{best}");
+    // What has no equivalent is refused, every reason at once, each where it is written.
+    let bad = dir.join("bad.lsys");
+    std::fs::write(&bad, "angle: 25.7\nheading: up\naxiom: ! F f(0.2) + F\n").unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&bad)
+        .arg("--out")
+        .arg(dir.join("bad"))
+        .output()
+        .unwrap();
+    let message = refused(&o, "cannot seed the lsystem encoding");
+    for reason in [
+        "line 2, column 1: its turtle starts heading up ('heading: up'); the genome's starts on the ground",
+        "line 3, column 8: a bare '!' scales the width by 0.7; the genome sets widths, it does not scale them",
+        "line 3, column 12: 'f' moves without building and leaves a gap; the genome builds one body",
+        "line 3, column 19: '+' turns by 25.7°, not a multiple of 90°; the genome turns by quarter turns",
+    ] {
+        assert!(message.contains(reason), "{reason} in {message}");
+    }
+    assert!(!dir.join("bad").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn init_widens_the_parts_and_modules_limits_to_the_seed_and_refuses_a_seed_beyond_any_run_once() {
+    let dir = scratch("champion-init-limits");
+    // 60 hinged parts from a string of over 1,000 modules (1,024 control symbols C).
+    let big = dir.join("big.lsys");
+    std::fs::write(
+        &big,
+        "derivation length: 60\nmodule A, C\naxiom: A(0) C(0)\n\
+         A(n) : n < 60 --> revolute1 forward(0.3) A(n + 1)\n\
+         C(n) : n < 10 --> C(n + 1) C(n + 1)\n",
+    )
+    .unwrap();
+    let (_, said) = seeded_fitness(&big, &dir.join("big"), &[]);
+    assert!(
+        said.contains(
+            "the run's limits are widened to fit the seed (derivation_length 6 → 61, \
+             max_modules 1000 → 1145, max_parts 50 → 60); its mutants keep within them"
+        ),
+        "{said}"
+    );
+    let store = RunStore::open(&dir.join("big/run.sqlite")).unwrap();
+    let first = store.individuals(0).unwrap();
+    assert_eq!(first[0].status, "ok", "{}", first[0].genome_text);
+    // A derivation length beyond the limit's range (0 to 64): refused once, without a note.
+    let long = dir.join("long.lsys");
+    std::fs::write(
+        &long,
+        "derivation length: 120\nmodule A\naxiom: A(0)\nA(n) : n < 3 --> revolute1 forward(0.3) A(n + 1)\n",
+    )
+    .unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&long)
+        .arg("--out")
+        .arg(dir.join("long"))
+        .output()
+        .unwrap();
+    let said = refused(&o, "");
+    assert_eq!(
+        said.trim_end(),
+        format!(
+            "error: {}: cannot seed the lsystem encoding: this file does not fit the lsystem \
+             genome: its seed needs more than any run may hold: derivation_length must be 0 to \
+             64, not 120",
+            long.display()
+        )
+    );
+    assert!(!dir.join("long").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn init_messages_name_the_real_file_and_no_flag_that_evolve_lacks() {
+    let dir = scratch("champion-init-names");
+    let bad = dir.join("arity.lsys");
+    std::fs::write(&bad, "axiom: forward(1, 2) revolute1\n").unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&bad)
+        .arg("--out")
+        .arg(dir.join("arity"))
+        .output()
+        .unwrap();
+    let said = refused(&o, &format!(" --> {}:1:8", bad.display()));
+    assert!(!said.contains("file.lsys"), "{said}");
+    // A runaway grammar: refused with the most any run may hold, without grow's flag.
+    let runaway = dir.join("runaway.lsys");
+    std::fs::write(
+        &runaway,
+        "derivation length: 30\naxiom: A\nA --> A A forward\n",
+    )
+    .unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--init"])
+        .arg(&runaway)
+        .arg("--out")
+        .arg(dir.join("runaway"))
+        .output()
+        .unwrap();
+    let said = refused(
+        &o,
+        "this file does not fit the lsystem genome: it does not grow within the most any run \
+         may hold (100000 modules, 1000 parts): the string grew past 100000 modules while \
+         deriving step 16",
+    );
+    assert!(!said.contains("--max-modules"), "{said}");
+    assert!(!dir.join("runaway").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
