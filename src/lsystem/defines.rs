@@ -95,7 +95,7 @@ pub struct Slider {
     pub min: f64,
     /// The slider's high end.
     pub max: f64,
-    /// The slider's step: the comment's `step S`, else [`default_step`].
+    /// The slider's step: the comment's `step S`, else 1 for a count, a hundredth of the range otherwise (see `default_step`).
     pub step: f64,
     /// Why the define's `# range` comment was not used, when it was not.
     pub note: Option<String>,
