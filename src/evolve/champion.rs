@@ -67,6 +67,16 @@ impl ChampionRecord {
         format!("{note}\n{COMMENT_KEY}{}", self.to_json())
     }
 
+    /// The champion file of `genome` with `note` and this record: in its `#` comments, or,
+    /// for a genome written as JSON, in its `"champion"` member ([`ChampionRecord::into_json`]).
+    pub fn file_text<G: crate::encoding::Genome>(&self, genome: &G, note: &str) -> String {
+        if G::TEXT_EXTENSION == "json" {
+            self.into_json(&genome.to_text(), note)
+        } else {
+            genome.annotated_text(&self.comment(note))
+        }
+    }
+
     /// The record in a genome's text, if it has one: in the `#` comments before its first
     /// other line, or, for JSON, in its `"champion"` member. `Err` says what is wrong with a
     /// record that is there but unreadable.

@@ -827,11 +827,7 @@ impl<G: Genome> Run<G> {
                     b.develop_seed,
                     &self.config.limits,
                 );
-                let text = if G::TEXT_EXTENSION == "json" {
-                    record.into_json(&b.genome.to_text(), &note)
-                } else {
-                    b.genome.annotated_text(&record.comment(&note))
-                };
+                let text = record.file_text(&b.genome, &note);
                 let name = format!("best.{}", G::TEXT_EXTENSION);
                 output::write(&self.dir.join(name), text.as_bytes())?;
             }
