@@ -54,6 +54,15 @@ pub(crate) fn chromium() -> PathBuf {
         })
 }
 
+/// How every test starts Chromium: headless, drawing WebGL in software (SwiftShader).
+const HEADLESS: [&str; 5] = [
+    "--headless=new",
+    "--no-sandbox",
+    "--use-gl=angle",
+    "--use-angle=swiftshader",
+    "--enable-unsafe-swiftshader",
+];
+
 /// The number of parts of each frame of an example grown by the library.
 fn parts_per_frame(name: &str) -> Vec<usize> {
     let lsys = LSystem::from_path(&example(name)).unwrap();
@@ -83,15 +92,8 @@ impl Page {
     fn load(browser: &Path, url: &str) -> Page {
         let profile = scratch(&format!("profile-{:x}", hash(url)));
         let output = Command::new(browser)
-            .args([
-                "--headless=new",
-                "--no-sandbox",
-                "--use-gl=angle",
-                "--use-angle=swiftshader",
-                "--enable-unsafe-swiftshader",
-                "--virtual-time-budget=8000",
-                "--dump-dom",
-            ])
+            .args(HEADLESS)
+            .args(["--virtual-time-budget=8000", "--dump-dom"])
             .arg(format!("--user-data-dir={}", profile.display()))
             .arg(url)
             .stdin(Stdio::null())
@@ -426,14 +428,8 @@ impl LivePage {
     fn open(browser: &Path, url: &str) -> LivePage {
         let profile = scratch(&format!("live-{:x}", hash(url)));
         let mut child = Command::new(browser)
-            .args([
-                "--headless=new",
-                "--no-sandbox",
-                "--use-gl=angle",
-                "--use-angle=swiftshader",
-                "--enable-unsafe-swiftshader",
-                "--remote-debugging-port=0",
-            ])
+            .args(HEADLESS)
+            .arg("--remote-debugging-port=0")
             .arg(format!("--user-data-dir={}", profile.display()))
             .arg(url)
             .stdin(Stdio::null())
