@@ -10,8 +10,8 @@ use ontogeny::evolve::run::{GenerationReport, Run, encoding_of_run};
 use ontogeny::evolve::text;
 use pyo3::prelude::*;
 
+use super::common::{require_exists, run_error, thread_pool, value_error};
 use super::interrupt::interruptible;
-use super::{require_exists, run_error, thread_pool, value_error};
 
 /// Goes on with the run in the directory `path` (one that `evolve` started, interrupted or
 /// finished), as `ontogeny evolve --resume PATH [--gens GENS]` does: from its last stored

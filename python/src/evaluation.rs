@@ -1,0 +1,222 @@
+//! Evaluations from Python: `evaluate`, `evaluate_many` and the `Evaluation` class.
+
+use crate::common::{fitness_named, setting_named, task_named, thread_pool, value_error, warn_all};
+use crate::creature::PyCreature;
+use std::sync::Arc;
+
+use crate::interrupt::{interrupted_error, interruptible};
+use numpy::IntoPyArray;
+use numpy::ndarray::{Array1, Array3};
+use numpy::{PyArray1, PyArray3};
+use ontogeny::cancel::Cancel;
+use ontogeny::creature::Creature;
+use ontogeny::sim::SimOptions;
+use ontogeny::task::flags::TaskFlags;
+use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rayon::prelude::*;
+
+/// The outcome of an evaluation: its fitness, status, the terms behind the fitness and, when
+/// it was recorded, the parts' trajectory.
+#[pyclass(name = "Evaluation", module = "ontogeny", frozen)]
+pub(crate) struct PyEvaluation {
+    outcome: Outcome,
+}
+
+#[pymethods]
+impl PyEvaluation {
+    /// The task's name.
+    #[getter]
+    fn task(&self) -> String {
+        self.outcome.task.clone()
+    }
+
+    /// The fitness; -999999 unless the status is `ok`.
+    #[getter]
+    fn fitness(&self) -> f64 {
+        self.outcome.fitness
+    }
+
+    /// How it ended: `ok`, `unstable`, `exploded`, `self-intersecting`, `too-tall` or
+    /// `invalid`.
+    #[getter]
+    fn status(&self) -> &'static str {
+        self.outcome.status.name()
+    }
+
+    /// The terms behind the fitness, by name.
+    #[getter]
+    fn terms<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for (k, v) in &self.outcome.terms {
+            dict.set_item(k, v)?;
+        }
+        Ok(dict)
+    }
+
+    /// What went wrong, when something did.
+    #[getter]
+    fn message(&self) -> Option<String> {
+        self.outcome.message.clone()
+    }
+
+    /// Every part's centre at each recorded moment (frames × parts × 3, metres), or `None`
+    /// when the evaluation was not recorded.
+    #[getter]
+    fn trajectory<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray3<f64>>> {
+        let samples = &self.outcome.recording;
+        let parts = samples.first()?.parts.len();
+        let flat: Vec<f64> = samples
+            .iter()
+            .flat_map(|s| {
+                (0..parts).flat_map(move |i| {
+                    let p = s.parts.get(i).map_or([f64::NAN; 3], |(c, _)| (*c).into());
+                    p.into_iter()
+                })
+            })
+            .collect();
+        Array3::from_shape_vec((samples.len(), parts, 3), flat)
+            .ok()
+            .map(|a| a.into_pyarray(py))
+    }
+
+    /// The simulated time of each recorded moment (seconds), or `None` when the evaluation
+    /// was not recorded.
+    #[getter]
+    fn times<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        let samples = &self.outcome.recording;
+        if samples.is_empty() {
+            return None;
+        }
+        Some(Array1::from_iter(samples.iter().map(|s| s.t)).into_pyarray(py))
+    }
+
+    /// The evaluation as JSON, as `ontogeny eval --json` prints it (without the recording).
+    fn to_json(&self) -> PyResult<String> {
+        let mut shown = self.outcome.clone();
+        shown.recording.clear();
+        serde_json::to_string_pretty(&shown).map_err(value_error)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Evaluation(task='{}', fitness={}, status='{}')",
+            self.outcome.task,
+            self.outcome.fitness,
+            self.outcome.status.name()
+        )
+    }
+}
+
+/// The task's specification from `evaluate`'s keyword arguments, built and checked as
+/// `ontogeny eval` builds it from the same flags ([`TaskFlags::spec`]); the arguments the task
+/// does not use are warned about, as `eval` does.
+pub(crate) fn task_spec(
+    py: Python<'_>,
+    task: &str,
+    seconds: Option<f64>,
+    fitness: Option<&str>,
+    setting: &str,
+    target: Option<[f64; 3]>,
+) -> PyResult<TaskSpec> {
+    let flags = TaskFlags {
+        task: task_named(task)?,
+        seconds,
+        fitness: fitness.map(fitness_named).transpose()?,
+        activation: None,
+        target,
+        projectile_size: None,
+        projectile_density: None,
+    };
+    let sim = setting_named(setting)?.apply(&SimOptions::default());
+    sim.check()
+        .map_err(|e| value_error(e.for_flag("setting")))?;
+    let spec = flags.spec(sim).map_err(|e| {
+        let name = match e.key {
+            "seconds" | "max_seconds" => "seconds",
+            key => key,
+        };
+        value_error(e.for_flag(name))
+    })?;
+    let ignored: Vec<String> = flags
+        .inapplicable()
+        .into_iter()
+        .map(|m| format!("{}; ignored", m.replace("--", "")))
+        .collect();
+    warn_all(py, &ignored)?;
+    Ok(spec)
+}
+
+/// Evaluates a creature on a task, as `ontogeny eval FILE --task TASK` does, with the same
+/// result bit for bit.
+#[pyfunction]
+#[pyo3(signature = (creature, task="walker", *, seconds=None, fitness=None, setting="default", target=None, record=false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn evaluate(
+    py: Python<'_>,
+    creature: &PyCreature,
+    task: &str,
+    seconds: Option<f64>,
+    fitness: Option<&str>,
+    setting: &str,
+    target: Option<[f64; 3]>,
+    record: bool,
+) -> PyResult<PyEvaluation> {
+    let spec = task_spec(py, task, seconds, fitness, setting, target)?;
+    let body = Arc::clone(&creature.creature);
+    let outcome = interruptible(py, |cancel| watched(&spec, &body, record, cancel))?
+        .map_err(interrupted_error)?;
+    Ok(PyEvaluation { outcome })
+}
+
+/// `spec`'s evaluation of `creature`, stopped by `cancel`.
+pub(crate) fn watched(
+    spec: &TaskSpec,
+    creature: &Creature,
+    record: bool,
+    cancel: &Cancel,
+) -> Result<Outcome, ontogeny::cancel::Interrupted> {
+    let watch = Watch {
+        record,
+        progress: &mut |_| {},
+        cancel: Some(cancel),
+    };
+    spec.evaluate_watched(creature, watch)
+}
+
+/// Evaluates many creatures on one task in parallel (on `threads` worker threads, default one
+/// per core), without holding the GIL; the results are in the creatures' order and equal to
+/// `evaluate`'s one by one.
+#[pyfunction]
+#[pyo3(signature = (creatures, task="walker", *, threads=None, seconds=None, fitness=None, setting="default", target=None, record=false))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn evaluate_many(
+    py: Python<'_>,
+    creatures: Vec<PyRef<'_, PyCreature>>,
+    task: &str,
+    threads: Option<usize>,
+    seconds: Option<f64>,
+    fitness: Option<&str>,
+    setting: &str,
+    target: Option<[f64; 3]>,
+    record: bool,
+) -> PyResult<Vec<PyEvaluation>> {
+    let spec = task_spec(py, task, seconds, fitness, setting, target)?;
+    let pool = thread_pool(threads)?;
+    let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
+    drop(creatures);
+    let outcomes: Vec<Outcome> = interruptible(py, |cancel| {
+        pool.install(|| {
+            bodies
+                .par_iter()
+                .map(|c| watched(&spec, c, record, cancel))
+                .collect::<Result<_, _>>()
+        })
+    })?
+    .map_err(interrupted_error)?;
+    Ok(outcomes
+        .into_iter()
+        .map(|outcome| PyEvaluation { outcome })
+        .collect())
+}
