@@ -22,14 +22,14 @@ impl RunRecord {
     /// The task its settings give (`[task]` of [`RunRecord::config`]); `None` when the text
     /// cannot be read as one.
     pub fn task_spec(&self) -> Option<crate::task::TaskSpec> {
-        let config = crate::evolve::config::parse_table(&self.config).ok()?;
+        let config = crate::run::config::parse_table(&self.config).ok()?;
         config.get("task")?.clone().try_into().ok()
     }
 
     /// The generations its settings plan (`[ga] generations` of [`RunRecord::config`]);
     /// `None` when the text cannot be read as one.
     pub fn planned_generations(&self) -> Option<u64> {
-        let config = crate::evolve::config::parse_table(&self.config).ok()?;
+        let config = crate::run::config::parse_table(&self.config).ok()?;
         u64::try_from(config.get("ga")?.get("generations")?.as_integer()?).ok()
     }
 }

@@ -64,7 +64,7 @@ impl RunStore {
     /// and renamed into place once its run row is committed, so `path` never names a store
     /// that is empty or half made: a process killed (or a disk filled) while creating it
     /// leaves no file at `path`. A temporary file left by such a start is removed by the
-    /// next; the caller holds the directory's lock ([`crate::evolve::lock`]).
+    /// next; the caller holds the directory's lock ([`crate::run::lock`]).
     pub fn create(path: &Path, run: &RunRecord) -> Result<RunStore, StoreError> {
         if fs::symlink_metadata(path).is_ok() {
             return Err(StoreError::Exists { path: path.into() });
