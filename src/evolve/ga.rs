@@ -14,10 +14,10 @@ use std::collections::HashMap;
 use super::cache::EvaluationCache;
 use super::evaluator::Evaluator;
 use super::key::EvaluationKey;
+use super::record::GenerationRecord;
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
-use crate::run::store::GenerationRecord;
 use crate::sim::SettingError;
 use crate::task::{Evaluation, Status, TaskSpec};
 

@@ -2,7 +2,7 @@
 //! [`crate::encoding::Genome`], parallel evaluation), the evaluation cache and its keys
 //! ([`cache`], [`key`]), where evaluations run ([`evaluator`]: this process's threads, or every
 //! rank of an MPI job with the `mpi` feature) and the version of their behaviour that a run
-//! records ([`evaluator_version`]).
+//! records ([`evaluator_version`]), and a generation's record ([`record`]).
 
 pub mod cache;
 pub mod evaluator;
@@ -11,3 +11,4 @@ pub mod ga;
 pub mod key;
 #[cfg(feature = "mpi")]
 pub mod mpi;
+pub mod record;

@@ -24,8 +24,9 @@ mod read;
 mod records;
 mod schema;
 
+pub use crate::evolve::record::{FineEvaluation, GenerationRecord};
 pub use error::StoreError;
-pub use records::{FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, StoredKey};
+pub use records::{IndividualRecord, RunRecord, StoredKey};
 pub use schema::{APPLICATION_ID, OLDEST_SCHEMA_VERSION, SCHEMA_VERSION};
 
 use std::fs::{self, OpenOptions};
