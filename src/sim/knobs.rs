@@ -141,11 +141,22 @@ impl Knob {
         )
     }
 
-    /// The `--help` of its flag: the phrase, and the range for a number.
-    pub fn help(&self) -> String {
+    /// Its range in words with its note, as an error message says it after "must be":
+    /// `1 to 64`, `in [0.001, 0.1] seconds`, `finite and not negative (0 turns the audit off)`.
+    pub fn range_words(&self) -> String {
+        format!("{}{}", self.range.words(), self.range_note)
+    }
+
+    /// The `--help` of its flag: the phrase, its unit (but a span of seconds', which its range
+    /// says) and its range, then `suffix` (` [default: the setting's]`).
+    pub fn help(&self, suffix: &str) -> String {
+        let unit = match (self.unit, self.range) {
+            ("", _) | (_, Range::Between { .. }) => String::new(),
+            (unit, _) => format!(" ({unit})"),
+        };
         match self.range {
-            Range::Any => format!("{}.", self.doc),
-            range => format!("{}, {}{}.", self.doc, range.words(), self.range_note),
+            Range::Any => format!("{}{unit}{suffix}.", self.doc),
+            _ => format!("{}{unit}, {}{suffix}.", self.doc, self.range_words()),
         }
     }
 
@@ -155,8 +166,11 @@ impl Knob {
         if self.range.holds(value) {
             return Ok(());
         }
-        let range = format!("{}{}", self.range.words(), self.range_note);
-        Err(SettingError::out_of_range(self.key, &range, value))
+        Err(SettingError::out_of_range(
+            self.key,
+            &self.range_words(),
+            value,
+        ))
     }
 }
 
@@ -221,7 +235,7 @@ pub const KNOBS: &[Knob] = &[
         range: Range::Between { least: MIN_DT, most: MAX_DT },
         range_note: " seconds",
         unit: "s",
-        doc: "The control step: the brain runs once per step, the physics `substeps` times per step",
+        doc: "The control step: the brain runs once per step, the physics `--substeps` times per step",
     }),
     knob!(substeps: Count {
         flag: Some("--substeps"),
@@ -283,7 +297,7 @@ pub const KNOBS: &[Knob] = &[
         flag: Some("--muscle-speed"),
         range: POSITIVE,
         unit: "rad/s",
-        doc: "The muscle model's target speed V_des, high so that muscles are torque-limited (Chaumont et al. 5.3)",
+        doc: "The muscle model's target speed V_des (Chaumont et al. 5.3), high so that muscles are torque-limited",
     }),
     knob!(max_speed: Real {
         range: POSITIVE,
@@ -310,9 +324,17 @@ pub const KNOBS: &[Knob] = &[
         range: NOT_NEGATIVE,
         range_note: " (0 turns the audit off)",
         unit: "J/kg",
-        doc: "Energy from nowhere, per kg of creature, that counts as an explosion (the energy audit)",
+        doc: "Energy from nowhere per kg of creature that counts as an explosion, in the energy audit",
     }),
 ];
+
+/// The five stepping values of `options` in `bench`'s notation, `SxIxP/SxI`: substeps ×
+/// solver iterations × PGS passes while walking, then substeps × iterations while waiting for
+/// rest (`1x2x3/2x4`).
+pub fn stepping_notation(options: &SimOptions) -> String {
+    let [s, i, p, rest_s, rest_i] = stepping_of(options);
+    format!("{s}x{i}x{p}/{rest_s}x{rest_i}")
+}
 
 /// The knob whose key (or older key) is `key`.
 pub fn knob(key: &str) -> Option<&'static Knob> {
@@ -374,10 +396,7 @@ pub fn reference_table() -> String {
             (false, "") => default,
             (false, unit) => format!("{default} {unit}"),
         };
-        let range = match knob.range {
-            Range::Any => String::new(),
-            range => format!("{}{}", range.words(), knob.range_note),
-        };
+        let range = knob.range_words();
         let key = match knob.older_key {
             Some(older) => format!("`{}` (older files: `{older}`)", knob.key),
             None => format!("`{}`", knob.key),
@@ -522,6 +541,7 @@ mod tests {
         let mut options = SimOptions::default();
         assert_eq!(stepping_of(&options), [4, 4, 1, 4, 8]);
         set_stepping(&mut options, [1, 2, 3, 2, 4]);
+        assert_eq!(stepping_notation(&options), "1x2x3/2x4");
         assert_eq!(
             (
                 options.substeps,
@@ -537,12 +557,12 @@ mod tests {
     #[test]
     fn a_flag_s_help_is_its_phrase_and_its_range() {
         assert_eq!(
-            knob("substeps").unwrap().help(),
-            "Physics substeps per control step, 1 to 64."
+            knob("substeps").unwrap().help(" [default: the setting's]"),
+            "Physics substeps per control step, 1 to 64 [default: the setting's]."
         );
         assert_eq!(
-            knob("energy_tolerance").unwrap().help(),
-            "Energy from nowhere, per kg of creature, that counts as an explosion (the energy audit), finite and not negative (0 turns the audit off)."
+            knob("energy_tolerance").unwrap().help(""),
+            "Energy from nowhere per kg of creature that counts as an explosion, in the energy audit (J/kg), finite and not negative (0 turns the audit off)."
         );
         assert_eq!(knob("dt").unwrap().key, "control_step");
         assert_eq!(knob("control_step").unwrap().flag_name(), "--time-step");
@@ -569,7 +589,7 @@ mod tests {
             e.for_flag(&grip.flag_name()),
             "--grip must be in [0, 2], not 3"
         );
-        assert_eq!(grip.help(), "How hard the ground holds, in [0, 2].");
+        assert_eq!(grip.help(""), "How hard the ground holds, in [0, 2].");
     }
 
     #[test]
