@@ -92,7 +92,7 @@ impl Args for SteppingArgs {
             .value_name("NAME")
             .value_parser(setting_parser())
             .help(
-                "The named step setting [default: default]; the five stepping flags override its values.",
+                "The named step setting [default: default]; the five stepping flags override its values",
             );
         stepping_knobs().fold(command.arg(setting), |command, knob| {
             let long = knob.flag.map_or(knob.key, |f| f.trim_start_matches('-'));

@@ -148,15 +148,16 @@ impl Knob {
     }
 
     /// The `--help` of its flag: the phrase, its unit (but a span of seconds', which its range
-    /// says) and its range, then `suffix` (` [default: the setting's]`).
+    /// says) and its range, then `suffix` (` [default: the setting's]`), without a full stop
+    /// (as clap writes a flag's one-line help).
     pub fn help(&self, suffix: &str) -> String {
         let unit = match (self.unit, self.range) {
             ("", _) | (_, Range::Between { .. }) => String::new(),
             (unit, _) => format!(" ({unit})"),
         };
         match self.range {
-            Range::Any => format!("{}{unit}{suffix}.", self.doc),
-            _ => format!("{}{unit}, {}{suffix}.", self.doc, self.range_words()),
+            Range::Any => format!("{}{unit}{suffix}", self.doc),
+            _ => format!("{}{unit}, {}{suffix}", self.doc, self.range_words()),
         }
     }
 
@@ -558,11 +559,11 @@ mod tests {
     fn a_flag_s_help_is_its_phrase_and_its_range() {
         assert_eq!(
             knob("substeps").unwrap().help(" [default: the setting's]"),
-            "Physics substeps per control step, 1 to 64 [default: the setting's]."
+            "Physics substeps per control step, 1 to 64 [default: the setting's]"
         );
         assert_eq!(
             knob("energy_tolerance").unwrap().help(""),
-            "Energy from nowhere per kg of creature that counts as an explosion, in the energy audit (J/kg), finite and not negative (0 turns the audit off)."
+            "Energy from nowhere per kg of creature that counts as an explosion, in the energy audit (J/kg), finite and not negative (0 turns the audit off)"
         );
         assert_eq!(knob("dt").unwrap().key, "control_step");
         assert_eq!(knob("control_step").unwrap().flag_name(), "--time-step");
@@ -589,7 +590,7 @@ mod tests {
             e.for_flag(&grip.flag_name()),
             "--grip must be in [0, 2], not 3"
         );
-        assert_eq!(grip.help(""), "How hard the ground holds, in [0, 2].");
+        assert_eq!(grip.help(""), "How hard the ground holds, in [0, 2]");
     }
 
     #[test]
