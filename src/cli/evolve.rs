@@ -244,7 +244,11 @@ fn start<G: Genome>(
         .out
         .as_ref()
         .expect("clap requires --out without --resume");
-    let (config, init, notes) = settings::new_run_with_notes::<G>(
+    let settings::NewRun {
+        config,
+        init,
+        notes,
+    } = settings::new_run::<G>(
         source,
         &run_flags(args),
         args.init.as_deref(),
