@@ -3,9 +3,7 @@
 //! kin) and [`TaskSpec::check`] checks them all with the simulator's, naming the key as a
 //! config file spells it (`[task.walker] seconds`).
 
-use super::{
-    CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
-};
+use super::{CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskSpec, WalkerOptions};
 use crate::sim::SettingError;
 use crate::sim::setting::check_real;
 
@@ -117,16 +115,8 @@ impl TaskSpec {
         self.walker.check().map_err(|e| e.within("walker"))?;
         self.jump.check().map_err(|e| e.within("jump"))?;
         self.catapult.check().map_err(|e| e.within("catapult"))?;
-        if self.task == TaskKind::Aim && self.catapult.target.is_none() {
-            return Err(SettingError {
-                table: "catapult".to_string(),
-                key: "target",
-                problem:
-                    "is needed by the aim task: target = [x, y, z] (metres from the projectile)"
-                        .to_string(),
-            });
-        }
-        Ok(())
+        self.stand.check().map_err(|e| e.within("stand"))?;
+        crate::with_task!(self.task, T => <T as super::Task>::check(self))
     }
 }
 
@@ -134,6 +124,7 @@ impl TaskSpec {
 mod tests {
     use super::*;
     use crate::sim::SimOptions;
+    use crate::task::TaskKind;
 
     #[test]
     fn every_task_passes_its_defaults() {

@@ -36,6 +36,7 @@ mod long_runs;
 #[cfg(feature = "mpi")]
 mod mpi;
 mod never_panics;
+mod old_release;
 mod outputs;
 mod render;
 mod rooms;
