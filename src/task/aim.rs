@@ -33,6 +33,10 @@ impl Task for AimTask {
     fn seconds(spec: &mut TaskSpec) -> &mut f64 {
         &mut spec.catapult.max_seconds
     }
+    fn check_options(_spec: &TaskSpec) -> Result<(), SettingError> {
+        // The catapult's table, which the catapult task checks.
+        Ok(())
+    }
     fn check(spec: &TaskSpec) -> Result<(), SettingError> {
         if spec.catapult.target.is_none() {
             return Err(SettingError {

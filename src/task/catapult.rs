@@ -275,6 +275,9 @@ impl super::Task for CatapultTask {
     fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
         &mut spec.catapult.max_seconds
     }
+    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
+        spec.catapult.check().map_err(|e| e.within("catapult"))
+    }
     fn evaluate(
         creature: &Creature,
         spec: &super::TaskSpec,

@@ -40,10 +40,9 @@ impl TaskFlags {
             spec.walker.activation = a;
         }
         if let Some(s) = self.seconds {
-            spec.walker.seconds = s;
-            spec.jump.seconds = s;
-            spec.catapult.max_seconds = s;
-            spec.stand.seconds = s;
+            for &kind in TaskKind::ALL {
+                *crate::with_task!(kind, T => <T as super::Task>::seconds(&mut spec)) = s;
+            }
         }
         if let Some(size) = self.projectile_size {
             spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);

@@ -129,6 +129,9 @@ impl super::Task for JumpTask {
     fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
         &mut spec.jump.seconds
     }
+    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
+        spec.jump.check().map_err(|e| e.within("jump"))
+    }
     fn evaluate(
         creature: &Creature,
         spec: &super::TaskSpec,

@@ -44,8 +44,12 @@ pub trait Task {
     /// The length of its measurement (s), which `--seconds` sets.
     fn seconds(spec: &mut TaskSpec) -> &mut f64;
 
-    /// Checks what it needs of `spec` beyond every table's ranges (the aim task's target);
-    /// the error names the key in its table, from inside `[task]`.
+    /// Checks the ranges of its own settings in `spec` (every task's are checked, run or
+    /// not); the error names the key in its table, from inside `[task]` (`walker`).
+    fn check_options(spec: &TaskSpec) -> Result<(), SettingError>;
+
+    /// Checks what it needs of `spec` when it is the task run, beyond every table's ranges
+    /// (the aim task's target); the error names the key as [`Task::check_options`] does.
     fn check(_spec: &TaskSpec) -> Result<(), SettingError> {
         Ok(())
     }

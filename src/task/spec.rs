@@ -41,7 +41,7 @@ impl std::str::FromStr for TaskKind {
 }
 
 /// Everything an evaluation depends on besides the creature.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TaskSpec {
     /// The task.
@@ -69,11 +69,7 @@ impl TaskSpec {
     pub fn new(task: TaskKind) -> TaskSpec {
         TaskSpec {
             task,
-            sim: SimOptions::default(),
-            walker: WalkerOptions::default(),
-            jump: JumpOptions::default(),
-            catapult: CatapultOptions::default(),
-            stand: StandOptions::default(),
+            ..TaskSpec::default()
         }
     }
 

@@ -79,6 +79,9 @@ impl Task for StandTask {
     fn seconds(spec: &mut TaskSpec) -> &mut f64 {
         &mut spec.stand.seconds
     }
+    fn check_options(spec: &TaskSpec) -> Result<(), SettingError> {
+        spec.stand.check().map_err(|e| e.within("stand"))
+    }
     fn evaluate(
         creature: &Creature,
         spec: &TaskSpec,

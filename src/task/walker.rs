@@ -350,6 +350,9 @@ impl super::Task for WalkerTask {
     fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
         &mut spec.walker.seconds
     }
+    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
+        spec.walker.check().map_err(|e| e.within("walker"))
+    }
     fn evaluate(
         creature: &Creature,
         spec: &super::TaskSpec,

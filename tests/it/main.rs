@@ -41,6 +41,7 @@ mod outputs;
 mod render;
 mod rooms;
 mod store;
+mod stubs;
 mod textbook;
 mod util;
 mod view;
