@@ -139,7 +139,7 @@ macro_rules! __task_kind {
         #[serde(rename_all = "kebab-case")]
         pub enum TaskKind {
             #[default]
-            $(#[doc = concat!("The task of [`", stringify!($variant), "Task`].")] $variant,)*
+            $(#[doc = concat!("The task `", stringify!($variant), "` of the registry.")] $variant,)*
         }
 
         impl TaskKind {
