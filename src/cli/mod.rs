@@ -69,7 +69,7 @@ enum Verb {
     /// Grow creatures: build the body and brain the derived strings describe, at every
     /// frame, and summarise the last one (parts, joints, brain, mass, size, validity).
     Grow(grow::GrowArgs),
-    /// Evaluate a creature in physics on a task (walker, catapult, aim or jump) and print its fitness, the
+    /// Evaluate a creature in physics on a task (see `--task`) and print its fitness, the
     /// terms behind it and its status.
     Eval(eval::EvalArgs),
     /// Write a creature (an `.lsys` grown to its last frame, or a `creature.json`) with the

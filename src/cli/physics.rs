@@ -63,7 +63,11 @@ pub fn setting_parser() -> impl TypedValueParser<Value = StepSetting> {
 
 /// The parser of `--task NAME` on every verb that takes one ([`TaskKind`]).
 pub fn task_parser() -> impl TypedValueParser<Value = TaskKind> {
-    names_parser(TaskKind::ALL, TaskKind::name, TaskKind::summary)
+    names_parser(
+        TaskKind::ALL.iter().copied(),
+        TaskKind::name,
+        TaskKind::summary,
+    )
 }
 
 /// The parser of `--actuator NAME` on every verb that simulates ([`ActuatorModel`]).

@@ -56,11 +56,7 @@ pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec
         spec.task = t;
     }
     if let Some(s) = flags.seconds {
-        match spec.task {
-            TaskKind::Walker => spec.walker.seconds = s,
-            TaskKind::Jump => spec.jump.seconds = s,
-            TaskKind::Catapult | TaskKind::Aim => spec.catapult.max_seconds = s,
-        }
+        *crate::with_task!(spec.task, T => <T as crate::task::Task>::seconds(&mut spec)) = s;
     }
     if let Some(fitness) = flags.fitness {
         if spec.task != TaskKind::Walker {
