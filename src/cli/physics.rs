@@ -5,6 +5,7 @@
 
 use clap::Args;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use ontogeny::front::flags::option_of;
 use ontogeny::sim::{ActuatorModel, SettingError, SimOptions, StepSetting, StrengthFrom};
 use ontogeny::task::TaskKind;
 
@@ -149,11 +150,7 @@ impl SteppingArgs {
 /// The bad-input error for a setting a flag gave: the message names the flag (`--time-step`
 /// for `control_step`, `--seconds` for a task's duration, else the key in kebab case: `--substeps`).
 pub fn flag_error(error: SettingError) -> anyhow::Error {
-    let flag = match error.key {
-        "control_step" => "--time-step".to_string(),
-        "seconds" | "max_seconds" => "--seconds".to_string(),
-        key => format!("--{}", key.replace('_', "-")),
-    };
+    let flag = format!("--{}", option_of(error.key).replace('_', "-"));
     super::bad(error.for_flag(&flag))
 }
 

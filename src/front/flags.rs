@@ -7,6 +7,17 @@ use crate::sim::{SettingError, SimOptions};
 
 use crate::task::{Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness};
 
+/// The option that sets the value a [`SettingError`] names by its key, in snake case:
+/// `time_step` for the simulator's `control_step`, `seconds` for every task's duration, the
+/// key itself otherwise. The command line spells it `--time-step`, Python `time_step=`.
+pub fn option_of(key: &str) -> &str {
+    match key {
+        "control_step" => "time_step",
+        "seconds" | "max_seconds" => "seconds",
+        key => key,
+    }
+}
+
 /// The task flags of `ontogeny eval` (each `None` when not given).
 #[derive(Clone, Debug)]
 pub struct TaskFlags {

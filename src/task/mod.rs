@@ -23,9 +23,10 @@ mod walker;
 pub use catapult::{CatapultOptions, catapult, catapult_with_progress, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
 pub use jump::{JumpOptions, jump, jump_with_progress};
-pub use protocol::{Phase, Rest, Watch};
+pub use protocol::{Rest, Watch};
 pub use recording::{
-    MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, RecordedFrame, Recording, Sample, recording_interval,
+    MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
+    recording_interval,
 };
 pub use spec::{TaskKind, TaskSpec};
 pub use walker::{
