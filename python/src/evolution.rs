@@ -4,7 +4,7 @@ use crate::common::{
     diagnostic_error, fitness_named, require_exists, run_error, setting_named, task_named,
     thread_pool, value_error,
 };
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::interrupt::interruptible;
 use ontogeny::cancel::Cancel;

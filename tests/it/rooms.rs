@@ -61,7 +61,8 @@ fn without_comments(text: &str) -> String {
     out
 }
 
-/// The tokens of `code` that matter to a path: words, `::`, `{`, `}`, `,` and `!`.
+/// The tokens of `code` that matter to a path: words (`$` for a macro's metavariable), `::`,
+/// brackets, `,`, `;` and `!`.
 fn tokens(code: &str) -> Vec<&str> {
     let mut out = Vec::new();
     let mut at = 0;
@@ -73,10 +74,13 @@ fn tokens(code: &str) -> Vec<&str> {
             while at < bytes.len() && (bytes[at].is_ascii_alphanumeric() || bytes[at] == b'_') {
                 at += 1;
             }
-            out.push(&code[start..at]);
+            let word = &code[start..at];
+            // A macro's metavariable (`$callback`) names no module; `$crate` is the crate.
+            let metavariable = start > 0 && bytes[start - 1] == b'$' && word != "crate";
+            out.push(if metavariable { "$" } else { word });
             continue;
         }
-        if code[at..].starts_with("::") {
+        if bytes[at..].starts_with(b"::") {
             out.push("::");
             at += 2;
             continue;
@@ -133,7 +137,7 @@ fn crate_names(text: &str) -> Vec<String> {
                 }
                 i += 1;
             }
-        } else if tokens[i] != "self" {
+        } else if tokens[i] != "self" && tokens[i] != "$" {
             names.push(tokens[i].to_string());
         }
     }
