@@ -1,5 +1,6 @@
 //! The chemical environment: an array of concentrations that development reads and writes
-//! through `?E` modules (open L-systems), and that a creature's controller will share.
+//! through `?E` modules (open L-systems), and that a creature's controller shares: it reads and
+//! writes the array the creature grew in (`Creature::environment`).
 
 use serde::{Deserialize, Serialize};
 

@@ -10,7 +10,7 @@ use numpy::ndarray::{Array1, Array3};
 use numpy::{PyArray1, PyArray3};
 use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
-use ontogeny::front::flags::TaskFlags;
+use ontogeny::front::flags::{TaskFlags, option_of};
 use ontogeny::sim::SimOptions;
 use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch};
 use pyo3::prelude::*;
@@ -132,13 +132,9 @@ pub(crate) fn task_spec(
     let sim = setting_named(setting)?.apply(&SimOptions::default());
     sim.check()
         .map_err(|e| value_error(e.for_flag("setting")))?;
-    let spec = flags.spec(sim).map_err(|e| {
-        let name = match e.key {
-            "seconds" | "max_seconds" => "seconds",
-            key => key,
-        };
-        value_error(e.for_flag(name))
-    })?;
+    let spec = flags
+        .spec(sim)
+        .map_err(|e| value_error(e.for_flag(option_of(e.key))))?;
     let ignored: Vec<String> = flags
         .inapplicable()
         .into_iter()

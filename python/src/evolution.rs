@@ -4,13 +4,13 @@ use crate::common::{
     diagnostic_error, fitness_named, require_exists, run_error, setting_named, task_named,
     thread_pool, value_error,
 };
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::interrupt::interruptible;
 use ontogeny::cancel::Cancel;
 use ontogeny::encoding::Genome;
 use ontogeny::front::settings::{self, RunFlags};
-use ontogeny::run::Run;
+use ontogeny::front::start::{NewRun, StartError, start_run};
 use ontogeny::run::config::read_config_source;
 use ontogeny::run::store::RunStore;
 use pyo3::prelude::*;
@@ -87,7 +87,7 @@ pub(crate) fn evolve(
         .transpose()
         .map_err(diagnostic_error)?;
     let name = settings::new_run_encoding(encoding, source.as_deref()).map_err(diagnostic_error)?;
-    let start = NewRun {
+    let new = NewRun {
         out: &out,
         source: source.as_deref(),
         flags: &flags,
@@ -95,13 +95,12 @@ pub(crate) fn evolve(
         seed,
         verify_best,
         cache,
-        progress,
     };
     interruptible(py, |cancel| {
         pool.install(|| {
             ontogeny::with_genome!(
                 name.as_str(),
-                G => start.run::<G>(cancel),
+                G => run::<G>(&new, progress, cancel),
                 |other: &str| Err(value_error(format!("unknown encoding '{other}'")))
             )
         })
@@ -109,35 +108,14 @@ pub(crate) fn evolve(
     Ok(out)
 }
 
-/// What `evolve` starts a run with.
-pub(crate) struct NewRun<'a> {
-    out: &'a Path,
-    source: Option<&'a ontogeny::lang::Source>,
-    flags: &'a RunFlags,
-    init: Option<&'a Path>,
-    seed: Option<u64>,
-    verify_best: bool,
-    cache: bool,
-    progress: bool,
-}
-
-impl NewRun<'_> {
-    /// Starts the run and runs it to its last generation, a line per generation on standard
-    /// error with `progress`, until `cancel` stops it.
-    fn run<G: Genome>(&self, cancel: &Cancel) -> PyResult<()> {
-        let settings::NewRun { config, init, .. } = settings::new_run::<G>(
-            self.source,
-            self.flags,
-            self.init,
-            self.seed,
-            self.verify_best,
-            self.cache,
-        )
-        .map_err(diagnostic_error)?;
-        let mut run = Run::<G>::start(self.out, config, init.as_ref().map(|s| s.text()))
-            .map_err(run_error)?;
-        crate::resume::run_to_end(&mut run, self.progress, cancel)
-    }
+/// Starts the run `new` describes and runs it to its last generation, a line per generation
+/// on standard error with `progress`, until `cancel` stops it.
+fn run<G: Genome>(new: &NewRun<'_>, progress: bool, cancel: &Cancel) -> PyResult<()> {
+    let mut run = start_run::<G>(new, |_| {}).map_err(|e| match e {
+        StartError::Settings(d) => diagnostic_error(d),
+        StartError::Run(e) => run_error(e),
+    })?;
+    crate::resume::run_to_end(&mut run, progress, cancel)
 }
 
 /// A run directory's records, read from its store (`run.sqlite`) read-only, as `ontogeny

@@ -351,7 +351,7 @@ pub fn write_recording_at(
 
 /// Simulated seconds for a note: to the millisecond, without trailing zeros (`601.483`).
 fn seconds_text(seconds: f64) -> String {
-    ontogeny::lsystem::format_number((seconds * 1000.0).round() / 1000.0)
+    ontogeny::number::format_number((seconds * 1000.0).round() / 1000.0)
 }
 
 /// Draws `recording` as `path` at `fps` images per simulated second

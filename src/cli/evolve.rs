@@ -7,6 +7,7 @@ use clap::Args;
 use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, encoding_named};
 use ontogeny::evolve::ga::Preset;
 use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::front::start::{NewRun, StartError, start_run};
 use ontogeny::front::text::{self, RunTally};
 use ontogeny::lang::Source;
 use ontogeny::run::config::read_config_source;
@@ -244,26 +245,28 @@ fn start<G: Genome>(
         .out
         .as_ref()
         .expect("clap requires --out without --resume");
-    let settings::NewRun {
-        config,
-        init,
-        notes,
-    } = settings::new_run::<G>(
+    let flags = run_flags(args);
+    let new = NewRun {
+        out,
         source,
-        &run_flags(args),
-        args.init.as_deref(),
-        args.seed,
-        !args.no_verify_best,
-        !args.no_cache,
-    )?;
-    if example {
-        tell!("{DEFAULT_RUN_NOTE}");
-    }
-    for note in notes {
-        tell!("{note}");
-    }
-    let init_text = init.as_ref().map(|s| s.text());
-    let mut run = Run::<G>::start(out, config, init_text).map_err(run_error)?;
+        flags: &flags,
+        init: args.init.as_deref(),
+        seed: args.seed,
+        verify_best: !args.no_verify_best,
+        cache: !args.no_cache,
+    };
+    let mut run = start_run::<G>(&new, |notes| {
+        if example {
+            tell!("{DEFAULT_RUN_NOTE}");
+        }
+        for note in notes {
+            tell!("{note}");
+        }
+    })
+    .map_err(|e| match e {
+        StartError::Settings(d) => anyhow::Error::new(d),
+        StartError::Run(e) => run_error(e),
+    })?;
     go(&mut run, out, args.json)
 }
 

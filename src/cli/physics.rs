@@ -6,6 +6,7 @@
 
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::{Arg, ArgMatches, Args, Command, FromArgMatches};
+use ontogeny::front::flags::option_of;
 use ontogeny::sim::knobs::{Value, knob, stepping_knobs};
 use ontogeny::sim::{ActuatorModel, Knob, SettingError, SimOptions, StepSetting, StrengthFrom};
 use ontogeny::task::TaskKind;
@@ -164,11 +165,7 @@ impl SteppingArgs {
 /// [`Knob::flag_name`]: `--time-step` for `control_step`; `--seconds` for a task's duration;
 /// else the key in kebab case).
 pub fn flag_error(error: SettingError) -> anyhow::Error {
-    let flag = match (error.key, knob(error.key)) {
-        (_, Some(knob)) => knob.flag_name(),
-        ("seconds" | "max_seconds", None) => "--seconds".to_string(),
-        (key, None) => format!("--{}", key.replace('_', "-")),
-    };
+    let flag = format!("--{}", option_of(error.key).replace('_', "-"));
     super::bad(error.for_flag(&flag))
 }
 

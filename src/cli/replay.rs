@@ -77,7 +77,7 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
         "{} ({} frames at {} frames/s, of {} recorded)",
         ontogeny::output::wrote(&[&gif]),
         playback.shown.len(),
-        ontogeny::lsystem::format_number(playback.fps),
+        ontogeny::number::format_number(playback.fps),
         recording.samples.len()
     );
     Ok(())

@@ -97,7 +97,7 @@ impl Summary {
             format!(
                 "{}: grown to t = {} in {}",
                 s.file,
-                crate::lsystem::format_number(s.t),
+                crate::number::format_number(s.t),
                 counted(s.frames, "frame")
             ),
             format!(

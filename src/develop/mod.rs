@@ -17,7 +17,8 @@ use nalgebra::{Unit, UnitQuaternion, Vector3};
 use crate::creature::{Creature, Joint, JointKind, Part, Problem, Severity};
 use crate::environment::Environment;
 use crate::lang::ast::Heading;
-use crate::lsystem::{ModuleString, SymbolTable, TurtleHeaders, format_number};
+use crate::lsystem::{ModuleString, SymbolTable, TurtleHeaders};
+use crate::number::format_number;
 pub use command::{Action, command_of};
 pub use shortcut::{LastFrame, Shortcut, grow_last};
 

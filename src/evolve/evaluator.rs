@@ -67,14 +67,6 @@ impl Evaluator {
     }
 }
 
-/// The evaluations of `creatures` on `task`, in order, on this process's worker threads.
-pub fn evaluate_locally(task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
-    creatures
-        .par_iter()
-        .map(|creature| task.evaluate(creature, false))
-        .collect()
-}
-
 /// Why a process could not take its part in an MPI job.
 #[derive(Debug, thiserror::Error)]
 #[error("MPI: {0}")]
@@ -97,7 +89,7 @@ pub fn join_cluster() -> Result<Option<Cluster>, ClusterError> {
         if !super::mpi::launched() {
             return Ok(Some(Cluster { _membership: None }));
         }
-        match super::mpi::join()? {
+        match super::mpi::join().map_err(ClusterError)? {
             Some(membership) => Ok(Some(Cluster {
                 _membership: Some(membership),
             })),

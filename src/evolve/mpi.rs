@@ -34,7 +34,6 @@ use mpi::traits::*;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::evaluator::ClusterError;
 use crate::creature::Creature;
 use crate::task::{Evaluation, TaskSpec};
 
@@ -146,14 +145,15 @@ impl std::fmt::Debug for Membership {
 }
 
 /// Joins the job: on a worker rank, serves rank 0 until it says stop and returns `None`;
-/// on rank 0 (or a job of one rank) returns the membership to hold.
-pub fn join() -> Result<Option<Membership>, ClusterError> {
+/// on rank 0 (or a job of one rank) returns the membership to hold. The error says why this
+/// process cannot take its part.
+pub fn join() -> Result<Option<Membership>, String> {
     let (universe, threading) = mpi::initialize_with_threading(mpi::Threading::Serialized)
-        .ok_or_else(|| ClusterError("MPI was initialised twice".to_string()))?;
+        .ok_or_else(|| "MPI was initialised twice".to_string())?;
     if threading < mpi::Threading::Funneled {
-        return Err(ClusterError(format!(
+        return Err(format!(
             "the MPI library offers threading level {threading:?}; ontogeny needs Funneled"
-        )));
+        ));
     }
     let world = universe.world();
     if world.rank() > 0 {
@@ -208,8 +208,17 @@ pub fn evaluate(task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
     let mut guard = master();
     match guard.as_mut() {
         Some(state) => state.evaluate(&SimpleCommunicator::world(), task, creatures),
-        None => super::evaluator::evaluate_locally(task, creatures),
+        None => evaluate_locally(task, creatures),
     }
+}
+
+/// The evaluations of `creatures` on `task`, in order, on this process's worker threads: a
+/// batch on a process that is not rank 0 of a job of several ranks, and a worker's share.
+pub fn evaluate_locally(task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
+    creatures
+        .par_iter()
+        .map(|creature| task.evaluate(creature, false))
+        .collect()
 }
 
 /// The next `count` jobs of a batch of `size` from `queue` (fewer, or none, near its end).

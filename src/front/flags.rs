@@ -7,6 +7,18 @@ use crate::sim::{SettingError, SimOptions};
 
 use crate::task::{Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness};
 
+/// The option that sets the value a [`SettingError`] names by its key, in snake case: a
+/// simulator knob's flag ([`Knob::flag_name`](crate::sim::Knob::flag_name): `time_step` for
+/// `control_step`), `seconds` for every task's duration, the key itself otherwise. The
+/// command line spells it `--time-step`, Python `time_step=`.
+pub fn option_of(key: &str) -> String {
+    match (key, crate::sim::knobs::knob(key)) {
+        ("seconds" | "max_seconds", _) => "seconds".to_string(),
+        (_, Some(knob)) => knob.flag_name().trim_start_matches("--").replace('-', "_"),
+        (key, None) => key.to_string(),
+    }
+}
+
 /// The task flags of `ontogeny eval` (each `None` when not given).
 #[derive(Clone, Debug)]
 pub struct TaskFlags {

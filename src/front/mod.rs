@@ -5,4 +5,5 @@
 pub mod flags;
 pub mod json;
 pub mod settings;
+pub mod start;
 pub mod text;

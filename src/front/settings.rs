@@ -194,7 +194,7 @@ pub fn new_run_encoding(flag: Option<&str>, source: Option<&Source>) -> Result<S
 /// notes on that seed (what of the grammar was rewritten for the genome, and which limits were
 /// widened to fit it; the run's config records the widened limits).
 #[derive(Debug)]
-pub struct NewRun<L> {
+pub struct ResolvedRun<L> {
     /// The run's settings.
     pub config: RunConfig<L>,
     /// The grammar that seeds its first generation.
@@ -213,7 +213,7 @@ pub fn new_run<G: Genome>(
     seed: Option<u64>,
     verify_best: bool,
     cache: bool,
-) -> Result<NewRun<G::Limits>, Diagnostic> {
+) -> Result<ResolvedRun<G::Limits>, Diagnostic> {
     let file: ConfigFile<G::Limits> = match source {
         Some(s) => crate::run::config::read_config(s)?,
         None => ConfigFile::default(),
@@ -232,7 +232,7 @@ pub fn new_run<G: Genome>(
             .map(|n| format!("note: {}: {n}", path.display()))
             .collect();
     }
-    Ok(NewRun {
+    Ok(ResolvedRun {
         config,
         init,
         notes,

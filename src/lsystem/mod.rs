@@ -32,9 +32,7 @@ use std::sync::Arc;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-pub use string::{
-    Module, ModuleString, NamedModule, POP, PUSH, SymbolId, SymbolTable, format_number,
-};
+pub use string::{Module, ModuleString, NamedModule, POP, PUSH, SymbolId, SymbolTable};
 
 use crate::environment::Environment;
 use crate::lang::{self, Diagnostic, DiagnosticKind, LsysFile, Source, Span};

@@ -4,9 +4,10 @@
 
 use serde::Serialize;
 
-use super::{DeriveOptions, Event, LSystem, ModuleString, NamedModule, format_number};
+use super::{DeriveOptions, Event, LSystem, ModuleString, NamedModule};
 use crate::environment::Environment;
 use crate::lang::{Diagnostic, DiagnosticKind};
+use crate::number::format_number;
 
 #[derive(Serialize)]
 struct Frame<'a> {

@@ -8,7 +8,7 @@ use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 use super::Overlay;
 use super::camera::{Camera, View};
 use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL, paint, solid};
-use super::pen::{fill, polyline, stroke_width};
+use super::pen::{convex_hull_path, draw_bullseye, fill, polygon, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
 use crate::creature::{Creature, Severity, counted};
@@ -595,59 +595,4 @@ fn write_text(
             );
         }
     }
-}
-
-/// A target's bullseye centred on `(x, y)` (pixels), `radius` across its outer ring.
-pub(super) fn draw_bullseye(pixmap: &mut Pixmap, (x, y): (f32, f32), radius: f32) {
-    for (r, colour) in [
-        (radius, TARGET),
-        (radius * 0.62, [255; 3]),
-        (radius * 0.3, TARGET),
-    ] {
-        if let Some(path) = PathBuilder::from_circle(x, y, r) {
-            fill(pixmap, &path, &solid(colour), Transform::identity());
-        }
-    }
-}
-
-/// The convex hull of `pts` as a closed path (gift wrapping; at most 8 points here).
-pub(super) fn convex_hull_path(pts: &mut [(f32, f32)]) -> Option<tiny_skia::Path> {
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
-    let cross = |o: (f32, f32), a: (f32, f32), b: (f32, f32)| {
-        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
-    };
-    let mut hull: Vec<(f32, f32)> = Vec::new();
-    for pass in 0..2 {
-        let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &(f32, f32)>> = if pass == 0 {
-            Box::new(pts.iter())
-        } else {
-            Box::new(pts.iter().rev())
-        };
-        for &p in iter {
-            while hull.len() >= start + 2
-                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
-            {
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        hull.pop();
-    }
-    if hull.len() < 3 {
-        return None;
-    }
-    polygon(&hull)
-}
-
-/// A closed polygon through `points`.
-fn polygon(points: &[(f32, f32)]) -> Option<tiny_skia::Path> {
-    let (first, rest) = points.split_first()?;
-    let mut pb = PathBuilder::new();
-    pb.move_to(first.0, first.1);
-    for p in rest {
-        pb.line_to(p.0, p.1);
-    }
-    pb.close();
-    pb.finish()
 }

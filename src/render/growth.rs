@@ -61,7 +61,7 @@ pub fn write_growth_gif(
     let labels: Vec<Overlay> = frames
         .iter()
         .map(|frame| Overlay {
-            label: vec![format!("t = {}", crate::lsystem::format_number(frame.t))],
+            label: vec![format!("t = {}", crate::number::format_number(frame.t))],
             ..Default::default()
         })
         .collect();

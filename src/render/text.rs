@@ -112,7 +112,7 @@ pub(super) fn scale_bar_length(scale: f64, room: f64) -> f64 {
 /// A length for a scale bar's label: "1 m", "50 cm", "5 mm".
 pub(super) fn length_label(metres: f64) -> String {
     if metres >= 1.0 {
-        format!("{} m", crate::lsystem::format_number(metres))
+        format!("{} m", crate::number::format_number(metres))
     } else if metres >= 0.01 {
         format!("{} cm", (metres * 100.0).round())
     } else {

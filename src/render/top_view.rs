@@ -6,9 +6,8 @@ use nalgebra::Vector3;
 use tiny_skia::{PathBuilder, Pixmap, Rect, Transform};
 
 use super::Overlay;
-use super::body::{convex_hull_path, draw_bullseye};
 use super::palette::{INK, TRAIL, paint, solid};
-use super::pen::{fill, polyline, stroke_width};
+use super::pen::{convex_hull_path, draw_bullseye, fill, polyline, stroke_width};
 use super::text::{draw_text, length_label, scale_bar_length};
 use crate::creature::Creature;
 

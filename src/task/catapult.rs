@@ -6,7 +6,8 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Phase, Watch, evaluate, steps_in, uninterrupted};
+use super::protocol::{Bounds, Watch, evaluate, steps_in, uninterrupted};
+use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;

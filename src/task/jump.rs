@@ -5,9 +5,8 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::Evaluation;
-use super::protocol::{
-    Bounds, Phase, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted,
-};
+use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted};
+use super::recording::Phase;
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::SimOptions;

@@ -30,9 +30,10 @@ pub use catapult::{
 };
 pub use check::{MAX_SECONDS, check_duration};
 pub use jump::{JumpOptions, JumpTask, jump, jump_with_progress};
-pub use protocol::{Phase, Rest, Watch};
+pub use protocol::{Rest, Watch};
 pub use recording::{
-    MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, RecordedFrame, Recording, Sample, recording_interval,
+    MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
+    recording_interval,
 };
 pub use registry::{TASKS, Task, TaskInfo, task_named};
 pub use spec::{TaskKind, TaskSpec};

@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::recording::{Sample, recording_interval};
+use super::recording::{Phase, Sample, recording_interval};
 use super::{Evaluation, Status};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
@@ -54,35 +54,6 @@ pub(super) fn steps_in(seconds: f64, dt: f64) -> usize {
 /// stepped past `rest.limit`.
 pub(super) fn settle_steps(rest: &Rest, dt: f64) -> usize {
     steps_in(rest.limit, dt).saturating_add(1)
-}
-
-/// Which stage of a task's protocol a recorded sample belongs to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Phase {
-    /// Controller off, waiting for the creature to come to rest (walker, jump).
-    Settling,
-    /// The walker's first activation of the controller (1 s), before it settles again.
-    ControllerOn,
-    /// Controller on, the fitness being measured (walker, jump).
-    Measuring,
-    /// Catapult and aim: controller on, the projectile still held.
-    Throwing,
-    /// Catapult and aim: the projectile released, until it comes to rest.
-    Flying,
-}
-
-impl Phase {
-    /// The phase in words, as pictures label it.
-    pub fn label(self) -> &'static str {
-        match self {
-            Phase::Settling => "settling",
-            Phase::ControllerOn => "controller on",
-            Phase::Measuring => "measuring",
-            Phase::Throwing => "throwing",
-            Phase::Flying => "projectile flying",
-        }
-    }
 }
 
 /// Checks that apply to every task before simulating. `seconds` is the task's duration.

@@ -1,6 +1,7 @@
-//! Recordings: the pose of every part at evenly spaced moments of an evaluation ([`Sample`]),
-//! how many of them a recording keeps, and the `recording.json` file ([`Recording`]) that
-//! `eval --record` writes and `replay` and `view` read.
+//! Recordings: the pose of every part at evenly spaced moments of an evaluation ([`Sample`])
+//! and the stage of the protocol it is in ([`Phase`]), how many of them a recording keeps, and
+//! the `recording.json` file ([`Recording`]) that `eval --record` writes and `replay` and
+//! `view` read.
 
 use std::borrow::Cow;
 
@@ -8,9 +9,37 @@ use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::compact;
-use super::protocol::Phase;
 use super::{Evaluation, Status};
 use crate::creature::Creature;
+
+/// Which stage of a task's protocol a recorded sample belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Phase {
+    /// Controller off, waiting for the creature to come to rest (walker, jump).
+    Settling,
+    /// The walker's first activation of the controller (1 s), before it settles again.
+    ControllerOn,
+    /// Controller on, the fitness being measured (walker, jump).
+    Measuring,
+    /// Catapult and aim: controller on, the projectile still held.
+    Throwing,
+    /// Catapult and aim: the projectile released, until it comes to rest.
+    Flying,
+}
+
+impl Phase {
+    /// The phase in words, as pictures label it.
+    pub fn label(self) -> &'static str {
+        match self {
+            Phase::Settling => "settling",
+            Phase::ControllerOn => "controller on",
+            Phase::Measuring => "measuring",
+            Phase::Throwing => "throwing",
+            Phase::Flying => "projectile flying",
+        }
+    }
+}
 
 /// The most samples a recording holds. A run that may take more control steps keeps one step
 /// in every [`recording_interval`], chosen before the run from its longest possible duration,

@@ -6,7 +6,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Phase, Rest, Watch, evaluate, settle_steps, steps_in};
+use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in};
+use super::recording::Phase;
 use super::{Evaluation, Task, TaskSpec};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;

@@ -7,9 +7,8 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{
-    Bounds, Phase, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted,
-};
+use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted};
+use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;

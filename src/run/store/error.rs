@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use rusqlite::ErrorCode;
 
-use super::schema::{OLDEST_SCHEMA_VERSION, SCHEMA_VERSION};
+use super::version::{OLDEST_SCHEMA_VERSION, SCHEMA_VERSION};
 
 /// Why a run store could not be created, opened, read or written. Every message names the file.
 #[derive(Debug, thiserror::Error)]

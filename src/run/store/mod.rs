@@ -14,7 +14,7 @@
 //! never data. Each generation records the evaluator version that made it
 //! ([`crate::evolve::evaluator_version`]).
 //!
-//! The schema and its migrations are in `schema`, the row records in `records`, the
+//! The schema and its migrations are in `schema`, its version in `version`, the row records in `records`, the
 //! checksums in `checksum`, the errors in `error`; the reads (each verifying what it reads)
 //! in `read`; this file holds the store itself and its writes.
 
@@ -23,11 +23,12 @@ mod error;
 mod read;
 mod records;
 mod schema;
+mod version;
 
 pub use crate::evolve::record::{FineEvaluation, GenerationRecord};
 pub use error::StoreError;
 pub use records::{IndividualRecord, RunRecord, StoredKey};
-pub use schema::{APPLICATION_ID, OLDEST_SCHEMA_VERSION, SCHEMA_VERSION};
+pub use version::{APPLICATION_ID, OLDEST_SCHEMA_VERSION, SCHEMA_VERSION};
 
 use std::fs::{self, OpenOptions};
 use std::path::{Path, PathBuf};
