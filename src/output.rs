@@ -275,6 +275,37 @@ mod tests {
     }
 
     #[test]
+    fn a_tail_is_replaced_in_place_after_the_head_kept() {
+        let dir = scratch();
+        let path = dir.path().join("log.txt");
+        std::fs::write(&path, "line 0\nnote: old\n").unwrap();
+        replace_tail(&path, 7, "line 1\nnote: new\n").unwrap();
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            "line 0\nline 1\nnote: new\n"
+        );
+        // A missing file is not created, and a link is not followed.
+        let missing = dir.path().join("missing.txt");
+        let error = replace_tail(&missing, 0, "x").unwrap_err();
+        assert!(matches!(error, OutputError::Io { .. }), "{error:?}");
+        assert!(!missing.exists());
+        #[cfg(unix)]
+        {
+            let link = dir.path().join("link.txt");
+            std::os::unix::fs::symlink(&path, &link).unwrap();
+            let error = replace_tail(&link, 0, "x").unwrap_err();
+            assert!(
+                matches!(error, OutputError::NotARegularFile { .. }),
+                "{error:?}"
+            );
+            assert_eq!(
+                std::fs::read_to_string(&path).unwrap(),
+                "line 0\nline 1\nnote: new\n"
+            );
+        }
+    }
+
+    #[test]
     fn a_failed_fill_leaves_the_old_file_and_no_temporary() {
         let dir = scratch();
         let path = dir.path().join("out.txt");

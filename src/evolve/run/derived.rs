@@ -4,7 +4,7 @@
 //!
 //! [`Run::write_derived_files`] writes them whole from the store, when a run starts or is
 //! resumed (a finished run too). While a run goes on, a generation costs the same whatever came
-//! before it ([`Run::advance_derived_files`]): its line is appended to `log.txt` (and the
+//! before it: its line is appended to `log.txt` (and the
 //! note after it written again), `best.*` is written from the population in memory, and the
 //! whole-run picture, `fitness.svg`, is redrawn only after every [`PLOT_EVERY`]th generation,
 //! after the run's last, and when a run stops early. What a run leaves is byte for byte what
