@@ -53,7 +53,7 @@ fn the_log_grows_a_line_a_generation_and_the_plot_is_redrawn_every_tenth_generat
             drawn = now;
         }
         let text = std::fs::read_to_string(&log).unwrap();
-        let last = text.lines().filter(|l| l.starts_with("generation ")).last();
+        let last = text.lines().rfind(|l| l.starts_with("generation "));
         lines.push(last.map(|l| l.split(':').next().unwrap().to_string()));
         if r.generation == 5 {
             // Another process cuts the log short: the run writes it whole at the next line.
