@@ -9,9 +9,9 @@
 //! goes to a temporary folder, removed at the end).
 
 use ontogeny::encoding::DirectGenome;
-use ontogeny::evolve::run::derived::PLOT_EVERY;
-use ontogeny::evolve::run::{GenerationReport, Run};
-use ontogeny::evolve::settings::{self, RunFlags};
+use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::run::derived::PLOT_EVERY;
+use ontogeny::run::{GenerationReport, Run};
 use ontogeny::sim::StepSetting;
 
 /// The generations whose overhead is compared.

@@ -5,9 +5,9 @@
 use super::*;
 
 use ontogeny::cancel::Cancel;
-use ontogeny::evolve::run::RunError;
-use ontogeny::evolve::run::derived::PLOT_EVERY;
-use ontogeny::evolve::settings::{self, RunFlags};
+use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::run::RunError;
+use ontogeny::run::derived::PLOT_EVERY;
 use ontogeny::sim::StepSetting;
 
 /// A new run of direct-genome walkers in `out`: population 4, `generations` generations of

@@ -14,12 +14,12 @@
 
 use super::{Run, RunError, status_name};
 use crate::encoding::Genome;
-use crate::evolve::champion::ChampionRecord;
 use crate::evolve::ga::{Fallbacks, Individual, ranking};
-use crate::evolve::plot::{PlotError, fitness_svg};
-use crate::evolve::run_folder::{LOG_FILE, PLOT_FILE};
-use crate::evolve::store::{FineEvaluation, GenerationRecord};
 use crate::output;
+use crate::run::champion::ChampionRecord;
+use crate::run::folder::{LOG_FILE, PLOT_FILE};
+use crate::run::plot::{PlotError, fitness_svg};
+use crate::run::store::{FineEvaluation, GenerationRecord};
 
 /// `fitness.svg` is redrawn after every generation whose index is a multiple of this (0, 10,
 /// 20, ...), after the run's last, and when a run stops early: drawing it costs as much as
