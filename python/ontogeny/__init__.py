@@ -17,6 +17,7 @@ from typing import Any, Optional, Union
 from ._ontogeny import (
     Creature,
     Evaluation,
+    TASKS,
     Run as _Run,
     __version__,
     derive,
@@ -33,6 +34,7 @@ __all__ = [
     "Creature",
     "Evaluation",
     "Run",
+    "TASKS",
     "__version__",
     "derive",
     "evaluate",

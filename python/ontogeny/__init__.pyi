@@ -2,7 +2,7 @@
 pure-Python helpers)."""
 
 from os import PathLike
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -11,6 +11,20 @@ __version__: str
 
 _Path = Union[str, PathLike]
 _Env = Optional[Sequence[Tuple[int, float]]]
+_Task = Literal["walker", "jump", "catapult", "aim", "stand"]
+_Fitness = Literal[
+    "normalised",
+    "distance",
+    "iterative-move",
+    "box-lover",
+    "fat-lover",
+    "dwarf-slayer",
+    "hornby-pollack",
+]
+
+TASKS: Dict[str, str]
+"""Every task by name, with what it measures, in the order ``ontogeny eval --help`` lists
+them."""
 
 class Creature:
     """A creature: box parts joined by joints, and a brain."""
@@ -120,10 +134,10 @@ def derive(
 
 def evaluate(
     creature: Creature,
-    task: str = "walker",
+    task: _Task = "walker",
     *,
     seconds: Optional[float] = None,
-    fitness: Optional[str] = None,
+    fitness: Optional[_Fitness] = None,
     setting: str = "default",
     target: Optional[Tuple[float, float, float]] = None,
     record: bool = False,
@@ -132,11 +146,11 @@ def evaluate(
 
 def evaluate_many(
     creatures: Sequence[Creature],
-    task: str = "walker",
+    task: _Task = "walker",
     *,
     threads: Optional[int] = None,
     seconds: Optional[float] = None,
-    fitness: Optional[str] = None,
+    fitness: Optional[_Fitness] = None,
     setting: str = "default",
     target: Optional[Tuple[float, float, float]] = None,
     record: bool = False,

@@ -108,7 +108,7 @@ pub(crate) fn parse_name<T: std::str::FromStr>(
 }
 
 pub(crate) fn task_named(name: &str) -> PyResult<TaskKind> {
-    parse_name("task", name, TaskKind::ALL, TaskKind::name)
+    parse_name("task", name, TaskKind::ALL.iter().copied(), TaskKind::name)
 }
 
 pub(crate) fn fitness_named(name: &str) -> PyResult<WalkerFitness> {

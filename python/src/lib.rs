@@ -26,6 +26,12 @@ use evolution::{PyRun, evolve};
 #[pymodule]
 fn _ontogeny(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The tasks of the library's registry, by name, with their summaries.
+    let tasks = pyo3::types::PyDict::new(m.py());
+    for task in ontogeny::task::TASKS {
+        tasks.set_item(task.name, task.summary)?;
+    }
+    m.add("TASKS", tasks)?;
     m.add_class::<PyCreature>()?;
     m.add_class::<PyEvaluation>()?;
     m.add_class::<PyRun>()?;

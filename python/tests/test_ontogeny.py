@@ -29,6 +29,7 @@ def test_every_task_setting_and_fitness_equals_the_command_line(root, cli):
         (dict(task="jump", seconds=1, setting="fast"), ["--task", "jump", "--seconds", "1", "--setting", "fast"]),
         (dict(task="walker", seconds=1, fitness="distance"), ["--task", "walker", "--seconds", "1", "--fitness", "distance"]),
         (dict(task="aim", seconds=2, target=(3, 1, 0)), ["--task", "aim", "--seconds", "2", "--target", "3,1,0"]),
+        (dict(task="stand", seconds=1), ["--task", "stand", "--seconds", "1"]),
     ]
     for kwargs, flags in cases:
         ours = ontogeny.evaluate(creature, **kwargs)
@@ -38,6 +39,13 @@ def test_every_task_setting_and_fitness_equals_the_command_line(root, cli):
             theirs["status"],
             theirs["terms"],
         ), kwargs
+
+
+def test_the_task_list_is_the_command_lines(cli):
+    assert list(ontogeny.TASKS) == ["walker", "jump", "catapult", "aim", "stand"]
+    help_text = cli("eval", "--help")
+    for name, summary in ontogeny.TASKS.items():
+        assert f"- {name}:" in help_text and summary in help_text, name
 
 
 def test_a_grown_creature_is_the_command_lines(root, cli):

@@ -198,11 +198,10 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
         spec.walker.fitness = f;
     }
     if let Some(s) = flags.seconds {
-        let (field, shown) = match spec.task {
-            TaskKind::Walker => (&mut spec.walker.seconds, "seconds"),
-            TaskKind::Jump => (&mut spec.jump.seconds, "seconds"),
-            TaskKind::Catapult | TaskKind::Aim => (&mut spec.catapult.max_seconds, "seconds"),
-        };
+        let (field, shown) = (
+            ontogeny::with_task!(spec.task, T => <T as ontogeny::task::Task>::seconds(&mut spec)),
+            "seconds",
+        );
         if *field != s {
             differs("--seconds", format!("{} {shown}", *field));
         }

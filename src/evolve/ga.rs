@@ -13,7 +13,7 @@ use std::collections::HashMap;
 
 use super::cache::EvaluationCache;
 use super::evaluator::Evaluator;
-use super::key::EvaluationKey;
+use super::key::{EvaluationKey, KeyVersion};
 use super::record::GenerationRecord;
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
@@ -326,6 +326,9 @@ pub struct Evolution<G: Genome> {
     pub seed: u64,
     /// A genome whose mutants seed the first generation (`--init`).
     pub init: Option<G>,
+    /// The version of the evaluation keys: today's for a new run, the one its store holds
+    /// for a run made before ([`super::run::Run::resume`]).
+    pub key_version: KeyVersion,
 }
 
 /// A new individual before evaluation.
@@ -357,10 +360,20 @@ impl<G: Genome> Evolution<G> {
     /// The evaluation key of the creature `genome` develops into with `develop_seed` (`None`
     /// when it does not develop): for an individual stored before keys were.
     pub fn key(&self, genome: &G, develop_seed: u64) -> Option<EvaluationKey> {
+        self.key_of_version(genome, develop_seed, self.key_version)
+    }
+
+    /// [`Evolution::key`], of version `version`.
+    pub fn key_of_version(
+        &self,
+        genome: &G,
+        develop_seed: u64,
+        version: KeyVersion,
+    ) -> Option<EvaluationKey> {
         genome
             .develop(&self.limits, develop_seed)
             .ok()
-            .map(|c| EvaluationKey::of(&c, &self.task))
+            .map(|c| EvaluationKey::of_version(&c, &self.task, version))
     }
 
     /// Develops one genome and keys its creature with the task.
@@ -372,7 +385,7 @@ impl<G: Genome> Evolution<G> {
         let key = creature
             .as_ref()
             .ok()
-            .map(|c| EvaluationKey::of(c, &self.task));
+            .map(|c| EvaluationKey::of_version(c, &self.task, self.key_version));
         Developed {
             unborn,
             creature,

@@ -2,6 +2,11 @@
 //! is evaluated with, over a canonical byte serialisation of both (every part, joint, neuron
 //! and setting, every `f64` by its bits). An evaluation is a pure function of the creature
 //! and the task, so two individuals with one key have one evaluation.
+//!
+//! Keys have versions ([`KeyVersion`]): version 2 hashes only what the task being run reads
+//! (its name, the simulator's settings and its own settings, [`crate::task::Task::options`]),
+//! so that a setting of another task, or a new task, changes no key; version 1, which runs
+//! made before it keep, hashed every task's settings.
 
 use serde::ser::{self, Serialize};
 use sha2::{Digest, Sha256};
@@ -13,14 +18,66 @@ use crate::task::TaskSpec;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct EvaluationKey(pub [u8; 32]);
 
+/// Which bytes a key hashes besides the creature's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum KeyVersion {
+    /// Every task's settings, side by side (`task`, `sim`, `walker`, `jump`, `catapult`), as
+    /// the keys of runs made before version 2 were.
+    V1,
+    /// The task's name, the simulator's settings and the task's own settings: the keys of
+    /// every run started today.
+    #[default]
+    V2,
+}
+
+/// The task specification as version 1 hashed it: every task's settings of its day.
+#[derive(serde::Serialize)]
+struct SpecV1<'a> {
+    task: crate::task::TaskKind,
+    sim: &'a crate::sim::SimOptions,
+    walker: &'a crate::task::WalkerOptions,
+    jump: &'a crate::task::JumpOptions,
+    catapult: &'a crate::task::CatapultOptions,
+}
+
+/// The task specification as version 2 hashes it: what the task reads.
+#[derive(serde::Serialize)]
+struct SpecV2<'a, O: Serialize> {
+    key_version: u8,
+    task: crate::task::TaskKind,
+    sim: &'a crate::sim::SimOptions,
+    options: O,
+}
+
 impl EvaluationKey {
-    /// The key of evaluating `creature` with `task`.
+    /// The key of evaluating `creature` with `task`, of today's version ([`KeyVersion::V2`]).
     pub fn of(creature: &Creature, task: &TaskSpec) -> EvaluationKey {
+        EvaluationKey::of_version(creature, task, KeyVersion::default())
+    }
+
+    /// The key of evaluating `creature` with `task`, of version `version`.
+    pub fn of_version(creature: &Creature, task: &TaskSpec, version: KeyVersion) -> EvaluationKey {
         let mut hasher = CanonicalHasher(Sha256::new());
         // Serialising plain data into a hasher cannot fail: every value has a byte form.
         creature
             .serialize(&mut hasher)
-            .and_then(|()| task.serialize(&mut hasher))
+            .and_then(|()| match version {
+                KeyVersion::V1 => SpecV1 {
+                    task: task.task,
+                    sim: &task.sim,
+                    walker: &task.walker,
+                    jump: &task.jump,
+                    catapult: &task.catapult,
+                }
+                .serialize(&mut hasher),
+                KeyVersion::V2 => crate::with_task!(task.task, T => SpecV2 {
+                    key_version: 2,
+                    task: task.task,
+                    sim: &task.sim,
+                    options: <T as crate::task::Task>::options(task),
+                }
+                .serialize(&mut hasher)),
+            })
             .expect("every creature and task serialises");
         EvaluationKey(hasher.0.finalize().into())
     }

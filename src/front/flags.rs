@@ -40,9 +40,9 @@ impl TaskFlags {
             spec.walker.activation = a;
         }
         if let Some(s) = self.seconds {
-            spec.walker.seconds = s;
-            spec.jump.seconds = s;
-            spec.catapult.max_seconds = s;
+            for &kind in TaskKind::ALL {
+                *crate::with_task!(kind, T => <T as crate::task::Task>::seconds(&mut spec)) = s;
+            }
         }
         if let Some(size) = self.projectile_size {
             spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);
@@ -68,7 +68,7 @@ impl TaskFlags {
         if self.target.is_some() && task != TaskKind::Aim {
             out.push("--target is for the aim task only (the catapult has no target)".to_string());
         }
-        let throwing = matches!(task, TaskKind::Catapult | TaskKind::Aim);
+        let throwing = task.throws();
         if self.projectile_size.is_some() && !throwing {
             out.push("--projectile-size is for the catapult and aim tasks only".to_string());
         }
@@ -97,12 +97,12 @@ pub fn parse_point(text: &str) -> Result<[f64; 3], String> {
 
 /// What an evaluation of `spec` is, for a progress bar: `walker, 20 s`, `catapult`.
 pub fn progress_label(spec: &TaskSpec) -> String {
-    match spec.task {
-        TaskKind::Walker => format!("walker, {} s", spec.walker.seconds),
-        TaskKind::Jump => format!("jump, {} s", spec.jump.seconds),
-        TaskKind::Catapult => "catapult".to_string(),
-        TaskKind::Aim => "aim".to_string(),
+    if spec.task.throws() {
+        return spec.task.name().to_string();
     }
+    let mut spec = spec.clone();
+    let seconds = *crate::with_task!(spec.task, T => <T as crate::task::Task>::seconds(&mut spec));
+    format!("{}, {seconds} s", spec.task.name())
 }
 
 /// The note for a recorded evaluation of `spec` long enough that its recording keeps only

@@ -26,10 +26,10 @@ use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::evolve::cache::EvaluationCache;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
 use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
-use crate::evolve::key::EvaluationKey;
+use crate::evolve::key::{EvaluationKey, KeyVersion};
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
-use crate::task::{Evaluation, TaskKind, TaskSpec, Watch};
+use crate::task::{Evaluation, TaskSpec, Watch};
 
 pub mod derived;
 
@@ -352,6 +352,7 @@ impl<G: Genome> Run<G> {
         let store = RunStore::open(&store_path)?;
         let init = Self::read_init(dir, &config)?;
         let mut run = Run::assemble(dir, config, store, init, Some(lock));
+        run.evolution.key_version = run.stored_key_version()?;
         if let Some(generations) = extend_to {
             run.extend(generations)?;
         }
@@ -427,7 +428,9 @@ impl<G: Genome> Run<G> {
         );
         let config: RunConfig<G::Limits> = read_run_config(&source).map_err(RunError::Config)?;
         let init = Self::read_init(dir, &config).ok().flatten();
-        Ok(Run::assemble(dir, config, store, init, None))
+        let mut run = Run::assemble(dir, config, store, init, None);
+        run.evolution.key_version = run.stored_key_version()?;
+        Ok(run)
     }
 
     /// The genome of the run's `init.lsys`, if it has one.
@@ -452,9 +455,10 @@ impl<G: Genome> Run<G> {
         init: Option<G>,
         lock: Option<DirectoryLock>,
     ) -> Run<G> {
-        let purpose = match config.task.task {
-            TaskKind::Walker | TaskKind::Jump => Purpose::Locomotion,
-            TaskKind::Catapult | TaskKind::Aim => Purpose::Throwing,
+        let purpose = if config.task.task.throws() {
+            Purpose::Throwing
+        } else {
+            Purpose::Locomotion
         };
         let mut limits = config.limits.clone();
         G::adapt_limits(&mut limits, purpose);
@@ -467,6 +471,7 @@ impl<G: Genome> Run<G> {
                 task: config.task.clone(),
                 seed: config.seed,
                 init,
+                key_version: KeyVersion::default(),
             },
             config,
             store,
@@ -487,6 +492,37 @@ impl<G: Genome> Run<G> {
     /// The run's settings.
     pub fn config(&self) -> &RunConfig<G::Limits> {
         &self.config
+    }
+
+    /// The evaluation key this run gives the creature `genome` develops into with
+    /// `develop_seed` (`None` when it does not develop): the key its cache finds it by.
+    pub fn evaluation_key(&self, genome: &G, develop_seed: u64) -> Option<EvaluationKey> {
+        self.evolution.key(genome, develop_seed)
+    }
+
+    /// The version of the evaluation keys the store holds: the one that gives the first
+    /// keyed individual of a generation its stored key. A store made before keys had versions
+    /// holds version 1, and keeps it, so that its cache finds what it evaluated; a store with
+    /// no key yet takes today's.
+    fn stored_key_version(&self) -> Result<KeyVersion, RunError> {
+        let Some(last) = self.store.last_generation()? else {
+            return Ok(KeyVersion::default());
+        };
+        for generation in 0..=last {
+            let population = self.population(generation)?;
+            let Some(keyed) = population.iter().find(|i| i.key.is_some()) else {
+                continue;
+            };
+            for version in [KeyVersion::V2, KeyVersion::V1] {
+                let key = self
+                    .evolution
+                    .key_of_version(&keyed.genome, keyed.develop_seed, version);
+                if key == keyed.key {
+                    return Ok(version);
+                }
+            }
+        }
+        Ok(KeyVersion::default())
     }
 
     /// The index of the last complete generation, if any.

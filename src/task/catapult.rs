@@ -244,3 +244,45 @@ pub(super) fn catapult_watched(
     }
     Ok(evaluation)
 }
+
+/// Chaumont et al.'s catapult, in the registry ([`super::Task`]): the catapult's settings
+/// without a target (the aim task, [`super::AimTask`], is the one with a target).
+pub struct CatapultTask;
+
+impl super::Task for CatapultTask {
+    const NAME: &'static str = "catapult";
+    const SUMMARY: &'static str =
+        "Chaumont et al.'s catapult: distance the projectile travels (eq. 2)";
+    const FITNESS_VARIANTS: &'static [&'static str] = &[];
+    const THROWS: bool = true;
+    type Options = CatapultOptions;
+
+    fn options(spec: &super::TaskSpec) -> CatapultOptions {
+        CatapultOptions {
+            target: None,
+            ..spec.catapult.clone()
+        }
+    }
+    fn measure(_spec: &super::TaskSpec) -> &'static str {
+        "distance (m)"
+    }
+    fn floor(_spec: &super::TaskSpec) -> Option<f64> {
+        Some(0.0)
+    }
+    fn max_steps(spec: &super::TaskSpec) -> usize {
+        spec.catapult.max_steps(spec.sim.control_step)
+    }
+    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
+        &mut spec.catapult.max_seconds
+    }
+    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
+        spec.catapult.check().map_err(|e| e.within("catapult"))
+    }
+    fn evaluate(
+        creature: &Creature,
+        spec: &super::TaskSpec,
+        watch: Watch<'_>,
+    ) -> Result<Evaluation, Interrupted> {
+        catapult_watched(creature, &spec.sim, &Self::options(spec), watch)
+    }
+}

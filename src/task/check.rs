@@ -105,7 +105,8 @@ impl CatapultOptions {
 
 impl TaskSpec {
     /// Checks every setting of the specification — the simulator's ([`crate::sim::SimOptions::check`])
-    /// and every task's, used or not — and that the aim task has a target. The error names the
+    /// and every task's, used or not ([`super::Task::check_options`]) — and what the task run
+    /// needs ([`super::Task::check`]: the aim task's target). The error names the
     /// key in its table as a config file spells it (`[task.sim] substeps`).
     pub fn check(&self) -> Result<(), SettingError> {
         self.check_tables().map_err(|e| e.within("task"))
@@ -114,19 +115,10 @@ impl TaskSpec {
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
     fn check_tables(&self) -> Result<(), SettingError> {
         self.sim.check().map_err(|e| e.within("sim"))?;
-        self.walker.check().map_err(|e| e.within("walker"))?;
-        self.jump.check().map_err(|e| e.within("jump"))?;
-        self.catapult.check().map_err(|e| e.within("catapult"))?;
-        if self.task == TaskKind::Aim && self.catapult.target.is_none() {
-            return Err(SettingError {
-                table: "catapult".to_string(),
-                key: "target",
-                problem:
-                    "is needed by the aim task: target = [x, y, z] (metres from the projectile)"
-                        .to_string(),
-            });
+        for &kind in TaskKind::ALL {
+            crate::with_task!(kind, T => <T as super::Task>::check_options(self))?;
         }
-        Ok(())
+        crate::with_task!(self.task, T => <T as super::Task>::check(self))
     }
 }
 
@@ -134,10 +126,11 @@ impl TaskSpec {
 mod tests {
     use super::*;
     use crate::sim::SimOptions;
+    use crate::task::TaskKind;
 
     #[test]
     fn every_task_passes_its_defaults() {
-        for task in [TaskKind::Walker, TaskKind::Jump, TaskKind::Catapult] {
+        for &task in TaskKind::ALL.iter().filter(|&&t| t != TaskKind::Aim) {
             assert_eq!(TaskSpec::new(task).check(), Ok(()));
         }
     }

@@ -103,3 +103,40 @@ pub(super) fn jump_watched(
         Ok((best, terms))
     })
 }
+
+/// Walking with Dinosaurs' jump, in the registry ([`super::Task`]).
+pub struct JumpTask;
+
+impl super::Task for JumpTask {
+    const NAME: &'static str = "jump";
+    const SUMMARY: &'static str = "Walking with Dinosaurs' jump: best height of the lowest point";
+    const FITNESS_VARIANTS: &'static [&'static str] = &[];
+    const THROWS: bool = false;
+    type Options = JumpOptions;
+
+    fn options(spec: &super::TaskSpec) -> JumpOptions {
+        spec.jump.clone()
+    }
+    fn measure(_spec: &super::TaskSpec) -> &'static str {
+        "height (m)"
+    }
+    fn floor(_spec: &super::TaskSpec) -> Option<f64> {
+        Some(0.0)
+    }
+    fn max_steps(spec: &super::TaskSpec) -> usize {
+        spec.jump.max_steps(spec.sim.control_step)
+    }
+    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
+        &mut spec.jump.seconds
+    }
+    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
+        spec.jump.check().map_err(|e| e.within("jump"))
+    }
+    fn evaluate(
+        creature: &Creature,
+        spec: &super::TaskSpec,
+        watch: Watch<'_>,
+    ) -> Result<Evaluation, Interrupted> {
+        jump_watched(creature, &spec.sim, &spec.jump, watch)
+    }
+}

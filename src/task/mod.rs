@@ -3,8 +3,9 @@
 //! gives an [`Evaluation`].
 //!
 //! This module keeps what every task shares (the failure floor, [`Status`], [`Evaluation`]);
-//! each task has its own file ([`walker`](walker()), [`jump`](jump()), [`catapult`](catapult())
-//! and aim), the protocol's common steps (screening, waiting for rest, recording) are in
+//! each task has its own file ([`walker`](walker()), [`jump`](jump()), [`catapult`](catapult()),
+//! aim and stand), implements [`Task`] and has one line in the registry
+//! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
 //! `protocol`, the recording's file format in `recording`, and a task's specification as data
 //! in [`TaskSpec`].
 
@@ -12,24 +13,33 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+mod aim;
 mod catapult;
 mod check;
 mod compact;
 mod jump;
 mod protocol;
 mod recording;
+mod registry;
 mod spec;
+mod stand;
 mod walker;
-pub use catapult::{CatapultOptions, catapult, catapult_with_progress, distance_to_trajectory};
+pub use aim::AimTask;
+pub use catapult::{
+    CatapultOptions, CatapultTask, catapult, catapult_with_progress, distance_to_trajectory,
+};
 pub use check::{MAX_SECONDS, check_duration};
-pub use jump::{JumpOptions, jump, jump_with_progress};
+pub use jump::{JumpOptions, JumpTask, jump, jump_with_progress};
 pub use protocol::{Phase, Rest, Watch};
 pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, RecordedFrame, Recording, Sample, recording_interval,
 };
+pub use registry::{TASKS, Task, TaskInfo, task_named};
 pub use spec::{TaskKind, TaskSpec};
+pub use stand::{StandOptions, StandTask};
 pub use walker::{
-    WalkerFitness, WalkerOptions, iterative_move, size_coefficients, walker, walker_with_progress,
+    WalkerFitness, WalkerOptions, WalkerTask, iterative_move, size_coefficients, walker,
+    walker_with_progress,
 };
 
 /// The fitness of every failed evaluation, whatever the task: Walking with Dinosaurs' value

@@ -3,57 +3,27 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{CatapultOptions, Evaluation, JumpOptions, WalkerOptions, Watch};
+use super::{CatapultOptions, Evaluation, JumpOptions, StandOptions, Task, WalkerOptions, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::SimOptions;
 
-/// The four tasks.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum TaskKind {
-    /// Chaumont et al.'s walker (equation 1).
-    #[default]
-    Walker,
-    /// Walking with Dinosaurs' jump.
-    Jump,
-    /// Chaumont et al.'s catapult (equation 2).
-    Catapult,
-    /// Chaumont et al.'s aiming catapult (equation 3): needs `catapult.target`.
-    Aim,
-}
+crate::for_each_task!(__task_kind!());
 
 impl TaskKind {
-    /// Every task, in the order `--help` lists them.
-    pub const ALL: [TaskKind; 4] = [
-        TaskKind::Walker,
-        TaskKind::Jump,
-        TaskKind::Catapult,
-        TaskKind::Aim,
-    ];
-
-    /// The task in a few words, for `--help`.
+    /// The task in a few words, for `--help` ([`Task::SUMMARY`]).
     pub fn summary(self) -> &'static str {
-        match self {
-            TaskKind::Walker => {
-                "Chaumont et al.'s walker: distance of the root part, normalised by size (eq. 1)"
-            }
-            TaskKind::Jump => "Walking with Dinosaurs' jump: best height of the lowest point",
-            TaskKind::Catapult => {
-                "Chaumont et al.'s catapult: distance the projectile travels (eq. 2)"
-            }
-            TaskKind::Aim => "Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3)",
-        }
+        crate::with_task!(self, T => T::SUMMARY)
     }
 
-    /// The task's name as the CLI and the run store spell it.
+    /// The task's name as the CLI and the run store spell it ([`Task::NAME`]).
     pub fn name(self) -> &'static str {
-        match self {
-            TaskKind::Walker => "walker",
-            TaskKind::Jump => "jump",
-            TaskKind::Catapult => "catapult",
-            TaskKind::Aim => "aim",
-        }
+        crate::with_task!(self, T => T::NAME)
+    }
+
+    /// Whether the task throws a projectile ([`Task::THROWS`]).
+    pub fn throws(self) -> bool {
+        crate::with_task!(self, T => T::THROWS)
     }
 }
 
@@ -63,14 +33,15 @@ impl std::str::FromStr for TaskKind {
     /// The task named `name` ([`TaskKind::name`]).
     fn from_str(name: &str) -> Result<TaskKind, String> {
         TaskKind::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .find(|t| t.name() == name)
             .ok_or_else(|| format!("unknown task '{name}'"))
     }
 }
 
 /// Everything an evaluation depends on besides the creature.
-#[derive(Clone, Debug, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TaskSpec {
     /// The task.
@@ -88,6 +59,9 @@ pub struct TaskSpec {
     /// The catapult's settings (used by `catapult` and `aim`; `aim` needs its target).
     #[serde(default)]
     pub catapult: CatapultOptions,
+    /// The stand task's settings (used by `stand`).
+    #[serde(default)]
+    pub stand: StandOptions,
 }
 
 impl TaskSpec {
@@ -95,10 +69,7 @@ impl TaskSpec {
     pub fn new(task: TaskKind) -> TaskSpec {
         TaskSpec {
             task,
-            sim: SimOptions::default(),
-            walker: WalkerOptions::default(),
-            jump: JumpOptions::default(),
-            catapult: CatapultOptions::default(),
+            ..TaskSpec::default()
         }
     }
 
@@ -112,12 +83,7 @@ impl TaskSpec {
     /// What the fitness measures and in which unit, as plots label their axis:
     /// `"distance (m)"`, `"normalised (Chaumont eq. 1)"`, `"distance − miss (m)"`.
     pub fn fitness_measure(&self) -> &'static str {
-        match self.task {
-            TaskKind::Walker => self.walker.fitness.label(),
-            TaskKind::Jump => "height (m)",
-            TaskKind::Catapult => "distance (m)",
-            TaskKind::Aim => "distance − miss (m)",
-        }
+        crate::with_task!(self.task, T => T::measure(self))
     }
 
     /// The lowest fitness an evaluation that succeeds can score, when the formula has one:
@@ -125,11 +91,7 @@ impl TaskSpec {
     /// the catapult); none for the aim task (D_p − D_t) and Hornby & Pollack's walker, which
     /// can be negative.
     pub fn fitness_floor(&self) -> Option<f64> {
-        match self.task {
-            TaskKind::Walker => self.walker.fitness.floor(),
-            TaskKind::Jump | TaskKind::Catapult => Some(0.0),
-            TaskKind::Aim => None,
-        }
+        crate::with_task!(self.task, T => T::floor(self))
     }
 
     /// Evaluates `creature` on the task; `record` keeps a recording (every step's sample, or
@@ -162,33 +124,13 @@ impl TaskSpec {
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        match self.task {
-            TaskKind::Walker => {
-                super::walker::walker_watched(creature, &self.sim, &self.walker, watch)
-            }
-            TaskKind::Jump => super::jump::jump_watched(creature, &self.sim, &self.jump, watch),
-            TaskKind::Catapult => {
-                let options = CatapultOptions {
-                    target: None,
-                    ..self.catapult.clone()
-                };
-                super::catapult::catapult_watched(creature, &self.sim, &options, watch)
-            }
-            TaskKind::Aim => {
-                super::catapult::catapult_watched(creature, &self.sim, &self.catapult, watch)
-            }
-        }
+        crate::with_task!(self.task, T => T::evaluate(creature, self, watch))
     }
 
     /// The most control steps the task can take (every phase at its longest), which sets how
     /// densely a recording keeps samples ([`super::recording_interval`]).
     pub fn max_steps(&self) -> usize {
-        let dt = self.sim.control_step;
-        match self.task {
-            TaskKind::Walker => self.walker.max_steps(dt),
-            TaskKind::Jump => self.jump.max_steps(dt),
-            TaskKind::Catapult | TaskKind::Aim => self.catapult.max_steps(dt),
-        }
+        crate::with_task!(self.task, T => T::max_steps(self))
     }
 }
 
@@ -198,7 +140,7 @@ mod tests {
 
     #[test]
     fn task_names_are_the_ones_configs_spell_and_read_back() {
-        for task in TaskKind::ALL {
+        for &task in TaskKind::ALL {
             assert_eq!(serde_json::to_value(task).unwrap(), task.name());
             assert_eq!(task.name().parse::<TaskKind>(), Ok(task));
         }

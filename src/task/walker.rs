@@ -315,3 +315,49 @@ fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64> {
         .sum::<Vector3<f64>>()
         / total
 }
+
+/// Chaumont et al.'s walker, in the registry ([`super::Task`]).
+pub struct WalkerTask;
+
+impl super::Task for WalkerTask {
+    const NAME: &'static str = "walker";
+    const SUMMARY: &'static str =
+        "Chaumont et al.'s walker: distance of the root part, normalised by size (eq. 1)";
+    const FITNESS_VARIANTS: &'static [&'static str] = &[
+        "normalised",
+        "distance",
+        "iterative-move",
+        "box-lover",
+        "fat-lover",
+        "dwarf-slayer",
+        "hornby-pollack",
+    ];
+    const THROWS: bool = false;
+    type Options = WalkerOptions;
+
+    fn options(spec: &super::TaskSpec) -> WalkerOptions {
+        spec.walker.clone()
+    }
+    fn measure(spec: &super::TaskSpec) -> &'static str {
+        spec.walker.fitness.label()
+    }
+    fn floor(spec: &super::TaskSpec) -> Option<f64> {
+        spec.walker.fitness.floor()
+    }
+    fn max_steps(spec: &super::TaskSpec) -> usize {
+        spec.walker.max_steps(spec.sim.control_step)
+    }
+    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
+        &mut spec.walker.seconds
+    }
+    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
+        spec.walker.check().map_err(|e| e.within("walker"))
+    }
+    fn evaluate(
+        creature: &Creature,
+        spec: &super::TaskSpec,
+        watch: Watch<'_>,
+    ) -> Result<Evaluation, Interrupted> {
+        walker_watched(creature, &spec.sim, &spec.walker, watch)
+    }
+}

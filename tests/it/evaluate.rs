@@ -809,3 +809,57 @@ fn the_rest_setting_steps_as_a_world_built_with_it_does() {
     let mut plain = World::new(&falling, &fast).unwrap();
     assert_eq!(run(&mut w, 10), run(&mut plain, 10));
 }
+
+/// The top of a part of edge lengths `size` (length, thickness, width) at `pose`: its centre's
+/// height plus the half edges' reach upwards.
+fn top(
+    size: nalgebra::Vector3<f64>,
+    pose: &(nalgebra::Vector3<f64>, nalgebra::UnitQuaternion<f64>),
+) -> f64 {
+    let (centre, rotation) = pose;
+    let rotation = rotation.to_rotation_matrix();
+    centre.y
+        + (0..3)
+            .map(|i| (rotation[(1, i)] * size[i] / 2.0).abs())
+            .sum::<f64>()
+}
+
+#[test]
+fn standing_scores_the_mean_height_of_the_highest_point_while_measured() {
+    // Two parts on a hinge: the mean, over the measured steps, of the higher part's top.
+    let c = creature("forward(1) revolute2 forward(1)");
+    let spec = task::TaskSpec {
+        stand: task::StandOptions {
+            seconds: 0.5,
+            ..task::StandOptions::default()
+        },
+        ..task::TaskSpec::new(task::TaskKind::Stand)
+    };
+    let e = spec.evaluate(&c, true);
+    assert_eq!(e.status, Status::Ok, "{:?}", e.message);
+    let sizes: Vec<_> = c.parts.iter().map(|p| p.size).collect();
+    let measured: Vec<f64> = e
+        .recording
+        .iter()
+        .filter(|s| s.phase == Some(task::Phase::Measuring))
+        .map(|s| {
+            s.parts
+                .iter()
+                .zip(&sizes)
+                .map(|(pose, &size)| top(size, pose))
+                .fold(f64::NEG_INFINITY, f64::max)
+        })
+        .collect();
+    assert_eq!(measured.len(), 30);
+    let by_hand = measured.iter().sum::<f64>() / 30.0;
+    assert!(
+        (e.fitness - by_hand).abs() < 1e-5,
+        "{} by hand {by_hand}",
+        e.fitness
+    );
+    assert_eq!(e.terms["height"], e.fitness);
+    // Lying on the ground, the parts' 0.25 m thickness is the height.
+    assert!((e.fitness - 0.25).abs() < 0.01, "{}", e.fitness);
+    assert_eq!(spec.fitness_label(), "stand, mean height (m)");
+    assert_eq!(spec.fitness_floor(), Some(0.0));
+}

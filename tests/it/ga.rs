@@ -89,6 +89,7 @@ fn evolution(preset: Preset, population: usize) -> Evolution<Toy> {
         task,
         seed: 7,
         init: None,
+        key_version: Default::default(),
     }
 }
 

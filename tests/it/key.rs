@@ -1,10 +1,11 @@
-//! The evaluation key (`ontogeny::evolve::key`): pinned for a fixed creature and task, so that
-//! a change of its byte form, which would orphan every stored evaluation, is deliberate; and
-//! changed by every leaf of the task specification and its simulator settings, so that no
-//! setting can stop reaching the key and give one cached evaluation to two different tasks.
+//! The evaluation key (`ontogeny::evolve::key`): pinned for a fixed creature and task, in both
+//! versions, so that a change of its byte form, which would orphan every stored evaluation, is
+//! deliberate; changed by every setting the task reads, so that no setting can stop reaching
+//! the key and give one cached evaluation to two different tasks, and by no other (version 2);
+//! and, in version 1, by every task's settings, as runs made before version 2 keyed them.
 
 use ontogeny::creature::Creature;
-use ontogeny::evolve::key::EvaluationKey;
+use ontogeny::evolve::key::{EvaluationKey, KeyVersion};
 use ontogeny::task::{TaskKind, TaskSpec};
 use serde_json::Value;
 
@@ -16,12 +17,16 @@ fn creature() -> Creature {
 #[test]
 fn the_key_of_a_fixed_creature_and_task_is_pinned() {
     let c = creature();
-    let keys: Vec<String> = TaskKind::ALL
-        .iter()
-        .map(|&kind| EvaluationKey::of(&c, &TaskSpec::new(kind)).to_hex())
-        .collect();
+    let keys = |version: KeyVersion| -> Vec<String> {
+        TaskKind::ALL
+            .iter()
+            .map(|&kind| EvaluationKey::of_version(&c, &TaskSpec::new(kind), version).to_hex())
+            .collect()
+    };
+    // Version 1, the keys of runs made before keys had versions: the last is the stand task,
+    // which no such run has.
     assert_eq!(
-        keys,
+        keys(KeyVersion::V1)[..4],
         [
             "706031de35c2dfaf481d4c16cb0674fcfbe83d70d96e1e0b1c84fd2a9082910a",
             "13d36160947225552d602ca3177b50cc1b5a3f697232d396b131f53a0ac2ea18",
@@ -29,7 +34,17 @@ fn the_key_of_a_fixed_creature_and_task_is_pinned() {
             "601770ea3402902d0ec528be1888410fd5926dcec257f18f6675811c88e95ce5",
         ]
     );
+    assert_eq!(keys(KeyVersion::V2), PINNED_V2);
 }
+
+/// The version-2 keys of the fixed creature with each task's defaults, in the registry's order.
+const PINNED_V2: [&str; 5] = [
+    "000f7ad5e3102e309e8f1c76a505ca1202336fc52ad8cb324965806bf7df3c60",
+    "7eaf76b89c1b1d788cbfe19a2931a5edd0244967fc963e6b6a624bce5fe7acf2",
+    "062cd63070f4274f98c1a46235bf92e6cf9144db8c8c322a067a88395afd235b",
+    "9d760fa44c633c82e830d8ded339b04d7f68d26f5b9f2cdf74b378abcac1dc9e",
+    "23845b72f0e7da12f0d3d9a5d2d62fac7f969e64870ab9de4402b1eb1b7c896b",
+];
 
 /// Every leaf of `value` (a number, string, boolean or null that no object or array holds
 /// inside it), by its path of keys and indices.
@@ -94,37 +109,74 @@ fn replacements(spec: &Value, pointer: &str) -> Vec<Value> {
     }
 }
 
+/// Whether the task `kind` reads the setting at `pointer` of its specification (as JSON):
+/// the task's name, the simulator's settings and its own table (the catapult all of its
+/// table but the target, which only aim reads).
+fn reads(kind: TaskKind, pointer: &str) -> bool {
+    let table = match kind {
+        TaskKind::Aim => "catapult",
+        other => other.name(),
+    };
+    pointer == "/task"
+        || pointer.starts_with("/sim/")
+        || (pointer.starts_with(&format!("/{table}/"))
+            && !(kind == TaskKind::Catapult && pointer == "/catapult/target"))
+}
+
+/// A specification that reads back with the leaf at `pointer` of `spec` changed, if one does.
+fn with_leaf_changed(spec: &Value, pointer: &str) -> Option<TaskSpec> {
+    let original = spec.pointer(pointer).unwrap().clone();
+    // The first replacement the task reads back with this leaf changed.
+    replacements(spec, pointer).into_iter().find_map(|value| {
+        let mut edited = spec.clone();
+        *edited.pointer_mut(pointer).unwrap() = value;
+        let read: TaskSpec = serde_json::from_value(edited).ok()?;
+        let back = serde_json::to_value(&read).unwrap();
+        (back.pointer(pointer) != Some(&original)).then_some(read)
+    })
+}
+
 #[test]
-fn every_setting_of_the_task_and_the_simulator_changes_the_key() {
+fn every_setting_the_task_reads_changes_its_key_and_no_other_does() {
     let c = creature();
-    for kind in TaskKind::ALL {
+    for &kind in TaskKind::ALL {
         let task = TaskSpec::new(kind);
         let key = EvaluationKey::of(&c, &task);
         let spec = serde_json::to_value(&task).unwrap();
         let mut found = Vec::new();
         leaves(&spec, "", &mut found);
-        let mut unchanged = Vec::new();
+        let mut wrong = Vec::new();
         for pointer in &found {
-            let original = spec.pointer(pointer).unwrap().clone();
-            // The first replacement the task reads back with this leaf changed.
-            let changed = replacements(&spec, pointer).into_iter().find_map(|value| {
-                let mut edited = spec.clone();
-                *edited.pointer_mut(pointer).unwrap() = value;
-                let read: TaskSpec = serde_json::from_value(edited).ok()?;
-                let back = serde_json::to_value(&read).unwrap();
-                (back.pointer(pointer) != Some(&original)).then_some(read)
-            });
-            match changed {
-                Some(read) if EvaluationKey::of(&c, &read) != key => {}
-                Some(_) => unchanged.push(format!("{pointer}: the key did not change")),
-                None => unchanged.push(format!("{pointer}: no other value reads back")),
+            match with_leaf_changed(&spec, pointer) {
+                Some(read) if (EvaluationKey::of(&c, &read) != key) != reads(kind, pointer) => {
+                    wrong.push(format!("{pointer}: read {}", reads(kind, pointer)));
+                }
+                Some(_) => {}
+                None => wrong.push(format!("{pointer}: no other value reads back")),
             }
         }
-        assert!(
-            unchanged.is_empty(),
-            "{kind:?}: {unchanged:#?}\nin {spec:#}"
-        );
+        assert!(wrong.is_empty(), "{kind:?}: {wrong:#?}\nin {spec:#}");
         assert_eq!(found, PINNED_LEAVES, "{kind:?}: the leaves of {spec:#}");
+    }
+}
+
+#[test]
+fn every_setting_of_every_task_changed_a_version_1_key() {
+    let c = creature();
+    for &kind in &TaskKind::ALL[..4] {
+        let task = TaskSpec::new(kind);
+        let key = EvaluationKey::of_version(&c, &task, KeyVersion::V1);
+        let spec = serde_json::to_value(&task).unwrap();
+        let mut found = Vec::new();
+        leaves(&spec, "", &mut found);
+        for pointer in found.iter().filter(|p| !p.starts_with("/stand/")) {
+            let read = with_leaf_changed(&spec, pointer).unwrap();
+            assert_ne!(
+                EvaluationKey::of_version(&c, &read, KeyVersion::V1),
+                key,
+                "{kind:?}: {pointer}"
+            );
+        }
     }
 }
 
@@ -166,6 +218,12 @@ const PINNED_LEAVES: &[&str] = &[
     "/sim/strength",
     "/sim/strength_from",
     "/sim/substeps",
+    "/stand/max_height",
+    "/stand/rest/distance",
+    "/stand/rest/drift",
+    "/stand/rest/duration",
+    "/stand/rest/limit",
+    "/stand/seconds",
     "/task",
     "/walker/activation",
     "/walker/fitness",

@@ -36,10 +36,12 @@ mod long_runs;
 #[cfg(feature = "mpi")]
 mod mpi;
 mod never_panics;
+mod old_release;
 mod outputs;
 mod render;
 mod rooms;
 mod store;
+mod stubs;
 mod textbook;
 mod util;
 mod view;
