@@ -26,8 +26,9 @@ fn main() {
         setting: Some(StepSetting::Fast),
         ..RunFlags::default()
     };
-    let (config, _) = settings::new_run::<DirectGenome>(None, &flags, None, Some(1), true, true)
-        .expect("the bench's settings are valid");
+    let config = settings::new_run::<DirectGenome>(None, &flags, None, Some(1), true, true)
+        .expect("the bench's settings are valid")
+        .config;
     let folder = tempfile::tempdir().expect("a temporary folder");
     let dir = folder.path().join("run");
     let mut run = Run::<DirectGenome>::start(&dir, config, None).expect("the run starts");

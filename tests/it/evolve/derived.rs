@@ -20,8 +20,9 @@ fn tiny_run(out: &Path, generations: usize) -> Run<DirectGenome> {
         setting: Some(StepSetting::Fast),
         ..RunFlags::default()
     };
-    let (config, _) =
-        settings::new_run::<DirectGenome>(None, &flags, None, Some(3), true, true).unwrap();
+    let config = settings::new_run::<DirectGenome>(None, &flags, None, Some(3), true, true)
+        .unwrap()
+        .config;
     Run::<DirectGenome>::start(out, config, None).unwrap()
 }
 
