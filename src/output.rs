@@ -7,7 +7,8 @@
 //! reader sees the old file or the new one, never half of one, and a failure leaves the old one
 //! as it was. A target that exists and is not a regular file (a directory, a device such as
 //! `/dev/null`, a fifo, a socket, or a symbolic link, which is refused rather than followed or
-//! replaced) is refused before anything is written.
+//! replaced) is refused before anything is written. The one exception, [`replace_tail`],
+//! grows a log in place, for a file that can be written anew from a record of truth.
 //!
 //! Every folder a verb writes its outputs into is first made ready by
 //! [`prepare_folder`] ([`folder`]): it must be missing, empty, or marked as Ontogeny's for the
@@ -20,7 +21,7 @@ pub mod folder;
 pub use folder::{FolderKind, check_folder, prepare_folder};
 
 use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, BufWriter, Seek, Write};
 use std::path::{Path, PathBuf};
 
 /// Why an output file was not written.
@@ -111,6 +112,27 @@ pub fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), OutputError> {
                 cause: source,
             })
     })
+}
+
+/// Replaces what follows the first `at` bytes of the regular file `path` with `bytes`, in
+/// place: for a file that grows at its end (a log), at a cost that does not grow with the
+/// file. Unlike [`write`](fn@write), a process killed meanwhile may leave the file cut short
+/// or half written: use it only for a file that can be written anew from a record of truth. A
+/// target that is missing or not a regular file is refused ([`check_target`]; a missing one as
+/// [`OutputError::Io`]).
+pub fn replace_tail(path: &Path, at: u64, bytes: impl AsRef<[u8]>) -> Result<(), OutputError> {
+    check_target(path)?;
+    let io_error = |source| OutputError::Io {
+        path: path.into(),
+        cause: source,
+    };
+    let mut file = std::fs::OpenOptions::new()
+        .write(true)
+        .open(path)
+        .map_err(io_error)?;
+    file.set_len(at).map_err(io_error)?;
+    file.seek(io::SeekFrom::Start(at)).map_err(io_error)?;
+    file.write_all(bytes.as_ref()).map_err(io_error)
 }
 
 /// Writes to `path` what `fill` writes, whole or not at all: `fill` writes to a temporary file
@@ -242,6 +264,37 @@ mod tests {
         std::fs::write(&path, "an old and longer content").unwrap();
         write(&path, "new").unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+    }
+
+    #[test]
+    fn a_tail_is_replaced_in_place_after_the_head_kept() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("log.txt");
+        std::fs::write(&path, "line 0\nnote: old\n").unwrap();
+        replace_tail(&path, 7, "line 1\nnote: new\n").unwrap();
+        assert_eq!(
+            std::fs::read_to_string(&path).unwrap(),
+            "line 0\nline 1\nnote: new\n"
+        );
+        // A missing file is not created, and a link is not followed.
+        let missing = dir.path().join("missing.txt");
+        let error = replace_tail(&missing, 0, "x").unwrap_err();
+        assert!(matches!(error, OutputError::Io { .. }), "{error:?}");
+        assert!(!missing.exists());
+        #[cfg(unix)]
+        {
+            let link = dir.path().join("link.txt");
+            std::os::unix::fs::symlink(&path, &link).unwrap();
+            let error = replace_tail(&link, 0, "x").unwrap_err();
+            assert!(
+                matches!(error, OutputError::NotARegularFile { .. }),
+                "{error:?}"
+            );
+            assert_eq!(
+                std::fs::read_to_string(&path).unwrap(),
+                "line 0\nline 1\nnote: new\n"
+            );
+        }
     }
 
     #[test]

@@ -134,7 +134,7 @@ pub(crate) fn task_spec(
         .map_err(|e| value_error(e.for_flag("setting")))?;
     let spec = flags
         .spec(sim)
-        .map_err(|e| value_error(e.for_flag(option_of(e.key))))?;
+        .map_err(|e| value_error(e.for_flag(&option_of(e.key))))?;
     let ignored: Vec<String> = flags
         .inapplicable()
         .into_iter()

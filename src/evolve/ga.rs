@@ -552,6 +552,11 @@ impl<G: Genome> Evolution<G> {
             })
             .collect();
         let children = population - survivors;
+        let ranked = Ranked {
+            previous,
+            order: &order,
+            survivors,
+        };
         let adaptive_rate = self.adaptive_rate(previous);
         let (unborn, fell_back): (Vec<Unborn<G>>, Vec<Option<Operator>>) = (0..children)
             .into_par_iter()
@@ -559,16 +564,11 @@ impl<G: Genome> Evolution<G> {
                 let index = (survivors + k) as u32;
                 let mut rng = individual_rng(self.seed, generation, index, 0);
                 let develop_seed = individual_rng(self.seed, generation, index, 1).random();
-                self.breed(
-                    k,
-                    children,
-                    &order,
-                    survivors,
-                    previous,
-                    adaptive_rate,
-                    &mut rng,
-                )
-                .into_unborn(develop_seed)
+                let child = match self.settings.preset {
+                    Preset::Chaumont => self.vary_chaumont(&ranked, k, children, &mut rng),
+                    Preset::Wwd => self.vary_wwd(&ranked, adaptive_rate, &mut rng),
+                };
+                child.into_unborn(develop_seed)
             })
             .unzip();
         let born = self.evaluate_all(unborn, cache, cancel)?;
@@ -611,87 +611,102 @@ impl<G: Genome> Evolution<G> {
         (base * factor.clamp(0.5, 4.0)).min(1.0)
     }
 
-    /// Makes child `k` of `children`.
-    #[allow(clippy::too_many_arguments)]
-    fn breed(
+    /// Chaumont et al. 5.7's variation, child `k` of `children`: the operator
+    /// [`schedule`] gives it, on parents drawn from the elite: mutation alone (at the
+    /// `mutation_rate`), or crossover or grafting of two, the child then mutated with the
+    /// `mutation_chance_after_mating` (at the `mutation_rate_after_mating`). An encoding that
+    /// cannot mate the two makes the child by mutation instead, and says so.
+    fn vary_chaumont(
         &self,
+        ranked: &Ranked<G>,
         k: usize,
         children: usize,
-        order: &[usize],
-        survivors: usize,
-        previous: &[Individual<G>],
-        adaptive_rate: f64,
         rng: &mut Rng,
     ) -> Child<G> {
         let s = &self.settings;
-        let pick = |rng: &mut Rng, from: &[usize]| from[rng.random_range(0..from.len())];
-        let elite = &order[..survivors];
-        match s.preset {
-            Preset::Chaumont => {
-                let scheduled = schedule(k, children, s.asexual, s.crossover);
-                let a = pick(rng, elite);
-                if scheduled == Operator::Mutation {
-                    return Child::new(
-                        previous[a]
-                            .genome
-                            .mutate(&self.limits, s.mutation_rate, rng),
-                        vec![a],
-                        Operator::Mutation,
-                        None,
-                    );
+        let scheduled = schedule(k, children, s.asexual, s.crossover);
+        let a = pick(rng, ranked.elite());
+        let ga = &ranked.previous[a].genome;
+        if scheduled == Operator::Mutation {
+            return Child::new(
+                ga.mutate(&self.limits, s.mutation_rate, rng),
+                vec![a],
+                Operator::Mutation,
+                None,
+            );
+        }
+        let b = pick(rng, ranked.elite());
+        let gb = &ranked.previous[b].genome;
+        let mated = match scheduled {
+            Operator::Crossover => ga.crossover(gb, &self.limits, rng),
+            _ => ga.graft(gb, &self.limits, rng),
+        };
+        match mated {
+            Some(mut child) => {
+                if rng.random_bool(s.mutation_chance_after_mating) {
+                    child = child.mutate(&self.limits, s.mutation_rate_after_mating, rng);
                 }
-                let b = pick(rng, elite);
-                let (ga, gb) = (&previous[a].genome, &previous[b].genome);
-                let mated = match scheduled {
-                    Operator::Crossover => ga.crossover(gb, &self.limits, rng),
-                    _ => ga.graft(gb, &self.limits, rng),
-                };
-                match mated {
-                    Some(mut child) => {
-                        if rng.random_bool(s.mutation_chance_after_mating) {
-                            child = child.mutate(&self.limits, s.mutation_rate_after_mating, rng);
-                        }
-                        Child::new(child, vec![a, b], scheduled, None)
-                    }
-                    None => Child::new(
-                        ga.mutate(&self.limits, s.mutation_rate, rng),
-                        vec![a],
-                        Operator::Mutation,
-                        Some(scheduled),
-                    ),
-                }
+                Child::new(child, vec![a, b], scheduled, None)
             }
-            Preset::Wwd => {
-                let breeders_end = (survivors + s.breeder_count()).min(order.len());
-                let breeders = if breeders_end > survivors {
-                    &order[survivors..breeders_end]
-                } else {
-                    elite
-                };
-                let e = pick(rng, elite);
-                let b = pick(rng, breeders);
-                // The breeder receives a part of the elite's genome (WWD 3.3.1), then every
-                // new creature is mutated (3.3.2).
-                match previous[b]
-                    .genome
-                    .crossover(&previous[e].genome, &self.limits, rng)
-                {
-                    Some(child) => Child::new(
-                        child.mutate(&self.limits, adaptive_rate, rng),
-                        vec![b, e],
-                        Operator::Crossover,
-                        None,
-                    ),
-                    None => Child::new(
-                        previous[b].genome.mutate(&self.limits, adaptive_rate, rng),
-                        vec![b],
-                        Operator::Mutation,
-                        Some(Operator::Crossover),
-                    ),
-                }
-            }
+            None => Child::new(
+                ga.mutate(&self.limits, s.mutation_rate, rng),
+                vec![a],
+                Operator::Mutation,
+                Some(scheduled),
+            ),
         }
     }
+
+    /// Walking with Dinosaurs 3.3's variation: a breeder (ranked after the elite; the elite
+    /// when there are none) receives a part of an elite's genome by crossover (3.3.1), and
+    /// every new creature is then mutated at the adaptive `rate` (3.3.2). An encoding without
+    /// crossover mutates the breeder alone, and says so.
+    fn vary_wwd(&self, ranked: &Ranked<G>, rate: f64, rng: &mut Rng) -> Child<G> {
+        let (order, survivors) = (ranked.order, ranked.survivors);
+        let breeders_end = (survivors + self.settings.breeder_count()).min(order.len());
+        let breeders = if breeders_end > survivors {
+            &order[survivors..breeders_end]
+        } else {
+            ranked.elite()
+        };
+        let e = pick(rng, ranked.elite());
+        let b = pick(rng, breeders);
+        let breeder = &ranked.previous[b].genome;
+        match breeder.crossover(&ranked.previous[e].genome, &self.limits, rng) {
+            Some(child) => Child::new(
+                child.mutate(&self.limits, rate, rng),
+                vec![b, e],
+                Operator::Crossover,
+                None,
+            ),
+            None => Child::new(
+                breeder.mutate(&self.limits, rate, rng),
+                vec![b],
+                Operator::Mutation,
+                Some(Operator::Crossover),
+            ),
+        }
+    }
+}
+
+/// The previous generation as variation sees it: its members, their indices ranked best
+/// first ([`ranking`]), and how many of the first are the elite.
+struct Ranked<'a, G> {
+    previous: &'a [Individual<G>],
+    order: &'a [usize],
+    survivors: usize,
+}
+
+impl<G> Ranked<'_, G> {
+    /// The elite's indices, best first.
+    fn elite(&self) -> &[usize] {
+        &self.order[..self.survivors]
+    }
+}
+
+/// One of `from`, drawn uniformly.
+fn pick(rng: &mut Rng, from: &[usize]) -> usize {
+    from[rng.random_range(0..from.len())]
 }
 
 /// A child genome before evaluation, and the operator it fell back from, if any.

@@ -1,8 +1,8 @@
 //! A run directory: `run.sqlite` (the record of truth: every setting, written when the run
 //! starts, and one transaction per generation), `config.toml` (the settings as text, for
 //! people), and the files derived from the store: `log.txt`, `fitness.svg` and `best.lsys`
-//! (`best.json`, ... after the encoding's text form), rewritten from the store after every
-//! generation and whenever the run is resumed, so they always agree with it.
+//! (`best.json`, ... after the encoding's text form), written whole from the store whenever
+//! the run starts or is resumed, and advanced by each generation ([`derived`]).
 //!
 //! A run killed at any moment resumes from its last complete generation and ends exactly as
 //! an uninterrupted run would. The store is created whole and only then `config.toml`, so a
@@ -13,12 +13,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rayon::prelude::*;
-
 use super::config::{RunConfig, check_settings, read_run_config, with_generations};
-use super::folder::{CONFIG_FILE, Claim, LOG_FILE, PLOT_FILE, STORE_FILE, claim_folder};
+use super::folder::{CONFIG_FILE, Claim, STORE_FILE, claim_folder};
 use super::lock::{DirectoryLock, LockError};
-use super::plot::fitness_svg;
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
 };
@@ -26,11 +23,16 @@ use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::evolve::cache::EvaluationCache;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
-use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
+use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator};
 use crate::evolve::key::{EvaluationKey, KeyVersion};
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
 use crate::task::{Evaluation, TaskSpec, Watch};
+
+pub mod derived;
+mod progress;
+
+use progress::Progress;
 
 /// Why a run could not start, resume or go on.
 #[derive(Debug, thiserror::Error)]
@@ -149,6 +151,8 @@ pub struct Run<G: Genome> {
     _lock: Option<DirectoryLock>,
     /// Stops [`Run::run`] between evaluations once set.
     cancel: Cancel,
+    /// What the derived files hold, once written from the store ([`derived`]).
+    written: Option<derived::Written>,
 }
 
 /// The encoding of the run in `dir`, as its store records it (or, for a start interrupted
@@ -227,7 +231,7 @@ impl<G: Genome> Run<G> {
             },
         )?;
         output::write(&dir.join(CONFIG_FILE), text.as_bytes())?;
-        let run = Run::assemble(dir, config, store, init, Some(lock));
+        let mut run = Run::assemble(dir, config, store, init, Some(lock));
         run.write_derived_files()?;
         Ok(run)
     }
@@ -282,7 +286,7 @@ impl<G: Genome> Run<G> {
                 },
             )?;
             let init = Self::read_init(dir, &config)?;
-            let run = Run::assemble(dir, config, store, init, Some(lock));
+            let mut run = Run::assemble(dir, config, store, init, Some(lock));
             run.write_derived_files()?;
             return Ok(run);
         }
@@ -461,6 +465,7 @@ impl<G: Genome> Run<G> {
             store,
             _lock: lock,
             cancel: Cancel::default(),
+            written: None,
         }
     }
 
@@ -615,102 +620,48 @@ impl<G: Genome> Run<G> {
     }
 
     /// Runs the remaining generations, calling `observer` after each; stops with
-    /// [`RunError::Interrupted`] once the token of [`Run::set_cancel`] is set.
+    /// [`RunError::Interrupted`] once the token of [`Run::set_cancel`] is set. Outside
+    /// evaluation a generation costs the same whatever came before it: one transaction of the
+    /// store and the derived files advanced by it ([`derived`]).
     pub fn run(&mut self, observer: &mut dyn FnMut(&GenerationReport)) -> Result<(), RunError> {
-        let generations = self.config.ga.generations as u32;
-        let (mut population, first) = match self.store.last_generation()? {
-            None => (Vec::new(), 0),
-            Some(g) => (self.population(g)?, g + 1),
+        let mut progress = self.progress()?;
+        let outcome = (progress.next..self.config.ga.generations as u32)
+            .try_for_each(|generation| self.generation(&mut progress, generation, observer));
+        if outcome.is_err() {
+            // Stopped early: the plot shows every stored generation, as a resume draws it.
+            // Should that fail too, the first error is the one to tell.
+            let _ = self.catch_up_plot();
+        }
+        outcome
+    }
+
+    /// One generation: bred and evaluated, its best re-walked at the fine reference, stored,
+    /// the derived files advanced, `observer` told.
+    fn generation(
+        &mut self,
+        progress: &mut Progress<G>,
+        generation: u32,
+        observer: &mut dyn FnMut(&GenerationReport),
+    ) -> Result<(), RunError> {
+        self.cancel.check()?;
+        let started = Instant::now();
+        let evaluations = self.breed(progress, generation)?;
+        let best_fine = self.verify_best(progress)?;
+        let evaluation_seconds = started.elapsed().as_secs_f64();
+        let mut stats = GenerationRecord {
+            index: generation,
+            best_fine,
+            ..GenerationRecord::of(&progress.population, evaluations)
         };
-        self.rebuild_cache()?;
-        // A generation stored before evaluation keys existed (a migrated store): its
-        // individuals are keyed again, so its elites carry their keys on, and join the cache.
-        if population.iter().any(|i| i.key.is_none()) {
-            let evolution = &self.evolution;
-            population
-                .par_iter_mut()
-                .filter(|i| i.key.is_none())
-                .for_each(|i| i.key = evolution.key(&i.genome, i.develop_seed));
-            for i in &population {
-                if let (Some(key), false) = (i.key, i.reused) {
-                    self.cache.insert(key, &i.evaluation);
-                }
-            }
-        }
-        // The previous generation's best (its index) and its fine reference evaluation: an
-        // elite copy of it needs no second walk, as the evaluation is a pure function of the
-        // genome, its development seed and the task.
-        let mut previous_best: Option<(u32, FineEvaluation)> = None;
-        if first > 0
-            && self.store.evaluators()?.last().map(|&(_, v)| v) == Some(EVALUATOR_VERSION)
-            && let Some(&best) = ranking(&population).first()
-            && let Some(stored) = self.store.generations()?.pop().and_then(|g| g.best_fine)
-        {
-            previous_best = Some((best as u32, stored));
-        }
-        let mut fallbacks = self
-            .fallbacks_by_generation()?
-            .last()
-            .cloned()
-            .unwrap_or_default();
-        for generation in first..generations {
-            self.cancel.check()?;
-            let started = Instant::now();
-            let (next, evaluations) = if generation == 0 {
-                let p = self
-                    .evolution
-                    .first_generation(&mut self.cache, &self.cancel)?;
-                let n = p.len() as u64;
-                (p, n)
-            } else {
-                self.evolution.next_generation(
-                    &population,
-                    generation,
-                    &mut fallbacks,
-                    &mut self.cache,
-                    &self.cancel,
-                )?
-            };
-            population = next;
-            let best = ranking(&population).first().copied();
-            let best_fine = match best {
-                Some(best) if self.config.verify_best => {
-                    let b = &population[best];
-                    Some(match &previous_best {
-                        Some((p, fine)) if b.operator == Operator::Elite && b.parents == [*p] => {
-                            fine.clone()
-                        }
-                        _ => match b.key.and_then(|k| self.cache.fine(&k).cloned()) {
-                            Some(fine) => fine,
-                            None => {
-                                let fine = self.fine_evaluation(b, &self.cancel)?;
-                                if let Some(key) = b.key {
-                                    self.cache.insert_fine(key, &fine);
-                                }
-                                fine
-                            }
-                        },
-                    })
-                }
-                _ => None,
-            };
-            previous_best = best.zip(best_fine.clone()).map(|(b, f)| (b as u32, f));
-            let evaluation_seconds = started.elapsed().as_secs_f64();
-            let mut stats = GenerationRecord {
-                index: generation,
-                best_fine,
-                ..GenerationRecord::of(&population, evaluations)
-            };
-            self.record(&population, &mut stats, started)?;
-            let wall_seconds = started.elapsed().as_secs_f64();
-            observer(&GenerationReport {
-                generation,
-                stats,
-                wall_seconds,
-                evaluation_seconds,
-                fallbacks: fallbacks.clone(),
-            });
-        }
+        self.record(&progress.population, &mut stats, started)?;
+        self.advance_derived_files(&progress.population, &stats, &progress.fallbacks)?;
+        observer(&GenerationReport {
+            generation,
+            stats,
+            wall_seconds: started.elapsed().as_secs_f64(),
+            evaluation_seconds,
+            fallbacks: progress.fallbacks.clone(),
+        });
         Ok(())
     }
 
@@ -752,8 +703,7 @@ impl<G: Genome> Run<G> {
         })
     }
 
-    /// Stores a generation (one transaction), then rewrites `best.lsys` (or the encoding's
-    /// extension) and `fitness.svg`; `stats` gets its timings first.
+    /// Stores a generation (one transaction); `stats` gets its timings first.
     fn record(
         &mut self,
         population: &[Individual<G>],
@@ -788,7 +738,7 @@ impl<G: Genome> Run<G> {
         stats.wall_seconds = started.elapsed().as_secs_f64();
         stats.evaluations_per_second = stats.evaluations as f64 / stats.wall_seconds.max(1e-9);
         self.store.write_generation(stats, &individuals)?;
-        self.write_derived_files()
+        Ok(())
     }
 
     /// How many children each stored generation had made by mutation instead of the
@@ -809,79 +759,6 @@ impl<G: Genome> Run<G> {
             *f = total.clone();
         }
         Ok(fallen)
-    }
-
-    /// Rewrites the files derived from the store: `log.txt` (a line per stored generation),
-    /// `fitness.svg`, and `best.lsys` (or the encoding's extension: the best individual of the
-    /// last stored generation). Each is written whole through a temporary file, so they
-    /// agree with the store whenever a process is killed.
-    pub fn write_derived_files(&self) -> Result<(), RunError> {
-        let generations = self.store.generations()?;
-        let fallbacks = self.fallbacks_by_generation()?;
-        let mut log = String::new();
-        let fitness = self.config.task.fitness_label();
-        for g in &generations {
-            log.push_str(&format!(
-                "generation {}: {fitness}: best {:.6}{}, mean {:.6}, median {:.6}, valid {:.0}%, {} evaluations, {} simulated in {:.1} s\n",
-                g.index,
-                g.best,
-                fine_note(g.best_fine.as_ref()),
-                g.mean,
-                g.median,
-                g.valid_fraction * 100.0,
-                g.evaluations,
-                g.evaluations.saturating_sub(g.reused),
-                g.wall_seconds,
-            ));
-        }
-        // The operators the encoding lacks, said once, with the count the store gives.
-        if let (Some(last), Some(fallen)) = (generations.last(), fallbacks.last()) {
-            log.push_str(&fallback_note(fallen, G::NAME, last.index));
-        }
-        output::write(&self.dir.join(LOG_FILE), log.as_bytes())?;
-        if let Some(last) = generations.last() {
-            let population = self.population(last.index)?;
-            if let Some(&best) = ranking(&population).first() {
-                let b = &population[best];
-                let fine = match &last.best_fine {
-                    Some(f) => format!(
-                        "; re-walked at the fine reference setting: {} ({})",
-                        f.fitness, f.status
-                    ),
-                    None => String::new(),
-                };
-                let note = format!(
-                    "The best individual of {} after generation {} ({fitness}): fitness {} ({}){fine}.\nGrow it with `ontogeny grow`; `ontogeny eval` on this file repeats its evaluation, whose every input the line below records.",
-                    self.dir.display(),
-                    last.index,
-                    b.evaluation.fitness,
-                    status_name(b),
-                );
-                let record = super::champion::ChampionRecord::new(
-                    b.evaluation.fitness,
-                    &self.config.task,
-                    b.develop_seed,
-                    &self.config.limits,
-                );
-                let text = record.file_text(&b.genome, &note);
-                let name = format!("best.{}", G::TEXT_EXTENSION);
-                output::write(&self.dir.join(name), text.as_bytes())?;
-            }
-        }
-        let title = format!(
-            "{}: {} on the {} task",
-            self.dir.display(),
-            G::NAME,
-            self.config.task.task.name()
-        );
-        let y_desc = format!("fitness: {}", self.config.task.fitness_measure());
-        fitness_svg(&self.dir.join(PLOT_FILE), &generations, &title, &y_desc).map_err(
-            |e| match e {
-                super::plot::PlotError::Output(e) => RunError::Output(e),
-                other => RunError::Plot(other.to_string()),
-            },
-        )?;
-        Ok(())
     }
 }
 
@@ -904,30 +781,4 @@ fn status_text(e: &Evaluation) -> String {
 /// of 0 has nothing to lose.
 pub fn exploits_stepping(best: f64, fine: f64) -> bool {
     best != 0.0 && best.is_finite() && (fine.is_nan() || fine < best - best.abs() / 2.0)
-}
-
-/// " (fine reference 4.100000)" for a log line, or nothing when the best was not verified.
-fn fine_note(fine: Option<&FineEvaluation>) -> String {
-    match fine {
-        Some(f) if f.status == "ok" => format!(" (fine reference {:.6})", f.fitness),
-        Some(f) => format!(" (fine reference {:.6}, {})", f.fitness, f.status),
-        None => String::new(),
-    }
-}
-
-/// The line of `log.txt` that says, once, how many children the encoding could not mate
-/// (made by mutation instead) through generation `last`; nothing when there were none.
-fn fallback_note(f: &Fallbacks, encoding: &str, last: u32) -> String {
-    if f.crossover == 0 && f.graft == 0 {
-        return String::new();
-    }
-    format!(
-        "note: the {encoding} encoding has no {}: {} children of generations 1 to {last} were made by mutation instead\n",
-        match (f.crossover > 0, f.graft > 0) {
-            (true, true) => "crossover or grafting",
-            (true, false) => "crossover",
-            _ => "grafting",
-        },
-        f.crossover + f.graft
-    )
 }

@@ -7,6 +7,7 @@
 
 mod cache;
 mod champion;
+mod derived;
 mod resume;
 
 use std::path::{Path, PathBuf};
@@ -48,6 +49,21 @@ fn evolve_command(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Com
         .arg(out)
         .args(extra);
     c
+}
+
+/// `log.txt` without its wall-clock figures (" in 1.2 s").
+fn log_without_times(dir: &Path) -> String {
+    std::fs::read_to_string(dir.join("log.txt"))
+        .unwrap()
+        .lines()
+        .map(|line| match line.split_once(" simulated in ") {
+            Some((head, tail)) => {
+                let tail = tail.split_once(" s").map_or("", |(_, rest)| rest);
+                format!("{head} simulated{tail}\n")
+            }
+            None => format!("{line}\n"),
+        })
+        .collect()
 }
 
 /// The small run of 4 generations.

@@ -115,21 +115,6 @@ fn every_state_a_killed_start_leaves_is_one_resume_completes() {
     let _ = std::fs::remove_dir_all(dir);
 }
 
-/// `log.txt` without its wall-clock figures (" in 1.2 s").
-fn log_without_times(dir: &Path) -> String {
-    std::fs::read_to_string(dir.join("log.txt"))
-        .unwrap()
-        .lines()
-        .map(|line| match line.split_once(" simulated in ") {
-            Some((head, tail)) => {
-                let tail = tail.split_once(" s").map_or("", |(_, rest)| rest);
-                format!("{head} simulated{tail}\n")
-            }
-            None => format!("{line}\n"),
-        })
-        .collect()
-}
-
 #[test]
 fn log_and_plot_are_rewritten_from_the_store_on_every_resume() {
     // The direct encoding has no crossover: the log counts the children made by mutation
