@@ -1,6 +1,8 @@
 //! Creatures from Python: `grow`, `load`, `genome` and `derive`, and the `Creature` class.
 
 use crate::common::{diagnostic_error, load_error, require_exists, value_error, warn_all};
+use pyo3::exceptions::{PyDeprecationWarning, PyTypeError};
+use std::ffi::CString;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -28,6 +30,32 @@ pub(crate) fn derive_options(
         dt,
         env: env.unwrap_or_default(),
         ..DeriveOptions::default()
+    }
+}
+
+/// The grammar's seed given as `grammar_seed=`, or under its old name `seed=` (still read,
+/// with a `DeprecationWarning` saying what the command line's note on `--seed` says); both
+/// at once are a `TypeError`.
+pub(crate) fn given_grammar_seed(
+    py: Python<'_>,
+    grammar_seed: Option<u64>,
+    seed: Option<u64>,
+) -> PyResult<Option<u64>> {
+    match (grammar_seed, seed) {
+        (Some(_), Some(_)) => Err(PyTypeError::new_err(
+            "grammar_seed= and seed= are one argument (seed= is its old name): give one",
+        )),
+        (None, Some(seed)) => {
+            let category = py.get_type::<PyDeprecationWarning>();
+            let message = CString::new(format!(
+                "seed={seed} is read as grammar_seed={seed}, the seed of the grammar's \
+                 stochastic rules (seed= is the genetic algorithm's seed, in evolve and compare)"
+            ))
+            .unwrap_or_default();
+            PyErr::warn(py, category.as_any(), &message, 1)?;
+            Ok(Some(seed))
+        }
+        (given, None) => Ok(given),
     }
 }
 
@@ -189,7 +217,7 @@ pub(crate) fn rows(points: impl Iterator<Item = [f64; 3]>) -> Array2<f64> {
 /// Grows a creature from grammar text (an `.lsys` file's content), to its last frame, as
 /// `ontogeny grow` does.
 #[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[pyo3(signature = (text, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn grow(
     py: Python<'_>,
@@ -197,10 +225,12 @@ pub(crate) fn grow(
     steps: Option<u64>,
     time: Option<f64>,
     dt: Option<f64>,
-    seed: Option<u64>,
+    grammar_seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
     defines: Option<std::collections::BTreeMap<String, f64>>,
+    seed: Option<u64>,
 ) -> PyResult<PyCreature> {
+    let seed = given_grammar_seed(py, grammar_seed, seed)?;
     let lsys = grammar_text(text, &define_overrides(defines)?)?;
     let options = load_options(steps, seed, time, dt, env);
     let loaded = interruptible(py, |cancel| {
@@ -217,7 +247,7 @@ pub(crate) fn grow(
 /// Reads a creature from a file, as `ontogeny eval FILE` does: an `.lsys` grammar (or a
 /// direct genome, grown to its last frame), a `creature.json`, or a graph genome's `.json`.
 #[pyfunction]
-#[pyo3(signature = (path, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[pyo3(signature = (path, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn load(
     py: Python<'_>,
@@ -225,10 +255,12 @@ pub(crate) fn load(
     steps: Option<u64>,
     time: Option<f64>,
     dt: Option<f64>,
-    seed: Option<u64>,
+    grammar_seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
     defines: Option<std::collections::BTreeMap<String, f64>>,
+    seed: Option<u64>,
 ) -> PyResult<PyCreature> {
+    let seed = given_grammar_seed(py, grammar_seed, seed)?;
     require_exists(&path)?;
     let options = LoadOptions {
         defines: define_overrides(defines)?,
@@ -278,7 +310,7 @@ pub(crate) fn genome(
 /// the axiom first: the frame's time (its step in discrete time), its module string as text,
 /// and the environment's values.
 #[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[pyo3(signature = (text, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn derive(
     py: Python<'_>,
@@ -286,10 +318,12 @@ pub(crate) fn derive(
     steps: Option<u64>,
     time: Option<f64>,
     dt: Option<f64>,
-    seed: Option<u64>,
+    grammar_seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
     defines: Option<std::collections::BTreeMap<String, f64>>,
+    seed: Option<u64>,
 ) -> PyResult<Vec<(f64, String, Vec<f64>)>> {
+    let seed = given_grammar_seed(py, grammar_seed, seed)?;
     let lsys = grammar_text(text, &define_overrides(defines)?)?;
     let options = derive_options(seed, time, dt, env);
     let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
