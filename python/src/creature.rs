@@ -13,7 +13,7 @@ use numpy::ndarray::Array2;
 use ontogeny::creature::Creature;
 use ontogeny::encoding::{Genome, LoadOptions, grow_grammar, load_creature};
 use ontogeny::lang::{Diagnostic, Source};
-use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, print};
+use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides, print};
 use pyo3::prelude::*;
 
 /// The derivation options of the keyword arguments shared by `grow` and `derive`, as the
@@ -93,9 +93,15 @@ pub(crate) fn define_overrides(
         .collect()
 }
 
-/// Compiles grammar `text` with `defines` in place of the values of its defines.
-pub(crate) fn grammar_text(text: &str, defines: &[DefineOverride]) -> PyResult<LSystem> {
-    LSystem::parse_with(Source::new(TEXT_NAME, text), defines).map_err(diagnostic_error)
+/// Compiles grammar `text` with `defines` in place of the values of its defines and `seed` in
+/// place of its `seed:` (as `--define` and `--grammar-seed` do).
+pub(crate) fn grammar_text(
+    text: &str,
+    defines: Vec<DefineOverride>,
+    seed: Option<u64>,
+) -> PyResult<LSystem> {
+    LSystem::parse_with(Source::new(TEXT_NAME, text), &Overrides { defines, seed })
+        .map_err(diagnostic_error)
 }
 
 /// The name a grammar given as text goes by in messages.
@@ -231,7 +237,7 @@ pub(crate) fn grow(
     seed: Option<u64>,
 ) -> PyResult<PyCreature> {
     let seed = given_grammar_seed(py, grammar_seed, seed)?;
-    let lsys = grammar_text(text, &define_overrides(defines)?)?;
+    let lsys = grammar_text(text, define_overrides(defines)?, seed)?;
     let options = load_options(steps, seed, time, dt, env);
     let loaded = interruptible(py, |cancel| {
         let options = LoadOptions {
@@ -324,7 +330,7 @@ pub(crate) fn derive(
     seed: Option<u64>,
 ) -> PyResult<Vec<(f64, String, Vec<f64>)>> {
     let seed = given_grammar_seed(py, grammar_seed, seed)?;
-    let lsys = grammar_text(text, &define_overrides(defines)?)?;
+    let lsys = grammar_text(text, define_overrides(defines)?, seed)?;
     let options = derive_options(seed, time, dt, env);
     let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
     warn_all(py, &note.into_iter().collect::<Vec<_>>())?;

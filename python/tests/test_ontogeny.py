@@ -104,6 +104,30 @@ def test_grammar_seed_seeds_the_grammar_as_the_command_lines_grammar_seed_does(r
     assert ontogeny.load(root / "examples/stochastic-plant.lsys", grammar_seed=3).parts == grown["parts"]
 
 
+SEEDED = """\
+seed: 1
+define R = uniform(0.1, 0.9)
+axiom: A(R)
+derivation length: 4
+A(x) --> forward(x) A(x) : 0.5
+A(x) --> forward(0.3) revolute1 A(x) : 0.5
+"""
+
+
+def test_grammar_seed_is_the_seed_line_edited_defines_included(tmp_path):
+    edited = SEEDED.replace("seed: 1", "seed: 7")
+    frames = ontogeny.derive(SEEDED, grammar_seed=7)
+    assert frames == ontogeny.derive(edited)
+    assert frames != ontogeny.derive(SEEDED)
+    # The axiom carries R, drawn from the seed when the grammar is read.
+    assert frames[0][1] != ontogeny.derive(SEEDED)[0][1]
+    grown = ontogeny.grow(SEEDED, grammar_seed=7)
+    assert grown.to_json() == ontogeny.grow(edited).to_json()
+    path = tmp_path / "seeded.lsys"
+    path.write_text(SEEDED)
+    assert ontogeny.load(path, grammar_seed=7).to_json() == grown.to_json()
+
+
 def test_seed_is_the_old_name_of_grammar_seed_and_says_so(root):
     text = (root / "examples/stochastic-plant.lsys").read_text()
     note = (
