@@ -96,10 +96,7 @@ mod tests {
 
     /// A private scratch directory, removed when dropped.
     fn scratch() -> tempfile::TempDir {
-        tempfile::Builder::new()
-            .prefix("ontogeny-lock-unit-")
-            .tempdir()
-            .unwrap()
+        tempfile::tempdir().expect("a scratch directory")
     }
 
     #[test]

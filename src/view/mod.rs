@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 
-use crate::develop::{BuildOptions, build};
+use crate::develop::{BuildOptions, build_frame};
 use crate::lang::{Diagnostic, FileKind};
 use crate::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides};
 
@@ -434,14 +434,7 @@ fn grow_with_strings(
     .with_headers(lsys);
     let mut frames = Vec::new();
     lsys.for_each_frame(options, steps, |frame| {
-        let shown = lsys.interpret(frame.string, frame.t, options)?;
-        let creature = build(
-            &shown,
-            lsys.symbols(),
-            frame.env,
-            Some(frame.t),
-            &build_options,
-        );
+        let creature = build_frame(lsys, &frame, options, &build_options)?;
         frames.push(frame_json(
             frame.step,
             frame.t,
