@@ -9,10 +9,10 @@ use std::path::{Path, PathBuf};
 use crate::interrupt::interruptible;
 use ontogeny::cancel::Cancel;
 use ontogeny::encoding::Genome;
-use ontogeny::evolve::config::read_config_source;
-use ontogeny::evolve::run::Run;
-use ontogeny::evolve::settings::{self, RunFlags};
-use ontogeny::evolve::store::RunStore;
+use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::run::Run;
+use ontogeny::run::config::read_config_source;
+use ontogeny::run::store::RunStore;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -125,7 +125,7 @@ impl NewRun<'_> {
     /// Starts the run and runs it to its last generation, a line per generation on standard
     /// error with `progress`, until `cancel` stops it.
     fn run<G: Genome>(&self, cancel: &Cancel) -> PyResult<()> {
-        let (config, init) = settings::new_run::<G>(
+        let settings::NewRun { config, init, .. } = settings::new_run::<G>(
             self.source,
             self.flags,
             self.init,

@@ -1,15 +1,15 @@
 //! `ontogeny bench`: the evaluator's speed on this machine, and whether the default
 //! setting ranks creatures as a fine reference setting does (the experiment itself is
-//! [`ontogeny::evolve::fidelity`]; this verb times it and prints it).
+//! [`ontogeny::study::fidelity`]; this verb times it and prints it).
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use clap::Args;
-use ontogeny::evolve::bench::{chain, one_core, parse_stepping, time_evaluation};
-use ontogeny::evolve::fidelity::{FineReference, fidelity_creatures, setting_name};
 use ontogeny::sim::{JointModel, SimOptions, World};
+use ontogeny::study::bench::{chain, one_core, parse_stepping, time_evaluation};
+use ontogeny::study::fidelity::{FineReference, fidelity_creatures, setting_name};
 use ontogeny::task::{self, WalkerOptions};
 use rayon::prelude::*;
 
@@ -127,14 +127,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         }
         return Ok(());
     }
-    let reference = SimOptions {
-        substeps: 2,
-        solver_iterations: 4,
-        pgs_iterations: 1,
-        rest_substeps: 2,
-        rest_solver_iterations: 4,
-        ..base.clone()
-    };
+    let mut reference = base.clone();
+    ontogeny::sim::knobs::set_stepping(&mut reference, [2, 4, 1, 2, 4]);
     let fast = base.fast();
     let walker = chain(10);
     text!(

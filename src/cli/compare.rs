@@ -6,19 +6,25 @@ use std::time::Instant;
 use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
-use ontogeny::evolve::compare::{
+use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::front::text::{self, ComparisonProgress};
+use ontogeny::run::config::{ConfigFile, read_config};
+use ontogeny::run::{GenerationReport, Run};
+use ontogeny::sim::StepSetting;
+use ontogeny::study::compare::{
     self, CompareError, Manifest, ReplicateState, Shared, read_replicate, replicate_config,
     replicate_dir,
 };
-use ontogeny::evolve::config::{ConfigFile, read_config};
-use ontogeny::evolve::run::{GenerationReport, Run};
-use ontogeny::evolve::settings::{self, RunFlags};
-use ontogeny::evolve::text::{self, ComparisonProgress};
-use ontogeny::sim::StepSetting;
 use ontogeny::task::WalkerFitness;
 
 use super::evolve::{EncodingArg, bad, encoding_names, encoding_parser, run_error, set_threads};
 use super::physics::setting_parser;
+
+/// The flags that go with `--resume`; it refuses every other ([`super::conflicts_with_all_but`]).
+pub const WITH_RESUME: &[&str] = &["threads", "no_cache", "json"];
+
+/// The flags that go with `--merge`; it refuses every other.
+pub const WITH_MERGE: &[&str] = &["json"];
 
 /// Flags of `ontogeny compare`.
 #[derive(Args)]
@@ -76,10 +82,10 @@ pub struct CompareArgs {
     no_cache: bool,
     /// Run the replicates of the comparison in DIR that are missing or unfinished, then
     /// write the report.
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "merge"])]
+    #[arg(long, value_name = "DIR")]
     resume: Option<PathBuf>,
     /// Write the report of the comparison in DIR from its finished replicates (runs nothing).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "threads"])]
+    #[arg(long, value_name = "DIR")]
     merge: Option<PathBuf>,
     /// Print the report's summary as one JSON object (each encoding's figures, the pairwise
     /// tests, the files written) instead of text.
@@ -264,7 +270,7 @@ fn report(
         let files = ["report.md", "summary.csv", "fitness.svg", "parts.svg"].map(|f| root.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
         let object =
-            ontogeny::evolve::json::comparison_json(root, shared, &r, finished.len(), &unfinished);
+            ontogeny::front::json::comparison_json(root, shared, &r, finished.len(), &unfinished);
         say!("{}", serde_json::to_string_pretty(&object)?);
         return Ok(());
     }

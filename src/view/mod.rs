@@ -551,7 +551,7 @@ pub fn no_samples_reason(recording: &crate::task::Recording) -> Option<String> {
 /// "valid_fraction", "evaluations", "best_fine" (the best re-walked at the fine reference, or
 /// null)}]}`.
 pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
-    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+    let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     let run = store.run().map_err(|e| ViewError::BadFile(e.to_string()))?;
     let generations: Vec<Value> = store
@@ -584,7 +584,7 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
 /// the ranks of `ontogeny replay --rank`): `[{"rank", "index", "fitness", "status",
 /// "operator", "parts", "joints", "neurons"}]`.
 pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewError> {
-    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+    let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     // In index order, so their ranks are those of the GA and of `replay --rank`.
     let individuals = store
@@ -607,7 +607,7 @@ pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewErr
 
 /// How many individuals a run's generation `generation` has (0 for a generation not stored).
 pub fn run_population_size(dir: &Path, generation: u32) -> Result<usize, ViewError> {
-    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+    let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     Ok(store
         .individuals(generation)

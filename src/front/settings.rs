@@ -10,10 +10,10 @@ use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
 use crate::task::{TaskKind, TaskSpec, WalkerFitness};
 
-use super::compare::{self, Manifest, Shared, generations_for};
-use super::config::{ConfigFile, RunConfig, check_settings};
-use super::config_errors::setting_diagnostic;
-use super::ga::{GaSettings, Preset};
+use crate::evolve::ga::{GaSettings, Preset};
+use crate::run::config::{ConfigFile, RunConfig, check_settings};
+use crate::run::config_errors::setting_diagnostic;
+use crate::study::compare::{self, Manifest, Shared, generations_for};
 
 /// The flags that set a run's genetic algorithm and task, shared by `evolve` and `compare`
 /// (each `None` when not given).
@@ -188,21 +188,28 @@ pub fn new_run_encoding(flag: Option<&str>, source: Option<&Source>) -> Result<S
     Ok(match (flag, source) {
         (Some(e), _) => e.to_string(),
         (None, Some(s)) => {
-            super::config::encoding_of(s)?.unwrap_or_else(|| LSystemGenome::NAME.to_string())
+            crate::run::config::encoding_of(s)?.unwrap_or_else(|| LSystemGenome::NAME.to_string())
         }
         (None, None) => LSystemGenome::NAME.to_string(),
     })
 }
 
-/// A new run's settings and the grammar that seeds its first generation, if any.
-pub type NewRun<L> = (RunConfig<L>, Option<Arc<Source>>);
-
-/// [`NewRun`] with the notes on its seed.
-pub type NewRunWithNotes<L> = (RunConfig<L>, Option<Arc<Source>>, Vec<String>);
+/// A new run: its settings, the grammar that seeds its first generation (if any), and the
+/// notes on that seed (what of the grammar was rewritten for the genome, and which limits were
+/// widened to fit it; the run's config records the widened limits).
+#[derive(Debug)]
+pub struct NewRun<L> {
+    /// The run's settings.
+    pub config: RunConfig<L>,
+    /// The grammar that seeds its first generation.
+    pub init: Option<Arc<Source>>,
+    /// The notes on the seed, one line each.
+    pub notes: Vec<String>,
+}
 
 /// A new run's settings ([`run_config`]) from its config file (`source`, if any) and the
 /// flags over it, with the grammar that seeds its first generation (`init`, `--init`, else
-/// the file's `init`), read and checked ([`check_init`]).
+/// the file's `init`), read and checked ([`check_init`]), and the notes on it.
 pub fn new_run<G: Genome>(
     source: Option<&Source>,
     flags: &RunFlags,
@@ -211,28 +218,13 @@ pub fn new_run<G: Genome>(
     verify_best: bool,
     cache: bool,
 ) -> Result<NewRun<G::Limits>, Diagnostic> {
-    new_run_with_notes::<G>(source, flags, init, seed, verify_best, cache)
-        .map(|(config, init, _)| (config, init))
-}
-
-/// [`new_run`] with the notes on its seed, if it has one: what of the grammar was rewritten
-/// for the genome, and which limits were widened to fit it (the run's config records the
-/// widened limits).
-pub fn new_run_with_notes<G: Genome>(
-    source: Option<&Source>,
-    flags: &RunFlags,
-    init: Option<&Path>,
-    seed: Option<u64>,
-    verify_best: bool,
-    cache: bool,
-) -> Result<NewRunWithNotes<G::Limits>, Diagnostic> {
     let file: ConfigFile<G::Limits> = match source {
-        Some(s) => super::config::read_config(s)?,
+        Some(s) => crate::run::config::read_config(s)?,
         None => ConfigFile::default(),
     };
     let init_path = init_path(init, file.init.as_deref(), source);
     let mut config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
-    super::config::check_limits(&config.limits, source)?;
+    crate::run::config::check_limits(&config.limits, source)?;
     let init = init_path.as_deref().map(read_grammar).transpose()?;
     let mut notes = Vec::new();
     if let (Some(init), Some(path)) = (&init, &init_path) {
@@ -244,7 +236,11 @@ pub fn new_run_with_notes<G: Genome>(
             .map(|n| format!("note: {}: {n}", path.display()))
             .collect();
     }
-    Ok((config, init, notes))
+    Ok(NewRun {
+        config,
+        init,
+        notes,
+    })
 }
 
 /// The comparison `compare`'s flags describe over its config file (`source` its text), checked:
@@ -284,7 +280,7 @@ pub fn plan_comparison(
     // A key the file sets that a comparison sets itself: refused at its place in the file.
     let refuse = |path: &[&str], what: &str, why: &str| {
         let message = format!("{what} has no place in a comparison's config: {why}");
-        let at = source.and_then(|s| Some((s, super::config_errors::key_span(s, path)?)));
+        let at = source.and_then(|s| Some((s, crate::run::config_errors::key_span(s, path)?)));
         Err(match (at, source) {
             (Some((s, span)), _) => Diagnostic::at(DiagnosticKind::Semantic, s, span, message),
             (None, Some(s)) => plain(format!("{}: {message}", s.name())),
