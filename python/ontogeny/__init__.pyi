@@ -92,12 +92,15 @@ def grow(
     steps: Optional[int] = None,
     time: Optional[float] = None,
     dt: Optional[float] = None,
-    seed: Optional[int] = None,
+    grammar_seed: Optional[int] = None,
     env: _Env = None,
     defines: Optional[Dict[str, float]] = None,
+    seed: Optional[int] = None,
 ) -> Creature:
     """Grows grammar text to its last frame, as ``ontogeny grow`` does. ``defines`` sets
-    the grammar's defines as ``--define NAME=VALUE`` does (``defines={"GROWTH": 1.5}``)."""
+    the grammar's defines as ``--define NAME=VALUE`` does (``defines={"GROWTH": 1.5}``),
+    ``grammar_seed`` its seed as ``--grammar-seed`` does (``seed`` is its old name, read with
+    a ``DeprecationWarning``)."""
 
 def load(
     path: _Path,
@@ -105,13 +108,15 @@ def load(
     steps: Optional[int] = None,
     time: Optional[float] = None,
     dt: Optional[float] = None,
-    seed: Optional[int] = None,
+    grammar_seed: Optional[int] = None,
     env: _Env = None,
     defines: Optional[Dict[str, float]] = None,
+    seed: Optional[int] = None,
 ) -> Creature:
     """Reads a creature from an ``.lsys``, a ``creature.json`` or a graph genome's
     ``.json``, as ``ontogeny eval FILE`` does; ``defines`` sets an ``.lsys`` file's defines
-    as ``--define NAME=VALUE`` does."""
+    as ``--define NAME=VALUE`` does, ``grammar_seed`` its seed as ``--grammar-seed`` does
+    (``seed`` is its old name, read with a ``DeprecationWarning``)."""
 
 def genome(text: str, encoding: str = "direct", *, seed: int = 0) -> Creature:
     """Develops a genome's text (``direct``: an axiom alone; ``lsystem``, ``continuous``:
@@ -123,12 +128,14 @@ def derive(
     steps: Optional[int] = None,
     time: Optional[float] = None,
     dt: Optional[float] = None,
-    seed: Optional[int] = None,
+    grammar_seed: Optional[int] = None,
     env: _Env = None,
     defines: Optional[Dict[str, float]] = None,
+    seed: Optional[int] = None,
 ) -> List[Tuple[float, str, List[float]]]:
     """The frames ``(time, modules, env)`` of the derivation, the axiom first (``defines``
-    sets the grammar's defines, as ``--define`` does). A derivation
+    sets the grammar's defines, as ``--define`` does; ``grammar_seed`` its seed, as
+    ``--grammar-seed`` does, ``seed`` being its old name). A derivation
     that reaches a fixed point stops there: the frames to it, then the last frame, with a
     warning that says so."""
 

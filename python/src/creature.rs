@@ -1,6 +1,8 @@
 //! Creatures from Python: `grow`, `load`, `genome` and `derive`, and the `Creature` class.
 
 use crate::common::{diagnostic_error, load_error, require_exists, value_error, warn_all};
+use pyo3::exceptions::{PyDeprecationWarning, PyTypeError};
+use std::ffi::CString;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -11,7 +13,7 @@ use numpy::ndarray::Array2;
 use ontogeny::creature::Creature;
 use ontogeny::encoding::{Genome, LoadOptions, grow_grammar, load_creature};
 use ontogeny::lang::{Diagnostic, Source};
-use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, print};
+use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides, print};
 use pyo3::prelude::*;
 
 /// The derivation options of the keyword arguments shared by `grow` and `derive`, as the
@@ -28,6 +30,32 @@ pub(crate) fn derive_options(
         dt,
         env: env.unwrap_or_default(),
         ..DeriveOptions::default()
+    }
+}
+
+/// The grammar's seed given as `grammar_seed=`, or under its old name `seed=` (still read,
+/// with a `DeprecationWarning` saying what the command line's note on `--seed` says); both
+/// at once are a `TypeError`.
+pub(crate) fn given_grammar_seed(
+    py: Python<'_>,
+    grammar_seed: Option<u64>,
+    seed: Option<u64>,
+) -> PyResult<Option<u64>> {
+    match (grammar_seed, seed) {
+        (Some(_), Some(_)) => Err(PyTypeError::new_err(
+            "grammar_seed= and seed= are one argument (seed= is its old name): give one",
+        )),
+        (None, Some(seed)) => {
+            let category = py.get_type::<PyDeprecationWarning>();
+            let message = CString::new(format!(
+                "seed={seed} is read as grammar_seed={seed}, the seed of the grammar's \
+                 stochastic rules (seed= is the genetic algorithm's seed, in evolve and compare)"
+            ))
+            .unwrap_or_default();
+            PyErr::warn(py, category.as_any(), &message, 1)?;
+            Ok(Some(seed))
+        }
+        (given, None) => Ok(given),
     }
 }
 
@@ -65,9 +93,15 @@ pub(crate) fn define_overrides(
         .collect()
 }
 
-/// Compiles grammar `text` with `defines` in place of the values of its defines.
-pub(crate) fn grammar_text(text: &str, defines: &[DefineOverride]) -> PyResult<LSystem> {
-    LSystem::parse_with(Source::new(TEXT_NAME, text), defines).map_err(diagnostic_error)
+/// Compiles grammar `text` with `defines` in place of the values of its defines and `seed` in
+/// place of its `seed:` (as `--define` and `--grammar-seed` do).
+pub(crate) fn grammar_text(
+    text: &str,
+    defines: Vec<DefineOverride>,
+    seed: Option<u64>,
+) -> PyResult<LSystem> {
+    LSystem::parse_with(Source::new(TEXT_NAME, text), &Overrides { defines, seed })
+        .map_err(diagnostic_error)
 }
 
 /// The name a grammar given as text goes by in messages.
@@ -189,7 +223,7 @@ pub(crate) fn rows(points: impl Iterator<Item = [f64; 3]>) -> Array2<f64> {
 /// Grows a creature from grammar text (an `.lsys` file's content), to its last frame, as
 /// `ontogeny grow` does.
 #[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[pyo3(signature = (text, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn grow(
     py: Python<'_>,
@@ -197,11 +231,13 @@ pub(crate) fn grow(
     steps: Option<u64>,
     time: Option<f64>,
     dt: Option<f64>,
-    seed: Option<u64>,
+    grammar_seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
     defines: Option<std::collections::BTreeMap<String, f64>>,
+    seed: Option<u64>,
 ) -> PyResult<PyCreature> {
-    let lsys = grammar_text(text, &define_overrides(defines)?)?;
+    let seed = given_grammar_seed(py, grammar_seed, seed)?;
+    let lsys = grammar_text(text, define_overrides(defines)?, seed)?;
     let options = load_options(steps, seed, time, dt, env);
     let loaded = interruptible(py, |cancel| {
         let options = LoadOptions {
@@ -217,7 +253,7 @@ pub(crate) fn grow(
 /// Reads a creature from a file, as `ontogeny eval FILE` does: an `.lsys` grammar (or a
 /// direct genome, grown to its last frame), a `creature.json`, or a graph genome's `.json`.
 #[pyfunction]
-#[pyo3(signature = (path, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[pyo3(signature = (path, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn load(
     py: Python<'_>,
@@ -225,10 +261,12 @@ pub(crate) fn load(
     steps: Option<u64>,
     time: Option<f64>,
     dt: Option<f64>,
-    seed: Option<u64>,
+    grammar_seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
     defines: Option<std::collections::BTreeMap<String, f64>>,
+    seed: Option<u64>,
 ) -> PyResult<PyCreature> {
+    let seed = given_grammar_seed(py, grammar_seed, seed)?;
     require_exists(&path)?;
     let options = LoadOptions {
         defines: define_overrides(defines)?,
@@ -278,7 +316,7 @@ pub(crate) fn genome(
 /// the axiom first: the frame's time (its step in discrete time), its module string as text,
 /// and the environment's values.
 #[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, seed=None, env=None, defines=None))]
+#[pyo3(signature = (text, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn derive(
     py: Python<'_>,
@@ -286,11 +324,13 @@ pub(crate) fn derive(
     steps: Option<u64>,
     time: Option<f64>,
     dt: Option<f64>,
-    seed: Option<u64>,
+    grammar_seed: Option<u64>,
     env: Option<Vec<(usize, f64)>>,
     defines: Option<std::collections::BTreeMap<String, f64>>,
+    seed: Option<u64>,
 ) -> PyResult<Vec<(f64, String, Vec<f64>)>> {
-    let lsys = grammar_text(text, &define_overrides(defines)?)?;
+    let seed = given_grammar_seed(py, grammar_seed, seed)?;
+    let lsys = grammar_text(text, define_overrides(defines)?, seed)?;
     let options = derive_options(seed, time, dt, env);
     let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
     warn_all(py, &note.into_iter().collect::<Vec<_>>())?;

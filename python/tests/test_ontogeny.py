@@ -100,6 +100,64 @@ def test_defines_set_a_grammars_defines_as_the_command_lines_define_does(tmp_pat
         ontogeny.grow(ROW, defines={"PARTS": float("nan")})
 
 
+def test_grammar_seed_seeds_the_grammar_as_the_command_lines_grammar_seed_does(root, cli):
+    text = (root / "examples/stochastic-plant.lsys").read_text()
+    last = cli("derive", "examples/stochastic-plant.lsys", "--grammar-seed", "3", "--last")
+    frames = ontogeny.derive(text, grammar_seed=3)
+    assert f"{int(frames[-1][0])}: {frames[-1][1]}\n" == last
+    # Another seed, another plant.
+    assert ontogeny.derive(text, grammar_seed=4)[-1][1] != frames[-1][1]
+    grown = cli.json("grow", "examples/stochastic-plant.lsys", "--grammar-seed", "3", "--json")
+    assert ontogeny.grow(text, grammar_seed=3).parts == grown["parts"]
+    assert ontogeny.load(root / "examples/stochastic-plant.lsys", grammar_seed=3).parts == grown["parts"]
+
+
+SEEDED = """\
+seed: 1
+define R = uniform(0.1, 0.9)
+axiom: A(R)
+derivation length: 4
+A(x) --> forward(x) A(x) : 0.5
+A(x) --> forward(0.3) revolute1 A(x) : 0.5
+"""
+
+
+def test_grammar_seed_is_the_seed_line_edited_defines_included(tmp_path):
+    edited = SEEDED.replace("seed: 1", "seed: 7")
+    frames = ontogeny.derive(SEEDED, grammar_seed=7)
+    assert frames == ontogeny.derive(edited)
+    assert frames != ontogeny.derive(SEEDED)
+    # The axiom carries R, drawn from the seed when the grammar is read.
+    assert frames[0][1] != ontogeny.derive(SEEDED)[0][1]
+    grown = ontogeny.grow(SEEDED, grammar_seed=7)
+    assert grown.to_json() == ontogeny.grow(edited).to_json()
+    path = tmp_path / "seeded.lsys"
+    path.write_text(SEEDED)
+    assert ontogeny.load(path, grammar_seed=7).to_json() == grown.to_json()
+
+
+def test_seed_is_the_old_name_of_grammar_seed_and_says_so(root):
+    text = (root / "examples/stochastic-plant.lsys").read_text()
+    note = (
+        r"seed=3 is read as grammar_seed=3, the seed of the grammar's stochastic rules "
+        r"\(seed= is the genetic algorithm's seed, in evolve and compare\)"
+    )
+    with pytest.warns(DeprecationWarning, match=note):
+        old = ontogeny.derive(text, seed=3)
+    assert old == ontogeny.derive(text, grammar_seed=3)
+    with pytest.warns(DeprecationWarning, match=note):
+        assert ontogeny.grow(text, seed=3).parts == ontogeny.grow(text, grammar_seed=3).parts
+    path = root / "examples/stochastic-plant.lsys"
+    with pytest.warns(DeprecationWarning, match=note):
+        assert ontogeny.load(path, seed=3).parts == ontogeny.load(path, grammar_seed=3).parts
+    both = r"grammar_seed= and seed= are one argument \(seed= is its old name\): give one"
+    for call in (ontogeny.derive, ontogeny.grow):
+        with pytest.raises(TypeError, match=both):
+            call(text, grammar_seed=3, seed=3)
+    with pytest.raises(TypeError, match=both):
+        ontogeny.load(path, grammar_seed=3, seed=4)
+
+
 def test_evaluate_many_equals_evaluate_one_by_one_in_order(root):
     creatures = [
         ontogeny.load(root / CHAIN),

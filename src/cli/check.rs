@@ -14,11 +14,13 @@ pub struct CheckArgs {
     json: bool,
     #[command(flatten)]
     defines: super::grammar::DefineArgs,
+    #[command(flatten)]
+    seed: super::grammar::SeedArgs,
 }
 
 /// Checks the file and prints the report.
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
-    let lsys = args.defines.load(&args.file)?;
+    let lsys = args.defines.load(&args.file, args.seed.seed())?;
     let report = lsys.check();
     if args.json {
         say!("{}", serde_json::to_string_pretty(&report)?);

@@ -122,7 +122,10 @@ enum TimingArg {
 
 /// Derives the file and prints the steps.
 pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
-    let lsys = args.development.defines.load(&args.file)?;
+    let lsys = args
+        .development
+        .defines
+        .load(&args.file, args.development.seed.seed())?;
     super::tell_findings(&lsys);
     let options = derive_options(&args.development, args.max_modules);
     discrete_steps(&lsys, &options, args.development.steps, "printing")?;

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::sync::Once;
 
 use clap::Args;
-use ontogeny::lsystem::{DefineOverride, LSystem};
+use ontogeny::lsystem::{DefineOverride, LSystem, Overrides};
 
 /// `--define NAME=VALUE`, repeatable: a value in place of the grammar's `define NAME`.
 #[derive(Args, Clone, Debug, Default)]
@@ -19,9 +19,18 @@ pub struct DefineArgs {
 }
 
 impl DefineArgs {
-    /// Reads, parses and compiles the grammar at `path` with the defines given.
-    pub fn load(&self, path: &Path) -> anyhow::Result<LSystem> {
-        Ok(LSystem::from_path_with(path, &self.defines)?)
+    /// Reads, parses and compiles the grammar at `path` with the defines given and `seed`
+    /// ([`SeedArgs::seed`]) in place of its `seed:`.
+    pub fn load(&self, path: &Path, seed: Option<u64>) -> anyhow::Result<LSystem> {
+        Ok(LSystem::from_path_with(path, &self.overrides(seed))?)
+    }
+
+    /// The defines given, and `seed`, as what is set in place of the file's.
+    pub fn overrides(&self, seed: Option<u64>) -> Overrides {
+        Overrides {
+            defines: self.defines.clone(),
+            seed,
+        }
     }
 }
 
@@ -30,11 +39,12 @@ fn parse_define(text: &str) -> Result<DefineOverride, String> {
     text.parse()
 }
 
-/// The seed of a grammar's stochastic rules and random functions.
+/// The seed of a grammar's stochastic rules and random functions: the file's `seed:` line
+/// edited, the draws of its defines included.
 #[derive(Args, Clone, Debug, Default)]
 pub struct SeedArgs {
-    /// Seed for the grammar's stochastic rules and random functions (default: the file's
-    /// `seed:`, else 0).
+    /// Seed for the grammar's stochastic rules and random functions, its defines' included:
+    /// as the file's `seed:` line edited to N (default: the file's `seed:`, else 0).
     #[arg(long, value_name = "N")]
     grammar_seed: Option<u64>,
     /// The old spelling of --grammar-seed, still read (with a note).

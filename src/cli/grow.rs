@@ -105,7 +105,10 @@ struct Grown<'a> {
 /// held: the last one, and with `--out` the ones `growth.gif` shows (at most
 /// [`ontogeny::develop::MAX_KEPT_FRAMES`] frames may be written).
 pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
-    let lsys = args.development.defines.load(&args.file)?;
+    let lsys = args
+        .development
+        .defines
+        .load(&args.file, args.development.seed.seed())?;
     super::tell_findings(&lsys);
     let options = derive_options(&args.development, args.max_modules);
     // A picture: overlapping parts and a body in pieces are warnings here, errors where

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem};
+use ontogeny::lsystem::{DEFAULT_MAX_MODULES, LSystem, Overrides};
 use ontogeny::view::snapshot::{self, SnapshotError};
 use ontogeny::view::{Developer, Kind, PageFlags, Server, Target, ignored_flags, run_developer};
 
@@ -63,14 +63,18 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     match target.kind {
         Kind::Lsys => {
             // --dt and --timing are refused for a discrete file, as by every verb that grows.
-            if let Ok(lsys) = LSystem::from_path(&target.path) {
+            let overrides = args.development.defines.overrides(options.seed);
+            let seeded = Overrides {
+                seed: options.seed,
+                ..Overrides::default()
+            };
+            if let Ok(lsys) = LSystem::from_path_with(&target.path, &seeded) {
                 ontogeny::lsystem::print::check_continuous_options(&lsys, &options)?;
                 // A grammar that reads but not with the --define values given: the flags
                 // are wrong, not the file.
-                args.development.defines.load(&target.path)?;
+                LSystem::from_path_with(&target.path, &overrides)?;
             }
-            let defines = &args.development.defines.defines;
-            match LSystem::from_path_with(&target.path, defines).and_then(|lsys| {
+            match LSystem::from_path_with(&target.path, &overrides).and_then(|lsys| {
                 ontogeny::develop::grow(
                     &lsys,
                     &options,

@@ -9,7 +9,7 @@ use crate::creature::repeats::said_once;
 use crate::creature::{Creature, Severity};
 use crate::develop::{BuildOptions, grow_last};
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind};
-use crate::lsystem::{DefineOverride, DeriveOptions, LSystem, print};
+use crate::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides, print};
 
 use super::{GraphGenome, GraphLimits};
 
@@ -18,7 +18,8 @@ use super::{GraphGenome, GraphLimits};
 pub struct LoadOptions {
     /// The derivation's options (seed, environment, continuous time, most modules).
     pub derive: DeriveOptions,
-    /// Values in place of the grammar's defines ([`LSystem::parse_with`]).
+    /// Values in place of the grammar's defines ([`LSystem::parse_with`]); the seed in
+    /// place of its `seed:` is `derive.seed` (the grammar is compiled with it).
     pub defines: Vec<DefineOverride>,
     /// Discrete derivation steps (default: the file's `derivation length:`).
     pub steps: Option<u64>,
@@ -102,7 +103,11 @@ pub fn load_creature(
             notes: Vec::new(),
         });
     }
-    let lsys = LSystem::from_path_with(file, &options.defines)?;
+    let overrides = Overrides {
+        defines: options.defines.clone(),
+        seed: options.derive.seed,
+    };
+    let lsys = LSystem::from_path_with(file, &overrides)?;
     grow_grammar(&lsys, options, progress)
 }
 

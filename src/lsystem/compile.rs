@@ -8,7 +8,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::LSystem;
-use super::defines::{DefineOverride, override_of, unknown_define};
+use super::defines::{Overrides, override_of, unknown_define};
 use super::expr::{self, CExpr, EvalEnv, ExprError, Resolved};
 use super::string::{ModuleString, POP, PUSH, SymbolId, SymbolTable};
 use crate::environment::Environment;
@@ -117,12 +117,16 @@ impl RuleSet {
 }
 
 /// Compiles `file`, read from `source`, with `overrides` in place of the values its defines
-/// give (see [`super::defines`]).
+/// give and of its seed (see [`super::defines`]).
 pub(crate) fn compile(
     source: Arc<Source>,
     file: LsysFile,
-    overrides: &[DefineOverride],
+    overrides: &Overrides,
 ) -> Result<LSystem, Diagnostic> {
+    let seed = overrides
+        .seed
+        .unwrap_or_else(|| file.seed.map_or(0, |(s, _)| s));
+    let overrides = overrides.defines.as_slice();
     let mut c = Compiler {
         source: &source,
         symbols: SymbolTable::default(),
@@ -130,7 +134,6 @@ pub(crate) fn compile(
         arity: HashMap::new(),
         environment_len: 0,
     };
-    let seed = file.seed.map_or(0, |(s, _)| s);
 
     if let Some(unknown) = overrides
         .iter()

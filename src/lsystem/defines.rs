@@ -1,4 +1,9 @@
-//! Setting a grammar's `define`s from outside its file, and the range of each define's slider.
+//! Setting a grammar's `define`s and seed from outside its file, and the range of each
+//! define's slider.
+//!
+//! [`Overrides`] are what the command line's `--define` and `--grammar-seed` (Python's
+//! `defines=` and `grammar_seed=`) set in place of what the file says; the grammar is compiled
+//! with them.
 //!
 //! A [`DefineOverride`] (`NAME=VALUE`: the command line's `--define`, Python's `defines=`)
 //! replaces the value of the grammar's `define NAME`; the defines after it are computed as the
@@ -16,6 +21,19 @@ use serde::Serialize;
 
 use crate::lang::ast::Define;
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
+
+/// What is set from outside a grammar's file in place of what the file says: values of some
+/// of its defines and its seed. A seed given here is the file's `seed:` line edited: every
+/// draw follows it, those made when the grammar is compiled (`define R = uniform(0, 1)`, a
+/// header's or the axiom's `uniform`) as well as the stochastic rules' and random functions'
+/// while it derives.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Overrides {
+    /// Values in place of the grammar's defines (see [`DefineOverride`]).
+    pub defines: Vec<DefineOverride>,
+    /// The seed in place of the file's `seed:` (`None`: the file's, else 0).
+    pub seed: Option<u64>,
+}
 
 /// A value given to one of a grammar's defines from outside its file: `NAME=VALUE`.
 #[derive(Clone, Debug, PartialEq)]

@@ -25,7 +25,7 @@ mod string;
 pub use crate::lang::ast::Timing;
 pub use continuous::{Development, Event, MAX_PASSES_PER_INSTANT};
 pub use cut::DEFAULT_MAX_WORK;
-pub use defines::{DefineOverride, Slider, default_range};
+pub use defines::{DefineOverride, Overrides, Slider, default_range};
 
 use std::sync::Arc;
 
@@ -80,7 +80,10 @@ pub struct TurtleHeaders {
 /// Settings of one derivation. `None` fields fall back to the file's headers.
 #[derive(Clone, Debug)]
 pub struct DeriveOptions {
-    /// Overrides the file's `seed:`.
+    /// Overrides the file's `seed:` for the derivation's draws (stochastic rules, random
+    /// functions in rules). The draws made when the grammar was compiled (its defines, its
+    /// headers) are the compiled seed's: give the same seed in [`Overrides::seed`] to have
+    /// the file's `seed:` edited.
     pub seed: Option<u64>,
     /// A string longer than this is an error.
     pub max_modules: usize,
@@ -115,16 +118,15 @@ impl Default for DeriveOptions {
 impl LSystem {
     /// Parses and compiles an L-system.
     pub fn parse(source: Arc<Source>) -> Result<LSystem, Diagnostic> {
-        LSystem::parse_with(source, &[])
+        LSystem::parse_with(source, &Overrides::default())
     }
 
     /// Parses and compiles an L-system with `overrides` in place of the values of its
-    /// defines; a define that uses an overridden one is computed from the new value. An
-    /// override that names no define of the grammar is an error that lists its defines.
-    pub fn parse_with(
-        source: Arc<Source>,
-        overrides: &[DefineOverride],
-    ) -> Result<LSystem, Diagnostic> {
+    /// defines and of its seed; a define that uses an overridden one is computed from the new
+    /// value, and a seed given is as the file's `seed:` edited (the draws made in compiling
+    /// follow it too). An override that names no define of the grammar is an error that lists
+    /// its defines.
+    pub fn parse_with(source: Arc<Source>, overrides: &Overrides) -> Result<LSystem, Diagnostic> {
         let file = lang::parse(&source)?;
         compile::compile(source, file, overrides)
     }
@@ -137,14 +139,14 @@ impl LSystem {
     /// Reads, parses and compiles a file; a file that is not a grammar (a MuJoCo model, a
     /// recording, ...) is refused with what it is ([`crate::lang::read_grammar`]).
     pub fn from_path(path: &std::path::Path) -> Result<LSystem, Diagnostic> {
-        LSystem::from_path_with(path, &[])
+        LSystem::from_path_with(path, &Overrides::default())
     }
 
     /// Like [`LSystem::from_path`], with `overrides` in place of the values of its defines
-    /// ([`LSystem::parse_with`]).
+    /// and of its seed ([`LSystem::parse_with`]).
     pub fn from_path_with(
         path: &std::path::Path,
-        overrides: &[DefineOverride],
+        overrides: &Overrides,
     ) -> Result<LSystem, Diagnostic> {
         LSystem::parse_with(crate::lang::read_grammar(path)?, overrides)
     }
@@ -182,7 +184,7 @@ impl LSystem {
         &self.axiom
     }
 
-    /// The file's `seed:` (0 if absent).
+    /// The seed it was compiled with: [`Overrides::seed`], else the file's `seed:`, else 0.
     pub fn seed(&self) -> u64 {
         self.seed
     }

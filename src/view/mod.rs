@@ -28,7 +28,7 @@ use serde_json::{Value, json};
 
 use crate::develop::{BuildOptions, build_frame};
 use crate::lang::{Diagnostic, FileKind};
-use crate::lsystem::{DefineOverride, DeriveOptions, LSystem};
+use crate::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides};
 
 pub use comparison::{COMPARISON_PLOTS, comparison_data};
 pub use open::{Developer, PageFlags, ignored_flags, run_developer};
@@ -223,13 +223,22 @@ pub fn lsys_data(
     max_parts: usize,
 ) -> Value {
     let file = path.display().to_string();
-    let grown = LSystem::from_path(path).and_then(|lsys| {
+    let grown = LSystem::from_path_with(path, &seeded(options, &[])).and_then(|lsys| {
         let (frames, _) = grow_with_strings(&lsys, options, steps, max_parts)?;
         Ok((lsys.findings(), frames))
     });
     match grown {
         Ok((findings, frames)) => grown_json(&file, &findings, frames),
         Err(d) => json!({ "kind": "lsys", "file": file, "error": diagnostic_json(&d) }),
+    }
+}
+
+/// `defines` and the seed of `options` in place of a grammar's (its `seed:` as edited to the
+/// `--grammar-seed` given).
+fn seeded(options: &DeriveOptions, defines: &[DefineOverride]) -> Overrides {
+    Overrides {
+        defines: defines.to_vec(),
+        seed: options.seed,
     }
 }
 
@@ -293,7 +302,7 @@ pub fn lsys_data_with(
     max_parts: usize,
     defines: &[DefineOverride],
 ) -> Result<Value, ViewError> {
-    let Ok(plain) = LSystem::from_path(path) else {
+    let Ok(plain) = LSystem::from_path_with(path, &seeded(options, &[])) else {
         return Ok(lsys_data(path, options, steps, max_parts));
     };
     if let Some(unknown) = defines
@@ -308,7 +317,7 @@ pub fn lsys_data_with(
         return Err(ViewError::BadRequest(error.message));
     }
     let file = path.display().to_string();
-    let grown = LSystem::from_path_with(path, defines).and_then(|lsys| {
+    let grown = LSystem::from_path_with(path, &seeded(options, defines)).and_then(|lsys| {
         let (frames, values) = grow_with_strings(&lsys, options, steps, max_parts)?;
         Ok((lsys.findings(), frames, values))
     });

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use ontogeny::lsystem::{DefineOverride, LSystem};
+use ontogeny::lsystem::{DefineOverride, LSystem, Overrides};
 
 use crate::util::{assert_bad_input, ontogeny, ontogeny_ok, scratch_dir, stderr, stdout};
 
@@ -157,7 +157,10 @@ fn an_overridden_define_leaves_the_random_draws_of_the_defines_after_it_unchange
     let plain = LSystem::from_text("r.lsys", text).unwrap();
     let set = LSystem::parse_with(
         ontogeny::lang::Source::new("r.lsys", text),
-        &[set("A", 7.0)],
+        &Overrides {
+            defines: vec![set("A", 7.0)],
+            seed: None,
+        },
     )
     .unwrap();
     assert_eq!(value(&set, "A"), 7.0);
@@ -200,4 +203,109 @@ fn the_grammar_seed_flag_seeds_stochastic_rules_and_the_old_spelling_still_does_
         ],
         "cannot be used with",
     );
+}
+
+/// A stochastic grammar whose define `R` is drawn from its seed when it is compiled: `R` is
+/// the axiom's parameter and the length of the parts of one of the two rules.
+const SEEDED: &str = "\
+seed: 1
+define R = uniform(0.1, 0.9)
+axiom: A(R)
+derivation length: 4
+A(x) --> forward(x) A(x) : 0.5
+A(x) --> forward(0.3) revolute1 A(x) : 0.5
+";
+
+/// `SEEDED` with its `seed:` line edited to `seed`, as `seeded.lsys` in the scratch
+/// directory `name` (both copies have one file name, so that their outputs are comparable
+/// once the directory is replaced).
+fn seeded_copy(name: &str, seed: u64) -> (String, String) {
+    let dir = scratch_dir(&format!("defines-{name}"));
+    let path = dir.join("seeded.lsys");
+    std::fs::write(&path, SEEDED.replace("seed: 1", &format!("seed: {seed}"))).unwrap();
+    (
+        path.to_str().unwrap().to_string(),
+        dir.to_str().unwrap().to_string(),
+    )
+}
+
+#[test]
+fn the_grammar_seed_flag_is_the_files_seed_line_edited_on_every_grammar_verb() {
+    let (file, dir) = seeded_copy("seed-flag", 1);
+    let (edited, edited_dir) = seeded_copy("seed-edited", 7);
+    // What a verb prints on the file with `--grammar-seed 7` and on the edited copy alone
+    // (the copy's directory named as the file's).
+    let both = |verb: &[&str]| {
+        let mut flagged = verb.to_vec();
+        flagged.splice(1..1, [file.as_str(), "--grammar-seed", "7"]);
+        let mut plain = verb.to_vec();
+        plain.insert(1, edited.as_str());
+        (
+            stdout(&ontogeny_ok(&flagged)),
+            stdout(&ontogeny_ok(&plain)).replace(&edited_dir, &dir),
+        )
+    };
+
+    // The define drawn at compile time follows the seed: the axiom's parameter is the seed 7
+    // copy's, not the file's.
+    let r = |lsys: &LSystem| lsys.constants().find(|(n, _)| *n == "R").unwrap().1;
+    let of_file = LSystem::from_path(file.as_ref()).unwrap();
+    let reseeded = LSystem::from_path_with(
+        file.as_ref(),
+        &Overrides {
+            defines: Vec::new(),
+            seed: Some(7),
+        },
+    )
+    .unwrap();
+    let of_edited = LSystem::from_path(edited.as_ref()).unwrap();
+    assert_eq!(r(&reseeded), r(&of_edited));
+    assert_ne!(r(&reseeded), r(&of_file));
+    assert_eq!(reseeded.seed(), 7);
+
+    let (flagged, plain) = both(&["derive"]);
+    assert_eq!(flagged, plain);
+    let axiom = format!(
+        "0: A({})\n",
+        ontogeny::lsystem::format_number(r(&of_edited))
+    );
+    assert!(flagged.starts_with(&axiom), "{flagged}");
+    assert_ne!(flagged, stdout(&ontogeny_ok(&["derive", &file])));
+
+    let (flagged, plain) = both(&["check", "--json"]);
+    assert_eq!(flagged, plain);
+    assert!(
+        flagged.contains(&format!(
+            "A({})",
+            ontogeny::lsystem::format_number(r(&of_edited))
+        )),
+        "{flagged}"
+    );
+    // `check` reads the old spelling too.
+    let old = stdout(&ontogeny_ok(&["check", &file, "--seed", "7", "--json"]));
+    assert_eq!(old, flagged);
+
+    let (flagged, plain) = both(&["grow", "--json"]);
+    assert_eq!(flagged, plain);
+    let (flagged, plain) = both(&["export"]);
+    assert_eq!(flagged, plain);
+    let (flagged, plain) = both(&["eval", "--task", "jump", "--seconds", "0.5", "--json"]);
+    assert_eq!(flagged, plain);
+
+    // The viewer's page grows the file as `view FILE --grammar-seed 7` asks.
+    let options = ontogeny::lsystem::DeriveOptions {
+        seed: Some(7),
+        ..Default::default()
+    };
+    let page = |path: &str, options: &ontogeny::lsystem::DeriveOptions| {
+        ontogeny::view::lsys_data_with(path.as_ref(), options, None, 200, &[])
+            .unwrap()
+            .to_string()
+    };
+    let shown = page(&file, &options);
+    assert_eq!(
+        shown,
+        page(&edited, &Default::default()).replace(&edited_dir, &dir)
+    );
+    assert_ne!(shown, page(&file, &Default::default()));
 }
