@@ -1,9 +1,10 @@
 //! Simulation: running a creature's brain against its body in a rapier3d world.
 //!
 //! The options and their one check are in [`options`], the named step settings and the
-//! `[task.sim]` table in [`setting`]; the world is built in [`build`], senses in [`sensors`],
-//! moves in [`actuators`], is audited for energy from nowhere in [`audit`], holds the
-//! catapult's projectile in [`projectile`], and steps in [`world`].
+//! `[task.sim]` table in [`setting`]; the world is built in [`build`] from the parts and
+//! joints of [`parts`] (keyed by stable ids, and added or resized while it runs), senses in
+//! [`sensors`], moves in [`actuators`], is audited for energy from nowhere in [`audit`],
+//! holds the catapult's projectile in [`projectile`], and steps in [`world`].
 
 pub mod actuators;
 pub mod audit;
@@ -12,6 +13,7 @@ pub mod build;
 pub mod drag;
 mod model_names;
 pub mod options;
+pub mod parts;
 pub mod projectile;
 pub mod sensors;
 pub mod setting;
