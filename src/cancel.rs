@@ -2,7 +2,7 @@
 //! sets (from another thread: a watcher of Ctrl-C, a time limit), and that the library's long
 //! loops check — growth between frames ([`develop::for_each_growth_frame`]), an evaluation
 //! at every control step ([`task::TaskSpec::evaluate_watched`]), evolution between
-//! evaluations ([`evolve::run::Run::set_cancel`]). Work whose token is set stops at its next
+//! evaluations ([`run::Run::set_cancel`]). Work whose token is set stops at its next
 //! check with [`Interrupted`], writing nothing more; a token nobody sets (the default) changes
 //! nothing, so the command line, which never sets one, never sees `Interrupted`.
 //!
@@ -11,7 +11,7 @@
 //!
 //! [`develop::for_each_growth_frame`]: crate::develop::for_each_growth_frame
 //! [`task::TaskSpec::evaluate_watched`]: crate::task::TaskSpec::evaluate_watched
-//! [`evolve::run::Run::set_cancel`]: crate::evolve::run::Run::set_cancel
+//! [`run::Run::set_cancel`]: crate::run::Run::set_cancel
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};

@@ -230,14 +230,6 @@ pub fn text(bytes: Vec<u8>) -> io::Result<String> {
 mod tests {
     use super::*;
 
-    /// A private scratch directory, removed when dropped.
-    fn scratch() -> tempfile::TempDir {
-        tempfile::Builder::new()
-            .prefix("ontogeny-input-unit-")
-            .tempdir()
-            .unwrap()
-    }
-
     #[test]
     fn sizes_are_read_in_bytes_or_binary_multiples() {
         assert_eq!(parse_size("1000"), Some(1000));
@@ -282,7 +274,7 @@ mod tests {
 
     #[test]
     fn a_byte_order_mark_is_left_out_and_nothing_else() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("marked.lsys");
         fs::write(&path, b"\xEF\xBB\xBFaxiom: A\n").unwrap();
         assert_eq!(read_to_string(&path).unwrap(), "axiom: A\n");
@@ -292,7 +284,7 @@ mod tests {
 
     #[test]
     fn a_directory_is_refused_in_words() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let error = read(dir.path()).unwrap_err();
         assert_eq!(error.kind(), io::ErrorKind::IsADirectory);
         assert_eq!(error.to_string(), "a directory, not a file");
@@ -301,7 +293,7 @@ mod tests {
     #[cfg(unix)]
     #[test]
     fn a_dangling_link_says_where_it_points() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let link = dir.path().join("link.lsys");
         std::os::unix::fs::symlink("gone.lsys", &link).unwrap();
         let error = read(&link).unwrap_err();

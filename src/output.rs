@@ -199,17 +199,9 @@ pub fn copy_into_place(source: &Path, target: &Path) -> Result<(), OutputError> 
 mod tests {
     use super::*;
 
-    /// A private scratch directory, removed when dropped.
-    fn scratch() -> tempfile::TempDir {
-        tempfile::Builder::new()
-            .prefix("ontogeny-output-unit-")
-            .tempdir()
-            .unwrap()
-    }
-
     #[test]
     fn a_file_in_a_missing_folder_is_refused_in_words_that_name_the_folder_once() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("nodir").join("x.xml");
         let error = write(&path, "x").unwrap_err();
         assert_eq!(
@@ -235,7 +227,7 @@ mod tests {
 
     #[test]
     fn a_new_file_is_written_and_nothing_else_is_left_beside_it() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("out.txt");
         write(&path, "hello").unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "hello");
@@ -245,7 +237,7 @@ mod tests {
 
     #[test]
     fn a_regular_file_is_replaced_whole() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("out.txt");
         std::fs::write(&path, "an old and longer content").unwrap();
         write(&path, "new").unwrap();
@@ -254,7 +246,7 @@ mod tests {
 
     #[test]
     fn a_failed_fill_leaves_the_old_file_and_no_temporary() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("out.txt");
         std::fs::write(&path, "old").unwrap();
         let result = write_with(&path, |out| {
@@ -274,7 +266,7 @@ mod tests {
 
     #[test]
     fn a_directory_is_refused_and_left_intact() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let target = dir.path().join("taken");
         std::fs::create_dir(&target).unwrap();
         std::fs::write(target.join("inside"), "kept").unwrap();
@@ -297,7 +289,7 @@ mod tests {
     #[test]
     fn a_device_a_socket_and_a_link_are_refused() {
         use std::os::unix::fs::FileTypeExt;
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let socket = dir.path().join("socket");
         let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
         let file = dir.path().join("file");
@@ -324,7 +316,7 @@ mod tests {
     #[cfg(unix)]
     #[test]
     fn a_dangling_link_is_refused_in_words_and_left_as_it_is() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let link = dir.path().join("out.mjcf");
         std::os::unix::fs::symlink("missing/model.xml", &link).unwrap();
         assert_eq!(
@@ -343,7 +335,7 @@ mod tests {
     #[test]
     fn a_new_file_gets_the_permissions_of_an_ordinary_file() {
         use std::os::unix::fs::PermissionsExt;
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let ours = dir.path().join("ours");
         let ordinary = dir.path().join("ordinary");
         write(&ours, "x").unwrap();

@@ -9,8 +9,8 @@ use ontogeny::encoding::{
     CheckedLimits, ContinuousGenome, ContinuousLimits, DirectGenome, DirectLimits, Genome,
     GraphGenome, GraphLimits, LSystemGenome, LSystemLimits,
 };
-use ontogeny::evolve::compare::{self, evaluations_of, generations_for};
-use ontogeny::evolve::config::{
+use ontogeny::study::compare::{self, evaluations_of, generations_for};
+use ontogeny::run::config::{
     ConfigFile, RunConfig, check_settings, encoding_of, read_config, read_run_config,
 };
 use ontogeny::evolve::ga::GaSettings;

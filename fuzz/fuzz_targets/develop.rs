@@ -14,7 +14,7 @@ use libfuzzer_sys::fuzz_target;
 use ontogeny::encoding::{
     ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome, LoadOptions, grow_grammar,
 };
-use ontogeny::evolve::config::{
+use ontogeny::run::config::{
     ConfigFile, check_limits, check_settings, encoding_of, read_config,
 };
 use ontogeny::lang::Source;

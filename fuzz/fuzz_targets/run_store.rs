@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use libfuzzer_sys::fuzz_target;
 use ontogeny::encoding::{ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome};
 use ontogeny::evolve::ga::Individual;
-use ontogeny::evolve::store::{IndividualRecord, RunStore};
+use ontogeny::run::store::{IndividualRecord, RunStore};
 
 /// Generations whose individuals are read (a store may list many).
 const MOST_GENERATIONS_READ: usize = 4;

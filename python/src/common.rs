@@ -6,8 +6,8 @@ use std::path::Path;
 
 use crate::interrupt::interrupted_error;
 use ontogeny::encoding::LoadError;
-use ontogeny::evolve::run::RunError;
 use ontogeny::lang::Diagnostic;
+use ontogeny::run::RunError;
 use ontogeny::sim::StepSetting;
 use ontogeny::task::{TaskKind, WalkerFitness};
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyUserWarning, PyValueError};

@@ -9,10 +9,10 @@ use std::path::{Path, PathBuf};
 use crate::interrupt::interruptible;
 use ontogeny::cancel::Cancel;
 use ontogeny::encoding::Genome;
-use ontogeny::evolve::config::read_config_source;
-use ontogeny::evolve::run::Run;
-use ontogeny::evolve::settings::{self, RunFlags};
-use ontogeny::evolve::store::RunStore;
+use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::run::Run;
+use ontogeny::run::config::read_config_source;
+use ontogeny::run::store::RunStore;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 

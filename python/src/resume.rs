@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use ontogeny::cancel::Cancel;
 use ontogeny::encoding::Genome;
-use ontogeny::evolve::run::{GenerationReport, Run, encoding_of_run};
-use ontogeny::evolve::text;
+use ontogeny::front::text;
+use ontogeny::run::{GenerationReport, Run, encoding_of_run};
 use pyo3::prelude::*;
 
 use super::common::{require_exists, run_error, thread_pool, value_error};

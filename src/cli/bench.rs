@@ -1,15 +1,15 @@
 //! `ontogeny bench`: the evaluator's speed on this machine, and whether the default
 //! setting ranks creatures as a fine reference setting does (the experiment itself is
-//! [`ontogeny::evolve::fidelity`]; this verb times it and prints it).
+//! [`ontogeny::study::fidelity`]; this verb times it and prints it).
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use clap::Args;
-use ontogeny::evolve::bench::{chain, one_core, parse_stepping, time_evaluation};
-use ontogeny::evolve::fidelity::{FineReference, fidelity_creatures, setting_name};
 use ontogeny::sim::{JointModel, SimOptions, World};
+use ontogeny::study::bench::{chain, one_core, parse_stepping, time_evaluation};
+use ontogeny::study::fidelity::{FineReference, fidelity_creatures, setting_name};
 use ontogeny::task::{self, WalkerOptions};
 use rayon::prelude::*;
 

@@ -6,15 +6,15 @@ use std::time::Instant;
 use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
-use ontogeny::evolve::compare::{
+use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::front::text::{self, ComparisonProgress};
+use ontogeny::run::config::{ConfigFile, read_config};
+use ontogeny::run::{GenerationReport, Run};
+use ontogeny::sim::StepSetting;
+use ontogeny::study::compare::{
     self, CompareError, Manifest, ReplicateState, Shared, read_replicate, replicate_config,
     replicate_dir,
 };
-use ontogeny::evolve::config::{ConfigFile, read_config};
-use ontogeny::evolve::run::{GenerationReport, Run};
-use ontogeny::evolve::settings::{self, RunFlags};
-use ontogeny::evolve::text::{self, ComparisonProgress};
-use ontogeny::sim::StepSetting;
 use ontogeny::task::WalkerFitness;
 
 use super::evolve::{EncodingArg, bad, encoding_names, encoding_parser, run_error, set_threads};
@@ -264,7 +264,7 @@ fn report(
         let files = ["report.md", "summary.csv", "fitness.svg", "parts.svg"].map(|f| root.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
         let object =
-            ontogeny::evolve::json::comparison_json(root, shared, &r, finished.len(), &unfinished);
+            ontogeny::front::json::comparison_json(root, shared, &r, finished.len(), &unfinished);
         say!("{}", serde_json::to_string_pretty(&object)?);
         return Ok(());
     }

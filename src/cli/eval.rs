@@ -8,11 +8,11 @@ use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::Creature;
 use ontogeny::develop::BuildOptions;
-use ontogeny::evolve::champion::ChampionRecord;
+use ontogeny::front::flags::{self, TaskFlags};
 use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
+use ontogeny::run::champion::ChampionRecord;
 use ontogeny::sim::{JointModel, SimOptions};
-use ontogeny::task::flags::{self, TaskFlags};
 use ontogeny::task::{Evaluation, Recording, TaskKind, TaskSpec};
 
 use super::derive::DevelopmentArgs;

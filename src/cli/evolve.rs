@@ -5,12 +5,12 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, encoding_named};
-use ontogeny::evolve::config::read_config_source;
 use ontogeny::evolve::ga::Preset;
-use ontogeny::evolve::run::{GenerationReport, Run, RunError, encoding_of_run};
-use ontogeny::evolve::settings::{self, RunFlags};
-use ontogeny::evolve::text::{self, RunTally};
+use ontogeny::front::settings::{self, RunFlags};
+use ontogeny::front::text::{self, RunTally};
 use ontogeny::lang::Source;
+use ontogeny::run::config::read_config_source;
+use ontogeny::run::{GenerationReport, Run, RunError, encoding_of_run};
 use ontogeny::sim::StepSetting;
 use ontogeny::task::{TaskKind, WalkerFitness};
 
@@ -98,7 +98,7 @@ pub struct EvolveArgs {
     seconds: Option<f64>,
     /// The aim task's target relative to the projectile's start, as X,Y,Z metres, as `eval
     /// --target` (aim only; default: the config's `[task.catapult] target`).
-    #[arg(long, value_name = "X,Y,Z", value_parser = ontogeny::task::flags::parse_point, allow_hyphen_values = true)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = ontogeny::front::flags::parse_point, allow_hyphen_values = true)]
     target: Option<[f64; 3]>,
     /// The named step setting (default: the config's `[task.sim]`, else default); it replaces
     /// the config's five stepping values.
@@ -351,11 +351,11 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path, json: bool) -> anyhow::Result<()>
         if json {
             // The messages as ever; the final line as JSON.
             for line in lines {
-                if let ontogeny::evolve::text::Line::Message(m) = line {
+                if let ontogeny::front::text::Line::Message(m) = line {
                     tell!("{m}");
                 }
             }
-            let object = ontogeny::evolve::json::run_json(
+            let object = ontogeny::front::json::run_json(
                 &tally,
                 dir,
                 &fitness,

@@ -159,11 +159,11 @@ pub fn main() -> ExitCode {
 }
 
 /// Prints `lines`: results on standard output, messages on standard error.
-fn print(lines: Vec<ontogeny::evolve::text::Line>) -> anyhow::Result<()> {
+fn print(lines: Vec<ontogeny::front::text::Line>) -> anyhow::Result<()> {
     for line in lines {
         match line {
-            ontogeny::evolve::text::Line::Result(l) => say!("{l}"),
-            ontogeny::evolve::text::Line::Message(l) => tell!("{l}"),
+            ontogeny::front::text::Line::Result(l) => say!("{l}"),
+            ontogeny::front::text::Line::Message(l) => tell!("{l}"),
         }
     }
     Ok(())
@@ -258,8 +258,8 @@ mod tests {
     /// store is the input's.
     #[test]
     fn a_store_or_plot_that_cannot_be_written_exits_1_and_a_damaged_store_exits_2() {
-        use ontogeny::evolve::run::RunError;
-        use ontogeny::evolve::store::StoreError;
+        use ontogeny::run::RunError;
+        use ontogeny::run::store::StoreError;
         let path = std::path::PathBuf::from("runs/a/run.sqlite");
         let code = |e: RunError| exit_code(&evolve::run_error(e));
         let full = StoreError::Sqlite {

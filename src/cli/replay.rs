@@ -5,9 +5,9 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
-use ontogeny::evolve::pick::{PickError, individual_by_rank};
-use ontogeny::evolve::run::{Run, encoding_of_run};
 use ontogeny::render::MAX_FPS;
+use ontogeny::run::pick::{PickError, individual_by_rank};
+use ontogeny::run::{Run, encoding_of_run};
 use ontogeny::task::{Recording, TaskKind, TaskSpec};
 
 use super::physics::{FitnessArgs, SteppingArgs};

@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
-use ontogeny::evolve::{listing, text};
+use ontogeny::front::text;
+use ontogeny::study::listing;
 
 /// Subcommands of `ontogeny runs`.
 #[derive(Subcommand)]

@@ -169,6 +169,24 @@ pub struct Builder<'a> {
     first_gap: Option<String>,
 }
 
+/// Builds the creature a frame of `lsys`'s development shows: the frame's string through the
+/// interpretation rules, built at the frame's time in its environment.
+pub fn build_frame(
+    lsys: &crate::lsystem::LSystem,
+    frame: &crate::lsystem::Frame<'_>,
+    options: &crate::lsystem::DeriveOptions,
+    build_options: &BuildOptions,
+) -> Result<Creature, crate::lang::Diagnostic> {
+    let shown = lsys.interpret(frame.string, frame.t, options)?;
+    Ok(build(
+        &shown,
+        lsys.symbols(),
+        frame.env,
+        Some(frame.t),
+        build_options,
+    ))
+}
+
 /// Builds the creature a module string describes. `t` is its developmental time (for
 /// reports), `env` the environment it grew in.
 pub fn build(
@@ -738,19 +756,15 @@ pub fn for_each_growth_frame<E: From<crate::lang::Diagnostic>>(
             .check()
             .map_err(crate::lang::Diagnostic::from)?;
         let fraction = frame.fraction();
-        let shown = lsys.interpret(frame.string, frame.t, options)?;
         if wanted(frame.step, frame.last) {
             visit(GrowthFrame {
                 step: frame.step,
                 t: frame.t,
-                creature: build(
-                    &shown,
-                    lsys.symbols(),
-                    frame.env,
-                    Some(frame.t),
-                    build_options,
-                ),
+                creature: build_frame(lsys, &frame, options, build_options)?,
             })?;
+        } else {
+            // Every frame's string is interpreted: an error at any frame is an error.
+            lsys.interpret(frame.string, frame.t, options)?;
         }
         progress(fraction);
         Ok(())

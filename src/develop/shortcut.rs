@@ -8,7 +8,7 @@
 
 use std::fmt;
 
-use super::{Action, BuildOptions, GrowthFrame, build, command_of};
+use super::{Action, BuildOptions, GrowthFrame, build, build_frame, command_of};
 use crate::creature::Creature;
 use crate::environment::Environment;
 use crate::lang::Diagnostic;
@@ -76,14 +76,7 @@ pub fn grow_last(
         build_options.cancel.check().map_err(Diagnostic::from)?;
         progress(frame.fraction());
         if frame.last {
-            let shown = lsys.interpret(frame.string, frame.t, options)?;
-            let creature = build(
-                &shown,
-                lsys.symbols(),
-                frame.env,
-                Some(frame.t),
-                build_options,
-            );
+            let creature = build_frame(lsys, &frame, options, build_options)?;
             let shortcut = frame.fixed_since.map(|step| Shortcut::FixedPoint { step });
             last = Some((frame.step, frame.t, creature, shortcut));
             return Ok(false);

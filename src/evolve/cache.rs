@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 use super::key::EvaluationKey;
-use super::store::FineEvaluation;
+use super::record::FineEvaluation;
 use crate::task::Evaluation;
 
 /// The evaluations of a run by key; an off cache (`--no-cache`) holds and finds nothing.

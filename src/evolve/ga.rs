@@ -14,7 +14,7 @@ use std::collections::HashMap;
 use super::cache::EvaluationCache;
 use super::evaluator::Evaluator;
 use super::key::EvaluationKey;
-use super::store::GenerationRecord;
+use super::record::GenerationRecord;
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};

@@ -118,6 +118,13 @@ pub struct PatternModule {
     pub span: Span,
 }
 
+impl PatternModule {
+    /// The formal parameters' names, in order.
+    pub fn formals(&self) -> Vec<String> {
+        self.params.iter().map(|(f, _)| f.clone()).collect()
+    }
+}
+
 /// Whether a formal parameter is a number to match rather than a name to bind.
 pub fn is_constant_formal(param: &str) -> bool {
     param

@@ -461,13 +461,15 @@ impl Builder<'_> {
                 let value = self.expr(pair.into_inner().next().expect("grammar: length"), 0)?;
                 self.raw.file.derivation_length = Some(value);
             }
-            Rule::time_stmt | Rule::dt_stmt => {
-                let is_time = pair.as_rule() == Rule::time_stmt;
+            Rule::time_stmt | Rule::dt_stmt | Rule::angle_stmt | Rule::step_stmt => {
+                let header = pair.as_rule();
                 let value = self.expr(pair.into_inner().next().expect("grammar: value"), 0)?;
-                let (slot, what) = if is_time {
-                    (&mut self.raw.file.time, "time")
-                } else {
-                    (&mut self.raw.file.dt, "dt")
+                let file = &mut self.raw.file;
+                let (slot, what) = match header {
+                    Rule::time_stmt => (&mut file.time, "time"),
+                    Rule::dt_stmt => (&mut file.dt, "dt"),
+                    Rule::angle_stmt => (&mut file.angle, "angle"),
+                    _ => (&mut file.step, "step"),
                 };
                 if let Some(first) = slot {
                     let first = first.span();
@@ -475,43 +477,24 @@ impl Builder<'_> {
                 }
                 *slot = Some(value);
             }
-            Rule::angle_stmt | Rule::step_stmt => {
-                let is_angle = pair.as_rule() == Rule::angle_stmt;
-                let value = self.expr(pair.into_inner().next().expect("grammar: value"), 0)?;
-                let (slot, what) = if is_angle {
-                    (&mut self.raw.file.angle, "angle")
+            Rule::heading_stmt | Rule::timing_stmt => {
+                let is_heading = pair.as_rule() == Rule::heading_stmt;
+                let word = pair.into_inner().next().expect("grammar: a header's word");
+                let file = &mut self.raw.file;
+                let (first, what) = if is_heading {
+                    (file.heading.map(|(_, s)| s), "heading")
                 } else {
-                    (&mut self.raw.file.step, "step")
+                    (file.timing.map(|(_, s)| s), "timing")
                 };
-                if let Some(first) = slot {
-                    let first = first.span();
+                if let Some(first) = first {
                     return Err(self.twice(what, span, first));
                 }
-                *slot = Some(value);
-            }
-            Rule::heading_stmt => {
-                if let Some((_, first)) = self.raw.file.heading {
-                    return Err(self.twice("heading", span, first));
+                match (is_heading, word.as_str()) {
+                    (true, "up") => file.heading = Some((Heading::Up, span)),
+                    (true, _) => file.heading = Some((Heading::Ground, span)),
+                    (false, "exact") => file.timing = Some((Timing::Exact, span)),
+                    (false, _) => file.timing = Some((Timing::Iterative, span)),
                 }
-                let value = pair.into_inner().next().expect("grammar: heading value");
-                let heading = if value.as_str() == "up" {
-                    Heading::Up
-                } else {
-                    Heading::Ground
-                };
-                self.raw.file.heading = Some((heading, span));
-            }
-            Rule::timing_stmt => {
-                if let Some((_, first)) = self.raw.file.timing {
-                    return Err(self.twice("timing", span, first));
-                }
-                let mode = pair.into_inner().next().expect("grammar: timing mode");
-                let timing = if mode.as_str() == "exact" {
-                    Timing::Exact
-                } else {
-                    Timing::Iterative
-                };
-                self.raw.file.timing = Some((timing, span));
             }
             Rule::environment_stmt => {
                 if let Some((_, first)) = &self.raw.file.environment {

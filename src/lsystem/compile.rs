@@ -419,21 +419,28 @@ impl Compiler<'_> {
         }
     }
 
+    /// The error for `call` given other parameters than `takes` says it takes.
+    fn given_wrong_count(&self, call: &ModuleCall, takes: &str) -> Diagnostic {
+        let n = call.args.len();
+        self.error(
+            call.span,
+            format!(
+                "'{}' is given {n} parameter{}, but {takes}",
+                call.name,
+                plural(n)
+            ),
+        )
+    }
+
     /// Checks a module's arity against its predecessor's (if it has one) and interns it.
     fn module_symbol(&mut self, call: &ModuleCall) -> Result<SymbolId, Diagnostic> {
         if let Some(&(expected, first)) = self.arity.get(&call.name)
             && expected != call.args.len()
         {
             let (line, _) = self.source.line_col(first.start);
-            return Err(self.error(
-                call.span,
-                format!(
-                    "'{}' is given {} parameter{}, but the rule on line {line} takes {expected}",
-                    call.name,
-                    call.args.len(),
-                    plural(call.args.len())
-                ),
-            ));
+            return Err(
+                self.given_wrong_count(call, &format!("the rule on line {line} takes {expected}"))
+            );
         }
         if (call.name == "[" || call.name == "]") && !call.args.is_empty() {
             return Err(self.error(call.span, "brackets take no parameters"));
@@ -448,15 +455,9 @@ impl Compiler<'_> {
                 0 => "none".to_string(),
                 n => format!("{n} ({what})"),
             };
-            return Err(self.error(
-                call.span,
-                format!(
-                    "'{}' is given {} parameter{}, but the built-in command takes {takes}",
-                    call.name,
-                    call.args.len(),
-                    plural(call.args.len())
-                ),
-            ));
+            return Err(
+                self.given_wrong_count(call, &format!("the built-in command takes {takes}"))
+            );
         }
         Ok(self.symbols.intern(&call.name))
     }

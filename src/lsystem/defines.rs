@@ -189,22 +189,20 @@ mod tests {
                 value: -1.5
             }
         );
-        assert_eq!(
-            "GROWTH".parse::<DefineOverride>().unwrap_err(),
-            "'GROWTH' is not NAME=VALUE (e.g. GROWTH=1.5)"
-        );
-        assert_eq!(
-            "2X=1".parse::<DefineOverride>().unwrap_err(),
-            "'2X' is not a define's name (a letter or _, then letters, digits or _)"
-        );
-        assert_eq!(
-            "GROWTH=fast".parse::<DefineOverride>().unwrap_err(),
-            "the value of GROWTH, 'fast', is not a number"
-        );
-        assert_eq!(
-            "GROWTH=inf".parse::<DefineOverride>().unwrap_err(),
-            "the value of GROWTH, 'inf', is not a number"
-        );
+        for (text, message) in [
+            ("GROWTH", "'GROWTH' is not NAME=VALUE (e.g. GROWTH=1.5)"),
+            (
+                "2X=1",
+                "'2X' is not a define's name (a letter or _, then letters, digits or _)",
+            ),
+            (
+                "GROWTH=fast",
+                "the value of GROWTH, 'fast', is not a number",
+            ),
+            ("GROWTH=inf", "the value of GROWTH, 'inf', is not a number"),
+        ] {
+            assert_eq!(text.parse::<DefineOverride>().unwrap_err(), message);
+        }
     }
 
     #[test]

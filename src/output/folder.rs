@@ -171,17 +171,9 @@ pub fn mark(path: &Path, kind: FolderKind) -> Result<(), OutputError> {
 mod tests {
     use super::*;
 
-    /// A private scratch directory, removed when dropped.
-    fn scratch() -> tempfile::TempDir {
-        tempfile::Builder::new()
-            .prefix("ontogeny-folder-unit-")
-            .tempdir()
-            .unwrap()
-    }
-
     #[test]
     fn a_missing_folder_is_made_with_its_parents_and_marked() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("a").join("b");
         prepare_folder(&out, FolderKind::Growth).unwrap();
         assert!(is_marked(&out, FolderKind::Growth));
@@ -193,7 +185,7 @@ mod tests {
 
     #[test]
     fn an_empty_folder_is_used_and_a_folder_of_the_users_is_refused_untouched() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         prepare_folder(dir.path(), FolderKind::Recording).unwrap();
         assert!(is_marked(dir.path(), FolderKind::Recording));
         let users = dir.path().join("mine");
@@ -223,7 +215,7 @@ mod tests {
 
     #[test]
     fn another_verbs_folder_is_refused() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         prepare_folder(dir.path(), FolderKind::Growth).unwrap();
         let error = check_folder(dir.path(), FolderKind::Recording).unwrap_err();
         assert!(matches!(error, OutputError::NotOurFolder { .. }));
@@ -232,7 +224,7 @@ mod tests {
 
     #[test]
     fn a_file_is_not_a_folder() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("file");
         std::fs::write(&file, "mine").unwrap();
         assert_eq!(
@@ -250,7 +242,7 @@ mod tests {
     #[cfg(unix)]
     #[test]
     fn a_dangling_link_is_refused_in_words_and_a_link_to_a_folder_is_followed() {
-        let dir = scratch();
+        let dir = tempfile::tempdir().unwrap();
         let link = dir.path().join("link");
         std::os::unix::fs::symlink("nowhere", &link).unwrap();
         assert_eq!(

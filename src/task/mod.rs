@@ -15,7 +15,6 @@ use serde::{Deserialize, Serialize};
 mod catapult;
 mod check;
 mod compact;
-pub mod flags;
 mod jump;
 mod protocol;
 mod recording;

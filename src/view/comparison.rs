@@ -7,8 +7,8 @@ use std::path::Path;
 use serde_json::{Value, json};
 
 use super::{ViewError, finite};
-use crate::evolve::compare::{self, replicate_dir};
-use crate::evolve::store::RunStore;
+use crate::run::store::RunStore;
+use crate::study::compare::{self, replicate_dir};
 
 /// The plots a comparison's page shows, by file name, as the server serves them
 /// (`/plot/NAME`).

@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
 
-use crate::develop::{BuildOptions, build};
+use crate::develop::{BuildOptions, build_frame};
 use crate::lang::{Diagnostic, FileKind};
 use crate::lsystem::{DefineOverride, DeriveOptions, LSystem};
 
@@ -425,14 +425,7 @@ fn grow_with_strings(
     .with_headers(lsys);
     let mut frames = Vec::new();
     lsys.for_each_frame(options, steps, |frame| {
-        let shown = lsys.interpret(frame.string, frame.t, options)?;
-        let creature = build(
-            &shown,
-            lsys.symbols(),
-            frame.env,
-            Some(frame.t),
-            &build_options,
-        );
+        let creature = build_frame(lsys, &frame, options, &build_options)?;
         frames.push(frame_json(
             frame.step,
             frame.t,
@@ -549,7 +542,7 @@ pub fn no_samples_reason(recording: &crate::task::Recording) -> Option<String> {
 /// "valid_fraction", "evaluations", "best_fine" (the best re-walked at the fine reference, or
 /// null)}]}`.
 pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
-    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+    let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     let run = store.run().map_err(|e| ViewError::BadFile(e.to_string()))?;
     let generations: Vec<Value> = store
@@ -582,7 +575,7 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
 /// the ranks of `ontogeny replay --rank`): `[{"rank", "index", "fitness", "status",
 /// "operator", "parts", "joints", "neurons"}]`.
 pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewError> {
-    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+    let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     // In index order, so their ranks are those of the GA and of `replay --rank`.
     let individuals = store
@@ -605,7 +598,7 @@ pub fn run_generation_data(dir: &Path, generation: u32) -> Result<Value, ViewErr
 
 /// How many individuals a run's generation `generation` has (0 for a generation not stored).
 pub fn run_population_size(dir: &Path, generation: u32) -> Result<usize, ViewError> {
-    let store = crate::evolve::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+    let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     Ok(store
         .individuals(generation)

@@ -9,8 +9,8 @@ use serde_json::{Value, json};
 use super::{Kind, Target, ViewError};
 use crate::creature::Creature;
 use crate::encoding::Genome;
-use crate::evolve::pick::{PickError, individual_by_rank};
-use crate::evolve::run::Run;
+use crate::run::Run;
+use crate::run::pick::{PickError, individual_by_rank};
 use crate::task::Recording;
 
 /// What the server asks of a run's individuals, which only code that knows the run's encoding

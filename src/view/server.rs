@@ -21,8 +21,8 @@ use std::time::{Duration, Instant};
 use serde_json::{Value, json};
 
 use super::{Developer, Kind, Target, ViewError};
-use crate::evolve::store::{RunStore, StoreError};
 use crate::lsystem::DeriveOptions;
+use crate::run::store::{RunStore, StoreError};
 
 const INDEX_HTML: &str = include_str!("assets/index.html");
 const APP_JS: &str = include_str!("assets/app.js");

@@ -9,11 +9,11 @@ use crate::util::{grown, lsystem, scratch_dir};
 use ontogeny::cancel::{Cancel, Interrupted};
 use ontogeny::develop::{BuildOptions, for_each_growth_frame, grow_last};
 use ontogeny::encoding::DirectGenome;
-use ontogeny::evolve::run::{Run, RunError};
-use ontogeny::evolve::settings::{self, RunFlags};
-use ontogeny::evolve::store::{IndividualRecord, RunStore};
+use ontogeny::front::settings::{self, RunFlags};
 use ontogeny::lang::DiagnosticKind;
 use ontogeny::lsystem::DeriveOptions;
+use ontogeny::run::store::{IndividualRecord, RunStore};
+use ontogeny::run::{Run, RunError};
 use ontogeny::task::{TaskKind, TaskSpec, Watch};
 
 /// Ten steps of a growing string, eleven frames with the axiom.

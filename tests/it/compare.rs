@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use ontogeny::evolve::store::RunStore;
+use ontogeny::run::store::RunStore;
 
 use crate::util::{ontogeny_command, refused, scratch_dir, stderr, succeeded};
 

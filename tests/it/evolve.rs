@@ -16,9 +16,9 @@ use ontogeny::encoding::{
     ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome, Purpose,
 };
 use ontogeny::evolve::ga::ranking;
-use ontogeny::evolve::plot::FINE_LABEL;
-use ontogeny::evolve::run::{Run, exploits_stepping};
-use ontogeny::evolve::store::RunStore;
+use ontogeny::run::plot::FINE_LABEL;
+use ontogeny::run::store::RunStore;
+use ontogeny::run::{Run, exploits_stepping};
 use ontogeny::task::{Evaluation, TaskSpec};
 
 use crate::util::{evolve_walkers, ontogeny_command, refused, scratch_dir, succeeded};
@@ -410,10 +410,7 @@ fn a_version_1_database_is_migrated_on_resume() {
         String::from_utf8_lossy(&resumed.stderr)
     );
     let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
-    assert_eq!(
-        store.schema_version(),
-        ontogeny::evolve::store::SCHEMA_VERSION
-    );
+    assert_eq!(store.schema_version(), ontogeny::run::store::SCHEMA_VERSION);
     let generations = store.generations().unwrap();
     let fresh = RunStore::open_read_only(&whole.join("run.sqlite"))
         .unwrap()

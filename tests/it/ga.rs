@@ -8,7 +8,7 @@ use ontogeny::evolve::cache::EvaluationCache;
 use ontogeny::evolve::ga::{
     Evolution, Fallbacks, GaSettings, Individual, Operator, Preset, ranking, schedule,
 };
-use ontogeny::evolve::store::GenerationRecord;
+use ontogeny::run::store::GenerationRecord;
 use ontogeny::task::{Status, TaskKind, TaskSpec};
 use rand::RngExt;
 use serde::{Deserialize, Serialize};

@@ -633,7 +633,7 @@ fn evolve_with_the_graph_encoding_runs_resumes_and_throws() {
     // line removed) is read as the seven kinds that run drew from.
     let read = |text: &str| {
         let source = ontogeny::lang::Source::new("config.toml", text);
-        ontogeny::evolve::config::read_run_config::<GraphLimits>(&source)
+        ontogeny::run::config::read_run_config::<GraphLimits>(&source)
             .unwrap()
             .limits
             .joint_kinds

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use ontogeny::evolve::store::RunStore;
+use ontogeny::run::store::RunStore;
 use serde_json::Value;
 
 use crate::util::{ontogeny, ontogeny_command, scratch_dir, stderr, stdout};

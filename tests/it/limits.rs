@@ -3,9 +3,9 @@
 //! the key, the range, and the file, line and column where the file sets it.
 
 use ontogeny::encoding::{CheckedLimits, LSystemGenome, LSystemLimits};
-use ontogeny::evolve::config::{RunConfig, read_run_config};
 use ontogeny::evolve::ga::{GaSettings, Preset};
 use ontogeny::lang::Source;
+use ontogeny::run::config::{RunConfig, read_run_config};
 use ontogeny::task::{TaskKind, TaskSpec};
 
 use crate::util::{ontogeny_command, refused, scratch_dir};

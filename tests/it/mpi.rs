@@ -126,7 +126,7 @@ fn a_killed_worker_rank_ends_the_job_and_the_run_resumes_to_the_same_result() {
         said.contains("rank 2") && said.contains("signal 9"),
         "{said}"
     );
-    let store = ontogeny::evolve::store::RunStore::open(&killed.join("run.sqlite")).unwrap();
+    let store = ontogeny::run::store::RunStore::open(&killed.join("run.sqlite")).unwrap();
     let stored = store.last_generation().unwrap();
     drop(store);
     assert!(

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use ontogeny::evolve::store::RunStore;
+use ontogeny::run::store::RunStore;
 
 use crate::util::{ontogeny, ontogeny_ok, refused, scratch_dir, stderr, stdout, tiny_run};
 

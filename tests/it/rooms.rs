@@ -5,9 +5,9 @@
 use std::path::Path;
 
 /// The rooms in pipeline order: each may use only those before it.
-const ROOMS: [&str; 13] = [
-    "cancel", "lang", "lsystem", "creature", "develop", "sim", "task", "encoding", "evolve",
-    "render", "export", "view", "cli",
+const ROOMS: [&str; 16] = [
+    "cancel", "lang", "lsystem", "creature", "develop", "sim", "task", "encoding", "evolve", "run",
+    "study", "front", "render", "export", "view", "cli",
 ];
 
 /// The rooms that `text` names as `crate::ROOM`, comments left out.

@@ -9,8 +9,8 @@ mod run_config;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use ontogeny::evolve::plot::{FAILURE_FLOOR, FINE_LABEL, fitness_svg};
-use ontogeny::evolve::store::{
+use ontogeny::run::plot::{FAILURE_FLOOR, FINE_LABEL, fitness_svg};
+use ontogeny::run::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, SCHEMA_VERSION,
     StoreError,
 };

@@ -25,14 +25,12 @@ impl ContinuousGenome {
         let mut last = None;
         lsys.for_each_frame(&options, None, |frame| {
             if frame.last {
-                let shown = lsys.interpret(frame.string, frame.t, &options)?;
-                last = Some(crate::develop::build(
-                    &shown,
-                    lsys.symbols(),
-                    frame.env,
-                    Some(frame.t),
+                last = Some(crate::develop::build_frame(
+                    &lsys,
+                    &frame,
+                    &options,
                     &build_options,
-                ));
+                )?);
             }
             Ok::<(), crate::lang::Diagnostic>(())
         })

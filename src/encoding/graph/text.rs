@@ -305,43 +305,49 @@ impl GenomeShape {
                 limits.nodes()
             ));
         }
-        if self.neurons.len() > limits.max_global_neurons {
-            return Err(format!(
-                "{} global neurons; at most {} allowed (max_global_neurons)",
-                self.neurons.len(),
-                limits.max_global_neurons
-            ));
-        }
+        at_most(
+            self.neurons.len(),
+            limits.max_global_neurons,
+            "max_global_neurons",
+            |n| format!("{n} global neurons"),
+        )?;
         let inputs = |where_: &str, neurons: &[NeuronShape]| -> Result<(), String> {
             for (k, g) in neurons.iter().enumerate() {
-                if g.inputs.len() > limits.max_inputs {
-                    return Err(format!(
-                        "{where_} neuron {k} has {} inputs; at most {} allowed (max_inputs)",
-                        g.inputs.len(),
-                        limits.max_inputs
-                    ));
-                }
+                at_most(g.inputs.len(), limits.max_inputs, "max_inputs", |n| {
+                    format!("{where_} neuron {k} has {n} inputs")
+                })?;
             }
             Ok(())
         };
         inputs("global", &self.neurons)?;
         for (i, node) in self.nodes.iter().enumerate() {
-            if node.neurons.len() > limits.max_local_neurons {
-                return Err(format!(
-                    "node {i}: {} neurons; at most {} allowed (max_local_neurons)",
-                    node.neurons.len(),
-                    limits.max_local_neurons
-                ));
-            }
+            at_most(
+                node.neurons.len(),
+                limits.max_local_neurons,
+                "max_local_neurons",
+                |n| format!("node {i}: {n} neurons"),
+            )?;
             inputs(&format!("node {i}"), &node.neurons)?;
-            if node.connections.len() > limits.max_connections {
-                return Err(format!(
-                    "node {i}: {} connections; at most {} allowed (max_connections)",
-                    node.connections.len(),
-                    limits.max_connections
-                ));
-            }
+            at_most(
+                node.connections.len(),
+                limits.max_connections,
+                "max_connections",
+                |n| format!("node {i}: {n} connections"),
+            )?;
         }
         Ok(())
     }
+}
+
+/// `Err` saying "`what(count)`; at most `limit` allowed (`knob`)" when `count` is over `limit`.
+fn at_most(
+    count: usize,
+    limit: usize,
+    knob: &str,
+    what: impl FnOnce(usize) -> String,
+) -> Result<(), String> {
+    if count > limit {
+        return Err(format!("{}; at most {limit} allowed ({knob})", what(count)));
+    }
+    Ok(())
 }

@@ -94,14 +94,7 @@ pub(crate) fn grown_size(text: &str) -> Result<(usize, usize), String> {
     lsys.for_each_frame(&options, None, |frame| {
         most = most.max(frame.string.len());
         if frame.last {
-            let shown = lsys.interpret(frame.string, frame.t, &options)?;
-            let creature = build(
-                &shown,
-                lsys.symbols(),
-                frame.env,
-                Some(frame.t),
-                &build_options,
-            );
+            let creature = build_frame(&lsys, &frame, &options, &build_options)?;
             parts = Some(creature.parts.len());
         }
         Ok::<(), lang::Diagnostic>(())

@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{DevelopError, Genome, Rng};
 use crate::creature::{Actuator, Creature, Role};
-use crate::develop::{BuildOptions, build};
+use crate::develop::{BuildOptions, build, build_frame};
 use crate::environment::Environment;
 use crate::lang::ast::{BinaryOp, Expr, ModuleCall, Section};
 use crate::lang::commands::{Argument, Command};

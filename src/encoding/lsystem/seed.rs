@@ -56,12 +56,7 @@ fn inline_constants(file: &mut lang::ast::LsysFile, constants: &[(&str, f64)]) {
         }
     }
     for rule in &mut file.rules {
-        let formals: Vec<String> = rule
-            .predecessor
-            .params
-            .iter()
-            .map(|(f, _)| f.clone())
-            .collect();
+        let formals: Vec<String> = rule.predecessor.formals();
         if let Some(g) = &mut rule.guard {
             inline(g, constants, &formals);
         }
@@ -238,12 +233,7 @@ fn structural(
             continue;
         }
         let k = names.iter().position(|n| n == name).expect("collected");
-        let formals: Vec<String> = rule
-            .predecessor
-            .params
-            .iter()
-            .map(|(f, _)| f.clone())
-            .collect();
+        let formals: Vec<String> = rule.predecessor.formals();
         params = params.max(formals.len());
         if let Some(f) = formals.iter().find(|f| lang::ast::is_constant_formal(f)) {
             reasons.push(format!(

@@ -5,7 +5,7 @@
 use super::*;
 
 /// Every stored individual of the run in `dir`, in generation and index order.
-fn stored_individuals(dir: &Path) -> Vec<ontogeny::evolve::store::IndividualRecord> {
+fn stored_individuals(dir: &Path) -> Vec<ontogeny::run::store::IndividualRecord> {
     let store = RunStore::open_read_only(&dir.join("run.sqlite")).unwrap();
     let last = store.last_generation().unwrap().unwrap();
     (0..=last)
@@ -169,10 +169,7 @@ fn a_version_2_database_is_migrated_to_the_current_version_on_resume() {
     }
     succeeded(&resume(&old));
     let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
-    assert_eq!(
-        store.schema_version(),
-        ontogeny::evolve::store::SCHEMA_VERSION
-    );
+    assert_eq!(store.schema_version(), ontogeny::run::store::SCHEMA_VERSION);
     drop(store);
     // The old rows: evaluated, no key; the new ones keyed as in the uninterrupted run.
     let (migrated, fresh) = (stored_individuals(&old), stored_individuals(&whole));

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use ontogeny::evolve::store::RunStore;
+use ontogeny::run::store::RunStore;
 
 use super::scratch;
 use crate::util::{ontogeny_command, ontogeny_ok, refused, stderr, succeeded};
@@ -23,7 +23,7 @@ fn eval_fitness(args: &[&str]) -> (f64, String) {
 /// The fitness a champion file's record gives it.
 fn recorded_fitness(path: &Path) -> f64 {
     let text = std::fs::read_to_string(path).unwrap();
-    let record = ontogeny::evolve::champion::ChampionRecord::of_text(&text)
+    let record = ontogeny::run::champion::ChampionRecord::of_text(&text)
         .unwrap()
         .unwrap_or_else(|| panic!("{} has no record", path.display()));
     record.fitness

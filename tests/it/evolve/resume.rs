@@ -63,7 +63,7 @@ fn a_second_process_on_a_run_directory_is_refused_at_once_naming_the_holder() {
         refused(output, &holder);
     }
     // The lock dies with its holder, however it died.
-    ontogeny::evolve::lock::DirectoryLock::acquire(&run).unwrap();
+    ontogeny::run::lock::DirectoryLock::acquire(&run).unwrap();
     let _ = std::fs::remove_dir_all(dir);
 }
 
@@ -93,7 +93,7 @@ fn every_state_a_killed_start_leaves_is_one_resume_completes() {
     let store_alone = dir.join("store-alone");
     {
         let source = ontogeny::lang::Source::new("config.toml", config.clone());
-        let run_config = ontogeny::evolve::config::read_run_config(&source).unwrap();
+        let run_config = ontogeny::run::config::read_run_config(&source).unwrap();
         Run::<LSystemGenome>::start(&store_alone, run_config, None).unwrap();
     }
     std::fs::remove_file(store_alone.join("config.toml")).unwrap();

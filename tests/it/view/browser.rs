@@ -271,7 +271,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
 
     let run = dir.join("run");
     tiny_run("lsystem", &run, &["--seed", "5"]);
-    let store = ontogeny::evolve::store::RunStore::open(&run.join("run.sqlite")).unwrap();
+    let store = ontogeny::run::store::RunStore::open(&run.join("run.sqlite")).unwrap();
     let generation0 = store.individuals(0).unwrap();
     let viewer = Viewer::start(&run);
     // By default the best of the last generation is opened; ?gen=&index= opens any other.

@@ -574,7 +574,7 @@ fn max_parts_lets_the_page_hold_a_plant_of_thousands_of_parts() {
 #[test]
 fn a_run_page_says_what_the_fitness_measures_and_the_fine_reference_of_each_best() {
     let run = tiny_run("plot-data");
-    let store = ontogeny::evolve::store::RunStore::open(&run.join("run.sqlite")).unwrap();
+    let store = ontogeny::run::store::RunStore::open(&run.join("run.sqlite")).unwrap();
     let generations = store.generations().unwrap();
     let spec = store.run().unwrap().task_spec().unwrap();
     let viewer = Viewer::start(&run);
@@ -646,7 +646,7 @@ fn a_comparison_is_shown_with_its_report_its_plots_and_its_replicates() {
         assert_eq!(run["k"], 1);
         let dir = cmp.join(encoding).join("rep-1");
         assert_eq!(run["dir"], dir.display().to_string());
-        let store = ontogeny::evolve::store::RunStore::open(&dir.join("run.sqlite")).unwrap();
+        let store = ontogeny::run::store::RunStore::open(&dir.join("run.sqlite")).unwrap();
         let generations = store.generations().unwrap();
         assert_eq!(run["generations"], generations.len());
         assert_eq!(run["best"].as_f64(), Some(generations.last().unwrap().best));

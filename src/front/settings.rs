@@ -10,10 +10,10 @@ use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
 use crate::task::{TaskKind, TaskSpec, WalkerFitness};
 
-use super::compare::{self, Manifest, Shared, generations_for};
-use super::config::{ConfigFile, RunConfig, check_settings};
-use super::config_errors::setting_diagnostic;
-use super::ga::{GaSettings, Preset};
+use crate::evolve::ga::{GaSettings, Preset};
+use crate::run::config::{ConfigFile, RunConfig, check_settings};
+use crate::run::config_errors::setting_diagnostic;
+use crate::study::compare::{self, Manifest, Shared, generations_for};
 
 /// The flags that set a run's genetic algorithm and task, shared by `evolve` and `compare`
 /// (each `None` when not given).
@@ -188,7 +188,7 @@ pub fn new_run_encoding(flag: Option<&str>, source: Option<&Source>) -> Result<S
     Ok(match (flag, source) {
         (Some(e), _) => e.to_string(),
         (None, Some(s)) => {
-            super::config::encoding_of(s)?.unwrap_or_else(|| LSystemGenome::NAME.to_string())
+            crate::run::config::encoding_of(s)?.unwrap_or_else(|| LSystemGenome::NAME.to_string())
         }
         (None, None) => LSystemGenome::NAME.to_string(),
     })
@@ -227,12 +227,12 @@ pub fn new_run_with_notes<G: Genome>(
     cache: bool,
 ) -> Result<NewRunWithNotes<G::Limits>, Diagnostic> {
     let file: ConfigFile<G::Limits> = match source {
-        Some(s) => super::config::read_config(s)?,
+        Some(s) => crate::run::config::read_config(s)?,
         None => ConfigFile::default(),
     };
     let init_path = init_path(init, file.init.as_deref(), source);
     let mut config = run_config::<G>(file, source, flags, seed, verify_best, cache)?;
-    super::config::check_limits(&config.limits, source)?;
+    crate::run::config::check_limits(&config.limits, source)?;
     let init = init_path.as_deref().map(read_grammar).transpose()?;
     let mut notes = Vec::new();
     if let (Some(init), Some(path)) = (&init, &init_path) {
@@ -284,7 +284,7 @@ pub fn plan_comparison(
     // A key the file sets that a comparison sets itself: refused at its place in the file.
     let refuse = |path: &[&str], what: &str, why: &str| {
         let message = format!("{what} has no place in a comparison's config: {why}");
-        let at = source.and_then(|s| Some((s, super::config_errors::key_span(s, path)?)));
+        let at = source.and_then(|s| Some((s, crate::run::config_errors::key_span(s, path)?)));
         Err(match (at, source) {
             (Some((s, span)), _) => Diagnostic::at(DiagnosticKind::Semantic, s, span, message),
             (None, Some(s)) => plain(format!("{}: {message}", s.name())),

@@ -8,7 +8,7 @@ use std::ops::Range;
 
 use toml::de::{DeTable, DeValue};
 
-use super::ga::{GaSettings, Preset};
+use crate::evolve::ga::{GaSettings, Preset};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
 use crate::sim::{RENAMED_KEYS, SettingError};

@@ -94,17 +94,9 @@ impl DirectoryLock {
 mod tests {
     use super::*;
 
-    /// A private scratch directory, removed when dropped.
-    fn scratch() -> tempfile::TempDir {
-        tempfile::Builder::new()
-            .prefix("ontogeny-lock-unit-")
-            .tempdir()
-            .unwrap()
-    }
-
     #[test]
     fn a_second_lock_on_a_directory_is_refused_naming_the_holder_until_the_first_is_dropped() {
-        let scratch = scratch();
+        let scratch = tempfile::tempdir().unwrap();
         let dir = scratch.path();
         let first = DirectoryLock::acquire(dir).unwrap();
         let refused = DirectoryLock::acquire(dir).unwrap_err();

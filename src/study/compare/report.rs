@@ -7,8 +7,8 @@ use std::path::Path;
 use super::CompareError;
 use super::plan::{Manifest, Shared, evaluations_of};
 use super::replicate::{Champion, Replicate};
-use crate::evolve::plot::{self, Band};
-use crate::evolve::stats;
+use crate::run::plot::{self, Band};
+use crate::study::stats;
 
 /// One encoding's figures.
 #[derive(Clone, Debug, PartialEq)]
@@ -442,7 +442,7 @@ fn markdown_table(md: &mut String, header: &[&str], rows: impl Iterator<Item = V
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::evolve::compare::chaumont_ga as ga;
+    use crate::study::compare::chaumont_ga as ga;
     use crate::task::TaskSpec;
 
     fn replicate(encoding: &str, k: usize, best: f64, parts: u32) -> Replicate {

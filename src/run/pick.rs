@@ -3,9 +3,9 @@
 
 use std::path::Path;
 
-use super::ga::{Individual, ranking};
-use super::run::{Run, RunError};
+use super::{Run, RunError};
 use crate::encoding::Genome;
+use crate::evolve::ga::{Individual, ranking};
 
 /// Why an individual could not be picked.
 #[derive(Debug, thiserror::Error)]

@@ -10,8 +10,8 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use super::config_errors::{key_span, setting_diagnostic, toml_diagnostic};
-use super::ga::{GaSettings, Preset};
 use crate::encoding::{CheckedLimits, ENCODINGS, encoding_named};
+use crate::evolve::ga::{GaSettings, Preset};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
@@ -37,7 +37,7 @@ pub struct RunConfig<L> {
     pub verify_best: bool,
     /// Whether an individual whose creature is identical, bit for bit, to one evaluated
     /// earlier in the run reuses that evaluation instead of simulating it again
-    /// ([`super::cache`]); results are the same either way. Absent from the `config.toml` of
+    /// ([`crate::evolve::cache`]); results are the same either way. Absent from the `config.toml` of
     /// a run started before it existed: on.
     #[serde(default = "cache_default")]
     pub cache: bool,

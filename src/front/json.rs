@@ -7,9 +7,9 @@ use std::path::Path;
 
 use serde_json::{Value, json};
 
-use super::compare::{Report, Shared};
-use super::run::GenerationReport;
 use super::text::RunTally;
+use crate::run::GenerationReport;
+use crate::study::compare::{Report, Shared};
 
 /// `x`, or `null` when it is not finite.
 fn number(x: f64) -> Value {
@@ -106,7 +106,7 @@ pub fn comparison_json(
                 "p": number(p.test.p),
                 "holm_p": number(p.holm_p),
                 "a12": number(p.a12),
-                "a12_magnitude": super::stats::a12_magnitude(p.a12),
+                "a12_magnitude": crate::study::stats::a12_magnitude(p.a12),
             })
         })
         .collect();

@@ -5,10 +5,10 @@
 
 use std::path::Path;
 
-use super::compare::{Manifest, Report, Shared};
-use super::ga::GaSettings;
-use super::run::{GenerationReport, exploits_stepping};
-use super::store::{RunStore, StoreError};
+use crate::evolve::ga::GaSettings;
+use crate::run::store::{RunStore, StoreError};
+use crate::run::{GenerationReport, exploits_stepping};
+use crate::study::compare::{Manifest, Report, Shared};
 
 /// A generation's progress line: its best (and the best's fine reference), mean, valid share
 /// and speed, after the task's `fitness` label.
@@ -27,7 +27,7 @@ pub fn generation_line(fitness: &str, r: &GenerationReport) -> String {
 }
 
 /// The evaluations a run of `ga` makes in its generations from `first` on (see
-/// [`evaluations_of`](super::compare::evaluations_of)).
+/// [`evaluations_of`](crate::study::compare::evaluations_of)).
 pub fn evaluations_from(ga: &GaSettings, first: usize) -> u64 {
     let before = GaSettings {
         generations: first,
@@ -36,9 +36,9 @@ pub fn evaluations_from(ga: &GaSettings, first: usize) -> u64 {
     let made = if first == 0 {
         0
     } else {
-        super::compare::evaluations_of(&before)
+        crate::study::compare::evaluations_of(&before)
     };
-    super::compare::evaluations_of(ga).saturating_sub(made)
+    crate::study::compare::evaluations_of(ga).saturating_sub(made)
 }
 
 /// What a run is about to do, said before it starts: its size (population × generations =
@@ -51,7 +51,7 @@ pub fn start_line(
     first: usize,
     threads: usize,
 ) -> String {
-    let evaluations = super::compare::evaluations_of(ga);
+    let evaluations = crate::study::compare::evaluations_of(ga);
     let size = format!(
         "population {} × {} generations = {evaluations} evaluations (the elite of {} is not evaluated again)",
         ga.population,
@@ -270,11 +270,11 @@ pub fn generation_csv(dir: &Path) -> Result<String, StoreError> {
 /// (`generation`, `best`, ..., `best_fine` as `{fitness, status}` or `null`; a number that is
 /// not one is `null`).
 ///
-/// [`GenerationRecord`]: super::store::GenerationRecord
+/// [`GenerationRecord`]: crate::run::store::GenerationRecord
 pub fn generation_json(dir: &Path) -> Result<String, StoreError> {
     let store = RunStore::open_read_only(&dir.join("run.sqlite"))?;
     let run = store.run()?;
-    let settings = super::config::parse_table(&run.config)
+    let settings = crate::run::config::parse_table(&run.config)
         .ok()
         .and_then(|t| serde_json::to_value(t).ok());
     let value = serde_json::json!({
@@ -391,13 +391,13 @@ pub fn comparison_summary(
             p.test.p,
             p.holm_p,
             p.a12,
-            super::stats::a12_magnitude(p.a12)
+            crate::study::stats::a12_magnitude(p.a12)
         ));
     }
     if !r.too_few.is_empty() {
         lines.push(format!(
             "no statistics {}",
-            super::compare::too_few_note(&r.too_few)
+            crate::study::compare::too_few_note(&r.too_few)
         ));
     }
     if !unfinished.is_empty() {
@@ -418,8 +418,8 @@ pub fn plan_commands(root: &Path, manifest: &Manifest, no_cache: bool) -> Vec<St
             commands.push(format!(
                 "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}{}",
                 shell_word(&root.join("evolve.toml")),
-                super::compare::replicate_seed(manifest.seed, k),
-                shell_word(&super::compare::replicate_dir(root, encoding, k)),
+                crate::study::compare::replicate_seed(manifest.seed, k),
+                shell_word(&crate::study::compare::replicate_dir(root, encoding, k)),
                 if no_cache { " --no-cache" } else { "" }
             ));
         }
@@ -444,7 +444,7 @@ pub fn shell_word(path: &Path) -> String {
 mod tests {
     use super::*;
     use crate::evolve::ga::Preset;
-    use crate::evolve::store::{FineEvaluation, GenerationRecord};
+    use crate::run::store::{FineEvaluation, GenerationRecord};
 
     /// Generation `generation` of 10 evaluations in 2 s, best 10, re-walked at the fine
     /// reference to `fine`.

@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use super::compare;
-use super::store::RunStore;
+use crate::run::store::RunStore;
 
 /// What a listed directory is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,7 +89,7 @@ fn visit(dir: &Path, found: &mut Vec<Listed>) {
 }
 
 /// A run's encoding, task, generations done of those planned, and the last generation's best.
-fn run_summary(dir: &Path) -> Result<String, super::store::StoreError> {
+fn run_summary(dir: &Path) -> Result<String, crate::run::store::StoreError> {
     let store = RunStore::open_read_only(&dir.join("run.sqlite"))?;
     let run = store.run()?;
     let task = run

@@ -15,19 +15,19 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::cache::EvaluationCache;
 use super::config::{RunConfig, check_settings, read_run_config, with_generations};
-use super::evaluator_version::EVALUATOR_VERSION;
-use super::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
-use super::key::EvaluationKey;
+use super::folder::{CONFIG_FILE, Claim, LOG_FILE, PLOT_FILE, STORE_FILE, claim_folder};
 use super::lock::{DirectoryLock, LockError};
 use super::plot::fitness_svg;
-use super::run_folder::{CONFIG_FILE, Claim, LOG_FILE, PLOT_FILE, STORE_FILE, claim_folder};
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
 };
 use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::{CheckedLimits, Genome, Purpose};
+use crate::evolve::cache::EvaluationCache;
+use crate::evolve::evaluator_version::EVALUATOR_VERSION;
+use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator, ranking};
+use crate::evolve::key::EvaluationKey;
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
 use crate::task::{Evaluation, TaskKind, TaskSpec, Watch};

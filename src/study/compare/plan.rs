@@ -9,10 +9,10 @@ use serde::{Deserialize, Serialize};
 
 use super::{CompareError, io};
 use crate::encoding::Genome;
-use crate::evolve::config::{RunConfig, check_settings};
 use crate::evolve::ga::GaSettings;
-use crate::evolve::lock::{DirectoryLock, LockError};
 use crate::lang::Source;
+use crate::run::config::{RunConfig, check_settings};
+use crate::run::lock::{DirectoryLock, LockError};
 use crate::task::TaskSpec;
 
 /// What a comparison is (`compare.toml`).
@@ -137,7 +137,7 @@ pub fn replicate_dir(root: &Path, encoding: &str, k: usize) -> PathBuf {
     root.join(encoding).join(format!("rep-{k}"))
 }
 
-/// Takes the lock of the comparison in `root` ([`crate::evolve::lock`]), held while the
+/// Takes the lock of the comparison in `root` ([`crate::run::lock`]), held while the
 /// returned value lives: one process at a time runs replicates or writes the report.
 pub fn lock(root: &Path) -> Result<DirectoryLock, CompareError> {
     if !root.join("compare.toml").is_file() {
@@ -223,7 +223,7 @@ mod tests {
     use std::collections::BTreeSet;
 
     use super::*;
-    use crate::evolve::compare::chaumont_ga as ga;
+    use crate::study::compare::chaumont_ga as ga;
 
     #[test]
     fn the_budget_counts_what_the_ga_evaluates() {

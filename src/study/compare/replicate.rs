@@ -9,10 +9,10 @@ use super::CompareError;
 use super::plan::{Manifest, Shared, replicate_config, replicate_dir};
 use crate::creature::Creature;
 use crate::encoding::Genome;
-use crate::evolve::config::{RunConfig, read_run_config};
 use crate::evolve::ga::Individual;
-use crate::evolve::store::RunStore;
 use crate::lang::Source;
+use crate::run::config::{RunConfig, read_run_config};
+use crate::run::store::RunStore;
 
 /// The champion's body and brain.
 #[derive(Clone, Copy, Debug, PartialEq)]

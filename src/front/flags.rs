@@ -5,7 +5,7 @@
 
 use crate::sim::{SettingError, SimOptions};
 
-use super::{Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness};
+use crate::task::{Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness};
 
 /// The task flags of `ontogeny eval` (each `None` when not given).
 #[derive(Clone, Debug)]
@@ -31,7 +31,7 @@ impl TaskFlags {
     /// ([`TaskSpec::check`]); an error's key names the setting at fault.
     pub fn spec(&self, sim: SimOptions) -> Result<TaskSpec, SettingError> {
         if let Some(seconds) = self.seconds {
-            super::check_duration("seconds", seconds)?;
+            crate::task::check_duration("seconds", seconds)?;
         }
         let mut spec = TaskSpec::new(self.task);
         spec.sim = sim;
@@ -109,7 +109,7 @@ pub fn progress_label(spec: &TaskSpec) -> String {
 /// one step in several.
 pub fn recording_note(spec: &TaskSpec) -> Option<String> {
     let max_steps = spec.max_steps();
-    let interval = super::recording_interval(max_steps);
+    let interval = crate::task::recording_interval(max_steps);
     let dt = spec.sim.control_step;
     (interval > 1).then(|| {
         format!(

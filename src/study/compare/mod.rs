@@ -36,7 +36,7 @@ pub use survey::{Survey, gather, replicate_state, survey};
 
 use std::path::{Path, PathBuf};
 
-use super::plot;
+use crate::run::plot;
 
 /// Why a comparison could not be planned, run or reported.
 #[derive(Debug, thiserror::Error)]

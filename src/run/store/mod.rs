@@ -24,8 +24,9 @@ mod read;
 mod records;
 mod schema;
 
+pub use crate::evolve::record::{FineEvaluation, GenerationRecord};
 pub use error::StoreError;
-pub use records::{FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, StoredKey};
+pub use records::{IndividualRecord, RunRecord, StoredKey};
 pub use schema::{APPLICATION_ID, OLDEST_SCHEMA_VERSION, SCHEMA_VERSION};
 
 use std::fs::{self, OpenOptions};
@@ -64,7 +65,7 @@ impl RunStore {
     /// and renamed into place once its run row is committed, so `path` never names a store
     /// that is empty or half made: a process killed (or a disk filled) while creating it
     /// leaves no file at `path`. A temporary file left by such a start is removed by the
-    /// next; the caller holds the directory's lock ([`crate::evolve::lock`]).
+    /// next; the caller holds the directory's lock ([`crate::run::lock`]).
     pub fn create(path: &Path, run: &RunRecord) -> Result<RunStore, StoreError> {
         if fs::symlink_metadata(path).is_ok() {
             return Err(StoreError::Exists { path: path.into() });

@@ -1,0 +1,10 @@
+//! Studies over runs: comparisons of encodings or settings over replicated runs
+//! ([`compare`]), the statistics that compare them ([`stats`]), the fidelity experiment that
+//! ranks step settings against the fine reference ([`fidelity`]), the bench's measurements
+//! ([`bench`](mod@bench)) and the runs and comparisons under a directory ([`listing`]).
+
+pub mod bench;
+pub mod compare;
+pub mod fidelity;
+pub mod listing;
+pub mod stats;
