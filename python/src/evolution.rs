@@ -125,7 +125,7 @@ impl NewRun<'_> {
     /// Starts the run and runs it to its last generation, a line per generation on standard
     /// error with `progress`, until `cancel` stops it.
     fn run<G: Genome>(&self, cancel: &Cancel) -> PyResult<()> {
-        let (config, init) = settings::new_run::<G>(
+        let settings::NewRun { config, init, .. } = settings::new_run::<G>(
             self.source,
             self.flags,
             self.init,

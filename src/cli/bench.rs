@@ -127,14 +127,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         }
         return Ok(());
     }
-    let reference = SimOptions {
-        substeps: 2,
-        solver_iterations: 4,
-        pgs_iterations: 1,
-        rest_substeps: 2,
-        rest_solver_iterations: 4,
-        ..base.clone()
-    };
+    let mut reference = base.clone();
+    ontogeny::sim::knobs::set_stepping(&mut reference, [2, 4, 1, 2, 4]);
     let fast = base.fast();
     let walker = chain(10);
     text!(

@@ -20,6 +20,12 @@ use ontogeny::task::WalkerFitness;
 use super::evolve::{EncodingArg, bad, encoding_names, encoding_parser, run_error, set_threads};
 use super::physics::setting_parser;
 
+/// The flags that go with `--resume`; it refuses every other ([`super::conflicts_with_all_but`]).
+pub const WITH_RESUME: &[&str] = &["threads", "no_cache", "json"];
+
+/// The flags that go with `--merge`; it refuses every other.
+pub const WITH_MERGE: &[&str] = &["json"];
+
 /// Flags of `ontogeny compare`.
 #[derive(Args)]
 pub struct CompareArgs {
@@ -76,10 +82,10 @@ pub struct CompareArgs {
     no_cache: bool,
     /// Run the replicates of the comparison in DIR that are missing or unfinished, then
     /// write the report.
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "merge"])]
+    #[arg(long, value_name = "DIR")]
     resume: Option<PathBuf>,
     /// Write the report of the comparison in DIR from its finished replicates (runs nothing).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["encodings", "task", "fitness", "replicates", "evaluations", "seed", "out", "preset", "pop", "seconds", "setting", "config", "threads"])]
+    #[arg(long, value_name = "DIR")]
     merge: Option<PathBuf>,
     /// Print the report's summary as one JSON object (each encoding's figures, the pairwise
     /// tests, the files written) instead of text.

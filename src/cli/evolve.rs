@@ -60,6 +60,9 @@ pub fn preset_parser() -> impl clap::builder::TypedValueParser<Value = Preset> {
     })
 }
 
+/// The flags that go with `--resume`; it refuses every other ([`super::conflicts_with_all_but`]).
+pub const WITH_RESUME: &[&str] = &["gens", "threads", "allow_evaluator_change", "json"];
+
 /// Flags of `ontogeny evolve`.
 #[derive(Args)]
 pub struct EvolveArgs {
@@ -68,7 +71,7 @@ pub struct EvolveArgs {
     out: Option<PathBuf>,
     /// Continue the run in DIR where it stopped (any other flag but --threads and --gens is
     /// refused).
-    #[arg(long, value_name = "DIR", conflicts_with_all = ["out", "encoding", "task", "fitness", "preset", "pop", "seed", "config", "init", "seconds", "setting", "target", "no_verify_best", "no_cache"])]
+    #[arg(long, value_name = "DIR")]
     resume: Option<PathBuf>,
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_parser = encoding_parser())]
@@ -241,7 +244,11 @@ fn start<G: Genome>(
         .out
         .as_ref()
         .expect("clap requires --out without --resume");
-    let (config, init, notes) = settings::new_run_with_notes::<G>(
+    let settings::NewRun {
+        config,
+        init,
+        notes,
+    } = settings::new_run::<G>(
         source,
         &run_flags(args),
         args.init.as_deref(),

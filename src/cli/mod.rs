@@ -131,9 +131,35 @@ fn allow_negative_numbers(command: Command) -> Command {
         })
 }
 
+/// `command` with its flag `id` refusing every other of its flags but those in `keep`: the
+/// lists of conflicts computed from the flags themselves, so that a flag added later is
+/// refused beside `id` unless it is named here.
+fn conflicts_with_all_but(command: Command, id: &str, keep: &[&str]) -> Command {
+    let others: Vec<clap::Id> = command
+        .get_arguments()
+        .map(|a| a.get_id().clone())
+        .filter(|other| other != id && !keep.contains(&other.as_str()))
+        .collect();
+    command.mut_arg(id, |arg| arg.conflicts_with_all(others))
+}
+
+/// The command line: the verbs' flags, negative numbers allowed where a number is wanted, and
+/// the flags that continue or merge earlier work refusing those that would start new work
+/// ([`conflicts_with_all_but`]).
+fn command() -> Command {
+    allow_negative_numbers(Cli::command())
+        .mut_subcommand("evolve", |c| {
+            conflicts_with_all_but(c, "resume", evolve::WITH_RESUME)
+        })
+        .mut_subcommand("compare", |c| {
+            let c = conflicts_with_all_but(c, "resume", compare::WITH_RESUME);
+            conflicts_with_all_but(c, "merge", compare::WITH_MERGE)
+        })
+}
+
 /// Runs the command line and turns the outcome into an exit code.
 pub fn main() -> ExitCode {
-    let matches = allow_negative_numbers(Cli::command()).get_matches();
+    let matches = command().get_matches();
     if let Some(("eval", eval)) = matches.subcommand() {
         eval::set_given(eval);
     }
@@ -251,7 +277,90 @@ mod tests {
     /// otherwise only fire when that verb is run.
     #[test]
     fn the_command_line_is_well_formed() {
-        allow_negative_numbers(Cli::command()).debug_assert();
+        command().debug_assert();
+    }
+
+    /// The flags of a new run or comparison are refused beside `--resume` and `--merge`, as
+    /// the lists written out by hand before the lists were computed said.
+    #[test]
+    fn resume_and_merge_refuse_the_flags_of_new_work() {
+        let conflicts = |verb: &str, id: &str| {
+            let mut command = command();
+            command.build();
+            let sub = command.find_subcommand(verb).unwrap();
+            let arg = sub.get_arguments().find(|a| a.get_id() == id).unwrap();
+            let mut names: Vec<String> = sub
+                .get_arg_conflicts_with(arg)
+                .iter()
+                .map(|a| a.get_id().to_string())
+                .collect();
+            names.sort();
+            names
+        };
+        let sorted = |names: &[&str]| {
+            let mut names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+            names.sort();
+            names
+        };
+        assert_eq!(
+            conflicts("evolve", "resume"),
+            sorted(&[
+                "out",
+                "encoding",
+                "task",
+                "fitness",
+                "preset",
+                "pop",
+                "seed",
+                "config",
+                "init",
+                "seconds",
+                "setting",
+                "target",
+                "no_verify_best",
+                "no_cache"
+            ])
+        );
+        assert_eq!(
+            conflicts("compare", "resume"),
+            sorted(&[
+                "encodings",
+                "task",
+                "fitness",
+                "replicates",
+                "evaluations",
+                "seed",
+                "out",
+                "preset",
+                "pop",
+                "seconds",
+                "setting",
+                "config",
+                "merge",
+                "plan"
+            ])
+        );
+        assert_eq!(
+            conflicts("compare", "merge"),
+            sorted(&[
+                "encodings",
+                "task",
+                "fitness",
+                "replicates",
+                "evaluations",
+                "seed",
+                "out",
+                "preset",
+                "pop",
+                "seconds",
+                "setting",
+                "config",
+                "threads",
+                "plan",
+                "no_cache",
+                "resume"
+            ])
+        );
     }
 
     /// A store or a plot ontogeny cannot write is its own failure; a damaged or foreign

@@ -1,12 +1,19 @@
 //! The flags that set the simulated model, shared by every verb that simulates (`eval`,
 //! `export`, `bench`, and `--setting`/`--task` on `evolve` and `compare`): the parsers of the
 //! library's vocabularies (tasks, step settings, actuator and joint models), and the error
-//! that names the flag at fault.
+//! that names the flag at fault. The simulator's flags, their help and the names in their
+//! errors come from the table of knobs ([`ontogeny::sim::KNOBS`]).
 
-use clap::Args;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
-use ontogeny::sim::{ActuatorModel, SettingError, SimOptions, StepSetting, StrengthFrom};
+use clap::{Arg, ArgMatches, Args, Command, FromArgMatches};
+use ontogeny::sim::knobs::{Value, knob, stepping_knobs};
+use ontogeny::sim::{ActuatorModel, Knob, SettingError, SimOptions, StepSetting, StrengthFrom};
 use ontogeny::task::TaskKind;
+
+/// The `--help` of the flag of the knob `key` ([`Knob::help`]).
+fn help(key: &str) -> String {
+    knob(key).map_or_else(String::new, |k| k.help(""))
+}
 
 /// The flags that set the simulated model: shared by `eval`, `export` and `bench`.
 #[derive(Args)]
@@ -14,29 +21,21 @@ pub struct PhysicsArgs {
     /// Actuator model.
     #[arg(long, value_parser = actuator_parser(), default_value = "muscle")]
     actuator: ActuatorModel,
-    /// Control time step in seconds, in [0.001, 0.1]; the physics runs `--substeps` times per
-    /// step.
-    #[arg(long, default_value_t = SimOptions::default().control_step)]
+    #[arg(long, help = help("control_step"), default_value_t = SimOptions::default().control_step)]
     time_step: f64,
     #[command(flatten)]
     stepping: SteppingArgs,
     /// Whose cross-section sets a joint's strength.
     #[arg(long, value_parser = names_parser(StrengthFrom::ALL, StrengthFrom::name, StrengthFrom::summary), default_value = "bigger")]
     strength_from: StrengthFrom,
-    /// Joint strength: maximum torque per square metre of cross-section (N·m/m², finite, not
-    /// negative).
-    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_STRENGTH)]
+    #[arg(long, help = help("strength"), default_value_t = ontogeny::sim::DEFAULT_STRENGTH)]
     strength: f64,
-    /// The muscle model's target speed V_des (rad/s), high so that muscles are
-    /// torque-limited (Chaumont et al. 5.3); finite and positive.
-    #[arg(long, default_value_t = ontogeny::sim::DEFAULT_MUSCLE_SPEED)]
+    #[arg(long, help = help("muscle_speed"), default_value_t = ontogeny::sim::DEFAULT_MUSCLE_SPEED)]
     muscle_speed: f64,
     /// Let parts of one creature pass through each other (joint neighbours never collide).
     #[arg(long)]
     no_self_collision: bool,
-    /// Energy from nowhere, in J per kg of creature, that counts as an explosion (the energy
-    /// audit; 0 turns it off).
-    #[arg(long, default_value_t = ontogeny::sim::ENERGY_TOLERANCE)]
+    #[arg(long, help = help("energy_tolerance"), default_value_t = ontogeny::sim::ENERGY_TOLERANCE)]
     energy_tolerance: f64,
 }
 
@@ -77,29 +76,57 @@ pub fn actuator_parser() -> impl TypedValueParser<Value = ActuatorModel> {
 }
 
 /// The step setting: a named one (`--setting`), and the five stepping flags over it, for
-/// experts. Shared by `eval`, `export` and `bench`.
-#[derive(Args)]
+/// experts, one per stepping knob ([`stepping_knobs`]). Shared by `eval`, `export`, `bench`
+/// and `replay`.
 pub struct SteppingArgs {
-    /// The named step setting [default: default]; the five stepping flags override its values.
-    #[arg(long, value_name = "NAME", value_parser = setting_parser())]
+    /// `--setting`.
     setting: Option<StepSetting>,
-    /// Physics substeps per control step, 1 to 64 [default: the setting's].
-    #[arg(long)]
-    substeps: Option<usize>,
-    /// Solver iterations per substep, 1 to 256 [default: the setting's].
-    #[arg(long)]
-    solver_iterations: Option<usize>,
-    /// Gauss-Seidel passes inside each solver iteration, 1 to 256 [default: the setting's].
-    #[arg(long)]
-    pgs_iterations: Option<usize>,
-    /// Substeps per control step while waiting for the creature to come to rest, 1 to 64
-    /// [default: the setting's].
-    #[arg(long)]
-    rest_substeps: Option<usize>,
-    /// Solver iterations per substep while waiting for the creature to come to rest, 1 to
-    /// 256 [default: the setting's].
-    #[arg(long)]
-    rest_solver_iterations: Option<usize>,
+    /// The stepping flags given, with their values.
+    values: Vec<(&'static Knob, usize)>,
+}
+
+impl Args for SteppingArgs {
+    fn augment_args(command: Command) -> Command {
+        let setting = Arg::new("setting")
+            .long("setting")
+            .value_name("NAME")
+            .value_parser(setting_parser())
+            .help(
+                "The named step setting [default: default]; the five stepping flags override its values",
+            );
+        stepping_knobs().fold(command.arg(setting), |command, knob| {
+            let long = knob.flag.map_or(knob.key, |f| f.trim_start_matches('-'));
+            command.arg(
+                Arg::new(knob.key)
+                    .long(long)
+                    // As clap's derive names a flag's value: the key in capitals (a few
+                    // bytes, once per command line).
+                    .value_name(&*knob.key.to_uppercase().leak())
+                    .value_parser(clap::value_parser!(usize))
+                    .help(knob.help(" [default: the setting's]")),
+            )
+        })
+    }
+
+    fn augment_args_for_update(command: Command) -> Command {
+        Self::augment_args(command)
+    }
+}
+
+impl FromArgMatches for SteppingArgs {
+    fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
+        Ok(SteppingArgs {
+            setting: matches.get_one::<StepSetting>("setting").copied(),
+            values: stepping_knobs()
+                .filter_map(|k| Some((k, *matches.get_one::<usize>(k.key)?)))
+                .collect(),
+        })
+    }
+
+    fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        *self = SteppingArgs::from_arg_matches(matches)?;
+        Ok(())
+    }
 }
 
 /// `--fitness`: the walker's fitness formula, shared by `eval` and `replay`.
@@ -114,45 +141,29 @@ pub struct FitnessArgs {
 impl SteppingArgs {
     /// Whether any of the stepping flags (`--setting` and the five values) was given.
     pub fn any_given(&self) -> bool {
-        self.setting.is_some()
-            || self.substeps.is_some()
-            || self.solver_iterations.is_some()
-            || self.pgs_iterations.is_some()
-            || self.rest_substeps.is_some()
-            || self.rest_solver_iterations.is_some()
+        self.setting.is_some() || !self.values.is_empty()
     }
 
     /// `base` with the named setting's stepping and the given stepping flags over it, checked
     /// ([`SimOptions::check`]); an error names the flag at fault.
     pub fn apply(&self, base: &SimOptions) -> anyhow::Result<SimOptions> {
         let mut options = self.setting.unwrap_or_default().apply(base);
-        let flags = [
-            (&mut options.substeps, self.substeps),
-            (&mut options.solver_iterations, self.solver_iterations),
-            (&mut options.pgs_iterations, self.pgs_iterations),
-            (&mut options.rest_substeps, self.rest_substeps),
-            (
-                &mut options.rest_solver_iterations,
-                self.rest_solver_iterations,
-            ),
-        ];
-        for (field, flag) in flags {
-            if let Some(value) = flag {
-                *field = value;
-            }
+        for (knob, value) in &self.values {
+            (knob.set)(&mut options, Value::Count(*value));
         }
         options.check().map_err(flag_error)?;
         Ok(options)
     }
 }
 
-/// The bad-input error for a setting a flag gave: the message names the flag (`--time-step`
-/// for `control_step`, `--seconds` for a task's duration, else the key in kebab case: `--substeps`).
+/// The bad-input error for a setting a flag gave: the message names the flag (a knob's own,
+/// [`Knob::flag_name`]: `--time-step` for `control_step`; `--seconds` for a task's duration;
+/// else the key in kebab case).
 pub fn flag_error(error: SettingError) -> anyhow::Error {
-    let flag = match error.key {
-        "control_step" => "--time-step".to_string(),
-        "seconds" | "max_seconds" => "--seconds".to_string(),
-        key => format!("--{}", key.replace('_', "-")),
+    let flag = match (error.key, knob(error.key)) {
+        (_, Some(knob)) => knob.flag_name(),
+        ("seconds" | "max_seconds", None) => "--seconds".to_string(),
+        (key, None) => format!("--{}", key.replace('_', "-")),
     };
     super::bad(error.for_flag(&flag))
 }

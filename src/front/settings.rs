@@ -194,15 +194,22 @@ pub fn new_run_encoding(flag: Option<&str>, source: Option<&Source>) -> Result<S
     })
 }
 
-/// A new run's settings and the grammar that seeds its first generation, if any.
-pub type NewRun<L> = (RunConfig<L>, Option<Arc<Source>>);
-
-/// [`NewRun`] with the notes on its seed.
-pub type NewRunWithNotes<L> = (RunConfig<L>, Option<Arc<Source>>, Vec<String>);
+/// A new run: its settings, the grammar that seeds its first generation (if any), and the
+/// notes on that seed (what of the grammar was rewritten for the genome, and which limits were
+/// widened to fit it; the run's config records the widened limits).
+#[derive(Debug)]
+pub struct NewRun<L> {
+    /// The run's settings.
+    pub config: RunConfig<L>,
+    /// The grammar that seeds its first generation.
+    pub init: Option<Arc<Source>>,
+    /// The notes on the seed, one line each.
+    pub notes: Vec<String>,
+}
 
 /// A new run's settings ([`run_config`]) from its config file (`source`, if any) and the
 /// flags over it, with the grammar that seeds its first generation (`init`, `--init`, else
-/// the file's `init`), read and checked ([`check_init`]).
+/// the file's `init`), read and checked ([`check_init`]), and the notes on it.
 pub fn new_run<G: Genome>(
     source: Option<&Source>,
     flags: &RunFlags,
@@ -211,21 +218,6 @@ pub fn new_run<G: Genome>(
     verify_best: bool,
     cache: bool,
 ) -> Result<NewRun<G::Limits>, Diagnostic> {
-    new_run_with_notes::<G>(source, flags, init, seed, verify_best, cache)
-        .map(|(config, init, _)| (config, init))
-}
-
-/// [`new_run`] with the notes on its seed, if it has one: what of the grammar was rewritten
-/// for the genome, and which limits were widened to fit it (the run's config records the
-/// widened limits).
-pub fn new_run_with_notes<G: Genome>(
-    source: Option<&Source>,
-    flags: &RunFlags,
-    init: Option<&Path>,
-    seed: Option<u64>,
-    verify_best: bool,
-    cache: bool,
-) -> Result<NewRunWithNotes<G::Limits>, Diagnostic> {
     let file: ConfigFile<G::Limits> = match source {
         Some(s) => crate::run::config::read_config(s)?,
         None => ConfigFile::default(),
@@ -244,7 +236,11 @@ pub fn new_run_with_notes<G: Genome>(
             .map(|n| format!("note: {}: {n}", path.display()))
             .collect();
     }
-    Ok((config, init, notes))
+    Ok(NewRun {
+        config,
+        init,
+        notes,
+    })
 }
 
 /// The comparison `compare`'s flags describe over its config file (`source` its text), checked:

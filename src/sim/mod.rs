@@ -1,16 +1,18 @@
 //! Simulation: running a creature's brain against its body in a rapier3d world.
 //!
-//! The options and their one check are in [`options`], the named step settings and the
-//! `[task.sim]` table in [`setting`]; the world is built in [`build`] from the parts and
-//! joints of [`parts`] (keyed by stable ids, and added or resized while it runs), senses in
-//! [`sensors`], moves in [`actuators`], is audited for energy from nowhere in [`audit`],
-//! holds the catapult's projectile in [`projectile`], and steps in [`world`].
+//! The options are in [`options`], each one's key, flag, range and description (and the one
+//! check) in [`knobs`], the named step settings and the `[task.sim]` table in [`setting`];
+//! the world is built in [`build`] from the parts and joints of [`parts`] (keyed by stable
+//! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
+//! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
+//! [`projectile`], and steps in [`world`].
 
 pub mod actuators;
 pub mod audit;
 pub mod brain;
 pub mod build;
 pub mod drag;
+pub mod knobs;
 mod model_names;
 pub mod options;
 pub mod parts;
@@ -24,11 +26,12 @@ pub use audit::{ENERGY_WINDOW, JOINT_GAP_WARNING};
 pub use brain::BrainRuntime;
 pub use build::BuildError;
 pub use drag::DragMeter;
+pub use knobs::{KNOBS, Knob, SettingError, check_real};
 pub use model_names::UnknownName;
 pub use options::{
     ActuatorModel, DEFAULT_MUSCLE_SPEED, DEFAULT_STRENGTH, ENERGY_TOLERANCE, JointModel, MAX_DT,
     MAX_ITERATIONS, MAX_SUBSTEPS, MIN_DT, SimOptions, StrengthFrom,
 };
 pub use sensors::TOUCH_DISTANCE;
-pub use setting::{RENAMED_KEYS, SettingError, SimTable, StepSetting, UnknownSetting};
+pub use setting::{RENAMED_KEYS, StepSetting, UnknownSetting};
 pub use world::{Exploded, GRAVITY, World};

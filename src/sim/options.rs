@@ -1,10 +1,11 @@
 //! The simulator's options ([`SimOptions`]): every value a world is built and stepped with,
 //! their defaults, the models they choose between (joints, actuators, whose cross-section sets
-//! a joint's strength), and their one range check ([`SimOptions::check`]), which every path
+//! a joint's strength). Each value's key, flag, range and description are its entry in
+//! [`KNOBS`](super::knobs::KNOBS), whose one range check ([`SimOptions::check`]) every path
 //! that reads options (a config file, a command-line flag, a `creature.json`, the library's
 //! [`World::new`](super::World::new)) goes through.
 
-use super::setting::{SettingError, StepSetting, check_real};
+use super::setting::StepSetting;
 
 /// The shortest control step (s) a setting may have: 1 ms, a 1 kHz controller (its physics
 /// runs up to [`MAX_SUBSTEPS`] times finer). Shorter steps would make an evaluation of the
@@ -75,10 +76,10 @@ pub const DEFAULT_MUSCLE_SPEED: f64 = 100.0;
 /// below what the exploits evolution found reach (27 J/kg). See docs/reference/tasks.md, the energy audit.
 pub const ENERGY_TOLERANCE: f64 = 10.0;
 
-/// World settings. Read from a `[task.sim]` table through [`SimTable`](super::SimTable) (a named
-/// step setting and any value over it); checked by [`SimOptions::check`].
-#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
-#[serde(from = "super::SimTable")]
+/// World settings. Read from a `[task.sim]` table as a person writes it (a named step setting
+/// and any value over it, see [`setting`](super::setting)); checked by [`SimOptions::check`].
+/// Each field is one entry of [`KNOBS`](super::knobs::KNOBS), in the same order.
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct SimOptions {
     /// The control step in seconds: the brain runs once per step; physics runs `substeps`
     /// times per step, at `control_step / substeps`. A config file names it `control_step` (`dt`, its
@@ -141,8 +142,13 @@ impl Default for SimOptions {
         // one kept most of theirs (lucky walks aside), and this setting ranks random creatures
         // about as alike to the fine reference as the reference ranks them to itself (see
         // `ontogeny bench --fidelity` and docs/results/speed.md).
-        let (substeps, solver_iterations, pgs_iterations, rest_substeps, rest_solver_iterations) =
-            StepSetting::Default.stepping();
+        let [
+            substeps,
+            solver_iterations,
+            pgs_iterations,
+            rest_substeps,
+            rest_solver_iterations,
+        ] = StepSetting::Default.stepping();
         SimOptions {
             control_step: 1.0 / 60.0,
             substeps,
@@ -186,58 +192,6 @@ impl SimOptions {
     /// docs/guide/evolving.md).
     pub fn fine_reference(&self) -> SimOptions {
         StepSetting::Fine.apply(self)
-    }
-}
-
-impl SimOptions {
-    /// Checks every value against its range, so that a world can be built and stepped in a
-    /// bounded time: the control step `dt` (`control_step`) in [[`MIN_DT`], [`MAX_DT`]] seconds, substeps 1 to [`MAX_SUBSTEPS`],
-    /// solver iterations and Gauss-Seidel passes 1 to [`MAX_ITERATIONS`], friction, strength,
-    /// drop height and energy tolerance finite and not negative, speeds and the explosion
-    /// distance finite and positive. The error names the key.
-    pub fn check(&self) -> Result<(), SettingError> {
-        if !(MIN_DT..=MAX_DT).contains(&self.control_step) {
-            return Err(SettingError::out_of_range(
-                "control_step",
-                &format!("in [{MIN_DT}, {MAX_DT}] seconds"),
-                self.control_step,
-            ));
-        }
-        let counts = [
-            ("substeps", self.substeps, MAX_SUBSTEPS),
-            ("rest_substeps", self.rest_substeps, MAX_SUBSTEPS),
-            ("solver_iterations", self.solver_iterations, MAX_ITERATIONS),
-            (
-                "rest_solver_iterations",
-                self.rest_solver_iterations,
-                MAX_ITERATIONS,
-            ),
-            ("pgs_iterations", self.pgs_iterations, MAX_ITERATIONS),
-        ];
-        for (key, value, most) in counts {
-            if !(1..=most).contains(&value) {
-                return Err(SettingError::out_of_range(
-                    key,
-                    &format!("1 to {most}"),
-                    value,
-                ));
-            }
-        }
-        check_real("friction", self.friction, 0.0, false)?;
-        check_real("strength", self.strength, 0.0, false)?;
-        check_real("muscle_speed", self.muscle_speed, 0.0, true)?;
-        check_real("max_speed", self.max_speed, 0.0, true)?;
-        check_real("drop_height", self.drop_height, 0.0, false)?;
-        check_real("explosion_distance", self.explosion_distance, 0.0, true)?;
-        check_real("speed_limit", self.speed_limit, 0.0, true)?;
-        if !(self.energy_tolerance.is_finite() && self.energy_tolerance >= 0.0) {
-            return Err(SettingError::out_of_range(
-                "energy_tolerance",
-                "finite and not negative (0 turns the audit off)",
-                self.energy_tolerance,
-            ));
-        }
-        Ok(())
     }
 }
 

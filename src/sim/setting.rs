@@ -1,7 +1,7 @@
 //! The simulator's settings as a user gives them: the named step settings (`fast`, `default`,
-//! `fine`), the error a value out of its range gets ([`SettingError`]; the range check itself
-//! is [`SimOptions::check`]), and the `[task.sim]` table as a person writes it (a named setting
-//! with any of its values overridden).
+//! `fine`), and the `[task.sim]` table as a person writes it (a named setting with any of its
+//! values overridden), read key by key from the table of knobs ([`KNOBS`]; the range check
+//! is [`SimOptions::check`]).
 //!
 //! What a setting means physically is documented on [`SimOptions`]; what a task does with it
 //! belongs to `task`.
@@ -9,9 +9,16 @@
 use std::fmt;
 use std::str::FromStr;
 
+use std::sync::OnceLock;
+
+use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
-use super::options::{ActuatorModel, JointModel, SimOptions, StrengthFrom};
+use super::knobs::{KNOBS, Knob, Value, knob, set_stepping, stepping_of};
+use super::options::SimOptions;
+
+/// The range error and check, at the path they had before the table of knobs held them.
+pub use super::knobs::{SettingError, check_real};
 
 /// A named step setting: how finely the physics steps, in five values (substeps, solver
 /// iterations and Gauss-Seidel passes while walking; substeps and solver iterations while a
@@ -33,9 +40,10 @@ pub enum StepSetting {
     Fine,
 }
 
-/// The five stepping values of a setting, in the order of [`SimOptions`]' fields: substeps,
-/// solver iterations, PGS passes, rest substeps, rest solver iterations.
-type Stepping = (usize, usize, usize, usize, usize);
+/// The five stepping values of a setting, in the order of the stepping knobs
+/// ([`stepping_knobs`](super::knobs::stepping_knobs)): substeps, solver iterations, PGS
+/// passes, rest substeps, rest solver iterations.
+type Stepping = [usize; 5];
 
 impl StepSetting {
     /// Every named setting, coarsest first.
@@ -69,35 +77,22 @@ impl StepSetting {
     /// The one definition of each setting's five stepping values.
     pub(super) const fn stepping(self) -> Stepping {
         match self {
-            StepSetting::Fast => (1, 2, 3, 2, 4),
-            StepSetting::Default => (4, 4, 1, 4, 8),
-            StepSetting::Fine => (4, 8, 1, 4, 8),
+            StepSetting::Fast => [1, 2, 3, 2, 4],
+            StepSetting::Default => [4, 4, 1, 4, 8],
+            StepSetting::Fine => [4, 8, 1, 4, 8],
         }
     }
 
     /// `base` with this setting's five stepping values; everything else as `base`.
     pub fn apply(self, base: &SimOptions) -> SimOptions {
-        let (substeps, solver_iterations, pgs_iterations, rest_substeps, rest_solver_iterations) =
-            self.stepping();
-        SimOptions {
-            substeps,
-            solver_iterations,
-            pgs_iterations,
-            rest_substeps,
-            rest_solver_iterations,
-            ..base.clone()
-        }
+        let mut options = base.clone();
+        set_stepping(&mut options, self.stepping());
+        options
     }
 
     /// The named setting whose five stepping values `options` has, if any.
     pub fn of(options: &SimOptions) -> Option<StepSetting> {
-        let stepping = (
-            options.substeps,
-            options.solver_iterations,
-            options.pgs_iterations,
-            options.rest_substeps,
-            options.rest_solver_iterations,
-        );
+        let stepping = stepping_of(options);
         StepSetting::ALL
             .into_iter()
             .find(|s| s.stepping() == stepping)
@@ -126,172 +121,114 @@ impl FromStr for StepSetting {
     }
 }
 
-/// A setting out of its range, or missing where it is needed: which key, in which table, and
-/// what is wrong. The library names the key as a config file spells it (`[task.sim]
-/// substeps`); a command line whose flag set the value names the flag instead
-/// ([`SettingError::for_flag`]).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SettingError {
-    /// The TOML table that holds the key, e.g. `task.sim`; empty when the options were checked
-    /// on their own.
-    pub table: String,
-    /// The key, as a config file spells it (`substeps`).
-    pub key: &'static str,
-    /// What is wrong, after the key: "must be 1 to 64, not 0".
-    pub problem: String,
-}
-
-impl SettingError {
-    /// `key` out of range: it must be `range`, and is `value`.
-    pub fn out_of_range(key: &'static str, range: &str, value: impl fmt::Display) -> SettingError {
-        SettingError {
-            table: String::new(),
-            key,
-            problem: format!("must be {range}, not {value}"),
-        }
-    }
-
-    /// The same error, its table inside `outer` (`sim` inside `task` is `task.sim`).
-    pub fn within(mut self, outer: &str) -> SettingError {
-        self.table = if self.table.is_empty() {
-            outer.to_string()
-        } else {
-            format!("{outer}.{}", self.table)
-        };
-        self
-    }
-
-    /// The message with `flag` (`--substeps`) in place of the key, for a value that came from
-    /// the command line.
-    pub fn for_flag(&self, flag: &str) -> String {
-        format!("{flag} {}", self.problem)
-    }
-}
-
-impl fmt::Display for SettingError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.table.is_empty() {
-            write!(f, "{} {}", self.key, self.problem)
-        } else {
-            write!(f, "[{}] {} {}", self.table, self.key, self.problem)
-        }
-    }
-}
-
-impl std::error::Error for SettingError {}
-
-/// `value` is finite and at least `least` (or above it, when `strictly`); else the error for
-/// `key` in words.
-pub fn check_real(
-    key: &'static str,
-    value: f64,
-    least: f64,
-    strictly: bool,
-) -> Result<(), SettingError> {
-    let in_range = if strictly {
-        value > least
-    } else {
-        value >= least
-    };
-    if value.is_finite() && in_range {
-        return Ok(());
-    }
-    let range = match (least == 0.0, strictly) {
-        (true, true) => "finite and positive".to_string(),
-        (true, false) => "finite and not negative".to_string(),
-        (false, true) => format!("finite and above {least}"),
-        (false, false) => format!("finite and at least {least}"),
-    };
-    Err(SettingError::out_of_range(key, &range, value))
-}
-
 /// The keys of `[task.sim]` that have been renamed, as (today's name, the older name that
 /// files written before may still use; serde reads both).
 pub const RENAMED_KEYS: &[(&str, &str)] = &[("control_step", "dt")];
 
 /// The `[task.sim]` table as a person writes it: a named step setting (`setting = "fast"`,
-/// default `default`) and any value over it. A key given beside `setting` overrides the
-/// setting's value. Read into [`SimOptions`], which holds every value resolved and is written
-/// back that way (without `setting`), so that a run's `config.toml` never depends on what a
-/// name means in a later version.
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SimTable {
-    /// The named step setting the five stepping values start from.
-    pub setting: Option<StepSetting>,
-    /// See [`SimOptions::control_step`]: the control step, `dt` in files written before it
-    /// had its own name (read as `control_step`; a table may not give both; [`RENAMED_KEYS`]).
-    #[serde(alias = "dt")]
-    pub control_step: Option<f64>,
-    /// See [`SimOptions::substeps`].
-    pub substeps: Option<usize>,
-    /// See [`SimOptions::solver_iterations`].
-    pub solver_iterations: Option<usize>,
-    /// See [`SimOptions::pgs_iterations`].
-    pub pgs_iterations: Option<usize>,
-    /// See [`SimOptions::rest_substeps`].
-    pub rest_substeps: Option<usize>,
-    /// See [`SimOptions::rest_solver_iterations`].
-    pub rest_solver_iterations: Option<usize>,
-    /// See [`SimOptions::joints`].
-    pub joints: Option<JointModel>,
-    /// See [`SimOptions::self_collision`].
-    pub self_collision: Option<bool>,
-    /// See [`SimOptions::friction`].
-    pub friction: Option<f64>,
-    /// See [`SimOptions::actuator`].
-    pub actuator: Option<ActuatorModel>,
-    /// See [`SimOptions::strength`].
-    pub strength: Option<f64>,
-    /// See [`SimOptions::strength_from`].
-    pub strength_from: Option<StrengthFrom>,
-    /// See [`SimOptions::muscle_speed`].
-    pub muscle_speed: Option<f64>,
-    /// See [`SimOptions::max_speed`].
-    pub max_speed: Option<f64>,
-    /// See [`SimOptions::drop_height`].
-    pub drop_height: Option<f64>,
-    /// See [`SimOptions::explosion_distance`].
-    pub explosion_distance: Option<f64>,
-    /// See [`SimOptions::speed_limit`].
-    pub speed_limit: Option<f64>,
-    /// See [`SimOptions::energy_tolerance`].
-    pub energy_tolerance: Option<f64>,
+/// default `default`) and any knob's key ([`KNOBS`]) over it. A key given beside `setting`
+/// overrides the setting's value. Read into [`SimOptions`], which holds every value resolved
+/// and is written back that way (without `setting`), so that a run's `config.toml` never
+/// depends on what a name means in a later version. A key renamed since is read under its
+/// older name too ([`Knob::older_key`]; a table may not give both); an unknown key is refused
+/// with the keys allowed.
+impl<'de> Deserialize<'de> for SimOptions {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<SimOptions, D::Error> {
+        deserializer.deserialize_struct("SimTable", table_keys(), TableVisitor)
+    }
 }
 
-impl From<SimTable> for SimOptions {
-    /// The named setting's values over the defaults, and the table's values over those.
-    fn from(table: SimTable) -> SimOptions {
-        let mut options = table
-            .setting
-            .unwrap_or_default()
-            .apply(&SimOptions::default());
-        macro_rules! over {
-            ($($field:ident),*) => {$(if let Some(v) = table.$field { options.$field = v; })*};
+/// Every key a `[task.sim]` table may hold: `setting`, then each knob's, its older name after
+/// it.
+fn table_keys() -> &'static [&'static str] {
+    static KEYS: OnceLock<Vec<&'static str>> = OnceLock::new();
+    KEYS.get_or_init(|| {
+        let mut keys = vec!["setting"];
+        for knob in KNOBS {
+            keys.push(knob.key);
+            keys.extend(knob.older_key);
         }
-        if let Some(control_step) = table.control_step {
-            options.control_step = control_step;
+        keys
+    })
+}
+
+/// A key of a `[task.sim]` table.
+enum TableKey {
+    /// `setting`.
+    Setting,
+    /// A knob's key, or its older name.
+    Knob(&'static Knob),
+}
+
+/// Reads a [`TableKey`], refusing an unknown one at its place.
+struct TableKeySeed;
+
+impl<'de> DeserializeSeed<'de> for TableKeySeed {
+    type Value = TableKey;
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<TableKey, D::Error> {
+        deserializer.deserialize_identifier(self)
+    }
+}
+
+impl Visitor<'_> for TableKeySeed {
+    type Value = TableKey;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("field identifier")
+    }
+
+    fn visit_str<E: de::Error>(self, key: &str) -> Result<TableKey, E> {
+        match (key, knob(key)) {
+            ("setting", _) => Ok(TableKey::Setting),
+            (_, Some(knob)) => Ok(TableKey::Knob(knob)),
+            (_, None) => Err(E::unknown_field(key, table_keys())),
         }
-        over!(
-            substeps,
-            solver_iterations,
-            pgs_iterations,
-            rest_substeps,
-            rest_solver_iterations,
-            joints,
-            self_collision,
-            friction,
-            actuator,
-            strength,
-            strength_from,
-            muscle_speed,
-            max_speed,
-            drop_height,
-            explosion_distance,
-            speed_limit,
-            energy_tolerance
-        );
-        options
+    }
+}
+
+/// Reads a `[task.sim]` table into [`SimOptions`].
+struct TableVisitor;
+
+impl<'de> Visitor<'de> for TableVisitor {
+    type Value = SimOptions;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("struct SimTable")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<SimOptions, A::Error> {
+        let mut setting: Option<StepSetting> = None;
+        let mut given: Vec<(&'static Knob, Value)> = Vec::new();
+        let defaults = SimOptions::default();
+        while let Some(key) = map.next_key_seed(TableKeySeed)? {
+            match key {
+                TableKey::Setting if setting.is_some() => {
+                    return Err(de::Error::duplicate_field("setting"));
+                }
+                TableKey::Setting => setting = Some(map.next_value()?),
+                TableKey::Knob(knob) if given.iter().any(|(k, _)| k.key == knob.key) => {
+                    return Err(de::Error::duplicate_field(knob.key));
+                }
+                TableKey::Knob(knob) => {
+                    let value = match (knob.get)(&defaults) {
+                        Value::Real(_) => Value::Real(map.next_value()?),
+                        Value::Count(_) => Value::Count(map.next_value()?),
+                        Value::Switch(_) => Value::Switch(map.next_value()?),
+                        Value::Joints(_) => Value::Joints(map.next_value()?),
+                        Value::Actuator(_) => Value::Actuator(map.next_value()?),
+                        Value::StrengthFrom(_) => Value::StrengthFrom(map.next_value()?),
+                    };
+                    given.push((knob, value));
+                }
+            }
+        }
+        // The named setting's values over the defaults, and the table's values over those.
+        let mut options = setting.unwrap_or_default().apply(&defaults);
+        for (knob, value) in given {
+            (knob.set)(&mut options, value);
+        }
+        Ok(options)
     }
 }
 
@@ -382,6 +319,66 @@ mod tests {
         assert!(e.to_string().contains("unknown variant `coarse`"), "{e}");
         let e = toml::from_str::<SimOptions>("substep = 2\n").unwrap_err();
         assert!(e.to_string().contains("unknown field `substep`"), "{e}");
+    }
+
+    #[test]
+    fn the_renamed_keys_are_the_knobs_older_names() {
+        let older: Vec<(&str, &str)> = KNOBS
+            .iter()
+            .filter_map(|k| Some((k.key, k.older_key?)))
+            .collect();
+        assert_eq!(older, RENAMED_KEYS);
+    }
+
+    #[test]
+    fn a_table_s_errors_are_serde_s_own_at_the_key_or_value_at_fault() {
+        let keys = "`setting`, `control_step`, `dt`, `substeps`, `solver_iterations`, `pgs_iterations`, `rest_substeps`, `rest_solver_iterations`, `joints`, `self_collision`, `friction`, `actuator`, `strength`, `strength_from`, `muscle_speed`, `max_speed`, `drop_height`, `explosion_distance`, `speed_limit`, `energy_tolerance`";
+        let cases = [
+            (
+                "substep = 2\n",
+                format!("unknown field `substep`, expected one of {keys}"),
+                0..7,
+            ),
+            (
+                "substeps = \"four\"\n",
+                "invalid type: string \"four\", expected usize".to_string(),
+                11..17,
+            ),
+            (
+                "joints = \"hinge\"\n",
+                "unknown variant `hinge`, expected `impulse` or `multibody`".to_string(),
+                9..16,
+            ),
+            (
+                "dt = 0.1\ncontrol_step = 0.1\n",
+                "duplicate field `control_step`".to_string(),
+                0..0,
+            ),
+            ("joints = 3\n", "wanted string or table".to_string(), 9..10),
+            (
+                "[x]\n",
+                format!("unknown field `x`, expected one of {keys}"),
+                1..2,
+            ),
+        ];
+        for (text, message, span) in cases {
+            let e = toml::from_str::<SimOptions>(text).unwrap_err();
+            assert_eq!(
+                (e.message(), e.span()),
+                (message.as_str(), Some(span)),
+                "{text}"
+            );
+        }
+        let e = serde_json::from_str::<SimOptions>("{\"x\": 1}").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!("unknown field `x`, expected one of {keys} at line 1 column 4")
+        );
+        let e = serde_json::from_str::<SimOptions>("3").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid type: integer `3`, expected struct SimTable at line 1 column 1"
+        );
     }
 
     #[test]

@@ -84,18 +84,14 @@ pub fn parse_stepping(text: &str, base: &SimOptions) -> Result<SimOptions, Strin
         Some((w, r)) => (w, Some(r)),
         None => (text, None),
     };
-    let w = numbers(walking, 3)?;
-    let mut sim = SimOptions {
-        substeps: w[0],
-        solver_iterations: w[1],
-        pgs_iterations: w[2],
-        ..base.clone()
-    };
+    // The stepping knobs in their order: the walking three, then the resting two.
+    let mut values = crate::sim::knobs::stepping_of(base);
+    values[..3].copy_from_slice(&numbers(walking, 3)?);
     if let Some(r) = resting {
-        let r = numbers(r, 2)?;
-        sim.rest_substeps = r[0];
-        sim.rest_solver_iterations = r[1];
+        values[3..].copy_from_slice(&numbers(r, 2)?);
     }
+    let mut sim = base.clone();
+    crate::sim::knobs::set_stepping(&mut sim, values);
     sim.check()
         .map_err(|e| format!("--fidelity-also {text}: {e}"))?;
     Ok(sim)

@@ -163,14 +163,7 @@ pub fn setting_name(sim: &SimOptions) -> String {
     if let Some(named) = StepSetting::of(sim) {
         return named.name().to_string();
     }
-    format!(
-        "{}x{}x{}/{}x{}",
-        sim.substeps,
-        sim.solver_iterations,
-        sim.pgs_iterations,
-        sim.rest_substeps,
-        sim.rest_solver_iterations
-    )
+    crate::sim::knobs::stepping_notation(sim)
 }
 
 /// The fine reference's walks of every creature: `runs` walks from the first drop heights

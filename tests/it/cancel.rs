@@ -131,8 +131,9 @@ fn start_run(out: &Path) -> Run<DirectGenome> {
         seconds: Some(1.0),
         ..RunFlags::default()
     };
-    let (config, _) =
-        settings::new_run::<DirectGenome>(None, &flags, None, Some(7), true, true).unwrap();
+    let config = settings::new_run::<DirectGenome>(None, &flags, None, Some(7), true, true)
+        .unwrap()
+        .config;
     Run::<DirectGenome>::start(out, config, None).unwrap()
 }
 

@@ -615,3 +615,14 @@ fn the_fitness_figures_the_documents_quote_for_shipped_files_are_what_eval_gives
         );
     }
 }
+
+#[test]
+fn the_configuration_reference_lists_the_table_of_knobs() {
+    let page = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/reference/configuration.md");
+    let text = std::fs::read_to_string(page).unwrap();
+    let table = ontogeny::sim::knobs::reference_table();
+    assert!(
+        text.contains(&table),
+        "docs/reference/configuration.md must hold the table of knobs as it is today:\n{table}"
+    );
+}
