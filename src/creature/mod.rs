@@ -6,10 +6,12 @@
 //! are in world coordinates: Y is up, the ground is the plane y = 0, lengths are in metres.
 
 mod geometry;
+mod ids;
 pub mod repeats;
 mod summary;
 
 pub use geometry::{boxes_intersect, interpenetration_messages};
+pub use ids::{JointId, PartId};
 pub use summary::{Summary, counted};
 
 use nalgebra::{UnitQuaternion, Vector3};

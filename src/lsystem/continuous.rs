@@ -4,6 +4,8 @@
 //! dense output, and the string is rewritten there.
 
 use std::cell::{Cell, RefCell};
+use std::ops::Deref;
+use std::sync::Arc;
 
 use ode_solvers::dop_shared::IntegrationError;
 use ode_solvers::{DVector, Dopri5, System};
@@ -50,8 +52,13 @@ pub struct Event {
 }
 
 /// Development in continuous time: the string at the latest observation time.
-pub struct Development<'l> {
-    lsys: &'l LSystem,
+///
+/// It holds its grammar `G`: an `Arc<LSystem>` (the default: a development that owns its
+/// grammar, made by [`Development::start`], which a physics loop can keep and step by any Δt
+/// with [`advance_by`](Self::advance_by)), or a `&LSystem` while an L-system shows its own
+/// frames ([`LSystem::development`]).
+pub struct Development<G: Deref<Target = LSystem> = Arc<LSystem>> {
+    lsys: G,
     string: ModuleString,
     scratch: ModuleString,
     env: Environment,
@@ -98,10 +105,20 @@ struct Growing {
     bound: Vec<(u32, u32)>,
 }
 
-impl<'l> Development<'l> {
+impl Development {
+    /// Starts continuous development of `lsys` at t = 0, holding the grammar: as
+    /// [`LSystem::development`] does, `options.time`, `dt` and `timing` over the file's headers.
+    pub fn start(lsys: Arc<LSystem>, options: &DeriveOptions) -> Result<Self, Diagnostic> {
+        let env = lsys.initial_environment(options)?;
+        let axiom = lsys.axiom.clone();
+        LSystem::develop_from(lsys, axiom, 0.0, env, options)
+    }
+}
+
+impl<G: Deref<Target = LSystem>> Development<G> {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
-        lsys: &'l LSystem,
+        lsys: G,
         options: &DeriveOptions,
         start_string: ModuleString,
         start: f64,
@@ -187,6 +204,37 @@ impl<'l> Development<'l> {
         std::mem::take(&mut self.events)
     }
 
+    /// The developmental time reached: the current observation time, or wherever
+    /// [`advance_by`](Self::advance_by) has taken development since.
+    pub fn now(&self) -> f64 {
+        self.t
+    }
+
+    /// Develops by `dt` (any length, 0 or more) from [`now`](Self::now), whatever the
+    /// observation step, and past the final time if asked: the physics loop's way to grow a
+    /// creature as it walks. With exact timing the string reached does not depend on how the
+    /// time is cut into steps (up to the ODE solver's tolerance in growing parameters); with
+    /// iterative timing each call is one rewriting pass, as an observation step is. It does
+    /// not count observation frames: use it or [`advance`](Self::advance), not both.
+    pub fn advance_by(&mut self, dt: f64) -> Result<(), Diagnostic> {
+        if !(dt >= 0.0 && dt.is_finite()) {
+            return Err(Diagnostic::without_location(
+                DiagnosticKind::Semantic,
+                format!("a development step must be 0 or more, not {dt}"),
+            ));
+        }
+        let target = self.t + dt;
+        if self.timing == Timing::Iterative {
+            self.pass()?;
+            self.exchange()?;
+        }
+        self.integrate_within(target, EVENT_WINDOW * target.abs().max(1.0))?;
+        match self.timing {
+            Timing::Exact => self.settle(),
+            Timing::Iterative => self.exchange().map(|_| ()),
+        }
+    }
+
     /// Develops to the next observation time. Returns false when development is over.
     pub fn advance(&mut self) -> Result<bool, Diagnostic> {
         if self.frame >= self.frames {
@@ -208,16 +256,6 @@ impl<'l> Development<'l> {
         Ok(true)
     }
 
-    fn pass_rules(&self) -> Pass<'l> {
-        Pass {
-            rules: &self.lsys.productions,
-            ignored: &self.lsys.ignored,
-            t: self.t,
-            max_modules: self.max_modules,
-            continuous: true,
-        }
-    }
-
     fn fail(&self, failure: Failure) -> Diagnostic {
         self.lsys
             .failure(failure, &format!("developing at t = {}", self.t))
@@ -228,7 +266,7 @@ impl<'l> Development<'l> {
     fn pass(&mut self) -> Result<super::derive::PassStats, Diagnostic> {
         let when = format!("at t = {} with {} modules", self.t, self.string.len());
         self.work.spend(self.string.len(), &when)?;
-        let pass = self.pass_rules();
+        let pass = pass_rules(&self.lsys, self.t, self.max_modules);
         let stats = pass
             .rewrite(&self.string, &mut self.scratch, &mut self.ws, &mut self.rng)
             .map_err(|f| self.fail(f))?;
@@ -278,8 +316,7 @@ impl<'l> Development<'l> {
 
     /// The first matching rule of every module of the string at time `t`.
     fn classify(&mut self, t: f64, out: &mut Vec<u32>) -> Result<(), Failure> {
-        let mut pass = self.pass_rules();
-        pass.t = t;
+        let pass = pass_rules(&self.lsys, t, self.max_modules);
         let string = &self.string;
         pass.prepare(string, &mut self.ws);
         out.clear();
@@ -305,7 +342,7 @@ impl<'l> Development<'l> {
         cache.offsets.clear();
         cache.offsets.resize(self.string.len(), u32::MAX);
         let mut offset = 1; // y[0] is time itself, so the state is never empty
-        let pass = self.pass_rules();
+        let pass = pass_rules(&self.lsys, self.t, self.max_modules);
         pass.prepare(&self.string, &mut self.ws);
         for (m, &r) in cache.classes.iter().enumerate() {
             if r != NO_RULE && rules[r as usize].solve.is_some() {
@@ -343,6 +380,12 @@ impl<'l> Development<'l> {
         if self.frame + 1 < self.frames {
             window = window.min(0.5 * (next - target));
         }
+        self.integrate_within(target, window)
+    }
+
+    /// Integrates the growing modules up to `target`, handling every event on the way; an
+    /// event less than `window` after `target` counts as at `target`.
+    fn integrate_within(&mut self, target: f64, window: f64) -> Result<(), Diagnostic> {
         let mut events = 0;
         let mut probe = Vec::new();
         while self.t < target {
@@ -500,8 +543,7 @@ impl<'l> Development<'l> {
             return Ok(probe.as_slice() != baseline);
         }
         // Guards read only their own module's parameters: only growing modules can change.
-        let mut pass = self.pass_rules();
-        pass.t = t;
+        let pass = pass_rules(&self.lsys, t, self.max_modules);
         for g in growing {
             let rule =
                 pass.first_match(&self.string, g.module, &mut self.ws, &mut self.classify_rng)?;
@@ -558,6 +600,17 @@ impl<'l> Development<'l> {
     }
 }
 
+/// The rewriting pass of continuous development at time `t`.
+fn pass_rules(lsys: &LSystem, t: f64, max_modules: usize) -> Pass<'_> {
+    Pass {
+        rules: &lsys.productions,
+        ignored: &lsys.ignored,
+        t,
+        max_modules,
+        continuous: true,
+    }
+}
+
 /// How many observation steps develop `time` in steps of `dt` (the last one possibly shorter).
 pub(super) fn frame_count(time: f64, dt: f64) -> u64 {
     let steps = time / dt;
@@ -570,8 +623,8 @@ pub(super) fn frame_count(time: f64, dt: f64) -> u64 {
 }
 
 /// The ODE system of one integration, as `ode_solvers` sees it.
-struct GrowthSystem<'a, 'd, 'l> {
-    dev: RefCell<&'d mut Development<'l>>,
+struct GrowthSystem<'a, 'd, G: Deref<Target = LSystem>> {
+    dev: RefCell<&'d mut Development<G>>,
     growing: &'a [Growing],
     offsets: &'a [u32],
     baseline: &'a [u32],
@@ -583,7 +636,7 @@ struct GrowthSystem<'a, 'd, 'l> {
     probe: RefCell<Vec<u32>>,
 }
 
-impl System<f64, DVector<f64>> for &GrowthSystem<'_, '_, '_> {
+impl<G: Deref<Target = LSystem>> System<f64, DVector<f64>> for &GrowthSystem<'_, '_, G> {
     fn system(&self, t: f64, y: &DVector<f64>, dy: &mut DVector<f64>) {
         dy.fill(0.0);
         dy[0] = 1.0;

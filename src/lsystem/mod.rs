@@ -256,7 +256,8 @@ impl LSystem {
 
     /// Starts continuous development (dL-system) at t = 0. `options.time`, `dt` and `timing`
     /// override the file's headers; `time` must be given one way or the other.
-    pub fn development(&self, options: &DeriveOptions) -> Result<Development<'_>, Diagnostic> {
+    /// [`Development::start`] makes one that holds its grammar.
+    pub fn development(&self, options: &DeriveOptions) -> Result<Development<&Self>, Diagnostic> {
         let env = self.initial_environment(options)?;
         self.development_from(self.axiom.clone(), 0.0, env, options)
     }
@@ -270,10 +271,21 @@ impl LSystem {
         start_time: f64,
         env: Environment,
         options: &DeriveOptions,
-    ) -> Result<Development<'_>, Diagnostic> {
-        let (time, dt) = self.time_and_dt(options)?;
-        let timing = options.timing.unwrap_or(self.timing);
-        Development::new(self, options, start, start_time, env, time, dt, timing)
+    ) -> Result<Development<&Self>, Diagnostic> {
+        LSystem::develop_from(self, start, start_time, env, options)
+    }
+
+    /// [`development_from`](Self::development_from) for a development holding `grammar`.
+    pub(crate) fn develop_from<G: std::ops::Deref<Target = LSystem>>(
+        grammar: G,
+        start: ModuleString,
+        start_time: f64,
+        env: Environment,
+        options: &DeriveOptions,
+    ) -> Result<Development<G>, Diagnostic> {
+        let (time, dt) = grammar.time_and_dt(options)?;
+        let timing = options.timing.unwrap_or(grammar.timing);
+        Development::new(grammar, options, start, start_time, env, time, dt, timing)
     }
 
     /// The duration and observation step of continuous development (`options` over the

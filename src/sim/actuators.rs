@@ -2,12 +2,13 @@
 //! the muscle, angle and velocity models ([`World::drive`](super::World)), the torque muscle's
 //! torques applied every substep, and secretion and release effectors.
 
+use ::nalgebra::Vector3;
 use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
 use super::options::{ActuatorModel, SimOptions, StrengthFrom};
 use super::world::{ANGULAR, JointHandle, World};
-use crate::creature::{Actuator, Creature, Joint, Role};
+use crate::creature::{Actuator, Creature, Joint, JointId, Role};
 
 /// Motor gains per N·m of a joint's maximum torque. A velocity motor's torque is damping ×
 /// (target − current speed), clamped to the maximum: a damping of `SATURATION_DAMPING` ×
@@ -25,12 +26,23 @@ pub const ANGLE_DAMPING: f64 = 2.0;
 pub fn max_torque(creature: &Creature, joint: &Joint, options: &SimOptions) -> f64 {
     let parent = &creature.parts[joint.parent];
     let child = &creature.parts[joint.child];
-    let (a, b) = (parent.size.y * parent.size.z, child.size.y * child.size.z);
+    max_torque_between(&parent.size, &child.size, joint.strength, options)
+}
+
+/// The maximum torque (N·m) of a joint of `strength` between parts of sizes `parent` and
+/// `child` (see [`max_torque`]).
+pub(super) fn max_torque_between(
+    parent: &Vector3<f64>,
+    child: &Vector3<f64>,
+    strength: f64,
+    options: &SimOptions,
+) -> f64 {
+    let (a, b) = (parent.y * parent.z, child.y * child.z);
     let section = match options.strength_from {
         StrengthFrom::Smaller => a.min(b),
         StrengthFrom::Bigger => a.max(b),
     };
-    options.strength * joint.strength * section
+    options.strength * strength * section
 }
 
 impl World {
@@ -43,7 +55,7 @@ impl World {
             let s = self.brain.outputs()[i];
             match actuator {
                 Actuator::Joint { joint, dof } => {
-                    let info = &self.joint_info[joint];
+                    let info = &self.joints[JointId(joint)];
                     let (lo, hi) = info.limits.get(dof).copied().unwrap_or((0.0, 0.0));
                     let max_torque = info.max_torque;
                     let (muscle_speed, speed) = (self.options.muscle_speed, self.options.max_speed);
@@ -51,7 +63,7 @@ impl World {
                     let axis = ANGULAR[dof.min(2)];
                     if model == ActuatorModel::MuscleTorque {
                         let torque = if on { s * max_torque } else { 0.0 };
-                        self.joint_info[joint].torques[dof.min(2)] = torque;
+                        self.joints[JointId(joint)].torques[dof.min(2)] = torque;
                         continue;
                     }
                     self.with_joint(joint, |data| {
@@ -108,14 +120,14 @@ impl World {
             self.bodies[b].reset_torques(false);
         }
         for j in 0..self.joints.len() {
-            let torques = self.joint_info[j].torques;
+            let torques = self.joints[JointId(j)].torques;
             if torques == [0.0; 3] {
                 continue;
             }
             let Some(frame1) = self.joint_data(j).map(|data| data.local_frame1.rotation) else {
                 continue;
             };
-            let (b1, b2) = self.joint_ends[j];
+            let (b1, b2) = self.joints[JointId(j)].ends;
             let frame = *self.bodies[b1].rotation() * frame1;
             let torque = [Vector::X, Vector::Y, Vector::Z]
                 .into_iter()
@@ -130,7 +142,7 @@ impl World {
 
     /// Joint `j`'s data, or `None` for a fused joint.
     pub(super) fn joint_data(&self, j: usize) -> Option<&GenericJoint> {
-        match self.joints[j] {
+        match self.joints[JointId(j)].handle {
             JointHandle::Impulse(h) => self.impulse_joints.get(h).map(|joint| &joint.data),
             JointHandle::Multibody(h) => self
                 .multibody_joints
@@ -142,7 +154,7 @@ impl World {
     }
 
     pub(super) fn with_joint(&mut self, j: usize, f: impl FnOnce(&mut GenericJoint)) {
-        match self.joints[j] {
+        match self.joints[JointId(j)].handle {
             JointHandle::Impulse(h) => {
                 if let Some(joint) = self.impulse_joints.get_mut(h, false) {
                     f(&mut joint.data);

@@ -5,6 +5,7 @@
 use rapier3d::math::Vector;
 
 use super::world::{Exploded, GRAVITY, JointHandle, World};
+use crate::creature::JointId;
 
 /// A joint gap (m) beyond which `ontogeny eval` warns that the step setting is too coarse for
 /// the creature: the fine reference keeps the evolved walkers measured under 1.1 cm, while
@@ -41,15 +42,15 @@ impl World {
     /// parts cannot).
     pub fn joint_gap(&self) -> f64 {
         let mut gap: f64 = 0.0;
-        for (j, handle) in self.joints.iter().enumerate() {
-            let data = match *handle {
+        for joint in self.joints.iter() {
+            let data = match joint.handle {
                 JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
                     Some(joint) => &joint.data,
                     None => continue,
                 },
                 _ => continue,
             };
-            let (b1, b2) = self.joint_ends[j];
+            let (b1, b2) = joint.ends;
             let a1 = *self.bodies[b1].position() * data.local_frame1;
             let a2 = *self.bodies[b2].position() * data.local_frame2;
             gap = gap.max((a1.translation - a2.translation).length() as f64);
@@ -75,17 +76,17 @@ impl World {
             let Some(data) = self.joint_data(j) else {
                 continue;
             };
-            let (b1, b2) = self.joint_ends[j];
+            let joint = &self.joints[JointId(j)];
+            let (b1, b2) = joint.ends;
             let relative = self.bodies[b2].angvel() - self.bodies[b1].angvel();
             let frame = *self.bodies[b1].rotation() * data.local_frame1.rotation;
-            let dof = self.joint_info[j].limits.len().min(3);
+            let dof = joint.limits.len().min(3);
             for (k, axis) in [Vector::X, Vector::Y, Vector::Z]
                 .into_iter()
                 .enumerate()
                 .take(dof)
             {
-                let limit =
-                    data.motors[3 + k].max_force as f64 + self.joint_info[j].torques[k].abs();
+                let limit = data.motors[3 + k].max_force as f64 + joint.torques[k].abs();
                 if limit > 0.0 {
                     work += limit * (relative.dot(frame * axis) as f64).abs();
                 }

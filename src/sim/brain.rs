@@ -1,7 +1,7 @@
 //! Running a creature's brain: synchronous updates of every neuron from the previous step's
-//! outputs, with no allocation per step.
+//! outputs, with no allocation per step; neurons and links can be added while it runs.
 
-use crate::creature::{Brain, NeuronFunction, Role};
+use crate::creature::{Brain, Link, Neuron, NeuronFunction, Role};
 
 /// Below this a divisor counts as zero for Chaumont's `div`.
 const EPSILON: f64 = 1e-6;
@@ -46,17 +46,7 @@ impl BrainRuntime {
             .neurons
             .iter()
             .map(|neuron| {
-                let len = if neuron.function == NeuronFunction::Memory {
-                    neuron
-                        .params
-                        .first()
-                        .copied()
-                        .filter(|d| !d.is_nan()) // a NaN delay counts as 1
-                        .unwrap_or(1.0)
-                        .clamp(1.0, 10_000.0) as usize
-                } else {
-                    0
-                };
+                let len = ring_length(neuron);
                 let start = memory.len();
                 memory.resize(start + len, 0.0);
                 (start, len, 0)
@@ -81,6 +71,52 @@ impl BrainRuntime {
             memory,
             steps: 0,
         }
+    }
+
+    /// Adds `neuron`, with no input yet and an output of 0, while the brain runs; returns its
+    /// index, the next one. It is updated from the next [`step`](Self::step) on.
+    pub fn add_neuron(&mut self, neuron: &Neuron) -> usize {
+        let len = ring_length(neuron);
+        let start = self.memory.len();
+        self.memory.resize(start + len, 0.0);
+        self.rings.push((start, len, 0));
+        self.functions.push(neuron.function);
+        self.params.push(neuron.params.clone());
+        self.biases.push(neuron.bias);
+        self.sensor.push(matches!(neuron.role, Role::Sensor { .. }));
+        self.starts.push(*self.starts.last().unwrap_or(&0));
+        self.outputs.push(0.0);
+        self.next.push(0.0);
+        self.phases.push(0.0);
+        self.outputs.len() - 1
+    }
+
+    /// Adds `link` while the brain runs: its weighted source becomes its destination's last
+    /// input (after the inputs it had, as links made together are in link order), from the
+    /// next [`step`](Self::step) on.
+    ///
+    /// # Panics
+    ///
+    /// If either end names no neuron.
+    pub fn add_link(&mut self, link: &Link) {
+        let n = self.outputs.len();
+        assert!(
+            link.from < n && link.to < n,
+            "a link from neuron {} to neuron {} in a brain of {n} neurons",
+            link.from,
+            link.to
+        );
+        let at = self.starts[link.to + 1];
+        self.sources.insert(at, link.from);
+        self.weights.insert(at, link.weight);
+        for start in &mut self.starts[link.to + 1..] {
+            *start += 1;
+        }
+    }
+
+    /// How many neurons.
+    pub fn neuron_count(&self) -> usize {
+        self.outputs.len()
     }
 
     /// Every neuron's current output.
@@ -222,6 +258,22 @@ impl BrainRuntime {
             };
         }
         std::mem::swap(&mut self.outputs, &mut self.next);
+    }
+}
+
+/// The length of a neuron's ring buffer: its delay for a `Memory` neuron (a NaN delay counts
+/// as 1, and it is kept within 1 to 10,000 steps), else 0.
+fn ring_length(neuron: &Neuron) -> usize {
+    if neuron.function == NeuronFunction::Memory {
+        neuron
+            .params
+            .first()
+            .copied()
+            .filter(|d| !d.is_nan())
+            .unwrap_or(1.0)
+            .clamp(1.0, 10_000.0) as usize
+    } else {
+        0
     }
 }
 

@@ -2,16 +2,16 @@
 //! share one body), joints with their limits and motors switched off, the ground, and the
 //! creature dropped from its drop height.
 
-use ::nalgebra::{UnitQuaternion, Vector3};
-use rapier3d::math::{Pose, Real, Rotation, Vector};
+use ::nalgebra::Vector3;
+use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
-use super::actuators::max_torque;
 use super::brain::BrainRuntime;
-use super::options::{JointModel, SimOptions};
+use super::options::SimOptions;
+use super::parts::Keyed;
 use super::setting::SettingError;
-use super::world::{ANGULAR, GRAVITY, JointHandle, JointInfo, World};
-use crate::creature::Creature;
+use super::world::{GRAVITY, World};
+use crate::creature::{Creature, Joint, Part, PartId};
 
 /// The groups of parts fused by rigid joints: for each part, the lowest-numbered part of its
 /// group (union-find over the creature's rigid joints).
@@ -51,39 +51,6 @@ pub enum BuildError {
     Loop(usize),
 }
 
-fn vector(v: &Vector3<f64>) -> Vector {
-    Vector::new(v.x as Real, v.y as Real, v.z as Real)
-}
-
-fn rotation(q: &UnitQuaternion<f64>) -> Rotation {
-    Rotation::from_xyzw(q.i as Real, q.j as Real, q.k as Real, q.w as Real).normalize()
-}
-
-/// The joint frame: its x axis along the first axis, its y axis along the second (made
-/// perpendicular to the first), so that AngX, AngY and AngZ are the joint's degrees of
-/// freedom in order.
-fn joint_frame(axes: &[Vector3<f64>]) -> Rotation {
-    let Some(first) = axes.first() else {
-        return Rotation::IDENTITY;
-    };
-    let x = vector(first).normalize();
-    let second = axes
-        .get(1)
-        .map(|a| {
-            let a = vector(a);
-            a - x * a.dot(x)
-        })
-        .filter(|y| y.length() > 1e-6);
-    match second {
-        Some(y) => {
-            let y = y.normalize();
-            let z = x.cross(y);
-            Rotation::from_mat3(&rapier3d::glamx::Mat3::from_cols(x, y, z))
-        }
-        None => Rotation::from_rotation_arc(Vector::X, x),
-    }
-}
-
 impl World {
     /// Builds the world: the creature lifted so that its lowest point is `drop_height` above
     /// the ground, at rest. Options out of their ranges ([`SimOptions::check`]: no substeps,
@@ -116,10 +83,8 @@ impl World {
             multibody_joints: MultibodyJointSet::new(),
             soft_bodies: SoftBodySet::new(),
             ccd: CCDSolver::new(),
-            parts: Vec::new(),
-            joints: Vec::new(),
-            joint_ends: Vec::new(),
-            joint_info: Vec::new(),
+            parts: Keyed::new(),
+            joints: Keyed::new(),
             brain: BrainRuntime::new(&creature.brain),
             roles: creature.brain.neurons.iter().map(|n| n.role).collect(),
             environment: creature.environment.clone(),
@@ -127,7 +92,6 @@ impl World {
             projectile: None,
             target: None,
             time: 0.0,
-            previous: Vec::new(),
             physics_time: std::time::Duration::ZERO,
             resting: false,
             creature_bodies: Vec::new(),
@@ -148,107 +112,25 @@ impl World {
 
         let (lo, _) = creature.bounding_box();
         let lift = Vector3::new(0.0, options.drop_height - lo.y, 0.0);
-        let groups = if options.self_collision {
-            InteractionGroups::all()
-        } else {
-            // Parts collide with the ground only.
-            InteractionGroups::new(Group::GROUP_2, Group::GROUP_1, InteractionTestMode::And)
-        };
         // Parts fused by rigid joints share one rigid body, a collider each (as MuJoCo welds
         // them): a chain of fixed joints is the stiffest thing an impulse solver meets, and
         // at one substep it can pump energy into a creature that has no motor at all.
         let group = fused_groups(creature);
-        let mut group_body: Vec<Option<RigidBodyHandle>> = vec![None; creature.parts.len()];
         for (i, part) in creature.parts.iter().enumerate() {
-            let pose =
-                Pose::from_parts(vector(&(part.position + lift)), rotation(&part.orientation));
-            let body = match group_body[group[i]] {
-                Some(body) => body,
-                None => {
-                    let body = world
-                        .bodies
-                        .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
-                    group_body[group[i]] = Some(body);
-                    body
-                }
+            let lifted = Part {
+                position: part.position + lift,
+                ..part.clone()
             };
-            let relative = world.bodies[body].position().inverse() * pose;
-            let half = part.size / 2.0;
-            let collider = ColliderBuilder::cuboid(half.x as Real, half.y as Real, half.z as Real)
-                .position(relative)
-                .density(part.density as Real)
-                .friction(options.friction as Real)
-                .collision_groups(groups);
-            let collider = world
-                .colliders
-                .insert_with_parent(collider, body, &mut world.bodies);
-            world.parts.push((body, collider));
+            let fused_with = (group[i] != i).then_some(PartId(group[i]));
+            world.add_part(&lifted, fused_with);
         }
-
-        for (index, joint) in creature.joints.iter().enumerate() {
-            let (b1, _) = world.parts[joint.parent];
-            let (b2, _) = world.parts[joint.child];
-            let max_torque = max_torque(creature, joint, options);
-            if b1 == b2 {
-                world.joints.push(JointHandle::Fused);
-                world.joint_ends.push((b1, b2));
-                world.joint_info.push(JointInfo {
-                    limits: joint.limits.clone(),
-                    max_torque,
-                    torques: [0.0; 3],
-                });
-                continue;
-            }
-            let pose1 = *world.bodies[b1].position();
-            let pose2 = *world.bodies[b2].position();
-            let anchor = vector(&(joint.anchor + lift));
-            // The joint frame: x along the first axis (if any), at the anchor.
-            let frame_rotation = joint_frame(&joint.axes);
-            let world_frame = Pose::from_parts(anchor, frame_rotation);
-            let mask = match joint.kind.dof() {
-                0 => JointAxesMask::LOCKED_FIXED_AXES,
-                1 => JointAxesMask::LOCKED_REVOLUTE_AXES,
-                2 => JointAxesMask::LOCKED_SPHERICAL_AXES | JointAxesMask::ANG_Z,
-                _ => JointAxesMask::LOCKED_SPHERICAL_AXES,
+        for joint in &creature.joints {
+            let lifted = Joint {
+                anchor: joint.anchor + lift,
+                ..joint.clone()
             };
-            let mut data = GenericJointBuilder::new(mask)
-                .contacts_enabled(false)
-                .build();
-            data.set_local_frame1(pose1.inverse() * world_frame);
-            data.set_local_frame2(pose2.inverse() * world_frame);
-            for (k, &(lo, hi)) in joint.limits.iter().enumerate().take(joint.kind.dof()) {
-                data.set_limits(ANGULAR[k], [lo as Real, hi as Real]);
-                data.set_motor_model(ANGULAR[k], MotorModel::ForceBased);
-                data.set_motor_max_force(ANGULAR[k], 0.0);
-            }
-            let handle = match options.joints {
-                JointModel::Impulse => {
-                    JointHandle::Impulse(world.impulse_joints.insert(b1, b2, data, true))
-                }
-                JointModel::Multibody => JointHandle::Multibody(
-                    world
-                        .multibody_joints
-                        .insert(b1, b2, data, true)
-                        .ok_or(BuildError::Loop(index))?,
-                ),
-            };
-            world.joints.push(handle);
-            world.joint_ends.push((b1, b2));
-            world.joint_info.push(JointInfo {
-                limits: joint.limits.clone(),
-                max_torque,
-                torques: [0.0; 3],
-            });
+            world.add_joint(&lifted)?;
         }
-        world.previous = (0..world.parts.len())
-            .map(|i| world.part_world_pose(i).translation)
-            .collect();
-        world.creature_bodies = group_body.into_iter().flatten().collect();
-        world.creature_mass = world
-            .creature_bodies
-            .iter()
-            .map(|b| world.bodies[*b].mass() as f64)
-            .sum();
         world.energy = world.mechanical_energy();
         Ok(world)
     }

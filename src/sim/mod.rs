@@ -1,9 +1,11 @@
 //! Simulation: running a creature's brain against its body in a rapier3d world.
 //!
 //! The options are in [`options`], each one's key, flag, range and description (and the one
-//! check) in [`knobs`], the named step settings and the `[task.sim]` table in [`setting`]; the world is built in [`build`], senses in [`sensors`],
-//! moves in [`actuators`], is audited for energy from nowhere in [`audit`], holds the
-//! catapult's projectile in [`projectile`], and steps in [`world`].
+//! check) in [`knobs`], the named step settings and the `[task.sim]` table in [`setting`];
+//! the world is built in [`build`] from the parts and joints of [`parts`] (keyed by stable
+//! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
+//! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
+//! [`projectile`], and steps in [`world`].
 
 pub mod actuators;
 pub mod audit;
@@ -13,6 +15,7 @@ pub mod drag;
 pub mod knobs;
 mod model_names;
 pub mod options;
+pub mod parts;
 pub mod projectile;
 pub mod sensors;
 pub mod setting;

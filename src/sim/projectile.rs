@@ -6,7 +6,9 @@ use rapier3d::math::{Pose, Real, Vector};
 use rapier3d::prelude::*;
 
 use super::options::JointModel;
+use super::parts::PartSlot;
 use super::world::{JointHandle, World, to_na};
+use crate::creature::PartId;
 
 impl World {
     /// Whether a `release` effector has fired.
@@ -18,7 +20,11 @@ impl World {
     /// −x face, where the turtle started and nothing else grows), held by a fixed joint until
     /// [`release`](Self::release) (Chaumont 4.1: the root part is the arm).
     pub fn attach_projectile(&mut self, size: Vector3<f64>, density: f64) {
-        let (root, root_collider) = self.parts[0];
+        let PartSlot {
+            body: root,
+            collider: root_collider,
+            ..
+        } = self.parts[PartId(0)];
         let root_pose = self.part_world_pose(0);
         // The root part's pose in its body's frame (fused parts share a body).
         let root_in_body = self.colliders[root_collider]
@@ -40,17 +46,17 @@ impl World {
         if lift > 0.0 {
             let up = Vector::new(0.0, lift, 0.0);
             let mut moved: Vec<RigidBodyHandle> = Vec::new();
-            for (body, _) in &self.parts {
-                if moved.contains(body) {
+            for part in self.parts.iter() {
+                if moved.contains(&part.body) {
                     continue;
                 }
-                moved.push(*body);
-                let b = &mut self.bodies[*body];
+                moved.push(part.body);
+                let b = &mut self.bodies[part.body];
                 let t = b.translation() + up;
                 b.set_translation(t, true);
             }
-            for p in &mut self.previous {
-                *p += up;
+            for part in self.parts.iter_mut() {
+                part.previous += up;
             }
             pose.translation += up;
         }

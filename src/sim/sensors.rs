@@ -6,8 +6,9 @@ use ::nalgebra::Vector3;
 use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
+use super::parts::PartSlot;
 use super::world::{JointHandle, World, to_na};
-use crate::creature::{Face, Role, Sensor};
+use crate::creature::{Face, JointId, PartId, Role, Sensor};
 
 /// How near a part's contact point must be to the ground to count as touching it (m): the
 /// touch sensors' and the ground drag's threshold.
@@ -26,7 +27,7 @@ impl World {
 
     /// Angle of degree of freedom `dof` of joint `j` (radians), from the bodies' poses.
     pub(super) fn joint_angle(&self, j: usize, dof: usize) -> f64 {
-        let data = match self.joints[j] {
+        let data = match self.joints[JointId(j)].handle {
             JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
                 Some(joint) => &joint.data,
                 None => return 0.0,
@@ -48,7 +49,7 @@ impl World {
     /// Angular speed of joint `j` about its first axis (rad/s): the child's angular velocity
     /// relative to the parent's, projected on the axis.
     pub fn joint_speed(&self, j: usize) -> f64 {
-        let data = match self.joints[j] {
+        let data = match self.joints[JointId(j)].handle {
             JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
                 Some(joint) => joint.data,
                 None => return 0.0,
@@ -66,7 +67,7 @@ impl World {
     }
 
     pub(super) fn joint_bodies(&self, j: usize) -> (RigidBodyHandle, RigidBodyHandle) {
-        self.joint_ends[j]
+        self.joints[JointId(j)].ends
     }
 
     /// How fast the creature's parts slide along the ground now (m/s): over every contact
@@ -78,7 +79,7 @@ impl World {
     /// dragged during the step (Hornby & Pollack's D_drag).
     pub fn ground_sliding_speed(&self) -> f64 {
         let mut total = 0.0;
-        for &(body, collider) in &self.parts {
+        for &PartSlot { body, collider, .. } in self.parts.iter() {
             let Some(pair) = self
                 .narrow_phase
                 .contact_pair(collider, self.ground_collider)
@@ -117,7 +118,7 @@ impl World {
             };
             let value = match sensor {
                 Sensor::Touch { part, face } => {
-                    let collider = self.parts[part].1;
+                    let collider = self.parts[PartId(part)].collider;
                     let touching = self.narrow_phase.contact_pairs_with(collider).any(|p| {
                         let ours_first = p.collider1 == collider;
                         p.manifolds().iter().any(|m| {
@@ -132,7 +133,7 @@ impl World {
                     if touching { 1.0 } else { -1.0 }
                 }
                 Sensor::Angle { joint, dof } => {
-                    let limits = &self.joint_info[joint].limits;
+                    let limits = &self.joints[JointId(joint)].limits;
                     let (lo, hi) = limits.get(dof).copied().unwrap_or((-1.0, 1.0));
                     let a = self.joint_angle(joint, dof);
                     if hi > lo {

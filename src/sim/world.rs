@@ -10,7 +10,8 @@ use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
 use super::options::{ActuatorModel, SimOptions};
-use crate::creature::Role;
+use super::parts::{JointSlot, Keyed, PartSlot};
+use crate::creature::{JointId, Link, Neuron, PartId, Role};
 
 /// Gravity's acceleration (m/s²), pulling along −Y.
 pub const GRAVITY: f64 = 9.81;
@@ -28,14 +29,6 @@ pub(super) enum JointHandle {
 /// The three angular axes of a joint frame, in the order of a joint's degrees of freedom.
 pub(super) const ANGULAR: [JointAxis; 3] = [JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ];
 
-/// What the motors need to know of a joint.
-pub(super) struct JointInfo {
-    pub(super) limits: Vec<(f64, f64)>,
-    pub(super) max_torque: f64,
-    /// The torques (N·m) the torque muscle applies about the joint's axes this control step.
-    pub(super) torques: [f64; 3],
-}
-
 /// A creature in a physics world, with its brain.
 pub struct World {
     pub(super) options: SimOptions,
@@ -51,12 +44,10 @@ pub struct World {
     pub(super) multibody_joints: MultibodyJointSet,
     pub(super) soft_bodies: SoftBodySet,
     pub(super) ccd: CCDSolver,
-    pub(super) parts: Vec<(RigidBodyHandle, ColliderHandle)>,
-    pub(super) joints: Vec<JointHandle>,
-    /// Per joint: the parent's and the child's bodies.
-    pub(super) joint_ends: Vec<(RigidBodyHandle, RigidBodyHandle)>,
-    /// Per joint: its limits and maximum torque.
-    pub(super) joint_info: Vec<JointInfo>,
+    /// The creature's parts, by id.
+    pub(super) parts: Keyed<PartId, PartSlot>,
+    /// The creature's joints, by id.
+    pub(super) joints: Keyed<JointId, JointSlot>,
     pub(super) brain: BrainRuntime,
     pub(super) roles: Vec<Role>,
     pub(super) environment: Vec<f64>,
@@ -67,7 +58,6 @@ pub struct World {
     /// The aiming task's target, for the target sensor.
     pub(super) target: Option<Vector3<f64>>,
     pub(super) time: f64,
-    pub(super) previous: Vec<Vector>,
     /// Wall-clock time spent inside rapier's pipeline, for measuring the evaluator's overhead.
     pub(super) physics_time: std::time::Duration,
     /// Whether the world steps with the rest setting (see [`World::set_resting`]).
@@ -122,6 +112,27 @@ impl World {
         }
     }
 
+    /// Adds `neuron` to the running brain (a sensor is read, an actuator drives, from the
+    /// next control step on); returns its index, the next one.
+    pub fn add_neuron(&mut self, neuron: &Neuron) -> usize {
+        self.roles.push(neuron.role);
+        self.brain.add_neuron(neuron)
+    }
+
+    /// Adds `link` to the running brain (see [`BrainRuntime::add_link`]).
+    ///
+    /// # Panics
+    ///
+    /// If either end names no neuron.
+    pub fn add_link(&mut self, link: &Link) {
+        self.brain.add_link(link);
+    }
+
+    /// The running brain.
+    pub fn brain(&self) -> &BrainRuntime {
+        &self.brain
+    }
+
     /// Simulated time so far.
     pub fn time(&self) -> f64 {
         self.time
@@ -135,7 +146,7 @@ impl World {
     /// The world pose of part `i`: its body's pose and the part's place in the body (always
     /// in step with the body, even before the colliders are synchronised).
     pub(super) fn part_world_pose(&self, i: usize) -> Pose {
-        let (body, collider) = self.parts[i];
+        let PartSlot { body, collider, .. } = self.parts[PartId(i)];
         let relative = self.colliders[collider]
             .position_wrt_parent()
             .copied()
@@ -173,7 +184,7 @@ impl World {
     }
 
     pub(super) fn part_aabb(&self, i: usize) -> rapier3d::parry::bounding_volume::Aabb {
-        self.colliders[self.parts[i].1]
+        self.colliders[self.parts[PartId(i)].collider]
             .shape()
             .compute_aabb(&self.part_world_pose(i))
     }
@@ -223,13 +234,13 @@ impl World {
         self.peak_joint_gap = self.peak_joint_gap.max(self.joint_gap());
         let mut largest: f64 = 0.0;
         for k in 0..self.parts.len() {
-            let body = &self.bodies[self.parts[k].0];
+            let body = &self.bodies[self.parts[PartId(k)].body];
             let p = self.part_world_pose(k).translation;
             let v = body.linvel();
             if !p.is_finite() || !v.is_finite() {
                 return Err(Exploded::NotANumber);
             }
-            let moved = (p - self.previous[k]).length() as f64;
+            let moved = (p - self.parts[PartId(k)].previous).length() as f64;
             if moved > self.options.explosion_distance {
                 return Err(Exploded::Jump(moved));
             }
@@ -237,7 +248,7 @@ impl World {
                 return Err(Exploded::Speed(v.length() as f64));
             }
             largest = largest.max(moved);
-            self.previous[k] = p;
+            self.parts[PartId(k)].previous = p;
         }
         if let Some((position, speed)) = self.projectile_state() {
             if !position.iter().all(|v| v.is_finite()) || !speed.is_finite() {
@@ -310,7 +321,7 @@ mod tests {
         // centimetre of it sliding: D_drag ≈ 0.204 m.
         let mut world = settled_box();
         let from = world.part_position(0);
-        let body = world.parts[0].0;
+        let body = world.parts[PartId(0)].body;
         world.bodies[body].set_linvel(Vector::new(2.0, 0.0, 0.0), true);
         let dragged = drag_over(&mut world, 60);
         let slid = horizontal(world.part_position(0) - from);
@@ -328,7 +339,7 @@ mod tests {
         // slipping at v = 2 m/s, ω = v / r about −z: its contact point is still, so over
         // the 0.2 m it rolls (0.1 s) it drags next to nothing.
         let mut world = settled_box();
-        let (body, collider) = world.parts[0];
+        let PartSlot { body, collider, .. } = world.parts[PartId(0)];
         world.colliders[collider].set_shape(SharedShape::ball(0.125));
         for _ in 0..60 {
             world.step(false).unwrap();

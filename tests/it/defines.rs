@@ -265,10 +265,7 @@ fn the_grammar_seed_flag_is_the_files_seed_line_edited_on_every_grammar_verb() {
 
     let (flagged, plain) = both(&["derive"]);
     assert_eq!(flagged, plain);
-    let axiom = format!(
-        "0: A({})\n",
-        ontogeny::lsystem::format_number(r(&of_edited))
-    );
+    let axiom = format!("0: A({})\n", ontogeny::number::format_number(r(&of_edited)));
     assert!(flagged.starts_with(&axiom), "{flagged}");
     assert_ne!(flagged, stdout(&ontogeny_ok(&["derive", &file])));
 
@@ -277,7 +274,7 @@ fn the_grammar_seed_flag_is_the_files_seed_line_edited_on_every_grammar_verb() {
     assert!(
         flagged.contains(&format!(
             "A({})",
-            ontogeny::lsystem::format_number(r(&of_edited))
+            ontogeny::number::format_number(r(&of_edited))
         )),
         "{flagged}"
     );

@@ -9,6 +9,7 @@
 
 mod brain;
 mod cancel;
+mod changing;
 mod cli;
 mod compare;
 mod continuous;

@@ -1,0 +1,298 @@
+//! A creature that changes while it acts: parts and joints added to a running world, a part
+//! resized, neurons and links added to a running brain, and development stepped by any Δt.
+
+use std::sync::Arc;
+
+use nalgebra::{UnitQuaternion, Vector3};
+use ontogeny::creature::{
+    Brain, Joint, JointId, JointKind, Link, Neuron, NeuronFunction, Part, PartId, Role, Sensor,
+};
+use ontogeny::develop::creature_from_commands;
+use ontogeny::lsystem::{DeriveOptions, Development, LSystem, ModuleString};
+use ontogeny::sim::{BrainRuntime, SimOptions, World};
+
+/// A 1 m × 0.25 m × 0.25 m box (62.5 kg at 1000 kg/m³) settled on the ground.
+fn settled_root() -> World {
+    let creature = creature_from_commands("forward(1)").unwrap();
+    let mut world = World::new(&creature, &SimOptions::default()).unwrap();
+    for _ in 0..60 {
+        world.step(false).unwrap();
+    }
+    world
+}
+
+/// `mass` is `expected` kg, to rapier's single precision.
+fn assert_kg(mass: f64, expected: f64) {
+    assert!(
+        (mass - expected).abs() < 1e-6 * expected,
+        "{mass} kg, not {expected}"
+    );
+}
+
+/// A point `local` in part `id`'s axes, in the world.
+fn on_part(world: &World, id: PartId, local: Vector3<f64>) -> Vector3<f64> {
+    let (centre, orientation) = world.part_pose(id.0);
+    centre + orientation * local
+}
+
+/// Adds to `world`'s root a 0.5 m tail (31.25 kg) beyond its +x end, at rest, joined at the
+/// root's end face by a hinge about the root's z axis.
+fn add_tail(world: &mut World) -> (PartId, JointId) {
+    let (_, orientation): (_, UnitQuaternion<f64>) = world.part_pose(0);
+    let tail = Part {
+        size: Vector3::new(0.5, 0.25, 0.25),
+        position: on_part(world, PartId(0), Vector3::new(0.75, 0.0, 0.0)),
+        orientation,
+        density: 1000.0,
+        growing: false,
+    };
+    let part = world.add_part(&tail, None);
+    let hinge = Joint {
+        parent: 0,
+        child: part.0,
+        kind: JointKind::Revolute,
+        anchor: on_part(world, PartId(0), Vector3::new(0.5, 0.0, 0.0)),
+        axes: vec![orientation * Vector3::z()],
+        limits: vec![(-0.5, 0.5)],
+        strength: 1.0,
+        growing: false,
+    };
+    let joint = world.add_joint(&hinge).unwrap();
+    (part, joint)
+}
+
+#[test]
+fn a_part_and_a_joint_added_mid_simulation_add_their_mass_keep_the_momentum_and_hold() {
+    let mut world = settled_root();
+    let momentum = world.creature_momentum();
+    assert_kg(world.creature_mass(), 62.5);
+
+    let (part, joint) = add_tail(&mut world);
+    // The next ids, after the builder's.
+    assert_eq!((part, joint), (PartId(1), JointId(0)));
+    assert_eq!(world.part_count(), 2);
+    assert_eq!(world.joint_count(), 1);
+    assert_eq!(world.part_ids().collect::<Vec<_>>(), [PartId(0), PartId(1)]);
+    assert_kg(world.creature_mass(), 62.5 + 31.25);
+    // Added at rest: the creature's momentum is what it was.
+    assert_eq!(world.creature_momentum(), momentum);
+
+    for _ in 0..60 {
+        world.step(false).unwrap();
+    }
+    // The hinge holds the tail at the root's end: its two anchors together, the centres
+    // 0.75 m apart.
+    let (parent_side, child_side) = world.joint_anchors(joint).unwrap();
+    let gap = (parent_side - child_side).norm();
+    assert!(gap < 1e-3, "the joint's anchors are {gap} m apart");
+    let apart = (world.part_position(1) - world.part_position(0)).norm();
+    assert!(
+        (apart - 0.75).abs() < 0.01,
+        "the centres are {apart} m apart"
+    );
+    // The tail's own energy (31.25 kg at 0.125 m: 38 J) is not energy from nowhere.
+    let unexplained = world.peak_unexplained_energy();
+    assert!(unexplained < 0.01, "{unexplained} J from nowhere");
+
+    // A sensor added now can name the part that appeared: the tail lies on the ground.
+    let neurons = world.brain().neuron_count();
+    let touch = world.add_neuron(&Neuron {
+        function: NeuronFunction::Linear,
+        params: Vec::new(),
+        bias: 0.0,
+        role: Role::Sensor {
+            sensor: Sensor::Touch {
+                part: part.0,
+                face: None,
+            },
+        },
+        part: Some(part.0),
+    });
+    assert_eq!(touch, neurons);
+    world.step(true).unwrap();
+    assert_eq!(world.sensor_reading(touch), 1.0);
+}
+
+#[test]
+fn a_joint_naming_a_part_the_world_lacks_is_refused() {
+    let mut world = settled_root();
+    let joint = Joint {
+        parent: 0,
+        child: 3,
+        kind: JointKind::Revolute,
+        anchor: Vector3::zeros(),
+        axes: vec![Vector3::z()],
+        limits: vec![(-0.5, 0.5)],
+        strength: 1.0,
+        growing: false,
+    };
+    let error = world.add_joint(&joint).unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "malformed creature: joint 0 joins part 0 to part 3, but the world has 1 parts"
+    );
+    assert_eq!(world.joint_count(), 0);
+}
+
+#[test]
+fn a_resized_part_has_the_mass_inertia_and_joint_anchors_of_its_new_size() {
+    let mut world = settled_root();
+    let (tail, joint) = add_tail(&mut world);
+    let (parent_side, _) = world.joint_anchors(joint).unwrap();
+
+    // The tail doubles in length, about its centre: 0.5 m → 1 m, 31.25 kg → 62.5 kg.
+    world.resize_part(tail, Vector3::new(1.0, 0.25, 0.25));
+    assert_eq!(world.part_size(tail), Vector3::new(1.0, 0.25, 0.25));
+    let (mass, inertia) = world.part_body_mass(tail);
+    assert_kg(mass, 62.5);
+    // A box's principal moments: m/12 · (b² + c²) about each axis.
+    let by_hand = [
+        62.5 / 12.0 * (0.25f64.powi(2) + 0.25f64.powi(2)),
+        62.5 / 12.0 * (1.0 + 0.25f64.powi(2)),
+        62.5 / 12.0 * (1.0 + 0.25f64.powi(2)),
+    ];
+    for (axis, expected) in by_hand.iter().enumerate() {
+        assert!(
+            (inertia[axis] - expected).abs() < 1e-5 * expected,
+            "inertia about axis {axis}: {} kg·m², not {expected}",
+            inertia[axis]
+        );
+    }
+    assert_kg(world.creature_mass(), 62.5 + 62.5);
+    // The anchor on the tail moved with its near face, from 0.25 m to 0.5 m behind its
+    // centre; the root's anchor stayed.
+    let (parent_now, child_now) = world.joint_anchors(joint).unwrap();
+    assert!((parent_now - parent_side).norm() < 1e-6);
+    let face = on_part(&world, tail, Vector3::new(-0.5, 0.0, 0.0));
+    let off = (child_now - face).norm();
+    assert!(
+        off < 1e-5,
+        "the tail's anchor is {off} m from its near face"
+    );
+}
+
+/// A neuron with `function`, `params` and `role`, no bias.
+fn neuron(function: NeuronFunction, params: Vec<f64>) -> Neuron {
+    Neuron {
+        function,
+        params,
+        bias: 0.0,
+        role: Role::Hidden,
+        part: None,
+    }
+}
+
+#[test]
+fn a_running_brain_gains_a_neuron_and_links_that_act_from_the_next_step() {
+    // 0: constant 0.5; 1: linear, no input; 2: linear, reading 0 with weight 1.
+    let brain = Brain {
+        neurons: vec![
+            neuron(NeuronFunction::Constant, vec![0.5]),
+            neuron(NeuronFunction::Linear, Vec::new()),
+            neuron(NeuronFunction::Linear, Vec::new()),
+        ],
+        links: vec![Link {
+            from: 0,
+            to: 2,
+            weight: 1.0,
+        }],
+    };
+    let mut runtime = BrainRuntime::new(&brain);
+    runtime.step(0.0, 0.05);
+    assert_eq!(runtime.outputs(), [0.5, 0.0, 0.0]);
+
+    // 3: constant 0.25; links 0 → 1 (weight 0.5, a first input between existing ones) and
+    // 3 → 2 (a second input).
+    let added = runtime.add_neuron(&neuron(NeuronFunction::Constant, vec![0.25]));
+    assert_eq!(added, 3);
+    assert_eq!(runtime.neuron_count(), 4);
+    runtime.add_link(&Link {
+        from: 0,
+        to: 1,
+        weight: 0.5,
+    });
+    runtime.add_link(&Link {
+        from: 3,
+        to: 2,
+        weight: 1.0,
+    });
+    assert_eq!(runtime.outputs(), [0.5, 0.0, 0.0, 0.0]);
+    // Synchronous updates: each step reads the outputs of the one before.
+    runtime.step(0.05, 0.05);
+    assert_eq!(runtime.outputs(), [0.5, 0.25, 0.5, 0.25]);
+    runtime.step(0.1, 0.05);
+    assert_eq!(runtime.outputs(), [0.5, 0.25, 0.75, 0.25]);
+}
+
+/// Figure 1 of Matos & Arita: B grows until it splits at x = 4, A until y = 2.
+const FIGURE_1: &str = "\
+time: 5.5
+dt: 0.5
+axiom: B(1) A(0, 0)
+B(x) : x < 4 --> solve dx/dt = 1
+B(x) : x >= 4 --> A(2, 2) B(1)
+A(x, y) : y < 2 --> solve dx/dt = 2, dy/dt = 1
+A(x, y) : y >= 2 --> B(x) C(2)
+";
+
+/// The symbols of `string`, and its parameters.
+fn state(lsys: &LSystem, string: &ModuleString) -> (Vec<String>, Vec<f64>) {
+    let names = string
+        .iter()
+        .map(|m| lsys.symbols().name(m.sym).to_string())
+        .collect();
+    let params = string.iter().flat_map(|m| m.params.to_vec()).collect();
+    (names, params)
+}
+
+#[test]
+fn a_development_stepped_by_uneven_steps_reaches_the_string_of_its_frames() {
+    let lsys = Arc::new(LSystem::from_text("figure-1.lsys", FIGURE_1).unwrap());
+    let options = DeriveOptions::default();
+
+    // Frame by frame, every 0.5 up to 5.5, as `ontogeny derive` shows it.
+    let mut frames = lsys.development(&options).unwrap();
+    while frames.advance().unwrap() {}
+    assert_eq!(frames.time(), 5.5);
+    let mut events = frames.take_events();
+
+    // Held by a loop that owns it, stepped by uneven Δt's to the same time.
+    let mut stepped = Development::start(Arc::clone(&lsys), &options).unwrap();
+    for dt in [0.3, 0.05, 1.45, 0.0, 2.2, 0.7] {
+        stepped.advance_by(dt).unwrap();
+    }
+    stepped.advance_by(5.5 - stepped.now()).unwrap();
+    assert_eq!(stepped.now(), 5.5);
+
+    let (names, params) = state(&lsys, stepped.current());
+    let (frame_names, frame_params) = state(&lsys, frames.current());
+    assert_eq!(names, frame_names);
+    assert_eq!(
+        names,
+        [
+            "B", "C", "B", "C", "B", "B", "C", "B", "C", "B", "C", "B", "C"
+        ]
+    );
+    assert_eq!(params.len(), frame_params.len());
+    for (a, b) in params.iter().zip(&frame_params) {
+        assert!((a - b).abs() < 1e-9, "{a} against {b}");
+    }
+    // The same events at the same moments.
+    let mut stepped_events = stepped.take_events();
+    for e in events.iter_mut().chain(stepped_events.iter_mut()) {
+        e.t = (e.t * 1e6).round() / 1e6;
+    }
+    assert_eq!(stepped_events, events);
+}
+
+#[test]
+fn a_development_step_below_zero_is_refused() {
+    let lsys = Arc::new(LSystem::from_text("figure-1.lsys", FIGURE_1).unwrap());
+    let mut development = Development::start(lsys, &DeriveOptions::default()).unwrap();
+    let error = development.advance_by(-1.0).unwrap_err();
+    assert_eq!(
+        error.to_string(),
+        "error: a development step must be 0 or more, not -1"
+    );
+    assert_eq!(development.now(), 0.0);
+}
