@@ -1,7 +1,7 @@
 //! `ontogeny derive`, and the development flags every verb that grows a grammar shares.
 
 use std::io::{BufWriter, IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use ontogeny::lsystem::{
@@ -71,6 +71,20 @@ impl DevelopmentArgs {
     }
 }
 
+impl DevelopmentArgs {
+    /// The grammar in `file` with the defines and seed the flags give, its findings told, and
+    /// the derivation options the flags ask for.
+    pub fn load(
+        &self,
+        file: &Path,
+        max_modules: usize,
+    ) -> anyhow::Result<(LSystem, DeriveOptions)> {
+        let lsys = self.defines.load(file, self.seed.seed())?;
+        super::tell_findings(&lsys);
+        Ok((lsys, derive_options(self, max_modules)))
+    }
+}
+
 /// The derivation options the flags ask for.
 pub fn derive_options(args: &DevelopmentArgs, max_modules: usize) -> DeriveOptions {
     DeriveOptions {
@@ -122,12 +136,7 @@ enum TimingArg {
 
 /// Derives the file and prints the steps.
 pub fn run(args: &DeriveArgs) -> anyhow::Result<()> {
-    let lsys = args
-        .development
-        .defines
-        .load(&args.file, args.development.seed.seed())?;
-    super::tell_findings(&lsys);
-    let options = derive_options(&args.development, args.max_modules);
+    let (lsys, options) = args.development.load(&args.file, args.max_modules)?;
     discrete_steps(&lsys, &options, args.development.steps, "printing")?;
     let mut out = BufWriter::new(std::io::stdout().lock());
     // A bar only when the frames are not printing to the terminal themselves.

@@ -13,7 +13,7 @@ use ontogeny::lang::Diagnostic;
 use ontogeny::lsystem::{DEFAULT_MAX_MODULES, DeriveOptions, LSystem};
 use ontogeny::output::FolderKind;
 
-use super::derive::{DevelopmentArgs, derive_options, discrete_steps};
+use super::derive::{DevelopmentArgs, discrete_steps};
 use ontogeny::render::growth::{growth_gif_note, growth_gif_steps, write_growth_gif};
 
 /// Flags of `ontogeny grow`.
@@ -105,12 +105,7 @@ struct Grown<'a> {
 /// held: the last one, and with `--out` the ones `growth.gif` shows (at most
 /// [`ontogeny::develop::MAX_KEPT_FRAMES`] frames may be written).
 pub fn run(args: &GrowArgs) -> anyhow::Result<()> {
-    let lsys = args
-        .development
-        .defines
-        .load(&args.file, args.development.seed.seed())?;
-    super::tell_findings(&lsys);
-    let options = derive_options(&args.development, args.max_modules);
+    let (lsys, options) = args.development.load(&args.file, args.max_modules)?;
     // A picture: overlapping parts and a body in pieces are warnings here, errors where
     // physics needs the creature (`eval`, `evolve`).
     let build_options = BuildOptions {

@@ -10,51 +10,45 @@
 
 use serde::{Deserialize, Serialize};
 
-/// A part's stable id: its index in the creature's parts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct PartId(pub usize);
+/// Declares an id type: a number kept as is through serde, converted from and to `usize`,
+/// and written as `"{noun} {number}"`.
+macro_rules! stable_id {
+    ($(#[$doc:meta])* $name:ident, $noun:literal) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+        #[serde(transparent)]
+        pub struct $name(pub usize);
 
-/// A joint's stable id: its index in the creature's joints.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[serde(transparent)]
-pub struct JointId(pub usize);
+        impl From<usize> for $name {
+            fn from(index: usize) -> Self {
+                $name(index)
+            }
+        }
 
-impl From<usize> for PartId {
-    fn from(index: usize) -> Self {
-        PartId(index)
-    }
+        impl From<$name> for usize {
+            fn from(id: $name) -> Self {
+                id.0
+            }
+        }
+
+        impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                write!(f, concat!($noun, " {}"), self.0)
+            }
+        }
+    };
 }
 
-impl From<PartId> for usize {
-    fn from(id: PartId) -> Self {
-        id.0
-    }
-}
-
-impl From<usize> for JointId {
-    fn from(index: usize) -> Self {
-        JointId(index)
-    }
-}
-
-impl From<JointId> for usize {
-    fn from(id: JointId) -> Self {
-        id.0
-    }
-}
-
-impl std::fmt::Display for PartId {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "part {}", self.0)
-    }
-}
-
-impl std::fmt::Display for JointId {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "joint {}", self.0)
-    }
-}
+stable_id!(
+    /// A part's stable id: its index in the creature's parts.
+    PartId,
+    "part"
+);
+stable_id!(
+    /// A joint's stable id: its index in the creature's joints.
+    JointId,
+    "joint"
+);
 
 impl super::Creature {
     /// Every part's id with the part, in order.

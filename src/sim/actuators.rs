@@ -7,7 +7,8 @@ use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
 use super::options::{ActuatorModel, SimOptions, StrengthFrom};
-use super::world::{ANGULAR, JointHandle, World};
+use super::slots::JointHandle;
+use super::world::{ANGULAR, World};
 use crate::creature::{Actuator, Creature, Joint, JointId, Role};
 
 /// Motor gains per N·m of a joint's maximum torque. A velocity motor's torque is damping ×

@@ -4,7 +4,8 @@
 
 use rapier3d::math::Vector;
 
-use super::world::{Exploded, GRAVITY, JointHandle, World};
+use super::slots::JointHandle;
+use super::world::{Exploded, GRAVITY, World};
 use crate::creature::JointId;
 
 /// A joint gap (m) beyond which `ontogeny eval` warns that the step setting is too coarse for

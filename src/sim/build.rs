@@ -8,8 +8,8 @@ use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
 use super::options::SimOptions;
-use super::parts::Keyed;
 use super::setting::SettingError;
+use super::slots::Keyed;
 use super::world::{GRAVITY, World};
 use crate::creature::{Creature, Joint, Part, PartId};
 

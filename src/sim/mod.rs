@@ -19,6 +19,7 @@ pub mod parts;
 pub mod projectile;
 pub mod sensors;
 pub mod setting;
+mod slots;
 pub mod world;
 
 pub use actuators::{ANGLE_DAMPING, ANGLE_STIFFNESS, SATURATION_DAMPING, max_torque};

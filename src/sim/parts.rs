@@ -4,8 +4,6 @@
 //! first two, in the creature's order, so a part or joint added later while the world runs is
 //! made the same way and gets the next id.
 
-use std::marker::PhantomData;
-
 use ::nalgebra::{UnitQuaternion, Vector3};
 use rapier3d::math::{Pose, Real, Rotation, Vector};
 use rapier3d::prelude::*;
@@ -13,93 +11,9 @@ use rapier3d::prelude::*;
 use super::actuators::max_torque_between;
 use super::build::BuildError;
 use super::options::JointModel;
-use super::world::{ANGULAR, JointHandle, World};
+use super::slots::{JointHandle, JointSlot, PartSlot};
+use super::world::{ANGULAR, World};
 use crate::creature::{Joint, JointId, Part, PartId};
-
-/// Items keyed by an id that is their place in order: pushing gives the next id, and nothing
-/// is ever removed, so an id names the same item for the world's whole life.
-pub(super) struct Keyed<I, T> {
-    items: Vec<T>,
-    id: PhantomData<I>,
-}
-
-impl<I: From<usize> + Into<usize>, T> Keyed<I, T> {
-    pub(super) fn new() -> Self {
-        Keyed {
-            items: Vec::new(),
-            id: PhantomData,
-        }
-    }
-
-    /// Adds `item`; returns its id.
-    pub(super) fn push(&mut self, item: T) -> I {
-        self.items.push(item);
-        I::from(self.items.len() - 1)
-    }
-
-    /// How many items.
-    pub(super) fn len(&self) -> usize {
-        self.items.len()
-    }
-
-    /// The item with id `id`, if there is one.
-    pub(super) fn get(&self, id: I) -> Option<&T> {
-        self.items.get(id.into())
-    }
-
-    /// The items, in id order.
-    pub(super) fn iter(&self) -> std::slice::Iter<'_, T> {
-        self.items.iter()
-    }
-
-    /// The items, in id order, to change.
-    pub(super) fn iter_mut(&mut self) -> std::slice::IterMut<'_, T> {
-        self.items.iter_mut()
-    }
-}
-
-impl<I: Into<usize>, T> std::ops::Index<I> for Keyed<I, T> {
-    type Output = T;
-    fn index(&self, id: I) -> &T {
-        &self.items[id.into()]
-    }
-}
-
-impl<I: Into<usize>, T> std::ops::IndexMut<I> for Keyed<I, T> {
-    fn index_mut(&mut self, id: I) -> &mut T {
-        &mut self.items[id.into()]
-    }
-}
-
-/// A part in the world.
-pub(super) struct PartSlot {
-    /// Its rigid body (shared with the parts fused to it).
-    pub(super) body: RigidBodyHandle,
-    /// Its box.
-    pub(super) collider: ColliderHandle,
-    /// Its edge lengths (m), as the creature gave them or [`World::resize_part`] set them.
-    pub(super) size: Vector3<f64>,
-    /// Its centre after the last step, for the explosion checks.
-    pub(super) previous: Vector,
-}
-
-/// A joint in the world, with what the motors need to know of it.
-pub(super) struct JointSlot {
-    /// The rapier joint, or none for a fused or rigid joint.
-    pub(super) handle: JointHandle,
-    /// The parent and the child part.
-    pub(super) parts: (PartId, PartId),
-    /// The parent's and the child's bodies.
-    pub(super) ends: (RigidBodyHandle, RigidBodyHandle),
-    /// Angle limits per degree of freedom (radians).
-    pub(super) limits: Vec<(f64, f64)>,
-    /// The joint's own strength (its maximum torque follows its parts' sizes).
-    pub(super) strength: f64,
-    /// The motor's maximum torque (N·m).
-    pub(super) max_torque: f64,
-    /// The torques (N·m) the torque muscle applies about the joint's axes this control step.
-    pub(super) torques: [f64; 3],
-}
 
 pub(super) fn vector(v: &Vector3<f64>) -> Vector {
     Vector::new(v.x as Real, v.y as Real, v.z as Real)

@@ -6,8 +6,9 @@ use rapier3d::math::{Pose, Real, Vector};
 use rapier3d::prelude::*;
 
 use super::options::JointModel;
-use super::parts::PartSlot;
-use super::world::{JointHandle, World, to_na};
+use super::slots::JointHandle;
+use super::slots::PartSlot;
+use super::world::{World, to_na};
 use crate::creature::PartId;
 
 impl World {

@@ -6,8 +6,9 @@ use ::nalgebra::Vector3;
 use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
-use super::parts::PartSlot;
-use super::world::{JointHandle, World, to_na};
+use super::slots::JointHandle;
+use super::slots::PartSlot;
+use super::world::{World, to_na};
 use crate::creature::{Face, JointId, PartId, Role, Sensor};
 
 /// How near a part's contact point must be to the ground to count as touching it (m): the

@@ -10,21 +10,11 @@ use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
 use super::options::{ActuatorModel, SimOptions};
-use super::parts::{JointSlot, Keyed, PartSlot};
+use super::slots::{JointHandle, JointSlot, Keyed, PartSlot};
 use crate::creature::{JointId, Link, Neuron, PartId, Role};
 
 /// Gravity's acceleration (m/s²), pulling along −Y.
 pub const GRAVITY: f64 = 9.81;
-
-/// A joint handle of either model.
-#[derive(Clone, Copy, Debug)]
-pub(super) enum JointHandle {
-    Impulse(ImpulseJointHandle),
-    Multibody(MultibodyJointHandle),
-    /// No rapier joint: a rigid joint, or a joint between two parts of one rigid body (its
-    /// parts are fused into one body with a collider per part).
-    Fused,
-}
 
 /// The three angular axes of a joint frame, in the order of a joint's degrees of freedom.
 pub(super) const ANGULAR: [JointAxis; 3] = [JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ];

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Watch, evaluate, steps_in, uninterrupted};
+use super::protocol::{Bounds, Watch, evaluate, steps_in, unwatched};
 use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
@@ -104,24 +104,9 @@ pub fn catapult(
     options: &CatapultOptions,
     record: bool,
 ) -> Evaluation {
-    catapult_with_progress(creature, sim, options, record, &mut |_| {})
-}
-
-/// [`catapult`], telling `progress` the fraction done, as [`walker_with_progress`](super::walker_with_progress) does (the
-/// run counts as done when the projectile comes to rest).
-pub fn catapult_with_progress(
-    creature: &Creature,
-    sim: &SimOptions,
-    options: &CatapultOptions,
-    record: bool,
-    progress: &mut dyn FnMut(f64),
-) -> Evaluation {
-    let watch = Watch {
-        record,
-        progress,
-        cancel: None,
-    };
-    uninterrupted(catapult_watched(creature, sim, options, watch))
+    unwatched(record, |watch| {
+        catapult_watched(creature, sim, options, watch)
+    })
 }
 
 /// [`catapult`], watched: recorded, told its progress and stopped by a token as `watch`

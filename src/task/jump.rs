@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::Evaluation;
-use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted};
+use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unwatched};
 use super::recording::Phase;
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
@@ -59,23 +59,7 @@ pub fn jump(
     options: &JumpOptions,
     record: bool,
 ) -> Evaluation {
-    jump_with_progress(creature, sim, options, record, &mut |_| {})
-}
-
-/// [`jump`], telling `progress` the fraction done, as [`walker_with_progress`](super::walker_with_progress) does.
-pub fn jump_with_progress(
-    creature: &Creature,
-    sim: &SimOptions,
-    options: &JumpOptions,
-    record: bool,
-    progress: &mut dyn FnMut(f64),
-) -> Evaluation {
-    let watch = Watch {
-        record,
-        progress,
-        cancel: None,
-    };
-    uninterrupted(jump_watched(creature, sim, options, watch))
+    unwatched(record, |watch| jump_watched(creature, sim, options, watch))
 }
 
 /// [`jump`], watched: recorded, told its progress and stopped by a token as `watch` says.

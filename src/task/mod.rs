@@ -25,11 +25,9 @@ mod spec;
 mod stand;
 mod walker;
 pub use aim::AimTask;
-pub use catapult::{
-    CatapultOptions, CatapultTask, catapult, catapult_with_progress, distance_to_trajectory,
-};
+pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
-pub use jump::{JumpOptions, JumpTask, jump, jump_with_progress};
+pub use jump::{JumpOptions, JumpTask, jump};
 pub use protocol::{Rest, Watch};
 pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
@@ -40,7 +38,6 @@ pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
 pub use walker::{
     WalkerFitness, WalkerOptions, WalkerTask, iterative_move, size_coefficients, walker,
-    walker_with_progress,
 };
 
 /// The fitness of every failed evaluation, whatever the task: Walking with Dinosaurs' value

@@ -313,6 +313,27 @@ pub struct Watch<'p> {
     pub cancel: Option<&'p Cancel>,
 }
 
+impl<'p> Watch<'p> {
+    /// A watch without a token: recorded as `record` says, telling `progress` the fraction
+    /// done, and never stopped.
+    pub fn uncancelled(record: bool, progress: &'p mut dyn FnMut(f64)) -> Watch<'p> {
+        Watch {
+            record,
+            progress,
+            cancel: None,
+        }
+    }
+}
+
+/// The evaluation `evaluate` gives with a watch that no one looks at and nothing stops: recorded
+/// as `record` says.
+pub(super) fn unwatched(
+    record: bool,
+    evaluate: impl FnOnce(Watch<'_>) -> Result<Evaluation, Interrupted>,
+) -> Evaluation {
+    uninterrupted(evaluate(Watch::uncancelled(record, &mut |_| {})))
+}
+
 /// The evaluation of a watch without a token, which nothing can interrupt.
 pub(super) fn uninterrupted(evaluation: Result<Evaluation, Interrupted>) -> Evaluation {
     evaluation.expect("an evaluation without a cancellation token is never interrupted")

@@ -101,18 +101,14 @@ impl TaskSpec {
     }
 
     /// [`TaskSpec::evaluate`], telling `progress` the fraction done, as
-    /// [`super::walker_with_progress`] does.
+    /// [`Watch::progress`] says.
     pub fn evaluate_with_progress(
         &self,
         creature: &Creature,
         record: bool,
         progress: &mut dyn FnMut(f64),
     ) -> Evaluation {
-        let watch = Watch {
-            record,
-            progress,
-            cancel: None,
-        };
+        let watch = Watch::uncancelled(record, progress);
         super::protocol::uninterrupted(self.evaluate_watched(creature, watch))
     }
 

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, uninterrupted};
+use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unwatched};
 use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE};
 use crate::cancel::Interrupted;
@@ -203,24 +203,9 @@ pub fn walker(
     options: &WalkerOptions,
     record: bool,
 ) -> Evaluation {
-    walker_with_progress(creature, sim, options, record, &mut |_| {})
-}
-
-/// [`walker`], telling `progress` the fraction done: from 0, growing by thousandths as the
-/// protocol steps (a phase that ends early counts as done at its longest), and 1 at the end.
-pub fn walker_with_progress(
-    creature: &Creature,
-    sim: &SimOptions,
-    options: &WalkerOptions,
-    record: bool,
-    progress: &mut dyn FnMut(f64),
-) -> Evaluation {
-    let watch = Watch {
-        record,
-        progress,
-        cancel: None,
-    };
-    uninterrupted(walker_watched(creature, sim, options, watch))
+    unwatched(record, |watch| {
+        walker_watched(creature, sim, options, watch)
+    })
 }
 
 /// [`walker`], watched: recorded, told its progress and stopped by a token as `watch` says.

@@ -8,8 +8,8 @@ use nalgebra::{UnitQuaternion, Vector3};
 use ontogeny::creature::Creature;
 use ontogeny::sim::SimOptions;
 use ontogeny::task::{
-    self, CatapultOptions, JumpOptions, MAX_RECORDED_FRAMES, RecordedFrame, Status, WalkerOptions,
-    recording_interval,
+    self, CatapultOptions, JumpOptions, MAX_RECORDED_FRAMES, RecordedFrame, Status, TaskKind,
+    TaskSpec, WalkerOptions, recording_interval,
 };
 
 fn passive_pair() -> Creature {
@@ -130,7 +130,11 @@ fn progress_grows_by_thousandths_to_one_and_changes_nothing() {
         ..WalkerOptions::default()
     };
     let mut told = Vec::new();
-    let watched = task::walker_with_progress(&c, &sim, &options, false, &mut |f| told.push(f));
+    let walk = TaskSpec {
+        walker: options.clone(),
+        ..TaskSpec::new(TaskKind::Walker)
+    };
+    let watched = walk.evaluate_with_progress(&c, false, &mut |f| told.push(f));
     let plain = task::walker(&c, &sim, &options, false);
     assert_eq!(watched, plain);
     assert_eq!(*told.last().unwrap(), 1.0);
@@ -144,13 +148,8 @@ fn progress_grows_by_thousandths_to_one_and_changes_nothing() {
     // The catapult ends when the projectile rests: 1 then.
     let mut told = Vec::new();
     let thrower = grown("examples/thrower.lsys");
-    let e = task::catapult_with_progress(
-        &thrower,
-        &sim,
-        &CatapultOptions::default(),
-        false,
-        &mut |f| told.push(f),
-    );
+    let e = TaskSpec::new(TaskKind::Catapult)
+        .evaluate_with_progress(&thrower, false, &mut |f| told.push(f));
     assert_eq!(e.status, Status::Ok, "{:?}", e.message);
     assert_eq!(*told.last().unwrap(), 1.0);
     assert!(told.windows(2).all(|w| w[0] < w[1]));
@@ -158,9 +157,8 @@ fn progress_grows_by_thousandths_to_one_and_changes_nothing() {
     // A rejected creature is not simulated, and is done at once.
     let mut told = Vec::new();
     let empty = Creature::default();
-    let e = task::jump_with_progress(&empty, &sim, &JumpOptions::default(), false, &mut |f| {
-        told.push(f)
-    });
+    let e =
+        TaskSpec::new(TaskKind::Jump).evaluate_with_progress(&empty, false, &mut |f| told.push(f));
     assert_eq!(e.status, Status::Invalid);
     assert_eq!(told, [1.0]);
 }
