@@ -22,6 +22,14 @@ _Fitness = Literal[
     "hornby-pollack",
 ]
 
+_Sim = Dict[str, Union[float, int, str, bool]]
+"""The simulator's knobs, by their ``[task.sim]`` keys in a configuration file, set over the
+named ``setting``: ``control_step`` (older files: ``dt``), ``substeps``,
+``solver_iterations``, ``pgs_iterations``, ``rest_substeps``, ``rest_solver_iterations``,
+``joints``, ``self_collision``, ``friction``, ``actuator``, ``strength``, ``strength_from``,
+``muscle_speed``, ``max_speed``, ``drop_height``, ``explosion_distance``, ``speed_limit``,
+``energy_tolerance``."""
+
 TASKS: Dict[str, str]
 """Every task by name, with what it measures, in the order ``ontogeny eval --help`` lists
 them."""
@@ -146,10 +154,12 @@ def evaluate(
     seconds: Optional[float] = None,
     fitness: Optional[_Fitness] = None,
     setting: str = "default",
+    sim: Optional[_Sim] = None,
     target: Optional[Tuple[float, float, float]] = None,
     record: bool = False,
 ) -> Evaluation:
-    """Evaluates a creature on a task, as ``ontogeny eval --task TASK`` does."""
+    """Evaluates a creature on a task, as ``ontogeny eval --task TASK`` does; ``sim`` sets the
+    simulator's knobs by their ``[task.sim]`` keys (see ``_Sim``) over ``setting``."""
 
 def evaluate_many(
     creatures: Sequence[Creature],
@@ -159,6 +169,7 @@ def evaluate_many(
     seconds: Optional[float] = None,
     fitness: Optional[_Fitness] = None,
     setting: str = "default",
+    sim: Optional[_Sim] = None,
     target: Optional[Tuple[float, float, float]] = None,
     record: bool = False,
 ) -> List[Evaluation]:

@@ -11,10 +11,12 @@ use numpy::{PyArray1, PyArray3};
 use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
 use ontogeny::front::flags::{TaskFlags, option_of};
-use ontogeny::sim::SimOptions;
+use ontogeny::lang::suggest::did_you_mean;
+use ontogeny::sim::knobs::{Knob, Value, knob};
+use ontogeny::sim::{ActuatorModel, JointModel, KNOBS, SimOptions, StrengthFrom};
 use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict, PyInt};
 use rayon::prelude::*;
 
 /// The outcome of an evaluation: its fitness, status, the terms behind the fitness and, when
@@ -118,6 +120,7 @@ pub(crate) fn task_spec(
     seconds: Option<f64>,
     fitness: Option<&str>,
     setting: &str,
+    sim: Option<&Bound<'_, PyDict>>,
     target: Option<[f64; 3]>,
 ) -> PyResult<TaskSpec> {
     let flags = TaskFlags {
@@ -129,9 +132,7 @@ pub(crate) fn task_spec(
         projectile_size: None,
         projectile_density: None,
     };
-    let sim = setting_named(setting)?.apply(&SimOptions::default());
-    sim.check()
-        .map_err(|e| value_error(e.for_flag("setting")))?;
+    let sim = sim_options(setting, sim)?;
     let spec = flags
         .spec(sim)
         .map_err(|e| value_error(e.for_flag(&option_of(e.key))))?;
@@ -144,10 +145,115 @@ pub(crate) fn task_spec(
     Ok(spec)
 }
 
+/// The simulator's options of `setting=` and `sim=`: the named step setting, each of `sim`'s
+/// keys (a `[task.sim]` key of the table of knobs, [`KNOBS`], or its older name) over it,
+/// then the range check of every knob. An error names the value as `sim['key']`.
+fn sim_options(setting: &str, sim: Option<&Bound<'_, PyDict>>) -> PyResult<SimOptions> {
+    let mut options = setting_named(setting)?.apply(&SimOptions::default());
+    let mut given: Vec<&'static str> = Vec::new();
+    for (key, value) in sim.into_iter().flat_map(|sim| sim.iter()) {
+        let Ok(key) = key.extract::<String>() else {
+            return Err(value_error(format!(
+                "sim's keys must be strings, not {}",
+                key.repr()?
+            )));
+        };
+        let Some(knob) = knob(&key) else {
+            let keys: Vec<&str> = KNOBS.iter().map(|k| k.key).collect();
+            return Err(value_error(format!(
+                "unknown key '{key}' in sim{}; its keys are {}",
+                did_you_mean(&key, keys.iter().copied()),
+                keys.join(", ")
+            )));
+        };
+        if given.contains(&knob.key) {
+            return Err(value_error(format!(
+                "sim gives {} twice ({} is its older name)",
+                knob.key,
+                knob.older_key.unwrap_or_default()
+            )));
+        }
+        given.push(knob.key);
+        let value = knob_value(knob, (knob.get)(&options), &value)?;
+        (knob.set)(&mut options, value);
+    }
+    options
+        .check()
+        .map_err(|e| value_error(e.for_flag(&format!("sim['{}']", e.key))))?;
+    Ok(options)
+}
+
+/// `value` as a value of `knob`, of the kind of `like` (the knob's value now): a number for a
+/// real, a whole number for a count (out of range: the knob's range error), `True` or `False`
+/// for a switch, one of its names for a model.
+fn knob_value(knob: &Knob, like: Value, value: &Bound<'_, PyAny>) -> PyResult<Value> {
+    let wrong = |wanted: &str| -> PyResult<Value> {
+        Err(value_error(format!(
+            "sim['{}'] must be {wanted}, not {}",
+            knob.key,
+            value.repr()?
+        )))
+    };
+    let is_bool = value.is_instance_of::<PyBool>();
+    match like {
+        Value::Real(_) if is_bool => wrong("a number"),
+        Value::Real(_) => match value.extract::<f64>() {
+            Ok(x) => Ok(Value::Real(x)),
+            Err(_) => wrong("a number"),
+        },
+        Value::Count(_) if is_bool || !value.is_instance_of::<PyInt>() => wrong("a whole number"),
+        Value::Count(_) => match value.extract::<usize>() {
+            Ok(n) => Ok(Value::Count(n)),
+            Err(_) => Err(value_error(format!(
+                "sim['{}'] must be {}, not {}",
+                knob.key,
+                knob.range_words(),
+                value.str()?
+            ))),
+        },
+        Value::Switch(_) if is_bool => Ok(Value::Switch(value.extract()?)),
+        Value::Switch(_) => wrong("True or False"),
+        Value::Joints(_) => {
+            named(knob, value, &JointModel::ALL, JointModel::name).map(Value::Joints)
+        }
+        Value::Actuator(_) => {
+            named(knob, value, &ActuatorModel::ALL, ActuatorModel::name).map(Value::Actuator)
+        }
+        Value::StrengthFrom(_) => {
+            named(knob, value, &StrengthFrom::ALL, StrengthFrom::name).map(Value::StrengthFrom)
+        }
+    }
+}
+
+/// The choice of `all` that `value` names, or an error listing the names and the closest.
+fn named<T: Copy>(
+    knob: &Knob,
+    value: &Bound<'_, PyAny>,
+    all: &[T],
+    name: fn(T) -> &'static str,
+) -> PyResult<T> {
+    let names: Vec<&str> = all.iter().map(|v| name(*v)).collect();
+    let text = value.extract::<String>().ok();
+    if let Some(found) = all
+        .iter()
+        .copied()
+        .find(|v| Some(name(*v)) == text.as_deref())
+    {
+        return Ok(found);
+    }
+    let hint = text.map_or(String::new(), |t| did_you_mean(&t, names.iter().copied()));
+    Err(value_error(format!(
+        "sim['{}'] must be one of {}, not {}{hint}",
+        knob.key,
+        names.join(", "),
+        value.repr()?
+    )))
+}
+
 /// Evaluates a creature on a task, as `ontogeny eval FILE --task TASK` does, with the same
 /// result bit for bit.
 #[pyfunction]
-#[pyo3(signature = (creature, task="walker", *, seconds=None, fitness=None, setting="default", target=None, record=false))]
+#[pyo3(signature = (creature, task="walker", *, seconds=None, fitness=None, setting="default", sim=None, target=None, record=false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate(
     py: Python<'_>,
@@ -156,10 +262,11 @@ pub(crate) fn evaluate(
     seconds: Option<f64>,
     fitness: Option<&str>,
     setting: &str,
+    sim: Option<&Bound<'_, PyDict>>,
     target: Option<[f64; 3]>,
     record: bool,
 ) -> PyResult<PyEvaluation> {
-    let spec = task_spec(py, task, seconds, fitness, setting, target)?;
+    let spec = task_spec(py, task, seconds, fitness, setting, sim, target)?;
     let body = Arc::clone(&creature.creature);
     let outcome = interruptible(py, |cancel| watched(&spec, &body, record, cancel))?
         .map_err(interrupted_error)?;
@@ -185,7 +292,7 @@ pub(crate) fn watched(
 /// per core), without holding the GIL; the results are in the creatures' order and equal to
 /// `evaluate`'s one by one.
 #[pyfunction]
-#[pyo3(signature = (creatures, task="walker", *, threads=None, seconds=None, fitness=None, setting="default", target=None, record=false))]
+#[pyo3(signature = (creatures, task="walker", *, threads=None, seconds=None, fitness=None, setting="default", sim=None, target=None, record=false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate_many(
     py: Python<'_>,
@@ -195,10 +302,11 @@ pub(crate) fn evaluate_many(
     seconds: Option<f64>,
     fitness: Option<&str>,
     setting: &str,
+    sim: Option<&Bound<'_, PyDict>>,
     target: Option<[f64; 3]>,
     record: bool,
 ) -> PyResult<Vec<PyEvaluation>> {
-    let spec = task_spec(py, task, seconds, fitness, setting, target)?;
+    let spec = task_spec(py, task, seconds, fitness, setting, sim, target)?;
     let pool = thread_pool(threads)?;
     let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
     drop(creatures);

@@ -41,6 +41,53 @@ def test_every_task_setting_and_fitness_equals_the_command_line(root, cli):
         ), kwargs
 
 
+def test_sim_sets_a_knob_as_the_command_lines_flag_does(root, cli):
+    creature = ontogeny.load(root / CHAIN)
+    default = ontogeny.evaluate(creature, seconds=1)
+    cases = [
+        (dict(setting="fast", sim={"substeps": 4}), ["--setting", "fast", "--substeps", "4"]),
+        (dict(sim={"dt": 0.02, "strength": 5000}), ["--time-step", "0.02", "--strength", "5000"]),
+        (dict(sim={"joints": "multibody", "self_collision": False}), ["--joints", "multibody", "--no-self-collision"]),
+    ]
+    for kwargs, flags in cases:
+        ours = ontogeny.evaluate(creature, seconds=1, **kwargs)
+        theirs = cli.json("eval", CHAIN, "--seconds", "1", *flags, "--json")
+        assert json.loads(ours.to_json()) == theirs, kwargs
+        assert ours.fitness != default.fitness, kwargs
+        [many] = ontogeny.evaluate_many([creature], seconds=1, **kwargs)
+        assert json.loads(many.to_json()) == theirs, kwargs
+
+
+def test_a_bad_knob_in_sim_raises_value_error_with_the_range_or_the_keys():
+    creature = ontogeny.grow(TWO_BOXES)
+    keys = (
+        "control_step, substeps, solver_iterations, pgs_iterations, rest_substeps, "
+        "rest_solver_iterations, joints, self_collision, friction, actuator, strength, "
+        "strength_from, muscle_speed, max_speed, drop_height, explosion_distance, speed_limit, "
+        "energy_tolerance"
+    )
+    cases = [
+        ({"substeps": 0}, "sim['substeps'] must be 1 to 64, not 0"),
+        ({"substeps": -1}, "sim['substeps'] must be 1 to 64, not -1"),
+        ({"substeps": 2.5}, "sim['substeps'] must be a whole number, not 2.5"),
+        ({"control_step": 1}, "sim['control_step'] must be in [0.001, 0.1] seconds, not 1"),
+        ({"friction": -1}, "sim['friction'] must be finite and not negative, not -1"),
+        ({"friction": "high"}, "sim['friction'] must be a number, not 'high'"),
+        ({"self_collision": 1}, "sim['self_collision'] must be True or False, not 1"),
+        ({"joints": "multibodi"}, "sim['joints'] must be one of impulse, multibody, not 'multibodi' (did you mean multibody?)"),
+        ({"dt": 0.02, "control_step": 0.02}, "sim gives control_step twice (dt is its older name)"),
+        ({"substep": 2}, f"unknown key 'substep' in sim (did you mean substeps?); its keys are {keys}"),
+        ({3: 2}, "sim's keys must be strings, not 3"),
+    ]
+    for sim, message in cases:
+        with pytest.raises(ValueError) as error:
+            ontogeny.evaluate(creature, seconds=1, sim=sim)
+        assert str(error.value) == message, sim
+    with pytest.raises(ValueError) as error:
+        ontogeny.evaluate_many([creature], seconds=1, sim={"substeps": 65})
+    assert str(error.value) == "sim['substeps'] must be 1 to 64, not 65"
+
+
 def test_the_task_list_is_the_command_lines(cli):
     assert list(ontogeny.TASKS) == ["walker", "jump", "catapult", "aim", "stand"]
     help_text = cli("eval", "--help")

@@ -5,8 +5,6 @@
 //! that reads options (a config file, a command-line flag, a `creature.json`, the library's
 //! [`World::new`](super::World::new)) goes through.
 
-use super::setting::StepSetting;
-
 /// The shortest control step (s) a setting may have: 1 ms, a 1 kHz controller (its physics
 /// runs up to [`MAX_SUBSTEPS`] times finer). Shorter steps would make an evaluation of the
 /// longest task take billions of steps.
@@ -18,6 +16,13 @@ pub const MAX_DT: f64 = 0.1;
 pub const MAX_SUBSTEPS: usize = 64;
 /// The most solver iterations per substep, and the most Gauss-Seidel passes per iteration.
 pub const MAX_ITERATIONS: usize = 256;
+
+/// The default stepping, in the order of the stepping knobs
+/// ([`stepping_knobs`](super::knobs::stepping_knobs)): 4 substeps of 4 solver iterations of
+/// one Gauss-Seidel pass while walking, 4 substeps of 8 iterations while waiting for rest. The
+/// named setting `default` ([`StepSetting::Default`](super::StepSetting::Default)) is these
+/// values.
+pub(super) const DEFAULT_STEPPING: [usize; 5] = [4, 4, 1, 4, 8];
 
 /// How joints are simulated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -148,7 +153,7 @@ impl Default for SimOptions {
             pgs_iterations,
             rest_substeps,
             rest_solver_iterations,
-        ] = StepSetting::Default.stepping();
+        ] = DEFAULT_STEPPING;
         SimOptions {
             control_step: 1.0 / 60.0,
             substeps,
@@ -172,39 +177,9 @@ impl Default for SimOptions {
     }
 }
 
-impl SimOptions {
-    /// The fast setting ([`StepSetting::Fast`]), the default until evolution was found to
-    /// exploit it: one physics step of 1/60 s with 2 solver iterations of 3 Gauss-Seidel
-    /// passes while walking, 2 substeps of 4 iterations while waiting for rest; everything else
-    /// as `self`. About 4× cheaper than the default per walk (3.6× with the rest phases, 4.7×
-    /// controller on), and good for ranking random creatures (`bench --fidelity`), but evolved
-    /// creatures learn to walk on its errors (docs/results/speed.md).
-    pub fn fast(&self) -> SimOptions {
-        StepSetting::Fast.apply(self)
-    }
-
-    /// The fine reference setting ([`StepSetting::Fine`]): these settings with 4 physics
-    /// substeps of 8 solver iterations (one PGS pass each) both while walking and while waiting
-    /// for rest; the control step `dt` and everything else unchanged. At the default `dt` of
-    /// 1/60 s that is physics at 1/240 s. `ontogeny bench --fidelity` ranks stepping settings
-    /// against it, and `ontogeny evolve` re-walks each generation's best with it, since
-    /// evolution learns to exploit a coarse setting (see docs/results/speed.md and
-    /// docs/guide/evolving.md).
-    pub fn fine_reference(&self) -> SimOptions {
-        StepSetting::Fine.apply(self)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_defaults_pass_the_check_and_every_named_setting_too() {
-        for setting in StepSetting::ALL {
-            assert_eq!(setting.apply(&SimOptions::default()).check(), Ok(()));
-        }
-    }
 
     #[test]
     fn the_check_names_the_key_and_its_range() {

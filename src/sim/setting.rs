@@ -1,7 +1,7 @@
 //! The simulator's settings as a user gives them: the named step settings (`fast`, `default`,
-//! `fine`), and the `[task.sim]` table as a person writes it (a named setting with any of its
-//! values overridden), read key by key from the table of knobs ([`KNOBS`]; the range check
-//! is [`SimOptions::check`]).
+//! `fine`; [`SimOptions::fast`] and [`SimOptions::fine_reference`]), and the `[task.sim]`
+//! table as a person writes it (a named setting with any of its values overridden), read key
+//! by key from the table of knobs ([`KNOBS`]; the range check is [`SimOptions::check`]).
 //!
 //! What a setting means physically is documented on [`SimOptions`]; what a task does with it
 //! belongs to `task`.
@@ -15,7 +15,7 @@ use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
 use super::knobs::{KNOBS, Knob, Value, knob, set_stepping, stepping_of};
-use super::options::SimOptions;
+use super::options::{DEFAULT_STEPPING, SimOptions};
 
 /// The range error and check, at the path they had before the table of knobs held them.
 pub use super::knobs::{SettingError, check_real};
@@ -78,7 +78,7 @@ impl StepSetting {
     pub(super) const fn stepping(self) -> Stepping {
         match self {
             StepSetting::Fast => [1, 2, 3, 2, 4],
-            StepSetting::Default => [4, 4, 1, 4, 8],
+            StepSetting::Default => DEFAULT_STEPPING,
             StepSetting::Fine => [4, 8, 1, 4, 8],
         }
     }
@@ -102,6 +102,29 @@ impl StepSetting {
 impl fmt::Display for StepSetting {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+impl SimOptions {
+    /// The fast setting ([`StepSetting::Fast`]), the default until evolution was found to
+    /// exploit it: one physics step of 1/60 s with 2 solver iterations of 3 Gauss-Seidel
+    /// passes while walking, 2 substeps of 4 iterations while waiting for rest; everything else
+    /// as `self`. About 4× cheaper than the default per walk (3.6× with the rest phases, 4.7×
+    /// controller on), and good for ranking random creatures (`bench --fidelity`), but evolved
+    /// creatures learn to walk on its errors (docs/results/speed.md).
+    pub fn fast(&self) -> SimOptions {
+        StepSetting::Fast.apply(self)
+    }
+
+    /// The fine reference setting ([`StepSetting::Fine`]): these settings with 4 physics
+    /// substeps of 8 solver iterations (one PGS pass each) both while walking and while waiting
+    /// for rest; the control step `dt` and everything else unchanged. At the default `dt` of
+    /// 1/60 s that is physics at 1/240 s. `ontogeny bench --fidelity` ranks stepping settings
+    /// against it, and `ontogeny evolve` re-walks each generation's best with it, since
+    /// evolution learns to exploit a coarse setting (see docs/results/speed.md and
+    /// docs/guide/evolving.md).
+    pub fn fine_reference(&self) -> SimOptions {
+        StepSetting::Fine.apply(self)
     }
 }
 
@@ -235,6 +258,13 @@ impl<'de> Visitor<'de> for TableVisitor {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_defaults_pass_the_check_and_every_named_setting_too() {
+        for setting in StepSetting::ALL {
+            assert_eq!(setting.apply(&SimOptions::default()).check(), Ok(()));
+        }
+    }
 
     #[test]
     fn the_named_settings_are_the_options_they_name() {

@@ -1,6 +1,8 @@
 //! The Python package's type stubs (`python/ontogeny/__init__.pyi`) against the library:
-//! the task names and the walker's fitness formulas they spell are the registry's.
+//! the task names and the walker's fitness formulas they spell are the registry's, the
+//! simulator's keys they list the table of knobs'.
 
+use ontogeny::sim::KNOBS;
 use ontogeny::task::{TASKS, Task, WalkerFitness, WalkerTask};
 
 /// The stubs' text.
@@ -44,4 +46,25 @@ fn the_stubs_name_the_registrys_tasks_and_the_walkers_formulas() {
         2
     );
     assert!(stubs.contains("\nTASKS: Dict[str, str]\n"));
+}
+
+#[test]
+fn the_stubs_list_every_knob_s_key_in_the_table_s_order() {
+    let stubs = stubs();
+    let start = stubs
+        .find("\n_Sim = Dict[str, Union[float, int, str, bool]]\n\"\"\"")
+        .expect("no _Sim = Dict[...] in the stubs");
+    let doc = &stubs[start..];
+    let doc = &doc[doc.find("\"\"\"").unwrap() + 3..];
+    let doc = &doc[..doc.find("\"\"\"").unwrap()];
+    // The ``quoted`` words: the table, the named setting, then each key with its older name.
+    let quoted: Vec<&str> = doc.split("``").skip(1).step_by(2).collect();
+    let mut keys = vec!["[task.sim]", "setting"];
+    for knob in KNOBS {
+        keys.push(knob.key);
+        keys.extend(knob.older_key);
+    }
+    assert_eq!(quoted, keys);
+    // `evaluate` and `evaluate_many` take them.
+    assert_eq!(stubs.matches("    sim: Optional[_Sim] = None,").count(), 2);
 }
