@@ -327,7 +327,7 @@ pub struct Evolution<G: Genome> {
     /// A genome whose mutants seed the first generation (`--init`).
     pub init: Option<G>,
     /// The version of the evaluation keys: today's for a new run, the one its store holds
-    /// for a run made before ([`super::run::Run::resume`]).
+    /// for a run made before (`run::Run::resume`).
     pub key_version: KeyVersion,
 }
 

@@ -78,7 +78,15 @@ impl TaskFlags {
             out.push("--fitness is for the walker task only".to_string());
         }
         if self.target.is_some() && task != TaskKind::Aim {
-            out.push("--target is for the aim task only (the catapult has no target)".to_string());
+            out.push(match task {
+                TaskKind::Catapult => {
+                    "--target is for the aim task only (the catapult has no target)".to_string()
+                }
+                _ => "--target is for the aim task only".to_string(),
+            });
+        }
+        if self.activation.is_some() && task != TaskKind::Walker {
+            out.push("--activation is for the walker task only".to_string());
         }
         let throwing = task.throws();
         if self.projectile_size.is_some() && !throwing {

@@ -869,10 +869,25 @@ fn flags_the_task_does_not_use_are_warned_about() {
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(
-        err.contains("warning: --target is for the aim task only"),
+        err.contains("warning: --target is for the aim task only; ignored"),
         "{err}"
     );
     assert!(err.contains("warning: --projectile-size is for the catapult and aim tasks only"));
+    let o = ontogeny(&[
+        "eval",
+        "examples/thrower.lsys",
+        "--task",
+        "jump",
+        "--seconds",
+        "0.2",
+        "--activation",
+        "0.5",
+    ]);
+    assert!(
+        stderr(&o).contains("warning: --activation is for the walker task only; ignored"),
+        "{}",
+        stderr(&o)
+    );
     let o = ontogeny(&[
         "eval",
         "examples/thrower.lsys",
