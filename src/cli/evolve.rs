@@ -357,7 +357,15 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path, json: bool) -> anyhow::Result<()>
     }
     let wall = started.elapsed().as_secs_f64();
     if let Some(r) = last {
-        let lines = tally.closing_lines(dir, &fitness, G::NAME, G::TEXT_EXTENSION, &r, wall);
+        let end = ontogeny::front::text::RunEnd {
+            dir,
+            fitness: &fitness,
+            encoding: G::NAME,
+            extension: G::TEXT_EXTENSION,
+            last: &r,
+            wall,
+        };
+        let lines = tally.closing_lines(&end);
         if json {
             // The messages as ever; the final line as JSON.
             for line in lines {
@@ -365,15 +373,7 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path, json: bool) -> anyhow::Result<()>
                     tell!("{m}");
                 }
             }
-            let object = ontogeny::front::json::run_json(
-                &tally,
-                dir,
-                &fitness,
-                G::NAME,
-                G::TEXT_EXTENSION,
-                &r,
-                wall,
-            );
+            let object = ontogeny::front::json::run_json(&tally, &end);
             say!("{}", serde_json::to_string_pretty(&object)?);
         } else {
             super::print(lines)?;

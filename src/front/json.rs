@@ -7,8 +7,7 @@ use std::path::Path;
 
 use serde_json::{Value, json};
 
-use super::text::RunTally;
-use crate::run::GenerationReport;
+use super::text::{RunEnd, RunTally};
 use crate::study::compare::{Report, Shared};
 
 /// `x`, or `null` when it is not finite.
@@ -16,22 +15,14 @@ fn number(x: f64) -> Value {
     if x.is_finite() { json!(x) } else { Value::Null }
 }
 
-/// The object `evolve --json` prints at the end of a run in `dir` of the encoding `encoding`
-/// (its genomes' files end in `extension`) whose last generation is `last`, after `wall`
-/// seconds, `fitness` naming the task and what its fitness measures:
+/// The object `evolve --json` prints at the end of the run `end` says:
 /// `{"dir", "encoding", "fitness", "generation", "best", "best_fine": {"fitness",
 /// "status"} | null, "evaluations", "simulated", "seconds", "evaluations_per_second",
 /// "outside_evaluation" (the share of the time, 0 to 1), "files"}` — the final line's
 /// figures.
-pub fn run_json(
-    tally: &RunTally,
-    dir: &Path,
-    fitness: &str,
-    encoding: &str,
-    extension: &str,
-    last: &GenerationReport,
-    wall: f64,
-) -> Value {
+pub fn run_json(tally: &RunTally, end: &RunEnd<'_>) -> Value {
+    let (dir, fitness, encoding) = (end.dir, end.fitness, end.encoding);
+    let (extension, last, wall) = (end.extension, end.last, end.wall);
     let best = format!("best.{extension}");
     let files: Vec<String> = ["run.sqlite", "fitness.svg", &best, "log.txt"]
         .iter()

@@ -107,6 +107,23 @@ pub struct RunTally {
     pub evaluating: f64,
 }
 
+/// A run that has ended, as its closing lines and `evolve --json` tell it.
+#[derive(Clone, Copy, Debug)]
+pub struct RunEnd<'a> {
+    /// The run's directory.
+    pub dir: &'a Path,
+    /// The task and what its fitness measures ([`crate::task::TaskSpec::fitness_label`]).
+    pub fitness: &'a str,
+    /// The encoding's name.
+    pub encoding: &'a str,
+    /// The extension of its genomes' files.
+    pub extension: &'a str,
+    /// Its last generation.
+    pub last: &'a GenerationReport,
+    /// The seconds it took.
+    pub wall: f64,
+}
+
 impl RunTally {
     /// Counts one more generation.
     pub fn add(&mut self, r: &GenerationReport) {
@@ -115,20 +132,13 @@ impl RunTally {
         self.evaluating += r.evaluation_seconds;
     }
 
-    /// The closing lines of a run of the encoding `encoding` (its genomes' files end in
-    /// `extension`) in `dir`, whose last generation is `last`, after `wall` seconds: a note on
+    /// The closing lines of the run `end` says: a note on
     /// children made by fallback, the final line (best, fine reference, counts, speed), a
     /// warning when the champion may exploit the step setting, and the files written; all
     /// but the final line are messages.
-    pub fn closing_lines(
-        &self,
-        dir: &Path,
-        fitness: &str,
-        encoding: &str,
-        extension: &str,
-        last: &GenerationReport,
-        wall: f64,
-    ) -> Vec<Line> {
+    pub fn closing_lines(&self, end: &RunEnd<'_>) -> Vec<Line> {
+        let (dir, fitness, encoding) = (end.dir, end.fitness, end.encoding);
+        let (extension, last, wall) = (end.extension, end.last, end.wall);
         let r = last;
         let mut lines = Vec::new();
         let fallbacks = r.fallbacks.crossover + r.fallbacks.graft;
@@ -479,14 +489,15 @@ mod tests {
 
     #[test]
     fn a_run_ends_with_its_result_alone_on_standard_output() {
-        let lines = RunTally::default().closing_lines(
-            Path::new("runs/x"),
-            "walker, distance (m)",
-            "lsystem",
-            "lsys",
-            &report(3, 1.0),
-            2.0,
-        );
+        let last = report(3, 1.0);
+        let lines = RunTally::default().closing_lines(&RunEnd {
+            dir: Path::new("runs/x"),
+            fitness: "walker, distance (m)",
+            encoding: "lsystem",
+            extension: "lsys",
+            last: &last,
+            wall: 2.0,
+        });
         let results: Vec<&Line> = lines
             .iter()
             .filter(|l| matches!(l, Line::Result(_)))
