@@ -26,7 +26,8 @@ pub const WITH_RESUME: &[&str] = &["threads", "no_cache", "json"];
 /// The flags that go with `--merge`; it refuses every other.
 pub const WITH_MERGE: &[&str] = &["json"];
 
-/// Flags of `ontogeny compare`.
+/// Compare encodings on equal terms: replicated runs of each with the same evaluation
+/// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
 #[derive(Args)]
 pub struct CompareArgs {
     /// The encodings to compare, comma-separated (e.g. lsystem,direct).
