@@ -119,12 +119,14 @@ fn compare_error(e: CompareError) -> anyhow::Error {
 fn parse_condition(text: &str) -> Result<(String, PathBuf), String> {
     let Some((name, path)) = text.split_once('=') else {
         return Err(format!(
-            "expected NAME=CONFIG.toml (e.g. k1=examples/compare-condition-small.toml), not {text}"
+            "expected NAME=CONFIG.toml (e.g. pop30=examples/compare-condition-pop30.toml), not {text}"
         ));
     };
     compare::check_condition_name(name)?;
     if path.is_empty() {
-        return Err(format!("the condition {name} names no config file after the ="));
+        return Err(format!(
+            "the condition {name} names no config file after the ="
+        ));
     }
     Ok((name.to_string(), PathBuf::from(path)))
 }
@@ -164,7 +166,12 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
         if manifest.conditions.is_empty() {
             files.push(root.join("evolve.toml"));
         } else {
-            files.extend(manifest.conditions.iter().map(|c| compare::condition_file(root, c)));
+            files.extend(
+                manifest
+                    .conditions
+                    .iter()
+                    .map(|c| compare::condition_file(root, c)),
+            );
         }
         tell!("{}", ontogeny::output::wrote(&files));
         for command in text::plan_commands(root, &manifest, args.no_cache) {
@@ -200,8 +207,8 @@ fn run_flags(args: &CompareArgs) -> RunFlags {
 fn plan_conditions(args: &CompareArgs) -> anyhow::Result<(Manifest, Vec<Arm>)> {
     let mut conditions = Vec::with_capacity(args.condition.len());
     for (name, path) in &args.condition {
-        let source = super::evolve::read_source(Some(path))?
-            .expect("a path was given, so a source is read");
+        let source =
+            super::evolve::read_source(Some(path))?.expect("a path was given, so a source is read");
         conditions.push(settings::ConditionSource {
             name: name.clone(),
             source,

@@ -134,7 +134,11 @@ pub fn comparison_json(
         "replicates": finished,
         "unfinished": unfinished,
     });
-    out[if conditions { "conditions" } else { "encodings" }] = json!(summaries);
+    out[if conditions {
+        "conditions"
+    } else {
+        "encodings"
+    }] = json!(summaries);
     for (key, value) in [
         ("pairs", json!(pairs)),
         ("power", json!(power)),

@@ -362,8 +362,7 @@ pub fn plan_conditions(
 ) -> Result<(Manifest, Vec<Arm>, Option<String>), Diagnostic> {
     let mut names: Vec<String> = Vec::new();
     for c in conditions {
-        compare::check_condition_name(&c.name)
-            .map_err(|e| plain(format!("--condition: {e}")))?;
+        compare::check_condition_name(&c.name).map_err(|e| plain(format!("--condition: {e}")))?;
         if let Some(first) = names.iter().find(|x| x.eq_ignore_ascii_case(&c.name)) {
             return Err(plain(format!(
                 "--condition: {}",
@@ -373,7 +372,9 @@ pub fn plan_conditions(
         names.push(c.name.clone());
     }
     if names.is_empty() {
-        return Err(plain("--condition needs at least one NAME=CONFIG.toml".into()));
+        return Err(plain(
+            "--condition needs at least one NAME=CONFIG.toml".into(),
+        ));
     }
     let replicates = checked_replicates(replicates)?;
     let mut arms = Vec::with_capacity(conditions.len());
@@ -418,7 +419,11 @@ fn condition_arm<G: Genome>(
         return refuse(&["seed"], "seed", "--seed sets every replicate's seed");
     }
     if file.init.is_some() {
-        return refuse(&["init"], "init", "every replicate starts from random genomes");
+        return refuse(
+            &["init"],
+            "init",
+            "every replicate starts from random genomes",
+        );
     }
     if file.ga.generations.is_some() {
         return refuse(

@@ -191,7 +191,10 @@ impl Arm {
 /// What the arms' fitness is, for people: their task's fitness label, or each arm's
 /// (`name: label`, joined by "; ") when they differ.
 pub fn fitness_labels(arms: &[Arm]) -> String {
-    let labels: Vec<String> = arms.iter().map(|a| a.settings.task.fitness_label()).collect();
+    let labels: Vec<String> = arms
+        .iter()
+        .map(|a| a.settings.task.fitness_label())
+        .collect();
     if labels.windows(2).all(|w| w[0] == w[1]) {
         return labels.into_iter().next().unwrap_or_default();
     }
@@ -241,24 +244,28 @@ pub fn check_budgets(arms: &[Arm]) -> Result<Option<String>, String> {
         .zip(&walks)
         .map(|(a, w)| {
             format!(
-                "{} {w} (population {}, {} generations, {} walk{} each)",
+                "{}: {w} walks (population {}, {} generations, {} walk{} per individual)",
                 a.name,
                 a.settings.ga.population,
                 a.settings.ga.generations,
                 walks_per_individual(&a.settings.task),
-                if walks_per_individual(&a.settings.task) == 1 { "" } else { "s" }
+                if walks_per_individual(&a.settings.task) == 1 {
+                    ""
+                } else {
+                    "s"
+                }
             )
         })
         .collect::<Vec<_>>()
         .join(", ");
     if (least as f64) < BUDGET_TOLERANCE * most as f64 {
         return Err(format!(
-            "the budgets differ by more than {:.0}%: {each} walks per replicate; choose populations that divide the budget more evenly, or a larger --evaluations",
+            "the budgets of a replicate differ by more than {:.0}%: {each}; choose populations that divide the budget more evenly, or a larger --evaluations",
             (1.0 - BUDGET_TOLERANCE) * 100.0
         ));
     }
     Ok(Some(format!(
-        "the budgets differ (generations are whole): {each} walks per replicate"
+        "the budgets of a replicate differ (generations are whole): {each}"
     )))
 }
 
@@ -322,15 +329,13 @@ pub fn replicate_config<G: Genome>(
 ) -> Result<RunConfig<G::Limits>, CompareError> {
     let limits = match &arm.limits {
         None => G::Limits::default(),
-        Some(table) => toml::Value::Table(table.clone())
-            .try_into()
-            .map_err(|e| {
-                CompareError::Input(format!(
-                    "{}: [limits] are not the {} encoding's: {e}",
-                    arm.name,
-                    G::NAME
-                ))
-            })?,
+        Some(table) => toml::Value::Table(table.clone()).try_into().map_err(|e| {
+            CompareError::Input(format!(
+                "{}: [limits] are not the {} encoding's: {e}",
+                arm.name,
+                G::NAME
+            ))
+        })?,
     };
     Ok(RunConfig {
         encoding: G::NAME.to_string(),
@@ -485,6 +490,7 @@ mod tests {
 
     use super::*;
     use crate::study::compare::chaumont_ga as ga;
+    use crate::task::TaskSpec;
 
     #[test]
     fn the_budget_counts_what_the_ga_evaluates() {
@@ -518,5 +524,100 @@ mod tests {
         assert_eq!(replicate_seed(7, 3), replicate_seed(7, 3));
         assert_ne!(replicate_seed(7, 3), replicate_seed(8, 3));
         assert!(seeds.iter().all(|&s| s < 1 << 31));
+    }
+    #[test]
+    fn condition_names_are_plain_words() {
+        for good in ["pop30", "K4_rough", "a", "4-trials"] {
+            assert_eq!(check_condition_name(good), Ok(()), "{good}");
+        }
+        assert_eq!(
+            check_condition_name("../a"),
+            Err(
+                "the condition name ../a holds '.': a name is ASCII letters, digits, - and _"
+                    .into()
+            )
+        );
+        assert!(
+            check_condition_name("a/b")
+                .unwrap_err()
+                .contains("holds '/'")
+        );
+        assert!(
+            check_condition_name("report.md")
+                .unwrap_err()
+                .contains("holds '.'")
+        );
+        assert!(
+            check_condition_name("-a")
+                .unwrap_err()
+                .contains("must start with a letter")
+        );
+        assert!(check_condition_name("").is_err());
+        assert!(check_condition_name(&"x".repeat(65)).is_err());
+        assert!(check_condition_name(&"x".repeat(64)).is_ok());
+    }
+
+    #[test]
+    fn a_manifest_compares_encodings_or_conditions_never_both() {
+        let m = Manifest {
+            encodings: vec![],
+            conditions: vec!["a".into(), "b".into()],
+            replicates: 2,
+            evaluations: 10,
+            seed: 1,
+        };
+        assert_eq!(m.check(), Ok(()));
+        assert_eq!((m.names(), m.kind()), (&m.conditions[..], "condition"));
+        let both = Manifest {
+            encodings: vec!["lsystem".into()],
+            ..m.clone()
+        };
+        assert!(both.check().unwrap_err().contains("one or the other"));
+        let twice = Manifest {
+            conditions: vec!["a".into(), "A".into()],
+            ..m.clone()
+        };
+        assert!(twice.check().unwrap_err().contains("differ only in case"));
+        // A manifest of encodings reads and writes as before: no conditions key.
+        let old =
+            "encodings = [\"lsystem\", \"direct\"]\nreplicates = 2\nevaluations = 17\nseed = 4\n";
+        let read: Manifest = toml::from_str(old).unwrap();
+        assert_eq!(read.kind(), "encoding");
+        assert_eq!(toml::to_string(&read).unwrap(), old);
+    }
+
+    #[test]
+    fn budgets_a_little_apart_are_noted_and_far_apart_refused() {
+        let arm = |name: &str, population: usize, generations: usize| Arm {
+            name: name.into(),
+            encoding: "lsystem".into(),
+            settings: Shared {
+                ga: ga(population, generations),
+                task: TaskSpec::new(crate::task::TaskKind::Walker),
+            },
+            limits: None,
+        };
+        // Population 20, elite 4: 20 + 16·11 = 196; 21, elite 4: 21 + 17·10 = 191.
+        assert_eq!(arm("a", 20, 12).walks(), 196);
+        assert_eq!(arm("b", 21, 11).walks(), 191);
+        assert_eq!(
+            check_budgets(&[arm("a", 20, 12), arm("c", 20, 12)]),
+            Ok(None)
+        );
+        let note = check_budgets(&[arm("a", 20, 12), arm("b", 21, 11)])
+            .unwrap()
+            .unwrap();
+        assert!(
+            note.contains(
+                "a: 196 walks (population 20, 12 generations, 1 walk per individual), b: 191 walks"
+            ),
+            "{note}"
+        );
+        // 176 is below 90% of 196.
+        assert!(
+            check_budgets(&[arm("a", 20, 12), arm("b", 21, 10)])
+                .unwrap_err()
+                .contains("differ by more than 10%")
+        );
     }
 }

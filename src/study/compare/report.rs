@@ -698,6 +698,23 @@ mod tests {
         assert!((r.pairs[0].holm_p - 0.3).abs() < 1e-12);
         assert!((r.pairs[2].holm_p - 0.3).abs() < 1e-12);
         assert!((r.pairs[1].holm_p - 0.7).abs() < 1e-12);
+        // Three replicates a side cannot reach p ≤ 0.05/3: nothing is detectable, and each
+        // pair says so rather than "no difference".
+        assert_eq!(r.power.unwrap().distance, None);
+        assert_eq!(
+            (r.power.unwrap().m, r.power.unwrap().level),
+            (3, 0.05 / 3.0)
+        );
+        assert!(!ab.detected());
+        assert_eq!(
+            ab.verdict(),
+            "not detected at this power (none is detectable with 3 and 3 replicates)"
+        );
+        assert!(
+            power_note(&r)
+                .unwrap()
+                .contains("each pair is tested at 0.05 / 3 = 0.0167")
+        );
         // The band: the mean of the best so far, 1, 2, 3 → 2 ± t(2)·1/√3.
         let b = band("a", &reps, None, 1);
         assert_eq!(b.points.len(), 2);
