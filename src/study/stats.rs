@@ -426,7 +426,7 @@ pub fn detectable_a12(m: usize, n: usize, pairs: usize) -> Detectable {
     if !reject[m * n] {
         return out;
     }
-    let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_0f_a12);
+    let mut rng = ChaCha8Rng::seed_from_u64(0x0005_eed0_fa12);
     let mut draw = |size: usize| {
         let mut v: Vec<f64> = (0..size).map(|_| StandardNormal.sample(&mut rng)).collect();
         v.sort_by(f64::total_cmp);
