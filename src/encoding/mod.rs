@@ -132,8 +132,9 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
 
     /// Develops the genome as [`Genome::develop`] does, but in a chemical array whose initial
     /// values are `env`'s (a habitat's): the same genome may grow another body. `env` must
-    /// have the size of [`Genome::environment`]. By default, for a genome that reads no
-    /// environment, `env` is only checked and the creature is [`Genome::develop`]'s.
+    /// have the size of [`Genome::environment`], unless the genome has none: a genome that
+    /// reads no environment grows [`Genome::develop`]'s creature in any array (the default,
+    /// for encodings whose genomes never read one).
     fn develop_in(
         &self,
         limits: &Self::Limits,
@@ -219,9 +220,10 @@ pub(crate) fn grammar_shown(text: &str) -> String {
     format!("{}\n{summary}", text.trim_end())
 }
 
-/// `Err` unless `env` has `size` slots (the size of the array a genome develops in).
+/// `Err` unless `env` has `size` slots (the size of the array a genome develops in), or the
+/// genome has no array (`size` 0), which any array leaves as it is.
 pub(crate) fn check_environment_size(size: usize, env: &Environment) -> Result<(), DevelopError> {
-    if env.len() == size {
+    if env.len() == size || size == 0 {
         Ok(())
     } else {
         Err(DevelopError(format!(

@@ -235,7 +235,7 @@ pub const MATURING: [Command; Command::GROWING.len()] = Command::GROWING;
 
 /// The command a name stands for, among those this genome uses.
 fn command_named(name: &str) -> Option<Command> {
-    Command::building_from_name(name).filter(|c| {
+    Command::from_name(name).filter(|c| {
         CHOICES
             .iter()
             .chain(&ENVIRONMENT_CHOICES)
@@ -730,6 +730,9 @@ impl Genome for ContinuousGenome {
         env: &Environment,
     ) -> Result<Creature, DevelopError> {
         check_environment_size(self.environment.len(), env)?;
+        if self.environment.is_empty() {
+            return self.creature(limits, None);
+        }
         self.creature(limits, Some(env))
     }
 
