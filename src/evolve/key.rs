@@ -78,6 +78,12 @@ impl EvaluationKey {
                 }
                 .serialize(&mut hasher)),
             })
+            // A world other than flat ground joins the key; a flat one adds nothing, so the
+            // keys of every run made before worlds existed stay as they were.
+            .and_then(|()| match task.world.is_flat() {
+                true => Ok(()),
+                false => task.world.serialize(&mut hasher),
+            })
             .expect("every creature and task serialises");
         EvaluationKey(hasher.0.finalize().into())
     }

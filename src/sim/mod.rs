@@ -5,7 +5,8 @@
 //! the world is built in [`build`] from the parts and joints of [`parts`] (keyed by stable
 //! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
 //! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
-//! [`projectile`], and steps in [`world`].
+//! [`projectile`], and steps in [`world`]; what the world holds besides the creature (terrain,
+//! obstacles, objects, the medium) is described by [`world_spec`].
 
 pub mod actuators;
 pub mod audit;
@@ -21,6 +22,7 @@ pub mod sensors;
 pub mod setting;
 mod slots;
 pub mod world;
+pub mod world_spec;
 
 pub use actuators::{ANGLE_DAMPING, ANGLE_STIFFNESS, SATURATION_DAMPING, max_torque};
 pub use audit::{ENERGY_WINDOW, JOINT_GAP_WARNING};
@@ -36,3 +38,4 @@ pub use options::{
 pub use sensors::TOUCH_DISTANCE;
 pub use setting::{RENAMED_KEYS, StepSetting, UnknownSetting};
 pub use world::{Exploded, GRAVITY, World};
+pub use world_spec::{Medium, WorldSpec};

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use super::{CatapultOptions, Evaluation, JumpOptions, StandOptions, Task, WalkerOptions, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SimOptions;
+use crate::sim::{SimOptions, WorldSpec};
 
 crate::for_each_task!(__task_kind!());
 
@@ -50,6 +50,10 @@ pub struct TaskSpec {
     /// The simulator's settings.
     #[serde(default)]
     pub sim: SimOptions,
+    /// The world besides the creature (`[task.world]`): flat ground in air unless it says
+    /// otherwise; a flat world is not written.
+    #[serde(default, skip_serializing_if = "WorldSpec::is_flat")]
+    pub world: WorldSpec,
     /// The walker's settings (used by `walker`).
     #[serde(default)]
     pub walker: WalkerOptions,
