@@ -78,18 +78,22 @@ fn the_plastic_example_grows_5_parts_where_its_cue_is_low_and_7_where_it_is_high
     let d = phenotype_differences(&low, &high);
     assert_eq!(
         (d.parts, d.joints, d.neurons, d.links),
-        ((5, 4), (7, 6), (5, 3), (5, 3))
+        ((5, 7), (4, 6), (5, 3), (5, 3))
     );
+    // The first segment of each limb keeps its length; what follows it differs.
+    assert_eq!(d.resized, 2);
+    assert_eq!(format_number(d.largest_resize), "0.2");
+    // The joints after those first segments are rigid where the limbs fork.
+    assert_eq!(d.joints_of_another_kind, 2);
     assert!(!d.is_same());
     assert_eq!(
         d.to_string(),
         format!(
             "parts 5 -> 7, joints 4 -> 6, neurons 5 -> 3, links 5 -> 3, volume {} -> {} m³, \
-             {} part(s) of the same id resized (by up to {} m)",
+             2 part(s) of the same id resized (by up to 0.2 m), 2 joint(s) of the same id of \
+             another kind",
             format_number(d.volume.0),
-            format_number(d.volume.1),
-            d.resized,
-            format_number(d.largest_resize)
+            format_number(d.volume.1)
         )
     );
     // The same creature twice differs in nothing.

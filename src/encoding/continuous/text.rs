@@ -190,7 +190,7 @@ pub(super) fn from_file(
         .map_err(|e| format!("in the axiom: {e}"))?
         .unwrap_or_default();
     let mut rules: Vec<Rule> = Vec::new();
-    // The reads written in each rule's successors: (symbol, plastic branch?, reads).
+    // The reads written in each sequence: (which sequence, as messages name it, reads).
     let mut written: Vec<(String, Vec<(usize, usize)>)> =
         vec![("the axiom".to_string(), axiom_reads)];
     let mut done: Vec<String> = Vec::new();
