@@ -85,6 +85,17 @@ pub struct GaSettings {
     pub mutation_chance_after_mating: f64,
     /// ... and its per-site mutation probability then (5%).
     pub mutation_rate_after_mating: f64,
+    /// The chance that an operator makes, changes or removes an environment read of a
+    /// genome that can read its environment (`lsystem-continuous`). 0, the default, leaves
+    /// genomes without reads and draws exactly as before the key existed; a configuration
+    /// without the key reads as 0, and 0 is not written.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub environment_reads: f64,
+}
+
+/// Whether a setting is 0 (so that it is not written, and stored settings stay as they were).
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl GaSettings {
@@ -102,6 +113,7 @@ impl GaSettings {
                 mutation_rate: 0.1,
                 mutation_chance_after_mating: 0.1,
                 mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
             },
             Preset::Wwd => GaSettings {
                 preset,
@@ -114,6 +126,7 @@ impl GaSettings {
                 mutation_rate: 0.05,
                 mutation_chance_after_mating: 1.0,
                 mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
             },
         }
     }
@@ -155,6 +168,7 @@ impl GaSettings {
             "mutation_rate_after_mating",
             self.mutation_rate_after_mating,
         )?;
+        fraction("environment_reads", self.environment_reads)?;
         if self.asexual + self.crossover > 1.0 + 1e-12 {
             return Err(SettingError::out_of_range(
                 "asexual + crossover",

@@ -140,6 +140,8 @@ pub struct GaOverrides {
     pub mutation_chance_after_mating: Option<f64>,
     /// See [`GaSettings`].
     pub mutation_rate_after_mating: Option<f64>,
+    /// See [`GaSettings`].
+    pub environment_reads: Option<f64>,
 }
 
 impl GaOverrides {
@@ -158,7 +160,8 @@ impl GaOverrides {
             crossover,
             mutation_rate,
             mutation_chance_after_mating,
-            mutation_rate_after_mating
+            mutation_rate_after_mating,
+            environment_reads
         );
         s
     }

@@ -450,6 +450,7 @@ impl<G: Genome> Run<G> {
         };
         let mut limits = config.limits.clone();
         G::adapt_limits(&mut limits, purpose);
+        G::allow_environment_reads(&mut limits, config.ga.environment_reads);
         Run {
             cache: EvaluationCache::new(config.cache),
             dir: dir.to_path_buf(),
