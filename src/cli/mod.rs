@@ -81,8 +81,9 @@ enum Verb {
     /// Evolve creatures: a genetic algorithm over an encoding, on a task, into a run directory
     /// (or `--resume` one).
     Evolve(evolve::EvolveArgs),
-    /// Compare encodings on equal terms: replicated runs of each with the same evaluation
-    /// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
+    /// Compare encodings, or conditions (`--condition`), on equal terms: replicated runs of
+    /// each with the same budget, and a report of statistics (Mann–Whitney U, Holm, A12) over
+    /// their champions that states its power.
     Compare(compare::CompareArgs),
     /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
     /// directory (`runs list DIR`).
