@@ -326,6 +326,7 @@ mod tests {
             conflicts("compare", "resume"),
             sorted(&[
                 "encodings",
+                "condition",
                 "task",
                 "fitness",
                 "replicates",
@@ -345,6 +346,7 @@ mod tests {
             conflicts("compare", "merge"),
             sorted(&[
                 "encodings",
+                "condition",
                 "task",
                 "fitness",
                 "replicates",
