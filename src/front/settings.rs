@@ -8,7 +8,7 @@ use std::sync::Arc;
 use crate::encoding::{Genome, LSystemGenome};
 use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
-use crate::task::{TaskKind, TaskSpec, WalkerFitness};
+use crate::task::{CatapultOptions, TaskKind, TaskSpec, TaskTables, WalkerFitness, WalkerOptions};
 
 use crate::evolve::ga::{GaSettings, Preset};
 use crate::run::config::{ConfigFile, RunConfig, check_settings};
@@ -43,38 +43,39 @@ fn plain(message: String) -> Diagnostic {
     Diagnostic::without_location(DiagnosticKind::Semantic, message)
 }
 
-/// The task of a config file (default: the walker), with `--task`, `--fitness`, `--seconds`
-/// `--setting` and `--target` over it (a named setting replaces the file's five stepping
+/// The task of a config file's `[task]` tables: the one `--task` or else `task =` names
+/// (default: the walker), with its table (its defaults when the file has none), and
+/// `--fitness`, `--seconds`, `--setting` and `--target` over it (a named setting replaces the file's five stepping
 /// values, and nothing else). `--fitness` for a task other than the walker, and `--target`
 /// for a task other than aim, are refused.
-pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec, String> {
-    let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+pub fn resolve_task(file: Option<&TaskTables>, flags: &RunFlags) -> Result<TaskSpec, String> {
+    let tables = file.cloned().unwrap_or_default();
+    let task = flags.task.unwrap_or(tables.kind());
+    let mut spec = tables.spec(task);
     if let Some(setting) = flags.setting {
         spec.sim = setting.apply(&spec.sim);
     }
-    if let Some(t) = flags.task {
-        spec.task = t;
-    }
     if let Some(s) = flags.seconds {
-        *crate::with_task!(spec.task, T => <T as crate::task::Task>::seconds(&mut spec)) = s;
+        *spec.seconds_mut() = s;
     }
     if let Some(fitness) = flags.fitness {
-        if spec.task != TaskKind::Walker {
+        let Some(walker) = spec.task.get_mut::<WalkerOptions>() else {
             return Err(format!(
                 "--fitness is for the walker task only, and the task is {}",
-                spec.task.name()
+                task.name()
             ));
-        }
-        spec.walker.fitness = fitness;
+        };
+        walker.fitness = fitness;
     }
     if let Some([x, y, z]) = flags.target {
-        if spec.task != TaskKind::Aim {
+        let catapult = spec.task.get_mut::<CatapultOptions>();
+        let Some(catapult) = catapult.filter(|_| task == TaskKind::Aim) else {
             return Err(format!(
                 "--target is for the aim task only, and the task is {}",
-                spec.task.name()
+                task.name()
             ));
-        }
-        spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
+        };
+        catapult.target = Some(nalgebra::Vector3::new(x, y, z));
     }
     Ok(spec)
 }
@@ -102,8 +103,11 @@ pub fn resolve_ga_and_task<L>(
     if let Some(s) = flags.seconds {
         crate::task::check_duration("seconds", s).map_err(|e| plain(e.for_flag("--seconds")))?;
     }
-    let task = resolve_task(file.task.clone(), flags).map_err(plain)?;
-    check_settings(&ga, &task).map_err(|e| {
+    let task = resolve_task(file.task.as_ref(), flags).map_err(plain)?;
+    let other_tables = |tables: &TaskTables| tables.check_other_tables(task.task.table());
+    check_settings(&ga, &task)
+        .and_then(|()| file.task.as_ref().map_or(Ok(()), other_tables))
+        .map_err(|e| {
         let flag = match (e.table.as_str(), e.key) {
             ("ga", "population") if flags.population.is_some() => Some("--pop"),
             ("ga", "generations") if flags.generations.is_some() => Some("--gens"),

@@ -2,10 +2,10 @@
 //! scored by the distance thrown less the miss, D_p − D_t.
 
 use super::catapult::{CatapultOptions, catapult_watched};
-use super::{Evaluation, Task, TaskSpec, Watch};
+use super::{Evaluation, Task, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SettingError;
+use crate::sim::{SettingError, SimOptions};
 
 /// Chaumont et al.'s aiming catapult, in the registry: it reads the catapult's settings,
 /// target included (`[task.catapult] target`, which it needs).
@@ -16,31 +16,28 @@ impl Task for AimTask {
     const SUMMARY: &'static str = "Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3)";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = true;
+    const TABLE: &'static str = "catapult";
     type Options = CatapultOptions;
 
-    fn options(spec: &TaskSpec) -> CatapultOptions {
-        spec.catapult.clone()
-    }
-    fn measure(_spec: &TaskSpec) -> &'static str {
+    fn measure(_options: &CatapultOptions) -> &'static str {
         "distance − miss (m)"
     }
-    fn floor(_spec: &TaskSpec) -> Option<f64> {
+    fn floor(_options: &CatapultOptions) -> Option<f64> {
         None
     }
-    fn max_steps(spec: &TaskSpec) -> usize {
-        spec.catapult.max_steps(spec.sim.control_step)
+    fn max_steps(sim: &SimOptions, options: &CatapultOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn seconds(spec: &mut TaskSpec) -> &mut f64 {
-        &mut spec.catapult.max_seconds
+    fn seconds(options: &mut CatapultOptions) -> &mut f64 {
+        &mut options.max_seconds
     }
-    fn check_options(_spec: &TaskSpec) -> Result<(), SettingError> {
-        // The catapult's table, which the catapult task checks.
-        Ok(())
+    fn check_options(options: &CatapultOptions) -> Result<(), SettingError> {
+        options.check()
     }
-    fn check(spec: &TaskSpec) -> Result<(), SettingError> {
-        if spec.catapult.target.is_none() {
+    fn check(options: &CatapultOptions) -> Result<(), SettingError> {
+        if options.target.is_none() {
             return Err(SettingError {
-                table: "catapult".to_string(),
+                table: String::new(),
                 key: "target",
                 problem:
                     "is needed by the aim task: target = [x, y, z] (metres from the projectile)"
@@ -51,9 +48,10 @@ impl Task for AimTask {
     }
     fn evaluate(
         creature: &Creature,
-        spec: &TaskSpec,
+        sim: &SimOptions,
+        options: &CatapultOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, &spec.sim, &spec.catapult, watch)
+        catapult_watched(creature, sim, options, watch)
     }
 }
