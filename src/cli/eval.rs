@@ -13,9 +13,7 @@ use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
 use ontogeny::run::champion::ChampionRecord;
 use ontogeny::sim::{JointModel, SimOptions};
-use ontogeny::task::{
-    CatapultOptions, Evaluation, Recording, TaskKind, TaskSpec, WalkerOptions,
-};
+use ontogeny::task::{CatapultOptions, Evaluation, Recording, TaskKind, TaskSpec, WalkerOptions};
 
 use super::derive::DevelopmentArgs;
 use super::input::load_creature_with;

@@ -8,7 +8,9 @@ use std::sync::Arc;
 use crate::encoding::{Genome, LSystemGenome};
 use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
-use crate::task::{CatapultOptions, TaskKind, TaskSpec, TaskTables, WalkerFitness, WalkerOptions};
+use crate::task::{
+    CatapultOptions, TaskKind, TaskSpec, TaskTables, WalkerFitness, WalkerOptions, keyword_refusal,
+};
 
 use crate::evolve::ga::{GaSettings, Preset};
 use crate::run::config::{ConfigFile, RunConfig, check_settings};
@@ -46,8 +48,9 @@ fn plain(message: String) -> Diagnostic {
 /// The task of a config file's `[task]` tables: the one `--task` or else `task =` names
 /// (default: the walker), with its table (its defaults when the file has none), and
 /// `--fitness`, `--seconds`, `--setting` and `--target` over it (a named setting replaces the file's five stepping
-/// values, and nothing else). `--fitness` for a task other than the walker, and `--target`
-/// for a task other than aim, are refused.
+/// values, and nothing else). A flag of a setting the task does not read
+/// ([`crate::task::Task::KEYWORDS`]: `--fitness` but for the walker, `--target` but for aim)
+/// is refused.
 pub fn resolve_task(file: Option<&TaskTables>, flags: &RunFlags) -> Result<TaskSpec, String> {
     let tables = file.cloned().unwrap_or_default();
     let task = flags.task.unwrap_or(tables.kind());
@@ -58,24 +61,22 @@ pub fn resolve_task(file: Option<&TaskTables>, flags: &RunFlags) -> Result<TaskS
     if let Some(s) = flags.seconds {
         *spec.seconds_mut() = s;
     }
-    if let Some(fitness) = flags.fitness {
-        let Some(walker) = spec.task.get_mut::<WalkerOptions>() else {
-            return Err(format!(
-                "--fitness is for the walker task only, and the task is {}",
-                task.name()
-            ));
+    let refuse =
+        |keyword: &str| match keyword_refusal(keyword, &format!("--{keyword}"), task.info()) {
+            Some(refusal) => Err(refusal),
+            None => Ok(()),
         };
-        walker.fitness = fitness;
+    if let Some(fitness) = flags.fitness {
+        refuse("fitness")?;
+        if let Some(walker) = spec.task.get_mut::<WalkerOptions>() {
+            walker.fitness = fitness;
+        }
     }
     if let Some([x, y, z]) = flags.target {
-        let catapult = spec.task.get_mut::<CatapultOptions>();
-        let Some(catapult) = catapult.filter(|_| task == TaskKind::Aim) else {
-            return Err(format!(
-                "--target is for the aim task only, and the task is {}",
-                task.name()
-            ));
-        };
-        catapult.target = Some(nalgebra::Vector3::new(x, y, z));
+        refuse("target")?;
+        if let Some(catapult) = spec.task.get_mut::<CatapultOptions>() {
+            catapult.target = Some(nalgebra::Vector3::new(x, y, z));
+        }
     }
     Ok(spec)
 }
@@ -108,17 +109,17 @@ pub fn resolve_ga_and_task<L>(
     check_settings(&ga, &task)
         .and_then(|()| file.task.as_ref().map_or(Ok(()), other_tables))
         .map_err(|e| {
-        let flag = match (e.table.as_str(), e.key) {
-            ("ga", "population") if flags.population.is_some() => Some("--pop"),
-            ("ga", "generations") if flags.generations.is_some() => Some("--gens"),
-            _ => None,
-        };
-        match (flag, source) {
-            (Some(flag), _) => plain(e.for_flag(flag)),
-            (None, Some(source)) => setting_diagnostic(source, &e),
-            (None, None) => plain(e.to_string()),
-        }
-    })?;
+            let flag = match (e.table.as_str(), e.key) {
+                ("ga", "population") if flags.population.is_some() => Some("--pop"),
+                ("ga", "generations") if flags.generations.is_some() => Some("--gens"),
+                _ => None,
+            };
+            match (flag, source) {
+                (Some(flag), _) => plain(e.for_flag(flag)),
+                (None, Some(source)) => setting_diagnostic(source, &e),
+                (None, None) => plain(e.to_string()),
+            }
+        })?;
     Ok((ga, task))
 }
 

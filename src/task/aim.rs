@@ -16,6 +16,7 @@ impl Task for AimTask {
     const SUMMARY: &'static str = "Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3)";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = true;
+    const KEYWORDS: &'static [&'static str] = &["seconds", "target"];
     const TABLE: &'static str = "catapult";
     type Options = CatapultOptions;
 

@@ -3,9 +3,7 @@
 //! kin) and [`TaskSpec::check`] checks the task's with the simulator's, naming the key as a
 //! config file spells it (`[task.walker] seconds`).
 
-use super::{
-    CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskSpec, WalkerOptions,
-};
+use super::{CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskSpec, WalkerOptions};
 use crate::sim::SettingError;
 use crate::sim::setting::check_real;
 

@@ -37,7 +37,7 @@ pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
     recording_interval,
 };
-pub use registry::{TASKS, Task, TaskInfo, task_named};
+pub use registry::{TASKS, Task, TaskInfo, keyword_refusal, task_named, tasks_reading};
 pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
 pub use tables::TaskTables;

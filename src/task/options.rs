@@ -64,7 +64,10 @@ mod tests {
         for &kind in TaskKind::ALL {
             let options = TaskOptions::default_of(kind);
             assert_eq!(options.kind(), kind);
-            assert_eq!(options.get::<WalkerOptions>().is_some(), kind == TaskKind::Walker);
+            assert_eq!(
+                options.get::<WalkerOptions>().is_some(),
+                kind == TaskKind::Walker
+            );
             assert_eq!(
                 options.get::<CatapultOptions>().is_some(),
                 matches!(kind, TaskKind::Catapult | TaskKind::Aim)

@@ -26,6 +26,11 @@ pub trait Task {
     /// Whether it throws a projectile (the catapult's kind of body, not a walker's).
     const THROWS: bool;
 
+    /// The task settings it reads that a run's flags and Python's keyword arguments set, by
+    /// their keyword names (`--seconds`, `seconds=`): what another task does not read is
+    /// refused.
+    const KEYWORDS: &'static [&'static str] = &["seconds"];
+
     /// The table of `[task]` its settings are read from and written to (`[task.walker]`):
     /// its name, unless it reads another task's table (the aim task reads the catapult's).
     /// Tasks that share a table share their [`Task::Options`] type.
@@ -94,6 +99,8 @@ pub struct TaskInfo {
     pub throws: bool,
     /// The table of `[task]` it reads ([`Task::TABLE`]).
     pub table: &'static str,
+    /// The keywords of its settings ([`Task::KEYWORDS`]).
+    pub keywords: &'static [&'static str],
 }
 
 impl TaskInfo {
@@ -105,8 +112,42 @@ impl TaskInfo {
             fitness_variants: T::FITNESS_VARIANTS,
             throws: T::THROWS,
             table: T::TABLE,
+            keywords: T::KEYWORDS,
         }
     }
+
+    /// Whether it reads the setting of the keyword `keyword` ([`Task::KEYWORDS`]).
+    pub fn reads(&self, keyword: &str) -> bool {
+        self.keywords.contains(&keyword)
+    }
+}
+
+/// The tasks that read the setting of `keyword`, as messages name them: `"the walker task"`,
+/// `"the catapult and aim tasks"`.
+pub fn tasks_reading(keyword: &str) -> String {
+    let names: Vec<&str> = TASKS
+        .iter()
+        .filter(|t| t.reads(keyword))
+        .map(|t| t.name)
+        .collect();
+    match names.as_slice() {
+        [one] => format!("the {one} task"),
+        [most @ .., last] => format!("the {} and {last} tasks", most.join(", ")),
+        [] => "no task".to_string(),
+    }
+}
+
+/// The refusal of the keyword `keyword` (spelt `spelt`: `--fitness`, `fitness=`) for `task`,
+/// when it does not read it: `"--fitness is for the walker task only, and the task is
+/// jump"`.
+pub fn keyword_refusal(keyword: &str, spelt: &str, task: &TaskInfo) -> Option<String> {
+    (!task.reads(keyword)).then(|| {
+        format!(
+            "{spelt} is for {} only, and the task is {}",
+            tasks_reading(keyword),
+            task.name
+        )
+    })
 }
 
 /// The registry: calls the macro `$callback` with its arguments, then `;` and every task,
@@ -281,5 +322,15 @@ mod tests {
         assert_eq!(task_named("aim").map(|t| t.throws), Some(true));
         assert_eq!(task_named("walk"), None);
         assert_eq!(task_named("aim").map(|t| t.table), Some("catapult"));
+        assert_eq!(tasks_reading("fitness"), "the walker task");
+        assert_eq!(
+            tasks_reading("seconds"),
+            "the walker, jump, catapult, aim and stand tasks"
+        );
+        assert_eq!(
+            keyword_refusal("target", "--target", task_named("catapult").unwrap()).as_deref(),
+            Some("--target is for the aim task only, and the task is catapult")
+        );
+        assert_eq!(keyword_refusal("seconds", "--seconds", &TASKS[1]), None);
     }
 }

@@ -27,6 +27,11 @@ impl TaskKind {
         crate::with_task!(self, T => T::THROWS)
     }
 
+    /// What can be known of the task without its type ([`super::TASKS`]' row).
+    pub fn info(self) -> &'static super::TaskInfo {
+        &super::TASKS[self as usize]
+    }
+
     /// The table of `[task]` the task reads ([`Task::TABLE`]).
     pub fn table(self) -> &'static str {
         crate::with_task!(self, T => T::TABLE)

@@ -11,8 +11,8 @@ use super::recording::Phase;
 use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::{SettingError, SimOptions};
 use crate::sim::setting::check_real;
+use crate::sim::{SettingError, SimOptions};
 
 /// Settings of the stand task (`[task.stand]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]

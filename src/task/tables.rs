@@ -135,7 +135,9 @@ impl<'de> Deserialize<'de> for TaskTables {
                 let mut tables: Vec<TaskOptions> = Vec::new();
                 while let Some(key) = map.next_key::<Key>()? {
                     match key {
-                        Key::Task if task.is_some() => return Err(de::Error::duplicate_field("task")),
+                        Key::Task if task.is_some() => {
+                            return Err(de::Error::duplicate_field("task"));
+                        }
                         Key::Task => task = Some(map.next_value()?),
                         Key::Sim if sim.is_some() => return Err(de::Error::duplicate_field("sim")),
                         Key::Sim => sim = Some(map.next_value()?),

@@ -317,6 +317,7 @@ impl super::Task for WalkerTask {
         "hornby-pollack",
     ];
     const THROWS: bool = false;
+    const KEYWORDS: &'static [&'static str] = &["seconds", "fitness"];
     type Options = WalkerOptions;
 
     fn measure(options: &WalkerOptions) -> &'static str {
