@@ -11,7 +11,7 @@ use numpy::IntoPyArray;
 use numpy::PyArray2;
 use numpy::ndarray::Array2;
 use ontogeny::creature::Creature;
-use ontogeny::encoding::{Genome, LoadOptions, grow_grammar, load_creature};
+use ontogeny::encoding::{Genome, LoadError, LoadOptions, Loaded, grow_grammar, load_creature};
 use ontogeny::lang::{Diagnostic, Source};
 use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides, print};
 use pyo3::prelude::*;
@@ -258,6 +258,23 @@ macro_rules! growing_function {
     };
 }
 
+/// The creature `load` makes with `options`, which Ctrl-C stops.
+fn loaded_with(
+    py: Python<'_>,
+    options: LoadOptions,
+    load: impl FnOnce(&LoadOptions) -> Result<Loaded, LoadError> + Send,
+) -> PyResult<PyCreature> {
+    let loaded = interruptible(py, |cancel| {
+        let options = LoadOptions {
+            cancel: cancel.clone(),
+            ..options
+        };
+        load(&options)
+    })?
+    .map_err(load_error)?;
+    Ok(PyCreature::new(loaded.creature, loaded.notes))
+}
+
 growing_function! {
     /// Grows a creature from grammar text (an `.lsys` file's content), to its last frame, as
     /// `ontogeny grow` does.
@@ -265,15 +282,7 @@ growing_function! {
         let seed = given_grammar_seed(py, growth.grammar_seed, growth.seed)?;
         let lsys = grammar_text(text, define_overrides(growth.defines)?, seed)?;
         let options = load_options(growth.steps, seed, growth.time, growth.dt, growth.env);
-        let loaded = interruptible(py, |cancel| {
-            let options = LoadOptions {
-                cancel: cancel.clone(),
-                ..options
-            };
-            grow_grammar(&lsys, &options, &mut |_| {})
-        })?
-        .map_err(load_error)?;
-        Ok(PyCreature::new(loaded.creature, loaded.notes))
+        loaded_with(py, options, |options| grow_grammar(&lsys, options, &mut |_| {}))
     }
 }
 
@@ -287,15 +296,7 @@ growing_function! {
             defines: define_overrides(growth.defines)?,
             ..load_options(growth.steps, seed, growth.time, growth.dt, growth.env)
         };
-        let loaded = interruptible(py, |cancel| {
-            let options = LoadOptions {
-                cancel: cancel.clone(),
-                ..options
-            };
-            load_creature(&path, &options, &mut |_| {})
-        })?
-        .map_err(load_error)?;
-        Ok(PyCreature::new(loaded.creature, loaded.notes))
+        loaded_with(py, options, |options| load_creature(&path, options, &mut |_| {}))
     }
 }
 
