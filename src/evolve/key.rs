@@ -13,6 +13,7 @@ use serde::ser::{self, Serialize};
 use sha2::{Digest, Sha256};
 
 use crate::creature::Creature;
+use crate::sim::WorldSpec;
 use crate::task::{CatapultOptions, JumpOptions, TaskSpec, TaskTables, WalkerOptions};
 
 /// A creature-and-task key: 32 bytes, written as 64 lowercase hexadecimal digits.
@@ -61,7 +62,7 @@ impl EvaluationKey {
     pub fn of_version(creature: &Creature, task: &TaskSpec, version: KeyVersion) -> EvaluationKey {
         match version {
             KeyVersion::V1 => EvaluationKey::of_tables(creature, &TaskTables::from(task)),
-            KeyVersion::V2 => EvaluationKey::hash(creature, |hasher| {
+            KeyVersion::V2 => EvaluationKey::hash(creature, &task.world, |hasher| {
                 crate::with_options!(&task.task, T, o => SpecV2 {
                     key_version: 2,
                     task: task.kind(),
@@ -77,7 +78,7 @@ impl EvaluationKey {
     /// the walker's, the jump's and the catapult's settings side by side, as `tables` holds
     /// them (each task's defaults where it holds none).
     pub fn of_tables(creature: &Creature, tables: &TaskTables) -> EvaluationKey {
-        EvaluationKey::hash(creature, |hasher| {
+        EvaluationKey::hash(creature, &tables.world, |hasher| {
             SpecV1 {
                 task: tables.kind(),
                 sim: &tables.sim,
@@ -89,9 +90,10 @@ impl EvaluationKey {
         })
     }
 
-    /// The hash of `creature`, then of what `task` feeds the hasher.
+    /// The hash of `creature`, then of what `task` feeds the hasher, then of `world`.
     fn hash(
         creature: &Creature,
+        world: &WorldSpec,
         task: impl FnOnce(&mut CanonicalHasher) -> Result<(), HashError>,
     ) -> EvaluationKey {
         let mut hasher = CanonicalHasher(Sha256::new());
@@ -99,6 +101,12 @@ impl EvaluationKey {
         creature
             .serialize(&mut hasher)
             .and_then(|()| task(&mut hasher))
+            // A world other than flat ground joins the key; a flat one adds nothing, so the
+            // keys of every run made before worlds existed stay as they were.
+            .and_then(|()| match world.is_flat() {
+                true => Ok(()),
+                false => world.serialize(&mut hasher),
+            })
             .expect("every creature and task serialises");
         EvaluationKey(hasher.0.finalize().into())
     }

@@ -32,8 +32,10 @@ impl Task for AimTask {
     fn seconds(options: &mut CatapultOptions) -> &mut f64 {
         &mut options.max_seconds
     }
+    /// The catapult's table, its target included (the catapult task leaves the target
+    /// alone).
     fn check_options(options: &CatapultOptions) -> Result<(), SettingError> {
-        options.check()
+        options.check().and_then(|()| options.check_target())
     }
     fn check(options: &CatapultOptions) -> Result<(), SettingError> {
         if options.target.is_none() {
@@ -54,5 +56,30 @@ impl Task for AimTask {
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
         catapult_watched(creature, sim, options, watch)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::task::CatapultTask;
+
+    #[test]
+    fn the_aim_task_checks_its_target_and_the_catapult_leaves_it_alone() {
+        let mut options = CatapultOptions::default();
+        assert_eq!(AimTask::check_options(&options), Ok(()));
+        options.target = Some(nalgebra::Vector3::new(f64::NAN, 0.0, 0.0));
+        assert_eq!(
+            AimTask::check_options(&options).unwrap_err().to_string(),
+            "target must be within 100000 m of the projectile, not [NaN, 0, 0]"
+        );
+        options.target = Some(nalgebra::Vector3::new(0.0, 3e5, -4e5));
+        assert_eq!(
+            AimTask::check_options(&options).unwrap_err().to_string(),
+            "target must be within 100000 m of the projectile, not [0, 300000, -400000]"
+        );
+        assert_eq!(CatapultTask::check_options(&options), Ok(()));
+        options.target = Some(nalgebra::Vector3::new(6e4, 0.0, 8e4));
+        assert_eq!(AimTask::check_options(&options), Ok(()));
     }
 }

@@ -7,7 +7,7 @@ use serde::{Deserialize, Deserializer};
 use super::{Evaluation, Task, TaskOptions, TaskTables, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SimOptions;
+use crate::sim::{SimOptions, WorldSpec};
 
 crate::for_each_task!(__task_kind!());
 
@@ -59,16 +59,23 @@ impl std::str::FromStr for TaskKind {
 pub struct TaskSpec {
     /// The simulator's settings.
     pub sim: SimOptions,
+    /// The world besides the creature (`[task.world]`): flat ground in air unless it says
+    /// otherwise; a flat world is not written.
+    pub world: WorldSpec,
     /// The task and its settings.
     pub task: TaskOptions,
 }
 
 impl Serialize for TaskSpec {
-    /// `task`, `sim` and the task's one table.
+    /// `task`, `sim`, `world` unless it is flat, and the task's one table.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut out = serializer.serialize_struct("TaskSpec", 3)?;
+        let flat = self.world.is_flat();
+        let mut out = serializer.serialize_struct("TaskSpec", 3 + usize::from(!flat))?;
         out.serialize_field("task", &self.kind())?;
         out.serialize_field("sim", &self.sim)?;
+        if !flat {
+            out.serialize_field("world", &self.world)?;
+        }
         crate::with_options!(&self.task, T, o => out.serialize_field(T::TABLE, o))?;
         out.end()
     }
@@ -88,6 +95,7 @@ impl TaskSpec {
     pub fn new(task: TaskKind) -> TaskSpec {
         TaskSpec {
             sim: SimOptions::default(),
+            world: WorldSpec::default(),
             task: TaskOptions::default_of(task),
         }
     }

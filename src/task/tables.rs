@@ -9,7 +9,7 @@ use std::sync::LazyLock;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, Visitor};
 
 use super::{TASKS, TaskKind, TaskOptions, TaskSpec};
-use crate::sim::{SettingError, SimOptions};
+use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// A `[task]` table as read: what `task =` names, the simulator's settings and every task's
 /// table it holds. Unknown keys are refused as a struct with `deny_unknown_fields` refuses
@@ -20,6 +20,8 @@ pub struct TaskTables {
     pub task: Option<TaskKind>,
     /// The simulator's settings (`[task.sim]`).
     pub sim: SimOptions,
+    /// The world (`[task.world]`).
+    pub world: WorldSpec,
     /// The tasks' tables it holds, in the order read, each as the settings of the first task
     /// of the registry that reads it.
     tables: Vec<TaskOptions>,
@@ -28,7 +30,7 @@ pub struct TaskTables {
 /// The keys of `[task]`: `task`, `sim` and each task's table, in the registry's order.
 fn fields() -> &'static [&'static str] {
     static FIELDS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
-        let mut fields = vec!["task", "sim"];
+        let mut fields = vec!["task", "sim", "world"];
         for task in TASKS {
             if !fields.contains(&task.table) {
                 fields.push(task.table);
@@ -61,6 +63,7 @@ impl TaskTables {
             .unwrap_or_else(|| TaskOptions::default_of(kind));
         TaskSpec {
             sim: self.sim.clone(),
+            world: self.world.clone(),
             task,
         }
     }
@@ -75,8 +78,16 @@ impl TaskTables {
     /// a config file spells it (`[task.jump] seconds`).
     pub fn check_other_tables(&self, table: &str) -> Result<(), SettingError> {
         for options in self.tables.iter().filter(|t| t.table() != table) {
-            crate::with_options!(options, T, o => <T as super::Task>::check_options(o))
-                .map_err(|e| e.within(options.table()).within("task"))?;
+            // Checked as every task that reads it checks it (the aim task, the target).
+            for &kind in TaskKind::ALL
+                .iter()
+                .filter(|k| k.table() == options.table())
+            {
+                if let Some(read) = TaskOptions::of_table(kind, options.as_any()) {
+                    crate::with_options!(&read, T, o => <T as super::Task>::check_options(o))
+                        .map_err(|e| e.within(options.table()).within("task"))?;
+                }
+            }
         }
         Ok(())
     }
@@ -88,6 +99,7 @@ impl From<&TaskSpec> for TaskTables {
         TaskTables {
             task: Some(spec.kind()),
             sim: spec.sim.clone(),
+            world: spec.world.clone(),
             tables: vec![spec.task.clone()],
         }
     }
@@ -97,6 +109,7 @@ impl From<&TaskSpec> for TaskTables {
 enum Key {
     Task,
     Sim,
+    World,
     Table(TaskKind),
 }
 
@@ -112,6 +125,7 @@ impl<'de> Deserialize<'de> for Key {
                 match name {
                     "task" => Ok(Key::Task),
                     "sim" => Ok(Key::Sim),
+                    "world" => Ok(Key::World),
                     _ => reader_of(name)
                         .map(Key::Table)
                         .ok_or_else(|| E::unknown_field(name, fields())),
@@ -131,7 +145,7 @@ impl<'de> Deserialize<'de> for TaskTables {
                 f.write_str("struct TaskSpec")
             }
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<TaskTables, A::Error> {
-                let (mut task, mut sim) = (None, None);
+                let (mut task, mut sim, mut world) = (None, None, None);
                 let mut tables: Vec<TaskOptions> = Vec::new();
                 while let Some(key) = map.next_key::<Key>()? {
                     match key {
@@ -141,6 +155,10 @@ impl<'de> Deserialize<'de> for TaskTables {
                         Key::Task => task = Some(map.next_value()?),
                         Key::Sim if sim.is_some() => return Err(de::Error::duplicate_field("sim")),
                         Key::Sim => sim = Some(map.next_value()?),
+                        Key::World if world.is_some() => {
+                            return Err(de::Error::duplicate_field("world"));
+                        }
+                        Key::World => world = Some(map.next_value()?),
                         Key::Table(kind) if tables.iter().any(|t| t.kind() == kind) => {
                             return Err(de::Error::duplicate_field(kind.table()));
                         }
@@ -150,6 +168,7 @@ impl<'de> Deserialize<'de> for TaskTables {
                 Ok(TaskTables {
                     task,
                     sim: sim.unwrap_or_default(),
+                    world: world.unwrap_or_default(),
                     tables,
                 })
             }

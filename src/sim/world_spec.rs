@@ -1,0 +1,254 @@
+//! What a creature's world is made of besides the creature: the ground's shape (a slope, steps,
+//! a rough heightfield), fixed obstacles, free objects, the ground's friction and its patches,
+//! and the medium (air, or water with no ground and no gravity). Plain serialisable data, read
+//! from a config's `[task.world]` table; [`WorldSpec::default`] is today's world: flat ground
+//! of the simulator's friction, in air. Every world is deterministic given its seeds.
+//!
+//! Axes: y is up; the creature is dropped above the origin; directions in the horizontal
+//! plane are angles in degrees about +y, measured from +x towards +z (0 = +x, 90 = +z).
+
+use serde::{Deserialize, Serialize};
+
+/// A creature's world besides the creature (the `[task.world]` table).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WorldSpec {
+    /// A plane ground tilted by an angle (none: level ground).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slope: Option<Slope>,
+    /// A flight of steps (none: no steps).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<Steps>,
+    /// A rough ground: a seeded heightfield (none: smooth ground).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rough: Option<Rough>,
+    /// Fixed boxes (none: no obstacles).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacles: Option<Obstacles>,
+    /// Free bodies: balls and boxes, with a starting velocity.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub objects: Vec<Object>,
+    /// The ground's friction and its patches (none: the simulator's `friction`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<GroundFriction>,
+    /// The medium the creature is in.
+    #[serde(default, skip_serializing_if = "Medium::is_air")]
+    pub medium: Medium,
+}
+
+impl WorldSpec {
+    /// Whether this is today's world: flat ground of the simulator's friction, in air, nothing
+    /// else in it. A flat world changes no evaluation key and writes no `[task.world]` table.
+    pub fn is_flat(&self) -> bool {
+        *self == WorldSpec::default()
+    }
+}
+
+/// A plane ground tilted by `degrees`, rising towards `direction`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Slope {
+    /// The angle between the ground and the horizontal, in degrees (0 to below 90).
+    pub degrees: f64,
+    /// The horizontal direction in which the ground rises, in degrees about +y from +x
+    /// (default 0: uphill is +x).
+    #[serde(default)]
+    pub direction: f64,
+}
+
+/// Which way a flight of steps goes from the start.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StepsWay {
+    /// Each step higher than the one before.
+    #[default]
+    Up,
+    /// Each step lower than the one before.
+    Down,
+}
+
+/// A flight of `count` steps, each `height` high and `depth` deep, starting `start` metres
+/// from the origin towards `direction`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Steps {
+    /// Each step's rise (m).
+    pub height: f64,
+    /// Each step's tread, along the direction (m).
+    pub depth: f64,
+    /// How many steps.
+    pub count: u32,
+    /// Up or down.
+    #[serde(default)]
+    pub way: StepsWay,
+    /// The distance from the origin to the first step's edge (m, default 1).
+    #[serde(default = "default_steps_start")]
+    pub start: f64,
+    /// The horizontal direction the flight runs in, degrees about +y from +x (default 0).
+    #[serde(default)]
+    pub direction: f64,
+}
+
+fn default_steps_start() -> f64 {
+    1.0
+}
+
+/// A rough ground: a heightfield of smooth random bumps.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rough {
+    /// The bumps' largest height above or below the mean ground (m).
+    pub amplitude: f64,
+    /// The bumps' typical horizontal spacing (m).
+    pub wavelength: f64,
+    /// The heightfield's seed: one seed, one ground.
+    #[serde(default)]
+    pub seed: u64,
+    /// The side of the square of ground the heightfield covers, centred on the origin (m,
+    /// default 40); level ground beyond.
+    #[serde(default = "default_rough_size")]
+    pub size: f64,
+}
+
+fn default_rough_size() -> f64 {
+    40.0
+}
+
+/// Fixed boxes: `count` scattered with a seed, or placed at given points.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Obstacles {
+    /// Each box's size (m): along x, up, along z.
+    pub size: [f64; 3],
+    /// How many boxes to scatter (ignored when `at` is given).
+    #[serde(default)]
+    pub count: u32,
+    /// The scattering's seed.
+    #[serde(default)]
+    pub seed: u64,
+    /// The scattering's reach: boxes fall in the square of this half-side round the origin,
+    /// but not within `clear` of it (m, default 5).
+    #[serde(default = "default_obstacles_reach")]
+    pub reach: f64,
+    /// The radius round the origin kept free of boxes, so the creature is not dropped on one
+    /// (m, default 1).
+    #[serde(default = "default_obstacles_clear")]
+    pub clear: f64,
+    /// The boxes' centres in the horizontal plane, [x, z] (m); when given, `count` is unused.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub at: Vec<[f64; 2]>,
+    /// The height of each box's underside above the ground (m, default 0: on the ground); a
+    /// raised box is a bar a tall creature strikes and a low one passes under.
+    #[serde(default)]
+    pub raised: f64,
+}
+
+fn default_obstacles_reach() -> f64 {
+    5.0
+}
+
+fn default_obstacles_clear() -> f64 {
+    1.0
+}
+
+/// The shape of a free object.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ObjectShape {
+    /// A ball; `size` is its radius.
+    #[default]
+    Ball,
+    /// A box; `size` is its side.
+    Box,
+}
+
+/// A free body in the world: it falls, rolls and strikes the creature.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Object {
+    /// Ball or box.
+    #[serde(default)]
+    pub shape: ObjectShape,
+    /// A ball's radius, a box's side (m).
+    pub size: f64,
+    /// Its mass (kg).
+    pub mass: f64,
+    /// Where its centre starts, [x, y, z] (m; y above the ground beneath it).
+    pub position: [f64; 3],
+    /// Its velocity when the creature's walk starts, [x, y, z] (m/s).
+    #[serde(default)]
+    pub velocity: [f64; 3],
+}
+
+/// The ground's friction coefficient, and patches of another.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroundFriction {
+    /// The ground's coefficient.
+    pub coefficient: f64,
+    /// Rectangles of ground with another coefficient.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub patches: Vec<FrictionPatch>,
+}
+
+/// A rectangle of ground, `[x0, x1]` by `[z0, z1]`, with its own friction coefficient.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionPatch {
+    /// Its extent along x (m): [from, to].
+    pub x: [f64; 2],
+    /// Its extent along z (m): [from, to].
+    pub z: [f64; 2],
+    /// Its coefficient.
+    pub coefficient: f64,
+}
+
+/// The medium a creature is in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "kind", deny_unknown_fields)]
+pub enum Medium {
+    /// Air: ground and gravity, no resistance.
+    #[default]
+    Air,
+    /// Water: no ground, no gravity; every face of every part feels a viscous resistance
+    /// −k·A·(v·n)·n, A the face's area, n its outward normal, v its velocity.
+    Water {
+        /// k, in N·s/m³ (newtons per square metre of face per metre per second).
+        viscosity: f64,
+    },
+}
+
+impl Medium {
+    /// Whether the medium is air.
+    pub fn is_air(&self) -> bool {
+        matches!(self, Medium::Air)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_empty_world_table_is_the_flat_world_and_every_part_reads() {
+        let flat: WorldSpec = toml::from_str("").unwrap();
+        assert!(flat.is_flat());
+        let world: WorldSpec = toml::from_str(
+            "slope = { degrees = 10 }\n\
+             steps = { height = 0.1, depth = 0.5, count = 3, way = \"down\" }\n\
+             rough = { amplitude = 0.05, wavelength = 1.0, seed = 7 }\n\
+             obstacles = { size = [0.2, 0.3, 2.0], count = 4, raised = 0.5 }\n\
+             objects = [{ shape = \"box\", size = 0.5, mass = 20, position = [3, 0.25, 0], velocity = [-2, 0, 0] }]\n\
+             friction = { coefficient = 0.8, patches = [{ x = [1, 2], z = [-1, 1], coefficient = 0.1 }] }\n\
+             medium = { kind = \"water\", viscosity = 40 }\n",
+        )
+        .unwrap();
+        assert!(!world.is_flat());
+        assert_eq!(world.steps.as_ref().unwrap().way, StepsWay::Down);
+        assert_eq!(world.steps.as_ref().unwrap().start, 1.0);
+        assert_eq!(world.medium, Medium::Water { viscosity: 40.0 });
+        let back: WorldSpec = toml::from_str(&toml::to_string(&world).unwrap()).unwrap();
+        assert_eq!(back, world);
+        assert!(toml::from_str::<WorldSpec>("hills = 3").is_err());
+    }
+}
