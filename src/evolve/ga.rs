@@ -19,7 +19,7 @@ use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::sim::SettingError;
-use crate::task::{Evaluation, Status, TaskSpec};
+use crate::task::{Evaluation, Status, TaskSpec, TaskTables};
 
 /// The operators' schedule of a published genetic algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -343,6 +343,10 @@ pub struct Evolution<G: Genome> {
     /// The version of the evaluation keys: today's for a new run, the one its store holds
     /// for a run made before (`run::Run::resume`).
     pub key_version: KeyVersion,
+    /// The `[task]` table of the run's stored settings, every task's table as it was written,
+    /// which version 1 keys hash ([`EvaluationKey::of_tables`]); `None`: the task's own
+    /// table and the other tasks' defaults.
+    pub key_tables: Option<TaskTables>,
 }
 
 /// A new individual before evaluation.
@@ -387,7 +391,15 @@ impl<G: Genome> Evolution<G> {
         genome
             .develop(&self.limits, develop_seed)
             .ok()
-            .map(|c| EvaluationKey::of_version(&c, &self.task, version))
+            .map(|c| self.key_of_creature(&c, version))
+    }
+
+    /// The key of `creature`, of version `version`.
+    fn key_of_creature(&self, creature: &Creature, version: KeyVersion) -> EvaluationKey {
+        match (version, &self.key_tables) {
+            (KeyVersion::V1, Some(tables)) => EvaluationKey::of_tables(creature, tables),
+            _ => EvaluationKey::of_version(creature, &self.task, version),
+        }
     }
 
     /// Develops one genome and keys its creature with the task.
@@ -399,7 +411,7 @@ impl<G: Genome> Evolution<G> {
         let key = creature
             .as_ref()
             .ok()
-            .map(|c| EvaluationKey::of_version(c, &self.task, self.key_version));
+            .map(|c| self.key_of_creature(c, self.key_version));
         Developed {
             unborn,
             creature,

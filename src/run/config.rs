@@ -15,7 +15,7 @@ use crate::evolve::ga::{GaSettings, Preset};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
-use crate::task::TaskSpec;
+use crate::task::{TaskSpec, TaskTables};
 
 /// Every setting of a run, resolved: what `config.toml` holds in a run directory.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -186,8 +186,8 @@ pub struct ConfigFile<L> {
     /// The genetic algorithm.
     #[serde(default)]
     pub ga: GaOverrides,
-    /// The task and its settings.
-    pub task: Option<TaskSpec>,
+    /// The task and its settings: any number of tasks' tables, until the task is known.
+    pub task: Option<TaskTables>,
     /// The encoding's limits.
     pub limits: Option<L>,
 }

@@ -243,32 +243,33 @@ impl super::Task for CatapultTask {
     const THROWS: bool = true;
     type Options = CatapultOptions;
 
-    fn options(spec: &super::TaskSpec) -> CatapultOptions {
+    fn reads(options: &CatapultOptions) -> CatapultOptions {
         CatapultOptions {
             target: None,
-            ..spec.catapult.clone()
+            ..options.clone()
         }
     }
-    fn measure(_spec: &super::TaskSpec) -> &'static str {
+    fn measure(_options: &CatapultOptions) -> &'static str {
         "distance (m)"
     }
-    fn floor(_spec: &super::TaskSpec) -> Option<f64> {
+    fn floor(_options: &CatapultOptions) -> Option<f64> {
         Some(0.0)
     }
-    fn max_steps(spec: &super::TaskSpec) -> usize {
-        spec.catapult.max_steps(spec.sim.control_step)
+    fn max_steps(sim: &SimOptions, options: &CatapultOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
-        &mut spec.catapult.max_seconds
+    fn seconds(options: &mut CatapultOptions) -> &mut f64 {
+        &mut options.max_seconds
     }
-    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
-        spec.catapult.check().map_err(|e| e.within("catapult"))
+    fn check_options(options: &CatapultOptions) -> Result<(), crate::sim::SettingError> {
+        options.check()
     }
     fn evaluate(
         creature: &Creature,
-        spec: &super::TaskSpec,
+        sim: &SimOptions,
+        options: &CatapultOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, &spec.sim, &Self::options(spec), watch)
+        catapult_watched(creature, sim, &Self::reads(options), watch)
     }
 }

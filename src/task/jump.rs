@@ -97,29 +97,27 @@ impl super::Task for JumpTask {
     const THROWS: bool = false;
     type Options = JumpOptions;
 
-    fn options(spec: &super::TaskSpec) -> JumpOptions {
-        spec.jump.clone()
-    }
-    fn measure(_spec: &super::TaskSpec) -> &'static str {
+    fn measure(_options: &JumpOptions) -> &'static str {
         "height (m)"
     }
-    fn floor(_spec: &super::TaskSpec) -> Option<f64> {
+    fn floor(_options: &JumpOptions) -> Option<f64> {
         Some(0.0)
     }
-    fn max_steps(spec: &super::TaskSpec) -> usize {
-        spec.jump.max_steps(spec.sim.control_step)
+    fn max_steps(sim: &SimOptions, options: &JumpOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
-        &mut spec.jump.seconds
+    fn seconds(options: &mut JumpOptions) -> &mut f64 {
+        &mut options.seconds
     }
-    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
-        spec.jump.check().map_err(|e| e.within("jump"))
+    fn check_options(options: &JumpOptions) -> Result<(), crate::sim::SettingError> {
+        options.check()
     }
     fn evaluate(
         creature: &Creature,
-        spec: &super::TaskSpec,
+        sim: &SimOptions,
+        options: &JumpOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        jump_watched(creature, &spec.sim, &spec.jump, watch)
+        jump_watched(creature, sim, options, watch)
     }
 }

@@ -318,31 +318,30 @@ impl super::Task for WalkerTask {
         "hornby-pollack",
     ];
     const THROWS: bool = false;
+    const KEYWORDS: &'static [&'static str] = &["seconds", "fitness"];
     type Options = WalkerOptions;
 
-    fn options(spec: &super::TaskSpec) -> WalkerOptions {
-        spec.walker.clone()
+    fn measure(options: &WalkerOptions) -> &'static str {
+        options.fitness.label()
     }
-    fn measure(spec: &super::TaskSpec) -> &'static str {
-        spec.walker.fitness.label()
+    fn floor(options: &WalkerOptions) -> Option<f64> {
+        options.fitness.floor()
     }
-    fn floor(spec: &super::TaskSpec) -> Option<f64> {
-        spec.walker.fitness.floor()
+    fn max_steps(sim: &SimOptions, options: &WalkerOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn max_steps(spec: &super::TaskSpec) -> usize {
-        spec.walker.max_steps(spec.sim.control_step)
+    fn seconds(options: &mut WalkerOptions) -> &mut f64 {
+        &mut options.seconds
     }
-    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
-        &mut spec.walker.seconds
-    }
-    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
-        spec.walker.check().map_err(|e| e.within("walker"))
+    fn check_options(options: &WalkerOptions) -> Result<(), crate::sim::SettingError> {
+        options.check()
     }
     fn evaluate(
         creature: &Creature,
-        spec: &super::TaskSpec,
+        sim: &SimOptions,
+        options: &WalkerOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        walker_watched(creature, &spec.sim, &spec.walker, watch)
+        walker_watched(creature, sim, options, watch)
     }
 }

@@ -44,6 +44,7 @@ mod render;
 mod rooms;
 mod store;
 mod stubs;
+mod task_tables;
 mod textbook;
 mod util;
 mod view;
