@@ -6,7 +6,8 @@
 //! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
 //! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
 //! [`projectile`], and steps in [`world`]; what the world holds besides the creature (terrain,
-//! obstacles, objects, the medium) is described by [`world_spec`].
+//! obstacles, objects, the medium) is described by [`world_spec`] and worked out as geometry,
+//! without physics, in [`terrain`].
 
 pub mod actuators;
 pub mod audit;
@@ -21,6 +22,7 @@ pub mod projectile;
 pub mod sensors;
 pub mod setting;
 mod slots;
+pub mod terrain;
 pub mod world;
 pub mod world_spec;
 
