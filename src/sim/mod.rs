@@ -14,6 +14,7 @@ pub mod audit;
 pub mod brain;
 pub mod build;
 pub mod drag;
+mod ground;
 pub mod knobs;
 mod model_names;
 pub mod options;

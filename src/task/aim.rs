@@ -54,6 +54,6 @@ impl Task for AimTask {
         spec: &TaskSpec,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, &spec.sim, &spec.catapult, watch)
+        catapult_watched(creature, (&spec.sim, &spec.world), &spec.catapult, watch)
     }
 }
