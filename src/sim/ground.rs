@@ -101,7 +101,7 @@ impl Ground {
         } else if let Some(field) = terrain.heightfield() {
             let n = field.samples;
             // Column-major, rows along z and columns along x: element (i, j) at i + j·n.
-            let mut heights = vec![0.0 as Real; n * n];
+            let mut heights: Vec<Real> = vec![0.0; n * n];
             for i in 0..n {
                 for j in 0..n {
                     heights[i + j * n] = field.heights[i * n + j] as Real;
