@@ -5,7 +5,7 @@ use super::catapult::{CatapultOptions, catapult_watched};
 use super::{Evaluation, Task, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::{SettingError, SimOptions};
+use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// Chaumont et al.'s aiming catapult, in the registry: it reads the catapult's settings,
 /// target included (`[task.catapult] target`, which it needs).
@@ -52,10 +52,11 @@ impl Task for AimTask {
     fn evaluate(
         creature: &Creature,
         sim: &SimOptions,
+        world: &WorldSpec,
         options: &CatapultOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, sim, options, watch)
+        catapult_watched(creature, (sim, world), options, watch)
     }
 }
 

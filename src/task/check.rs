@@ -118,13 +118,15 @@ impl TaskSpec {
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
     fn check_tables(&self) -> Result<(), SettingError> {
         self.sim.check().map_err(|e| e.within("sim"))?;
-        if !self.world.is_flat() {
+        if !self.world.medium.is_air() {
             return Err(SettingError::out_of_range(
-                "world",
-                "empty: only flat ground in air is simulated so far",
-                "a world with terrain, objects or water",
-            ));
+                "medium",
+                "air: water is not simulated yet",
+                "water",
+            )
+            .within("world"));
         }
+        self.world.check().map_err(|e| e.within("world"))?;
         crate::with_options!(&self.task, T, o => {
             <T as super::Task>::check_options(o).and_then(|()| <T as super::Task>::check(o))
         })

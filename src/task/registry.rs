@@ -12,7 +12,7 @@ use serde::{Serialize, de::DeserializeOwned};
 use super::{Evaluation, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::{SettingError, SimOptions};
+use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// One task: its protocol and fitness formula, and what a run or a report needs to know of it.
 pub trait Task {
@@ -75,11 +75,12 @@ pub trait Task {
         Ok(())
     }
 
-    /// Evaluates `creature` with the simulator's settings `sim` and its own `options`,
-    /// watched as `watch` says.
+    /// Evaluates `creature` with the simulator's settings `sim`, in the world `world`, with
+    /// its own `options`, watched as `watch` says.
     fn evaluate(
         creature: &Creature,
         sim: &SimOptions,
+        world: &WorldSpec,
         options: &Self::Options,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted>;

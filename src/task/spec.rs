@@ -152,7 +152,7 @@ impl TaskSpec {
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        crate::with_options!(&self.task, T, o => T::evaluate(creature, &self.sim, o, watch))
+        crate::with_options!(&self.task, T, o => T::evaluate(creature, &self.sim, &self.world, o, watch))
     }
 
     /// The most control steps the task can take (every phase at its longest), which sets how

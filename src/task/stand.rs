@@ -12,7 +12,7 @@ use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::setting::check_real;
-use crate::sim::{SettingError, SimOptions};
+use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// Settings of the stand task (`[task.stand]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -83,10 +83,11 @@ impl Task for StandTask {
     fn evaluate(
         creature: &Creature,
         sim: &SimOptions,
+        world: &WorldSpec,
         options: &StandOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        evaluate(Self::NAME, creature, sim, options, watch, |run| {
+        evaluate(Self::NAME, creature, (sim, world), options, watch, |run| {
             run.settle(&options.rest, 0.0, sim.control_step)?;
             run.check_height(options.max_height)?;
             run.phase = Phase::Measuring;

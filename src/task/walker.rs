@@ -12,7 +12,7 @@ use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE};
 use crate::cancel::Interrupted;
 use crate::creature::{Creature, PartId};
-use crate::sim::{DragMeter, SimOptions, World};
+use crate::sim::{DragMeter, SimOptions, World, WorldSpec};
 
 /// The walker's fitness formula.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -204,18 +204,18 @@ pub fn walker(
     record: bool,
 ) -> Evaluation {
     unwatched(record, |watch| {
-        walker_watched(creature, sim, options, watch)
+        walker_watched(creature, (sim, &WorldSpec::default()), options, watch)
     })
 }
 
 /// [`walker`], watched: recorded, told its progress and stopped by a token as `watch` says.
 pub(super) fn walker_watched(
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, world): (&SimOptions, &WorldSpec),
     options: &WalkerOptions,
     watch: Watch<'_>,
 ) -> Result<Evaluation, Interrupted> {
-    evaluate("walker", creature, sim, options, watch, |run| {
+    evaluate("walker", creature, (sim, world), options, watch, |run| {
         run.settle(&options.rest, 0.0, sim.control_step)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
@@ -339,9 +339,10 @@ impl super::Task for WalkerTask {
     fn evaluate(
         creature: &Creature,
         sim: &SimOptions,
+        world: &WorldSpec,
         options: &WalkerOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        walker_watched(creature, sim, options, watch)
+        walker_watched(creature, (sim, world), options, watch)
     }
 }

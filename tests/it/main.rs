@@ -48,3 +48,4 @@ mod task_tables;
 mod textbook;
 mod util;
 mod view;
+mod worlds;
