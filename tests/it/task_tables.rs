@@ -119,10 +119,10 @@ fn a_table_of_another_task_is_checked_though_it_is_not_run() {
 #[test]
 fn a_table_of_no_task_is_refused_with_the_tables_there_are() {
     let dir = scratch_dir("task_tables-unknown");
-    let file = dir.join("swim.toml");
+    let file = dir.join("climb.toml");
     std::fs::write(
         &file,
-        "[task]\ntask = \"walker\"\n[task.swim]\nseconds = 1.0\n",
+        "[task]\ntask = \"walker\"\n[task.climb]\nseconds = 1.0\n",
     )
     .unwrap();
     let output = ontogeny_command()
@@ -132,10 +132,10 @@ fn a_table_of_no_task_is_refused_with_the_tables_there_are() {
         .arg(dir.join("run"))
         .output()
         .unwrap();
-    let said = refused(&output, "unknown key swim in [task]");
-    assert!(said.contains("swim.toml:3:"), "{said}");
+    let said = refused(&output, "unknown key climb in [task]");
+    assert!(said.contains("climb.toml:3:"), "{said}");
     assert!(
-        said.contains("its keys are task, sim, walker, jump, catapult, stand"),
+        said.contains("its keys are task, sim, world, walker, jump, catapult, stand"),
         "{said}"
     );
 }
