@@ -530,7 +530,7 @@ mod tests {
         let creature = walker();
         assert!(!creature.parts.is_empty());
         let mut task = TaskSpec::new(TaskKind::Walker);
-        task.walker.seconds = 1.0 / 3.0;
+        *task.seconds_mut() = 1.0 / 3.0;
         let sent: Reply<&Creature, &TaskSpec> = Reply::Work {
             task: Some(&task),
             jobs: vec![(7, &creature)],
