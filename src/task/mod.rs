@@ -6,8 +6,8 @@
 //! each task has its own file ([`walker`](walker()), [`jump`](jump()), [`catapult`](catapult()),
 //! aim and stand), implements [`Task`] and has one line in the registry
 //! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
-//! `protocol`, the recording's file format in `recording`, and a task's specification as data
-//! in [`TaskSpec`].
+//! `protocol`, the recording's file format in `recording`, a task's specification as data
+//! in [`TaskSpec`], and the habitats and trials one evaluation spans in `habitat`.
 
 use std::collections::BTreeMap;
 
@@ -17,6 +17,7 @@ mod aim;
 mod catapult;
 mod check;
 mod compact;
+mod habitat;
 mod jump;
 mod protocol;
 mod recording;
@@ -27,6 +28,9 @@ mod walker;
 pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
+pub use habitat::{
+    Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
+};
 pub use jump::{JumpOptions, JumpTask, jump};
 pub use protocol::{Rest, Watch};
 pub use recording::{
@@ -101,6 +105,11 @@ pub struct Evaluation {
     /// asked for.
     #[serde(skip_serializing_if = "Vec::is_empty", default)]
     pub recording: Vec<Sample>,
+    /// Each habitat's and trial's result, habitat by habitat, when the specification has
+    /// habitats or trials (the fitness is then their aggregate); empty, and not written, for
+    /// a plain one.
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub habitats: Vec<HabitatResult>,
 }
 
 impl Evaluation {
@@ -118,6 +127,7 @@ impl Evaluation {
             terms: BTreeMap::new(),
             message: Some(message),
             recording: Vec::new(),
+            habitats: Vec::new(),
         }
     }
 }

@@ -449,6 +449,7 @@ fn evaluate_run(
                 terms,
                 message: None,
                 recording: run.take_recording(),
+                habitats: Vec::new(),
             }
         }
         Err(mut failed) => {

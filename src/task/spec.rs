@@ -3,7 +3,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{CatapultOptions, Evaluation, JumpOptions, StandOptions, Task, WalkerOptions, Watch};
+use super::{
+    CatapultOptions, Evaluation, Habitat, JumpOptions, StandOptions, Task, Trials, WalkerOptions,
+    Watch,
+};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -54,6 +57,14 @@ pub struct TaskSpec {
     /// otherwise; a flat world is not written.
     #[serde(default, skip_serializing_if = "WorldSpec::is_flat")]
     pub world: WorldSpec,
+    /// The habitats one evaluation spans (`[[task.habitats]]`); none: one, this
+    /// specification's own world. Not written when there are none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub habitats: Vec<Habitat>,
+    /// The trials in each habitat (`[task.trials]`): one without noise unless it says
+    /// otherwise; the default is not written.
+    #[serde(default, skip_serializing_if = "Trials::is_default")]
+    pub trials: Trials,
     /// The walker's settings (used by `walker`).
     #[serde(default)]
     pub walker: WalkerOptions,
