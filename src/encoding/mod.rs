@@ -9,6 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Serialize, de::DeserializeOwned};
 
 use crate::creature::Creature;
+use crate::environment::Environment;
 use crate::lang::ast::{Expr, UnaryOp};
 
 pub mod continuous;
@@ -114,6 +115,24 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// Develops the genome into a creature; `seed` drives any randomness of development
     /// (stochastic rules).
     fn develop(&self, limits: &Self::Limits, seed: u64) -> Result<Creature, DevelopError>;
+
+    /// Develops the genome in a habitat whose chemical array starts as `environment`. By
+    /// default development does not read the array: the genome develops as
+    /// [`Genome::develop`] does, and the creature's controller gets `environment` in place of
+    /// its own array when the two have the same length (else it keeps its own). A genome
+    /// whose development reads its environment overrides this.
+    fn develop_in(
+        &self,
+        limits: &Self::Limits,
+        seed: u64,
+        environment: &Environment,
+    ) -> Result<Creature, DevelopError> {
+        let mut creature = self.develop(limits, seed)?;
+        if creature.environment.len() == environment.len() {
+            creature.environment = environment.values().to_vec();
+        }
+        Ok(creature)
+    }
 
     /// The genome as text for people (for L-system genomes, a valid `.lsys` file).
     fn to_text(&self) -> String;

@@ -5,7 +5,9 @@
 
 use crate::sim::{SettingError, SimOptions};
 
-use crate::task::{Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness};
+use crate::task::{
+    Evaluation, MAX_RECORDED_SAMPLES, Status, TaskKind, TaskSpec, WalkerFitness,
+};
 
 /// The option that sets the value a [`SettingError`] names by its key, in snake case: a
 /// simulator knob's flag ([`Knob::flag_name`](crate::sim::Knob::flag_name): `time_step` for
@@ -153,6 +155,38 @@ pub fn joint_gap_warning(evaluation: &Evaluation) -> Option<String> {
             gap * 100.0
         )
     })
+}
+
+/// A line per habitat and trial of an evaluation with habitats
+/// (`  habitat cued, trial 2: fitness 1.250000 (ok)`), then how they combine
+/// (`  fitness: the mean of 4 walks`).
+pub fn habitats_text(spec: &TaskSpec, evaluation: &Evaluation) -> String {
+    let mut lines: Vec<String> = evaluation
+        .habitats
+        .iter()
+        .map(|r| {
+            let place = match r.name.as_str() {
+                "" => String::new(),
+                name => format!("habitat {name}, "),
+            };
+            format!(
+                "  {place}trial {}: fitness {:.6} ({})",
+                r.trial + 1,
+                r.fitness,
+                r.status.name()
+            )
+        })
+        .collect();
+    let walks = evaluation.habitats.len();
+    lines.push(match evaluation.status {
+        Status::Ok => format!(
+            "  fitness: the {} of {walks} walk{}",
+            spec.trials.aggregate.name(),
+            if walks == 1 { "" } else { "s" }
+        ),
+        _ => format!("  fitness: the failure floor, as a walk of the {walks} failed"),
+    });
+    lines.join("\n")
 }
 
 /// The evaluation of the creature named `name` as text: fitness and status, each term, and

@@ -300,6 +300,10 @@ pub struct HabitatResult {
     pub name: String,
     /// The trial's index, from 0.
     pub trial: u32,
+    /// Parts and joints of the creature as it developed in the habitat (its morph).
+    pub parts: u32,
+    /// See `parts`.
+    pub joints: u32,
     /// Its fitness ([`FAILURE_FITNESS`] unless its status is `ok`).
     pub fitness: f64,
     /// How it ended.
@@ -406,6 +410,30 @@ impl TaskSpec {
         spec
     }
 
+    /// Evaluates `creature` as `unit` says ([`TaskSpec::evaluate_unit_watched`]), or, for no
+    /// unit, as [`TaskSpec::evaluate_watched`] does: one walk of any specification.
+    pub fn evaluate_job(
+        &self,
+        creature: &Creature,
+        unit: Option<&Unit>,
+        watch: super::Watch<'_>,
+    ) -> Result<Evaluation, crate::cancel::Interrupted> {
+        match unit {
+            None => self.evaluate_watched(creature, watch),
+            Some(unit) => self.evaluate_unit_watched(creature, unit, watch),
+        }
+    }
+
+    /// [`TaskSpec::evaluate_job`], not recorded, told or cancelled.
+    pub fn evaluate_job_plainly(&self, creature: &Creature, unit: Option<&Unit>) -> Evaluation {
+        match unit {
+            None => self.evaluate(creature, false),
+            Some(unit) => self
+                .unit_spec(unit)
+                .evaluate(&unit.perturbation.place(creature), false),
+        }
+    }
+
     /// Evaluates `creature` (developed in the unit's habitat) as `unit` says: placed by its
     /// draw, with [`TaskSpec::unit_spec`].
     pub fn evaluate_unit_watched(
@@ -419,17 +447,28 @@ impl TaskSpec {
     }
 
     /// The evaluation of an individual from its units' evaluations (in the order of
-    /// [`TaskSpec::units`]). Every unit `ok`: status `ok`, the fitness and each term the
+    /// [`TaskSpec::units`]) and its creatures, one per habitat (for their sizes). Every unit `ok`: status `ok`, the fitness and each term the
     /// trials' aggregate. Any unit failed: the first failure's status and message (naming its
     /// habitat and trial) and the failure floor — a creature that cheats the physics in one
     /// trial is refused, as the walker's guards refuse it in one walk.
-    pub fn combine(&self, units: &[Unit], evaluations: Vec<Evaluation>) -> Evaluation {
+    pub fn combine(
+        &self,
+        units: &[Unit],
+        evaluations: Vec<Evaluation>,
+        creatures: &[Creature],
+    ) -> Evaluation {
         let results: Vec<HabitatResult> = units
             .iter()
             .zip(evaluations)
             .map(|(unit, e)| HabitatResult {
                 name: self.habitat_name(unit.habitat as usize).to_string(),
                 trial: unit.trial,
+                parts: creatures
+                    .get(unit.habitat as usize)
+                    .map_or(0, |c| c.parts.len() as u32),
+                joints: creatures
+                    .get(unit.habitat as usize)
+                    .map_or(0, |c| c.joints.len() as u32),
                 fitness: e.fitness,
                 status: e.status,
                 terms: e.terms,
@@ -590,6 +629,7 @@ mod tests {
             [1.0, 2.0, 4.0, 8.0]
                 .map(|f| evaluation(f, Status::Ok, f * 10.0))
                 .to_vec(),
+            &[],
         );
         assert_eq!((e.fitness, e.status), (3.0, Status::Ok));
         assert_eq!(e.terms["D_w"], 30.0);
@@ -605,7 +645,7 @@ mod tests {
         let mut evaluations: Vec<Evaluation> =
             (0..4).map(|_| evaluation(1.0, Status::Ok, 1.0)).collect();
         evaluations[3] = evaluation(FAILURE_FITNESS, Status::Exploded, 0.0);
-        let e = spec.combine(&units, evaluations);
+        let e = spec.combine(&units, evaluations, &[]);
         assert_eq!((e.fitness, e.status), (FAILURE_FITNESS, Status::Exploded));
         assert_eq!(
             e.message.as_deref(),
@@ -643,7 +683,7 @@ mod tests {
     #[test]
     fn a_unit_scales_the_simulator_and_the_world_by_its_draw() {
         let mut spec = two_habitats(1, Aggregate::Mean);
-        spec.habitats[1].world.rough = Some(crate::sim::Rough {
+        spec.habitats[1].world.rough = Some(crate::sim::world_spec::Rough {
             amplitude: 0.1,
             wavelength: 1.0,
             seed: 1,

@@ -30,6 +30,7 @@ mod genome_continuous;
 mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
+mod habitats;
 mod json;
 mod key;
 mod limits;
