@@ -25,7 +25,6 @@ pub struct Job<'a> {
     pub unit: Option<Unit>,
 }
 
-
 /// What evaluates a batch of creatures.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Evaluator {

@@ -380,9 +380,13 @@ impl<G: Genome> Evolution<G> {
 
     /// Develops one genome in every habitat and keys its creatures with the task.
     fn develop(&self, unborn: Unborn<G>) -> Developed<G> {
-        let creatures =
-            develop_in_habitats(&unborn.genome, &self.limits, unborn.develop_seed, &self.task)
-                .map_err(|e| e.to_string());
+        let creatures = develop_in_habitats(
+            &unborn.genome,
+            &self.limits,
+            unborn.develop_seed,
+            &self.task,
+        )
+        .map_err(|e| e.to_string());
         let key = creatures
             .as_ref()
             .ok()
@@ -472,7 +476,10 @@ impl<G: Genome> Evolution<G> {
             let mine: Vec<Evaluation> = evaluations.drain(range).collect();
             simulated[index] = Some(match &developed[index].creatures {
                 Ok(creatures) if !units.is_empty() => self.task.combine(&units, mine, creatures),
-                _ => mine.into_iter().next().expect("a plain individual has one walk"),
+                _ => mine
+                    .into_iter()
+                    .next()
+                    .expect("a plain individual has one walk"),
             });
         }
         let mut born = Vec::with_capacity(developed.len());

@@ -24,9 +24,7 @@ pub fn develop_in_habitats<G: Genome>(
     (0..task.habitat_count())
         .map(|h| {
             match task.habitat_environment(h) {
-                Some(values) => {
-                    genome.develop_in(limits, seed, &Environment::new(values.to_vec()))
-                }
+                Some(values) => genome.develop_in(limits, seed, &Environment::new(values.to_vec())),
                 None => genome.develop(limits, seed),
             }
             .map_err(|e| match task.habitat_name(h) {
@@ -87,14 +85,9 @@ pub fn evaluate_genome<G: Genome>(
     cancel: &Cancel,
 ) -> Result<Evaluation, Interrupted> {
     match develop_in_habitats(genome, limits, seed, task) {
-        Ok(creatures) => evaluate_in_habitats(
-            task,
-            &creatures,
-            generation,
-            None,
-            Evaluator::Local,
-            cancel,
-        ),
+        Ok(creatures) => {
+            evaluate_in_habitats(task, &creatures, generation, None, Evaluator::Local, cancel)
+        }
         Err(e) => Ok(Evaluation::invalid(
             task.task.name(),
             format!("development: {e}"),

@@ -339,8 +339,8 @@ impl Master {
                 (0..threads).into_par_iter().for_each(|_| {
                     while let Some(index) = take(&queue, 1, size).next() {
                         let (creature, unit) = &creatures[index];
-                        let _ = slots[index]
-                            .set(task.evaluate_job_plainly(creature, unit.as_ref()));
+                        let _ =
+                            slots[index].set(task.evaluate_job_plainly(creature, unit.as_ref()));
                         done.fetch_add(1, Ordering::SeqCst);
                     }
                 })

@@ -5,9 +5,7 @@
 
 use crate::sim::{SettingError, SimOptions};
 
-use crate::task::{
-    Evaluation, MAX_RECORDED_SAMPLES, Status, TaskKind, TaskSpec, WalkerFitness,
-};
+use crate::task::{Evaluation, MAX_RECORDED_SAMPLES, Status, TaskKind, TaskSpec, WalkerFitness};
 
 /// The option that sets the value a [`SettingError`] names by its key, in snake case: a
 /// simulator knob's flag ([`Knob::flag_name`](crate::sim::Knob::flag_name): `time_step` for

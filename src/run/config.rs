@@ -311,8 +311,7 @@ pub fn read_task_config(path: &Path) -> Result<TaskSpec, Diagnostic> {
     let source = read_config_source(path)?;
     let config: ConfigFile<toml::Value> = read_config(&source)?;
     let task = config.task.unwrap_or_default();
-    task.check()
-        .map_err(|e| setting_diagnostic(&source, &e))?;
+    task.check().map_err(|e| setting_diagnostic(&source, &e))?;
     Ok(task)
 }
 

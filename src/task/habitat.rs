@@ -621,7 +621,10 @@ mod tests {
         let spec = two_habitats(2, Aggregate::Median);
         let units = spec.units([7; 32], 0);
         assert_eq!(
-            units.iter().map(|u| (u.habitat, u.trial)).collect::<Vec<_>>(),
+            units
+                .iter()
+                .map(|u| (u.habitat, u.trial))
+                .collect::<Vec<_>>(),
             [(0, 0), (0, 1), (1, 0), (1, 1)]
         );
         let e = spec.combine(
@@ -634,7 +637,10 @@ mod tests {
         assert_eq!((e.fitness, e.status), (3.0, Status::Ok));
         assert_eq!(e.terms["D_w"], 30.0);
         assert_eq!(e.habitats.len(), 4);
-        assert_eq!((e.habitats[3].name.as_str(), e.habitats[3].trial), ("cued", 1));
+        assert_eq!(
+            (e.habitats[3].name.as_str(), e.habitats[3].trial),
+            ("cued", 1)
+        );
         assert_eq!(e.habitats[3].fitness, 8.0);
     }
 

@@ -6,7 +6,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::evolve::contents;
-use crate::util::{ontogeny, ontogeny_command, ontogeny_ok, refused, scratch_dir, stdout, succeeded};
+use crate::util::{
+    ontogeny, ontogeny_command, ontogeny_ok, refused, scratch_dir, stdout, succeeded,
+};
 
 /// Two flat habitats that differ in chemical 0 (`poor` 0, `rich` 1), `trials` trials each
 /// with `noise` (lines of `[task.trials]`), short walks.
@@ -35,7 +37,13 @@ fn a_grammar_that_reads_its_environment_grows_a_body_per_habitat() {
     let dir = scratch_dir("habitats-plastic");
     let config = config(&dir, 1, "");
     let config = config.to_str().unwrap();
-    let e = eval_json(&["eval", "examples/plastic.lsys", "--config", config, "--json"]);
+    let e = eval_json(&[
+        "eval",
+        "examples/plastic.lsys",
+        "--config",
+        config,
+        "--json",
+    ]);
     let units = e["habitats"].as_array().unwrap();
     let morph = |i: usize| {
         (
@@ -62,16 +70,25 @@ fn eval_prints_each_habitat_trial_and_their_aggregate() {
         .map(|u| (u["name"].as_str().unwrap(), u["trial"].as_u64().unwrap()))
         .collect();
     assert_eq!(places, [("poor", 0), ("poor", 1), ("rich", 0), ("rich", 1)]);
-    let mut fitness: Vec<f64> = units.iter().map(|u| u["fitness"].as_f64().unwrap()).collect();
+    let mut fitness: Vec<f64> = units
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
     assert!(units.iter().all(|u| u["status"] == "ok"), "{e}");
     // Noise is drawn per trial: the two trials of a habitat walk differently.
     assert_ne!(fitness[0], fitness[1]);
     // The median of four: the mean of the two middle values.
     fitness.sort_by(f64::total_cmp);
-    assert_eq!(e["fitness"].as_f64().unwrap(), (fitness[1] + fitness[2]) / 2.0);
+    assert_eq!(
+        e["fitness"].as_f64().unwrap(),
+        (fitness[1] + fitness[2]) / 2.0
+    );
     let text = stdout(&ontogeny_ok(&["eval", walker, "--config", config]));
     let lines: Vec<&str> = text.lines().collect();
-    assert!(lines[0].starts_with(&format!("{walker}: walker fitness ")), "{text}");
+    assert!(
+        lines[0].starts_with(&format!("{walker}: walker fitness ")),
+        "{text}"
+    );
     let unit_lines: Vec<String> = units
         .iter()
         .map(|u| {
@@ -93,7 +110,13 @@ fn identical_creatures_get_identical_trials() {
     let dir = scratch_dir("habitats-identical");
     let config = config(&dir, 2, "heading = 30\noffset = 0.3\nfriction = 20");
     let config = config.to_str().unwrap();
-    let args = ["eval", "examples/hornby-walker.lsys", "--config", config, "--json"];
+    let args = [
+        "eval",
+        "examples/hornby-walker.lsys",
+        "--config",
+        config,
+        "--json",
+    ];
     let once = stdout(&ontogeny_ok(&args));
     let twice = stdout(&ontogeny_ok(&args));
     assert_eq!(once, twice);
@@ -110,9 +133,20 @@ fn eval_habitat_walks_that_habitat_alone_and_refuses_an_unknown_name() {
     let config = config.to_str().unwrap();
     let walker = "examples/hornby-walker.lsys";
     let all = eval_json(&["eval", walker, "--config", config, "--json"]);
-    let rich = eval_json(&["eval", walker, "--config", config, "--habitat", "rich", "--json"]);
+    let rich = eval_json(&[
+        "eval",
+        walker,
+        "--config",
+        config,
+        "--habitat",
+        "rich",
+        "--json",
+    ]);
     // The same draws as in the whole evaluation, of that habitat's trials only.
-    assert_eq!(rich["habitats"].as_array().unwrap()[..], all["habitats"].as_array().unwrap()[2..]);
+    assert_eq!(
+        rich["habitats"].as_array().unwrap()[..],
+        all["habitats"].as_array().unwrap()[2..]
+    );
     let out = ontogeny(&["eval", walker, "--config", config, "--habitat", "wet"]);
     refused(&out, "no habitat 'wet'; the habitats are poor, rich");
     let out = ontogeny(&["eval", walker, "--config", config, "--seconds", "2"]);
@@ -125,9 +159,21 @@ fn a_bad_habitats_table_is_refused_with_exit_code_2() {
     let config = config(&dir, 2, "");
     let text = std::fs::read_to_string(&config).unwrap();
     for (from, to, message) in [
-        ("name = \"rich\"", "name = \"poor\"", "[[task.habitats]] name must be unique among the habitats, not 'poor' a second time"),
-        ("count = 2", "count = 0", "[task.trials] count must be 1 to 64, not 0"),
-        ("count = 2", "count = 2\nroughness = 120", "[task.trials] roughness must be in [0, 99], not 120"),
+        (
+            "name = \"rich\"",
+            "name = \"poor\"",
+            "[[task.habitats]] name must be unique among the habitats, not 'poor' a second time",
+        ),
+        (
+            "count = 2",
+            "count = 0",
+            "[task.trials] count must be 1 to 64, not 0",
+        ),
+        (
+            "count = 2",
+            "count = 2\nroughness = 120",
+            "[task.trials] roughness must be in [0, 99], not 120",
+        ),
     ] {
         std::fs::write(&config, text.replace(from, to)).unwrap();
         let out = ontogeny_command()
@@ -173,13 +219,16 @@ fn a_tiny_evolution_in_habitats_is_the_same_on_any_thread_count_and_resumed() {
     succeeded(&resumed);
     assert_eq!(contents(&stopped), contents(&dir.join("one")));
     // The store keeps each habitat's and trial's result in the individual's evaluation.
-    let store =
-        ontogeny::run::store::RunStore::open_read_only(&dir.join("one").join("run.sqlite")).unwrap();
+    let store = ontogeny::run::store::RunStore::open_read_only(&dir.join("one").join("run.sqlite"))
+        .unwrap();
     let first = &store.individuals(0).unwrap()[0];
     let json: serde_json::Value = serde_json::from_str(&first.genome_json).unwrap();
     let units = json["evaluation"]["habitats"].as_array().unwrap();
     assert_eq!(units.len(), 4, "{json}");
-    let ok: Vec<f64> = units.iter().map(|u| u["fitness"].as_f64().unwrap()).collect();
+    let ok: Vec<f64> = units
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
     if units.iter().all(|u| u["status"] == "ok") {
         let mut sorted = ok.clone();
         sorted.sort_by(f64::total_cmp);
@@ -198,5 +247,8 @@ fn the_habitats_example_runs() {
         &["--pop", "4", "--gens", "1", "--seconds", "0.5"],
     );
     let config = std::fs::read_to_string(dir.join("run").join("config.toml")).unwrap();
-    assert!(config.contains("[[task.habitats]]") && config.contains("count = 2"), "{config}");
+    assert!(
+        config.contains("[[task.habitats]]") && config.contains("count = 2"),
+        "{config}"
+    );
 }
