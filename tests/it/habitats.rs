@@ -252,3 +252,24 @@ fn the_habitats_example_runs() {
         "{config}"
     );
 }
+
+#[test]
+fn fresh_trials_walk_the_elite_again_on_new_draws() {
+    let dir = scratch_dir("habitats-fresh");
+    let config = config(&dir, 2, "heading = 30\nfresh = true");
+    let run = dir.join("run");
+    evolve(&config, &run, &["--gens", "2"]);
+    let store = ontogeny::run::store::RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    // Every individual of generation 1 was walked, the elite (one of six) included.
+    assert_eq!(store.generations().unwrap()[1].evaluations, 6);
+    let elite = &store.individuals(1).unwrap()[0];
+    assert_eq!(elite.operator, "elite");
+    let parent = &store.individuals(0).unwrap()[elite.parents[0] as usize];
+    let units = |genome_json: &str| {
+        let json: serde_json::Value = serde_json::from_str(genome_json).unwrap();
+        json["evaluation"]["habitats"].clone()
+    };
+    assert_eq!(elite.genome_text, parent.genome_text);
+    // The same creature on the generation's own draws walks differently.
+    assert_ne!(units(&elite.genome_json), units(&parent.genome_json));
+}
