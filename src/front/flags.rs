@@ -160,7 +160,7 @@ pub fn joint_gap_warning(evaluation: &Evaluation) -> Option<String> {
 /// (`  fitness: the mean of 4 walks`).
 pub fn habitats_text(spec: &TaskSpec, evaluation: &Evaluation) -> String {
     let mut lines: Vec<String> = evaluation
-        .habitats
+        .units()
         .iter()
         .map(|r| {
             let place = match r.name.as_str() {
@@ -175,7 +175,7 @@ pub fn habitats_text(spec: &TaskSpec, evaluation: &Evaluation) -> String {
             )
         })
         .collect();
-    let walks = evaluation.habitats.len();
+    let walks = evaluation.units().len();
     lines.push(match evaluation.status {
         Status::Ok => format!(
             "  fitness: the {} of {walks} walk{}",

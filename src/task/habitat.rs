@@ -492,7 +492,7 @@ impl TaskSpec {
                     failed.message.as_deref().unwrap_or(failed.status.name())
                 )),
                 recording: Vec::new(),
-                habitats: results,
+                habitats: Some(Box::new(results)),
             };
         }
         let aggregate = self.trials.aggregate;
@@ -516,7 +516,7 @@ impl TaskSpec {
             terms,
             message: None,
             recording: Vec::new(),
-            habitats: results,
+            habitats: Some(Box::new(results)),
         }
     }
 
@@ -598,7 +598,7 @@ mod tests {
             terms: BTreeMap::from([("D_w".to_string(), d)]),
             message: (status != Status::Ok).then(|| "it blew up".to_string()),
             recording: Vec::new(),
-            habitats: Vec::new(),
+            habitats: None,
         }
     }
 
@@ -636,12 +636,12 @@ mod tests {
         );
         assert_eq!((e.fitness, e.status), (3.0, Status::Ok));
         assert_eq!(e.terms["D_w"], 30.0);
-        assert_eq!(e.habitats.len(), 4);
+        assert_eq!(e.units().len(), 4);
         assert_eq!(
-            (e.habitats[3].name.as_str(), e.habitats[3].trial),
+            (e.units()[3].name.as_str(), e.units()[3].trial),
             ("cued", 1)
         );
-        assert_eq!(e.habitats[3].fitness, 8.0);
+        assert_eq!(e.units()[3].fitness, 8.0);
     }
 
     #[test]
@@ -657,7 +657,7 @@ mod tests {
             e.message.as_deref(),
             Some("habitat cued, trial 2: it blew up")
         );
-        assert_eq!(e.habitats[0].status, Status::Ok);
+        assert_eq!(e.units()[0].status, Status::Ok);
     }
 
     #[test]
@@ -727,7 +727,7 @@ mod tests {
             joints: vec![Joint {
                 parent: 0,
                 child: 1,
-                kind: JointKind::Revolute1,
+                kind: JointKind::Revolute,
                 anchor: Vector3::new(1.0, 0.5, 0.0),
                 axes: vec![Vector3::z()],
                 limits: vec![(-1.0, 1.0)],

@@ -106,13 +106,19 @@ pub struct Evaluation {
     #[serde(skip_serializing_if = "Vec::is_empty", default)]
     pub recording: Vec<Sample>,
     /// Each habitat's and trial's result, habitat by habitat, when the specification has
-    /// habitats or trials (the fitness is then their aggregate); empty, and not written, for
+    /// habitats or trials (the fitness is then their aggregate); none, and not written, for
     /// a plain one.
-    #[serde(skip_serializing_if = "Vec::is_empty", default)]
-    pub habitats: Vec<HabitatResult>,
+    /// (Boxed, so that an evaluation stays small where it is returned as an error.)
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub habitats: Option<Box<Vec<HabitatResult>>>,
 }
 
 impl Evaluation {
+    /// Each habitat's and trial's result (none for a plain specification).
+    pub fn units(&self) -> &[HabitatResult] {
+        self.habitats.as_deref().map_or(&[], Vec::as_slice)
+    }
+
     /// The evaluation of something that never became a creature (a developmental error):
     /// status `invalid`, the failure floor.
     pub fn invalid(task: &str, message: String) -> Evaluation {
@@ -127,7 +133,7 @@ impl Evaluation {
             terms: BTreeMap::new(),
             message: Some(message),
             recording: Vec::new(),
-            habitats: Vec::new(),
+            habitats: None,
         }
     }
 }

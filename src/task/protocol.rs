@@ -454,7 +454,7 @@ fn evaluate_run(
                 terms,
                 message: None,
                 recording: run.take_recording(),
-                habitats: Vec::new(),
+                habitats: None,
             }
         }
         Err(mut failed) => {
