@@ -20,7 +20,7 @@ use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::sim::SettingError;
-use crate::task::{Evaluation, Status, TaskSpec, Unit};
+use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
 /// The operators' schedule of a published genetic algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -86,6 +86,17 @@ pub struct GaSettings {
     pub mutation_chance_after_mating: f64,
     /// ... and its per-site mutation probability then (5%).
     pub mutation_rate_after_mating: f64,
+    /// The chance that an operator makes, changes or removes an environment read of a
+    /// genome that can read its environment (`lsystem-continuous`). 0, the default, leaves
+    /// genomes without reads and draws exactly as before the key existed; a configuration
+    /// without the key reads as 0, and 0 is not written.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub environment_reads: f64,
+}
+
+/// Whether a setting is 0 (so that it is not written, and stored settings stay as they were).
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl GaSettings {
@@ -103,6 +114,7 @@ impl GaSettings {
                 mutation_rate: 0.1,
                 mutation_chance_after_mating: 0.1,
                 mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
             },
             Preset::Wwd => GaSettings {
                 preset,
@@ -115,6 +127,7 @@ impl GaSettings {
                 mutation_rate: 0.05,
                 mutation_chance_after_mating: 1.0,
                 mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
             },
         }
     }
@@ -156,6 +169,7 @@ impl GaSettings {
             "mutation_rate_after_mating",
             self.mutation_rate_after_mating,
         )?;
+        fraction("environment_reads", self.environment_reads)?;
         if self.asexual + self.crossover > 1.0 + 1e-12 {
             return Err(SettingError::out_of_range(
                 "asexual + crossover",
@@ -330,6 +344,10 @@ pub struct Evolution<G: Genome> {
     /// The version of the evaluation keys: today's for a new run, the one its store holds
     /// for a run made before (`run::Run::resume`).
     pub key_version: KeyVersion,
+    /// The `[task]` table of the run's stored settings, every task's table as it was written,
+    /// which version 1 keys hash ([`EvaluationKey::of_tables`]); `None`: the task's own
+    /// table and the other tasks' defaults.
+    pub key_tables: Option<TaskTables>,
 }
 
 /// A new individual before evaluation.
@@ -375,7 +393,19 @@ impl<G: Genome> Evolution<G> {
     ) -> Option<EvaluationKey> {
         develop_in_habitats(genome, &self.limits, develop_seed, &self.task)
             .ok()
-            .map(|c| EvaluationKey::of_habitats(&c, &self.task, version))
+            .map(|c| self.key_of_creatures(&c, version))
+    }
+
+    /// The key of an individual developed into `creatures` (one per habitat), of version
+    /// `version`: a run made before version 2, which has no habitats, keys its one creature
+    /// with its stored tables.
+    fn key_of_creatures(&self, creatures: &[Creature], version: KeyVersion) -> EvaluationKey {
+        match (version, &self.key_tables, creatures) {
+            (KeyVersion::V1, Some(tables), [creature]) if self.task.is_plain() => {
+                EvaluationKey::of_tables(creature, tables)
+            }
+            _ => EvaluationKey::of_habitats(creatures, &self.task, version),
+        }
     }
 
     /// Develops one genome in every habitat and keys its creatures with the task.
@@ -390,7 +420,7 @@ impl<G: Genome> Evolution<G> {
         let key = creatures
             .as_ref()
             .ok()
-            .map(|c| EvaluationKey::of_habitats(c, &self.task, self.key_version));
+            .map(|c| self.key_of_creatures(c, self.key_version));
         Developed {
             unborn,
             creatures,

@@ -13,8 +13,11 @@ use crate::environment::Environment;
 use crate::task::{Evaluation, TaskSpec, Watch};
 
 /// The creatures `genome` develops into with `seed`, one per habitat of `task` (one for a
-/// task without habitats): in a habitat with an array, [`Genome::develop_in`] it; else
-/// [`Genome::develop`]. An error names the habitat it arose in.
+/// task without habitats): in a habitat with an array, [`Genome::develop_in`] it (an array
+/// of another size than the genome's own is an error), and where the genome has no array of
+/// its own, its creature's controller gets the habitat's in place of its own when the two
+/// have the same length; in a habitat without one, [`Genome::develop`]. An error names the
+/// habitat it arose in.
 pub fn develop_in_habitats<G: Genome>(
     genome: &G,
     limits: &G::Limits,
@@ -24,7 +27,16 @@ pub fn develop_in_habitats<G: Genome>(
     (0..task.habitat_count())
         .map(|h| {
             match task.habitat_environment(h) {
-                Some(values) => genome.develop_in(limits, seed, &Environment::new(values.to_vec())),
+                Some(values) => genome
+                    .develop_in(limits, seed, &Environment::new(values.to_vec()))
+                    .map(|mut creature| {
+                        if genome.environment().is_empty()
+                            && creature.environment.len() == values.len()
+                        {
+                            creature.environment = values.to_vec();
+                        }
+                        creature
+                    }),
                 None => genome.develop(limits, seed),
             }
             .map_err(|e| match task.habitat_name(h) {

@@ -15,7 +15,7 @@ use crate::evolve::ga::{GaSettings, Preset};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
-use crate::task::TaskSpec;
+use crate::task::{TaskSpec, TaskTables};
 
 /// Every setting of a run, resolved: what `config.toml` holds in a run directory.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -140,6 +140,8 @@ pub struct GaOverrides {
     pub mutation_chance_after_mating: Option<f64>,
     /// See [`GaSettings`].
     pub mutation_rate_after_mating: Option<f64>,
+    /// See [`GaSettings`].
+    pub environment_reads: Option<f64>,
 }
 
 impl GaOverrides {
@@ -158,7 +160,8 @@ impl GaOverrides {
             crossover,
             mutation_rate,
             mutation_chance_after_mating,
-            mutation_rate_after_mating
+            mutation_rate_after_mating,
+            environment_reads
         );
         s
     }
@@ -183,8 +186,8 @@ pub struct ConfigFile<L> {
     /// The genetic algorithm.
     #[serde(default)]
     pub ga: GaOverrides,
-    /// The task and its settings.
-    pub task: Option<TaskSpec>,
+    /// The task and its settings: any number of tasks' tables, until the task is known.
+    pub task: Option<TaskTables>,
     /// The encoding's limits.
     pub limits: Option<L>,
 }
@@ -310,8 +313,11 @@ pub fn read_config_source(path: &Path) -> Result<Arc<Source>, Diagnostic> {
 pub fn read_task_config(path: &Path) -> Result<TaskSpec, Diagnostic> {
     let source = read_config_source(path)?;
     let config: ConfigFile<toml::Value> = read_config(&source)?;
-    let task = config.task.unwrap_or_default();
-    task.check().map_err(|e| setting_diagnostic(&source, &e))?;
+    let tables = config.task.unwrap_or_default();
+    let task = tables.spec(tables.kind());
+    task.check()
+        .and_then(|()| tables.check_other_tables(task.task.table()))
+        .map_err(|e| setting_diagnostic(&source, &e))?;
     Ok(task)
 }
 

@@ -64,8 +64,8 @@ pub struct World {
     pub(super) peak_unexplained: f64,
     /// The largest gap seen between the two ends of any joint's anchor (m).
     pub(super) peak_joint_gap: f64,
-    /// The ground's collider.
-    pub(super) ground_collider: ColliderHandle,
+    /// The ground, the obstacles and the free objects.
+    pub(super) ground: super::ground::Ground,
 }
 
 /// A world vector back in the project's nalgebra.
@@ -222,7 +222,7 @@ impl World {
                 &mut self.multibody_joints,
                 &mut self.soft_bodies,
                 &mut self.ccd,
-                &(),
+                self.ground.hooks(),
                 &(),
             );
         }

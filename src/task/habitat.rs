@@ -521,7 +521,8 @@ impl TaskSpec {
     }
 
     /// Checks the habitats and trials: at most [`MAX_HABITATS`] habitats with unique, non-empty
-    /// names, each world flat for now and each array finite; the trials in range. The error
+    /// names, each world as [`WorldSpec::check`] checks `[task.world]` (in air), and each array
+    /// finite; the trials in range. The error
     /// names the key as a config spells it (`[[task.habitats]] name`, `[task.trials] count`).
     pub(super) fn check_habitats(&self) -> Result<(), SettingError> {
         if self.habitats.len() > MAX_HABITATS {
@@ -558,16 +559,18 @@ impl TaskSpec {
                     v,
                 )));
             }
-            if !h.world.is_flat() {
-                return Err(within(SettingError::out_of_range(
-                    "world",
-                    &format!(
-                        "empty (habitat '{}'): only flat ground in air is simulated so far",
-                        h.name
-                    ),
-                    "a world with terrain, objects or water",
-                )));
+            if !h.world.medium.is_air() {
+                return Err(SettingError::out_of_range(
+                    "medium",
+                    &format!("air (habitat '{}'): water is not simulated yet", h.name),
+                    "water",
+                )
+                .within("task.habitats.world"));
             }
+            h.world.check().map_err(|mut e| {
+                e.problem = format!("{} (habitat '{}')", e.problem, h.name);
+                e.within("world").within("task.habitats")
+            })?;
         }
         self.trials.check().map_err(|e| e.within("task.trials"))
     }
@@ -776,5 +779,28 @@ mod tests {
             spec.check().unwrap_err().to_string(),
             "[[task.habitats]] environment must be finite numbers (habitat 'flat'), not NaN"
         );
+    }
+
+    #[test]
+    fn a_habitats_world_is_checked_as_the_tasks_world_is() {
+        let mut spec = two_habitats(1, Aggregate::Mean);
+        spec.habitats[1].world.slope = Some(crate::sim::world_spec::Slope {
+            degrees: 95.0,
+            direction: 0.0,
+        });
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.habitats.world.slope] degrees must be at least 0 and below 80, not 95 \
+             (habitat 'cued')"
+        );
+        spec.habitats[1].world.slope.as_mut().unwrap().degrees = 5.0;
+        assert_eq!(spec.check(), Ok(()));
+        let unit = Unit {
+            habitat: 1,
+            trial: 0,
+            perturbation: Perturbation::default(),
+        };
+        assert_eq!(spec.unit_spec(&unit).world, spec.habitats[1].world);
+        assert!(spec.in_habitat(0).world.is_flat());
     }
 }

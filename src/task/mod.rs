@@ -6,8 +6,9 @@
 //! each task has its own file ([`walker`](walker()), [`jump`](jump()), [`catapult`](catapult()),
 //! aim and stand), implements [`Task`] and has one line in the registry
 //! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
-//! `protocol`, the recording's file format in `recording`, a task's specification as data
-//! in [`TaskSpec`], and the habitats and trials one evaluation spans in `habitat`.
+//! `protocol`, the recording's file format in `recording`, and a task's specification as data
+//! in [`TaskSpec`]: the simulator's settings and one task's ([`TaskOptions`]), read from a
+//! `[task]` table that may hold several tasks' ([`TaskTables`]), and the habitats and trials one evaluation spans in `habitat`.
 
 use std::collections::BTreeMap;
 
@@ -19,11 +20,13 @@ mod check;
 mod compact;
 mod habitat;
 mod jump;
+mod options;
 mod protocol;
 mod recording;
 mod registry;
 mod spec;
 mod stand;
+mod tables;
 mod walker;
 pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
@@ -32,14 +35,16 @@ pub use habitat::{
     Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
 };
 pub use jump::{JumpOptions, JumpTask, jump};
+pub use options::TaskOptions;
 pub use protocol::{Rest, Watch};
 pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
     recording_interval,
 };
-pub use registry::{TASKS, Task, TaskInfo, task_named};
+pub use registry::{TASKS, Task, TaskInfo, keyword_refusal, task_named, tasks_reading};
 pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
+pub use tables::TaskTables;
 pub use walker::{
     WalkerFitness, WalkerOptions, WalkerTask, iterative_move, size_coefficients, walker,
 };
