@@ -43,7 +43,8 @@ pub const MAX_PERCENT: f64 = 99.0;
 pub struct Habitat {
     /// Its name, unique among the specification's habitats (reports and `--habitat` use it).
     pub name: String,
-    /// Its world (flat ground in air when absent).
+    /// Its world (level ground in air when absent; the task's `[task.world]` is refused beside
+    /// habitats).
     #[serde(default, skip_serializing_if = "WorldSpec::is_flat")]
     pub world: WorldSpec,
     /// The chemical array's initial values in this habitat; absent, the genome's own.
@@ -533,6 +534,14 @@ impl TaskSpec {
             )
             .within("task"));
         }
+        if !self.habitats.is_empty() && !self.world.is_flat() {
+            return Err(SettingError::out_of_range(
+                "world",
+                "absent beside [[task.habitats]]: give each habitat its world",
+                "given",
+            )
+            .within("task"));
+        }
         for (i, h) in self.habitats.iter().enumerate() {
             let within = |mut e: SettingError| {
                 e.table = "[task.habitats]".to_string();
@@ -795,6 +804,13 @@ mod tests {
         );
         spec.habitats[1].world.slope.as_mut().unwrap().degrees = 5.0;
         assert_eq!(spec.check(), Ok(()));
+        spec.world = spec.habitats[1].world.clone();
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task] world must be absent beside [[task.habitats]]: give each habitat its world, \
+             not given"
+        );
+        spec.world = WorldSpec::default();
         let unit = Unit {
             habitat: 1,
             trial: 0,

@@ -174,6 +174,12 @@ fn a_bad_habitats_table_is_refused_with_exit_code_2() {
             "count = 2\nroughness = 120",
             "[task.trials] roughness must be in [0, 99], not 120",
         ),
+        (
+            "environment = [1]",
+            "environment = [1]\n[task.habitats.world]\nslope = { degrees = 95 }",
+            "[task.habitats.world.slope] degrees must be at least 0 and below 80, not 95 \
+             (habitat 'rich')",
+        ),
     ] {
         std::fs::write(&config, text.replace(from, to)).unwrap();
         let out = ontogeny_command()
@@ -272,4 +278,51 @@ fn fresh_trials_walk_the_elite_again_on_new_draws() {
     assert_eq!(elite.genome_text, parent.genome_text);
     // The same creature on the generation's own draws walks differently.
     assert_ne!(units(&elite.genome_json), units(&parent.genome_json));
+}
+
+#[test]
+fn a_habitat_is_walked_in_its_own_world() {
+    let dir = scratch_dir("habitats-world");
+    let walker = "examples/hornby-walker.lsys";
+    let head = "[task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.5\n\n";
+    let slope = "slope = { degrees = 10, direction = 90 }\n";
+    let habitats = dir.join("habitats.toml");
+    std::fs::write(
+        &habitats,
+        format!(
+            "{head}[[task.habitats]]\nname = \"level\"\n\n\
+             [[task.habitats]]\nname = \"hill\"\n[task.habitats.world]\n{slope}"
+        ),
+    )
+    .unwrap();
+    let hill = dir.join("hill.toml");
+    std::fs::write(&hill, format!("{head}[task.world]\n{slope}")).unwrap();
+    let level = dir.join("level.toml");
+    std::fs::write(&level, head).unwrap();
+    let fitness = |config: &Path| -> f64 {
+        eval_json(&[
+            "eval",
+            walker,
+            "--config",
+            config.to_str().unwrap(),
+            "--json",
+        ])["fitness"]
+            .as_f64()
+            .unwrap()
+    };
+    let e = eval_json(&[
+        "eval",
+        walker,
+        "--config",
+        habitats.to_str().unwrap(),
+        "--json",
+    ]);
+    let units = e["habitats"].as_array().unwrap();
+    let walked: Vec<f64> = units
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
+    // Each habitat walks as a plain task in its world does: level ground, then the slope.
+    assert_eq!(walked, [fitness(&level), fitness(&hill)]);
+    assert_ne!(walked[0], walked[1]);
 }
