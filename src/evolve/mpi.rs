@@ -516,7 +516,9 @@ mod tests {
     use super::*;
     use crate::develop::{BuildOptions, grow};
     use crate::lsystem::{DeriveOptions, LSystem};
-    use crate::task::{Status, TaskKind};
+    use crate::sim::WorldSpec;
+    use crate::sim::world_spec::Slope;
+    use crate::task::{Habitat, Status, TaskKind};
 
     /// A creature with real numbers in it: the shipped Hornby & Pollack walker, grown.
     fn walker() -> Creature {
@@ -540,10 +542,25 @@ mod tests {
         let creature = walker();
         assert!(!creature.parts.is_empty());
         let mut task = TaskSpec::new(TaskKind::Walker);
-        task.walker.seconds = 1.0 / 3.0;
+        *task.seconds_mut() = 1.0 / 3.0;
+        // A habitat on a slope, two noisy trials: the unit and its world cross too.
+        task.habitats = vec![Habitat {
+            name: "hill".into(),
+            world: WorldSpec {
+                slope: Some(Slope {
+                    degrees: 5.0,
+                    direction: 0.0,
+                }),
+                ..WorldSpec::default()
+            },
+            environment: None,
+        }];
+        task.trials.count = 2;
+        task.trials.heading = 10.0;
+        let unit = task.units([3; 32], 0)[1];
         let sent: Reply<&Creature, &TaskSpec> = Reply::Work {
             task: Some(&task),
-            jobs: vec![(7, &creature, None)],
+            jobs: vec![(7, &creature, Some(unit))],
         };
         let bytes = encode(&sent);
         let Reply::Work {
@@ -553,11 +570,15 @@ mod tests {
         else {
             panic!("not the work sent");
         };
-        assert_eq!(jobs, vec![(7, creature.clone(), None)]);
+        assert_eq!(jobs, vec![(7, creature.clone(), Some(unit))]);
         assert_eq!(encode(&received_task), encode(&task));
-        // The task evaluates the received creature as it does the original.
-        let evaluation = task.evaluate(&creature, false);
-        assert_eq!(received_task.evaluate(&jobs[0].1, false), evaluation);
+        assert_eq!(received_task.habitats, task.habitats);
+        // The task evaluates the received creature and unit as it does the originals.
+        let evaluation = task.evaluate_job_plainly(&creature, Some(&unit));
+        assert_eq!(
+            received_task.evaluate_job_plainly(&jobs[0].1, jobs[0].2.as_ref()),
+            evaluation
+        );
         // Every f64, even those JSON cannot carry, comes back with the same bits.
         let odd = [
             f64::NAN,
