@@ -65,7 +65,7 @@ pub struct World {
     /// The largest gap seen between the two ends of any joint's anchor (m).
     pub(super) peak_joint_gap: f64,
     /// The ground, the obstacles and the free objects.
-    pub(super) ground: super::ground::Ground,
+    pub(super) ground: super::slots::Ground,
 }
 
 /// A world vector back in the project's nalgebra.
