@@ -70,6 +70,14 @@ pub struct EvalArgs {
     /// Print the evaluation as JSON.
     #[arg(long)]
     json: bool,
+    /// Take the task and its settings — habitats and trials included — from a run
+    /// configuration's `[task]` table instead of the task's flags.
+    #[arg(long, value_name = "CONFIG")]
+    config: Option<PathBuf>,
+    /// Evaluate only the habitat named NAME (every trial of it) of a task with
+    /// `[[task.habitats]]`.
+    #[arg(long, value_name = "NAME")]
+    habitat: Option<String>,
 }
 
 /// How the input is named in reports: its path, or `<stdin>` for `-` (as in diagnostics).
@@ -143,6 +151,38 @@ struct Inputs {
 /// flags that differ from the record said on standard error).
 fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
     let max_modules = ontogeny::lsystem::DEFAULT_MAX_MODULES;
+    if let Some(config) = &args.config {
+        let mut clashing: Vec<String> = [
+            "task",
+            "seconds",
+            "fitness",
+            "activation",
+            "target",
+            "projectile_size",
+            "projectile_density",
+        ]
+        .into_iter()
+        .filter(|id| given(id))
+        .map(|id| format!("--{}", id.replace('_', "-")))
+        .collect();
+        if physics_given() {
+            clashing.push("a physics flag".to_string());
+        }
+        if !clashing.is_empty() {
+            return Err(super::bad(format!(
+                "--config {} gives the task's settings; {} cannot be given with it (set it in the config's [task] table)",
+                config.display(),
+                clashing.join(", ")
+            )));
+        }
+        let spec = ontogeny::run::config::read_task_config(config).map_err(anyhow::Error::new)?;
+        return Ok(Inputs {
+            spec,
+            seed: args.development.seed.seed(),
+            max_parts: args.max_parts,
+            max_modules,
+        });
+    }
     let record = if args.file.as_os_str() == "-" {
         None
     } else {
@@ -272,12 +312,20 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
 /// Evaluates the creature and prints the result.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let inputs = inputs(args)?;
+    let only = match &args.habitat {
+        Some(name) => Some(inputs.spec.habitat_named(name).map_err(super::bad)?),
+        None => None,
+    };
+    if !inputs.spec.is_plain() {
+        return run_in_habitats(args, &inputs, only);
+    }
     let creature = load_creature_with(
         &args.file,
         &args.development,
         inputs.seed,
         inputs.max_parts,
         inputs.max_modules,
+        None,
     )?;
     let spec = inputs.spec;
     // A place to record into, checked before the evaluation runs.
@@ -315,6 +363,82 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         "{}",
         flags::evaluation_text(&input_name(&args.file), &evaluation)
     );
+    Ok(())
+}
+
+/// [`run`] for a task with habitats or trials: the creature grown in each habitat (with its
+/// array), every unit walked (those of habitat `only`, when given), a line per unit and the
+/// aggregate; `--record` records the first unit's walk.
+fn run_in_habitats(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> anyhow::Result<()> {
+    let spec = &inputs.spec;
+    if args.file.as_os_str() == "-" && spec.habitat_count() > 1 {
+        return Err(super::bad(
+            "a task with several habitats grows the creature once in each; give a file, not -",
+        ));
+    }
+    if let Some(dir) = &args.record {
+        ontogeny::output::check_folder(dir, FolderKind::Recording)?;
+        super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
+    }
+    let creatures = (0..spec.habitat_count())
+        .map(|h| {
+            load_creature_with(
+                &args.file,
+                &args.development,
+                inputs.seed,
+                inputs.max_parts,
+                inputs.max_modules,
+                spec.habitat_environment(h),
+            )
+        })
+        .collect::<anyhow::Result<Vec<Creature>>>()?;
+    let mut progress = Progress::new(format!(
+        "{} walks",
+        spec.trials.count as usize * only.map_or(spec.habitat_count(), |_| 1)
+    ));
+    let evaluation = ontogeny::evolve::habitats::evaluate_in_habitats(
+        spec,
+        &creatures,
+        0,
+        only,
+        ontogeny::evolve::evaluator::Evaluator::Local,
+        &ontogeny::cancel::Cancel::default(),
+    )?;
+    progress.finish();
+    if let Some(dir) = &args.record {
+        let key = ontogeny::evolve::key::EvaluationKey::of_habitats(
+            &creatures,
+            spec,
+            ontogeny::evolve::key::KeyVersion::default(),
+        );
+        let unit = spec
+            .units(key.0, 0)
+            .into_iter()
+            .find(|u| only.is_none_or(|h| u.habitat as usize == h))
+            .expect("a task has a unit in every habitat");
+        let walked = unit.perturbation.place(&creatures[unit.habitat as usize]);
+        let recorded = spec.unit_spec(&unit).evaluate(&walked, true);
+        tell!(
+            "note: recording {}trial 1",
+            match spec.habitat_name(unit.habitat as usize) {
+                "" => String::new(),
+                name => format!("habitat {name}, "),
+            }
+        );
+        ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
+        write_recording(dir, &walked, &recorded)?;
+        let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
+        tell!("{}", ontogeny::output::wrote(&files));
+    }
+    if args.json {
+        say!("{}", serde_json::to_string_pretty(&evaluation)?);
+        return Ok(());
+    }
+    say!(
+        "{}",
+        flags::evaluation_text(&input_name(&args.file), &evaluation)
+    );
+    say!("{}", flags::habitats_text(spec, &evaluation));
     Ok(())
 }
 

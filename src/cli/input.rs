@@ -25,17 +25,19 @@ pub(super) fn load_creature(
         development.seed.seed(),
         max_parts,
         DEFAULT_MAX_MODULES,
+        None,
     )
 }
 
 /// [`load_creature`] with a derived string's most modules, `max_modules` (a run's limit, for
-/// its champion).
+/// its champion), in a habitat whose chemical array starts as `environment`, if given.
 pub(super) fn load_creature_with(
     file: &Path,
     development: &DevelopmentArgs,
     seed: Option<u64>,
     max_parts: usize,
     max_modules: usize,
+    environment: Option<&[f64]>,
 ) -> anyhow::Result<Creature> {
     if file.extension().is_some_and(|e| e == "json") {
         let flags = development.given();
@@ -53,6 +55,7 @@ pub(super) fn load_creature_with(
             seed,
             ..derive_options(development, max_modules)
         },
+        habitat_environment: environment.map(<[f64]>::to_vec),
         defines: development.defines.defines.clone(),
         steps: development.steps,
         max_parts,

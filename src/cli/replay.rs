@@ -36,6 +36,11 @@ pub struct ReplayArgs {
     /// For a run: re-evaluate with this fitness formula.
     #[command(flatten)]
     fitness: FitnessArgs,
+    /// For a run with `[[task.habitats]]`: the habitat named NAME alone (its creature, its
+    /// trials' aggregate, its first trial recorded) [default: every habitat, the first
+    /// habitat's first trial recorded].
+    #[arg(long, value_name = "NAME")]
+    habitat: Option<String>,
 }
 
 /// Re-renders `DIR/recording.json` into `DIR/behaviour.gif`.
@@ -144,16 +149,56 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
     ])?;
     ontogeny::output::write(&genome_path, individual.genome.to_text())?;
     let limits = &run.config().limits;
-    let creature = individual
-        .genome
-        .develop(limits, individual.develop_seed)
-        .map_err(|e| super::bad(format!("the genome does not develop: {e}")))?;
-    let title = format!("generation {generation}, rank {rank}");
-    ontogeny::render::write_png(&creature, &title, &png, 960, 600)
-        .map_err(super::render_error(&png))?;
     let task = changed.as_ref().unwrap_or(&run.config().task);
-    let evaluation = task.evaluate(&creature, true);
-    super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
+    let only = match &args.habitat {
+        Some(name) => Some(task.habitat_named(name).map_err(super::bad)?),
+        None => None,
+    };
+    let creatures = ontogeny::evolve::habitats::develop_in_habitats(
+        &individual.genome,
+        limits,
+        individual.develop_seed,
+        task,
+    )
+    .map_err(|e| super::bad(format!("the genome does not develop: {e}")))?;
+    let habitat = only.unwrap_or(0);
+    let creature = &creatures[habitat];
+    let title = format!("generation {generation}, rank {rank}");
+    ontogeny::render::write_png(creature, &title, &png, 960, 600)
+        .map_err(super::render_error(&png))?;
+    let evaluation = if task.is_plain() {
+        let evaluation = task.evaluate(creature, true);
+        super::eval::write_recording_at(&out, creature, &evaluation, fps)?;
+        evaluation
+    } else {
+        // Every unit walked for the aggregate; the habitat's first trial recorded.
+        let evaluation = ontogeny::evolve::habitats::evaluate_in_habitats(
+            task,
+            &creatures,
+            0,
+            only,
+            ontogeny::evolve::evaluator::Evaluator::Local,
+            &ontogeny::cancel::Cancel::default(),
+        )?;
+        let key = ontogeny::evolve::key::EvaluationKey::of_habitats(
+            &creatures,
+            task,
+            ontogeny::evolve::key::KeyVersion::default(),
+        );
+        let unit = task
+            .units(key.0, 0)
+            .into_iter()
+            .find(|u| u.habitat as usize == habitat)
+            .expect("every habitat has a trial");
+        let walked = unit.perturbation.place(creature);
+        let recorded = task.unit_spec(&unit).evaluate(&walked, true);
+        super::eval::write_recording_at(&out, &walked, &recorded, fps)?;
+        say!(
+            "{}",
+            ontogeny::front::flags::habitats_text(task, &evaluation)
+        );
+        evaluation
+    };
     let stored = individual.evaluation.fitness;
     say!(
         "generation {generation}, rank {rank}: {} fitness {:.6} ({}; stored {stored:.6})",
@@ -168,6 +213,11 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
             "note: re-evaluated as the flags ask ({}), not as the run evaluated it ({}); the stored fitness is the run's",
             task.fitness_label(),
             run.config().task.fitness_label()
+        );
+    } else if only.is_some() {
+        tell!(
+            "note: habitat {} alone; the stored fitness is the aggregate of every habitat",
+            args.habitat.as_deref().unwrap_or("")
         );
     } else if evaluation.fitness != stored {
         tell!("warning: the re-evaluation differs from the stored fitness");

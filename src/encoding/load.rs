@@ -29,6 +29,11 @@ pub struct LoadOptions {
     /// Set, it stops the growth of an L-system before its next frame (see
     /// [`BuildOptions::cancel`]).
     pub cancel: crate::cancel::Cancel,
+    /// A habitat's chemical array: an L-system whose `environment:` has as many slots grows
+    /// from it (`derive.env` still applies over it), and a JSON creature whose controller's
+    /// array has as many slots gets it, as [`super::Genome::develop_in`] does; another length
+    /// leaves the creature's own array.
+    pub habitat_environment: Option<Vec<f64>>,
 }
 
 impl Default for LoadOptions {
@@ -39,6 +44,7 @@ impl Default for LoadOptions {
             steps: None,
             max_parts: BuildOptions::default().max_parts,
             cancel: crate::cancel::Cancel::default(),
+            habitat_environment: None,
         }
     }
 }
@@ -98,9 +104,18 @@ pub fn load_creature(
             path: file.to_path_buf(),
             source,
         })?;
-        return creature_json(file, &text, options.max_parts).map(|creature| Loaded {
-            creature,
-            notes: Vec::new(),
+        return creature_json(file, &text, options.max_parts).map(|mut creature| {
+            if let Some(values) = options
+                .habitat_environment
+                .as_ref()
+                .filter(|v| v.len() == creature.environment.len())
+            {
+                creature.environment = values.clone();
+            }
+            Loaded {
+                creature,
+                notes: Vec::new(),
+            }
         });
     }
     let overrides = Overrides {
@@ -163,6 +178,24 @@ pub fn grow_grammar(
     progress: &mut dyn FnMut(f64),
 ) -> Result<Loaded, LoadError> {
     let mut notes: Vec<String> = lsys.findings().iter().map(|d| d.warning()).collect();
+    let in_habitat;
+    let options = match &options.habitat_environment {
+        Some(values) if values.len() == lsys.environment().len() => {
+            let mut derive = options.derive.clone();
+            derive.env = values
+                .iter()
+                .copied()
+                .enumerate()
+                .chain(derive.env)
+                .collect();
+            in_habitat = LoadOptions {
+                derive,
+                ..options.clone()
+            };
+            &in_habitat
+        }
+        _ => options,
+    };
     notes.extend(print::check_mode(
         lsys,
         &options.derive,

@@ -12,7 +12,18 @@ use rayon::prelude::*;
 
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
-use crate::task::{Evaluation, TaskSpec, Watch};
+use crate::task::{Evaluation, TaskSpec, Unit, Watch};
+
+/// One walk to simulate: a creature, and the unit of its individual's evaluation it is (its
+/// habitat, trial and draw), or `None` for the one walk of a plain specification.
+#[derive(Clone, Copy, Debug)]
+pub struct Job<'a> {
+    /// The creature, developed in the unit's habitat.
+    pub creature: &'a Creature,
+    /// The unit ([`TaskSpec::evaluate_unit_watched`]), or `None`
+    /// ([`TaskSpec::evaluate_watched`]).
+    pub unit: Option<Unit>,
+}
 
 /// What evaluates a batch of creatures.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,31 +46,33 @@ impl Evaluator {
         Evaluator::Local
     }
 
-    /// The evaluations of `creatures` on `task`, in order; `Interrupted` once `cancel` is
-    /// set (on this process's threads, every evaluation stops at its next control step and no
-    /// new one starts; a batch sent to MPI ranks runs to its end first).
+    /// The evaluations of `jobs` on `task`, in order, each job a separate unit of parallel
+    /// work; `Interrupted` once `cancel` is set (on this process's threads, every evaluation
+    /// stops at its next control step and no new one starts; a batch sent to MPI ranks runs to
+    /// its end first).
     pub fn evaluate(
         self,
         task: &TaskSpec,
-        creatures: &[&Creature],
+        jobs: &[Job<'_>],
         cancel: &Cancel,
     ) -> Result<Vec<Evaluation>, Interrupted> {
         match self {
-            Evaluator::Local => creatures
+            Evaluator::Local => jobs
                 .par_iter()
-                .map(|creature| {
+                .map(|job| {
                     cancel.check()?;
                     let watch = Watch {
                         record: false,
                         progress: &mut |_| {},
                         cancel: Some(cancel),
                     };
-                    task.evaluate_watched(creature, watch)
+                    task.evaluate_job(job.creature, job.unit.as_ref(), watch)
                 })
                 .collect(),
             #[cfg(feature = "mpi")]
             Evaluator::Mpi => {
-                let evaluations = super::mpi::evaluate(task, creatures);
+                let jobs: Vec<_> = jobs.iter().map(|j| (j.creature, j.unit)).collect();
+                let evaluations = super::mpi::evaluate(task, &jobs);
                 cancel.check()?;
                 Ok(evaluations)
             }

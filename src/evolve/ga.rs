@@ -12,14 +12,15 @@ use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
 use super::cache::EvaluationCache;
-use super::evaluator::Evaluator;
+use super::evaluator::{Evaluator, Job};
+use super::habitats::develop_in_habitats;
 use super::key::{EvaluationKey, KeyVersion};
 use super::record::GenerationRecord;
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::sim::SettingError;
-use crate::task::{Evaluation, Status, TaskSpec, TaskTables};
+use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
 /// The operators' schedule of a published genetic algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -357,10 +358,11 @@ struct Unborn<G> {
     operator: Operator,
 }
 
-/// A new individual developed, before evaluation: its creature (or why it has none) and key.
+/// A new individual developed, before evaluation: its creatures, one per habitat (or why it
+/// has none), and key.
 struct Developed<G> {
     unborn: Unborn<G>,
-    creature: Result<Creature, String>,
+    creatures: Result<Vec<Creature>, String>,
     key: Option<EvaluationKey>,
 }
 
@@ -375,8 +377,9 @@ enum Source {
 }
 
 impl<G: Genome> Evolution<G> {
-    /// The evaluation key of the creature `genome` develops into with `develop_seed` (`None`
-    /// when it does not develop): for an individual stored before keys were.
+    /// The evaluation key of the creatures `genome` develops into with `develop_seed` in the
+    /// task's habitats (`None` when it does not develop): for an individual stored before keys
+    /// were.
     pub fn key(&self, genome: &G, develop_seed: u64) -> Option<EvaluationKey> {
         self.key_of_version(genome, develop_seed, self.key_version)
     }
@@ -388,47 +391,58 @@ impl<G: Genome> Evolution<G> {
         develop_seed: u64,
         version: KeyVersion,
     ) -> Option<EvaluationKey> {
-        genome
-            .develop(&self.limits, develop_seed)
+        develop_in_habitats(genome, &self.limits, develop_seed, &self.task)
             .ok()
-            .map(|c| self.key_of_creature(&c, version))
+            .map(|c| self.key_of_creatures(&c, version))
     }
 
-    /// The key of `creature`, of version `version`.
-    fn key_of_creature(&self, creature: &Creature, version: KeyVersion) -> EvaluationKey {
-        match (version, &self.key_tables) {
-            (KeyVersion::V1, Some(tables)) => EvaluationKey::of_tables(creature, tables),
-            _ => EvaluationKey::of_version(creature, &self.task, version),
+    /// The key of an individual developed into `creatures` (one per habitat), of version
+    /// `version`: a run made before version 2, which has no habitats, keys its one creature
+    /// with its stored tables.
+    fn key_of_creatures(&self, creatures: &[Creature], version: KeyVersion) -> EvaluationKey {
+        match (version, &self.key_tables, creatures) {
+            (KeyVersion::V1, Some(tables), [creature]) if self.task.is_plain() => {
+                EvaluationKey::of_tables(creature, tables)
+            }
+            _ => EvaluationKey::of_habitats(creatures, &self.task, version),
         }
     }
 
-    /// Develops one genome and keys its creature with the task.
+    /// Develops one genome in every habitat and keys its creatures with the task.
     fn develop(&self, unborn: Unborn<G>) -> Developed<G> {
-        let creature = unborn
-            .genome
-            .develop(&self.limits, unborn.develop_seed)
-            .map_err(|e| e.to_string());
-        let key = creature
+        let creatures = develop_in_habitats(
+            &unborn.genome,
+            &self.limits,
+            unborn.develop_seed,
+            &self.task,
+        )
+        .map_err(|e| e.to_string());
+        let key = creatures
             .as_ref()
             .ok()
-            .map(|c| self.key_of_creature(c, self.key_version));
+            .map(|c| self.key_of_creatures(c, self.key_version));
         Developed {
             unborn,
-            creature,
+            creatures,
             key,
         }
     }
 
-    /// Develops and evaluates new individuals, in parallel. With the cache on, an individual
-    /// whose key the cache holds reuses that evaluation, and one whose key a lower-indexed
-    /// individual of `unborn` has reuses that one's (decided before any simulation, so the
-    /// result does not depend on the number of threads); every new evaluation joins the cache.
+    /// Develops and evaluates new individuals, in parallel, each walk (habitat × trial) a
+    /// separate job. With the cache on, an individual whose key the cache holds reuses that
+    /// evaluation, and one whose key a lower-indexed individual of `unborn` has reuses that
+    /// one's (decided before any simulation, so the result does not depend on the number of
+    /// threads); every new evaluation joins the cache. With fresh trials (drawn anew each
+    /// generation, `generation` joining the seed) no evaluation of another generation is
+    /// reused or kept.
     fn evaluate_all(
         &self,
         unborn: Vec<Unborn<G>>,
+        generation: u32,
         cache: &mut EvaluationCache,
         cancel: &Cancel,
     ) -> Result<Vec<Individual<G>>, Interrupted> {
+        let fresh = self.task.trials.fresh;
         let developed: Vec<Developed<G>> = unborn
             .into_par_iter()
             .map(|u| cancel.check().map(|()| self.develop(u)))
@@ -439,7 +453,7 @@ impl<G: Genome> Evolution<G> {
             .enumerate()
             .map(|(index, d)| match d.key {
                 Some(key) if cache.enabled() => {
-                    if let Some(evaluation) = cache.get(&key) {
+                    if let Some(evaluation) = cache.get(&key).filter(|_| !fresh) {
                         Source::Cached(evaluation.clone())
                     } else if let Some(&first) = first_with.get(&key) {
                         Source::Sibling(first)
@@ -454,7 +468,7 @@ impl<G: Genome> Evolution<G> {
         let mut simulated: Vec<Option<Evaluation>> = developed
             .iter()
             .zip(&sources)
-            .map(|(d, source)| match (source, &d.creature) {
+            .map(|(d, source)| match (source, &d.creatures) {
                 (Source::Simulated, Err(e)) => Some(Evaluation::invalid(
                     self.task.task.name(),
                     format!("development: {e}"),
@@ -462,18 +476,41 @@ impl<G: Genome> Evolution<G> {
                 _ => None,
             })
             .collect();
-        let (jobs, creatures): (Vec<usize>, Vec<&Creature>) = developed
-            .iter()
-            .zip(&sources)
-            .enumerate()
-            .filter_map(|(index, (d, source))| match (source, &d.creature) {
-                (Source::Simulated, Ok(creature)) => Some((index, creature)),
-                _ => None,
-            })
-            .unzip();
-        let evaluations = Evaluator::current().evaluate(&self.task, &creatures, cancel)?;
-        for (index, evaluation) in jobs.into_iter().zip(evaluations) {
-            simulated[index] = Some(evaluation);
+        // Each simulated individual's units (none for a plain task) and its jobs' range.
+        let mut jobs: Vec<Job<'_>> = Vec::new();
+        let mut owners: Vec<(usize, Vec<Unit>, std::ops::Range<usize>)> = Vec::new();
+        for (index, (d, source)) in developed.iter().zip(&sources).enumerate() {
+            let (Source::Simulated, Ok(creatures), Some(key)) = (source, &d.creatures, d.key)
+            else {
+                continue;
+            };
+            let start = jobs.len();
+            let units = if self.task.is_plain() {
+                jobs.push(Job {
+                    creature: &creatures[0],
+                    unit: None,
+                });
+                Vec::new()
+            } else {
+                let units = self.task.units(key.0, generation);
+                jobs.extend(units.iter().map(|u| Job {
+                    creature: &creatures[u.habitat as usize],
+                    unit: Some(*u),
+                }));
+                units
+            };
+            owners.push((index, units, start..jobs.len()));
+        }
+        let mut evaluations = Evaluator::current().evaluate(&self.task, &jobs, cancel)?;
+        for (index, units, range) in owners.into_iter().rev() {
+            let mine: Vec<Evaluation> = evaluations.drain(range).collect();
+            simulated[index] = Some(match &developed[index].creatures {
+                Ok(creatures) if !units.is_empty() => self.task.combine(&units, mine, creatures),
+                _ => mine
+                    .into_iter()
+                    .next()
+                    .expect("a plain individual has one walk"),
+            });
         }
         let mut born = Vec::with_capacity(developed.len());
         for (d, source) in developed.into_iter().zip(sources) {
@@ -492,10 +529,10 @@ impl<G: Genome> Evolution<G> {
                     true,
                 ),
             };
-            if let (Some(key), false) = (d.key, reused) {
+            if let (Some(key), false, false) = (d.key, reused, fresh) {
                 cache.insert(key, &evaluation);
             }
-            let size = match &d.creature {
+            let size = match d.creatures.as_ref().map(|c| &c[0]) {
                 Ok(c) => (
                     c.parts.len() as u32,
                     c.joints.len() as u32,
@@ -547,11 +584,11 @@ impl<G: Genome> Evolution<G> {
                 }
             })
             .collect();
-        self.evaluate_all(unborn, cache, cancel)
+        self.evaluate_all(unborn, 0, cache, cancel)
     }
 
     /// The next generation, number `generation`, from `previous` (in any order): the elite
-    /// carried over with their evaluations, the rest made by the preset's operators and
+    /// carried over with their evaluations (or walked again, with fresh trials), the rest made by the preset's operators and
     /// evaluated in parallel. Returns it, best first among the elite, and the number of
     /// evaluations made. `fallbacks` counts children made by mutation because the encoding
     /// lacks the scheduled operator. A child identical to a creature of `cache` reuses its
@@ -597,7 +634,21 @@ impl<G: Genome> Evolution<G> {
                 child.into_unborn(develop_seed)
             })
             .unzip();
-        let born = self.evaluate_all(unborn, cache, cancel)?;
+        let mut unborn = unborn;
+        if self.task.trials.fresh {
+            // The elite are walked again on this generation's draws, before the children.
+            let elite: Vec<Unborn<G>> = next
+                .drain(..)
+                .map(|e| Unborn {
+                    genome: e.genome,
+                    develop_seed: e.develop_seed,
+                    parents: e.parents,
+                    operator: Operator::Elite,
+                })
+                .collect();
+            unborn.splice(0..0, elite);
+        }
+        let born = self.evaluate_all(unborn, generation, cache, cancel)?;
         for op in fell_back.into_iter().flatten() {
             fallbacks.count(op);
         }

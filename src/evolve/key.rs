@@ -111,6 +111,35 @@ impl EvaluationKey {
         EvaluationKey(hasher.0.finalize().into())
     }
 
+    /// The key of an individual developed into `creatures`, one per habitat of `task` (in
+    /// the order of `[[task.habitats]]`), of version `version`. A plain specification (no
+    /// habitats, the default trials) gives its one creature's key
+    /// ([`EvaluationKey::of_version`]), so no key made before habitats changes; otherwise the
+    /// key hashes each habitat's key (its creature with [`TaskSpec::in_habitat`]), each
+    /// habitat's name and array, and the trials.
+    pub fn of_habitats(
+        creatures: &[Creature],
+        task: &TaskSpec,
+        version: KeyVersion,
+    ) -> EvaluationKey {
+        if task.is_plain() && creatures.len() == 1 {
+            return EvaluationKey::of_version(&creatures[0], task, version);
+        }
+        let mut hasher = CanonicalHasher(Sha256::new());
+        let keys: Vec<[u8; 32]> = creatures
+            .iter()
+            .enumerate()
+            .map(|(h, c)| EvaluationKey::of_version(c, &task.in_habitat(h), version).0)
+            .collect();
+        let habitats: Vec<(&str, Option<&[f64]>)> = (0..creatures.len())
+            .map(|h| (task.habitat_name(h), task.habitat_environment(h)))
+            .collect();
+        ("habitats", keys, habitats, &task.trials)
+            .serialize(&mut hasher)
+            .expect("every creature and task serialises");
+        EvaluationKey(hasher.0.finalize().into())
+    }
+
     /// The key as 64 lowercase hexadecimal digits, as the run store keeps it.
     pub fn to_hex(&self) -> String {
         self.0.iter().map(|b| format!("{b:02x}")).collect()

@@ -1,6 +1,7 @@
 //! The genetic algorithm: [`ga`] (presets as data, a generational loop over any
 //! [`crate::encoding::Genome`], parallel evaluation), the evaluation cache and its keys
-//! ([`cache`], [`key`]), where evaluations run ([`evaluator`]: this process's threads, or every
+//! ([`cache`], [`key`]), an individual developed and evaluated in its habitats
+//! ([`habitats`]), where evaluations run ([`evaluator`]: this process's threads, or every
 //! rank of an MPI job with the `mpi` feature) and the version of their behaviour that a run
 //! records ([`evaluator_version`]), and a generation's record ([`record`]).
 
@@ -8,6 +9,7 @@ pub mod cache;
 pub mod evaluator;
 pub mod evaluator_version;
 pub mod ga;
+pub mod habitats;
 pub mod key;
 #[cfg(feature = "mpi")]
 pub mod mpi;

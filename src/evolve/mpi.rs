@@ -35,7 +35,10 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::creature::Creature;
-use crate::task::{Evaluation, TaskSpec};
+use crate::task::{Evaluation, TaskSpec, Unit};
+
+/// A walk to simulate: a creature and its unit, if any ([`TaskSpec::evaluate_job`]).
+pub type Job<'a> = (&'a Creature, Option<Unit>);
 
 /// Worker → rank 0: evaluations finished, and the worker's number of threads.
 const REQUEST: i32 = 1;
@@ -71,8 +74,8 @@ enum Reply<C, T> {
     Work {
         /// The task, when it differs from the one the worker has.
         task: Option<T>,
-        /// The jobs.
-        jobs: Vec<(u32, C)>,
+        /// The jobs: index, creature and unit.
+        jobs: Vec<(u32, C, Option<Unit>)>,
     },
     /// No more work: the worker ends.
     Stop,
@@ -203,8 +206,9 @@ impl Drop for Membership {
     }
 }
 
-/// The evaluations of `creatures` on `task`, in order, over every rank of the job.
-pub fn evaluate(task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
+/// The evaluations of `creatures` (with their units) on `task`, in order, over every rank of
+/// the job.
+pub fn evaluate(task: &TaskSpec, creatures: &[Job<'_>]) -> Vec<Evaluation> {
     let mut guard = master();
     match guard.as_mut() {
         Some(state) => state.evaluate(&SimpleCommunicator::world(), task, creatures),
@@ -214,10 +218,10 @@ pub fn evaluate(task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
 
 /// The evaluations of `creatures` on `task`, in order, on this process's worker threads: a
 /// batch on a process that is not rank 0 of a job of several ranks, and a worker's share.
-pub fn evaluate_locally(task: &TaskSpec, creatures: &[&Creature]) -> Vec<Evaluation> {
+pub fn evaluate_locally(task: &TaskSpec, creatures: &[Job<'_>]) -> Vec<Evaluation> {
     creatures
         .par_iter()
-        .map(|creature| task.evaluate(creature, false))
+        .map(|(creature, unit)| task.evaluate_job_plainly(creature, unit.as_ref()))
         .collect()
 }
 
@@ -308,7 +312,7 @@ impl Master {
         &mut self,
         world: &SimpleCommunicator,
         task: &TaskSpec,
-        creatures: &[&Creature],
+        creatures: &[Job<'_>],
     ) -> Vec<Evaluation> {
         let size = creatures.len();
         let batch_started = Instant::now();
@@ -334,7 +338,9 @@ impl Master {
             threads_scope.spawn(|| {
                 (0..threads).into_par_iter().for_each(|_| {
                     while let Some(index) = take(&queue, 1, size).next() {
-                        let _ = slots[index].set(task.evaluate(creatures[index], false));
+                        let (creature, unit) = &creatures[index];
+                        let _ =
+                            slots[index].set(task.evaluate_job_plainly(creature, unit.as_ref()));
                         done.fetch_add(1, Ordering::SeqCst);
                     }
                 })
@@ -398,7 +404,7 @@ impl Master {
         outgoing: &mut Outgoing<'a, '_>,
         rank: i32,
         task: &TaskSpec,
-        creatures: &[&Creature],
+        creatures: &[Job<'_>],
         queue: &AtomicUsize,
     ) {
         let started = Instant::now();
@@ -417,7 +423,10 @@ impl Master {
         }
         let reply: Reply<&Creature, &TaskSpec> = Reply::Work {
             task: (worker.task_version != version).then_some(task),
-            jobs: jobs.clone().map(|i| (i as u32, creatures[i])).collect(),
+            jobs: jobs
+                .clone()
+                .map(|i| (i as u32, creatures[i].0, creatures[i].1))
+                .collect(),
         };
         let bytes = outgoing.send(rank, encode(&reply));
         worker.task_version = version;
@@ -480,14 +489,15 @@ fn serve(world: &SimpleCommunicator) -> Result<(), String> {
                 jobs
             }
         };
-        for (index, creature) in jobs {
+        for (index, creature, unit) in jobs {
             let task = task
                 .clone()
                 .ok_or_else(|| "a job came before its task".to_string())?;
             let finished = finished.clone();
             in_flight += 1;
             rayon::spawn(move || {
-                let _ = finished.send((index, task.evaluate(&creature, false)));
+                let evaluation = task.evaluate_job_plainly(&creature, unit.as_ref());
+                let _ = finished.send((index, evaluation));
             });
         }
         if in_flight > 0 {
@@ -506,7 +516,9 @@ mod tests {
     use super::*;
     use crate::develop::{BuildOptions, grow};
     use crate::lsystem::{DeriveOptions, LSystem};
-    use crate::task::{Status, TaskKind};
+    use crate::sim::WorldSpec;
+    use crate::sim::world_spec::Slope;
+    use crate::task::{Habitat, Status, TaskKind};
 
     /// A creature with real numbers in it: the shipped Hornby & Pollack walker, grown.
     fn walker() -> Creature {
@@ -531,9 +543,24 @@ mod tests {
         assert!(!creature.parts.is_empty());
         let mut task = TaskSpec::new(TaskKind::Walker);
         *task.seconds_mut() = 1.0 / 3.0;
+        // A habitat on a slope, two noisy trials: the unit and its world cross too.
+        task.habitats = vec![Habitat {
+            name: "hill".into(),
+            world: WorldSpec {
+                slope: Some(Slope {
+                    degrees: 5.0,
+                    direction: 0.0,
+                }),
+                ..WorldSpec::default()
+            },
+            environment: None,
+        }];
+        task.trials.count = 2;
+        task.trials.heading = 10.0;
+        let unit = task.units([3; 32], 0)[1];
         let sent: Reply<&Creature, &TaskSpec> = Reply::Work {
             task: Some(&task),
-            jobs: vec![(7, &creature)],
+            jobs: vec![(7, &creature, Some(unit))],
         };
         let bytes = encode(&sent);
         let Reply::Work {
@@ -543,11 +570,15 @@ mod tests {
         else {
             panic!("not the work sent");
         };
-        assert_eq!(jobs, vec![(7, creature.clone())]);
+        assert_eq!(jobs, vec![(7, creature.clone(), Some(unit))]);
         assert_eq!(encode(&received_task), encode(&task));
-        // The task evaluates the received creature as it does the original.
-        let evaluation = task.evaluate(&creature, false);
-        assert_eq!(received_task.evaluate(&jobs[0].1, false), evaluation);
+        assert_eq!(received_task.habitats, task.habitats);
+        // The task evaluates the received creature and unit as it does the originals.
+        let evaluation = task.evaluate_job_plainly(&creature, Some(&unit));
+        assert_eq!(
+            received_task.evaluate_job_plainly(&jobs[0].1, jobs[0].2.as_ref()),
+            evaluation
+        );
         // Every f64, even those JSON cannot carry, comes back with the same bits.
         let odd = [
             f64::NAN,

@@ -6,7 +6,7 @@
 use crate::sim::{SettingError, SimOptions};
 
 use crate::task::{
-    CatapultOptions, Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness,
+    CatapultOptions, Evaluation, MAX_RECORDED_SAMPLES, Status, TaskKind, TaskSpec, WalkerFitness,
     WalkerOptions,
 };
 
@@ -158,6 +158,38 @@ pub fn joint_gap_warning(evaluation: &Evaluation) -> Option<String> {
             gap * 100.0
         )
     })
+}
+
+/// A line per habitat and trial of an evaluation with habitats
+/// (`  habitat cued, trial 2: fitness 1.250000 (ok)`), then how they combine
+/// (`  fitness: the mean of 4 walks`).
+pub fn habitats_text(spec: &TaskSpec, evaluation: &Evaluation) -> String {
+    let mut lines: Vec<String> = evaluation
+        .units()
+        .iter()
+        .map(|r| {
+            let place = match r.name.as_str() {
+                "" => String::new(),
+                name => format!("habitat {name}, "),
+            };
+            format!(
+                "  {place}trial {}: fitness {:.6} ({})",
+                r.trial + 1,
+                r.fitness,
+                r.status.name()
+            )
+        })
+        .collect();
+    let walks = evaluation.units().len();
+    lines.push(match evaluation.status {
+        Status::Ok => format!(
+            "  fitness: the {} of {walks} walk{}",
+            spec.trials.aggregate.name(),
+            if walks == 1 { "" } else { "s" }
+        ),
+        _ => format!("  fitness: the failure floor, as a walk of the {walks} failed"),
+    });
+    lines.join("\n")
 }
 
 /// The evaluation of the creature named `name` as text: fitness and status, each term, and

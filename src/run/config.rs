@@ -307,6 +307,20 @@ pub fn read_config_source(path: &Path) -> Result<Arc<Source>, Diagnostic> {
     Ok(source)
 }
 
+/// The task a configuration file at `path` gives (its `[task]` table; the walker's defaults
+/// without one), checked as a run's is: for `ontogeny eval --config`. A key out of range is
+/// named at its line and column.
+pub fn read_task_config(path: &Path) -> Result<TaskSpec, Diagnostic> {
+    let source = read_config_source(path)?;
+    let config: ConfigFile<toml::Value> = read_config(&source)?;
+    let tables = config.task.unwrap_or_default();
+    let task = tables.spec(tables.kind());
+    task.check()
+        .and_then(|()| tables.check_other_tables(task.task.table()))
+        .map_err(|e| setting_diagnostic(&source, &e))?;
+    Ok(task)
+}
+
 /// Reads a configuration file whose limits are `L`.
 pub fn read_config<L: DeserializeOwned>(source: &Source) -> Result<ConfigFile<L>, Diagnostic> {
     toml::from_str(source.text()).map_err(|e| toml_diagnostic(source, &e))

@@ -27,7 +27,7 @@ use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator};
 use crate::evolve::key::{EvaluationKey, KeyVersion};
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
-use crate::task::{Evaluation, TaskSpec, TaskTables, Watch};
+use crate::task::{Evaluation, TaskSpec, TaskTables};
 
 pub mod derived;
 mod progress;
@@ -701,20 +701,16 @@ impl<G: Genome> Run<G> {
         cancel: &Cancel,
     ) -> Result<FineEvaluation, Interrupted> {
         let task = self.fine_task();
-        let evaluation = match individual
-            .genome
-            .develop(&self.evolution.limits, individual.develop_seed)
-        {
-            Ok(creature) => task.evaluate_watched(
-                &creature,
-                Watch {
-                    record: false,
-                    progress: &mut |_| {},
-                    cancel: Some(cancel),
-                },
-            )?,
-            Err(e) => Evaluation::invalid(task.task.name(), format!("development: {e}")),
-        };
+        // Drawn as generation 0's trials: with fresh trials, the fine re-walk of every
+        // generation's best sees the same draws of its creature.
+        let evaluation = crate::evolve::habitats::evaluate_genome(
+            &individual.genome,
+            &self.evolution.limits,
+            individual.develop_seed,
+            &task,
+            0,
+            cancel,
+        )?;
         Ok(FineEvaluation {
             fitness: evaluation.fitness,
             status: status_text(&evaluation),

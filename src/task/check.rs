@@ -112,7 +112,8 @@ impl TaskSpec {
     /// what the task run needs ([`super::Task::check`]: the aim task's target). The error names the
     /// key in its table as a config file spells it (`[task.sim] substeps`).
     pub fn check(&self) -> Result<(), SettingError> {
-        self.check_tables().map_err(|e| e.within("task"))
+        self.check_tables().map_err(|e| e.within("task"))?;
+        self.check_habitats()
     }
 
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).

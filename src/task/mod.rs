@@ -8,7 +8,7 @@
 //! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
 //! `protocol`, the recording's file format in `recording`, and a task's specification as data
 //! in [`TaskSpec`]: the simulator's settings and one task's ([`TaskOptions`]), read from a
-//! `[task]` table that may hold several tasks' ([`TaskTables`]).
+//! `[task]` table that may hold several tasks' ([`TaskTables`]), and the habitats and trials one evaluation spans in `habitat`.
 
 use std::collections::BTreeMap;
 
@@ -18,6 +18,7 @@ mod aim;
 mod catapult;
 mod check;
 mod compact;
+mod habitat;
 mod jump;
 mod options;
 mod protocol;
@@ -30,6 +31,9 @@ mod walker;
 pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
+pub use habitat::{
+    Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
+};
 pub use jump::{JumpOptions, JumpTask, jump};
 pub use options::TaskOptions;
 pub use protocol::{Rest, Watch};
@@ -106,9 +110,20 @@ pub struct Evaluation {
     /// asked for.
     #[serde(skip_serializing_if = "Vec::is_empty", default)]
     pub recording: Vec<Sample>,
+    /// Each habitat's and trial's result, habitat by habitat, when the specification has
+    /// habitats or trials (the fitness is then their aggregate); none, and not written, for
+    /// a plain one.
+    /// (Boxed, so that an evaluation stays small where it is returned as an error.)
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub habitats: Option<Box<Vec<HabitatResult>>>,
 }
 
 impl Evaluation {
+    /// Each habitat's and trial's result (none for a plain specification).
+    pub fn units(&self) -> &[HabitatResult] {
+        self.habitats.as_deref().map_or(&[], Vec::as_slice)
+    }
+
     /// The evaluation of something that never became a creature (a developmental error):
     /// status `invalid`, the failure floor.
     pub fn invalid(task: &str, message: String) -> Evaluation {
@@ -123,6 +138,7 @@ impl Evaluation {
             terms: BTreeMap::new(),
             message: Some(message),
             recording: Vec::new(),
+            habitats: None,
         }
     }
 }

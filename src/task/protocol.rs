@@ -459,6 +459,7 @@ fn evaluate_run(
                 terms,
                 message: None,
                 recording: run.take_recording(),
+                habitats: None,
             }
         }
         Err(mut failed) => {

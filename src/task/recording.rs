@@ -179,6 +179,7 @@ mod tests {
                 projectile: None,
                 projectile_size: None,
             }],
+            habitats: None,
         };
         let text = serde_json::to_string(&Recording::of(&creature, &evaluation)).unwrap();
         let keys = [

@@ -4,7 +4,7 @@
 use serde::ser::{Serialize, SerializeStruct, Serializer};
 use serde::{Deserialize, Deserializer};
 
-use super::{Evaluation, Task, TaskOptions, TaskTables, Watch};
+use super::{Evaluation, Habitat, Task, TaskOptions, TaskTables, Trials, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -62,19 +62,37 @@ pub struct TaskSpec {
     /// The world besides the creature (`[task.world]`): flat ground in air unless it says
     /// otherwise; a flat world is not written.
     pub world: WorldSpec,
+    /// The habitats one evaluation spans (`[[task.habitats]]`); none: one, this
+    /// specification's own world. Not written when there are none.
+    pub habitats: Vec<Habitat>,
+    /// The trials in each habitat (`[task.trials]`): one without noise unless it says
+    /// otherwise; the default is not written.
+    pub trials: Trials,
     /// The task and its settings.
     pub task: TaskOptions,
 }
 
 impl Serialize for TaskSpec {
-    /// `task`, `sim`, `world` unless it is flat, and the task's one table.
+    /// `task`, `sim`, `world` unless it is flat, `trials` unless they are the default,
+    /// `habitats` unless there are none, and the task's one table.
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let flat = self.world.is_flat();
-        let mut out = serializer.serialize_struct("TaskSpec", 3 + usize::from(!flat))?;
+        let plain_trials = self.trials.is_default();
+        let fields = 3
+            + usize::from(!flat)
+            + usize::from(!plain_trials)
+            + usize::from(!self.habitats.is_empty());
+        let mut out = serializer.serialize_struct("TaskSpec", fields)?;
         out.serialize_field("task", &self.kind())?;
         out.serialize_field("sim", &self.sim)?;
         if !flat {
             out.serialize_field("world", &self.world)?;
+        }
+        if !plain_trials {
+            out.serialize_field("trials", &self.trials)?;
+        }
+        if !self.habitats.is_empty() {
+            out.serialize_field("habitats", &self.habitats)?;
         }
         crate::with_options!(&self.task, T, o => out.serialize_field(T::TABLE, o))?;
         out.end()
@@ -96,6 +114,8 @@ impl TaskSpec {
         TaskSpec {
             sim: SimOptions::default(),
             world: WorldSpec::default(),
+            habitats: Vec::new(),
+            trials: Trials::default(),
             task: TaskOptions::default_of(task),
         }
     }

@@ -8,7 +8,7 @@ use std::sync::LazyLock;
 
 use serde::de::{self, Deserialize, Deserializer, MapAccess, Visitor};
 
-use super::{TASKS, TaskKind, TaskOptions, TaskSpec};
+use super::{Habitat, TASKS, TaskKind, TaskOptions, TaskSpec, Trials};
 use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// A `[task]` table as read: what `task =` names, the simulator's settings and every task's
@@ -22,15 +22,20 @@ pub struct TaskTables {
     pub sim: SimOptions,
     /// The world (`[task.world]`).
     pub world: WorldSpec,
+    /// The habitats (`[[task.habitats]]`).
+    pub habitats: Vec<Habitat>,
+    /// The trials in each habitat (`[task.trials]`).
+    pub trials: Trials,
     /// The tasks' tables it holds, in the order read, each as the settings of the first task
     /// of the registry that reads it.
     tables: Vec<TaskOptions>,
 }
 
-/// The keys of `[task]`: `task`, `sim` and each task's table, in the registry's order.
+/// The keys of `[task]`: `task`, `sim`, `world`, `trials`, `habitats` and each task's table,
+/// in the registry's order.
 fn fields() -> &'static [&'static str] {
     static FIELDS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
-        let mut fields = vec!["task", "sim", "world"];
+        let mut fields = vec!["task", "sim", "world", "trials", "habitats"];
         for task in TASKS {
             if !fields.contains(&task.table) {
                 fields.push(task.table);
@@ -64,6 +69,8 @@ impl TaskTables {
         TaskSpec {
             sim: self.sim.clone(),
             world: self.world.clone(),
+            habitats: self.habitats.clone(),
+            trials: self.trials.clone(),
             task,
         }
     }
@@ -100,6 +107,8 @@ impl From<&TaskSpec> for TaskTables {
             task: Some(spec.kind()),
             sim: spec.sim.clone(),
             world: spec.world.clone(),
+            habitats: spec.habitats.clone(),
+            trials: spec.trials.clone(),
             tables: vec![spec.task.clone()],
         }
     }
@@ -110,6 +119,8 @@ enum Key {
     Task,
     Sim,
     World,
+    Trials,
+    Habitats,
     Table(TaskKind),
 }
 
@@ -126,6 +137,8 @@ impl<'de> Deserialize<'de> for Key {
                     "task" => Ok(Key::Task),
                     "sim" => Ok(Key::Sim),
                     "world" => Ok(Key::World),
+                    "trials" => Ok(Key::Trials),
+                    "habitats" => Ok(Key::Habitats),
                     _ => reader_of(name)
                         .map(Key::Table)
                         .ok_or_else(|| E::unknown_field(name, fields())),
@@ -146,6 +159,7 @@ impl<'de> Deserialize<'de> for TaskTables {
             }
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<TaskTables, A::Error> {
                 let (mut task, mut sim, mut world) = (None, None, None);
+                let (mut trials, mut habitats) = (None, None);
                 let mut tables: Vec<TaskOptions> = Vec::new();
                 while let Some(key) = map.next_key::<Key>()? {
                     match key {
@@ -159,6 +173,14 @@ impl<'de> Deserialize<'de> for TaskTables {
                             return Err(de::Error::duplicate_field("world"));
                         }
                         Key::World => world = Some(map.next_value()?),
+                        Key::Trials if trials.is_some() => {
+                            return Err(de::Error::duplicate_field("trials"));
+                        }
+                        Key::Trials => trials = Some(map.next_value()?),
+                        Key::Habitats if habitats.is_some() => {
+                            return Err(de::Error::duplicate_field("habitats"));
+                        }
+                        Key::Habitats => habitats = Some(map.next_value()?),
                         Key::Table(kind) if tables.iter().any(|t| t.kind() == kind) => {
                             return Err(de::Error::duplicate_field(kind.table()));
                         }
@@ -169,6 +191,8 @@ impl<'de> Deserialize<'de> for TaskTables {
                     task,
                     sim: sim.unwrap_or_default(),
                     world: world.unwrap_or_default(),
+                    habitats: habitats.unwrap_or_default(),
+                    trials: trials.unwrap_or_default(),
                     tables,
                 })
             }

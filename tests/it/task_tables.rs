@@ -135,7 +135,9 @@ fn a_table_of_no_task_is_refused_with_the_tables_there_are() {
     let said = refused(&output, "unknown key climb in [task]");
     assert!(said.contains("climb.toml:3:"), "{said}");
     assert!(
-        said.contains("its keys are task, sim, world, walker, jump, catapult, stand"),
+        said.contains(
+            "its keys are task, sim, world, trials, habitats, walker, jump, catapult, stand"
+        ),
         "{said}"
     );
 }

@@ -205,12 +205,12 @@ pub fn fitness_labels(arms: &[Arm]) -> String {
         .join("; ")
 }
 
-/// The walks simulated to evaluate one individual under `task`: 1, one walk in one world.
-/// A budget counts walks, so that a task that walks each individual several times is
-/// compared with one that walks it once on equal terms.
+/// The walks simulated to evaluate one individual under `task`: its trials × habitats
+/// ([`TaskSpec::walks_per_evaluation`]; 1 without either). A budget counts walks, so that a
+/// task that walks each individual several times is compared with one that walks it once on
+/// equal terms.
 pub fn walks_per_individual(task: &TaskSpec) -> u64 {
-    let _ = task;
-    1
+    task.walks_per_evaluation() as u64
 }
 
 /// The arms of a comparison of encodings under `shared`.

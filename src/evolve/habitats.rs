@@ -1,0 +1,108 @@
+//! An individual in its habitats: a genome developed in each habitat of a task (with the
+//! habitat's chemical array, [`Genome::develop_in`]), the key of those creatures, and the
+//! evaluation of one individual over every unit (habitat × trial) outside the genetic
+//! algorithm's batches — the fine reference re-walk, the viewer, `eval` and `replay`. The
+//! genetic algorithm's batches spread the same units over the evaluator (`ga`).
+
+use super::evaluator::{Evaluator, Job};
+use super::key::{EvaluationKey, KeyVersion};
+use crate::cancel::{Cancel, Interrupted};
+use crate::creature::Creature;
+use crate::encoding::{DevelopError, Genome};
+use crate::environment::Environment;
+use crate::task::{Evaluation, TaskSpec, Watch};
+
+/// The creatures `genome` develops into with `seed`, one per habitat of `task` (one for a
+/// task without habitats): in a habitat with an array, [`Genome::develop_in`] it (an array
+/// of another size than the genome's own is an error), and where the genome has no array of
+/// its own, its creature's controller gets the habitat's in place of its own when the two
+/// have the same length; in a habitat without one, [`Genome::develop`]. An error names the
+/// habitat it arose in.
+pub fn develop_in_habitats<G: Genome>(
+    genome: &G,
+    limits: &G::Limits,
+    seed: u64,
+    task: &TaskSpec,
+) -> Result<Vec<Creature>, DevelopError> {
+    (0..task.habitat_count())
+        .map(|h| {
+            match task.habitat_environment(h) {
+                Some(values) => genome
+                    .develop_in(limits, seed, &Environment::new(values.to_vec()))
+                    .map(|mut creature| {
+                        if genome.environment().is_empty()
+                            && creature.environment.len() == values.len()
+                        {
+                            creature.environment = values.to_vec();
+                        }
+                        creature
+                    }),
+                None => genome.develop(limits, seed),
+            }
+            .map_err(|e| match task.habitat_name(h) {
+                "" => e,
+                name => DevelopError(format!("in habitat {name}: {}", e.0)),
+            })
+        })
+        .collect()
+}
+
+/// The evaluation of an individual developed into `creatures` (one per habitat of `task`,
+/// [`develop_in_habitats`]), whose units are drawn for generation `generation`: a plain task
+/// walks its one creature; otherwise every unit is walked, in parallel on `evaluator`, and
+/// [`TaskSpec::combine`]d. `only` keeps the units of one habitat (by index) and combines
+/// those alone. `Interrupted` once `cancel` is set.
+pub fn evaluate_in_habitats(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    generation: u32,
+    only: Option<usize>,
+    evaluator: Evaluator,
+    cancel: &Cancel,
+) -> Result<Evaluation, Interrupted> {
+    if task.is_plain() {
+        let watch = Watch {
+            record: false,
+            progress: &mut |_| {},
+            cancel: Some(cancel),
+        };
+        return task.evaluate_watched(&creatures[0], watch);
+    }
+    let key = EvaluationKey::of_habitats(creatures, task, KeyVersion::default());
+    let units: Vec<_> = task
+        .units(key.0, generation)
+        .into_iter()
+        .filter(|u| only.is_none_or(|h| u.habitat as usize == h))
+        .collect();
+    let jobs: Vec<Job<'_>> = units
+        .iter()
+        .map(|u| Job {
+            creature: &creatures[u.habitat as usize],
+            unit: Some(*u),
+        })
+        .collect();
+    let evaluations = evaluator.evaluate(task, &jobs, cancel)?;
+    Ok(task.combine(&units, evaluations, creatures))
+}
+
+/// [`develop_in_habitats`] then [`evaluate_in_habitats`] on this process's threads: the
+/// evaluation the genetic algorithm gives `genome` (of `seed`) in generation `generation`; a
+/// genome that does not develop is `invalid`.
+pub fn evaluate_genome<G: Genome>(
+    genome: &G,
+    limits: &G::Limits,
+    seed: u64,
+    task: &TaskSpec,
+    generation: u32,
+    cancel: &Cancel,
+) -> Result<Evaluation, Interrupted> {
+    match develop_in_habitats(genome, limits, seed, task) {
+        Ok(creatures) => {
+            evaluate_in_habitats(task, &creatures, generation, None, Evaluator::Local, cancel)
+        }
+        Err(e) => Ok(Evaluation::invalid(
+            task.task.name(),
+            format!("development: {e}"),
+        )),
+    }
+}

@@ -1,0 +1,822 @@
+//! Habitats and trials: the places one evaluation spans (`[[task.habitats]]`: a world and the
+//! chemical array's initial values), the noisy trials drawn in each (`[task.trials]`: how many,
+//! the ranges of heading, start offset, muscle strength, friction and roughness, and how the
+//! trials' fitnesses combine), and one unit of that work ([`Unit`]: a habitat, a trial and its
+//! drawn [`Perturbation`]).
+//!
+//! A specification without habitats and with the default trials is *plain*: one implicit
+//! habitat (the specification's own world, the genome's own array), one trial, no noise —
+//! evaluated exactly as before habitats existed. This file does not develop creatures (the
+//! encodings do, in each habitat's array) nor decide which units run where (the genetic
+//! algorithm and its evaluator do).
+
+use std::collections::BTreeMap;
+
+use nalgebra::{UnitQuaternion, Vector3};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+
+use super::{Evaluation, FAILURE_FITNESS, Status, TaskSpec};
+use crate::creature::Creature;
+use crate::sim::{SettingError, WorldSpec};
+
+/// The most habitats a specification may list.
+pub const MAX_HABITATS: usize = 16;
+
+/// The most trials per habitat (`[task.trials] count`).
+pub const MAX_TRIALS: u32 = 64;
+
+/// The widest heading noise (degrees, ±): half a turn either way.
+pub const MAX_HEADING: f64 = 180.0;
+
+/// The widest start offset noise (m, ±, along x and along z).
+pub const MAX_OFFSET: f64 = 100.0;
+
+/// The widest noise on strength, friction and roughness (%, ±): below 100, so a factor stays
+/// positive.
+pub const MAX_PERCENT: f64 = 99.0;
+
+/// One place a creature is evaluated in (an entry of `[[task.habitats]]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Habitat {
+    /// Its name, unique among the specification's habitats (reports and `--habitat` use it).
+    pub name: String,
+    /// Its world (level ground in air when absent; the task's `[task.world]` is refused beside
+    /// habitats).
+    #[serde(default, skip_serializing_if = "WorldSpec::is_flat")]
+    pub world: WorldSpec,
+    /// The chemical array's initial values in this habitat; absent, the genome's own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub environment: Option<Vec<f64>>,
+}
+
+/// How the fitnesses of an individual's units combine into its fitness.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Aggregate {
+    /// The arithmetic mean.
+    #[default]
+    Mean,
+    /// The smallest.
+    Min,
+    /// The middle value; of an even number, the mean of the two middle values.
+    Median,
+}
+
+impl Aggregate {
+    /// Every aggregate, in the order the reference lists them.
+    pub const ALL: [Aggregate; 3] = [Aggregate::Mean, Aggregate::Min, Aggregate::Median];
+
+    /// The name configs and reports spell.
+    pub fn name(self) -> &'static str {
+        match self {
+            Aggregate::Mean => "mean",
+            Aggregate::Min => "min",
+            Aggregate::Median => "median",
+        }
+    }
+
+    /// `values` combined (NaN for none): the mean, the smallest, or the median (of an even
+    /// count, the mean of the two middle values).
+    pub fn of(self, values: &[f64]) -> f64 {
+        if values.is_empty() {
+            return f64::NAN;
+        }
+        match self {
+            Aggregate::Mean => values.iter().sum::<f64>() / values.len() as f64,
+            Aggregate::Min => values.iter().copied().fold(f64::INFINITY, f64::min),
+            Aggregate::Median => {
+                let mut sorted = values.to_vec();
+                sorted.sort_by(f64::total_cmp);
+                let n = sorted.len();
+                if n % 2 == 1 {
+                    sorted[n / 2]
+                } else {
+                    (sorted[n / 2 - 1] + sorted[n / 2]) / 2.0
+                }
+            }
+        }
+    }
+}
+
+/// The trials of every habitat (`[task.trials]`): how many, how they combine, and the ranges
+/// their noise is drawn from (each uniformly in [−range, +range]; 0: no noise).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Trials {
+    /// Trials per habitat, K (1 to [`MAX_TRIALS`]).
+    pub count: u32,
+    /// How the fitnesses of every habitat's trials combine.
+    pub aggregate: Aggregate,
+    /// Whether the elite are walked again each generation on fresh draws (the generation
+    /// joins the draw's seed), so no lucky draw is kept for ever.
+    pub fresh: bool,
+    /// The creature's initial heading, degrees (±), turned about the vertical through its
+    /// centre.
+    pub heading: f64,
+    /// Its start offset, metres (±, along x and along z independently).
+    pub offset: f64,
+    /// The muscles' strength, percent (±).
+    pub strength: f64,
+    /// The friction of the ground and the parts, percent (±).
+    pub friction: f64,
+    /// The amplitude of a rough world's heightfield, percent (±).
+    pub roughness: f64,
+}
+
+impl Default for Trials {
+    fn default() -> Self {
+        Trials {
+            count: 1,
+            aggregate: Aggregate::Mean,
+            fresh: false,
+            heading: 0.0,
+            offset: 0.0,
+            strength: 0.0,
+            friction: 0.0,
+            roughness: 0.0,
+        }
+    }
+}
+
+impl Trials {
+    /// Whether these are the default trials (one, no noise): not written to a config.
+    pub fn is_default(&self) -> bool {
+        *self == Trials::default()
+    }
+
+    /// Whether any noise range is set.
+    pub fn noisy(&self) -> bool {
+        [
+            self.heading,
+            self.offset,
+            self.strength,
+            self.friction,
+            self.roughness,
+        ]
+        .iter()
+        .any(|&r| r != 0.0)
+    }
+
+    fn check(&self) -> Result<(), SettingError> {
+        if !(1..=MAX_TRIALS).contains(&self.count) {
+            return Err(SettingError::out_of_range(
+                "count",
+                &format!("1 to {MAX_TRIALS}"),
+                self.count,
+            ));
+        }
+        for (key, value, most) in [
+            ("heading", self.heading, MAX_HEADING),
+            ("offset", self.offset, MAX_OFFSET),
+            ("strength", self.strength, MAX_PERCENT),
+            ("friction", self.friction, MAX_PERCENT),
+            ("roughness", self.roughness, MAX_PERCENT),
+        ] {
+            if !(0.0..=most).contains(&value) {
+                return Err(SettingError::out_of_range(
+                    key,
+                    &format!("in [0, {most}]"),
+                    value,
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One trial's draw: what changes from the habitat as written.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Perturbation {
+    /// The turn of the creature about the vertical through its centre (degrees).
+    pub heading: f64,
+    /// Its start offset along x and z (m).
+    pub offset: [f64; 2],
+    /// The factor on the muscles' strength.
+    pub strength: f64,
+    /// The factor on the friction of the ground and the parts.
+    pub friction: f64,
+    /// The factor on a rough world's amplitude.
+    pub roughness: f64,
+}
+
+impl Default for Perturbation {
+    fn default() -> Self {
+        Perturbation {
+            heading: 0.0,
+            offset: [0.0; 2],
+            strength: 1.0,
+            friction: 1.0,
+            roughness: 1.0,
+        }
+    }
+}
+
+impl Perturbation {
+    /// The draw of trial `trial` in habitat `habitat` for the individual whose evaluation key
+    /// is `key`, from the ranges of `trials`; `generation` joins the seed when the trials are
+    /// fresh. ChaCha8 seeded from the key, its stream the habitat and trial: identical
+    /// creatures get identical trials wherever and in whatever order they run.
+    pub fn draw(
+        trials: &Trials,
+        key: [u8; 32],
+        habitat: u32,
+        trial: u32,
+        generation: Option<u32>,
+    ) -> Perturbation {
+        let mut seed = key;
+        if let Some(g) = generation {
+            for (b, x) in seed.iter_mut().zip((u64::from(g) + 1).to_le_bytes()) {
+                *b ^= x;
+            }
+        }
+        let mut rng = ChaCha8Rng::from_seed(seed);
+        rng.set_stream((u64::from(habitat) << 32) | u64::from(trial));
+        let mut within = |range: f64| -> f64 {
+            // Drawn even for a zero range, so a range does not move another's draw.
+            let u: f64 = rng.random_range(-1.0..=1.0);
+            u * range
+        };
+        let heading = within(trials.heading);
+        let offset = [within(trials.offset), within(trials.offset)];
+        let strength = 1.0 + within(trials.strength) / 100.0;
+        let friction = 1.0 + within(trials.friction) / 100.0;
+        let roughness = 1.0 + within(trials.roughness) / 100.0;
+        Perturbation {
+            heading,
+            offset,
+            strength,
+            friction,
+            roughness,
+        }
+    }
+
+    /// `creature` turned by the heading about the vertical through its centre (the mean of
+    /// its parts' centres), then moved by the offset; unchanged, bit for bit, when both are 0.
+    pub fn place(&self, creature: &Creature) -> Creature {
+        let mut placed = creature.clone();
+        if self.heading == 0.0 && self.offset == [0.0; 2] {
+            return placed;
+        }
+        let n = creature.parts.len().max(1) as f64;
+        let sum = creature
+            .parts
+            .iter()
+            .fold(Vector3::zeros(), |s, p| s + p.position);
+        let centre = Vector3::new(sum.x / n, 0.0, sum.z / n);
+        let turn = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), self.heading.to_radians());
+        let shift = Vector3::new(self.offset[0], 0.0, self.offset[1]);
+        let moved = |p: Vector3<f64>| turn * (p - centre) + centre + shift;
+        for part in &mut placed.parts {
+            part.position = moved(part.position);
+            part.orientation = turn * part.orientation;
+        }
+        for joint in &mut placed.joints {
+            joint.anchor = moved(joint.anchor);
+            for axis in &mut joint.axes {
+                *axis = turn * *axis;
+            }
+        }
+        placed
+    }
+}
+
+/// One unit of an individual's evaluation: a trial in a habitat, with its draw.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Unit {
+    /// The habitat's index in `[[task.habitats]]` (0 for the implicit one).
+    pub habitat: u32,
+    /// The trial's index, from 0.
+    pub trial: u32,
+    /// What the trial changes.
+    pub perturbation: Perturbation,
+}
+
+/// The result of one unit, as an individual's evaluation keeps it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HabitatResult {
+    /// The habitat's name (empty for the implicit habitat).
+    pub name: String,
+    /// The trial's index, from 0.
+    pub trial: u32,
+    /// Parts and joints of the creature as it developed in the habitat (its morph).
+    pub parts: u32,
+    /// See `parts`.
+    pub joints: u32,
+    /// Its fitness ([`FAILURE_FITNESS`] unless its status is `ok`).
+    pub fitness: f64,
+    /// How it ended.
+    pub status: Status,
+    /// The terms behind its fitness.
+    pub terms: BTreeMap<String, f64>,
+    /// What went wrong, when something did.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub message: Option<String>,
+}
+
+impl TaskSpec {
+    /// Whether the specification is plain: no habitats and the default trials, evaluated as
+    /// one unit exactly as before habitats existed.
+    pub fn is_plain(&self) -> bool {
+        self.habitats.is_empty() && self.trials.is_default()
+    }
+
+    /// How many habitats an individual is developed in (1 without `[[task.habitats]]`).
+    pub fn habitat_count(&self) -> usize {
+        self.habitats.len().max(1)
+    }
+
+    /// How many walks one individual's evaluation simulates: trials × habitats.
+    pub fn walks_per_evaluation(&self) -> usize {
+        self.trials.count as usize * self.habitat_count()
+    }
+
+    /// The name of habitat `index` (empty for the implicit habitat).
+    pub fn habitat_name(&self, index: usize) -> &str {
+        self.habitats.get(index).map_or("", |h| h.name.as_str())
+    }
+
+    /// The index of the habitat named `name`; an error listing the names when none is.
+    pub fn habitat_named(&self, name: &str) -> Result<usize, String> {
+        self.habitats
+            .iter()
+            .position(|h| h.name == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = self.habitats.iter().map(|h| h.name.as_str()).collect();
+                if names.is_empty() {
+                    format!("no habitat '{name}': the task has no [[task.habitats]]")
+                } else {
+                    format!("no habitat '{name}'; the habitats are {}", names.join(", "))
+                }
+            })
+    }
+
+    /// The chemical array habitat `index` gives development (`None`: the genome's own).
+    pub fn habitat_environment(&self, index: usize) -> Option<&[f64]> {
+        self.habitats
+            .get(index)
+            .and_then(|h| h.environment.as_deref())
+    }
+
+    /// The plain specification of habitat `index`: this one with the habitat's world, and no
+    /// habitats or trials of its own. Its evaluation key is the habitat's part of an
+    /// individual's key.
+    pub fn in_habitat(&self, index: usize) -> TaskSpec {
+        let mut spec = self.clone();
+        if let Some(h) = self.habitats.get(index) {
+            spec.world = h.world.clone();
+        }
+        spec.habitats = Vec::new();
+        spec.trials = Trials::default();
+        spec
+    }
+
+    /// The units of an individual whose key is `key`: every trial of every habitat, habitat
+    /// by habitat, each with its draw (`generation` joins the seed when the trials are fresh).
+    pub fn units(&self, key: [u8; 32], generation: u32) -> Vec<Unit> {
+        let fresh = self.trials.fresh.then_some(generation);
+        (0..self.habitat_count() as u32)
+            .flat_map(|habitat| {
+                (0..self.trials.count).map(move |trial| Unit {
+                    habitat,
+                    trial,
+                    perturbation: if self.trials.noisy() {
+                        Perturbation::draw(&self.trials, key, habitat, trial, fresh)
+                    } else {
+                        Perturbation::default()
+                    },
+                })
+            })
+            .collect()
+    }
+
+    /// The plain specification one unit is evaluated with: its habitat's
+    /// ([`TaskSpec::in_habitat`]), its strength, friction and roughness scaled by the draw.
+    pub fn unit_spec(&self, unit: &Unit) -> TaskSpec {
+        let mut spec = self.in_habitat(unit.habitat as usize);
+        let p = &unit.perturbation;
+        spec.sim.strength *= p.strength;
+        spec.sim.friction *= p.friction;
+        if let Some(ground) = &mut spec.world.friction {
+            ground.coefficient *= p.friction;
+            for patch in &mut ground.patches {
+                patch.coefficient *= p.friction;
+            }
+        }
+        if let Some(rough) = &mut spec.world.rough {
+            rough.amplitude *= p.roughness;
+        }
+        spec
+    }
+
+    /// Evaluates `creature` as `unit` says ([`TaskSpec::evaluate_unit_watched`]), or, for no
+    /// unit, as [`TaskSpec::evaluate_watched`] does: one walk of any specification.
+    pub fn evaluate_job(
+        &self,
+        creature: &Creature,
+        unit: Option<&Unit>,
+        watch: super::Watch<'_>,
+    ) -> Result<Evaluation, crate::cancel::Interrupted> {
+        match unit {
+            None => self.evaluate_watched(creature, watch),
+            Some(unit) => self.evaluate_unit_watched(creature, unit, watch),
+        }
+    }
+
+    /// [`TaskSpec::evaluate_job`], not recorded, told or cancelled.
+    pub fn evaluate_job_plainly(&self, creature: &Creature, unit: Option<&Unit>) -> Evaluation {
+        match unit {
+            None => self.evaluate(creature, false),
+            Some(unit) => self
+                .unit_spec(unit)
+                .evaluate(&unit.perturbation.place(creature), false),
+        }
+    }
+
+    /// Evaluates `creature` (developed in the unit's habitat) as `unit` says: placed by its
+    /// draw, with [`TaskSpec::unit_spec`].
+    pub fn evaluate_unit_watched(
+        &self,
+        creature: &Creature,
+        unit: &Unit,
+        watch: super::Watch<'_>,
+    ) -> Result<Evaluation, crate::cancel::Interrupted> {
+        self.unit_spec(unit)
+            .evaluate_watched(&unit.perturbation.place(creature), watch)
+    }
+
+    /// The evaluation of an individual from its units' evaluations (in the order of
+    /// [`TaskSpec::units`]) and its creatures, one per habitat (for their sizes). Every unit `ok`: status `ok`, the fitness and each term the
+    /// trials' aggregate. Any unit failed: the first failure's status and message (naming its
+    /// habitat and trial) and the failure floor — a creature that cheats the physics in one
+    /// trial is refused, as the walker's guards refuse it in one walk.
+    pub fn combine(
+        &self,
+        units: &[Unit],
+        evaluations: Vec<Evaluation>,
+        creatures: &[Creature],
+    ) -> Evaluation {
+        let results: Vec<HabitatResult> = units
+            .iter()
+            .zip(evaluations)
+            .map(|(unit, e)| HabitatResult {
+                name: self.habitat_name(unit.habitat as usize).to_string(),
+                trial: unit.trial,
+                parts: creatures
+                    .get(unit.habitat as usize)
+                    .map_or(0, |c| c.parts.len() as u32),
+                joints: creatures
+                    .get(unit.habitat as usize)
+                    .map_or(0, |c| c.joints.len() as u32),
+                fitness: e.fitness,
+                status: e.status,
+                terms: e.terms,
+                message: e.message,
+            })
+            .collect();
+        let task = self.task.name().to_string();
+        if let Some(failed) = results.iter().find(|r| r.status != Status::Ok) {
+            let place = if failed.name.is_empty() {
+                format!("trial {}", failed.trial + 1)
+            } else {
+                format!("habitat {}, trial {}", failed.name, failed.trial + 1)
+            };
+            return Evaluation {
+                task,
+                fitness: FAILURE_FITNESS,
+                status: failed.status,
+                terms: BTreeMap::new(),
+                message: Some(format!(
+                    "{place}: {}",
+                    failed.message.as_deref().unwrap_or(failed.status.name())
+                )),
+                recording: Vec::new(),
+                habitats: Some(Box::new(results)),
+            };
+        }
+        let aggregate = self.trials.aggregate;
+        let fitnesses: Vec<f64> = results.iter().map(|r| r.fitness).collect();
+        let mut terms = BTreeMap::new();
+        if let Some(first) = results.first() {
+            for name in first.terms.keys() {
+                let values: Vec<f64> = results
+                    .iter()
+                    .filter_map(|r| r.terms.get(name).copied())
+                    .collect();
+                if values.len() == results.len() {
+                    terms.insert(name.clone(), aggregate.of(&values));
+                }
+            }
+        }
+        Evaluation {
+            task,
+            fitness: aggregate.of(&fitnesses),
+            status: Status::Ok,
+            terms,
+            message: None,
+            recording: Vec::new(),
+            habitats: Some(Box::new(results)),
+        }
+    }
+
+    /// Checks the habitats and trials: at most [`MAX_HABITATS`] habitats with unique, non-empty
+    /// names, each world as [`WorldSpec::check`] checks `[task.world]` (in air), and each array
+    /// finite; the trials in range. The error
+    /// names the key as a config spells it (`[[task.habitats]] name`, `[task.trials] count`).
+    pub(super) fn check_habitats(&self) -> Result<(), SettingError> {
+        if self.habitats.len() > MAX_HABITATS {
+            return Err(SettingError::out_of_range(
+                "habitats",
+                &format!("at most {MAX_HABITATS} tables"),
+                self.habitats.len(),
+            )
+            .within("task"));
+        }
+        if !self.habitats.is_empty() && !self.world.is_flat() {
+            return Err(SettingError::out_of_range(
+                "world",
+                "absent beside [[task.habitats]]: give each habitat its world",
+                "given",
+            )
+            .within("task"));
+        }
+        for (i, h) in self.habitats.iter().enumerate() {
+            let within = |mut e: SettingError| {
+                e.table = "[task.habitats]".to_string();
+                e
+            };
+            if h.name.trim().is_empty() || h.name.chars().any(char::is_control) {
+                return Err(within(SettingError::out_of_range(
+                    "name",
+                    "a word of printable characters",
+                    format!("'{}'", h.name.escape_default()),
+                )));
+            }
+            if self.habitats[..i].iter().any(|o| o.name == h.name) {
+                return Err(within(SettingError::out_of_range(
+                    "name",
+                    "unique among the habitats",
+                    format!("'{}' a second time", h.name),
+                )));
+            }
+            if let Some(v) = h.environment.iter().flatten().find(|v| !v.is_finite()) {
+                return Err(within(SettingError::out_of_range(
+                    "environment",
+                    &format!("finite numbers (habitat '{}')", h.name),
+                    v,
+                )));
+            }
+            if !h.world.medium.is_air() {
+                return Err(SettingError::out_of_range(
+                    "medium",
+                    &format!("air (habitat '{}'): water is not simulated yet", h.name),
+                    "water",
+                )
+                .within("task.habitats.world"));
+            }
+            h.world.check().map_err(|mut e| {
+                e.problem = format!("{} (habitat '{}')", e.problem, h.name);
+                e.within("world").within("task.habitats")
+            })?;
+        }
+        self.trials.check().map_err(|e| e.within("task.trials"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::task::TaskKind;
+
+    #[test]
+    fn the_aggregates_match_values_computed_by_hand() {
+        let trials = [3.0, -1.0, 4.0, 1.5];
+        assert_eq!(Aggregate::Mean.of(&trials), 7.5 / 4.0);
+        assert_eq!(Aggregate::Min.of(&trials), -1.0);
+        // Even count: sorted -1, 1.5, 3, 4; the mean of 1.5 and 3.
+        assert_eq!(Aggregate::Median.of(&trials), 2.25);
+        assert_eq!(Aggregate::Median.of(&[3.0, -1.0, 4.0]), 3.0);
+        assert_eq!(Aggregate::Median.of(&[2.0]), 2.0);
+        assert!(Aggregate::Mean.of(&[]).is_nan());
+    }
+
+    fn evaluation(fitness: f64, status: Status, d: f64) -> Evaluation {
+        Evaluation {
+            task: "walker".into(),
+            fitness,
+            status,
+            terms: BTreeMap::from([("D_w".to_string(), d)]),
+            message: (status != Status::Ok).then(|| "it blew up".to_string()),
+            recording: Vec::new(),
+            habitats: None,
+        }
+    }
+
+    fn two_habitats(k: u32, aggregate: Aggregate) -> TaskSpec {
+        let mut spec = TaskSpec::new(TaskKind::Walker);
+        spec.habitats = ["flat", "cued"]
+            .map(|name| Habitat {
+                name: name.into(),
+                world: WorldSpec::default(),
+                environment: None,
+            })
+            .to_vec();
+        spec.trials.count = k;
+        spec.trials.aggregate = aggregate;
+        spec
+    }
+
+    #[test]
+    fn an_individual_scores_the_aggregate_of_its_units_and_keeps_each() {
+        let spec = two_habitats(2, Aggregate::Median);
+        let units = spec.units([7; 32], 0);
+        assert_eq!(
+            units
+                .iter()
+                .map(|u| (u.habitat, u.trial))
+                .collect::<Vec<_>>(),
+            [(0, 0), (0, 1), (1, 0), (1, 1)]
+        );
+        let e = spec.combine(
+            &units,
+            [1.0, 2.0, 4.0, 8.0]
+                .map(|f| evaluation(f, Status::Ok, f * 10.0))
+                .to_vec(),
+            &[],
+        );
+        assert_eq!((e.fitness, e.status), (3.0, Status::Ok));
+        assert_eq!(e.terms["D_w"], 30.0);
+        assert_eq!(e.units().len(), 4);
+        assert_eq!(
+            (e.units()[3].name.as_str(), e.units()[3].trial),
+            ("cued", 1)
+        );
+        assert_eq!(e.units()[3].fitness, 8.0);
+    }
+
+    #[test]
+    fn one_failed_unit_fails_the_individual_and_names_where() {
+        let spec = two_habitats(2, Aggregate::Mean);
+        let units = spec.units([7; 32], 0);
+        let mut evaluations: Vec<Evaluation> =
+            (0..4).map(|_| evaluation(1.0, Status::Ok, 1.0)).collect();
+        evaluations[3] = evaluation(FAILURE_FITNESS, Status::Exploded, 0.0);
+        let e = spec.combine(&units, evaluations, &[]);
+        assert_eq!((e.fitness, e.status), (FAILURE_FITNESS, Status::Exploded));
+        assert_eq!(
+            e.message.as_deref(),
+            Some("habitat cued, trial 2: it blew up")
+        );
+        assert_eq!(e.units()[0].status, Status::Ok);
+    }
+
+    #[test]
+    fn a_draw_depends_on_the_key_habitat_trial_and_fresh_generation_only() {
+        let trials = Trials {
+            heading: 30.0,
+            offset: 0.5,
+            strength: 10.0,
+            friction: 20.0,
+            roughness: 50.0,
+            ..Trials::default()
+        };
+        let a = Perturbation::draw(&trials, [1; 32], 0, 1, None);
+        assert_eq!(a, Perturbation::draw(&trials, [1; 32], 0, 1, None));
+        for other in [
+            Perturbation::draw(&trials, [2; 32], 0, 1, None),
+            Perturbation::draw(&trials, [1; 32], 1, 1, None),
+            Perturbation::draw(&trials, [1; 32], 0, 0, None),
+            Perturbation::draw(&trials, [1; 32], 0, 1, Some(0)),
+        ] {
+            assert_ne!(a, other);
+        }
+        assert!(a.heading.abs() <= 30.0 && a.offset.iter().all(|o| o.abs() <= 0.5));
+        assert!((0.9..=1.1).contains(&a.strength));
+        assert!((0.8..=1.2).contains(&a.friction));
+        assert!((0.5..=1.5).contains(&a.roughness));
+    }
+
+    #[test]
+    fn a_unit_scales_the_simulator_and_the_world_by_its_draw() {
+        let mut spec = two_habitats(1, Aggregate::Mean);
+        spec.habitats[1].world.rough = Some(crate::sim::world_spec::Rough {
+            amplitude: 0.1,
+            wavelength: 1.0,
+            seed: 1,
+            size: 20.0,
+        });
+        let unit = Unit {
+            habitat: 1,
+            trial: 0,
+            perturbation: Perturbation {
+                strength: 1.5,
+                friction: 0.5,
+                roughness: 2.0,
+                ..Perturbation::default()
+            },
+        };
+        let s = spec.unit_spec(&unit);
+        assert_eq!(s.sim.strength, spec.sim.strength * 1.5);
+        assert_eq!(s.sim.friction, spec.sim.friction * 0.5);
+        assert_eq!(s.world.rough.unwrap().amplitude, 0.2);
+        assert!(s.habitats.is_empty() && s.trials.is_default());
+    }
+
+    #[test]
+    fn a_quarter_turn_turns_parts_and_joints_about_the_centre() {
+        use crate::creature::{Joint, JointKind, Part};
+        let part = |x: f64| Part {
+            size: Vector3::new(1.0, 0.2, 0.2),
+            position: Vector3::new(x, 0.5, 0.0),
+            orientation: UnitQuaternion::identity(),
+            density: 1000.0,
+            growing: false,
+        };
+        let creature = Creature {
+            parts: vec![part(0.0), part(2.0)],
+            joints: vec![Joint {
+                parent: 0,
+                child: 1,
+                kind: JointKind::Revolute,
+                anchor: Vector3::new(1.0, 0.5, 0.0),
+                axes: vec![Vector3::z()],
+                limits: vec![(-1.0, 1.0)],
+                strength: 1.0,
+                growing: false,
+            }],
+            ..Creature::default()
+        };
+        let p = Perturbation {
+            heading: 90.0,
+            offset: [0.0, 3.0],
+            ..Perturbation::default()
+        };
+        let placed = p.place(&creature);
+        // About the centre (1, _, 0): (0, 0.5, 0) goes to (1, 0.5, 1), then 3 m along z.
+        let close = |a: Vector3<f64>, b: Vector3<f64>| (a - b).norm() < 1e-12;
+        assert!(close(placed.parts[0].position, Vector3::new(1.0, 0.5, 4.0)));
+        assert!(close(placed.parts[1].position, Vector3::new(1.0, 0.5, 2.0)));
+        assert!(close(placed.joints[0].anchor, Vector3::new(1.0, 0.5, 3.0)));
+        assert!(close(placed.joints[0].axes[0], Vector3::new(1.0, 0.0, 0.0)));
+        assert_eq!(Perturbation::default().place(&creature), creature);
+    }
+
+    #[test]
+    fn the_checks_name_the_key_and_the_habitat() {
+        let mut spec = two_habitats(1, Aggregate::Mean);
+        spec.habitats[1].name = "flat".into();
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[[task.habitats]] name must be unique among the habitats, not 'flat' a second time"
+        );
+        let mut spec = two_habitats(MAX_TRIALS + 1, Aggregate::Mean);
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.trials] count must be 1 to 64, not 65"
+        );
+        spec.trials.count = 2;
+        spec.trials.friction = 100.0;
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.trials] friction must be in [0, 99], not 100"
+        );
+        spec.trials.friction = 5.0;
+        spec.habitats[0].environment = Some(vec![f64::NAN]);
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[[task.habitats]] environment must be finite numbers (habitat 'flat'), not NaN"
+        );
+    }
+
+    #[test]
+    fn a_habitats_world_is_checked_as_the_tasks_world_is() {
+        let mut spec = two_habitats(1, Aggregate::Mean);
+        spec.habitats[1].world.slope = Some(crate::sim::world_spec::Slope {
+            degrees: 95.0,
+            direction: 0.0,
+        });
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task.habitats.world.slope] degrees must be at least 0 and below 80, not 95 \
+             (habitat 'cued')"
+        );
+        spec.habitats[1].world.slope.as_mut().unwrap().degrees = 5.0;
+        assert_eq!(spec.check(), Ok(()));
+        spec.world = spec.habitats[1].world.clone();
+        assert_eq!(
+            spec.check().unwrap_err().to_string(),
+            "[task] world must be absent beside [[task.habitats]]: give each habitat its world, \
+             not given"
+        );
+        spec.world = WorldSpec::default();
+        let unit = Unit {
+            habitat: 1,
+            trial: 0,
+            perturbation: Perturbation::default(),
+        };
+        assert_eq!(spec.unit_spec(&unit).world, spec.habitats[1].world);
+        assert!(spec.in_habitat(0).world.is_flat());
+    }
+}

@@ -1,0 +1,328 @@
+//! Habitats and trials: a grammar that reads its environment grows a body per habitat,
+//! `eval` prints every habitat-trial and their aggregate (or one habitat's), identical
+//! creatures get identical trials, a tiny evolution is the same on one thread and two and
+//! when stopped and resumed, the store keeps every unit, and bad tables are refused.
+
+use std::path::{Path, PathBuf};
+
+use crate::evolve::contents;
+use crate::util::{
+    ontogeny, ontogeny_command, ontogeny_ok, refused, scratch_dir, stdout, succeeded,
+};
+
+/// Two flat habitats that differ in chemical 0 (`poor` 0, `rich` 1), `trials` trials each
+/// with `noise` (lines of `[task.trials]`), short walks.
+fn config(dir: &Path, trials: u32, noise: &str) -> PathBuf {
+    let path = dir.join("habitats.toml");
+    std::fs::write(
+        &path,
+        format!(
+            "encoding = \"lsystem\"\nseed = 3\n\n[ga]\npopulation = 6\ngenerations = 3\n\n\
+             [task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.5\n\n\
+             [task.trials]\ncount = {trials}\naggregate = \"median\"\n{noise}\n\n\
+             [[task.habitats]]\nname = \"poor\"\nenvironment = [0]\n\n\
+             [[task.habitats]]\nname = \"rich\"\nenvironment = [1]\n"
+        ),
+    )
+    .unwrap();
+    path
+}
+
+fn eval_json(args: &[&str]) -> serde_json::Value {
+    serde_json::from_str(&stdout(&ontogeny_ok(args))).unwrap()
+}
+
+#[test]
+fn a_grammar_that_reads_its_environment_grows_a_body_per_habitat() {
+    let dir = scratch_dir("habitats-plastic");
+    let config = config(&dir, 1, "");
+    let config = config.to_str().unwrap();
+    let e = eval_json(&[
+        "eval",
+        "examples/plastic.lsys",
+        "--config",
+        config,
+        "--json",
+    ]);
+    let units = e["habitats"].as_array().unwrap();
+    let morph = |i: usize| {
+        (
+            units[i]["name"].as_str().unwrap().to_string(),
+            units[i]["parts"].as_u64().unwrap(),
+        )
+    };
+    // The limb grows straight (4 segments) where chemical 0 is poor, branches where rich:
+    // what `ontogeny derive examples/plastic.lsys --env 0=0` and `--env 0=1` grow.
+    assert_eq!(morph(0), ("poor".to_string(), 4));
+    assert_eq!(morph(1), ("rich".to_string(), 15));
+}
+
+#[test]
+fn eval_prints_each_habitat_trial_and_their_aggregate() {
+    let dir = scratch_dir("habitats-eval");
+    let config = config(&dir, 2, "heading = 20\nstrength = 10");
+    let config = config.to_str().unwrap();
+    let walker = "examples/hornby-walker.lsys";
+    let e = eval_json(&["eval", walker, "--config", config, "--json"]);
+    let units = e["habitats"].as_array().unwrap();
+    let places: Vec<(&str, u64)> = units
+        .iter()
+        .map(|u| (u["name"].as_str().unwrap(), u["trial"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(places, [("poor", 0), ("poor", 1), ("rich", 0), ("rich", 1)]);
+    let mut fitness: Vec<f64> = units
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
+    assert!(units.iter().all(|u| u["status"] == "ok"), "{e}");
+    // Noise is drawn per trial: the two trials of a habitat walk differently.
+    assert_ne!(fitness[0], fitness[1]);
+    // The median of four: the mean of the two middle values.
+    fitness.sort_by(f64::total_cmp);
+    assert_eq!(
+        e["fitness"].as_f64().unwrap(),
+        (fitness[1] + fitness[2]) / 2.0
+    );
+    let text = stdout(&ontogeny_ok(&["eval", walker, "--config", config]));
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(
+        lines[0].starts_with(&format!("{walker}: walker fitness ")),
+        "{text}"
+    );
+    let unit_lines: Vec<String> = units
+        .iter()
+        .map(|u| {
+            format!(
+                "  habitat {}, trial {}: fitness {:.6} (ok)",
+                u["name"].as_str().unwrap(),
+                u["trial"].as_u64().unwrap() + 1,
+                u["fitness"].as_f64().unwrap()
+            )
+        })
+        .collect();
+    let n = lines.len();
+    assert_eq!(lines[n - 5..n - 1], unit_lines[..], "{text}");
+    assert_eq!(lines[n - 1], "  fitness: the median of 4 walks");
+}
+
+#[test]
+fn identical_creatures_get_identical_trials() {
+    let dir = scratch_dir("habitats-identical");
+    let config = config(&dir, 2, "heading = 30\noffset = 0.3\nfriction = 20");
+    let config = config.to_str().unwrap();
+    let args = [
+        "eval",
+        "examples/hornby-walker.lsys",
+        "--config",
+        config,
+        "--json",
+    ];
+    let once = stdout(&ontogeny_ok(&args));
+    let twice = stdout(&ontogeny_ok(&args));
+    assert_eq!(once, twice);
+    // On one thread, too.
+    let mut one = ontogeny_command();
+    one.env("RAYON_NUM_THREADS", "1").args(args);
+    assert_eq!(stdout(&one.output().unwrap()), once);
+}
+
+#[test]
+fn eval_habitat_walks_that_habitat_alone_and_refuses_an_unknown_name() {
+    let dir = scratch_dir("habitats-one");
+    let config = config(&dir, 2, "heading = 20");
+    let config = config.to_str().unwrap();
+    let walker = "examples/hornby-walker.lsys";
+    let all = eval_json(&["eval", walker, "--config", config, "--json"]);
+    let rich = eval_json(&[
+        "eval",
+        walker,
+        "--config",
+        config,
+        "--habitat",
+        "rich",
+        "--json",
+    ]);
+    // The same draws as in the whole evaluation, of that habitat's trials only.
+    assert_eq!(
+        rich["habitats"].as_array().unwrap()[..],
+        all["habitats"].as_array().unwrap()[2..]
+    );
+    let out = ontogeny(&["eval", walker, "--config", config, "--habitat", "wet"]);
+    refused(&out, "no habitat 'wet'; the habitats are poor, rich");
+    let out = ontogeny(&["eval", walker, "--config", config, "--seconds", "2"]);
+    refused(&out, "--seconds cannot be given with it");
+}
+
+#[test]
+fn a_bad_habitats_table_is_refused_with_exit_code_2() {
+    let dir = scratch_dir("habitats-bad");
+    let config = config(&dir, 2, "");
+    let text = std::fs::read_to_string(&config).unwrap();
+    for (from, to, message) in [
+        (
+            "name = \"rich\"",
+            "name = \"poor\"",
+            "[[task.habitats]] name must be unique among the habitats, not 'poor' a second time",
+        ),
+        (
+            "count = 2",
+            "count = 0",
+            "[task.trials] count must be 1 to 64, not 0",
+        ),
+        (
+            "count = 2",
+            "count = 2\nroughness = 120",
+            "[task.trials] roughness must be in [0, 99], not 120",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1]\n[task.habitats.world]\nslope = { degrees = 95 }",
+            "[task.habitats.world.slope] degrees must be at least 0 and below 80, not 95 \
+             (habitat 'rich')",
+        ),
+    ] {
+        std::fs::write(&config, text.replace(from, to)).unwrap();
+        let out = ontogeny_command()
+            .args(["evolve", "--config"])
+            .arg(&config)
+            .arg("--out")
+            .arg(dir.join("run"))
+            .output()
+            .unwrap();
+        refused(&out, message);
+        assert!(!dir.join("run").exists());
+    }
+}
+
+/// `evolve --config CONFIG --out OUT` with `extra` flags; asserts that it succeeded.
+fn evolve(config: &Path, out: &Path, extra: &[&str]) {
+    let output = ontogeny_command()
+        .args(["evolve", "--config"])
+        .arg(config)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap();
+    succeeded(&output);
+}
+
+#[test]
+fn a_tiny_evolution_in_habitats_is_the_same_on_any_thread_count_and_resumed() {
+    let dir = scratch_dir("habitats-evolve");
+    let config = config(&dir, 2, "heading = 20\nstrength = 10");
+    evolve(&config, &dir.join("one"), &["--threads", "1"]);
+    evolve(&config, &dir.join("two"), &["--threads", "2"]);
+    assert_eq!(contents(&dir.join("one")), contents(&dir.join("two")));
+    // Stopped after two generations, then resumed to three: the same run.
+    let stopped = dir.join("stopped");
+    evolve(&config, &stopped, &["--gens", "2"]);
+    let resumed = ontogeny_command()
+        .args(["evolve", "--gens", "3", "--resume"])
+        .arg(&stopped)
+        .output()
+        .unwrap();
+    succeeded(&resumed);
+    assert_eq!(contents(&stopped), contents(&dir.join("one")));
+    // The store keeps each habitat's and trial's result in the individual's evaluation.
+    let store = ontogeny::run::store::RunStore::open_read_only(&dir.join("one").join("run.sqlite"))
+        .unwrap();
+    let first = &store.individuals(0).unwrap()[0];
+    let json: serde_json::Value = serde_json::from_str(&first.genome_json).unwrap();
+    let units = json["evaluation"]["habitats"].as_array().unwrap();
+    assert_eq!(units.len(), 4, "{json}");
+    let ok: Vec<f64> = units
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
+    if units.iter().all(|u| u["status"] == "ok") {
+        let mut sorted = ok.clone();
+        sorted.sort_by(f64::total_cmp);
+        assert_eq!(first.fitness, (sorted[1] + sorted[2]) / 2.0);
+    } else {
+        assert_eq!(first.fitness, ontogeny::task::FAILURE_FITNESS);
+    }
+}
+
+#[test]
+fn the_habitats_example_runs() {
+    let dir = scratch_dir("habitats-example");
+    evolve(
+        Path::new("examples/habitats.toml"),
+        &dir.join("run"),
+        &["--pop", "4", "--gens", "1", "--seconds", "0.5"],
+    );
+    let config = std::fs::read_to_string(dir.join("run").join("config.toml")).unwrap();
+    assert!(
+        config.contains("[[task.habitats]]") && config.contains("count = 2"),
+        "{config}"
+    );
+}
+
+#[test]
+fn fresh_trials_walk_the_elite_again_on_new_draws() {
+    let dir = scratch_dir("habitats-fresh");
+    let config = config(&dir, 2, "heading = 30\nfresh = true");
+    let run = dir.join("run");
+    evolve(&config, &run, &["--gens", "2"]);
+    let store = ontogeny::run::store::RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    // Every individual of generation 1 was walked, the elite (one of six) included.
+    assert_eq!(store.generations().unwrap()[1].evaluations, 6);
+    let elite = &store.individuals(1).unwrap()[0];
+    assert_eq!(elite.operator, "elite");
+    let parent = &store.individuals(0).unwrap()[elite.parents[0] as usize];
+    let units = |genome_json: &str| {
+        let json: serde_json::Value = serde_json::from_str(genome_json).unwrap();
+        json["evaluation"]["habitats"].clone()
+    };
+    assert_eq!(elite.genome_text, parent.genome_text);
+    // The same creature on the generation's own draws walks differently.
+    assert_ne!(units(&elite.genome_json), units(&parent.genome_json));
+}
+
+#[test]
+fn a_habitat_is_walked_in_its_own_world() {
+    let dir = scratch_dir("habitats-world");
+    let walker = "examples/hornby-walker.lsys";
+    let head = "[task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.5\n\n";
+    let slope = "slope = { degrees = 10, direction = 90 }\n";
+    let habitats = dir.join("habitats.toml");
+    std::fs::write(
+        &habitats,
+        format!(
+            "{head}[[task.habitats]]\nname = \"level\"\n\n\
+             [[task.habitats]]\nname = \"hill\"\n[task.habitats.world]\n{slope}"
+        ),
+    )
+    .unwrap();
+    let hill = dir.join("hill.toml");
+    std::fs::write(&hill, format!("{head}[task.world]\n{slope}")).unwrap();
+    let level = dir.join("level.toml");
+    std::fs::write(&level, head).unwrap();
+    let fitness = |config: &Path| -> f64 {
+        eval_json(&[
+            "eval",
+            walker,
+            "--config",
+            config.to_str().unwrap(),
+            "--json",
+        ])["fitness"]
+            .as_f64()
+            .unwrap()
+    };
+    let e = eval_json(&[
+        "eval",
+        walker,
+        "--config",
+        habitats.to_str().unwrap(),
+        "--json",
+    ]);
+    let units = e["habitats"].as_array().unwrap();
+    let walked: Vec<f64> = units
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
+    // Each habitat walks as a plain task in its world does: level ground, then the slope.
+    assert_eq!(walked, [fitness(&level), fitness(&hill)]);
+    assert_ne!(walked[0], walked[1]);
+}
