@@ -11,7 +11,7 @@ __version__: str
 
 _Path = Union[str, PathLike]
 _Env = Optional[Sequence[Tuple[int, float]]]
-_Task = Literal["walker", "jump", "catapult", "aim", "stand"]
+_Task = Literal["walker", "jump", "catapult", "aim", "stand", "swim"]
 _Fitness = Literal[
     "normalised",
     "distance",

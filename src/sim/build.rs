@@ -1,6 +1,6 @@
 //! Building a rapier world from a [`Creature`]: parts as boxes (parts fused by rigid joints
 //! share one body), joints with their limits and motors switched off, the ground, and the
-//! creature dropped from its drop height.
+//! creature dropped from its drop height; or, in water, no ground and no gravity.
 
 use ::nalgebra::Vector3;
 use rapier3d::math::{Real, Vector};
@@ -11,6 +11,7 @@ use super::options::SimOptions;
 use super::setting::SettingError;
 use super::slots::Keyed;
 use super::world::{GRAVITY, World};
+use super::world_spec::Medium;
 use crate::creature::{Creature, Joint, Part, PartId};
 
 /// The groups of parts fused by rigid joints: for each part, the lowest-numbered part of its
@@ -56,6 +57,17 @@ impl World {
     /// the ground, at rest. Options out of their ranges ([`SimOptions::check`]: no substeps,
     /// say) are refused.
     pub fn new(creature: &Creature, options: &SimOptions) -> Result<World, BuildError> {
+        World::in_medium(creature, options, Medium::Air)
+    }
+
+    /// Builds the world in `medium`: in air as [`World::new`] does; in water with no ground
+    /// and no gravity, the creature at rest where it is, its bounding box centred on the
+    /// origin, every part feeling water resistance ([`super::water`]).
+    pub fn in_medium(
+        creature: &Creature,
+        options: &SimOptions,
+        medium: Medium,
+    ) -> Result<World, BuildError> {
         options.check()?;
         if creature.parts.is_empty() {
             return Err(BuildError::NoParts);
@@ -101,17 +113,26 @@ impl World {
             peak_unexplained: 0.0,
             peak_joint_gap: 0.0,
             ground_collider: ColliderHandle::invalid(),
+            water: None,
         };
-        let ground = world.bodies.insert(RigidBodyBuilder::fixed());
-        world.ground_collider = world.colliders.insert_with_parent(
-            ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y))
-                .friction(options.friction as Real),
-            ground,
-            &mut world.bodies,
-        );
-
-        let (lo, _) = creature.bounding_box();
-        let lift = Vector3::new(0.0, options.drop_height - lo.y, 0.0);
+        let (lo, hi) = creature.bounding_box();
+        let lift = match medium {
+            Medium::Air => {
+                let ground = world.bodies.insert(RigidBodyBuilder::fixed());
+                world.ground_collider = world.colliders.insert_with_parent(
+                    ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y))
+                        .friction(options.friction as Real),
+                    ground,
+                    &mut world.bodies,
+                );
+                Vector3::new(0.0, options.drop_height - lo.y, 0.0)
+            }
+            Medium::Water { viscosity } => {
+                world.gravity = Vector::ZERO;
+                world.water = Some(viscosity);
+                -(lo + hi) / 2.0
+            }
+        };
         // Parts fused by rigid joints share one rigid body, a collider each (as MuJoCo welds
         // them): a chain of fixed joints is the stiffest thing an impulse solver meets, and
         // at one substep it can pump energy into a creature that has no motor at all.

@@ -5,7 +5,7 @@
 //! the world is built in [`build`] from the parts and joints of [`parts`] (keyed by stable
 //! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
 //! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
-//! [`projectile`], and steps in [`world`]; what the world holds besides the creature (terrain,
+//! [`projectile`], feels water's resistance in [`water`], and steps in [`world`]; what the world holds besides the creature (terrain,
 //! obstacles, objects, the medium) is described by [`world_spec`].
 
 pub mod actuators;
@@ -21,6 +21,7 @@ pub mod projectile;
 pub mod sensors;
 pub mod setting;
 mod slots;
+pub mod water;
 pub mod world;
 pub mod world_spec;
 
@@ -37,5 +38,6 @@ pub use options::{
 };
 pub use sensors::TOUCH_DISTANCE;
 pub use setting::{RENAMED_KEYS, StepSetting, UnknownSetting};
+pub use water::{DEFAULT_VISCOSITY, MAX_VISCOSITY};
 pub use world::{Exploded, GRAVITY, World};
 pub use world_spec::{Medium, WorldSpec};

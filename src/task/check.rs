@@ -6,7 +6,7 @@
 use super::{
     CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
 };
-use crate::sim::SettingError;
+use crate::sim::{MAX_VISCOSITY, Medium, SettingError, WorldSpec};
 use crate::sim::setting::check_real;
 
 /// The longest any duration of a task may be (s): an hour. A task's measurement (`seconds`,
@@ -112,16 +112,46 @@ impl TaskSpec {
         self.check_tables().map_err(|e| e.within("task"))
     }
 
+    /// The `[task.world]` table: water is the swim task's medium (and air, the default, the
+    /// other tasks'), alone in its world, its viscosity in (0, [`MAX_VISCOSITY`]]; terrain,
+    /// obstacles, objects and ground friction are not simulated yet.
+    fn check_world(&self) -> Result<(), SettingError> {
+        let medium = self.world.medium;
+        let rest = WorldSpec {
+            medium: Medium::Air,
+            ..self.world.clone()
+        };
+        if !rest.is_flat() {
+            return Err(SettingError::out_of_range(
+                if medium.is_air() { "slope" } else { "medium" },
+                "flat ground in air or water alone: terrain, obstacles, objects and ground friction are not simulated yet",
+                "a world with terrain, objects or ground friction",
+            ));
+        }
+        if let Medium::Water { viscosity } = medium {
+            if self.task != TaskKind::Swim {
+                return Err(SettingError::out_of_range(
+                    "medium",
+                    &format!("air for the {} task (water is the swim task's)", self.task.name()),
+                    "water",
+                ));
+            }
+            if !(viscosity > 0.0 && viscosity <= MAX_VISCOSITY) {
+                return Err(SettingError::out_of_range(
+                    "viscosity",
+                    &format!("in (0, {MAX_VISCOSITY}] N·s/m³"),
+                    viscosity,
+                )
+                .within("medium"));
+            }
+        }
+        Ok(())
+    }
+
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
     fn check_tables(&self) -> Result<(), SettingError> {
         self.sim.check().map_err(|e| e.within("sim"))?;
-        if !self.world.is_flat() {
-            return Err(SettingError::out_of_range(
-                "world",
-                "empty: only flat ground in air is simulated so far",
-                "a world with terrain, objects or water",
-            ));
-        }
+        self.check_world().map_err(|e| e.within("world"))?;
         for &kind in TaskKind::ALL {
             crate::with_task!(kind, T => <T as super::Task>::check_options(self))?;
         }

@@ -4,7 +4,7 @@
 //!
 //! This module keeps what every task shares (the failure floor, [`Status`], [`Evaluation`]);
 //! each task has its own file ([`walker`](walker()), [`jump`](jump()), [`catapult`](catapult()),
-//! aim and stand), implements [`Task`] and has one line in the registry
+//! aim, stand and swim), implements [`Task`] and has one line in the registry
 //! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
 //! `protocol`, the recording's file format in `recording`, and a task's specification as data
 //! in [`TaskSpec`].
@@ -23,6 +23,7 @@ mod recording;
 mod registry;
 mod spec;
 mod stand;
+mod swim;
 mod walker;
 pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
@@ -36,6 +37,7 @@ pub use recording::{
 pub use registry::{TASKS, Task, TaskInfo, task_named};
 pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
+pub use swim::{SwimOptions, SwimSettings, SwimTask, swim_viscosity};
 pub use walker::{
     WalkerFitness, WalkerOptions, WalkerTask, iterative_move, size_coefficients, walker,
 };

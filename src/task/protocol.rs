@@ -12,7 +12,7 @@ use super::recording::{Phase, Sample, recording_interval};
 use super::{Evaluation, Status};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
-use crate::sim::{SimOptions, World};
+use crate::sim::{Medium, SimOptions, World};
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
 /// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
@@ -342,11 +342,11 @@ pub(super) fn uninterrupted(evaluation: Result<Evaluation, Interrupted>) -> Eval
 fn start<'p>(
     task: &'static str,
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, medium): (&SimOptions, Medium),
     watch: Watch<'p>,
     max_steps: usize,
 ) -> Result<Run<'p>, Evaluation> {
-    let world = World::new(creature, sim)
+    let world = World::in_medium(creature, sim, medium)
         .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
     Ok(Run {
         world,
@@ -380,6 +380,18 @@ pub(super) fn evaluate(
     watch: Watch<'_>,
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
 ) -> Result<Evaluation, Interrupted> {
+    evaluate_in(task, creature, (sim, Medium::Air), bounds, watch, protocol)
+}
+
+/// [`evaluate`] in `medium`: in water, the world has no ground and no gravity.
+pub(super) fn evaluate_in(
+    task: &'static str,
+    creature: &Creature,
+    (sim, medium): (&SimOptions, Medium),
+    bounds: &impl Bounds,
+    watch: Watch<'_>,
+    protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
+) -> Result<Evaluation, Interrupted> {
     let Watch {
         record,
         progress,
@@ -394,7 +406,7 @@ pub(super) fn evaluate(
     let evaluation = evaluate_run(
         task,
         creature,
-        sim,
+        (sim, medium),
         (watch, max_steps),
         bounds.limits(),
         protocol,
@@ -406,7 +418,7 @@ pub(super) fn evaluate(
 fn evaluate_run(
     task: &'static str,
     creature: &Creature,
-    sim: &SimOptions,
+    sim: (&SimOptions, Medium),
     (watch, max_steps): (Watch<'_>, usize),
     (max_height, seconds): (f64, f64),
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,

@@ -101,7 +101,8 @@ macro_rules! for_each_task {
             Jump => $crate::task::JumpTask,
             Catapult => $crate::task::CatapultTask,
             Aim => $crate::task::AimTask,
-            Stand => $crate::task::StandTask
+            Stand => $crate::task::StandTask,
+            Swim => $crate::task::SwimTask
         }
     };
 }
@@ -174,7 +175,7 @@ mod tests {
     #[test]
     fn every_task_is_listed_once_and_dispatches_to_its_own_type() {
         let names: Vec<&str> = TASKS.iter().map(|t| t.name).collect();
-        assert_eq!(names, ["walker", "jump", "catapult", "aim", "stand"]);
+        assert_eq!(names, ["walker", "jump", "catapult", "aim", "stand", "swim"]);
         for (&kind, info) in TaskKind::ALL.iter().zip(TASKS) {
             assert!(!info.summary.is_empty(), "{}", info.name);
             assert_eq!(crate::with_task!(kind, T => T::NAME), info.name);

@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{CatapultOptions, Evaluation, JumpOptions, StandOptions, Task, WalkerOptions, Watch};
+use super::{
+    CatapultOptions, Evaluation, JumpOptions, StandOptions, SwimOptions, Task, WalkerOptions, Watch,
+};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -66,6 +68,9 @@ pub struct TaskSpec {
     /// The stand task's settings (used by `stand`).
     #[serde(default)]
     pub stand: StandOptions,
+    /// The swim task's settings (used by `swim`).
+    #[serde(default)]
+    pub swim: SwimOptions,
 }
 
 impl TaskSpec {
