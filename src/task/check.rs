@@ -6,8 +6,8 @@
 use super::{
     CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
 };
-use crate::sim::{MAX_VISCOSITY, Medium, SettingError, WorldSpec};
 use crate::sim::setting::check_real;
+use crate::sim::{MAX_VISCOSITY, Medium, SettingError, WorldSpec};
 
 /// The longest any duration of a task may be (s): an hour. A task's measurement (`seconds`,
 /// the catapult's `max_seconds`), a wait for rest and every other phase must fit in it, so
@@ -132,7 +132,10 @@ impl TaskSpec {
             if self.task != TaskKind::Swim {
                 return Err(SettingError::out_of_range(
                     "medium",
-                    &format!("air for the {} task (water is the swim task's)", self.task.name()),
+                    &format!(
+                        "air for the {} task (water is the swim task's)",
+                        self.task.name()
+                    ),
                     "water",
                 ));
             }

@@ -175,7 +175,10 @@ mod tests {
     #[test]
     fn every_task_is_listed_once_and_dispatches_to_its_own_type() {
         let names: Vec<&str> = TASKS.iter().map(|t| t.name).collect();
-        assert_eq!(names, ["walker", "jump", "catapult", "aim", "stand", "swim"]);
+        assert_eq!(
+            names,
+            ["walker", "jump", "catapult", "aim", "stand", "swim"]
+        );
         for (&kind, info) in TaskKind::ALL.iter().zip(TASKS) {
             assert!(!info.summary.is_empty(), "{}", info.name);
             assert_eq!(crate::with_task!(kind, T => T::NAME), info.name);

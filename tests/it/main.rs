@@ -43,6 +43,7 @@ mod render;
 mod rooms;
 mod store;
 mod stubs;
+mod swim;
 mod textbook;
 mod util;
 mod view;
