@@ -24,7 +24,7 @@ fn the_snake_swims_a_little_in_water_of_the_default_viscosity() {
 }
 
 /// How far the snake's centre of mass moves in 20 s of swimming (m).
-const SNAKE_SWIMS: f64 = 0.0;
+const SNAKE_SWIMS: f64 = 0.768971;
 
 #[test]
 fn a_creature_without_a_controller_stays_where_it_is() {
