@@ -6,7 +6,6 @@ use rapier3d::math::Vector;
 
 use super::slots::JointHandle;
 use super::world::{Exploded, GRAVITY, World};
-use crate::creature::JointId;
 
 /// A joint gap (m) beyond which `ontogeny eval` warns that the step setting is too coarse for
 /// the creature: the fine reference keeps the evolved walkers measured under 1.1 cm, while
@@ -75,11 +74,11 @@ impl World {
     /// the torque limit × the joint's angular speed.
     pub(super) fn motor_power_bound(&self) -> f64 {
         let mut work = 0.0;
-        for j in 0..self.joints.len() {
+        for j in self.joint_ids() {
             let Some(data) = self.joint_data(j) else {
                 continue;
             };
-            let joint = &self.joints[JointId(j)];
+            let joint = &self.joints[j];
             let (b1, b2) = joint.ends;
             let relative = self.bodies[b2].angvel() - self.bodies[b1].angvel();
             let frame = *self.bodies[b1].rotation() * data.local_frame1.rotation;

@@ -7,6 +7,7 @@ use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
+use super::motion::Attach;
 use super::options::SimOptions;
 use super::setting::SettingError;
 use super::slots::Keyed;
@@ -142,8 +143,12 @@ impl World {
                 position: part.position + lift,
                 ..part.clone()
             };
-            let fused_with = (group[i] != i).then_some(PartId(group[i]));
-            world.add_part(&lifted, fused_with);
+            let attach = if group[i] == i {
+                Attach::Free
+            } else {
+                Attach::FusedTo(PartId(group[i]))
+            };
+            world.add_part(&lifted, attach);
         }
         for joint in &creature.joints {
             let lifted = Joint {

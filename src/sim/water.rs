@@ -78,7 +78,7 @@ impl World {
         for i in 0..self.parts.len() {
             let slot = &self.parts[PartId(i)];
             let (handle, size) = (slot.body, slot.size);
-            let pose = self.part_world_pose(i);
+            let pose = self.part_world_pose(PartId(i));
             let body = &self.bodies[handle];
             let (force, torque) = part_resistance(
                 viscosity,
@@ -215,7 +215,7 @@ mod tests {
         assert_eq!(world.part_size(PartId(0)), Vector3::new(1.0, 0.05, 1.0));
         let body = world.parts[PartId(0)].body;
         let mass = world.bodies[body].mass() as f64;
-        let (_, rotation) = world.part_pose(0);
+        let (_, rotation) = world.part_pose(PartId(0));
         let axes = [Vector3::x(), Vector3::y(), Vector3::z()].map(|a| rotation * a);
         (world, body, mass, axes)
     }
@@ -273,12 +273,12 @@ mod tests {
     #[test]
     fn a_box_at_rest_in_water_stays_where_it_is() {
         let (mut world, body, _, _) = plate_in_water(DEFAULT_VISCOSITY);
-        let start = world.part_position(0);
+        let start = world.part_position(PartId(0));
         assert!(start.norm() < 1e-6, "centred on the origin: {start}");
         for _ in 0..120 {
             world.step(true).unwrap();
         }
-        assert_eq!(world.part_position(0), start);
+        assert_eq!(world.part_position(PartId(0)), start);
         assert_eq!(to_na(world.bodies[body].linvel()), Vector3::zeros());
         assert_eq!(world.peak_unexplained_energy(), 0.0);
     }

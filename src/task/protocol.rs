@@ -169,8 +169,10 @@ impl Run<'_> {
             let sample = Sample {
                 t: self.world.time(),
                 phase: Some(self.phase),
-                parts: (0..self.world.part_count())
-                    .map(|i| self.world.part_pose(i))
+                parts: self
+                    .world
+                    .part_ids()
+                    .map(|id| self.world.part_pose(id))
                     .collect(),
                 projectile: self.world.projectile_state().map(|(p, _)| p),
                 projectile_size: self.projectile_size,
@@ -252,14 +254,17 @@ impl Run<'_> {
             if calm == 0 {
                 // A new calm window starts here.
                 window.clear();
-                window.extend((0..self.world.part_count()).map(|i| self.world.part_position(i)));
+                window.extend(self.world.part_ids().map(|id| self.world.part_position(id)));
             }
             let moved = self.step(false)?;
             taken += 1;
             // Calm: every part moves less than Δx per 1/60 s (Chaumont), and none has drifted
             // more than `drift` since the window began (a slowly toppling tower is not at rest).
-            let drifted = (0..window.len())
-                .any(|i| (self.world.part_position(i) - window[i]).norm() >= rest.drift);
+            let drifted = self
+                .world
+                .part_ids()
+                .zip(&window)
+                .any(|(id, at)| (self.world.part_position(id) - at).norm() >= rest.drift);
             calm = if moved < threshold && !drifted {
                 calm + 1
             } else {

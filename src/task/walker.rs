@@ -11,7 +11,7 @@ use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unw
 use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE};
 use crate::cancel::Interrupted;
-use crate::creature::Creature;
+use crate::creature::{Creature, PartId};
 use crate::sim::{DragMeter, SimOptions, World};
 
 /// The walker's fitness formula.
@@ -224,7 +224,7 @@ pub(super) fn walker_watched(
         run.settle(&options.rest, options.second_settle, sim.control_step)?;
         let measure_from = run.world.time();
         run.phase = Phase::Measuring;
-        let from = run.world.part_position(0);
+        let from = run.world.part_position(PartId(0));
         // Iterative move: the centre of mass's horizontal gain over every whole second.
         let mut gains = Vec::new();
         let mut last_second = centre_of_mass(&run.world, creature);
@@ -248,7 +248,7 @@ pub(super) fn walker_watched(
             }
         }
         let iterative = iterative_move(&gains);
-        let to = run.world.part_position(0);
+        let to = run.world.part_position(PartId(0));
         let d = to - from;
         let distance = (d.x * d.x + d.z * d.z).sqrt();
         let (c_l, c_s, c_v) = size_coefficients(creature);
@@ -294,8 +294,9 @@ pub(super) fn walker_watched(
 /// The mass-weighted centre of the creature's parts in `world`.
 pub(super) fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64> {
     let total = creature.mass().max(f64::MIN_POSITIVE);
-    (0..world.part_count())
-        .map(|i| world.part_position(i) * creature.parts[i].mass())
+    creature
+        .parts_by_id()
+        .map(|(id, part)| world.part_position(id) * part.mass())
         .sum::<Vector3<f64>>()
         / total
 }
