@@ -159,7 +159,9 @@ def evaluate(
     record: bool = False,
 ) -> Evaluation:
     """Evaluates a creature on a task, as ``ontogeny eval --task TASK`` does; ``sim`` sets the
-    simulator's knobs by their ``[task.sim]`` keys (see ``_Sim``) over ``setting``."""
+    simulator's knobs by their ``[task.sim]`` keys (see ``_Sim``) over ``setting``. The task's
+    keywords: ``seconds`` (the walker, jump, catapult, aim and stand tasks), ``fitness`` (the
+    walker task), ``target`` (the aim task); one the task does not read raises ValueError."""
 
 def evaluate_many(
     creatures: Sequence[Creature],
@@ -174,7 +176,7 @@ def evaluate_many(
     record: bool = False,
 ) -> List[Evaluation]:
     """Evaluates creatures in parallel without the GIL; results in order, equal to
-    ``evaluate``'s one by one."""
+    ``evaluate``'s one by one. The task's keywords are ``evaluate``'s."""
 
 class Run:
     """A run directory's records, read read-only."""
@@ -193,7 +195,8 @@ class Run:
 
 def evolve(config: Optional[_Path] = None, *, out: _Path, **overrides: Any) -> Run:
     """Runs an evolution into ``out``, as ``ontogeny evolve`` does; ``overrides`` are its
-    flags by long name (``gens=3``, ``pop=6``, ``seed=1``, ``encoding="direct"``, ...)."""
+    flags by long name (``gens=3``, ``pop=6``, ``seed=1``, ``encoding="direct"``,
+    ``target=(3, 0, 0)``, ...)."""
 
 def resume(
     path: _Path,

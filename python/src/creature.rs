@@ -11,7 +11,7 @@ use numpy::IntoPyArray;
 use numpy::PyArray2;
 use numpy::ndarray::Array2;
 use ontogeny::creature::Creature;
-use ontogeny::encoding::{Genome, LoadOptions, grow_grammar, load_creature};
+use ontogeny::encoding::{Genome, LoadError, LoadOptions, Loaded, grow_grammar, load_creature};
 use ontogeny::lang::{Diagnostic, Source};
 use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides, print};
 use pyo3::prelude::*;
@@ -220,14 +220,9 @@ pub(crate) fn rows(points: impl Iterator<Item = [f64; 3]>) -> Array2<f64> {
     Array2::from_shape_vec((n, 3), flat).expect("3 numbers per row")
 }
 
-/// Grows a creature from grammar text (an `.lsys` file's content), to its last frame, as
-/// `ontogeny grow` does.
-#[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn grow(
-    py: Python<'_>,
-    text: &str,
+/// The keyword arguments of development that `grow`, `load` and `derive` share, as the
+/// command line's development flags give them.
+pub(crate) struct Growth {
     steps: Option<u64>,
     time: Option<f64>,
     dt: Option<f64>,
@@ -235,52 +230,74 @@ pub(crate) fn grow(
     env: Option<Vec<(usize, f64)>>,
     defines: Option<std::collections::BTreeMap<String, f64>>,
     seed: Option<u64>,
+}
+
+/// Declares the Python function `$name`, taking `$first` and the keyword arguments of
+/// development ([`Growth`], `$growth` in its body): one signature for `grow`, `load` and
+/// `derive`, as `help()` and the stubs show it.
+macro_rules! growing_function {
+    ($(#[$doc:meta])* fn $name:ident($py:ident, $first:ident: $ty:ty; $growth:ident) -> $ret:ty $body:block) => {
+        $(#[$doc])*
+        #[pyfunction]
+        #[pyo3(signature = ($first, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
+        #[allow(clippy::too_many_arguments)]
+        pub(crate) fn $name(
+            $py: Python<'_>,
+            $first: $ty,
+            steps: Option<u64>,
+            time: Option<f64>,
+            dt: Option<f64>,
+            grammar_seed: Option<u64>,
+            env: Option<Vec<(usize, f64)>>,
+            defines: Option<std::collections::BTreeMap<String, f64>>,
+            seed: Option<u64>,
+        ) -> $ret {
+            let $growth = Growth { steps, time, dt, grammar_seed, env, defines, seed };
+            $body
+        }
+    };
+}
+
+/// The creature `load` makes with `options`, which Ctrl-C stops.
+fn loaded_with(
+    py: Python<'_>,
+    options: LoadOptions,
+    load: impl FnOnce(&LoadOptions) -> Result<Loaded, LoadError> + Send,
 ) -> PyResult<PyCreature> {
-    let seed = given_grammar_seed(py, grammar_seed, seed)?;
-    let lsys = grammar_text(text, define_overrides(defines)?, seed)?;
-    let options = load_options(steps, seed, time, dt, env);
     let loaded = interruptible(py, |cancel| {
         let options = LoadOptions {
             cancel: cancel.clone(),
             ..options
         };
-        grow_grammar(&lsys, &options, &mut |_| {})
+        load(&options)
     })?
     .map_err(load_error)?;
     Ok(PyCreature::new(loaded.creature, loaded.notes))
 }
 
-/// Reads a creature from a file, as `ontogeny eval FILE` does: an `.lsys` grammar (or a
-/// direct genome, grown to its last frame), a `creature.json`, or a graph genome's `.json`.
-#[pyfunction]
-#[pyo3(signature = (path, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn load(
-    py: Python<'_>,
-    path: PathBuf,
-    steps: Option<u64>,
-    time: Option<f64>,
-    dt: Option<f64>,
-    grammar_seed: Option<u64>,
-    env: Option<Vec<(usize, f64)>>,
-    defines: Option<std::collections::BTreeMap<String, f64>>,
-    seed: Option<u64>,
-) -> PyResult<PyCreature> {
-    let seed = given_grammar_seed(py, grammar_seed, seed)?;
-    require_exists(&path)?;
-    let options = LoadOptions {
-        defines: define_overrides(defines)?,
-        ..load_options(steps, seed, time, dt, env)
-    };
-    let loaded = interruptible(py, |cancel| {
+growing_function! {
+    /// Grows a creature from grammar text (an `.lsys` file's content), to its last frame, as
+    /// `ontogeny grow` does.
+    fn grow(py, text: &str; growth) -> PyResult<PyCreature> {
+        let seed = given_grammar_seed(py, growth.grammar_seed, growth.seed)?;
+        let lsys = grammar_text(text, define_overrides(growth.defines)?, seed)?;
+        let options = load_options(growth.steps, seed, growth.time, growth.dt, growth.env);
+        loaded_with(py, options, |options| grow_grammar(&lsys, options, &mut |_| {}))
+    }
+}
+
+growing_function! {
+    /// Reads a creature from a file, as `ontogeny eval FILE` does: an `.lsys` grammar (or a
+    /// direct genome, grown to its last frame), a `creature.json`, or a graph genome's `.json`.
+    fn load(py, path: PathBuf; growth) -> PyResult<PyCreature> {
+        let seed = given_grammar_seed(py, growth.grammar_seed, growth.seed)?;
+        require_exists(&path)?;
         let options = LoadOptions {
-            cancel: cancel.clone(),
-            ..options
+            defines: define_overrides(growth.defines)?,
+            ..load_options(growth.steps, seed, growth.time, growth.dt, growth.env)
         };
-        load_creature(&path, &options, &mut |_| {})
-    })?
-    .map_err(load_error)?;
-    Ok(PyCreature::new(loaded.creature, loaded.notes))
+        loaded_with(py, options, |options| load_creature(&path, options, &mut |_| {}))
+    }
 }
 
 /// Develops a creature from a genome's text in one of the encodings (`direct`: an `.lsys`
@@ -312,52 +329,41 @@ pub(crate) fn genome(
         .map_err(value_error)
 }
 
-/// Derives grammar text as `ontogeny derive` does: a list of frames `(time, modules, env)`,
-/// the axiom first: the frame's time (its step in discrete time), its module string as text,
-/// and the environment's values.
-#[pyfunction]
-#[pyo3(signature = (text, *, steps=None, time=None, dt=None, grammar_seed=None, env=None, defines=None, seed=None))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn derive(
-    py: Python<'_>,
-    text: &str,
-    steps: Option<u64>,
-    time: Option<f64>,
-    dt: Option<f64>,
-    grammar_seed: Option<u64>,
-    env: Option<Vec<(usize, f64)>>,
-    defines: Option<std::collections::BTreeMap<String, f64>>,
-    seed: Option<u64>,
-) -> PyResult<Vec<(f64, String, Vec<f64>)>> {
-    let seed = given_grammar_seed(py, grammar_seed, seed)?;
-    let lsys = grammar_text(text, define_overrides(defines)?, seed)?;
-    let options = derive_options(seed, time, dt, env);
-    let note = print::check_mode(&lsys, &options, steps, "printing").map_err(diagnostic_error)?;
-    warn_all(py, &note.into_iter().collect::<Vec<_>>())?;
-    let (frames, fixed) = interruptible(py, |cancel| {
-        let mut frames = Vec::new();
-        let mut fixed = None;
-        lsys.for_each_frame_until(&options, steps, |frame| {
-            cancel.check()?;
-            if let Some(step) = frame.fixed_since {
-                fixed = Some(format!(
-                    "fixed point at step {step}: steps {} to {} give the same string, so they \
-                     were not derived (the last frame is step {})",
-                    step + 1,
-                    frame.step,
-                    frame.step
+growing_function! {
+    /// Derives grammar text as `ontogeny derive` does: a list of frames `(time, modules, env)`,
+    /// the axiom first: the frame's time (its step in discrete time), its module string as
+    /// text, and the environment's values.
+    fn derive(py, text: &str; growth) -> PyResult<Vec<(f64, String, Vec<f64>)>> {
+        let seed = given_grammar_seed(py, growth.grammar_seed, growth.seed)?;
+        let lsys = grammar_text(text, define_overrides(growth.defines)?, seed)?;
+        let options = derive_options(seed, growth.time, growth.dt, growth.env);
+        let note = print::check_mode(&lsys, &options, growth.steps, "printing").map_err(diagnostic_error)?;
+        warn_all(py, &note.into_iter().collect::<Vec<_>>())?;
+        let (frames, fixed) = interruptible(py, |cancel| {
+            let mut frames = Vec::new();
+            let mut fixed = None;
+            lsys.for_each_frame_until(&options, growth.steps, |frame| {
+                cancel.check()?;
+                if let Some(step) = frame.fixed_since {
+                    fixed = Some(format!(
+                        "fixed point at step {step}: steps {} to {} give the same string, so they \
+                         were not derived (the last frame is step {})",
+                        step + 1,
+                        frame.step,
+                        frame.step
+                    ));
+                }
+                frames.push((
+                    frame.t,
+                    lsys.display(frame.string).to_string(),
+                    frame.env.values().to_vec(),
                 ));
-            }
-            frames.push((
-                frame.t,
-                lsys.display(frame.string).to_string(),
-                frame.env.values().to_vec(),
-            ));
-            Ok::<bool, Diagnostic>(true)
-        })
-        .map(|()| (frames, fixed))
-    })?
-    .map_err(diagnostic_error)?;
-    warn_all(py, &fixed.into_iter().collect::<Vec<_>>())?;
-    Ok(frames)
+                Ok::<bool, Diagnostic>(true)
+            })
+            .map(|()| (frames, fixed))
+        })?
+        .map_err(diagnostic_error)?;
+        warn_all(py, &fixed.into_iter().collect::<Vec<_>>())?;
+        Ok(frames)
+    }
 }

@@ -1,6 +1,6 @@
 //! Evaluations from Python: `evaluate`, `evaluate_many` and the `Evaluation` class.
 
-use crate::common::{fitness_named, setting_named, task_named, thread_pool, value_error, warn_all};
+use crate::common::{fitness_named, setting_named, task_named, thread_pool, value_error};
 use crate::creature::PyCreature;
 use std::sync::Arc;
 
@@ -14,7 +14,7 @@ use ontogeny::front::flags::{TaskFlags, option_of};
 use ontogeny::lang::suggest::did_you_mean;
 use ontogeny::sim::knobs::{Knob, Value, knob};
 use ontogeny::sim::{ActuatorModel, JointModel, KNOBS, SimOptions, StrengthFrom};
-use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch};
+use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch, keyword_refusal};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt};
 use rayon::prelude::*;
@@ -111,38 +111,74 @@ impl PyEvaluation {
     }
 }
 
-/// The task's specification from `evaluate`'s keyword arguments, built and checked as
-/// `ontogeny eval` builds it from the same flags ([`TaskFlags::spec`]); the arguments the task
-/// does not use are warned about, as `eval` does.
-pub(crate) fn task_spec(
-    py: Python<'_>,
-    task: &str,
+/// The task's keyword arguments that `evaluate` and `evaluate_many` share.
+pub(crate) struct TaskArgs<'a, 'py> {
+    task: &'a str,
     seconds: Option<f64>,
-    fitness: Option<&str>,
-    setting: &str,
-    sim: Option<&Bound<'_, PyDict>>,
+    fitness: Option<&'a str>,
+    setting: &'a str,
+    sim: Option<&'a Bound<'py, PyDict>>,
     target: Option<[f64; 3]>,
-) -> PyResult<TaskSpec> {
-    let flags = TaskFlags {
-        task: task_named(task)?,
-        seconds,
-        fitness: fitness.map(fitness_named).transpose()?,
-        activation: None,
-        target,
-        projectile_size: None,
-        projectile_density: None,
+}
+
+impl TaskArgs<'_, '_> {
+    /// The task's specification, built and checked as `ontogeny eval` builds it from the same
+    /// flags ([`TaskFlags::spec`]). A keyword of a setting the task does not read (the
+    /// registry's [`ontogeny::task::Task::KEYWORDS`]: `fitness=` but for the walker, `target=`
+    /// but for aim) is a `ValueError` naming the task.
+    pub(crate) fn spec(&self) -> PyResult<TaskSpec> {
+        let task = task_named(self.task)?;
+        let given = [
+            ("seconds", self.seconds.is_some()),
+            ("fitness", self.fitness.is_some()),
+            ("target", self.target.is_some()),
+        ];
+        for (keyword, _) in given.iter().filter(|(_, given)| *given) {
+            if let Some(refusal) = keyword_refusal(keyword, &format!("{keyword}="), task.info()) {
+                return Err(value_error(refusal));
+            }
+        }
+        let flags = TaskFlags {
+            task,
+            seconds: self.seconds,
+            fitness: self.fitness.map(fitness_named).transpose()?,
+            activation: None,
+            target: self.target,
+            projectile_size: None,
+            projectile_density: None,
+        };
+        let sim = sim_options(self.setting, self.sim)?;
+        flags
+            .spec(sim)
+            .map_err(|e| value_error(e.for_flag(&option_of(e.key))))
+    }
+}
+
+/// Declares the Python function `$name`, taking `$first`, the task's keyword arguments
+/// ([`TaskArgs`], `$args` in its body), `$extra` keywords and `record`: one signature for
+/// `evaluate` and `evaluate_many`, as `help()` and the stubs show it.
+macro_rules! evaluating_function {
+    ($(#[$doc:meta])* fn $name:ident($py:ident, $first:ident: $ty:ty $(, $extra:ident: $ety:ty = $default:tt)*; $args:ident, $record:ident) -> $ret:ty $body:block) => {
+        $(#[$doc])*
+        #[pyfunction]
+        #[pyo3(signature = ($first, task="walker", *, $($extra=$default,)* seconds=None, fitness=None, setting="default", sim=None, target=None, record=false))]
+        #[allow(clippy::too_many_arguments)]
+        pub(crate) fn $name(
+            $py: Python<'_>,
+            $first: $ty,
+            task: &str,
+            $($extra: $ety,)*
+            seconds: Option<f64>,
+            fitness: Option<&str>,
+            setting: &str,
+            sim: Option<&Bound<'_, PyDict>>,
+            target: Option<[f64; 3]>,
+            $record: bool,
+        ) -> $ret {
+            let $args = TaskArgs { task, seconds, fitness, setting, sim, target };
+            $body
+        }
     };
-    let sim = sim_options(setting, sim)?;
-    let spec = flags
-        .spec(sim)
-        .map_err(|e| value_error(e.for_flag(&option_of(e.key))))?;
-    let ignored: Vec<String> = flags
-        .inapplicable()
-        .into_iter()
-        .map(|m| format!("{}; ignored", m.replace("--", "")))
-        .collect();
-    warn_all(py, &ignored)?;
-    Ok(spec)
 }
 
 /// The simulator's options of `setting=` and `sim=`: the named step setting, each of `sim`'s
@@ -250,27 +286,16 @@ fn named<T: Copy>(
     )))
 }
 
-/// Evaluates a creature on a task, as `ontogeny eval FILE --task TASK` does, with the same
-/// result bit for bit.
-#[pyfunction]
-#[pyo3(signature = (creature, task="walker", *, seconds=None, fitness=None, setting="default", sim=None, target=None, record=false))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn evaluate(
-    py: Python<'_>,
-    creature: &PyCreature,
-    task: &str,
-    seconds: Option<f64>,
-    fitness: Option<&str>,
-    setting: &str,
-    sim: Option<&Bound<'_, PyDict>>,
-    target: Option<[f64; 3]>,
-    record: bool,
-) -> PyResult<PyEvaluation> {
-    let spec = task_spec(py, task, seconds, fitness, setting, sim, target)?;
-    let body = Arc::clone(&creature.creature);
-    let outcome = interruptible(py, |cancel| watched(&spec, &body, record, cancel))?
-        .map_err(interrupted_error)?;
-    Ok(PyEvaluation { outcome })
+evaluating_function! {
+    /// Evaluates a creature on a task, as `ontogeny eval FILE --task TASK` does, with the same
+    /// result bit for bit.
+    fn evaluate(py, creature: &PyCreature; args, record) -> PyResult<PyEvaluation> {
+        let spec = args.spec()?;
+        let body = Arc::clone(&creature.creature);
+        let outcome = interruptible(py, |cancel| watched(&spec, &body, record, cancel))?
+            .map_err(interrupted_error)?;
+        Ok(PyEvaluation { outcome })
+    }
 }
 
 /// `spec`'s evaluation of `creature`, stopped by `cancel`.
@@ -288,39 +313,33 @@ pub(crate) fn watched(
     spec.evaluate_watched(creature, watch)
 }
 
-/// Evaluates many creatures on one task in parallel (on `threads` worker threads, default one
-/// per core), without holding the GIL; the results are in the creatures' order and equal to
-/// `evaluate`'s one by one.
-#[pyfunction]
-#[pyo3(signature = (creatures, task="walker", *, threads=None, seconds=None, fitness=None, setting="default", sim=None, target=None, record=false))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn evaluate_many(
-    py: Python<'_>,
-    creatures: Vec<PyRef<'_, PyCreature>>,
-    task: &str,
-    threads: Option<usize>,
-    seconds: Option<f64>,
-    fitness: Option<&str>,
-    setting: &str,
-    sim: Option<&Bound<'_, PyDict>>,
-    target: Option<[f64; 3]>,
-    record: bool,
-) -> PyResult<Vec<PyEvaluation>> {
-    let spec = task_spec(py, task, seconds, fitness, setting, sim, target)?;
-    let pool = thread_pool(threads)?;
-    let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
-    drop(creatures);
-    let outcomes: Vec<Outcome> = interruptible(py, |cancel| {
-        pool.install(|| {
-            bodies
-                .par_iter()
-                .map(|c| watched(&spec, c, record, cancel))
-                .collect::<Result<_, _>>()
-        })
-    })?
-    .map_err(interrupted_error)?;
-    Ok(outcomes
-        .into_iter()
-        .map(|outcome| PyEvaluation { outcome })
-        .collect())
+evaluating_function! {
+    /// Evaluates many creatures on one task in parallel (on `threads` worker threads, default
+    /// one per core), without holding the GIL; the results are in the creatures' order and
+    /// equal to `evaluate`'s one by one.
+    fn evaluate_many(
+        py,
+        creatures: Vec<PyRef<'_, PyCreature>>,
+        threads: Option<usize> = None;
+        args,
+        record
+    ) -> PyResult<Vec<PyEvaluation>> {
+        let spec = args.spec()?;
+        let pool = thread_pool(threads)?;
+        let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
+        drop(creatures);
+        let outcomes: Vec<Outcome> = interruptible(py, |cancel| {
+            pool.install(|| {
+                bodies
+                    .par_iter()
+                    .map(|c| watched(&spec, c, record, cancel))
+                    .collect::<Result<_, _>>()
+            })
+        })?
+        .map_err(interrupted_error)?;
+        Ok(outcomes
+            .into_iter()
+            .map(|outcome| PyEvaluation { outcome })
+            .collect())
+    }
 }

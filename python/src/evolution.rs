@@ -18,9 +18,10 @@ use pyo3::types::{PyDict, PyList};
 
 /// Runs an evolution into the directory `out`, as `ontogeny evolve --out OUT` does with the
 /// same settings (a config file, and the keyword arguments over it as the command line's
-/// flags); returns the run's directory.
+/// flags, `target` the aim task's `--target`; a keyword the task does not read is refused as
+/// the command line refuses its flag); returns the run's directory.
 #[pyfunction]
-#[pyo3(signature = (config=None, *, out, encoding=None, task=None, fitness=None, preset=None, pop=None, gens=None, seed=None, seconds=None, setting=None, threads=None, init=None, verify_best=true, cache=true, progress=false))]
+#[pyo3(signature = (config=None, *, out, encoding=None, task=None, fitness=None, preset=None, pop=None, gens=None, seed=None, seconds=None, target=None, setting=None, threads=None, init=None, verify_best=true, cache=true, progress=false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evolve(
     py: Python<'_>,
@@ -34,6 +35,7 @@ pub(crate) fn evolve(
     gens: Option<usize>,
     seed: Option<u64>,
     seconds: Option<f64>,
+    target: Option<[f64; 3]>,
     setting: Option<&str>,
     threads: Option<usize>,
     init: Option<PathBuf>,
@@ -78,7 +80,7 @@ pub(crate) fn evolve(
         fitness: fitness.map(fitness_named).transpose()?,
         seconds,
         setting: setting.map(setting_named).transpose()?,
-        target: None,
+        target,
     };
     let pool = thread_pool(threads)?;
     let source = config

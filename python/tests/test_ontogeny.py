@@ -283,6 +283,16 @@ def test_unknown_names_raise_value_error_listing_the_known_ones():
         ontogeny.evaluate_many([creature], threads=0)
 
 
+def test_a_keyword_the_task_does_not_read_raises_value_error_naming_the_task():
+    creature = ontogeny.grow(TWO_BOXES)
+    with pytest.raises(ValueError, match="^fitness= is for the walker task only, and the task is jump$"):
+        ontogeny.evaluate(creature, "jump", fitness="distance")
+    with pytest.raises(ValueError, match="^target= is for the aim task only, and the task is catapult$"):
+        ontogeny.evaluate_many([creature], "catapult", target=(3, 0, 0))
+    with pytest.raises(ValueError, match="^target= is for the aim task only, and the task is walker$"):
+        ontogeny.evaluate(creature, target=(3, 0, 0))
+
+
 def test_a_file_that_is_not_a_creature_raises_value_error(tmp_path):
     path = tmp_path / "other.json"
     path.write_text('{"hello": 1}')

@@ -27,8 +27,9 @@ pub const WITH_RESUME: &[&str] = &["threads", "no_cache", "json"];
 /// The flags that go with `--merge`; it refuses every other.
 pub const WITH_MERGE: &[&str] = &["json"];
 
-/// Compare encodings on equal terms: replicated runs of each with the same evaluation
-/// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
+/// Compare encodings, or conditions (`--condition`), on equal terms: replicated runs of
+/// each with the same budget, and a report of statistics (Mann–Whitney U, Holm, A12) over
+/// their champions that states its power.
 #[derive(Args)]
 pub struct CompareArgs {
     /// The encodings to compare, comma-separated (e.g. lsystem,direct), under the shared

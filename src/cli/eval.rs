@@ -13,7 +13,7 @@ use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
 use ontogeny::run::champion::ChampionRecord;
 use ontogeny::sim::{JointModel, SimOptions};
-use ontogeny::task::{Evaluation, Recording, TaskKind, TaskSpec};
+use ontogeny::task::{CatapultOptions, Evaluation, Recording, TaskKind, TaskSpec, WalkerOptions};
 
 use super::derive::DevelopmentArgs;
 use super::input::load_creature_with;
@@ -167,7 +167,7 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
         ))
     };
     let recorded = &record.task;
-    if args.task.is_some_and(|t| t != recorded.task) {
+    if args.task.is_some_and(|t| t != recorded.kind()) {
         differs("--task", recorded.task.name().to_string());
         for n in notes {
             tell!("{n}");
@@ -191,44 +191,43 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
         }
         spec.sim = sim;
     }
-    if let Some(f) = flags.fitness.filter(|_| spec.task == TaskKind::Walker) {
-        if f != spec.walker.fitness {
-            differs("--fitness", spec.walker.fitness.name().to_string());
+    if let (Some(f), Some(walker)) = (flags.fitness, spec.task.get_mut::<WalkerOptions>()) {
+        if f != walker.fitness {
+            differs("--fitness", walker.fitness.name().to_string());
         }
-        spec.walker.fitness = f;
+        walker.fitness = f;
     }
     if let Some(s) = flags.seconds {
-        let (field, shown) = (
-            ontogeny::with_task!(spec.task, T => <T as ontogeny::task::Task>::seconds(&mut spec)),
-            "seconds",
-        );
+        let field = spec.seconds_mut();
         if *field != s {
-            differs("--seconds", format!("{} {shown}", *field));
+            differs("--seconds", format!("{} seconds", *field));
         }
         *field = s;
     }
-    if let Some(a) = flags.activation.filter(|_| spec.task == TaskKind::Walker) {
-        if a != spec.walker.activation {
-            differs("--activation", format!("{} s", spec.walker.activation));
+    if let (Some(a), Some(walker)) = (flags.activation, spec.task.get_mut::<WalkerOptions>()) {
+        if a != walker.activation {
+            differs("--activation", format!("{} s", walker.activation));
         }
-        spec.walker.activation = a;
+        walker.activation = a;
     }
-    if let Some([x, y, z]) = flags.target.filter(|_| spec.task == TaskKind::Aim) {
-        let target = nalgebra::Vector3::new(x, y, z);
-        if spec.catapult.target != Some(target) {
-            let shown = spec
-                .catapult
-                .target
-                .map_or("none".to_string(), |t| format!("{},{},{}", t.x, t.y, t.z));
-            differs("--target", shown);
+    let aim = spec.kind() == TaskKind::Aim;
+    if let Some(catapult) = spec.task.get_mut::<CatapultOptions>() {
+        if let Some([x, y, z]) = flags.target.filter(|_| aim) {
+            let target = nalgebra::Vector3::new(x, y, z);
+            if catapult.target != Some(target) {
+                let shown = catapult
+                    .target
+                    .map_or("none".to_string(), |t| format!("{},{},{}", t.x, t.y, t.z));
+                differs("--target", shown);
+            }
+            catapult.target = Some(target);
         }
-        spec.catapult.target = Some(target);
-    }
-    if let Some(size) = flags.projectile_size {
-        spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);
-    }
-    if let Some(density) = flags.projectile_density {
-        spec.catapult.projectile_density = density;
+        if let Some(size) = flags.projectile_size {
+            catapult.projectile_size = nalgebra::Vector3::repeat(size);
+        }
+        if let Some(density) = flags.projectile_density {
+            catapult.projectile_density = density;
+        }
     }
     spec.check().map_err(flag_error)?;
     let seed = match args.development.seed.seed() {

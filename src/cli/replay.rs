@@ -8,7 +8,7 @@ use ontogeny::encoding::Genome;
 use ontogeny::render::MAX_FPS;
 use ontogeny::run::pick::{PickError, individual_by_rank};
 use ontogeny::run::{Run, encoding_of_run};
-use ontogeny::task::{Recording, TaskKind, TaskSpec};
+use ontogeny::task::{Recording, TaskSpec, WalkerOptions};
 
 use super::physics::{FitnessArgs, SteppingArgs};
 
@@ -108,13 +108,13 @@ fn changed_task(args: &ReplayArgs, task: &TaskSpec) -> anyhow::Result<Option<Tas
         task.sim = args.stepping.apply(&task.sim)?;
     }
     if let Some(f) = args.fitness.fitness {
-        if task.task != TaskKind::Walker {
+        let name = task.task.name();
+        let Some(walker) = task.task.get_mut::<WalkerOptions>() else {
             anyhow::bail!(super::bad(format!(
-                "--fitness is for the walker task only, and the run's task is {}",
-                task.task.name()
+                "--fitness is for the walker task only, and the run's task is {name}"
             )));
-        }
-        task.walker.fitness = f;
+        };
+        walker.fitness = f;
     }
     Ok(Some(task))
 }

@@ -5,11 +5,13 @@
 //! some of which read sensors and some of which drive actuators. Positions and orientations
 //! are in world coordinates: Y is up, the ground is the plane y = 0, lengths are in metres.
 
+mod differences;
 mod geometry;
 mod ids;
 pub mod repeats;
 mod summary;
 
+pub use differences::{PhenotypeDifferences, phenotype_differences};
 pub use geometry::{boxes_intersect, interpenetration_messages};
 pub use ids::{JointId, PartId};
 pub use summary::{Summary, counted};

@@ -9,6 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::{Serialize, de::DeserializeOwned};
 
 use crate::creature::Creature;
+use crate::environment::Environment;
 use crate::lang::ast::{Expr, UnaryOp};
 
 pub mod continuous;
@@ -92,6 +93,14 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
         let _ = (limits, purpose);
     }
 
+    /// Lets the operators make, change and remove environment reads (and the neurons that
+    /// read and write the chemical array) with chance `probability`, the `[ga]` key
+    /// `environment_reads` (called when a run is assembled); the default, for an encoding
+    /// whose genomes read no environment, changes nothing.
+    fn allow_environment_reads(limits: &mut Self::Limits, probability: f64) {
+        let _ = (limits, probability);
+    }
+
     /// A random genome within `limits`.
     fn random(limits: &Self::Limits, rng: &mut Rng) -> Self;
 
@@ -114,6 +123,27 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// Develops the genome into a creature; `seed` drives any randomness of development
     /// (stochastic rules).
     fn develop(&self, limits: &Self::Limits, seed: u64) -> Result<Creature, DevelopError>;
+
+    /// The chemical array the genome develops in unless told otherwise: its size and initial
+    /// values (empty by default: the genome has none).
+    fn environment(&self) -> Environment {
+        Environment::default()
+    }
+
+    /// Develops the genome as [`Genome::develop`] does, but in a chemical array whose initial
+    /// values are `env`'s (a habitat's): the same genome may grow another body. `env` must
+    /// have the size of [`Genome::environment`], unless the genome has none: a genome that
+    /// reads no environment grows [`Genome::develop`]'s creature in any array (the default,
+    /// for encodings whose genomes never read one).
+    fn develop_in(
+        &self,
+        limits: &Self::Limits,
+        seed: u64,
+        env: &Environment,
+    ) -> Result<Creature, DevelopError> {
+        check_environment_size(self.environment().len(), env)?;
+        self.develop(limits, seed)
+    }
 
     /// The genome as text for people (for L-system genomes, a valid `.lsys` file).
     fn to_text(&self) -> String;
@@ -142,18 +172,7 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// axiom): derivation length or time, symbols, rules, and findings placed in the grammar
     /// shown (`grammar:LINE:COLUMN`).
     fn show(&self) -> String {
-        let text = self.to_text();
-        let summary = match crate::lsystem::LSystem::from_text("grammar", &text) {
-            Ok(lsys) => lsys
-                .check()
-                .text()
-                .lines()
-                .skip(2)
-                .collect::<Vec<_>>()
-                .join("\n"),
-            Err(d) => format!("the text does not compile: {d}"),
-        };
-        format!("{}\n{summary}", text.trim_end())
+        grammar_shown(&self.to_text())
     }
 
     /// A genome read from a hand-written `.lsys` file, to seed a first generation with its
@@ -182,6 +201,35 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
             limits: limits.clone(),
             notes: Vec::new(),
         })
+    }
+}
+
+/// A grammar genome's text for people ([`Genome::show`]'s default): the text, then the
+/// summary `ontogeny check` gives of that grammar but its first two lines.
+pub(crate) fn grammar_shown(text: &str) -> String {
+    let summary = match crate::lsystem::LSystem::from_text("grammar", text) {
+        Ok(lsys) => lsys
+            .check()
+            .text()
+            .lines()
+            .skip(2)
+            .collect::<Vec<_>>()
+            .join("\n"),
+        Err(d) => format!("the text does not compile: {d}"),
+    };
+    format!("{}\n{summary}", text.trim_end())
+}
+
+/// `Err` unless `env` has `size` slots (the size of the array a genome develops in), or the
+/// genome has no array (`size` 0), which any array leaves as it is.
+pub(crate) fn check_environment_size(size: usize, env: &Environment) -> Result<(), DevelopError> {
+    if env.len() == size || size == 0 {
+        Ok(())
+    } else {
+        Err(DevelopError(format!(
+            "the genome develops in an environment of {size} slot(s), not {}",
+            env.len()
+        )))
     }
 }
 

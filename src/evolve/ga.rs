@@ -19,7 +19,7 @@ use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::sim::SettingError;
-use crate::task::{Evaluation, Status, TaskSpec};
+use crate::task::{Evaluation, Status, TaskSpec, TaskTables};
 
 /// The operators' schedule of a published genetic algorithm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -85,6 +85,17 @@ pub struct GaSettings {
     pub mutation_chance_after_mating: f64,
     /// ... and its per-site mutation probability then (5%).
     pub mutation_rate_after_mating: f64,
+    /// The chance that an operator makes, changes or removes an environment read of a
+    /// genome that can read its environment (`lsystem-continuous`). 0, the default, leaves
+    /// genomes without reads and draws exactly as before the key existed; a configuration
+    /// without the key reads as 0, and 0 is not written.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub environment_reads: f64,
+}
+
+/// Whether a setting is 0 (so that it is not written, and stored settings stay as they were).
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl GaSettings {
@@ -102,6 +113,7 @@ impl GaSettings {
                 mutation_rate: 0.1,
                 mutation_chance_after_mating: 0.1,
                 mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
             },
             Preset::Wwd => GaSettings {
                 preset,
@@ -114,6 +126,7 @@ impl GaSettings {
                 mutation_rate: 0.05,
                 mutation_chance_after_mating: 1.0,
                 mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
             },
         }
     }
@@ -155,6 +168,7 @@ impl GaSettings {
             "mutation_rate_after_mating",
             self.mutation_rate_after_mating,
         )?;
+        fraction("environment_reads", self.environment_reads)?;
         if self.asexual + self.crossover > 1.0 + 1e-12 {
             return Err(SettingError::out_of_range(
                 "asexual + crossover",
@@ -329,6 +343,10 @@ pub struct Evolution<G: Genome> {
     /// The version of the evaluation keys: today's for a new run, the one its store holds
     /// for a run made before (`run::Run::resume`).
     pub key_version: KeyVersion,
+    /// The `[task]` table of the run's stored settings, every task's table as it was written,
+    /// which version 1 keys hash ([`EvaluationKey::of_tables`]); `None`: the task's own
+    /// table and the other tasks' defaults.
+    pub key_tables: Option<TaskTables>,
 }
 
 /// A new individual before evaluation.
@@ -373,7 +391,15 @@ impl<G: Genome> Evolution<G> {
         genome
             .develop(&self.limits, develop_seed)
             .ok()
-            .map(|c| EvaluationKey::of_version(&c, &self.task, version))
+            .map(|c| self.key_of_creature(&c, version))
+    }
+
+    /// The key of `creature`, of version `version`.
+    fn key_of_creature(&self, creature: &Creature, version: KeyVersion) -> EvaluationKey {
+        match (version, &self.key_tables) {
+            (KeyVersion::V1, Some(tables)) => EvaluationKey::of_tables(creature, tables),
+            _ => EvaluationKey::of_version(creature, &self.task, version),
+        }
     }
 
     /// Develops one genome and keys its creature with the task.
@@ -385,7 +411,7 @@ impl<G: Genome> Evolution<G> {
         let key = creature
             .as_ref()
             .ok()
-            .map(|c| EvaluationKey::of_version(c, &self.task, self.key_version));
+            .map(|c| self.key_of_creature(c, self.key_version));
         Developed {
             unborn,
             creature,

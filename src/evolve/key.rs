@@ -6,13 +6,15 @@
 //! Keys have versions ([`KeyVersion`]): version 2 hashes only what the task being run reads
 //! (its name, the simulator's settings and its own settings, [`crate::task::Task::options`]),
 //! so that a setting of another task, or a new task, changes no key; version 1, which runs
-//! made before it keep, hashed every task's settings.
+//! made before it keep, hashed every task's settings, as the run's stored `[task]` table
+//! holds them ([`EvaluationKey::of_tables`]).
 
 use serde::ser::{self, Serialize};
 use sha2::{Digest, Sha256};
 
 use crate::creature::Creature;
-use crate::task::TaskSpec;
+use crate::sim::WorldSpec;
+use crate::task::{CatapultOptions, JumpOptions, TaskSpec, TaskTables, WalkerOptions};
 
 /// A creature-and-task key: 32 bytes, written as 64 lowercase hexadecimal digits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -35,9 +37,9 @@ pub enum KeyVersion {
 struct SpecV1<'a> {
     task: crate::task::TaskKind,
     sim: &'a crate::sim::SimOptions,
-    walker: &'a crate::task::WalkerOptions,
-    jump: &'a crate::task::JumpOptions,
-    catapult: &'a crate::task::CatapultOptions,
+    walker: &'a WalkerOptions,
+    jump: &'a JumpOptions,
+    catapult: &'a CatapultOptions,
 }
 
 /// The task specification as version 2 hashes it: what the task reads.
@@ -55,34 +57,55 @@ impl EvaluationKey {
         EvaluationKey::of_version(creature, task, KeyVersion::default())
     }
 
-    /// The key of evaluating `creature` with `task`, of version `version`.
+    /// The key of evaluating `creature` with `task`, of version `version` (version 1 with
+    /// the other tasks' default settings: [`EvaluationKey::of_tables`] takes them as stored).
     pub fn of_version(creature: &Creature, task: &TaskSpec, version: KeyVersion) -> EvaluationKey {
+        match version {
+            KeyVersion::V1 => EvaluationKey::of_tables(creature, &TaskTables::from(task)),
+            KeyVersion::V2 => EvaluationKey::hash(creature, &task.world, |hasher| {
+                crate::with_options!(&task.task, T, o => SpecV2 {
+                    key_version: 2,
+                    task: task.kind(),
+                    sim: &task.sim,
+                    options: <T as crate::task::Task>::reads(o),
+                }
+                .serialize(hasher))
+            }),
+        }
+    }
+
+    /// The version 1 key of evaluating `creature` with the task `tables` names: it hashed
+    /// the walker's, the jump's and the catapult's settings side by side, as `tables` holds
+    /// them (each task's defaults where it holds none).
+    pub fn of_tables(creature: &Creature, tables: &TaskTables) -> EvaluationKey {
+        EvaluationKey::hash(creature, &tables.world, |hasher| {
+            SpecV1 {
+                task: tables.kind(),
+                sim: &tables.sim,
+                walker: &tables.get::<WalkerOptions>().cloned().unwrap_or_default(),
+                jump: &tables.get::<JumpOptions>().cloned().unwrap_or_default(),
+                catapult: &tables.get::<CatapultOptions>().cloned().unwrap_or_default(),
+            }
+            .serialize(hasher)
+        })
+    }
+
+    /// The hash of `creature`, then of what `task` feeds the hasher, then of `world`.
+    fn hash(
+        creature: &Creature,
+        world: &WorldSpec,
+        task: impl FnOnce(&mut CanonicalHasher) -> Result<(), HashError>,
+    ) -> EvaluationKey {
         let mut hasher = CanonicalHasher(Sha256::new());
         // Serialising plain data into a hasher cannot fail: every value has a byte form.
         creature
             .serialize(&mut hasher)
-            .and_then(|()| match version {
-                KeyVersion::V1 => SpecV1 {
-                    task: task.task,
-                    sim: &task.sim,
-                    walker: &task.walker,
-                    jump: &task.jump,
-                    catapult: &task.catapult,
-                }
-                .serialize(&mut hasher),
-                KeyVersion::V2 => crate::with_task!(task.task, T => SpecV2 {
-                    key_version: 2,
-                    task: task.task,
-                    sim: &task.sim,
-                    options: <T as crate::task::Task>::options(task),
-                }
-                .serialize(&mut hasher)),
-            })
+            .and_then(|()| task(&mut hasher))
             // A world other than flat ground joins the key; a flat one adds nothing, so the
             // keys of every run made before worlds existed stay as they were.
-            .and_then(|()| match task.world.is_flat() {
+            .and_then(|()| match world.is_flat() {
                 true => Ok(()),
-                false => task.world.serialize(&mut hasher),
+                false => world.serialize(&mut hasher),
             })
             .expect("every creature and task serialises");
         EvaluationKey(hasher.0.finalize().into())

@@ -5,7 +5,10 @@
 
 use crate::sim::{SettingError, SimOptions};
 
-use crate::task::{Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness};
+use crate::task::{
+    CatapultOptions, Evaluation, MAX_RECORDED_SAMPLES, TaskKind, TaskSpec, WalkerFitness,
+    WalkerOptions,
+};
 
 /// The option that sets the value a [`SettingError`] names by its key, in snake case: a
 /// simulator knob's flag ([`Knob::flag_name`](crate::sim::Knob::flag_name): `time_step` for
@@ -47,24 +50,26 @@ impl TaskFlags {
         }
         let mut spec = TaskSpec::new(self.task);
         spec.sim = sim;
-        spec.walker.fitness = self.fitness.unwrap_or(WalkerFitness::Normalised);
-        if let Some(a) = self.activation {
-            spec.walker.activation = a;
-        }
-        if let Some(s) = self.seconds {
-            for &kind in TaskKind::ALL {
-                *crate::with_task!(kind, T => <T as crate::task::Task>::seconds(&mut spec)) = s;
+        if let Some(walker) = spec.task.get_mut::<WalkerOptions>() {
+            walker.fitness = self.fitness.unwrap_or(WalkerFitness::Normalised);
+            if let Some(a) = self.activation {
+                walker.activation = a;
             }
         }
-        if let Some(size) = self.projectile_size {
-            spec.catapult.projectile_size = nalgebra::Vector3::repeat(size);
+        if let Some(s) = self.seconds {
+            *spec.seconds_mut() = s;
         }
-        if let Some(density) = self.projectile_density {
-            spec.catapult.projectile_density = density;
-        }
-        if spec.task == TaskKind::Aim {
-            let [x, y, z] = self.target.unwrap_or([5.0, 0.0, 0.0]);
-            spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
+        if let Some(catapult) = spec.task.get_mut::<CatapultOptions>() {
+            if let Some(size) = self.projectile_size {
+                catapult.projectile_size = nalgebra::Vector3::repeat(size);
+            }
+            if let Some(density) = self.projectile_density {
+                catapult.projectile_density = density;
+            }
+            if self.task == TaskKind::Aim {
+                let [x, y, z] = self.target.unwrap_or([5.0, 0.0, 0.0]);
+                catapult.target = Some(nalgebra::Vector3::new(x, y, z));
+            }
         }
         spec.check()?;
         Ok(spec)
@@ -117,12 +122,12 @@ pub fn parse_point(text: &str) -> Result<[f64; 3], String> {
 
 /// What an evaluation of `spec` is, for a progress bar: `walker, 20 s`, `catapult`.
 pub fn progress_label(spec: &TaskSpec) -> String {
-    if spec.task.throws() {
-        return spec.task.name().to_string();
+    let task = spec.kind();
+    if task.throws() {
+        return task.name().to_string();
     }
-    let mut spec = spec.clone();
-    let seconds = *crate::with_task!(spec.task, T => <T as crate::task::Task>::seconds(&mut spec));
-    format!("{}, {seconds} s", spec.task.name())
+    let seconds = *spec.clone().seconds_mut();
+    format!("{}, {seconds} s", task.name())
 }
 
 /// The note for a recorded evaluation of `spec` long enough that its recording keeps only

@@ -8,7 +8,9 @@ use std::sync::Arc;
 use crate::encoding::{Genome, LSystemGenome};
 use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
-use crate::task::{TaskKind, TaskSpec, WalkerFitness};
+use crate::task::{
+    CatapultOptions, TaskKind, TaskSpec, TaskTables, WalkerFitness, WalkerOptions, keyword_refusal,
+};
 
 use crate::evolve::ga::{GaSettings, Preset};
 use crate::run::config::{ConfigFile, RunConfig, check_settings};
@@ -43,38 +45,38 @@ fn plain(message: String) -> Diagnostic {
     Diagnostic::without_location(DiagnosticKind::Semantic, message)
 }
 
-/// The task of a config file (default: the walker), with `--task`, `--fitness`, `--seconds`
-/// `--setting` and `--target` over it (a named setting replaces the file's five stepping
-/// values, and nothing else). `--fitness` for a task other than the walker, and `--target`
-/// for a task other than aim, are refused.
-pub fn resolve_task(file: Option<TaskSpec>, flags: &RunFlags) -> Result<TaskSpec, String> {
-    let mut spec = file.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+/// The task of a config file's `[task]` tables: the one `--task` or else `task =` names
+/// (default: the walker), with its table (its defaults when the file has none), and
+/// `--fitness`, `--seconds`, `--setting` and `--target` over it (a named setting replaces the file's five stepping
+/// values, and nothing else). A flag of a setting the task does not read
+/// ([`crate::task::Task::KEYWORDS`]: `--fitness` but for the walker, `--target` but for aim)
+/// is refused.
+pub fn resolve_task(file: Option<&TaskTables>, flags: &RunFlags) -> Result<TaskSpec, String> {
+    let tables = file.cloned().unwrap_or_default();
+    let task = flags.task.unwrap_or(tables.kind());
+    let mut spec = tables.spec(task);
     if let Some(setting) = flags.setting {
         spec.sim = setting.apply(&spec.sim);
     }
-    if let Some(t) = flags.task {
-        spec.task = t;
-    }
     if let Some(s) = flags.seconds {
-        *crate::with_task!(spec.task, T => <T as crate::task::Task>::seconds(&mut spec)) = s;
+        *spec.seconds_mut() = s;
     }
+    let refuse =
+        |keyword: &str| match keyword_refusal(keyword, &format!("--{keyword}"), task.info()) {
+            Some(refusal) => Err(refusal),
+            None => Ok(()),
+        };
     if let Some(fitness) = flags.fitness {
-        if spec.task != TaskKind::Walker {
-            return Err(format!(
-                "--fitness is for the walker task only, and the task is {}",
-                spec.task.name()
-            ));
+        refuse("fitness")?;
+        if let Some(walker) = spec.task.get_mut::<WalkerOptions>() {
+            walker.fitness = fitness;
         }
-        spec.walker.fitness = fitness;
     }
     if let Some([x, y, z]) = flags.target {
-        if spec.task != TaskKind::Aim {
-            return Err(format!(
-                "--target is for the aim task only, and the task is {}",
-                spec.task.name()
-            ));
+        refuse("target")?;
+        if let Some(catapult) = spec.task.get_mut::<CatapultOptions>() {
+            catapult.target = Some(nalgebra::Vector3::new(x, y, z));
         }
-        spec.catapult.target = Some(nalgebra::Vector3::new(x, y, z));
     }
     Ok(spec)
 }
@@ -102,19 +104,22 @@ pub fn resolve_ga_and_task<L>(
     if let Some(s) = flags.seconds {
         crate::task::check_duration("seconds", s).map_err(|e| plain(e.for_flag("--seconds")))?;
     }
-    let task = resolve_task(file.task.clone(), flags).map_err(plain)?;
-    check_settings(&ga, &task).map_err(|e| {
-        let flag = match (e.table.as_str(), e.key) {
-            ("ga", "population") if flags.population.is_some() => Some("--pop"),
-            ("ga", "generations") if flags.generations.is_some() => Some("--gens"),
-            _ => None,
-        };
-        match (flag, source) {
-            (Some(flag), _) => plain(e.for_flag(flag)),
-            (None, Some(source)) => setting_diagnostic(source, &e),
-            (None, None) => plain(e.to_string()),
-        }
-    })?;
+    let task = resolve_task(file.task.as_ref(), flags).map_err(plain)?;
+    let other_tables = |tables: &TaskTables| tables.check_other_tables(task.task.table());
+    check_settings(&ga, &task)
+        .and_then(|()| file.task.as_ref().map_or(Ok(()), other_tables))
+        .map_err(|e| {
+            let flag = match (e.table.as_str(), e.key) {
+                ("ga", "population") if flags.population.is_some() => Some("--pop"),
+                ("ga", "generations") if flags.generations.is_some() => Some("--gens"),
+                _ => None,
+            };
+            match (flag, source) {
+                (Some(flag), _) => plain(e.for_flag(flag)),
+                (None, Some(source)) => setting_diagnostic(source, &e),
+                (None, None) => plain(e.to_string()),
+            }
+        })?;
     Ok((ga, task))
 }
 

@@ -125,11 +125,14 @@ impl ChampionRecord {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::task::{TaskKind, WalkerFitness};
+    use crate::task::{TaskKind, TaskOptions, WalkerFitness, WalkerOptions};
 
     fn record() -> ChampionRecord {
         let mut task = TaskSpec::new(TaskKind::Walker);
-        task.walker.fitness = WalkerFitness::Distance;
+        task.task = TaskOptions::Walker(WalkerOptions {
+            fitness: WalkerFitness::Distance,
+            ..WalkerOptions::default()
+        });
         task.sim.control_step = 1.0 / 60.0;
         ChampionRecord {
             fitness: 13.569980138461052,

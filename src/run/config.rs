@@ -15,7 +15,7 @@ use crate::evolve::ga::{GaSettings, Preset};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
-use crate::task::TaskSpec;
+use crate::task::{TaskSpec, TaskTables};
 
 /// Every setting of a run, resolved: what `config.toml` holds in a run directory.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -140,6 +140,8 @@ pub struct GaOverrides {
     pub mutation_chance_after_mating: Option<f64>,
     /// See [`GaSettings`].
     pub mutation_rate_after_mating: Option<f64>,
+    /// See [`GaSettings`].
+    pub environment_reads: Option<f64>,
 }
 
 impl GaOverrides {
@@ -158,7 +160,8 @@ impl GaOverrides {
             crossover,
             mutation_rate,
             mutation_chance_after_mating,
-            mutation_rate_after_mating
+            mutation_rate_after_mating,
+            environment_reads
         );
         s
     }
@@ -183,8 +186,8 @@ pub struct ConfigFile<L> {
     /// The genetic algorithm.
     #[serde(default)]
     pub ga: GaOverrides,
-    /// The task and its settings.
-    pub task: Option<TaskSpec>,
+    /// The task and its settings: any number of tasks' tables, until the task is known.
+    pub task: Option<TaskTables>,
     /// The encoding's limits.
     pub limits: Option<L>,
 }

@@ -195,10 +195,14 @@ fn default_of(path: &[String]) -> Option<toml::Value> {
         "ga".into(),
         toml::Value::try_from(GaSettings::preset(Preset::Chaumont)).ok()?,
     );
-    top.insert(
-        "task".into(),
-        toml::Value::try_from(TaskSpec::new(TaskKind::Walker)).ok()?,
-    );
+    // Every task's table, as a config may hold them all.
+    let mut task = toml::Table::new();
+    for &kind in TaskKind::ALL {
+        for (key, value) in toml::Table::try_from(TaskSpec::new(kind)).ok()? {
+            task.entry(key).or_insert(value);
+        }
+    }
+    top.insert("task".into(), toml::Value::Table(task));
     let mut value = top.get(path.first()?)?;
     for key in &path[1..] {
         value = value.as_table()?.get(key)?;

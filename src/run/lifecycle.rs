@@ -27,7 +27,7 @@ use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator};
 use crate::evolve::key::{EvaluationKey, KeyVersion};
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
-use crate::task::{Evaluation, TaskSpec, Watch};
+use crate::task::{Evaluation, TaskSpec, TaskTables, Watch};
 
 pub mod derived;
 mod progress;
@@ -340,7 +340,7 @@ impl<G: Genome> Run<G> {
         let store = RunStore::open(&store_path)?;
         let init = Self::read_init(dir, &config)?;
         let mut run = Run::assemble(dir, config, store, init, Some(lock));
-        run.evolution.key_version = run.stored_key_version()?;
+        run.adopt_stored_keys()?;
         if let Some(generations) = extend_to {
             run.extend(generations)?;
         }
@@ -417,7 +417,7 @@ impl<G: Genome> Run<G> {
         let config: RunConfig<G::Limits> = read_run_config(&source).map_err(RunError::Config)?;
         let init = Self::read_init(dir, &config).ok().flatten();
         let mut run = Run::assemble(dir, config, store, init, None);
-        run.evolution.key_version = run.stored_key_version()?;
+        run.adopt_stored_keys()?;
         Ok(run)
     }
 
@@ -450,6 +450,7 @@ impl<G: Genome> Run<G> {
         };
         let mut limits = config.limits.clone();
         G::adapt_limits(&mut limits, purpose);
+        G::allow_environment_reads(&mut limits, config.ga.environment_reads);
         Run {
             cache: EvaluationCache::new(config.cache),
             dir: dir.to_path_buf(),
@@ -460,6 +461,7 @@ impl<G: Genome> Run<G> {
                 seed: config.seed,
                 init,
                 key_version: KeyVersion::default(),
+                key_tables: None,
             },
             config,
             store,
@@ -486,6 +488,22 @@ impl<G: Genome> Run<G> {
     /// `develop_seed` (`None` when it does not develop): the key its cache finds it by.
     pub fn evaluation_key(&self, genome: &G, develop_seed: u64) -> Option<EvaluationKey> {
         self.evolution.key(genome, develop_seed)
+    }
+
+    /// Keys the run's individuals as its store does ([`Run::stored_key_version`]): a run
+    /// whose keys are of version 1 hashes every task's table of its stored settings, as it
+    /// did when it stored them.
+    fn adopt_stored_keys(&mut self) -> Result<(), RunError> {
+        let stored = self.store.run()?.config;
+        let tables = crate::run::config::parse_table(&stored)
+            .ok()
+            .and_then(|config| config.get("task")?.clone().try_into::<TaskTables>().ok());
+        self.evolution.key_tables = tables;
+        self.evolution.key_version = self.stored_key_version()?;
+        if self.evolution.key_version != KeyVersion::V1 {
+            self.evolution.key_tables = None;
+        }
+        Ok(())
     }
 
     /// The version of the evaluation keys the store holds: the one that gives the first

@@ -19,17 +19,24 @@ pub const ENERGY_WINDOW: f64 = 0.5;
 
 impl World {
     /// The creature's mechanical energy (J): kinetic, and gravitational above the ground (in
-    /// water, which has no gravity, kinetic only).
+    /// water, which has no gravity, kinetic only); and that of the world's free objects once
+    /// they are let go.
     pub(super) fn mechanical_energy(&self) -> f64 {
         let gravity = if self.water.is_some() { 0.0 } else { GRAVITY };
-        self.creature_bodies
+        let creature: f64 = self
+            .creature_bodies
             .iter()
             .map(|b| {
                 let body = &self.bodies[*b];
                 body.kinetic_energy() as f64
                     + body.mass() as f64 * gravity * body.center_of_mass().y as f64
             })
-            .sum()
+            .sum();
+        if self.ground.any_released() {
+            creature + self.objects_energy()
+        } else {
+            creature
+        }
     }
 
     /// The most energy the creature gained beyond what its motors could supply within

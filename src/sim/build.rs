@@ -7,12 +7,14 @@ use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
+use super::ground::Ground;
 use super::motion::Attach;
 use super::options::SimOptions;
 use super::setting::SettingError;
 use super::slots::Keyed;
+use super::terrain::Terrain;
 use super::world::{GRAVITY, World};
-use super::world_spec::Medium;
+use super::world_spec::{Medium, WorldSpec};
 use crate::creature::{Creature, Joint, Part, PartId};
 
 /// The groups of parts fused by rigid joints: for each part, the lowest-numbered part of its
@@ -58,18 +60,22 @@ impl World {
     /// the ground, at rest. Options out of their ranges ([`SimOptions::check`]: no substeps,
     /// say) are refused.
     pub fn new(creature: &Creature, options: &SimOptions) -> Result<World, BuildError> {
-        World::in_medium(creature, options, Medium::Air)
+        World::in_world(creature, options, &WorldSpec::default())
     }
 
-    /// Builds the world in `medium`: in air as [`World::new`] does; in water with no ground
-    /// and no gravity, the creature at rest where it is, its bounding box centred on the
-    /// origin, every part feeling water resistance ([`super::water`]).
-    pub fn in_medium(
+    /// Builds the world of `spec` ([`WorldSpec::check`] must pass, else the error names the
+    /// key) with the creature dropped so that its lowest point is `drop_height` above the
+    /// highest ground under its footprint ([`Terrain::extremes_under`]), at rest. The free
+    /// objects are held where they start until [`World::release_objects`]. In water there is
+    /// no ground and no gravity: the creature is at rest where it is, its bounding box centred
+    /// on the origin, every part feeling water resistance ([`super::water`]).
+    pub fn in_world(
         creature: &Creature,
         options: &SimOptions,
-        medium: Medium,
+        spec: &WorldSpec,
     ) -> Result<World, BuildError> {
         options.check()?;
+        spec.check().map_err(|e| e.within("world"))?;
         if creature.parts.is_empty() {
             return Err(BuildError::NoParts);
         }
@@ -113,20 +119,16 @@ impl World {
             unexplained_energy: 0.0,
             peak_unexplained: 0.0,
             peak_joint_gap: 0.0,
-            ground_collider: ColliderHandle::invalid(),
+            ground: Ground::empty(),
             water: None,
         };
         let (lo, hi) = creature.bounding_box();
-        let lift = match medium {
+        let lift = match spec.medium {
             Medium::Air => {
-                let ground = world.bodies.insert(RigidBodyBuilder::fixed());
-                world.ground_collider = world.colliders.insert_with_parent(
-                    ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y))
-                        .friction(options.friction as Real),
-                    ground,
-                    &mut world.bodies,
-                );
-                Vector3::new(0.0, options.drop_height - lo.y, 0.0)
+                let terrain = Terrain::new(spec);
+                let (beneath, _) = terrain.extremes_under([lo.x, hi.x], [lo.z, hi.z]);
+                world.ground = Ground::build(&mut world, &terrain, beneath);
+                Vector3::new(0.0, options.drop_height + beneath - lo.y, 0.0)
             }
             Medium::Water { viscosity } => {
                 world.gravity = Vector::ZERO;

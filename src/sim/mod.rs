@@ -7,13 +7,15 @@
 //! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
 //! [`projectile`], feels water's resistance in [`water`], and steps in [`world`]; its
 //! velocities and momenta are [`motion`]'s; what the world holds besides the creature
-//! (terrain, obstacles, objects, the medium) is described by [`world_spec`].
+//! (terrain, obstacles, objects, the medium) is described by [`world_spec`] and worked out as geometry, without physics, in [`terrain`]; the ground
+//! and what stands on it are built in rapier by `ground`.
 
 pub mod actuators;
 pub mod audit;
 pub mod brain;
 pub mod build;
 pub mod drag;
+mod ground;
 pub mod knobs;
 mod model_names;
 pub mod motion;
@@ -23,6 +25,7 @@ pub mod projectile;
 pub mod sensors;
 pub mod setting;
 mod slots;
+pub mod terrain;
 pub mod water;
 pub mod world;
 pub mod world_spec;

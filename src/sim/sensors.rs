@@ -84,13 +84,12 @@ impl World {
     /// dragged during the step (Hornby & Pollack's D_drag).
     pub fn ground_sliding_speed(&self) -> f64 {
         let mut total = 0.0;
-        for &PartSlot { body, collider, .. } in self.parts.iter() {
-            let Some(pair) = self
-                .narrow_phase
-                .contact_pair(collider, self.ground_collider)
-            else {
-                continue;
-            };
+        let pairs = self.parts.iter().flat_map(|slot| {
+            self.ground.colliders.iter().filter_map(move |&ground| {
+                Some((slot, self.narrow_phase.contact_pair(slot.collider, ground)?))
+            })
+        });
+        for (&PartSlot { body, collider, .. }, pair) in pairs {
             let ours_first = pair.collider1 == collider;
             let pose = self.colliders[collider].position();
             let body = &self.bodies[body];

@@ -137,7 +137,7 @@ pub fn part_resistance(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::{Medium, SimOptions};
+    use crate::sim::{Medium, SimOptions, WorldSpec};
     use rapier3d::prelude::RigidBodyHandle;
 
     #[test]
@@ -206,12 +206,11 @@ mod tests {
     fn plate_in_water(k: f64) -> (World, RigidBodyHandle, f64, [Vector3<f64>; 3]) {
         let creature =
             crate::develop::creature_from_commands("width(1) thickness(0.05) forward(1)").unwrap();
-        let world = World::in_medium(
-            &creature,
-            &SimOptions::default(),
-            Medium::Water { viscosity: k },
-        )
-        .unwrap();
+        let water = WorldSpec {
+            medium: Medium::Water { viscosity: k },
+            ..WorldSpec::default()
+        };
+        let world = World::in_world(&creature, &SimOptions::default(), &water).unwrap();
         assert_eq!(world.part_size(PartId(0)), Vector3::new(1.0, 0.05, 1.0));
         let body = world.parts[PartId(0)].body;
         let mass = world.bodies[body].mass() as f64;

@@ -65,8 +65,8 @@ pub struct World {
     pub(super) peak_unexplained: f64,
     /// The largest gap seen between the two ends of any joint's anchor (m).
     pub(super) peak_joint_gap: f64,
-    /// The ground's collider (invalid in water, which has no ground).
-    pub(super) ground_collider: ColliderHandle,
+    /// The ground, the obstacles and the free objects (none in water).
+    pub(super) ground: super::ground::Ground,
     /// The water's viscosity (N·s/m³) when the creature swims ([`super::water`]); `None` in
     /// air.
     pub(super) water: Option<f64>,
@@ -229,7 +229,7 @@ impl World {
                 &mut self.multibody_joints,
                 &mut self.soft_bodies,
                 &mut self.ccd,
-                &(),
+                self.ground.hooks(),
                 &(),
             );
         }

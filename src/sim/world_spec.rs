@@ -9,6 +9,21 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::knobs::{SettingError, check_real};
+use super::water::MAX_VISCOSITY;
+
+/// The most obstacles, and the most free objects, a world may hold.
+pub const MAX_BODIES: usize = 1000;
+
+/// The most friction patches a world may hold.
+pub const MAX_PATCHES: usize = 1000;
+
+/// The most steps in a flight.
+pub const MAX_STEPS: u32 = 1000;
+
+/// The most a length in a world may be (m): the ground reaches [`super::terrain::FAR`].
+pub const MAX_LENGTH: f64 = 400.0;
+
 /// A creature's world besides the creature (the `[task.world]` table).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -42,6 +57,266 @@ impl WorldSpec {
     pub fn is_flat(&self) -> bool {
         *self == WorldSpec::default()
     }
+
+    /// Checks every key against its range; the error names the key in its table, from inside
+    /// `[task.world]` (`slope`'s `degrees` is in table `slope`). At most one of `slope`,
+    /// `steps` and `rough` shapes the ground. Water is alone in its world (it has no ground:
+    /// no terrain, obstacles, objects or ground friction), its viscosity in
+    /// (0, [`MAX_VISCOSITY`]].
+    pub fn check(&self) -> Result<(), SettingError> {
+        if let Medium::Water { viscosity } = self.medium {
+            let rest = WorldSpec {
+                medium: Medium::Air,
+                ..self.clone()
+            };
+            if !rest.is_flat() {
+                return Err(SettingError::out_of_range(
+                    "medium",
+                    "alone: water has no ground, so no slope, steps, rough, obstacles, objects or \
+                     friction",
+                    "water in a world with them",
+                ));
+            }
+            if !(viscosity > 0.0 && viscosity <= MAX_VISCOSITY) {
+                return Err(SettingError::out_of_range(
+                    "viscosity",
+                    &format!("in (0, {MAX_VISCOSITY}] N·s/m³"),
+                    viscosity,
+                )
+                .within("medium"));
+            }
+        }
+        let shapes = [
+            self.slope.is_some(),
+            self.steps.is_some(),
+            self.rough.is_some(),
+        ];
+        if shapes.iter().filter(|&&s| s).count() > 1 {
+            return Err(SettingError::out_of_range(
+                "slope",
+                "alone: slope, steps and rough each shape the whole ground, give one",
+                "given with steps or rough",
+            ));
+        }
+        if let Some(slope) = &self.slope {
+            slope.check().map_err(|e| e.within("slope"))?;
+        }
+        if let Some(steps) = &self.steps {
+            steps.check().map_err(|e| e.within("steps"))?;
+        }
+        if let Some(rough) = &self.rough {
+            rough.check().map_err(|e| e.within("rough"))?;
+        }
+        if let Some(obstacles) = &self.obstacles {
+            obstacles.check().map_err(|e| e.within("obstacles"))?;
+        }
+        if self.objects.len() > MAX_BODIES {
+            return Err(SettingError::out_of_range(
+                "objects",
+                &format!("at most {MAX_BODIES} objects"),
+                self.objects.len(),
+            ));
+        }
+        for object in &self.objects {
+            object.check().map_err(|e| e.within("objects"))?;
+        }
+        if let Some(friction) = &self.friction {
+            friction.check().map_err(|e| e.within("friction"))?;
+        }
+        Ok(())
+    }
+}
+
+/// `value` is finite and within [−[`MAX_LENGTH`], [`MAX_LENGTH`]].
+fn check_place(key: &'static str, value: f64) -> Result<(), SettingError> {
+    if value.is_finite() && value.abs() <= MAX_LENGTH {
+        return Ok(());
+    }
+    Err(SettingError::out_of_range(
+        key,
+        &format!("within {MAX_LENGTH} m of the origin"),
+        value,
+    ))
+}
+
+/// `value` is above 0 and at most [`MAX_LENGTH`].
+fn check_length(key: &'static str, value: f64) -> Result<(), SettingError> {
+    check_real(key, value, 0.0, true)?;
+    check_place(key, value)
+}
+
+/// `value` is a finite direction in degrees.
+fn check_direction(value: f64) -> Result<(), SettingError> {
+    if value.is_finite() && value.abs() <= 360.0 {
+        return Ok(());
+    }
+    Err(SettingError::out_of_range(
+        "direction",
+        "in [-360, 360] (degrees)",
+        value,
+    ))
+}
+
+impl Slope {
+    fn check(&self) -> Result<(), SettingError> {
+        if !(self.degrees.is_finite() && (0.0..MAX_SLOPE).contains(&self.degrees)) {
+            return Err(SettingError::out_of_range(
+                "degrees",
+                &format!("at least 0 and below {MAX_SLOPE}"),
+                self.degrees,
+            ));
+        }
+        check_direction(self.direction)
+    }
+}
+
+/// The steepest slope (degrees, exclusive): steeper ground is a wall.
+pub const MAX_SLOPE: f64 = 80.0;
+
+impl Steps {
+    fn check(&self) -> Result<(), SettingError> {
+        check_length("height", self.height)?;
+        check_length("depth", self.depth)?;
+        if !(1..=MAX_STEPS).contains(&self.count) {
+            return Err(SettingError::out_of_range(
+                "count",
+                &format!("1 to {MAX_STEPS}"),
+                self.count,
+            ));
+        }
+        check_real("start", self.start, 0.0, false)?;
+        check_place("start", self.start)?;
+        check_direction(self.direction)?;
+        let reach = self.start + self.count as f64 * self.depth;
+        if reach > MAX_LENGTH {
+            return Err(SettingError::out_of_range(
+                "count",
+                &format!("few enough that the flight ends within {MAX_LENGTH} m"),
+                format!("{} steps ending at {reach} m", self.count),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl Rough {
+    fn check(&self) -> Result<(), SettingError> {
+        check_length("amplitude", self.amplitude)?;
+        check_length("wavelength", self.wavelength)?;
+        check_length("size", self.size)?;
+        let most = ((super::terrain::MAX_SAMPLES - 1) / 4) as f64;
+        if self.size / self.wavelength > most {
+            return Err(SettingError::out_of_range(
+                "wavelength",
+                &format!("at least size / {most} (the heightfield's samples are bounded)"),
+                self.wavelength,
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl Obstacles {
+    fn check(&self) -> Result<(), SettingError> {
+        for &side in &self.size {
+            check_length("size", side)?;
+        }
+        if self.count as usize > MAX_BODIES || self.at.len() > MAX_BODIES {
+            return Err(SettingError::out_of_range(
+                "count",
+                &format!("at most {MAX_BODIES}"),
+                self.count.max(self.at.len() as u32),
+            ));
+        }
+        check_real("raised", self.raised, 0.0, false)?;
+        check_place("raised", self.raised)?;
+        check_real("clear", self.clear, 0.0, false)?;
+        check_place("clear", self.clear)?;
+        check_length("reach", self.reach)?;
+        for &[x, z] in &self.at {
+            check_place("at", x)?;
+            check_place("at", z)?;
+        }
+        let keep_out = self.clear + 0.5 * self.size[0].hypot(self.size[2]);
+        if self.at.is_empty() && self.count > 0 && self.reach <= keep_out {
+            return Err(SettingError::out_of_range(
+                "reach",
+                &format!(
+                    "more than clear plus half the box's diagonal ({keep_out} m), so the boxes fit"
+                ),
+                self.reach,
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl Object {
+    fn check(&self) -> Result<(), SettingError> {
+        check_length("size", self.size)?;
+        check_real("mass", self.mass, 0.0, true)?;
+        if self.mass > 1e6 {
+            return Err(SettingError::out_of_range(
+                "mass",
+                "at most 10^6 kg",
+                self.mass,
+            ));
+        }
+        for &p in &self.position {
+            check_place("position", p)?;
+        }
+        for &v in &self.velocity {
+            if !(v.is_finite() && v.abs() <= 100.0) {
+                return Err(SettingError::out_of_range(
+                    "velocity",
+                    "within 100 m/s on each axis",
+                    v,
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl GroundFriction {
+    fn check(&self) -> Result<(), SettingError> {
+        check_coefficient(self.coefficient)?;
+        if self.patches.len() > MAX_PATCHES {
+            return Err(SettingError::out_of_range(
+                "patches",
+                &format!("at most {MAX_PATCHES}"),
+                self.patches.len(),
+            ));
+        }
+        for patch in &self.patches {
+            check_coefficient(patch.coefficient).map_err(|e| e.within("patches"))?;
+            for (key, [from, to]) in [("x", patch.x), ("z", patch.z)] {
+                check_place(key, from).map_err(|e| e.within("patches"))?;
+                check_place(key, to).map_err(|e| e.within("patches"))?;
+                if from > to {
+                    return Err(SettingError::out_of_range(
+                        key,
+                        "[from, to] with from at most to",
+                        format!("[{from}, {to}]"),
+                    )
+                    .within("patches"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A friction coefficient: finite, 0 to 10.
+fn check_coefficient(value: f64) -> Result<(), SettingError> {
+    if value.is_finite() && (0.0..=10.0).contains(&value) {
+        return Ok(());
+    }
+    Err(SettingError::out_of_range(
+        "coefficient",
+        "in [0, 10]",
+        value,
+    ))
 }
 
 /// A plane ground tilted by `degrees`, rising towards `direction`.

@@ -2,10 +2,10 @@
 //! scored by the distance thrown less the miss, D_p − D_t.
 
 use super::catapult::{CatapultOptions, catapult_watched};
-use super::{Evaluation, Task, TaskSpec, Watch};
+use super::{Evaluation, Task, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SettingError;
+use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// Chaumont et al.'s aiming catapult, in the registry: it reads the catapult's settings,
 /// target included (`[task.catapult] target`, which it needs).
@@ -16,34 +16,31 @@ impl Task for AimTask {
     const SUMMARY: &'static str = "Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3)";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = true;
+    const KEYWORDS: &'static [&'static str] = &["seconds", "target"];
+    const TABLE: &'static str = "catapult";
     type Options = CatapultOptions;
 
-    fn options(spec: &TaskSpec) -> CatapultOptions {
-        spec.catapult.clone()
-    }
-    fn measure(_spec: &TaskSpec) -> &'static str {
+    fn measure(_options: &CatapultOptions) -> &'static str {
         "distance − miss (m)"
     }
-    fn floor(_spec: &TaskSpec) -> Option<f64> {
+    fn floor(_options: &CatapultOptions) -> Option<f64> {
         None
     }
-    fn max_steps(spec: &TaskSpec) -> usize {
-        spec.catapult.max_steps(spec.sim.control_step)
+    fn max_steps(sim: &SimOptions, options: &CatapultOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn seconds(spec: &mut TaskSpec) -> &mut f64 {
-        &mut spec.catapult.max_seconds
+    fn seconds(options: &mut CatapultOptions) -> &mut f64 {
+        &mut options.max_seconds
     }
-    /// The target, its one setting of its own (the catapult task checks the rest of the
-    /// table they share).
-    fn check_options(spec: &TaskSpec) -> Result<(), SettingError> {
-        spec.catapult
-            .check_target()
-            .map_err(|e| e.within("catapult"))
+    /// The catapult's table, its target included (the catapult task leaves the target
+    /// alone).
+    fn check_options(options: &CatapultOptions) -> Result<(), SettingError> {
+        options.check().and_then(|()| options.check_target())
     }
-    fn check(spec: &TaskSpec) -> Result<(), SettingError> {
-        if spec.catapult.target.is_none() {
+    fn check(options: &CatapultOptions) -> Result<(), SettingError> {
+        if options.target.is_none() {
             return Err(SettingError {
-                table: "catapult".to_string(),
+                table: String::new(),
                 key: "target",
                 problem:
                     "is needed by the aim task: target = [x, y, z] (metres from the projectile)"
@@ -54,34 +51,36 @@ impl Task for AimTask {
     }
     fn evaluate(
         creature: &Creature,
-        spec: &TaskSpec,
+        sim: &SimOptions,
+        world: &WorldSpec,
+        options: &CatapultOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, &spec.sim, &spec.catapult, watch)
+        catapult_watched(creature, (sim, world), options, watch)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::task::{CatapultTask, TaskKind};
+    use crate::task::CatapultTask;
 
     #[test]
     fn the_aim_task_checks_its_target_and_the_catapult_leaves_it_alone() {
-        let mut spec = TaskSpec::new(TaskKind::Aim);
-        assert_eq!(AimTask::check_options(&spec), Ok(()));
-        spec.catapult.target = Some(nalgebra::Vector3::new(f64::NAN, 0.0, 0.0));
+        let mut options = CatapultOptions::default();
+        assert_eq!(AimTask::check_options(&options), Ok(()));
+        options.target = Some(nalgebra::Vector3::new(f64::NAN, 0.0, 0.0));
         assert_eq!(
-            AimTask::check_options(&spec).unwrap_err().to_string(),
-            "[catapult] target must be within 100000 m of the projectile, not [NaN, 0, 0]"
+            AimTask::check_options(&options).unwrap_err().to_string(),
+            "target must be within 100000 m of the projectile, not [NaN, 0, 0]"
         );
-        spec.catapult.target = Some(nalgebra::Vector3::new(0.0, 3e5, -4e5));
+        options.target = Some(nalgebra::Vector3::new(0.0, 3e5, -4e5));
         assert_eq!(
-            AimTask::check_options(&spec).unwrap_err().to_string(),
-            "[catapult] target must be within 100000 m of the projectile, not [0, 300000, -400000]"
+            AimTask::check_options(&options).unwrap_err().to_string(),
+            "target must be within 100000 m of the projectile, not [0, 300000, -400000]"
         );
-        assert_eq!(CatapultTask::check_options(&spec), Ok(()));
-        spec.catapult.target = Some(nalgebra::Vector3::new(6e4, 0.0, 8e4));
-        assert_eq!(AimTask::check_options(&spec), Ok(()));
+        assert_eq!(CatapultTask::check_options(&options), Ok(()));
+        options.target = Some(nalgebra::Vector3::new(6e4, 0.0, 8e4));
+        assert_eq!(AimTask::check_options(&options), Ok(()));
     }
 }

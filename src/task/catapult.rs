@@ -11,7 +11,7 @@ use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SimOptions;
+use crate::sim::{SimOptions, WorldSpec};
 
 /// Settings of the catapult and aim tasks (Chaumont et al. section 4).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -105,7 +105,7 @@ pub fn catapult(
     record: bool,
 ) -> Evaluation {
     unwatched(record, |watch| {
-        catapult_watched(creature, sim, options, watch)
+        catapult_watched(creature, (sim, &WorldSpec::default()), options, watch)
     })
 }
 
@@ -113,7 +113,7 @@ pub fn catapult(
 /// says.
 pub(super) fn catapult_watched(
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, world): (&SimOptions, &WorldSpec),
     options: &CatapultOptions,
     watch: Watch<'_>,
 ) -> Result<Evaluation, Interrupted> {
@@ -134,7 +134,7 @@ pub(super) fn catapult_watched(
     // The target in the world, once the projectile is placed: kept in the terms of a failed
     // evaluation too, so that its recording can show the target.
     let placed_target = std::cell::Cell::new(None);
-    let mut evaluation = evaluate(task, creature, sim, options, watch, |run| {
+    let mut evaluation = evaluate(task, creature, (sim, world), options, watch, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);
@@ -243,32 +243,34 @@ impl super::Task for CatapultTask {
     const THROWS: bool = true;
     type Options = CatapultOptions;
 
-    fn options(spec: &super::TaskSpec) -> CatapultOptions {
+    fn reads(options: &CatapultOptions) -> CatapultOptions {
         CatapultOptions {
             target: None,
-            ..spec.catapult.clone()
+            ..options.clone()
         }
     }
-    fn measure(_spec: &super::TaskSpec) -> &'static str {
+    fn measure(_options: &CatapultOptions) -> &'static str {
         "distance (m)"
     }
-    fn floor(_spec: &super::TaskSpec) -> Option<f64> {
+    fn floor(_options: &CatapultOptions) -> Option<f64> {
         Some(0.0)
     }
-    fn max_steps(spec: &super::TaskSpec) -> usize {
-        spec.catapult.max_steps(spec.sim.control_step)
+    fn max_steps(sim: &SimOptions, options: &CatapultOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
-        &mut spec.catapult.max_seconds
+    fn seconds(options: &mut CatapultOptions) -> &mut f64 {
+        &mut options.max_seconds
     }
-    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
-        spec.catapult.check().map_err(|e| e.within("catapult"))
+    fn check_options(options: &CatapultOptions) -> Result<(), crate::sim::SettingError> {
+        options.check()
     }
     fn evaluate(
         creature: &Creature,
-        spec: &super::TaskSpec,
+        sim: &SimOptions,
+        world: &WorldSpec,
+        options: &CatapultOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, &spec.sim, &Self::options(spec), watch)
+        catapult_watched(creature, (sim, world), &Self::reads(options), watch)
     }
 }

@@ -1,13 +1,13 @@
 //! The range check of every task setting, and the one limit on how long a task may run
 //! ([`MAX_SECONDS`]): each options type checks its own values ([`WalkerOptions::check`] and its
-//! kin) and [`TaskSpec::check`] checks them all with the simulator's, naming the key as a
+//! kin) and [`TaskSpec::check`] checks the task's with the simulator's, naming the key as a
 //! config file spells it (`[task.walker] seconds`).
 
 use super::{
     CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
 };
+use crate::sim::{Medium, SettingError};
 use crate::sim::setting::check_real;
-use crate::sim::{MAX_VISCOSITY, Medium, SettingError, WorldSpec};
 
 /// The longest any duration of a task may be (s): an hour. A task's measurement (`seconds`,
 /// the catapult's `max_seconds`), a wait for rest and every other phase must fit in it, so
@@ -109,61 +109,35 @@ impl CatapultOptions {
 }
 
 impl TaskSpec {
-    /// Checks every setting of the specification — the simulator's ([`crate::sim::SimOptions::check`])
-    /// and every task's, used or not ([`super::Task::check_options`]) — and what the task run
-    /// needs ([`super::Task::check`]: the aim task's target). The error names the
+    /// Checks every setting of the specification — the simulator's
+    /// ([`crate::sim::SimOptions::check`]) and the task's ([`super::Task::check_options`]) — and
+    /// what the task run needs ([`super::Task::check`]: the aim task's target). The error names the
     /// key in its table as a config file spells it (`[task.sim] substeps`).
     pub fn check(&self) -> Result<(), SettingError> {
         self.check_tables().map_err(|e| e.within("task"))
     }
 
-    /// The `[task.world]` table: water is the swim task's medium (and air, the default, the
-    /// other tasks'), alone in its world, its viscosity in (0, [`MAX_VISCOSITY`]]; terrain,
-    /// obstacles, objects and ground friction are not simulated yet.
-    fn check_world(&self) -> Result<(), SettingError> {
-        let medium = self.world.medium;
-        let rest = WorldSpec {
-            medium: Medium::Air,
-            ..self.world.clone()
-        };
-        if !rest.is_flat() {
-            return Err(SettingError::out_of_range(
-                if medium.is_air() { "slope" } else { "medium" },
-                "flat ground in air or water alone: terrain, obstacles, objects and ground friction are not simulated yet",
-                "a world with terrain, objects or ground friction",
-            ));
-        }
-        if let Medium::Water { viscosity } = medium {
-            if self.task != TaskKind::Swim {
-                return Err(SettingError::out_of_range(
-                    "medium",
-                    &format!(
-                        "air for the {} task (water is the swim task's)",
-                        self.task.name()
-                    ),
-                    "water",
-                ));
-            }
-            if !(viscosity > 0.0 && viscosity <= MAX_VISCOSITY) {
-                return Err(SettingError::out_of_range(
-                    "viscosity",
-                    &format!("in (0, {MAX_VISCOSITY}] N·s/m³"),
-                    viscosity,
-                )
-                .within("medium"));
-            }
-        }
-        Ok(())
-    }
-
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
     fn check_tables(&self) -> Result<(), SettingError> {
         self.sim.check().map_err(|e| e.within("sim"))?;
-        self.check_world().map_err(|e| e.within("world"))?;
-        for &kind in TaskKind::ALL {
-            crate::with_task!(kind, T => <T as super::Task>::check_options(self))?;
+        if let Medium::Water { .. } = self.world.medium
+            && self.kind() != TaskKind::Swim
+        {
+            return Err(SettingError::out_of_range(
+                "medium",
+                &format!(
+                    "air for the {} task (water is the swim task's)",
+                    self.task.name()
+                ),
+                "water",
+            )
+            .within("world"));
         }
-        crate::with_task!(self.task, T => <T as super::Task>::check(self))
+        self.world.check().map_err(|e| e.within("world"))?;
+        crate::with_options!(&self.task, T, o => {
+            <T as super::Task>::check_options(o).and_then(|()| <T as super::Task>::check(o))
+        })
+        .map_err(|e| e.within(self.task.table()))
     }
 }
 
@@ -192,13 +166,13 @@ mod tests {
             "[task.sim] substeps must be 1 to 64, not 0"
         );
         let mut spec = TaskSpec::new(TaskKind::Walker);
-        spec.walker.rest.limit = 1e12;
+        spec.task.get_mut::<WalkerOptions>().unwrap().rest.limit = 1e12;
         assert_eq!(
             spec.check().unwrap_err().to_string(),
             "[task.walker.rest] limit must be in (0, 3600], not 1000000000000"
         );
         let mut spec = TaskSpec::new(TaskKind::Catapult);
-        spec.catapult.max_seconds = 3600.5;
+        spec.task.get_mut::<CatapultOptions>().unwrap().max_seconds = 3600.5;
         assert_eq!(
             spec.check().unwrap_err().to_string(),
             "[task.catapult] max_seconds must be in (0, 3600], not 3600.5"
@@ -209,7 +183,8 @@ mod tests {
             "[task.catapult] target is needed by the aim task: target = [x, y, z] (metres from the projectile)"
         );
         let mut spec = TaskSpec::new(TaskKind::Aim);
-        spec.catapult.target = Some(nalgebra::Vector3::new(2.0 * MAX_TARGET_DISTANCE, 0.0, 0.0));
+        spec.task.get_mut::<CatapultOptions>().unwrap().target =
+            Some(nalgebra::Vector3::new(2.0 * MAX_TARGET_DISTANCE, 0.0, 0.0));
         let e = spec.check().unwrap_err();
         assert_eq!((e.table.as_str(), e.key), ("task.catapult", "target"));
     }

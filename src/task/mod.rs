@@ -7,7 +7,8 @@
 //! aim, stand and swim), implements [`Task`] and has one line in the registry
 //! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
 //! `protocol`, the recording's file format in `recording`, and a task's specification as data
-//! in [`TaskSpec`].
+//! in [`TaskSpec`]: the simulator's settings and one task's ([`TaskOptions`]), read from a
+//! `[task]` table that may hold several tasks' ([`TaskTables`]).
 
 use std::collections::BTreeMap;
 
@@ -18,26 +19,30 @@ mod catapult;
 mod check;
 mod compact;
 mod jump;
+mod options;
 mod protocol;
 mod recording;
 mod registry;
 mod spec;
 mod stand;
 mod swim;
+mod tables;
 mod walker;
 pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
 pub use jump::{JumpOptions, JumpTask, jump};
+pub use options::TaskOptions;
 pub use protocol::{Rest, Watch};
 pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
     recording_interval,
 };
-pub use registry::{TASKS, Task, TaskInfo, task_named};
+pub use registry::{TASKS, Task, TaskInfo, keyword_refusal, task_named, tasks_reading};
 pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
-pub use swim::{SwimOptions, SwimSettings, SwimTask, swim_viscosity};
+pub use swim::{SwimOptions, SwimTask, swim_viscosity};
+pub use tables::TaskTables;
 pub use walker::{
     WalkerFitness, WalkerOptions, WalkerTask, iterative_move, size_coefficients, walker,
 };

@@ -12,7 +12,7 @@ use super::recording::{Phase, Sample, recording_interval};
 use super::{Evaluation, Status};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
-use crate::sim::{Medium, SimOptions, World};
+use crate::sim::{SimOptions, World, WorldSpec};
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
 /// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
@@ -156,6 +156,10 @@ impl Run<'_> {
                 Status::Invalid,
                 Interrupted.to_string(),
             ));
+        }
+        if matches!(self.phase, Phase::Measuring | Phase::Throwing) {
+            // The world's free objects move from the measured part of the task on.
+            self.world.release_objects();
         }
         let moved = self.world.step(controller).map_err(|e| {
             Evaluation::failed(
@@ -347,11 +351,11 @@ pub(super) fn uninterrupted(evaluation: Result<Evaluation, Interrupted>) -> Eval
 fn start<'p>(
     task: &'static str,
     creature: &Creature,
-    (sim, medium): (&SimOptions, Medium),
+    (sim, spec): (&SimOptions, &WorldSpec),
     watch: Watch<'p>,
     max_steps: usize,
 ) -> Result<Run<'p>, Evaluation> {
-    let world = World::in_medium(creature, sim, medium)
+    let world = World::in_world(creature, sim, spec)
         .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
     Ok(Run {
         world,
@@ -373,26 +377,15 @@ fn start<'p>(
     })
 }
 
-/// Screens the creature, builds its world and runs `protocol` on it, within the `bounds` of
+/// Screens the creature, builds its world (`sim`'s settings, `world`'s ground and objects,
+/// or its water) and runs `protocol` on it, within the `bounds` of
 /// the task's settings; `protocol` returns the fitness and its terms (or a failed
 /// evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
 /// token stopped it.
 pub(super) fn evaluate(
     task: &'static str,
     creature: &Creature,
-    sim: &SimOptions,
-    bounds: &impl Bounds,
-    watch: Watch<'_>,
-    protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
-) -> Result<Evaluation, Interrupted> {
-    evaluate_in(task, creature, (sim, Medium::Air), bounds, watch, protocol)
-}
-
-/// [`evaluate`] in `medium`: in water, the world has no ground and no gravity.
-pub(super) fn evaluate_in(
-    task: &'static str,
-    creature: &Creature,
-    (sim, medium): (&SimOptions, Medium),
+    (sim, world): (&SimOptions, &WorldSpec),
     bounds: &impl Bounds,
     watch: Watch<'_>,
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
@@ -411,7 +404,7 @@ pub(super) fn evaluate_in(
     let evaluation = evaluate_run(
         task,
         creature,
-        (sim, medium),
+        (sim, world),
         (watch, max_steps),
         bounds.limits(),
         protocol,
@@ -423,7 +416,7 @@ pub(super) fn evaluate_in(
 fn evaluate_run(
     task: &'static str,
     creature: &Creature,
-    sim: (&SimOptions, Medium),
+    sim: (&SimOptions, &WorldSpec),
     (watch, max_steps): (Watch<'_>, usize),
     (max_height, seconds): (f64, f64),
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,

@@ -2,15 +2,17 @@
 //! one list of them ([`for_each_task!`](crate::for_each_task)), from which the enum of task
 //! names ([`TaskKind`](super::TaskKind)), the table of their names and summaries
 //! ([`TASKS`]) and the dispatch from a kind to its type ([`with_task!`](crate::with_task))
-//! derive. Adding a task is its file in `task/` and one line in
-//! [`for_each_task!`](crate::for_each_task).
+//! derive, as do the one value holding a task's settings
+//! ([`TaskOptions`](super::TaskOptions)) and the dispatch from it to its task
+//! ([`with_options!`](crate::with_options)). Adding a task is its file in `task/` and one
+//! line in [`for_each_task!`](crate::for_each_task).
 
-use serde::Serialize;
+use serde::{Serialize, de::DeserializeOwned};
 
-use super::{Evaluation, TaskSpec, Watch};
+use super::{Evaluation, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SettingError;
+use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// One task: its protocol and fitness formula, and what a run or a report needs to know of it.
 pub trait Task {
@@ -24,40 +26,62 @@ pub trait Task {
     /// Whether it throws a projectile (the catapult's kind of body, not a walker's).
     const THROWS: bool;
 
-    /// The settings it reads besides the simulator's: what the evaluation key hashes, so
-    /// that a setting of another task never changes its keys.
-    type Options: Serialize;
+    /// The task settings it reads that a run's flags and Python's keyword arguments set, by
+    /// their keyword names (`--seconds`, `seconds=`): what another task does not read is
+    /// refused.
+    const KEYWORDS: &'static [&'static str] = &["seconds"];
 
-    /// Its settings in `spec`, as it reads them.
-    fn options(spec: &TaskSpec) -> Self::Options;
+    /// The table of `[task]` its settings are read from and written to (`[task.walker]`):
+    /// its name, unless it reads another task's table (the aim task reads the catapult's).
+    /// Tasks that share a table share their [`Task::Options`] type.
+    const TABLE: &'static str = Self::NAME;
+
+    /// Its settings besides the simulator's: its `[task.TABLE]` table.
+    type Options: Clone
+        + std::fmt::Debug
+        + Default
+        + Serialize
+        + DeserializeOwned
+        + Send
+        + Sync
+        + 'static;
+
+    /// What it reads of `options`: what the evaluation key hashes, so that a setting it
+    /// ignores (the catapult's target) or a setting of another task never changes its keys.
+    fn reads(options: &Self::Options) -> Self::Options {
+        options.clone()
+    }
 
     /// What its fitness measures and in which unit, as plots label their axis
     /// (`"height (m)"`).
-    fn measure(spec: &TaskSpec) -> &'static str;
+    fn measure(options: &Self::Options) -> &'static str;
 
     /// The lowest fitness an evaluation that succeeds can score, when the formula has one.
-    fn floor(spec: &TaskSpec) -> Option<f64>;
+    fn floor(options: &Self::Options) -> Option<f64>;
 
     /// The most control steps it can take (every phase at its longest).
-    fn max_steps(spec: &TaskSpec) -> usize;
+    fn max_steps(sim: &SimOptions, options: &Self::Options) -> usize;
 
     /// The length of its measurement (s), which `--seconds` sets.
-    fn seconds(spec: &mut TaskSpec) -> &mut f64;
+    fn seconds(options: &mut Self::Options) -> &mut f64;
 
-    /// Checks the ranges of its own settings in `spec` (every task's are checked, run or
-    /// not); the error names the key in its table, from inside `[task]` (`walker`).
-    fn check_options(spec: &TaskSpec) -> Result<(), SettingError>;
+    /// Checks the ranges of `options`, its table (every table a config holds is checked, run
+    /// or not); the error names the key in the table, from inside `[task]` (`walker`).
+    fn check_options(options: &Self::Options) -> Result<(), SettingError>;
 
-    /// Checks what it needs of `spec` when it is the task run, beyond every table's ranges
+    /// Checks what it needs of `options` when it is the task run, beyond the table's ranges
     /// (the aim task's target); the error names the key as [`Task::check_options`] does.
-    fn check(_spec: &TaskSpec) -> Result<(), SettingError> {
+    fn check(_options: &Self::Options) -> Result<(), SettingError> {
         Ok(())
     }
 
-    /// Evaluates `creature` with `spec`, watched as `watch` says.
+    /// Evaluates `creature` with the simulator's settings `sim`, in the world `world`, with
+    /// its own `options`, watched as `watch` says.
     fn evaluate(
         creature: &Creature,
-        spec: &TaskSpec,
+        sim: &SimOptions,
+        world: &WorldSpec,
+        options: &Self::Options,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted>;
 }
@@ -74,6 +98,10 @@ pub struct TaskInfo {
     pub fitness_variants: &'static [&'static str],
     /// Whether it throws a projectile ([`Task::THROWS`]).
     pub throws: bool,
+    /// The table of `[task]` it reads ([`Task::TABLE`]).
+    pub table: &'static str,
+    /// The keywords of its settings ([`Task::KEYWORDS`]).
+    pub keywords: &'static [&'static str],
 }
 
 impl TaskInfo {
@@ -84,8 +112,43 @@ impl TaskInfo {
             summary: T::SUMMARY,
             fitness_variants: T::FITNESS_VARIANTS,
             throws: T::THROWS,
+            table: T::TABLE,
+            keywords: T::KEYWORDS,
         }
     }
+
+    /// Whether it reads the setting of the keyword `keyword` ([`Task::KEYWORDS`]).
+    pub fn reads(&self, keyword: &str) -> bool {
+        self.keywords.contains(&keyword)
+    }
+}
+
+/// The tasks that read the setting of `keyword`, as messages name them: `"the walker task"`,
+/// `"the catapult and aim tasks"`.
+pub fn tasks_reading(keyword: &str) -> String {
+    let names: Vec<&str> = TASKS
+        .iter()
+        .filter(|t| t.reads(keyword))
+        .map(|t| t.name)
+        .collect();
+    match names.as_slice() {
+        [one] => format!("the {one} task"),
+        [most @ .., last] => format!("the {} and {last} tasks", most.join(", ")),
+        [] => "no task".to_string(),
+    }
+}
+
+/// The refusal of the keyword `keyword` (spelt `spelt`: `--fitness`, `fitness=`) for `task`,
+/// when it does not read it: `"--fitness is for the walker task only, and the task is
+/// jump"`.
+pub fn keyword_refusal(keyword: &str, spelt: &str, task: &TaskInfo) -> Option<String> {
+    (!task.reads(keyword)).then(|| {
+        format!(
+            "{spelt} is for {} only, and the task is {}",
+            tasks_reading(keyword),
+            task.name
+        )
+    })
 }
 
 /// The registry: calls the macro `$callback` with its arguments, then `;` and every task,
@@ -126,6 +189,83 @@ macro_rules! __with_task_arms {
                 type $T = $task;
                 $body
             })*
+        }
+    };
+}
+
+/// Runs `$body` with `$T` standing for the task type of the
+/// [`TaskOptions`](super::TaskOptions) `$options` and `$o` for its options (a reference, as
+/// `$options` is one): `with_options!(&spec.task, T, o => T::measure(o))`.
+#[macro_export]
+macro_rules! with_options {
+    ($options:expr, $T:ident, $o:ident => $body:expr) => {
+        $crate::for_each_task!(__with_options_arms!($options, $T, $o => $body))
+    };
+}
+
+/// The arms of [`with_options!`](crate::with_options), one per task.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __with_options_arms {
+    ($options:expr, $T:ident, $o:ident => $body:expr; $($variant:ident => $task:path),*) => {
+        match $options {
+            $($crate::task::TaskOptions::$variant($o) => {
+                #[allow(dead_code)]
+                type $T = $task;
+                $body
+            })*
+        }
+    };
+}
+
+/// The enum of one task's settings, one variant per task of the registry.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __task_options {
+    (; $($variant:ident => $task:path),*) => {
+        /// One task's settings: the variant of the task run, holding its
+        /// [`Task::Options`](crate::task::Task::Options) (its `[task.TABLE]` table).
+        #[derive(Clone, Debug)]
+        pub enum TaskOptions {
+            $(#[doc = concat!("The settings of the task `", stringify!($variant), "`.")]
+            $variant(<$task as $crate::task::Task>::Options),)*
+        }
+
+        impl TaskOptions {
+            /// The task whose settings these are.
+            pub fn kind(&self) -> $crate::task::TaskKind {
+                match self {
+                    $(TaskOptions::$variant(_) => $crate::task::TaskKind::$variant,)*
+                }
+            }
+
+            /// The default settings of `kind`.
+            pub fn default_of(kind: $crate::task::TaskKind) -> TaskOptions {
+                match kind {
+                    $($crate::task::TaskKind::$variant => TaskOptions::$variant(Default::default()),)*
+                }
+            }
+
+            /// The settings of `kind` read from `table`, a table of its type (the settings
+            /// of a task that shares its table); `None` when `table` is of another type.
+            pub fn of_table(kind: $crate::task::TaskKind, table: &dyn std::any::Any) -> Option<TaskOptions> {
+                match kind {
+                    $($crate::task::TaskKind::$variant => table
+                        .downcast_ref::<<$task as $crate::task::Task>::Options>()
+                        .cloned()
+                        .map(TaskOptions::$variant),)*
+                }
+            }
+
+            /// The settings of `kind`, the next value of `map` (a `[task.TABLE]` table).
+            pub(crate) fn next_value<'de, A: serde::de::MapAccess<'de>>(
+                kind: $crate::task::TaskKind,
+                map: &mut A,
+            ) -> Result<TaskOptions, A::Error> {
+                match kind {
+                    $($crate::task::TaskKind::$variant => map.next_value().map(TaskOptions::$variant),)*
+                }
+            }
         }
     };
 }
@@ -186,5 +326,16 @@ mod tests {
         }
         assert_eq!(task_named("aim").map(|t| t.throws), Some(true));
         assert_eq!(task_named("walk"), None);
+        assert_eq!(task_named("aim").map(|t| t.table), Some("catapult"));
+        assert_eq!(tasks_reading("fitness"), "the walker task");
+        assert_eq!(
+            tasks_reading("seconds"),
+            "the walker, jump, catapult, aim, stand and swim tasks"
+        );
+        assert_eq!(
+            keyword_refusal("target", "--target", task_named("catapult").unwrap()).as_deref(),
+            Some("--target is for the aim task only, and the task is catapult")
+        );
+        assert_eq!(keyword_refusal("seconds", "--seconds", &TASKS[1]), None);
     }
 }

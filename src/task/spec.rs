@@ -1,11 +1,10 @@
 //! A task specification: which task, its settings and the simulator's, as plain serialisable
 //! data, so that an evaluation is a pure function of (creature, specification).
 
-use serde::{Deserialize, Serialize};
+use serde::ser::{Serialize, SerializeStruct, Serializer};
+use serde::{Deserialize, Deserializer};
 
-use super::{
-    CatapultOptions, Evaluation, JumpOptions, StandOptions, SwimOptions, Task, WalkerOptions, Watch,
-};
+use super::{Evaluation, Task, TaskOptions, TaskTables, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -27,6 +26,16 @@ impl TaskKind {
     pub fn throws(self) -> bool {
         crate::with_task!(self, T => T::THROWS)
     }
+
+    /// What can be known of the task without its type ([`super::TASKS`]' row).
+    pub fn info(self) -> &'static super::TaskInfo {
+        &super::TASKS[self as usize]
+    }
+
+    /// The table of `[task]` the task reads ([`Task::TABLE`]).
+    pub fn table(self) -> &'static str {
+        crate::with_task!(self, T => T::TABLE)
+    }
 }
 
 impl std::str::FromStr for TaskKind {
@@ -42,57 +51,71 @@ impl std::str::FromStr for TaskKind {
     }
 }
 
-/// Everything an evaluation depends on besides the creature.
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// Everything an evaluation depends on besides the creature: the simulator's settings and
+/// the settings of the one task run. In a file it is the `[task]` table: `task = "NAME"`,
+/// `[task.sim]` and the task's table (`[task.walker]`); the files of earlier releases, which
+/// hold every task's table, read too ([`TaskTables`]), and keep the task's.
+#[derive(Clone, Debug, Default)]
 pub struct TaskSpec {
-    /// The task.
-    #[serde(default)]
-    pub task: TaskKind,
     /// The simulator's settings.
-    #[serde(default)]
     pub sim: SimOptions,
     /// The world besides the creature (`[task.world]`): flat ground in air unless it says
     /// otherwise; a flat world is not written.
-    #[serde(default, skip_serializing_if = "WorldSpec::is_flat")]
     pub world: WorldSpec,
-    /// The walker's settings (used by `walker`).
-    #[serde(default)]
-    pub walker: WalkerOptions,
-    /// The jump's settings (used by `jump`).
-    #[serde(default)]
-    pub jump: JumpOptions,
-    /// The catapult's settings (used by `catapult` and `aim`; `aim` needs its target).
-    #[serde(default)]
-    pub catapult: CatapultOptions,
-    /// The stand task's settings (used by `stand`).
-    #[serde(default)]
-    pub stand: StandOptions,
-    /// The swim task's settings (used by `swim`).
-    #[serde(default)]
-    pub swim: SwimOptions,
+    /// The task and its settings.
+    pub task: TaskOptions,
+}
+
+impl Serialize for TaskSpec {
+    /// `task`, `sim`, `world` unless it is flat, and the task's one table.
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let flat = self.world.is_flat();
+        let mut out = serializer.serialize_struct("TaskSpec", 3 + usize::from(!flat))?;
+        out.serialize_field("task", &self.kind())?;
+        out.serialize_field("sim", &self.sim)?;
+        if !flat {
+            out.serialize_field("world", &self.world)?;
+        }
+        crate::with_options!(&self.task, T, o => out.serialize_field(T::TABLE, o))?;
+        out.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for TaskSpec {
+    /// The `[task]` table of a file of this release or an earlier one: the task it names
+    /// (the walker when it names none) and its table; the tables of other tasks are read,
+    /// checked for unknown keys and dropped.
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<TaskSpec, D::Error> {
+        TaskTables::deserialize(deserializer).map(|tables| tables.spec(tables.kind()))
+    }
 }
 
 impl TaskSpec {
     /// The default settings of `task`.
     pub fn new(task: TaskKind) -> TaskSpec {
         TaskSpec {
-            task,
-            ..TaskSpec::default()
+            sim: SimOptions::default(),
+            world: WorldSpec::default(),
+            task: TaskOptions::default_of(task),
         }
+    }
+
+    /// The task run.
+    pub fn kind(&self) -> TaskKind {
+        self.task.kind()
     }
 
     /// The task and what its fitness measures, as every report names them:
     /// `"walker, distance (m)"`, `"walker, normalised (Chaumont eq. 1)"`,
     /// `"jump, height (m)"`, `"catapult, distance (m)"`, `"aim, distance − miss (m)"`.
     pub fn fitness_label(&self) -> String {
-        format!("{}, {}", self.task.name(), self.fitness_measure())
+        format!("{}, {}", self.kind().name(), self.fitness_measure())
     }
 
     /// What the fitness measures and in which unit, as plots label their axis:
     /// `"distance (m)"`, `"normalised (Chaumont eq. 1)"`, `"distance − miss (m)"`.
     pub fn fitness_measure(&self) -> &'static str {
-        crate::with_task!(self.task, T => T::measure(self))
+        crate::with_options!(&self.task, T, o => T::measure(o))
     }
 
     /// The lowest fitness an evaluation that succeeds can score, when the formula has one:
@@ -100,7 +123,7 @@ impl TaskSpec {
     /// the catapult); none for the aim task (D_p − D_t) and Hornby & Pollack's walker, which
     /// can be negative.
     pub fn fitness_floor(&self) -> Option<f64> {
-        crate::with_task!(self.task, T => T::floor(self))
+        crate::with_options!(&self.task, T, o => T::floor(o))
     }
 
     /// Evaluates `creature` on the task; `record` keeps a recording (every step's sample, or
@@ -129,13 +152,18 @@ impl TaskSpec {
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        crate::with_task!(self.task, T => T::evaluate(creature, self, watch))
+        crate::with_options!(&self.task, T, o => T::evaluate(creature, &self.sim, &self.world, o, watch))
     }
 
     /// The most control steps the task can take (every phase at its longest), which sets how
     /// densely a recording keeps samples ([`super::recording_interval`]).
     pub fn max_steps(&self) -> usize {
-        crate::with_task!(self.task, T => T::max_steps(self))
+        crate::with_options!(&self.task, T, o => T::max_steps(&self.sim, o))
+    }
+
+    /// The length of the task's measurement (s), which `--seconds` sets ([`Task::seconds`]).
+    pub fn seconds_mut(&mut self) -> &mut f64 {
+        crate::with_options!(&mut self.task, T, o => T::seconds(o))
     }
 }
 

@@ -8,11 +8,11 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in};
 use super::recording::Phase;
-use super::{Evaluation, Task, TaskSpec};
+use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SettingError;
 use crate::sim::setting::check_real;
+use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// Settings of the stand task (`[task.stand]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -65,31 +65,29 @@ impl Task for StandTask {
     const THROWS: bool = false;
     type Options = StandOptions;
 
-    fn options(spec: &TaskSpec) -> StandOptions {
-        spec.stand.clone()
-    }
-    fn measure(_spec: &TaskSpec) -> &'static str {
+    fn measure(_options: &StandOptions) -> &'static str {
         "mean height (m)"
     }
-    fn floor(_spec: &TaskSpec) -> Option<f64> {
+    fn floor(_options: &StandOptions) -> Option<f64> {
         Some(0.0)
     }
-    fn max_steps(spec: &TaskSpec) -> usize {
-        spec.stand.max_steps(spec.sim.control_step)
+    fn max_steps(sim: &SimOptions, options: &StandOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn seconds(spec: &mut TaskSpec) -> &mut f64 {
-        &mut spec.stand.seconds
+    fn seconds(options: &mut StandOptions) -> &mut f64 {
+        &mut options.seconds
     }
-    fn check_options(spec: &TaskSpec) -> Result<(), SettingError> {
-        spec.stand.check().map_err(|e| e.within("stand"))
+    fn check_options(options: &StandOptions) -> Result<(), SettingError> {
+        options.check()
     }
     fn evaluate(
         creature: &Creature,
-        spec: &TaskSpec,
+        sim: &SimOptions,
+        world: &WorldSpec,
+        options: &StandOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        let (sim, options) = (&spec.sim, &spec.stand);
-        evaluate(Self::NAME, creature, sim, options, watch, |run| {
+        evaluate(Self::NAME, creature, (sim, world), options, watch, |run| {
             run.settle(&options.rest, 0.0, sim.control_step)?;
             run.check_height(options.max_height)?;
             run.phase = Phase::Measuring;

@@ -7,13 +7,13 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Watch, evaluate_in, steps_in};
+use super::protocol::{Bounds, Watch, evaluate, steps_in};
 use super::recording::Phase;
 use super::walker::centre_of_mass;
-use super::{Evaluation, Task, TaskSpec};
+use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::{DEFAULT_VISCOSITY, Medium, SettingError};
+use crate::sim::{DEFAULT_VISCOSITY, Medium, SettingError, SimOptions, WorldSpec};
 
 /// Settings of the swim task (`[task.swim]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -46,21 +46,10 @@ impl Bounds for SwimOptions {
     }
 }
 
-/// What the swim task reads, as its evaluation key hashes it: its settings and the viscosity
-/// it swims in.
-#[derive(Clone, Debug, Serialize)]
-pub struct SwimSettings {
-    /// `[task.swim]`.
-    pub swim: SwimOptions,
-    /// The water's viscosity k (N·s/m³): `[task.world] medium`'s, or
-    /// [`DEFAULT_VISCOSITY`] when the world names none.
-    pub viscosity: f64,
-}
-
-/// The viscosity the swim task swims in with `spec`: the world's water, or water of
-/// [`DEFAULT_VISCOSITY`] when the world's medium is air (the default).
-pub fn swim_viscosity(spec: &TaskSpec) -> f64 {
-    match spec.world.medium {
+/// The viscosity the swim task swims in, in `world`: its water's, or [`DEFAULT_VISCOSITY`]
+/// when the world's medium is air (the default).
+pub fn swim_viscosity(world: &WorldSpec) -> f64 {
+    match world.medium {
         Medium::Water { viscosity } => viscosity,
         Medium::Air => DEFAULT_VISCOSITY,
     }
@@ -74,38 +63,36 @@ impl Task for SwimTask {
     const SUMMARY: &'static str = "Swim (Sims): distance of the centre of mass in water";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = false;
-    type Options = SwimSettings;
+    type Options = SwimOptions;
 
-    fn options(spec: &TaskSpec) -> SwimSettings {
-        SwimSettings {
-            swim: spec.swim.clone(),
-            viscosity: swim_viscosity(spec),
-        }
-    }
-    fn measure(_spec: &TaskSpec) -> &'static str {
+    fn measure(_options: &SwimOptions) -> &'static str {
         "distance (m)"
     }
-    fn floor(_spec: &TaskSpec) -> Option<f64> {
+    fn floor(_options: &SwimOptions) -> Option<f64> {
         Some(0.0)
     }
-    fn max_steps(spec: &TaskSpec) -> usize {
-        spec.swim.max_steps(spec.sim.control_step)
+    fn max_steps(sim: &SimOptions, options: &SwimOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn seconds(spec: &mut TaskSpec) -> &mut f64 {
-        &mut spec.swim.seconds
+    fn seconds(options: &mut SwimOptions) -> &mut f64 {
+        &mut options.seconds
     }
-    fn check_options(spec: &TaskSpec) -> Result<(), SettingError> {
-        spec.swim.check().map_err(|e| e.within("swim"))
+    fn check_options(options: &SwimOptions) -> Result<(), SettingError> {
+        options.check()
     }
     fn evaluate(
         creature: &Creature,
-        spec: &TaskSpec,
+        sim: &SimOptions,
+        world: &WorldSpec,
+        options: &SwimOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        let (sim, options) = (&spec.sim, &spec.swim);
-        let viscosity = swim_viscosity(spec);
-        let water = Medium::Water { viscosity };
-        evaluate_in(Self::NAME, creature, (sim, water), options, watch, |run| {
+        let viscosity = swim_viscosity(world);
+        let water = WorldSpec {
+            medium: Medium::Water { viscosity },
+            ..world.clone()
+        };
+        evaluate(Self::NAME, creature, (sim, &water), options, watch, |run| {
             run.phase = Phase::Measuring;
             let from = centre_of_mass(&run.world, creature);
             run.run_for(options.seconds, true, sim.control_step)?;

@@ -12,7 +12,7 @@ use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE};
 use crate::cancel::Interrupted;
 use crate::creature::{Creature, PartId};
-use crate::sim::{DragMeter, SimOptions, World};
+use crate::sim::{DragMeter, SimOptions, World, WorldSpec};
 
 /// The walker's fitness formula.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -204,18 +204,18 @@ pub fn walker(
     record: bool,
 ) -> Evaluation {
     unwatched(record, |watch| {
-        walker_watched(creature, sim, options, watch)
+        walker_watched(creature, (sim, &WorldSpec::default()), options, watch)
     })
 }
 
 /// [`walker`], watched: recorded, told its progress and stopped by a token as `watch` says.
 pub(super) fn walker_watched(
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, world): (&SimOptions, &WorldSpec),
     options: &WalkerOptions,
     watch: Watch<'_>,
 ) -> Result<Evaluation, Interrupted> {
-    evaluate("walker", creature, sim, options, watch, |run| {
+    evaluate("walker", creature, (sim, world), options, watch, |run| {
         run.settle(&options.rest, 0.0, sim.control_step)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
@@ -318,31 +318,31 @@ impl super::Task for WalkerTask {
         "hornby-pollack",
     ];
     const THROWS: bool = false;
+    const KEYWORDS: &'static [&'static str] = &["seconds", "fitness"];
     type Options = WalkerOptions;
 
-    fn options(spec: &super::TaskSpec) -> WalkerOptions {
-        spec.walker.clone()
+    fn measure(options: &WalkerOptions) -> &'static str {
+        options.fitness.label()
     }
-    fn measure(spec: &super::TaskSpec) -> &'static str {
-        spec.walker.fitness.label()
+    fn floor(options: &WalkerOptions) -> Option<f64> {
+        options.fitness.floor()
     }
-    fn floor(spec: &super::TaskSpec) -> Option<f64> {
-        spec.walker.fitness.floor()
+    fn max_steps(sim: &SimOptions, options: &WalkerOptions) -> usize {
+        options.max_steps(sim.control_step)
     }
-    fn max_steps(spec: &super::TaskSpec) -> usize {
-        spec.walker.max_steps(spec.sim.control_step)
+    fn seconds(options: &mut WalkerOptions) -> &mut f64 {
+        &mut options.seconds
     }
-    fn seconds(spec: &mut super::TaskSpec) -> &mut f64 {
-        &mut spec.walker.seconds
-    }
-    fn check_options(spec: &super::TaskSpec) -> Result<(), crate::sim::SettingError> {
-        spec.walker.check().map_err(|e| e.within("walker"))
+    fn check_options(options: &WalkerOptions) -> Result<(), crate::sim::SettingError> {
+        options.check()
     }
     fn evaluate(
         creature: &Creature,
-        spec: &super::TaskSpec,
+        sim: &SimOptions,
+        world: &WorldSpec,
+        options: &WalkerOptions,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        walker_watched(creature, &spec.sim, &spec.walker, watch)
+        walker_watched(creature, (sim, world), options, watch)
     }
 }

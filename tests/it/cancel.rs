@@ -72,7 +72,7 @@ fn a_token_set_during_a_growth_stops_it_at_the_next_frame() {
 /// The walker task with a two-second walk.
 fn two_second_walk() -> TaskSpec {
     let mut spec = TaskSpec::new(TaskKind::Walker);
-    spec.walker.seconds = 2.0;
+    *spec.seconds_mut() = 2.0;
     spec
 }
 

@@ -252,7 +252,7 @@ fn every_shipped_example_stays_valid() {
     for path in &paths {
         let lsys = LSystem::from_path(path).unwrap();
         let mut runs = vec![DeriveOptions::default()];
-        if path.ends_with("plastic.lsys") {
+        if path.ends_with("plastic.lsys") || path.ends_with("plastic-genome.lsys") {
             runs.push(DeriveOptions {
                 env: vec![(0, 1.0)],
                 ..DeriveOptions::default()

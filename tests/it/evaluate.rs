@@ -830,10 +830,10 @@ fn standing_scores_the_mean_height_of_the_highest_point_while_measured() {
     // Two parts on a hinge: the mean, over the measured steps, of the higher part's top.
     let c = creature("forward(1) revolute2 forward(1)");
     let spec = task::TaskSpec {
-        stand: task::StandOptions {
+        task: task::TaskOptions::Stand(task::StandOptions {
             seconds: 0.5,
             ..task::StandOptions::default()
-        },
+        }),
         ..task::TaskSpec::new(task::TaskKind::Stand)
     };
     let e = spec.evaluate(&c, true);

@@ -78,7 +78,7 @@ impl Genome for Toy {
 
 fn evolution(preset: Preset, population: usize) -> Evolution<Toy> {
     let mut task = TaskSpec::new(TaskKind::Walker);
-    task.walker.seconds = 0.5;
+    *task.seconds_mut() = 0.5;
     Evolution {
         settings: GaSettings {
             population,
@@ -90,6 +90,7 @@ fn evolution(preset: Preset, population: usize) -> Evolution<Toy> {
         seed: 7,
         init: None,
         key_version: Default::default(),
+        key_tables: None,
     }
 }
 

@@ -159,7 +159,7 @@ fn shipped_examples_that_do_not_fit_are_refused_with_the_reason() {
     let cases = [
         ("examples/quadruped.lsys", "no 'time:'"),
         ("examples/dl-figure1.lsys", "iterative"),
-        ("examples/plastic.lsys", "environment"),
+        ("examples/plastic.lsys", "must be written mforward(0)"),
         ("examples/snake.lsys", "not a token of the genome"),
         ("examples/algae.lsys", "no 'time:'"),
     ];
@@ -234,6 +234,7 @@ fn files_outside_the_template_or_the_limits_are_refused() {
                 Token::Command(Command::Left, Some(1.0)),
                 Token::Pop
             ],
+            plastic: None,
         }]
     );
 }

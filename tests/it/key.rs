@@ -1,12 +1,13 @@
 //! The evaluation key (`ontogeny::evolve::key`): pinned for a fixed creature and task, in both
 //! versions, so that a change of its byte form, which would orphan every stored evaluation, is
 //! deliberate; changed by every setting the task reads, so that no setting can stop reaching
-//! the key and give one cached evaluation to two different tasks, and by no other (version 2);
-//! and, in version 1, by every task's settings, as runs made before version 2 keyed them.
+//! the key and give one cached evaluation to two different tasks, and by no other, of a file
+//! holding every task's table (version 2); and, in version 1, by every task's settings, as
+//! runs made before version 2 keyed them from their stored tables.
 
 use ontogeny::creature::Creature;
 use ontogeny::evolve::key::{EvaluationKey, KeyVersion};
-use ontogeny::task::{TaskKind, TaskSpec};
+use ontogeny::task::{TaskKind, TaskSpec, TaskTables};
 use serde_json::Value;
 
 /// The fixed creature: two parts on a hinge, built from commands.
@@ -138,8 +139,9 @@ fn with_leaf_changed(spec: &Value, pointer: &str) -> Option<TaskSpec> {
 }
 
 #[test]
-fn every_setting_the_task_reads_changes_its_key_and_no_other_does() {
+fn every_setting_the_task_reads_changes_its_key() {
     let c = creature();
+    let mut all = Vec::new();
     for &kind in TaskKind::ALL {
         let task = TaskSpec::new(kind);
         let key = EvaluationKey::of(&c, &task);
@@ -157,26 +159,57 @@ fn every_setting_the_task_reads_changes_its_key_and_no_other_does() {
             }
         }
         assert!(wrong.is_empty(), "{kind:?}: {wrong:#?}\nin {spec:#}");
-        assert_eq!(found, PINNED_LEAVES, "{kind:?}: the leaves of {spec:#}");
+        all.extend(found);
     }
+    all.sort();
+    all.dedup();
+    assert_eq!(all, PINNED_LEAVES);
+}
+
+/// The `[task]` table of `kind` as the files of earlier releases hold it: its name, the
+/// simulator's settings and every task's table, each at its defaults.
+fn every_table(kind: TaskKind) -> Value {
+    let mut file = serde_json::to_value(TaskSpec::new(kind)).unwrap();
+    for &other in TaskKind::ALL {
+        let table = other.table();
+        let value = serde_json::to_value(TaskSpec::new(other)).unwrap()[table].clone();
+        file.as_object_mut().unwrap().entry(table).or_insert(value);
+    }
+    file
+}
+
+/// `file` with the leaf at `pointer` changed to the first other value that reads back as
+/// tables.
+fn tables_with_leaf_changed(file: &Value, pointer: &str) -> TaskTables {
+    let original = file.pointer(pointer).unwrap();
+    replacements(file, pointer)
+        .into_iter()
+        .filter(|value| value != original)
+        .find_map(|value| {
+            let mut edited = file.clone();
+            *edited.pointer_mut(pointer).unwrap() = value;
+            serde_json::from_value(edited).ok()
+        })
+        .unwrap()
 }
 
 #[test]
-fn every_setting_of_every_task_changed_a_version_1_key() {
+fn a_file_holding_every_tasks_table_gives_the_key_of_the_task_it_names_alone() {
     let c = creature();
-    for &kind in &TaskKind::ALL[..4] {
-        let task = TaskSpec::new(kind);
-        let key = EvaluationKey::of_version(&c, &task, KeyVersion::V1);
-        let spec = serde_json::to_value(&task).unwrap();
+    for &kind in TaskKind::ALL {
+        let file = every_table(kind);
+        let read: TaskSpec = serde_json::from_value(file.clone()).unwrap();
+        let key = EvaluationKey::of(&c, &read);
+        assert_eq!(key, EvaluationKey::of(&c, &TaskSpec::new(kind)), "{kind:?}");
         let mut found = Vec::new();
-        leaves(&spec, "", &mut found);
+        leaves(&file, "", &mut found);
         for pointer in found
             .iter()
-            .filter(|p| !p.starts_with("/stand/") && !p.starts_with("/swim/"))
+            .filter(|p| !reads(kind, p) && *p != "/catapult/target")
         {
-            let read = with_leaf_changed(&spec, pointer).unwrap();
-            assert_ne!(
-                EvaluationKey::of_version(&c, &read, KeyVersion::V1),
+            let tables = tables_with_leaf_changed(&file, pointer);
+            assert_eq!(
+                EvaluationKey::of(&c, &tables.spec(kind)),
                 key,
                 "{kind:?}: {pointer}"
             );
@@ -184,7 +217,34 @@ fn every_setting_of_every_task_changed_a_version_1_key() {
     }
 }
 
-/// The leaves of every task's specification, in order. A setting added to the task or the
+#[test]
+fn every_setting_of_every_task_in_a_stored_file_changed_a_version_1_key() {
+    let c = creature();
+    for &kind in &TaskKind::ALL[..4] {
+        let file = every_table(kind);
+        let tables: TaskTables = serde_json::from_value(file.clone()).unwrap();
+        let key = EvaluationKey::of_tables(&c, &tables);
+        assert_eq!(
+            key,
+            EvaluationKey::of_version(&c, &TaskSpec::new(kind), KeyVersion::V1),
+            "{kind:?}"
+        );
+        let mut found = Vec::new();
+        leaves(&file, "", &mut found);
+        for pointer in found
+            .iter()
+            .filter(|p| !p.starts_with("/stand/") && !p.starts_with("/swim/")) {
+            let changed = tables_with_leaf_changed(&file, pointer);
+            assert_ne!(
+                EvaluationKey::of_tables(&c, &changed),
+                key,
+                "{kind:?}: {pointer}"
+            );
+        }
+    }
+}
+
+/// The leaves of every task's specification, in order, all tasks together. A setting added to the task or the
 /// simulator is added here (and is then checked above to change the key); one that stops being
 /// serialised, so that it could no longer change the key, fails the test.
 const PINNED_LEAVES: &[&str] = &[

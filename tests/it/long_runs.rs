@@ -9,7 +9,7 @@ use ontogeny::creature::Creature;
 use ontogeny::sim::SimOptions;
 use ontogeny::task::{
     self, CatapultOptions, JumpOptions, MAX_RECORDED_FRAMES, RecordedFrame, Status, TaskKind,
-    TaskSpec, WalkerOptions, recording_interval,
+    TaskOptions, TaskSpec, WalkerOptions, recording_interval,
 };
 
 fn passive_pair() -> Creature {
@@ -131,7 +131,7 @@ fn progress_grows_by_thousandths_to_one_and_changes_nothing() {
     };
     let mut told = Vec::new();
     let walk = TaskSpec {
-        walker: options.clone(),
+        task: TaskOptions::Walker(options.clone()),
         ..TaskSpec::new(TaskKind::Walker)
     };
     let watched = walk.evaluate_with_progress(&c, false, &mut |f| told.push(f));

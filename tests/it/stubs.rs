@@ -1,9 +1,9 @@
 //! The Python package's type stubs (`python/ontogeny/__init__.pyi`) against the library:
-//! the task names and the walker's fitness formulas they spell are the registry's, the
-//! simulator's keys they list the table of knobs'.
+//! the task names, the task keywords and the walker's fitness formulas they spell are the
+//! registry's, the simulator's keys they list the table of knobs'.
 
 use ontogeny::sim::KNOBS;
-use ontogeny::task::{TASKS, Task, WalkerFitness, WalkerTask};
+use ontogeny::task::{TASKS, Task, WalkerFitness, WalkerTask, tasks_reading};
 
 /// The stubs' text.
 fn stubs() -> String {
@@ -46,6 +46,38 @@ fn the_stubs_name_the_registrys_tasks_and_the_walkers_formulas() {
         2
     );
     assert!(stubs.contains("\nTASKS: Dict[str, str]\n"));
+}
+
+#[test]
+fn the_stubs_take_and_name_the_registrys_task_keywords() {
+    let stubs = stubs();
+    let mut keywords: Vec<&str> = Vec::new();
+    for task in TASKS {
+        for keyword in task.keywords {
+            if !keywords.contains(keyword) {
+                keywords.push(keyword);
+            }
+        }
+    }
+    assert_eq!(keywords, ["seconds", "fitness", "target"]);
+    // `evaluate` and `evaluate_many` take each.
+    for keyword in &keywords {
+        assert_eq!(
+            stubs
+                .matches(&format!("\n    {keyword}: Optional["))
+                .count(),
+            2,
+            "{keyword}"
+        );
+    }
+    // `evaluate`'s documentation names the tasks that read each, in the registry's words.
+    let named: Vec<String> = keywords
+        .iter()
+        .map(|k| format!("``{k}`` ({})", tasks_reading(k)))
+        .collect();
+    let listed = format!("keywords: {}; one the task", named.join(", "));
+    let flat = stubs.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(flat.contains(&listed), "no {listed:?} in the stubs");
 }
 
 #[test]

@@ -4,8 +4,13 @@
 use super::*;
 
 impl ContinuousGenome {
-    /// The creature the genome grows into at the end of its developmental time.
-    pub(super) fn creature(&self, limits: &ContinuousLimits) -> Result<Creature, DevelopError> {
+    /// The creature the genome grows into at the end of its developmental time, in its own
+    /// environment or in `env` (of the same size: its initial values replace the genome's).
+    pub(super) fn creature(
+        &self,
+        limits: &ContinuousLimits,
+        env: Option<&Environment>,
+    ) -> Result<Creature, DevelopError> {
         let limits = limits.sane();
         // A genome from elsewhere (a store, a hand-edited file) may not fit: its time and
         // frames would be unbounded.
@@ -15,6 +20,9 @@ impl ContinuousGenome {
             .map_err(|d| DevelopError(d.to_string()))?;
         let options = DeriveOptions {
             max_modules: limits.max_modules,
+            env: env
+                .map(|e| e.values().iter().copied().enumerate().collect())
+                .unwrap_or_default(),
             ..DeriveOptions::default()
         };
         let build_options = BuildOptions {
@@ -52,6 +60,7 @@ mod tests {
         let g = ContinuousGenome {
             time: 4.0,
             dt: 1.0,
+            environment: Vec::new(),
             axiom: vec![
                 Token::Command(Command::Forward, Some(0.5)),
                 Token::Grower(mf),
@@ -68,6 +77,7 @@ mod tests {
                     Token::Pop,
                     Token::Grower(mf),
                 ],
+                plastic: None,
             }],
         };
         let l = ContinuousLimits::default();

@@ -22,9 +22,10 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng};
+use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown};
 use crate::creature::Creature;
 use crate::develop::BuildOptions;
+use crate::environment::Environment;
 use crate::lang::ast::{BinaryOp, Expr, ModuleCall};
 use crate::lang::commands::{Argument, Command};
 use crate::lsystem::{DeriveOptions, LSystem, Timing};
@@ -77,6 +78,11 @@ pub struct ContinuousLimits {
     /// (`DeriveOptions::max_modules`); a safety net, far above what the other limits allow
     /// (about 2,000 modules). Default 5,000.
     pub max_modules: usize,
+    /// The chance that operators make, change or remove an environment read (the `[ga]` key
+    /// `environment_reads`, set by [`Genome::allow_environment_reads`]; not a key of the
+    /// limits). 0, the default, draws exactly as a genome without reads always has.
+    #[serde(skip)]
+    pub environment_reads: f64,
 }
 
 impl Default for ContinuousLimits {
@@ -95,6 +101,7 @@ impl Default for ContinuousLimits {
             max_duration: 3.0,
             max_parts: 50,
             max_modules: 5000,
+            environment_reads: 0.0,
         }
     }
 }
@@ -162,6 +169,11 @@ impl ContinuousLimits {
             max_duration,
             max_parts: self.max_parts.max(2),
             max_modules: self.max_modules.max(self.max_axiom.max(1)),
+            environment_reads: if self.environment_reads.is_finite() {
+                self.environment_reads.clamp(0.0, 1.0)
+            } else {
+                0.0
+            },
         }
     }
 
@@ -211,13 +223,29 @@ const CHOICES: [(Command, f64); 28] = [
     (Command::Angle, 0.4),
 ];
 
+/// The commands a genome with an environment may also use: the `chem` sensor and the
+/// `secrete` effector neurons, which read and write the chemical array. Operators draw them
+/// only when environment reads are allowed, with these weights.
+pub const ENVIRONMENT_CHOICES: [(Command, f64); 2] =
+    [(Command::Chem, 1.0), (Command::Secrete, 1.0)];
+
 /// The commands whose maturing twins (`mforward`, `mleft`, ..., `mrevolute1`, ...) can be
 /// maturing symbols.
 pub const MATURING: [Command; Command::GROWING.len()] = Command::GROWING;
 
 /// The command a name stands for, among those this genome uses.
 fn command_named(name: &str) -> Option<Command> {
-    Command::building_from_name(name).filter(|c| CHOICES.iter().any(|&(d, _)| d == *c))
+    Command::from_name(name).filter(|c| {
+        CHOICES
+            .iter()
+            .chain(&ENVIRONMENT_CHOICES)
+            .any(|&(d, _)| d == *c)
+    })
+}
+
+/// Whether a command reads or writes the chemical array (its parameter is a slot).
+fn is_environment_command(c: Command) -> bool {
+    ENVIRONMENT_CHOICES.iter().any(|&(d, _)| d == c)
 }
 
 /// A maturing symbol: the predecessor of a rule, and a token born at 0 in an axiom or
@@ -303,6 +331,27 @@ pub struct Rule {
     /// The tokens after the matured twin (`forward(x)` for `mforward`; none for a control
     /// token).
     pub successor: Vec<Token>,
+    /// A plastic rule's other branch: where the chemical it reads is high when the token
+    /// matures, the token matures into its twin and this branch's successor instead.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plastic: Option<Plastic>,
+}
+
+/// The branch of a plastic rule. The genome's text writes the read `?E(1, slot, 0)` right
+/// before every maturing token of the rule's symbol, and the branch as a rule whose left
+/// context is that read:
+///
+/// ```text
+/// ?E(1, 0, c) < mforward(x) : x >= 0.8 && c > 0.5 --> forward(x) [ left(1) mforward(0) ]
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Plastic {
+    /// The slot of the chemical array read.
+    pub slot: usize,
+    /// The branch is taken where the value read is above this.
+    pub above: f64,
+    /// The tokens after the matured twin on this branch.
+    pub successor: Vec<Token>,
 }
 
 /// A genome of the `lsystem-continuous` encoding: an axiom and template rules, sorted by the
@@ -317,6 +366,10 @@ pub struct ContinuousGenome {
     pub axiom: Vec<Token>,
     /// The rules.
     pub rules: Vec<Rule>,
+    /// The chemical array's initial values (the printed `environment:`); empty when the
+    /// genome has none. Its length is the array's size.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub environment: Vec<f64>,
 }
 
 /// Most frames (time / dt) a genome may show: each costs a restart of the ODE solver.
@@ -346,7 +399,17 @@ impl ContinuousGenome {
         if self.axiom.is_empty() {
             return Err("its axiom is empty".into());
         }
-        check_sequence("the axiom", &self.axiom, limits.max_axiom, limits)?;
+        if self.environment.len() > MAX_ENVIRONMENT {
+            return Err(format!(
+                "its environment has {} slots, more than {MAX_ENVIRONMENT}",
+                self.environment.len()
+            ));
+        }
+        if let Some(v) = self.environment.iter().find(|v| !v.is_finite()) {
+            return Err(format!("its environment holds {v}, not a finite number"));
+        }
+        let slots = self.environment.len();
+        check_sequence("the axiom", &self.axiom, limits.max_axiom, slots, limits)?;
         if self.rules.len() > limits.max_rules {
             return Err(format!(
                 "it has {} rules, more than max_rules = {}",
@@ -384,8 +447,31 @@ impl ContinuousGenome {
                 &format!("the successor of {name}"),
                 &rule.successor,
                 limits.max_successor,
+                slots,
                 limits,
             )?;
+            if let Some(branch) = &rule.plastic {
+                if branch.slot >= slots {
+                    return Err(format!(
+                        "the rule for {name} reads slot {} of an environment of {slots} slot(s)",
+                        branch.slot
+                    ));
+                }
+                if !branch.above.is_finite() {
+                    return Err(format!(
+                        "the rule for {name} compares the value read with {}, not a finite \
+                         number",
+                        branch.above
+                    ));
+                }
+                check_sequence(
+                    &format!("the plastic successor of {name}"),
+                    &branch.successor,
+                    limits.max_successor,
+                    slots,
+                    limits,
+                )?;
+            }
         }
         Ok(())
     }
@@ -419,10 +505,14 @@ fn check_grower(g: Grower, limits: &ContinuousLimits) -> Result<(), String> {
     }
 }
 
+/// Most slots a genome's environment may have.
+const MAX_ENVIRONMENT: usize = 16;
+
 fn check_sequence(
     what: &str,
     seq: &[Token],
     max_len: usize,
+    slots: usize,
     limits: &ContinuousLimits,
 ) -> Result<(), String> {
     if seq.len() > max_len {
@@ -447,6 +537,23 @@ fn check_sequence(
                     .checked_sub(1)
                     .ok_or_else(|| format!("{what} has a ']' without its '['"))?;
             }
+            Token::Command(c, p) if is_environment_command(*c) => match p {
+                Some(v) if *v >= 0.0 && v.fract() == 0.0 && *v < slots as f64 => {}
+                _ if slots == 0 => {
+                    return Err(format!(
+                        "{what}: {} needs an environment ('environment:'), and the genome has \
+                         none",
+                        c.name()
+                    ));
+                }
+                _ => {
+                    return Err(format!(
+                        "{what}: {} needs a slot of the environment, 0 to {}",
+                        c.name(),
+                        slots - 1
+                    ));
+                }
+            },
             Token::Command(c, p) => {
                 let kind = c.argument();
                 match (kind, p) {
@@ -482,8 +589,108 @@ fn check_sequence(
     Ok(())
 }
 
-fn sequence_text(seq: &[Token]) -> String {
-    seq.iter().map(Token::text).collect::<Vec<_>>().join(" ")
+impl ContinuousGenome {
+    /// A sequence as text, with the read of a plastic rule right before each of its maturing
+    /// tokens.
+    fn sequence_text(&self, seq: &[Token]) -> String {
+        let mut words = Vec::with_capacity(seq.len());
+        for t in seq {
+            if let Token::Grower(g) = t
+                && let Some(branch) = self.rule(*g).and_then(|r| r.plastic.as_ref())
+            {
+                words.push(read_text(branch.slot));
+            }
+            words.push(t.text());
+        }
+        words.join(" ")
+    }
+}
+
+impl ContinuousGenome {
+    /// Where its text writes reads in `seq`: (index of the maturing token read for, slot),
+    /// one before each maturing token whose rule is plastic.
+    pub(super) fn reads_in(&self, seq: &[Token]) -> Vec<(usize, usize)> {
+        seq.iter()
+            .enumerate()
+            .filter_map(|(i, t)| match t {
+                Token::Grower(g) => self
+                    .rule(*g)
+                    .and_then(|r| r.plastic.as_ref())
+                    .map(|b| (i, b.slot)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The genome's environment reads for people (`ontogeny genome show`): a line per
+    /// plastic rule saying which maturing token reads which slot, and what its rule branches
+    /// on; then the `chem` and `secrete` neurons. Empty when it reads nothing.
+    pub fn environment_reads(&self) -> Vec<String> {
+        let mut lines = Vec::new();
+        for rule in &self.rules {
+            let Some(b) = &rule.plastic else { continue };
+            let name = rule.grower.name();
+            let count = std::iter::once(&self.axiom)
+                .chain(self.rules.iter().flat_map(|r| {
+                    std::iter::once(&r.successor).chain(r.plastic.iter().map(|b| &b.successor))
+                }))
+                .map(|seq| {
+                    self.reads_in(seq)
+                        .iter()
+                        .filter(|(i, _)| seq[*i] == Token::Grower(rule.grower))
+                        .count()
+                })
+                .sum::<usize>();
+            lines.push(format!(
+                "{name} reads slot {} ({count} read(s) written): on maturing, where the value \
+                 read is above {}, it becomes {}; elsewhere {}",
+                b.slot,
+                b.above,
+                self.matured_text(rule, &b.successor),
+                self.matured_text(rule, &rule.successor),
+            ));
+        }
+        let mut neurons = std::collections::BTreeMap::new();
+        let every = std::iter::once(&self.axiom).chain(self.rules.iter().flat_map(|r| {
+            std::iter::once(&r.successor).chain(r.plastic.iter().map(|b| &b.successor))
+        }));
+        for seq in every {
+            for t in seq {
+                if let Token::Command(c, Some(v)) = t
+                    && is_environment_command(*c)
+                {
+                    *neurons
+                        .entry(format!("{}({v})", c.name()))
+                        .or_insert(0usize) += 1;
+                }
+            }
+        }
+        for (neuron, n) in neurons {
+            lines.push(format!("{neuron}: {n} written"));
+        }
+        lines
+    }
+
+    /// What a rule's token matures into with `successor`: its twin and the tokens, as text.
+    fn matured_text(&self, rule: &Rule, successor: &[Token]) -> String {
+        let twin = match rule.grower {
+            Grower::Control(_) => None,
+            Grower::Maturing(c) if c.has_argument() => Some(format!("{}(x)", c.name())),
+            Grower::Maturing(c) => Some(c.name().to_string()),
+        };
+        let tail = self.sequence_text(successor);
+        match (twin, tail.is_empty()) {
+            (Some(twin), true) => twin,
+            (Some(twin), false) => format!("{twin} {tail}"),
+            (None, true) => "nothing".into(),
+            (None, false) => tail,
+        }
+    }
+}
+
+/// The read of `slot`, as a genome's text writes it before a maturing token.
+fn read_text(slot: usize) -> String {
+    format!("?E(1, {slot}, 0)")
 }
 impl Genome for ContinuousGenome {
     type Limits = ContinuousLimits;
@@ -504,8 +711,42 @@ impl Genome for ContinuousGenome {
         Some(self.child(other, limits, rng))
     }
 
+    fn allow_environment_reads(limits: &mut ContinuousLimits, probability: f64) {
+        limits.environment_reads = probability;
+    }
+
     fn develop(&self, limits: &ContinuousLimits, _seed: u64) -> Result<Creature, DevelopError> {
-        self.creature(limits)
+        self.creature(limits, None)
+    }
+
+    fn environment(&self) -> Environment {
+        Environment::new(self.environment.clone())
+    }
+
+    fn develop_in(
+        &self,
+        limits: &ContinuousLimits,
+        _seed: u64,
+        env: &Environment,
+    ) -> Result<Creature, DevelopError> {
+        check_environment_size(self.environment.len(), env)?;
+        if self.environment.is_empty() {
+            return self.creature(limits, None);
+        }
+        self.creature(limits, Some(env))
+    }
+
+    fn show(&self) -> String {
+        let mut shown = grammar_shown(&self.to_text());
+        let reads = self.environment_reads();
+        if !reads.is_empty() {
+            shown.push_str("\nenvironment reads:");
+            for line in reads {
+                shown.push_str("\n  ");
+                shown.push_str(&line);
+            }
+        }
+        shown
     }
 
     fn to_text(&self) -> String {

@@ -327,6 +327,7 @@ pub(super) fn random_rule(
         threshold,
         rate: random_rate(threshold, limits, rng),
         successor,
+        plastic: None,
     }
 }
 
@@ -351,6 +352,32 @@ pub(super) fn random_axiom(
     }
     fill_with_motifs(&mut axiom, len, &mut growers, limits, active, rng);
     axiom
+}
+
+/// A random plastic branch for rule `i` of `genome` (which has an environment): a random
+/// slot, a value on the grid of [0, 1], and the successor of a random rule for its symbol.
+pub(super) fn random_branch(
+    genome: &ContinuousGenome,
+    i: usize,
+    limits: &ContinuousLimits,
+    active: &[Grower],
+    rng: &mut Rng,
+) -> Plastic {
+    let slot = rng.random_range(0..genome.environment.len().max(1));
+    let above = on_grid(rng.random_range(0.0..=1.0), GRID);
+    let successor = random_rule(genome.rules[i].grower, limits, active, rng).successor;
+    Plastic {
+        slot,
+        above,
+        successor,
+    }
+}
+
+/// A plastic branch's value changed a little (a triangular step of up to 0.25), kept in
+/// [0, 1].
+pub(super) fn perturb_above(v: f64, rng: &mut Rng) -> f64 {
+    let d = (rng.random_range(0.0..1.0) + rng.random_range(0.0..1.0) - 1.0) * 0.25;
+    on_grid(v + d, GRID).clamp(0.0, 1.0)
 }
 
 // ---- mutation ------------------------------------------------------------------------
@@ -458,12 +485,173 @@ impl ContinuousGenome {
             dt: limits.dt,
             axiom: Vec::new(),
             rules: Vec::new(),
+            environment: Vec::new(),
         };
         for &g in &active {
             genome.insert_rule(random_rule(g, &limits, &active, rng));
         }
         genome.axiom = random_axiom(&limits, &active, rng);
+        if limits.environment_reads > 0.0 {
+            if genome.environment.is_empty() {
+                genome.environment = vec![0.0];
+            }
+            for i in 0..genome.rules.len() {
+                if chance(rng, limits.environment_reads) {
+                    genome.rules[i].plastic =
+                        Some(random_branch(&genome, i, &limits, &active, rng));
+                }
+            }
+            if chance(rng, limits.environment_reads) {
+                genome.insert_neuron(&limits, rng);
+            }
+        }
         genome
+    }
+
+    /// Inserts a random `chem` or `secrete` neuron at a random place of a random sequence
+    /// with room for it.
+    fn insert_neuron(&mut self, limits: &ContinuousLimits, rng: &mut Rng) {
+        let slots = self.environment.len();
+        if slots == 0 {
+            return;
+        }
+        let weights: Vec<f64> = ENVIRONMENT_CHOICES.iter().map(|&(_, w)| w).collect();
+        let command = ENVIRONMENT_CHOICES[weighted(rng, &weights)].0;
+        let token = Token::Command(command, Some(rng.random_range(0..slots) as f64));
+        let mut places: Vec<&mut Vec<Token>> = Vec::new();
+        if self.axiom.len() < limits.max_axiom {
+            places.push(&mut self.axiom);
+        }
+        for rule in &mut self.rules {
+            if rule.successor.len() < limits.max_successor {
+                places.push(&mut rule.successor);
+            }
+            if let Some(b) = &mut rule.plastic
+                && b.successor.len() < limits.max_successor
+            {
+                places.push(&mut b.successor);
+            }
+        }
+        if places.is_empty() {
+            return;
+        }
+        let k = rng.random_range(0..places.len());
+        let seq = &mut places[k];
+        let at = rng.random_range(0..=seq.len());
+        seq.insert(at, token);
+    }
+
+    /// Removes a random `chem` or `secrete` neuron, if the genome has one (never the axiom's
+    /// last token).
+    fn remove_neuron(&mut self, rng: &mut Rng) -> bool {
+        let is_neuron = |t: &Token| matches!(t, Token::Command(c, _) if is_environment_command(*c));
+        let axiom_len = self.axiom.len();
+        let mut sites: Vec<(usize, usize)> = Vec::new();
+        let mut seqs: Vec<&mut Vec<Token>> = vec![&mut self.axiom];
+        for rule in &mut self.rules {
+            seqs.push(&mut rule.successor);
+            if let Some(b) = &mut rule.plastic {
+                seqs.push(&mut b.successor);
+            }
+        }
+        for (k, seq) in seqs.iter().enumerate() {
+            for (i, t) in seq.iter().enumerate() {
+                if is_neuron(t) && !(k == 0 && axiom_len == 1) {
+                    sites.push((k, i));
+                }
+            }
+        }
+        if sites.is_empty() {
+            return false;
+        }
+        let (k, i) = sites[rng.random_range(0..sites.len())];
+        seqs[k].remove(i);
+        true
+    }
+
+    /// Keeps what reads and writes the environment within it (no random draws): slots past
+    /// its end become its last; without an environment, plastic branches and the neurons
+    /// that need one go.
+    fn fit_environment(&mut self, limits: &ContinuousLimits) {
+        let slots = self.environment.len();
+        let fit = |seq: &mut Vec<Token>| {
+            if slots == 0 {
+                seq.retain(|t| !matches!(t, Token::Command(c, _) if is_environment_command(*c)));
+            }
+            for t in seq.iter_mut() {
+                if let Token::Command(c, Some(v)) = t
+                    && is_environment_command(*c)
+                {
+                    *v = v.round().clamp(0.0, slots.saturating_sub(1) as f64);
+                }
+            }
+        };
+        fit(&mut self.axiom);
+        if self.axiom.is_empty() {
+            self.axiom
+                .push(Token::Command(Command::Forward, Some(limits.min_threshold)));
+        }
+        for rule in &mut self.rules {
+            fit(&mut rule.successor);
+            if slots == 0 {
+                rule.plastic = None;
+            }
+            if let Some(b) = &mut rule.plastic {
+                b.slot = b.slot.min(slots - 1);
+                fit(&mut b.successor);
+            }
+        }
+    }
+
+    /// Mutates the plastic branches (their slot, value and successor, each a site), and with
+    /// chance `environment_reads` makes or removes one, and adds or removes a neuron that
+    /// reads or writes the array. Draws nothing from a genome without reads when reads are
+    /// not allowed.
+    fn mutate_reads(
+        &mut self,
+        limits: &ContinuousLimits,
+        active: &[Grower],
+        rate: f64,
+        rng: &mut Rng,
+    ) {
+        let slots = self.environment.len();
+        for rule in &mut self.rules {
+            let Some(b) = &mut rule.plastic else { continue };
+            if chance(rng, rate) && slots > 1 {
+                b.slot = rng.random_range(0..slots);
+            }
+            if chance(rng, rate) {
+                b.above = perturb_above(b.above, rng);
+            }
+            mutate_sequence(
+                &mut b.successor,
+                0,
+                limits.max_successor,
+                limits,
+                active,
+                rate,
+                rng,
+            );
+        }
+        let p = limits.environment_reads;
+        if p > 0.0 && !self.rules.is_empty() && chance(rng, p) {
+            if self.environment.is_empty() {
+                self.environment = vec![0.0];
+            }
+            let i = rng.random_range(0..self.rules.len());
+            self.rules[i].plastic = match self.rules[i].plastic {
+                Some(_) => None,
+                None => Some(random_branch(self, i, limits, active, rng)),
+            };
+        }
+        if p > 0.0 && chance(rng, p) {
+            if self.environment.is_empty() {
+                self.environment = vec![0.0];
+            }
+            if !(rng.random_bool(0.5) && self.remove_neuron(rng)) {
+                self.insert_neuron(limits, rng);
+            }
+        }
     }
 
     /// A mutant: every mutation site changes with probability `rate`.
@@ -522,6 +710,8 @@ impl ContinuousGenome {
                 g.insert_rule(random_rule(grower, &limits, &active, rng));
             }
         }
+        g.mutate_reads(&limits, &active, rate, rng);
+        g.fit_environment(&limits);
         g
     }
 
@@ -539,6 +729,10 @@ impl ContinuousGenome {
             .take(limits.max_rules)
             .cloned()
             .collect();
+        if other.environment.len() > child.environment.len() {
+            child.environment = other.environment.clone();
+        }
+        child.fit_environment(&limits);
         child
     }
 }
@@ -587,6 +781,7 @@ mod tests {
         let g = ContinuousGenome {
             time: 2.0,
             dt: 1.0,
+            environment: Vec::new(),
             axiom: vec![
                 Token::Command(Command::Forward, Some(0.5)),
                 Token::Grower(Grower::Control(0)),
@@ -596,6 +791,7 @@ mod tests {
                 threshold: 0.5,
                 rate: 0.5,
                 successor: vec![],
+                plastic: None,
             }],
         };
         let text = g.to_text();
@@ -628,10 +824,12 @@ mod tests {
             threshold: t,
             rate: 0.1,
             successor: vec![],
+            plastic: None,
         };
         let mk = |t: f64| ContinuousGenome {
             time: 4.0,
             dt: 1.0,
+            environment: Vec::new(),
             axiom: vec![Token::Command(Command::Forward, Some(t))],
             rules: vec![
                 rule(Grower::Control(0), t),

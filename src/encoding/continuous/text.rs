@@ -13,7 +13,11 @@ impl ContinuousGenome {
         s.push_str(&format!("time: {}\n", self.time));
         s.push_str(&format!("dt: {}\n", self.dt));
         s.push_str("timing: exact\n");
-        s.push_str(&format!("axiom: {}\n", sequence_text(&self.axiom)));
+        if !self.environment.is_empty() {
+            let values: Vec<String> = self.environment.iter().map(f64::to_string).collect();
+            s.push_str(&format!("environment: {}\n", values.join(" ")));
+        }
+        s.push_str(&format!("axiom: {}\n", self.sequence_text(&self.axiom)));
         for rule in &self.rules {
             let name = rule.grower.name();
             let t = rule.threshold;
@@ -22,18 +26,21 @@ impl ContinuousGenome {
                 "{name}(x) : x < {t} --> solve dx/dt = {}\n",
                 rule.rate
             ));
-            let twin = match rule.grower {
-                Grower::Control(_) => None,
-                Grower::Maturing(c) if c.has_argument() => Some(format!("{}(x)", c.name())),
-                Grower::Maturing(c) => Some(c.name().to_string()),
+            let successor = |seq: &[Token]| match rule.grower {
+                Grower::Control(_) => self.sequence_text(seq),
+                _ => self.matured_text(rule, seq),
             };
-            let tail = sequence_text(&rule.successor);
-            let successor = match (twin, tail.is_empty()) {
-                (Some(twin), true) => twin,
-                (Some(twin), false) => format!("{twin} {tail}"),
-                (None, _) => tail,
-            };
-            let line = format!("{name}(x) : x >= {t} --> {successor}");
+            if let Some(branch) = &rule.plastic {
+                let line = format!(
+                    "?E(1, {}, c) < {name}(x) : x >= {t} && c > {} --> {}",
+                    branch.slot,
+                    branch.above,
+                    successor(&branch.successor)
+                );
+                s.push_str(line.trim_end());
+                s.push('\n');
+            }
+            let line = format!("{name}(x) : x >= {t} --> {}", successor(&rule.successor));
             s.push_str(line.trim_end());
             s.push('\n');
         }
@@ -88,10 +95,73 @@ pub(super) fn token_of(call: &ModuleCall, limits: &ContinuousLimits) -> Result<T
         ),
     };
     Err(format!(
-        "'{name}' is not a token of the genome (the commands but chem, target, secrete, \
-         release, increase and decrease; the maturing twins of forward, the turns and the \
+        "'{name}' is not a token of the genome (the commands but target, release, increase \
+         and decrease; the maturing twins of forward, the turns and the \
          joints; {controls})"
     ))
+}
+
+/// A sequence read from a file: its tokens, and the reads `?E(1, slot, 0)` written in it as
+/// (index of the token after the read, slot).
+type ReadSequence = (Vec<Token>, Vec<(usize, usize)>);
+
+/// A constant formal parameter of a pattern (`1` in `?E(1, 0, c)`).
+fn constant_formal(param: &str) -> Option<f64> {
+    param.parse::<f64>().ok()
+}
+
+/// The calls of an axiom or successor as tokens and reads.
+fn sequence_of(calls: &[ModuleCall], limits: &ContinuousLimits) -> Result<ReadSequence, String> {
+    let mut tokens = Vec::with_capacity(calls.len());
+    let mut reads = Vec::new();
+    for call in calls {
+        if call.name == "?E" {
+            let args: Vec<Option<f64>> = call.args.iter().map(|a| number(a, true)).collect();
+            match args.as_slice() {
+                [Some(mode), Some(slot), Some(value)]
+                    if *mode == 1.0 && *slot >= 0.0 && slot.fract() == 0.0 && *value == 0.0 =>
+                {
+                    reads.push((tokens.len(), *slot as usize));
+                }
+                _ => {
+                    return Err("a genome's environment read is written ?E(1, SLOT, 0), \
+                                right before a maturing token"
+                        .into());
+                }
+            }
+            continue;
+        }
+        tokens.push(token_of(call, limits)?);
+    }
+    Ok((tokens, reads))
+}
+
+/// The plastic branch's left context and guard: `?E(1, SLOT, c) < P(x) : x >= T && c > V`
+/// gives (T, SLOT, V).
+fn plastic_guard(rule: &crate::lang::ast::Rule, param: &str) -> Option<(f64, usize, f64)> {
+    let [read] = rule.left.as_slice() else {
+        return None;
+    };
+    let [(mode, _), (slot, _), (value, _)] = read.params.as_slice() else {
+        return None;
+    };
+    if read.name != "?E" || constant_formal(mode) != Some(1.0) || value == param {
+        return None;
+    }
+    let slot = constant_formal(slot).filter(|s| *s >= 0.0 && s.fract() == 0.0)?;
+    match rule.guard.as_ref()? {
+        Expr::Binary {
+            op: BinaryOp::And,
+            lhs,
+            rhs,
+            ..
+        } => Some((
+            comparison(lhs, BinaryOp::Ge, param)?,
+            slot as usize,
+            comparison(rhs, BinaryOp::Gt, value)?,
+        )),
+        _ => None,
+    }
 }
 
 pub(super) fn from_file(
@@ -105,23 +175,24 @@ pub(super) fn from_file(
     if lsys.timing() != Timing::Exact {
         return Err("it uses 'timing: iterative'; the genome uses exact timing".into());
     }
-    if file.environment.is_some() {
-        return Err("it has an environment ('environment:'); the genome has none".into());
-    }
     if !file.defines.is_empty() {
         return Err("it defines constants; write numbers instead".into());
     }
     if !file.ignore.is_empty() {
         return Err("it has an 'ignore:' line; the genome's rules use no context".into());
     }
-    let axiom = file
+    let environment = lsys.environment().values().to_vec();
+    let (axiom, axiom_reads) = file
         .axiom
         .as_ref()
-        .map(|(calls, _)| calls.iter().map(|c| token_of(c, limits)).collect())
+        .map(|(calls, _)| sequence_of(calls, limits))
         .transpose()
         .map_err(|e| format!("in the axiom: {e}"))?
         .unwrap_or_default();
     let mut rules: Vec<Rule> = Vec::new();
+    // The reads written in each sequence: (which sequence, as messages name it, reads).
+    let mut written: Vec<(String, Vec<(usize, usize)>)> =
+        vec![("the axiom".to_string(), axiom_reads)];
     let mut done: Vec<String> = Vec::new();
     for rule in &file.rules {
         let name = rule.predecessor.name.clone();
@@ -138,21 +209,26 @@ pub(super) fn from_file(
                  and the joints, and the control tokens A, B, ... that the limits allow)"
             ));
         };
-        let pair: Vec<_> = file
+        let group: Vec<_> = file
             .rules
             .iter()
             .filter(|r| r.predecessor.name == name)
             .collect();
         let template = "they must be the template's two rules, \
-                        'P(x) : x < T --> solve dx/dt = R' and 'P(x) : x >= T --> ...'";
-        if pair.len() != 2 {
+                        'P(x) : x < T --> solve dx/dt = R' and 'P(x) : x >= T --> ...', \
+                        and for a plastic rule, before the second, \
+                        '?E(1, SLOT, c) < P(x) : x >= T && c > V --> ...'";
+        if !(2..=3).contains(&group.len()) {
             return Err(format!("{line}: {template}"));
         }
         let mut grow = None;
         let mut mature = None;
-        for r in pair {
-            if !r.left.is_empty() || !r.right.is_empty() || r.probability.is_some() {
-                return Err(format!("{line}: no context and no probabilities, please"));
+        let mut branch = None;
+        for r in group {
+            if !r.right.is_empty() || r.probability.is_some() {
+                return Err(format!(
+                    "{line}: no right context and no probabilities, please"
+                ));
             }
             let [(param, _)] = r.predecessor.params.as_slice() else {
                 return Err(format!("{line}: {name} must have one parameter"));
@@ -161,6 +237,13 @@ pub(super) fn from_file(
                 .guard
                 .as_ref()
                 .ok_or_else(|| format!("{line}: {template}"))?;
+            let plastic = if r.left.is_empty() {
+                None
+            } else if mature.is_some() || r.solve.is_some() {
+                return Err(format!("{line}: {template}"));
+            } else {
+                Some(plastic_guard(r, param).ok_or_else(|| format!("{line}: {template}"))?)
+            };
             match &r.solve {
                 Some(ode) => {
                     let threshold = comparison(guard, BinaryOp::Lt, param)
@@ -177,8 +260,11 @@ pub(super) fn from_file(
                     grow = Some((threshold, rate));
                 }
                 None => {
-                    let threshold = comparison(guard, BinaryOp::Ge, param)
-                        .ok_or_else(|| format!("{line}: {template}"))?;
+                    let threshold = match plastic {
+                        Some((t, _, _)) => Some(t),
+                        None => comparison(guard, BinaryOp::Ge, param),
+                    }
+                    .ok_or_else(|| format!("{line}: {template}"))?;
                     let mut calls = r.successor.as_slice();
                     if let Grower::Maturing(c) = grower {
                         let twin_ok = calls.first().is_some_and(|first| {
@@ -201,12 +287,24 @@ pub(super) fn from_file(
                         }
                         calls = &calls[1..];
                     }
-                    let successor = calls
-                        .iter()
-                        .map(|c| token_of(c, limits))
-                        .collect::<Result<Vec<_>, _>>()
-                        .map_err(|e| format!("{line}: {e}"))?;
-                    mature = Some((threshold, successor));
+                    let (successor, reads) =
+                        sequence_of(calls, limits).map_err(|e| format!("{line}: {e}"))?;
+                    match plastic {
+                        Some((_, slot, above)) => {
+                            if branch.is_some() {
+                                return Err(format!("{line}: {template}"));
+                            }
+                            written.push((format!("the plastic successor of {name}"), reads));
+                            branch = Some((threshold, slot, above, successor));
+                        }
+                        None => {
+                            if mature.is_some() {
+                                return Err(format!("{line}: {template}"));
+                            }
+                            written.push((format!("the successor of {name}"), reads));
+                            mature = Some((threshold, successor));
+                        }
+                    }
                 }
             }
         }
@@ -218,11 +316,25 @@ pub(super) fn from_file(
                 "{line}: the two guards must use the same threshold ({t1} and {t2})"
             ));
         }
+        let plastic = match branch {
+            Some((t3, _, _, _)) if t3 != t1 => {
+                return Err(format!(
+                    "{line}: the plastic rule must use the same threshold ({t1} and {t3})"
+                ));
+            }
+            Some((_, slot, above, successor)) => Some(Plastic {
+                slot,
+                above,
+                successor,
+            }),
+            None => None,
+        };
         rules.push(Rule {
             grower,
             threshold: t1,
             rate,
             successor,
+            plastic,
         });
         done.push(name);
     }
@@ -231,9 +343,38 @@ pub(super) fn from_file(
         dt: lsys.dt(),
         axiom,
         rules: Vec::new(),
+        environment,
     };
     for rule in rules {
         genome.insert_rule(rule);
+    }
+    // The reads must be where the genome writes them: right before each maturing token of a
+    // plastic rule, reading its slot, and nowhere else.
+    for (what, reads) in &written {
+        let seq = if what == "the axiom" {
+            &genome.axiom
+        } else {
+            genome
+                .rules
+                .iter()
+                .find_map(|r| {
+                    let name = r.grower.name();
+                    if *what == format!("the successor of {name}") {
+                        Some(&r.successor)
+                    } else if *what == format!("the plastic successor of {name}") {
+                        r.plastic.as_ref().map(|b| &b.successor)
+                    } else {
+                        None
+                    }
+                })
+                .expect("every sequence read belongs to a rule kept")
+        };
+        if *reads != genome.reads_in(seq) {
+            return Err(format!(
+                "in {what}: a plastic rule's read ?E(1, SLOT, 0) stands right before each of \
+                 its maturing tokens, and no read stands anywhere else"
+            ));
+        }
     }
     genome.check_limits(limits)?;
     Ok(genome)
@@ -247,6 +388,7 @@ mod tests {
         let g = ContinuousGenome {
             time: 4.0,
             dt: 0.5,
+            environment: Vec::new(),
             axiom: vec![Token::Grower(Grower::Maturing(Command::Forward))],
             rules: vec![Rule {
                 grower: Grower::Maturing(Command::Forward),
@@ -257,6 +399,7 @@ mod tests {
                     Token::Command(Command::Right, Some(-1.0)),
                     Token::Grower(Grower::Maturing(Command::Forward)),
                 ],
+                plastic: None,
             }],
         };
         let text = g.to_text();

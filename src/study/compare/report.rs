@@ -504,7 +504,10 @@ pub fn write_report(
         })
         .collect();
     // The task's name, or "conditions" when they do not share one.
-    let task = if arms.iter().all(|a| a.settings.task.task == first.task.task) {
+    let task = if arms
+        .iter()
+        .all(|a| a.settings.task.kind() == first.task.kind())
+    {
         first.task.task.name()
     } else {
         "conditions"
