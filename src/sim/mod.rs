@@ -7,8 +7,9 @@
 //! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
 //! [`projectile`], feels water's resistance in [`water`], and steps in [`world`]; its
 //! velocities and momenta are [`motion`]'s; what the world holds besides the creature
-//! (terrain, obstacles, objects, the medium) is described by [`world_spec`] and worked out as geometry, without physics, in [`terrain`]; the ground
-//! and what stands on it are built in rapier by `ground`.
+//! (terrain, obstacles, objects, the medium) is described by [`world_spec`] and worked out
+//! as geometry, without physics, in [`terrain`]; the ground and what stands on it are built
+//! in rapier by `ground`.
 
 pub mod actuators;
 pub mod audit;

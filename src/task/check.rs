@@ -6,8 +6,8 @@
 use super::{
     CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
 };
-use crate::sim::{Medium, SettingError};
 use crate::sim::setting::check_real;
+use crate::sim::{Medium, SettingError};
 
 /// The longest any duration of a task may be (s): an hour. A task's measurement (`seconds`,
 /// the catapult's `max_seconds`), a wait for rest and every other phase must fit in it, so

@@ -84,7 +84,10 @@ fn a_box_on_a_30_degree_slope_slides_at_friction_0_8_tan_30_as_coulomb_says() {
 
 fn walker_over(world: &str) -> ontogeny::task::Evaluation {
     let mut spec = TaskSpec::new(TaskKind::Walker);
-    spec.task.get_mut::<ontogeny::task::WalkerOptions>().unwrap().seconds = 3.0;
+    spec.task
+        .get_mut::<ontogeny::task::WalkerOptions>()
+        .unwrap()
+        .seconds = 3.0;
     spec.world = world_spec(world);
     spec.check().unwrap();
     spec.evaluate(&grown("examples/quadruped.lsys"), false)
