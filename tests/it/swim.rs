@@ -72,7 +72,23 @@ fn water_is_the_swim_task_s_medium_alone_and_its_viscosity_in_range() {
         ],
         "[task.world.medium] viscosity must be in (0, 10000] N·s/m³, not 0",
     );
-    assert!(!dir.join("a").exists() && !dir.join("b").exists());
+    let sloped = config(
+        "sloped.toml",
+        "[task]\ntask = \"swim\"\n[task.world]\nmedium = { kind = \"water\", viscosity = 500 }\n\
+         slope = { degrees = 5 }\n",
+    );
+    assert_bad_input(
+        &[
+            "evolve",
+            "--config",
+            &sloped,
+            "--out",
+            dir.join("c").to_str().unwrap(),
+        ],
+        "[task.world] medium must be alone: water has no ground, so no slope, steps, rough, \
+         obstacles, objects or friction, not water in a world with them",
+    );
+    assert!(!dir.join("a").exists() && !dir.join("b").exists() && !dir.join("c").exists());
 }
 
 #[test]
