@@ -38,6 +38,17 @@ fn the_key_of_a_fixed_creature_and_task_is_pinned() {
     assert_eq!(keys(KeyVersion::V2), PINNED_V2);
 }
 
+#[test]
+fn the_swim_key_changes_with_the_water_s_viscosity() {
+    let c = creature();
+    let in_water = |viscosity: f64| {
+        let mut spec = TaskSpec::new(TaskKind::Swim);
+        spec.world.medium = ontogeny::sim::Medium::Water { viscosity };
+        EvaluationKey::of(&c, &spec)
+    };
+    assert_ne!(in_water(500.0), in_water(501.0));
+}
+
 /// The version-2 keys of the fixed creature with each task's defaults, in the registry's order.
 const PINNED_V2: [&str; 6] = [
     "000f7ad5e3102e309e8f1c76a505ca1202336fc52ad8cb324965806bf7df3c60",
