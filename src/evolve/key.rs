@@ -4,7 +4,7 @@
 //! and the task, so two individuals with one key have one evaluation.
 //!
 //! Keys have versions ([`KeyVersion`]): version 2 hashes only what the task being run reads
-//! (its name, the simulator's settings and its own settings, [`crate::task::Task::options`]),
+//! (its name, the simulator's settings and its own settings, [`crate::task::Task::reads`]),
 //! so that a setting of another task, or a new task, changes no key; version 1, which runs
 //! made before it keep, hashed every task's settings, as the run's stored `[task]` table
 //! holds them ([`EvaluationKey::of_tables`]).

@@ -276,13 +276,6 @@ pub fn plan_comparison(
     if file.encoding.is_some() {
         return refuse(&["encoding"], "encoding", "--encodings names them");
     }
-    if file.init.is_some() {
-        return refuse(
-            &["init"],
-            "init",
-            "every replicate starts from random genomes",
-        );
-    }
     if file.limits.is_some() {
         return refuse(
             &["limits"],
@@ -290,13 +283,7 @@ pub fn plan_comparison(
             "every encoding runs with its default limits",
         );
     }
-    if file.ga.generations.is_some() {
-        return refuse(
-            &["ga", "generations"],
-            "[ga] generations",
-            "--evaluations sets the generations",
-        );
-    }
+    refuse_replicated_keys(file.init.is_some(), file.ga.generations.is_some(), source)?;
     let one_generation = RunFlags {
         generations: Some(1),
         ..flags.clone()
@@ -330,6 +317,32 @@ fn checked_replicates(replicates: Option<usize>) -> Result<usize, Diagnostic> {
 
 /// The refusal of a key (`path`, said as `what`) that a comparison's config file (`source`)
 /// sets but the comparison sets itself (`why`): at its place in the file.
+/// Refuses, in a comparison's config, the keys every replicate sets for itself: `init` (every
+/// replicate starts from random genomes) and `[ga] generations` (`--evaluations` sets them).
+fn refuse_replicated_keys(
+    init: bool,
+    generations: bool,
+    source: Option<&Source>,
+) -> Result<(), Diagnostic> {
+    if init {
+        return Err(refusal(
+            source,
+            &["init"],
+            "init",
+            "every replicate starts from random genomes",
+        ));
+    }
+    if generations {
+        return Err(refusal(
+            source,
+            &["ga", "generations"],
+            "[ga] generations",
+            "--evaluations sets the generations",
+        ));
+    }
+    Ok(())
+}
+
 fn refusal(source: Option<&Source>, path: &[&str], what: &str, why: &str) -> Diagnostic {
     let message = format!("{what} has no place in a comparison's config: {why}");
     let at = source.and_then(|s| Some((s, crate::run::config_errors::key_span(s, path)?)));
@@ -423,20 +436,11 @@ fn condition_arm<G: Genome>(
     if file.seed.is_some() {
         return refuse(&["seed"], "seed", "--seed sets every replicate's seed");
     }
-    if file.init.is_some() {
-        return refuse(
-            &["init"],
-            "init",
-            "every replicate starts from random genomes",
-        );
-    }
-    if file.ga.generations.is_some() {
-        return refuse(
-            &["ga", "generations"],
-            "[ga] generations",
-            "--evaluations sets the generations",
-        );
-    }
+    refuse_replicated_keys(
+        file.init.is_some(),
+        file.ga.generations.is_some(),
+        Some(source),
+    )?;
     let one_generation = RunFlags {
         generations: Some(1),
         ..flags.clone()

@@ -7,10 +7,10 @@ use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
-use super::ground::Ground;
 use super::motion::Attach;
 use super::options::SimOptions;
 use super::setting::SettingError;
+use super::slots::Ground;
 use super::slots::Keyed;
 use super::terrain::Terrain;
 use super::world::{GRAVITY, World};

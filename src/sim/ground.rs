@@ -14,28 +14,10 @@ use rapier3d::math::{Pose, Real, Rotation, Vector};
 use rapier3d::parry::utils::Array2;
 use rapier3d::prelude::*;
 
+use super::slots::{Ground, GroundFriction};
 use super::terrain::{Cuboid, Terrain};
 use super::world::{GRAVITY, World};
 use super::world_spec::ObjectShape;
-
-/// What a world holds besides the creature, in rapier.
-pub(super) struct Ground {
-    /// The ground's colliders: the first is the halfspace or the heightfield.
-    pub(super) colliders: Vec<ColliderHandle>,
-    /// The free objects' bodies and their starting velocities.
-    objects: Vec<(RigidBodyHandle, Vector)>,
-    /// Whether the objects have been let go.
-    released: bool,
-    /// The ground's friction, when the world sets it.
-    friction: Option<GroundFriction>,
-    /// The highest ground under the creature where it was dropped (m).
-    pub(super) start: f64,
-}
-
-/// The physics hook that gives a contact with the ground the ground's coefficient there.
-struct GroundFriction {
-    terrain: Terrain,
-}
 
 impl PhysicsHooks for GroundFriction {
     fn modify_solver_contacts(&self, context: &mut ContactModificationContext) {

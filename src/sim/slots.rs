@@ -1,7 +1,8 @@
 //! The records the world keeps of the creature's parts and joints, keyed by their stable ids
 //! ([`PartId`], [`JointId`](crate::creature::JointId)): a part's body, box and size, a joint's
-//! rapier handle, ends, limits and motor. [`World`](super::World) holds them; `parts` adds and
-//! resizes them.
+//! rapier handle, ends, limits and motor; and what it holds besides the creature (the ground,
+//! obstacles and objects). [`World`](super::World) holds them; `parts` adds and resizes the
+//! parts and joints, `ground` builds the ground.
 
 use std::marker::PhantomData;
 
@@ -9,6 +10,7 @@ use ::nalgebra::Vector3;
 use rapier3d::math::Vector;
 use rapier3d::prelude::*;
 
+use super::terrain::Terrain;
 use crate::creature::PartId;
 
 /// A joint handle of either model.
@@ -104,4 +106,23 @@ pub(super) struct JointSlot {
     pub(super) max_torque: f64,
     /// The torques (N·m) the torque muscle applies about the joint's axes this control step.
     pub(super) torques: [f64; 3],
+}
+
+/// What a world holds besides the creature, in rapier.
+pub(super) struct Ground {
+    /// The ground's colliders: the first is the halfspace or the heightfield.
+    pub(super) colliders: Vec<ColliderHandle>,
+    /// The free objects' bodies and their starting velocities.
+    pub(super) objects: Vec<(RigidBodyHandle, Vector)>,
+    /// Whether the objects have been let go.
+    pub(super) released: bool,
+    /// The ground's friction, when the world sets it.
+    pub(super) friction: Option<GroundFriction>,
+    /// The highest ground under the creature where it was dropped (m).
+    pub(super) start: f64,
+}
+
+/// The physics hook that gives a contact with the ground the ground's coefficient there.
+pub(super) struct GroundFriction {
+    pub(super) terrain: Terrain,
 }

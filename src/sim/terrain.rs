@@ -20,14 +20,9 @@
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::world_spec::{ObjectShape, Obstacles, Rough, Slope, Steps, StepsWay, WorldSpec};
-
-/// How far the level ground round a heightfield, and the steps' sides and last tread, reach
-/// from the origin (m).
-pub const FAR: f64 = 500.0;
-
-/// The most samples along each side of a heightfield.
-pub const MAX_SAMPLES: usize = 513;
+use super::world_spec::{
+    FAR, MAX_SAMPLES, ObjectShape, Obstacles, Rough, Slope, Steps, StepsWay, WorldSpec,
+};
 
 /// A box, possibly turned about the vertical.
 #[derive(Clone, Copy, Debug, PartialEq)]

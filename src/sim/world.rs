@@ -66,7 +66,7 @@ pub struct World {
     /// The largest gap seen between the two ends of any joint's anchor (m).
     pub(super) peak_joint_gap: f64,
     /// The ground, the obstacles and the free objects (none in water).
-    pub(super) ground: super::ground::Ground,
+    pub(super) ground: super::slots::Ground,
     /// The water's viscosity (N·s/m³) when the creature swims ([`super::water`]); `None` in
     /// air.
     pub(super) water: Option<f64>,

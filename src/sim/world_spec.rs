@@ -21,7 +21,14 @@ pub const MAX_PATCHES: usize = 1000;
 /// The most steps in a flight.
 pub const MAX_STEPS: u32 = 1000;
 
-/// The most a length in a world may be (m): the ground reaches [`super::terrain::FAR`].
+/// How far the level ground round a heightfield, and the steps' sides and last tread, reach
+/// from the origin (m).
+pub const FAR: f64 = 500.0;
+
+/// The most samples along each side of a heightfield.
+pub const MAX_SAMPLES: usize = 513;
+
+/// The most a length in a world may be (m): the ground reaches [`FAR`].
 pub const MAX_LENGTH: f64 = 400.0;
 
 /// A creature's world besides the creature (the `[task.world]` table).
@@ -204,7 +211,7 @@ impl Rough {
         check_length("amplitude", self.amplitude)?;
         check_length("wavelength", self.wavelength)?;
         check_length("size", self.size)?;
-        let most = ((super::terrain::MAX_SAMPLES - 1) / 4) as f64;
+        let most = ((MAX_SAMPLES - 1) / 4) as f64;
         if self.size / self.wavelength > most {
             return Err(SettingError::out_of_range(
                 "wavelength",
