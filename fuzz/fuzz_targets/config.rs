@@ -9,12 +9,12 @@ use ontogeny::encoding::{
     CheckedLimits, ContinuousGenome, ContinuousLimits, DirectGenome, DirectLimits, Genome,
     GraphGenome, GraphLimits, LSystemGenome, LSystemLimits,
 };
-use ontogeny::study::compare::{self, evaluations_of, generations_for};
+use ontogeny::evolve::ga::GaSettings;
+use ontogeny::lang::Source;
 use ontogeny::run::config::{
     ConfigFile, RunConfig, check_settings, encoding_of, read_config, read_run_config,
 };
-use ontogeny::evolve::ga::GaSettings;
-use ontogeny::lang::Source;
+use ontogeny::study::compare::{self, evaluations_of, generations_for};
 use ontogeny::task::{TaskKind, TaskSpec};
 use serde::de::DeserializeOwned;
 
@@ -37,10 +37,10 @@ fn evolve_config<G: Genome>(source: &Source) {
         }
     };
     let ga = file.ga.resolve();
-    let task = file
-        .task
-        .clone()
-        .unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+    let task = file.task.as_ref().map_or_else(
+        || TaskSpec::new(TaskKind::Walker),
+        |tables| tables.spec(tables.kind()),
+    );
     match check_settings(&ga, &task) {
         Ok(()) => use_settings(&ga),
         Err(e) => {
@@ -102,7 +102,10 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(file) = read_config::<toml::Value>(&source) {
         let mut ga = file.ga.resolve();
         ga.generations = 1;
-        let task = file.task.unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+        let task = file.task.as_ref().map_or_else(
+            || TaskSpec::new(TaskKind::Walker),
+            |tables| tables.spec(tables.kind()),
+        );
         if check_settings(&ga, &task).is_ok() {
             let _ = generations_for(&ga, 1_000_000);
         }
@@ -124,9 +127,11 @@ fuzz_target!(|data: &[u8]| {
             return;
         }
         match compare::open(&root) {
-            Ok((manifest, shared)) => {
-                let _ = manifest.encodings.len() * manifest.replicates;
-                use_settings(&shared.ga);
+            Ok((manifest, arms)) => {
+                let _ = arms.len() * manifest.replicates;
+                for arm in &arms {
+                    use_settings(&arm.settings.ga);
+                }
             }
             Err(e) => {
                 let _ = e.to_string();

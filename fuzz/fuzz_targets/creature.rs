@@ -62,7 +62,7 @@ fuzz_target!(|data: &[u8]| {
         world.highest_point(),
         world.creature_mass(),
     );
-    for i in 0..world.part_count() {
-        let _ = world.part_pose(i);
+    for id in world.part_ids() {
+        let _ = world.part_pose(id);
     }
 });

@@ -14,11 +14,9 @@ use libfuzzer_sys::fuzz_target;
 use ontogeny::encoding::{
     ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome, LoadOptions, grow_grammar,
 };
-use ontogeny::run::config::{
-    ConfigFile, check_limits, check_settings, encoding_of, read_config,
-};
 use ontogeny::lang::Source;
 use ontogeny::lsystem::{DeriveOptions, LSystem};
+use ontogeny::run::config::{ConfigFile, check_limits, check_settings, encoding_of, read_config};
 use ontogeny::task::{TaskKind, TaskSpec};
 
 /// The configuration `config` read and checked as a run's is, with the encoding's limits;
@@ -26,10 +24,10 @@ use ontogeny::task::{TaskKind, TaskSpec};
 fn checked<G: Genome>(config: &Source) -> Option<G::Limits> {
     let file: ConfigFile<G::Limits> = read_config(config).ok()?;
     let ga = file.ga.resolve();
-    let task = file
-        .task
-        .clone()
-        .unwrap_or_else(|| TaskSpec::new(TaskKind::Walker));
+    let task = file.task.as_ref().map_or_else(
+        || TaskSpec::new(TaskKind::Walker),
+        |tables| tables.spec(tables.kind()),
+    );
     check_settings(&ga, &task).ok()?;
     let limits = file.limits.unwrap_or_default();
     match check_limits(&limits, Some(config)) {
