@@ -11,7 +11,7 @@ __version__: str
 
 _Path = Union[str, PathLike]
 _Env = Optional[Sequence[Tuple[int, float]]]
-_Task = Literal["walker", "jump", "catapult", "aim", "stand"]
+_Task = Literal["walker", "jump", "catapult", "aim", "stand", "swim"]
 _Fitness = Literal[
     "normalised",
     "distance",
@@ -160,8 +160,8 @@ def evaluate(
 ) -> Evaluation:
     """Evaluates a creature on a task, as ``ontogeny eval --task TASK`` does; ``sim`` sets the
     simulator's knobs by their ``[task.sim]`` keys (see ``_Sim``) over ``setting``. The task's
-    keywords: ``seconds`` (the walker, jump, catapult, aim and stand tasks), ``fitness`` (the
-    walker task), ``target`` (the aim task); one the task does not read raises ValueError."""
+    keywords: ``seconds`` (the walker, jump, catapult, aim, stand and swim tasks), ``fitness``
+    (the walker task), ``target`` (the aim task); one the task does not read raises ValueError."""
 
 def evaluate_many(
     creatures: Sequence[Creature],

@@ -89,7 +89,7 @@ def test_a_bad_knob_in_sim_raises_value_error_with_the_range_or_the_keys():
 
 
 def test_the_task_list_is_the_command_lines(cli):
-    assert list(ontogeny.TASKS) == ["walker", "jump", "catapult", "aim", "stand"]
+    assert list(ontogeny.TASKS) == ["walker", "jump", "catapult", "aim", "stand", "swim"]
     help_text = cli("eval", "--help")
     for name, summary in ontogeny.TASKS.items():
         assert f"- {name}:" in help_text and summary in help_text, name

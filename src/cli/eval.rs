@@ -31,8 +31,8 @@ pub struct EvalArgs {
     #[arg(long, value_parser = task_parser())]
     task: Option<TaskKind>,
     /// Seconds of evaluation, in (0, 3600] (walker: measured walking, default 20; jump and
-    /// stand: default 10; catapult and aim: the cap on waiting for the projectile to rest,
-    /// default 60).
+    /// stand: default 10; swim: default 20; catapult and aim: the cap on waiting for the
+    /// projectile to rest, default 60).
     #[arg(long)]
     seconds: Option<f64>,
     #[command(flatten)]

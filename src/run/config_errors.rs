@@ -251,7 +251,7 @@ mod tests {
         says(
             "[task]\ntask = \"walkr\"\n",
             &[
-                "[task] task must be one of walker, jump, catapult, aim, stand, not \"walkr\" \
+                "[task] task must be one of walker, jump, catapult, aim, stand, swim, not \"walkr\" \
                (did you mean walker?)",
             ],
         );

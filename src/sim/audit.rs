@@ -18,16 +18,18 @@ pub const JOINT_GAP_WARNING: f64 = 0.05;
 pub const ENERGY_WINDOW: f64 = 0.5;
 
 impl World {
-    /// The creature's mechanical energy (J): kinetic, and gravitational above the ground; and
-    /// that of the world's free objects once they are let go.
+    /// The creature's mechanical energy (J): kinetic, and gravitational above the ground (in
+    /// water, which has no gravity, kinetic only); and that of the world's free objects once
+    /// they are let go.
     pub(super) fn mechanical_energy(&self) -> f64 {
+        let gravity = if self.water.is_some() { 0.0 } else { GRAVITY };
         let creature: f64 = self
             .creature_bodies
             .iter()
             .map(|b| {
                 let body = &self.bodies[*b];
                 body.kinetic_energy() as f64
-                    + body.mass() as f64 * GRAVITY * body.center_of_mass().y as f64
+                    + body.mass() as f64 * gravity * body.center_of_mass().y as f64
             })
             .sum();
         if self.ground.any_released() {

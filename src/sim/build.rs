@@ -1,6 +1,6 @@
 //! Building a rapier world from a [`Creature`]: parts as boxes (parts fused by rigid joints
 //! share one body), joints with their limits and motors switched off, the ground, and the
-//! creature dropped from its drop height.
+//! creature dropped from its drop height; or, in water, no ground and no gravity.
 
 use ::nalgebra::Vector3;
 use rapier3d::math::{Real, Vector};
@@ -14,7 +14,7 @@ use super::slots::Ground;
 use super::slots::Keyed;
 use super::terrain::Terrain;
 use super::world::{GRAVITY, World};
-use super::world_spec::WorldSpec;
+use super::world_spec::{Medium, WorldSpec};
 use crate::creature::{Creature, Joint, Part, PartId};
 
 /// The groups of parts fused by rigid joints: for each part, the lowest-numbered part of its
@@ -66,7 +66,9 @@ impl World {
     /// Builds the world of `spec` ([`WorldSpec::check`] must pass, else the error names the
     /// key) with the creature dropped so that its lowest point is `drop_height` above the
     /// highest ground under its footprint ([`Terrain::extremes_under`]), at rest. The free
-    /// objects are held where they start until [`World::release_objects`].
+    /// objects are held where they start until [`World::release_objects`]. In water there is
+    /// no ground and no gravity: the creature is at rest where it is, its bounding box centred
+    /// on the origin, every part feeling water resistance ([`super::water`]).
     pub fn in_world(
         creature: &Creature,
         options: &SimOptions,
@@ -118,12 +120,22 @@ impl World {
             peak_unexplained: 0.0,
             peak_joint_gap: 0.0,
             ground: Ground::empty(),
+            water: None,
         };
-        let terrain = Terrain::new(spec);
         let (lo, hi) = creature.bounding_box();
-        let (beneath, _) = terrain.extremes_under([lo.x, hi.x], [lo.z, hi.z]);
-        world.ground = Ground::build(&mut world, &terrain, beneath);
-        let lift = Vector3::new(0.0, options.drop_height + beneath - lo.y, 0.0);
+        let lift = match spec.medium {
+            Medium::Air => {
+                let terrain = Terrain::new(spec);
+                let (beneath, _) = terrain.extremes_under([lo.x, hi.x], [lo.z, hi.z]);
+                world.ground = Ground::build(&mut world, &terrain, beneath);
+                Vector3::new(0.0, options.drop_height + beneath - lo.y, 0.0)
+            }
+            Medium::Water { viscosity } => {
+                world.gravity = Vector::ZERO;
+                world.water = Some(viscosity);
+                -(lo + hi) / 2.0
+            }
+        };
         // Parts fused by rigid joints share one rigid body, a collider each (as MuJoCo welds
         // them): a chain of fixed joints is the stiffest thing an impulse solver meets, and
         // at one substep it can pump energy into a creature that has no motor at all.

@@ -5,10 +5,11 @@
 //! the world is built in [`build`] from the parts and joints of [`parts`] (keyed by stable
 //! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
 //! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
-//! [`projectile`], and steps in [`world`]; its velocities and momenta are [`motion`]'s; what
-//! the world holds besides the creature (terrain, obstacles, objects, the medium) is described
-//! by [`world_spec`] and worked out as geometry, without physics, in [`terrain`]; the ground
-//! and what stands on it are built in rapier by `ground`.
+//! [`projectile`], feels water's resistance in [`water`], and steps in [`world`]; its
+//! velocities and momenta are [`motion`]'s; what the world holds besides the creature
+//! (terrain, obstacles, objects, the medium) is described by [`world_spec`] and worked out
+//! as geometry, without physics, in [`terrain`]; the ground and what stands on it are built
+//! in rapier by `ground`.
 
 pub mod actuators;
 pub mod audit;
@@ -26,6 +27,7 @@ pub mod sensors;
 pub mod setting;
 mod slots;
 pub mod terrain;
+pub mod water;
 pub mod world;
 pub mod world_spec;
 
@@ -43,5 +45,6 @@ pub use options::{
 };
 pub use sensors::TOUCH_DISTANCE;
 pub use setting::{RENAMED_KEYS, StepSetting, UnknownSetting};
+pub use water::{DEFAULT_VISCOSITY, MAX_VISCOSITY};
 pub use world::{Exploded, GRAVITY, World};
 pub use world_spec::{Medium, WorldSpec};

@@ -2,7 +2,8 @@
 //! sensors, the brain, the actuators, the physics substeps, the energy audit and the explosion
 //! checks. Building the world is in [`super::build`], the options in [`super::options`], the
 //! senses in [`super::sensors`], the motors in [`super::actuators`], the energy audit in
-//! [`super::audit`], the catapult's projectile in [`super::projectile`].
+//! [`super::audit`], the catapult's projectile in [`super::projectile`], water resistance in
+//! [`super::water`].
 
 use ::nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use rapier3d::math::{Pose, Real, Vector};
@@ -64,8 +65,11 @@ pub struct World {
     pub(super) peak_unexplained: f64,
     /// The largest gap seen between the two ends of any joint's anchor (m).
     pub(super) peak_joint_gap: f64,
-    /// The ground, the obstacles and the free objects.
+    /// The ground, the obstacles and the free objects (none in water).
     pub(super) ground: super::slots::Ground,
+    /// The water's viscosity (N·s/m³) when the creature swims ([`super::water`]); `None` in
+    /// air.
+    pub(super) water: Option<f64>,
 }
 
 /// A world vector back in the project's nalgebra.
@@ -209,6 +213,9 @@ impl World {
         for _ in 0..self.stepping().0 {
             if torque_muscles {
                 self.apply_muscle_torques();
+            }
+            if let Some(viscosity) = self.water {
+                self.apply_water_resistance(viscosity, !torque_muscles);
             }
             self.pipeline.step(
                 self.gravity,

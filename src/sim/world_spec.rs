@@ -10,6 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::knobs::{SettingError, check_real};
+use super::water::MAX_VISCOSITY;
 
 /// The most obstacles, and the most free objects, a world may hold.
 pub const MAX_BODIES: usize = 1000;
@@ -66,8 +67,32 @@ impl WorldSpec {
 
     /// Checks every key against its range; the error names the key in its table, from inside
     /// `[task.world]` (`slope`'s `degrees` is in table `slope`). At most one of `slope`,
-    /// `steps` and `rough` shapes the ground.
+    /// `steps` and `rough` shapes the ground. Water is alone in its world (it has no ground:
+    /// no terrain, obstacles, objects or ground friction), its viscosity in
+    /// (0, [`MAX_VISCOSITY`]].
     pub fn check(&self) -> Result<(), SettingError> {
+        if let Medium::Water { viscosity } = self.medium {
+            let rest = WorldSpec {
+                medium: Medium::Air,
+                ..self.clone()
+            };
+            if !rest.is_flat() {
+                return Err(SettingError::out_of_range(
+                    "medium",
+                    "alone: water has no ground, so no slope, steps, rough, obstacles, objects or \
+                     friction",
+                    "water in a world with them",
+                ));
+            }
+            if !(viscosity > 0.0 && viscosity <= MAX_VISCOSITY) {
+                return Err(SettingError::out_of_range(
+                    "viscosity",
+                    &format!("in (0, {MAX_VISCOSITY}] N·s/m³"),
+                    viscosity,
+                )
+                .within("medium"));
+            }
+        }
         let shapes = [
             self.slope.is_some(),
             self.steps.is_some(),

@@ -3,9 +3,11 @@
 //! kin) and [`TaskSpec::check`] checks the task's with the simulator's, naming the key as a
 //! config file spells it (`[task.walker] seconds`).
 
-use super::{CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskSpec, WalkerOptions};
-use crate::sim::SettingError;
+use super::{
+    CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
+};
 use crate::sim::setting::check_real;
+use crate::sim::{Medium, SettingError};
 
 /// The longest any duration of a task may be (s): an hour. A task's measurement (`seconds`,
 /// the catapult's `max_seconds`), a wait for rest and every other phase must fit in it, so
@@ -119,10 +121,15 @@ impl TaskSpec {
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
     fn check_tables(&self) -> Result<(), SettingError> {
         self.sim.check().map_err(|e| e.within("sim"))?;
-        if !self.world.medium.is_air() {
+        if let Medium::Water { .. } = self.world.medium
+            && self.kind() != TaskKind::Swim
+        {
             return Err(SettingError::out_of_range(
                 "medium",
-                "air: water is not simulated yet",
+                &format!(
+                    "air for the {} task (water is the swim task's)",
+                    self.task.name()
+                ),
                 "water",
             )
             .within("world"));

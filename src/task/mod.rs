@@ -4,7 +4,7 @@
 //!
 //! This module keeps what every task shares (the failure floor, [`Status`], [`Evaluation`]);
 //! each task has its own file ([`walker`](walker()), [`jump`](jump()), [`catapult`](catapult()),
-//! aim and stand), implements [`Task`] and has one line in the registry
+//! aim, stand and swim), implements [`Task`] and has one line in the registry
 //! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
 //! `protocol`, the recording's file format in `recording`, and a task's specification as data
 //! in [`TaskSpec`]: the simulator's settings and one task's ([`TaskOptions`]), read from a
@@ -26,6 +26,7 @@ mod recording;
 mod registry;
 mod spec;
 mod stand;
+mod swim;
 mod tables;
 mod walker;
 pub use aim::AimTask;
@@ -44,6 +45,7 @@ pub use recording::{
 pub use registry::{TASKS, Task, TaskInfo, keyword_refusal, task_named, tasks_reading};
 pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
+pub use swim::{SwimOptions, SwimTask, swim_viscosity};
 pub use tables::TaskTables;
 pub use walker::{
     WalkerFitness, WalkerOptions, WalkerTask, iterative_move, size_coefficients, walker,

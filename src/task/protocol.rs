@@ -377,8 +377,8 @@ fn start<'p>(
     })
 }
 
-/// Screens the creature, builds its world (`sim`'s settings, `world`'s ground and objects)
-/// and runs `protocol` on it, within the `bounds` of
+/// Screens the creature, builds its world (`sim`'s settings, `world`'s ground and objects,
+/// or its water) and runs `protocol` on it, within the `bounds` of
 /// the task's settings; `protocol` returns the fitness and its terms (or a failed
 /// evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
 /// token stopped it.

@@ -164,7 +164,8 @@ macro_rules! for_each_task {
             Jump => $crate::task::JumpTask,
             Catapult => $crate::task::CatapultTask,
             Aim => $crate::task::AimTask,
-            Stand => $crate::task::StandTask
+            Stand => $crate::task::StandTask,
+            Swim => $crate::task::SwimTask
         }
     };
 }
@@ -314,7 +315,10 @@ mod tests {
     #[test]
     fn every_task_is_listed_once_and_dispatches_to_its_own_type() {
         let names: Vec<&str> = TASKS.iter().map(|t| t.name).collect();
-        assert_eq!(names, ["walker", "jump", "catapult", "aim", "stand"]);
+        assert_eq!(
+            names,
+            ["walker", "jump", "catapult", "aim", "stand", "swim"]
+        );
         for (&kind, info) in TaskKind::ALL.iter().zip(TASKS) {
             assert!(!info.summary.is_empty(), "{}", info.name);
             assert_eq!(crate::with_task!(kind, T => T::NAME), info.name);
@@ -326,7 +330,7 @@ mod tests {
         assert_eq!(tasks_reading("fitness"), "the walker task");
         assert_eq!(
             tasks_reading("seconds"),
-            "the walker, jump, catapult, aim and stand tasks"
+            "the walker, jump, catapult, aim, stand and swim tasks"
         );
         assert_eq!(
             keyword_refusal("target", "--target", task_named("catapult").unwrap()).as_deref(),

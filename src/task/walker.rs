@@ -292,7 +292,7 @@ pub(super) fn walker_watched(
 }
 
 /// The mass-weighted centre of the creature's parts in `world`.
-fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64> {
+pub(super) fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64> {
     let total = creature.mass().max(f64::MIN_POSITIVE);
     creature
         .parts_by_id()

@@ -298,13 +298,13 @@ fn bad_input_exits_2_and_keeps_what_was_computed() {
             "--encodings",
             "lsystem",
             "--task",
-            "swim",
+            "climb",
             "--evaluations",
             "6",
             "--out",
             o,
         ]),
-        "swim",
+        "climb",
     );
     refused(
         &with(&["--encodings", "lsystem", "--evaluations", "5", "--out", o]),

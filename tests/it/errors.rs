@@ -497,7 +497,7 @@ fn a_misspelt_name_in_a_config_lists_the_names_and_suggests_the_closest() {
     refused(
         &["evolve", "--config", "task.toml", "--out", "run"],
         &[("task.toml", "[task]\ntask = \"walkr\"\n")],
-        "[task] task must be one of walker, jump, catapult, aim, stand, not \"walkr\" \
+        "[task] task must be one of walker, jump, catapult, aim, stand, swim, not \"walkr\" \
          (did you mean walker?)\n --> task.toml:2:8",
     );
     refused(

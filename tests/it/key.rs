@@ -24,8 +24,8 @@ fn the_key_of_a_fixed_creature_and_task_is_pinned() {
             .map(|&kind| EvaluationKey::of_version(&c, &TaskSpec::new(kind), version).to_hex())
             .collect()
     };
-    // Version 1, the keys of runs made before keys had versions: the last is the stand task,
-    // which no such run has.
+    // Version 1, the keys of runs made before keys had versions: the last two are the stand
+    // and swim tasks, which no such run has.
     assert_eq!(
         keys(KeyVersion::V1)[..4],
         [
@@ -38,13 +38,25 @@ fn the_key_of_a_fixed_creature_and_task_is_pinned() {
     assert_eq!(keys(KeyVersion::V2), PINNED_V2);
 }
 
+#[test]
+fn the_swim_key_changes_with_the_water_s_viscosity() {
+    let c = creature();
+    let in_water = |viscosity: f64| {
+        let mut spec = TaskSpec::new(TaskKind::Swim);
+        spec.world.medium = ontogeny::sim::Medium::Water { viscosity };
+        EvaluationKey::of(&c, &spec)
+    };
+    assert_ne!(in_water(500.0), in_water(501.0));
+}
+
 /// The version-2 keys of the fixed creature with each task's defaults, in the registry's order.
-const PINNED_V2: [&str; 5] = [
+const PINNED_V2: [&str; 6] = [
     "000f7ad5e3102e309e8f1c76a505ca1202336fc52ad8cb324965806bf7df3c60",
     "7eaf76b89c1b1d788cbfe19a2931a5edd0244967fc963e6b6a624bce5fe7acf2",
     "062cd63070f4274f98c1a46235bf92e6cf9144db8c8c322a067a88395afd235b",
     "9d760fa44c633c82e830d8ded339b04d7f68d26f5b9f2cdf74b378abcac1dc9e",
     "23845b72f0e7da12f0d3d9a5d2d62fac7f969e64870ab9de4402b1eb1b7c896b",
+    "85946cf2745677c972efd466c8570f3eab2449871815bee219a79dc22ca43f7e",
 ];
 
 /// Every leaf of `value` (a number, string, boolean or null that no object or array holds
@@ -230,7 +242,10 @@ fn every_setting_of_every_task_in_a_stored_file_changed_a_version_1_key() {
         );
         let mut found = Vec::new();
         leaves(&file, "", &mut found);
-        for pointer in found.iter().filter(|p| !p.starts_with("/stand/")) {
+        for pointer in found
+            .iter()
+            .filter(|p| !p.starts_with("/stand/") && !p.starts_with("/swim/"))
+        {
             let changed = tables_with_leaf_changed(&file, pointer);
             assert_ne!(
                 EvaluationKey::of_tables(&c, &changed),
@@ -285,6 +300,7 @@ const PINNED_LEAVES: &[&str] = &[
     "/stand/rest/duration",
     "/stand/rest/limit",
     "/stand/seconds",
+    "/swim/seconds",
     "/task",
     "/walker/activation",
     "/walker/fitness",

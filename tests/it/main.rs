@@ -45,6 +45,7 @@ mod render;
 mod rooms;
 mod store;
 mod stubs;
+mod swim;
 mod task_tables;
 mod textbook;
 mod util;

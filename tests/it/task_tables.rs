@@ -136,7 +136,7 @@ fn a_table_of_no_task_is_refused_with_the_tables_there_are() {
     assert!(said.contains("climb.toml:3:"), "{said}");
     assert!(
         said.contains(
-            "its keys are task, sim, world, trials, habitats, walker, jump, catapult, stand"
+            "its keys are task, sim, world, trials, habitats, walker, jump, catapult, stand, swim"
         ),
         "{said}"
     );
