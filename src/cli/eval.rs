@@ -12,6 +12,7 @@ use ontogeny::front::flags::{self, TaskFlags};
 use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
 use ontogeny::run::champion::ChampionRecord;
+use ontogeny::sim::WorldSpec;
 use ontogeny::sim::{JointModel, SimOptions};
 use ontogeny::task::{Evaluation, Recording, TaskKind, TaskSpec};
 
@@ -302,7 +303,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     }
     if let Some(dir) = &args.record {
         ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
-        write_recording(dir, &creature, &evaluation)?;
+        write_recording(dir, &creature, &evaluation, &spec.world)?;
         let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
     }
@@ -319,20 +320,26 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> anyhow::Result<()> {
-    write_recording_at(dir, creature, evaluation, 10.0)
+fn write_recording(
+    dir: &Path,
+    creature: &Creature,
+    evaluation: &Evaluation,
+    world: &WorldSpec,
+) -> anyhow::Result<()> {
+    write_recording_at(dir, creature, evaluation, world, 10.0)
 }
 
-/// Writes `DIR/recording.json` ([`Recording`]) and `DIR/behaviour.gif` (`fps` images per
-/// simulated second) into `dir`, a folder made ready for them
+/// Writes `DIR/recording.json` ([`Recording`], in `world`) and `DIR/behaviour.gif` (`fps`
+/// images per simulated second, the world drawn) into `dir`, a folder made ready for them
 /// ([`ontogeny::output::prepare_folder`]).
 pub fn write_recording_at(
     dir: &Path,
     creature: &Creature,
     evaluation: &Evaluation,
+    world: &WorldSpec,
     fps: f64,
 ) -> anyhow::Result<()> {
-    let recording = Recording::of(creature, evaluation);
+    let recording = Recording::of(creature, evaluation).in_world(world);
     ontogeny::output::write(
         &dir.join("recording.json"),
         serde_json::to_string(&recording)?,

@@ -152,7 +152,7 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
         .map_err(super::render_error(&png))?;
     let task = changed.as_ref().unwrap_or(&run.config().task);
     let evaluation = task.evaluate(&creature, true);
-    super::eval::write_recording_at(&out, &creature, &evaluation, fps)?;
+    super::eval::write_recording_at(&out, &creature, &evaluation, &task.world, fps)?;
     let stored = individual.evaluation.fitness;
     say!(
         "generation {generation}, rank {rank}: {} fitness {:.6} ({}; stored {stored:.6})",

@@ -6,6 +6,8 @@
 //! Words: a *frame* is a developmental frame (growth), a *sample* a recorded moment of an
 //! evaluation ([`Sample`]), an *image* one picture of a GIF.
 
+use std::sync::Arc;
+
 use nalgebra::{UnitQuaternion, Vector3};
 
 use super::camera::{Framing, View};
@@ -14,6 +16,7 @@ use super::text::wrap;
 use super::walk::{root_path, walked, walked_label};
 use super::{Overlay, RenderError, checked_with_label, picture};
 use crate::creature::{Creature, Part};
+use crate::sim::terrain::Terrain;
 use crate::task::{Recording, Sample};
 
 /// The largest rate (images per second) an animation takes: GIF delays are whole
@@ -208,6 +211,7 @@ pub fn write_behaviour_gif(
     }
     let target = recording.target_point();
     let walks = recording.task == "walker";
+    let world = (!recording.world.is_flat()).then(|| Arc::new(Terrain::new(&recording.world)));
     let poses: Vec<Creature> = playback
         .shown
         .iter()
@@ -232,6 +236,8 @@ pub fn write_behaviour_gif(
                 } else {
                     Vec::new()
                 },
+                world: world.clone(),
+                objects: sample.objects.clone(),
             }
         })
         .collect();
@@ -349,6 +355,7 @@ mod tests {
                 parts: Vec::new(),
                 projectile: None,
                 projectile_size: None,
+                objects: Vec::new(),
             })
             .collect()
     }

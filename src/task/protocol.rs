@@ -174,6 +174,7 @@ impl Run<'_> {
                     .collect(),
                 projectile: self.world.projectile_state().map(|(p, _)| p),
                 projectile_size: self.projectile_size,
+                objects: Vec::new(),
             };
             self.keep(sample);
         }

@@ -19,6 +19,7 @@
 
 mod comparison;
 mod open;
+pub mod scene;
 mod server;
 pub mod snapshot;
 
@@ -501,7 +502,8 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
 }
 
 /// The page's data for `recording`, titled `file`: the recording's keys, with `kind`
-/// (`recording`), `file` and, for a recording without samples, `no_frames` (see
+/// (`recording`), `file`, the geometry of a world that is not flat (`scene`, see
+/// [`scene::scene`]) and, for a recording without samples, `no_frames` (see
 /// [`recording_data`]); or why its samples do not fit its creature.
 fn recording_value(recording: &crate::task::Recording, file: &str) -> Result<Value, String> {
     let parts = recording.creature.parts.len();
@@ -521,6 +523,9 @@ fn recording_value(recording: &crate::task::Recording, file: &str) -> Result<Val
     let mut value: Value = serde_json::from_str(&written).map_err(|e| e.to_string())?;
     value["kind"] = json!("recording");
     value["file"] = json!(file);
+    if !recording.world.is_flat() {
+        value["scene"] = scene::scene(&recording.world);
+    }
     if let Some(reason) = no_samples_reason(recording) {
         value["no_frames"] = json!(reason);
     }
