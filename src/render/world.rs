@@ -45,7 +45,7 @@ pub(super) fn is_water(terrain: &Terrain) -> bool {
 fn lit(colour: [f64; 3], normal: &Vector3<f64>) -> [u8; 3] {
     let level = Vector3::y().dot(&light());
     let shade = (0.35 + 0.65 * normal.dot(&light()).max(0.0) / level).min(1.05);
-    colour.map(|c| (c * shade).clamp(0.0, 255.0) as u8)
+    colour.map(|c| (c * shade).round().clamp(0.0, 255.0) as u8)
 }
 
 /// One polygon of the scene, in world coordinates, with its colour and the grid lines on it.

@@ -804,4 +804,28 @@ mod tests {
         .unwrap();
         assert!(recording_data(&dir).unwrap().get("no_frames").is_none());
     }
+
+    #[test]
+    fn a_recording_in_a_world_sends_its_geometry_and_a_flat_one_none() {
+        let scratch = scratch("world");
+        let dir = scratch.path().to_path_buf();
+        let creature = crate::develop::creature_from_commands("forward(1)").unwrap();
+        let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        let ball = json!([[2.0, 0.1, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        let write = |world: Value| {
+            let mut recording = json!({"creature": creature,
+                "frames": [{"t": 0.0, "parts": [pose], "objects": [ball]}]});
+            if !world.is_null() {
+                recording["world"] = world;
+            }
+            std::fs::write(dir.join("recording.json"), recording.to_string()).unwrap();
+            recording_data(&dir).unwrap()
+        };
+        let data = write(json!({"slope": {"degrees": 10},
+            "objects": [{"shape": "ball", "size": 0.1, "mass": 1, "position": [2, 0.1, 0]}]}));
+        assert_eq!(data["scene"]["ground"], "slope");
+        assert_eq!(data["scene"]["objects"][0]["shape"], "ball");
+        assert_eq!(data["frames"][0]["objects"], json!([ball]));
+        assert!(write(Value::Null).get("scene").is_none());
+    }
 }

@@ -90,7 +90,8 @@ mod tests {
         assert_eq!(s["boxes"].as_array().unwrap().len(), 3);
         assert_eq!(s["boxes"][0]["half"][0], 0.25);
         assert_eq!(s["boxes"][0]["centre"][1], -0.45);
-        assert_eq!(s["obstacles"][0]["half"], json!([0.1, 0.15, 0.1]));
+        // On the edge of the third step: it reaches down to the second's tread.
+        assert_eq!(s["obstacles"][0]["half"], json!([0.1, 0.2, 0.1]));
         assert_eq!(s["obstacles"][0]["centre"][0], 2.0);
         assert_eq!(s["objects"][0]["shape"], "ball");
         assert_eq!(s["objects"][0]["half"], 0.1);

@@ -742,14 +742,15 @@ fn steps_obstacles_and_objects_are_exported_as_boxes_and_free_bodies() {
     // Three steps and the obstacle on the worldbody (the plane under them is not loaded
     // by rapier3d-mjcf), each a box.
     assert_eq!(robot.bodies[0].colliders.len(), 4, "{xml}");
-    let (step, centre, up) = world_geom(&model, "step0");
+    let (step, centre, normal) = world_geom(&model, "step0");
     assert_eq!(step.type_, rapier3d_mjcf::mjcf_rs::body::GeomType::Box);
     assert_eq!(step.size, [0.25, 0.55, 500.0]);
     assert!(
         close(&centre, &Vector3::new(1.25, 0.0, -0.45), 1e-12),
         "{centre:?}"
     );
-    assert!(close(&up, &Vector3::z(), 1e-12));
+    // The box's own z is Ontogeny's z, MuJoCo's -y: its height (size's y) is MuJoCo's z.
+    assert!(close(&normal, &-Vector3::y(), 1e-12), "{normal:?}");
     let (top, centre, _) = world_geom(&model, "step2");
     assert_eq!(top.size[0], 250.0 - 1.0);
     assert!((centre.z - (0.3 - 1.0) / 2.0).abs() < 1e-12);
