@@ -226,6 +226,15 @@ pub fn text(bytes: Vec<u8>) -> io::Result<String> {
     })
 }
 
+/// Makes a symbolic link `name` in `dir` to `to`, which does not exist: where the tests of
+/// reading and writing through a dangling link start.
+#[cfg(all(test, unix))]
+pub(crate) fn dangling_link(dir: &std::path::Path, name: &str, to: &str) -> std::path::PathBuf {
+    let link = dir.join(name);
+    std::os::unix::fs::symlink(to, &link).unwrap();
+    link
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -294,9 +303,7 @@ mod tests {
     #[test]
     fn a_dangling_link_says_where_it_points() {
         let dir = tempfile::tempdir().unwrap();
-        let link = dir.path().join("link.lsys");
-        std::os::unix::fs::symlink("gone.lsys", &link).unwrap();
-        let error = read(&link).unwrap_err();
+        let error = read(&dangling_link(dir.path(), "link.lsys", "gone.lsys")).unwrap_err();
         assert_eq!(error.kind(), io::ErrorKind::NotFound);
         assert_eq!(
             error.to_string(),

@@ -370,8 +370,7 @@ mod tests {
     #[test]
     fn a_dangling_link_is_refused_in_words_and_left_as_it_is() {
         let dir = tempfile::tempdir().unwrap();
-        let link = dir.path().join("out.mjcf");
-        std::os::unix::fs::symlink("missing/model.xml", &link).unwrap();
+        let link = crate::input::dangling_link(dir.path(), "out.mjcf", "missing/model.xml");
         assert_eq!(
             write(&link, "x").unwrap_err().to_string(),
             format!(

@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-/// Flags of `ontogeny check`.
+/// Parse and validate an L-system; summarise its symbols and rules, and point out rules
+/// that can never fire and parameters never used.
 #[derive(Args)]
 pub struct CheckArgs {
     /// The L-system file (`.lsys`); `-` reads it from standard input.

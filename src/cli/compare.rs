@@ -1,4 +1,5 @@
-//! `ontogeny compare`: encodings compared on equal evaluation budgets over replicated runs.
+//! `ontogeny compare`: encodings, or conditions (whole run configs), compared on equal budgets
+//! of walks over replicated runs.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -12,7 +13,7 @@ use ontogeny::run::config::{ConfigFile, read_config};
 use ontogeny::run::{GenerationReport, Run};
 use ontogeny::sim::StepSetting;
 use ontogeny::study::compare::{
-    self, CompareError, Manifest, ReplicateState, Shared, read_replicate, replicate_config,
+    self, Arm, CompareError, Manifest, ReplicateState, read_replicate, replicate_config,
     replicate_dir,
 };
 use ontogeny::task::WalkerFitness;
@@ -26,12 +27,21 @@ pub const WITH_RESUME: &[&str] = &["threads", "no_cache", "json"];
 /// The flags that go with `--merge`; it refuses every other.
 pub const WITH_MERGE: &[&str] = &["json"];
 
-/// Flags of `ontogeny compare`.
+/// Compare encodings on equal terms: replicated runs of each with the same evaluation
+/// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
 #[derive(Args)]
 pub struct CompareArgs {
-    /// The encodings to compare, comma-separated (e.g. lsystem,direct).
-    #[arg(long, value_parser = encoding_parser(), value_delimiter = ',', required_unless_present_any = ["resume", "merge"])]
+    /// The encodings to compare, comma-separated (e.g. lsystem,direct), under the shared
+    /// settings of --config and the flags.
+    #[arg(long, value_parser = encoding_parser(), value_delimiter = ',', required_unless_present_any = ["resume", "merge", "condition"])]
     encodings: Vec<EncodingArg>,
+    /// A condition to compare, NAME=CONFIG.toml: a whole run config (encoding, [ga] without
+    /// generations, [task], [limits]); repeat it for each condition. NAME (letters, digits, -
+    /// and _) names its directory and its rows in the report. The flags --task, --fitness,
+    /// --preset, --pop, --seconds and --setting apply over every condition's config. Instead
+    /// of --encodings and --config.
+    #[arg(long, value_name = "NAME=CONFIG.toml", value_parser = parse_condition, conflicts_with_all = ["encodings", "config"])]
+    condition: Vec<(String, PathBuf)>,
     /// The task (default: the config's, else walker).
     #[arg(long, value_parser = super::physics::task_parser())]
     task: Option<ontogeny::task::TaskKind>,
@@ -42,7 +52,8 @@ pub struct CompareArgs {
     /// Runs per encoding (default 10).
     #[arg(long)]
     replicates: Option<usize>,
-    /// The evaluation budget of every replicate: the generations are as many as fit in it.
+    /// The budget of every replicate, in walks simulated (evaluations times the walks of
+    /// each): the generations are as many as fit in it.
     #[arg(long, required_unless_present_any = ["resume", "merge"])]
     evaluations: Option<u64>,
     /// The comparison's seed; replicate k's seed derives from it (default: the config's,
@@ -65,7 +76,8 @@ pub struct CompareArgs {
     /// the config's five stepping values.
     #[arg(long, value_name = "NAME", value_parser = setting_parser())]
     setting: Option<StepSetting>,
-    /// A TOML file of shared settings ([ga] without generations, [task], seed).
+    /// A TOML file of the settings the encodings share ([ga] without generations, [task],
+    /// seed).
     #[arg(long, value_name = "FILE.toml")]
     config: Option<PathBuf>,
     /// Worker threads (default: every core). Results do not depend on it.
@@ -104,6 +116,22 @@ fn compare_error(e: CompareError) -> anyhow::Error {
     }
 }
 
+/// Parses `--condition NAME=CONFIG.toml` (the name checked; the file is read later).
+fn parse_condition(text: &str) -> Result<(String, PathBuf), String> {
+    let Some((name, path)) = text.split_once('=') else {
+        return Err(format!(
+            "expected NAME=CONFIG.toml (e.g. pop30=examples/compare-condition-pop30.toml), not {text}"
+        ));
+    };
+    compare::check_condition_name(name)?;
+    if path.is_empty() {
+        return Err(format!(
+            "the condition {name} names no config file after the ="
+        ));
+    }
+    Ok((name.to_string(), PathBuf::from(path)))
+}
+
 /// Runs `ontogeny compare`.
 pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
@@ -112,50 +140,58 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     };
     if let Some(root) = &args.merge {
         let _lock = compare::lock(root).map_err(compare_error)?;
-        let (manifest, shared) = compare::open(root).map_err(compare_error)?;
-        return report(root, &manifest, &shared, true, args.json);
+        let (manifest, arms) = compare::open(root).map_err(compare_error)?;
+        return report(root, &manifest, &arms, true, args.json);
     }
     if let Some(root) = &args.resume {
         let _lock = compare::lock(root).map_err(compare_error)?;
-        let (manifest, shared) = compare::open(root).map_err(compare_error)?;
-        run_all(root, &manifest, &shared, !args.no_cache)?;
-        return report(root, &manifest, &shared, false, args.json);
+        let (manifest, arms) = compare::open(root).map_err(compare_error)?;
+        run_all(root, &manifest, &arms, !args.no_cache)?;
+        return report(root, &manifest, &arms, false, args.json);
     }
     let root = args
         .out
         .as_ref()
         .expect("clap requires --out without --resume or --merge");
-    let (manifest, shared) = plan(args)?;
-    let _lock = compare::create(root, &manifest, &shared).map_err(compare_error)?;
+    let (manifest, arms) = if args.condition.is_empty() {
+        plan(args)?
+    } else {
+        plan_conditions(args)?
+    };
+    let _lock = compare::create(root, &manifest, &arms).map_err(compare_error)?;
     // Read back what was written, so that a direct run and `--plan` commands start from the
     // same settings.
-    let (manifest, shared) = compare::open(root).map_err(compare_error)?;
+    let (manifest, arms) = compare::open(root).map_err(compare_error)?;
     if args.plan {
-        let files = ["compare.toml", "evolve.toml"].map(|f| root.join(f));
+        let mut files = vec![root.join("compare.toml")];
+        if manifest.conditions.is_empty() {
+            files.push(root.join("evolve.toml"));
+        } else {
+            files.extend(
+                manifest
+                    .conditions
+                    .iter()
+                    .map(|c| compare::condition_file(root, c)),
+            );
+        }
         tell!("{}", ontogeny::output::wrote(&files));
         for command in text::plan_commands(root, &manifest, args.no_cache) {
             say!("{command}");
         }
         tell!(
             "{} commands, one per replicate; when they are done: ontogeny compare --merge {}",
-            manifest.replicates * manifest.encodings.len(),
+            manifest.replicates * manifest.names().len(),
             text::shell_word(root)
         );
         return Ok(());
     }
-    run_all(root, &manifest, &shared, !args.no_cache)?;
-    report(root, &manifest, &shared, false, args.json)
+    run_all(root, &manifest, &arms, !args.no_cache)?;
+    report(root, &manifest, &arms, false, args.json)
 }
 
-/// The comparison the flags describe, checked.
-fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
-    let source = super::evolve::read_source(args.config.as_deref())?;
-    let file: ConfigFile<toml::Value> = match &source {
-        Some(s) => read_config(s)?,
-        None => ConfigFile::default(),
-    };
-    let encodings: Vec<&str> = args.encodings.iter().map(|e| e.name()).collect();
-    let flags = RunFlags {
+/// The flags that set every replicate's genetic algorithm and task.
+fn run_flags(args: &CompareArgs) -> RunFlags {
+    RunFlags {
         preset: args.preset,
         population: args.pop,
         generations: None,
@@ -164,9 +200,47 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
         seconds: args.seconds,
         setting: args.setting,
         target: None,
-    };
+    }
+}
+
+/// The comparison of conditions the flags describe, checked; says so when the conditions'
+/// budgets differ a little (more is refused).
+fn plan_conditions(args: &CompareArgs) -> anyhow::Result<(Manifest, Vec<Arm>)> {
+    let mut conditions = Vec::with_capacity(args.condition.len());
+    for (name, path) in &args.condition {
+        let source =
+            super::evolve::read_source(Some(path))?.expect("a path was given, so a source is read");
+        conditions.push(settings::ConditionSource {
+            name: name.clone(),
+            source,
+        });
+    }
     let budget = args.evaluations.expect("clap requires --evaluations");
-    settings::plan_comparison(
+    let (manifest, arms, note) = settings::plan_conditions(
+        &conditions,
+        &encoding_names(),
+        args.replicates,
+        budget,
+        args.seed,
+        &run_flags(args),
+    )?;
+    if let Some(note) = note {
+        tell!("note: {note}");
+    }
+    Ok((manifest, arms))
+}
+
+/// The comparison of encodings the flags describe, checked.
+fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Vec<Arm>)> {
+    let source = super::evolve::read_source(args.config.as_deref())?;
+    let file: ConfigFile<toml::Value> = match &source {
+        Some(s) => read_config(s)?,
+        None => ConfigFile::default(),
+    };
+    let encodings: Vec<&str> = args.encodings.iter().map(|e| e.name()).collect();
+    let flags = run_flags(args);
+    let budget = args.evaluations.expect("clap requires --evaluations");
+    let (manifest, shared) = settings::plan_comparison(
         &encodings,
         &encoding_names(),
         args.replicates,
@@ -175,15 +249,16 @@ fn plan(args: &CompareArgs) -> anyhow::Result<(Manifest, Shared)> {
         &file,
         source.as_deref(),
         &flags,
-    )
-    .map_err(anyhow::Error::new)
+    )?;
+    let arms = compare::encoding_arms(&manifest, &shared);
+    Ok((manifest, arms))
 }
 
-/// Runs every replicate that is missing or unfinished: replicate 1 of every encoding, then
-/// replicate 2, ..., one at a time, each on all worker threads.
+/// Runs every replicate that is missing or unfinished: replicate 1 of every encoding or
+/// condition, then replicate 2, ..., one at a time, each on all worker threads.
 /// A replicate started here caches evaluations when `cache` is on.
-fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> anyhow::Result<()> {
-    let survey = compare::survey(root, manifest, shared).map_err(compare_error)?;
+fn run_all(root: &Path, manifest: &Manifest, arms: &[Arm], cache: bool) -> anyhow::Result<()> {
+    let survey = compare::survey(root, manifest, arms).map_err(compare_error)?;
     if survey.todo.is_empty() {
         tell!("{}: every replicate is complete", root.display());
         return Ok(());
@@ -194,10 +269,11 @@ fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> an
         at_start: survey.done,
         started: Instant::now(),
     };
-    for (encoding, k) in survey.todo {
+    for (i, k) in survey.todo {
+        let arm = &arms[i];
         with_genome!(
-            encoding.as_str(),
-            G => run_replicate::<G>(root, manifest, shared, k, cache, &mut progress),
+            arm.encoding.as_str(),
+            G => run_replicate::<G>(root, manifest, arm, k, cache, &mut progress),
             |other| Err(bad(format!("unknown encoding '{other}'")))
         )?;
     }
@@ -207,13 +283,13 @@ fn run_all(root: &Path, manifest: &Manifest, shared: &Shared, cache: bool) -> an
 fn run_replicate<G: Genome>(
     root: &Path,
     manifest: &Manifest,
-    shared: &Shared,
+    arm: &Arm,
     k: usize,
     cache: bool,
     progress: &mut ComparisonProgress,
 ) -> anyhow::Result<()> {
-    let dir = replicate_dir(root, G::NAME, k);
-    let mut run = match read_replicate::<G>(root, manifest, shared, k).map_err(compare_error)? {
+    let dir = replicate_dir(root, &arm.name, k);
+    let mut run = match read_replicate::<G>(root, manifest, arm, k).map_err(compare_error)? {
         ReplicateState::Done(_) => return Ok(()),
         ReplicateState::Partial(_) => Run::<G>::resume(&dir).map_err(run_error)?,
         ReplicateState::Missing => {
@@ -224,23 +300,20 @@ fn run_replicate<G: Genome>(
                 std::fs::remove_file(&config)
                     .with_context(|| format!("cannot remove {}", config.display()))?;
             }
-            Run::<G>::start(
-                &dir,
-                replicate_config::<G>(manifest, shared, k, cache),
-                None,
-            )
-            .map_err(run_error)?
+            let config = replicate_config::<G>(manifest, arm, k, cache).map_err(compare_error)?;
+            Run::<G>::start(&dir, config, None).map_err(run_error)?
         }
     };
     let label = format!(
         "[{} {k}/{}] {}:",
-        G::NAME,
+        arm.name,
         manifest.replicates,
-        shared.task.fitness_label()
+        arm.settings.task.fitness_label()
     );
-    let generations = shared.ga.generations;
+    let generations = arm.settings.ga.generations;
+    let walks = compare::walks_per_individual(&arm.settings.task);
     let mut observer = |r: &GenerationReport| {
-        tell!("{}", progress.line(&label, r, generations));
+        tell!("{}", progress.line(&label, r, generations, walks));
     };
     run.run(&mut observer).map_err(run_error)
 }
@@ -250,11 +323,11 @@ fn run_replicate<G: Genome>(
 fn report(
     root: &Path,
     manifest: &Manifest,
-    shared: &Shared,
+    arms: &[Arm],
     merging: bool,
     json: bool,
 ) -> anyhow::Result<()> {
-    let (finished, unfinished) = compare::gather(root, manifest, shared).map_err(compare_error)?;
+    let (finished, unfinished) = compare::gather(root, manifest, arms).map_err(compare_error)?;
     if finished.is_empty() {
         return Err(bad(format!(
             "{}: no replicate is finished yet (run the `compare --plan` commands, or `compare --resume {0}`)",
@@ -264,19 +337,19 @@ fn report(
     if !merging && !unfinished.is_empty() {
         anyhow::bail!("replicates still unfinished: {}", unfinished.join(", "));
     }
-    let r = compare::write_report(root, manifest, shared, &finished, &unfinished)
+    let r = compare::write_report(root, manifest, arms, &finished, &unfinished)
         .map_err(compare_error)?;
     if json {
         let files = ["report.md", "summary.csv", "fitness.svg", "parts.svg"].map(|f| root.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
         let object =
-            ontogeny::front::json::comparison_json(root, shared, &r, finished.len(), &unfinished);
+            ontogeny::front::json::comparison_json(root, arms, &r, finished.len(), &unfinished);
         say!("{}", serde_json::to_string_pretty(&object)?);
         return Ok(());
     }
     super::print(text::comparison_summary(
         root,
-        shared,
+        arms,
         &r,
         finished.len(),
         &unfinished,

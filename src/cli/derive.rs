@@ -101,7 +101,7 @@ pub fn derive_options(args: &DevelopmentArgs, max_modules: usize) -> DeriveOptio
     }
 }
 
-/// Flags of `ontogeny derive`.
+/// Derive an L-system and print every step, axiom first.
 #[derive(Args)]
 pub struct DeriveArgs {
     /// The L-system file (`.lsys`); `-` reads it from standard input.

@@ -21,7 +21,8 @@ use super::input::load_creature_with;
 use super::physics::{FitnessArgs, PhysicsArgs, flag_error, names_parser, task_parser};
 use super::progress::Progress;
 
-/// Flags of `ontogeny eval`.
+/// Evaluate a creature in physics on a task (see `--task`) and print its fitness, the
+/// terms behind it and its status.
 #[derive(Args)]
 pub struct EvalArgs {
     /// An L-system file (`.lsys`, grown to its last frame), a `creature.json` or a graph
@@ -41,8 +42,7 @@ pub struct EvalArgs {
     /// `creature.json` with more is refused.
     #[arg(long, default_value_t = BuildOptions::default().max_parts, value_parser = super::parse_part_count)]
     max_parts: usize,
-    /// Joint model.
-    #[arg(long, value_parser = names_parser(JointModel::ALL, JointModel::name, JointModel::summary), default_value = "impulse")]
+    #[arg(long, help = super::physics::help("joints"), value_parser = names_parser(JointModel::ALL, JointModel::name, JointModel::summary), default_value = "impulse")]
     joints: JointModel,
     #[command(flatten)]
     physics: PhysicsArgs,

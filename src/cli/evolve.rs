@@ -64,7 +64,8 @@ pub fn preset_parser() -> impl clap::builder::TypedValueParser<Value = Preset> {
 /// The flags that go with `--resume`; it refuses every other ([`super::conflicts_with_all_but`]).
 pub const WITH_RESUME: &[&str] = &["gens", "threads", "allow_evaluator_change", "json"];
 
-/// Flags of `ontogeny evolve`.
+/// Evolve creatures: a genetic algorithm over an encoding, on a task, into a run directory
+/// (or `--resume` one).
 #[derive(Args)]
 pub struct EvolveArgs {
     /// The run directory to create (refused if it holds a run).

@@ -17,7 +17,8 @@ enum FormatArg {
     Mjcf,
 }
 
-/// Flags of `ontogeny export`.
+/// Write a creature (an `.lsys` grown to its last frame, or a `creature.json`) with the
+/// simulator's settings as a MuJoCo MJCF model.
 #[derive(Args)]
 #[command(after_long_help = "\
 Writes the creature as a MuJoCo MJCF model: the body tree from the root part with a free \

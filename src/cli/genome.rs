@@ -23,7 +23,7 @@ pub enum GenomeVerb {
     },
 }
 
-/// Flags of `ontogeny genome`.
+/// Inspect genome files (`genome show FILE`: any encoding's genome, readably).
 #[derive(Args)]
 pub struct GenomeArgs {
     #[command(subcommand)]

@@ -16,7 +16,8 @@ use ontogeny::output::FolderKind;
 use super::derive::{DevelopmentArgs, discrete_steps};
 use ontogeny::render::growth::{growth_gif_note, growth_gif_steps, write_growth_gif};
 
-/// Flags of `ontogeny grow`.
+/// Grow creatures: build the body and brain the derived strings describe, at every
+/// frame, and summarise the last one (parts, joints, brain, mass, size, validity).
 #[derive(Args)]
 pub struct GrowArgs {
     /// The L-system file (`.lsys`); `-` reads it from standard input.

@@ -59,43 +59,33 @@ struct Cli {
     verb: Verb,
 }
 
-#[derive(Subcommand)]
-enum Verb {
-    /// Derive an L-system and print every step, axiom first.
-    Derive(derive::DeriveArgs),
-    /// Parse and validate an L-system; summarise its symbols and rules, and point out rules
-    /// that can never fire and parameters never used.
-    Check(check::CheckArgs),
-    /// Grow creatures: build the body and brain the derived strings describe, at every
-    /// frame, and summarise the last one (parts, joints, brain, mass, size, validity).
-    Grow(grow::GrowArgs),
-    /// Evaluate a creature in physics on a task (see `--task`) and print its fitness, the
-    /// terms behind it and its status.
-    Eval(eval::EvalArgs),
-    /// Write a creature (an `.lsys` grown to its last frame, or a `creature.json`) with the
-    /// simulator's settings as a MuJoCo MJCF model.
-    Export(export::ExportArgs),
-    /// Re-render a recording written by `eval --record DIR` into DIR/behaviour.gif; or, given
-    /// a run directory, re-evaluate one of its individuals with a recording.
-    Replay(replay::ReplayArgs),
-    /// Evolve creatures: a genetic algorithm over an encoding, on a task, into a run directory
-    /// (or `--resume` one).
-    Evolve(evolve::EvolveArgs),
-    /// Compare encodings on equal terms: replicated runs of each with the same evaluation
-    /// budget, and a report of statistics (Mann–Whitney U, Holm, A12) over their champions.
-    Compare(compare::CompareArgs),
-    /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
-    /// directory (`runs list DIR`).
-    Runs(runs::RunsArgs),
-    /// Inspect genome files (`genome show FILE`: any encoding's genome, readably).
-    Genome(genome::GenomeArgs),
-    /// Measure the evaluator on this machine: evaluations per second on one core (the setting
-    /// measured, 2 substeps of 4 iterations and the fast one) and on all cores, its overhead over
-    /// rapier's own stepping, and impulse against multibody joints.
-    Bench(bench::BenchArgs),
-    /// Show a creature in the browser: an `.lsys` file growing (reloaded when saved), a
-    /// recording playing, or a run's fitness and individuals; or render it to a PNG.
-    View(view::ViewArgs),
+/// Declares [`Verb`], one variant per verb holding its flags (`derive::DeriveArgs`, whose
+/// doc comment is the verb's `--help`), and [`Verb::run`], which runs the verb's module's
+/// `run`.
+macro_rules! verbs {
+    ($($variant:ident: $module:ident::$args:ident),* $(,)?) => {
+        /// The verbs.
+        #[derive(Subcommand)]
+        enum Verb {
+            $($variant($module::$args),)*
+        }
+
+        impl Verb {
+            /// Runs the verb.
+            fn run(self) -> anyhow::Result<()> {
+                match self {
+                    $(Verb::$variant(args) => $module::run(&args),)*
+                }
+            }
+        }
+    };
+}
+
+verbs! {
+    Derive: derive::DeriveArgs, Check: check::CheckArgs, Grow: grow::GrowArgs,
+    Eval: eval::EvalArgs, Export: export::ExportArgs, Replay: replay::ReplayArgs,
+    Evolve: evolve::EvolveArgs, Compare: compare::CompareArgs, Runs: runs::RunsArgs,
+    Genome: genome::GenomeArgs, Bench: bench::BenchArgs, View: view::ViewArgs,
 }
 
 /// Lets every verb take negative numbers as option values (`--strength -1`), not only
@@ -164,20 +154,7 @@ pub fn main() -> ExitCode {
         eval::set_given(eval);
     }
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
-    let result = match cli.verb {
-        Verb::Derive(args) => derive::run(&args),
-        Verb::Check(args) => check::run(&args),
-        Verb::Grow(args) => grow::run(&args),
-        Verb::Eval(args) => eval::run(&args),
-        Verb::Export(args) => export::run(&args),
-        Verb::Replay(args) => replay::run(&args),
-        Verb::Evolve(args) => evolve::run(&args),
-        Verb::Compare(args) => compare::run(&args),
-        Verb::Runs(args) => runs::run(&args),
-        Verb::Genome(args) => genome::run(&args),
-        Verb::Bench(args) => bench::run(&args),
-        Verb::View(args) => view::run(&args),
-    };
+    let result = cli.verb.run();
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => report(error),
@@ -321,45 +298,27 @@ mod tests {
                 "no_cache"
             ])
         );
-        assert_eq!(
-            conflicts("compare", "resume"),
-            sorted(&[
-                "encodings",
-                "task",
-                "fitness",
-                "replicates",
-                "evaluations",
-                "seed",
-                "out",
-                "preset",
-                "pop",
-                "seconds",
-                "setting",
-                "config",
-                "merge",
-                "plan"
-            ])
-        );
+        // A comparison's own flags, refused beside both.
+        let comparison = [
+            "encodings",
+            "task",
+            "fitness",
+            "replicates",
+            "evaluations",
+            "seed",
+            "out",
+            "preset",
+            "pop",
+            "seconds",
+            "setting",
+            "config",
+            "plan",
+        ];
+        let with = |extra: &[&str]| sorted(&[&comparison[..], extra].concat());
+        assert_eq!(conflicts("compare", "resume"), with(&["merge"]));
         assert_eq!(
             conflicts("compare", "merge"),
-            sorted(&[
-                "encodings",
-                "task",
-                "fitness",
-                "replicates",
-                "evaluations",
-                "seed",
-                "out",
-                "preset",
-                "pop",
-                "seconds",
-                "setting",
-                "config",
-                "threads",
-                "plan",
-                "no_cache",
-                "resume"
-            ])
+            with(&["threads", "no_cache", "resume"])
         );
     }
 

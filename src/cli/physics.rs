@@ -12,29 +12,26 @@ use ontogeny::sim::{ActuatorModel, Knob, SettingError, SimOptions, StepSetting, 
 use ontogeny::task::TaskKind;
 
 /// The `--help` of the flag of the knob `key` ([`Knob::help`]).
-fn help(key: &str) -> String {
+pub fn help(key: &str) -> String {
     knob(key).map_or_else(String::new, |k| k.help(""))
 }
 
 /// The flags that set the simulated model: shared by `eval`, `export` and `bench`.
 #[derive(Args)]
 pub struct PhysicsArgs {
-    /// Actuator model.
-    #[arg(long, value_parser = actuator_parser(), default_value = "muscle")]
+    #[arg(long, help = help("actuator"), value_parser = actuator_parser(), default_value = "muscle")]
     actuator: ActuatorModel,
     #[arg(long, help = help("control_step"), default_value_t = SimOptions::default().control_step)]
     time_step: f64,
     #[command(flatten)]
     stepping: SteppingArgs,
-    /// Whose cross-section sets a joint's strength.
-    #[arg(long, value_parser = names_parser(StrengthFrom::ALL, StrengthFrom::name, StrengthFrom::summary), default_value = "bigger")]
+    #[arg(long, help = help("strength_from"), value_parser = names_parser(StrengthFrom::ALL, StrengthFrom::name, StrengthFrom::summary), default_value = "bigger")]
     strength_from: StrengthFrom,
     #[arg(long, help = help("strength"), default_value_t = ontogeny::sim::DEFAULT_STRENGTH)]
     strength: f64,
     #[arg(long, help = help("muscle_speed"), default_value_t = ontogeny::sim::DEFAULT_MUSCLE_SPEED)]
     muscle_speed: f64,
-    /// Let parts of one creature pass through each other (joint neighbours never collide).
-    #[arg(long)]
+    #[arg(long, help = help("self_collision"))]
     no_self_collision: bool,
     #[arg(long, help = help("energy_tolerance"), default_value_t = ontogeny::sim::ENERGY_TOLERANCE)]
     energy_tolerance: f64,

@@ -12,7 +12,8 @@ use ontogeny::task::{Recording, TaskKind, TaskSpec};
 
 use super::physics::{FitnessArgs, SteppingArgs};
 
-/// Flags of `ontogeny replay`.
+/// Re-render a recording written by `eval --record DIR` into DIR/behaviour.gif; or, given
+/// a run directory, re-evaluate one of its individuals with a recording.
 #[derive(Args)]
 pub struct ReplayArgs {
     /// A directory written by `ontogeny eval --record DIR`, or a run directory written by

@@ -30,7 +30,8 @@ pub enum RunsVerb {
     },
 }
 
-/// Flags of `ontogeny runs`.
+/// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
+/// directory (`runs list DIR`).
 #[derive(Args)]
 pub struct RunsArgs {
     #[command(subcommand)]

@@ -14,7 +14,8 @@ use super::derive::{DevelopmentArgs, derive_options};
 /// The port `view` listens on when `--port` is not given (and not snapshotting).
 const DEFAULT_PORT: u16 = 8750;
 
-/// Flags of `ontogeny view`.
+/// Show a creature in the browser: an `.lsys` file growing (reloaded when saved), a
+/// recording playing, or a run's fitness and individuals; or render it to a PNG.
 #[derive(Args)]
 pub struct ViewArgs {
     /// An `.lsys` file, or a directory written by `grow --out`, `eval --record` (or `replay`),

@@ -8,7 +8,7 @@ use std::path::Path;
 use serde_json::{Value, json};
 
 use super::text::{RunEnd, RunTally};
-use crate::study::compare::{Report, Shared};
+use crate::study::compare::{Arm, Report, fitness_labels};
 
 /// `x`, or `null` when it is not finite.
 fn number(x: f64) -> Value {
@@ -47,26 +47,31 @@ pub fn run_json(tally: &RunTally, end: &RunEnd<'_>) -> Value {
     })
 }
 
-/// The object `compare --json` prints: the comparison in `root` (`finished` replicates in its
-/// report, `unfinished` named) as its summary gives it: `{"dir", "fitness", "evaluations"
-/// (each replicate's), "replicates", "unfinished", "encodings": [{"encoding", "replicates",
-/// "best": {"mean", "sd", "ci95"}, "mean_fine", "fine_replicates", "fine_failed",
-/// "median_parts", "median_joints", "median_neurons", "median_shapes_per_part",
-/// "evaluations_per_second", "simulated", "reused"}], "pairs": [{"a", "b", "u", "p",
-/// "holm_p", "a12", "a12_magnitude"}], "too_few", "files"}`.
+/// The object `compare --json` prints: the comparison in `root` (`finished` replicates of
+/// `arms` in its report, `unfinished` named) as its summary gives it: `{"dir", "fitness",
+/// "evaluations" (each replicate's, in walks: the most of any arm), "replicates",
+/// "unfinished", "encodings" (or "conditions", each with "condition" and "encoding"): [{"encoding",
+/// "walks", "replicates", "best": {"mean", "sd", "ci95"}, "mean_fine", "fine_replicates",
+/// "fine_failed", "median_parts", "median_joints", "median_neurons",
+/// "median_shapes_per_part", "evaluations_per_second", "simulated", "reused"}], "pairs":
+/// [{"a", "b", "u", "p", "holm_p", "a12", "a12_magnitude", "detected", "detectable_a12"
+/// (null: none is), "verdict"}], "power": {"replicates", "pairs", "level", "power",
+/// "detectable_a12", "method"} | null, "too_few", "files"}`.
 pub fn comparison_json(
     root: &Path,
-    shared: &Shared,
+    arms: &[Arm],
     r: &Report,
     finished: usize,
     unfinished: &[String],
 ) -> Value {
-    let encodings: Vec<Value> = r
-        .encodings
+    let conditions = r.kind == "condition";
+    let summaries: Vec<Value> = r
+        .arms
         .iter()
         .map(|e| {
-            json!({
+            let mut o = json!({
                 "encoding": e.encoding,
+                "walks": e.walks,
                 "replicates": e.replicates,
                 "best": {
                     "mean": number(e.best.mean),
@@ -83,7 +88,11 @@ pub fn comparison_json(
                 "evaluations_per_second": number(e.evaluations_per_second),
                 "simulated": e.simulated,
                 "reused": e.reused,
-            })
+            });
+            if conditions {
+                o["condition"] = json!(e.name);
+            }
+            o
         })
         .collect();
     let pairs: Vec<Value> = r
@@ -98,22 +107,45 @@ pub fn comparison_json(
                 "holm_p": number(p.holm_p),
                 "a12": number(p.a12),
                 "a12_magnitude": crate::study::stats::a12_magnitude(p.a12),
+                "detected": p.detected(),
+                "detectable_a12": p.detectable.a12().map_or(Value::Null, number),
+                "verdict": p.verdict(),
             })
         })
         .collect();
+    let power = r.power.map(|d| {
+        json!({
+            "replicates": d.m,
+            "pairs": r.arms.len() * (r.arms.len() - 1) / 2,
+            "level": d.level,
+            "power": crate::study::stats::POWER,
+            "detectable_a12": d.a12().map_or(Value::Null, number),
+            "method": d.method.name(),
+        })
+    });
     let files: Vec<String> = ["report.md", "summary.csv", "fitness.svg", "parts.svg"]
         .iter()
         .map(|f| root.join(f).display().to_string())
         .collect();
-    json!({
+    let mut out = json!({
         "dir": root.display().to_string(),
-        "fitness": shared.task.fitness_label(),
+        "fitness": fitness_labels(arms),
         "evaluations": r.evaluations,
         "replicates": finished,
         "unfinished": unfinished,
-        "encodings": encodings,
-        "pairs": pairs,
-        "too_few": r.too_few,
-        "files": files,
-    })
+    });
+    out[if conditions {
+        "conditions"
+    } else {
+        "encodings"
+    }] = json!(summaries);
+    for (key, value) in [
+        ("pairs", json!(pairs)),
+        ("power", json!(power)),
+        ("too_few", json!(r.too_few)),
+        ("files", json!(files)),
+    ] {
+        out[key] = value;
+    }
+    out
 }

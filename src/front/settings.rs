@@ -13,7 +13,7 @@ use crate::task::{TaskKind, TaskSpec, WalkerFitness};
 use crate::evolve::ga::{GaSettings, Preset};
 use crate::run::config::{ConfigFile, RunConfig, check_settings};
 use crate::run::config_errors::setting_diagnostic;
-use crate::study::compare::{self, Manifest, Shared, generations_for};
+use crate::study::compare::{self, Arm, Manifest, Shared, generations_for};
 
 /// The flags that set a run's genetic algorithm and task, shared by `evolve` and `compare`
 /// (each `None` when not given).
@@ -266,23 +266,8 @@ pub fn plan_comparison(
             "--encodings needs at least one of {all_encodings}"
         )));
     }
-    let replicates = replicates.unwrap_or(10);
-    if !(1..=compare::MAX_REPLICATES).contains(&replicates) {
-        return Err(plain(format!(
-            "--replicates must be 1 to {}, not {replicates}",
-            compare::MAX_REPLICATES
-        )));
-    }
-    // A key the file sets that a comparison sets itself: refused at its place in the file.
-    let refuse = |path: &[&str], what: &str, why: &str| {
-        let message = format!("{what} has no place in a comparison's config: {why}");
-        let at = source.and_then(|s| Some((s, crate::run::config_errors::key_span(s, path)?)));
-        Err(match (at, source) {
-            (Some((s, span)), _) => Diagnostic::at(DiagnosticKind::Semantic, s, span, message),
-            (None, Some(s)) => plain(format!("{}: {message}", s.name())),
-            (None, None) => plain(message),
-        })
-    };
+    let replicates = checked_replicates(replicates)?;
+    let refuse = |path: &[&str], what: &str, why: &str| Err(refusal(source, path, what, why));
     if file.encoding.is_some() {
         return refuse(&["encoding"], "encoding", "--encodings names them");
     }
@@ -317,10 +302,159 @@ pub fn plan_comparison(
     Ok((
         Manifest {
             encodings: names,
+            conditions: Vec::new(),
             replicates,
             evaluations: budget,
             seed: seed.or(file.seed).unwrap_or(1),
         },
         Shared { ga, task },
     ))
+}
+
+/// `--replicates`, 1 to [`compare::MAX_REPLICATES`] (default 10).
+fn checked_replicates(replicates: Option<usize>) -> Result<usize, Diagnostic> {
+    let replicates = replicates.unwrap_or(10);
+    if !(1..=compare::MAX_REPLICATES).contains(&replicates) {
+        return Err(plain(format!(
+            "--replicates must be 1 to {}, not {replicates}",
+            compare::MAX_REPLICATES
+        )));
+    }
+    Ok(replicates)
+}
+
+/// The refusal of a key (`path`, said as `what`) that a comparison's config file (`source`)
+/// sets but the comparison sets itself (`why`): at its place in the file.
+fn refusal(source: Option<&Source>, path: &[&str], what: &str, why: &str) -> Diagnostic {
+    let message = format!("{what} has no place in a comparison's config: {why}");
+    let at = source.and_then(|s| Some((s, crate::run::config_errors::key_span(s, path)?)));
+    match (at, source) {
+        (Some((s, span)), _) => Diagnostic::at(DiagnosticKind::Semantic, s, span, message),
+        (None, Some(s)) => plain(format!("{}: {message}", s.name())),
+        (None, None) => plain(message),
+    }
+}
+
+/// One `--condition NAME=CONFIG.toml`: the condition's name and its config.
+#[derive(Clone, Debug)]
+pub struct ConditionSource {
+    /// The condition's name.
+    pub name: String,
+    /// Its config file, read.
+    pub source: Arc<Source>,
+}
+
+/// The comparison of `conditions` that `compare --condition`'s flags describe, checked: each
+/// condition named once (letters, digits, `-` and `_`; names that differ only in case are one
+/// name), 1 to [`compare::MAX_REPLICATES`] replicates (default 10), each config a whole run
+/// config (`encoding`, default `all_encodings`' first, `[ga]`, `[task]`, `[limits]`) without
+/// the settings a comparison sets itself (`seed`, `init`, `[ga] generations`), the flags over
+/// every condition's config, and each condition's generations as many as fit in the `budget`
+/// of walks ([`compare::walks_per_individual`]). Budgets that end too far apart are refused
+/// ([`compare::check_budgets`]); budgets a little apart return a note that names them.
+pub fn plan_conditions(
+    conditions: &[ConditionSource],
+    all_encodings: &str,
+    replicates: Option<usize>,
+    budget: u64,
+    seed: Option<u64>,
+    flags: &RunFlags,
+) -> Result<(Manifest, Vec<Arm>, Option<String>), Diagnostic> {
+    let mut names: Vec<String> = Vec::new();
+    for c in conditions {
+        compare::check_condition_name(&c.name).map_err(|e| plain(format!("--condition: {e}")))?;
+        if let Some(first) = names.iter().find(|x| x.eq_ignore_ascii_case(&c.name)) {
+            return Err(plain(format!(
+                "--condition: {}",
+                compare::duplicate_condition(first, &c.name)
+            )));
+        }
+        names.push(c.name.clone());
+    }
+    if names.is_empty() {
+        return Err(plain(
+            "--condition needs at least one NAME=CONFIG.toml".into(),
+        ));
+    }
+    let replicates = checked_replicates(replicates)?;
+    let mut arms = Vec::with_capacity(conditions.len());
+    for c in conditions {
+        let source = c.source.as_ref();
+        let encoding = new_run_encoding(None, Some(source))?;
+        let arm = crate::with_genome!(
+            encoding.as_str(),
+            G => condition_arm::<G>(&c.name, source, flags, budget),
+            |other| Err(plain(format!(
+                "{}: unknown encoding '{other}' (one of {all_encodings})",
+                source.name()
+            )))
+        )?;
+        arms.push(arm);
+    }
+    let note = compare::check_budgets(&arms).map_err(|e| plain(format!("--condition: {e}")))?;
+    Ok((
+        Manifest {
+            encodings: Vec::new(),
+            conditions: names,
+            replicates,
+            evaluations: budget,
+            seed: seed.unwrap_or(1),
+        },
+        arms,
+        note,
+    ))
+}
+
+/// The condition `name` of config `source`, whose encoding is `G`, with `flags` over it and
+/// its generations as many as fit in `budget` walks.
+fn condition_arm<G: Genome>(
+    name: &str,
+    source: &Source,
+    flags: &RunFlags,
+    budget: u64,
+) -> Result<Arm, Diagnostic> {
+    let file: ConfigFile<G::Limits> = crate::run::config::read_config(source)?;
+    let refuse = |path: &[&str], what: &str, why: &str| Err(refusal(Some(source), path, what, why));
+    if file.seed.is_some() {
+        return refuse(&["seed"], "seed", "--seed sets every replicate's seed");
+    }
+    if file.init.is_some() {
+        return refuse(
+            &["init"],
+            "init",
+            "every replicate starts from random genomes",
+        );
+    }
+    if file.ga.generations.is_some() {
+        return refuse(
+            &["ga", "generations"],
+            "[ga] generations",
+            "--evaluations sets the generations",
+        );
+    }
+    let one_generation = RunFlags {
+        generations: Some(1),
+        ..flags.clone()
+    };
+    let (mut ga, task) = resolve_ga_and_task(&file, Some(source), &one_generation)?;
+    let limits = file.limits.unwrap_or_default();
+    crate::run::config::check_limits(&limits, Some(source))?;
+    let walks = compare::walks_per_individual(&task);
+    ga.generations = generations_for(&ga, budget / walks).map_err(|e| {
+        plain(format!(
+            "condition {name} ({}): --evaluations: {e}",
+            source.name()
+        ))
+    })?;
+    let limits = match toml::Value::try_from(&limits) {
+        Ok(toml::Value::Table(t)) => t,
+        Ok(_) => toml::Table::new(),
+        Err(e) => return Err(plain(format!("{}: [limits]: {e}", source.name()))),
+    };
+    Ok(Arm {
+        name: name.to_string(),
+        encoding: G::NAME.to_string(),
+        settings: Shared { ga, task },
+        limits: Some(limits),
+    })
 }

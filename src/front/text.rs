@@ -8,7 +8,7 @@ use std::path::Path;
 use crate::evolve::ga::GaSettings;
 use crate::run::store::{RunStore, StoreError};
 use crate::run::{GenerationReport, exploits_stepping};
-use crate::study::compare::{Manifest, Report, Shared};
+use crate::study::compare::{Arm, Manifest, Report};
 
 /// A generation's progress line: its best (and the best's fine reference), mean, valid share
 /// and speed, after the task's `fitness` label.
@@ -313,24 +313,31 @@ pub fn duration(seconds: f64) -> String {
     }
 }
 
-/// A comparison's progress, in evaluations.
+/// A comparison's progress, in walks (evaluations times the walks of each).
 #[derive(Clone, Debug)]
 pub struct ComparisonProgress {
-    /// Evaluations of the whole comparison.
+    /// Walks of the whole comparison.
     pub total: u64,
-    /// Evaluations made so far.
+    /// Walks made so far.
     pub done: u64,
-    /// Evaluations made before this command started.
+    /// Walks made before this command started.
     pub at_start: u64,
     /// When this command started.
     pub started: std::time::Instant,
 }
 
 impl ComparisonProgress {
-    /// Counts generation `r` of a replicate labelled `label` (of `generations` generations)
-    /// and says where the comparison stands, with an estimate of the time left.
-    pub fn line(&mut self, label: &str, r: &GenerationReport, generations: usize) -> String {
-        self.done += r.stats.evaluations;
+    /// Counts generation `r` of a replicate labelled `label` (of `generations` generations,
+    /// `walks` per evaluation) and says where the comparison stands, with an estimate of the
+    /// time left.
+    pub fn line(
+        &mut self,
+        label: &str,
+        r: &GenerationReport,
+        generations: usize,
+        walks: u64,
+    ) -> String {
+        self.done += r.stats.evaluations * walks;
         let elapsed = self.started.elapsed().as_secs_f64();
         let rate = (self.done - self.at_start) as f64 / elapsed.max(1e-9);
         let left = (self.total - self.done.min(self.total)) as f64 / rate.max(1e-9);
@@ -347,39 +354,48 @@ impl ComparisonProgress {
     }
 }
 
-/// The summary of a comparison's report `r` written in `root` from `finished` replicates
-/// (`unfinished` names the others): a line per encoding, a line per pair, why there are no
-/// statistics, what is missing (results); and the files written (a message).
+/// The summary of a comparison's report `r` written in `root` from `finished` replicates of
+/// `arms` (`unfinished` names the others): a line per encoding or condition, a line per pair
+/// with what it found, the effect the comparison can detect, why there are no statistics,
+/// what is missing (results); and the files written (a message).
 pub fn comparison_summary(
     root: &Path,
-    shared: &Shared,
+    arms: &[Arm],
     r: &Report,
     finished: usize,
     unfinished: &[String],
 ) -> Vec<Line> {
-    let fewest = r.encodings.iter().map(|e| e.replicates).min().unwrap_or(0);
-    let most = r.encodings.iter().map(|e| e.replicates).max().unwrap_or(0);
+    let fewest = r.arms.iter().map(|e| e.replicates).min().unwrap_or(0);
+    let most = r.arms.iter().map(|e| e.replicates).max().unwrap_or(0);
+    let least_walks = r.arms.iter().map(|e| e.walks).min().unwrap_or(0);
+    let budget = if r.kind == "encoding" {
+        format!("{} evaluations", r.evaluations)
+    } else if least_walks == r.evaluations {
+        format!("{} walks", r.evaluations)
+    } else {
+        format!("{least_walks} to {} walks", r.evaluations)
+    };
     let mut lines = vec![format!(
-        "{}: {finished} replicate{} of {} evaluations each ({} per encoding); {}",
+        "{}: {finished} replicate{} of {budget} each ({} per {}); {}",
         root.display(),
         if finished == 1 { "" } else { "s" },
-        r.evaluations,
         if fewest == most {
             fewest.to_string()
         } else {
             format!("{fewest} to {most}")
         },
-        shared.task.fitness_label()
+        r.kind,
+        crate::study::compare::fitness_labels(arms)
     )];
-    for e in &r.encodings {
-        let spread = if r.too_few.contains(&e.encoding) {
+    for e in &r.arms {
+        let spread = if r.too_few.contains(&e.name) {
             String::from("no spread")
         } else {
             format!("± {:.4}, sd {:.4}", e.best.ci95, e.best.sd)
         };
         lines.push(format!(
             "  {:<20} n {:>3}  best {:.4} ({spread}; at the fine reference {:.4}{})  parts {}  shapes/part {:.3}",
-            e.encoding,
+            e.name,
             e.replicates,
             e.best.mean,
             e.mean_fine,
@@ -394,14 +410,26 @@ pub fn comparison_summary(
     }
     for p in &r.pairs {
         lines.push(format!(
-            "  {} vs {}: U {} p {:.4} (Holm {:.4}) A12 {:.3} ({})",
+            "  {} vs {}: U {} p {:.4} (Holm {:.4}) A12 {:.3} ({}): {}",
             p.a,
             p.b,
             p.test.u,
             p.test.p,
             p.holm_p,
             p.a12,
-            crate::study::stats::a12_magnitude(p.a12)
+            crate::study::stats::a12_magnitude(p.a12),
+            p.verdict()
+        ));
+    }
+    if let Some(d) = r.power {
+        let pairs = r.arms.len() * (r.arms.len() - 1) / 2;
+        lines.push(format!(
+            "power: {} replicates per {}, {pairs} pair{}, each tested at {:.4}: detects {}",
+            d.m,
+            r.kind,
+            if pairs == 1 { "" } else { "s" },
+            d.level,
+            d.words(),
         ));
     }
     if !r.too_few.is_empty() {
@@ -420,16 +448,25 @@ pub fn comparison_summary(
 }
 
 /// The `ontogeny evolve` commands of a comparison's `--plan`, one per replicate, with
-/// `--no-cache` when `no_cache`.
+/// `--no-cache` when `no_cache`: an encoding's replicates read the shared `evolve.toml` and
+/// name their encoding, a condition's read its own `<condition>/evolve.toml`.
 pub fn plan_commands(root: &Path, manifest: &Manifest, no_cache: bool) -> Vec<String> {
     let mut commands = Vec::new();
     for k in 1..=manifest.replicates {
-        for encoding in &manifest.encodings {
+        for name in manifest.names() {
+            let (config, encoding) = if manifest.conditions.is_empty() {
+                (root.join("evolve.toml"), format!(" --encoding {name}"))
+            } else {
+                (
+                    crate::study::compare::condition_file(root, name),
+                    String::new(),
+                )
+            };
             commands.push(format!(
-                "ontogeny evolve --config {} --encoding {encoding} --seed {} --out {}{}",
-                shell_word(&root.join("evolve.toml")),
+                "ontogeny evolve --config {}{encoding} --seed {} --out {}{}",
+                shell_word(&config),
                 crate::study::compare::replicate_seed(manifest.seed, k),
-                shell_word(&crate::study::compare::replicate_dir(root, encoding, k)),
+                shell_word(&crate::study::compare::replicate_dir(root, name, k)),
                 if no_cache { " --no-cache" } else { "" }
             ));
         }

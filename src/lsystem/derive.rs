@@ -239,10 +239,10 @@ impl Pass<'_> {
         ws.args.resize(rule.slots, 0.0);
         ws.bound.clear();
         ws.args[..rule.arity].copy_from_slice(params);
-        if !rule.left.is_empty() && !self.match_left(rule, input, i, ws) {
+        if !rule.left.is_empty() && !self.context_matches(Side::Left, rule, input, i, ws) {
             return Ok(false);
         }
-        if !rule.right.is_empty() && !self.match_right(rule, input, i, ws) {
+        if !rule.right.is_empty() && !self.context_matches(Side::Right, rule, input, i, ws) {
             return Ok(false);
         }
         if rule
@@ -265,122 +265,114 @@ impl Pass<'_> {
         }
     }
 
-    /// Left context (cpfg): walking back, `[` is skipped (to the parent), a whole preceding
-    /// branch `[...]` is skipped at its `]`, and ignored modules are skipped.
-    fn match_left(
+    /// Whether the rule's context on `side` of module `i` matches (cpfg), its parameters bound
+    /// in `ws`. The left context, walking back: `[` is skipped (to the parent), a whole
+    /// preceding branch `[...]` is skipped at its `]`, and ignored modules are skipped. The
+    /// right context: lateral branches the pattern does not ask for are skipped, the end of the
+    /// current branch stops the match, a `]` in the pattern skips to the end of the current
+    /// branch, and ignored modules are skipped.
+    #[inline]
+    fn context_matches(
         &self,
+        side: Side,
         rule: &CompiledRule,
         input: &ModuleString,
         i: usize,
         ws: &mut Workspace,
     ) -> bool {
         let syms = &input.syms;
-        let mut j = i; // the next module to look at is j - 1
-        for el in rule.left.iter().rev() {
-            let PatternEl::Module { sym, arity, slot } = *el else {
-                unreachable!("left contexts hold no brackets (checked when compiled)")
-            };
-            loop {
-                if j == 0 {
-                    return false;
-                }
-                let s = syms[j - 1];
-                if s == sym {
-                    break;
-                } else if s == POP {
-                    let open = ws.brackets[j - 1];
-                    if open == NO_MATCH {
-                        return false;
-                    }
-                    j = open as usize;
-                } else if s == PUSH || self.ignored[s as usize] {
-                    j -= 1;
-                } else {
-                    return false;
-                }
-            }
-            let params = input.params(j - 1);
-            if params.len() != arity {
-                return false;
-            }
-            ws.args[slot..slot + arity].copy_from_slice(params);
-            ws.bound.push((slot as u32, (j - 1) as u32));
-            j -= 1;
-        }
-        true
-    }
-
-    /// Right context (cpfg): lateral branches the pattern does not ask for are skipped, the
-    /// end of the current branch stops the match, a `]` in the pattern skips to the end of
-    /// the current branch, and ignored modules are skipped.
-    fn match_right(
-        &self,
-        rule: &CompiledRule,
-        input: &ModuleString,
-        i: usize,
-        ws: &mut Workspace,
-    ) -> bool {
-        let syms = &input.syms;
-        let n = syms.len();
-        let mut j = i + 1;
-        for el in &rule.right {
-            match *el {
-                PatternEl::Push => {
-                    while j < n && syms[j] != PUSH && self.ignored[syms[j] as usize] {
-                        j += 1;
-                    }
-                    if j < n && syms[j] == PUSH {
-                        j += 1;
-                    } else {
-                        return false;
-                    }
-                }
-                PatternEl::Pop => loop {
-                    if j >= n {
-                        return false;
-                    }
-                    match syms[j] {
-                        POP => {
-                            j += 1;
-                            break;
-                        }
-                        PUSH => {
-                            let close = ws.brackets[j];
-                            if close == NO_MATCH {
-                                return false;
-                            }
-                            j = close as usize + 1;
-                        }
-                        _ => j += 1,
-                    }
-                },
-                PatternEl::Module { sym, arity, slot } => {
+        match side {
+            Side::Left => {
+                let mut j = i; // the next module to look at is j - 1
+                for el in rule.left.iter().rev() {
+                    let PatternEl::Module { sym, arity, slot } = *el else {
+                        unreachable!("left contexts hold no brackets (checked when compiled)")
+                    };
                     loop {
-                        if j >= n {
+                        if j == 0 {
                             return false;
                         }
-                        let s = syms[j];
+                        let s = syms[j - 1];
                         if s == sym {
                             break;
-                        } else if s == PUSH {
-                            let close = ws.brackets[j];
-                            if close == NO_MATCH {
+                        } else if s == POP {
+                            let open = ws.brackets[j - 1];
+                            if open == NO_MATCH {
                                 return false;
                             }
-                            j = close as usize + 1;
-                        } else if s != POP && self.ignored[s as usize] {
-                            j += 1;
+                            j = open as usize;
+                        } else if s == PUSH || self.ignored[s as usize] {
+                            j -= 1;
                         } else {
                             return false;
                         }
                     }
-                    let params = input.params(j);
-                    if params.len() != arity {
+                    if !bind(input, j - 1, arity, slot, ws) {
                         return false;
                     }
-                    ws.args[slot..slot + arity].copy_from_slice(params);
-                    ws.bound.push((slot as u32, j as u32));
-                    j += 1;
+                    j -= 1;
+                }
+            }
+            Side::Right => {
+                let n = syms.len();
+                let mut j = i + 1;
+                for el in &rule.right {
+                    match *el {
+                        PatternEl::Push => {
+                            while j < n && syms[j] != PUSH && self.ignored[syms[j] as usize] {
+                                j += 1;
+                            }
+                            if j < n && syms[j] == PUSH {
+                                j += 1;
+                            } else {
+                                return false;
+                            }
+                        }
+                        PatternEl::Pop => loop {
+                            if j >= n {
+                                return false;
+                            }
+                            match syms[j] {
+                                POP => {
+                                    j += 1;
+                                    break;
+                                }
+                                PUSH => {
+                                    let close = ws.brackets[j];
+                                    if close == NO_MATCH {
+                                        return false;
+                                    }
+                                    j = close as usize + 1;
+                                }
+                                _ => j += 1,
+                            }
+                        },
+                        PatternEl::Module { sym, arity, slot } => {
+                            loop {
+                                if j >= n {
+                                    return false;
+                                }
+                                let s = syms[j];
+                                if s == sym {
+                                    break;
+                                } else if s == PUSH {
+                                    let close = ws.brackets[j];
+                                    if close == NO_MATCH {
+                                        return false;
+                                    }
+                                    j = close as usize + 1;
+                                } else if s != POP && self.ignored[s as usize] {
+                                    j += 1;
+                                } else {
+                                    return false;
+                                }
+                            }
+                            if !bind(input, j, arity, slot, ws) {
+                                return false;
+                            }
+                            j += 1;
+                        }
+                    }
                 }
             }
         }
@@ -413,6 +405,26 @@ impl Pass<'_> {
         }
         Ok(())
     }
+}
+
+/// A side of a rule's predecessor: its left or its right context.
+#[derive(Clone, Copy)]
+enum Side {
+    Left,
+    Right,
+}
+
+/// Binds the parameters of module `k` of `input` to the rule's slots from `slot` on, as its
+/// context pattern's module of `arity` parameters; false when the module has another number.
+#[inline]
+fn bind(input: &ModuleString, k: usize, arity: usize, slot: usize, ws: &mut Workspace) -> bool {
+    let params = input.params(k);
+    if params.len() != arity {
+        return false;
+    }
+    ws.args[slot..slot + arity].copy_from_slice(params);
+    ws.bound.push((slot as u32, k as u32));
+    true
 }
 
 /// Appends a whole string.

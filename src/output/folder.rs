@@ -243,8 +243,7 @@ mod tests {
     #[test]
     fn a_dangling_link_is_refused_in_words_and_a_link_to_a_folder_is_followed() {
         let dir = tempfile::tempdir().unwrap();
-        let link = dir.path().join("link");
-        std::os::unix::fs::symlink("nowhere", &link).unwrap();
+        let link = crate::input::dangling_link(dir.path(), "link", "nowhere");
         assert_eq!(
             prepare_folder(&link, FolderKind::Growth)
                 .unwrap_err()

@@ -13,7 +13,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use super::camera::{Framing, View};
 use super::palette::gif_image;
 use super::text::wrap;
-use super::walk::{root_path, walked, walked_label};
+use super::walk::{root_path, thinned, walked, walked_label};
 use super::{Overlay, RenderError, checked_with_label, picture};
 use crate::creature::{Creature, Part};
 use crate::sim::terrain::Terrain;
@@ -175,14 +175,7 @@ pub fn trail(samples: &[Sample], until: usize) -> Vec<Vector3<f64>> {
         .iter()
         .filter_map(|s| s.projectile)
         .collect();
-    let stride = flown.len().div_ceil(MAX_TRAIL_POINTS).max(1);
-    let mut trail: Vec<_> = flown.iter().step_by(stride).copied().collect();
-    if let Some(last) = flown.last()
-        && trail.last() != Some(last)
-    {
-        trail.push(*last);
-    }
-    trail
+    thinned(&flown, MAX_TRAIL_POINTS)
 }
 
 /// Writes `behaviour.gif`, the animation of `recording`'s samples as `playback` plays them:
@@ -568,30 +561,22 @@ mod tests {
 
     #[test]
     fn a_short_recording_is_drawn_at_the_asked_rate() {
-        let Playback {
-            shown: chosen,
-            delays_cs: delays,
-            fps,
-        } = playback(&recording(2.0), 10.0);
-        assert_eq!(fps, 10.0);
-        assert_eq!(chosen.len(), 21);
+        let drawn = playback(&recording(2.0), 10.0);
+        assert_eq!(drawn.fps, 10.0);
+        assert_eq!(drawn.shown.len(), 21);
         // Image k shows the recording at k / 10 s: sample 6k at 60 samples/s.
-        assert!(chosen.iter().enumerate().all(|(k, &i)| i == 6 * k));
-        assert!(delays.iter().all(|&d| d == 10));
+        assert!(drawn.shown.iter().enumerate().all(|(k, &i)| i == 6 * k));
+        assert!(drawn.delays_cs.iter().all(|&d| d == 10));
     }
 
     #[test]
     fn a_long_recording_stays_under_the_image_cap() {
         // An hour at 10 images/s would be 36,001 images.
-        let Playback {
-            shown: chosen,
-            delays_cs: delays,
-            fps,
-        } = playback(&recording(3600.0), 10.0);
-        assert!(chosen.len() <= MAX_GIF_IMAGES, "{}", chosen.len());
-        assert_eq!(chosen.len(), MAX_GIF_IMAGES);
-        assert!((fps - 599.0 / 3600.0).abs() < 1e-12);
+        let drawn = playback(&recording(3600.0), 10.0);
+        assert_eq!(drawn.shown.len(), MAX_GIF_IMAGES);
+        assert!((drawn.fps - 599.0 / 3600.0).abs() < 1e-12);
         // It still plays back in real time: the delays add up to the hour (in cs).
+        let delays = &drawn.delays_cs;
         let total: u64 = delays[..delays.len() - 1].iter().map(|&d| d as u64).sum();
         assert!((total as f64 - 360_000.0).abs() <= 1.0, "{total}");
     }

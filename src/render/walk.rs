@@ -55,14 +55,19 @@ pub fn root_path(samples: &[Sample], at: usize) -> Vec<Vector3<f64>> {
         .iter()
         .filter_map(root_on_ground)
         .collect();
-    let stride = walked.len().div_ceil(MAX_PATH_POINTS).max(1);
-    let mut path: Vec<_> = walked.iter().step_by(stride).copied().collect();
-    if let Some(last) = walked.last()
-        && path.last() != Some(last)
+    thinned(&walked, MAX_PATH_POINTS)
+}
+
+/// `points` thinned evenly to about `most` of them (every k-th), the last always kept.
+pub(super) fn thinned(points: &[Vector3<f64>], most: usize) -> Vec<Vector3<f64>> {
+    let stride = points.len().div_ceil(most).max(1);
+    let mut kept: Vec<_> = points.iter().step_by(stride).copied().collect();
+    if let Some(last) = points.last()
+        && kept.last() != Some(last)
     {
-        path.push(*last);
+        kept.push(*last);
     }
-    path
+    kept
 }
 
 /// The distance walked as an image's label says it: `"walked 4.21 m"`.

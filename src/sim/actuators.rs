@@ -56,7 +56,8 @@ impl World {
             let s = self.brain.outputs()[i];
             match actuator {
                 Actuator::Joint { joint, dof } => {
-                    let info = &self.joints[JointId(joint)];
+                    let joint = JointId(joint);
+                    let info = &self.joints[joint];
                     let (lo, hi) = info.limits.get(dof).copied().unwrap_or((0.0, 0.0));
                     let max_torque = info.max_torque;
                     let (muscle_speed, speed) = (self.options.muscle_speed, self.options.max_speed);
@@ -64,7 +65,7 @@ impl World {
                     let axis = ANGULAR[dof.min(2)];
                     if model == ActuatorModel::MuscleTorque {
                         let torque = if on { s * max_torque } else { 0.0 };
-                        self.joints[JointId(joint)].torques[dof.min(2)] = torque;
+                        self.joints[joint].torques[dof.min(2)] = torque;
                         continue;
                     }
                     self.with_joint(joint, |data| {
@@ -120,15 +121,15 @@ impl World {
         for &b in &self.creature_bodies {
             self.bodies[b].reset_torques(false);
         }
-        for j in 0..self.joints.len() {
-            let torques = self.joints[JointId(j)].torques;
+        for j in self.joint_ids() {
+            let torques = self.joints[j].torques;
             if torques == [0.0; 3] {
                 continue;
             }
             let Some(frame1) = self.joint_data(j).map(|data| data.local_frame1.rotation) else {
                 continue;
             };
-            let (b1, b2) = self.joints[JointId(j)].ends;
+            let (b1, b2) = self.joints[j].ends;
             let frame = *self.bodies[b1].rotation() * frame1;
             let torque = [Vector::X, Vector::Y, Vector::Z]
                 .into_iter()
@@ -142,8 +143,8 @@ impl World {
     }
 
     /// Joint `j`'s data, or `None` for a fused joint.
-    pub(super) fn joint_data(&self, j: usize) -> Option<&GenericJoint> {
-        match self.joints[JointId(j)].handle {
+    pub(super) fn joint_data(&self, j: JointId) -> Option<&GenericJoint> {
+        match self.joints[j].handle {
             JointHandle::Impulse(h) => self.impulse_joints.get(h).map(|joint| &joint.data),
             JointHandle::Multibody(h) => self
                 .multibody_joints
@@ -154,8 +155,8 @@ impl World {
         }
     }
 
-    pub(super) fn with_joint(&mut self, j: usize, f: impl FnOnce(&mut GenericJoint)) {
-        match self.joints[JointId(j)].handle {
+    pub(super) fn with_joint(&mut self, j: JointId, f: impl FnOnce(&mut GenericJoint)) {
+        match self.joints[j].handle {
             JointHandle::Impulse(h) => {
                 if let Some(joint) = self.impulse_joints.get_mut(h, false) {
                     f(&mut joint.data);

@@ -6,7 +6,6 @@ use rapier3d::math::Vector;
 
 use super::slots::JointHandle;
 use super::world::{Exploded, GRAVITY, World};
-use crate::creature::JointId;
 
 /// A joint gap (m) beyond which `ontogeny eval` warns that the step setting is too coarse for
 /// the creature: the fine reference keeps the evolved walkers measured under 1.1 cm, while
@@ -19,16 +18,23 @@ pub const JOINT_GAP_WARNING: f64 = 0.05;
 pub const ENERGY_WINDOW: f64 = 0.5;
 
 impl World {
-    /// The creature's mechanical energy (J): kinetic, and gravitational above the ground.
+    /// The creature's mechanical energy (J): kinetic, and gravitational above the ground; and
+    /// that of the world's free objects once they are let go.
     pub(super) fn mechanical_energy(&self) -> f64 {
-        self.creature_bodies
+        let creature: f64 = self
+            .creature_bodies
             .iter()
             .map(|b| {
                 let body = &self.bodies[*b];
                 body.kinetic_energy() as f64
                     + body.mass() as f64 * GRAVITY * body.center_of_mass().y as f64
             })
-            .sum()
+            .sum();
+        if self.ground.any_released() {
+            creature + self.objects_energy()
+        } else {
+            creature
+        }
     }
 
     /// The most energy the creature gained beyond what its motors could supply within
@@ -73,11 +79,11 @@ impl World {
     /// the torque limit × the joint's angular speed.
     pub(super) fn motor_power_bound(&self) -> f64 {
         let mut work = 0.0;
-        for j in 0..self.joints.len() {
+        for j in self.joint_ids() {
             let Some(data) = self.joint_data(j) else {
                 continue;
             };
-            let joint = &self.joints[JointId(j)];
+            let joint = &self.joints[j];
             let (b1, b2) = joint.ends;
             let relative = self.bodies[b2].angvel() - self.bodies[b1].angvel();
             let frame = *self.bodies[b1].rotation() * data.local_frame1.rotation;

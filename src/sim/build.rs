@@ -7,10 +7,14 @@ use rapier3d::math::{Real, Vector};
 use rapier3d::prelude::*;
 
 use super::brain::BrainRuntime;
+use super::ground::Ground;
+use super::motion::Attach;
 use super::options::SimOptions;
 use super::setting::SettingError;
 use super::slots::Keyed;
+use super::terrain::Terrain;
 use super::world::{GRAVITY, World};
+use super::world_spec::WorldSpec;
 use crate::creature::{Creature, Joint, Part, PartId};
 
 /// The groups of parts fused by rigid joints: for each part, the lowest-numbered part of its
@@ -56,7 +60,20 @@ impl World {
     /// the ground, at rest. Options out of their ranges ([`SimOptions::check`]: no substeps,
     /// say) are refused.
     pub fn new(creature: &Creature, options: &SimOptions) -> Result<World, BuildError> {
+        World::in_world(creature, options, &WorldSpec::default())
+    }
+
+    /// Builds the world of `spec` ([`WorldSpec::check`] must pass, else the error names the
+    /// key) with the creature dropped so that its lowest point is `drop_height` above the
+    /// highest ground under its footprint ([`Terrain::extremes_under`]), at rest. The free
+    /// objects are held where they start until [`World::release_objects`].
+    pub fn in_world(
+        creature: &Creature,
+        options: &SimOptions,
+        spec: &WorldSpec,
+    ) -> Result<World, BuildError> {
         options.check()?;
+        spec.check().map_err(|e| e.within("world"))?;
         if creature.parts.is_empty() {
             return Err(BuildError::NoParts);
         }
@@ -100,18 +117,13 @@ impl World {
             unexplained_energy: 0.0,
             peak_unexplained: 0.0,
             peak_joint_gap: 0.0,
-            ground_collider: ColliderHandle::invalid(),
+            ground: Ground::empty(),
         };
-        let ground = world.bodies.insert(RigidBodyBuilder::fixed());
-        world.ground_collider = world.colliders.insert_with_parent(
-            ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Y))
-                .friction(options.friction as Real),
-            ground,
-            &mut world.bodies,
-        );
-
-        let (lo, _) = creature.bounding_box();
-        let lift = Vector3::new(0.0, options.drop_height - lo.y, 0.0);
+        let terrain = Terrain::new(spec);
+        let (lo, hi) = creature.bounding_box();
+        let (beneath, _) = terrain.extremes_under([lo.x, hi.x], [lo.z, hi.z]);
+        world.ground = Ground::build(&mut world, &terrain, beneath);
+        let lift = Vector3::new(0.0, options.drop_height + beneath - lo.y, 0.0);
         // Parts fused by rigid joints share one rigid body, a collider each (as MuJoCo welds
         // them): a chain of fixed joints is the stiffest thing an impulse solver meets, and
         // at one substep it can pump energy into a creature that has no motor at all.
@@ -121,8 +133,12 @@ impl World {
                 position: part.position + lift,
                 ..part.clone()
             };
-            let fused_with = (group[i] != i).then_some(PartId(group[i]));
-            world.add_part(&lifted, fused_with);
+            let attach = if group[i] == i {
+                Attach::Free
+            } else {
+                Attach::FusedTo(PartId(group[i]))
+            };
+            world.add_part(&lifted, attach);
         }
         for joint in &creature.joints {
             let lifted = Joint {

@@ -149,15 +149,47 @@ impl Knob {
 
     /// The `--help` of its flag: the phrase, its unit (but a span of seconds', which its range
     /// says) and its range, then `suffix` (` [default: the setting's]`), without a full stop
-    /// (as clap writes a flag's one-line help).
+    /// (as clap writes a flag's one-line help). An enum knob's names are left to the flag's
+    /// list of values ([`Knob::choices`]); a switch's flag that turns it off says so.
     pub fn help(&self, suffix: &str) -> String {
         let unit = match (self.unit, self.range) {
             ("", _) | (_, Range::Between { .. }) => String::new(),
             (unit, _) => format!(" ({unit})"),
         };
+        let turns_off = matches!((self.get)(&SimOptions::default()), Value::Switch(_))
+            && self.flag.is_some_and(|f| f.starts_with("--no-"));
         match self.range {
+            Range::Any if turns_off => {
+                format!("{} (on unless this flag is given){suffix}", self.doc)
+            }
             Range::Any => format!("{}{unit}{suffix}", self.doc),
             _ => format!("{}{unit}, {}{suffix}", self.doc, self.range_words()),
+        }
+    }
+
+    /// The names an enum knob takes, each with its summary, from its vocabulary (in the order
+    /// `--help` lists them); none for a number or a switch.
+    pub fn choices(&self) -> Vec<(&'static str, &'static str)> {
+        fn of<T: Copy>(
+            all: &[T],
+            name: fn(T) -> &'static str,
+            summary: fn(T) -> &'static str,
+        ) -> Vec<(&'static str, &'static str)> {
+            all.iter().map(|&v| (name(v), summary(v))).collect()
+        }
+        match (self.get)(&SimOptions::default()) {
+            Value::Joints(_) => of(&JointModel::ALL, JointModel::name, JointModel::summary),
+            Value::Actuator(_) => of(
+                &ActuatorModel::ALL,
+                ActuatorModel::name,
+                ActuatorModel::summary,
+            ),
+            Value::StrengthFrom(_) => of(
+                &StrengthFrom::ALL,
+                StrengthFrom::name,
+                StrengthFrom::summary,
+            ),
+            Value::Real(_) | Value::Count(_) | Value::Switch(_) => Vec::new(),
         }
     }
 
@@ -270,7 +302,7 @@ pub const KNOBS: &[Knob] = &[
     }),
     knob!(joints: Joints {
         flag: Some("--joints"),
-        doc: "The joint model: `impulse` (constraints between free bodies) or `multibody` (reduced coordinates)",
+        doc: "The joint model",
     }),
     knob!(self_collision: Switch {
         flag: Some("--no-self-collision"),
@@ -282,7 +314,7 @@ pub const KNOBS: &[Knob] = &[
     }),
     knob!(actuator: Actuator {
         flag: Some("--actuator"),
-        doc: "The actuator model: `muscle`, `muscle-torque`, `angle` or `velocity`",
+        doc: "The actuator model",
     }),
     knob!(strength: Real {
         flag: Some("--strength"),
@@ -292,7 +324,7 @@ pub const KNOBS: &[Knob] = &[
     }),
     knob!(strength_from: StrengthFrom {
         flag: Some("--strength-from"),
-        doc: "Whose cross-section sets a joint's strength: the `smaller` or the `bigger` of its two parts",
+        doc: "Whose cross-section sets a joint's strength",
     }),
     knob!(muscle_speed: Real {
         flag: Some("--muscle-speed"),
@@ -397,7 +429,16 @@ pub fn reference_table() -> String {
             (false, "") => default,
             (false, unit) => format!("{default} {unit}"),
         };
-        let range = knob.range_words();
+        let names: Vec<String> = knob
+            .choices()
+            .iter()
+            .map(|(name, _)| format!("`{name}`"))
+            .collect();
+        let range = match names.split_last() {
+            Some((last, [])) => last.clone(),
+            Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+            None => knob.range_words(),
+        };
         let key = match knob.older_key {
             Some(older) => format!("`{}` (older files: `{older}`)", knob.key),
             None => format!("`{}`", knob.key),
@@ -569,6 +610,32 @@ mod tests {
         assert_eq!(knob("control_step").unwrap().flag_name(), "--time-step");
         assert_eq!(knob("drop_height").unwrap().flag_name(), "--drop-height");
         assert!(knob("substep").is_none());
+        assert_eq!(knob("actuator").unwrap().help(""), "The actuator model");
+        assert_eq!(
+            knob("self_collision").unwrap().help(""),
+            "Whether parts of one creature that are not joint neighbours collide (on unless this flag is given)"
+        );
+    }
+
+    #[test]
+    fn an_enum_knob_s_choices_are_its_vocabulary_s() {
+        let names =
+            |key| -> Vec<&str> { knob(key).unwrap().choices().iter().map(|c| c.0).collect() };
+        assert_eq!(names("joints"), ["impulse", "multibody"]);
+        assert_eq!(
+            names("actuator"),
+            ["muscle", "muscle-torque", "angle", "velocity"]
+        );
+        assert_eq!(names("strength_from"), ["smaller", "bigger"]);
+        assert!(names("substeps").is_empty() && names("self_collision").is_empty());
+        assert_eq!(
+            knob("joints").unwrap().choices()[1],
+            ("multibody", "Multibody (reduced-coordinate) joints")
+        );
+        let table = reference_table();
+        assert!(table.contains(
+            "| `actuator` | muscle | `muscle`, `muscle-torque`, `angle` or `velocity` | `--actuator` | The actuator model. |"
+        ));
     }
 
     /// What adding a knob takes: one entry (and the field it reads and writes). This one

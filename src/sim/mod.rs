@@ -5,17 +5,20 @@
 //! the world is built in [`build`] from the parts and joints of [`parts`] (keyed by stable
 //! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
 //! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
-//! [`projectile`], and steps in [`world`]; what the world holds besides the creature (terrain,
-//! obstacles, objects, the medium) is described by [`world_spec`] and worked out as geometry,
-//! without physics, in [`terrain`].
+//! [`projectile`], and steps in [`world`]; its velocities and momenta are [`motion`]'s; what
+//! the world holds besides the creature (terrain, obstacles, objects, the medium) is described
+//! by [`world_spec`] and worked out as geometry, without physics, in [`terrain`]; the ground
+//! and what stands on it are built in rapier by `ground`.
 
 pub mod actuators;
 pub mod audit;
 pub mod brain;
 pub mod build;
 pub mod drag;
+mod ground;
 pub mod knobs;
 mod model_names;
+pub mod motion;
 pub mod options;
 pub mod parts;
 pub mod projectile;
@@ -33,6 +36,7 @@ pub use build::BuildError;
 pub use drag::DragMeter;
 pub use knobs::{KNOBS, Knob, SettingError, check_real};
 pub use model_names::UnknownName;
+pub use motion::Attach;
 pub use options::{
     ActuatorModel, DEFAULT_MUSCLE_SPEED, DEFAULT_STRENGTH, ENERGY_TOLERANCE, JointModel, MAX_DT,
     MAX_ITERATIONS, MAX_SUBSTEPS, MIN_DT, SimOptions, StrengthFrom,

@@ -2,7 +2,8 @@
 //! [`JointId`]), and the three ways the body changes: [`World::add_part`],
 //! [`World::add_joint`] and [`World::resize_part`]. [`World::new`] builds a creature with the
 //! first two, in the creature's order, so a part or joint added later while the world runs is
-//! made the same way and gets the next id.
+//! made the same way and gets the next id. New mass arrives moving with what it is attached to,
+//! and a resized part keeps its velocity field and carries its children ([`super::motion`]).
 
 use ::nalgebra::{UnitQuaternion, Vector3};
 use rapier3d::math::{Pose, Real, Rotation, Vector};
@@ -10,6 +11,7 @@ use rapier3d::prelude::*;
 
 use super::actuators::max_torque_between;
 use super::build::BuildError;
+use super::motion::Attach;
 use super::options::JointModel;
 use super::slots::{JointHandle, JointSlot, PartSlot};
 use super::world::{ANGULAR, World};
@@ -49,24 +51,32 @@ fn joint_frame(axes: &[Vector3<f64>]) -> Rotation {
 }
 
 impl World {
-    /// Adds `part` — its pose in the world's coordinates, at rest — and returns its id, the
-    /// next one. With `fused_with`, the part is welded to that part's rigid body (a collider
-    /// more on it, as [`World::new`] does for parts joined by rigid joints); without, it gets
-    /// a body of its own. The creature's mass and mechanical energy count it from now on.
+    /// Adds `part` — its pose in the world's coordinates, held as `attach` says — and returns
+    /// its id, the next one. It is placed where `part` says (no drop lift). Its mass arrives
+    /// moving with what it is attached to (at rest when [`Attach::Free`]), so the creature's
+    /// momentum rises by exactly the part's mass × that velocity. The creature's mass and
+    /// mechanical energy count it from now on.
     ///
     /// # Panics
     ///
-    /// If `fused_with` names no part of this world.
-    pub fn add_part(&mut self, part: &Part, fused_with: Option<PartId>) -> PartId {
+    /// If `attach` names no part of this world.
+    pub fn add_part(&mut self, part: &Part, attach: Attach) -> PartId {
         let pose = Pose::from_parts(vector(&part.position), rotation(&part.orientation));
-        let body = match fused_with {
-            Some(other) => self.parts[other].body,
-            None => {
+        let (body, field) = match attach {
+            Attach::FusedTo(other) => {
+                let body = self.parts[other].body;
+                (body, Some(self.field_of(body)))
+            }
+            Attach::Free | Attach::MovingWith(_) => {
                 let body = self
                     .bodies
                     .insert(RigidBodyBuilder::dynamic().pose(pose).can_sleep(false));
                 self.creature_bodies.push(body);
-                body
+                let field = match attach {
+                    Attach::MovingWith(other) => Some(self.field_of(self.parts[other].body)),
+                    _ => None,
+                };
+                (body, field)
             }
         };
         let relative = self.bodies[body].position().inverse() * pose;
@@ -85,7 +95,10 @@ impl World {
             size: part.size,
             previous: Vector::ZERO,
         });
-        self.parts[id].previous = self.part_world_pose(id.0).translation;
+        self.parts[id].previous = self.part_world_pose(id).translation;
+        if let Some(field) = field {
+            self.move_with(body, &field);
+        }
         self.body_changed();
         id
     }
@@ -162,9 +175,12 @@ impl World {
     }
 
     /// Gives part `id` the edge lengths `size`, about its centre: its body's mass, centre of
-    /// mass and inertia follow, every joint's anchor on it moves with the face it sits on
-    /// (each coordinate in the part's axes scaled by the new over the old length), and the
-    /// maximum torque of its joints follows the new cross-section.
+    /// mass and inertia follow (the body keeps its velocity field), every joint's anchor on it
+    /// moves with the face it sits on (each coordinate in the part's axes scaled by the new
+    /// over the old length), and the maximum torque of its joints follows the new
+    /// cross-section. Each child jointed to it is carried, with everything beyond it, by its
+    /// anchor's move, so the joint stays closed, and moves with the part's velocity field
+    /// where it now is. The joint to the part's own parent is left to the solver to close.
     ///
     /// # Panics
     ///
@@ -183,7 +199,9 @@ impl World {
             half.z as Real,
         ));
         self.parts[id].size = size;
+        let field = self.field_of(body);
         self.bodies[body].recompute_mass_properties_from_colliders(&self.colliders);
+        self.move_with(body, &field);
         // The part's pose in its body's frame: anchors are scaled in the part's own axes.
         let in_body = self.colliders[collider]
             .position_wrt_parent()
@@ -199,15 +217,16 @@ impl World {
             local.translation *= scale;
             in_body * local
         };
-        for j in 0..self.joints.len() {
-            let (parent, child) = self.joints[JointId(j)].parts;
+        for j in self.joint_ids() {
+            let (parent, child) = self.joints[j].parts;
             if parent != id && child != id {
                 continue;
             }
             let first = self.parts[parent].size;
             let second = self.parts[child].size;
-            let slot = &mut self.joints[JointId(j)];
+            let slot = &mut self.joints[j];
             slot.max_torque = max_torque_between(&first, &second, slot.strength, &self.options);
+            let before = self.joint_anchors(j);
             self.with_joint(j, |data| {
                 if parent == id {
                     data.set_local_frame1(moved(data.local_frame1));
@@ -216,6 +235,13 @@ impl World {
                     data.set_local_frame2(moved(data.local_frame2));
                 }
             });
+            let (_, b2) = self.joints[j].ends;
+            if parent == id
+                && b2 != body
+                && let (Some((from, _)), Some((to, _))) = (before, self.joint_anchors(j))
+            {
+                self.carry(b2, body, vector(&(to - from)), &field);
+            }
         }
         self.body_changed();
     }
@@ -286,7 +312,7 @@ impl World {
     ///
     /// If `id` names no joint of this world.
     pub fn joint_anchors(&self, id: JointId) -> Option<(Vector3<f64>, Vector3<f64>)> {
-        let data = self.joint_data(id.0)?;
+        let data = self.joint_data(id)?;
         let (b1, b2) = self.joints[id].ends;
         let a1 = *self.bodies[b1].position() * data.local_frame1;
         let a2 = *self.bodies[b2].position() * data.local_frame2;
@@ -294,17 +320,6 @@ impl World {
             super::world::to_na(a1.translation),
             super::world::to_na(a2.translation),
         ))
-    }
-
-    /// The creature's linear momentum (kg·m/s): Σ over its bodies of mass × velocity.
-    pub fn creature_momentum(&self) -> Vector3<f64> {
-        self.creature_bodies
-            .iter()
-            .map(|b| {
-                let body = &self.bodies[*b];
-                super::world::to_na(body.linvel()) * body.mass() as f64
-            })
-            .sum()
     }
 }
 

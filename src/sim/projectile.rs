@@ -26,7 +26,7 @@ impl World {
             collider: root_collider,
             ..
         } = self.parts[PartId(0)];
-        let root_pose = self.part_world_pose(0);
+        let root_pose = self.part_world_pose(PartId(0));
         // The root part's pose in its body's frame (fused parts share a body).
         let root_in_body = self.colliders[root_collider]
             .position_wrt_parent()

@@ -27,8 +27,8 @@ impl World {
     }
 
     /// Angle of degree of freedom `dof` of joint `j` (radians), from the bodies' poses.
-    pub(super) fn joint_angle(&self, j: usize, dof: usize) -> f64 {
-        let data = match self.joints[JointId(j)].handle {
+    pub(super) fn joint_angle(&self, j: JointId, dof: usize) -> f64 {
+        let data = match self.joints[j].handle {
             JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
                 Some(joint) => &joint.data,
                 None => return 0.0,
@@ -49,8 +49,12 @@ impl World {
 
     /// Angular speed of joint `j` about its first axis (rad/s): the child's angular velocity
     /// relative to the parent's, projected on the axis.
-    pub fn joint_speed(&self, j: usize) -> f64 {
-        let data = match self.joints[JointId(j)].handle {
+    ///
+    /// # Panics
+    ///
+    /// If `j` names no joint of this world.
+    pub fn joint_speed(&self, j: JointId) -> f64 {
+        let data = match self.joints[j].handle {
             JointHandle::Impulse(h) => match self.impulse_joints.get(h) {
                 Some(joint) => joint.data,
                 None => return 0.0,
@@ -67,8 +71,8 @@ impl World {
         relative.dot(axis) as f64
     }
 
-    pub(super) fn joint_bodies(&self, j: usize) -> (RigidBodyHandle, RigidBodyHandle) {
-        self.joints[JointId(j)].ends
+    pub(super) fn joint_bodies(&self, j: JointId) -> (RigidBodyHandle, RigidBodyHandle) {
+        self.joints[j].ends
     }
 
     /// How fast the creature's parts slide along the ground now (m/s): over every contact
@@ -80,13 +84,12 @@ impl World {
     /// dragged during the step (Hornby & Pollack's D_drag).
     pub fn ground_sliding_speed(&self) -> f64 {
         let mut total = 0.0;
-        for &PartSlot { body, collider, .. } in self.parts.iter() {
-            let Some(pair) = self
-                .narrow_phase
-                .contact_pair(collider, self.ground_collider)
-            else {
-                continue;
-            };
+        let pairs = self.parts.iter().flat_map(|slot| {
+            self.ground.colliders.iter().filter_map(move |&ground| {
+                Some((slot, self.narrow_phase.contact_pair(slot.collider, ground)?))
+            })
+        });
+        for (&PartSlot { body, collider, .. }, pair) in pairs {
             let ours_first = pair.collider1 == collider;
             let pose = self.colliders[collider].position();
             let body = &self.bodies[body];
@@ -134,7 +137,8 @@ impl World {
                     if touching { 1.0 } else { -1.0 }
                 }
                 Sensor::Angle { joint, dof } => {
-                    let limits = &self.joints[JointId(joint)].limits;
+                    let joint = JointId(joint);
+                    let limits = &self.joints[joint].limits;
                     let (lo, hi) = limits.get(dof).copied().unwrap_or((-1.0, 1.0));
                     let a = self.joint_angle(joint, dof);
                     if hi > lo {
@@ -147,7 +151,7 @@ impl World {
                 Sensor::Target => match self.target {
                     // The horizontal angle from the root's heading to the target, over π.
                     Some(target) => {
-                        let (position, orientation) = self.part_pose(0);
+                        let (position, orientation) = self.part_pose(PartId(0));
                         let heading = orientation * Vector3::x();
                         let to = target - position;
                         let a = heading.z.atan2(heading.x) - to.z.atan2(to.x);

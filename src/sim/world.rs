@@ -64,8 +64,8 @@ pub struct World {
     pub(super) peak_unexplained: f64,
     /// The largest gap seen between the two ends of any joint's anchor (m).
     pub(super) peak_joint_gap: f64,
-    /// The ground's collider.
-    pub(super) ground_collider: ColliderHandle,
+    /// The ground, the obstacles and the free objects.
+    pub(super) ground: super::ground::Ground,
 }
 
 /// A world vector back in the project's nalgebra.
@@ -133,10 +133,10 @@ impl World {
         &self.environment
     }
 
-    /// The world pose of part `i`: its body's pose and the part's place in the body (always
+    /// The world pose of part `id`: its body's pose and the part's place in the body (always
     /// in step with the body, even before the colliders are synchronised).
-    pub(super) fn part_world_pose(&self, i: usize) -> Pose {
-        let PartSlot { body, collider, .. } = self.parts[PartId(i)];
+    pub(super) fn part_world_pose(&self, id: PartId) -> Pose {
+        let PartSlot { body, collider, .. } = self.parts[id];
         let relative = self.colliders[collider]
             .position_wrt_parent()
             .copied()
@@ -144,14 +144,22 @@ impl World {
         *self.bodies[body].position() * relative
     }
 
-    /// The centre of part `i`.
-    pub fn part_position(&self, i: usize) -> Vector3<f64> {
-        to_na(self.part_world_pose(i).translation)
+    /// The centre of part `id`.
+    ///
+    /// # Panics
+    ///
+    /// If `id` names no part of this world.
+    pub fn part_position(&self, id: PartId) -> Vector3<f64> {
+        to_na(self.part_world_pose(id).translation)
     }
 
-    /// The pose of part `i`: centre and orientation.
-    pub fn part_pose(&self, i: usize) -> (Vector3<f64>, UnitQuaternion<f64>) {
-        let pose = self.part_world_pose(i);
+    /// The pose of part `id`: centre and orientation.
+    ///
+    /// # Panics
+    ///
+    /// If `id` names no part of this world.
+    pub fn part_pose(&self, id: PartId) -> (Vector3<f64>, UnitQuaternion<f64>) {
+        let pose = self.part_world_pose(id);
         let q = pose.rotation;
         (
             to_na(pose.translation),
@@ -168,21 +176,21 @@ impl World {
 
     /// The lowest point of any part's box.
     pub fn lowest_point(&self) -> f64 {
-        (0..self.parts.len())
-            .map(|i| self.part_aabb(i).mins.y as f64)
+        self.part_ids()
+            .map(|id| self.part_aabb(id).mins.y as f64)
             .fold(f64::INFINITY, f64::min)
     }
 
-    pub(super) fn part_aabb(&self, i: usize) -> rapier3d::parry::bounding_volume::Aabb {
-        self.colliders[self.parts[PartId(i)].collider]
+    pub(super) fn part_aabb(&self, id: PartId) -> rapier3d::parry::bounding_volume::Aabb {
+        self.colliders[self.parts[id].collider]
             .shape()
-            .compute_aabb(&self.part_world_pose(i))
+            .compute_aabb(&self.part_world_pose(id))
     }
 
     /// The highest point of any part's box.
     pub fn highest_point(&self) -> f64 {
-        (0..self.parts.len())
-            .map(|i| self.part_aabb(i).maxs.y as f64)
+        self.part_ids()
+            .map(|id| self.part_aabb(id).maxs.y as f64)
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
@@ -214,7 +222,7 @@ impl World {
                 &mut self.multibody_joints,
                 &mut self.soft_bodies,
                 &mut self.ccd,
-                &(),
+                self.ground.hooks(),
                 &(),
             );
         }
@@ -223,14 +231,14 @@ impl World {
         self.audit_energy(power_before)?;
         self.peak_joint_gap = self.peak_joint_gap.max(self.joint_gap());
         let mut largest: f64 = 0.0;
-        for k in 0..self.parts.len() {
-            let body = &self.bodies[self.parts[PartId(k)].body];
-            let p = self.part_world_pose(k).translation;
+        for id in self.part_ids() {
+            let body = &self.bodies[self.parts[id].body];
+            let p = self.part_world_pose(id).translation;
             let v = body.linvel();
             if !p.is_finite() || !v.is_finite() {
                 return Err(Exploded::NotANumber);
             }
-            let moved = (p - self.parts[PartId(k)].previous).length() as f64;
+            let moved = (p - self.parts[id].previous).length() as f64;
             if moved > self.options.explosion_distance {
                 return Err(Exploded::Jump(moved));
             }
@@ -238,7 +246,7 @@ impl World {
                 return Err(Exploded::Speed(v.length() as f64));
             }
             largest = largest.max(moved);
-            self.parts[PartId(k)].previous = p;
+            self.parts[id].previous = p;
         }
         if let Some((position, speed)) = self.projectile_state() {
             if !position.iter().all(|v| v.is_finite()) || !speed.is_finite() {
@@ -310,11 +318,11 @@ mod tests {
         // it slows at μg = 9.81 m/s² and stops after v²/(2μg) = 4 / 19.62 ≈ 0.204 m, every
         // centimetre of it sliding: D_drag ≈ 0.204 m.
         let mut world = settled_box();
-        let from = world.part_position(0);
+        let from = world.part_position(PartId(0));
         let body = world.parts[PartId(0)].body;
         world.bodies[body].set_linvel(Vector::new(2.0, 0.0, 0.0), true);
         let dragged = drag_over(&mut world, 60);
-        let slid = horizontal(world.part_position(0) - from);
+        let slid = horizontal(world.part_position(PartId(0)) - from);
         let by_hand = 4.0 / (2.0 * GRAVITY);
         assert!((slid - by_hand).abs() < 0.1 * by_hand, "slid {slid} m");
         assert!(
@@ -334,11 +342,11 @@ mod tests {
         for _ in 0..60 {
             world.step(false).unwrap();
         }
-        let from = world.part_position(0);
+        let from = world.part_position(PartId(0));
         world.bodies[body].set_linvel(Vector::new(2.0, 0.0, 0.0), true);
         world.bodies[body].set_angvel(Vector::new(0.0, 0.0, -2.0 / 0.125), true);
         let dragged = drag_over(&mut world, 6);
-        let rolled = horizontal(world.part_position(0) - from);
+        let rolled = horizontal(world.part_position(PartId(0)) - from);
         assert!((rolled - 0.2).abs() < 0.02, "rolled {rolled} m");
         assert!(
             dragged < 0.1 * rolled,

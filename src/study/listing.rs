@@ -112,20 +112,20 @@ fn run_summary(dir: &Path) -> Result<String, crate::run::store::StoreError> {
 /// A comparison's encodings, task, replicates finished of those planned, and the best
 /// champion of its finished replicates.
 fn comparison_summary(dir: &Path) -> Result<String, String> {
-    let (manifest, shared) = compare::open(dir).map_err(|e| e.to_string())?;
-    let (finished, _) = compare::gather(dir, &manifest, &shared).map_err(|e| e.to_string())?;
+    let (manifest, arms) = compare::open(dir).map_err(|e| e.to_string())?;
+    let (finished, _) = compare::gather(dir, &manifest, &arms).map_err(|e| e.to_string())?;
     let best = finished
         .iter()
         .max_by(|a, b| a.champion.fitness.total_cmp(&b.champion.fitness))
         .map_or_else(
             || "none yet".to_string(),
-            |r| format!("{:.6} ({} rep-{})", r.champion.fitness, r.encoding, r.k),
+            |r| format!("{:.6} ({} rep-{})", r.champion.fitness, r.name, r.k),
         );
     Ok(format!(
         "{}  {}  {}/{} replicates finished  best {best}",
-        manifest.encodings.join(","),
-        shared.task.fitness_label(),
+        manifest.names().join(","),
+        compare::fitness_labels(&arms),
         finished.len(),
-        manifest.replicates * manifest.encodings.len()
+        manifest.replicates * manifest.names().len()
     ))
 }

@@ -1,8 +1,12 @@
 //! Statistics over samples of fitness values: ranks and correlations (for `bench`), and what
 //! `compare` reports of encodings: mean, standard deviation and a Student-t 95% confidence
-//! interval, the two-sided Mann–Whitney U test, Holm's correction for multiple tests and the
-//! Vargha–Delaney A12 effect size.
+//! interval, the two-sided Mann–Whitney U test, Holm's correction for multiple tests, the
+//! Vargha–Delaney A12 effect size, and the power of the test: the smallest A12 a comparison
+//! can detect ([`detectable_a12`]).
 
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
 use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 
 /// The ranks of `values` (1 for the smallest), ties given the mean of the ranks they span.
@@ -297,6 +301,168 @@ pub fn a12_magnitude(a: f64) -> &'static str {
     }
 }
 
+/// The significance level of a comparison's pairwise tests, before the correction for
+/// multiple pairs.
+pub const ALPHA: f64 = 0.05;
+
+/// The power at which a comparison states the effect it can detect.
+pub const POWER: f64 = 0.8;
+
+/// Draws of pairs of samples behind a simulated power ([`detectable_a12`]).
+pub const POWER_DRAWS: usize = 10_000;
+
+/// How a [`Detectable`] effect was computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PowerMethod {
+    /// A seeded simulation of the exact test (both samples of at most [`EXACT_MAX`] values).
+    Simulated,
+    /// Noether's (1987) normal approximation (larger samples, where the test itself uses the
+    /// normal approximation).
+    Noether,
+}
+
+impl PowerMethod {
+    /// The name the report uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            PowerMethod::Simulated => "simulated",
+            PowerMethod::Noether => "Noether",
+        }
+    }
+}
+
+/// The smallest effect a two-sided Mann–Whitney test of samples of two sizes detects with
+/// power [`POWER`] at a level ([`detectable_a12`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Detectable {
+    /// The first sample's size.
+    pub m: usize,
+    /// The second's.
+    pub n: usize,
+    /// The level each test is held to: [`ALPHA`] divided by the number of pairs (the
+    /// strictest level Holm's correction can use).
+    pub level: f64,
+    /// The smallest distance |A12 − 0.5| detected with power [`POWER`], in either direction;
+    /// `None` when no difference can be detected at all: even samples that do not overlap
+    /// give a p-value above the level.
+    pub distance: Option<f64>,
+    /// How it was computed.
+    pub method: PowerMethod,
+}
+
+impl Detectable {
+    /// The smallest detectable A12 above 0.5 (its mirror, 1 − A12, is detected as well).
+    pub fn a12(&self) -> Option<f64> {
+        self.distance.map(|d| 0.5 + d)
+    }
+
+    /// The effect in words, after "detects": "A12 ≥ 0.84 or ≤ 0.16 with probability 0.8",
+    /// or "nothing: ..." when nothing can be detected.
+    pub fn words(&self) -> String {
+        match self.distance {
+            Some(d) => format!(
+                "A12 ≥ {:.2} or ≤ {:.2} with probability {POWER}",
+                0.5 + d,
+                0.5 - d
+            ),
+            None => format!(
+                "nothing: with {} and {} replicates no result reaches p ≤ {:.4}",
+                self.m, self.n, self.level
+            ),
+        }
+    }
+}
+
+/// The smallest A12 that a two-sided Mann–Whitney test of samples of sizes `m` and `n`
+/// detects with power [`POWER`] when `pairs` pairs are tested, each at level
+/// [`ALPHA`] / `pairs` (Bonferroni's level, the strictest one Holm's step-down correction
+/// applies, so the figure holds for every pair whatever the others' p-values).
+///
+/// The effect is a shift δ of one normal sample against another of the same spread, for
+/// which A12 = Φ(δ/√2). With both samples of at most [`EXACT_MAX`] values the test is the
+/// exact one [`mann_whitney`] makes, and its power is simulated: [`POWER_DRAWS`] pairs of
+/// standard normal samples drawn from a fixed seed (the same for every δ), the power at δ the
+/// share of them whose U, with δ added to the first sample, lies in the test's rejection
+/// region; δ is found by bisection. Larger samples use Noether's formula,
+/// |A12 − 0.5| = (z(1 − level/2) + z(power)) / √(12 m n / (m + n)).
+pub fn detectable_a12(m: usize, n: usize, pairs: usize) -> Detectable {
+    let level = ALPHA / pairs.max(1) as f64;
+    let mut out = Detectable {
+        m,
+        n,
+        level,
+        distance: None,
+        method: PowerMethod::Simulated,
+    };
+    if m == 0 || n == 0 {
+        return out;
+    }
+    if m > EXACT_MAX || n > EXACT_MAX {
+        let normal = Normal::standard();
+        let z = normal.inverse_cdf(1.0 - level / 2.0) + normal.inverse_cdf(POWER);
+        let d = z / (12.0 * (m * n) as f64 / (m + n) as f64).sqrt();
+        out.method = PowerMethod::Noether;
+        out.distance = (d < 0.5).then_some(d);
+        return out;
+    }
+    // The rejection region over U = 0 ..= mn: p as `mann_whitney` computes it, at most the level.
+    let counts = u_counts(m, n);
+    let total: f64 = counts.iter().sum();
+    let mut below = 0.0;
+    let cumulative: Vec<f64> = counts
+        .iter()
+        .map(|c| {
+            below += c;
+            below
+        })
+        .collect();
+    let reject: Vec<bool> = (0..counts.len())
+        .map(|u| {
+            let lower = cumulative[u] / total;
+            let upper = (total - cumulative[u] + counts[u]) / total;
+            (2.0 * lower.min(upper)).min(1.0) <= level
+        })
+        .collect();
+    if !reject[m * n] {
+        return out;
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(0x0005_eed0_fa12);
+    let mut draw = |size: usize| {
+        let mut v: Vec<f64> = (0..size).map(|_| StandardNormal.sample(&mut rng)).collect();
+        v.sort_by(f64::total_cmp);
+        v
+    };
+    let draws: Vec<(Vec<f64>, Vec<f64>)> = (0..POWER_DRAWS).map(|_| (draw(m), draw(n))).collect();
+    let power = |delta: f64| {
+        let hits = draws
+            .iter()
+            .filter(|(x, y)| {
+                // U: the pairs with x + δ above y, counted along both sorted samples.
+                let (mut u, mut j) = (0, 0);
+                for xi in x {
+                    while j < y.len() && y[j] < xi + delta {
+                        j += 1;
+                    }
+                    u += j;
+                }
+                reject[u]
+            })
+            .count();
+        hits as f64 / draws.len() as f64
+    };
+    let (mut lo, mut hi) = (0.0, 16.0);
+    for _ in 0..40 {
+        let mid = (lo + hi) / 2.0;
+        if power(mid) >= POWER {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    out.distance = Some(Normal::standard().cdf(hi / std::f64::consts::SQRT_2) - 0.5);
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -455,5 +621,60 @@ mod tests {
         assert_eq!(a12_magnitude(0.40), "small");
         assert_eq!(a12_magnitude(0.64), "medium");
         assert_eq!(a12_magnitude(0.5), "negligible");
+    }
+    #[test]
+    fn the_detectable_a12_of_ten_replicates_a_side_is_that_of_an_independent_simulation() {
+        // One pair, n = 10 a side, level 0.05: the exact test rejects U ≤ 23 or U ≥ 77 (the
+        // published critical value). A separate simulation of that region under a normal
+        // shift (plain Python, its own enumeration of U's distribution, 200 000 draws per
+        // shift) gives power 0.8 at δ = 1.399, A12 = Φ(1.399/√2) = 0.839.
+        let d = detectable_a12(10, 10, 1);
+        assert_eq!(d.method, PowerMethod::Simulated);
+        assert_eq!(d.level, 0.05);
+        let a = d.a12().unwrap();
+        assert!((a - 0.839).abs() < 0.005, "{a}");
+        assert_eq!(
+            d.words(),
+            format!("A12 ≥ {a:.2} or ≤ {:.2} with probability 0.8", 1.0 - a)
+        );
+        // The same seed, the same figure.
+        assert_eq!(detectable_a12(10, 10, 1), d);
+        // Three pairs test each at 0.05/3: a larger effect is needed.
+        let three = detectable_a12(10, 10, 3);
+        assert!((three.level - 0.05 / 3.0).abs() < 1e-15);
+        assert!(three.a12().unwrap() > a + 0.02, "{three:?}");
+        // More replicates detect less.
+        assert!(detectable_a12(20, 20, 1).a12().unwrap() < a - 0.05);
+    }
+
+    #[test]
+    fn too_few_replicates_detect_nothing() {
+        // 3 against 3: the most extreme order has p = 2/C(6, 3) = 0.1 > 0.05.
+        let d = detectable_a12(3, 3, 1);
+        assert_eq!(d.distance, None);
+        assert_eq!(
+            d.words(),
+            "nothing: with 3 and 3 replicates no result reaches p ≤ 0.0500"
+        );
+        // 4 against 4: p = 2/70 = 0.029, detectable at 0.05 but not at 0.05/3.
+        assert!(detectable_a12(4, 4, 1).distance.is_some());
+        assert_eq!(detectable_a12(4, 4, 3).distance, None);
+        assert_eq!(detectable_a12(0, 4, 1).distance, None);
+    }
+
+    #[test]
+    fn large_samples_use_noethers_formula() {
+        // 50 a side, level 0.05: (z(0.975) + z(0.8)) / √(12 · 2500 / 100) =
+        // (1.959964 + 0.841621) / √300 = 2.801585 / 17.320508 = 0.161750.
+        let d = detectable_a12(50, 50, 1);
+        assert_eq!(d.method, PowerMethod::Noether);
+        assert!((d.distance.unwrap() - 0.161750).abs() < 1e-6, "{d:?}");
+        // Two pairs: z(1 − 0.0125) = 2.241403; (2.241403 + 0.841621)/17.320508 = 0.177998.
+        assert!((detectable_a12(50, 50, 2).distance.unwrap() - 0.177998).abs() < 1e-6);
+        // Noether's formula is close to the simulation where both apply: at 30 a side the
+        // simulated exact test needs a little more (its real level is below 0.05).
+        let simulated = detectable_a12(30, 30, 1).distance.unwrap();
+        let noether = 2.801585 / (12.0f64 * 900.0 / 60.0).sqrt();
+        assert!((simulated - noether).abs() < 0.02, "{simulated} {noether}");
     }
 }

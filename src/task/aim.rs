@@ -33,9 +33,12 @@ impl Task for AimTask {
     fn seconds(spec: &mut TaskSpec) -> &mut f64 {
         &mut spec.catapult.max_seconds
     }
-    fn check_options(_spec: &TaskSpec) -> Result<(), SettingError> {
-        // The catapult's table, which the catapult task checks.
-        Ok(())
+    /// The target, its one setting of its own (the catapult task checks the rest of the
+    /// table they share).
+    fn check_options(spec: &TaskSpec) -> Result<(), SettingError> {
+        spec.catapult
+            .check_target()
+            .map_err(|e| e.within("catapult"))
     }
     fn check(spec: &TaskSpec) -> Result<(), SettingError> {
         if spec.catapult.target.is_none() {
@@ -54,6 +57,31 @@ impl Task for AimTask {
         spec: &TaskSpec,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, &spec.sim, &spec.catapult, watch)
+        catapult_watched(creature, (&spec.sim, &spec.world), &spec.catapult, watch)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::task::{CatapultTask, TaskKind};
+
+    #[test]
+    fn the_aim_task_checks_its_target_and_the_catapult_leaves_it_alone() {
+        let mut spec = TaskSpec::new(TaskKind::Aim);
+        assert_eq!(AimTask::check_options(&spec), Ok(()));
+        spec.catapult.target = Some(nalgebra::Vector3::new(f64::NAN, 0.0, 0.0));
+        assert_eq!(
+            AimTask::check_options(&spec).unwrap_err().to_string(),
+            "[catapult] target must be within 100000 m of the projectile, not [NaN, 0, 0]"
+        );
+        spec.catapult.target = Some(nalgebra::Vector3::new(0.0, 3e5, -4e5));
+        assert_eq!(
+            AimTask::check_options(&spec).unwrap_err().to_string(),
+            "[catapult] target must be within 100000 m of the projectile, not [0, 300000, -400000]"
+        );
+        assert_eq!(CatapultTask::check_options(&spec), Ok(()));
+        spec.catapult.target = Some(nalgebra::Vector3::new(6e4, 0.0, 8e4));
+        assert_eq!(AimTask::check_options(&spec), Ok(()));
     }
 }

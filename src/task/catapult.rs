@@ -11,7 +11,7 @@ use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SimOptions;
+use crate::sim::{SimOptions, WorldSpec};
 
 /// Settings of the catapult and aim tasks (Chaumont et al. section 4).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -105,7 +105,7 @@ pub fn catapult(
     record: bool,
 ) -> Evaluation {
     unwatched(record, |watch| {
-        catapult_watched(creature, sim, options, watch)
+        catapult_watched(creature, (sim, &WorldSpec::default()), options, watch)
     })
 }
 
@@ -113,7 +113,7 @@ pub fn catapult(
 /// says.
 pub(super) fn catapult_watched(
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, world): (&SimOptions, &WorldSpec),
     options: &CatapultOptions,
     watch: Watch<'_>,
 ) -> Result<Evaluation, Interrupted> {
@@ -134,7 +134,7 @@ pub(super) fn catapult_watched(
     // The target in the world, once the projectile is placed: kept in the terms of a failed
     // evaluation too, so that its recording can show the target.
     let placed_target = std::cell::Cell::new(None);
-    let mut evaluation = evaluate(task, creature, sim, options, watch, |run| {
+    let mut evaluation = evaluate(task, creature, (sim, world), options, watch, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);
@@ -269,6 +269,11 @@ impl super::Task for CatapultTask {
         spec: &super::TaskSpec,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, &spec.sim, &Self::options(spec), watch)
+        catapult_watched(
+            creature,
+            (&spec.sim, &spec.world),
+            &Self::options(spec),
+            watch,
+        )
     }
 }

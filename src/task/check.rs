@@ -79,7 +79,7 @@ impl CatapultOptions {
     /// Checks the catapult's settings: the projectile's size (every edge) and density finite
     /// and positive, `max_seconds` in (0, [`MAX_SECONDS`]], the release delay and the rest
     /// duration in [0, [`MAX_SECONDS`]], the rest speed and the height limit finite and
-    /// positive, and a target, when there is one, finite and within [`MAX_TARGET_DISTANCE`].
+    /// positive. The target, which only the aim task reads, is [`CatapultOptions::check_target`]'s.
     pub fn check(&self) -> Result<(), SettingError> {
         for edge in self.projectile_size.iter() {
             check_real("projectile_size", *edge, 0.0, true)?;
@@ -89,7 +89,12 @@ impl CatapultOptions {
         check_phase("release_delay", self.release_delay)?;
         check_real("rest_speed", self.rest_speed, 0.0, true)?;
         check_phase("rest_duration", self.rest_duration)?;
-        check_real("max_height", self.max_height, 0.0, true)?;
+        check_real("max_height", self.max_height, 0.0, true)
+    }
+
+    /// Checks the aim task's target, when there is one: finite and within
+    /// [`MAX_TARGET_DISTANCE`] of the projectile.
+    pub fn check_target(&self) -> Result<(), SettingError> {
         if let Some(target) = self.target
             && !(target.iter().all(|v| v.is_finite()) && target.norm() <= MAX_TARGET_DISTANCE)
         {
@@ -115,13 +120,15 @@ impl TaskSpec {
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
     fn check_tables(&self) -> Result<(), SettingError> {
         self.sim.check().map_err(|e| e.within("sim"))?;
-        if !self.world.is_flat() {
+        if !self.world.medium.is_air() {
             return Err(SettingError::out_of_range(
-                "world",
-                "empty: only flat ground in air is simulated so far",
-                "a world with terrain, objects or water",
-            ));
+                "medium",
+                "air: water is not simulated yet",
+                "water",
+            )
+            .within("world"));
         }
+        self.world.check().map_err(|e| e.within("world"))?;
         for &kind in TaskKind::ALL {
             crate::with_task!(kind, T => <T as super::Task>::check_options(self))?;
         }

@@ -9,7 +9,7 @@ use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unw
 use super::recording::Phase;
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::SimOptions;
+use crate::sim::{SimOptions, WorldSpec};
 
 /// Settings of the jump task.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -59,25 +59,29 @@ pub fn jump(
     options: &JumpOptions,
     record: bool,
 ) -> Evaluation {
-    unwatched(record, |watch| jump_watched(creature, sim, options, watch))
+    unwatched(record, |watch| {
+        jump_watched(creature, (sim, &WorldSpec::default()), options, watch)
+    })
 }
 
 /// [`jump`], watched: recorded, told its progress and stopped by a token as `watch` says.
 pub(super) fn jump_watched(
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, world): (&SimOptions, &WorldSpec),
     options: &JumpOptions,
     watch: Watch<'_>,
 ) -> Result<Evaluation, Interrupted> {
-    evaluate("jump", creature, sim, options, watch, |run| {
+    evaluate("jump", creature, (sim, world), options, watch, |run| {
         run.settle(&options.rest, 0.0, sim.control_step)?;
         run.check_height(options.max_height)?;
-        let resting = run.world.lowest_point().max(0.0);
+        // Heights from the ground the creature was dropped on (0 on level ground).
+        let ground = run.world.start_ground();
+        let resting = (run.world.lowest_point() - ground).max(0.0);
         let mut best: f64 = 0.0;
         run.phase = Phase::Measuring;
         for _ in 0..steps_in(options.seconds, sim.control_step) {
             run.step(true)?;
-            best = best.max(run.world.lowest_point());
+            best = best.max(run.world.lowest_point() - ground);
         }
         let terms = BTreeMap::from([
             ("height".to_string(), best),
@@ -120,6 +124,6 @@ impl super::Task for JumpTask {
         spec: &super::TaskSpec,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        jump_watched(creature, &spec.sim, &spec.jump, watch)
+        jump_watched(creature, (&spec.sim, &spec.world), &spec.jump, watch)
     }
 }

@@ -12,7 +12,7 @@ use super::recording::{Phase, Sample, recording_interval};
 use super::{Evaluation, Status};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
-use crate::sim::{SimOptions, World};
+use crate::sim::{SimOptions, World, WorldSpec};
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
 /// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
@@ -157,6 +157,10 @@ impl Run<'_> {
                 Interrupted.to_string(),
             ));
         }
+        if matches!(self.phase, Phase::Measuring | Phase::Throwing) {
+            // The world's free objects move from the measured part of the task on.
+            self.world.release_objects();
+        }
         let moved = self.world.step(controller).map_err(|e| {
             Evaluation::failed(
                 self.task,
@@ -169,8 +173,10 @@ impl Run<'_> {
             let sample = Sample {
                 t: self.world.time(),
                 phase: Some(self.phase),
-                parts: (0..self.world.part_count())
-                    .map(|i| self.world.part_pose(i))
+                parts: self
+                    .world
+                    .part_ids()
+                    .map(|id| self.world.part_pose(id))
                     .collect(),
                 projectile: self.world.projectile_state().map(|(p, _)| p),
                 projectile_size: self.projectile_size,
@@ -253,14 +259,17 @@ impl Run<'_> {
             if calm == 0 {
                 // A new calm window starts here.
                 window.clear();
-                window.extend((0..self.world.part_count()).map(|i| self.world.part_position(i)));
+                window.extend(self.world.part_ids().map(|id| self.world.part_position(id)));
             }
             let moved = self.step(false)?;
             taken += 1;
             // Calm: every part moves less than Δx per 1/60 s (Chaumont), and none has drifted
             // more than `drift` since the window began (a slowly toppling tower is not at rest).
-            let drifted = (0..window.len())
-                .any(|i| (self.world.part_position(i) - window[i]).norm() >= rest.drift);
+            let drifted = self
+                .world
+                .part_ids()
+                .zip(&window)
+                .any(|(id, at)| (self.world.part_position(id) - at).norm() >= rest.drift);
             calm = if moved < threshold && !drifted {
                 calm + 1
             } else {
@@ -343,11 +352,11 @@ pub(super) fn uninterrupted(evaluation: Result<Evaluation, Interrupted>) -> Eval
 fn start<'p>(
     task: &'static str,
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, spec): (&SimOptions, &WorldSpec),
     watch: Watch<'p>,
     max_steps: usize,
 ) -> Result<Run<'p>, Evaluation> {
-    let world = World::new(creature, sim)
+    let world = World::in_world(creature, sim, spec)
         .map_err(|e| Evaluation::failed(task, Status::Invalid, e.to_string()))?;
     Ok(Run {
         world,
@@ -369,14 +378,15 @@ fn start<'p>(
     })
 }
 
-/// Screens the creature, builds its world and runs `protocol` on it, within the `bounds` of
+/// Screens the creature, builds its world (`sim`'s settings, `world`'s ground and objects)
+/// and runs `protocol` on it, within the `bounds` of
 /// the task's settings; `protocol` returns the fitness and its terms (or a failed
 /// evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
 /// token stopped it.
 pub(super) fn evaluate(
     task: &'static str,
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, world): (&SimOptions, &WorldSpec),
     bounds: &impl Bounds,
     watch: Watch<'_>,
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
@@ -395,7 +405,7 @@ pub(super) fn evaluate(
     let evaluation = evaluate_run(
         task,
         creature,
-        sim,
+        (sim, world),
         (watch, max_steps),
         bounds.limits(),
         protocol,
@@ -407,7 +417,7 @@ pub(super) fn evaluate(
 fn evaluate_run(
     task: &'static str,
     creature: &Creature,
-    sim: &SimOptions,
+    sim: (&SimOptions, &WorldSpec),
     (watch, max_steps): (Watch<'_>, usize),
     (max_height, seconds): (f64, f64),
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,

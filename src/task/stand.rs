@@ -89,18 +89,25 @@ impl Task for StandTask {
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
         let (sim, options) = (&spec.sim, &spec.stand);
-        evaluate(Self::NAME, creature, sim, options, watch, |run| {
-            run.settle(&options.rest, 0.0, sim.control_step)?;
-            run.check_height(options.max_height)?;
-            run.phase = Phase::Measuring;
-            let steps = steps_in(options.seconds, sim.control_step);
-            let mut sum = 0.0;
-            for _ in 0..steps {
-                run.step(true)?;
-                sum += run.world.highest_point().max(0.0);
-            }
-            let height = sum / steps as f64;
-            Ok((height, BTreeMap::from([("height".to_string(), height)])))
-        })
+        evaluate(
+            Self::NAME,
+            creature,
+            (sim, &spec.world),
+            options,
+            watch,
+            |run| {
+                run.settle(&options.rest, 0.0, sim.control_step)?;
+                run.check_height(options.max_height)?;
+                run.phase = Phase::Measuring;
+                let steps = steps_in(options.seconds, sim.control_step);
+                let mut sum = 0.0;
+                for _ in 0..steps {
+                    run.step(true)?;
+                    sum += run.world.highest_point().max(0.0);
+                }
+                let height = sum / steps as f64;
+                Ok((height, BTreeMap::from([("height".to_string(), height)])))
+            },
+        )
     }
 }

@@ -11,8 +11,8 @@ use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unw
 use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE};
 use crate::cancel::Interrupted;
-use crate::creature::Creature;
-use crate::sim::{DragMeter, SimOptions, World};
+use crate::creature::{Creature, PartId};
+use crate::sim::{DragMeter, SimOptions, World, WorldSpec};
 
 /// The walker's fitness formula.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -204,18 +204,18 @@ pub fn walker(
     record: bool,
 ) -> Evaluation {
     unwatched(record, |watch| {
-        walker_watched(creature, sim, options, watch)
+        walker_watched(creature, (sim, &WorldSpec::default()), options, watch)
     })
 }
 
 /// [`walker`], watched: recorded, told its progress and stopped by a token as `watch` says.
 pub(super) fn walker_watched(
     creature: &Creature,
-    sim: &SimOptions,
+    (sim, world): (&SimOptions, &WorldSpec),
     options: &WalkerOptions,
     watch: Watch<'_>,
 ) -> Result<Evaluation, Interrupted> {
-    evaluate("walker", creature, sim, options, watch, |run| {
+    evaluate("walker", creature, (sim, world), options, watch, |run| {
         run.settle(&options.rest, 0.0, sim.control_step)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
@@ -224,7 +224,7 @@ pub(super) fn walker_watched(
         run.settle(&options.rest, options.second_settle, sim.control_step)?;
         let measure_from = run.world.time();
         run.phase = Phase::Measuring;
-        let from = run.world.part_position(0);
+        let from = run.world.part_position(PartId(0));
         // Iterative move: the centre of mass's horizontal gain over every whole second.
         let mut gains = Vec::new();
         let mut last_second = centre_of_mass(&run.world, creature);
@@ -248,7 +248,7 @@ pub(super) fn walker_watched(
             }
         }
         let iterative = iterative_move(&gains);
-        let to = run.world.part_position(0);
+        let to = run.world.part_position(PartId(0));
         let d = to - from;
         let distance = (d.x * d.x + d.z * d.z).sqrt();
         let (c_l, c_s, c_v) = size_coefficients(creature);
@@ -294,8 +294,9 @@ pub(super) fn walker_watched(
 /// The mass-weighted centre of the creature's parts in `world`.
 fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64> {
     let total = creature.mass().max(f64::MIN_POSITIVE);
-    (0..world.part_count())
-        .map(|i| world.part_position(i) * creature.parts[i].mass())
+    creature
+        .parts_by_id()
+        .map(|(id, part)| world.part_position(id) * part.mass())
         .sum::<Vector3<f64>>()
         / total
 }
@@ -342,6 +343,6 @@ impl super::Task for WalkerTask {
         spec: &super::TaskSpec,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        walker_watched(creature, &spec.sim, &spec.walker, watch)
+        walker_watched(creature, (&spec.sim, &spec.world), &spec.walker, watch)
     }
 }

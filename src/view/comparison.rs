@@ -20,13 +20,14 @@ pub fn is_comparison(dir: &Path) -> bool {
 }
 
 /// Reads the comparison in `dir` into the page's data: `{"kind": "comparison", "file",
-/// "encodings", "evaluations" (each replicate's budget), "replicates" (per encoding),
+/// "encodings", "conditions" (one of them empty), "evaluations" (each replicate's budget),
+/// "replicates" (per encoding or condition),
 /// "fitness" (the task and what its fitness measures), "report" (`report.md`'s text, or null
 /// before the first report), "plots" (those of [`COMPARISON_PLOTS`] written), "runs": [{"encoding",
-/// "k", "dir", "generations" (stored), "best", "best_fine"} (null figures for a replicate not
+/// "name" (the encoding's or condition's), "k", "dir", "generations" (stored), "best", "best_fine"} (null figures for a replicate not
 /// started)]}`.
 pub fn comparison_data(dir: &Path) -> Result<Value, ViewError> {
-    let (manifest, shared) = compare::open(dir).map_err(|e| ViewError::BadFile(e.to_string()))?;
+    let (manifest, arms) = compare::open(dir).map_err(|e| ViewError::BadFile(e.to_string()))?;
     let report = match std::fs::read_to_string(dir.join("report.md")) {
         Ok(text) => Value::String(text),
         Err(_) => Value::Null,
@@ -37,10 +38,11 @@ pub fn comparison_data(dir: &Path) -> Result<Value, ViewError> {
         .collect();
     let mut runs = Vec::new();
     for k in 1..=manifest.replicates {
-        for encoding in &manifest.encodings {
-            let run = replicate_dir(dir, encoding, k);
+        for arm in &arms {
+            let run = replicate_dir(dir, &arm.name, k);
             let mut row = json!({
-                "encoding": encoding,
+                "encoding": arm.encoding,
+                "name": arm.name,
                 "k": k,
                 "dir": run.display().to_string(),
                 "generations": 0,
@@ -65,9 +67,10 @@ pub fn comparison_data(dir: &Path) -> Result<Value, ViewError> {
         "kind": "comparison",
         "file": dir.display().to_string(),
         "encodings": manifest.encodings,
+        "conditions": manifest.conditions,
         "evaluations": manifest.evaluations,
         "replicates": manifest.replicates,
-        "fitness": shared.task.fitness_label(),
+        "fitness": compare::fitness_labels(&arms),
         "report": report,
         "plots": plots,
         "runs": runs,

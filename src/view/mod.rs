@@ -634,18 +634,20 @@ pub fn creature_data(title: &str, creature: &crate::creature::Creature) -> Value
 mod tests {
     use super::*;
 
-    /// A fresh private directory for test `name`, removed when dropped.
-    fn scratch(name: &str) -> tempfile::TempDir {
-        tempfile::Builder::new()
+    /// A fresh private directory for test `name`, removed when the first is dropped, and its
+    /// path.
+    fn scratch(name: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+        let dir = tempfile::Builder::new()
             .prefix(&format!("ontogeny-view-unit-{name}-"))
             .tempdir()
-            .unwrap()
+            .unwrap();
+        let path = dir.path().to_path_buf();
+        (dir, path)
     }
 
     #[test]
     fn paths_are_classified_by_what_they_hold() {
-        let scratch = scratch("classify");
-        let dir = scratch.path().to_path_buf();
+        let (_scratch, dir) = scratch("classify");
         let lsys = dir.join("a.lsys");
         std::fs::write(&lsys, "axiom: forward(1)\n").unwrap();
         assert_eq!(Target::classify(&lsys).unwrap().kind, Kind::Lsys);
@@ -672,8 +674,7 @@ mod tests {
 
     #[test]
     fn a_runs_version_changes_with_its_write_ahead_log() {
-        let scratch = scratch("version");
-        let dir = scratch.path().to_path_buf();
+        let (_scratch, dir) = scratch("version");
         std::fs::write(dir.join("config.toml"), "").unwrap();
         std::fs::write(dir.join("run.sqlite"), "db").unwrap();
         let run = Target::classify(&dir).unwrap();
@@ -688,8 +689,7 @@ mod tests {
 
     #[test]
     fn an_lsys_page_has_one_frame_per_step_with_its_string() {
-        let scratch = scratch("lsys");
-        let dir = scratch.path().to_path_buf();
+        let (_scratch, dir) = scratch("lsys");
         let file = dir.join("two.lsys");
         std::fs::write(
             &file,
@@ -717,8 +717,7 @@ mod tests {
 
     #[test]
     fn an_lsys_error_carries_its_line_and_column() {
-        let scratch = scratch("error");
-        let dir = scratch.path().to_path_buf();
+        let (_scratch, dir) = scratch("error");
         let file = dir.join("bad.lsys");
         std::fs::write(&file, "axiom: A\nA --> forward(1\n").unwrap();
         let data = lsys_data(&file, &DeriveOptions::default(), None, 200);
@@ -732,8 +731,7 @@ mod tests {
 
     #[test]
     fn bad_directories_say_which_file_and_line() {
-        let scratch = scratch("bad-dirs");
-        let dir = scratch.path().to_path_buf();
+        let (_scratch, dir) = scratch("bad-dirs");
         std::fs::write(dir.join("frames.jsonl"), "{\"step\": 0}\n").unwrap();
         let err = growth_data(&dir).unwrap_err().to_string();
         assert!(
@@ -766,29 +764,24 @@ mod tests {
 
     #[test]
     fn a_recording_without_frames_is_shown_with_the_reason() {
-        let scratch = scratch("no-frames");
-        let dir = scratch.path().to_path_buf();
+        let (_scratch, dir) = scratch("no-frames");
         let creature = crate::develop::creature_from_commands("forward(1) forward(1)").unwrap();
-        std::fs::write(
-            dir.join("recording.json"),
+        // The viewer's data for `recording.json` holding `recording`.
+        let shown = |recording: serde_json::Value| {
+            std::fs::write(dir.join("recording.json"), recording.to_string()).unwrap();
+            recording_data(&dir).unwrap()
+        };
+        let data = shown(
             json!({"creature": creature, "task": "walker", "status": "self-intersecting",
-                   "message": "parts 0 and 1 interpenetrate", "frames": []})
-            .to_string(),
-        )
-        .unwrap();
-        let data = recording_data(&dir).unwrap();
+                   "message": "parts 0 and 1 interpenetrate", "frames": []}),
+        );
         assert_eq!(data["frames"], json!([]));
         assert_eq!(
             data["no_frames"],
             "no frames recorded: self-intersecting: parts 0 and 1 interpenetrate"
         );
         // A file written before the status was recorded, without frames at all.
-        std::fs::write(
-            dir.join("recording.json"),
-            json!({"creature": creature}).to_string(),
-        )
-        .unwrap();
-        let data = recording_data(&dir).unwrap();
+        let data = shown(json!({"creature": creature}));
         assert_eq!(data["frames"], json!([]));
         assert_eq!(
             data["no_frames"],
@@ -796,13 +789,9 @@ mod tests {
         );
         // With frames there is no reason.
         let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
-        std::fs::write(
-            dir.join("recording.json"),
-            json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose, pose]}]})
-                .to_string(),
-        )
-        .unwrap();
-        assert!(recording_data(&dir).unwrap().get("no_frames").is_none());
+        let data =
+            shown(json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose, pose]}]}));
+        assert!(data.get("no_frames").is_none());
     }
 
     #[test]

@@ -3,13 +3,13 @@
 
 use std::sync::Arc;
 
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use ontogeny::creature::{
     Brain, Joint, JointId, JointKind, Link, Neuron, NeuronFunction, Part, PartId, Role, Sensor,
 };
 use ontogeny::develop::creature_from_commands;
 use ontogeny::lsystem::{DeriveOptions, Development, LSystem, ModuleString};
-use ontogeny::sim::{BrainRuntime, SimOptions, World};
+use ontogeny::sim::{Attach, BrainRuntime, SimOptions, World};
 
 /// A 1 m × 0.25 m × 0.25 m box (62.5 kg at 1000 kg/m³) settled on the ground.
 fn settled_root() -> World {
@@ -31,14 +31,14 @@ fn assert_kg(mass: f64, expected: f64) {
 
 /// A point `local` in part `id`'s axes, in the world.
 fn on_part(world: &World, id: PartId, local: Vector3<f64>) -> Vector3<f64> {
-    let (centre, orientation) = world.part_pose(id.0);
+    let (centre, orientation) = world.part_pose(id);
     centre + orientation * local
 }
 
-/// Adds to `world`'s root a 0.5 m tail (31.25 kg) beyond its +x end, at rest, joined at the
-/// root's end face by a hinge about the root's z axis.
-fn add_tail(world: &mut World) -> (PartId, JointId) {
-    let (_, orientation): (_, UnitQuaternion<f64>) = world.part_pose(0);
+/// Adds to `world`'s root a 0.5 m tail (31.25 kg) beyond its +x end, held as `attach` says,
+/// joined at the root's end face by a hinge about the root's z axis.
+fn add_tail(world: &mut World, attach: Attach) -> (PartId, JointId) {
+    let (_, orientation): (_, UnitQuaternion<f64>) = world.part_pose(PartId(0));
     let tail = Part {
         size: Vector3::new(0.5, 0.25, 0.25),
         position: on_part(world, PartId(0), Vector3::new(0.75, 0.0, 0.0)),
@@ -46,7 +46,7 @@ fn add_tail(world: &mut World) -> (PartId, JointId) {
         density: 1000.0,
         growing: false,
     };
-    let part = world.add_part(&tail, None);
+    let part = world.add_part(&tail, attach);
     let hinge = Joint {
         parent: 0,
         child: part.0,
@@ -67,7 +67,7 @@ fn a_part_and_a_joint_added_mid_simulation_add_their_mass_keep_the_momentum_and_
     let momentum = world.creature_momentum();
     assert_kg(world.creature_mass(), 62.5);
 
-    let (part, joint) = add_tail(&mut world);
+    let (part, joint) = add_tail(&mut world, Attach::Free);
     // The next ids, after the builder's.
     assert_eq!((part, joint), (PartId(1), JointId(0)));
     assert_eq!(world.part_count(), 2);
@@ -85,7 +85,7 @@ fn a_part_and_a_joint_added_mid_simulation_add_their_mass_keep_the_momentum_and_
     let (parent_side, child_side) = world.joint_anchors(joint).unwrap();
     let gap = (parent_side - child_side).norm();
     assert!(gap < 1e-3, "the joint's anchors are {gap} m apart");
-    let apart = (world.part_position(1) - world.part_position(0)).norm();
+    let apart = (world.part_position(part) - world.part_position(PartId(0))).norm();
     assert!(
         (apart - 0.75).abs() < 0.01,
         "the centres are {apart} m apart"
@@ -137,7 +137,7 @@ fn a_joint_naming_a_part_the_world_lacks_is_refused() {
 #[test]
 fn a_resized_part_has_the_mass_inertia_and_joint_anchors_of_its_new_size() {
     let mut world = settled_root();
-    let (tail, joint) = add_tail(&mut world);
+    let (tail, joint) = add_tail(&mut world, Attach::Free);
     let (parent_side, _) = world.joint_anchors(joint).unwrap();
 
     // The tail doubles in length, about its centre: 0.5 m → 1 m, 31.25 kg → 62.5 kg.
@@ -168,6 +168,189 @@ fn a_resized_part_has_the_mass_inertia_and_joint_anchors_of_its_new_size() {
     assert!(
         off < 1e-5,
         "the tail's anchor is {off} m from its near face"
+    );
+}
+
+/// The 1 m root of `settled_root`, 5 m up in the air, pushed to move at 1.0, 0.5, −0.25 m/s
+/// while it turns at 0.3, −0.2, 2.0 rad/s, and flown for two control steps.
+fn flying_root() -> World {
+    let sim = SimOptions {
+        drop_height: 5.0,
+        ..SimOptions::default()
+    };
+    let mut world = World::new(&creature_from_commands("forward(1)").unwrap(), &sim).unwrap();
+    world.set_part_velocity(
+        PartId(0),
+        Vector3::new(1.0, 0.5, -0.25),
+        Vector3::new(0.3, -0.2, 2.0),
+    );
+    for _ in 0..2 {
+        world.step(false).unwrap();
+    }
+    world
+}
+
+/// `actual` is `expected` to within `tolerance` (each coordinate).
+fn assert_near(actual: Vector3<f64>, expected: Vector3<f64>, tolerance: f64, what: &str) {
+    assert!(
+        (actual - expected).amax() < tolerance,
+        "{what}: {actual:?}, not {expected:?}"
+    );
+}
+
+/// A box's inertia in the world (kg·m²): m/12 · (b² + c², …) in its own axes, turned by
+/// `orientation`.
+fn box_inertia(mass: f64, size: Vector3<f64>, orientation: UnitQuaternion<f64>) -> Matrix3<f64> {
+    let s = size.component_mul(&size);
+    let own = Matrix3::from_diagonal(&Vector3::new(s.y + s.z, s.x + s.z, s.x + s.y)) * mass / 12.0;
+    let r = orientation.to_rotation_matrix();
+    r.matrix() * own * r.matrix().transpose()
+}
+
+#[test]
+fn a_part_added_to_a_moving_creature_arrives_with_its_parent_s_velocity_and_momentum() {
+    let mut world = flying_root();
+    let (v, w) = world.part_velocity(PartId(0));
+    let (root, orientation) = world.part_pose(PartId(0));
+    let momentum = world.creature_momentum();
+    let angular = world.creature_angular_momentum();
+
+    let (tail, joint) = add_tail(&mut world, Attach::MovingWith(PartId(0)));
+    // Where the tail was asked to be, with no drop lift: 0.75 m along the root's x axis.
+    let centre = root + orientation * Vector3::new(0.75, 0.0, 0.0);
+    assert_near(world.part_position(tail), centre, 1e-5, "the tail's centre");
+    // It moves as the root's material point there would: v + ω × r, turning at ω.
+    let arrives = v + w.cross(&(centre - root));
+    let (tail_v, tail_w) = world.part_velocity(tail);
+    assert_near(tail_v, arrives, 1e-5, "the tail's velocity");
+    assert_near(tail_w, w, 1e-6, "the tail's angular velocity");
+    // The creature's momentum rises by the tail's: 31.25 kg × that velocity; its angular
+    // momentum about the origin by m c × v + I ω.
+    assert_near(
+        world.creature_momentum() - momentum,
+        arrives * 31.25,
+        1e-3,
+        "the momentum gained",
+    );
+    let spin = box_inertia(31.25, Vector3::new(0.5, 0.25, 0.25), orientation) * w;
+    assert_near(
+        world.creature_angular_momentum() - angular,
+        centre.cross(&arrives) * 31.25 + spin,
+        1e-2,
+        "the angular momentum gained",
+    );
+    // Moving together, the hinge holds from the first step.
+    world.step(false).unwrap();
+    let (parent_side, child_side) = world.joint_anchors(joint).unwrap();
+    let gap = (parent_side - child_side).norm();
+    assert!(gap < 1e-4, "the joint's anchors are {gap} m apart");
+}
+
+#[test]
+fn a_part_fused_to_a_turning_body_keeps_the_body_s_velocity_field() {
+    let mut world = flying_root();
+    let (v, w) = world.part_velocity(PartId(0));
+    let (root, orientation) = world.part_pose(PartId(0));
+    let momentum = world.creature_momentum();
+
+    let (_, tail_orientation): (_, UnitQuaternion<f64>) = world.part_pose(PartId(0));
+    let fused = world.add_part(
+        &Part {
+            size: Vector3::new(0.5, 0.25, 0.25),
+            position: root + orientation * Vector3::new(0.75, 0.0, 0.0),
+            orientation: tail_orientation,
+            density: 1000.0,
+            growing: false,
+        },
+        Attach::FusedTo(PartId(0)),
+    );
+    // The root's centre moves and turns as before, though the body's centre of mass moved.
+    let (root_v, root_w) = world.part_velocity(PartId(0));
+    assert_near(root_v, v, 1e-5, "the root's velocity");
+    assert_near(root_w, w, 1e-6, "the root's angular velocity");
+    let centre = root + orientation * Vector3::new(0.75, 0.0, 0.0);
+    let arrives = v + w.cross(&(centre - root));
+    assert_near(
+        world.part_velocity(fused).0,
+        arrives,
+        1e-5,
+        "the new part's velocity",
+    );
+    assert_near(
+        world.creature_momentum() - momentum,
+        arrives * 31.25,
+        1e-3,
+        "the momentum gained",
+    );
+    assert_kg(world.part_body_mass(fused).0, 62.5 + 31.25);
+}
+
+#[test]
+fn a_part_resized_under_a_child_carries_the_child_and_keeps_the_joint_closed() {
+    let mut world = flying_root();
+    let (tail, joint) = add_tail(&mut world, Attach::MovingWith(PartId(0)));
+    let (v, w) = world.part_velocity(PartId(0));
+    let (root, orientation) = world.part_pose(PartId(0));
+    let (tail_at, _) = world.part_pose(tail);
+    let (tail_v, _) = world.part_velocity(tail);
+
+    // The root grows from 1 m to 1.5 m about its centre: its +x face, and the hinge on it,
+    // move 0.25 m along its x axis, and the tail with them.
+    world.resize_part(PartId(0), Vector3::new(1.5, 0.25, 0.25));
+    let d = orientation * Vector3::new(0.25, 0.0, 0.0);
+    let (parent_side, child_side) = world.joint_anchors(joint).unwrap();
+    assert_near(
+        parent_side,
+        root + orientation * Vector3::new(0.75, 0.0, 0.0),
+        1e-5,
+        "the root's anchor",
+    );
+    assert_near(child_side, parent_side, 1e-5, "the tail's anchor");
+    assert_near(
+        world.part_position(tail),
+        tail_at + d,
+        1e-5,
+        "the tail's centre",
+    );
+    // The root keeps its velocity field; the tail moves as the root's field where it now is.
+    let (root_v, root_w) = world.part_velocity(PartId(0));
+    assert_near(root_v, v, 1e-5, "the root's velocity");
+    assert_near(root_w, w, 1e-6, "the root's angular velocity");
+    let carried = tail_v + w.cross(&d);
+    assert_near(
+        world.part_velocity(tail).0,
+        carried,
+        1e-5,
+        "the tail's velocity",
+    );
+    // 93.75 kg at v, the tail 31.25 kg at its carried velocity.
+    assert_near(
+        world.creature_momentum(),
+        v * 93.75 + carried * 31.25,
+        1e-3,
+        "the momentum",
+    );
+    let (mass, inertia) = world.part_body_mass(PartId(0));
+    assert_kg(mass, 93.75);
+    let by_hand = [
+        93.75 / 12.0 * (0.25f64.powi(2) * 2.0),
+        93.75 / 12.0 * (1.5f64.powi(2) + 0.25f64.powi(2)),
+        93.75 / 12.0 * (1.5f64.powi(2) + 0.25f64.powi(2)),
+    ];
+    for (axis, expected) in by_hand.iter().enumerate() {
+        assert!(
+            (inertia[axis] - expected).abs() < 1e-5 * expected,
+            "inertia about axis {axis}: {} kg·m², not {expected}",
+            inertia[axis]
+        );
+    }
+    assert_kg(world.creature_mass(), 93.75 + 31.25);
+    world.step(false).unwrap();
+    let (parent_side, child_side) = world.joint_anchors(joint).unwrap();
+    let gap = (parent_side - child_side).norm();
+    assert!(
+        gap < 1e-3,
+        "the joint's anchors are {gap} m apart after a step"
     );
 }
 

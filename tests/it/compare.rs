@@ -1,6 +1,7 @@
 //! `ontogeny compare` end to end: equal budgets, `--plan` commands merged equal a direct
 //! comparison, a comparison killed and resumed equals an uninterrupted one, and bad input
-//! exits 2 without losing anything computed.
+//! exits 2 without losing anything computed; conditions (`--condition`) run, resume, state
+//! their power, and have their budgets and names checked.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -607,5 +608,322 @@ fn a_comparison_without_cache_reports_the_same_numbers_with_nothing_reused() {
     }
     let md = std::fs::read_to_string(off.join("report.md")).unwrap();
     assert!(md.contains("| simulated | reused |"), "{md}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Two tiny conditions' configs in `dir`: `low.toml` and `high.toml`, the L-system genome on
+/// 0.2 s walks with a population of 5 (20% elite: 1), mutation rates 0.05 and 0.3.
+fn two_conditions(dir: &Path) -> (PathBuf, PathBuf) {
+    let config = |rate: f64| {
+        format!(
+            "encoding = \"lsystem\"\n\n[ga]\npopulation = 5\nmutation_rate = {rate}\n\n\
+             [task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.2\n"
+        )
+    };
+    let (low, high) = (dir.join("low.toml"), dir.join("high.toml"));
+    std::fs::write(&low, config(0.05)).unwrap();
+    std::fs::write(&high, config(0.3)).unwrap();
+    (low, high)
+}
+
+/// `compare --condition low=... --condition high=...`, 3 replicates of 9 walks (5 + 4: two
+/// generations), into `out`.
+fn compare_conditions(low: &Path, high: &Path, out: &Path) -> Command {
+    let mut c = ontogeny_command();
+    c.arg("compare")
+        .arg("--condition")
+        .arg(format!("low={}", low.display()))
+        .arg("--condition")
+        .arg(format!("high={}", high.display()))
+        .args([
+            "--replicates",
+            "3",
+            "--evaluations",
+            "9",
+            "--seed",
+            "3",
+            "--out",
+        ])
+        .arg(out);
+    c
+}
+
+/// A comparison of conditions' numbers without wall-clock figures: `summary.csv` without its
+/// last column, `report.md` without its evaluations-per-second column.
+fn condition_numbers(dir: &Path) -> String {
+    let csv = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let mut out = String::new();
+    for line in csv.lines() {
+        out += &line[..line.rfind(',').unwrap()];
+        out.push('\n');
+    }
+    for line in md
+        .lines()
+        .filter(|l| l.starts_with("| low") || l.starts_with("| high"))
+    {
+        let cells: Vec<&str> = line.split('|').collect();
+        let keep = if cells.len() == 15 {
+            &cells[..13]
+        } else {
+            &cells[..]
+        };
+        out += &keep.join("|");
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn two_conditions_run_resume_and_report_both_names_and_their_power() {
+    let dir = scratch("conditions");
+    let (low, high) = two_conditions(&dir);
+    let out = dir.join("cmp");
+    let stdout = succeeded(&compare_conditions(&low, &high, &out).output().unwrap());
+    assert!(
+        stdout.contains("6 replicates of 9 walks each (3 per condition); walker, normalised"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("\n  low                  n   3  best "),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("\n  high                 n   3  best "),
+        "{stdout}"
+    );
+    // Three replicates a side cannot reach p ≤ 0.05 (the most extreme order has p = 0.1):
+    // nothing is detected, and the summary says that nothing could be.
+    let pair = stdout
+        .lines()
+        .find(|l| l.starts_with("  low vs high: U "))
+        .unwrap_or_else(|| panic!("no pair in {stdout}"));
+    assert!(
+        pair.ends_with(": not detected at this power (none is detectable with 3 and 3 replicates)"),
+        "{pair}"
+    );
+    assert!(
+        stdout.contains(
+            "power: 3 replicates per condition, 1 pair, each tested at 0.0500: detects nothing: \
+             with 3 and 3 replicates no result reaches p ≤ 0.0500"
+        ),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("no difference"), "{stdout}");
+    // Each condition's settings, its replicates with the same seeds, each an ordinary run of
+    // exactly 9 evaluations that has the condition's mutation rate.
+    for (name, rate) in [("low", "0.05"), ("high", "0.3")] {
+        let settings = std::fs::read_to_string(out.join(name).join("evolve.toml")).unwrap();
+        assert!(
+            settings.contains(&format!("mutation_rate = {rate}\n")),
+            "{settings}"
+        );
+        assert!(settings.contains("generations = 2\n"), "{settings}");
+        for k in 1..=3 {
+            let run = out.join(name).join(format!("rep-{k}"));
+            assert_eq!(evaluations_in(&run), 9, "{}", run.display());
+        }
+    }
+    let csv = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows[0][..3], ["condition", "replicate", "seed"]);
+    assert_eq!(rows.len(), 7);
+    assert_eq!((rows[1][0], rows[4][0]), ("low", "high"));
+    assert_eq!(
+        rows[1][2], rows[4][2],
+        "replicate 1 of each condition has one seed"
+    );
+    assert_ne!(rows[1][2], rows[2][2]);
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for text in [
+        "# Comparison of the conditions low, high\n",
+        "a budget of 9 walks per replicate",
+        "| low | lsystem | walker, normalised (Chaumont eq. 1) | 5 | 2 | 1 | chaumont | 1 | 9 |",
+        "| condition | n | mean best |",
+        "| a | b | U | p | method | Holm p | A12 | effect | detectable | verdict |",
+        "| none | not detected at this power (none is detectable with 3 and 3 replicates) |",
+        "Power: with 3 replicates per condition and 1 pair, each pair is tested at 0.05 / 1 = 0.0500",
+        "The comparison detects nothing: with 3 and 3 replicates no result reaches p ≤ 0.0500.",
+    ] {
+        assert!(md.contains(text), "{text:?} not in:\n{md}");
+    }
+    // The same as JSON.
+    let json: serde_json::Value = serde_json::from_str(&succeeded(
+        &ontogeny_command()
+            .args(["compare", "--json", "--merge"])
+            .arg(&out)
+            .output()
+            .unwrap(),
+    ))
+    .unwrap();
+    let conditions = json["conditions"].as_array().unwrap();
+    assert_eq!(conditions.len(), 2);
+    assert_eq!(conditions[1]["condition"], "high");
+    assert_eq!(conditions[1]["encoding"], "lsystem");
+    assert_eq!(conditions[1]["walks"], 9);
+    assert!(json.get("encodings").is_none());
+    assert_eq!(json["evaluations"], 9);
+    assert_eq!(json["pairs"][0]["detected"], false);
+    assert_eq!(json["pairs"][0]["detectable_a12"], serde_json::Value::Null);
+    assert_eq!(
+        json["power"],
+        serde_json::json!({"replicates": 3, "pairs": 1, "level": 0.05, "power": 0.8,
+            "detectable_a12": null, "method": "simulated"})
+    );
+    // A replicate lost and the comparison resumed: the same report.
+    let before = condition_numbers(&out);
+    std::fs::remove_dir_all(out.join("high/rep-2")).unwrap();
+    let resumed = ontogeny_command()
+        .args(["compare", "--resume"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    succeeded(&resumed);
+    assert!(
+        stderr(&resumed).contains("[high 2/3]"),
+        "{}",
+        stderr(&resumed)
+    );
+    assert!(!stderr(&resumed).contains("[low "), "{}", stderr(&resumed));
+    assert_eq!(condition_numbers(&out), before);
+    // Planned: one `evolve` command per replicate reading its condition's settings; run and
+    // merged, the same report.
+    let planned = dir.join("planned");
+    let plan = succeeded(
+        &compare_conditions(&low, &high, &planned)
+            .arg("--plan")
+            .output()
+            .unwrap(),
+    );
+    let lines: Vec<&str> = plan.lines().collect();
+    assert_eq!(lines.len(), 6, "{plan}");
+    assert_eq!(
+        lines[1],
+        format!(
+            "ontogeny evolve --config {} --seed {} --out {}",
+            planned.join("high/evolve.toml").display(),
+            rows[1][2],
+            planned.join("high/rep-1").display()
+        )
+    );
+    for line in &lines {
+        run_planned(line);
+    }
+    succeeded(
+        &ontogeny_command()
+            .args(["compare", "--merge"])
+            .arg(&planned)
+            .output()
+            .unwrap(),
+    );
+    assert_eq!(condition_numbers(&planned), before);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn conditions_whose_budgets_end_far_apart_are_refused_and_a_little_apart_noted() {
+    let dir = scratch("condition-budgets");
+    let config = |name: &str, population: usize| {
+        let path = dir.join(name);
+        std::fs::write(&path, format!("[ga]\npopulation = {population}\n")).unwrap();
+        format!("{}={}", &name[..1], path.display())
+    };
+    let (a, b) = (config("a.toml", 20), config("b.toml", 21));
+    let out = dir.join("cmp");
+    let plan = |budget: &str| {
+        ontogeny_command()
+            .args(["compare", "--plan", "--condition", &a, "--condition", &b])
+            .args(["--evaluations", budget, "--out"])
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    // Population 20 (elite 4) makes 20 + 16k walks, 21 (elite 4) 21 + 17k: of 100, 100 and
+    // 89, more than 10% apart.
+    refused(
+        &plan("100"),
+        "--condition: the budgets of a replicate differ by more than 10%: \
+         a: 100 walks (population 20, 6 generations, 1 walk per individual), \
+         b: 89 walks (population 21, 5 generations, 1 walk per individual); \
+         choose populations that divide the budget more evenly, or a larger --evaluations",
+    );
+    assert!(!out.exists());
+    // Of 200: 196 and 191, within 10%: planned, with a note that names them.
+    let o = plan("200");
+    succeeded(&o);
+    assert!(
+        stderr(&o).contains(
+            "note: the budgets of a replicate differ (generations are whole): \
+             a: 196 walks (population 20, 12 generations, 1 walk per individual), \
+             b: 191 walks (population 21, 11 generations, 1 walk per individual)"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn bad_conditions_exit_2_with_a_clear_message_and_write_nothing() {
+    let dir = scratch("bad-conditions");
+    let (low, high) = two_conditions(&dir);
+    let seeded = dir.join("seeded.toml");
+    std::fs::write(&seeded, "seed = 4\n").unwrap();
+    let out = dir.join("cmp");
+    let with = |conditions: &[String], extra: &[&str]| {
+        let mut c = ontogeny_command();
+        c.arg("compare");
+        for condition in conditions {
+            c.args(["--condition", condition]);
+        }
+        c.args(["--evaluations", "9", "--out"])
+            .arg(&out)
+            .args(extra);
+        c.output().unwrap()
+    };
+    let named = |name: &str, path: &Path| format!("{name}={}", path.display());
+    refused(
+        &with(&[low.display().to_string()], &[]),
+        &format!(
+            "expected NAME=CONFIG.toml (e.g. pop30=examples/compare-condition-pop30.toml), not {}",
+            low.display()
+        ),
+    );
+    refused(
+        &with(&[named("a", &dir.join("missing.toml"))], &[]),
+        &format!("cannot read {}", dir.join("missing.toml").display()),
+    );
+    refused(
+        &with(&[named("a", &low), named("a", &high)], &[]),
+        "--condition: the condition a is named twice",
+    );
+    refused(
+        &with(&[named("Low", &low), named("low", &high)], &[]),
+        "--condition: the conditions Low and low differ only in case",
+    );
+    refused(
+        &with(&[named("../a", &low)], &[]),
+        "the condition name ../a holds '.': a name is ASCII letters, digits, - and _",
+    );
+    refused(
+        &with(&[format!("a b={}", low.display())], &[]),
+        "the condition name a b holds ' '",
+    );
+    refused(
+        &with(&[named("a", &seeded)], &[]),
+        "seed has no place in a comparison's config: --seed sets every replicate's seed",
+    );
+    refused(
+        &with(&[named("a", &low)], &["--encodings", "lsystem"]),
+        "'--condition <NAME=CONFIG.toml>' cannot be used with '--encodings <ENCODINGS>'",
+    );
+    refused(
+        &with(
+            &[named("a", &low)],
+            &["--config", &low.display().to_string()],
+        ),
+        "'--condition <NAME=CONFIG.toml>' cannot be used with '--config <FILE.toml>'",
+    );
+    assert!(!out.exists());
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -336,6 +336,14 @@ const CUT_DOWN: &[CutDown] = &[
         &[("--seconds", "0.2")],
     ),
     (
+        "ontogeny compare --condition ",
+        &[
+            ("--replicates 10", "--replicates 2"),
+            ("--evaluations 1500", "--evaluations 8"),
+        ],
+        &[("--pop", "4"), ("--seconds", "0.2")],
+    ),
+    (
         "ontogeny bench",
         &[("--fidelity 40", "--fidelity 2 --runs 1")],
         &[("--evaluations", "1"), ("--seconds", "0.2")],

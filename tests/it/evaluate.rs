@@ -5,7 +5,7 @@ mod scoring;
 
 use crate::util::grown;
 
-use ontogeny::creature::Creature;
+use ontogeny::creature::{Creature, JointId, PartId};
 use ontogeny::sim::{ActuatorModel, SimOptions};
 use ontogeny::task::{self, JumpOptions, Status, WalkerOptions, size_coefficients};
 use rayon::prelude::*;
@@ -321,11 +321,11 @@ fn every_actuator_model_delivers_its_torque_against_gravity() {
         };
         let c = lifter();
         let mut world = World::new(&c, &sim).unwrap();
-        let before = world.part_position(1);
+        let before = world.part_position(PartId(1));
         for _ in 0..240 {
             world.step(true).unwrap();
         }
-        let after = world.part_position(1);
+        let after = world.part_position(PartId(1));
         assert!(
             after.y > before.y + 0.3,
             "{model:?}: the child should swing up, from {before:?} to {after:?}"
@@ -349,11 +349,11 @@ fn both_muscles_give_the_signal_times_the_strength() {
             let mut c = lifter();
             c.environment = vec![0.5];
             let mut world = World::new(&c, &sim).unwrap();
-            let before = world.part_position(1);
+            let before = world.part_position(PartId(1));
             for _ in 0..240 {
                 world.step(true).unwrap();
             }
-            let risen = world.part_position(1).y - before.y;
+            let risen = world.part_position(PartId(1)).y - before.y;
             assert_eq!(
                 risen > 0.3,
                 lifts,
@@ -390,7 +390,7 @@ fn a_second_joint_axis_is_the_second_degree_of_freedom() {
         for _ in 0..240 {
             world.step(true).unwrap();
         }
-        let (_, orientation) = world.part_pose(1);
+        let (_, orientation) = world.part_pose(PartId(1));
         orientation * Vector3::x()
     };
     let yawed = run(Vector3::y());
@@ -530,7 +530,7 @@ fn strength_follows_the_smaller_or_the_bigger_section() {
         for _ in 0..240 {
             world.step(true).unwrap();
         }
-        world.part_position(1).y
+        world.part_position(PartId(1)).y
     };
     assert!(lift(StrengthFrom::Bigger) > lift(StrengthFrom::Smaller) + 0.2);
 }
@@ -600,15 +600,15 @@ fn a_muscle_runs_at_saturation_its_torque_not_its_speed_limited() {
     for k in 1..=15 {
         world.step(true).unwrap();
         let expected = alpha * k as f64 * sim.control_step;
-        let speed = world.joint_speed(0).abs();
+        let speed = world.joint_speed(JointId(0)).abs();
         assert!(
             (speed - expected).abs() < 0.03 * expected,
             "step {k}: {speed} rad/s, a saturated muscle gives {expected}"
         );
     }
     // 7.4 rad/s: past the old 5 rad/s target speed, far below V_des.
-    assert!(world.joint_speed(0).abs() > 7.0);
-    assert!(sim.muscle_speed > 10.0 * world.joint_speed(0).abs());
+    assert!(world.joint_speed(JointId(0)).abs() > 7.0);
+    assert!(sim.muscle_speed > 10.0 * world.joint_speed(JointId(0)).abs());
 }
 
 #[test]
@@ -620,7 +620,7 @@ fn the_shipped_thrower_stays_torque_limited() {
     let mut fastest: f64 = 0.0;
     for _ in 0..180 {
         world.step(true).unwrap();
-        fastest = fastest.max(world.joint_speed(0).abs());
+        fastest = fastest.max(world.joint_speed(JointId(0)).abs());
     }
     assert!(fastest > 1.0, "the arm swings: {fastest}");
     assert!(
@@ -789,8 +789,9 @@ fn the_rest_setting_steps_as_a_world_built_with_it_does() {
         for _ in 0..steps {
             world.step(false).unwrap();
         }
-        (0..world.part_count())
-            .map(|i| world.part_position(i))
+        world
+            .part_ids()
+            .map(|id| world.part_position(id))
             .collect::<Vec<_>>()
     };
     let mut switched = World::new(&c, &fast).unwrap();

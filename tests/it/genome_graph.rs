@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 
 use nalgebra::{Matrix3, Vector3};
-use ontogeny::creature::{Creature, Face, JointKind, NeuronFunction};
+use ontogeny::creature::{Creature, Face, JointKind, NeuronFunction, PartId};
 use ontogeny::encoding::graph::{Connection, Effector, Input, NeuronGene, Node, Source};
 use ontogeny::encoding::{Genome, GraphGenome, GraphLimits, JointSet, Purpose, Rng};
 use ontogeny::sim::{SimOptions, World};
@@ -363,8 +363,8 @@ fn relative_pose(g: &GraphGenome) -> nalgebra::UnitQuaternion<f64> {
     for _ in 0..(0.5 / SimOptions::default().control_step).round() as usize {
         world.step(true).expect("no explosion");
     }
-    let (_, root) = world.part_pose(0);
-    let (_, limb) = world.part_pose(1);
+    let (_, root) = world.part_pose(PartId(0));
+    let (_, limb) = world.part_pose(PartId(1));
     root.inverse() * limb
 }
 

@@ -46,3 +46,4 @@ mod stubs;
 mod textbook;
 mod util;
 mod view;
+mod worlds;

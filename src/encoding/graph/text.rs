@@ -4,6 +4,13 @@
 use super::*;
 use crate::lang::{self, Diagnostic, DiagnosticKind, Span};
 
+/// `at_most` of the limit `limits.FIELD`, named by its key, the field's name.
+macro_rules! at_most {
+    ($count:expr, $limits:ident . $field:ident, $what:expr $(,)?) => {
+        at_most($count, $limits.$field, stringify!($field), $what)
+    };
+}
+
 /// What is wrong at the place of a JSON error `e` in `text`, in words: a number JSON cannot
 /// hold (`NaN`, `Infinity`), text after the genome's end, else serde's message without its
 /// place.
@@ -305,15 +312,12 @@ impl GenomeShape {
                 limits.nodes()
             ));
         }
-        at_most(
-            self.neurons.len(),
-            limits.max_global_neurons,
-            "max_global_neurons",
-            |n| format!("{n} global neurons"),
-        )?;
+        at_most!(self.neurons.len(), limits.max_global_neurons, |n| format!(
+            "{n} global neurons"
+        ))?;
         let inputs = |where_: &str, neurons: &[NeuronShape]| -> Result<(), String> {
             for (k, g) in neurons.iter().enumerate() {
-                at_most(g.inputs.len(), limits.max_inputs, "max_inputs", |n| {
+                at_most!(g.inputs.len(), limits.max_inputs, |n| {
                     format!("{where_} neuron {k} has {n} inputs")
                 })?;
             }
@@ -321,19 +325,13 @@ impl GenomeShape {
         };
         inputs("global", &self.neurons)?;
         for (i, node) in self.nodes.iter().enumerate() {
-            at_most(
-                node.neurons.len(),
-                limits.max_local_neurons,
-                "max_local_neurons",
-                |n| format!("node {i}: {n} neurons"),
-            )?;
+            at_most!(node.neurons.len(), limits.max_local_neurons, |n| format!(
+                "node {i}: {n} neurons"
+            ))?;
             inputs(&format!("node {i}"), &node.neurons)?;
-            at_most(
-                node.connections.len(),
-                limits.max_connections,
-                "max_connections",
-                |n| format!("node {i}: {n} connections"),
-            )?;
+            at_most!(node.connections.len(), limits.max_connections, |n| format!(
+                "node {i}: {n} connections"
+            ))?;
         }
         Ok(())
     }

@@ -1,11 +1,14 @@
-//! Comparing encodings on equal terms (`ontogeny compare`): a comparison directory holds one
-//! full run directory per replicate of every encoding, all with the same genetic algorithm,
-//! task and evaluation budget, and a report of statistics over their champions.
+//! Comparing encodings, or conditions, on equal terms (`ontogeny compare`): a comparison
+//! directory holds one full run directory per replicate of every encoding (all with the same
+//! genetic algorithm and task) or of every condition (each a whole run config of its own),
+//! all on the same budget of walks, and a report of statistics over their champions that
+//! states the effect it can detect.
 //!
 //! ```text
-//! runs/NAME/compare.toml             the comparison: encodings, replicates, budget, seed
-//! runs/NAME/evolve.toml              the shared settings ([ga] and [task]), an evolve config
-//! runs/NAME/<encoding>/rep-<k>/      replicate k (1-based): an ordinary run directory
+//! runs/NAME/compare.toml             the comparison: encodings or conditions, replicates, budget, seed
+//! runs/NAME/evolve.toml              encodings: the shared settings ([ga] and [task]), an evolve config
+//! runs/NAME/<condition>/evolve.toml  conditions: each one's settings, an evolve config
+//! runs/NAME/<name>/rep-<k>/          replicate k (1-based) of an encoding or condition: an ordinary run directory
 //! runs/NAME/report.md, summary.csv, fitness.svg, parts.svg
 //! ```
 //!
@@ -22,14 +25,16 @@ mod report;
 mod survey;
 
 pub use plan::{
-    MAX_REPLICATES, Manifest, Shared, create, evaluations_of, generations_for, lock, open,
-    replicate_config, replicate_dir, replicate_seed,
+    Arm, BUDGET_TOLERANCE, ConditionFile, MAX_CONDITION_NAME, MAX_REPLICATES, Manifest, Shared,
+    check_budgets, check_condition_name, condition_file, create, duplicate_condition,
+    encoding_arms, evaluations_of, fitness_labels, generations_for, lock, open, replicate_config,
+    replicate_dir, replicate_seed, walks_per_individual,
 };
 pub use replicate::{
     Champion, Replicate, ReplicateState, distinct_shapes_per_part, read_replicate,
 };
 pub use report::{
-    EncodingSummary, MIN_REPLICATES_FOR_STATISTICS, Pair, Report, report, too_few_note,
+    ArmSummary, MIN_REPLICATES_FOR_STATISTICS, Pair, Report, power_note, report, too_few_note,
     write_report,
 };
 pub use survey::{Survey, gather, replicate_state, survey};

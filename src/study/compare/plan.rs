@@ -15,15 +15,22 @@ use crate::run::config::{RunConfig, check_settings};
 use crate::run::lock::{DirectoryLock, LockError};
 use crate::task::TaskSpec;
 
-/// What a comparison is (`compare.toml`).
+/// What a comparison is (`compare.toml`): the encodings compared under shared settings, or
+/// the conditions compared, each under its own; never both.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Manifest {
-    /// The encodings compared, in the order given.
+    /// The encodings compared, in the order given (none when conditions are compared).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub encodings: Vec<String>,
-    /// Replicates per encoding.
+    /// The conditions compared, in the order given (none when encodings are compared): each
+    /// a whole run config, in `<condition>/evolve.toml`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub conditions: Vec<String>,
+    /// Replicates per encoding or condition.
     pub replicates: usize,
-    /// The evaluation budget asked for.
+    /// The budget asked for, in walks simulated (evaluations times
+    /// [`walks_per_individual`]).
     pub evaluations: u64,
     /// The seed every replicate's seed derives from.
     pub seed: u64,
@@ -32,17 +39,82 @@ pub struct Manifest {
 /// The most replicates per encoding a comparison may have.
 pub const MAX_REPLICATES: usize = 10_000;
 
+/// The longest condition name.
+pub const MAX_CONDITION_NAME: usize = 64;
+
+/// Checks a condition's name: 1 to [`MAX_CONDITION_NAME`] ASCII letters, digits, `-` and `_`,
+/// starting with a letter or digit. It names a directory of the comparison, so it holds no
+/// path character, no dot (which the comparison's own files have) and no space.
+pub fn check_condition_name(name: &str) -> Result<(), String> {
+    if name.is_empty() {
+        return Err("a condition needs a name before the =".into());
+    }
+    if name.len() > MAX_CONDITION_NAME {
+        return Err(format!(
+            "the condition name {name} is longer than {MAX_CONDITION_NAME} characters"
+        ));
+    }
+    if let Some(c) = name
+        .chars()
+        .find(|&c| !(c.is_ascii_alphanumeric() || c == '-' || c == '_'))
+    {
+        return Err(format!(
+            "the condition name {name} holds {c:?}: a name is ASCII letters, digits, - and _"
+        ));
+    }
+    if !name.starts_with(|c: char| c.is_ascii_alphanumeric()) {
+        return Err(format!(
+            "the condition name {name} must start with a letter or a digit"
+        ));
+    }
+    Ok(())
+}
+
 impl Manifest {
-    /// Checks what a comparison's manifest may get wrong: no encoding or one named twice,
-    /// replicates out of 1 to [`MAX_REPLICATES`]; the message names the key. (An encoding
-    /// name the program does not know is refused where it is run.)
+    /// The names compared: the conditions when there are any, else the encodings. A
+    /// replicate of each lives in `<name>/rep-<k>`.
+    pub fn names(&self) -> &[String] {
+        if self.conditions.is_empty() {
+            &self.encodings
+        } else {
+            &self.conditions
+        }
+    }
+
+    /// What the names are: "condition" or "encoding".
+    pub fn kind(&self) -> &'static str {
+        if self.conditions.is_empty() {
+            "encoding"
+        } else {
+            "condition"
+        }
+    }
+
+    /// Checks what a comparison's manifest may get wrong: no encoding and no condition, or
+    /// both, one named twice (conditions: in any case, as their directories would clash on
+    /// some systems), a condition's name ([`check_condition_name`]), replicates out of 1 to
+    /// [`MAX_REPLICATES`]; the message names the key. (An encoding name the program does not
+    /// know is refused where it is run.)
     pub fn check(&self) -> Result<(), String> {
-        if self.encodings.is_empty() {
-            return Err("encodings names no encoding".into());
+        match (self.encodings.is_empty(), self.conditions.is_empty()) {
+            (true, true) => return Err("encodings names no encoding".into()),
+            (false, false) => {
+                return Err("encodings and conditions: a comparison has one or the other".into());
+            }
+            _ => {}
         }
         for (i, e) in self.encodings.iter().enumerate() {
             if self.encodings[..i].contains(e) {
                 return Err(format!("encodings names {e} twice"));
+            }
+        }
+        for (i, c) in self.conditions.iter().enumerate() {
+            check_condition_name(c).map_err(|e| format!("conditions: {e}"))?;
+            if let Some(first) = self.conditions[..i]
+                .iter()
+                .find(|x| x.eq_ignore_ascii_case(c))
+            {
+                return Err(duplicate_condition(first, c));
             }
         }
         if !(1..=MAX_REPLICATES).contains(&self.replicates) {
@@ -52,6 +124,18 @@ impl Manifest {
             ));
         }
         Ok(())
+    }
+}
+
+/// The message for two conditions of one name (`first` given before `second`; the same but
+/// for case counts as the same).
+pub fn duplicate_condition(first: &str, second: &str) -> String {
+    if first == second {
+        format!("the condition {first} is named twice")
+    } else {
+        format!(
+            "the conditions {first} and {second} differ only in case: their directories would be one on some systems"
+        )
     }
 }
 
@@ -65,6 +149,128 @@ pub struct Shared {
     /// The task.
     pub task: TaskSpec,
 }
+
+/// A condition's settings (`<condition>/evolve.toml`, readable by `ontogeny evolve
+/// --config`): a whole run config but its seed.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConditionFile {
+    /// The encoding.
+    pub encoding: String,
+    /// The genetic algorithm's settings, its generations set by the budget.
+    pub ga: GaSettings,
+    /// The task.
+    pub task: TaskSpec,
+    /// The encoding's limits, every key written (none: the encoding's defaults).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limits: Option<toml::Table>,
+}
+
+/// One side of a comparison: an encoding under the shared settings, or a condition under its
+/// own.
+#[derive(Clone, Debug)]
+pub struct Arm {
+    /// Its name: the encoding's, or the condition's.
+    pub name: String,
+    /// Its encoding.
+    pub encoding: String,
+    /// Its genetic algorithm and task.
+    pub settings: Shared,
+    /// Its encoding's limits (none: the encoding's defaults).
+    pub limits: Option<toml::Table>,
+}
+
+impl Arm {
+    /// The walks one of its replicates simulates: its evaluations
+    /// ([`evaluations_of`]) times [`walks_per_individual`].
+    pub fn walks(&self) -> u64 {
+        evaluations_of(&self.settings.ga) * walks_per_individual(&self.settings.task)
+    }
+}
+
+/// What the arms' fitness is, for people: their task's fitness label, or each arm's
+/// (`name: label`, joined by "; ") when they differ.
+pub fn fitness_labels(arms: &[Arm]) -> String {
+    let labels: Vec<String> = arms
+        .iter()
+        .map(|a| a.settings.task.fitness_label())
+        .collect();
+    if labels.windows(2).all(|w| w[0] == w[1]) {
+        return labels.into_iter().next().unwrap_or_default();
+    }
+    arms.iter()
+        .zip(labels)
+        .map(|(a, l)| format!("{}: {l}", a.name))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// The walks simulated to evaluate one individual under `task`: 1, one walk in one world.
+/// A budget counts walks, so that a task that walks each individual several times is
+/// compared with one that walks it once on equal terms.
+pub fn walks_per_individual(task: &TaskSpec) -> u64 {
+    let _ = task;
+    1
+}
+
+/// The arms of a comparison of encodings under `shared`.
+pub fn encoding_arms(manifest: &Manifest, shared: &Shared) -> Vec<Arm> {
+    manifest
+        .encodings
+        .iter()
+        .map(|e| Arm {
+            name: e.clone(),
+            encoding: e.clone(),
+            settings: shared.clone(),
+            limits: None,
+        })
+        .collect()
+}
+
+/// Refuses arms whose budgets, in walks per replicate ([`Arm::walks`]), are too far apart:
+/// generations are whole, so a budget is met to within a generation, but the smallest must be
+/// at least [`BUDGET_TOLERANCE`] of the largest. Returns a note naming each arm's walks when
+/// they are not all equal.
+pub fn check_budgets(arms: &[Arm]) -> Result<Option<String>, String> {
+    let walks: Vec<u64> = arms.iter().map(Arm::walks).collect();
+    let (Some(&least), Some(&most)) = (walks.iter().min(), walks.iter().max()) else {
+        return Ok(None);
+    };
+    if least == most {
+        return Ok(None);
+    }
+    let each = arms
+        .iter()
+        .zip(&walks)
+        .map(|(a, w)| {
+            format!(
+                "{}: {w} walks (population {}, {} generations, {} walk{} per individual)",
+                a.name,
+                a.settings.ga.population,
+                a.settings.ga.generations,
+                walks_per_individual(&a.settings.task),
+                if walks_per_individual(&a.settings.task) == 1 {
+                    ""
+                } else {
+                    "s"
+                }
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    if (least as f64) < BUDGET_TOLERANCE * most as f64 {
+        return Err(format!(
+            "the budgets of a replicate differ by more than {:.0}%: {each}; choose populations that divide the budget more evenly, or a larger --evaluations",
+            (1.0 - BUDGET_TOLERANCE) * 100.0
+        ));
+    }
+    Ok(Some(format!(
+        "the budgets of a replicate differ (generations are whole): {each}"
+    )))
+}
+
+/// The least share of the largest budget every arm's budget must reach ([`check_budgets`]).
+pub const BUDGET_TOLERANCE: f64 = 0.9;
 
 /// The evaluations a run of `ga` makes: the whole first generation, then every individual but
 /// the elite (carried over with its evaluation) in each later one.
@@ -111,30 +317,46 @@ pub fn replicate_seed(seed: u64, k: usize) -> u64 {
     (x ^ (x >> 31)) >> 33
 }
 
-/// The settings of replicate `k` (1-based) of encoding `G`: the shared `[ga]` and `[task]`,
-/// the replicate's seed, the encoding's default limits, the best re-walked at the fine
-/// reference, and the evaluation cache on or off (`cache` changes no result).
+/// The settings of replicate `k` (1-based) of `arm`, whose encoding is `G`: the arm's
+/// `[ga]`, `[task]` and limits (an encoding's defaults when it has none), the replicate's
+/// seed, the best re-walked at the fine reference, and the evaluation cache on or off
+/// (`cache` changes no result). Errors: limits that are not `G`'s.
 pub fn replicate_config<G: Genome>(
     manifest: &Manifest,
-    shared: &Shared,
+    arm: &Arm,
     k: usize,
     cache: bool,
-) -> RunConfig<G::Limits> {
-    RunConfig {
+) -> Result<RunConfig<G::Limits>, CompareError> {
+    let limits = match &arm.limits {
+        None => G::Limits::default(),
+        Some(table) => toml::Value::Table(table.clone()).try_into().map_err(|e| {
+            CompareError::Input(format!(
+                "{}: [limits] are not the {} encoding's: {e}",
+                arm.name,
+                G::NAME
+            ))
+        })?,
+    };
+    Ok(RunConfig {
         encoding: G::NAME.to_string(),
         seed: replicate_seed(manifest.seed, k),
         init: None,
         verify_best: true,
         cache,
-        ga: shared.ga.clone(),
-        task: shared.task.clone(),
-        limits: G::Limits::default(),
-    }
+        ga: arm.settings.ga.clone(),
+        task: arm.settings.task.clone(),
+        limits,
+    })
 }
 
-/// Replicate `k`'s run directory.
-pub fn replicate_dir(root: &Path, encoding: &str, k: usize) -> PathBuf {
-    root.join(encoding).join(format!("rep-{k}"))
+/// Replicate `k`'s run directory, of the encoding or condition `name`.
+pub fn replicate_dir(root: &Path, name: &str, k: usize) -> PathBuf {
+    root.join(name).join(format!("rep-{k}"))
+}
+
+/// A condition's settings file: `<condition>/evolve.toml`.
+pub fn condition_file(root: &Path, name: &str) -> PathBuf {
+    root.join(name).join("evolve.toml")
 }
 
 /// Takes the lock of the comparison in `root` ([`crate::run::lock`]), held while the
@@ -155,13 +377,14 @@ fn acquire(root: &Path) -> Result<DirectoryLock, CompareError> {
     })
 }
 
-/// Writes `compare.toml` and `evolve.toml` into `root` (created), refusing a directory that
-/// already holds a comparison; returns the comparison's lock, taken before anything is
-/// written.
+/// Writes `compare.toml` and the settings of `arms` into `root` (created): `evolve.toml`, the
+/// settings every encoding shares, or each condition's `<condition>/evolve.toml`. Refuses a
+/// directory that already holds a comparison; returns the comparison's lock, taken before
+/// anything is written.
 pub fn create(
     root: &Path,
     manifest: &Manifest,
-    shared: &Shared,
+    arms: &[Arm],
 ) -> Result<DirectoryLock, CompareError> {
     let path = root.join("compare.toml");
     let exists = || {
@@ -182,13 +405,33 @@ pub fn create(
     if path.exists() {
         return Err(exists());
     }
-    let settings = root.join("evolve.toml");
-    let text = toml::to_string(shared).map_err(|e| CompareError::Other(e.to_string()))?;
-    crate::output::write(&settings, text)?;
-    let text = toml::to_string(manifest).map_err(|e| CompareError::Other(e.to_string()))?;
-    // The manifest last: a comparison exists once both are written.
-    crate::output::write(&path, text)?;
+    if manifest.conditions.is_empty() {
+        let shared = &arms
+            .first()
+            .ok_or_else(|| CompareError::Input("no encoding to compare".into()))?
+            .settings;
+        crate::output::write(&root.join("evolve.toml"), toml_text(shared)?)?;
+    } else {
+        for arm in arms {
+            let dir = root.join(&arm.name);
+            std::fs::create_dir_all(&dir).map_err(io(&dir))?;
+            let file = ConditionFile {
+                encoding: arm.encoding.clone(),
+                ga: arm.settings.ga.clone(),
+                task: arm.settings.task.clone(),
+                limits: arm.limits.clone(),
+            };
+            crate::output::write(&condition_file(root, &arm.name), toml_text(&file)?)?;
+        }
+    }
+    // The manifest last: a comparison exists once it is written.
+    crate::output::write(&path, toml_text(manifest)?)?;
     Ok(lock)
+}
+
+/// `value` as TOML text.
+fn toml_text<T: Serialize>(value: &T) -> Result<String, CompareError> {
+    toml::to_string(value).map_err(|e| CompareError::Other(e.to_string()))
 }
 
 /// The error for a directory that holds no comparison.
@@ -199,23 +442,46 @@ fn not_a_comparison(root: &Path) -> CompareError {
     ))
 }
 
-/// Reads a comparison's `compare.toml` and `evolve.toml`.
-pub fn open(root: &Path) -> Result<(Manifest, Shared), CompareError> {
+/// Reads a comparison's `compare.toml` and the settings of its arms: `evolve.toml`, or each
+/// condition's `<condition>/evolve.toml`, checked as a new comparison's.
+pub fn open(root: &Path) -> Result<(Manifest, Vec<Arm>), CompareError> {
     let path = root.join("compare.toml");
     let source = Source::read(&path).map_err(|_| not_a_comparison(root))?;
     let manifest: Manifest = toml::from_str(source.text())
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
-    let path = root.join("evolve.toml");
-    let text = crate::input::read_to_string(&path).map_err(io(&path))?;
-    let shared: Shared = toml::from_str(&text)
+    // The files may have been edited: their values get the checks of a new comparison's.
+    manifest
+        .check()
         .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
-    // Both files may have been edited: their values get the checks of a new comparison's.
-    manifest.check().map_err(|e| {
-        CompareError::Input(format!("{}: {e}", root.join("compare.toml").display()))
-    })?;
-    check_settings(&shared.ga, &shared.task)
-        .map_err(|e| CompareError::Input(format!("{}: {e}", path.display())))?;
-    Ok((manifest, shared))
+    let read = |path: &Path| -> Result<String, CompareError> {
+        crate::input::read_to_string(path).map_err(io(path))
+    };
+    let bad = |path: &Path, e: &dyn std::fmt::Display| {
+        CompareError::Input(format!("{}: {e}", path.display()))
+    };
+    if manifest.conditions.is_empty() {
+        let path = root.join("evolve.toml");
+        let shared: Shared = toml::from_str(&read(&path)?).map_err(|e| bad(&path, &e))?;
+        check_settings(&shared.ga, &shared.task).map_err(|e| bad(&path, &e))?;
+        let arms = encoding_arms(&manifest, &shared);
+        return Ok((manifest, arms));
+    }
+    let mut arms = Vec::with_capacity(manifest.conditions.len());
+    for name in &manifest.conditions {
+        let path = condition_file(root, name);
+        let file: ConditionFile = toml::from_str(&read(&path)?).map_err(|e| bad(&path, &e))?;
+        check_settings(&file.ga, &file.task).map_err(|e| bad(&path, &e))?;
+        arms.push(Arm {
+            name: name.clone(),
+            encoding: file.encoding,
+            settings: Shared {
+                ga: file.ga,
+                task: file.task,
+            },
+            limits: file.limits,
+        });
+    }
+    Ok((manifest, arms))
 }
 
 #[cfg(test)]
@@ -224,6 +490,7 @@ mod tests {
 
     use super::*;
     use crate::study::compare::chaumont_ga as ga;
+    use crate::task::TaskSpec;
 
     #[test]
     fn the_budget_counts_what_the_ga_evaluates() {
@@ -257,5 +524,100 @@ mod tests {
         assert_eq!(replicate_seed(7, 3), replicate_seed(7, 3));
         assert_ne!(replicate_seed(7, 3), replicate_seed(8, 3));
         assert!(seeds.iter().all(|&s| s < 1 << 31));
+    }
+    #[test]
+    fn condition_names_are_plain_words() {
+        for good in ["pop30", "K4_rough", "a", "4-trials"] {
+            assert_eq!(check_condition_name(good), Ok(()), "{good}");
+        }
+        assert_eq!(
+            check_condition_name("../a"),
+            Err(
+                "the condition name ../a holds '.': a name is ASCII letters, digits, - and _"
+                    .into()
+            )
+        );
+        assert!(
+            check_condition_name("a/b")
+                .unwrap_err()
+                .contains("holds '/'")
+        );
+        assert!(
+            check_condition_name("report.md")
+                .unwrap_err()
+                .contains("holds '.'")
+        );
+        assert!(
+            check_condition_name("-a")
+                .unwrap_err()
+                .contains("must start with a letter")
+        );
+        assert!(check_condition_name("").is_err());
+        assert!(check_condition_name(&"x".repeat(65)).is_err());
+        assert!(check_condition_name(&"x".repeat(64)).is_ok());
+    }
+
+    #[test]
+    fn a_manifest_compares_encodings_or_conditions_never_both() {
+        let m = Manifest {
+            encodings: vec![],
+            conditions: vec!["a".into(), "b".into()],
+            replicates: 2,
+            evaluations: 10,
+            seed: 1,
+        };
+        assert_eq!(m.check(), Ok(()));
+        assert_eq!((m.names(), m.kind()), (&m.conditions[..], "condition"));
+        let both = Manifest {
+            encodings: vec!["lsystem".into()],
+            ..m.clone()
+        };
+        assert!(both.check().unwrap_err().contains("one or the other"));
+        let twice = Manifest {
+            conditions: vec!["a".into(), "A".into()],
+            ..m.clone()
+        };
+        assert!(twice.check().unwrap_err().contains("differ only in case"));
+        // A manifest of encodings reads and writes as before: no conditions key.
+        let old =
+            "encodings = [\"lsystem\", \"direct\"]\nreplicates = 2\nevaluations = 17\nseed = 4\n";
+        let read: Manifest = toml::from_str(old).unwrap();
+        assert_eq!(read.kind(), "encoding");
+        assert_eq!(toml::to_string(&read).unwrap(), old);
+    }
+
+    #[test]
+    fn budgets_a_little_apart_are_noted_and_far_apart_refused() {
+        let arm = |name: &str, population: usize, generations: usize| Arm {
+            name: name.into(),
+            encoding: "lsystem".into(),
+            settings: Shared {
+                ga: ga(population, generations),
+                task: TaskSpec::new(crate::task::TaskKind::Walker),
+            },
+            limits: None,
+        };
+        // Population 20, elite 4: 20 + 16·11 = 196; 21, elite 4: 21 + 17·10 = 191.
+        assert_eq!(arm("a", 20, 12).walks(), 196);
+        assert_eq!(arm("b", 21, 11).walks(), 191);
+        assert_eq!(
+            check_budgets(&[arm("a", 20, 12), arm("c", 20, 12)]),
+            Ok(None)
+        );
+        let note = check_budgets(&[arm("a", 20, 12), arm("b", 21, 11)])
+            .unwrap()
+            .unwrap();
+        assert!(
+            note.contains(
+                "a: 196 walks (population 20, 12 generations, 1 walk per individual), b: 191 walks"
+            ),
+            "{note}"
+        );
+        // 176 is below 90% of 196.
+        assert!(
+            check_budgets(&[arm("a", 20, 12), arm("b", 21, 10)])
+                .unwrap_err()
+                .contains("differ by more than 10%")
+        );
     }
 }

@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use super::CompareError;
-use super::plan::{Manifest, Shared, replicate_config, replicate_dir};
+use super::plan::{Arm, Manifest, replicate_config, replicate_dir};
 use crate::creature::Creature;
 use crate::encoding::Genome;
 use crate::evolve::ga::Individual;
@@ -57,8 +57,8 @@ pub fn distinct_shapes_per_part(creature: &Creature) -> f64 {
 /// One finished replicate, as the report uses it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Replicate {
-    /// Its encoding.
-    pub encoding: String,
+    /// Its encoding's or condition's name ([`Arm::name`]).
+    pub name: String,
     /// Its number (1-based).
     pub k: usize,
     /// Its seed.
@@ -87,15 +87,15 @@ pub enum ReplicateState {
     Done(Box<Replicate>),
 }
 
-/// Checks that the run in `dir` is replicate `k` of encoding `G` in this comparison (same
-/// settings, the expected seed and the encoding's default limits) and reads it.
+/// Checks that the run in `dir` is replicate `k` of `arm` (whose encoding is `G`) in this
+/// comparison (the arm's settings and limits, the expected seed) and reads it.
 pub fn read_replicate<G: Genome>(
     root: &Path,
     manifest: &Manifest,
-    shared: &Shared,
+    arm: &Arm,
     k: usize,
 ) -> Result<ReplicateState, CompareError> {
-    let dir = replicate_dir(root, G::NAME, k);
+    let dir = replicate_dir(root, &arm.name, k);
     let database = dir.join("run.sqlite");
     if RunStore::is_vacant(&database) {
         return Ok(ReplicateState::Missing);
@@ -111,7 +111,7 @@ pub fn read_replicate<G: Genome>(
     let config: RunConfig<G::Limits> = read_run_config(&source)
         .map_err(|d| CompareError::Input(format!("{}: {d}", database.display())))?;
     // The cache changes no result: a replicate may have run with or without it.
-    let expected = replicate_config::<G>(manifest, shared, k, config.cache);
+    let expected = replicate_config::<G>(manifest, arm, k, config.cache)?;
     let differences = config.differences(&expected).map_err(CompareError::Other)?;
     if !differences.is_empty() {
         return Err(CompareError::Input(format!(
@@ -119,13 +119,18 @@ pub fn read_replicate<G: Genome>(
             dir.display(),
             differences.join(", "),
             if differences.len() == 1 { "s" } else { "" },
-            root.join("evolve.toml").display()
+            if manifest.conditions.is_empty() {
+                root.join("evolve.toml")
+            } else {
+                super::plan::condition_file(root, &arm.name)
+            }
+            .display()
         )));
     }
     let generations = store
         .generations()
         .map_err(|e| CompareError::Other(e.to_string()))?;
-    if generations.len() < shared.ga.generations {
+    if generations.len() < arm.settings.ga.generations {
         return Ok(ReplicateState::Partial(generations.len()));
     }
     let mut curve = Vec::with_capacity(generations.len());
@@ -153,7 +158,7 @@ pub fn read_replicate<G: Genome>(
         .develop(&config.limits, individual.develop_seed)
         .map_or(f64::NAN, |c| distinct_shapes_per_part(&c));
     Ok(ReplicateState::Done(Box::new(Replicate {
-        encoding: G::NAME.to_string(),
+        name: arm.name.clone(),
         k,
         seed: config.seed,
         curve,

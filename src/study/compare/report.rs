@@ -1,20 +1,25 @@
-//! A comparison's report: each encoding's figures, the pairwise tests between encodings,
-//! and the files that show them (`report.md`, `summary.csv`, `fitness.svg`, `parts.svg`).
+//! A comparison's report: each encoding's or condition's figures, the pairwise tests between
+//! them with the effect they can detect, and the files that show them (`report.md`,
+//! `summary.csv`, `fitness.svg`, `parts.svg`).
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use super::CompareError;
-use super::plan::{Manifest, Shared, evaluations_of};
+use super::plan::{Arm, Manifest, walks_per_individual};
 use super::replicate::{Champion, Replicate};
 use crate::run::plot::{self, Band};
 use crate::study::stats;
 
-/// One encoding's figures.
+/// One encoding's or condition's figures.
 #[derive(Clone, Debug, PartialEq)]
-pub struct EncodingSummary {
-    /// The encoding.
+pub struct ArmSummary {
+    /// The encoding's or condition's name.
+    pub name: String,
+    /// Its encoding.
     pub encoding: String,
+    /// The walks each of its replicates makes ([`Arm::walks`]).
+    pub walks: u64,
     /// Finished replicates.
     pub replicates: usize,
     /// The replicates' best fitness.
@@ -47,7 +52,7 @@ pub struct EncodingSummary {
 /// One pairwise test.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pair {
-    /// The first encoding.
+    /// The first encoding or condition.
     pub a: String,
     /// The second.
     pub b: String,
@@ -57,6 +62,32 @@ pub struct Pair {
     pub holm_p: f64,
     /// Vargha–Delaney A12 of a over b.
     pub a12: f64,
+    /// The smallest effect this test detects with power [`stats::POWER`], with these
+    /// replicates and this many pairs.
+    pub detectable: stats::Detectable,
+}
+
+impl Pair {
+    /// Whether the test found a difference: Holm's p at most [`stats::ALPHA`].
+    pub fn detected(&self) -> bool {
+        self.holm_p <= stats::ALPHA
+    }
+
+    /// What the test found, in words: "detected", or "not detected at this power (smallest
+    /// detectable A12 0.84)" — never "no difference", which a test that finds nothing does
+    /// not show.
+    pub fn verdict(&self) -> String {
+        if self.detected() {
+            return format!("detected (Holm p ≤ {})", stats::ALPHA);
+        }
+        match self.detectable.a12() {
+            Some(a) => format!("not detected at this power (smallest detectable A12 {a:.2})"),
+            None => format!(
+                "not detected at this power (none is detectable with {} and {} replicates)",
+                self.detectable.m, self.detectable.n
+            ),
+        }
+    }
 }
 
 /// The fewest replicates of an encoding that statistics are given for: below it, an
@@ -67,30 +98,34 @@ pub const MIN_REPLICATES_FOR_STATISTICS: usize = 2;
 /// The report's numbers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
-    /// Per encoding, in the manifest's order.
-    pub encodings: Vec<EncodingSummary>,
+    /// What is compared: "encoding" or "condition" ([`Manifest::kind`]).
+    pub kind: &'static str,
+    /// Per encoding or condition, in the manifest's order.
+    pub arms: Vec<ArmSummary>,
     /// Every pair of encodings with at least [`MIN_REPLICATES_FOR_STATISTICS`] replicates
     /// each, in the manifest's order.
     pub pairs: Vec<Pair>,
     /// The encodings with fewer than [`MIN_REPLICATES_FOR_STATISTICS`] replicates: no
     /// statistics, and no test of their pairs.
     pub too_few: Vec<String>,
-    /// The evaluations every replicate made.
+    /// The walks every replicate made (of the arm that made most, when they differ).
     pub evaluations: u64,
+    /// The comparison's power as planned: the effect each pair detects with the planned
+    /// replicates on every side and every pair tested; `None` with one side only.
+    pub power: Option<stats::Detectable>,
 }
 
-/// The statistics of `replicates` (finished ones, any order) of the comparison.
-pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) -> Report {
+/// The statistics of `replicates` (finished ones, any order) of the comparison of `arms`.
+pub fn report(manifest: &Manifest, arms: &[Arm], replicates: &[Replicate]) -> Report {
     let of = |e: &str| -> Vec<&Replicate> {
-        let mut v: Vec<&Replicate> = replicates.iter().filter(|r| r.encoding == e).collect();
+        let mut v: Vec<&Replicate> = replicates.iter().filter(|r| r.name == e).collect();
         v.sort_by_key(|r| r.k);
         v
     };
-    let encodings = manifest
-        .encodings
+    let summaries = arms
         .iter()
-        .map(|e| {
-            let rs = of(e);
+        .map(|arm| {
+            let rs = of(&arm.name);
             let pick = |f: fn(&Champion) -> f64| {
                 stats::median(&rs.iter().map(|r| f(&r.champion)).collect::<Vec<_>>())
             };
@@ -107,8 +142,10 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
                 .copied()
                 .filter(|&f| f > crate::task::FAILURE_FITNESS)
                 .collect();
-            EncodingSummary {
-                encoding: e.clone(),
+            ArmSummary {
+                name: arm.name.clone(),
+                encoding: arm.encoding.clone(),
+                walks: arm.walks(),
                 replicates: rs.len(),
                 best: stats::summary(&rs.iter().map(|r| r.champion.fitness).collect::<Vec<_>>()),
                 mean_fine: if fine.is_empty() {
@@ -131,39 +168,80 @@ pub fn report(manifest: &Manifest, shared: &Shared, replicates: &[Replicate]) ->
                 reused,
             }
         })
-        .collect::<Vec<EncodingSummary>>();
-    let too_few: Vec<String> = encodings
+        .collect::<Vec<ArmSummary>>();
+    let too_few: Vec<String> = summaries
         .iter()
         .filter(|e| e.replicates < MIN_REPLICATES_FOR_STATISTICS)
-        .map(|e| e.encoding.clone())
+        .map(|e| e.name.clone())
         .collect();
-    let mut pairs = Vec::new();
-    for (i, a) in manifest.encodings.iter().enumerate() {
-        for b in &manifest.encodings[i + 1..] {
+    let names = manifest.names();
+    let mut samples = Vec::new();
+    for (i, a) in names.iter().enumerate() {
+        for b in &names[i + 1..] {
             if too_few.contains(a) || too_few.contains(b) {
                 continue;
             }
             let best = |e: &str| -> Vec<f64> { of(e).iter().map(|r| r.champion.fitness).collect() };
-            let (x, y) = (best(a), best(b));
-            pairs.push(Pair {
-                a: a.clone(),
-                b: b.clone(),
-                test: stats::mann_whitney(&x, &y),
-                holm_p: f64::NAN,
-                a12: stats::a12(&x, &y),
-            });
+            samples.push((a, b, best(a), best(b)));
         }
     }
+    let tested = samples.len();
+    let mut pairs: Vec<Pair> = samples
+        .into_iter()
+        .map(|(a, b, x, y)| Pair {
+            a: a.clone(),
+            b: b.clone(),
+            test: stats::mann_whitney(&x, &y),
+            holm_p: f64::NAN,
+            a12: stats::a12(&x, &y),
+            detectable: stats::detectable_a12(x.len(), y.len(), tested),
+        })
+        .collect();
     let corrected = stats::holm(&pairs.iter().map(|p| p.test.p).collect::<Vec<_>>());
     for (p, h) in pairs.iter_mut().zip(corrected) {
         p.holm_p = h;
     }
+    let planned_pairs = names.len() * names.len().saturating_sub(1) / 2;
     Report {
-        encodings,
+        kind: manifest.kind(),
         pairs,
         too_few,
-        evaluations: evaluations_of(&shared.ga),
+        evaluations: summaries.iter().map(|a| a.walks).max().unwrap_or(0),
+        arms: summaries,
+        power: (planned_pairs > 0).then(|| {
+            stats::detectable_a12(manifest.replicates, manifest.replicates, planned_pairs)
+        }),
     }
+}
+
+/// The report's paragraph on power, for the comparison as planned (`r.power`: its replicates
+/// on every side, every pair tested): the level each pair is tested at, the effect it detects
+/// with probability [`stats::POWER`] and how that was computed.
+pub fn power_note(r: &Report) -> Option<String> {
+    let d = r.power?;
+    let pairs = r.arms.len() * (r.arms.len() - 1) / 2;
+    let method = match (d.distance, d.method) {
+        (None, _) => String::new(),
+        (Some(_), stats::PowerMethod::Simulated) => format!(
+            " (simulated: {} pairs of normal samples, one shifted by δ, A12 = Φ(δ/√2), \
+             through the exact test)",
+            stats::POWER_DRAWS
+        ),
+        (Some(_), stats::PowerMethod::Noether) => " (Noether's normal approximation)".into(),
+    };
+    Some(format!(
+        "Power: with {} replicates per {} and {pairs} pair{}, each pair is tested at {} / {pairs} \
+         = {:.4} (two-sided; the strictest level Holm's correction uses, so it holds for every \
+         pair). The comparison detects {}{method}. A pair whose Holm p is above {} is \
+         \"not detected at this power\": a smaller difference may exist.",
+        d.m,
+        r.kind,
+        if pairs == 1 { "" } else { "s" },
+        stats::ALPHA,
+        d.level,
+        d.words(),
+        stats::ALPHA,
+    ))
 }
 
 /// Writes `text` to `path` whole or not at all ([`crate::output::write`]): a reader never sees
@@ -186,36 +264,90 @@ fn num(v: f64, decimals: usize) -> String {
 pub fn write_report(
     root: &Path,
     manifest: &Manifest,
-    shared: &Shared,
+    arms: &[Arm],
     replicates: &[Replicate],
     unfinished: &[String],
 ) -> Result<Report, CompareError> {
-    let r = report(manifest, shared, replicates);
+    let r = report(manifest, arms, replicates);
     let mut md = String::new();
-    let task = shared.task.task.name();
-    let _ = writeln!(
-        md,
-        "# Comparison of {} on the {task} task\n\nFitness: {}.\n",
-        manifest.encodings.join(", "),
-        shared.task.fitness_label()
-    );
-    let _ = writeln!(
-        md,
-        "{} replicate{} per encoding, seed {}; every replicate made exactly {} evaluations \
-         (budget {}: population {}, {} generations, elite {} not re-evaluated; preset {}).\n",
-        manifest.replicates,
-        if manifest.replicates == 1 { "" } else { "s" },
-        manifest.seed,
-        r.evaluations,
-        manifest.evaluations,
-        shared.ga.population,
-        shared.ga.generations,
-        shared.ga.survivors(),
-        serde_json::to_value(shared.ga.preset)
+    let first = &arms
+        .first()
+        .ok_or_else(|| CompareError::Input("a comparison of nothing".into()))?
+        .settings;
+    let preset = |ga: &crate::evolve::ga::GaSettings| {
+        serde_json::to_value(ga.preset)
             .ok()
             .and_then(|v| v.as_str().map(str::to_string))
             .unwrap_or_default()
-    );
+    };
+    if manifest.conditions.is_empty() {
+        let task = first.task.task.name();
+        let _ = writeln!(
+            md,
+            "# Comparison of {} on the {task} task\n\nFitness: {}.\n",
+            manifest.encodings.join(", "),
+            first.task.fitness_label()
+        );
+        let _ = writeln!(
+            md,
+            "{} replicate{} per encoding, seed {}; every replicate made exactly {} evaluations \
+             (budget {}: population {}, {} generations, elite {} not re-evaluated; preset {}).\n",
+            manifest.replicates,
+            if manifest.replicates == 1 { "" } else { "s" },
+            manifest.seed,
+            r.evaluations,
+            manifest.evaluations,
+            first.ga.population,
+            first.ga.generations,
+            first.ga.survivors(),
+            preset(&first.ga)
+        );
+    } else {
+        let _ = writeln!(
+            md,
+            "# Comparison of the conditions {}\n\n{} replicate{} per condition, seed {} \
+             (replicate k of every condition has the same seed); a budget of {} walks per \
+             replicate (evaluations times walks per individual; an evaluation reused from an \
+             identical creature counts as the walk it stands for), spent in whole generations: \
+             every replicate of a condition made exactly its walks below (the elite is not \
+             re-evaluated).\n",
+            manifest.conditions.join(", "),
+            manifest.replicates,
+            if manifest.replicates == 1 { "" } else { "s" },
+            manifest.seed,
+            manifest.evaluations,
+        );
+        let rows = arms.iter().map(|a| {
+            let g = &a.settings.ga;
+            vec![
+                a.name.clone(),
+                a.encoding.clone(),
+                a.settings.task.fitness_label(),
+                g.population.to_string(),
+                g.generations.to_string(),
+                g.survivors().to_string(),
+                preset(g),
+                walks_per_individual(&a.settings.task).to_string(),
+                a.walks().to_string(),
+            ]
+        });
+        markdown_table(
+            &mut md,
+            &[
+                "condition",
+                "encoding",
+                "fitness",
+                "population",
+                "generations",
+                "elite",
+                "preset",
+                "walks per individual",
+                "walks",
+            ],
+            rows,
+        );
+        let _ = writeln!(md);
+    }
     if !unfinished.is_empty() {
         let _ = writeln!(
             md,
@@ -236,9 +368,9 @@ pub fn write_report(
          simulated and those that reused the evaluation of an identical creature earlier in \
          the same run.\n"
     );
-    let rows = r.encodings.iter().map(|e| {
+    let rows = r.arms.iter().map(|e| {
         vec![
-            e.encoding.clone(),
+            e.name.clone(),
             e.replicates.to_string(),
             num(e.best.mean, 4),
             fine_cell(e),
@@ -260,7 +392,7 @@ pub fn write_report(
     markdown_table(
         &mut md,
         &[
-            "encoding",
+            r.kind,
             "n",
             "mean best",
             "at the fine reference",
@@ -285,10 +417,13 @@ pub fn write_report(
             "\nPairwise two-sided Mann–Whitney U tests of the best fitness (exact distribution \
              without ties and up to {} replicates, else the normal approximation with tie and \
              continuity corrections), Holm-corrected over the {} pairs; A12 is Vargha and \
-             Delaney's probability that a replicate of the first encoding beats one of the second \
-             (0.5: no effect).\n",
+             Delaney's probability that a replicate of the first {} beats one of the second \
+             (0.5: no effect); detectable: the smallest A12 the pair's test detects with \
+             probability {} (see Power below).\n",
             stats::EXACT_MAX,
-            r.pairs.len()
+            r.pairs.len(),
+            r.kind,
+            stats::POWER,
         );
         let rows = r.pairs.iter().map(|p| {
             vec![
@@ -300,13 +435,31 @@ pub fn write_report(
                 num(p.holm_p, 4),
                 num(p.a12, 3),
                 stats::a12_magnitude(p.a12).to_string(),
+                p.detectable
+                    .a12()
+                    .map_or_else(|| "none".to_string(), |a| format!("{a:.2}")),
+                p.verdict(),
             ]
         });
         markdown_table(
             &mut md,
-            &["a", "b", "U", "p", "method", "Holm p", "A12", "effect"],
+            &[
+                "a",
+                "b",
+                "U",
+                "p",
+                "method",
+                "Holm p",
+                "A12",
+                "effect",
+                "detectable",
+                "verdict",
+            ],
             rows,
         );
+    }
+    if let Some(note) = power_note(&r) {
+        let _ = writeln!(md, "\n{note}");
     }
     let _ = writeln!(
         md,
@@ -314,18 +467,19 @@ pub fn write_report(
     );
     write_file(&root.join("report.md"), &md)?;
 
-    let mut csv = String::from(
-        "encoding,replicate,seed,evaluations,best_fitness,best_fine,parts,joints,neurons,shapes_per_part,simulated,reused,wall_seconds\n",
+    let mut csv = format!(
+        "{},replicate,seed,evaluations,best_fitness,best_fine,parts,joints,neurons,shapes_per_part,simulated,reused,wall_seconds\n",
+        r.kind
     );
     let mut sorted: Vec<&Replicate> = replicates.iter().collect();
-    let position = |e: &str| manifest.encodings.iter().position(|x| x == e);
-    sorted.sort_by_key(|r| (position(&r.encoding), r.k));
+    let position = |e: &str| manifest.names().iter().position(|x| x == e);
+    sorted.sort_by_key(|r| (position(&r.name), r.k));
     for rep in sorted {
         let c = &rep.champion;
         let _ = writeln!(
             csv,
             "{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
-            rep.encoding,
+            rep.name,
             rep.k,
             rep.seed,
             rep.evaluations,
@@ -342,21 +496,29 @@ pub fn write_report(
     }
     write_file(&root.join("summary.csv"), &csv)?;
 
-    let bands: Vec<Band> = manifest
-        .encodings
+    let bands: Vec<Band> = arms
         .iter()
-        .map(|e| band(e, replicates, shared.task.fitness_floor()))
+        .map(|a| {
+            let walks = walks_per_individual(&a.settings.task);
+            band(&a.name, replicates, a.settings.task.fitness_floor(), walks)
+        })
         .collect();
+    // The task's name, or "conditions" when they do not share one.
+    let task = if arms.iter().all(|a| a.settings.task.task == first.task.task) {
+        first.task.task.name()
+    } else {
+        "conditions"
+    };
     let title = format!("{task}: mean best fitness with 95% confidence bands");
-    let y_desc = shared.task.fitness_measure();
+    let y_desc = first.task.fitness_measure();
     plot::bands_svg(&root.join("fitness.svg"), &bands, &title, y_desc)?;
     let parts: Vec<(String, Vec<f64>)> = manifest
-        .encodings
+        .names()
         .iter()
         .map(|e| {
             let mut v: Vec<(usize, f64)> = replicates
                 .iter()
-                .filter(|r| &r.encoding == e)
+                .filter(|r| &r.name == e)
                 .map(|r| (r.k, r.champion.parts as f64))
                 .collect();
             v.sort_by_key(|x| x.0);
@@ -372,23 +534,22 @@ pub fn write_report(
     Ok(r)
 }
 
-/// Why `encodings` have no statistics, after "no statistics": for the report and the summary.
-pub fn too_few_note(encodings: &[String]) -> String {
+/// Why `names` (encodings or conditions) have no statistics, after "no statistics": for the
+/// report and the summary.
+pub fn too_few_note(names: &[String]) -> String {
     format!(
         "for {}: fewer than {MIN_REPLICATES_FOR_STATISTICS} finished replicates, so no standard deviation, \
          confidence interval or pairwise test (run more with `--replicates`)",
-        encodings.join(", ")
+        names.join(", ")
     )
 }
 
-/// The mean best-so-far fitness of `encoding`'s replicates after each generation, with its
-/// 95% confidence band (the band is the mean where fewer than 2 replicates exist), held at or
-/// above `floor`, the lowest fitness the task can score, when it has one.
-fn band(encoding: &str, replicates: &[Replicate], floor: Option<f64>) -> Band {
-    let rs: Vec<&Replicate> = replicates
-        .iter()
-        .filter(|r| r.encoding == encoding)
-        .collect();
+/// The mean best-so-far fitness of the replicates of `name` after each generation, against
+/// the walks made (evaluations times `walks` per individual), with its 95% confidence band
+/// (the band is the mean where fewer than 2 replicates exist), held at or above `floor`, the
+/// lowest fitness the task can score, when it has one.
+fn band(name: &str, replicates: &[Replicate], floor: Option<f64>, walks: u64) -> Band {
+    let rs: Vec<&Replicate> = replicates.iter().filter(|r| r.name == name).collect();
     let points = rs.first().map_or(0, |r| r.curve.len());
     let mut out = Vec::with_capacity(points);
     for g in 0..points {
@@ -400,21 +561,21 @@ fn band(encoding: &str, replicates: &[Replicate], floor: Option<f64>) -> Band {
         let s = stats::summary(&values);
         let half = if s.ci95.is_finite() { s.ci95 } else { 0.0 };
         out.push((
-            rs[0].curve[g].0 as f64,
+            (rs[0].curve[g].0 * walks) as f64,
             s.mean,
             floor.map_or(s.mean - half, |floor| (s.mean - half).max(floor)),
             s.mean + half,
         ));
     }
     Band {
-        name: encoding.to_string(),
+        name: name.to_string(),
         points: out,
     }
 }
 
 /// The report's "at the fine reference" cell: the champions' mean re-walked at the fine
 /// reference, saying over how many replicates when not all, and how many failed.
-fn fine_cell(e: &EncodingSummary) -> String {
+fn fine_cell(e: &ArmSummary) -> String {
     let mean = num(e.mean_fine, 4);
     match (
         e.fine_replicates == e.replicates || e.fine_replicates == 0,
@@ -443,11 +604,12 @@ fn markdown_table(md: &mut String, header: &[&str], rows: impl Iterator<Item = V
 mod tests {
     use super::*;
     use crate::study::compare::chaumont_ga as ga;
+    use crate::study::compare::{Shared, encoding_arms};
     use crate::task::TaskSpec;
 
-    fn replicate(encoding: &str, k: usize, best: f64, parts: u32) -> Replicate {
+    fn replicate(name: &str, k: usize, best: f64, parts: u32) -> Replicate {
         Replicate {
-            encoding: encoding.into(),
+            name: name.into(),
             k,
             seed: k as u64,
             curve: vec![(6, best / 2.0), (11, best)],
@@ -469,6 +631,7 @@ mod tests {
     fn the_report_by_hand() {
         let manifest = Manifest {
             encodings: vec!["a".into(), "b".into(), "c".into()],
+            conditions: vec![],
             replicates: 3,
             evaluations: 11,
             seed: 1,
@@ -494,19 +657,19 @@ mod tests {
             replicate("c", 2, 2.5, 1),
             replicate("c", 3, 3.5, 2),
         ];
-        let r = report(&manifest, &shared, &reps);
+        let r = report(&manifest, &encoding_arms(&manifest, &shared), &reps);
         assert_eq!(r.evaluations, 11);
-        let a = &r.encodings[0];
+        let a = &r.arms[0];
         assert_eq!(a.replicates, 3);
         assert_eq!(a.best.mean, 2.0);
         assert_eq!(a.best.sd, 1.0);
         // The fine reference values 1/4, 2/4, 3/4: mean 0.5.
         assert_eq!((a.mean_fine, a.fine_replicates), (0.5, 3));
         // c's over its two verified replicates: (2.5 + 3.5) / 4 / 2.
-        let c = &r.encodings[2];
+        let c = &r.arms[2];
         assert_eq!((c.mean_fine, c.fine_replicates), (0.75, 2));
         // b's over the two re-walks that did not fail: (4 + 5) / 4 / 2; one failed.
-        let b = &r.encodings[1];
+        let b = &r.arms[1];
         assert_eq!(
             (b.mean_fine, b.fine_replicates, b.fine_failed),
             (1.125, 3, 1)
@@ -535,8 +698,25 @@ mod tests {
         assert!((r.pairs[0].holm_p - 0.3).abs() < 1e-12);
         assert!((r.pairs[2].holm_p - 0.3).abs() < 1e-12);
         assert!((r.pairs[1].holm_p - 0.7).abs() < 1e-12);
+        // Three replicates a side cannot reach p ≤ 0.05/3: nothing is detectable, and each
+        // pair says so rather than "no difference".
+        assert_eq!(r.power.unwrap().distance, None);
+        assert_eq!(
+            (r.power.unwrap().m, r.power.unwrap().level),
+            (3, 0.05 / 3.0)
+        );
+        assert!(!ab.detected());
+        assert_eq!(
+            ab.verdict(),
+            "not detected at this power (none is detectable with 3 and 3 replicates)"
+        );
+        assert!(
+            power_note(&r)
+                .unwrap()
+                .contains("each pair is tested at 0.05 / 3 = 0.0167")
+        );
         // The band: the mean of the best so far, 1, 2, 3 → 2 ± t(2)·1/√3.
-        let b = band("a", &reps, None);
+        let b = band("a", &reps, None, 1);
         assert_eq!(b.points.len(), 2);
         assert_eq!(b.points[1].0, 11.0);
         assert_eq!(b.points[1].1, 2.0);
@@ -544,7 +724,7 @@ mod tests {
         assert!((b.points[1].3 - 2.0 - half).abs() < 1e-12);
         // 2 − 2.48 is below 0: a fitness that cannot be negative has its band held at 0.
         assert!(b.points[1].2 < 0.0);
-        let held = band("a", &reps, Some(0.0));
+        let held = band("a", &reps, Some(0.0), 1);
         assert_eq!(held.points[1].2, 0.0);
         assert_eq!(held.points[1].3, b.points[1].3);
     }

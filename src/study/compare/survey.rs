@@ -1,69 +1,72 @@
-//! Where a comparison stands: every replicate's state read by its encoding's name, the
+//! Where a comparison stands: every replicate's state read by its arm's encoding, the
 //! evaluations made so far and the replicates left to run ([`survey`]), and the finished and
 //! unfinished replicates a report is made of ([`gather`]).
 
 use std::path::Path;
 
 use super::CompareError;
-use super::plan::{Manifest, Shared, evaluations_of};
+use super::plan::{Arm, Manifest, evaluations_of, walks_per_individual};
 use super::replicate::{Replicate, ReplicateState, read_replicate};
 
-/// The state of replicate `k` of the encoding named `encoding`.
+/// The state of replicate `k` of `arm`.
 pub fn replicate_state(
     root: &Path,
     manifest: &Manifest,
-    shared: &Shared,
-    encoding: &str,
+    arm: &Arm,
     k: usize,
 ) -> Result<ReplicateState, CompareError> {
     crate::with_genome!(
-        encoding,
-        G => read_replicate::<G>(root, manifest, shared, k),
+        arm.encoding.as_str(),
+        G => read_replicate::<G>(root, manifest, arm, k),
         |other| Err(CompareError::Input(format!(
             "{}: unknown encoding '{other}'",
-            root.join("compare.toml").display()
+            if manifest.conditions.is_empty() {
+                root.join("compare.toml")
+            } else {
+                super::plan::condition_file(root, &arm.name)
+            }
+            .display()
         )))
     )
 }
 
-/// Evaluations a replicate has made after `generations` complete generations.
-fn made(shared: &Shared, generations: usize) -> u64 {
+/// Walks a replicate of `arm` has simulated after `generations` complete generations.
+fn made(arm: &Arm, generations: usize) -> u64 {
     if generations == 0 {
         return 0;
     }
-    let mut ga = shared.ga.clone();
+    let mut ga = arm.settings.ga.clone();
     ga.generations = generations;
-    evaluations_of(&ga)
+    evaluations_of(&ga) * walks_per_individual(&arm.settings.task)
 }
 
 /// A comparison's progress before its missing and unfinished replicates run.
 #[derive(Clone, Debug, Default)]
 pub struct Survey {
-    /// Evaluations of the whole comparison.
+    /// Walks of the whole comparison.
     pub total: u64,
-    /// Evaluations made so far.
+    /// Walks made so far.
     pub done: u64,
-    /// The replicates to run, `(encoding, k)`: replicate 1 of every encoding, then
+    /// The replicates to run, `(arm's index, k)`: replicate 1 of every arm, then
     /// replicate 2, ...
-    pub todo: Vec<(String, usize)>,
+    pub todo: Vec<(usize, usize)>,
 }
 
-/// Reads every replicate's state: the evaluations made and the replicates left to run.
-pub fn survey(root: &Path, manifest: &Manifest, shared: &Shared) -> Result<Survey, CompareError> {
-    let per_replicate = evaluations_of(&shared.ga);
+/// Reads every replicate's state: the walks made and the replicates left to run.
+pub fn survey(root: &Path, manifest: &Manifest, arms: &[Arm]) -> Result<Survey, CompareError> {
     let mut survey = Survey {
-        total: per_replicate * (manifest.replicates * manifest.encodings.len()) as u64,
+        total: arms.iter().map(Arm::walks).sum::<u64>() * manifest.replicates as u64,
         ..Survey::default()
     };
     for k in 1..=manifest.replicates {
-        for encoding in &manifest.encodings {
-            match replicate_state(root, manifest, shared, encoding, k)? {
-                ReplicateState::Done(_) => survey.done += per_replicate,
+        for (i, arm) in arms.iter().enumerate() {
+            match replicate_state(root, manifest, arm, k)? {
+                ReplicateState::Done(_) => survey.done += arm.walks(),
                 ReplicateState::Partial(g) => {
-                    survey.done += made(shared, g);
-                    survey.todo.push((encoding.clone(), k));
+                    survey.done += made(arm, g);
+                    survey.todo.push((i, k));
                 }
-                ReplicateState::Missing => survey.todo.push((encoding.clone(), k)),
+                ReplicateState::Missing => survey.todo.push((i, k)),
             }
         }
     }
@@ -71,25 +74,24 @@ pub fn survey(root: &Path, manifest: &Manifest, shared: &Shared) -> Result<Surve
 }
 
 /// The finished replicates, and a description of each unfinished one (`lsystem rep-2 (3 of
-/// 10 generations)`, `... (not started)`), encoding by encoding.
+/// 10 generations)`, `... (not started)`), arm by arm.
 pub fn gather(
     root: &Path,
     manifest: &Manifest,
-    shared: &Shared,
+    arms: &[Arm],
 ) -> Result<(Vec<Replicate>, Vec<String>), CompareError> {
     let mut finished: Vec<Replicate> = Vec::new();
     let mut unfinished = Vec::new();
-    for encoding in &manifest.encodings {
+    for arm in arms {
+        let name = &arm.name;
         for k in 1..=manifest.replicates {
-            match replicate_state(root, manifest, shared, encoding, k)? {
+            match replicate_state(root, manifest, arm, k)? {
                 ReplicateState::Done(r) => finished.push(*r),
                 ReplicateState::Partial(g) => unfinished.push(format!(
-                    "{encoding} rep-{k} ({g} of {} generations)",
-                    shared.ga.generations
+                    "{name} rep-{k} ({g} of {} generations)",
+                    arm.settings.ga.generations
                 )),
-                ReplicateState::Missing => {
-                    unfinished.push(format!("{encoding} rep-{k} (not started)"))
-                }
+                ReplicateState::Missing => unfinished.push(format!("{name} rep-{k} (not started)")),
             }
         }
     }

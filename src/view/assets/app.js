@@ -880,16 +880,18 @@ function drawPlot(generations, yLabel) {
 
 // ---------------------------------------------------------------- comparison pages
 
-// A comparison: its replicates on the left (encoding, k, generations stored, best and its
-// fine reference), its plots and report where the 3D view would be.
+// A comparison: its replicates on the left (encoding or condition, k, generations stored, best
+// and its fine reference), its plots and report where the 3D view would be.
 function showComparison(data) {
   body.dataset.kind = 'comparison';
-  $('file').textContent = `${data.file}  (${data.encodings.join(' vs ')}; ${data.fitness})`;
+  const names = data.conditions.length ? data.conditions : data.encodings;
+  const kind = data.conditions.length ? 'condition' : 'encoding';
+  $('file').textContent = `${data.file}  (${names.join(' vs ')}; ${data.fitness})`;
   playButton.style.display = 'none';
   slider.style.display = 'none';
-  const rows = data.runs.map((r) => `<tr><td>${r.encoding}</td><td>${r.k}</td><td>${r.generations}</td><td>${fmt(r.best)}</td><td>${fmt(r.best_fine)}</td></tr>`);
-  $('left').innerHTML = '<h2>Replicates</h2><table id="replicates"><tr><th>encoding</th><th>rep</th><th>gens</th><th>best</th><th>fine ref.</th></tr>' +
-    rows.join('') + '</table><p>Each replicate is a run: open one with <code>ontogeny view DIR/ENCODING/rep-K</code>.</p>';
+  const rows = data.runs.map((r) => `<tr><td>${r.name}</td><td>${r.k}</td><td>${r.generations}</td><td>${fmt(r.best)}</td><td>${fmt(r.best_fine)}</td></tr>`);
+  $('left').innerHTML = `<h2>Replicates</h2><table id="replicates"><tr><th>${kind}</th><th>rep</th><th>gens</th><th>best</th><th>fine ref.</th></tr>` +
+    rows.join('') + `</table><p>Each replicate is a run: open one with <code>ontogeny view DIR/${kind.toUpperCase()}/rep-K</code>.</p>`;
   const panel = document.createElement('div');
   panel.id = 'comparison';
   panel.innerHTML = data.plots.map((name) => `<img src="/plot/${name}" alt="${name}">`).join('') + '<pre id="report"></pre>';
@@ -899,7 +901,7 @@ function showComparison(data) {
     : data.report;
   body.dataset.runs = String(data.runs.length);
   body.dataset.plots = String(data.plots.length);
-  document.title = `ontogeny view: comparison of ${data.encodings.join(', ')}`;
+  document.title = `ontogeny view: comparison of ${names.join(', ')}`;
   body.dataset.ready = 'yes';
 }
 
