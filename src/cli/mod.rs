@@ -301,6 +301,7 @@ mod tests {
         // A comparison's own flags, refused beside both.
         let comparison = [
             "encodings",
+            "condition",
             "task",
             "fitness",
             "replicates",
