@@ -796,8 +796,7 @@ mod tests {
 
     #[test]
     fn a_recording_in_a_world_sends_its_geometry_and_a_flat_one_none() {
-        let scratch = scratch("world");
-        let dir = scratch.path().to_path_buf();
+        let (_scratch, dir) = scratch("world");
         let creature = crate::develop::creature_from_commands("forward(1)").unwrap();
         let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
         let ball = json!([[2.0, 0.1, 0.0], [0.0, 0.0, 0.0, 1.0]]);

@@ -2,7 +2,7 @@
 //! ground's friction says, a walker over steps, the rough ground's determinism, a rolling
 //! ball's path, and every example world run through `evolve`.
 
-use ontogeny::creature::Creature;
+use ontogeny::creature::{Creature, PartId};
 use ontogeny::develop::creature_from_commands;
 use ontogeny::sim::{GRAVITY, SimOptions, World, WorldSpec};
 use ontogeny::task::{TaskKind, TaskSpec};
@@ -43,9 +43,9 @@ fn a_box_on_a_30_degree_slope_rests_at_friction_1_2_tan_30() {
     let tan = 30f64.to_radians().tan();
     let mut world = plank_on_slope(1.2 * tan);
     run(&mut world, 1.0);
-    let settled = world.part_position(0);
+    let settled = world.part_position(PartId(0));
     run(&mut world, 2.0);
-    let moved = (world.part_position(0) - settled).norm();
+    let moved = (world.part_position(PartId(0)) - settled).norm();
     assert!(moved < 1e-3, "moved {moved} m in 2 s");
 }
 
@@ -59,7 +59,7 @@ fn a_box_on_a_30_degree_slope_slides_at_friction_0_8_tan_30_as_coulomb_says() {
     run(&mut world, 0.5);
     let mut along = Vec::new();
     for _ in 0..3 {
-        let p = world.part_position(0);
+        let p = world.part_position(PartId(0));
         along.push(-(p.x * theta.cos() + p.y * theta.sin()));
         run(&mut world, 0.5);
     }
@@ -71,7 +71,7 @@ fn a_box_on_a_30_degree_slope_slides_at_friction_0_8_tan_30_as_coulomb_says() {
         "a = {a} m/s², by hand {by_hand}"
     );
     // Sideways, nothing.
-    assert!(world.part_position(0).z.abs() < 1e-3);
+    assert!(world.part_position(PartId(0)).z.abs() < 1e-3);
 }
 
 fn walker_over(world: &str) -> ontogeny::task::Evaluation {
