@@ -12,6 +12,7 @@ use ontogeny::front::flags::{self, TaskFlags};
 use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
 use ontogeny::run::champion::ChampionRecord;
+use ontogeny::sim::WorldSpec;
 use ontogeny::sim::{JointModel, SimOptions};
 use ontogeny::task::{CatapultOptions, Evaluation, Recording, TaskKind, TaskSpec, WalkerOptions};
 
@@ -349,7 +350,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     }
     if let Some(dir) = &args.record {
         ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
-        write_recording(dir, &creature, &evaluation)?;
+        write_recording(dir, &creature, &evaluation, &spec.world)?;
         let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
     }
@@ -417,7 +418,8 @@ fn run_in_habitats(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> any
             .find(|u| only.is_none_or(|h| u.habitat as usize == h))
             .expect("a task has a unit in every habitat");
         let walked = unit.perturbation.place(&creatures[unit.habitat as usize]);
-        let recorded = spec.unit_spec(&unit).evaluate(&walked, true);
+        let unit_spec = spec.unit_spec(&unit);
+        let recorded = unit_spec.evaluate(&walked, true);
         tell!(
             "note: recording {}trial 1",
             match spec.habitat_name(unit.habitat as usize) {
@@ -426,7 +428,7 @@ fn run_in_habitats(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> any
             }
         );
         ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
-        write_recording(dir, &walked, &recorded)?;
+        write_recording(dir, &walked, &recorded, &unit_spec.world)?;
         let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
     }
@@ -442,20 +444,26 @@ fn run_in_habitats(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> any
     Ok(())
 }
 
-fn write_recording(dir: &Path, creature: &Creature, evaluation: &Evaluation) -> anyhow::Result<()> {
-    write_recording_at(dir, creature, evaluation, 10.0)
+fn write_recording(
+    dir: &Path,
+    creature: &Creature,
+    evaluation: &Evaluation,
+    world: &WorldSpec,
+) -> anyhow::Result<()> {
+    write_recording_at(dir, creature, evaluation, world, 10.0)
 }
 
-/// Writes `DIR/recording.json` ([`Recording`]) and `DIR/behaviour.gif` (`fps` images per
-/// simulated second) into `dir`, a folder made ready for them
+/// Writes `DIR/recording.json` ([`Recording`], in `world`) and `DIR/behaviour.gif` (`fps`
+/// images per simulated second, the world drawn) into `dir`, a folder made ready for them
 /// ([`ontogeny::output::prepare_folder`]).
 pub fn write_recording_at(
     dir: &Path,
     creature: &Creature,
     evaluation: &Evaluation,
+    world: &WorldSpec,
     fps: f64,
 ) -> anyhow::Result<()> {
-    let recording = Recording::of(creature, evaluation);
+    let recording = Recording::of(creature, evaluation).in_world(world);
     ontogeny::output::write(
         &dir.join("recording.json"),
         serde_json::to_string(&recording)?,

@@ -3,7 +3,8 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use ontogeny::export::to_mjcf;
+use ontogeny::export::to_mjcf_in;
+use ontogeny::sim::WorldSpec;
 
 use super::derive::DevelopmentArgs;
 use super::input::load_creature;
@@ -47,19 +48,46 @@ pub struct ExportArgs {
     max_parts: usize,
     #[command(flatten)]
     physics: PhysicsArgs,
+    /// A configuration file whose `[task.world]` the creature is exported in: its ground,
+    /// obstacles, objects and medium (default: flat ground in air).
+    #[arg(long, value_name = "CONFIG")]
+    world: Option<PathBuf>,
+}
+
+/// The `[task.world]` table of the configuration file at `path`, checked (none: the flat
+/// world).
+fn read_world(path: &std::path::Path) -> anyhow::Result<WorldSpec> {
+    let source = ontogeny::run::config::read_config_source(path)?;
+    let table: toml::Table = toml::from_str(source.text())
+        .map_err(|e| super::bad(format!("{}: {}", path.display(), e.message())))?;
+    let Some(value) = table.get("task").and_then(|task| task.get("world")) else {
+        return Ok(WorldSpec::default());
+    };
+    let world = value
+        .clone()
+        .try_into::<WorldSpec>()
+        .map_err(|e| super::bad(format!("{}: [task.world]: {}", path.display(), e.message())))?;
+    world
+        .check()
+        .map_err(|e| super::bad(format!("{}: [task.world]: {e}", path.display())))?;
+    Ok(world)
 }
 
 /// Exports the creature.
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let creature = load_creature(&args.file, &args.development, args.max_parts)?;
     let sim = args.physics.sim_options()?;
+    let world = match &args.world {
+        Some(path) => read_world(path)?,
+        None => WorldSpec::default(),
+    };
     let name = args
         .file
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "creature".to_string());
     let text = match args.format {
-        FormatArg::Mjcf => to_mjcf(&creature, &sim, &name),
+        FormatArg::Mjcf => to_mjcf_in(&creature, &sim, &name, &world),
     }
     .map_err(|e| super::bad(format!("{}: cannot export: {e}", args.file.display())))?;
     match &args.out {

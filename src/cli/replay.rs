@@ -168,7 +168,7 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
         .map_err(super::render_error(&png))?;
     let evaluation = if task.is_plain() {
         let evaluation = task.evaluate(creature, true);
-        super::eval::write_recording_at(&out, creature, &evaluation, fps)?;
+        super::eval::write_recording_at(&out, creature, &evaluation, &task.world, fps)?;
         evaluation
     } else {
         // Every unit walked for the aggregate; the habitat's first trial recorded.
@@ -191,8 +191,9 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
             .find(|u| u.habitat as usize == habitat)
             .expect("every habitat has a trial");
         let walked = unit.perturbation.place(creature);
-        let recorded = task.unit_spec(&unit).evaluate(&walked, true);
-        super::eval::write_recording_at(&out, &walked, &recorded, fps)?;
+        let unit_spec = task.unit_spec(&unit);
+        let recorded = unit_spec.evaluate(&walked, true);
+        super::eval::write_recording_at(&out, &walked, &recorded, &unit_spec.world, fps)?;
         say!(
             "{}",
             ontogeny::front::flags::habitats_text(task, &evaluation)

@@ -38,6 +38,8 @@
 //!   scale a force limit by the control inside the model). `<custom>` lists the neuron of
 //!   every actuator (`ontogeny_actuator_neurons`) and its maximum torque
 //!   (`ontogeny_max_torque`); a comment before each actuator says the same.
+//! - **World.** [`to_mjcf_in`] writes the creature's world beside it (module `mjcf_world`),
+//!   the creature lifted above the highest ground under it.
 //!
 //! Not exported: the brain itself, sensors, secreting and release effectors, the catapult's
 //! projectile, and the simulator's explosion checks.
@@ -47,11 +49,12 @@ use std::fmt::Write as _;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use super::ExportError;
+use super::{ExportError, mjcf_world};
 use crate::creature::{Actuator, Creature, Joint, Role};
+use crate::sim::terrain::Terrain;
 use crate::sim::{
     ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, GRAVITY, SATURATION_DAMPING, SimOptions,
-    max_torque,
+    WorldSpec, max_torque,
 };
 
 /// MuJoCo's default torsional and rolling friction, written beside the sliding friction.
@@ -171,7 +174,7 @@ fn frame_axes(joint: &Joint) -> Vec<Vector3<f64>> {
 
 /// Writes numbers separated by spaces, each in the shortest form that reads back exactly
 /// (in scientific notation when very small or very large).
-fn numbers(values: &[f64]) -> String {
+pub(super) fn numbers(values: &[f64]) -> String {
     let texts: Vec<String> = values
         .iter()
         .map(|&v| {
@@ -190,7 +193,7 @@ fn numbers(values: &[f64]) -> String {
 const ROUND_OFF: f64 = 1e-12;
 
 /// Writes the coordinates of a position, axis or quaternion, round-off written as 0.
-fn coordinates(values: &[f64]) -> String {
+pub(super) fn coordinates(values: &[f64]) -> String {
     let snapped: Vec<f64> = values
         .iter()
         .map(|&v| if v.abs() < ROUND_OFF { 0.0 } else { v })
@@ -198,12 +201,12 @@ fn coordinates(values: &[f64]) -> String {
     numbers(&snapped)
 }
 
-fn vec3(v: &Vector3<f64>) -> String {
+pub(super) fn vec3(v: &Vector3<f64>) -> String {
     coordinates(&[v.x, v.y, v.z])
 }
 
 /// MJCF's `quat`: w x y z.
-fn quat(q: &UnitQuaternion<f64>) -> String {
+pub(super) fn quat(q: &UnitQuaternion<f64>) -> String {
     coordinates(&[q.w, q.i, q.j, q.k])
 }
 
@@ -304,6 +307,19 @@ pub fn to_mjcf(
     options: &SimOptions,
     name: &str,
 ) -> Result<String, ExportError> {
+    to_mjcf_in(creature, options, name, &WorldSpec::default())
+}
+
+/// Writes `creature` in `world` as an MJCF model named `name`, with the physics settings of
+/// `options`: the creature as [`to_mjcf`] writes it, lifted above the ground under it, and
+/// the world as module `mjcf_world` writes it (the slope's tilted plane, step and obstacle
+/// boxes, the rough ground's `hfield`, free bodies for objects, water's options).
+pub fn to_mjcf_in(
+    creature: &Creature,
+    options: &SimOptions,
+    name: &str,
+    world: &WorldSpec,
+) -> Result<String, ExportError> {
     if creature.parts.is_empty() {
         return Err(ExportError::NoParts);
     }
@@ -342,12 +358,17 @@ pub fn to_mjcf(
         w,
         "  <compiler angle=\"radian\" autolimits=\"true\" inertiafromgeom=\"true\"/>"
     );
+    let terrain = Terrain::new(world);
+    let medium = mjcf_world::medium_attributes(&terrain);
+    if medium.is_some() {
+        let _ = writeln!(w, "  {}", mjcf_world::WATER_NOTE);
+    }
     let _ = writeln!(
         w,
-        "  <option timestep=\"{}\" iterations=\"{}\" gravity=\"0 0 {}\" integrator=\"implicitfast\">",
+        "  <option timestep=\"{}\" iterations=\"{}\" {} integrator=\"implicitfast\">",
         numbers(&[options.control_step / substeps as f64]),
         options.solver_iterations.max(1),
-        numbers(&[-GRAVITY])
+        medium.unwrap_or_else(|| format!("gravity=\"0 0 {}\"", numbers(&[-GRAVITY])))
     );
     let _ = writeln!(w, "    <flag filterparent=\"disable\"/>");
     let _ = writeln!(w, "  </option>");
@@ -391,16 +412,28 @@ pub fn to_mjcf(
     }
     let _ = writeln!(w, "  </custom>");
 
+    mjcf_world::write_assets(w, &terrain);
     let _ = writeln!(w, "  <worldbody>");
-    let _ = writeln!(
-        w,
-        "    <geom name=\"ground\" type=\"plane\" size=\"0 0 1\" friction=\"{friction}\"/>"
-    );
-    let (lo, _) = creature.bounding_box();
+    if world.is_flat() {
+        let _ = writeln!(
+            w,
+            "    <geom name=\"ground\" type=\"plane\" size=\"0 0 1\" friction=\"{friction}\"/>"
+        );
+    } else {
+        let ground = mjcf_world::ground_friction(&terrain, &friction, TORSIONAL_AND_ROLLING);
+        mjcf_world::write_world(w, &terrain, &ground, &friction);
+    }
+    let (lo, hi) = creature.bounding_box();
+    // The ground's highest point under the creature (0 on level ground).
+    let under = if world.medium.is_air() {
+        terrain.extremes_under([lo.x, hi.x], [lo.z, hi.z]).0
+    } else {
+        0.0
+    };
     let body = BodyWriter {
         creature,
         tree: &tree,
-        lift: Vector3::new(0.0, options.drop_height - lo.y, 0.0),
+        lift: Vector3::new(0.0, options.drop_height - lo.y + under, 0.0),
         friction: &friction,
         contacts: if options.self_collision {
             ""

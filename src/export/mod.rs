@@ -2,12 +2,13 @@
 //! with the physics settings of [`SimOptions`](crate::sim::SimOptions), so that the same
 //! creature can be run, inspected or compared elsewhere.
 //!
-//! [`mjcf`] writes MuJoCo's MJCF. This room reads creatures and simulator settings; it never
+//! [`mjcf`] writes MuJoCo's MJCF, and the creature's world beside it. This room reads creatures and simulator settings; it never
 //! builds a world or runs one, and nothing reads the formats back.
 
 pub mod mjcf;
+mod mjcf_world;
 
-pub use mjcf::{MjcfActuator, mjcf_actuators, to_mjcf};
+pub use mjcf::{MjcfActuator, mjcf_actuators, to_mjcf, to_mjcf_in};
 
 /// Why a creature could not be exported.
 #[derive(Debug, thiserror::Error)]

@@ -6,6 +6,8 @@
 //! Words: a *frame* is a developmental frame (growth), a *sample* a recorded moment of an
 //! evaluation ([`Sample`]), an *image* one picture of a GIF.
 
+use std::sync::Arc;
+
 use nalgebra::{UnitQuaternion, Vector3};
 
 use super::camera::{Framing, View};
@@ -14,6 +16,7 @@ use super::text::wrap;
 use super::walk::{root_path, thinned, walked, walked_label};
 use super::{Overlay, RenderError, checked_with_label, picture};
 use crate::creature::{Creature, Part};
+use crate::sim::terrain::Terrain;
 use crate::task::{Recording, Sample};
 
 /// The largest rate (images per second) an animation takes: GIF delays are whole
@@ -201,6 +204,7 @@ pub fn write_behaviour_gif(
     }
     let target = recording.target_point();
     let walks = recording.task == "walker";
+    let world = (!recording.world.is_flat()).then(|| Arc::new(Terrain::new(&recording.world)));
     let poses: Vec<Creature> = playback
         .shown
         .iter()
@@ -225,6 +229,8 @@ pub fn write_behaviour_gif(
                 } else {
                     Vec::new()
                 },
+                world: world.clone(),
+                objects: sample.objects.clone(),
             }
         })
         .collect();
@@ -342,6 +348,7 @@ mod tests {
                 parts: Vec::new(),
                 projectile: None,
                 projectile_size: None,
+                objects: Vec::new(),
             })
             .collect()
     }

@@ -11,6 +11,7 @@ use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL,
 use super::pen::{convex_hull_path, draw_bullseye, fill, polygon, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
+use super::world::{draw_ground_shape, draw_solids, is_water, shapes_ground, tint_water};
 use crate::creature::{Creature, Severity, counted};
 
 /// Whether a picture checks the creature: marks interpenetrating parts, numbers the parts and
@@ -56,13 +57,30 @@ pub(super) fn draw_body(
     let (rx, ry, rw, rh) = region;
     let camera = Camera::new(view, rw as f64, rh as f64, 12.0);
     let shift = Transform::from_translate(rx, ry);
-    let ground = view.min.y.min(0.0);
-    draw_ground(pixmap, &camera, shift, view, ground);
-    if let Some(target) = overlay.target {
-        draw_target_stem(pixmap, &camera, shift, ground, target);
+    let level = view.min.y.min(0.0);
+    let world = overlay.world.as_deref();
+    let shaped = world.filter(|t| shapes_ground(t) && !is_water(t));
+    let water = world.is_some_and(is_water);
+    // The ground's height under a point: the world's shaped ground, or level.
+    let ground = |x: f64, z: f64| shaped.map_or(level, |t| t.height(x, z));
+    match shaped {
+        _ if water => {}
+        Some(terrain) => {
+            let (step, x, z) = ground_window(view);
+            draw_ground_shape(pixmap, &camera, shift, (x, z), step, terrain);
+        }
+        None => draw_ground(pixmap, &camera, shift, view, level),
     }
-    draw_path(pixmap, &camera, shift, ground, &overlay.path);
-    draw_shadows(pixmap, &camera, shift, ground, creature);
+    if let Some(target) = overlay.target {
+        draw_target_stem(pixmap, &camera, shift, &ground, target);
+    }
+    draw_path(pixmap, &camera, shift, &ground, &overlay.path);
+    if !water {
+        draw_shadows(pixmap, &camera, shift, &ground, creature);
+    }
+    if let Some(terrain) = world {
+        draw_solids(pixmap, &camera, shift, terrain, &overlay.objects);
+    }
     draw_parts(pixmap, &camera, shift, creature);
     // Parts that the builder found overlapping and reported as a warning (a picture of a
     // plant) are not marked again.
@@ -80,6 +98,9 @@ pub(super) fn draw_body(
     draw_trail_and_target(pixmap, &camera, region, overlay);
     if checks == Checks::On {
         number_parts(pixmap, &camera, region, creature, &marked);
+    }
+    if water {
+        tint_water(pixmap, region);
     }
     let text_scale = if rh >= 500.0 { 2.0 } else { 1.0 };
     draw_scale_bar(pixmap, &camera, region, text_scale);
@@ -103,9 +124,9 @@ pub(super) fn draw_body(
     write_text(pixmap, &text, overlay, creature, checks, &pairs);
 }
 
-/// The ground grid on the plane y = `ground`, one line per metre (or finer for small
-/// creatures), on a pale floor.
-fn draw_ground(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, view: &View, ground: f64) {
+/// The ground grid's spacing and the window of the ground drawn round `view`, its x and z
+/// ranges on the grid.
+fn ground_window(view: &View) -> (f64, [f64; 2], [f64; 2]) {
     let extent = (view.max - view.min).norm().max(1.0);
     let step = if extent > 8.0 {
         1.0
@@ -115,14 +136,23 @@ fn draw_ground(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, view: &Vi
         0.25
     };
     let pad = 0.25 * extent;
-    let (x0, x1) = (
-        ((view.min.x - pad) / step).floor() * step,
-        ((view.max.x + pad) / step).ceil() * step,
-    );
-    let (z0, z1) = (
-        ((view.min.z - pad) / step).floor() * step,
-        ((view.max.z + pad) / step).ceil() * step,
-    );
+    (
+        step,
+        [
+            ((view.min.x - pad) / step).floor() * step,
+            ((view.max.x + pad) / step).ceil() * step,
+        ],
+        [
+            ((view.min.z - pad) / step).floor() * step,
+            ((view.max.z + pad) / step).ceil() * step,
+        ],
+    )
+}
+
+/// The ground grid on the plane y = `ground`, one line per metre (or finer for small
+/// creatures), on a pale floor.
+fn draw_ground(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, view: &View, ground: f64) {
+    let (step, [x0, x1], [z0, z1]) = ground_window(view);
     let floor: Vec<(f32, f32)> = [(x0, z0), (x1, z0), (x1, z1), (x0, z1)]
         .iter()
         .map(|c| {
@@ -161,10 +191,14 @@ fn draw_target_stem(
     pixmap: &mut Pixmap,
     camera: &Camera,
     shift: Transform,
-    ground: f64,
+    ground: &dyn Fn(f64, f64) -> f64,
     target: Vector3<f64>,
 ) {
-    let (fx, fy, _) = camera.project(&Vector3::new(target.x, ground, target.z));
+    let (fx, fy, _) = camera.project(&Vector3::new(
+        target.x,
+        ground(target.x, target.z),
+        target.z,
+    ));
     let (tx, ty, _) = camera.project(&target);
     let mut pb = PathBuilder::new();
     pb.push_oval(Rect::from_xywh(fx - 8.0, fy - 3.5, 16.0, 7.0).expect("finite"));
@@ -181,13 +215,13 @@ fn draw_path(
     pixmap: &mut Pixmap,
     camera: &Camera,
     shift: Transform,
-    ground: f64,
+    ground: &dyn Fn(f64, f64) -> f64,
     path: &[Vector3<f64>],
 ) {
     let projected: Vec<(f32, f32)> = path
         .iter()
         .map(|p| {
-            let (sx, sy, _) = camera.project(&Vector3::new(p.x, ground, p.z));
+            let (sx, sy, _) = camera.project(&Vector3::new(p.x, ground(p.x, p.z), p.z));
             (sx, sy)
         })
         .collect();
@@ -206,7 +240,7 @@ fn draw_shadows(
     pixmap: &mut Pixmap,
     camera: &Camera,
     shift: Transform,
-    ground: f64,
+    ground: &dyn Fn(f64, f64) -> f64,
     creature: &Creature,
 ) {
     for part in &creature.parts {
@@ -214,7 +248,7 @@ fn draw_shadows(
         let mut pts: Vec<(f32, f32)> = corners
             .iter()
             .map(|c| {
-                let (sx, sy, _) = camera.project(&Vector3::new(c.x, ground, c.z));
+                let (sx, sy, _) = camera.project(&Vector3::new(c.x, ground(c.x, c.z), c.z));
                 (sx, sy)
             })
             .collect();

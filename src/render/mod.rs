@@ -14,11 +14,15 @@ mod pen;
 mod text;
 mod top_view;
 mod walk;
+mod world;
 
-use nalgebra::Vector3;
+use std::sync::Arc;
+
+use nalgebra::{UnitQuaternion, Vector3};
 use tiny_skia::{Color, Pixmap};
 
 use crate::creature::Creature;
+use crate::sim::terrain::Terrain;
 pub use animation::{
     MAX_FPS, MAX_GIF_IMAGES, Playback, evenly_in_time, playback, posed, trail, write_behaviour_gif,
     write_gif, write_still_gif,
@@ -64,6 +68,12 @@ pub struct Overlay {
     /// A walker's path on the ground so far (its root part's centre at y = 0), oldest first,
     /// drawn as a line on the ground.
     pub path: Vec<Vector3<f64>>,
+    /// The world the creature is in (none: level ground in air, as for a flat world): its
+    /// shaped ground, obstacles and objects are drawn, and water tints the scene.
+    pub world: Option<Arc<Terrain>>,
+    /// The world's free objects' centres and orientations now, in the order of its objects
+    /// (none: where they start).
+    pub objects: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
 }
 
 /// A picture of the creature: the body in a 3/4 view on the left, its brain on the right

@@ -87,6 +87,7 @@ mod tests {
             parts: vec![(Vector3::new(x, 0.4, z), UnitQuaternion::identity())],
             projectile: None,
             projectile_size: None,
+            objects: Vec::new(),
         }
     }
 

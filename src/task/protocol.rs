@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use nalgebra::Vector3;
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::recording::{Phase, Sample, recording_interval};
@@ -180,6 +180,16 @@ impl Run<'_> {
                     .collect(),
                 projectile: self.world.projectile_state().map(|(p, _)| p),
                 projectile_size: self.projectile_size,
+                objects: self
+                    .world
+                    .object_positions()
+                    .into_iter()
+                    .zip(self.world.object_rotations())
+                    .map(|(p, [w, i, j, k])| {
+                        let q = Quaternion::new(w, i, j, k);
+                        (Vector3::from(p), UnitQuaternion::from_quaternion(q))
+                    })
+                    .collect(),
             };
             self.keep(sample);
         }

@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 use super::compact;
 use super::{Evaluation, Status};
 use crate::creature::Creature;
+use crate::sim::WorldSpec;
 
 /// Which stage of a task's protocol a recorded sample belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -89,6 +90,14 @@ pub struct Sample {
     /// The projectile's size, in the catapult and aim tasks.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub projectile_size: Option<Vector3<f64>>,
+    /// The world's free objects' centres and orientations, in the order of
+    /// [`WorldSpec::objects`] (empty, and not written, in a world without objects).
+    #[serde(
+        skip_serializing_if = "Vec::is_empty",
+        default,
+        serialize_with = "compact::poses"
+    )]
+    pub objects: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
 }
 
 /// The `recording.json` file `eval --record` writes and `replay` and `view` read: the creature
@@ -118,6 +127,10 @@ pub struct Recording<'a> {
     /// The samples, in time order (the file's `frames`).
     #[serde(rename = "frames", default)]
     pub samples: Cow<'a, [Sample]>,
+    /// The task's world (`[task.world]`), when it is not the flat world (absent, and not
+    /// written, for a flat one).
+    #[serde(default, skip_serializing_if = "WorldSpec::is_flat")]
+    pub world: WorldSpec,
 }
 
 impl<'a> Recording<'a> {
@@ -138,6 +151,15 @@ impl<'a> Recording<'a> {
             fitness: Some(evaluation.fitness),
             target,
             samples: Cow::Borrowed(&evaluation.recording),
+            world: WorldSpec::default(),
+        }
+    }
+
+    /// The recording, in `world` (the task's [`crate::task::TaskSpec::world`]).
+    pub fn in_world(self, world: &WorldSpec) -> Recording<'a> {
+        Recording {
+            world: world.clone(),
+            ..self
         }
     }
 
@@ -160,6 +182,48 @@ mod tests {
     use crate::develop::creature_from_commands;
 
     #[test]
+    fn a_world_and_its_objects_are_written_only_when_there_are_some() {
+        let creature = creature_from_commands("forward(1)").unwrap();
+        let mut evaluation = Evaluation {
+            task: "walker".into(),
+            fitness: 1.0,
+            status: Status::Ok,
+            terms: BTreeMap::new(),
+            message: None,
+            recording: vec![Sample {
+                t: 0.0,
+                phase: None,
+                parts: vec![(Vector3::zeros(), UnitQuaternion::identity())],
+                projectile: None,
+                projectile_size: None,
+                objects: Vec::new(),
+            }],
+        };
+        let flat = serde_json::to_string(&Recording::of(&creature, &evaluation)).unwrap();
+        assert!(
+            !flat.contains("world") && !flat.contains("objects"),
+            "{flat}"
+        );
+        evaluation.recording[0].objects =
+            vec![(Vector3::new(1.0, 0.5, 0.0), UnitQuaternion::identity())];
+        let world: WorldSpec = toml::from_str(
+            "objects = [{ shape = \"ball\", size = 0.25, mass = 1, position = [1, 0.5, 0] }]",
+        )
+        .unwrap();
+        let text =
+            serde_json::to_string(&Recording::of(&creature, &evaluation).in_world(&world)).unwrap();
+        assert!(
+            text.contains(r#""objects":[[[1.0,0.5,0.0],[0.0,0.0,0.0,1.0]]]"#),
+            "{text}"
+        );
+        let back: Recording = serde_json::from_str(&text).unwrap();
+        assert_eq!(back.world, world);
+        assert_eq!(back.samples[0].objects, evaluation.recording[0].objects);
+        let old: Recording = serde_json::from_str(&flat).unwrap();
+        assert!(old.world.is_flat() && old.samples[0].objects.is_empty());
+    }
+
+    #[test]
     fn a_recording_is_written_in_its_key_order_and_reads_back() {
         let creature = creature_from_commands("forward(1)").unwrap();
         let evaluation = Evaluation {
@@ -178,6 +242,7 @@ mod tests {
                 parts: vec![(Vector3::new(0.1, 0.2, 0.3), UnitQuaternion::identity())],
                 projectile: None,
                 projectile_size: None,
+                objects: Vec::new(),
             }],
             habitats: None,
         };

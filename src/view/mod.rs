@@ -19,6 +19,7 @@
 
 mod comparison;
 mod open;
+pub mod scene;
 mod server;
 pub mod snapshot;
 
@@ -501,7 +502,8 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
 }
 
 /// The page's data for `recording`, titled `file`: the recording's keys, with `kind`
-/// (`recording`), `file` and, for a recording without samples, `no_frames` (see
+/// (`recording`), `file`, the geometry of a world that is not flat (`scene`, see
+/// [`scene::scene`]) and, for a recording without samples, `no_frames` (see
 /// [`recording_data`]); or why its samples do not fit its creature.
 fn recording_value(recording: &crate::task::Recording, file: &str) -> Result<Value, String> {
     let parts = recording.creature.parts.len();
@@ -521,6 +523,9 @@ fn recording_value(recording: &crate::task::Recording, file: &str) -> Result<Val
     let mut value: Value = serde_json::from_str(&written).map_err(|e| e.to_string())?;
     value["kind"] = json!("recording");
     value["file"] = json!(file);
+    if !recording.world.is_flat() {
+        value["scene"] = scene::scene(&recording.world);
+    }
     if let Some(reason) = no_samples_reason(recording) {
         value["no_frames"] = json!(reason);
     }
@@ -787,5 +792,28 @@ mod tests {
         let data =
             shown(json!({"creature": creature, "frames": [{"t": 0.0, "parts": [pose, pose]}]}));
         assert!(data.get("no_frames").is_none());
+    }
+
+    #[test]
+    fn a_recording_in_a_world_sends_its_geometry_and_a_flat_one_none() {
+        let (_scratch, dir) = scratch("world");
+        let creature = crate::develop::creature_from_commands("forward(1)").unwrap();
+        let pose = json!([[0.5, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        let ball = json!([[2.0, 0.1, 0.0], [0.0, 0.0, 0.0, 1.0]]);
+        let write = |world: Value| {
+            let mut recording = json!({"creature": creature,
+                "frames": [{"t": 0.0, "parts": [pose], "objects": [ball]}]});
+            if !world.is_null() {
+                recording["world"] = world;
+            }
+            std::fs::write(dir.join("recording.json"), recording.to_string()).unwrap();
+            recording_data(&dir).unwrap()
+        };
+        let data = write(json!({"slope": {"degrees": 10},
+            "objects": [{"shape": "ball", "size": 0.1, "mass": 1, "position": [2, 0.1, 0]}]}));
+        assert_eq!(data["scene"]["ground"], "slope");
+        assert_eq!(data["scene"]["objects"][0]["shape"], "ball");
+        assert_eq!(data["frames"][0]["objects"], json!([ball]));
+        assert!(write(Value::Null).get("scene").is_none());
     }
 }

@@ -150,7 +150,8 @@ fn walk<G: Genome>(dir: &Path, generation: u32, rank: u32) -> Result<Value, View
         .develop(&run.config().limits, individual.develop_seed)
         .map_err(|e| ViewError::BadFile(format!("{title}: the genome does not develop: {e}")))?;
     let evaluation = run.config().task.evaluate(&creature, true);
-    let mut value = super::recording_value(&Recording::of(&creature, &evaluation), &title)
+    let recording = Recording::of(&creature, &evaluation).in_world(&run.config().task.world);
+    let mut value = super::recording_value(&recording, &title)
         .map_err(|e| ViewError::BadFile(format!("{title}: {e}")))?;
     value["generation"] = json!(generation);
     value["rank"] = json!(rank);

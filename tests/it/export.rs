@@ -8,7 +8,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use ontogeny::creature::{Actuator, Creature, JointKind, NeuronFunction, Role};
 use ontogeny::develop::creature_from_commands;
 use ontogeny::export::mjcf::z_up;
-use ontogeny::export::{ExportError, mjcf_actuators, to_mjcf};
+use ontogeny::export::{ExportError, mjcf_actuators, to_mjcf, to_mjcf_in};
 use ontogeny::sim::{
     ANGLE_DAMPING, ANGLE_STIFFNESS, ActuatorModel, GRAVITY, SATURATION_DAMPING, SimOptions,
     StrengthFrom, max_torque,
@@ -669,4 +669,210 @@ fn export_takes_a_named_step_setting_and_explicit_flags_over_it() {
     };
     let expected = to_mjcf(&grown("examples/snake.lsys"), &options, "snake").unwrap();
     assert_eq!(String::from_utf8(out.stdout).unwrap(), expected);
+}
+
+/// The exported worldbody geom `name` of `model`: its centre and its local z axis, in
+/// MuJoCo's axes.
+fn world_geom<'a>(
+    model: &'a Model,
+    name: &str,
+) -> (
+    &'a rapier3d_mjcf::mjcf_rs::body::Geom,
+    Vector3<f64>,
+    Vector3<f64>,
+) {
+    let (body, index) = model
+        .geom_by_name(name)
+        .unwrap_or_else(|| panic!("no geom {name}"));
+    assert_eq!(body, 0, "{name} is on the worldbody");
+    let g = &model.bodies[0].body.geoms[index];
+    let t = g.pose.translation;
+    let r = g.pose.rotation;
+    let turn = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(r.w, r.x, r.y, r.z));
+    (g, Vector3::new(t.x, t.y, t.z), turn * Vector3::z())
+}
+
+fn world(text: &str) -> ontogeny::sim::WorldSpec {
+    let world: ontogeny::sim::WorldSpec = toml::from_str(text).unwrap();
+    world.check().unwrap();
+    world
+}
+
+#[test]
+fn a_slope_is_exported_as_the_ground_plane_tilted_to_its_normal() {
+    let c = creature_from_commands("forward(1)").unwrap();
+    let xml = to_mjcf_in(
+        &c,
+        &SimOptions::default(),
+        "slope",
+        &world("slope = { degrees = 30, direction = 0 }"),
+    )
+    .unwrap();
+    let (_, model) = load(&xml);
+    let (plane, centre, up) = world_geom(&model, "ground");
+    assert_eq!(
+        plane.type_,
+        rapier3d_mjcf::mjcf_rs::body::GeomType::Plane,
+        "{xml}"
+    );
+    assert!(close(&centre, &Vector3::zeros(), 1e-12));
+    // Uphill along +x: the normal leans back towards -x; Ontogeny's y is MuJoCo's z.
+    assert!(
+        close(&up, &Vector3::new(-0.5, 0.0, 0.75f64.sqrt()), 1e-9),
+        "{up:?}"
+    );
+}
+
+#[test]
+fn steps_obstacles_and_objects_are_exported_as_boxes_and_free_bodies() {
+    let c = creature_from_commands("forward(1)").unwrap();
+    let xml = to_mjcf_in(
+        &c,
+        &SimOptions::default(),
+        "steps",
+        &world(
+            "steps = { height = 0.1, depth = 0.5, count = 3, start = 1, direction = 0 }\n\
+             obstacles = { size = [0.2, 0.3, 0.4], at = [[-2, 1]] }\n\
+             objects = [{ shape = \"ball\", size = 0.1, mass = 2, position = [0, 0.5, -2] },\n\
+                        { shape = \"box\", size = 0.2, mass = 1, position = [-2, 0.3, -2] }]",
+        ),
+    )
+    .unwrap();
+    let (robot, model) = load(&xml);
+    // Three steps and the obstacle on the worldbody (the plane under them is not loaded
+    // by rapier3d-mjcf), each a box.
+    assert_eq!(robot.bodies[0].colliders.len(), 4, "{xml}");
+    let (step, centre, normal) = world_geom(&model, "step0");
+    assert_eq!(step.type_, rapier3d_mjcf::mjcf_rs::body::GeomType::Box);
+    assert_eq!(step.size, [0.25, 0.55, 500.0]);
+    assert!(
+        close(&centre, &Vector3::new(1.25, 0.0, -0.45), 1e-12),
+        "{centre:?}"
+    );
+    // The box's own z is Ontogeny's z, MuJoCo's -y: its height (size's y) is MuJoCo's z.
+    assert!(close(&normal, &-Vector3::y(), 1e-12), "{normal:?}");
+    let (top, centre, _) = world_geom(&model, "step2");
+    assert_eq!(top.size[0], 250.0 - 1.0);
+    assert!((centre.z - (0.3 - 1.0) / 2.0).abs() < 1e-12);
+    let (obstacle, centre, _) = world_geom(&model, "obstacle0");
+    assert_eq!(obstacle.size, [0.1, 0.15, 0.2]);
+    // At x = -2, z = 1 (MuJoCo's y = -1), on level ground.
+    assert!(
+        close(&centre, &Vector3::new(-2.0, -1.0, 0.15), 1e-12),
+        "{centre:?}"
+    );
+    for (name, kind, size, mass, at) in [
+        (
+            "object0",
+            rapier3d_mjcf::mjcf_rs::body::GeomType::Sphere,
+            0.1,
+            2.0,
+            [0.0, 2.0, 0.5],
+        ),
+        (
+            "object1",
+            rapier3d_mjcf::mjcf_rs::body::GeomType::Box,
+            0.1,
+            1.0,
+            [-2.0, 2.0, 0.3],
+        ),
+    ] {
+        let body = model.body_id_by_name(name).unwrap();
+        let entry = &model.bodies[body];
+        assert_eq!(entry.parent, Some(0), "{name} is a free body of the world");
+        assert_eq!(entry.body.joints.len(), 1, "{name}'s freejoint");
+        let t = entry.body.pose.translation;
+        assert!(close(
+            &Vector3::new(t.x, t.y, t.z),
+            &Vector3::from(at),
+            1e-12
+        ));
+        let geom = &entry.body.geoms[0];
+        assert_eq!(
+            (geom.type_, geom.size[0], geom.mass),
+            (kind, size, Some(mass))
+        );
+    }
+}
+
+#[test]
+fn rough_ground_is_exported_as_a_heightfield_of_its_samples_and_water_as_options() {
+    let c = creature_from_commands("forward(1)").unwrap();
+    let spec = world("rough = { amplitude = 0.1, wavelength = 1, seed = 5, size = 4 }");
+    let xml = to_mjcf_in(&c, &SimOptions::default(), "rough", &spec).unwrap();
+    let (robot, model) = load(&xml);
+    let field = ontogeny::sim::terrain::Terrain::new(&spec)
+        .heightfield()
+        .unwrap()
+        .clone();
+    let (lo, hi) = field
+        .heights
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
+            (a.min(h), b.max(h))
+        });
+    let asset = model.assets.hfield("rough").unwrap();
+    let n = field.samples;
+    assert_eq!((asset.nrow as usize, asset.ncol as usize), (n, n));
+    assert_eq!(asset.size, [2.0, 2.0, hi - lo, 1.0]);
+    // MuJoCo's first row is at -y, Ontogeny's last row (+z); heights normalised to [0, 1].
+    let elevation = asset.elevation.as_ref().unwrap();
+    for (row, column) in [(0, 0), (0, n - 1), (n / 3, n / 2), (n - 1, 1)] {
+        let written = elevation[(n - 1 - row) * n + column];
+        let expected = (field.heights[row * n + column] - lo) / (hi - lo);
+        assert!(
+            (written - expected).abs() < 1e-9,
+            "row {row}, column {column}"
+        );
+    }
+    let (ground, centre, _) = world_geom(&model, "ground");
+    assert_eq!(ground.hfield.as_deref(), Some("rough"));
+    assert!((centre.z - lo).abs() < 1e-12);
+    // The heightfield and the four level slabs round it are loaded as colliders.
+    assert_eq!(robot.bodies[0].colliders.len(), 5, "{xml}");
+
+    let water = world("medium = { kind = \"water\", viscosity = 5 }");
+    let xml = to_mjcf_in(&c, &SimOptions::default(), "water", &water).unwrap();
+    let (_, model) = load(&xml);
+    assert_eq!(model.option.gravity, [0.0, 0.0, 0.0]);
+    assert!(xml.contains("density=\"1000\" viscosity=\"5\""), "{xml}");
+    assert!(xml.contains("not Ontogeny's resistance"), "{xml}");
+    assert!(
+        model.geom_by_name("ground").is_none(),
+        "water has no ground"
+    );
+}
+
+#[test]
+fn export_takes_the_world_of_a_configuration() {
+    let dir = scratch_dir("export-world");
+    let config = dir.join("world.toml");
+    std::fs::write(
+        &config,
+        "[task.world]\nobstacles = { size = [0.2, 0.2, 0.2], at = [[2, 0]] }\n",
+    )
+    .unwrap();
+    let out = dir.join("model.xml");
+    let output = ontogeny(&[
+        "export",
+        "examples/quadruped.lsys",
+        "--world",
+        config.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{output:?}");
+    let xml = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(xml.matches("<geom name=\"obstacle").count(), 1, "{xml}");
+    std::fs::write(&config, "[task.world]\nslope = { degrees = 95 }\n").unwrap();
+    let said = assert_bad_input(
+        &[
+            "export",
+            "examples/quadruped.lsys",
+            "--world",
+            config.to_str().unwrap(),
+        ],
+        "[task.world]",
+    );
+    assert!(said.contains("world.toml"), "{said}");
 }

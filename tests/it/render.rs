@@ -231,3 +231,86 @@ fn a_still_gif_is_one_checked_picture() {
     assert_eq!(red[1], 0, "{red:?}");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// The worlds the guide shows, by name, as `[task.world]` tables, placed round a creature
+/// whose bounding box is `lo` to `hi`.
+fn worlds(lo: [f64; 3], hi: [f64; 3]) -> Vec<(&'static str, String)> {
+    let (cx, cz) = (0.5 * (lo[0] + hi[0]), 0.5 * (lo[2] + hi[2]));
+    vec![
+        (
+            "slope",
+            "slope = { degrees = 12, direction = 0 }".to_string(),
+        ),
+        (
+            "steps",
+            format!(
+                "steps = {{ height = 0.08, depth = 0.3, count = 5, start = {}, direction = 0 }}",
+                hi[0] + 0.1
+            ),
+        ),
+        (
+            "rough",
+            "rough = { amplitude = 0.05, wavelength = 0.6, seed = 3, size = 8 }".to_string(),
+        ),
+        (
+            "obstacles",
+            format!(
+                "obstacles = {{ size = [0.3, 0.25, 0.3], at = [[{cx}, {}], [{}, {cz}], [{}, {}]] }}",
+                hi[2] + 0.4,
+                hi[0] + 0.35,
+                lo[0] - 0.3,
+                lo[2] - 0.3
+            ),
+        ),
+        (
+            "objects",
+            format!(
+                "objects = [{{ shape = \"ball\", size = 0.15, mass = 2, position = [{}, 0.15, {}] }},\n\
+                 {{ shape = \"box\", size = 0.25, mass = 2, position = [{}, 0.125, {}] }}]",
+                hi[0] + 0.3,
+                hi[2] + 0.3,
+                lo[0] - 0.3,
+                hi[2] + 0.2
+            ),
+        ),
+        (
+            "water",
+            "medium = { kind = \"water\", viscosity = 5 }".to_string(),
+        ),
+    ]
+}
+
+#[test]
+fn every_world_is_drawn_round_the_creature_and_a_flat_one_changes_no_pixel() {
+    use ontogeny::sim::WorldSpec;
+    use ontogeny::sim::terrain::Terrain;
+    use std::sync::Arc;
+    let quadruped = crate::util::grown("examples/quadruped.lsys");
+    let view = View::framing(&quadruped);
+    let draw = |world: Option<WorldSpec>| {
+        let overlay = Overlay {
+            world: world.map(|w| Arc::new(Terrain::new(&w))),
+            ..none()
+        };
+        picture(&quadruped, &view, 960, 600, &overlay).unwrap()
+    };
+    let flat = draw(None);
+    assert!(flat.data() == draw(Some(WorldSpec::default())).data());
+    let dir = crate::util::scratch_dir("world-pictures");
+    let (lo, hi) = quadruped.bounding_box();
+    for (name, table) in worlds([lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]) {
+        let world: WorldSpec = toml::from_str(&table).unwrap();
+        world.check().unwrap();
+        let pixmap = draw(Some(world));
+        let changed = flat
+            .data()
+            .chunks_exact(4)
+            .zip(pixmap.data().chunks_exact(4))
+            .filter(|(a, b)| a != b)
+            .count();
+        assert!(changed > 5000, "{name}: {changed} pixels changed");
+        pixmap
+            .save_png(dir.join(format!("world-{name}.png")))
+            .unwrap();
+    }
+}

@@ -184,6 +184,64 @@ function boundsOf(creatures) {
   return box;
 }
 
+// A world's geometry (the recording's `scene`) as meshes in `group`: a slope's tilted plane
+// with its grid, steps and obstacles as boxes, rough ground as a mesh of its samples, objects
+// as balls and boxes (returned, to be moved frame by frame), water as a blue scene with no
+// ground. The level ground stays for a world whose ground is level.
+function drawWorld(world, group) {
+  const shaped = world.ground !== 'level';
+  ground.visible = !shaped;
+  if (grid) grid.visible = !shaped;
+  scene.background = new THREE.Color(world.water ? 0x9cc3e6 : 0xe9edf2);
+  const floor = new THREE.MeshLambertMaterial({ color: 0xd5dbe3, side: THREE.DoubleSide });
+  const stone = new THREE.MeshLambertMaterial({ color: 0x968773 });
+  const box = (b, material) => {
+    // Boxes reaching far are cut to 50 m a side, which is as far as the view goes.
+    const h = b.half.map((x) => Math.min(x, 50));
+    const mesh = new THREE.Mesh(new THREE.BoxGeometry(2 * h[0], 2 * h[1], 2 * h[2]), material);
+    mesh.position.set(b.centre[0], b.centre[1], b.centre[2]);
+    mesh.rotation.y = -b.direction * Math.PI / 180;
+    mesh.receiveShadow = true;
+    mesh.castShadow = material === stone;
+    group.add(mesh);
+  };
+  if (world.ground === 'slope' && world.normal) {
+    const plane = new THREE.Mesh(new THREE.PlaneGeometry(100, 100), floor);
+    const lines = new THREE.GridHelper(100, 100, 0xaab3bf, 0xc3cad3);
+    const tilt = new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 1, 0), v3(world.normal));
+    plane.quaternion.copy(tilt).multiply(new THREE.Quaternion().setFromAxisAngle(new THREE.Vector3(1, 0, 0), -Math.PI / 2));
+    lines.quaternion.copy(tilt);
+    lines.position.copy(v3(world.normal).multiplyScalar(0.002));
+    plane.receiveShadow = true;
+    group.add(plane, lines);
+  }
+  for (const b of world.boxes || []) box(b, floor);
+  const field = world.heightfield;
+  if (field) {
+    const n = field.samples;
+    const geometry = new THREE.PlaneGeometry(field.side, field.side, n - 1, n - 1);
+    geometry.rotateX(-Math.PI / 2); // rows along +z, columns along +x
+    const position = geometry.attributes.position;
+    for (let i = 0; i < position.count; i++) position.setY(i, field.heights[i]);
+    geometry.computeVertexNormals();
+    const mesh = new THREE.Mesh(geometry, floor);
+    mesh.receiveShadow = true;
+    group.add(mesh);
+  }
+  for (const b of world.obstacles || []) box(b, stone);
+  const gold = new THREE.MeshStandardMaterial({ color: 0xe1aa32 });
+  return (world.objects || []).map((o) => {
+    const geometry = o.shape === 'ball'
+      ? new THREE.SphereGeometry(o.half, 24, 16)
+      : new THREE.BoxGeometry(2 * o.half, 2 * o.half, 2 * o.half);
+    const mesh = new THREE.Mesh(geometry, gold);
+    mesh.position.copy(v3(o.centre));
+    mesh.castShadow = true;
+    group.add(mesh);
+    return mesh;
+  });
+}
+
 // A 3/4 view of the box, the ground (at height groundY) and its grid sized to it.
 function frame(box, groundY) {
   const centre = box.getCenter(new THREE.Vector3());
@@ -511,6 +569,8 @@ function showRecording(data, heading) {
     });
     extrasGroup.add(trail);
   }
+  // The world: shaped ground, obstacles, objects, water (none for a flat world).
+  const objectMeshes = drawWorld(data.scene || { ground: 'level' }, extrasGroup);
   // A walker's walk: the distance so far and the root's path on the ground.
   const walk = data.task === 'walker' ? walkOf(frames) : { start: null, walked: [] };
   let path = null;
@@ -533,6 +593,9 @@ function showRecording(data, heading) {
       const parent = meshes[m.userData.joint.parent];
       if (parent && m.userData.local) m.position.copy(parent.localToWorld(m.userData.local.clone()));
     }
+    (f.objects || []).forEach(([p, q], k) => {
+      if (objectMeshes[k]) { objectMeshes[k].position.copy(v3(p)); objectMeshes[k].quaternion.copy(quat(q)); }
+    });
     if (projectile) {
       projectile.visible = !!f.projectile;
       if (f.projectile) projectile.position.copy(v3(f.projectile));
