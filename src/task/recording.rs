@@ -198,6 +198,7 @@ mod tests {
                 projectile_size: None,
                 objects: Vec::new(),
             }],
+            habitats: None,
         };
         let flat = serde_json::to_string(&Recording::of(&creature, &evaluation)).unwrap();
         assert!(
