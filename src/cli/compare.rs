@@ -16,7 +16,6 @@ use ontogeny::study::compare::{
     self, Arm, CompareError, Manifest, ReplicateState, read_replicate, replicate_config,
     replicate_dir,
 };
-use ontogeny::task::WalkerFitness;
 
 use super::evolve::{EncodingArg, bad, encoding_names, encoding_parser, run_error, set_threads};
 use super::physics::setting_parser;
@@ -46,10 +45,15 @@ pub struct CompareArgs {
     /// The task (default: the config's, else walker).
     #[arg(long, value_parser = super::physics::task_parser())]
     task: Option<ontogeny::task::TaskKind>,
-    /// The walker's fitness formula, as `eval --fitness` (walker only; default: the config's
-    /// `[task.walker] fitness`, else normalised).
-    #[arg(long, value_parser = super::walker_fitness_parser())]
-    fitness: Option<WalkerFitness>,
+    #[arg(
+        long,
+        value_name = "FORMULA|EXPRESSION",
+        help = super::fitness_help(
+            "The fitness, as `eval --fitness`",
+            "the config's [task.NAME] fitness, else the task's (the walker's normalised)"
+        )
+    )]
+    fitness: Option<String>,
     /// Runs per encoding (default 10).
     #[arg(long)]
     replicates: Option<usize>,
@@ -197,7 +201,7 @@ fn run_flags(args: &CompareArgs) -> RunFlags {
         population: args.pop,
         generations: None,
         task: args.task,
-        fitness: args.fitness,
+        fitness: args.fitness.clone(),
         seconds: args.seconds,
         setting: args.setting,
         target: None,

@@ -104,7 +104,7 @@ fn task_flags(args: &EvalArgs) -> TaskFlags {
     TaskFlags {
         task: args.task.unwrap_or_default(),
         seconds: args.seconds,
-        fitness: args.fitness.fitness,
+        fitness: args.fitness.fitness.clone(),
         activation: args.activation,
         target: args.target,
         projectile_size: args.projectile_size,
@@ -232,11 +232,12 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
         }
         spec.sim = sim;
     }
-    if let (Some(f), Some(walker)) = (flags.fitness, spec.task.get_mut::<WalkerOptions>()) {
-        if f != walker.fitness {
-            differs("--fitness", walker.fitness.name().to_string());
+    if let Some(f) = &flags.fitness {
+        let recorded = spec.fitness_measure();
+        spec.set_fitness(f);
+        if spec.fitness_measure() != recorded {
+            differs("--fitness", recorded);
         }
-        walker.fitness = f;
     }
     if let Some(s) = flags.seconds {
         let field = spec.seconds_mut();

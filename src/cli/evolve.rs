@@ -13,7 +13,7 @@ use ontogeny::lang::Source;
 use ontogeny::run::config::read_config_source;
 use ontogeny::run::{GenerationReport, Run, RunError, encoding_of_run};
 use ontogeny::sim::StepSetting;
-use ontogeny::task::{TaskKind, WalkerFitness};
+use ontogeny::task::TaskKind;
 
 pub use super::bad;
 use super::physics::{setting_parser, task_parser};
@@ -81,10 +81,15 @@ pub struct EvolveArgs {
     /// The task (default: the config's, else walker).
     #[arg(long, value_parser = task_parser())]
     task: Option<TaskKind>,
-    /// The walker's fitness formula, as `eval --fitness` (walker only; default: the config's
-    /// `[task.walker] fitness`, else normalised).
-    #[arg(long, value_parser = super::walker_fitness_parser())]
-    fitness: Option<WalkerFitness>,
+    #[arg(
+        long,
+        value_name = "FORMULA|EXPRESSION",
+        help = super::fitness_help(
+            "The fitness, as `eval --fitness`",
+            "the config's [task.NAME] fitness, else the task's (the walker's normalised)"
+        )
+    )]
+    fitness: Option<String>,
     /// The genetic algorithm's schedule (default: the config's, else chaumont).
     #[arg(long, value_parser = preset_parser())]
     preset: Option<Preset>,
@@ -223,7 +228,7 @@ fn run_flags(args: &EvolveArgs) -> RunFlags {
         population: args.pop,
         generations: args.gens,
         task: args.task,
-        fitness: args.fitness,
+        fitness: args.fitness.clone(),
         seconds: args.seconds,
         setting: args.setting,
         target: args.target,

@@ -90,14 +90,19 @@ verbs! {
 
 /// Lets every verb take negative numbers as option values (`--strength -1`), not only
 /// `--strength=-1`.
-/// Parses `--fitness`: one of the walker's formulas by its name
-/// ([`ontogeny::task::WalkerFitness::name`]), every name listed in the help.
-fn walker_fitness_parser()
--> impl clap::builder::TypedValueParser<Value = ontogeny::task::WalkerFitness> {
-    use clap::builder::TypedValueParser;
+/// The help of `--fitness` in `eval`, `replay`, `evolve` and `compare` (after `what`, "The
+/// fitness" or "The fitness of the run's task"): the walker's formulas by name
+/// ([`ontogeny::task::WalkerFitness::name`]), or an expression of the task's terms, which the
+/// task's check reads once the task is known.
+fn fitness_help(what: &str, default: &str) -> String {
     use ontogeny::task::WalkerFitness;
-    clap::builder::PossibleValuesParser::new(WalkerFitness::ALL.map(WalkerFitness::name))
-        .try_map(|name| name.parse::<WalkerFitness>())
+    let names: Vec<&str> = WalkerFitness::ALL.map(WalkerFitness::name).to_vec();
+    format!(
+        "{what}: one of the walker's formulas ({}), or an expression of the task's terms, \
+         as \"D_w - 0.5 * drag\" (docs/reference/tasks.md lists each task's terms) [default: \
+         {default}]",
+        names.join(", ")
+    )
 }
 
 /// Reads a count of parts (`--max-parts`): a whole number of at least 1.

@@ -134,10 +134,15 @@ impl FromArgMatches for SteppingArgs {
 /// `--fitness`: the walker's fitness formula, shared by `eval` and `replay`.
 #[derive(Args)]
 pub struct FitnessArgs {
-    /// Walker fitness formula (walker only) [default: a run's or a champion file's own, else
-    /// normalised].
-    #[arg(long, value_parser = super::walker_fitness_parser())]
-    pub fitness: Option<ontogeny::task::WalkerFitness>,
+    #[arg(
+        long,
+        value_name = "FORMULA|EXPRESSION",
+        help = super::fitness_help(
+            "The fitness",
+            "a run's or a champion file's own, else the task's (the walker's normalised)"
+        )
+    )]
+    pub fitness: Option<String>,
 }
 
 impl SteppingArgs {

@@ -8,7 +8,7 @@ use ontogeny::encoding::Genome;
 use ontogeny::render::MAX_FPS;
 use ontogeny::run::pick::{PickError, individual_by_rank};
 use ontogeny::run::{Run, encoding_of_run};
-use ontogeny::task::{Recording, TaskSpec, WalkerOptions};
+use ontogeny::task::{Recording, TaskSpec};
 
 use super::physics::{FitnessArgs, SteppingArgs};
 
@@ -112,14 +112,11 @@ fn changed_task(args: &ReplayArgs, task: &TaskSpec) -> anyhow::Result<Option<Tas
     if args.stepping.any_given() {
         task.sim = args.stepping.apply(&task.sim)?;
     }
-    if let Some(f) = args.fitness.fitness {
-        let name = task.task.name();
-        let Some(walker) = task.task.get_mut::<WalkerOptions>() else {
-            anyhow::bail!(super::bad(format!(
-                "--fitness is for the walker task only, and the run's task is {name}"
-            )));
-        };
-        walker.fitness = f;
+    if let Some(f) = &args.fitness.fitness {
+        task.set_fitness(f);
+        task.task
+            .check_fitness()
+            .map_err(|e| super::bad(e.for_flag("--fitness")))?;
     }
     Ok(Some(task))
 }

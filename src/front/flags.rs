@@ -6,8 +6,7 @@
 use crate::sim::{SettingError, SimOptions};
 
 use crate::task::{
-    CatapultOptions, Evaluation, MAX_RECORDED_SAMPLES, Status, TaskKind, TaskSpec, WalkerFitness,
-    WalkerOptions,
+    CatapultOptions, Evaluation, MAX_RECORDED_SAMPLES, Status, TaskKind, TaskSpec, WalkerOptions,
 };
 
 /// The option that sets the value a [`SettingError`] names by its key, in snake case: a
@@ -29,8 +28,8 @@ pub struct TaskFlags {
     pub task: TaskKind,
     /// `--seconds`.
     pub seconds: Option<f64>,
-    /// `--fitness`.
-    pub fitness: Option<WalkerFitness>,
+    /// `--fitness`: one of the task's formulas by name, or an expression of its terms.
+    pub fitness: Option<String>,
     /// `--activation`.
     pub activation: Option<f64>,
     /// `--target`.
@@ -50,8 +49,10 @@ impl TaskFlags {
         }
         let mut spec = TaskSpec::new(self.task);
         spec.sim = sim;
+        if let Some(fitness) = &self.fitness {
+            spec.set_fitness(fitness);
+        }
         if let Some(walker) = spec.task.get_mut::<WalkerOptions>() {
-            walker.fitness = self.fitness.unwrap_or(WalkerFitness::Normalised);
             if let Some(a) = self.activation {
                 walker.activation = a;
             }
@@ -79,9 +80,6 @@ impl TaskFlags {
     pub fn inapplicable(&self) -> Vec<String> {
         let mut out = Vec::new();
         let task = self.task;
-        if self.fitness.is_some() && task != TaskKind::Walker {
-            out.push("--fitness is for the walker task only".to_string());
-        }
         if self.target.is_some() && task != TaskKind::Aim {
             out.push(match task {
                 TaskKind::Catapult => {

@@ -8,9 +8,7 @@ use std::sync::Arc;
 use crate::encoding::{Genome, LSystemGenome};
 use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
-use crate::task::{
-    CatapultOptions, TaskKind, TaskSpec, TaskTables, WalkerFitness, WalkerOptions, keyword_refusal,
-};
+use crate::task::{CatapultOptions, TaskKind, TaskSpec, TaskTables, keyword_refusal};
 
 use crate::evolve::ga::{GaSettings, Preset};
 use crate::run::config::{ConfigFile, RunConfig, check_settings};
@@ -29,8 +27,8 @@ pub struct RunFlags {
     pub generations: Option<usize>,
     /// `--task`.
     pub task: Option<TaskKind>,
-    /// `--fitness`.
-    pub fitness: Option<WalkerFitness>,
+    /// `--fitness`: one of the task's formulas by name, or an expression of its terms.
+    pub fitness: Option<String>,
     /// `--seconds`.
     pub seconds: Option<f64>,
     /// `--setting`.
@@ -66,11 +64,9 @@ pub fn resolve_task(file: Option<&TaskTables>, flags: &RunFlags) -> Result<TaskS
             Some(refusal) => Err(refusal),
             None => Ok(()),
         };
-    if let Some(fitness) = flags.fitness {
+    if let Some(fitness) = &flags.fitness {
         refuse("fitness")?;
-        if let Some(walker) = spec.task.get_mut::<WalkerOptions>() {
-            walker.fitness = fitness;
-        }
+        spec.set_fitness(fitness);
     }
     if let Some([x, y, z]) = flags.target {
         refuse("target")?;
@@ -109,9 +105,13 @@ pub fn resolve_ga_and_task<L>(
     check_settings(&ga, &task)
         .and_then(|()| file.task.as_ref().map_or(Ok(()), other_tables))
         .map_err(|e| {
+            let run_table = format!("task.{}", task.task.table());
             let flag = match (e.table.as_str(), e.key) {
                 ("ga", "population") if flags.population.is_some() => Some("--pop"),
                 ("ga", "generations") if flags.generations.is_some() => Some("--gens"),
+                (table, "fitness") if flags.fitness.is_some() && table == run_table => {
+                    Some("--fitness")
+                }
                 _ => None,
             };
             match (flag, source) {

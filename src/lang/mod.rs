@@ -76,6 +76,12 @@ pub fn builtin_parameters(name: &str) -> Option<(usize, &'static str)> {
 /// `f` moves without building. Known names for word splitting, as the built-in commands are.
 pub const TEXTBOOK_LETTERS: &[&str] = &["F", "f"];
 
+/// Parses `source` as one expression of the language and nothing else (`D_w - 0.5 * drag`):
+/// its numbers, names, operators and functions, as a rule's parameters and guards write them.
+pub fn parse_expression(source: &Source) -> Result<Expr, Diagnostic> {
+    parser::parse_expression(source)
+}
+
 /// Parses an L-system file into its syntax tree, splitting words into modules. In a file that
 /// declares its modules, a word that is not made of known names is an error
 /// (`undeclared_word`).

@@ -73,7 +73,7 @@ fn human_rule_name(grammar_rule: &Rule) -> String {
         Rule::module_call => "a module",
         Rule::actual_params => "parameter values in parentheses",
         Rule::symbol_name | Rule::word | Rule::query | Rule::special => "a module name",
-        Rule::expr => "an expression",
+        Rule::expr | Rule::expression => "an expression",
         Rule::infix => "an operator",
         Rule::or => "'||'",
         Rule::and => "'&&'",
@@ -159,6 +159,50 @@ pub(super) fn parse_raw(source: &Source) -> Result<RawFile, Diagnostic> {
         }
     }
     Ok(builder.raw)
+}
+
+/// Parses `source` as one expression and nothing else (the grammar's `expression`): the
+/// language's own expressions, outside a file.
+pub(super) fn parse_expression(source: &Source) -> Result<Expr, Diagnostic> {
+    let pairs = LsysParser::parse(Rule::expression, source.text())
+        .map_err(|e| expression_syntax_error(source, e))?;
+    let builder = Builder {
+        source,
+        raw: RawFile::default(),
+        section: Section::Productions,
+    };
+    let expr = pairs
+        .flatten()
+        .find(|p| p.as_rule() == Rule::expr)
+        .expect("grammar: an expression holds an expr");
+    builder.expr(expr, 0)
+}
+
+/// The syntax error of an expression on its own: what was expected and found, at its place
+/// ("expected an operator or the end, found 'drag'").
+fn expression_syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic {
+    let (start, end) = error_span(&error);
+    let message = match &error.variant {
+        pest::error::ErrorVariant::ParsingError { positives, .. } if !positives.is_empty() => {
+            format!("expected {}", expected(source.text(), start, positives))
+        }
+        _ => error
+            .clone()
+            .renamed_rules(human_rule_name)
+            .variant
+            .message()
+            .into_owned(),
+    };
+    let found = found_token(source.text(), start);
+    let message = format!("{message}, found {found}")
+        .replace("end of line", "the end")
+        .replace("end of file", "the end");
+    Diagnostic::at(
+        DiagnosticKind::Syntax,
+        source,
+        Span::new(start, end),
+        message,
+    )
 }
 
 fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic {

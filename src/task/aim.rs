@@ -2,7 +2,7 @@
 //! scored by the distance thrown less the miss, D_p − D_t.
 
 use super::catapult::{CatapultOptions, catapult_watched};
-use super::{Evaluation, Task, Watch};
+use super::{Evaluation, FitnessExpression, Task, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SettingError, SimOptions, WorldSpec};
@@ -16,9 +16,26 @@ impl Task for AimTask {
     const SUMMARY: &'static str = "Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3)";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = true;
-    const KEYWORDS: &'static [&'static str] = &["seconds", "target"];
+    const TERMS: &'static [&'static str] = &[
+        "D_p",
+        "release_step",
+        "release_time",
+        "seconds",
+        "target_x",
+        "target_y",
+        "target_z",
+        "D_t",
+    ];
+    const KEYWORDS: &'static [&'static str] = &["seconds", "fitness", "target"];
     const TABLE: &'static str = "catapult";
     type Options = CatapultOptions;
+
+    fn expression(options: &CatapultOptions) -> Option<&FitnessExpression> {
+        options.fitness.as_ref()
+    }
+    fn set_fitness(options: &mut CatapultOptions, text: &str) {
+        options.fitness = Some(FitnessExpression::new(text));
+    }
 
     fn measure(_options: &CatapultOptions) -> &'static str {
         "distance − miss (m)"

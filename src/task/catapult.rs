@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Bounds, Watch, evaluate, steps_in, unwatched};
 use super::recording::Phase;
-use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
+use super::{Evaluation, FitnessExpression, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -35,6 +35,10 @@ pub struct CatapultOptions {
     pub max_height: f64,
     /// The aim task's target, relative to where the projectile starts (metres; y is up).
     pub target: Option<Vector3<f64>>,
+    /// The fitness as an expression of the task's terms (`fitness = "D_p - release_time"`); none:
+    /// the catapult's distance, the aim task's distance less the miss.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fitness: Option<FitnessExpression>,
 }
 
 impl Default for CatapultOptions {
@@ -48,6 +52,7 @@ impl Default for CatapultOptions {
             max_seconds: 60.0,
             max_height: 15.0,
             target: None,
+            fitness: None,
         }
     }
 }
@@ -241,7 +246,15 @@ impl super::Task for CatapultTask {
         "Chaumont et al.'s catapult: distance the projectile travels (eq. 2)";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = true;
+    const TERMS: &'static [&'static str] = &["D_p", "release_step", "release_time", "seconds"];
     type Options = CatapultOptions;
+
+    fn expression(options: &CatapultOptions) -> Option<&FitnessExpression> {
+        options.fitness.as_ref()
+    }
+    fn set_fitness(options: &mut CatapultOptions, text: &str) {
+        options.fitness = Some(FitnessExpression::new(text));
+    }
 
     fn reads(options: &CatapultOptions) -> CatapultOptions {
         CatapultOptions {

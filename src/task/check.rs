@@ -4,7 +4,8 @@
 //! config file spells it (`[task.walker] seconds`).
 
 use super::{
-    CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
+    CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskOptions, TaskSpec,
+    WalkerOptions,
 };
 use crate::sim::setting::check_real;
 use crate::sim::{Medium, SettingError};
@@ -136,9 +137,55 @@ impl TaskSpec {
         }
         self.world.check().map_err(|e| e.within("world"))?;
         crate::with_options!(&self.task, T, o => {
-            <T as super::Task>::check_options(o).and_then(|()| <T as super::Task>::check(o))
+            <T as super::Task>::check_options(o)
+                .and_then(|()| <T as super::Task>::check(o))
         })
+        .and_then(|()| self.task.check_fitness())
         .map_err(|e| e.within(self.task.table()))
+    }
+}
+
+impl TaskOptions {
+    /// Checks the task's fitness expression, when it has one, as the fitness of this task
+    /// ([`FitnessExpression::check`](super::FitnessExpression::check)): its syntax, and that
+    /// it reads only the task's terms ([`Task::TERMS`](super::Task::TERMS)), which needs no
+    /// simulation. The error names the key, `fitness`.
+    pub fn check_fitness(&self) -> Result<(), SettingError> {
+        let problem = crate::with_options!(self, T, o => {
+            use super::Task;
+            match T::expression(o) {
+                Some(expression) => expression
+                    .check(T::NAME, T::TERMS, T::FITNESS_VARIANTS)
+                    .map_err(|problem| {
+                        // Another task's formula (`distance` for the jump) is no expression.
+                        let owner = super::TASKS
+                            .iter()
+                            .find(|t| t.fitness_variants.contains(&expression.source()));
+                        match owner {
+                            Some(owner) => format!(
+                                "\"{}\" is a formula of the {} task, not of the {} task, whose \
+                                 fitness may be an expression of its terms: {}",
+                                expression.source(),
+                                owner.name,
+                                T::NAME,
+                                T::TERMS
+                                    .iter()
+                                    .chain(super::PROTOCOL_TERMS)
+                                    .copied()
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            ),
+                            None => problem,
+                        }
+                    }),
+                None => Ok(()),
+            }
+        });
+        problem.map_err(|problem| SettingError {
+            table: String::new(),
+            key: "fitness",
+            problem,
+        })
     }
 }
 

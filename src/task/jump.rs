@@ -4,9 +4,9 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::Evaluation;
 use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unwatched};
 use super::recording::Phase;
+use super::{Evaluation, FitnessExpression};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -21,6 +21,10 @@ pub struct JumpOptions {
     pub max_height: f64,
     /// When the creature is at rest, before jumping.
     pub rest: Rest,
+    /// The fitness as an expression of the task's terms (`fitness = "height - resting_lowest_point"`); none:
+    /// the best height.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fitness: Option<FitnessExpression>,
 }
 
 impl Default for JumpOptions {
@@ -29,6 +33,7 @@ impl Default for JumpOptions {
             seconds: 10.0,
             max_height: 15.0,
             rest: Rest::default(),
+            fitness: None,
         }
     }
 }
@@ -99,7 +104,15 @@ impl super::Task for JumpTask {
     const SUMMARY: &'static str = "Walking with Dinosaurs' jump: best height of the lowest point";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = false;
+    const TERMS: &'static [&'static str] = &["height", "resting_lowest_point"];
     type Options = JumpOptions;
+
+    fn expression(options: &JumpOptions) -> Option<&FitnessExpression> {
+        options.fitness.as_ref()
+    }
+    fn set_fitness(options: &mut JumpOptions, text: &str) {
+        options.fitness = Some(FitnessExpression::new(text));
+    }
 
     fn measure(_options: &JumpOptions) -> &'static str {
         "height (m)"

@@ -18,6 +18,7 @@ mod aim;
 mod catapult;
 mod check;
 mod compact;
+mod fitness;
 mod habitat;
 mod jump;
 mod options;
@@ -32,6 +33,7 @@ mod walker;
 pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
+pub use fitness::{Fitness, FitnessExpression, PROTOCOL_TERMS};
 pub use habitat::{
     Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
 };

@@ -9,7 +9,7 @@
 
 use serde::{Serialize, de::DeserializeOwned};
 
-use super::{Evaluation, Watch};
+use super::{Evaluation, FitnessExpression, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SettingError, SimOptions, WorldSpec};
@@ -25,11 +25,15 @@ pub trait Task {
     const FITNESS_VARIANTS: &'static [&'static str];
     /// Whether it throws a projectile (the catapult's kind of body, not a walker's).
     const THROWS: bool;
+    /// The terms its evaluations give (`D_w`, `height`, ...), besides the protocol's
+    /// ([`PROTOCOL_TERMS`](super::PROTOCOL_TERMS)): what an expression of its fitness may
+    /// read, checked when a config is read, without a simulation.
+    const TERMS: &'static [&'static str];
 
     /// The task settings it reads that a run's flags and Python's keyword arguments set, by
     /// their keyword names (`--seconds`, `seconds=`): what another task does not read is
     /// refused.
-    const KEYWORDS: &'static [&'static str] = &["seconds"];
+    const KEYWORDS: &'static [&'static str] = &["seconds", "fitness"];
 
     /// The table of `[task]` its settings are read from and written to (`[task.walker]`):
     /// its name, unless it reads another task's table (the aim task reads the catapult's).
@@ -51,6 +55,16 @@ pub trait Task {
     fn reads(options: &Self::Options) -> Self::Options {
         options.clone()
     }
+
+    /// Its fitness expression, when its table's `fitness` is one (`fitness = "D_w - 0.5 *
+    /// drag"`): the fitness of each of its evaluations that succeeds is then the expression's
+    /// value over its terms ([`FitnessExpression::score`]).
+    fn expression(options: &Self::Options) -> Option<&FitnessExpression>;
+
+    /// Sets its `fitness` to `text` (`--fitness`, Python's `fitness=`): the formula of that
+    /// name ([`Task::FITNESS_VARIANTS`]), else `text` as an expression of its terms, which
+    /// [`TaskSpec::check`](super::TaskSpec::check) checks.
+    fn set_fitness(options: &mut Self::Options, text: &str);
 
     /// What its fitness measures and in which unit, as plots label their axis
     /// (`"height (m)"`).
@@ -98,6 +112,8 @@ pub struct TaskInfo {
     pub fitness_variants: &'static [&'static str],
     /// Whether it throws a projectile ([`Task::THROWS`]).
     pub throws: bool,
+    /// The terms its evaluations give ([`Task::TERMS`]).
+    pub terms: &'static [&'static str],
     /// The table of `[task]` it reads ([`Task::TABLE`]).
     pub table: &'static str,
     /// The keywords of its settings ([`Task::KEYWORDS`]).
@@ -112,6 +128,7 @@ impl TaskInfo {
             summary: T::SUMMARY,
             fitness_variants: T::FITNESS_VARIANTS,
             throws: T::THROWS,
+            terms: T::TERMS,
             table: T::TABLE,
             keywords: T::KEYWORDS,
         }
@@ -327,7 +344,10 @@ mod tests {
         assert_eq!(task_named("aim").map(|t| t.throws), Some(true));
         assert_eq!(task_named("walk"), None);
         assert_eq!(task_named("aim").map(|t| t.table), Some("catapult"));
-        assert_eq!(tasks_reading("fitness"), "the walker task");
+        assert_eq!(
+            tasks_reading("fitness"),
+            "the walker, jump, catapult, aim, stand and swim tasks"
+        );
         assert_eq!(
             tasks_reading("seconds"),
             "the walker, jump, catapult, aim, stand and swim tasks"

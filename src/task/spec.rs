@@ -4,7 +4,7 @@
 use serde::ser::{Serialize, SerializeStruct, Serializer};
 use serde::{Deserialize, Deserializer};
 
-use super::{Evaluation, Habitat, Task, TaskOptions, TaskTables, Trials, Watch};
+use super::{Evaluation, FitnessExpression, Habitat, Task, TaskOptions, TaskTables, Trials, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -127,23 +127,43 @@ impl TaskSpec {
 
     /// The task and what its fitness measures, as every report names them:
     /// `"walker, distance (m)"`, `"walker, normalised (Chaumont eq. 1)"`,
-    /// `"jump, height (m)"`, `"catapult, distance (m)"`, `"aim, distance − miss (m)"`.
+    /// `"jump, height (m)"`, `"catapult, distance (m)"`, `"aim, distance − miss (m)"`,
+    /// `"walker, D_w - 0.5 * drag"`.
     pub fn fitness_label(&self) -> String {
         format!("{}, {}", self.kind().name(), self.fitness_measure())
     }
 
     /// What the fitness measures and in which unit, as plots label their axis:
-    /// `"distance (m)"`, `"normalised (Chaumont eq. 1)"`, `"distance − miss (m)"`.
-    pub fn fitness_measure(&self) -> &'static str {
-        crate::with_options!(&self.task, T, o => T::measure(o))
+    /// `"distance (m)"`, `"normalised (Chaumont eq. 1)"`, `"distance − miss (m)"`; a fitness
+    /// expression as written (`"D_w - 0.5 * drag"`).
+    pub fn fitness_measure(&self) -> String {
+        crate::with_options!(&self.task, T, o => match T::expression(o) {
+            Some(expression) => expression.source().to_string(),
+            None => T::measure(o).to_string(),
+        })
     }
 
     /// The lowest fitness an evaluation that succeeds can score, when the formula has one:
     /// 0 for distances and heights (the walker's formulas but Hornby & Pollack's, the jump,
-    /// the catapult); none for the aim task (D_p − D_t) and Hornby & Pollack's walker, which
-    /// can be negative.
+    /// the catapult); none for the aim task (D_p − D_t), Hornby & Pollack's walker, which
+    /// can be negative, and a fitness expression.
     pub fn fitness_floor(&self) -> Option<f64> {
-        crate::with_options!(&self.task, T, o => T::floor(o))
+        crate::with_options!(&self.task, T, o => match T::expression(o) {
+            Some(_) => None,
+            None => T::floor(o),
+        })
+    }
+
+    /// The fitness expression of the task run, when its `fitness` is one.
+    pub fn fitness_expression(&self) -> Option<&FitnessExpression> {
+        crate::with_options!(&self.task, T, o => T::expression(o))
+    }
+
+    /// Sets the task's `fitness` to `text` (`--fitness`, `fitness=`): the formula of that
+    /// name, else an expression of its terms ([`Task::set_fitness`]); [`TaskSpec::check`]
+    /// checks it.
+    pub fn set_fitness(&mut self, text: &str) {
+        crate::with_options!(&mut self.task, T, o => T::set_fitness(o, text))
     }
 
     /// Evaluates `creature` on the task; `record` keeps a recording (every step's sample, or
@@ -166,13 +186,21 @@ impl TaskSpec {
 
     /// [`TaskSpec::evaluate`], watched as `watch` says: recorded, told its progress, and
     /// stopped before its next control step with [`Interrupted`] once its token is set (an
-    /// interrupted evaluation has no result: nothing of it is kept).
+    /// interrupted evaluation has no result: nothing of it is kept). With a fitness
+    /// expression, the fitness of an evaluation that succeeds is its value
+    /// ([`FitnessExpression::score`]).
     pub fn evaluate_watched(
         &self,
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        crate::with_options!(&self.task, T, o => T::evaluate(creature, &self.sim, &self.world, o, watch))
+        crate::with_options!(&self.task, T, o => {
+            let evaluation = T::evaluate(creature, &self.sim, &self.world, o, watch)?;
+            Ok(match T::expression(o) {
+                Some(expression) => expression.score(evaluation),
+                None => evaluation,
+            })
+        })
     }
 
     /// The most control steps the task can take (every phase at its longest), which sets how

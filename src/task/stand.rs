@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in};
 use super::recording::Phase;
-use super::{Evaluation, Task};
+use super::{Evaluation, FitnessExpression, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::setting::check_real;
@@ -24,6 +24,10 @@ pub struct StandOptions {
     pub max_height: f64,
     /// When the creature is at rest, before standing.
     pub rest: Rest,
+    /// The fitness as an expression of the task's terms (`fitness = "height ^ 2"`); none:
+    /// the mean height.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fitness: Option<FitnessExpression>,
 }
 
 impl Default for StandOptions {
@@ -32,6 +36,7 @@ impl Default for StandOptions {
             seconds: 10.0,
             max_height: 15.0,
             rest: Rest::default(),
+            fitness: None,
         }
     }
 }
@@ -63,7 +68,15 @@ impl Task for StandTask {
     const SUMMARY: &'static str = "Stand tall: mean height of the highest point while acting";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = false;
+    const TERMS: &'static [&'static str] = &["height"];
     type Options = StandOptions;
+
+    fn expression(options: &StandOptions) -> Option<&FitnessExpression> {
+        options.fitness.as_ref()
+    }
+    fn set_fitness(options: &mut StandOptions, text: &str) {
+        options.fitness = Some(FitnessExpression::new(text));
+    }
 
     fn measure(_options: &StandOptions) -> &'static str {
         "mean height (m)"

@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 use super::protocol::{Bounds, Watch, evaluate, steps_in};
 use super::recording::Phase;
 use super::walker::centre_of_mass;
-use super::{Evaluation, Task};
+use super::{Evaluation, FitnessExpression, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{DEFAULT_VISCOSITY, Medium, SettingError, SimOptions, WorldSpec};
@@ -21,11 +21,18 @@ use crate::sim::{DEFAULT_VISCOSITY, Medium, SettingError, SimOptions, WorldSpec}
 pub struct SwimOptions {
     /// Seconds of swimming with the controller on, measured from the start.
     pub seconds: f64,
+    /// The fitness as an expression of the task's terms (`fitness = "distance / mass"`); none:
+    /// the distance swum.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fitness: Option<FitnessExpression>,
 }
 
 impl Default for SwimOptions {
     fn default() -> Self {
-        SwimOptions { seconds: 20.0 }
+        SwimOptions {
+            seconds: 20.0,
+            fitness: None,
+        }
     }
 }
 
@@ -63,7 +70,15 @@ impl Task for SwimTask {
     const SUMMARY: &'static str = "Swim (Sims): distance of the centre of mass in water";
     const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = false;
+    const TERMS: &'static [&'static str] = &["distance", "viscosity", "mass", "N"];
     type Options = SwimOptions;
+
+    fn expression(options: &SwimOptions) -> Option<&FitnessExpression> {
+        options.fitness.as_ref()
+    }
+    fn set_fitness(options: &mut SwimOptions, text: &str) {
+        options.fitness = Some(FitnessExpression::new(text));
+    }
 
     fn measure(_options: &SwimOptions) -> &'static str {
         "distance (m)"

@@ -85,7 +85,10 @@ impl TaskTables {
     /// a config file spells it (`[task.jump] seconds`).
     pub fn check_other_tables(&self, table: &str) -> Result<(), SettingError> {
         for options in self.tables.iter().filter(|t| t.table() != table) {
-            // Checked as every task that reads it checks it (the aim task, the target).
+            // Checked as every task that reads it checks it (the aim task, the target); its
+            // fitness expression, as the fitness of any one of them (the catapult's table may
+            // read the aim task's D_t).
+            let mut fitness = Vec::new();
             for &kind in TaskKind::ALL
                 .iter()
                 .filter(|k| k.table() == options.table())
@@ -93,7 +96,13 @@ impl TaskTables {
                 if let Some(read) = TaskOptions::of_table(kind, options.as_any()) {
                     crate::with_options!(&read, T, o => <T as super::Task>::check_options(o))
                         .map_err(|e| e.within(options.table()).within("task"))?;
+                    fitness.push(read.check_fitness());
                 }
+            }
+            if !fitness.iter().any(Result::is_ok)
+                && let Some(Err(e)) = fitness.into_iter().next()
+            {
+                return Err(e.within(options.table()).within("task"));
             }
         }
         Ok(())

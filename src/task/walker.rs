@@ -1,6 +1,6 @@
 //! The walker (Chaumont et al. 3.3–3.5): its settings, its fitness formulas (Chaumont's
 //! normalised distance, Walking with Dinosaurs' iterative move and its variants, Hornby &
-//! Pollack's distance less drag) and its protocol.
+//! Pollack's distance less drag), or an expression of its terms, and its protocol.
 
 use std::collections::BTreeMap;
 
@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unwatched};
 use super::recording::Phase;
-use super::{Evaluation, MAX_TARGET_DISTANCE};
+use super::{Evaluation, Fitness, FitnessExpression, MAX_TARGET_DISTANCE};
 use crate::cancel::Interrupted;
 use crate::creature::{Creature, PartId};
 use crate::sim::{DragMeter, SimOptions, World, WorldSpec};
@@ -116,8 +116,8 @@ pub struct WalkerOptions {
     pub seconds: f64,
     /// κ of the block-count bonus κ^N.
     pub kappa: f64,
-    /// Which formula.
-    pub fitness: WalkerFitness,
+    /// Which formula, or an expression of the walker's terms.
+    pub fitness: Fitness<WalkerFitness>,
     /// When the creature is at rest.
     pub rest: Rest,
     /// The first activation of the controller (s), between the two waits for rest: 1 s,
@@ -137,7 +137,7 @@ impl Default for WalkerOptions {
         WalkerOptions {
             seconds: 20.0,
             kappa: 1.02,
-            fitness: WalkerFitness::Normalised,
+            fitness: Fitness::Formula(WalkerFitness::Normalised),
             rest: Rest::default(),
             activation: 1.0,
             second_settle: 0.5,
@@ -196,16 +196,20 @@ pub fn iterative_move(gains: &[f64]) -> f64 {
 /// check the height again, activate the controller for `activation` (1 s),
 /// stabilise again (at least `second_settle`, and until at rest), then walk with the
 /// controller on for `seconds`; D_w is the horizontal distance the root part's centre of mass
-/// travels.
+/// travels. The fitness is the formula `options` names, or its expression's value.
 pub fn walker(
     creature: &Creature,
     sim: &SimOptions,
     options: &WalkerOptions,
     record: bool,
 ) -> Evaluation {
-    unwatched(record, |watch| {
+    let evaluation = unwatched(record, |watch| {
         walker_watched(creature, (sim, &WorldSpec::default()), options, watch)
-    })
+    });
+    match options.fitness.expression() {
+        Some(expression) => expression.score(evaluation),
+        None => evaluation,
+    }
 }
 
 /// [`walker`], watched: recorded, told its progress and stopped by a token as `watch` says.
@@ -229,9 +233,17 @@ pub(super) fn walker_watched(
         let mut gains = Vec::new();
         let mut last_second = centre_of_mass(&run.world, creature);
         let centre_from = last_second;
-        // Hornby & Pollack's D_drag, measured only when it is the fitness.
-        let mut drag =
-            (options.fitness == WalkerFitness::HornbyPollack).then(|| DragMeter::start(&run.world));
+        // Hornby & Pollack's D_drag, measured only when the fitness reads it.
+        let formula = match &options.fitness {
+            Fitness::Formula(formula) => Some(*formula),
+            Fitness::Expression(_) => None,
+        };
+        let sliding = formula == Some(WalkerFitness::HornbyPollack)
+            || options
+                .fitness
+                .expression()
+                .is_some_and(|e| e.reads("drag") || e.reads("displacement"));
+        let mut drag = sliding.then(|| DragMeter::start(&run.world));
         let steps = steps_in(options.seconds, sim.control_step);
         let start_time = run.world.time();
         for _ in 0..steps {
@@ -256,20 +268,27 @@ pub(super) fn walker_watched(
         let centre_moved = centre_of_mass(&run.world, creature) - centre_from;
         let displacement = centre_moved.x.hypot(centre_moved.z);
         let dragged = drag.map_or(0.0, |drag| drag.dragged());
-        let fitness = match options.fitness {
-            WalkerFitness::Normalised => distance * (c_v / (c_s * c_l)) * options.kappa.powf(n),
-            WalkerFitness::Distance => distance,
-            WalkerFitness::IterativeMove => iterative,
-            WalkerFitness::BoxLover => iterative * n,
-            WalkerFitness::FatLover => iterative * creature.mass(),
-            WalkerFitness::DwarfSlayer => {
+        // An expression's value is had from the terms once they are all in
+        // ([`FitnessExpression::score`]): 0 until then.
+        let fitness = match formula {
+            None => 0.0,
+            Some(WalkerFitness::Normalised) => {
+                distance * (c_v / (c_s * c_l)) * options.kappa.powf(n)
+            }
+            Some(WalkerFitness::Distance) => distance,
+            Some(WalkerFitness::IterativeMove) => iterative,
+            Some(WalkerFitness::BoxLover) => iterative * n,
+            Some(WalkerFitness::FatLover) => iterative * creature.mass(),
+            Some(WalkerFitness::DwarfSlayer) => {
                 if n < 3.0 {
                     0.0
                 } else {
                     iterative
                 }
             }
-            WalkerFitness::HornbyPollack => (displacement - dragged).max(-MAX_TARGET_DISTANCE),
+            Some(WalkerFitness::HornbyPollack) => {
+                (displacement - dragged).max(-MAX_TARGET_DISTANCE)
+            }
         };
         let mut terms = BTreeMap::from([
             ("D_w".to_string(), distance),
@@ -283,7 +302,7 @@ pub(super) fn walker_watched(
             ("mass".to_string(), creature.mass()),
             ("measured_from".to_string(), measure_from),
         ]);
-        if options.fitness == WalkerFitness::HornbyPollack {
+        if sliding {
             terms.insert("displacement".into(), displacement);
             terms.insert("drag".into(), dragged);
         }
@@ -318,14 +337,39 @@ impl super::Task for WalkerTask {
         "hornby-pollack",
     ];
     const THROWS: bool = false;
-    const KEYWORDS: &'static [&'static str] = &["seconds", "fitness"];
+    const TERMS: &'static [&'static str] = &[
+        "D_w",
+        "C_l",
+        "C_s",
+        "C_v",
+        "N",
+        "kappa",
+        "settled_at",
+        "iterative_move",
+        "mass",
+        "measured_from",
+        "displacement",
+        "drag",
+    ];
     type Options = WalkerOptions;
 
+    fn expression(options: &WalkerOptions) -> Option<&FitnessExpression> {
+        options.fitness.expression()
+    }
+    fn set_fitness(options: &mut WalkerOptions, text: &str) {
+        options.fitness = Fitness::new(text);
+    }
     fn measure(options: &WalkerOptions) -> &'static str {
-        options.fitness.label()
+        match &options.fitness {
+            Fitness::Formula(formula) => formula.label(),
+            Fitness::Expression(_) => "expression",
+        }
     }
     fn floor(options: &WalkerOptions) -> Option<f64> {
-        options.fitness.floor()
+        match &options.fitness {
+            Fitness::Formula(formula) => formula.floor(),
+            Fitness::Expression(_) => None,
+        }
     }
     fn max_steps(sim: &SimOptions, options: &WalkerOptions) -> usize {
         options.max_steps(sim.control_step)

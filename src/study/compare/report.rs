@@ -514,7 +514,7 @@ pub fn write_report(
     };
     let title = format!("{task}: mean best fitness with 95% confidence bands");
     let y_desc = first.task.fitness_measure();
-    plot::bands_svg(&root.join("fitness.svg"), &bands, &title, y_desc)?;
+    plot::bands_svg(&root.join("fitness.svg"), &bands, &title, &y_desc)?;
     let parts: Vec<(String, Vec<f64>)> = manifest
         .names()
         .iter()
