@@ -12,6 +12,8 @@ __version__: str
 _Path = Union[str, PathLike]
 _Env = Optional[Sequence[Tuple[int, float]]]
 _Task = Literal["walker", "jump", "catapult", "aim", "stand", "swim"]
+# The walker's formulas; any other string is an expression of the task's terms
+# (``"D_w - 0.5 * drag"``).
 _Fitness = Literal[
     "normalised",
     "distance",
@@ -152,7 +154,7 @@ def evaluate(
     task: _Task = "walker",
     *,
     seconds: Optional[float] = None,
-    fitness: Optional[_Fitness] = None,
+    fitness: Optional[Union[_Fitness, str]] = None,
     setting: str = "default",
     sim: Optional[_Sim] = None,
     target: Optional[Tuple[float, float, float]] = None,
@@ -161,7 +163,10 @@ def evaluate(
     """Evaluates a creature on a task, as ``ontogeny eval --task TASK`` does; ``sim`` sets the
     simulator's knobs by their ``[task.sim]`` keys (see ``_Sim``) over ``setting``. The task's
     keywords: ``seconds`` (the walker, jump, catapult, aim, stand and swim tasks), ``fitness``
-    (the walker task), ``target`` (the aim task); one the task does not read raises ValueError."""
+    (the walker, jump, catapult, aim, stand and swim tasks), ``target`` (the aim task); one the
+    task does not read raises ValueError. ``fitness`` is one of the walker's formulas or an
+    expression of the task's terms (``"D_w - 0.5 * drag"``); an unknown term raises
+    ValueError."""
 
 def evaluate_many(
     creatures: Sequence[Creature],
@@ -169,7 +174,7 @@ def evaluate_many(
     *,
     threads: Optional[int] = None,
     seconds: Optional[float] = None,
-    fitness: Optional[_Fitness] = None,
+    fitness: Optional[Union[_Fitness, str]] = None,
     setting: str = "default",
     sim: Optional[_Sim] = None,
     target: Optional[Tuple[float, float, float]] = None,

@@ -9,7 +9,7 @@ use ontogeny::encoding::LoadError;
 use ontogeny::lang::Diagnostic;
 use ontogeny::run::RunError;
 use ontogeny::sim::StepSetting;
-use ontogeny::task::{TaskKind, WalkerFitness};
+use ontogeny::task::TaskKind;
 use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 
@@ -109,10 +109,6 @@ pub(crate) fn parse_name<T: std::str::FromStr>(
 
 pub(crate) fn task_named(name: &str) -> PyResult<TaskKind> {
     parse_name("task", name, TaskKind::ALL.iter().copied(), TaskKind::name)
-}
-
-pub(crate) fn fitness_named(name: &str) -> PyResult<WalkerFitness> {
-    parse_name("fitness", name, WalkerFitness::ALL, WalkerFitness::name)
 }
 
 pub(crate) fn setting_named(name: &str) -> PyResult<StepSetting> {

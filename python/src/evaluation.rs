@@ -1,6 +1,6 @@
 //! Evaluations from Python: `evaluate`, `evaluate_many` and the `Evaluation` class.
 
-use crate::common::{fitness_named, setting_named, task_named, thread_pool, value_error};
+use crate::common::{setting_named, task_named, thread_pool, value_error};
 use crate::creature::PyCreature;
 use std::sync::Arc;
 
@@ -124,8 +124,9 @@ pub(crate) struct TaskArgs<'a, 'py> {
 impl TaskArgs<'_, '_> {
     /// The task's specification, built and checked as `ontogeny eval` builds it from the same
     /// flags ([`TaskFlags::spec`]). A keyword of a setting the task does not read (the
-    /// registry's [`ontogeny::task::Task::KEYWORDS`]: `fitness=` but for the walker, `target=`
-    /// but for aim) is a `ValueError` naming the task.
+    /// registry's [`ontogeny::task::Task::KEYWORDS`]: `target=` but for aim) is a `ValueError`
+    /// naming the task. `fitness=` is a formula's name or an expression of the task's terms,
+    /// checked as `--fitness` is.
     pub(crate) fn spec(&self) -> PyResult<TaskSpec> {
         let task = task_named(self.task)?;
         let given = [
@@ -141,7 +142,7 @@ impl TaskArgs<'_, '_> {
         let flags = TaskFlags {
             task,
             seconds: self.seconds,
-            fitness: self.fitness.map(fitness_named).transpose()?,
+            fitness: self.fitness.map(str::to_string),
             activation: None,
             target: self.target,
             projectile_size: None,

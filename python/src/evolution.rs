@@ -1,8 +1,8 @@
 //! Evolution from Python: `evolve`, and the `Run` class that reads a run directory.
 
 use crate::common::{
-    diagnostic_error, fitness_named, require_exists, run_error, setting_named, task_named,
-    thread_pool, value_error,
+    diagnostic_error, require_exists, run_error, setting_named, task_named, thread_pool,
+    value_error,
 };
 use std::path::PathBuf;
 
@@ -77,7 +77,7 @@ pub(crate) fn evolve(
         population: pop,
         generations: gens,
         task: task.map(task_named).transpose()?,
-        fitness: fitness.map(fitness_named).transpose()?,
+        fitness: fitness.map(str::to_string),
         seconds,
         setting: setting.map(setting_named).transpose()?,
         target,

@@ -28,6 +28,8 @@ def test_every_task_setting_and_fitness_equals_the_command_line(root, cli):
     cases = [
         (dict(task="jump", seconds=1, setting="fast"), ["--task", "jump", "--seconds", "1", "--setting", "fast"]),
         (dict(task="walker", seconds=1, fitness="distance"), ["--task", "walker", "--seconds", "1", "--fitness", "distance"]),
+        (dict(task="walker", seconds=1, fitness="D_w - 0.5 * drag"), ["--task", "walker", "--seconds", "1", "--fitness", "D_w - 0.5 * drag"]),
+        (dict(task="jump", seconds=1, fitness="2 * height"), ["--task", "jump", "--seconds", "1", "--fitness", "2 * height"]),
         (dict(task="aim", seconds=2, target=(3, 1, 0)), ["--task", "aim", "--seconds", "2", "--target", "3,1,0"]),
         (dict(task="stand", seconds=1), ["--task", "stand", "--seconds", "1"]),
     ]
@@ -273,7 +275,7 @@ def test_unknown_names_raise_value_error_listing_the_known_ones():
     creature = ontogeny.grow(TWO_BOXES)
     with pytest.raises(ValueError, match="unknown task 'swim'.*walker"):
         ontogeny.evaluate(creature, "swim")
-    with pytest.raises(ValueError, match="unknown fitness"):
+    with pytest.raises(ValueError, match="^fitness reads speed, which is not a term of the walker task; its terms are D_w, "):
         ontogeny.evaluate(creature, fitness="speed")
     with pytest.raises(ValueError, match="unknown setting"):
         ontogeny.evaluate(creature, setting="coarse")
@@ -285,7 +287,7 @@ def test_unknown_names_raise_value_error_listing_the_known_ones():
 
 def test_a_keyword_the_task_does_not_read_raises_value_error_naming_the_task():
     creature = ontogeny.grow(TWO_BOXES)
-    with pytest.raises(ValueError, match="^fitness= is for the walker task only, and the task is jump$"):
+    with pytest.raises(ValueError, match='^fitness "distance" is a formula of the walker task, not of the jump task'):
         ontogeny.evaluate(creature, "jump", fitness="distance")
     with pytest.raises(ValueError, match="^target= is for the aim task only, and the task is catapult$"):
         ontogeny.evaluate_many([creature], "catapult", target=(3, 0, 0))

@@ -409,6 +409,12 @@ fn hashed_name(key: &'static str) -> &'static str {
         .map_or(key, |(_, before)| before)
 }
 
+/// Fields that a release added to settings that keys hash, written (and hashed) only when
+/// set: a task's fitness expression (`fitness` of the jump's, catapult's, stand's and swim's
+/// tables; the walker's `fitness` is always written). Unset, such a field adds nothing to the
+/// key, so that the keys of every configuration without it stay as they were.
+const ADDED_WHEN_SET: &[&str] = &["fitness"];
+
 macro_rules! fields {
     ($trait:ident) => {
         impl ser::$trait for &mut CanonicalHasher {
@@ -423,7 +429,9 @@ macro_rules! fields {
                 value.serialize(&mut **self)
             }
             fn skip_field(&mut self, key: &'static str) -> Result<(), HashError> {
-                self.bytes(26, hashed_name(key).as_bytes());
+                if !ADDED_WHEN_SET.contains(&key) {
+                    self.bytes(26, hashed_name(key).as_bytes());
+                }
                 Ok(())
             }
             fn end(self) -> Result<(), HashError> {

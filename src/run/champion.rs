@@ -130,7 +130,7 @@ mod tests {
     fn record() -> ChampionRecord {
         let mut task = TaskSpec::new(TaskKind::Walker);
         task.task = TaskOptions::Walker(WalkerOptions {
-            fitness: WalkerFitness::Distance,
+            fitness: WalkerFitness::Distance.into(),
             ..WalkerOptions::default()
         });
         task.sim.control_step = 1.0 / 60.0;

@@ -896,7 +896,17 @@ fn flags_the_task_does_not_use_are_warned_about() {
         "--fitness",
         "distance",
     ]);
-    assert!(stderr(&o).contains("warning: --fitness is for the walker task only"));
+    // A walker formula is no expression of the catapult's terms.
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains(
+            "error: --fitness \"distance\" is a formula of the walker task, not of the catapult \
+             task, whose fitness may be an expression of its terms: D_p, release_step, \
+             release_time, seconds, joint_gap"
+        ),
+        "{}",
+        stderr(&o)
+    );
     // Development flags on a creature that is not grown from a grammar.
     let dir = grown_snake("inapplicable");
     let creature = dir.join("creature.json");

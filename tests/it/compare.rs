@@ -561,7 +561,7 @@ fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
     );
     let shared = std::fs::read_to_string(out.join("evolve.toml")).unwrap();
     assert!(shared.contains("fitness = \"distance\""), "{shared}");
-    // A walker formula for another task is refused.
+    // A walker formula for another task is refused: it is no expression of its terms.
     let jump = ontogeny_command()
         .args(["compare", "--encodings", "direct", "--task", "jump"])
         .args(["--fitness", "distance", "--evaluations", "6", "--out"])
@@ -570,7 +570,8 @@ fn a_comparison_optimises_the_fitness_its_flag_names_and_its_report_says_so() {
         .unwrap();
     refused(
         &jump,
-        "--fitness is for the walker task only, and the task is jump",
+        "--fitness \"distance\" is a formula of the walker task, not of the jump task, whose \
+         fitness may be an expression of its terms: height, resting_lowest_point, joint_gap",
     );
     assert!(!dir.join("jump").exists());
     let _ = std::fs::remove_dir_all(dir);

@@ -197,9 +197,9 @@ fn the_thrower_throws_and_aiming_subtracts_the_miss() {
 fn walking_with_dinosaurs_fitness_variants() {
     use ontogeny::task::WalkerFitness;
     let c = grown("examples/snake.lsys");
-    let run = |fitness| {
+    let run = |fitness: WalkerFitness| {
         let options = WalkerOptions {
-            fitness,
+            fitness: fitness.into(),
             ..short_walk()
         };
         task::walker(&c, &SimOptions::default(), &options, false)
@@ -213,7 +213,7 @@ fn walking_with_dinosaurs_fitness_variants() {
     assert_eq!(run(WalkerFitness::DwarfSlayer).fitness, i);
     let small = creature("forward(1) revolute2 forward(1) output(1)");
     let options = WalkerOptions {
-        fitness: WalkerFitness::DwarfSlayer,
+        fitness: WalkerFitness::DwarfSlayer.into(),
         ..short_walk()
     };
     assert_eq!(

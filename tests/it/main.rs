@@ -25,6 +25,7 @@ mod export;
 mod fidelity;
 mod files;
 mod findings;
+mod fitness_expression;
 mod ga;
 mod genome_continuous;
 mod genome_direct;

@@ -37,11 +37,11 @@ fn the_stubs_name_the_registrys_tasks_and_the_walkers_formulas() {
         WalkerFitness::ALL.map(WalkerFitness::name),
         WalkerTask::FITNESS_VARIANTS
     );
-    // `evaluate` and `evaluate_many` take a task and a formula of those.
+    // `evaluate` and `evaluate_many` take a task and a formula of those, or an expression.
     assert_eq!(stubs.matches("    task: _Task = \"walker\",").count(), 2);
     assert_eq!(
         stubs
-            .matches("    fitness: Optional[_Fitness] = None,")
+            .matches("    fitness: Optional[Union[_Fitness, str]] = None,")
             .count(),
         2
     );

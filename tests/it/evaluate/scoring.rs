@@ -11,7 +11,7 @@ fn a_passive_creature_of_fused_parts_does_not_walk() {
     let c = grown("tests/fixtures/passive-rigid-chain.lsys");
     assert!(c.joints.iter().filter(|j| j.kind.dof() == 0).count() >= 10);
     let options = WalkerOptions {
-        fitness: task::WalkerFitness::Distance,
+        fitness: task::WalkerFitness::Distance.into(),
         ..WalkerOptions::default()
     };
     for sim in [
@@ -233,7 +233,7 @@ fn a_cheater_that_survives_a_short_activation_walks_nothing_with_the_default_sec
     let walk = |activation: f64| {
         let options = WalkerOptions {
             activation,
-            fitness: task::WalkerFitness::Distance,
+            fitness: task::WalkerFitness::Distance.into(),
             ..WalkerOptions::default()
         };
         let e = task::walker(&c, &SimOptions::default(), &options, false);
@@ -262,7 +262,7 @@ fn a_creature_lying_still_neither_moves_nor_drags_under_hornby_and_pollack() {
     // One box with no brain: it settles and lies still through the walk, so its centre of
     // mass moves 0 m and it drags 0 m along the ground.
     let options = WalkerOptions {
-        fitness: WalkerFitness::HornbyPollack,
+        fitness: WalkerFitness::HornbyPollack.into(),
         ..short_walk()
     };
     let e = task::walker(
@@ -281,9 +281,9 @@ fn a_creature_lying_still_neither_moves_nor_drags_under_hornby_and_pollack() {
 fn hornby_and_pollack_score_the_centre_of_mass_displacement_minus_the_drag() {
     use ontogeny::task::WalkerFitness;
     let snake = grown("examples/snake.lsys");
-    let run = |fitness| {
+    let run = |fitness: WalkerFitness| {
         let options = WalkerOptions {
-            fitness,
+            fitness: fitness.into(),
             ..short_walk()
         };
         task::walker(&snake, &SimOptions::default(), &options, false)

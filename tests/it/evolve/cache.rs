@@ -134,7 +134,10 @@ fn evolve_optimises_the_fitness_its_flag_names_and_every_report_names_it() {
         .arg(dir.join("jump"))
         .output()
         .unwrap();
-    refused(&jump, "--fitness is for the walker task only");
+    refused(
+        &jump,
+        "--fitness \"distance\" is a formula of the walker task, not of the jump task",
+    );
     assert!(!dir.join("jump").exists());
     let _ = std::fs::remove_dir_all(dir);
 }

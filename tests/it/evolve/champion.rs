@@ -209,7 +209,7 @@ fn replay_re_evaluates_with_another_setting_and_fitness_and_evolve_takes_an_aim_
     succeeded(&o);
     let config = std::fs::read_to_string(out.join("config.toml")).unwrap();
     assert!(config.contains("target = [3.0, 0.0, 1.0]"), "{config}");
-    // --fitness is the walker's.
+    // A walker formula is no expression of the aim task's terms.
     let o = ontogeny_command()
         .args(["replay", "--fitness", "distance"])
         .arg(&out)
@@ -217,7 +217,7 @@ fn replay_re_evaluates_with_another_setting_and_fitness_and_evolve_takes_an_aim_
         .unwrap();
     refused(
         &o,
-        "--fitness is for the walker task only, and the run's task is aim",
+        "--fitness \"distance\" is a formula of the walker task, not of the aim task",
     );
     let walker = dir.join("walker");
     let o = ontogeny_command()
