@@ -96,9 +96,11 @@ fn replacements(spec: &Value, pointer: &str) -> Vec<Value> {
         Value::String(_) => {
             let mut probe = spec.clone();
             *probe.pointer_mut(pointer).unwrap() = Value::from("no-such-name");
-            let refusal = serde_json::from_value::<TaskSpec>(probe)
-                .map(|_| String::new())
-                .unwrap_or_else(|e| e.to_string());
+            let Err(refusal) = serde_json::from_value::<TaskSpec>(probe).map_err(|e| e.to_string())
+            else {
+                // Any string is taken (the walker's fitness: a formula or an expression).
+                return vec![Value::from("no-such-name")];
+            };
             // "unknown variant `no-such-name`, expected one of `a`, `b`, `c`"
             refusal
                 .split_once("expected ")
