@@ -52,10 +52,8 @@ impl TaskFlags {
         if let Some(fitness) = &self.fitness {
             spec.set_fitness(fitness);
         }
-        if let Some(walker) = spec.task.get_mut::<WalkerOptions>() {
-            if let Some(a) = self.activation {
-                walker.activation = a;
-            }
+        if let (Some(walker), Some(a)) = (spec.task.get_mut::<WalkerOptions>(), self.activation) {
+            walker.activation = a;
         }
         if let Some(s) = self.seconds {
             *spec.seconds_mut() = s;
