@@ -374,3 +374,58 @@ fn an_encoding_comparison_counts_its_budget_in_walks() {
     assert_eq!(planned_generations(&dir, 4, "400"), "generations = 12");
     assert_eq!(planned_generations(&dir, 1, "100"), "generations = 12");
 }
+
+#[test]
+fn evolve_walks_sets_the_generations_from_a_budget_of_walks() {
+    let dir = scratch_dir("habitats-evolve-walks");
+    planned_generations(&dir, 4, "400");
+    let config = dir.join("trials-4.toml");
+    let out = dir.join("run");
+    let _ = std::fs::remove_dir_all(&out);
+    // 10 individuals of 4 trials: 40 walks are one generation, 39 not even that.
+    let short = ontogeny_command()
+        .args([
+            "evolve",
+            "--encoding",
+            "lsystem",
+            "--walks",
+            "39",
+            "--config",
+        ])
+        .arg(&config)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    refused(
+        &short,
+        "--walks 39 (4 per individual): a budget of 9 evaluations",
+    );
+    assert!(!out.exists());
+    succeeded(
+        &ontogeny_command()
+            .args([
+                "evolve",
+                "--encoding",
+                "lsystem",
+                "--walks",
+                "40",
+                "--config",
+            ])
+            .arg(&config)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
+    let stored = std::fs::read_to_string(out.join("config.toml")).unwrap();
+    assert!(stored.contains("generations = 1\n"), "{stored}");
+    refused(
+        &ontogeny_command()
+            .args(["evolve", "--walks", "40", "--gens", "2", "--out"])
+            .arg(dir.join("both"))
+            .output()
+            .unwrap(),
+        "--walks",
+    );
+}
