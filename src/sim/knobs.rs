@@ -459,7 +459,9 @@ pub fn reference_table() -> String {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SettingError {
     /// The TOML table that holds the key, e.g. `task.sim`; empty when the options were checked
-    /// on their own.
+    /// on their own. An entry of an array of tables is named by its index from 0 after the
+    /// array's name (`task.habitats.1`, its world `task.habitats.1.world`), so that the key
+    /// can be found in the file; messages leave the index out ([`table_name`]).
     pub table: String,
     /// The key, as a config file spells it (`substeps`).
     pub key: &'static str,
@@ -499,8 +501,27 @@ impl fmt::Display for SettingError {
         if self.table.is_empty() {
             write!(f, "{} {}", self.key, self.problem)
         } else {
-            write!(f, "[{}] {} {}", self.table, self.key, self.problem)
+            write!(f, "{} {} {}", table_name(&self.table), self.key, self.problem)
         }
+    }
+}
+
+/// A table's path (`task.sim`, `task.habitats.1.world`, `task.habitats.1`) as a config file
+/// heads it: `[task.sim]`, `[task.habitats.world]`; an entry of an array of tables itself,
+/// `[[task.habitats]]`. Indices (whole numbers) are left out.
+pub fn table_name(table: &str) -> String {
+    let names: Vec<&str> = table
+        .split('.')
+        .filter(|t| !t.is_empty() && !t.bytes().all(|b| b.is_ascii_digit()))
+        .collect();
+    let entry = table
+        .rsplit('.')
+        .next()
+        .is_some_and(|t| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()));
+    if entry {
+        format!("[[{}]]", names.join("."))
+    } else {
+        format!("[{}]", names.join("."))
     }
 }
 
