@@ -119,13 +119,14 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             let dir = target.path.clone();
             let habitat = match &args.habitat {
                 Some(name) => {
-                    let task = ontogeny::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
-                        .and_then(|store| store.run())
-                        .ok()
-                        .and_then(|run| run.task_spec())
-                        .ok_or_else(|| {
-                            bad(format!("{}: cannot read the run's task", dir.display()))
-                        })?;
+                    let task =
+                        ontogeny::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+                            .and_then(|store| store.run())
+                            .ok()
+                            .and_then(|run| run.task_spec())
+                            .ok_or_else(|| {
+                                bad(format!("{}: cannot read the run's task", dir.display()))
+                            })?;
                     let index = task
                         .habitat_named(name)
                         .map_err(|e| bad(format!("{}: {e}", dir.display())))?;

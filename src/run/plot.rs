@@ -69,10 +69,7 @@ fn plotted(y: f64) -> bool {
 /// labelled lines with a legend beside the chart; axes "generation" and `y_desc`, what the
 /// fitness measures and its unit), under `title`. When some
 /// generation's best was re-walked at the fine reference setting
-/// ([`GenerationRecord::best_fine`]), a fourth, dashed line ([`FINE_LABEL`]) shows it. A run
-/// with habitats or trials gives `spreads`: the best's line (the aggregate of its walks) is
-/// drawn over a shaded band from its lowest walk's fitness to its highest ([`SPREAD_LABEL`]);
-/// without them (empty), the picture is the plain one.
+/// ([`GenerationRecord::best_fine`]), a fourth, dashed line ([`FINE_LABEL`]) shows it.
 ///
 /// The GA computes `mean` and `median` over valid individuals only, since failed ones score
 /// the failure floor −999999 and would drown the others. The plot is robust anyway: values at
@@ -82,6 +79,18 @@ fn plotted(y: f64) -> bool {
 /// The file is written to a temporary name beside `path` and renamed, so a viewer never sees
 /// half a picture.
 pub fn fitness_svg(
+    path: &Path,
+    generations: &[GenerationRecord],
+    title: &str,
+    y_desc: &str,
+) -> Result<(), PlotError> {
+    fitness_svg_with_spreads(path, generations, &[], title, y_desc)
+}
+
+/// [`fitness_svg`] of a run with habitats or trials: the best's line (the aggregate of its
+/// walks) is drawn over a shaded band from its lowest walk's fitness to its highest, each
+/// generation's of `spreads` ([`SPREAD_LABEL`]); with no spreads, the plain picture.
+pub fn fitness_svg_with_spreads(
     path: &Path,
     generations: &[GenerationRecord],
     spreads: &[Spread],
@@ -219,7 +228,10 @@ fn draw(
         let mut outline: Vec<(u32, f64)> = run.iter().map(|s| (s.generation, s.high)).collect();
         outline.extend(run.iter().rev().map(|s| (s.generation, s.low)));
         chart
-            .draw_series(std::iter::once(Polygon::new(outline, best_colour.mix(0.18))))
+            .draw_series(std::iter::once(Polygon::new(
+                outline,
+                best_colour.mix(0.18),
+            )))
             .map_err(|x| e(&x))?;
     }
     for ((_, colour, value), dashed) in shown {
@@ -630,11 +642,11 @@ mod tests {
             .collect();
         // The band reaches 1 and 6: span 5, padded by 0.5 (5 % is less).
         assert_eq!(y_range(&gs, &spreads), (0.5, 6.5));
-        fitness_svg(&path, &gs, &spreads, "title", "fitness").unwrap();
+        fitness_svg_with_spreads(&path, &gs, &spreads, "title", "fitness").unwrap();
         let banded = fs::read_to_string(&path).unwrap();
         assert!(banded.lines().any(|l| l.trim() == SPREAD_LABEL));
         assert!(!banded.lines().any(|l| l.trim() == "best"));
-        fitness_svg(&path, &gs, &[], "title", "fitness").unwrap();
+        fitness_svg(&path, &gs, "title", "fitness").unwrap();
         let plain = fs::read_to_string(&path).unwrap();
         assert!(plain.lines().any(|l| l.trim() == "best"));
         // The band is one shaded polygon, and a square in the legend.
@@ -655,7 +667,7 @@ mod tests {
         let gs: Vec<GenerationRecord> = (0..5)
             .map(|g| generation(g, 1.0 + g as f64, 0.5, 0.4))
             .collect();
-        fitness_svg(&path, &gs, &[], "title", "fitness: distance (m)").unwrap();
+        fitness_svg(&path, &gs, "title", "fitness: distance (m)").unwrap();
         let svg = fs::read_to_string(&path).unwrap();
         assert!(svg.lines().any(|l| l.trim() == "fitness: distance (m)"));
         let right = rightmost_line(&svg);

@@ -501,7 +501,13 @@ impl fmt::Display for SettingError {
         if self.table.is_empty() {
             write!(f, "{} {}", self.key, self.problem)
         } else {
-            write!(f, "{} {} {}", table_name(&self.table), self.key, self.problem)
+            write!(
+                f,
+                "{} {} {}",
+                table_name(&self.table),
+                self.key,
+                self.problem
+            )
         }
     }
 }

@@ -18,7 +18,7 @@ use crate::evolve::ga::{Fallbacks, Individual, ranking};
 use crate::output;
 use crate::run::champion::ChampionRecord;
 use crate::run::folder::{LOG_FILE, PLOT_FILE};
-use crate::run::plot::{PlotError, fitness_svg};
+use crate::run::plot::{PlotError, fitness_svg_with_spreads};
 use crate::run::spread::{Spread, stored_spreads};
 use crate::run::store::{FineEvaluation, GenerationRecord};
 
@@ -207,7 +207,14 @@ impl<G: Genome> Run<G> {
             self.config.task.task.name()
         );
         let y_desc = format!("fitness: {}", self.config.task.fitness_measure());
-        fitness_svg(&self.dir.join(PLOT_FILE), generations, spreads, &title, &y_desc).map_err(|e| match e {
+        fitness_svg_with_spreads(
+            &self.dir.join(PLOT_FILE),
+            generations,
+            spreads,
+            &title,
+            &y_desc,
+        )
+        .map_err(|e| match e {
             PlotError::Output(e) => RunError::Output(e),
             other => RunError::Plot(other.to_string()),
         })
