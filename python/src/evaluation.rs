@@ -3,8 +3,8 @@
 use crate::common::{
     diagnostic_error, fitness_named, setting_named, task_named, thread_pool, value_error,
 };
-use std::path::PathBuf;
 use crate::creature::PyCreature;
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use crate::interrupt::{interrupted_error, interruptible};
@@ -15,9 +15,9 @@ use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
 use ontogeny::evolve::evaluator::Evaluator;
 use ontogeny::evolve::habitats::{evaluate_in_habitats, recorded_walk};
-use ontogeny::run::config::read_task_config;
 use ontogeny::front::flags::{TaskFlags, option_of};
 use ontogeny::lang::suggest::did_you_mean;
+use ontogeny::run::config::read_task_config;
 use ontogeny::sim::knobs::{Knob, Value, knob};
 use ontogeny::sim::{ActuatorModel, JointModel, KNOBS, SimOptions, StrengthFrom};
 use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch, keyword_refusal};
@@ -387,8 +387,7 @@ pub(crate) fn watched(
         return spec.evaluate_watched(creature, watch);
     }
     let creatures = vec![creature.clone(); spec.habitat_count()];
-    let mut outcome =
-        evaluate_in_habitats(spec, &creatures, 0, only, Evaluator::Local, cancel)?;
+    let mut outcome = evaluate_in_habitats(spec, &creatures, 0, only, Evaluator::Local, cancel)?;
     if record {
         outcome.recording = recorded_walk(spec, &creatures, only.unwrap_or(0))
             .evaluation

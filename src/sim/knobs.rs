@@ -553,6 +553,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_table_is_named_as_a_config_heads_it_without_indices() {
+        assert_eq!(table_name("task.sim"), "[task.sim]");
+        assert_eq!(table_name("task.habitats.1"), "[[task.habitats]]");
+        assert_eq!(
+            table_name("task.habitats.12.world.slope"),
+            "[task.habitats.world.slope]"
+        );
+        let mut e = SettingError::out_of_range("name", "unique", "'a'").within("task.habitats.3");
+        assert_eq!(
+            e.to_string(),
+            "[[task.habitats]] name must be unique, not 'a'"
+        );
+        e.table.clear();
+        assert_eq!(e.to_string(), "name must be unique, not 'a'");
+    }
+
+    #[test]
     fn every_field_of_the_options_is_one_knob_in_field_order() {
         let fields: Vec<String> = toml::Table::try_from(SimOptions::default())
             .unwrap()
