@@ -57,10 +57,10 @@ pub fn stored_spreads(store: &RunStore) -> Result<Vec<Spread>, StoreError> {
         // The individual's JSON holds its evaluation, with a result per walk.
         let json: serde_json::Value =
             serde_json::from_str(&individuals[best].genome_json).unwrap_or_default();
-        let walks = json["evaluation"]["habitats"]
+        let walks: Vec<f64> = json["evaluation"]["habitats"]
             .as_array()
             .map(|units| units.iter().filter_map(|u| u["fitness"].as_f64()).collect())
-            .unwrap_or_else(Vec::new);
+            .unwrap_or_default();
         spreads.extend(Spread::of_walks(g.index, walks));
     }
     Ok(spreads)
