@@ -21,7 +21,7 @@ use pyo3::types::{PyDict, PyList};
 /// flags, `target` the aim task's `--target`; a keyword the task does not read is refused as
 /// the command line refuses its flag); returns the run's directory.
 #[pyfunction]
-#[pyo3(signature = (config=None, *, out, encoding=None, task=None, fitness=None, preset=None, pop=None, gens=None, seed=None, seconds=None, target=None, setting=None, threads=None, init=None, verify_best=true, cache=true, progress=false))]
+#[pyo3(signature = (config=None, *, out, encoding=None, task=None, fitness=None, preset=None, pop=None, gens=None, walks=None, seed=None, seconds=None, target=None, setting=None, threads=None, init=None, verify_best=true, cache=true, progress=false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evolve(
     py: Python<'_>,
@@ -33,6 +33,7 @@ pub(crate) fn evolve(
     preset: Option<&str>,
     pop: Option<usize>,
     gens: Option<usize>,
+    walks: Option<u64>,
     seed: Option<u64>,
     seconds: Option<f64>,
     target: Option<[f64; 3]>,
@@ -76,6 +77,7 @@ pub(crate) fn evolve(
         preset,
         population: pop,
         generations: gens,
+        walks,
         task: task.map(task_named).transpose()?,
         fitness: fitness.map(str::to_string),
         seconds,
@@ -175,7 +177,9 @@ impl PyRun {
 
     /// The individuals of one generation (default: every generation's), a dict each with the
     /// run store's columns: `generation`, `individual`, `parents`, `operator`, `genome_text`,
-    /// `fitness`, `status`, `terms`, `parts`, `joints`, `neurons`, `reused`.
+    /// `fitness`, `status`, `terms`, `parts`, `joints`, `neurons`, `reused`; in a run with
+    /// habitats or trials also `habitats`, each habitat's and trial's walk (a list of dicts
+    /// as `Evaluation.habitats` gives them).
     #[pyo3(signature = (generation=None))]
     fn individuals<'py>(
         &self,
@@ -207,6 +211,14 @@ impl PyRun {
                 dict.set_item("joints", i.joints)?;
                 dict.set_item("neurons", i.neurons)?;
                 dict.set_item("reused", i.reused)?;
+                // Each habitat's and trial's walk, kept in the individual's evaluation.
+                let stored: serde_json::Value =
+                    serde_json::from_str(&i.genome_json).map_err(value_error)?;
+                let walks = &stored["evaluation"]["habitats"];
+                if walks.is_array() {
+                    let walks = json.call_method1("loads", (walks.to_string(),))?;
+                    dict.set_item("habitats", walks)?;
+                }
                 list.append(dict)?;
             }
         }

@@ -200,6 +200,7 @@ fn run_flags(args: &CompareArgs) -> RunFlags {
         preset: args.preset,
         population: args.pop,
         generations: None,
+        walks: None,
         task: args.task,
         fitness: args.fitness.clone(),
         seconds: args.seconds,

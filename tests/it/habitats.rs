@@ -154,31 +154,54 @@ fn eval_habitat_walks_that_habitat_alone_and_refuses_an_unknown_name() {
 }
 
 #[test]
-fn a_bad_habitats_table_is_refused_with_exit_code_2() {
+fn a_bad_habitats_table_is_refused_with_exit_code_2_at_its_line_and_column() {
     let dir = scratch_dir("habitats-bad");
     let config = config(&dir, 2, "");
     let text = std::fs::read_to_string(&config).unwrap();
-    for (from, to, message) in [
+    // The second habitat's table starts at line 23: `name = "rich"` is line 24.
+    for (from, to, message, at) in [
         (
             "name = \"rich\"",
             "name = \"poor\"",
             "[[task.habitats]] name must be unique among the habitats, not 'poor' a second time",
+            "habitats.toml:24:8",
         ),
         (
             "count = 2",
             "count = 0",
             "[task.trials] count must be 1 to 64, not 0",
+            "habitats.toml:15:9",
         ),
         (
             "count = 2",
             "count = 2\nroughness = 120",
             "[task.trials] roughness must be in [0, 99], not 120",
+            "habitats.toml:16:13",
         ),
         (
             "environment = [1]",
             "environment = [1]\n[task.habitats.world]\nslope = { degrees = 95 }",
             "[task.habitats.world.slope] degrees must be at least 0 and below 80, not 95 \
              (habitat 'rich')",
+            "habitats.toml:27:21",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1, nan]",
+            "[[task.habitats]] environment must be finite numbers (habitat 'rich'), not NaN",
+            "habitats.toml:25:15",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1]\ncolour = 3",
+            "unknown key colour in [[task.habitats]]",
+            "habitats.toml:26:1",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1]\n\n[[task.habitats]]\nname = \"\"",
+            "[[task.habitats]] name must be a word of printable characters, not ''",
+            "habitats.toml:28:8",
         ),
     ] {
         std::fs::write(&config, text.replace(from, to)).unwrap();
@@ -189,7 +212,8 @@ fn a_bad_habitats_table_is_refused_with_exit_code_2() {
             .arg(dir.join("run"))
             .output()
             .unwrap();
-        refused(&out, message);
+        let said = refused(&out, message);
+        assert!(said.contains(&format!("{at}\n")), "{at} not in {said}");
         assert!(!dir.join("run").exists());
     }
 }
@@ -325,4 +349,131 @@ fn a_habitat_is_walked_in_its_own_world() {
     // Each habitat walks as a plain task in its world does: level ground, then the slope.
     assert_eq!(walked, [fitness(&level), fitness(&hill)]);
     assert_ne!(walked[0], walked[1]);
+}
+
+/// The generations `compare --plan` gives each replicate of `lsystem` under a walker config
+/// with `trials` trials, at a budget of `walks` walks.
+fn planned_generations(dir: &Path, trials: u32, walks: &str) -> String {
+    let config = dir.join(format!("trials-{trials}.toml"));
+    std::fs::write(
+        &config,
+        format!(
+            "[ga]\npopulation = 10\n\n[task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.5\n\n\
+             [task.trials]\ncount = {trials}\nstrength = 10\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.join(format!("plan-{trials}"));
+    succeeded(
+        &ontogeny_command()
+            .args([
+                "compare",
+                "--plan",
+                "--encodings",
+                "lsystem",
+                "--replicates",
+                "1",
+            ])
+            .args(["--evaluations", walks, "--config"])
+            .arg(&config)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
+    let planned = std::fs::read_to_string(out.join("evolve.toml")).unwrap();
+    planned
+        .lines()
+        .find(|l| l.starts_with("generations = "))
+        .unwrap()
+        .to_string()
+}
+
+#[test]
+fn an_encoding_comparison_counts_its_budget_in_walks() {
+    let dir = scratch_dir("habitats-budget");
+    // The first generation evaluates all 10, each later one the 8 that are not elite: 12
+    // generations make 10 + 8·11 = 98 evaluations, 13 would make 106. At 4 trials, a budget
+    // of 400 walks is 100 evaluations, as a budget of 100 is at one.
+    assert_eq!(planned_generations(&dir, 4, "400"), "generations = 12");
+    assert_eq!(planned_generations(&dir, 1, "100"), "generations = 12");
+    // Run, the report and the progress count walks: 40 walks are one generation of 10.
+    let out = dir.join("run-4");
+    let ran = ontogeny_command()
+        .args(["compare", "--encodings", "lsystem", "--replicates", "1"])
+        .args(["--evaluations", "40", "--config"])
+        .arg(dir.join("trials-4.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    succeeded(&ran);
+    let progress = String::from_utf8_lossy(&ran.stderr);
+    assert!(
+        progress.contains("comparison 40/40 walks (100.0%)"),
+        "{progress}"
+    );
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        report.contains(
+            "every replicate made exactly 40 walks, 10 evaluations of 4 walks each \
+             (budget 40 walks: population 10, 1 generations"
+        ),
+        "{report}"
+    );
+}
+
+#[test]
+fn evolve_walks_sets_the_generations_from_a_budget_of_walks() {
+    let dir = scratch_dir("habitats-evolve-walks");
+    planned_generations(&dir, 4, "400");
+    let config = dir.join("trials-4.toml");
+    let out = dir.join("run");
+    let _ = std::fs::remove_dir_all(&out);
+    // 10 individuals of 4 trials: 40 walks are one generation, 39 not even that.
+    let short = ontogeny_command()
+        .args([
+            "evolve",
+            "--encoding",
+            "lsystem",
+            "--walks",
+            "39",
+            "--config",
+        ])
+        .arg(&config)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    refused(
+        &short,
+        "--walks 39 (4 per individual): a budget of 9 evaluations",
+    );
+    assert!(!out.exists());
+    succeeded(
+        &ontogeny_command()
+            .args([
+                "evolve",
+                "--encoding",
+                "lsystem",
+                "--walks",
+                "40",
+                "--config",
+            ])
+            .arg(&config)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
+    let stored = std::fs::read_to_string(out.join("config.toml")).unwrap();
+    assert!(stored.contains("generations = 1\n"), "{stored}");
+    refused(
+        &ontogeny_command()
+            .args(["evolve", "--walks", "40", "--gens", "2", "--out"])
+            .arg(dir.join("both"))
+            .output()
+            .unwrap(),
+        "--walks",
+    );
 }
