@@ -12,7 +12,7 @@ use super::recording::{Phase, Sample, recording_interval};
 use super::{Evaluation, Status};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
-use crate::sim::{SimOptions, World, WorldSpec};
+use crate::sim::{SettingError, SimOptions, World, WorldSpec};
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
 /// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
@@ -312,12 +312,36 @@ impl Run<'_> {
     }
 }
 
-/// What a task's settings bound: the tallest creature simulated (m), the seconds its
-/// measurement may last (screened before simulating) and the most control steps of `dt` the
-/// whole protocol can take.
-pub(super) trait Bounds {
+/// What a task's settings ([`Task::Options`](super::Task::Options)) bound, which the protocol
+/// and the registry read of every task alike.
+pub trait Bounds {
+    /// The tallest creature simulated (m) and the seconds its measurement may last, both
+    /// screened before simulating.
     fn limits(&self) -> (f64, f64);
+    /// The most control steps of `dt` the whole protocol can take (every phase at its
+    /// longest).
     fn max_steps(&self, dt: f64) -> usize;
+    /// The length of its measurement (s), which `--seconds` sets.
+    fn seconds(&mut self) -> &mut f64;
+    /// Checks the ranges of the settings, the task's table; the error names the key in the
+    /// table.
+    fn check(&self) -> Result<(), SettingError>;
+}
+
+/// One evaluation as a task's protocol is given it: the creature, the simulator's settings,
+/// the world, the task's settings `O`, and how it is watched (for `'w`, which may be shorter
+/// than what it watches lives: a [`Watch`] cannot be lent for less than its own lifetime).
+pub struct Setup<'a, 'w, O> {
+    /// The creature evaluated.
+    pub creature: &'a Creature,
+    /// The simulator's settings.
+    pub sim: &'a SimOptions,
+    /// The world besides the creature.
+    pub world: &'a WorldSpec,
+    /// The task's settings.
+    pub options: &'a O,
+    /// Whether it is recorded, who is told its progress and what stops it.
+    pub watch: Watch<'w>,
 }
 
 /// How an evaluation is watched from outside: whether it is recorded, the callback told the
@@ -387,19 +411,23 @@ fn start<'p>(
     })
 }
 
-/// Screens the creature, builds its world (`sim`'s settings, `world`'s ground and objects,
-/// or its water) and runs `protocol` on it, within the `bounds` of
-/// the task's settings; `protocol` returns the fitness and its terms (or a failed
+/// Screens the creature of `setup`, builds its world (the simulator's settings, the world's
+/// ground and objects, or its water) and runs `protocol` on it, within the [`Bounds`] of
+/// the task's settings, watched as `setup` says; `protocol` returns the fitness and its terms (or a failed
 /// evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
 /// token stopped it.
 pub(super) fn evaluate(
     task: &'static str,
-    creature: &Creature,
-    (sim, world): (&SimOptions, &WorldSpec),
-    bounds: &impl Bounds,
-    watch: Watch<'_>,
+    setup: Setup<'_, '_, impl Bounds>,
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
 ) -> Result<Evaluation, Interrupted> {
+    let Setup {
+        creature,
+        sim,
+        world,
+        options: bounds,
+        watch,
+    } = setup;
     let Watch {
         record,
         progress,
