@@ -172,27 +172,9 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
         evaluation
     } else {
         // Every unit walked for the aggregate; the habitat's first trial recorded.
-        let evaluation = ontogeny::evolve::habitats::evaluate_in_habitats(
-            task,
-            &creatures,
-            0,
-            only,
-            ontogeny::evolve::evaluator::Evaluator::Local,
-            &ontogeny::cancel::Cancel::default(),
-        )?;
-        let key = ontogeny::evolve::key::EvaluationKey::of_habitats(
-            &creatures,
-            task,
-            ontogeny::evolve::key::KeyVersion::default(),
-        );
-        let unit = task
-            .units(key.0, 0)
-            .into_iter()
-            .find(|u| u.habitat as usize == habitat)
-            .expect("every habitat has a trial");
-        let walked = unit.perturbation.place(creature);
-        let unit_spec = task.unit_spec(&unit);
-        let recorded = unit_spec.evaluate(&walked, true);
+        let evaluation = ontogeny::evolve::habitats::evaluate_here(task, &creatures, only)?;
+        let (walked, recorded, unit_spec) =
+            ontogeny::evolve::habitats::record_first_trial(task, &creatures, habitat);
         super::eval::write_recording_at(&out, &walked, &recorded, &unit_spec.world, fps)?;
         say!(
             "{}",

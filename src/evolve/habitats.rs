@@ -1,7 +1,8 @@
 //! An individual in its habitats: a genome developed in each habitat of a task (with the
 //! habitat's chemical array, [`Genome::develop_in`]), the key of those creatures, and the
 //! evaluation of one individual over every unit (habitat × trial) outside the genetic
-//! algorithm's batches — the fine reference re-walk, the viewer, `eval` and `replay`. The
+//! algorithm's batches — the fine reference re-walk, the viewer, `eval` and `replay` — and
+//! the recording of one habitat's first trial. The
 //! genetic algorithm's batches spread the same units over the evaluator (`ga`).
 
 use super::evaluator::{Evaluator, Job};
@@ -83,6 +84,45 @@ pub fn evaluate_in_habitats(
         .collect();
     let evaluations = evaluator.evaluate(task, &jobs, cancel)?;
     Ok(task.combine(&units, evaluations, creatures))
+}
+
+/// [`evaluate_in_habitats`] for generation 0, on this process's threads, with nothing to stop
+/// it: the evaluation `eval` and `replay` show.
+pub fn evaluate_here(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    only: Option<usize>,
+) -> Result<Evaluation, Interrupted> {
+    evaluate_in_habitats(
+        task,
+        creatures,
+        0,
+        only,
+        Evaluator::Local,
+        &Cancel::default(),
+    )
+}
+
+/// The first trial of habitat `habitat` of an individual developed into `creatures`
+/// ([`develop_in_habitats`]), drawn as [`evaluate_in_habitats`] draws it for generation 0,
+/// walked again and recorded (`eval --record`, `replay`): the creature as the trial's draw
+/// placed it, its recorded evaluation, and the specification it walked with, in whose world
+/// the recording is.
+pub fn record_first_trial(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    habitat: usize,
+) -> (Creature, Evaluation, TaskSpec) {
+    let key = EvaluationKey::of_habitats(creatures, task, KeyVersion::default());
+    let unit = task
+        .units(key.0, 0)
+        .into_iter()
+        .find(|u| u.habitat as usize == habitat)
+        .expect("every habitat has a trial");
+    let walked = unit.perturbation.place(&creatures[habitat]);
+    let spec = task.unit_spec(&unit);
+    let recorded = spec.evaluate(&walked, true);
+    (walked, recorded, spec)
 }
 
 /// [`develop_in_habitats`] then [`evaluate_in_habitats`] on this process's threads: the
