@@ -289,8 +289,10 @@ pub fn plan_comparison(
         ..flags.clone()
     };
     let (mut ga, task) = resolve_ga_and_task(file, source, &one_generation)?;
+    // The budget counts walks: an individual of K trials in H habitats walks K·H times.
+    let walks = compare::walks_per_individual(&task);
     ga.generations =
-        generations_for(&ga, budget).map_err(|e| plain(format!("--evaluations: {e}")))?;
+        generations_for(&ga, budget / walks).map_err(|e| plain(format!("--evaluations: {e}")))?;
     Ok((
         Manifest {
             encodings: names,
