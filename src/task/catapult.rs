@@ -6,10 +6,9 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Setup, evaluate, steps_in};
+use super::protocol::{Setup, evaluate, on_flat_ground, steps_in};
 use super::recording::Phase;
-use super::registry::on_flat_ground;
-use super::{AimTask, Evaluation, MAX_TARGET_DISTANCE, Status};
+use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::SimOptions;
@@ -96,8 +95,7 @@ pub fn catapult(
     options: &CatapultOptions,
     record: bool,
 ) -> Evaluation {
-    // The aim task evaluates the settings as they are: with no target, as the catapult.
-    on_flat_ground::<AimTask>(creature, sim, options, record)
+    on_flat_ground(creature, sim, options, record, catapult_watched)
 }
 
 /// [`catapult`] in any world, watched: recorded, told its progress and stopped by a token

@@ -4,9 +4,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Rest, Setup, evaluate, settle_steps, steps_in};
+use super::protocol::{Rest, Setup, evaluate, on_flat_ground, settle_steps, steps_in};
 use super::recording::Phase;
-use super::registry::on_flat_ground;
 use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
@@ -51,7 +50,7 @@ pub fn jump(
     options: &JumpOptions,
     record: bool,
 ) -> Evaluation {
-    on_flat_ground::<JumpTask>(creature, sim, options, record)
+    on_flat_ground(creature, sim, options, record, JumpTask::evaluate)
 }
 
 /// Walking with Dinosaurs' jump, in the registry ([`super::Task`]).

@@ -1,6 +1,7 @@
 //! The protocol's common steps, shared by every task: screening a creature before it is
 //! simulated, building its world, stepping it with the controller on or off, waiting for it to
-//! come to rest, the height test, recording samples and telling progress. A task's own file
+//! come to rest, the height test, recording samples and telling progress; what every protocol
+//! is given ([`Setup`]) and what every task's settings bound ([`Bounds`]). A task's own file
 //! says in what order these steps run and how its fitness is computed from them.
 
 use std::collections::BTreeMap;
@@ -329,8 +330,9 @@ pub trait Bounds {
 }
 
 /// One evaluation as a task's protocol is given it: the creature, the simulator's settings,
-/// the world, the task's settings `O`, and how it is watched (for `'w`, which may be shorter
-/// than what it watches lives: a [`Watch`] cannot be lent for less than its own lifetime).
+/// the world, the task's settings `O`, and how it is watched. The watch has a lifetime of its
+/// own, `'w`, as a [`Watch`] cannot be lent for less than its own: a protocol may evaluate in
+/// a world it makes (the swim task's water), which lives less long.
 pub struct Setup<'a, 'w, O> {
     /// The creature evaluated.
     pub creature: &'a Creature,
@@ -377,6 +379,28 @@ pub(super) fn unwatched(
     uninterrupted(evaluate(Watch::uncancelled(record, &mut |_| {})))
 }
 
+/// The evaluation `evaluate` (a task's protocol) gives of `creature` on flat ground, with the
+/// simulator's settings `sim` and the task's `options`, watched by no one and stopped by
+/// nothing: recorded as `record` says.
+pub(super) fn on_flat_ground<O>(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &O,
+    record: bool,
+    evaluate: impl FnOnce(Setup<'_, '_, O>) -> Result<Evaluation, Interrupted>,
+) -> Evaluation {
+    let world = WorldSpec::default();
+    unwatched(record, |watch| {
+        evaluate(Setup {
+            creature,
+            sim,
+            world: &world,
+            options,
+            watch,
+        })
+    })
+}
+
 /// The evaluation of a watch without a token, which nothing can interrupt.
 pub(super) fn uninterrupted(evaluation: Result<Evaluation, Interrupted>) -> Evaluation {
     evaluation.expect("an evaluation without a cancellation token is never interrupted")
@@ -412,9 +436,9 @@ fn start<'p>(
 }
 
 /// Screens the creature of `setup`, builds its world (the simulator's settings, the world's
-/// ground and objects, or its water) and runs `protocol` on it, within the [`Bounds`] of
-/// the task's settings, watched as `setup` says; `protocol` returns the fitness and its terms (or a failed
-/// evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
+/// ground and objects, or its water) and runs `protocol` on it, within the [`Bounds`] of the
+/// task's settings, watched as `setup` says; `protocol` returns the fitness and its terms (or
+/// a failed evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
 /// token stopped it.
 pub(super) fn evaluate(
     task: &'static str,

@@ -10,10 +10,9 @@
 use serde::{Serialize, de::DeserializeOwned};
 
 use super::Evaluation;
-use super::protocol::{Bounds, Setup, unwatched};
+use super::protocol::{Bounds, Setup};
 use crate::cancel::Interrupted;
-use crate::creature::Creature;
-use crate::sim::{SettingError, SimOptions, WorldSpec};
+use crate::sim::{SettingError, SimOptions};
 
 /// One task: its protocol and fitness formula, and what a run or a report needs to know of it.
 pub trait Task {
@@ -92,27 +91,6 @@ pub trait Task {
     /// Evaluates the creature of `setup` with its simulator's settings, in its world, with its
     /// own settings, watched as `setup` says.
     fn evaluate(setup: Setup<'_, '_, Self::Options>) -> Result<Evaluation, Interrupted>;
-}
-
-/// The evaluation by task `T` of `creature` on flat ground, with the simulator's settings
-/// `sim` and `T`'s `options`, watched by no one and stopped by nothing: recorded as `record`
-/// says.
-pub(super) fn on_flat_ground<T: Task>(
-    creature: &Creature,
-    sim: &SimOptions,
-    options: &T::Options,
-    record: bool,
-) -> Evaluation {
-    let world = WorldSpec::default();
-    unwatched(record, |watch| {
-        T::evaluate(Setup {
-            creature,
-            sim,
-            world: &world,
-            options,
-            watch,
-        })
-    })
 }
 
 /// What can be known of a task without its type: for the command line's lists and help, the

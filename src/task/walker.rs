@@ -7,9 +7,8 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Rest, Setup, evaluate, settle_steps, steps_in};
+use super::protocol::{Rest, Setup, evaluate, on_flat_ground, settle_steps, steps_in};
 use super::recording::Phase;
-use super::registry::on_flat_ground;
 use super::{Evaluation, MAX_TARGET_DISTANCE, Task};
 use crate::cancel::Interrupted;
 use crate::creature::{Creature, PartId};
@@ -195,7 +194,7 @@ pub fn walker(
     options: &WalkerOptions,
     record: bool,
 ) -> Evaluation {
-    on_flat_ground::<WalkerTask>(creature, sim, options, record)
+    on_flat_ground(creature, sim, options, record, WalkerTask::evaluate)
 }
 
 /// [`walker`] in any world, watched: recorded, told its progress and stopped by a token as
