@@ -393,7 +393,7 @@ fn structural(
     // A production that reads has its read written right before every call of it, and no
     // other production has one.
     if axiom_kept && axiom_read.is_none() {
-        calls.push((0, None, *axiom_span));
+        calls.push((0, None, axiom_call[0].span));
     }
     for (k, slot, span) in calls {
         let name = if names[k].is_empty() { "P0" } else { &names[k] };
