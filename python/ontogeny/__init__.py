@@ -84,7 +84,8 @@ def evolve(
     ``ontogeny evolve --out OUT [--config CONFIG]`` does, and returns the :class:`Run`.
 
     ``overrides`` are the command line's flags by their long name: ``encoding``, ``task``,
-    ``fitness``, ``preset``, ``pop``, ``gens``, ``seed``, ``seconds``, ``setting``,
+    ``fitness``, ``preset``, ``pop``, ``gens`` (or ``walks``, a budget of walks), ``seed``,
+    ``seconds``, ``setting``,
     ``threads``, ``init``, and ``verify_best=False`` / ``cache=False`` for
     ``--no-verify-best`` / ``--no-cache``; ``progress=True`` prints a line per generation on
     standard error. The results do not depend on ``threads``.

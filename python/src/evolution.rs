@@ -21,7 +21,7 @@ use pyo3::types::{PyDict, PyList};
 /// flags, `target` the aim task's `--target`; a keyword the task does not read is refused as
 /// the command line refuses its flag); returns the run's directory.
 #[pyfunction]
-#[pyo3(signature = (config=None, *, out, encoding=None, task=None, fitness=None, preset=None, pop=None, gens=None, seed=None, seconds=None, target=None, setting=None, threads=None, init=None, verify_best=true, cache=true, progress=false))]
+#[pyo3(signature = (config=None, *, out, encoding=None, task=None, fitness=None, preset=None, pop=None, gens=None, walks=None, seed=None, seconds=None, target=None, setting=None, threads=None, init=None, verify_best=true, cache=true, progress=false))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evolve(
     py: Python<'_>,
@@ -33,6 +33,7 @@ pub(crate) fn evolve(
     preset: Option<&str>,
     pop: Option<usize>,
     gens: Option<usize>,
+    walks: Option<u64>,
     seed: Option<u64>,
     seconds: Option<f64>,
     target: Option<[f64; 3]>,
@@ -76,6 +77,7 @@ pub(crate) fn evolve(
         preset,
         population: pop,
         generations: gens,
+        walks,
         task: task.map(task_named).transpose()?,
         fitness: fitness.map(fitness_named).transpose()?,
         seconds,

@@ -196,6 +196,7 @@ fn run_flags(args: &CompareArgs) -> RunFlags {
         preset: args.preset,
         population: args.pop,
         generations: None,
+        walks: None,
         task: args.task,
         fitness: args.fitness,
         seconds: args.seconds,

@@ -95,6 +95,11 @@ pub struct EvolveArgs {
     /// generations in all (at least as many as it has).
     #[arg(long)]
     gens: Option<usize>,
+    /// A budget of walks simulated instead of --gens: as many generations as fit in N walks,
+    /// counting the whole first generation, then every individual but the elite, each walking
+    /// once per habitat and trial (so K = 4 trials gets a quarter of the evaluations of K = 1).
+    #[arg(long, value_name = "N", conflicts_with = "gens")]
+    walks: Option<u64>,
     /// The run's seed (default: the config's, else 1).
     #[arg(long)]
     seed: Option<u64>,
@@ -184,8 +189,11 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
         ));
     }
     let mut source = read_source(args.config.as_deref())?;
-    let example =
-        source.is_none() && args.preset.is_none() && args.pop.is_none() && args.gens.is_none();
+    let example = source.is_none()
+        && args.preset.is_none()
+        && args.pop.is_none()
+        && args.gens.is_none()
+        && args.walks.is_none();
     if example {
         // Chaumont's full schedule is 300 × 100 walks (hours): with nothing said about the
         // run's size, the README's walker example starts instead, and says so.
@@ -222,6 +230,7 @@ fn run_flags(args: &EvolveArgs) -> RunFlags {
         preset: args.preset,
         population: args.pop,
         generations: args.gens,
+        walks: args.walks,
         task: args.task,
         fitness: args.fitness,
         seconds: args.seconds,

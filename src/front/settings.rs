@@ -27,6 +27,9 @@ pub struct RunFlags {
     pub population: Option<usize>,
     /// `--gens`.
     pub generations: Option<usize>,
+    /// `--walks`: a budget of walks simulated, which sets the generations to as many as fit
+    /// (an individual walks once in each habitat-trial).
+    pub walks: Option<u64>,
     /// `--task`.
     pub task: Option<TaskKind>,
     /// `--fitness`.
@@ -100,11 +103,21 @@ pub fn resolve_ga_and_task<L>(
     if flags.generations.is_some() {
         overrides.generations = flags.generations;
     }
-    let ga = overrides.resolve();
+    let mut ga = overrides.resolve();
     if let Some(s) = flags.seconds {
         crate::task::check_duration("seconds", s).map_err(|e| plain(e.for_flag("--seconds")))?;
     }
     let task = resolve_task(file.task.as_ref(), flags).map_err(plain)?;
+    if let Some(walks) = flags.walks {
+        if flags.generations.is_some() {
+            return Err(plain(
+                "--walks sets the generations: give it or --gens, not both".into(),
+            ));
+        }
+        let each = compare::walks_per_individual(&task);
+        ga.generations = generations_for(&ga, walks / each)
+            .map_err(|e| plain(format!("--walks {walks} ({each} per individual): {e}")))?;
+    }
     let other_tables = |tables: &TaskTables| tables.check_other_tables(task.task.table());
     check_settings(&ga, &task)
         .and_then(|()| file.task.as_ref().map_or(Ok(()), other_tables))
@@ -289,8 +302,10 @@ pub fn plan_comparison(
         ..flags.clone()
     };
     let (mut ga, task) = resolve_ga_and_task(file, source, &one_generation)?;
+    // The budget counts walks: an individual of K trials in H habitats walks K·H times.
+    let walks = compare::walks_per_individual(&task);
     ga.generations =
-        generations_for(&ga, budget).map_err(|e| plain(format!("--evaluations: {e}")))?;
+        generations_for(&ga, budget / walks).map_err(|e| plain(format!("--evaluations: {e}")))?;
     Ok((
         Manifest {
             encodings: names,

@@ -11,7 +11,7 @@ use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL,
 use super::pen::{convex_hull_path, draw_bullseye, fill, polygon, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
-use super::world::{draw_ground_shape, draw_solids, is_water, shapes_ground, tint_water};
+use super::world::{Solids, draw_ground_shape, draw_solids, is_water, shapes_ground, tint_water};
 use crate::creature::{Creature, Severity, counted};
 
 /// Whether a picture checks the creature: marks interpenetrating parts, numbers the parts and
@@ -78,10 +78,18 @@ pub(super) fn draw_body(
     if !water {
         draw_shadows(pixmap, &camera, shift, &ground, creature);
     }
+    // The world's solids behind the creature's centre are drawn before it, the others over it.
+    let (lo, hi) = creature.bounding_box();
+    let depth = camera.project(&(0.5 * (lo + hi))).2;
     if let Some(terrain) = world {
-        draw_solids(pixmap, &camera, shift, terrain, &overlay.objects);
+        let behind = (terrain, Solids::Behind(depth));
+        draw_solids(pixmap, &camera, shift, behind, &overlay.objects);
     }
     draw_parts(pixmap, &camera, shift, creature);
+    if let Some(terrain) = world {
+        let in_front = (terrain, Solids::InFront(depth));
+        draw_solids(pixmap, &camera, shift, in_front, &overlay.objects);
+    }
     // Parts that the builder found overlapping and reported as a warning (a picture of a
     // plant) are not marked again.
     let overlaps_warned = creature

@@ -277,18 +277,43 @@ fn box_faces(
         .collect()
 }
 
-/// Draws `terrain`'s obstacles and free objects: the objects at `objects`' poses (in the
-/// order of the world's objects), or where they start when there are none. Boxes are drawn
-/// far to near; balls are shaded discs drawn after them.
+/// Which of the world's solids a call draws: those whose centre lies farther from the
+/// viewer than a depth (drawn before the creature, which then hides them), or the others
+/// (drawn after it, over it).
+#[derive(Clone, Copy)]
+pub(super) enum Solids {
+    /// Centres farther than this depth ([`Camera::project`]'s third value).
+    Behind(f64),
+    /// Centres at this depth or nearer.
+    InFront(f64),
+}
+
+impl Solids {
+    fn takes(self, centre: &Vector3<f64>, camera: &Camera) -> bool {
+        let depth = camera.project(centre).2;
+        match self {
+            Solids::Behind(d) => depth < d,
+            Solids::InFront(d) => depth >= d,
+        }
+    }
+}
+
+/// Draws those of `terrain`'s obstacles and free objects that `which` takes: the objects at
+/// `objects`' poses (in the order of the world's objects), or where they start when there
+/// are none. Boxes are drawn far to near; balls are shaded discs drawn after them.
 pub(super) fn draw_solids(
     pixmap: &mut Pixmap,
     camera: &Camera,
     shift: Transform,
-    terrain: &Terrain,
+    (terrain, which): (&Terrain, Solids),
     objects: &[(Vector3<f64>, UnitQuaternion<f64>)],
 ) {
     let mut faces = Vec::new();
-    for obstacle in terrain.obstacle_boxes() {
+    for obstacle in terrain
+        .obstacle_boxes()
+        .into_iter()
+        .filter(|o| which.takes(&Vector3::from(o.centre), camera))
+    {
         let turn =
             UnitQuaternion::from_axis_angle(&Vector3::y_axis(), -obstacle.direction.to_radians());
         faces.extend(box_faces(
@@ -306,6 +331,9 @@ pub(super) fn draw_solids(
             .get(k)
             .copied()
             .unwrap_or((Vector3::from(object.centre), UnitQuaternion::identity()));
+        if !which.takes(&centre, camera) {
+            continue;
+        }
         match object.shape {
             ObjectShape::Box => faces.extend(box_faces(
                 camera,

@@ -326,3 +326,106 @@ fn a_habitat_is_walked_in_its_own_world() {
     assert_eq!(walked, [fitness(&level), fitness(&hill)]);
     assert_ne!(walked[0], walked[1]);
 }
+
+/// The generations `compare --plan` gives each replicate of `lsystem` under a walker config
+/// with `trials` trials, at a budget of `walks` walks.
+fn planned_generations(dir: &Path, trials: u32, walks: &str) -> String {
+    let config = dir.join(format!("trials-{trials}.toml"));
+    std::fs::write(
+        &config,
+        format!(
+            "[ga]\npopulation = 10\n\n[task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.5\n\n\
+             [task.trials]\ncount = {trials}\nstrength = 10\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.join(format!("plan-{trials}"));
+    succeeded(
+        &ontogeny_command()
+            .args([
+                "compare",
+                "--plan",
+                "--encodings",
+                "lsystem",
+                "--replicates",
+                "1",
+            ])
+            .args(["--evaluations", walks, "--config"])
+            .arg(&config)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
+    let planned = std::fs::read_to_string(out.join("evolve.toml")).unwrap();
+    planned
+        .lines()
+        .find(|l| l.starts_with("generations = "))
+        .unwrap()
+        .to_string()
+}
+
+#[test]
+fn an_encoding_comparison_counts_its_budget_in_walks() {
+    let dir = scratch_dir("habitats-budget");
+    // The first generation evaluates all 10, each later one the 8 that are not elite: 12
+    // generations make 10 + 8·11 = 98 evaluations, 13 would make 106. At 4 trials, a budget
+    // of 400 walks is 100 evaluations, as a budget of 100 is at one.
+    assert_eq!(planned_generations(&dir, 4, "400"), "generations = 12");
+    assert_eq!(planned_generations(&dir, 1, "100"), "generations = 12");
+}
+
+#[test]
+fn evolve_walks_sets_the_generations_from_a_budget_of_walks() {
+    let dir = scratch_dir("habitats-evolve-walks");
+    planned_generations(&dir, 4, "400");
+    let config = dir.join("trials-4.toml");
+    let out = dir.join("run");
+    let _ = std::fs::remove_dir_all(&out);
+    // 10 individuals of 4 trials: 40 walks are one generation, 39 not even that.
+    let short = ontogeny_command()
+        .args([
+            "evolve",
+            "--encoding",
+            "lsystem",
+            "--walks",
+            "39",
+            "--config",
+        ])
+        .arg(&config)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    refused(
+        &short,
+        "--walks 39 (4 per individual): a budget of 9 evaluations",
+    );
+    assert!(!out.exists());
+    succeeded(
+        &ontogeny_command()
+            .args([
+                "evolve",
+                "--encoding",
+                "lsystem",
+                "--walks",
+                "40",
+                "--config",
+            ])
+            .arg(&config)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
+    let stored = std::fs::read_to_string(out.join("config.toml")).unwrap();
+    assert!(stored.contains("generations = 1\n"), "{stored}");
+    refused(
+        &ontogeny_command()
+            .args(["evolve", "--walks", "40", "--gens", "2", "--out"])
+            .arg(dir.join("both"))
+            .output()
+            .unwrap(),
+        "--walks",
+    );
+}
