@@ -140,7 +140,7 @@ fn reads_that_the_genome_cannot_hold_are_refused_with_where() {
     );
     assert_eq!(
         refused("P0(x) --> forward(1) ?E(1, 1, 0) P0(x)\n"),
-        "this file does not fit the lsystem genome: line 4, column 24: a read ?E(1, SLOT, 0) \
+        "this file does not fit the lsystem genome: line 4, column 34: a read ?E(1, SLOT, 0) \
          stands before a call of P0, whose rules read nothing"
     );
     assert_eq!(
