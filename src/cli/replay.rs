@@ -169,14 +169,7 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
         walk.evaluation
     } else {
         // Every unit walked for the aggregate; the habitat's first trial recorded.
-        let evaluation = ontogeny::evolve::habitats::evaluate_in_habitats(
-            task,
-            &creatures,
-            0,
-            only,
-            ontogeny::evolve::evaluator::Evaluator::Local,
-            &ontogeny::cancel::Cancel::default(),
-        )?;
+        let evaluation = ontogeny::evolve::habitats::evaluate_here(task, &creatures, only)?;
         say!(
             "{}",
             ontogeny::front::flags::habitats_text(task, &evaluation)

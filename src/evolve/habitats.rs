@@ -87,6 +87,23 @@ pub fn evaluate_in_habitats(
     Ok(task.combine(&units, evaluations, creatures))
 }
 
+/// [`evaluate_in_habitats`] for generation 0, on this process's threads, with nothing to stop
+/// it: the evaluation `eval` and `replay` show.
+pub fn evaluate_here(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    only: Option<usize>,
+) -> Result<Evaluation, Interrupted> {
+    evaluate_in_habitats(
+        task,
+        creatures,
+        0,
+        only,
+        Evaluator::Local,
+        &Cancel::default(),
+    )
+}
+
 /// [`develop_in_habitats`] then [`evaluate_in_habitats`] on this process's threads: the
 /// evaluation the genetic algorithm gives `genome` (of `seed`) in generation `generation`; a
 /// genome that does not develop is `invalid`.

@@ -4,7 +4,9 @@
 use serde::ser::{Serialize, SerializeStruct, Serializer};
 use serde::{Deserialize, Deserializer};
 
-use super::{Evaluation, FitnessExpression, Habitat, Task, TaskOptions, TaskTables, Trials, Watch};
+use super::{
+    Evaluation, FitnessExpression, Habitat, Setup, Task, TaskOptions, TaskTables, Trials, Watch,
+};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -194,9 +196,15 @@ impl TaskSpec {
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        crate::with_options!(&self.task, T, o => {
-            let evaluation = T::evaluate(creature, &self.sim, &self.world, o, watch)?;
-            Ok(match T::expression(o) {
+        crate::with_options!(&self.task, T, options => {
+            let evaluation = T::evaluate(Setup {
+                creature,
+                sim: &self.sim,
+                world: &self.world,
+                options,
+                watch,
+            })?;
+            Ok(match T::expression(options) {
                 Some(expression) => expression.score(evaluation),
                 None => evaluation,
             })
