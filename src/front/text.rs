@@ -342,12 +342,13 @@ impl ComparisonProgress {
         let rate = (self.done - self.at_start) as f64 / elapsed.max(1e-9);
         let left = (self.total - self.done.min(self.total)) as f64 / rate.max(1e-9);
         format!(
-            "{label} generation {}/{generations}: best {:.4}, {:.1} evaluations/s; comparison {}/{} evaluations ({:.1}%), about {} left",
+            "{label} generation {}/{generations}: best {:.4}, {:.1} evaluations/s; comparison {}/{} {} ({:.1}%), about {} left",
             r.generation + 1,
             r.stats.best,
             r.stats.evaluations as f64 / r.wall_seconds.max(1e-9),
             self.done,
             self.total,
+            if walks == 1 { "evaluations" } else { "walks" },
             self.done as f64 / self.total.max(1) as f64 * 100.0,
             duration(left)
         )

@@ -373,6 +373,30 @@ fn an_encoding_comparison_counts_its_budget_in_walks() {
     // of 400 walks is 100 evaluations, as a budget of 100 is at one.
     assert_eq!(planned_generations(&dir, 4, "400"), "generations = 12");
     assert_eq!(planned_generations(&dir, 1, "100"), "generations = 12");
+    // Run, the report and the progress count walks: 40 walks are one generation of 10.
+    let out = dir.join("run-4");
+    let ran = ontogeny_command()
+        .args(["compare", "--encodings", "lsystem", "--replicates", "1"])
+        .args(["--evaluations", "40", "--config"])
+        .arg(dir.join("trials-4.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    succeeded(&ran);
+    let progress = String::from_utf8_lossy(&ran.stderr);
+    assert!(
+        progress.contains("comparison 40/40 walks (100.0%)"),
+        "{progress}"
+    );
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        report.contains(
+            "every replicate made exactly 40 walks, 10 evaluations of 4 walks each \
+             (budget 40 walks: population 10, 1 generations"
+        ),
+        "{report}"
+    );
 }
 
 #[test]

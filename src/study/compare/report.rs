@@ -288,15 +288,26 @@ pub fn write_report(
             manifest.encodings.join(", "),
             first.task.fitness_label()
         );
+        let walks = walks_per_individual(&first.task);
+        // `r.evaluations` counts walks.
+        let made = if walks == 1 {
+            format!("{} evaluations", r.evaluations)
+        } else {
+            format!(
+                "{} walks, {} evaluations of {walks} walks each",
+                r.evaluations,
+                r.evaluations / walks
+            )
+        };
         let _ = writeln!(
             md,
-            "{} replicate{} per encoding, seed {}; every replicate made exactly {} evaluations \
-             (budget {}: population {}, {} generations, elite {} not re-evaluated; preset {}).\n",
+            "{} replicate{} per encoding, seed {}; every replicate made exactly {made} \
+             (budget {}{}: population {}, {} generations, elite {} not re-evaluated; preset {}).\n",
             manifest.replicates,
             if manifest.replicates == 1 { "" } else { "s" },
             manifest.seed,
-            r.evaluations,
             manifest.evaluations,
+            if walks == 1 { "" } else { " walks" },
             first.ga.population,
             first.ga.generations,
             first.ga.survivors(),
