@@ -86,6 +86,11 @@ class Evaluation:
     def message(self) -> Optional[str]:
         """What went wrong, when something did."""
     @property
+    def habitats(self) -> List[Dict[str, Any]]:
+        """Each habitat's and trial's walk (``name``, ``trial``, ``parts``, ``joints``,
+        ``fitness``, ``status``, ``terms``, ``message`` when something went wrong), as
+        ``ontogeny eval --json`` lists them; empty for a task without habitats or trials."""
+    @property
     def trajectory(self) -> Optional[npt.NDArray[np.float64]]:
         """Every part's centre at each recorded moment: frames × parts × 3 (``record=True``)."""
     @property
@@ -156,12 +161,18 @@ def evaluate(
     setting: str = "default",
     sim: Optional[_Sim] = None,
     target: Optional[Tuple[float, float, float]] = None,
+    config: Optional[_Path] = None,
+    habitat: Optional[str] = None,
     record: bool = False,
 ) -> Evaluation:
     """Evaluates a creature on a task, as ``ontogeny eval --task TASK`` does; ``sim`` sets the
     simulator's knobs by their ``[task.sim]`` keys (see ``_Sim``) over ``setting``. The task's
     keywords: ``seconds`` (the walker, jump, catapult, aim, stand and swim tasks), ``fitness``
-    (the walker task), ``target`` (the aim task); one the task does not read raises ValueError."""
+    (the walker task), ``target`` (the aim task); one the task does not read raises ValueError.
+    ``config`` takes the task from a configuration file's ``[task]`` tables instead (its
+    habitats and trials too, as ``ontogeny eval --config`` does: the walks are in
+    ``Evaluation.habitats``), and ``habitat`` walks in the habitat of that name alone; a
+    habitat that sets the chemical array a creature grows in raises ValueError."""
 
 def evaluate_many(
     creatures: Sequence[Creature],
@@ -173,6 +184,8 @@ def evaluate_many(
     setting: str = "default",
     sim: Optional[_Sim] = None,
     target: Optional[Tuple[float, float, float]] = None,
+    config: Optional[_Path] = None,
+    habitat: Optional[str] = None,
     record: bool = False,
 ) -> List[Evaluation]:
     """Evaluates creatures in parallel without the GIL; results in order, equal to
@@ -189,7 +202,9 @@ class Run:
     def generations(self) -> List[Dict[str, Any]]:
         """Every generation's record, a dict each."""
     def individuals(self, generation: Optional[int] = None) -> List[Dict[str, Any]]:
-        """One generation's individuals (default: every generation's), a dict each."""
+        """One generation's individuals (default: every generation's), a dict each; in a run
+        with habitats or trials, ``habitats`` lists each one's walks as
+        ``Evaluation.habitats`` does."""
     def to_pandas(self, table: str = "generations") -> Any:
         """``"generations"`` or ``"individuals"`` as a pandas ``DataFrame``."""
 

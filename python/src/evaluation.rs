@@ -1,7 +1,10 @@
 //! Evaluations from Python: `evaluate`, `evaluate_many` and the `Evaluation` class.
 
-use crate::common::{fitness_named, setting_named, task_named, thread_pool, value_error};
+use crate::common::{
+    diagnostic_error, fitness_named, setting_named, task_named, thread_pool, value_error,
+};
 use crate::creature::PyCreature;
+use std::path::PathBuf;
 use std::sync::Arc;
 
 use crate::interrupt::{interrupted_error, interruptible};
@@ -10,8 +13,11 @@ use numpy::ndarray::{Array1, Array3};
 use numpy::{PyArray1, PyArray3};
 use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
+use ontogeny::evolve::evaluator::Evaluator;
+use ontogeny::evolve::habitats::{evaluate_in_habitats, recorded_walk};
 use ontogeny::front::flags::{TaskFlags, option_of};
 use ontogeny::lang::suggest::did_you_mean;
+use ontogeny::run::config::read_task_config;
 use ontogeny::sim::knobs::{Knob, Value, knob};
 use ontogeny::sim::{ActuatorModel, JointModel, KNOBS, SimOptions, StrengthFrom};
 use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch, keyword_refusal};
@@ -61,6 +67,16 @@ impl PyEvaluation {
     #[getter]
     fn message(&self) -> Option<String> {
         self.outcome.message.clone()
+    }
+
+    /// Each habitat's and trial's walk, in the order the task lists them (habitat by habitat),
+    /// a dict each: `name` (the habitat's), `trial` (from 0), `parts` and `joints` (of the
+    /// creature walked there), `fitness`, `status`, `terms`, and `message` when something went
+    /// wrong; empty for a task without habitats or trials.
+    #[getter]
+    fn habitats<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let json = serde_json::to_string(self.outcome.units()).map_err(value_error)?;
+        py.import("json")?.call_method1("loads", (json,))
     }
 
     /// Every part's centre at each recorded moment (frames × parts × 3, metres), or `None`
@@ -114,6 +130,8 @@ impl PyEvaluation {
 /// The task's keyword arguments that `evaluate` and `evaluate_many` share.
 pub(crate) struct TaskArgs<'a, 'py> {
     task: &'a str,
+    config: Option<PathBuf>,
+    habitat: Option<&'a str>,
     seconds: Option<f64>,
     fitness: Option<&'a str>,
     setting: &'a str,
@@ -127,6 +145,31 @@ impl TaskArgs<'_, '_> {
     /// registry's [`ontogeny::task::Task::KEYWORDS`]: `fitness=` but for the walker, `target=`
     /// but for aim) is a `ValueError` naming the task.
     pub(crate) fn spec(&self) -> PyResult<TaskSpec> {
+        if let Some(config) = &self.config {
+            let given = [
+                ("task=", self.task != "walker"),
+                ("seconds=", self.seconds.is_some()),
+                ("fitness=", self.fitness.is_some()),
+                ("setting=", self.setting != "default"),
+                ("sim=", self.sim.is_some()),
+                ("target=", self.target.is_some()),
+            ];
+            let clashing: Vec<&str> = given.iter().filter(|g| g.1).map(|g| g.0).collect();
+            if !clashing.is_empty() {
+                return Err(value_error(format!(
+                    "config={} gives the task's settings; {} cannot be given with it (set it in \
+                     the config's [task] table)",
+                    config.display(),
+                    clashing.join(", ")
+                )));
+            }
+            return read_task_config(config).map_err(diagnostic_error);
+        }
+        if let Some(name) = self.habitat {
+            return Err(value_error(format!(
+                "habitat='{name}' names one of a config's [[task.habitats]]: give config= too"
+            )));
+        }
         let task = task_named(self.task)?;
         let given = [
             ("seconds", self.seconds.is_some()),
@@ -161,7 +204,7 @@ macro_rules! evaluating_function {
     ($(#[$doc:meta])* fn $name:ident($py:ident, $first:ident: $ty:ty $(, $extra:ident: $ety:ty = $default:tt)*; $args:ident, $record:ident) -> $ret:ty $body:block) => {
         $(#[$doc])*
         #[pyfunction]
-        #[pyo3(signature = ($first, task="walker", *, $($extra=$default,)* seconds=None, fitness=None, setting="default", sim=None, target=None, record=false))]
+        #[pyo3(signature = ($first, task="walker", *, $($extra=$default,)* seconds=None, fitness=None, setting="default", sim=None, target=None, config=None, habitat=None, record=false))]
         #[allow(clippy::too_many_arguments)]
         pub(crate) fn $name(
             $py: Python<'_>,
@@ -173,9 +216,11 @@ macro_rules! evaluating_function {
             setting: &str,
             sim: Option<&Bound<'_, PyDict>>,
             target: Option<[f64; 3]>,
+            config: Option<PathBuf>,
+            habitat: Option<&str>,
             $record: bool,
         ) -> $ret {
-            let $args = TaskArgs { task, seconds, fitness, setting, sim, target };
+            let $args = TaskArgs { task, config, habitat, seconds, fitness, setting, sim, target };
             $body
         }
     };
@@ -291,26 +336,64 @@ evaluating_function! {
     /// result bit for bit.
     fn evaluate(py, creature: &PyCreature; args, record) -> PyResult<PyEvaluation> {
         let spec = args.spec()?;
+        let only = args.only(&spec)?;
         let body = Arc::clone(&creature.creature);
-        let outcome = interruptible(py, |cancel| watched(&spec, &body, record, cancel))?
+        let outcome = interruptible(py, |cancel| watched(&spec, &body, only, record, cancel))?
             .map_err(interrupted_error)?;
         Ok(PyEvaluation { outcome })
     }
 }
 
-/// `spec`'s evaluation of `creature`, stopped by `cancel`.
+impl TaskArgs<'_, '_> {
+    /// The index of the habitat `habitat=` names in `spec` (a `ValueError` listing the
+    /// habitats when it names none), and that a creature already grown can walk in the
+    /// habitats evaluated: none of them may set the chemical array its body would grow in.
+    fn only(&self, spec: &TaskSpec) -> PyResult<Option<usize>> {
+        let only = self
+            .habitat
+            .map(|name| spec.habitat_named(name).map_err(value_error))
+            .transpose()?;
+        for h in (0..spec.habitat_count()).filter(|h| only.is_none_or(|o| o == *h)) {
+            if let Some(values) = spec.habitat_environment(h) {
+                return Err(value_error(format!(
+                    "habitat '{}' sets the chemical array a creature grows in ({values:?}); a \
+                     creature already grown cannot grow again there: grow it with env= and \
+                     evaluate it in habitats that set none (or use `ontogeny eval FILE \
+                     --config`, which grows the grammar in each)",
+                    spec.habitat_name(h)
+                )));
+            }
+        }
+        Ok(only)
+    }
+}
+
+/// `spec`'s evaluation of `creature`, stopped by `cancel`: with habitats, the same body walks
+/// in each (or in habitat `only` alone) and their walks are combined, as `ontogeny eval
+/// --config` does; recorded, the first walk evaluated is the recording.
 pub(crate) fn watched(
     spec: &TaskSpec,
     creature: &Creature,
+    only: Option<usize>,
     record: bool,
     cancel: &Cancel,
 ) -> Result<Outcome, ontogeny::cancel::Interrupted> {
-    let watch = Watch {
-        record,
-        progress: &mut |_| {},
-        cancel: Some(cancel),
-    };
-    spec.evaluate_watched(creature, watch)
+    if spec.is_plain() {
+        let watch = Watch {
+            record,
+            progress: &mut |_| {},
+            cancel: Some(cancel),
+        };
+        return spec.evaluate_watched(creature, watch);
+    }
+    let creatures = vec![creature.clone(); spec.habitat_count()];
+    let mut outcome = evaluate_in_habitats(spec, &creatures, 0, only, Evaluator::Local, cancel)?;
+    if record {
+        outcome.recording = recorded_walk(spec, &creatures, only.unwrap_or(0))
+            .evaluation
+            .recording;
+    }
+    Ok(outcome)
 }
 
 evaluating_function! {
@@ -325,6 +408,7 @@ evaluating_function! {
         record
     ) -> PyResult<Vec<PyEvaluation>> {
         let spec = args.spec()?;
+        let only = args.only(&spec)?;
         let pool = thread_pool(threads)?;
         let bodies: Vec<Arc<Creature>> = creatures.iter().map(|c| Arc::clone(&c.creature)).collect();
         drop(creatures);
@@ -332,7 +416,7 @@ evaluating_function! {
             pool.install(|| {
                 bodies
                     .par_iter()
-                    .map(|c| watched(&spec, c, record, cancel))
+                    .map(|c| watched(&spec, c, only, record, cancel))
                     .collect::<Result<_, _>>()
             })
         })?

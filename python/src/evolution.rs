@@ -177,7 +177,9 @@ impl PyRun {
 
     /// The individuals of one generation (default: every generation's), a dict each with the
     /// run store's columns: `generation`, `individual`, `parents`, `operator`, `genome_text`,
-    /// `fitness`, `status`, `terms`, `parts`, `joints`, `neurons`, `reused`.
+    /// `fitness`, `status`, `terms`, `parts`, `joints`, `neurons`, `reused`; in a run with
+    /// habitats or trials also `habitats`, each habitat's and trial's walk (a list of dicts
+    /// as `Evaluation.habitats` gives them).
     #[pyo3(signature = (generation=None))]
     fn individuals<'py>(
         &self,
@@ -209,6 +211,14 @@ impl PyRun {
                 dict.set_item("joints", i.joints)?;
                 dict.set_item("neurons", i.neurons)?;
                 dict.set_item("reused", i.reused)?;
+                // Each habitat's and trial's walk, kept in the individual's evaluation.
+                let stored: serde_json::Value =
+                    serde_json::from_str(&i.genome_json).map_err(value_error)?;
+                let walks = &stored["evaluation"]["habitats"];
+                if walks.is_array() {
+                    let walks = json.call_method1("loads", (walks.to_string(),))?;
+                    dict.set_item("habitats", walks)?;
+                }
                 list.append(dict)?;
             }
         }

@@ -397,38 +397,20 @@ fn run_in_habitats(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> any
         "{} walks",
         spec.trials.count as usize * only.map_or(spec.habitat_count(), |_| 1)
     ));
-    let evaluation = ontogeny::evolve::habitats::evaluate_in_habitats(
-        spec,
-        &creatures,
-        0,
-        only,
-        ontogeny::evolve::evaluator::Evaluator::Local,
-        &ontogeny::cancel::Cancel::default(),
-    )?;
+    let evaluation = ontogeny::evolve::habitats::evaluate_here(spec, &creatures, only)?;
     progress.finish();
     if let Some(dir) = &args.record {
-        let key = ontogeny::evolve::key::EvaluationKey::of_habitats(
-            &creatures,
-            spec,
-            ontogeny::evolve::key::KeyVersion::default(),
-        );
-        let unit = spec
-            .units(key.0, 0)
-            .into_iter()
-            .find(|u| only.is_none_or(|h| u.habitat as usize == h))
-            .expect("a task has a unit in every habitat");
-        let walked = unit.perturbation.place(&creatures[unit.habitat as usize]);
-        let unit_spec = spec.unit_spec(&unit);
-        let recorded = unit_spec.evaluate(&walked, true);
+        let habitat = only.unwrap_or(0);
+        let walk = ontogeny::evolve::habitats::recorded_walk(spec, &creatures, habitat);
         tell!(
             "note: recording {}trial 1",
-            match spec.habitat_name(unit.habitat as usize) {
+            match spec.habitat_name(habitat) {
                 "" => String::new(),
                 name => format!("habitat {name}, "),
             }
         );
         ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
-        write_recording(dir, &walked, &recorded, &unit_spec.world)?;
+        write_recording(dir, &walk.creature, &walk.evaluation, &walk.world)?;
         let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
     }

@@ -1,10 +1,10 @@
 //! `ontogeny genome`: inspect genome files.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
-use ontogeny::encoding::{ShowError, read_genome_file};
+use ontogeny::encoding::{HabitatArray, ShowError, develop_in_habitat_arrays, read_genome_file};
 
 /// Subcommands of `ontogeny genome`.
 #[derive(Subcommand)]
@@ -20,6 +20,12 @@ pub enum GenomeVerb {
         /// when it does not develop).
         #[arg(long)]
         json: bool,
+        /// Develop the genome in each habitat of this configuration's `[[task.habitats]]`
+        /// (with each habitat's chemical array) and print, per pair of habitats, how the
+        /// creatures differ (parts, joints, sizes, neurons), then whether the body depends on
+        /// the habitat.
+        #[arg(long, value_name = "CONFIG")]
+        habitats: Option<PathBuf>,
     },
 }
 
@@ -33,7 +39,16 @@ pub struct GenomeArgs {
 /// Runs `ontogeny genome`.
 pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
     match &args.verb {
-        GenomeVerb::Show { file, json } => {
+        GenomeVerb::Show {
+            file,
+            json,
+            habitats: Some(config),
+        } => show_habitats(file, config, *json),
+        GenomeVerb::Show {
+            file,
+            json,
+            habitats: None,
+        } => {
             let text = ontogeny::input::read_to_string(file)
                 .with_context(|| format!("cannot read {}", file.display()))?;
             let shown = read_genome_file(file, &text).map_err(|e| match e {
@@ -48,4 +63,36 @@ pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
             Ok(())
         }
     }
+}
+
+/// `genome show --habitats CONFIG FILE`: the genome developed in each habitat of CONFIG, and
+/// how the creatures differ.
+fn show_habitats(file: &Path, config: &Path, json: bool) -> anyhow::Result<()> {
+    let spec = ontogeny::run::config::read_task_config(config).map_err(anyhow::Error::new)?;
+    if spec.habitats.is_empty() {
+        return Err(super::bad(format!(
+            "{}: it has no [[task.habitats]] to develop the genome in",
+            config.display()
+        )));
+    }
+    let habitats: Vec<HabitatArray> = spec
+        .habitats
+        .iter()
+        .map(|h| HabitatArray {
+            name: h.name.clone(),
+            environment: h.environment.clone(),
+        })
+        .collect();
+    let text = ontogeny::input::read_to_string(file)
+        .with_context(|| format!("cannot read {}", file.display()))?;
+    let shown = develop_in_habitat_arrays(file, &text, &habitats).map_err(|e| match e {
+        ShowError::Grammar(d) => anyhow::Error::new(d),
+        ShowError::NotAGenome(m) => super::bad(m),
+    })?;
+    if json {
+        say!("{}", serde_json::to_string_pretty(&shown.json())?);
+    } else {
+        say!("{}", shown.text());
+    }
+    Ok(())
 }

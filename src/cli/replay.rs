@@ -166,34 +166,13 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
     let title = format!("generation {generation}, rank {rank}");
     ontogeny::render::write_png(creature, &title, &png, 960, 600)
         .map_err(super::render_error(&png))?;
+    let walk = ontogeny::evolve::habitats::recorded_walk(task, &creatures, habitat);
+    super::eval::write_recording_at(&out, &walk.creature, &walk.evaluation, &walk.world, fps)?;
     let evaluation = if task.is_plain() {
-        let evaluation = task.evaluate(creature, true);
-        super::eval::write_recording_at(&out, creature, &evaluation, &task.world, fps)?;
-        evaluation
+        walk.evaluation
     } else {
         // Every unit walked for the aggregate; the habitat's first trial recorded.
-        let evaluation = ontogeny::evolve::habitats::evaluate_in_habitats(
-            task,
-            &creatures,
-            0,
-            only,
-            ontogeny::evolve::evaluator::Evaluator::Local,
-            &ontogeny::cancel::Cancel::default(),
-        )?;
-        let key = ontogeny::evolve::key::EvaluationKey::of_habitats(
-            &creatures,
-            task,
-            ontogeny::evolve::key::KeyVersion::default(),
-        );
-        let unit = task
-            .units(key.0, 0)
-            .into_iter()
-            .find(|u| u.habitat as usize == habitat)
-            .expect("every habitat has a trial");
-        let walked = unit.perturbation.place(creature);
-        let unit_spec = task.unit_spec(&unit);
-        let recorded = unit_spec.evaluate(&walked, true);
-        super::eval::write_recording_at(&out, &walked, &recorded, &unit_spec.world, fps)?;
+        let evaluation = ontogeny::evolve::habitats::evaluate_here(task, &creatures, only)?;
         say!(
             "{}",
             ontogeny::front::flags::habitats_text(task, &evaluation)

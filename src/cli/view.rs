@@ -46,6 +46,10 @@ pub struct ViewArgs {
     /// raise it for plants of thousands of parts).
     #[arg(long, value_parser = super::parse_part_count)]
     max_parts: Option<usize>,
+    /// For a run with `[[task.habitats]]`: show its individuals developed in the habitat named
+    /// NAME, and play their walks in its world (its first trial) [default: the first habitat].
+    #[arg(long, value_name = "NAME")]
+    habitat: Option<String>,
 }
 
 /// Serves the page (or renders it with `--snapshot`).
@@ -113,9 +117,26 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             let data = ontogeny::view::run_data(&target.path).map_err(|e| bad(e.to_string()))?;
             let encoding = data["encoding"].as_str().unwrap_or_default().to_string();
             let dir = target.path.clone();
+            let habitat = match &args.habitat {
+                Some(name) => {
+                    let task =
+                        ontogeny::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
+                            .and_then(|store| store.run())
+                            .ok()
+                            .and_then(|run| run.task_spec())
+                            .ok_or_else(|| {
+                                bad(format!("{}: cannot read the run's task", dir.display()))
+                            })?;
+                    let index = task
+                        .habitat_named(name)
+                        .map_err(|e| bad(format!("{}: {e}", dir.display())))?;
+                    Some((index, name.clone()))
+                }
+                None => None,
+            };
             let developer_of: anyhow::Result<Developer> = with_genome!(
                 encoding.as_str(),
-                G => Ok(run_developer::<G>(dir)),
+                G => Ok(run_developer::<G>(dir, habitat)),
                 |other| Err(bad(format!(
                     "{}: unknown encoding '{other}'",
                     target.path.display()
@@ -133,6 +154,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         size: args.size.is_some(),
         snapshot: args.snapshot.is_some(),
         frame: args.frame,
+        habitat: args.habitat.clone(),
     };
     for warning in ignored_flags(&flags, &target, frames) {
         tell!("warning: {warning}");

@@ -284,7 +284,13 @@ impl Genome for DirectGenome {
         if self.modules.is_empty() {
             return Err(DevelopError("the genome has no modules".into()));
         }
-        super::lsystem::develop_text(&self.to_text(), limits.modules(), limits.max_parts, seed)
+        super::lsystem::develop_text(
+            &self.to_text(),
+            limits.modules(),
+            limits.max_parts,
+            seed,
+            None,
+        )
     }
 
     fn to_text(&self) -> String {

@@ -21,6 +21,7 @@ pub mod load;
 pub mod lsystem;
 mod registry;
 mod show;
+mod show_habitats;
 
 /// The building commands genomes write (the language's one table of commands).
 pub use crate::lang::commands as command;
@@ -32,6 +33,9 @@ pub use load::{LoadError, LoadOptions, Loaded, grow_grammar, load_creature};
 pub use lsystem::{LSystemGenome, LSystemLimits};
 pub use registry::{ENCODINGS, EncodingInfo, encoding_named};
 pub use show::{ShowError, ShownGenome, read_genome_file, show_genome_file};
+pub use show_habitats::{
+    HabitatArray, HabitatCreature, HabitatPhenotypes, develop_in_habitat_arrays,
+};
 
 /// The random source every operator draws from: portable and explicitly seeded, split per
 /// individual by the genetic algorithm.

@@ -164,7 +164,7 @@ fn shown<G: Genome>(text: &str) -> Result<(String, Result<Creature, String>), De
 
 /// What a genome develops into, in a line (parts, joints by kind, neurons, links, validity),
 /// then its problems, a line each.
-fn develops_into(creature: &Creature) -> String {
+pub(super) fn develops_into(creature: &Creature) -> String {
     let s = Summary::of("", 0.0, 1, creature);
     let kinds: Vec<String> = s.joints.iter().map(|(k, n)| format!("{n} {k}")).collect();
     let mut lines = vec![format!(

@@ -87,9 +87,9 @@ pub struct GaSettings {
     /// ... and its per-site mutation probability then (5%).
     pub mutation_rate_after_mating: f64,
     /// The chance that an operator makes, changes or removes an environment read of a
-    /// genome that can read its environment (`lsystem-continuous`). 0, the default, leaves
-    /// genomes without reads and draws exactly as before the key existed; a configuration
-    /// without the key reads as 0, and 0 is not written.
+    /// genome that can read its environment (`lsystem`, `lsystem-continuous`). 0, the
+    /// default, leaves genomes without reads and draws exactly as before the key existed; a
+    /// configuration without the key reads as 0, and 0 is not written.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub environment_reads: f64,
 }

@@ -1,8 +1,9 @@
 //! An individual in its habitats: a genome developed in each habitat of a task (with the
 //! habitat's chemical array, [`Genome::develop_in`]), the key of those creatures, and the
 //! evaluation of one individual over every unit (habitat × trial) outside the genetic
-//! algorithm's batches — the fine reference re-walk, the viewer, `eval` and `replay`. The
-//! genetic algorithm's batches spread the same units over the evaluator (`ga`).
+//! algorithm's batches — the fine reference re-walk, the viewer, `eval` and `replay` — and one
+//! walk of it recorded in a chosen habitat ([`recorded_walk`]). The genetic algorithm's batches
+//! spread the same units over the evaluator (`ga`).
 
 use super::evaluator::{Evaluator, Job};
 use super::key::{EvaluationKey, KeyVersion};
@@ -10,6 +11,7 @@ use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{DevelopError, Genome};
 use crate::environment::Environment;
+use crate::sim::WorldSpec;
 use crate::task::{Evaluation, TaskSpec, Watch};
 
 /// The creatures `genome` develops into with `seed`, one per habitat of `task` (one for a
@@ -85,6 +87,23 @@ pub fn evaluate_in_habitats(
     Ok(task.combine(&units, evaluations, creatures))
 }
 
+/// [`evaluate_in_habitats`] for generation 0, on this process's threads, with nothing to stop
+/// it: the evaluation `eval` and `replay` show.
+pub fn evaluate_here(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    only: Option<usize>,
+) -> Result<Evaluation, Interrupted> {
+    evaluate_in_habitats(
+        task,
+        creatures,
+        0,
+        only,
+        Evaluator::Local,
+        &Cancel::default(),
+    )
+}
+
 /// [`develop_in_habitats`] then [`evaluate_in_habitats`] on this process's threads: the
 /// evaluation the genetic algorithm gives `genome` (of `seed`) in generation `generation`; a
 /// genome that does not develop is `invalid`.
@@ -104,5 +123,47 @@ pub fn evaluate_genome<G: Genome>(
             task.task.name(),
             format!("development: {e}"),
         )),
+    }
+}
+
+/// One walk of an individual, recorded: the creature as it was placed, its evaluation (with a
+/// recording) and the world it walked in.
+pub struct RecordedWalk {
+    /// The creature walked: developed in the habitat, placed by the trial's draw.
+    pub creature: Creature,
+    /// The walk's evaluation, with a recording.
+    pub evaluation: Evaluation,
+    /// The world it walked in (the habitat's, its roughness scaled by the draw).
+    pub world: WorldSpec,
+}
+
+/// The walk of an individual developed into `creatures` (one per habitat of `task`,
+/// [`develop_in_habitats`]) recorded in habitat `habitat` (by index): for a plain task its one
+/// walk; otherwise that habitat's first trial as drawn for generation 0 (the draws of a run
+/// whose trials are not fresh), placed and scaled by its draw — what `replay --habitat` and
+/// the viewer's `--habitat` play.
+pub fn recorded_walk(task: &TaskSpec, creatures: &[Creature], habitat: usize) -> RecordedWalk {
+    if task.is_plain() {
+        let creature = creatures[0].clone();
+        let evaluation = task.evaluate(&creature, true);
+        return RecordedWalk {
+            creature,
+            evaluation,
+            world: task.world.clone(),
+        };
+    }
+    let key = EvaluationKey::of_habitats(creatures, task, KeyVersion::default());
+    let unit = task
+        .units(key.0, 0)
+        .into_iter()
+        .find(|u| u.habitat as usize == habitat)
+        .expect("every habitat has a trial");
+    let creature = unit.perturbation.place(&creatures[habitat]);
+    let spec = task.unit_spec(&unit);
+    let evaluation = spec.evaluate(&creature, true);
+    RecordedWalk {
+        creature,
+        evaluation,
+        world: spec.world,
     }
 }

@@ -44,11 +44,12 @@
 //! Not exported: the brain itself, sensors, secreting and release effectors, the catapult's
 //! projectile, and the simulator's explosion checks.
 
-use std::f64::consts::FRAC_PI_2;
 use std::fmt::Write as _;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
+pub use super::mjcf_numbers::z_up;
+use super::mjcf_numbers::{numbers, quat, vec3};
 use super::{ExportError, mjcf_world};
 use crate::creature::{Actuator, Creature, Joint, Role};
 use crate::sim::terrain::Terrain;
@@ -172,55 +173,12 @@ fn frame_axes(joint: &Joint) -> Vec<Vector3<f64>> {
     [x, y, x.cross(&y)].into_iter().take(dof).collect()
 }
 
-/// Writes numbers separated by spaces, each in the shortest form that reads back exactly
-/// (in scientific notation when very small or very large).
-pub(super) fn numbers(values: &[f64]) -> String {
-    let texts: Vec<String> = values
-        .iter()
-        .map(|&v| {
-            let v = v + 0.0; // no "-0"
-            if v != 0.0 && !(1e-4..1e16).contains(&v.abs()) {
-                format!("{v:e}")
-            } else {
-                format!("{v}")
-            }
-        })
-        .collect();
-    texts.join(" ")
-}
-
-/// Below this, a coordinate of a position, axis or quaternion is round-off: written as 0.
-const ROUND_OFF: f64 = 1e-12;
-
-/// Writes the coordinates of a position, axis or quaternion, round-off written as 0.
-pub(super) fn coordinates(values: &[f64]) -> String {
-    let snapped: Vec<f64> = values
-        .iter()
-        .map(|&v| if v.abs() < ROUND_OFF { 0.0 } else { v })
-        .collect();
-    numbers(&snapped)
-}
-
-pub(super) fn vec3(v: &Vector3<f64>) -> String {
-    coordinates(&[v.x, v.y, v.z])
-}
-
-/// MJCF's `quat`: w x y z.
-pub(super) fn quat(q: &UnitQuaternion<f64>) -> String {
-    coordinates(&[q.w, q.i, q.j, q.k])
-}
-
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
         .replace('"', "&quot;")
         .replace('\'', "&apos;")
-}
-
-/// The rotation from Ontogeny's world (Y up) to MuJoCo's (Z up): +90° about x.
-pub fn z_up() -> UnitQuaternion<f64> {
-    UnitQuaternion::from_axis_angle(&Vector3::x_axis(), FRAC_PI_2)
 }
 
 /// The simulator's settings in range ([`SimOptions::check`]), so that the model's numbers are

@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use super::mjcf::{coordinates, numbers, quat, vec3, z_up};
+use super::mjcf_numbers::{coordinates, numbers, quat, vec3, z_up};
 use crate::sim::terrain::{Cuboid, Terrain};
 use crate::sim::world_spec::{Medium, ObjectShape};
 

@@ -6,6 +6,7 @@
 //! builds a world or runs one, and nothing reads the formats back.
 
 pub mod mjcf;
+mod mjcf_numbers;
 mod mjcf_world;
 
 pub use mjcf::{MjcfActuator, mjcf_actuators, to_mjcf, to_mjcf_in};

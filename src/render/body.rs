@@ -11,7 +11,9 @@ use super::palette::{AXIS, GROWING_JOINT, INK, JOINT, MARK, PATH, TARGET, TRAIL,
 use super::pen::{convex_hull_path, draw_bullseye, fill, polygon, polyline, stroke_width};
 use super::text::{draw_text, fit, length_label, listed_lines, scale_bar_length, text_width};
 use super::top_view::draw_top_view;
-use super::world::{Solids, draw_ground_shape, draw_solids, is_water, shapes_ground, tint_water};
+use super::world::{
+    BOX_FACES, Solids, draw_ground_shape, draw_solids, is_water, light, shapes_ground, tint_water,
+};
 use crate::creature::{Creature, Severity, counted};
 
 /// Whether a picture checks the creature: marks interpenetrating parts, numbers the parts and
@@ -269,21 +271,13 @@ fn draw_shadows(
 /// The faces of every part, far to near (painter's algorithm), lit from above and to the
 /// side: the root part darker, growing parts orange.
 fn draw_parts(pixmap: &mut Pixmap, camera: &Camera, shift: Transform, creature: &Creature) {
-    const FACES: [[usize; 4]; 6] = [
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 1, 3, 2],
-        [4, 6, 7, 5],
-    ];
-    let light = Vector3::new(0.4, 0.85, 0.35).normalize();
+    let light = light();
     let viewer = camera.towards_viewer();
     let mut faces = Vec::new();
     for (index, part) in creature.parts.iter().enumerate() {
         let corners = part.corners();
         let centre = part.position;
-        for face in FACES {
+        for face in BOX_FACES {
             let mid = face.iter().map(|&k| corners[k]).sum::<Vector3<f64>>() / 4.0;
             let normal = (mid - centre).normalize();
             if normal.dot(&viewer) <= 1e-9 {

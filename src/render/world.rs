@@ -12,8 +12,8 @@ use super::pen::{fill, polygon, stroke_width};
 use crate::sim::terrain::Terrain;
 use crate::sim::world_spec::ObjectShape;
 
-/// The light that shades the ground, obstacles and objects (as it shades the parts).
-fn light() -> Vector3<f64> {
+/// The light that shades the ground, obstacles, objects and the parts.
+pub(super) fn light() -> Vector3<f64> {
     Vector3::new(0.4, 0.85, 0.35).normalize()
 }
 
@@ -244,6 +244,17 @@ fn box_corners(
     })
 }
 
+/// A box's six faces, each by the indices of its four corners in the order [`box_corners`]
+/// (and a part's corners, [`Part::corners`](crate::creature::Part::corners)) numbers them.
+pub(super) const BOX_FACES: [[usize; 4]; 6] = [
+    [0, 2, 6, 4],
+    [1, 5, 7, 3],
+    [0, 4, 5, 1],
+    [2, 3, 7, 6],
+    [0, 1, 3, 2],
+    [4, 6, 7, 5],
+];
+
 /// The faces of a box that the viewer sees, lit, in `colour`.
 fn box_faces(
     camera: &Camera,
@@ -252,17 +263,9 @@ fn box_faces(
     rotation: UnitQuaternion<f64>,
     colour: [f64; 3],
 ) -> Vec<Face> {
-    const FACES: [[usize; 4]; 6] = [
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 1, 3, 2],
-        [4, 6, 7, 5],
-    ];
     let corners = box_corners(centre, half, rotation);
     let viewer = camera.towards_viewer();
-    FACES
+    BOX_FACES
         .iter()
         .filter_map(|face| {
             let mid = face.iter().map(|&k| corners[k]).sum::<Vector3<f64>>() / 4.0;

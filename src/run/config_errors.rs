@@ -11,7 +11,7 @@ use toml::de::{DeTable, DeValue};
 use crate::evolve::ga::{GaSettings, Preset};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, Source, Span};
-use crate::sim::{RENAMED_KEYS, SettingError};
+use crate::sim::{RENAMED_KEYS, SettingError, table_name};
 use crate::task::{TaskKind, TaskSpec};
 
 /// A diagnostic for a TOML error in `source`, in words, at its place when it has one.
@@ -68,12 +68,23 @@ pub fn setting_diagnostic(source: &Source, error: &SettingError) -> Diagnostic {
     }
 }
 
-/// Where `source` sets the key at `path` (`["ga", "population"]`): the span of its value.
+/// Where `source` sets the key at `path` (`["ga", "population"]`): the span of its value. An
+/// entry of an array of tables is named by its index after the array's name (`["task",
+/// "habitats", "1", "name"]`).
 pub fn key_span(source: &Source, path: &[&str]) -> Option<Span> {
     let document = DeTable::parse(source.text()).ok()?;
     let mut table = document.get_ref();
-    for (i, name) in path.iter().enumerate() {
-        let (_, value) = table.iter().find(|(key, _)| key.get_ref() == name)?;
+    let mut i = 0;
+    while i < path.len() {
+        let (_, mut value) = table.iter().find(|(key, _)| key.get_ref() == path[i])?;
+        // An entry of an array: the index after the array's name.
+        if let (DeValue::Array(items), Some(index)) = (
+            value.get_ref(),
+            path.get(i + 1).and_then(|p| p.parse::<usize>().ok()),
+        ) {
+            value = items.get(index)?;
+            i += 1;
+        }
         match value.get_ref() {
             DeValue::Table(inner) if i + 1 < path.len() => table = inner,
             _ if i + 1 == path.len() => {
@@ -82,11 +93,13 @@ pub fn key_span(source: &Source, path: &[&str]) -> Option<Span> {
             }
             _ => return None,
         }
+        i += 1;
     }
     None
 }
 
-/// The path of keys (`["ga", "population"]`) whose key or value holds `span`, the deepest.
+/// The path of keys (`["ga", "population"]`) whose key or value holds `span`, the deepest; an
+/// entry of an array of tables is named by its index (`["task", "habitats", "1", "colour"]`).
 fn path_at(table: &DeTable<'_>, span: &Range<usize>) -> Option<Vec<String>> {
     for (key, value) in table {
         if let DeValue::Table(inner) = value.get_ref()
@@ -94,6 +107,16 @@ fn path_at(table: &DeTable<'_>, span: &Range<usize>) -> Option<Vec<String>> {
         {
             inside.insert(0, key.get_ref().to_string());
             return Some(inside);
+        }
+        if let DeValue::Array(items) = value.get_ref() {
+            for (index, item) in items.iter().enumerate() {
+                if let DeValue::Table(inner) = item.get_ref()
+                    && let Some(mut inside) = path_at(inner, span)
+                {
+                    inside.splice(0..0, [key.get_ref().to_string(), index.to_string()]);
+                    return Some(inside);
+                }
+            }
         }
         let holds = |r: Range<usize>| r.start <= span.start && span.end <= r.end;
         if holds(key.span()) || holds(value.span()) {
@@ -107,7 +130,7 @@ fn path_at(table: &DeTable<'_>, span: &Range<usize>) -> Option<Vec<String>> {
 fn key_name(path: &[String]) -> String {
     match path.split_last() {
         Some((key, [])) => key.clone(),
-        Some((key, table)) => format!("[{}] {key}", table.join(".")),
+        Some((key, table)) => format!("{} {key}", table_name(&table.join("."))),
         None => "a value".to_string(),
     }
 }
@@ -147,7 +170,7 @@ fn in_words(message: &str, path: &[String], written: Option<&str>) -> (String, O
     {
         let names = quoted_names(names);
         let table = match path.split_last() {
-            Some((_, table)) if !table.is_empty() => format!("[{}]", table.join(".")),
+            Some((_, table)) if !table.is_empty() => table_name(&table.join(".")),
             _ => "the top level".to_string(),
         };
         let hint = did_you_mean(given, names.iter().copied());

@@ -2,7 +2,8 @@
 //! generation after another: [`Run`]), its configuration ([`config`], its errors in words:
 //! [`config_errors`]), its folder ([`folder`]), its database ([`store`], the only code that
 //! knows SQL), the lock that keeps a directory one process's ([`lock`]), the record of a
-//! champion's evaluation in its file ([`champion`]), its fitness plot ([`plot`]) and an
+//! champion's evaluation in its file ([`champion`]), its fitness plot ([`plot`]) with the
+//! spread of each generation's best over its habitats and trials ([`spread`]), and an
 //! individual picked by rank ([`pick`]).
 
 pub mod champion;
@@ -13,6 +14,7 @@ mod lifecycle;
 pub mod lock;
 pub mod pick;
 pub mod plot;
+pub mod spread;
 pub mod store;
 
 pub use lifecycle::*;

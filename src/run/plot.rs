@@ -8,6 +8,7 @@ use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 
+use super::spread::Spread;
 use super::store::GenerationRecord;
 
 /// The failure floor: a failed evaluation's fitness. Values at or below it are not plotted.
@@ -36,6 +37,10 @@ const SERIES: [Series; 3] = [
     ("mean", RGBColor(230, 159, 0), |g| g.mean),
     ("median", RGBColor(0, 158, 115), |g| g.median),
 ];
+
+/// The legend of the best's line over the band of its walks' spread (a run with habitats or
+/// trials).
+pub const SPREAD_LABEL: &str = "best; band: its walks, lowest to highest";
 
 /// The legend of the dashed line of the best re-walked at the fine reference setting.
 pub const FINE_LABEL: &str = "best, re-walked at the fine reference";
@@ -79,16 +84,30 @@ pub fn fitness_svg(
     title: &str,
     y_desc: &str,
 ) -> Result<(), PlotError> {
-    write_plot(path, |svg| draw(svg, generations, title, y_desc))
+    fitness_svg_with_spreads(path, generations, &[], title, y_desc)
 }
 
-/// The y range: the plotted values' span, padded by 5 % (at least ±0.5 around a single
-/// value), or 0..1 when there is nothing to plot.
-fn y_range(generations: &[GenerationRecord]) -> (f64, f64) {
+/// [`fitness_svg`] of a run with habitats or trials: the best's line (the aggregate of its
+/// walks) is drawn over a shaded band from its lowest walk's fitness to its highest, each
+/// generation's of `spreads` ([`SPREAD_LABEL`]); with no spreads, the plain picture.
+pub fn fitness_svg_with_spreads(
+    path: &Path,
+    generations: &[GenerationRecord],
+    spreads: &[Spread],
+    title: &str,
+    y_desc: &str,
+) -> Result<(), PlotError> {
+    write_plot(path, |svg| draw(svg, generations, spreads, title, y_desc))
+}
+
+/// The y range: the plotted values' span (the spreads' too), padded by 5 % (at least ±0.5
+/// around a single value), or 0..1 when there is nothing to plot.
+fn y_range(generations: &[GenerationRecord], spreads: &[Spread]) -> (f64, f64) {
     let shown = series(generations);
     let values = generations
         .iter()
         .flat_map(|g| shown.iter().map(move |((_, _, f), _)| f(g)))
+        .chain(spreads.iter().flat_map(|s| [s.low, s.high]))
         .filter(|&y| plotted(y));
     let (lo, hi) = span(values.map(|y| (y, y)));
     if lo > hi {
@@ -96,6 +115,20 @@ fn y_range(generations: &[GenerationRecord]) -> (f64, f64) {
     }
     let pad = ((hi - lo) * 0.05).max(0.5);
     (lo - pad, hi + pad)
+}
+
+/// Splits the spreads into runs of consecutive generations.
+fn spread_runs(spreads: &[Spread]) -> Vec<&[Spread]> {
+    let mut runs = Vec::new();
+    let mut start = 0;
+    for k in 1..=spreads.len() {
+        if k == spreads.len() || spreads[k].generation != spreads[k - 1].generation + 1 {
+            runs.push(&spreads[start..k]);
+            start = k;
+        }
+    }
+    runs.retain(|r| !r.is_empty());
+    runs
 }
 
 /// The lowest low and the highest high of `ranges` (low, high); (∞, −∞) when empty.
@@ -154,6 +187,7 @@ fn draw_line(
 fn draw(
     svg: &mut String,
     generations: &[GenerationRecord],
+    spreads: &[Spread],
     title: &str,
     y_desc: &str,
 ) -> Result<(), String> {
@@ -161,20 +195,45 @@ fn draw(
     let e = |e: &dyn std::fmt::Display| e.to_string();
     let first = generations.iter().map(|g| g.index).min().unwrap_or(0);
     let last = generations.iter().map(|g| g.index).max().unwrap_or(0);
-    let (y0, y1) = y_range(generations);
+    let (y0, y1) = y_range(generations, spreads);
     let shown = series(generations);
+    let banded = !spreads.is_empty();
     let entries: Vec<LegendEntry> = shown
         .iter()
-        .map(|&((name, colour, _), dashed)| LegendEntry {
-            name: name.to_string(),
+        .enumerate()
+        .map(|(k, &((name, colour, _), dashed))| LegendEntry {
+            // The best's line (the first) is drawn over the band.
+            name: if k == 0 && banded { SPREAD_LABEL } else { name }.to_string(),
             colour,
             dashed,
-            band: false,
+            band: k == 0 && banded,
         })
         .collect();
     let (area, legend) = beside_legend(&root, title, &entries)?;
     let mut chart = chart(&area, first..last.max(first + 1), y0..y1)?;
     draw_mesh(chart.configure_mesh().x_desc("generation").y_desc(y_desc))?;
+    let (_, best_colour, _) = SERIES[0];
+    for run in spread_runs(spreads) {
+        if run.len() == 1 {
+            // One generation: a bar from low to high.
+            let s = run[0];
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(s.generation, s.low), (s.generation, s.high)],
+                    best_colour.mix(0.4).stroke_width(6),
+                )))
+                .map_err(|x| e(&x))?;
+            continue;
+        }
+        let mut outline: Vec<(u32, f64)> = run.iter().map(|s| (s.generation, s.high)).collect();
+        outline.extend(run.iter().rev().map(|s| (s.generation, s.low)));
+        chart
+            .draw_series(std::iter::once(Polygon::new(
+                outline,
+                best_colour.mix(0.18),
+            )))
+            .map_err(|x| e(&x))?;
+    }
     for ((_, colour, value), dashed) in shown {
         let style = colour.stroke_width(2);
         for run in segments(generations, value) {
@@ -527,10 +586,10 @@ mod tests {
             generation(1, 30.0, 20.0, -999_999.5),
         ];
         // Plotted values 10, 30, 20: span 20, padded by 1 on each side.
-        assert_eq!(y_range(&gs), (9.0, 31.0));
-        assert_eq!(y_range(&[]), (0.0, 1.0));
+        assert_eq!(y_range(&gs, &[]), (9.0, 31.0));
+        assert_eq!(y_range(&[], &[]), (0.0, 1.0));
         // A single value gets ±0.5.
-        assert_eq!(y_range(&[generation(0, 2.0, 2.0, 2.0)]), (1.5, 2.5));
+        assert_eq!(y_range(&[generation(0, 2.0, 2.0, 2.0)], &[]), (1.5, 2.5));
     }
 
     #[test]
@@ -565,6 +624,40 @@ mod tests {
             .flat_map(|rest| rest.split('"').next().unwrap().split_whitespace())
             .map(|p| p.split(',').next().unwrap().parse::<f64>().unwrap())
             .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    #[test]
+    fn a_run_with_habitats_draws_the_best_over_the_band_of_its_walks() {
+        let scratch = tempfile::tempdir().unwrap();
+        let path = scratch.path().join("fitness.svg");
+        let gs: Vec<GenerationRecord> = (0..3)
+            .map(|g| generation(g, 2.0 + g as f64, 1.5, 1.5))
+            .collect();
+        let spreads: Vec<Spread> = (0..3)
+            .map(|g| Spread {
+                generation: g,
+                low: 1.0 + g as f64,
+                high: 4.0 + g as f64,
+            })
+            .collect();
+        // The band reaches 1 and 6: span 5, padded by 0.5 (5 % is less).
+        assert_eq!(y_range(&gs, &spreads), (0.5, 6.5));
+        fitness_svg_with_spreads(&path, &gs, &spreads, "title", "fitness").unwrap();
+        let banded = fs::read_to_string(&path).unwrap();
+        assert!(banded.lines().any(|l| l.trim() == SPREAD_LABEL));
+        assert!(!banded.lines().any(|l| l.trim() == "best"));
+        fitness_svg(&path, &gs, "title", "fitness").unwrap();
+        let plain = fs::read_to_string(&path).unwrap();
+        assert!(plain.lines().any(|l| l.trim() == "best"));
+        // The band is one shaded polygon, and a square in the legend.
+        assert_eq!(
+            banded.matches("<polygon").count(),
+            plain.matches("<polygon").count() + 1
+        );
+        assert_eq!(
+            banded.matches("<rect").count(),
+            plain.matches("<rect").count() + 1
+        );
     }
 
     #[test]

@@ -199,28 +199,27 @@ impl World {
         self.energy = self.mechanical_energy();
     }
 
+    /// What `read` reads of each free object's body now, in the order of `[task.world]
+    /// objects`.
+    fn each_object<T>(&self, read: impl Fn(&RigidBody) -> T) -> Vec<T> {
+        let bodies = self.ground.objects.iter().map(|(h, _)| &self.bodies[*h]);
+        bodies.map(read).collect()
+    }
+
     /// The free objects' centres now, in the order of `[task.world] objects`.
     pub fn object_positions(&self) -> Vec<[f64; 3]> {
-        self.ground
-            .objects
-            .iter()
-            .map(|(handle, _)| {
-                let p = self.bodies[*handle].translation();
-                [p.x as f64, p.y as f64, p.z as f64]
-            })
-            .collect()
+        self.each_object(|body| {
+            let p = body.translation();
+            [p.x as f64, p.y as f64, p.z as f64]
+        })
     }
 
     /// The free objects' orientations now, as quaternions [w, x, y, z].
     pub fn object_rotations(&self) -> Vec<[f64; 4]> {
-        self.ground
-            .objects
-            .iter()
-            .map(|(handle, _)| {
-                let q = self.bodies[*handle].rotation();
-                [q.w as f64, q.x as f64, q.y as f64, q.z as f64]
-            })
-            .collect()
+        self.each_object(|body| {
+            let q = body.rotation();
+            [q.w as f64, q.x as f64, q.y as f64, q.z as f64]
+        })
     }
 
     /// The height of the highest ground under the creature's footprint where it was dropped

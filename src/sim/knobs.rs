@@ -459,7 +459,9 @@ pub fn reference_table() -> String {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SettingError {
     /// The TOML table that holds the key, e.g. `task.sim`; empty when the options were checked
-    /// on their own.
+    /// on their own. An entry of an array of tables is named by its index from 0 after the
+    /// array's name (`task.habitats.1`, its world `task.habitats.1.world`), so that the key
+    /// can be found in the file; messages leave the index out ([`table_name`]).
     pub table: String,
     /// The key, as a config file spells it (`substeps`).
     pub key: &'static str,
@@ -499,8 +501,33 @@ impl fmt::Display for SettingError {
         if self.table.is_empty() {
             write!(f, "{} {}", self.key, self.problem)
         } else {
-            write!(f, "[{}] {} {}", self.table, self.key, self.problem)
+            write!(
+                f,
+                "{} {} {}",
+                table_name(&self.table),
+                self.key,
+                self.problem
+            )
         }
+    }
+}
+
+/// A table's path (`task.sim`, `task.habitats.1.world`, `task.habitats.1`) as a config file
+/// heads it: `[task.sim]`, `[task.habitats.world]`; an entry of an array of tables itself,
+/// `[[task.habitats]]`. Indices (whole numbers) are left out.
+pub fn table_name(table: &str) -> String {
+    let names: Vec<&str> = table
+        .split('.')
+        .filter(|t| !t.is_empty() && !t.bytes().all(|b| b.is_ascii_digit()))
+        .collect();
+    let entry = table
+        .rsplit('.')
+        .next()
+        .is_some_and(|t| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()));
+    if entry {
+        format!("[[{}]]", names.join("."))
+    } else {
+        format!("[{}]", names.join("."))
     }
 }
 
@@ -524,6 +551,23 @@ pub fn check_real(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_table_is_named_as_a_config_heads_it_without_indices() {
+        assert_eq!(table_name("task.sim"), "[task.sim]");
+        assert_eq!(table_name("task.habitats.1"), "[[task.habitats]]");
+        assert_eq!(
+            table_name("task.habitats.12.world.slope"),
+            "[task.habitats.world.slope]"
+        );
+        let mut e = SettingError::out_of_range("name", "unique", "'a'").within("task.habitats.3");
+        assert_eq!(
+            e.to_string(),
+            "[[task.habitats]] name must be unique, not 'a'"
+        );
+        e.table.clear();
+        assert_eq!(e.to_string(), "name must be unique, not 'a'");
+    }
 
     #[test]
     fn every_field_of_the_options_is_one_knob_in_field_order() {

@@ -36,7 +36,7 @@ pub use audit::{ENERGY_WINDOW, JOINT_GAP_WARNING};
 pub use brain::BrainRuntime;
 pub use build::BuildError;
 pub use drag::DragMeter;
-pub use knobs::{KNOBS, Knob, SettingError, check_real};
+pub use knobs::{KNOBS, Knob, SettingError, check_real, table_name};
 pub use model_names::UnknownName;
 pub use motion::Attach;
 pub use options::{

@@ -2,10 +2,9 @@
 //! scored by the distance thrown less the miss, D_p − D_t.
 
 use super::catapult::{CatapultOptions, catapult_watched};
-use super::{Evaluation, Task, Watch};
+use super::{Bounds, Evaluation, Setup, Task};
 use crate::cancel::Interrupted;
-use crate::creature::Creature;
-use crate::sim::{SettingError, SimOptions, WorldSpec};
+use crate::sim::SettingError;
 
 /// Chaumont et al.'s aiming catapult, in the registry: it reads the catapult's settings,
 /// target included (`[task.catapult] target`, which it needs).
@@ -14,7 +13,6 @@ pub struct AimTask;
 impl Task for AimTask {
     const NAME: &'static str = "aim";
     const SUMMARY: &'static str = "Chaumont et al.'s aiming catapult: D_p − D_t (eq. 3)";
-    const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = true;
     const KEYWORDS: &'static [&'static str] = &["seconds", "target"];
     const TABLE: &'static str = "catapult";
@@ -25,12 +23,6 @@ impl Task for AimTask {
     }
     fn floor(_options: &CatapultOptions) -> Option<f64> {
         None
-    }
-    fn max_steps(sim: &SimOptions, options: &CatapultOptions) -> usize {
-        options.max_steps(sim.control_step)
-    }
-    fn seconds(options: &mut CatapultOptions) -> &mut f64 {
-        &mut options.max_seconds
     }
     /// The catapult's table, its target included (the catapult task leaves the target
     /// alone).
@@ -49,14 +41,9 @@ impl Task for AimTask {
         }
         Ok(())
     }
-    fn evaluate(
-        creature: &Creature,
-        sim: &SimOptions,
-        world: &WorldSpec,
-        options: &CatapultOptions,
-        watch: Watch<'_>,
-    ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, (sim, world), options, watch)
+    /// The catapult's protocol, the target included.
+    fn evaluate(setup: Setup<'_, '_, CatapultOptions>) -> Result<Evaluation, Interrupted> {
+        catapult_watched(setup)
     }
 }
 

@@ -6,12 +6,12 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Watch, evaluate, steps_in, unwatched};
+use super::protocol::{Setup, evaluate, on_flat_ground, steps_in};
 use super::recording::Phase;
 use super::{Evaluation, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::{SimOptions, WorldSpec};
+use crate::sim::SimOptions;
 
 /// Settings of the catapult and aim tasks (Chaumont et al. section 4).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -59,15 +59,6 @@ impl CatapultOptions {
     }
 }
 
-impl Bounds for CatapultOptions {
-    fn limits(&self) -> (f64, f64) {
-        (self.max_height, self.max_seconds)
-    }
-    fn max_steps(&self, dt: f64) -> usize {
-        CatapultOptions::max_steps(self, dt)
-    }
-}
-
 /// The minimum distance between the polyline `trajectory` and `target` (D_t of equation 3).
 pub fn distance_to_trajectory(trajectory: &[Vector3<f64>], target: &Vector3<f64>) -> f64 {
     match trajectory {
@@ -104,19 +95,16 @@ pub fn catapult(
     options: &CatapultOptions,
     record: bool,
 ) -> Evaluation {
-    unwatched(record, |watch| {
-        catapult_watched(creature, (sim, &WorldSpec::default()), options, watch)
-    })
+    on_flat_ground(creature, sim, options, record, catapult_watched)
 }
 
-/// [`catapult`], watched: recorded, told its progress and stopped by a token as `watch`
-/// says.
+/// [`catapult`] in any world, watched: recorded, told its progress and stopped by a token
+/// as `setup` says. The aim task's evaluation, and the catapult's of settings without a
+/// target.
 pub(super) fn catapult_watched(
-    creature: &Creature,
-    (sim, world): (&SimOptions, &WorldSpec),
-    options: &CatapultOptions,
-    watch: Watch<'_>,
+    setup: Setup<'_, '_, CatapultOptions>,
 ) -> Result<Evaluation, Interrupted> {
+    let Setup { sim, options, .. } = setup;
     let task: &'static str = if options.target.is_some() {
         "aim"
     } else {
@@ -134,7 +122,7 @@ pub(super) fn catapult_watched(
     // The target in the world, once the projectile is placed: kept in the terms of a failed
     // evaluation too, so that its recording can show the target.
     let placed_target = std::cell::Cell::new(None);
-    let mut evaluation = evaluate(task, creature, (sim, world), options, watch, |run| {
+    let mut evaluation = evaluate(task, setup, |run| {
         run.world
             .attach_projectile(options.projectile_size, options.projectile_density);
         run.projectile_size = Some(options.projectile_size);
@@ -239,7 +227,6 @@ impl super::Task for CatapultTask {
     const NAME: &'static str = "catapult";
     const SUMMARY: &'static str =
         "Chaumont et al.'s catapult: distance the projectile travels (eq. 2)";
-    const FITNESS_VARIANTS: &'static [&'static str] = &[];
     const THROWS: bool = true;
     type Options = CatapultOptions;
 
@@ -252,25 +239,13 @@ impl super::Task for CatapultTask {
     fn measure(_options: &CatapultOptions) -> &'static str {
         "distance (m)"
     }
-    fn floor(_options: &CatapultOptions) -> Option<f64> {
-        Some(0.0)
-    }
-    fn max_steps(sim: &SimOptions, options: &CatapultOptions) -> usize {
-        options.max_steps(sim.control_step)
-    }
-    fn seconds(options: &mut CatapultOptions) -> &mut f64 {
-        &mut options.max_seconds
-    }
-    fn check_options(options: &CatapultOptions) -> Result<(), crate::sim::SettingError> {
-        options.check()
-    }
-    fn evaluate(
-        creature: &Creature,
-        sim: &SimOptions,
-        world: &WorldSpec,
-        options: &CatapultOptions,
-        watch: Watch<'_>,
-    ) -> Result<Evaluation, Interrupted> {
-        catapult_watched(creature, (sim, world), &Self::reads(options), watch)
+    /// The catapult's protocol without the target: the settings it
+    /// [reads](super::Task::reads).
+    fn evaluate(setup: Setup<'_, '_, CatapultOptions>) -> Result<Evaluation, Interrupted> {
+        let reads = Self::reads(setup.options);
+        catapult_watched(Setup {
+            options: &reads,
+            ..setup
+        })
     }
 }

@@ -1,10 +1,12 @@
 //! The range check of every task setting, and the one limit on how long a task may run
-//! ([`MAX_SECONDS`]): each options type checks its own values ([`WalkerOptions::check`] and its
-//! kin) and [`TaskSpec::check`] checks the task's with the simulator's, naming the key as a
-//! config file spells it (`[task.walker] seconds`).
+//! ([`MAX_SECONDS`]): each options type checks its own values ([`Bounds::check`]: here the
+//! walker's, the jump's and the catapult's, with what else they bound) and
+//! [`TaskSpec::check`] checks the task's with the simulator's, naming the key as a config
+//! file spells it (`[task.walker] seconds`).
 
 use super::{
-    CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec, WalkerOptions,
+    Bounds, CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskSpec,
+    WalkerOptions,
 };
 use crate::sim::setting::check_real;
 use crate::sim::{Medium, SettingError};
@@ -51,11 +53,20 @@ impl Rest {
     }
 }
 
-impl WalkerOptions {
+impl Bounds for WalkerOptions {
+    fn limits(&self) -> (f64, f64) {
+        (self.max_height, self.seconds)
+    }
+    fn max_steps(&self, dt: f64) -> usize {
+        WalkerOptions::max_steps(self, dt)
+    }
+    fn seconds(&mut self) -> &mut f64 {
+        &mut self.seconds
+    }
     /// Checks the walker's settings: `seconds` in (0, [`MAX_SECONDS`]], the activation and the
     /// second settling in [0, [`MAX_SECONDS`]], κ and the height limit finite and positive,
     /// and the rest criterion ([`Rest::check`], in the `rest` table).
-    pub fn check(&self) -> Result<(), SettingError> {
+    fn check(&self) -> Result<(), SettingError> {
         check_duration("seconds", self.seconds)?;
         check_real("kappa", self.kappa, 0.0, true)?;
         check_phase("activation", self.activation)?;
@@ -65,22 +76,41 @@ impl WalkerOptions {
     }
 }
 
-impl JumpOptions {
+impl Bounds for JumpOptions {
+    fn limits(&self) -> (f64, f64) {
+        (self.max_height, self.seconds)
+    }
+    fn max_steps(&self, dt: f64) -> usize {
+        JumpOptions::max_steps(self, dt)
+    }
+    fn seconds(&mut self) -> &mut f64 {
+        &mut self.seconds
+    }
     /// Checks the jump's settings: `seconds` in (0, [`MAX_SECONDS`]], the height limit finite
     /// and positive, and the rest criterion ([`Rest::check`], in the `rest` table).
-    pub fn check(&self) -> Result<(), SettingError> {
+    fn check(&self) -> Result<(), SettingError> {
         check_duration("seconds", self.seconds)?;
         check_real("max_height", self.max_height, 0.0, true)?;
         self.rest.check().map_err(|e| e.within("rest"))
     }
 }
 
-impl CatapultOptions {
+impl Bounds for CatapultOptions {
+    fn limits(&self) -> (f64, f64) {
+        (self.max_height, self.max_seconds)
+    }
+    fn max_steps(&self, dt: f64) -> usize {
+        CatapultOptions::max_steps(self, dt)
+    }
+    /// `max_seconds`: the catapult's measurement lasts until the projectile is at rest.
+    fn seconds(&mut self) -> &mut f64 {
+        &mut self.max_seconds
+    }
     /// Checks the catapult's settings: the projectile's size (every edge) and density finite
     /// and positive, `max_seconds` in (0, [`MAX_SECONDS`]], the release delay and the rest
     /// duration in [0, [`MAX_SECONDS`]], the rest speed and the height limit finite and
     /// positive. The target, which only the aim task reads, is [`CatapultOptions::check_target`]'s.
-    pub fn check(&self) -> Result<(), SettingError> {
+    fn check(&self) -> Result<(), SettingError> {
         for edge in self.projectile_size.iter() {
             check_real("projectile_size", *edge, 0.0, true)?;
         }
@@ -91,7 +121,9 @@ impl CatapultOptions {
         check_phase("rest_duration", self.rest_duration)?;
         check_real("max_height", self.max_height, 0.0, true)
     }
+}
 
+impl CatapultOptions {
     /// Checks the aim task's target, when there is one: finite and within
     /// [`MAX_TARGET_DISTANCE`] of the projectile.
     pub fn check_target(&self) -> Result<(), SettingError> {

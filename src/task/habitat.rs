@@ -543,10 +543,9 @@ impl TaskSpec {
             .within("task"));
         }
         for (i, h) in self.habitats.iter().enumerate() {
-            let within = |mut e: SettingError| {
-                e.table = "[task.habitats]".to_string();
-                e
-            };
+            // The entry's index names it in the file (a message leaves it out).
+            let entry = format!("task.habitats.{i}");
+            let within = |e: SettingError| e.within(&entry);
             if h.name.trim().is_empty() || h.name.chars().any(char::is_control) {
                 return Err(within(SettingError::out_of_range(
                     "name",
@@ -569,16 +568,18 @@ impl TaskSpec {
                 )));
             }
             if !h.world.medium.is_air() {
-                return Err(SettingError::out_of_range(
-                    "medium",
-                    &format!("air (habitat '{}'): water is not simulated yet", h.name),
-                    "water",
-                )
-                .within("task.habitats.world"));
+                return Err(within(
+                    SettingError::out_of_range(
+                        "medium",
+                        &format!("air (habitat '{}'): water is not simulated yet", h.name),
+                        "water",
+                    )
+                    .within("world"),
+                ));
             }
             h.world.check().map_err(|mut e| {
                 e.problem = format!("{} (habitat '{}')", e.problem, h.name);
-                e.within("world").within("task.habitats")
+                within(e.within("world"))
             })?;
         }
         self.trials.check().map_err(|e| e.within("task.trials"))

@@ -4,12 +4,12 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::Evaluation;
-use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unwatched};
+use super::protocol::{Rest, Setup, evaluate, on_flat_ground, settle_steps, steps_in};
 use super::recording::Phase;
+use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
-use crate::sim::{SimOptions, WorldSpec};
+use crate::sim::SimOptions;
 
 /// Settings of the jump task.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -41,15 +41,6 @@ impl JumpOptions {
     }
 }
 
-impl Bounds for JumpOptions {
-    fn limits(&self) -> (f64, f64) {
-        (self.max_height, self.seconds)
-    }
-    fn max_steps(&self, dt: f64) -> usize {
-        JumpOptions::max_steps(self, dt)
-    }
-}
-
 /// Jump (Walking with Dinosaurs 3.3.3): after coming to rest (and passing the height test
 /// again), the controller runs for `seconds`; the fitness is the best height of the
 /// creature's lowest point above the ground.
@@ -59,70 +50,39 @@ pub fn jump(
     options: &JumpOptions,
     record: bool,
 ) -> Evaluation {
-    unwatched(record, |watch| {
-        jump_watched(creature, (sim, &WorldSpec::default()), options, watch)
-    })
-}
-
-/// [`jump`], watched: recorded, told its progress and stopped by a token as `watch` says.
-pub(super) fn jump_watched(
-    creature: &Creature,
-    (sim, world): (&SimOptions, &WorldSpec),
-    options: &JumpOptions,
-    watch: Watch<'_>,
-) -> Result<Evaluation, Interrupted> {
-    evaluate("jump", creature, (sim, world), options, watch, |run| {
-        run.settle(&options.rest, 0.0, sim.control_step)?;
-        run.check_height(options.max_height)?;
-        // Heights from the ground the creature was dropped on (0 on level ground).
-        let ground = run.world.start_ground();
-        let resting = (run.world.lowest_point() - ground).max(0.0);
-        let mut best: f64 = 0.0;
-        run.phase = Phase::Measuring;
-        for _ in 0..steps_in(options.seconds, sim.control_step) {
-            run.step(true)?;
-            best = best.max(run.world.lowest_point() - ground);
-        }
-        let terms = BTreeMap::from([
-            ("height".to_string(), best),
-            ("resting_lowest_point".to_string(), resting),
-        ]);
-        Ok((best, terms))
-    })
+    on_flat_ground(creature, sim, options, record, JumpTask::evaluate)
 }
 
 /// Walking with Dinosaurs' jump, in the registry ([`super::Task`]).
 pub struct JumpTask;
 
-impl super::Task for JumpTask {
+impl Task for JumpTask {
     const NAME: &'static str = "jump";
     const SUMMARY: &'static str = "Walking with Dinosaurs' jump: best height of the lowest point";
-    const FITNESS_VARIANTS: &'static [&'static str] = &[];
-    const THROWS: bool = false;
     type Options = JumpOptions;
 
     fn measure(_options: &JumpOptions) -> &'static str {
         "height (m)"
     }
-    fn floor(_options: &JumpOptions) -> Option<f64> {
-        Some(0.0)
-    }
-    fn max_steps(sim: &SimOptions, options: &JumpOptions) -> usize {
-        options.max_steps(sim.control_step)
-    }
-    fn seconds(options: &mut JumpOptions) -> &mut f64 {
-        &mut options.seconds
-    }
-    fn check_options(options: &JumpOptions) -> Result<(), crate::sim::SettingError> {
-        options.check()
-    }
-    fn evaluate(
-        creature: &Creature,
-        sim: &SimOptions,
-        world: &WorldSpec,
-        options: &JumpOptions,
-        watch: Watch<'_>,
-    ) -> Result<Evaluation, Interrupted> {
-        jump_watched(creature, (sim, world), options, watch)
+    fn evaluate(setup: Setup<'_, '_, JumpOptions>) -> Result<Evaluation, Interrupted> {
+        let Setup { sim, options, .. } = setup;
+        evaluate(Self::NAME, setup, |run| {
+            run.settle(&options.rest, 0.0, sim.control_step)?;
+            run.check_height(options.max_height)?;
+            // Heights from the ground the creature was dropped on (0 on level ground).
+            let ground = run.world.start_ground();
+            let resting = (run.world.lowest_point() - ground).max(0.0);
+            let mut best: f64 = 0.0;
+            run.phase = Phase::Measuring;
+            for _ in 0..steps_in(options.seconds, sim.control_step) {
+                run.step(true)?;
+                best = best.max(run.world.lowest_point() - ground);
+            }
+            let terms = BTreeMap::from([
+                ("height".to_string(), best),
+                ("resting_lowest_point".to_string(), resting),
+            ]);
+            Ok((best, terms))
+        })
     }
 }

@@ -37,7 +37,7 @@ pub use habitat::{
 };
 pub use jump::{JumpOptions, JumpTask, jump};
 pub use options::TaskOptions;
-pub use protocol::{Rest, Watch};
+pub use protocol::{Bounds, Rest, Setup, Watch};
 pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
     recording_interval,

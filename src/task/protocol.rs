@@ -1,6 +1,7 @@
 //! The protocol's common steps, shared by every task: screening a creature before it is
 //! simulated, building its world, stepping it with the controller on or off, waiting for it to
-//! come to rest, the height test, recording samples and telling progress. A task's own file
+//! come to rest, the height test, recording samples and telling progress; what every protocol
+//! is given ([`Setup`]) and what every task's settings bound ([`Bounds`]). A task's own file
 //! says in what order these steps run and how its fitness is computed from them.
 
 use std::collections::BTreeMap;
@@ -12,7 +13,7 @@ use super::recording::{Phase, Sample, recording_interval};
 use super::{Evaluation, Status};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
-use crate::sim::{SimOptions, World, WorldSpec};
+use crate::sim::{SettingError, SimOptions, World, WorldSpec};
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
 /// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
@@ -312,12 +313,37 @@ impl Run<'_> {
     }
 }
 
-/// What a task's settings bound: the tallest creature simulated (m), the seconds its
-/// measurement may last (screened before simulating) and the most control steps of `dt` the
-/// whole protocol can take.
-pub(super) trait Bounds {
+/// What a task's settings ([`Task::Options`](super::Task::Options)) bound, which the protocol
+/// and the registry read of every task alike.
+pub trait Bounds {
+    /// The tallest creature simulated (m) and the seconds its measurement may last, both
+    /// screened before simulating.
     fn limits(&self) -> (f64, f64);
+    /// The most control steps of `dt` the whole protocol can take (every phase at its
+    /// longest).
     fn max_steps(&self, dt: f64) -> usize;
+    /// The length of its measurement (s), which `--seconds` sets.
+    fn seconds(&mut self) -> &mut f64;
+    /// Checks the ranges of the settings, the task's table; the error names the key in the
+    /// table.
+    fn check(&self) -> Result<(), SettingError>;
+}
+
+/// One evaluation as a task's protocol is given it: the creature, the simulator's settings,
+/// the world, the task's settings `O`, and how it is watched. The watch has a lifetime of its
+/// own, `'w`, as a [`Watch`] cannot be lent for less than its own: a protocol may evaluate in
+/// a world it makes (the swim task's water), which lives less long.
+pub struct Setup<'a, 'w, O> {
+    /// The creature evaluated.
+    pub creature: &'a Creature,
+    /// The simulator's settings.
+    pub sim: &'a SimOptions,
+    /// The world besides the creature.
+    pub world: &'a WorldSpec,
+    /// The task's settings.
+    pub options: &'a O,
+    /// Whether it is recorded, who is told its progress and what stops it.
+    pub watch: Watch<'w>,
 }
 
 /// How an evaluation is watched from outside: whether it is recorded, the callback told the
@@ -351,6 +377,28 @@ pub(super) fn unwatched(
     evaluate: impl FnOnce(Watch<'_>) -> Result<Evaluation, Interrupted>,
 ) -> Evaluation {
     uninterrupted(evaluate(Watch::uncancelled(record, &mut |_| {})))
+}
+
+/// The evaluation `evaluate` (a task's protocol) gives of `creature` on flat ground, with the
+/// simulator's settings `sim` and the task's `options`, watched by no one and stopped by
+/// nothing: recorded as `record` says.
+pub(super) fn on_flat_ground<O>(
+    creature: &Creature,
+    sim: &SimOptions,
+    options: &O,
+    record: bool,
+    evaluate: impl FnOnce(Setup<'_, '_, O>) -> Result<Evaluation, Interrupted>,
+) -> Evaluation {
+    let world = WorldSpec::default();
+    unwatched(record, |watch| {
+        evaluate(Setup {
+            creature,
+            sim,
+            world: &world,
+            options,
+            watch,
+        })
+    })
 }
 
 /// The evaluation of a watch without a token, which nothing can interrupt.
@@ -387,19 +435,23 @@ fn start<'p>(
     })
 }
 
-/// Screens the creature, builds its world (`sim`'s settings, `world`'s ground and objects,
-/// or its water) and runs `protocol` on it, within the `bounds` of
-/// the task's settings; `protocol` returns the fitness and its terms (or a failed
-/// evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
+/// Screens the creature of `setup`, builds its world (the simulator's settings, the world's
+/// ground and objects, or its water) and runs `protocol` on it, within the [`Bounds`] of the
+/// task's settings, watched as `setup` says; `protocol` returns the fitness and its terms (or
+/// a failed evaluation). The progress callback is told 1 at the end. `Interrupted` when the watch's
 /// token stopped it.
 pub(super) fn evaluate(
     task: &'static str,
-    creature: &Creature,
-    (sim, world): (&SimOptions, &WorldSpec),
-    bounds: &impl Bounds,
-    watch: Watch<'_>,
+    setup: Setup<'_, '_, impl Bounds>,
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
 ) -> Result<Evaluation, Interrupted> {
+    let Setup {
+        creature,
+        sim,
+        world,
+        options: bounds,
+        watch,
+    } = setup;
     let Watch {
         record,
         progress,

@@ -9,10 +9,10 @@
 
 use serde::{Serialize, de::DeserializeOwned};
 
-use super::{Evaluation, Watch};
+use super::Evaluation;
+use super::protocol::{Bounds, Setup};
 use crate::cancel::Interrupted;
-use crate::creature::Creature;
-use crate::sim::{SettingError, SimOptions, WorldSpec};
+use crate::sim::{SettingError, SimOptions};
 
 /// One task: its protocol and fitness formula, and what a run or a report needs to know of it.
 pub trait Task {
@@ -20,11 +20,12 @@ pub trait Task {
     const NAME: &'static str;
     /// The task in a few words, for `--help` and Python's documentation.
     const SUMMARY: &'static str;
-    /// The names of its fitness formulas (`--fitness`), the first the default; empty when it
-    /// has one formula.
-    const FITNESS_VARIANTS: &'static [&'static str];
-    /// Whether it throws a projectile (the catapult's kind of body, not a walker's).
-    const THROWS: bool;
+    /// The names of its fitness formulas (`--fitness`), the first the default; empty (the
+    /// default) when it has one formula.
+    const FITNESS_VARIANTS: &'static [&'static str] = &[];
+    /// Whether it throws a projectile (the catapult's kind of body, not a walker's); by
+    /// default not.
+    const THROWS: bool = false;
 
     /// The task settings it reads that a run's flags and Python's keyword arguments set, by
     /// their keyword names (`--seconds`, `seconds=`): what another task does not read is
@@ -36,8 +37,9 @@ pub trait Task {
     /// Tasks that share a table share their [`Task::Options`] type.
     const TABLE: &'static str = Self::NAME;
 
-    /// Its settings besides the simulator's: its `[task.TABLE]` table.
-    type Options: Clone
+    /// Its settings besides the simulator's: its `[task.TABLE]` table, with its [`Bounds`].
+    type Options: Bounds
+        + Clone
         + std::fmt::Debug
         + Default
         + Serialize
@@ -56,18 +58,29 @@ pub trait Task {
     /// (`"height (m)"`).
     fn measure(options: &Self::Options) -> &'static str;
 
-    /// The lowest fitness an evaluation that succeeds can score, when the formula has one.
-    fn floor(options: &Self::Options) -> Option<f64>;
+    /// The lowest fitness an evaluation that succeeds can score, when the formula has one;
+    /// by default 0 (a distance or a height).
+    fn floor(_options: &Self::Options) -> Option<f64> {
+        Some(0.0)
+    }
 
-    /// The most control steps it can take (every phase at its longest).
-    fn max_steps(sim: &SimOptions, options: &Self::Options) -> usize;
+    /// The most control steps it can take (every phase at its longest): its settings'
+    /// [`Bounds::max_steps`] at the simulator's control step.
+    fn max_steps(sim: &SimOptions, options: &Self::Options) -> usize {
+        options.max_steps(sim.control_step)
+    }
 
-    /// The length of its measurement (s), which `--seconds` sets.
-    fn seconds(options: &mut Self::Options) -> &mut f64;
+    /// The length of its measurement (s), which `--seconds` sets ([`Bounds::seconds`]).
+    fn seconds(options: &mut Self::Options) -> &mut f64 {
+        options.seconds()
+    }
 
     /// Checks the ranges of `options`, its table (every table a config holds is checked, run
-    /// or not); the error names the key in the table, from inside `[task]` (`walker`).
-    fn check_options(options: &Self::Options) -> Result<(), SettingError>;
+    /// or not); the error names the key in the table, from inside `[task]` (`walker`). By
+    /// default the table's own check, [`Bounds::check`].
+    fn check_options(options: &Self::Options) -> Result<(), SettingError> {
+        options.check()
+    }
 
     /// Checks what it needs of `options` when it is the task run, beyond the table's ranges
     /// (the aim task's target); the error names the key as [`Task::check_options`] does.
@@ -75,15 +88,9 @@ pub trait Task {
         Ok(())
     }
 
-    /// Evaluates `creature` with the simulator's settings `sim`, in the world `world`, with
-    /// its own `options`, watched as `watch` says.
-    fn evaluate(
-        creature: &Creature,
-        sim: &SimOptions,
-        world: &WorldSpec,
-        options: &Self::Options,
-        watch: Watch<'_>,
-    ) -> Result<Evaluation, Interrupted>;
+    /// Evaluates the creature of `setup` with its simulator's settings, in its world, with its
+    /// own settings, watched as `setup` says.
+    fn evaluate(setup: Setup<'_, '_, Self::Options>) -> Result<Evaluation, Interrupted>;
 }
 
 /// What can be known of a task without its type: for the command line's lists and help, the

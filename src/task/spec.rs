@@ -4,7 +4,7 @@
 use serde::ser::{Serialize, SerializeStruct, Serializer};
 use serde::{Deserialize, Deserializer};
 
-use super::{Evaluation, Habitat, Task, TaskOptions, TaskTables, Trials, Watch};
+use super::{Evaluation, Habitat, Setup, Task, TaskOptions, TaskTables, Trials, Watch};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::{SimOptions, WorldSpec};
@@ -172,7 +172,15 @@ impl TaskSpec {
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
-        crate::with_options!(&self.task, T, o => T::evaluate(creature, &self.sim, &self.world, o, watch))
+        crate::with_options!(&self.task, T, options => {
+            T::evaluate(Setup {
+                creature,
+                sim: &self.sim,
+                world: &self.world,
+                options,
+                watch,
+            })
+        })
     }
 
     /// The most control steps the task can take (every phase at its longest), which sets how

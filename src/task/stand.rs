@@ -6,13 +6,12 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in};
+use super::protocol::{Bounds, Rest, Setup, evaluate, settle_steps, steps_in};
 use super::recording::Phase;
 use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
-use crate::creature::Creature;
+use crate::sim::SettingError;
 use crate::sim::setting::check_real;
-use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// Settings of the stand task (`[task.stand]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -36,22 +35,22 @@ impl Default for StandOptions {
     }
 }
 
-impl StandOptions {
-    /// Checks the settings: `seconds` in (0, [`super::MAX_SECONDS`]], the height limit finite
-    /// and positive, and the rest criterion (in the `rest` table).
-    pub fn check(&self) -> Result<(), SettingError> {
-        super::check_duration("seconds", self.seconds)?;
-        check_real("max_height", self.max_height, 0.0, true)?;
-        self.rest.check().map_err(|e| e.within("rest"))
-    }
-}
-
 impl Bounds for StandOptions {
     fn limits(&self) -> (f64, f64) {
         (self.max_height, self.seconds)
     }
     fn max_steps(&self, dt: f64) -> usize {
         settle_steps(&self.rest, dt).saturating_add(steps_in(self.seconds, dt))
+    }
+    fn seconds(&mut self) -> &mut f64 {
+        &mut self.seconds
+    }
+    /// Checks the settings: `seconds` in (0, [`super::MAX_SECONDS`]], the height limit finite
+    /// and positive, and the rest criterion (in the `rest` table).
+    fn check(&self) -> Result<(), SettingError> {
+        super::check_duration("seconds", self.seconds)?;
+        check_real("max_height", self.max_height, 0.0, true)?;
+        self.rest.check().map_err(|e| e.within("rest"))
     }
 }
 
@@ -61,33 +60,14 @@ pub struct StandTask;
 impl Task for StandTask {
     const NAME: &'static str = "stand";
     const SUMMARY: &'static str = "Stand tall: mean height of the highest point while acting";
-    const FITNESS_VARIANTS: &'static [&'static str] = &[];
-    const THROWS: bool = false;
     type Options = StandOptions;
 
     fn measure(_options: &StandOptions) -> &'static str {
         "mean height (m)"
     }
-    fn floor(_options: &StandOptions) -> Option<f64> {
-        Some(0.0)
-    }
-    fn max_steps(sim: &SimOptions, options: &StandOptions) -> usize {
-        options.max_steps(sim.control_step)
-    }
-    fn seconds(options: &mut StandOptions) -> &mut f64 {
-        &mut options.seconds
-    }
-    fn check_options(options: &StandOptions) -> Result<(), SettingError> {
-        options.check()
-    }
-    fn evaluate(
-        creature: &Creature,
-        sim: &SimOptions,
-        world: &WorldSpec,
-        options: &StandOptions,
-        watch: Watch<'_>,
-    ) -> Result<Evaluation, Interrupted> {
-        evaluate(Self::NAME, creature, (sim, world), options, watch, |run| {
+    fn evaluate(setup: Setup<'_, '_, StandOptions>) -> Result<Evaluation, Interrupted> {
+        let Setup { sim, options, .. } = setup;
+        evaluate(Self::NAME, setup, |run| {
             run.settle(&options.rest, 0.0, sim.control_step)?;
             run.check_height(options.max_height)?;
             run.phase = Phase::Measuring;

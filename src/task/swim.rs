@@ -7,13 +7,12 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Watch, evaluate, steps_in};
+use super::protocol::{Bounds, Setup, evaluate, steps_in};
 use super::recording::Phase;
 use super::walker::centre_of_mass;
 use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
-use crate::creature::Creature;
-use crate::sim::{DEFAULT_VISCOSITY, Medium, SettingError, SimOptions, WorldSpec};
+use crate::sim::{DEFAULT_VISCOSITY, Medium, SettingError, WorldSpec};
 
 /// Settings of the swim task (`[task.swim]`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -29,13 +28,6 @@ impl Default for SwimOptions {
     }
 }
 
-impl SwimOptions {
-    /// Checks the settings: `seconds` in (0, [`super::MAX_SECONDS`]].
-    pub fn check(&self) -> Result<(), SettingError> {
-        super::check_duration("seconds", self.seconds)
-    }
-}
-
 impl Bounds for SwimOptions {
     fn limits(&self) -> (f64, f64) {
         // Water has no up: no height test.
@@ -43,6 +35,13 @@ impl Bounds for SwimOptions {
     }
     fn max_steps(&self, dt: f64) -> usize {
         steps_in(self.seconds, dt)
+    }
+    fn seconds(&mut self) -> &mut f64 {
+        &mut self.seconds
+    }
+    /// Checks the settings: `seconds` in (0, [`super::MAX_SECONDS`]].
+    fn check(&self) -> Result<(), SettingError> {
+        super::check_duration("seconds", self.seconds)
     }
 }
 
@@ -61,38 +60,29 @@ pub struct SwimTask;
 impl Task for SwimTask {
     const NAME: &'static str = "swim";
     const SUMMARY: &'static str = "Swim (Sims): distance of the centre of mass in water";
-    const FITNESS_VARIANTS: &'static [&'static str] = &[];
-    const THROWS: bool = false;
     type Options = SwimOptions;
 
     fn measure(_options: &SwimOptions) -> &'static str {
         "distance (m)"
     }
-    fn floor(_options: &SwimOptions) -> Option<f64> {
-        Some(0.0)
-    }
-    fn max_steps(sim: &SimOptions, options: &SwimOptions) -> usize {
-        options.max_steps(sim.control_step)
-    }
-    fn seconds(options: &mut SwimOptions) -> &mut f64 {
-        &mut options.seconds
-    }
-    fn check_options(options: &SwimOptions) -> Result<(), SettingError> {
-        options.check()
-    }
-    fn evaluate(
-        creature: &Creature,
-        sim: &SimOptions,
-        world: &WorldSpec,
-        options: &SwimOptions,
-        watch: Watch<'_>,
-    ) -> Result<Evaluation, Interrupted> {
+    fn evaluate(setup: Setup<'_, '_, SwimOptions>) -> Result<Evaluation, Interrupted> {
+        let Setup {
+            creature,
+            sim,
+            world,
+            options,
+            ..
+        } = setup;
         let viscosity = swim_viscosity(world);
         let water = WorldSpec {
             medium: Medium::Water { viscosity },
             ..world.clone()
         };
-        evaluate(Self::NAME, creature, (sim, &water), options, watch, |run| {
+        let setup = Setup {
+            world: &water,
+            ..setup
+        };
+        evaluate(Self::NAME, setup, |run| {
             run.phase = Phase::Measuring;
             let from = centre_of_mass(&run.world, creature);
             run.run_for(options.seconds, true, sim.control_step)?;

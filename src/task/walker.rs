@@ -7,12 +7,12 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Bounds, Rest, Watch, evaluate, settle_steps, steps_in, unwatched};
+use super::protocol::{Rest, Setup, evaluate, on_flat_ground, settle_steps, steps_in};
 use super::recording::Phase;
-use super::{Evaluation, MAX_TARGET_DISTANCE};
+use super::{Evaluation, MAX_TARGET_DISTANCE, Task};
 use crate::cancel::Interrupted;
 use crate::creature::{Creature, PartId};
-use crate::sim::{DragMeter, SimOptions, World, WorldSpec};
+use crate::sim::{DragMeter, SimOptions, World};
 
 /// The walker's fitness formula.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -159,15 +159,6 @@ impl WalkerOptions {
     }
 }
 
-impl Bounds for WalkerOptions {
-    fn limits(&self) -> (f64, f64) {
-        (self.max_height, self.seconds)
-    }
-    fn max_steps(&self, dt: f64) -> usize {
-        WalkerOptions::max_steps(self, dt)
-    }
-}
-
 /// Chaumont's size coefficients over the N parts: C_l (mean of B_x + B_y + B_z), C_s (mean
 /// surface area) and C_v (mean volume).
 pub fn size_coefficients(creature: &Creature) -> (f64, f64, f64) {
@@ -203,19 +194,19 @@ pub fn walker(
     options: &WalkerOptions,
     record: bool,
 ) -> Evaluation {
-    unwatched(record, |watch| {
-        walker_watched(creature, (sim, &WorldSpec::default()), options, watch)
-    })
+    on_flat_ground(creature, sim, options, record, WalkerTask::evaluate)
 }
 
-/// [`walker`], watched: recorded, told its progress and stopped by a token as `watch` says.
-pub(super) fn walker_watched(
-    creature: &Creature,
-    (sim, world): (&SimOptions, &WorldSpec),
-    options: &WalkerOptions,
-    watch: Watch<'_>,
-) -> Result<Evaluation, Interrupted> {
-    evaluate("walker", creature, (sim, world), options, watch, |run| {
+/// [`walker`] in any world, watched: recorded, told its progress and stopped by a token as
+/// `setup` says.
+fn walker_watched(setup: Setup<'_, '_, WalkerOptions>) -> Result<Evaluation, Interrupted> {
+    let Setup {
+        creature,
+        sim,
+        options,
+        ..
+    } = setup;
+    evaluate(WalkerTask::NAME, setup, |run| {
         run.settle(&options.rest, 0.0, sim.control_step)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
@@ -304,7 +295,7 @@ pub(super) fn centre_of_mass(world: &World, creature: &Creature) -> Vector3<f64>
 /// Chaumont et al.'s walker, in the registry ([`super::Task`]).
 pub struct WalkerTask;
 
-impl super::Task for WalkerTask {
+impl Task for WalkerTask {
     const NAME: &'static str = "walker";
     const SUMMARY: &'static str =
         "Chaumont et al.'s walker: distance of the root part, normalised by size (eq. 1)";
@@ -317,7 +308,6 @@ impl super::Task for WalkerTask {
         "dwarf-slayer",
         "hornby-pollack",
     ];
-    const THROWS: bool = false;
     const KEYWORDS: &'static [&'static str] = &["seconds", "fitness"];
     type Options = WalkerOptions;
 
@@ -327,22 +317,7 @@ impl super::Task for WalkerTask {
     fn floor(options: &WalkerOptions) -> Option<f64> {
         options.fitness.floor()
     }
-    fn max_steps(sim: &SimOptions, options: &WalkerOptions) -> usize {
-        options.max_steps(sim.control_step)
-    }
-    fn seconds(options: &mut WalkerOptions) -> &mut f64 {
-        &mut options.seconds
-    }
-    fn check_options(options: &WalkerOptions) -> Result<(), crate::sim::SettingError> {
-        options.check()
-    }
-    fn evaluate(
-        creature: &Creature,
-        sim: &SimOptions,
-        world: &WorldSpec,
-        options: &WalkerOptions,
-        watch: Watch<'_>,
-    ) -> Result<Evaluation, Interrupted> {
-        walker_watched(creature, (sim, world), options, watch)
+    fn evaluate(setup: Setup<'_, '_, WalkerOptions>) -> Result<Evaluation, Interrupted> {
+        walker_watched(setup)
     }
 }

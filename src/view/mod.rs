@@ -554,22 +554,37 @@ pub fn no_samples_reason(recording: &crate::task::Recording) -> Option<String> {
 /// "task", "fitness" (what the fitness measures and its unit, as `fitness.svg`'s y axis says,
 /// `"fitness: distance (m)"`), "generations": [{"index", "best", "mean", "median", "sd",
 /// "valid_fraction", "evaluations", "best_fine" (the best re-walked at the fine reference, or
-/// null)}]}`.
+/// null)}]}`; for a run with habitats or trials, each generation also has "spread_low" and
+/// "spread_high", the lowest and highest fitness of its best's walks
+/// ([`crate::run::spread`]).
 pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
     let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
     let run = store.run().map_err(|e| ViewError::BadFile(e.to_string()))?;
+    let spec = run.task_spec();
+    // The best's walks are in its record: read only for a run that has some.
+    let spreads = match &spec {
+        Some(spec) if !spec.is_plain() => crate::run::spread::stored_spreads(&store)
+            .map_err(|e| ViewError::BadFile(e.to_string()))?,
+        _ => Vec::new(),
+    };
     let generations: Vec<Value> = store
         .generations()
         .map_err(|e| ViewError::BadFile(e.to_string()))?
         .iter()
         .map(|g| {
-            json!({
+            let mut value = json!({
                 "index": g.index, "best": finite(g.best), "mean": finite(g.mean),
                 "median": finite(g.median), "sd": finite(g.sd),
                 "valid_fraction": finite(g.valid_fraction), "evaluations": g.evaluations,
                 "best_fine": g.best_fine.as_ref().map_or(Value::Null, |f| finite(f.fitness)),
-            })
+            });
+            if !spreads.is_empty() {
+                let spread = spreads.iter().find(|s| s.generation == g.index);
+                value["spread_low"] = spread.map_or(Value::Null, |s| finite(s.low));
+                value["spread_high"] = spread.map_or(Value::Null, |s| finite(s.high));
+            }
+            value
         })
         .collect();
     Ok(json!({
@@ -578,9 +593,7 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
         "encoding": run.encoding,
         "task": run.task,
         "seed": run.seed,
-        "fitness": run
-            .task_spec()
-            .map(|spec| format!("fitness: {}", spec.fitness_measure())),
+        "fitness": spec.map(|spec| format!("fitness: {}", spec.fitness_measure())),
         "generations": generations,
     }))
 }

@@ -341,7 +341,8 @@ impl Server {
         Ok((generation, k, developer))
     }
 
-    /// One of a run's individuals, developed.
+    /// One of a run's individuals, developed (in the habitat `view --habitat` names, which the
+    /// answer's `habitat` says).
     fn individual(&self, query: &str) -> Result<Value, ViewError> {
         let (generation, index, developer) = self.run_query(query, "index", "individual.json")?;
         self.stored_generation(generation)?;
@@ -352,10 +353,14 @@ impl Server {
             )));
         }
         let creature = (developer.develop)(generation, index).map_err(ViewError::BadFile)?;
-        Ok(super::creature_data(
+        let mut value = super::creature_data(
             &format!("generation {generation}, individual {index}"),
             &creature,
-        ))
+        );
+        if let Some(name) = &developer.habitat {
+            value["habitat"] = json!(name);
+        }
+        Ok(value)
     }
 
     /// The walk of a run's individual picked by generation and rank (1 the best): evaluated

@@ -318,7 +318,7 @@ type CutDown = (
 const CUT_DOWN: &[CutDown] = &[
     (
         "ontogeny evolve --config ",
-        &[],
+        &[("--walks 3000", "--walks 40")],
         &[("--pop", "4"), ("--seconds", "0.2")],
     ),
     (

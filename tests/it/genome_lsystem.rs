@@ -50,6 +50,7 @@ fn chain() -> LSystemGenome {
                         param: 0,
                         compare: Compare::Greater,
                         value: 0.0,
+                        read: false,
                     }),
                     successor: vec![
                         c(C::Forward, Some(1.0)),
@@ -62,7 +63,9 @@ fn chain() -> LSystemGenome {
                     successor: vec![c(C::Forward, Some(0.5)), c(C::Output, Some(1.0))],
                 },
             ],
+            read: None,
         }],
+        environment: Vec::new(),
     }
 }
 
@@ -339,7 +342,7 @@ fn a_grammar_is_rewritten_into_the_genomes_forms_and_its_limits_widened_to_fit()
     assert_eq!(
         e.0,
         "this file does not fit the lsystem genome: its rules cannot be the genome's:\n  \
-         line 3, column 21: 'chem' is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n  \
+         line 3, column 21: 'chem' reads or writes the environment, and the file has none ('environment:')\n  \
          line 3, column 10: the successor's brackets are not balanced\n  \
          line 4, column 7: 'mforward' is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n\
          nor can the string it derives:\n  \
@@ -359,7 +362,8 @@ fn a_grammar_is_rewritten_into_the_genomes_forms_and_its_limits_widened_to_fit()
         Some(Condition {
             param: 0,
             compare: Compare::Greater,
-            value: 2.0
+            value: 2.0,
+            read: false,
         })
     );
     assert_eq!(

@@ -154,31 +154,54 @@ fn eval_habitat_walks_that_habitat_alone_and_refuses_an_unknown_name() {
 }
 
 #[test]
-fn a_bad_habitats_table_is_refused_with_exit_code_2() {
+fn a_bad_habitats_table_is_refused_with_exit_code_2_at_its_line_and_column() {
     let dir = scratch_dir("habitats-bad");
     let config = config(&dir, 2, "");
     let text = std::fs::read_to_string(&config).unwrap();
-    for (from, to, message) in [
+    // The second habitat's table starts at line 23: `name = "rich"` is line 24.
+    for (from, to, message, at) in [
         (
             "name = \"rich\"",
             "name = \"poor\"",
             "[[task.habitats]] name must be unique among the habitats, not 'poor' a second time",
+            "habitats.toml:24:8",
         ),
         (
             "count = 2",
             "count = 0",
             "[task.trials] count must be 1 to 64, not 0",
+            "habitats.toml:15:9",
         ),
         (
             "count = 2",
             "count = 2\nroughness = 120",
             "[task.trials] roughness must be in [0, 99], not 120",
+            "habitats.toml:16:13",
         ),
         (
             "environment = [1]",
             "environment = [1]\n[task.habitats.world]\nslope = { degrees = 95 }",
             "[task.habitats.world.slope] degrees must be at least 0 and below 80, not 95 \
              (habitat 'rich')",
+            "habitats.toml:27:21",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1, nan]",
+            "[[task.habitats]] environment must be finite numbers (habitat 'rich'), not NaN",
+            "habitats.toml:25:15",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1]\ncolour = 3",
+            "unknown key colour in [[task.habitats]]",
+            "habitats.toml:26:1",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1]\n\n[[task.habitats]]\nname = \"\"",
+            "[[task.habitats]] name must be a word of printable characters, not ''",
+            "habitats.toml:28:8",
         ),
     ] {
         std::fs::write(&config, text.replace(from, to)).unwrap();
@@ -189,7 +212,8 @@ fn a_bad_habitats_table_is_refused_with_exit_code_2() {
             .arg(dir.join("run"))
             .output()
             .unwrap();
-        refused(&out, message);
+        let said = refused(&out, message);
+        assert!(said.contains(&format!("{at}\n")), "{at} not in {said}");
         assert!(!dir.join("run").exists());
     }
 }

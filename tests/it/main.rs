@@ -32,6 +32,7 @@ mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
 mod genome_plastic;
+mod genome_plastic_lsystem;
 mod habitats;
 mod json;
 mod key;

@@ -1,9 +1,10 @@
 //! `ontogeny view` end to end without a browser: the server's answers, bad input refused with
 //! exit code 2, flags that do not apply warned about. The pages drawn in headless Chromium are
-//! in [`browser`], ignored unless asked for.
+//! in [`browser`], ignored unless asked for; a run with habitats in [`habitats`].
 
 pub(crate) mod browser;
 mod defines;
+mod habitats;
 mod server;
 
 use std::io::{BufRead, BufReader, Read, Write};

@@ -6,18 +6,23 @@ use super::*;
 
 /// Grows `text` as `ontogeny grow --max-modules M --max-parts P` does, building only the
 /// last frame (`develop::grow` builds every frame the same way, so its last creature is this
-/// one); `seed` drives stochastic rules.
+/// one); `seed` drives stochastic rules; `env`, of the size of the text's `environment:`,
+/// replaces its initial values (as `--env` does).
 pub(crate) fn develop_text(
     text: &str,
     max_modules: usize,
     max_parts: usize,
     seed: u64,
+    env: Option<&Environment>,
 ) -> Result<Creature, DevelopError> {
     let lsys = LSystem::from_text("genome.lsys", text)
         .map_err(|d| DevelopError(format!("the genome does not compile: {d}")))?;
     let options = DeriveOptions {
         seed: Some(seed),
         max_modules,
+        env: env
+            .map(|e| e.values().iter().copied().enumerate().collect())
+            .unwrap_or_default(),
         ..DeriveOptions::default()
     };
     let build_options = BuildOptions {

@@ -9,11 +9,19 @@
 //!
 //! Every operator keeps the genome within [`LSystemLimits`] by construction: it draws sizes
 //! from what the limits leave free and never retries a draw.
+//!
+//! A genome may also read a chemical array (`environment:`): a production that reads
+//! ([`Production::read`]) is called with the read `?E(1, SLOT, 0)` right before every call,
+//! and its rules take the value read as `c` through their left context, so that a condition
+//! may test it as it tests a parameter (`?E(1, 0, c) < P1(n0, n1) : c > 0.5 --> ...`). The
+//! array is read before every derivation step, so the value tested is the array's where the
+//! call stands. The `chem` and `secrete` neurons read and write the array from the
+//! controller.
 
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng};
+use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown};
 use crate::creature::{Actuator, Creature, Role};
 use crate::develop::{BuildOptions, build, build_frame};
 use crate::environment::Environment;
@@ -24,6 +32,7 @@ use crate::lsystem::{DeriveOptions, LSystem, ModuleString};
 
 mod develop;
 mod operators;
+mod reads;
 mod seed;
 mod text;
 
@@ -75,6 +84,12 @@ pub struct LSystemLimits {
     /// A creature with more parts than this is invalid (the language's `--max-parts`).
     /// Hornby & Pollack capped their creatures' bars; 50 keeps evaluations fast.
     pub max_parts: usize,
+    /// The chance that operators make, change or remove an environment read or a `chem` or
+    /// `secrete` neuron (the `[ga]` key `environment_reads`, set by
+    /// [`Genome::allow_environment_reads`]; not a key of the limits). 0, the default, draws
+    /// exactly as a genome without reads always has.
+    #[serde(skip)]
+    pub environment_reads: f64,
 }
 
 impl Default for LSystemLimits {
@@ -87,6 +102,7 @@ impl Default for LSystemLimits {
             derivation_length: 6,
             max_modules: 1_000,
             max_parts: 50,
+            environment_reads: 0.0,
         }
     }
 }
@@ -129,6 +145,33 @@ impl LSystemLimits {
     fn param_count(&self) -> usize {
         self.params.min(8)
     }
+
+    /// The chance of making or removing a read, within [0, 1] (0 when not a number).
+    fn read_chance(&self) -> f64 {
+        if self.environment_reads.is_finite() {
+            self.environment_reads.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Most slots a genome's environment may have.
+const MAX_ENVIRONMENT: usize = 16;
+
+/// The name a reading production's rules give the value read (`?E(1, SLOT, c) < P1(...)`).
+pub(crate) const READ_VALUE: &str = "c";
+
+/// Range of the constants conditions on the value read compare with.
+const READ_RANGE: (f64, f64) = (0.0, 1.0);
+
+/// The commands that read or write the chemical array from the controller (the `chem`
+/// sensor and the `secrete` effector neurons): their argument is a slot of the array.
+pub const ENVIRONMENT_COMMANDS: [Command; 2] = [Command::Chem, Command::Secrete];
+
+/// Whether a command reads or writes the chemical array.
+fn is_environment_command(c: Command) -> bool {
+    ENVIRONMENT_COMMANDS.contains(&c)
 }
 
 /// The range an argument's random constants are drawn from and perturbations stay in.
@@ -240,15 +283,31 @@ impl Compare {
     }
 }
 
-/// A condition: parameter `n<param>` compared with a constant.
+/// A condition: parameter `n<param>`, or the value read, compared with a constant.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Condition {
-    /// The parameter's index.
+    /// The parameter's index (0, and not used, when the condition tests the value read).
     pub param: usize,
     /// The comparison.
     pub compare: Compare,
     /// The constant.
     pub value: f64,
+    /// Whether the condition tests the value its production reads from the chemical array
+    /// (`c`), not a parameter: only in a production that reads.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub read: bool,
+}
+
+impl Condition {
+    /// The condition as a rule's guard writes it (`n0 < 2`, `c > 0.5`).
+    pub(crate) fn text(&self) -> String {
+        let subject = if self.read {
+            READ_VALUE.to_string()
+        } else {
+            format!("n{}", self.param)
+        };
+        format!("{subject} {} {}", self.compare.symbol(), self.value)
+    }
 }
 
 /// One item of a successor.
@@ -280,6 +339,11 @@ pub struct Pair {
 pub struct Production {
     /// The pairs (at least one).
     pub pairs: Vec<Pair>,
+    /// The slot of the chemical array the production reads, if it reads one: every call of
+    /// it is written with the read `?E(1, SLOT, 0)` right before it, and its conditions may
+    /// test the value read.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub read: Option<usize>,
 }
 
 /// Hornby & Pollack's L-system genome.
@@ -291,6 +355,10 @@ pub struct LSystemGenome {
     pub derivation_length: u64,
     /// The productions; `P0` is the start.
     pub productions: Vec<Production>,
+    /// The chemical array's initial values (the printed `environment:`); empty when the
+    /// genome has none. Its length is the array's size.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub environment: Vec<f64>,
 }
 
 // ---- the genome ----------------------------------------------------------------------
@@ -331,6 +399,16 @@ impl LSystemGenome {
                 self.derivation_length, limits.derivation_length
             ));
         }
+        if self.environment.len() > MAX_ENVIRONMENT {
+            return Err(format!(
+                "its environment has {} slots, more than {MAX_ENVIRONMENT}",
+                self.environment.len()
+            ));
+        }
+        if let Some(v) = self.environment.iter().find(|v| !v.is_finite()) {
+            return Err(format!("its environment holds {v}, not a finite number"));
+        }
+        let slots = self.environment.len();
         let arg_ok = |a: &Arg| match *a {
             Arg::Const(c) => c.is_finite(),
             Arg::Plus(i, c) | Arg::Times(i, c) => i < params && c.is_finite(),
@@ -343,11 +421,26 @@ impl LSystemGenome {
                     limits.pairs()
                 ));
             }
+            if let Some(slot) = p.read
+                && slot >= slots
+            {
+                return Err(format!(
+                    "P{i} reads slot {slot} of an environment of {slots} slot(s)"
+                ));
+            }
             for pair in &p.pairs {
-                if let Some(c) = pair.condition
-                    && !(c.param < params && c.value.is_finite())
-                {
-                    return Err(format!("P{i} has a condition on a missing parameter"));
+                if let Some(c) = pair.condition {
+                    if !c.value.is_finite() {
+                        return Err(format!("P{i} has a condition on {}", c.value));
+                    }
+                    if c.read && p.read.is_none() {
+                        return Err(format!(
+                            "P{i} has a condition on the value read, and reads nothing"
+                        ));
+                    }
+                    if !c.read && c.param >= params {
+                        return Err(format!("P{i} has a condition on a missing parameter"));
+                    }
                 }
                 if pair.successor.len() > limits.max_successor {
                     return Err(format!(
@@ -360,6 +453,30 @@ impl LSystemGenome {
                     return Err(format!("a successor of P{i} has unbalanced brackets"));
                 }
                 for item in &pair.successor {
+                    if let Item::Command(c, arg) = item
+                        && is_environment_command(*c)
+                    {
+                        match arg {
+                            Some(Arg::Const(v))
+                                if *v >= 0.0 && v.fract() == 0.0 && *v < slots as f64 => {}
+                            _ if slots == 0 => {
+                                return Err(format!(
+                                    "a successor of P{i} has {}, which needs an environment \
+                                     ('environment:'), and the genome has none",
+                                    c.name()
+                                ));
+                            }
+                            _ => {
+                                return Err(format!(
+                                    "a successor of P{i} has {} without a slot of the \
+                                     environment, 0 to {}, as its argument",
+                                    c.name(),
+                                    slots - 1
+                                ));
+                            }
+                        }
+                        continue;
+                    }
                     let ok = match item {
                         Item::Push | Item::Pop => true,
                         Item::Command(c, arg) => match arg {
@@ -401,8 +518,52 @@ impl Genome for LSystemGenome {
         self.child(other, limits, rng)
     }
 
+    fn allow_environment_reads(limits: &mut LSystemLimits, probability: f64) {
+        limits.environment_reads = probability;
+    }
+
     fn develop(&self, limits: &LSystemLimits, seed: u64) -> Result<Creature, DevelopError> {
-        develop_text(&self.to_text(), limits.max_modules, limits.max_parts, seed)
+        develop_text(
+            &self.to_text(),
+            limits.max_modules,
+            limits.max_parts,
+            seed,
+            None,
+        )
+    }
+
+    fn environment(&self) -> Environment {
+        Environment::new(self.environment.clone())
+    }
+
+    fn develop_in(
+        &self,
+        limits: &LSystemLimits,
+        seed: u64,
+        env: &Environment,
+    ) -> Result<Creature, DevelopError> {
+        check_environment_size(self.environment.len(), env)?;
+        let env = (!self.environment.is_empty()).then_some(env);
+        develop_text(
+            &self.to_text(),
+            limits.max_modules,
+            limits.max_parts,
+            seed,
+            env,
+        )
+    }
+
+    fn show(&self) -> String {
+        let mut shown = grammar_shown(&self.to_text());
+        let reads = self.environment_reads();
+        if !reads.is_empty() {
+            shown.push_str("\nenvironment reads:");
+            for line in reads {
+                shown.push_str("\n  ");
+                shown.push_str(&line);
+            }
+        }
+        shown
     }
 
     fn to_text(&self) -> String {

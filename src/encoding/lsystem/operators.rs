@@ -65,6 +65,7 @@ pub(super) fn random_condition(params: usize, rng: &mut Rng) -> Option<Condition
         param: rng.random_range(0..params),
         compare: Compare::ALL[rng.random_range(0..4)],
         value: uniform_on_grid(rng, PARAM_RANGE, GRID),
+        read: false,
     })
 }
 
@@ -216,7 +217,7 @@ impl LSystemGenome {
                 }
             })
             .collect();
-        Production { pairs }
+        Production { pairs, read: None }
     }
 
     /// Mutates one successor in place (its items and runs).
@@ -301,13 +302,16 @@ impl LSystemGenome {
         let productions = (0..count)
             .map(|home| LSystemGenome::random_production(home, count, limits, rng))
             .collect();
-        LSystemGenome {
+        let mut genome = LSystemGenome {
             start: (0..limits.param_count())
                 .map(|_| uniform_on_grid(rng, PARAM_RANGE, GRID))
                 .collect(),
             derivation_length: limits.derivation_length,
             productions,
-        }
+            environment: Vec::new(),
+        };
+        genome.add_random_reads(limits, rng);
+        genome
     }
 
     /// A mutant: every mutation site changes with probability `rate`.
@@ -350,9 +354,8 @@ impl LSystemGenome {
                 // Change a condition: perturb its constant, or draw a new one (or none).
                 if rng.random_bool(rate) {
                     pair.condition = match pair.condition {
-                        Some(mut c) if rng.random_bool(0.5) => {
-                            c.value = perturb_stepwise(c.value, PARAM_RANGE, 1.0 / GRID, GRID, rng);
-                            Some(c)
+                        Some(c) if rng.random_bool(0.5) => {
+                            Some(super::reads::perturbed_condition(c, rng))
                         }
                         _ if rng.random_bool(0.2) => None,
                         _ => random_condition(params, rng),
@@ -361,6 +364,8 @@ impl LSystemGenome {
                 LSystemGenome::mutate_successor(&mut pair.successor, home, n, limits, rate, rng);
             }
         }
+        g.mutate_reads(limits, rate, rng);
+        g.fit_environment();
         g
     }
 
@@ -425,6 +430,10 @@ impl LSystemGenome {
             }
         }
         balance(target);
+        if other.environment.len() > child.environment.len() {
+            child.environment = other.environment.clone();
+        }
+        child.fit_environment();
         Some(child)
     }
 }
@@ -504,6 +513,7 @@ mod tests {
                 condition: None,
                 successor,
             }],
+            read: None,
         };
         let mut g = LSystemGenome {
             start: vec![],
@@ -513,6 +523,7 @@ mod tests {
                 production(vec![fwd(1.0)]),
                 production(vec![call(1)]),
             ],
+            environment: Vec::new(),
         };
         g.remove_production(1);
         assert_eq!(

@@ -11,6 +11,9 @@ use crate::encoding::direct::{NOT_USED, derived_items, textbook_items, without_f
 use crate::encoding::limits::{CheckedLimits, MOST_MODULES};
 use crate::lsystem::TurtleHeaders;
 
+/// The module through which a grammar reads the environment.
+const QUERY: &str = "?E";
+
 /// The most items a successor may hold under any limits (`max_successor`'s range).
 const MOST_SUCCESSOR: usize = 256;
 
@@ -130,6 +133,35 @@ fn argument(e: &Expr, formals: &[String]) -> Option<Arg> {
     }
 }
 
+/// The slot of a read as a genome writes it before a call, `?E(1, SLOT, 0)`.
+fn read_slot(call: &ModuleCall) -> Option<usize> {
+    if call.name != QUERY {
+        return None;
+    }
+    match call.args.as_slice() {
+        [mode, slot, value] => {
+            let (mode, slot, value) = (constant(mode)?, constant(slot)?, constant(value)?);
+            (mode == 1.0 && value == 0.0 && slot >= 0.0 && slot.fract() == 0.0)
+                .then_some(slot as usize)
+        }
+        _ => None,
+    }
+}
+
+/// The slot and the value's name of a read as a production's left context,
+/// `?E(1, SLOT, c)`.
+fn read_pattern(pattern: &lang::ast::PatternModule) -> Option<(usize, String)> {
+    let [(mode, _), (slot, _), (value, _)] = pattern.params.as_slice() else {
+        return None;
+    };
+    let number = |s: &str| s.parse::<f64>().ok();
+    if number(mode) != Some(1.0) || number(value).is_some() {
+        return None;
+    }
+    let slot = number(slot).filter(|s| *s >= 0.0 && s.fract() == 0.0)?;
+    Some((slot as usize, value.clone()))
+}
+
 /// The file's rules as the genome's productions, with notes on what was rewritten; `Err`
 /// lists every reason they cannot be (each with its line and column).
 fn structural(
@@ -150,12 +182,7 @@ fn structural(
     if lsys.is_continuous() {
         reasons.push("it develops in continuous time; the genome derives discrete steps".into());
     }
-    if let Some((_, span)) = &file.environment {
-        reasons.push(format!(
-            "{}: it has an environment; the genome has none",
-            place(*span)
-        ));
-    }
+    let environment = lsys.environment().values().to_vec();
     if let Some((lang::ast::Heading::Up, span)) = &file.heading {
         reasons.push(format!(
             "{}: its turtle starts heading up ('heading: up'); the genome's starts on the ground",
@@ -174,7 +201,16 @@ fn structural(
         .collect();
     // The axiom is kept as P0's starting values when it is one call of a production with
     // numbers; else it becomes the successor of a new first production.
-    let kept_axiom = match axiom.as_slice() {
+    // A read written before the start call is the start production's, as the genome
+    // writes it: `axiom: ?E(1, 0, 0) P0(1, 2)`.
+    let (axiom_read, axiom_call) = match axiom.as_slice() {
+        [read, start] => match read_slot(read) {
+            Some(slot) => (Some((slot, read.span)), std::slice::from_ref(start)),
+            None => (None, axiom.as_slice()),
+        },
+        _ => (None, axiom.as_slice()),
+    };
+    let kept_axiom = match axiom_call {
         [start] if rewritten_names.contains(&&start.name) => {
             let values: Option<Vec<f64>> = start.args.iter().map(constant).collect();
             let arity = file
@@ -188,7 +224,7 @@ fn structural(
     };
     let mut names: Vec<String> = Vec::new();
     match &kept_axiom {
-        Some(_) => names.push(axiom[0].name.clone()),
+        Some(_) => names.push(axiom_call[0].name.clone()),
         None => {
             names.push(String::new()); // the new first production
             notes.push(format!(
@@ -203,7 +239,18 @@ fn structural(
         }
     }
     let mut params = 0usize;
-    let mut productions: Vec<Production> = vec![Production { pairs: Vec::new() }; names.len()];
+    let mut productions: Vec<Production> = vec![
+        Production {
+            pairs: Vec::new(),
+            read: None,
+        };
+        names.len()
+    ];
+    // The reads written before calls: (production called, slot read or none, where).
+    let mut calls: Vec<(usize, Option<usize>, lang::Span)> = Vec::new();
+    if let (Some((slot, span)), Some(_)) = (axiom_read, &kept_axiom) {
+        calls.push((0, Some(slot), span));
+    }
     for rule in &file.rules {
         let at = place(rule.span);
         if rule.section == Section::Interpretation {
@@ -212,10 +259,32 @@ fn structural(
             ));
             continue;
         }
-        if !rule.left.is_empty() || !rule.right.is_empty() {
-            reasons.push(format!(
-                "{at}: context-sensitive rules are not part of the genome"
-            ));
+        // A production that reads: `?E(1, SLOT, c) < P1(n0, n1)`, the value read named by
+        // its last formal.
+        let mut read_name: Option<String> = None;
+        match (rule.left.as_slice(), rule.right.is_empty()) {
+            ([], true) => {}
+            ([read], true) if read.name == QUERY => match read_pattern(read) {
+                Some((slot, name)) => {
+                    let k = names.iter().position(|n| *n == rule.predecessor.name);
+                    if let Some(k) = k {
+                        match productions[k].read {
+                            Some(other) if other != slot => reasons.push(format!(
+                                "{at}: {} reads slot {other} in another rule; a production reads one slot",
+                                rule.predecessor.name
+                            )),
+                            _ => productions[k].read = Some(slot),
+                        }
+                    }
+                    read_name = Some(name);
+                }
+                None => reasons.push(format!(
+                    "{at}: a production's read is written as its left context ?E(1, SLOT, {READ_VALUE}), with a whole slot and a name for the value read"
+                )),
+            },
+            _ => reasons.push(format!(
+                "{at}: context-sensitive rules are not part of the genome (but a read of the environment, ?E(1, SLOT, {READ_VALUE}) <)"
+            )),
         }
         if rule.probability.is_some() {
             reasons.push(format!("{at}: stochastic rules are not part of the genome"));
@@ -254,8 +323,10 @@ fn structural(
                         BinaryOp::Ge => Compare::GreaterEqual,
                         _ => return None,
                     };
+                    // A parameter (Some(index)), or the value read (Some(None)).
                     let param = |e: &Expr| match e {
-                        Expr::Name(n, _) => formals.iter().position(|f| f == n),
+                        Expr::Name(n, _) if read_name.as_ref() == Some(n) => Some(None),
+                        Expr::Name(n, _) => formals.iter().position(|f| f == n).map(Some),
                         _ => None,
                     };
                     match (param(lhs), constant(rhs), param(rhs), constant(lhs)) {
@@ -266,13 +337,14 @@ fn structural(
                 };
                 match read() {
                     Some((param, value, compare)) => Some(Condition {
-                        param,
+                        param: param.unwrap_or(0),
                         compare,
                         value,
+                        read: param.is_none(),
                     }),
                     None => {
                         reasons.push(format!(
-                            "{}: the condition '{}' is not a parameter compared with a number",
+                            "{}: the condition '{}' is not a parameter (or the value read) compared with a number",
                             place(g.span()),
                             snippet(g.span())
                         ));
@@ -289,22 +361,55 @@ fn structural(
             &place,
             &snippet,
             &mut reasons,
+            &mut calls,
+            environment.len(),
         );
         productions[k].pairs.push(Pair {
             condition,
             successor,
         });
     }
+    let axiom_kept = kept_axiom.is_some();
     let start = match kept_axiom {
         Some(values) => values,
         None => {
             productions[0].pairs.push(Pair {
                 condition: None,
-                successor: items(axiom, &names, &[], &turtle, &place, &snippet, &mut reasons),
+                successor: items(
+                    axiom,
+                    &names,
+                    &[],
+                    &turtle,
+                    &place,
+                    &snippet,
+                    &mut reasons,
+                    &mut calls,
+                    environment.len(),
+                ),
             });
             Vec::new()
         }
     };
+    // A production that reads has its read written right before every call of it, and no
+    // other production has one.
+    if axiom_kept && axiom_read.is_none() {
+        calls.push((0, None, axiom_call[0].span));
+    }
+    for (k, slot, span) in calls {
+        let name = if names[k].is_empty() { "P0" } else { &names[k] };
+        match (productions[k].read, slot) {
+            (Some(want), Some(got)) if want == got => {}
+            (Some(want), _) => reasons.push(format!(
+                "{}: {name} reads slot {want}: write ?E(1, {want}, 0) right before every call of it",
+                place(span)
+            )),
+            (None, Some(_)) => reasons.push(format!(
+                "{}: a read ?E(1, SLOT, 0) stands before a call of {name}, whose rules read nothing",
+                place(span)
+            )),
+            (None, None) => {}
+        }
+    }
     if !reasons.is_empty() {
         return Err(reasons);
     }
@@ -327,6 +432,7 @@ fn structural(
         start,
         derivation_length,
         productions,
+        environment,
     };
     Ok((genome, notes))
 }
@@ -335,16 +441,21 @@ fn structural(
 /// building command of the genome's nor a bracket, and has no rule, builds nothing and is
 /// dropped; the textbook's symbols become their exact equivalents
 /// ([`textbook_items`]); what cannot be represented goes to `reasons`.
+#[allow(clippy::too_many_arguments)]
 fn items(
-    calls: &[ModuleCall],
+    modules: &[ModuleCall],
     names: &[String],
     formals: &[String],
     turtle: &TurtleHeaders,
     place: &dyn Fn(lang::Span) -> String,
     snippet: &dyn Fn(lang::Span) -> String,
     reasons: &mut Vec<String>,
+    calls: &mut Vec<(usize, Option<usize>, lang::Span)>,
+    slots: usize,
 ) -> Vec<Item> {
     let mut out = Vec::new();
+    // A read just written, waiting for the call it stands before.
+    let mut read: Option<(usize, lang::Span)> = None;
     let arg = |e: &Expr, reasons: &mut Vec<String>| {
         argument(e, formals).unwrap_or_else(|| {
             reasons.push(format!(
@@ -355,12 +466,49 @@ fn items(
             Arg::Const(0.0)
         })
     };
-    for call in calls {
+    for call in modules {
+        if let Some((_, span)) = read
+            && !names.contains(&call.name)
+        {
+            reasons.push(format!(
+                "{}: a read ?E(1, SLOT, 0) stands right before a call of a production, not before '{}'",
+                place(span),
+                call.name
+            ));
+            read = None;
+        }
+        if call.name == QUERY {
+            match read_slot(call) {
+                Some(slot) => read = Some((slot, call.span)),
+                None => reasons.push(format!(
+                    "{}: a genome's read of the environment is written ?E(1, SLOT, 0), right before a call of a production",
+                    place(call.span)
+                )),
+            }
+            continue;
+        }
         match call.name.as_str() {
             "[" => out.push(Item::Push),
             "]" => out.push(Item::Pop),
             name => {
-                if let Some(c) = Command::building_from_name(name) {
+                if let Some(c) =
+                    Command::from_name(name).filter(|c| ENVIRONMENT_COMMANDS.contains(c))
+                {
+                    match call.args.as_slice() {
+                        _ if slots == 0 => reasons.push(format!(
+                            "{}: '{}' reads or writes the environment, and the file has none ('environment:')",
+                            place(call.span),
+                            c.name()
+                        )),
+                        [a] => out.push(Item::Command(c, Some(arg(a, reasons)))),
+                        _ => reasons.push(format!(
+                            "{}: write '{}' with the slot it reads or writes, as {}(0)",
+                            place(call.span),
+                            c.name(),
+                            c.name()
+                        )),
+                    }
+                } else if let Some(c) = Command::building_from_name(name) {
                     match call.args.as_slice() {
                         [] => out.push(Item::Command(c, None)),
                         [a] if c.argument() != Argument::None => {
@@ -389,6 +537,7 @@ fn items(
                 } else if let Some(k) = names.iter().position(|n| n == name) {
                     let args = call.args.iter().map(|a| arg(a, reasons)).collect();
                     out.push(Item::Call(k, args));
+                    calls.push((k, read.take().map(|(slot, _)| slot), call.span));
                 } else if lang::is_builtin_command(name) || name == "{" || name == "}" {
                     reasons.push(format!(
                         "{}: '{name}' is not a command the genome uses ({NOT_USED})",
@@ -399,8 +548,14 @@ fn items(
             }
         }
     }
+    if let Some((_, span)) = read {
+        reasons.push(format!(
+            "{}: a read ?E(1, SLOT, 0) ends the successor; it stands right before a call of a production",
+            place(span)
+        ));
+    }
     if !super::is_balanced(&out)
-        && let Some(first) = calls.first()
+        && let Some(first) = modules.first()
     {
         reasons.push(format!(
             "{}: the successor's brackets are not balanced",
@@ -532,7 +687,9 @@ pub(super) fn seed_from_lsys(
                             condition: None,
                             successor: items,
                         }],
+                        read: None,
                     }],
+                    environment: Vec::new(),
                 };
                 (genome, vec![note])
             }

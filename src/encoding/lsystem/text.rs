@@ -19,33 +19,60 @@ impl LSystemGenome {
             self.start.len()
         ));
         out.push_str(&format!("derivation length: {}\n", self.derivation_length));
+        if !self.environment.is_empty() {
+            let values: Vec<String> = self.environment.iter().map(f64::to_string).collect();
+            out.push_str(&format!("environment: {}\n", values.join(" ")));
+        }
         let start: Vec<String> = self.start.iter().map(|v| format!("{v}")).collect();
+        let read = self.productions.first().and_then(|p| p.read);
+        let read = read
+            .map(|slot| format!("{} ", read_text(slot)))
+            .unwrap_or_default();
         if start.is_empty() {
-            out.push_str("axiom: P0\n\n");
+            out.push_str(&format!("axiom: {read}P0\n\n"));
         } else {
-            out.push_str(&format!("axiom: P0({})\n\n", start.join(", ")));
+            out.push_str(&format!("axiom: {read}P0({})\n\n", start.join(", ")));
         }
         for (i, p) in self.productions.iter().enumerate() {
+            let context = p
+                .read
+                .map(|slot| format!("?E(1, {slot}, {READ_VALUE}) < "))
+                .unwrap_or_default();
             for pair in &p.pairs {
-                out.push_str(&format!("P{i}{formal}"));
+                out.push_str(&format!("{context}P{i}{formal}"));
                 if let Some(c) = pair.condition {
-                    out.push_str(&format!(
-                        " : n{} {} {}",
-                        c.param,
-                        c.compare.symbol(),
-                        c.value
-                    ));
+                    out.push_str(&format!(" : {}", c.text()));
                 }
                 out.push_str(" -->");
-                for item in &pair.successor {
-                    out.push(' ');
-                    push_item_text(item, &mut out);
-                }
+                out.push_str(&self.successor_text(&pair.successor));
                 out.push('\n');
             }
         }
         out
     }
+
+    /// A successor as text, each item after a space, with the read of a production that
+    /// reads right before each call of it.
+    pub(crate) fn successor_text(&self, successor: &[Item]) -> String {
+        let mut out = String::new();
+        for item in successor {
+            out.push(' ');
+            if let Item::Call(t, _) = item
+                && let Some(slot) = self.productions.get(*t).and_then(|p| p.read)
+            {
+                out.push_str(&read_text(slot));
+                out.push(' ');
+            }
+            push_item_text(item, &mut out);
+        }
+        out
+    }
+}
+
+/// The read of `slot`, as a genome's text writes it before a call of a production that
+/// reads.
+pub(crate) fn read_text(slot: usize) -> String {
+    format!("?E(1, {slot}, 0)")
 }
 
 /// Appends an item as the language writes it (`[`, `forward(0.5)`, `P1(n0 - 1, 2)`).

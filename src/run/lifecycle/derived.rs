@@ -18,7 +18,8 @@ use crate::evolve::ga::{Fallbacks, Individual, ranking};
 use crate::output;
 use crate::run::champion::ChampionRecord;
 use crate::run::folder::{LOG_FILE, PLOT_FILE};
-use crate::run::plot::{PlotError, fitness_svg};
+use crate::run::plot::{PlotError, fitness_svg_with_spreads};
+use crate::run::spread::{Spread, stored_spreads};
 use crate::run::store::{FineEvaluation, GenerationRecord};
 
 /// `fitness.svg` is redrawn after every generation whose index is a multiple of this (0, 10,
@@ -36,6 +37,8 @@ pub fn plot_due(index: u32, generations: u32) -> bool {
 pub(super) struct Written {
     /// Every stored generation's figures, for the plot.
     generations: Vec<GenerationRecord>,
+    /// The spread of each generation's best over its walks (none without habitats or trials).
+    spreads: Vec<Spread>,
     /// How many of them the plot shows.
     drawn: usize,
     /// The bytes of `log.txt`'s generation lines ...
@@ -62,8 +65,15 @@ impl<G: Genome> Run<G> {
             let population = self.population(last.index)?;
             self.write_best(&population, last)?;
         }
-        self.draw(&generations)?;
+        // The best's walks are in its record: read only for a run that has some.
+        let spreads = if self.config.task.is_plain() {
+            Vec::new()
+        } else {
+            stored_spreads(&self.store)?
+        };
+        self.draw(&generations, &spreads)?;
         self.written = Some(Written {
+            spreads,
             drawn: generations.len(),
             lines: lines.len() as u64,
             length: (lines.len() + note.len()) as u64,
@@ -87,6 +97,11 @@ impl<G: Genome> Run<G> {
             return self.write_derived_files();
         };
         written.generations.push(stats.clone());
+        if let Some(&best) = ranking(population).first() {
+            written
+                .spreads
+                .extend(Spread::of(stats.index, &population[best].evaluation));
+        }
         let line = self.log_line(stats);
         let note = fallback_note(fallen, G::NAME, stats.index);
         let log = self.dir.join(LOG_FILE);
@@ -107,7 +122,7 @@ impl<G: Genome> Run<G> {
         written.length = written.lines + note.len() as u64;
         self.write_best(population, stats)?;
         if plot_due(stats.index, self.config.ga.generations as u32) {
-            self.draw(&written.generations)?;
+            self.draw(&written.generations, &written.spreads)?;
             written.drawn = written.generations.len();
         }
         self.written = Some(written);
@@ -119,7 +134,7 @@ impl<G: Genome> Run<G> {
         if let Some(written) = &self.written
             && written.drawn < written.generations.len()
         {
-            self.draw(&written.generations)?;
+            self.draw(&written.generations, &written.spreads)?;
         }
         if let Some(written) = &mut self.written {
             written.drawn = written.generations.len();
@@ -182,8 +197,9 @@ impl<G: Genome> Run<G> {
         Ok(())
     }
 
-    /// Draws `fitness.svg` of `generations`.
-    fn draw(&self, generations: &[GenerationRecord]) -> Result<(), RunError> {
+    /// Draws `fitness.svg` of `generations`, with the spread of each one's best over its
+    /// walks, `spreads` (none without habitats or trials).
+    fn draw(&self, generations: &[GenerationRecord], spreads: &[Spread]) -> Result<(), RunError> {
         let title = format!(
             "{}: {} on the {} task",
             self.dir.display(),
@@ -191,7 +207,14 @@ impl<G: Genome> Run<G> {
             self.config.task.task.name()
         );
         let y_desc = format!("fitness: {}", self.config.task.fitness_measure());
-        fitness_svg(&self.dir.join(PLOT_FILE), generations, &title, &y_desc).map_err(|e| match e {
+        fitness_svg_with_spreads(
+            &self.dir.join(PLOT_FILE),
+            generations,
+            spreads,
+            &title,
+            &y_desc,
+        )
+        .map_err(|e| match e {
             PlotError::Output(e) => RunError::Output(e),
             other => RunError::Plot(other.to_string()),
         })

@@ -732,7 +732,12 @@ function showRun(data) {
       if (request !== shown) return;
       $('status').textContent = '';
       const heading = [named(gen, ind)];
-      if (walk.stored_fitness !== walk.fitness) {
+      if (walk.habitat !== null && walk.habitat !== undefined) {
+        // One trial of one habitat: the run stored the aggregate of all of them.
+        heading.push(`in habitat ${walk.habitat}, its first trial`);
+        heading.push(`the run stored the aggregate of every habitat and trial: ${walk.stored_fitness}`);
+        body.dataset.habitat = walk.habitat;
+      } else if (walk.stored_fitness !== walk.fitness) {
         heading.push(`note: the run stored fitness ${walk.stored_fitness}; this evaluation differs`);
       }
       showRecording(walk, heading);
@@ -757,7 +762,8 @@ function showRun(data) {
       frame(box, Math.min(box.min.y, 0));
       drawCreature(c);
       drawBrain(c.brain, c.joints);
-      describe(c, [named(gen, ind), ind.status === 'ok' ? `fitness: ${fmt(ind.fitness)}` : `fitness: ${ind.fitness} (the failure floor)`, `status: ${ind.status}`]);
+      if (one.habitat) body.dataset.habitat = one.habitat;
+      describe(c, [named(gen, ind) + (one.habitat ? `, in habitat ${one.habitat}` : ''), ind.status === 'ok' ? `fitness: ${fmt(ind.fitness)}` : `fitness: ${ind.fitness} (the failure floor)`, `status: ${ind.status}`]);
       body.dataset.generation = String(gen);
       body.dataset.individual = String(ind.index);
     } catch (e) {
@@ -829,8 +835,8 @@ function fmt(x) {
 }
 
 // The run's fitness per generation: best and mean, and (dashed, in the best's colour) the best
-// re-walked at the fine reference where the run did that, as fitness.svg draws them; the y
-// axis says what the fitness measures and its unit (`yLabel`).
+// re-walked at the fine reference where the run did that, and for a run with habitats or trials
+// the band of the best's walks, as fitness.svg draws them; the y axis says what the fitness measures and its unit (`yLabel`).
 function drawPlot(generations, yLabel) {
   const canvas = $('plot');
   const g = canvas.getContext('2d');
@@ -840,7 +846,10 @@ function drawPlot(generations, yLabel) {
   body.dataset.plotFine = fine ? 'yes' : 'no';
   body.dataset.plotY = yLabel || '';
   // Failed evaluations score a floor far below the rest: plot what is above it.
-  const values = generations.flatMap((x) => [x.best, x.mean, x.best_fine]).filter((v) => v !== null && v !== undefined && v > -1e5);
+  // A run with habitats or trials: the best's walks, lowest to highest, shaded around it.
+  const spread = generations.some((x) => x.spread_low !== undefined && x.spread_low !== null);
+  body.dataset.plotSpread = spread ? 'yes' : 'no';
+  const values = generations.flatMap((x) => [x.best, x.mean, x.best_fine, x.spread_low, x.spread_high]).filter((v) => v !== null && v !== undefined && v > -1e5);
   if (!values.length) return;
   let lo = Math.min(...values), hi = Math.max(...values);
   if (hi - lo < 1e-9) { lo -= 1; hi += 1; }
@@ -869,6 +878,25 @@ function drawPlot(generations, yLabel) {
     g.stroke();
     g.setLineDash([]);
   };
+  if (spread) {
+    // One shaded band per run of generations that have a spread.
+    g.fillStyle = 'rgba(0, 114, 178, 0.18)';
+    let run = [];
+    const shade = () => {
+      if (run.length) {
+        g.beginPath();
+        run.forEach(([i, x], k) => (k ? g.lineTo(X(i), Y(x.spread_high)) : g.moveTo(X(i), Y(x.spread_high))));
+        [...run].reverse().forEach(([i, x]) => g.lineTo(X(i), Y(x.spread_low)));
+        g.closePath();
+        if (run.length === 1) { g.strokeStyle = 'rgba(0, 114, 178, 0.4)'; g.lineWidth = 4; g.stroke(); } else g.fill();
+      }
+      run = [];
+    };
+    generations.forEach((x, i) => {
+      if (x.spread_low === null || x.spread_low === undefined) shade(); else run.push([i, x]);
+    });
+    shade();
+  }
   line('mean', '#e69f00');
   line('best', '#0072b2');
   if (fine) line('best_fine', '#0072b2', true);
@@ -876,6 +904,7 @@ function drawPlot(generations, yLabel) {
   g.fillStyle = '#0072b2'; g.fillText('best', L + 6, T + 10);
   g.fillStyle = '#e69f00'; g.fillText('mean', L + 36, T + 10);
   if (fine) { g.fillStyle = '#0072b2'; g.fillText('- - fine reference', L + 70, T + 10); }
+  if (spread) { g.fillStyle = '#0072b2'; g.fillText("band: best's walks, lowest to highest", L + 6, T + 22); }
 }
 
 // ---------------------------------------------------------------- comparison pages

@@ -1,0 +1,95 @@
+"""Habitats from Python: ``evaluate(config=..., habitat=...)`` equals ``ontogeny eval --config``
+(each habitat's and trial's walk in ``Evaluation.habitats``), bad names and clashing keywords
+raise ``ValueError``, and ``Run.individuals()`` gives each individual's walks."""
+
+import json
+
+import pytest
+
+import ontogeny
+
+CHAIN = "benches/chain10.lsys"
+
+CONFIG = """\
+[task]
+task = "walker"
+
+[task.walker]
+seconds = 0.5
+
+[task.trials]
+count = 2
+offset = 0.2
+
+[[task.habitats]]
+name = "level"
+
+[[task.habitats]]
+name = "hill"
+[task.habitats.world]
+slope = { degrees = 10 }
+"""
+
+
+@pytest.fixture
+def config(tmp_path):
+    path = tmp_path / "habitats.toml"
+    path.write_text(CONFIG)
+    return path
+
+
+def test_evaluate_in_habitats_equals_the_command_lines_eval(root, cli, config):
+    creature = ontogeny.load(root / CHAIN)
+    ours = ontogeny.evaluate(creature, config=config)
+    theirs = cli.json("eval", CHAIN, "--config", config, "--json")
+    assert [(w["name"], w["trial"]) for w in ours.habitats] == [
+        ("level", 0), ("level", 1), ("hill", 0), ("hill", 1),
+    ]
+    assert ours.habitats == theirs["habitats"]
+    assert ours.fitness == theirs["fitness"]
+    assert json.loads(ours.to_json()) == theirs
+    hill = ontogeny.evaluate(creature, config=config, habitat="hill")
+    theirs = cli.json("eval", CHAIN, "--config", config, "--habitat", "hill", "--json")
+    assert hill.habitats == theirs["habitats"] == ours.habitats[2:]
+    assert hill.fitness == theirs["fitness"]
+    # A recorded evaluation plays the habitat's first trial; the fitness is still the aggregate.
+    recorded = ontogeny.evaluate(creature, config=config, habitat="hill", record=True)
+    assert recorded.fitness == hill.fitness
+    assert recorded.trajectory.shape[1] == 10
+    # Without habitats: no walks of its own.
+    assert ontogeny.evaluate(creature, seconds=0.5).habitats == []
+
+
+def test_a_bad_habitat_or_a_clashing_keyword_raises_value_error(root, config, tmp_path):
+    creature = ontogeny.load(root / CHAIN)
+    with pytest.raises(ValueError, match="no habitat 'marsh'; the habitats are level, hill"):
+        ontogeny.evaluate(creature, config=config, habitat="marsh")
+    with pytest.raises(ValueError, match=r"seconds= cannot be given with it"):
+        ontogeny.evaluate(creature, config=config, seconds=2)
+    with pytest.raises(ValueError, match=r"habitat='hill' names one of a config's"):
+        ontogeny.evaluate(creature, habitat="hill")
+    grown = tmp_path / "grown.toml"
+    grown.write_text(CONFIG.replace('name = "level"', 'name = "level"\nenvironment = [1]'))
+    with pytest.raises(ValueError, match="habitat 'level' sets the chemical array"):
+        ontogeny.evaluate(creature, config=grown)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(CONFIG.replace("degrees = 10", "degrees = 95"))
+    with pytest.raises(ValueError, match=r"bad.toml:17:21"):
+        ontogeny.evaluate(creature, config=bad)
+
+
+def test_a_runs_individuals_carry_their_walks_in_each_habitat(tmp_path, config):
+    text = 'encoding = "direct"\nseed = 3\n\n[ga]\npopulation = 4\ngenerations = 1\n\n' + config.read_text()
+    path = tmp_path / "run.toml"
+    path.write_text(text)
+    run = ontogeny.evolve(path, out=tmp_path / "run")
+    for individual in run.individuals(0):
+        walks = individual["habitats"]
+        assert [(w["name"], w["trial"]) for w in walks] == [
+            ("level", 0), ("level", 1), ("hill", 0), ("hill", 1),
+        ]
+        if individual["status"] == "ok":
+            fitnesses = sorted(w["fitness"] for w in walks)
+            assert individual["fitness"] == sum(fitnesses) / 4
+    plain = ontogeny.evolve(out=tmp_path / "plain", pop=4, gens=1, seconds=0.5, encoding="direct")
+    assert "habitats" not in plain.individuals(0)[0]
