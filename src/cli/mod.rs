@@ -288,6 +288,7 @@ mod tests {
                 "fitness",
                 "preset",
                 "pop",
+                "walks",
                 "seed",
                 "config",
                 "init",
