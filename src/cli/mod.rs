@@ -293,6 +293,7 @@ mod tests {
                 "fitness",
                 "preset",
                 "pop",
+                "walks",
                 "seed",
                 "config",
                 "init",

@@ -4,7 +4,11 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
+use ontogeny::encoding::Genome;
 use ontogeny::front::text;
+use ontogeny::run::pick::PickError;
+use ontogeny::run::{Run, encoding_of_run};
+use ontogeny::study::canalization::{self, Settings};
 use ontogeny::study::listing;
 
 /// Subcommands of `ontogeny runs`.
@@ -28,10 +32,43 @@ pub enum RunsVerb {
         /// The directory to search.
         dir: PathBuf,
     },
+    /// Measure canalization: how much each generation's best individual's body varies under
+    /// noise in the chemical values it develops in (each habitat's, or its own) and under
+    /// mutation. A row per generation measured.
+    Canalization(CanalizationArgs),
+}
+
+/// The flags of `ontogeny runs canalization`.
+#[derive(Args)]
+pub struct CanalizationArgs {
+    /// The run directory.
+    dir: PathBuf,
+    /// Noisy arrays, and mutants, per array the genome develops in.
+    #[arg(long, default_value_t = canalization::DEFAULT_SAMPLES)]
+    samples: usize,
+    /// Each slot of a noisy array moves by a uniform draw in ±X.
+    #[arg(long, value_name = "X", default_value_t = canalization::DEFAULT_NOISE)]
+    noise: f64,
+    /// The mutants' mutation rate, in [0, 1] [default: the run's `[ga] mutation_rate`].
+    #[arg(long, value_name = "R")]
+    rate: Option<f64>,
+    /// Measure every K-th generation from 0, and the last [default: every generation].
+    #[arg(long, value_name = "K", default_value_t = 1)]
+    every: u32,
+    /// The seed of every draw: the same seed gives the same figures on any number of threads.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    seed: u64,
+    /// Print a CSV: a header, then a row per generation, every number in full (empty where
+    /// there is none).
+    #[arg(long, conflicts_with = "json")]
+    csv: bool,
+    /// Print one JSON object: the settings and an array of the generations measured.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
-/// directory (`runs list DIR`).
+/// directory (`runs list DIR`), the canalization of its champions (`runs canalization DIR`).
 #[derive(Args)]
 pub struct RunsArgs {
     #[command(subcommand)]
@@ -59,6 +96,62 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
                 say!("{}", listed.line());
             }
         }
+        RunsVerb::Canalization(args) => {
+            if args.every == 0 {
+                anyhow::bail!(super::bad("--every must be at least 1, not 0"));
+            }
+            let encoding = encoding_of_run(&args.dir).map_err(super::evolve::run_error)?;
+            with_genome!(
+                encoding.as_str(),
+                G => canalization_of::<G>(args),
+                |other| Err(super::bad(format!(
+                    "{}: unknown encoding '{other}'",
+                    args.dir.display()
+                )))
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// `ontogeny runs canalization` on a run of genome `G`.
+fn canalization_of<G: Genome>(args: &CanalizationArgs) -> anyhow::Result<()> {
+    let dir = &args.dir;
+    // Read-only: measuring never changes the run's store.
+    let run = Run::<G>::open_read_only(dir).map_err(super::evolve::run_error)?;
+    let settings = Settings {
+        samples: args.samples,
+        noise: args.noise,
+        mutation_rate: args.rate.unwrap_or(run.config().ga.mutation_rate),
+        seed: args.seed,
+    };
+    settings.check().map_err(super::bad)?;
+    let last = run
+        .last_generation()
+        .map_err(super::evolve::run_error)?
+        .ok_or_else(|| super::bad(format!("{}: no complete generation yet", dir.display())))?;
+    let generations = canalization::generations_measured(last, args.every);
+    let mut progress = super::progress::Progress::new("measuring canalization");
+    let rows = canalization::measure_run(&run, dir, &generations, &settings, &mut |done, all| {
+        progress.set(done as f64 / all as f64)
+    })
+    .map_err(|e| match e {
+        PickError::Run(e) => super::evolve::run_error(e),
+        PickError::Input(message) => super::bad(message),
+    })?;
+    progress.finish();
+    if args.json {
+        say!("{}", canalization::json(dir, &settings, &rows));
+    } else if args.csv {
+        say!("{}", canalization::csv(&rows));
+    } else {
+        let arrays = run.config().task.habitat_count();
+        say!(
+            "{}: canalization of each generation's best; {}",
+            dir.display(),
+            canalization::settings_line(&settings, arrays)
+        );
+        say!("{}", canalization::table(&rows));
     }
     Ok(())
 }

@@ -1,9 +1,11 @@
 //! Studies over runs: comparisons of encodings or settings over replicated runs
 //! ([`compare`]), the statistics that compare them ([`stats`]), the fidelity experiment that
 //! ranks step settings against the fine reference ([`fidelity`]), the bench's measurements
-//! ([`bench`](mod@bench)) and the runs and comparisons under a directory ([`listing`]).
+//! ([`bench`](mod@bench)), the runs and comparisons under a directory ([`listing`]) and how
+//! much a run's champions vary under noise and mutation ([`canalization`]).
 
 pub mod bench;
+pub mod canalization;
 pub mod compare;
 pub mod fidelity;
 pub mod listing;

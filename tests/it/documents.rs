@@ -344,6 +344,11 @@ const CUT_DOWN: &[CutDown] = &[
         &[("--pop", "4"), ("--seconds", "0.2")],
     ),
     (
+        "ontogeny runs canalization ",
+        &[("--samples 20", "--samples 4")],
+        &[],
+    ),
+    (
         "ontogeny bench",
         &[("--fidelity 40", "--fidelity 2 --runs 1")],
         &[("--evaluations", "1"), ("--seconds", "0.2")],

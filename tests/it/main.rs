@@ -8,6 +8,7 @@
 //! test binary whose `main.rs` is in `tests/it/`.
 
 mod brain;
+mod canalization;
 mod cancel;
 mod changing;
 mod cli;
