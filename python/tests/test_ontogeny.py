@@ -273,8 +273,8 @@ def test_a_missing_file_raises_file_not_found(tmp_path):
 
 def test_unknown_names_raise_value_error_listing_the_known_ones():
     creature = ontogeny.grow(TWO_BOXES)
-    with pytest.raises(ValueError, match="unknown task 'crawl'.*walker"):
-        ontogeny.evaluate(creature, "crawl")
+    with pytest.raises(ValueError, match="unknown task 'climb'.*walker"):
+        ontogeny.evaluate(creature, "climb")
     with pytest.raises(ValueError, match="^fitness reads speed, which is not a term of the walker task; its terms are D_w, "):
         ontogeny.evaluate(creature, fitness="speed")
     with pytest.raises(ValueError, match="unknown setting"):

@@ -143,8 +143,12 @@ fn reads_that_the_genome_cannot_hold_are_refused_with_where() {
         "this file does not fit the lsystem genome: line 4, column 34: a read ?E(1, SLOT, 0) \
          stands before a call of P0, whose rules read nothing"
     );
+    let two_parameters = "derivation length: 2\nenvironment: 0 1\naxiom: P0(1, 1)\n\
+                          P0(x, y) --> forward(1) chem(2)\n";
     assert_eq!(
-        refused("P0(x) --> forward(1) chem(2)\n"),
+        LSystemGenome::read_text(two_parameters, &limits)
+            .unwrap_err()
+            .0,
         "this file does not fit the lsystem genome: a successor of P0 has chem without a slot \
          of the environment, 0 to 1, as its argument"
     );
@@ -320,7 +324,7 @@ fn genome_show_habitats_refuses_bad_configs_and_arrays_that_do_not_fit() {
             bad.to_str().unwrap(),
             genome,
         ],
-        "a value must be a list in brackets, [a, b, ...], not \"x\"",
+        "[[task.habitats]] environment must be a list in brackets, [a, b, ...], not \"x\"",
     );
     assert!(said.contains("bad.toml:3:15"), "{said}");
     let two = dir.join("two.toml");
