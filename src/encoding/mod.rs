@@ -224,6 +224,20 @@ pub(crate) fn grammar_shown(text: &str) -> String {
     format!("{}\n{summary}", text.trim_end())
 }
 
+/// [`grammar_shown`] for a genome that may read its environment: then its reads, a line
+/// each, under `environment reads:` (nothing more when it reads nothing).
+pub(crate) fn grammar_shown_with_reads(text: &str, reads: &[String]) -> String {
+    let mut shown = grammar_shown(text);
+    if !reads.is_empty() {
+        shown.push_str("\nenvironment reads:");
+        for line in reads {
+            shown.push_str("\n  ");
+            shown.push_str(line);
+        }
+    }
+    shown
+}
+
 /// `Err` unless `env` has `size` slots (the size of the array a genome develops in), or the
 /// genome has no array (`size` 0), which any array leaves as it is.
 pub(crate) fn check_environment_size(size: usize, env: &Environment) -> Result<(), DevelopError> {

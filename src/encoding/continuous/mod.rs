@@ -22,7 +22,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown};
+use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown_with_reads};
 use crate::creature::Creature;
 use crate::develop::BuildOptions;
 use crate::environment::Environment;
@@ -737,16 +737,7 @@ impl Genome for ContinuousGenome {
     }
 
     fn show(&self) -> String {
-        let mut shown = grammar_shown(&self.to_text());
-        let reads = self.environment_reads();
-        if !reads.is_empty() {
-            shown.push_str("\nenvironment reads:");
-            for line in reads {
-                shown.push_str("\n  ");
-                shown.push_str(&line);
-            }
-        }
-        shown
+        grammar_shown_with_reads(&self.to_text(), &self.environment_reads())
     }
 
     fn to_text(&self) -> String {

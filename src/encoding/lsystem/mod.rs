@@ -21,7 +21,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown};
+use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown_with_reads};
 use crate::creature::{Actuator, Creature, Role};
 use crate::develop::{BuildOptions, build, build_frame};
 use crate::environment::Environment;
@@ -554,16 +554,7 @@ impl Genome for LSystemGenome {
     }
 
     fn show(&self) -> String {
-        let mut shown = grammar_shown(&self.to_text());
-        let reads = self.environment_reads();
-        if !reads.is_empty() {
-            shown.push_str("\nenvironment reads:");
-            for line in reads {
-                shown.push_str("\n  ");
-                shown.push_str(&line);
-            }
-        }
-        shown
+        grammar_shown_with_reads(&self.to_text(), &self.environment_reads())
     }
 
     fn to_text(&self) -> String {
