@@ -182,6 +182,20 @@ pub(super) fn parse_expression(source: &Source) -> Result<Expr, Diagnostic> {
 /// ("expected an operator or the end, found 'drag'").
 fn expression_syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic {
     let (start, end) = error_span(&error);
+    let message = expected_and_found(source, &error, start)
+        .replace("end of line", "the end")
+        .replace("end of file", "the end");
+    Diagnostic::at(
+        DiagnosticKind::Syntax,
+        source,
+        Span::new(start, end),
+        message,
+    )
+}
+
+/// A syntax error's message, without its place: what was expected at byte `start` (pest's
+/// message, its rules in human words, where it names none) and what was found there.
+fn expected_and_found(source: &Source, error: &pest::error::Error<Rule>, start: usize) -> String {
     let message = match &error.variant {
         pest::error::ErrorVariant::ParsingError { positives, .. } if !positives.is_empty() => {
             format!("expected {}", expected(source.text(), start, positives))
@@ -193,16 +207,7 @@ fn expression_syntax_error(source: &Source, error: pest::error::Error<Rule>) -> 
             .message()
             .into_owned(),
     };
-    let found = found_token(source.text(), start);
-    let message = format!("{message}, found {found}")
-        .replace("end of line", "the end")
-        .replace("end of file", "the end");
-    Diagnostic::at(
-        DiagnosticKind::Syntax,
-        source,
-        Span::new(start, end),
-        message,
-    )
+    format!("{message}, found {}", found_token(source.text(), start))
 }
 
 fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic {
@@ -229,23 +234,11 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
         Some(found) => found,
         None => (error, start, end),
     };
-    let message = match &error.variant {
-        pest::error::ErrorVariant::ParsingError { positives, .. } if !positives.is_empty() => {
-            format!("expected {}", expected(source.text(), start, positives))
-        }
-        _ => error
-            .clone()
-            .renamed_rules(human_rule_name)
-            .variant
-            .message()
-            .into_owned(),
-    };
-    let found = found_token(source.text(), start);
     let diagnostic = Diagnostic::at(
         DiagnosticKind::Syntax,
         source,
         Span::new(start, end),
-        format!("{message}, found {found}"),
+        expected_and_found(source, &error, start),
     );
     let before = &source.text()[..start.min(source.text().len())];
     let word_before_space = before
@@ -259,6 +252,7 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
                 .collect();
             (!word.is_empty()).then(|| word.chars().rev().collect::<String>())
         });
+    let found_paren = found_token(source.text(), start) == "'('";
     if line_text.contains("->") && !line_text.contains("-->") {
         diagnostic.with_note("a rule's arrow is '-->'")
     } else if let Some(header) = miscased_header(line_text) {
@@ -267,7 +261,7 @@ fn syntax_error(source: &Source, error: pest::error::Error<Rule>) -> Diagnostic 
         ))
     } else if let Some((header, _)) = header {
         diagnostic.with_note(format!("a header ends with a colon: '{header}: ...'"))
-    } else if let (Some(word), true) = (word_before_space, found == "'('") {
+    } else if let (Some(word), true) = (word_before_space, found_paren) {
         diagnostic.with_note(format!(
             "parameters follow a module's name with no space between: '{word}(...)'"
         ))
