@@ -251,6 +251,13 @@ fn structural(
     if let (Some((slot, span)), Some(_)) = (axiom_read, &kept_axiom) {
         calls.push((0, Some(slot), span));
     }
+    let successors = Successors {
+        names: &names,
+        turtle: &turtle,
+        place: &place,
+        snippet: &snippet,
+        slots: environment.len(),
+    };
     for rule in &file.rules {
         let at = place(rule.span);
         if rule.section == Section::Interpretation {
@@ -354,15 +361,11 @@ fn structural(
             }
         };
         let successor = items(
+            &successors,
             &rule.successor,
-            &names,
             &formals,
-            &turtle,
-            &place,
-            &snippet,
             &mut reasons,
             &mut calls,
-            environment.len(),
         );
         productions[k].pairs.push(Pair {
             condition,
@@ -375,17 +378,7 @@ fn structural(
         None => {
             productions[0].pairs.push(Pair {
                 condition: None,
-                successor: items(
-                    axiom,
-                    &names,
-                    &[],
-                    &turtle,
-                    &place,
-                    &snippet,
-                    &mut reasons,
-                    &mut calls,
-                    environment.len(),
-                ),
+                successor: items(&successors, axiom, &[], &mut reasons, &mut calls),
             });
             Vec::new()
         }
@@ -437,22 +430,36 @@ fn structural(
     Ok((genome, notes))
 }
 
-/// The successor `calls` as the genome's items; a module that is neither a production, a
-/// building command of the genome's nor a bracket, and has no rule, builds nothing and is
-/// dropped; the textbook's symbols become their exact equivalents
-/// ([`textbook_items`]); what cannot be represented goes to `reasons`.
-#[allow(clippy::too_many_arguments)]
+/// What reading a file's successors as the genome's items needs of the file: the
+/// productions' names, the turtle's headers, where a span is and the text there (for
+/// messages), and how many slots the environment has.
+struct Successors<'a> {
+    names: &'a [String],
+    turtle: &'a TurtleHeaders,
+    place: &'a dyn Fn(lang::Span) -> String,
+    snippet: &'a dyn Fn(lang::Span) -> String,
+    slots: usize,
+}
+
+/// The successor `modules`, in a rule with the parameters `formals`, as the genome's items;
+/// a module that is neither a production, a building command of the genome's nor a bracket,
+/// and has no rule, builds nothing and is dropped; the textbook's symbols become their exact
+/// equivalents ([`textbook_items`]); what cannot be represented goes to `reasons`, and the
+/// calls of productions, with the slot read before each, to `calls`.
 fn items(
+    successors: &Successors<'_>,
     modules: &[ModuleCall],
-    names: &[String],
     formals: &[String],
-    turtle: &TurtleHeaders,
-    place: &dyn Fn(lang::Span) -> String,
-    snippet: &dyn Fn(lang::Span) -> String,
     reasons: &mut Vec<String>,
     calls: &mut Vec<(usize, Option<usize>, lang::Span)>,
-    slots: usize,
 ) -> Vec<Item> {
+    let Successors {
+        names,
+        turtle,
+        place,
+        snippet,
+        slots,
+    } = *successors;
     let mut out = Vec::new();
     // A read just written, waiting for the call it stands before.
     let mut read: Option<(usize, lang::Span)> = None;
