@@ -238,6 +238,24 @@ pub(crate) fn grammar_shown_with_reads(text: &str, reads: &[String]) -> String {
     shown
 }
 
+/// The lines of [`grammar_shown_with_reads`]'s reads that list the environment neurons a
+/// genome writes (`chem`, `secrete`), given each one written with its slot: a line per
+/// neuron and slot, `chem(0): 2 written`, in the order of those names.
+pub(crate) fn neurons_written(
+    written: impl IntoIterator<Item = (command::Command, f64)>,
+) -> Vec<String> {
+    let mut neurons = std::collections::BTreeMap::new();
+    for (c, slot) in written {
+        *neurons
+            .entry(format!("{}({slot})", c.name()))
+            .or_insert(0usize) += 1;
+    }
+    neurons
+        .into_iter()
+        .map(|(neuron, n)| format!("{neuron}: {n} written"))
+        .collect()
+}
+
 /// `Err` unless `env` has `size` slots (the size of the array a genome develops in), or the
 /// genome has no array (`size` 0), which any array leaves as it is.
 pub(crate) fn check_environment_size(size: usize, env: &Environment) -> Result<(), DevelopError> {

@@ -22,7 +22,9 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown_with_reads};
+use super::{
+    DevelopError, Genome, Rng, check_environment_size, grammar_shown_with_reads, neurons_written,
+};
 use crate::creature::Creature;
 use crate::develop::BuildOptions;
 use crate::environment::Environment;
@@ -650,24 +652,13 @@ impl ContinuousGenome {
                 self.matured_text(rule, &rule.successor),
             ));
         }
-        let mut neurons = std::collections::BTreeMap::new();
         let every = std::iter::once(&self.axiom).chain(self.rules.iter().flat_map(|r| {
             std::iter::once(&r.successor).chain(r.plastic.iter().map(|b| &b.successor))
         }));
-        for seq in every {
-            for t in seq {
-                if let Token::Command(c, Some(v)) = t
-                    && is_environment_command(*c)
-                {
-                    *neurons
-                        .entry(format!("{}({v})", c.name()))
-                        .or_insert(0usize) += 1;
-                }
-            }
-        }
-        for (neuron, n) in neurons {
-            lines.push(format!("{neuron}: {n} written"));
-        }
+        lines.extend(neurons_written(every.flatten().filter_map(|t| match t {
+            Token::Command(c, Some(v)) if is_environment_command(*c) => Some((*c, *v)),
+            _ => None,
+        })));
         lines
     }
 

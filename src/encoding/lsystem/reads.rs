@@ -252,19 +252,11 @@ impl LSystemGenome {
                 calls(k)
             ));
         }
-        let mut neurons = std::collections::BTreeMap::new();
-        for item in self.successors().flat_map(|s| s.iter()) {
-            if let Item::Command(c, Some(Arg::Const(v))) = item
-                && is_environment_command(*c)
-            {
-                *neurons
-                    .entry(format!("{}({v})", c.name()))
-                    .or_insert(0usize) += 1;
-            }
-        }
-        for (neuron, n) in neurons {
-            lines.push(format!("{neuron}: {n} written"));
-        }
+        let written = self.successors().flatten().filter_map(|item| match item {
+            Item::Command(c, Some(Arg::Const(v))) if is_environment_command(*c) => Some((*c, *v)),
+            _ => None,
+        });
+        lines.extend(crate::encoding::neurons_written(written));
         lines
     }
 }
