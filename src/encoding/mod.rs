@@ -128,24 +128,48 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// (stochastic rules).
     fn develop(&self, limits: &Self::Limits, seed: u64) -> Result<Creature, DevelopError>;
 
+    /// The initial values of the chemical array the genome develops in unless told
+    /// otherwise, one per slot (empty by default: the genome has none).
+    fn environment_values(&self) -> &[f64] {
+        &[]
+    }
+
     /// The chemical array the genome develops in unless told otherwise: its size and initial
-    /// values (empty by default: the genome has none).
+    /// values ([`Genome::environment_values`]).
     fn environment(&self) -> Environment {
-        Environment::default()
+        Environment::new(self.environment_values().to_vec())
     }
 
     /// Develops the genome as [`Genome::develop`] does, but in a chemical array whose initial
     /// values are `env`'s (a habitat's): the same genome may grow another body. `env` must
     /// have the size of [`Genome::environment`], unless the genome has none: a genome that
-    /// reads no environment grows [`Genome::develop`]'s creature in any array (the default,
-    /// for encodings whose genomes never read one).
+    /// reads no environment grows [`Genome::develop`]'s creature in any array. A genome with
+    /// an array grows [`Genome::develop_reading`]'s.
     fn develop_in(
         &self,
         limits: &Self::Limits,
         seed: u64,
         env: &Environment,
     ) -> Result<Creature, DevelopError> {
-        check_environment_size(self.environment().len(), env)?;
+        let size = self.environment_values().len();
+        check_environment_size(size, env)?;
+        if size == 0 {
+            self.develop(limits, seed)
+        } else {
+            self.develop_reading(limits, seed, env)
+        }
+    }
+
+    /// Develops the genome as [`Genome::develop`] does, but reading `env`, an array of the
+    /// genome's own size ([`Genome::develop_in`] checks it). By default [`Genome::develop`]'s
+    /// creature, for encodings whose genomes never read one.
+    fn develop_reading(
+        &self,
+        limits: &Self::Limits,
+        seed: u64,
+        env: &Environment,
+    ) -> Result<Creature, DevelopError> {
+        let _ = env;
         self.develop(limits, seed)
     }
 
@@ -254,6 +278,24 @@ pub(crate) fn neurons_written(
         .into_iter()
         .map(|(neuron, n)| format!("{neuron}: {n} written"))
         .collect()
+}
+
+/// Most slots a genome's environment may have.
+const MAX_ENVIRONMENT: usize = 16;
+
+/// `Err` saying what is wrong unless a genome's environment, its array's initial `values`, has
+/// at most [`MAX_ENVIRONMENT`] slots and finite values (part of a genome's check of itself).
+pub(crate) fn check_environment_values(values: &[f64]) -> Result<(), String> {
+    if values.len() > MAX_ENVIRONMENT {
+        return Err(format!(
+            "its environment has {} slots, more than {MAX_ENVIRONMENT}",
+            values.len()
+        ));
+    }
+    match values.iter().find(|v| !v.is_finite()) {
+        Some(v) => Err(format!("its environment holds {v}, not a finite number")),
+        None => Ok(()),
+    }
 }
 
 /// `Err` unless `env` has `size` slots (the size of the array a genome develops in), or the

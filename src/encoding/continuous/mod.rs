@@ -22,9 +22,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{
-    DevelopError, Genome, Rng, check_environment_size, grammar_shown_with_reads, neurons_written,
-};
+use super::{DevelopError, Genome, Rng, grammar_shown_with_reads, neurons_written};
 use crate::creature::Creature;
 use crate::develop::BuildOptions;
 use crate::environment::Environment;
@@ -401,15 +399,7 @@ impl ContinuousGenome {
         if self.axiom.is_empty() {
             return Err("its axiom is empty".into());
         }
-        if self.environment.len() > MAX_ENVIRONMENT {
-            return Err(format!(
-                "its environment has {} slots, more than {MAX_ENVIRONMENT}",
-                self.environment.len()
-            ));
-        }
-        if let Some(v) = self.environment.iter().find(|v| !v.is_finite()) {
-            return Err(format!("its environment holds {v}, not a finite number"));
-        }
+        super::check_environment_values(&self.environment)?;
         let slots = self.environment.len();
         check_sequence("the axiom", &self.axiom, limits.max_axiom, slots, limits)?;
         if self.rules.len() > limits.max_rules {
@@ -506,9 +496,6 @@ fn check_grower(g: Grower, limits: &ContinuousLimits) -> Result<(), String> {
         _ => Ok(()),
     }
 }
-
-/// Most slots a genome's environment may have.
-const MAX_ENVIRONMENT: usize = 16;
 
 fn check_sequence(
     what: &str,
@@ -710,20 +697,16 @@ impl Genome for ContinuousGenome {
         self.creature(limits, None)
     }
 
-    fn environment(&self) -> Environment {
-        Environment::new(self.environment.clone())
+    fn environment_values(&self) -> &[f64] {
+        &self.environment
     }
 
-    fn develop_in(
+    fn develop_reading(
         &self,
         limits: &ContinuousLimits,
         _seed: u64,
         env: &Environment,
     ) -> Result<Creature, DevelopError> {
-        check_environment_size(self.environment.len(), env)?;
-        if self.environment.is_empty() {
-            return self.creature(limits, None);
-        }
         self.creature(limits, Some(env))
     }
 

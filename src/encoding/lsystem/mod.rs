@@ -21,7 +21,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng, check_environment_size, grammar_shown_with_reads};
+use super::{DevelopError, Genome, Rng, grammar_shown_with_reads};
 use crate::creature::{Actuator, Creature, Role};
 use crate::develop::{BuildOptions, build, build_frame};
 use crate::environment::Environment;
@@ -155,9 +155,6 @@ impl LSystemLimits {
         }
     }
 }
-
-/// Most slots a genome's environment may have.
-const MAX_ENVIRONMENT: usize = 16;
 
 /// The name a reading production's rules give the value read (`?E(1, SLOT, c) < P1(...)`).
 pub(crate) const READ_VALUE: &str = "c";
@@ -399,15 +396,7 @@ impl LSystemGenome {
                 self.derivation_length, limits.derivation_length
             ));
         }
-        if self.environment.len() > MAX_ENVIRONMENT {
-            return Err(format!(
-                "its environment has {} slots, more than {MAX_ENVIRONMENT}",
-                self.environment.len()
-            ));
-        }
-        if let Some(v) = self.environment.iter().find(|v| !v.is_finite()) {
-            return Err(format!("its environment holds {v}, not a finite number"));
-        }
+        super::check_environment_values(&self.environment)?;
         let slots = self.environment.len();
         let arg_ok = |a: &Arg| match *a {
             Arg::Const(c) => c.is_finite(),
@@ -532,24 +521,22 @@ impl Genome for LSystemGenome {
         )
     }
 
-    fn environment(&self) -> Environment {
-        Environment::new(self.environment.clone())
+    fn environment_values(&self) -> &[f64] {
+        &self.environment
     }
 
-    fn develop_in(
+    fn develop_reading(
         &self,
         limits: &LSystemLimits,
         seed: u64,
         env: &Environment,
     ) -> Result<Creature, DevelopError> {
-        check_environment_size(self.environment.len(), env)?;
-        let env = (!self.environment.is_empty()).then_some(env);
         develop_text(
             &self.to_text(),
             limits.max_modules,
             limits.max_parts,
             seed,
-            env,
+            Some(env),
         )
     }
 
