@@ -18,7 +18,7 @@ use ontogeny::study::compare::{
 };
 
 use super::evolve::{EncodingArg, bad, encoding_names, encoding_parser, run_error, set_threads};
-use super::physics::setting_parser;
+use super::physics::{RunTaskArgs, setting_parser};
 
 /// The flags that go with `--resume`; it refuses every other ([`super::conflicts_with_all_but`]).
 pub const WITH_RESUME: &[&str] = &["threads", "no_cache", "json"];
@@ -42,18 +42,8 @@ pub struct CompareArgs {
     /// of --encodings and --config.
     #[arg(long, value_name = "NAME=CONFIG.toml", value_parser = parse_condition, conflicts_with_all = ["encodings", "config"])]
     condition: Vec<(String, PathBuf)>,
-    /// The task (default: the config's, else walker).
-    #[arg(long, value_parser = super::physics::task_parser())]
-    task: Option<ontogeny::task::TaskKind>,
-    #[arg(
-        long,
-        value_name = "FORMULA|EXPRESSION",
-        help = super::fitness_help(
-            "The fitness, as `eval --fitness`",
-            "the config's [task.NAME] fitness, else the task's (the walker's normalised)"
-        )
-    )]
-    fitness: Option<String>,
+    #[command(flatten)]
+    run_task: RunTaskArgs,
     /// Runs per encoding (default 10).
     #[arg(long)]
     replicates: Option<usize>,
@@ -201,8 +191,8 @@ fn run_flags(args: &CompareArgs) -> RunFlags {
         population: args.pop,
         generations: None,
         walks: None,
-        task: args.task,
-        fitness: args.fitness.clone(),
+        task: args.run_task.task,
+        fitness: args.run_task.fitness.clone(),
         seconds: args.seconds,
         setting: args.setting,
         target: None,

@@ -13,10 +13,9 @@ use ontogeny::lang::Source;
 use ontogeny::run::config::read_config_source;
 use ontogeny::run::{GenerationReport, Run, RunError, encoding_of_run};
 use ontogeny::sim::StepSetting;
-use ontogeny::task::TaskKind;
 
 pub use super::bad;
-use super::physics::{setting_parser, task_parser};
+use super::physics::{RunTaskArgs, setting_parser};
 
 /// An encoding `--encoding` accepts: one of the library's registry ([`ENCODINGS`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,18 +77,8 @@ pub struct EvolveArgs {
     /// The genome encoding (default: the config's, else lsystem).
     #[arg(long, value_parser = encoding_parser())]
     encoding: Option<EncodingArg>,
-    /// The task (default: the config's, else walker).
-    #[arg(long, value_parser = task_parser())]
-    task: Option<TaskKind>,
-    #[arg(
-        long,
-        value_name = "FORMULA|EXPRESSION",
-        help = super::fitness_help(
-            "The fitness, as `eval --fitness`",
-            "the config's [task.NAME] fitness, else the task's (the walker's normalised)"
-        )
-    )]
-    fitness: Option<String>,
+    #[command(flatten)]
+    run_task: RunTaskArgs,
     /// The genetic algorithm's schedule (default: the config's, else chaumont).
     #[arg(long, value_parser = preset_parser())]
     preset: Option<Preset>,
@@ -236,8 +225,8 @@ fn run_flags(args: &EvolveArgs) -> RunFlags {
         population: args.pop,
         generations: args.gens,
         walks: args.walks,
-        task: args.task,
-        fitness: args.fitness.clone(),
+        task: args.run_task.task,
+        fitness: args.run_task.fitness.clone(),
         seconds: args.seconds,
         setting: args.setting,
         target: args.target,

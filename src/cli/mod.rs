@@ -90,12 +90,30 @@ verbs! {
 
 /// Lets every verb take negative numbers as option values (`--strength -1`), not only
 /// `--strength=-1`.
-/// The help of `--fitness` in `eval`, `replay`, `evolve` and `compare` (after `what`, "The
-/// fitness" or "The fitness of the run's task"): the walker's formulas by name
-/// ([`ontogeny::task::WalkerFitness::name`]), or an expression of the task's terms, which the
-/// task's check reads once the task is known.
-fn fitness_help(what: &str, default: &str) -> String {
+/// What `--fitness` sets the fitness of.
+enum FitnessOf {
+    /// An evaluation (`eval`, `replay`).
+    Evaluation,
+    /// A run (`evolve`, `compare`).
+    Run,
+}
+
+/// The help of `--fitness` in `eval`, `replay`, `evolve` and `compare`: the walker's formulas
+/// by name ([`ontogeny::task::WalkerFitness::name`]), or an expression of the task's terms,
+/// which the task's check reads once the task is known; and the default where it sets the
+/// fitness `of`.
+fn fitness_help(of: FitnessOf) -> String {
     use ontogeny::task::WalkerFitness;
+    let (what, default) = match of {
+        FitnessOf::Evaluation => (
+            "The fitness",
+            "a run's or a champion file's own, else the task's (the walker's normalised)",
+        ),
+        FitnessOf::Run => (
+            "The fitness, as `eval --fitness`",
+            "the config's [task.NAME] fitness, else the task's (the walker's normalised)",
+        ),
+    };
     let names: Vec<&str> = WalkerFitness::ALL.map(WalkerFitness::name).to_vec();
     format!(
         "{what}: one of the walker's formulas ({}), or an expression of the task's terms, \

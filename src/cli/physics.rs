@@ -11,6 +11,8 @@ use ontogeny::sim::knobs::{Value, knob, stepping_knobs};
 use ontogeny::sim::{ActuatorModel, Knob, SettingError, SimOptions, StepSetting, StrengthFrom};
 use ontogeny::task::TaskKind;
 
+use super::{FitnessOf, fitness_help};
+
 /// The `--help` of the flag of the knob `key` ([`Knob::help`]).
 pub fn help(key: &str) -> String {
     knob(key).map_or_else(String::new, |k| k.help(""))
@@ -134,14 +136,17 @@ impl FromArgMatches for SteppingArgs {
 /// `--fitness`: the walker's fitness formula, shared by `eval` and `replay`.
 #[derive(Args)]
 pub struct FitnessArgs {
-    #[arg(
-        long,
-        value_name = "FORMULA|EXPRESSION",
-        help = super::fitness_help(
-            "The fitness",
-            "a run's or a champion file's own, else the task's (the walker's normalised)"
-        )
-    )]
+    #[arg(long, value_name = "FORMULA|EXPRESSION", help = fitness_help(FitnessOf::Evaluation))]
+    pub fitness: Option<String>,
+}
+
+/// `--task` and `--fitness` of a run: shared by `evolve` and `compare`, over a config's.
+#[derive(Args)]
+pub struct RunTaskArgs {
+    /// The task (default: the config's, else walker).
+    #[arg(long, value_parser = task_parser())]
+    pub task: Option<TaskKind>,
+    #[arg(long, value_name = "FORMULA|EXPRESSION", help = fitness_help(FitnessOf::Run))]
     pub fitness: Option<String>,
 }
 
