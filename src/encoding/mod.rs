@@ -143,33 +143,16 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// Develops the genome as [`Genome::develop`] does, but in a chemical array whose initial
     /// values are `env`'s (a habitat's): the same genome may grow another body. `env` must
     /// have the size of [`Genome::environment`], unless the genome has none: a genome that
-    /// reads no environment grows [`Genome::develop`]'s creature in any array. A genome with
-    /// an array grows [`Genome::develop_reading`]'s.
+    /// reads no environment grows [`Genome::develop`]'s creature in any array (the default,
+    /// for encodings whose genomes never read one; [`array_read`] gives the others the array
+    /// they read).
     fn develop_in(
         &self,
         limits: &Self::Limits,
         seed: u64,
         env: &Environment,
     ) -> Result<Creature, DevelopError> {
-        let size = self.environment_values().len();
-        check_environment_size(size, env)?;
-        if size == 0 {
-            self.develop(limits, seed)
-        } else {
-            self.develop_reading(limits, seed, env)
-        }
-    }
-
-    /// Develops the genome as [`Genome::develop`] does, but reading `env`, an array of the
-    /// genome's own size ([`Genome::develop_in`] checks it). By default [`Genome::develop`]'s
-    /// creature, for encodings whose genomes never read one.
-    fn develop_reading(
-        &self,
-        limits: &Self::Limits,
-        seed: u64,
-        env: &Environment,
-    ) -> Result<Creature, DevelopError> {
-        let _ = env;
+        check_environment_size(self.environment_values().len(), env)?;
         self.develop(limits, seed)
     }
 
@@ -296,6 +279,17 @@ pub(crate) fn check_environment_values(values: &[f64]) -> Result<(), String> {
         Some(v) => Err(format!("its environment holds {v}, not a finite number")),
         None => Ok(()),
     }
+}
+
+/// The array a genome whose own array holds `values` reads when it develops in a habitat's
+/// `env` ([`Genome::develop_in`]): `env`, or none when the genome has no array (it grows the
+/// same creature in any); `Err` unless `env` has the genome's size.
+pub(crate) fn array_read<'e>(
+    values: &[f64],
+    env: &'e Environment,
+) -> Result<Option<&'e Environment>, DevelopError> {
+    check_environment_size(values.len(), env)?;
+    Ok((!values.is_empty()).then_some(env))
 }
 
 /// `Err` unless `env` has `size` slots (the size of the array a genome develops in), or the

@@ -22,7 +22,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng, grammar_shown_with_reads, neurons_written};
+use super::{DevelopError, Genome, Rng, array_read, grammar_shown_with_reads, neurons_written};
 use crate::creature::Creature;
 use crate::develop::BuildOptions;
 use crate::environment::Environment;
@@ -701,13 +701,13 @@ impl Genome for ContinuousGenome {
         &self.environment
     }
 
-    fn develop_reading(
+    fn develop_in(
         &self,
         limits: &ContinuousLimits,
         _seed: u64,
         env: &Environment,
     ) -> Result<Creature, DevelopError> {
-        self.creature(limits, Some(env))
+        self.creature(limits, array_read(&self.environment, env)?)
     }
 
     fn show(&self) -> String {

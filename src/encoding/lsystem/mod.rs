@@ -21,7 +21,7 @@
 use rand::RngExt;
 use serde::{Deserialize, Serialize};
 
-use super::{DevelopError, Genome, Rng, grammar_shown_with_reads};
+use super::{DevelopError, Genome, Rng, array_read, grammar_shown_with_reads};
 use crate::creature::{Actuator, Creature, Role};
 use crate::develop::{BuildOptions, build, build_frame};
 use crate::environment::Environment;
@@ -525,7 +525,7 @@ impl Genome for LSystemGenome {
         &self.environment
     }
 
-    fn develop_reading(
+    fn develop_in(
         &self,
         limits: &LSystemLimits,
         seed: u64,
@@ -536,7 +536,7 @@ impl Genome for LSystemGenome {
             limits.max_modules,
             limits.max_parts,
             seed,
-            Some(env),
+            array_read(&self.environment, env)?,
         )
     }
 
