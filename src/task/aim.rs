@@ -2,7 +2,8 @@
 //! scored by the distance thrown less the miss, D_p − D_t.
 
 use super::catapult::{CatapultOptions, catapult_watched};
-use super::{Bounds, Evaluation, FitnessExpression, Setup, Task};
+use super::registry::expression_fitness;
+use super::{Bounds, Evaluation, Setup, Task};
 use crate::cancel::Interrupted;
 use crate::sim::SettingError;
 
@@ -28,12 +29,7 @@ impl Task for AimTask {
     const TABLE: &'static str = "catapult";
     type Options = CatapultOptions;
 
-    fn expression(options: &CatapultOptions) -> Option<&FitnessExpression> {
-        options.fitness.as_ref()
-    }
-    fn set_fitness(options: &mut CatapultOptions, text: &str) {
-        options.fitness = Some(FitnessExpression::new(text));
-    }
+    expression_fitness!();
 
     fn measure(_options: &CatapultOptions) -> &'static str {
         "distance − miss (m)"

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Setup, evaluate, on_flat_ground, steps_in};
 use super::recording::Phase;
+use super::registry::expression_fitness;
 use super::{Evaluation, FitnessExpression, MAX_TARGET_DISTANCE, Status};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
@@ -236,12 +237,7 @@ impl super::Task for CatapultTask {
     const TERMS: &'static [&'static str] = &["D_p", "release_step", "release_time", "seconds"];
     type Options = CatapultOptions;
 
-    fn expression(options: &CatapultOptions) -> Option<&FitnessExpression> {
-        options.fitness.as_ref()
-    }
-    fn set_fitness(options: &mut CatapultOptions, text: &str) {
-        options.fitness = Some(FitnessExpression::new(text));
-    }
+    expression_fitness!();
 
     fn reads(options: &CatapultOptions) -> CatapultOptions {
         CatapultOptions {

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Rest, Setup, evaluate, on_flat_ground, settle_steps, steps_in};
 use super::recording::Phase;
+use super::registry::expression_fitness;
 use super::{Evaluation, FitnessExpression, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
@@ -67,12 +68,7 @@ impl Task for JumpTask {
     const TERMS: &'static [&'static str] = &["height", "resting_lowest_point"];
     type Options = JumpOptions;
 
-    fn expression(options: &JumpOptions) -> Option<&FitnessExpression> {
-        options.fitness.as_ref()
-    }
-    fn set_fitness(options: &mut JumpOptions, text: &str) {
-        options.fitness = Some(FitnessExpression::new(text));
-    }
+    expression_fitness!();
 
     fn measure(_options: &JumpOptions) -> &'static str {
         "height (m)"

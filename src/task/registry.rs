@@ -107,6 +107,21 @@ pub trait Task {
     fn evaluate(setup: Setup<'_, '_, Self::Options>) -> Result<Evaluation, Interrupted>;
 }
 
+/// [`Task::expression`] and [`Task::set_fitness`] for a task whose `fitness` setting is an
+/// expression of its terms or none (an `Option<FitnessExpression>`), as every task's is but
+/// the walker's, whose formulas have names: `expression_fitness!();` in its `impl Task`.
+macro_rules! expression_fitness {
+    () => {
+        fn expression(options: &Self::Options) -> Option<&$crate::task::FitnessExpression> {
+            options.fitness.as_ref()
+        }
+        fn set_fitness(options: &mut Self::Options, text: &str) {
+            options.fitness = Some($crate::task::FitnessExpression::new(text));
+        }
+    };
+}
+pub(crate) use expression_fitness;
+
 /// What can be known of a task without its type: for the command line's lists and help, the
 /// viewer's and Python's.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Bounds, Rest, Setup, evaluate, settle_steps, steps_in};
 use super::recording::Phase;
+use super::registry::expression_fitness;
 use super::{Evaluation, FitnessExpression, Task};
 use crate::cancel::Interrupted;
 use crate::sim::SettingError;
@@ -68,12 +69,7 @@ impl Task for StandTask {
     const TERMS: &'static [&'static str] = &["height"];
     type Options = StandOptions;
 
-    fn expression(options: &StandOptions) -> Option<&FitnessExpression> {
-        options.fitness.as_ref()
-    }
-    fn set_fitness(options: &mut StandOptions, text: &str) {
-        options.fitness = Some(FitnessExpression::new(text));
-    }
+    expression_fitness!();
 
     fn measure(_options: &StandOptions) -> &'static str {
         "mean height (m)"

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::protocol::{Bounds, Setup, evaluate, steps_in};
 use super::recording::Phase;
+use super::registry::expression_fitness;
 use super::walker::centre_of_mass;
 use super::{Evaluation, FitnessExpression, Task};
 use crate::cancel::Interrupted;
@@ -70,12 +71,7 @@ impl Task for SwimTask {
     const TERMS: &'static [&'static str] = &["distance", "viscosity", "mass", "N"];
     type Options = SwimOptions;
 
-    fn expression(options: &SwimOptions) -> Option<&FitnessExpression> {
-        options.fitness.as_ref()
-    }
-    fn set_fitness(options: &mut SwimOptions, text: &str) {
-        options.fitness = Some(FitnessExpression::new(text));
-    }
+    expression_fitness!();
 
     fn measure(_options: &SwimOptions) -> &'static str {
         "distance (m)"
