@@ -579,6 +579,21 @@ mod tests {
         }
     }
 
+    /// `count` generations whose best rises by 1 each from `first_best`, with a constant
+    /// mean and median.
+    fn rising(count: u32, first_best: f64, mean: f64, median: f64) -> Vec<GenerationRecord> {
+        (0..count)
+            .map(|g| generation(g, first_best + g as f64, mean, median))
+            .collect()
+    }
+
+    /// A scratch folder (removed when dropped) and the path of `fitness.svg` in it.
+    fn scratch_chart() -> (tempfile::TempDir, std::path::PathBuf) {
+        let scratch = tempfile::tempdir().unwrap();
+        let path = scratch.path().join("fitness.svg");
+        (scratch, path)
+    }
+
     #[test]
     fn y_range_ignores_the_failure_floor_and_nan() {
         let gs = [
@@ -628,11 +643,8 @@ mod tests {
 
     #[test]
     fn a_run_with_habitats_draws_the_best_over_the_band_of_its_walks() {
-        let scratch = tempfile::tempdir().unwrap();
-        let path = scratch.path().join("fitness.svg");
-        let gs: Vec<GenerationRecord> = (0..3)
-            .map(|g| generation(g, 2.0 + g as f64, 1.5, 1.5))
-            .collect();
+        let (_scratch, path) = scratch_chart();
+        let gs = rising(3, 2.0, 1.5, 1.5);
         let spreads: Vec<Spread> = (0..3)
             .map(|g| Spread {
                 generation: g,
@@ -662,11 +674,8 @@ mod tests {
 
     #[test]
     fn the_legend_is_beside_the_chart_and_the_y_axis_names_the_fitness() {
-        let scratch = tempfile::tempdir().unwrap();
-        let path = scratch.path().join("fitness.svg");
-        let gs: Vec<GenerationRecord> = (0..5)
-            .map(|g| generation(g, 1.0 + g as f64, 0.5, 0.4))
-            .collect();
+        let (_scratch, path) = scratch_chart();
+        let gs = rising(5, 1.0, 0.5, 0.4);
         fitness_svg(&path, &gs, "title", "fitness: distance (m)").unwrap();
         let svg = fs::read_to_string(&path).unwrap();
         assert!(svg.lines().any(|l| l.trim() == "fitness: distance (m)"));
