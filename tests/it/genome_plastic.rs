@@ -3,7 +3,8 @@
 //! them nothing changes.
 
 use crate::util::{
-    grow_creature_json, ontogeny, ontogeny_command, refused, scratch_dir, succeeded, tiny_run,
+    genome_file, grow_creature_json, grown_low_and_high, offspring_whose_body_depends_on_the_cue,
+    ontogeny, ontogeny_command, operators_fingerprint, refused, scratch_dir, succeeded, tiny_run,
 };
 
 use ontogeny::creature::phenotype_differences;
@@ -11,32 +12,9 @@ use ontogeny::encoding::{ContinuousGenome, ContinuousLimits, Genome, Rng};
 use ontogeny::environment::Environment;
 use ontogeny::number::format_number;
 use rand::SeedableRng;
-use sha2::{Digest, Sha256};
 
 fn rng(seed: u64) -> Rng {
     Rng::seed_from_u64(seed)
-}
-
-/// The SHA-256, in hex, of the texts of genomes drawn, mutated and crossed over from seeds
-/// 0 to 19 under `limits`.
-fn operators_fingerprint(limits: &ContinuousLimits) -> String {
-    let mut hasher = Sha256::new();
-    for seed in 0..20 {
-        let mut r = rng(seed);
-        let mut a = ContinuousGenome::random(limits, &mut r);
-        let b = ContinuousGenome::random(limits, &mut r);
-        for _ in 0..20 {
-            a = a.mutate(limits, 0.3, &mut r);
-            a = a.crossover(&b, limits, &mut r).unwrap();
-            hasher.update(a.to_text().as_bytes());
-            hasher.update(serde_json::to_string(&a).unwrap().as_bytes());
-        }
-    }
-    hasher
-        .finalize()
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
 }
 
 #[test]
@@ -44,37 +22,24 @@ fn without_environment_reads_the_operators_draw_what_they_drew_before_reads_exis
     // The fingerprint of the operators as they were before genomes could read their
     // environment: the default must reproduce it to the bit.
     assert_eq!(
-        operators_fingerprint(&ContinuousLimits::default()),
+        operators_fingerprint::<ContinuousGenome>(&ContinuousLimits::default()),
         "8c6812bf4e08c68c7f27a45735c41399cca998f94d7e3d1e5888f692c0b96e60"
     );
 }
 
 /// The shipped plastic genome, read with the default limits.
 fn plastic_example() -> ContinuousGenome {
-    let text = std::fs::read_to_string("examples/plastic-genome.lsys").unwrap();
-    ContinuousGenome::read_text(&text, &ContinuousLimits::default()).unwrap()
+    genome_file("examples/plastic-genome.lsys")
 }
 
 #[test]
 fn the_plastic_example_grows_5_parts_where_its_cue_is_low_and_7_where_it_is_high() {
     let limits = ContinuousLimits::default();
-    let g = plastic_example();
-    assert_eq!(g.environment(), Environment::new(vec![0.0]));
-    let low = g
-        .develop_in(&limits, 0, &Environment::new(vec![0.0]))
-        .unwrap();
-    let high = g
-        .develop_in(&limits, 0, &Environment::new(vec![1.0]))
-        .unwrap();
+    let (low, high) = grown_low_and_high(&plastic_example(), &limits);
     // Low: the root and two limbs of two driven segments each. High: each limb's first
     // segment forks into two short rigid segments.
     assert_eq!((low.parts.len(), low.joints.len()), (5, 4));
     assert_eq!((high.parts.len(), high.joints.len()), (7, 6));
-    assert!(low.is_valid() && high.is_valid());
-    assert_eq!(low.environment, vec![0.0]);
-    assert_eq!(high.environment, vec![1.0]);
-    // Its own environment is the low one, and develop() grows in it.
-    assert_eq!(g.develop(&limits, 0).unwrap(), low);
     let d = phenotype_differences(&low, &high);
     assert_eq!(
         (d.parts, d.joints, d.neurons, d.links),
@@ -100,14 +65,6 @@ fn the_plastic_example_grows_5_parts_where_its_cue_is_low_and_7_where_it_is_high
     let same = phenotype_differences(&low, &low);
     assert!(same.is_same());
     assert_eq!(same.to_string(), "the same body and brain");
-    // An array of another size is refused, not developed.
-    let e = g
-        .develop_in(&limits, 0, &Environment::new(vec![1.0, 0.0]))
-        .unwrap_err();
-    assert_eq!(
-        e.0,
-        "the genome develops in an environment of 1 slot(s), not 2"
-    );
 }
 
 #[test]
@@ -206,42 +163,19 @@ fn with_environment_reads_every_offspring_fits_reads_back_and_develops_in_any_ar
         environment_reads: 0.5,
         ..ContinuousLimits::default()
     };
-    let (mut genomes, mut plastic, mut neurons, mut differ) = (0, 0, 0, 0);
-    for seed in 0..100 {
-        let mut r = rng(seed);
-        let mut a = ContinuousGenome::random(&limits, &mut r);
-        let b = ContinuousGenome::random(&limits, &mut r);
-        for round in 0..8 {
-            a = if round % 2 == 0 {
-                a.mutate(&limits, 0.3, &mut r)
-            } else {
-                a.crossover(&b, &limits, &mut r).unwrap()
-            };
+    let (mut genomes, mut plastic, mut neurons) = (0, 0, 0);
+    let differ = offspring_whose_body_depends_on_the_cue(
+        &limits,
+        0..100,
+        |seed, a: &ContinuousGenome, text| {
             genomes += 1;
             a.check_limits(&limits)
-                .unwrap_or_else(|e| panic!("seed {seed}: {e}\n{}", a.to_text()));
-            let back = ContinuousGenome::read_text(&a.to_text(), &limits)
-                .unwrap_or_else(|e| panic!("seed {seed}: {e}\n{}", a.to_text()));
-            assert_eq!(back, a, "seed {seed}");
-            let text = a.to_text();
+                .unwrap_or_else(|e| panic!("seed {seed}: {e}\n{text}"));
             plastic += usize::from(text.contains("?E(1, "));
             neurons += usize::from(text.contains("chem(") || text.contains("secrete("));
             assert_eq!(a.environment.len(), 1, "seed {seed}");
-            // Development never panics: a creature, or the limits' refusal.
-            let low = a.develop_in(&limits, 0, &Environment::new(vec![0.0]));
-            let high = a.develop_in(&limits, 0, &Environment::new(vec![1.0]));
-            match (low, high) {
-                (Ok(low), Ok(high)) => {
-                    differ += usize::from(!phenotype_differences(&low, &high).is_same());
-                }
-                (low, high) => {
-                    for e in [low.err(), high.err()].into_iter().flatten() {
-                        assert!(e.0.contains("modules"), "seed {seed}: {e}\n{text}");
-                    }
-                }
-            }
-        }
-    }
+        },
+    );
     assert_eq!(genomes, 800);
     // Without reads allowed, a genome has no environment and grows the same creature in
     // any array.

@@ -2,38 +2,18 @@
 //! and branch on the value read, the operators that make and remove them, the promise that
 //! without them nothing changes, and `genome show --habitats`.
 
-use crate::util::{assert_bad_input, ontogeny, scratch_dir, succeeded, tiny_run};
+use crate::util::{
+    assert_bad_input, genome_file, grown_low_and_high, offspring_whose_body_depends_on_the_cue,
+    ontogeny, operators_fingerprint, scratch_dir, succeeded, tiny_run,
+};
 
 use ontogeny::creature::phenotype_differences;
 use ontogeny::encoding::{Genome, LSystemGenome, LSystemLimits, Rng};
 use ontogeny::environment::Environment;
 use rand::SeedableRng;
-use sha2::{Digest, Sha256};
 
 fn rng(seed: u64) -> Rng {
     Rng::seed_from_u64(seed)
-}
-
-/// The SHA-256, in hex, of the texts and JSON of genomes drawn, mutated and crossed over
-/// from seeds 0 to 19 under `limits`.
-fn operators_fingerprint(limits: &LSystemLimits) -> String {
-    let mut hasher = Sha256::new();
-    for seed in 0..20 {
-        let mut r = rng(seed);
-        let mut a = LSystemGenome::random(limits, &mut r);
-        let b = LSystemGenome::random(limits, &mut r);
-        for _ in 0..20 {
-            a = a.mutate(limits, 0.3, &mut r);
-            a = a.crossover(&b, limits, &mut r).unwrap();
-            hasher.update(a.to_text().as_bytes());
-            hasher.update(serde_json::to_string(&a).unwrap().as_bytes());
-        }
-    }
-    hasher
-        .finalize()
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect()
 }
 
 #[test]
@@ -41,51 +21,31 @@ fn without_environment_reads_the_operators_draw_what_they_drew_before_reads_exis
     // The fingerprint of the operators as they were before genomes could read their
     // environment: the default must reproduce it to the bit.
     assert_eq!(
-        operators_fingerprint(&LSystemLimits::default()),
+        operators_fingerprint::<LSystemGenome>(&LSystemLimits::default()),
         "f2d30153db4574827ef54bd535a1688a75ec4565a6c90df0f77fb8492e96337a"
     );
 }
 
 /// The shipped plastic lsystem genome, read with the default limits.
 fn plastic_example() -> LSystemGenome {
-    let text = std::fs::read_to_string("examples/plastic-lsystem.lsys").unwrap();
-    LSystemGenome::read_text(&text, &LSystemLimits::default()).unwrap()
+    genome_file("examples/plastic-lsystem.lsys")
 }
 
 #[test]
 fn the_plastic_example_grows_a_tail_where_its_cue_is_low_and_two_legs_where_it_is_high() {
     let limits = LSystemLimits::default();
     let g = plastic_example();
-    assert_eq!(g.environment(), Environment::new(vec![0.0]));
     assert_eq!(g.productions[0].read, Some(0));
     assert_eq!(g.productions[1].read, None);
-    let low = g
-        .develop_in(&limits, 0, &Environment::new(vec![0.0]))
-        .unwrap();
-    let high = g
-        .develop_in(&limits, 0, &Environment::new(vec![1.0]))
-        .unwrap();
+    let (low, high) = grown_low_and_high(&g, &limits);
     assert_eq!((low.parts.len(), low.joints.len()), (5, 4));
     assert_eq!((high.parts.len(), high.joints.len()), (7, 6));
-    assert!(low.is_valid() && high.is_valid());
-    assert_eq!(low.environment, vec![0.0]);
-    assert_eq!(high.environment, vec![1.0]);
-    // Its own environment is the low one, and develop() grows in it.
-    assert_eq!(g.develop(&limits, 0).unwrap(), low);
     let d = phenotype_differences(&low, &high);
     assert_eq!(
         (d.parts, d.joints, d.neurons, d.links),
         ((5, 7), (4, 6), (4, 5), (4, 5))
     );
     assert!(!d.is_same());
-    // An array of another size is refused, not developed.
-    let e = g
-        .develop_in(&limits, 0, &Environment::new(vec![1.0, 0.0]))
-        .unwrap_err();
-    assert_eq!(
-        e.0,
-        "the genome develops in an environment of 1 slot(s), not 2"
-    );
 }
 
 #[test]
@@ -160,42 +120,16 @@ fn with_environment_reads_every_offspring_fits_reads_back_and_develops_in_any_ar
         environment_reads: 0.5,
         ..LSystemLimits::default()
     };
-    let (mut genomes, mut reading, mut neurons, mut differ) = (0, 0, 0, 0);
-    for seed in 0..60 {
-        let mut r = rng(seed);
-        let mut a = LSystemGenome::random(&limits, &mut r);
-        let b = LSystemGenome::random(&limits, &mut r);
-        for round in 0..8 {
-            a = if round % 2 == 0 {
-                a.mutate(&limits, 0.3, &mut r)
-            } else {
-                a.crossover(&b, &limits, &mut r).unwrap()
-            };
+    let (mut genomes, mut reading, mut neurons) = (0, 0, 0);
+    let differ =
+        offspring_whose_body_depends_on_the_cue(&limits, 0..60, |seed, a: &LSystemGenome, text| {
             genomes += 1;
-            let text = a.to_text();
             a.check(&limits)
                 .unwrap_or_else(|e| panic!("seed {seed}: {e}\n{text}"));
-            let back = LSystemGenome::read_text(&text, &limits)
-                .unwrap_or_else(|e| panic!("seed {seed}: {e}\n{text}"));
-            assert_eq!(back, a, "seed {seed}");
             assert_eq!(a.environment, vec![0.0], "seed {seed}");
             reading += usize::from(a.productions.iter().any(|p| p.read.is_some()));
             neurons += usize::from(text.contains("chem(") || text.contains("secrete("));
-            // Development never panics: a creature, or a refusal of its size.
-            let low = a.develop_in(&limits, 0, &Environment::new(vec![0.0]));
-            let high = a.develop_in(&limits, 0, &Environment::new(vec![1.0]));
-            match (low, high) {
-                (Ok(low), Ok(high)) => {
-                    differ += usize::from(!phenotype_differences(&low, &high).is_same());
-                }
-                (low, high) => {
-                    for e in [low.err(), high.err()].into_iter().flatten() {
-                        assert!(e.0.contains("modules"), "seed {seed}: {e}\n{text}");
-                    }
-                }
-            }
-        }
-    }
+        });
     assert_eq!(genomes, 480);
     assert!(reading > 300, "{reading}");
     assert!(neurons > 100, "{neurons}");

@@ -94,6 +94,130 @@ pub fn assert_determined_by_the_random_source<G: ontogeny::encoding::Genome + Pa
     assert_eq!(a.develop(limits, 3), a.develop(limits, 3));
 }
 
+/// The SHA-256, in hex, of the texts and JSON of genomes of `G` drawn, mutated and crossed
+/// over from seeds 0 to 19 under `limits`: a fingerprint of what the operators draw.
+pub fn operators_fingerprint<G: ontogeny::encoding::Genome>(limits: &G::Limits) -> String {
+    use rand::SeedableRng;
+    use sha2::{Digest, Sha256};
+    let mut hasher = Sha256::new();
+    for seed in 0..20 {
+        let mut r = ontogeny::encoding::Rng::seed_from_u64(seed);
+        let mut a = G::random(limits, &mut r);
+        let b = G::random(limits, &mut r);
+        for _ in 0..20 {
+            a = a.mutate(limits, 0.3, &mut r);
+            a = a.crossover(&b, limits, &mut r).unwrap();
+            hasher.update(a.to_text().as_bytes());
+            hasher.update(serde_json::to_string(&a).unwrap().as_bytes());
+        }
+    }
+    hasher
+        .finalize()
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// The genome of `G` in the file `path`, read with the default limits.
+pub fn genome_file<G: ontogeny::encoding::Genome>(path: &str) -> G
+where
+    G::Limits: Default,
+{
+    let text = std::fs::read_to_string(path).unwrap();
+    G::read_text(&text, &G::Limits::default()).unwrap()
+}
+
+/// The creatures a plastic genome of one slot, 0 in its own array, grows where its cue is
+/// low (0) and where it is high (1): both valid, each holding the array it grew in, the low
+/// one what `develop` grows; an array of another size is refused.
+pub fn grown_low_and_high<G: ontogeny::encoding::Genome>(
+    g: &G,
+    limits: &G::Limits,
+) -> (Creature, Creature) {
+    use ontogeny::environment::Environment;
+    assert_eq!(g.environment(), Environment::new(vec![0.0]));
+    let low = g
+        .develop_in(limits, 0, &Environment::new(vec![0.0]))
+        .unwrap();
+    let high = g
+        .develop_in(limits, 0, &Environment::new(vec![1.0]))
+        .unwrap();
+    assert!(low.is_valid() && high.is_valid());
+    assert_eq!(low.environment, vec![0.0]);
+    assert_eq!(high.environment, vec![1.0]);
+    // Its own environment is the low one, and develop() grows in it.
+    assert_eq!(g.develop(limits, 0).unwrap(), low);
+    // An array of another size is refused, not developed.
+    let e = g
+        .develop_in(limits, 0, &Environment::new(vec![1.0, 0.0]))
+        .unwrap_err();
+    assert_eq!(
+        e.0,
+        "the genome develops in an environment of 1 slot(s), not 2"
+    );
+    (low, high)
+}
+
+/// The offspring of genomes of `G` drawn under `limits` from each seed of `seeds`: a pair
+/// of random genomes, then eight rounds, mutation and crossover in turn, each offspring
+/// read back equal from its text and given to `each` with its seed and text. Returns how
+/// many whether the offspring's body depends on its cue (0 or 1), for those that develop:
+/// development never panics, and refuses only a creature of too many modules.
+pub fn offspring_whose_body_depends_on_the_cue<G>(
+    limits: &G::Limits,
+    seeds: std::ops::Range<u64>,
+    mut each: impl FnMut(u64, &G, &str),
+) -> usize
+where
+    G: ontogeny::encoding::Genome + PartialEq,
+{
+    use ontogeny::creature::phenotype_differences;
+    use ontogeny::environment::Environment;
+    use rand::SeedableRng;
+    let mut differ = 0;
+    for seed in seeds {
+        let mut r = ontogeny::encoding::Rng::seed_from_u64(seed);
+        let mut a = G::random(limits, &mut r);
+        let b = G::random(limits, &mut r);
+        for round in 0..8 {
+            a = if round % 2 == 0 {
+                a.mutate(limits, 0.3, &mut r)
+            } else {
+                a.crossover(&b, limits, &mut r).unwrap()
+            };
+            let text = a.to_text();
+            let back =
+                G::read_text(&text, limits).unwrap_or_else(|e| panic!("seed {seed}: {e}\n{text}"));
+            assert_eq!(back, a, "seed {seed}");
+            each(seed, &a, &text);
+            let low = a.develop_in(limits, 0, &Environment::new(vec![0.0]));
+            let high = a.develop_in(limits, 0, &Environment::new(vec![1.0]));
+            match (low, high) {
+                (Ok(low), Ok(high)) => {
+                    differ += usize::from(!phenotype_differences(&low, &high).is_same());
+                }
+                (low, high) => {
+                    for e in [low.err(), high.err()].into_iter().flatten() {
+                        assert!(e.0.contains("modules"), "seed {seed}: {e}\n{text}");
+                    }
+                }
+            }
+        }
+    }
+    differ
+}
+
+/// `ontogeny evolve --config CONFIG --out OUT`, run to its end.
+pub fn evolve_config(config: &Path, out: &Path) -> Output {
+    ontogeny_command()
+        .args(["evolve", "--config"])
+        .arg(config)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 /// The `ontogeny` binary as a command, for a test to add arguments, input or environment to.
 pub fn ontogeny_command() -> Command {
     Command::new(env!("CARGO_BIN_EXE_ontogeny"))
