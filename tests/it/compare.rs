@@ -44,9 +44,15 @@ fn tiny(out: &Path) -> Command {
     c
 }
 
-/// The report's numbers without wall-clock figures: `summary.csv` without its last column
-/// (wall seconds) and `report.md` without its evaluations-per-second column.
+/// The report's numbers without wall-clock figures, for encodings compared.
 fn numbers(dir: &Path) -> String {
+    numbers_of(dir, &["lsystem", "direct"])
+}
+
+/// The numbers of a comparison of the arms `arms` (encodings or conditions) without
+/// wall-clock figures: `summary.csv` without its last column (wall seconds) and the arms'
+/// rows of `report.md` without their evaluations-per-second column.
+fn numbers_of(dir: &Path, arms: &[&str]) -> String {
     let csv = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
     let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
     let mut out = String::new();
@@ -54,18 +60,19 @@ fn numbers(dir: &Path) -> String {
         out += &line[..line.rfind(',').unwrap()];
         out.push('\n');
     }
-    for line in md.lines() {
-        if line.starts_with("| lsystem") || line.starts_with("| direct") {
-            let cells: Vec<&str> = line.split('|').collect();
-            // A line of the encodings' table has 13 cells; drop evaluations/s.
-            let keep = if cells.len() == 15 {
-                &cells[..13]
-            } else {
-                &cells[..]
-            };
-            out += &keep.join("|");
-            out.push('\n');
-        }
+    for line in md
+        .lines()
+        .filter(|l| arms.iter().any(|arm| l.starts_with(&format!("| {arm}"))))
+    {
+        let cells: Vec<&str> = line.split('|').collect();
+        // A line of the arms' table has 13 cells; drop evaluations/s.
+        let keep = if cells.len() == 15 {
+            &cells[..13]
+        } else {
+            &cells[..]
+        };
+        out += &keep.join("|");
+        out.push('\n');
     }
     out
 }
@@ -649,32 +656,6 @@ fn compare_conditions(low: &Path, high: &Path, out: &Path) -> Command {
     c
 }
 
-/// A comparison of conditions' numbers without wall-clock figures: `summary.csv` without its
-/// last column, `report.md` without its evaluations-per-second column.
-fn condition_numbers(dir: &Path) -> String {
-    let csv = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
-    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
-    let mut out = String::new();
-    for line in csv.lines() {
-        out += &line[..line.rfind(',').unwrap()];
-        out.push('\n');
-    }
-    for line in md
-        .lines()
-        .filter(|l| l.starts_with("| low") || l.starts_with("| high"))
-    {
-        let cells: Vec<&str> = line.split('|').collect();
-        let keep = if cells.len() == 15 {
-            &cells[..13]
-        } else {
-            &cells[..]
-        };
-        out += &keep.join("|");
-        out.push('\n');
-    }
-    out
-}
-
 #[test]
 fn two_conditions_run_resume_and_report_both_names_and_their_power() {
     let dir = scratch("conditions");
@@ -772,7 +753,7 @@ fn two_conditions_run_resume_and_report_both_names_and_their_power() {
             "detectable_a12": null, "method": "simulated"})
     );
     // A replicate lost and the comparison resumed: the same report.
-    let before = condition_numbers(&out);
+    let before = numbers_of(&out, &["low", "high"]);
     std::fs::remove_dir_all(out.join("high/rep-2")).unwrap();
     let resumed = ontogeny_command()
         .args(["compare", "--resume"])
@@ -786,7 +767,7 @@ fn two_conditions_run_resume_and_report_both_names_and_their_power() {
         stderr(&resumed)
     );
     assert!(!stderr(&resumed).contains("[low "), "{}", stderr(&resumed));
-    assert_eq!(condition_numbers(&out), before);
+    assert_eq!(numbers_of(&out, &["low", "high"]), before);
     // Planned: one `evolve` command per replicate reading its condition's settings; run and
     // merged, the same report.
     let planned = dir.join("planned");
@@ -817,7 +798,7 @@ fn two_conditions_run_resume_and_report_both_names_and_their_power() {
             .output()
             .unwrap(),
     );
-    assert_eq!(condition_numbers(&planned), before);
+    assert_eq!(numbers_of(&planned, &["low", "high"]), before);
     let _ = std::fs::remove_dir_all(dir);
 }
 
