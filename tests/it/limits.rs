@@ -8,7 +8,7 @@ use ontogeny::lang::Source;
 use ontogeny::run::config::{RunConfig, read_run_config};
 use ontogeny::task::{TaskKind, TaskSpec};
 
-use crate::util::{ontogeny_command, refused, scratch_dir};
+use crate::util::{evolve_config, refused, scratch_dir};
 
 /// Every key's value just outside its range, low and high where it has both, with the
 /// message that names it: (encoding, key = value, the message after `[limits] `).
@@ -277,13 +277,7 @@ fn every_limit_out_of_its_range_exits_2_naming_the_file_line_and_key() {
         let config = dir.join(format!("c{i}.toml"));
         std::fs::write(&config, config_with_limit(encoding, line)).unwrap();
         let run = dir.join(format!("run{i}"));
-        let output = ontogeny_command()
-            .args(["evolve", "--config"])
-            .arg(&config)
-            .arg("--out")
-            .arg(&run)
-            .output()
-            .unwrap();
+        let output = evolve_config(&config, &run);
         let column = line.find('=').unwrap() + 3;
         let said = refused(&output, &format!("[limits] {message}"));
         let place = format!("{}:6:{column}", config.display());

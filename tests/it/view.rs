@@ -11,7 +11,9 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Stdio};
 
-use crate::util::{assert_bad_input, ontogeny_command, refused, scratch_dir};
+use crate::util::{
+    assert_bad_input, evolve_config, ontogeny_command, refused, scratch_dir, succeeded,
+};
 
 /// A fresh, empty scratch directory of this module's, named after `name`.
 fn scratch(name: &str) -> PathBuf {

@@ -236,11 +236,7 @@ fn recording_and_run_pages_draw_their_creatures_in_chromium() {
         .arg(&rec)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let recording: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(rec.join("recording.json")).unwrap())
             .unwrap();
@@ -352,11 +348,7 @@ fn assert_snapshot(browser: &Path, path: &Path, png: &Path) {
         .arg(browser)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let picture = tiny_skia::Pixmap::load_png(png).unwrap();
     assert_eq!((picture.width(), picture.height()), (480, 300));
 }
@@ -376,11 +368,7 @@ fn snapshot_writes_a_picture_of_the_page() {
         .arg(&browser)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let picture = tiny_skia::Pixmap::load_png(&png).unwrap();
     assert_eq!((picture.width(), picture.height()), (640, 400));
     // The creature is drawn: many pixels of the parts' blue in the 3D view (the left 340 × 260
@@ -818,11 +806,7 @@ fn a_walker_recording_shows_the_distance_walked_so_far_in_chromium() {
         .arg(&rec)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(&out);
     let recording: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(rec.join("recording.json")).unwrap())
             .unwrap();

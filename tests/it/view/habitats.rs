@@ -21,18 +21,8 @@ fn habitat_run(name: &str) -> PathBuf {
     )
     .unwrap();
     let run = dir.join("run");
-    let out = ontogeny_command()
-        .args(["evolve", "--config"])
-        .arg(&config)
-        .arg("--out")
-        .arg(&run)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = evolve_config(&config, &run);
+    succeeded(&out);
     run
 }
 
