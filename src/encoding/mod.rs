@@ -144,7 +144,7 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// values are `env`'s (a habitat's): the same genome may grow another body. `env` must
     /// have the size of [`Genome::environment`], unless the genome has none: a genome that
     /// reads no environment grows [`Genome::develop`]'s creature in any array (the default,
-    /// for encodings whose genomes never read one; [`array_read`] gives the others the array
+    /// for encodings whose genomes never read one; `array_read` gives the others the array
     /// they read).
     fn develop_in(
         &self,
