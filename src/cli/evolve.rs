@@ -216,7 +216,18 @@ const DEFAULT_CONFIG: &str = include_str!("../../examples/evolve-walker.toml");
 const DEFAULT_CONFIG_NAME: &str = "examples/evolve-walker.toml (built in)";
 
 /// What a new run started from [`DEFAULT_CONFIG`] says on standard error.
-pub const DEFAULT_RUN_NOTE: &str = "note: no --config, --preset, --pop or --gens: starting the walker example (examples/evolve-walker.toml, built in: the lsystem genome, Chaumont's schedule, 100 creatures × 40 generations of 20-second walks, fitness distance; about a minute on two cores); other flags apply over it; --preset chaumont runs Chaumont's full 300 × 100";
+pub fn default_run_note(seconds: Option<f64>) -> String {
+    let walks = match seconds {
+        Some(s) => format!(
+            "{}-second walks (--seconds)",
+            ontogeny::number::format_number(s)
+        ),
+        None => "20-second walks".to_string(),
+    };
+    format!(
+        "note: no --config, --preset, --pop or --gens: starting the walker example (examples/evolve-walker.toml, built in: the lsystem genome, Chaumont's schedule, 100 creatures × 40 generations of {walks}, fitness distance; about a minute on two cores); other flags apply over it; --preset chaumont runs Chaumont's full 300 × 100"
+    )
+}
 
 /// The run's flags that set its genetic algorithm and task.
 fn run_flags(args: &EvolveArgs) -> RunFlags {
@@ -261,7 +272,7 @@ fn start<G: Genome>(
     };
     let mut run = start_run::<G>(&new, |notes| {
         if example {
-            tell!("{DEFAULT_RUN_NOTE}");
+            tell!("{}", default_run_note(args.seconds));
         }
         for note in notes {
             tell!("{note}");

@@ -194,6 +194,28 @@ fn bench_json_prints_one_creatures_speed_and_is_refused_with_fidelity() {
 }
 
 #[test]
+fn the_walker_examples_note_gives_the_walks_that_seconds_sets() {
+    let dir = scratch("default-seconds");
+    // A folder of the user's: refused once the settings are resolved, after the note.
+    let mine = dir.join("mine");
+    std::fs::create_dir_all(&mine).unwrap();
+    std::fs::write(mine.join("notes.txt"), "mine").unwrap();
+    let o = ontogeny_command()
+        .args(["evolve", "--seconds", "2.5", "--out"])
+        .arg(&mine)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "100 creatures × 40 generations of 2.5-second walks (--seconds), fitness distance"
+        ),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn evolve_with_nothing_about_the_runs_size_starts_the_walker_example_and_says_so() {
     let dir = scratch("default");
     // A folder of the user's: refused once the settings are resolved, after the note.
