@@ -121,9 +121,8 @@ pub fn find_runs(dir: &Path) -> Result<(Vec<FoundRun>, Vec<String>), PlasticityE
         }
         return Ok((found, notes));
     }
-    let listed = listing::list(dir).map_err(|e| {
-        PlasticityError::Input(format!("{}: cannot read it: {e}", dir.display()))
-    })?;
+    let listed = listing::list(dir)
+        .map_err(|e| PlasticityError::Input(format!("{}: cannot read it: {e}", dir.display())))?;
     let mut runs: Vec<PathBuf> = listed
         .into_iter()
         .filter(|l| l.kind == Kind::Run)
@@ -183,7 +182,10 @@ fn natural_key(text: &str) -> Vec<(String, u128)> {
             while let Some(d) = chars.next_if(char::is_ascii_digit) {
                 digits.push(d);
             }
-            key.push((std::mem::take(&mut word), digits.parse().unwrap_or(u128::MAX)));
+            key.push((
+                std::mem::take(&mut word),
+                digits.parse().unwrap_or(u128::MAX),
+            ));
         } else {
             word.push(c);
         }
@@ -388,11 +390,9 @@ pub fn measure_run<G: Genome>(found: &FoundRun) -> Result<ChampionPlasticity, Pl
         }
         Err(e) => {
             for h in 0..task.habitat_count() {
-                measured.habitats.push(habitat(
-                    h,
-                    FAILURE_FITNESS,
-                    Status::Invalid.name().into(),
-                ));
+                measured
+                    .habitats
+                    .push(habitat(h, FAILURE_FITNESS, Status::Invalid.name().into()));
             }
             measured.error = Some(e.0);
         }
@@ -570,7 +570,12 @@ pub fn text(dir: &Path, champions: &[ChampionPlasticity]) -> String {
             .iter()
             .map(|(n, _)| habitat_label(n))
             .collect();
-        let width = names.iter().map(|n| n.chars().count()).max().unwrap_or(0).max(10);
+        let width = names
+            .iter()
+            .map(|n| n.chars().count())
+            .max()
+            .unwrap_or(0)
+            .max(10);
         let mut header = format!("{:<8} {:>10} |", "run", "fitness");
         for n in &names {
             header.push_str(&format!(" {n:>width$}"));
@@ -656,7 +661,13 @@ fn csv_field(s: &str) -> String {
 /// the morph grown there (parts, joints, neurons, volume) and the champion's norm.
 pub fn csv(champions: &[ChampionPlasticity]) -> String {
     let mut lines = vec![CSV_COLUMNS.to_string()];
-    let number = |v: f64| if v.is_nan() { String::new() } else { v.to_string() };
+    let number = |v: f64| {
+        if v.is_nan() {
+            String::new()
+        } else {
+            v.to_string()
+        }
+    };
     for c in champions {
         for h in &c.habitats {
             let morph = c.cues.iter().find(|m| m.habitats.contains(&h.name));
