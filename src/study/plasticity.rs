@@ -440,7 +440,22 @@ pub struct Summary {
     /// `depending / with_norm` (`None` without a norm).
     pub share_depending: Option<f64>,
     /// The medians of the norms' figures, over the champions with one (NaN without).
-    pub median_norm: Norm,
+    pub median_norm: NormMedians,
+}
+
+/// The medians of the figures of several norms ([`Norm`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NormMedians {
+    /// Of |Δparts|.
+    pub parts_change: f64,
+    /// Of |Δjoints|.
+    pub joints_change: f64,
+    /// Of |Δneurons|.
+    pub neurons_change: f64,
+    /// Of |ΔV|/V.
+    pub volume_change: f64,
+    /// Of Σ|Δsize| (m).
+    pub size_change: f64,
 }
 
 /// Groups `champions` by condition, in the order the conditions first come.
@@ -487,8 +502,7 @@ pub fn summarise(condition: &str, champions: &[&ChampionPlasticity]) -> Summary 
         with_norm: norms.len(),
         depending,
         share_depending: (!norms.is_empty()).then(|| depending as f64 / norms.len() as f64),
-        median_norm: Norm {
-            depends_on_cue: depending * 2 > norms.len(),
+        median_norm: NormMedians {
             parts_change: of(|n| n.parts_change),
             joints_change: of(|n| n.joints_change),
             neurons_change: of(|n| n.neurons_change),
@@ -543,8 +557,10 @@ pub fn text(dir: &Path, champions: &[ChampionPlasticity]) -> String {
     )];
     for (condition, group) in &groups {
         let summary = summarise(condition, group);
-        let cues: Vec<String> = group[0]
-            .cues
+        let cues: Vec<String> = group
+            .iter()
+            .find(|c| !c.cues.is_empty())
+            .map_or(&[][..], |c| &c.cues[..])
             .iter()
             .map(|c| {
                 let names: Vec<&str> = c.habitats.iter().map(|h| habitat_label(h)).collect();
