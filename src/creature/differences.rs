@@ -1,6 +1,6 @@
 //! How two creatures differ: the phenotypes one genome grows in two environments (parts,
-//! joints, sizes, placements, neurons), so that a body that depends on its environment can be told from
-//! one that does not.
+//! joints, sizes, placements, neurons), so that a body that depends on its environment can be
+//! told from one that does not.
 
 use std::fmt;
 

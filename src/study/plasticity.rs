@@ -11,9 +11,9 @@
 //!
 //! **Cues.** Development reads a habitat's chemical array and nothing else of it (its world
 //! comes later, in the walk), so habitats with the same array grow the same body. The cues are
-//! the task's distinct arrays, in the order their first habitat comes: habitats `flat` [0] and
-//! `steps` [1] are two cues of one habitat each; the random-cue control's `flat-0` [0],
-//! `flat-1` [1], `steps-0` [0] and `steps-1` [1] are two cues of two habitats each, so its
+//! the task's distinct arrays, in the order their first habitat comes: habitats `flat` `[0]` and
+//! `steps` `[1]` are two cues of one habitat each; the random-cue control's `flat-0` `[0]`,
+//! `flat-1` `[1]`, `steps-0` `[0]` and `steps-1` `[1]` are two cues of two habitats each, so its
 //! norm is between the cue's values, not between grounds. A habitat without an array (the
 //! genome's own) is a cue of its own. Arrays are the same when every value is, bit for bit.
 //!
