@@ -149,11 +149,14 @@ fn plasticity_of(args: &PlasticityArgs) -> anyhow::Result<()> {
         tell!("note: {note}");
     }
     let mut progress = super::progress::Progress::new("measuring plasticity");
-    let champions = plasticity::measure_runs(&runs, &mut |done, all| {
+    let (champions, notes) = plasticity::measure_runs(&runs, &mut |done, all| {
         progress.set(done as f64 / all as f64)
     })
     .map_err(error)?;
     progress.finish();
+    for note in notes {
+        tell!("note: {note}");
+    }
     if args.json {
         say!("{}", plasticity::json(dir, &champions));
     } else if args.csv {

@@ -353,10 +353,16 @@ pub fn habitat_fitness(task: &TaskSpec, evaluation: &Evaluation, habitat: usize)
     Some(task.trials.aggregate.of(&fitnesses))
 }
 
-/// Measures the champion of `found`, a run of genome `G`.
-pub fn measure_run<G: Genome>(found: &FoundRun) -> Result<ChampionPlasticity, PlasticityError> {
+/// Measures the champion of `found`, a run of genome `G`; `None` for a run without a complete
+/// generation.
+pub fn measure_run<G: Genome>(
+    found: &FoundRun,
+) -> Result<Option<ChampionPlasticity>, PlasticityError> {
     let dir = &found.dir;
     let run = Run::<G>::open_read_only(dir)?;
+    if run.last_generation()?.is_none() {
+        return Ok(None);
+    }
     let (generation, best) = individual_by_rank(&run, dir, None, 1)?;
     let task = &run.config().task;
     let mut measured = ChampionPlasticity {
@@ -397,16 +403,19 @@ pub fn measure_run<G: Genome>(found: &FoundRun) -> Result<ChampionPlasticity, Pl
             measured.error = Some(e.0);
         }
     }
-    Ok(measured)
+    Ok(Some(measured))
 }
 
-/// Measures the champion of every run of `runs`, in order; `progress(done, total)` is called
-/// after each. The first run that cannot be read stops the measurement, its error naming it.
+/// Measures the champion of every run of `runs`, in order, with a note for each run left out
+/// for want of a complete generation; `progress(done, total)` is called after each. The first
+/// run that cannot be read stops the measurement, its error naming it; `Err` too when no run
+/// has a complete generation.
 pub fn measure_runs(
     runs: &[FoundRun],
     progress: &mut dyn FnMut(usize, usize),
-) -> Result<Vec<ChampionPlasticity>, PlasticityError> {
+) -> Result<(Vec<ChampionPlasticity>, Vec<String>), PlasticityError> {
     let mut measured = Vec::with_capacity(runs.len());
+    let mut notes = Vec::new();
     for (done, found) in runs.iter().enumerate() {
         let encoding = encoding_of_run(&found.dir)?;
         let champion = crate::with_genome!(
@@ -417,10 +426,22 @@ pub fn measure_runs(
                 found.dir.display()
             )))
         )?;
-        measured.push(champion);
+        match champion {
+            Some(champion) => measured.push(champion),
+            None => notes.push(format!(
+                "{}: no complete generation yet; left out",
+                found.dir.display()
+            )),
+        }
         progress(done + 1, runs.len());
     }
-    Ok(measured)
+    if measured.is_empty() {
+        return Err(PlasticityError::Input(match runs {
+            [one] => format!("{}: no complete generation yet", one.dir.display()),
+            _ => "no run has a complete generation yet".to_string(),
+        }));
+    }
+    Ok((measured, notes))
 }
 
 /// A condition's summary: medians over its champions.
