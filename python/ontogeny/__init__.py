@@ -24,6 +24,7 @@ from ._ontogeny import (
     evaluate,
     evaluate_many,
     genome,
+    genome_habitats,
     grow,
     load,
 )
@@ -41,6 +42,7 @@ __all__ = [
     "evaluate_many",
     "evolve",
     "genome",
+    "genome_habitats",
     "grow",
     "load",
     "resume",

@@ -137,6 +137,15 @@ def genome(text: str, encoding: str = "direct", *, seed: int = 0) -> Creature:
     """Develops a genome's text (``direct``: an axiom alone; ``lsystem``, ``continuous``:
     ``best.lsys``; ``graph``: ``best.json``) within the encoding's default limits."""
 
+def genome_habitats(config: _Path, genome: _Path) -> Dict[str, Any]:
+    """Develops the genome file ``genome`` in each habitat of the configuration ``config``
+    (its ``[[task.habitats]]``, each with its chemical array) and returns what ``ontogeny
+    genome show --habitats CONFIG GENOME --json`` prints: ``file``, ``encoding``,
+    ``habitats`` (each ``name``, ``environment``, ``develops``, ``creature``, ``error``),
+    ``differences`` (each pair's ``from``, ``to``, ``same``, counts, ``volume``, ``resized``,
+    ``largest_resize``, ``summed_resize``, ``moved``, ``joints_of_another_kind``, ``text``),
+    ``depends_on_habitat`` and ``verdict``."""
+
 def derive(
     text: str,
     *,

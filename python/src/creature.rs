@@ -1,7 +1,8 @@
-//! Creatures from Python: `grow`, `load`, `genome` and `derive`, and the `Creature` class.
+//! Creatures from Python: `grow`, `load`, `genome`, `genome_habitats` and `derive`, and the
+//! `Creature` class.
 
 use crate::common::{diagnostic_error, load_error, require_exists, value_error, warn_all};
-use pyo3::exceptions::{PyDeprecationWarning, PyTypeError};
+use pyo3::exceptions::{PyDeprecationWarning, PyOSError, PyTypeError};
 use std::ffi::CString;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -12,6 +13,7 @@ use numpy::PyArray2;
 use numpy::ndarray::Array2;
 use ontogeny::creature::Creature;
 use ontogeny::encoding::{Genome, LoadError, LoadOptions, Loaded, grow_grammar, load_creature};
+use ontogeny::front::habitats::{GenomeHabitatsError, genome_in_habitats};
 use ontogeny::lang::{Diagnostic, Source};
 use ontogeny::lsystem::{DefineOverride, DeriveOptions, LSystem, Overrides, print};
 use pyo3::prelude::*;
@@ -327,6 +329,31 @@ pub(crate) fn genome(
     developed
         .map(|c| PyCreature::new(c, Vec::new()))
         .map_err(value_error)
+}
+
+/// Develops a genome file in each habitat of a configuration, as `ontogeny genome show
+/// --habitats CONFIG GENOME --json` does, and returns what it prints as a dict: `file`,
+/// `encoding`, `habitats` (each `name`, `environment`, `develops`, `creature`, `error`),
+/// `differences` (each pair's), `depends_on_habitat` and `verdict`.
+#[pyfunction]
+pub(crate) fn genome_habitats<'py>(
+    py: Python<'py>,
+    config: PathBuf,
+    genome: PathBuf,
+) -> PyResult<Bound<'py, PyAny>> {
+    require_exists(&config)?;
+    require_exists(&genome)?;
+    let shown = py
+        .detach(|| genome_in_habitats(&config, &genome))
+        .map_err(|e| match e {
+            GenomeHabitatsError::Diagnostic(d) => diagnostic_error(d),
+            GenomeHabitatsError::Input(m) => value_error(m),
+            GenomeHabitatsError::Read { path, source } => {
+                PyOSError::new_err(format!("cannot read {}: {source}", path.display()))
+            }
+        })?;
+    py.import("json")?
+        .call_method1("loads", (shown.json().to_string(),))
 }
 
 growing_function! {

@@ -18,7 +18,7 @@ mod resume;
 
 use pyo3::prelude::*;
 
-use creature::{PyCreature, derive, genome, grow, load};
+use creature::{PyCreature, derive, genome, genome_habitats, grow, load};
 use evaluation::{PyEvaluation, evaluate, evaluate_many};
 use evolution::{PyRun, evolve};
 
@@ -38,6 +38,7 @@ fn _ontogeny(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(grow, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(genome, m)?)?;
+    m.add_function(wrap_pyfunction!(genome_habitats, m)?)?;
     m.add_function(wrap_pyfunction!(derive, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_many, m)?)?;

@@ -1,6 +1,7 @@
 """Habitats from Python: ``evaluate(config=..., habitat=...)`` equals ``ontogeny eval --config``
 (each habitat's and trial's walk in ``Evaluation.habitats``), bad names and clashing keywords
-raise ``ValueError``, and ``Run.individuals()`` gives each individual's walks."""
+raise ``ValueError``, ``Run.individuals()`` gives each individual's walks, and
+``genome_habitats`` gives what ``ontogeny genome show --habitats --json`` prints."""
 
 import json
 
@@ -93,3 +94,26 @@ def test_a_runs_individuals_carry_their_walks_in_each_habitat(tmp_path, config):
             assert individual["fitness"] == sum(fitnesses) / 4
     plain = ontogeny.evolve(out=tmp_path / "plain", pop=4, gens=1, seconds=0.5, encoding="direct")
     assert "habitats" not in plain.individuals(0)[0]
+
+
+def test_genome_habitats_equals_genome_show_habitats(root, cli, tmp_path):
+    config = root / "examples" / "habitats.toml"
+    plastic = root / "examples" / "plastic-lsystem.lsys"
+    ours = ontogeny.genome_habitats(config, plastic)
+    assert ours == cli.json("genome", "show", "--habitats", config, plastic, "--json")
+    assert [h["name"] for h in ours["habitats"]] == ["poor", "rich"]
+    assert [h["creature"]["parts"] for h in ours["habitats"]] == [5, 7]
+    assert ours["differences"][0]["parts"] == [5, 7]
+    assert ours["depends_on_habitat"] is True
+    assert ours["verdict"] == "the body depends on the habitat"
+    # A genome that reads nothing grows the same body in both.
+    fixed = ontogeny.genome_habitats(str(config), str(root / "examples" / "hornby-walker.lsys"))
+    assert fixed["depends_on_habitat"] is False
+    assert fixed["differences"][0]["same"] is True
+    # A configuration without habitats, or a missing file, is refused.
+    plain = tmp_path / "plain.toml"
+    plain.write_text('[task]\ntask = "walker"\n')
+    with pytest.raises(ValueError, match=r"plain.toml: it has no \[\[task.habitats\]\]"):
+        ontogeny.genome_habitats(plain, plastic)
+    with pytest.raises(FileNotFoundError, match="absent.lsys"):
+        ontogeny.genome_habitats(config, tmp_path / "absent.lsys")

@@ -4,7 +4,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::{Args, Subcommand};
-use ontogeny::encoding::{HabitatArray, ShowError, develop_in_habitat_arrays, read_genome_file};
+use ontogeny::encoding::{ShowError, read_genome_file};
+use ontogeny::front::habitats::{GenomeHabitatsError, genome_in_habitats};
 
 /// Subcommands of `ontogeny genome`.
 #[derive(Subcommand)]
@@ -68,26 +69,12 @@ pub fn run(args: &GenomeArgs) -> anyhow::Result<()> {
 /// `genome show --habitats CONFIG FILE`: the genome developed in each habitat of CONFIG, and
 /// how the creatures differ.
 fn show_habitats(file: &Path, config: &Path, json: bool) -> anyhow::Result<()> {
-    let spec = ontogeny::run::config::read_task_config(config).map_err(anyhow::Error::new)?;
-    if spec.habitats.is_empty() {
-        return Err(super::bad(format!(
-            "{}: it has no [[task.habitats]] to develop the genome in",
-            config.display()
-        )));
-    }
-    let habitats: Vec<HabitatArray> = spec
-        .habitats
-        .iter()
-        .map(|h| HabitatArray {
-            name: h.name.clone(),
-            environment: h.environment.clone(),
-        })
-        .collect();
-    let text = ontogeny::input::read_to_string(file)
-        .with_context(|| format!("cannot read {}", file.display()))?;
-    let shown = develop_in_habitat_arrays(file, &text, &habitats).map_err(|e| match e {
-        ShowError::Grammar(d) => anyhow::Error::new(d),
-        ShowError::NotAGenome(m) => super::bad(m),
+    let shown = genome_in_habitats(config, file).map_err(|e| match e {
+        GenomeHabitatsError::Diagnostic(d) => anyhow::Error::new(d),
+        GenomeHabitatsError::Input(m) => super::bad(m),
+        GenomeHabitatsError::Read { path, source } => {
+            anyhow::Error::new(source).context(format!("cannot read {}", path.display()))
+        }
     })?;
     if json {
         say!("{}", serde_json::to_string_pretty(&shown.json())?);

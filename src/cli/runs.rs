@@ -10,6 +10,7 @@ use ontogeny::run::pick::PickError;
 use ontogeny::run::{Run, encoding_of_run};
 use ontogeny::study::canalization::{self, Settings};
 use ontogeny::study::listing;
+use ontogeny::study::plasticity::{self, PlasticityError};
 
 /// Subcommands of `ontogeny runs`.
 #[derive(Subcommand)]
@@ -36,6 +37,25 @@ pub enum RunsVerb {
     /// noise in the chemical values it develops in (each habitat's, or its own) and under
     /// mutation. A row per generation measured.
     Canalization(CanalizationArgs),
+    /// Measure plasticity: for each run's champion (a comparison's, the runs under a
+    /// directory, or one run's), its fitness in each habitat walked again, and its reaction
+    /// norm: the body grown under each cue (each distinct chemical array of the habitats) and
+    /// how those bodies differ. A table per condition, a row per champion, and a summary.
+    Plasticity(PlasticityArgs),
+}
+
+/// The flags of `ontogeny runs plasticity`.
+#[derive(Args)]
+pub struct PlasticityArgs {
+    /// A comparison directory, a directory with runs under it, or a run directory.
+    dir: PathBuf,
+    /// Print a CSV: a header, then a row per champion and habitat, every number in full
+    /// (empty where there is none).
+    #[arg(long, conflicts_with = "json")]
+    csv: bool,
+    /// Print one JSON object: each condition's champions and summary.
+    #[arg(long)]
+    json: bool,
 }
 
 /// The flags of `ontogeny runs canalization`.
@@ -68,7 +88,8 @@ pub struct CanalizationArgs {
 }
 
 /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
-/// directory (`runs list DIR`), the canalization of its champions (`runs canalization DIR`).
+/// directory (`runs list DIR`), the canalization of its champions (`runs canalization DIR`),
+/// the plasticity of champions (`runs plasticity DIR`).
 #[derive(Args)]
 pub struct RunsArgs {
     #[command(subcommand)]
@@ -110,6 +131,38 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
                 )))
             )?;
         }
+        RunsVerb::Plasticity(args) => plasticity_of(args)?,
+    }
+    Ok(())
+}
+
+/// `ontogeny runs plasticity`.
+fn plasticity_of(args: &PlasticityArgs) -> anyhow::Result<()> {
+    let dir = &args.dir;
+    let error = |e: PlasticityError| match e {
+        PlasticityError::Run(e) => super::evolve::run_error(e),
+        PlasticityError::Input(message) => super::bad(message),
+        PlasticityError::Other(message) => anyhow::anyhow!(message),
+    };
+    let (runs, notes) = plasticity::find_runs(dir).map_err(error)?;
+    for note in notes {
+        tell!("note: {note}");
+    }
+    let mut progress = super::progress::Progress::new("measuring plasticity");
+    let (champions, notes) = plasticity::measure_runs(&runs, &mut |done, all| {
+        progress.set(done as f64 / all as f64)
+    })
+    .map_err(error)?;
+    progress.finish();
+    for note in notes {
+        tell!("note: {note}");
+    }
+    if args.json {
+        say!("{}", plasticity::json(dir, &champions));
+    } else if args.csv {
+        say!("{}", plasticity::csv(&champions));
+    } else {
+        say!("{}", plasticity::text(dir, &champions));
     }
     Ok(())
 }

@@ -1,13 +1,14 @@
 //! How two creatures differ: the phenotypes one genome grows in two environments (parts,
-//! joints, sizes, neurons), so that a body that depends on its environment can be told from
-//! one that does not.
+//! joints, sizes, placements, neurons), so that a body that depends on its environment can be
+//! told from one that does not.
 
 use std::fmt;
 
 use super::Creature;
 use crate::number::format_number;
 
-/// A difference in an edge length smaller than this (in metres) is rounding, not a change.
+/// A difference in an edge length or a position smaller than this (in metres), or in an
+/// orientation smaller than this (in radians), is rounding, not a change.
 const SIZE_TOLERANCE: f64 = 1e-9;
 
 /// How creature `b` differs from creature `a` ([`phenotype_differences`]): each count as
@@ -29,19 +30,27 @@ pub struct PhenotypeDifferences {
     pub resized: usize,
     /// The largest difference of an edge length between two parts of the same id (m).
     pub largest_resize: f64,
+    /// The summed size difference: over the parts both have (the same id), the sum of the
+    /// differences of their three edge lengths, |Δx| + |Δy| + |Δz| (m). Parts only one of
+    /// the two has count in `parts` and `volume`, not here.
+    pub summed_resize: f64,
+    /// Of the parts both have, how many are placed elsewhere (another centre or
+    /// orientation): a limb turned another way, or moved by a part before it that grew.
+    pub moved: usize,
     /// Of the joints both have, how many differ in kind.
     pub joints_of_another_kind: usize,
 }
 
 impl PhenotypeDifferences {
-    /// Whether the two creatures have the same body and brain, as far as these counts and
-    /// sizes tell.
+    /// Whether the two creatures have the same body and brain, as far as these counts,
+    /// sizes and placements tell.
     pub fn is_same(&self) -> bool {
         self.parts.0 == self.parts.1
             && self.joints.0 == self.joints.1
             && self.neurons.0 == self.neurons.1
             && self.links.0 == self.links.1
             && self.resized == 0
+            && self.moved == 0
             && self.joints_of_another_kind == 0
     }
 }
@@ -49,13 +58,20 @@ impl PhenotypeDifferences {
 /// How `b` differs from `a`: parts, joints, neurons and links counted, total volume, and
 /// the parts and joints of the same id compared.
 pub fn phenotype_differences(a: &Creature, b: &Creature) -> PhenotypeDifferences {
-    let mut resized = 0;
-    let mut largest_resize: f64 = 0.0;
+    let (mut resized, mut moved) = (0, 0);
+    let (mut largest_resize, mut summed_resize): (f64, f64) = (0.0, 0.0);
     for (pa, pb) in a.parts.iter().zip(&b.parts) {
-        let change = (pa.size - pb.size).abs().max();
+        let edges = (pa.size - pb.size).abs();
+        let change = edges.max();
         if change > SIZE_TOLERANCE {
             resized += 1;
             largest_resize = largest_resize.max(change);
+            summed_resize += edges.sum();
+        }
+        if (pa.position - pb.position).abs().max() > SIZE_TOLERANCE
+            || pa.orientation.angle_to(&pb.orientation) > SIZE_TOLERANCE
+        {
+            moved += 1;
         }
     }
     let volume = |c: &Creature| c.parts.iter().map(|p| p.volume()).sum::<f64>();
@@ -67,6 +83,8 @@ pub fn phenotype_differences(a: &Creature, b: &Creature) -> PhenotypeDifferences
         volume: (volume(a), volume(b)),
         resized,
         largest_resize,
+        summed_resize,
+        moved,
         joints_of_another_kind: a
             .joints
             .iter()
@@ -77,7 +95,7 @@ pub fn phenotype_differences(a: &Creature, b: &Creature) -> PhenotypeDifferences
 }
 
 /// One line: `the same body and brain`, or each count that differs as `parts 3 -> 5`, then
-/// the volume and the parts resized.
+/// the volume, the parts resized and those placed elsewhere.
 impl fmt::Display for PhenotypeDifferences {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.is_same() {
@@ -106,6 +124,12 @@ impl fmt::Display for PhenotypeDifferences {
                 "{} part(s) of the same id resized (by up to {} m)",
                 self.resized,
                 format_number(self.largest_resize)
+            ));
+        }
+        if self.moved > 0 {
+            said.push(format!(
+                "{} part(s) of the same id placed elsewhere",
+                self.moved
             ));
         }
         if self.joints_of_another_kind > 0 {

@@ -96,7 +96,8 @@ impl HabitatPhenotypes {
     /// (summarised as grow --json does, without its file, time and frames; null when it
     /// does not develop), "error"}], "differences": [{"from", "to", "same", "parts",
     /// "joints", "neurons", "links", "volume" (each [from's, to's]), "resized",
-    /// "largest_resize", "joints_of_another_kind", "text"}], "depends_on_habitat",
+    /// "largest_resize", "summed_resize", "moved", "joints_of_another_kind", "text"}],
+    /// "depends_on_habitat",
     /// "verdict"}`.
     pub fn json(&self) -> serde_json::Value {
         let habitats: Vec<serde_json::Value> = self
@@ -137,6 +138,8 @@ impl HabitatPhenotypes {
                     "volume": [d.volume.0, d.volume.1],
                     "resized": d.resized,
                     "largest_resize": d.largest_resize,
+                    "summed_resize": d.summed_resize,
+                    "moved": d.moved,
                     "joints_of_another_kind": d.joints_of_another_kind,
                     "text": d.to_string(),
                 })

@@ -484,6 +484,12 @@ impl<G: Genome> Run<G> {
         &self.config
     }
 
+    /// The limits its genomes develop within: the config's, adapted to the task's purpose
+    /// and to its `[ga] environment_reads`, as the genetic algorithm uses them.
+    pub fn limits(&self) -> &G::Limits {
+        &self.evolution.limits
+    }
+
     /// The evaluation key this run gives the creature `genome` develops into with
     /// `develop_seed` (`None` when it does not develop): the key its cache finds it by.
     pub fn evaluation_key(&self, genome: &G, develop_seed: u64) -> Option<EvaluationKey> {

@@ -1,12 +1,15 @@
 //! Studies over runs: comparisons of encodings or settings over replicated runs
 //! ([`compare`]), the statistics that compare them ([`stats`]), the fidelity experiment that
 //! ranks step settings against the fine reference ([`fidelity`]), the bench's measurements
-//! ([`bench`](mod@bench)), the runs and comparisons under a directory ([`listing`]) and how
-//! much a run's champions vary under noise and mutation ([`canalization`]).
+//! ([`bench`](mod@bench)), the runs and comparisons under a directory ([`listing`]), how
+//! much a run's champions vary under noise and mutation ([`canalization`]) and what
+//! champions do in each habitat and how their bodies answer the chemical cue
+//! ([`plasticity`]).
 
 pub mod bench;
 pub mod canalization;
 pub mod compare;
 pub mod fidelity;
 pub mod listing;
+pub mod plasticity;
 pub mod stats;

@@ -340,9 +340,11 @@ const CUT_DOWN: &[CutDown] = &[
         &[
             ("--replicates 10", "--replicates 2"),
             ("--evaluations 1500", "--evaluations 8"),
+            ("--evaluations 2592", "--evaluations 32"),
         ],
         &[("--pop", "4"), ("--seconds", "0.2")],
     ),
+    ("ontogeny runs plasticity ", &[], &[]),
     (
         "ontogeny runs canalization ",
         &[("--samples 20", "--samples 4")],

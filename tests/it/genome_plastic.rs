@@ -48,6 +48,10 @@ fn the_plastic_example_grows_5_parts_where_its_cue_is_low_and_7_where_it_is_high
     // The first segment of each limb keeps its length; what follows it differs.
     assert_eq!(d.resized, 2);
     assert_eq!(format_number(d.largest_resize), "0.2");
+    // Two 0.5 m tips against two 0.3 m forks: 0.4 m summed.
+    assert_eq!(format_number(d.summed_resize), "0.4");
+    // The second limb and the tip of each limb stand elsewhere once the first limb forks.
+    assert_eq!(d.moved, 3);
     // The joints after those first segments are rigid where the limbs fork.
     assert_eq!(d.joints_of_another_kind, 2);
     assert!(!d.is_same());
@@ -55,8 +59,8 @@ fn the_plastic_example_grows_5_parts_where_its_cue_is_low_and_7_where_it_is_high
         d.to_string(),
         format!(
             "parts 5 -> 7, joints 4 -> 6, neurons 5 -> 3, links 5 -> 3, volume {} -> {} m³, \
-             2 part(s) of the same id resized (by up to 0.2 m), 2 joint(s) of the same id of \
-             another kind",
+             2 part(s) of the same id resized (by up to 0.2 m), 3 part(s) of the same id placed \
+             elsewhere, 2 joint(s) of the same id of another kind",
             format_number(d.volume.0),
             format_number(d.volume.1)
         )

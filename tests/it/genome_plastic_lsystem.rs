@@ -201,8 +201,8 @@ fn genome_show_habitats_tells_a_plastic_body_from_one_that_is_the_same_everywher
             "habitat rich (environment 1): develops into 7 parts, 6 joints (4 revolute, 2 \
              rigid), 5 neurons, 5 links; valid",
             "poor -> rich: parts 5 -> 7, joints 4 -> 6, neurons 4 -> 5, links 4 -> 5, volume \
-             0.1125 -> 0.14375 m³, 3 part(s) of the same id resized (by up to 0.2 m), 2 \
-             joint(s) of the same id of another kind",
+             0.1125 -> 0.14375 m³, 3 part(s) of the same id resized (by up to 0.2 m), 4 \
+             part(s) of the same id placed elsewhere, 2 joint(s) of the same id of another kind",
             "the body depends on the habitat",
         ]
     );

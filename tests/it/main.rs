@@ -44,6 +44,7 @@ mod mpi;
 mod never_panics;
 mod old_release;
 mod outputs;
+mod plasticity;
 mod render;
 mod rooms;
 mod store;
