@@ -15,7 +15,7 @@
 //!   from nowhere, and still catches any energy the growth does not account for;
 //! - a part whose growth would reach into the ground, or into a part it is not jointed to (when
 //!   parts collide with each other), deeper than [`GROWTH_CLEARANCE`] where it did not already
-//!   reach, **stops growing** rather than pushing the creature: the step is refused and
+//!   reach (parts at most two joints away, which may meet it at a joint, aside), **stops growing** rather than pushing the creature: the step is refused and
 //!   tried again at the next one, so it grows again once it is clear; a new part that would
 //!   appear inside something waits the same way, and with it the rest of that step's new
 //!   parts, neurons and links.
@@ -73,8 +73,20 @@ impl World {
         self.growth_work
     }
 
+    /// The length of a control step (s).
+    pub fn control_step(&self) -> f64 {
+        self.options.control_step
+    }
+
+    /// The root part's anchor: the centre of its near face, where the turtle started it, a
+    /// point its own growth does not move.
+    pub fn root_anchor(&self) -> Vector3<f64> {
+        let (centre, orientation) = self.part_pose(PartId(0));
+        centre + orientation * Vector3::new(-self.part_size(PartId(0)).x / 2.0, 0.0, 0.0)
+    }
+
     /// Whether a box of `size` at `pose` reaches deeper than [`GROWTH_CLEARANCE`] into the
-    /// ground, or into a part other than `id` and `neighbours` (when parts collide), where a
+    /// ground, or into a part other than `id` and its `neighbours` (when parts collide), where a
     /// box of `old` size at `old_pose` (if any) did not.
     fn reaches_in(
         &self,
@@ -137,6 +149,21 @@ impl World {
             .collect()
     }
 
+    /// The parts at most two joints from part `id` (its parent, children, siblings and
+    /// grandparent): those it may touch where they meet, as the builder lets parts meet at
+    /// their joints.
+    fn near(&self, id: PartId) -> Vec<PartId> {
+        let mut near = self.jointed_to(id);
+        for k in 0..near.len() {
+            for p in self.jointed_to(near[k]) {
+                if p != id && !near.contains(&p) {
+                    near.push(p);
+                }
+            }
+        }
+        near
+    }
+
     /// Gives part `id` the edge lengths `size` as the turtle grows a part: its near face (the
     /// −x face, where its joint to its parent sits) stays where it is, its length grows
     /// beyond it and its thickness and width about its axis. Its body's mass, centre of mass
@@ -173,7 +200,7 @@ impl World {
         let half_x = (old.x / 2.0) as Real;
         let f = move |p: Vector| Vector::new(s.x * (p.x + half_x) - half_x, s.y * p.y, s.z * p.z);
         let new_in_body = in_body * Pose::from_translation(f(Vector::ZERO));
-        let neighbours = self.jointed_to(id);
+        let neighbours = self.near(id);
         if self.reaches_in(
             Some(id),
             &neighbours,
@@ -357,9 +384,11 @@ impl World {
                         orientation: there.rotation * shape.orientation,
                         ..shape.clone()
                     };
+                    let mut neighbours = self.near(*parent);
+                    neighbours.push(*parent);
                     if self.reaches_in(
                         None,
-                        &[*parent],
+                        &neighbours,
                         (pose_of(&isometry_of(&placed)), placed.size),
                         None,
                     ) {

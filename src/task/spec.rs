@@ -196,6 +196,17 @@ impl TaskSpec {
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
+        self.evaluate_growing(creature, watch, None)
+    }
+
+    /// [`TaskSpec::evaluate_watched`], the creature growing as `growing` develops during the
+    /// evaluation (`develop = "during"`): `creature` is `growing`'s creature at its start.
+    pub fn evaluate_growing<'w>(
+        &self,
+        creature: &Creature,
+        watch: Watch<'w>,
+        growing: Option<&'w mut super::Growing>,
+    ) -> Result<Evaluation, Interrupted> {
         crate::with_options!(&self.task, T, options => {
             let evaluation = T::evaluate(Setup {
                 creature,
@@ -203,6 +214,7 @@ impl TaskSpec {
                 world: &self.world,
                 options,
                 watch,
+                growing,
             })?;
             Ok(match T::expression(options) {
                 Some(expression) => expression.score(evaluation),
