@@ -29,6 +29,48 @@ pub enum DevelopWhen {
 /// The default `rate`: one unit of developmental time per second of physics.
 pub const DEFAULT_RATE: f64 = 1.0;
 
+/// When a creature develops, as `[task]` says: `develop = "before"` (the default, not
+/// written) or `"during"`, with `develop_rate` (developmental time per second of physics)
+/// and `develop_t0` (the developmental time of the creature dropped; default: the grammar's
+/// first frame that builds a valid creature).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Develop {
+    /// Before or during the evaluation.
+    pub when: DevelopWhen,
+    /// Developmental time per second of physics.
+    pub rate: f64,
+    /// The developmental time of the creature dropped, if set.
+    pub t0: Option<f64>,
+}
+
+impl Default for Develop {
+    fn default() -> Self {
+        Develop {
+            when: DevelopWhen::Before,
+            rate: DEFAULT_RATE,
+            t0: None,
+        }
+    }
+}
+
+impl Develop {
+    /// Whether development goes on during the evaluation.
+    pub fn during(&self) -> bool {
+        self.when == DevelopWhen::During
+    }
+
+    /// Checks the rate (finite, above 0) and t₀ (finite, 0 or more).
+    pub fn check(&self) -> Result<(), crate::sim::SettingError> {
+        crate::sim::check_real("develop_rate", self.rate, 0.0, true)?;
+        match self.t0 {
+            Some(t0) if !(t0.is_finite() && t0 >= 0.0) => Err(
+                crate::sim::SettingError::out_of_range("develop_t0", "0 or more", t0),
+            ),
+            _ => Ok(()),
+        }
+    }
+}
+
 /// How much a creature grew during an evaluation: Kriegman's measure of the development that
 /// remains, body against brain.
 #[derive(Clone, Debug, Default, PartialEq)]
