@@ -187,7 +187,9 @@ pub fn iterative_move(gains: &[f64]) -> f64 {
 /// check the height again, activate the controller for `activation` (1 s),
 /// stabilise again (at least `second_settle`, and until at rest), then walk with the
 /// controller on for `seconds`; D_w is the horizontal distance the root part's centre of mass
-/// travels. The fitness is the formula `options` names, or its expression's value.
+/// travels (for a creature that grows during the walk, its anchor, with the size terms of
+/// the body at the start of the walk: [`super::Growing`]). The fitness is the formula
+/// `options` names, or its expression's value.
 pub fn walker(
     creature: &Creature,
     sim: &SimOptions,

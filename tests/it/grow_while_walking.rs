@@ -7,6 +7,8 @@ use ontogeny::develop::BuildOptions;
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::task::{Growing, Phase, Status, TaskKind, TaskSpec, Watch};
 
+use crate::util::{assert_bad_input, ontogeny, scratch_dir, succeeded};
+
 const EXAMPLE: &str = "examples/grow-while-walking.lsys";
 
 fn example() -> Arc<LSystem> {
@@ -77,4 +79,86 @@ fn a_creature_growing_during_the_walk_gains_parts_as_it_walks() {
 #[test]
 fn a_creature_growing_during_the_walk_walks_the_same_twice() {
     assert_eq!(grown_walk(), grown_walk());
+}
+
+/// `ontogeny eval` of the example for a 3 s walk, with `extra` flags, as JSON.
+fn eval_json(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["eval", EXAMPLE, "--seconds", "3", "--json"];
+    args.extend_from_slice(extra);
+    serde_json::from_str(&succeeded(&ontogeny(&args))).unwrap()
+}
+
+#[test]
+fn eval_with_develop_during_adds_parts_during_the_walk_and_gives_the_same_twice() {
+    let grown = eval_json(&["--develop", "during"]);
+    assert_eq!(grown["status"], "ok");
+    assert_eq!(grown["terms"]["N"], 2.0);
+    assert_eq!(grown["terms"]["grown_parts"], 4.0);
+    assert_eq!(grown["terms"]["grown_neurons"], 4.0);
+    assert_eq!(eval_json(&["--develop", "during"]), grown);
+    // From the config's [task] table (a 4 s walk), the same growth.
+    let args = [
+        "eval",
+        EXAMPLE,
+        "--config",
+        "examples/grow-while-walking.toml",
+        "--json",
+    ];
+    let config: serde_json::Value = serde_json::from_str(&succeeded(&ontogeny(&args))).unwrap();
+    assert_eq!(config["terms"]["grown_parts"], 4.0);
+    assert_eq!(config["terms"]["N"], 2.0);
+}
+
+#[test]
+fn eval_with_develop_before_is_today_s_evaluation() {
+    let today = eval_json(&[]);
+    assert_eq!(eval_json(&["--develop", "before"]), today);
+    // The finished creature: six parts from the start, nothing grown.
+    assert_eq!(today["terms"]["N"], 6.0);
+    assert!(today["terms"].get("grown_parts").is_none());
+}
+
+#[test]
+fn a_grammar_in_discrete_steps_cannot_grow_during_a_walk() {
+    assert_bad_input(
+        &["eval", "examples/quadruped.lsys", "--develop", "during"],
+        "error: develop = \"during\": examples/quadruped.lsys develops in discrete steps; only \
+         continuous development (a `time:` line, or --time) goes on during a walk",
+    );
+    assert_bad_input(
+        &[
+            "eval",
+            EXAMPLE,
+            "--develop",
+            "during",
+            "--develop-rate",
+            "-1",
+        ],
+        "--develop-rate must be finite and positive, not -1",
+    );
+}
+
+#[test]
+fn a_run_that_would_grow_during_the_walk_is_refused() {
+    let out = scratch_dir("grow_while_walking_run");
+    let config = out.join("config.toml");
+    std::fs::write(
+        &config,
+        "encoding = \"lsystem-continuous\"\n[ga]\npopulation = 4\ngenerations = 1\n\
+         [task]\ntask = \"walker\"\ndevelop = \"during\"\n",
+    )
+    .unwrap();
+    let said = assert_bad_input(
+        &[
+            "evolve",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            out.join("run").to_str().unwrap(),
+        ],
+        "develop must be \"before\" in a run (only `eval` grows a creature during its \
+         evaluation so far), not \"during\"",
+    );
+    assert!(said.contains("config.toml:7:11"), "{said}");
+    assert!(!out.join("run").exists());
 }
