@@ -7,13 +7,43 @@
 # e.g. bash benches/rewalk.sh runs/cmp-walker-fast --setting fast
 # Prints CSV: encoding,rep,stored,perturbed,fine,fine16 (walker, distance in metres; an
 # exploded walk scores -999999).
+# A champion file repeats the evaluation it records (its world, habitats and trials). With
+# CONFIG=FILE (a run configuration without a [task.sim] table) every walk takes its task from
+# FILE's [task] table instead, e.g. the README's walker on flat ground for champions evolved
+# on rough ground; "stored" is then the walk at the default setting, and no flags are taken.
+#   CONFIG=examples/robust-baseline.toml bash benches/rewalk.sh runs/robust > rewalk-flat.csv
 ontogeny=${ONTOGENY:-target/release/ontogeny}
 dir=$1
 shift
-fit() {
-  "$ontogeny" eval "$1" --task walker --fitness distance "${@:2}" --json 2>/dev/null |
+fine16=(--substeps 16 --solver-iterations 8 --pgs-iterations 1 --rest-substeps 16 --rest-solver-iterations 8)
+# walk KIND FILE: the champion FILE's fitness at KIND (stored, perturbed, fine or fine16).
+walk() {
+  local flags task=(--task walker --fitness distance)
+  case $1 in
+    stored) flags=("${own[@]}") ;;
+    perturbed) flags=("${own[@]}" --strength 10001) ;;
+    fine) flags=(--setting fine) ;;
+    fine16) flags=("${fine16[@]}") ;;
+  esac
+  if [ -n "$CONFIG" ]; then task=(--config "$tmp/$1.toml") flags=(); fi
+  "$ontogeny" eval "$2" "${task[@]}" "${flags[@]}" --json 2>/dev/null |
     python3 -c 'import json,sys; print(json.load(sys.stdin)["fitness"])' 2>/dev/null || echo NA
 }
+own=("$@")
+if [ -n "$CONFIG" ]; then
+  if grep -q '^\[task\.sim\]' "$CONFIG"; then
+    echo "rewalk.sh: $CONFIG has a [task.sim] table; give one without it" >&2
+    exit 2
+  fi
+  tmp=$(mktemp -d)
+  trap 'rm -rf "$tmp"' EXIT
+  # A copy of CONFIG with a [task.sim] table of the walk's settings.
+  variant() { { cat "$CONFIG"; printf '\n[task.sim]\n%s\n' "$2"; } > "$tmp/$1.toml"; }
+  variant stored 'setting = "default"'
+  variant perturbed 'strength = 10001'
+  variant fine 'setting = "fine"'
+  variant fine16 "$(printf 'substeps = 16\nsolver_iterations = 8\npgs_iterations = 1\nrest_substeps = 16\nrest_solver_iterations = 8')"
+fi
 echo "encoding,rep,stored,perturbed,fine,fine16"
 for enc_dir in "$dir"/*/; do
   enc=$(basename "$enc_dir")
@@ -21,6 +51,6 @@ for enc_dir in "$dir"/*/; do
     [ -d "$rep" ] || continue
     f=$(ls "$rep"/best.* 2>/dev/null | head -1)
     [ -n "$f" ] || continue
-    echo "$enc,$(basename "$rep"),$(fit "$f" "$@"),$(fit "$f" "$@" --strength 10001),$(fit "$f" --setting fine),$(fit "$f" --substeps 16 --solver-iterations 8 --pgs-iterations 1 --rest-substeps 16 --rest-solver-iterations 8)"
+    echo "$enc,$(basename "$rep"),$(walk stored "$f"),$(walk perturbed "$f"),$(walk fine "$f"),$(walk fine16 "$f")"
   done
 done
