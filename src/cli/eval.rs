@@ -66,20 +66,8 @@ pub struct EvalArgs {
     /// The projectile: density in kg/m³, positive (catapult and aim) [default: 1000].
     #[arg(long)]
     projectile_density: Option<f64>,
-    /// When the creature develops: `before` the evaluation (the last frame of its growth is
-    /// evaluated; the default) or `during` it (an `.lsys` in continuous time: the creature at
-    /// `--develop-t0` is dropped, and development goes on during the walker's activation and
-    /// walk). Over the config's `develop`.
-    #[arg(long, value_parser = ["before", "during"])]
-    develop: Option<String>,
-    /// With `--develop during`: developmental time per second of physics, above 0
-    /// [default: 1].
-    #[arg(long, value_name = "RATE")]
-    develop_rate: Option<f64>,
-    /// With `--develop during`: the developmental time of the creature dropped, 0 or more
-    /// [default: the grammar's first frame that builds a valid creature].
-    #[arg(long, value_name = "T")]
-    develop_t0: Option<f64>,
+    #[command(flatten)]
+    develop: Box<DevelopFlags>,
     /// Write recording.json (every part's pose per step; a long run keeps evenly spaced
     /// steps, at most 12,000 frames) and behaviour.gif into DIR.
     #[arg(long, value_name = "DIR")]
@@ -95,6 +83,25 @@ pub struct EvalArgs {
     /// `[[task.habitats]]`.
     #[arg(long, value_name = "NAME")]
     habitat: Option<String>,
+}
+
+/// When the creature develops (boxed in [`EvalArgs`], which stays small).
+#[derive(Args)]
+struct DevelopFlags {
+    /// When the creature develops: `before` the evaluation (the last frame of its growth is
+    /// evaluated; the default) or `during` it (an `.lsys` in continuous time: the creature at
+    /// `--develop-t0` is dropped, and development goes on during the walker's activation and
+    /// walk). Over the config's `develop`.
+    #[arg(long, value_parser = ["before", "during"])]
+    develop: Option<String>,
+    /// With `--develop during`: developmental time per second of physics, above 0
+    /// [default: 1].
+    #[arg(long, value_name = "RATE")]
+    develop_rate: Option<f64>,
+    /// With `--develop during`: the developmental time of the creature dropped, 0 or more
+    /// [default: the grammar's first frame that builds a valid creature].
+    #[arg(long, value_name = "T")]
+    develop_t0: Option<f64>,
 }
 
 /// How the input is named in reports: its path, or `<stdin>` for `-` (as in diagnostics).
@@ -330,19 +337,19 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
 /// `inputs`' specification with `--develop`, `--develop-rate` and `--develop-t0` over it,
 /// checked.
 fn with_develop_flags(args: &EvalArgs, inputs: &mut Inputs) -> anyhow::Result<()> {
-    let develop = &mut inputs.spec.develop;
-    if let Some(when) = &args.develop {
+    let (flags, develop) = (&args.develop, &mut inputs.spec.develop);
+    if let Some(when) = &flags.develop {
         develop.when = if when == "during" {
             DevelopWhen::During
         } else {
             DevelopWhen::Before
         };
     }
-    if let Some(rate) = args.develop_rate {
+    if let Some(rate) = flags.develop_rate {
         develop.rate = rate;
     }
-    if args.develop_t0.is_some() {
-        develop.t0 = args.develop_t0;
+    if flags.develop_t0.is_some() {
+        develop.t0 = flags.develop_t0;
     }
     develop
         .check()
