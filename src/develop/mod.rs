@@ -10,7 +10,7 @@
 
 mod brain;
 mod command;
-mod growth;
+pub mod growth;
 mod shortcut;
 
 use nalgebra::{Unit, UnitQuaternion, Vector3};
