@@ -14,7 +14,9 @@ use ontogeny::render::Playback;
 use ontogeny::run::champion::ChampionRecord;
 use ontogeny::sim::WorldSpec;
 use ontogeny::sim::{JointModel, SimOptions};
-use ontogeny::task::{CatapultOptions, Evaluation, Recording, TaskKind, TaskSpec, WalkerOptions};
+use ontogeny::task::{
+    CatapultOptions, DevelopWhen, Evaluation, Recording, TaskKind, TaskSpec, WalkerOptions,
+};
 
 use super::derive::DevelopmentArgs;
 use super::input::load_creature_with;
@@ -64,6 +66,8 @@ pub struct EvalArgs {
     /// The projectile: density in kg/m³, positive (catapult and aim) [default: 1000].
     #[arg(long)]
     projectile_density: Option<f64>,
+    #[command(flatten)]
+    develop: Box<DevelopFlags>,
     /// Write recording.json (every part's pose per step; a long run keeps evenly spaced
     /// steps, at most 12,000 frames) and behaviour.gif into DIR.
     #[arg(long, value_name = "DIR")]
@@ -79,6 +83,25 @@ pub struct EvalArgs {
     /// `[[task.habitats]]`.
     #[arg(long, value_name = "NAME")]
     habitat: Option<String>,
+}
+
+/// When the creature develops (boxed in [`EvalArgs`], which stays small).
+#[derive(Args)]
+struct DevelopFlags {
+    /// When the creature develops: `before` the evaluation (the last frame of its growth is
+    /// evaluated; the default) or `during` it (an `.lsys` in continuous time: the creature at
+    /// `--develop-t0` is dropped, and development goes on during the walker's activation and
+    /// walk). Over the config's `develop`.
+    #[arg(long, value_parser = ["before", "during"])]
+    develop: Option<String>,
+    /// With `--develop during`: developmental time per second of physics, above 0
+    /// [default: 1].
+    #[arg(long, value_name = "RATE")]
+    develop_rate: Option<f64>,
+    /// With `--develop during`: the developmental time of the creature dropped, 0 or more
+    /// [default: the grammar's first frame that builds a valid creature].
+    #[arg(long, value_name = "T")]
+    develop_t0: Option<f64>,
 }
 
 /// How the input is named in reports: its path, or `<stdin>` for `-` (as in diagnostics).
@@ -311,9 +334,35 @@ fn inputs(args: &EvalArgs) -> anyhow::Result<Inputs> {
     })
 }
 
+/// `inputs`' specification with `--develop`, `--develop-rate` and `--develop-t0` over it,
+/// checked.
+fn with_develop_flags(args: &EvalArgs, inputs: &mut Inputs) -> anyhow::Result<()> {
+    let (flags, develop) = (&args.develop, &mut inputs.spec.develop);
+    if let Some(when) = &flags.develop {
+        develop.when = if when == "during" {
+            DevelopWhen::During
+        } else {
+            DevelopWhen::Before
+        };
+    }
+    if let Some(rate) = flags.develop_rate {
+        develop.rate = rate;
+    }
+    if flags.develop_t0.is_some() {
+        develop.t0 = flags.develop_t0;
+    }
+    develop
+        .check()
+        .map_err(|e| super::bad(e.for_flag(&format!("--{}", e.key.replace('_', "-")))))
+}
+
 /// Evaluates the creature and prints the result.
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
-    let inputs = inputs(args)?;
+    let mut inputs = inputs(args)?;
+    with_develop_flags(args, &mut inputs)?;
+    if inputs.spec.develop.during() {
+        return run_growing(args, &inputs);
+    }
     let only = match &args.habitat {
         Some(name) => Some(inputs.spec.habitat_named(name).map_err(super::bad)?),
         None => None,
@@ -359,6 +408,76 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         let mut shown = evaluation.clone();
         shown.recording.clear();
         say!("{}", serde_json::to_string_pretty(&shown)?);
+        return Ok(());
+    }
+    say!(
+        "{}",
+        flags::evaluation_text(&input_name(&args.file), &evaluation)
+    );
+    Ok(())
+}
+
+/// [`run`] for a creature that develops during the evaluation: an `.lsys` in continuous
+/// time, on the walker, with one habitat and one trial, not recorded (the recording's format
+/// holds a fixed body).
+fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
+    let spec = &inputs.spec;
+    let refuse = |why: &str| Err(super::bad(format!("develop = \"during\": {why}")));
+    if spec.kind() != TaskKind::Walker {
+        return refuse(&format!(
+            "the {} task does not grow its creature; only the walker does",
+            spec.kind().name()
+        ));
+    }
+    if !spec.is_plain() {
+        return refuse("habitats and trials do not grow their creature yet");
+    }
+    if args.record.is_some() {
+        return refuse("a recording cannot hold a growing body yet (leave out --record)");
+    }
+    if args.file.extension().is_none_or(|e| e != "lsys") {
+        return refuse(&format!(
+            "{} is not an L-system file (.lsys): only a grammar grows",
+            args.file.display()
+        ));
+    }
+    let overrides = ontogeny::lsystem::Overrides {
+        defines: args.development.defines.defines.clone(),
+        seed: inputs.seed,
+    };
+    let lsys = ontogeny::lsystem::LSystem::from_path_with(&args.file, &overrides)
+        .map_err(anyhow::Error::new)?;
+    let derive = ontogeny::lsystem::DeriveOptions {
+        seed: inputs.seed,
+        ..super::derive::derive_options(&args.development, inputs.max_modules)
+    };
+    if !(lsys.is_continuous() || derive.time.is_some()) {
+        return refuse(&format!(
+            "{} develops in discrete steps; only continuous development (a `time:` line, or \
+             --time) goes on during a walk",
+            args.file.display()
+        ));
+    }
+    let build = BuildOptions {
+        max_parts: inputs.max_parts,
+        ..BuildOptions::default()
+    };
+    let mut growing = ontogeny::task::Growing::start(
+        std::sync::Arc::new(lsys),
+        &derive,
+        &build,
+        spec.develop.rate,
+        spec.develop.t0,
+    )
+    .map_err(anyhow::Error::new)?;
+    let creature = growing.creature().clone();
+    let mut progress = Progress::new(flags::progress_label(spec));
+    let mut tell = |f| progress.set(f);
+    let watch = ontogeny::task::Watch::uncancelled(false, &mut tell);
+    let evaluation = spec.evaluate_growing(&creature, watch, Some(&mut growing))?;
+    progress.finish();
+    if args.json {
+        say!("{}", serde_json::to_string_pretty(&evaluation)?);
         return Ok(());
     }
     say!(

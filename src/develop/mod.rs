@@ -10,6 +10,7 @@
 
 mod brain;
 mod command;
+pub mod growth;
 mod shortcut;
 
 use nalgebra::{Unit, UnitQuaternion, Vector3};
@@ -20,6 +21,7 @@ use crate::lang::ast::Heading;
 use crate::lsystem::{ModuleString, SymbolTable, TurtleHeaders};
 use crate::number::format_number;
 pub use command::{Action, command_of};
+pub use growth::{ATTACHMENT_TOLERANCE, Growth, GrowthEvent, growth_between, growth_from_string};
 pub use shortcut::{LastFrame, Shortcut, grow_last};
 
 use brain::BrainBuilder;

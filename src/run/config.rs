@@ -443,5 +443,13 @@ fn differing_keys(prefix: &str, a: &toml::Table, b: &toml::Table, out: &mut Vec<
 /// [`TaskSpec::check`]); the error names the setting in its table (`[task.sim] substeps ...`).
 pub fn check_settings(ga: &GaSettings, task: &TaskSpec) -> Result<(), SettingError> {
     ga.check().map_err(|e| e.within("ga"))?;
+    if task.develop.during() {
+        return Err(SettingError::out_of_range(
+            "develop",
+            "\"before\" in a run (only `eval` grows a creature during its evaluation so far)",
+            "\"during\"",
+        )
+        .within("task"));
+    }
     task.check()
 }

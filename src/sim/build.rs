@@ -117,6 +117,7 @@ impl World {
             creature_mass: 0.0,
             energy: 0.0,
             unexplained_energy: 0.0,
+            growth_work: 0.0,
             peak_unexplained: 0.0,
             peak_joint_gap: 0.0,
             ground: Ground::empty(),

@@ -4,7 +4,7 @@
 //! check) in [`knobs`], the named step settings and the `[task.sim]` table in [`setting`];
 //! the world is built in [`build`] from the parts and joints of [`parts`] (keyed by stable
 //! ids, and added or resized while it runs), senses in [`sensors`], moves in [`actuators`],
-//! is audited for energy from nowhere in [`audit`], holds the catapult's projectile in
+//! is audited for energy from nowhere in [`audit`], grows as development says in [`growth`], holds the catapult's projectile in
 //! [`projectile`], feels water's resistance in [`water`], and steps in [`world`]; its
 //! velocities and momenta are [`motion`]'s; what the world holds besides the creature
 //! (terrain, obstacles, objects, the medium) is described by [`world_spec`] and worked out
@@ -17,6 +17,7 @@ pub mod brain;
 pub mod build;
 pub mod drag;
 mod ground;
+pub mod growth;
 pub mod knobs;
 mod model_names;
 pub mod motion;
@@ -36,6 +37,7 @@ pub use audit::{ENERGY_WINDOW, JOINT_GAP_WARNING};
 pub use brain::BrainRuntime;
 pub use build::BuildError;
 pub use drag::DragMeter;
+pub use growth::{GROWTH_CLEARANCE, Grown};
 pub use knobs::{KNOBS, Knob, SettingError, check_real, table_name};
 pub use model_names::UnknownName;
 pub use motion::Attach;

@@ -258,7 +258,7 @@ impl World {
 
     /// Counts the creature's mass and energy again after its body changed, so that the energy
     /// audit does not take the change for energy from nowhere.
-    fn body_changed(&mut self) {
+    pub(super) fn body_changed(&mut self) {
         self.creature_mass = self
             .creature_bodies
             .iter()

@@ -61,6 +61,8 @@ pub struct World {
     pub(super) energy: f64,
     /// Energy gained beyond what the motors could supply, summed over the recent steps (J).
     pub(super) unexplained_energy: f64,
+    /// The energy growth has brought so far (J; [`super::growth`]).
+    pub(super) growth_work: f64,
     /// The most `unexplained_energy` has been (J).
     pub(super) peak_unexplained: f64,
     /// The largest gap seen between the two ends of any joint's anchor (m).

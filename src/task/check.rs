@@ -152,6 +152,7 @@ impl TaskSpec {
 
     /// [`TaskSpec::check`], the key's table named from inside `[task]` (`sim`).
     fn check_tables(&self) -> Result<(), SettingError> {
+        self.develop.check()?;
         self.sim.check().map_err(|e| e.within("sim"))?;
         if let Medium::Water { .. } = self.world.medium
             && self.kind() != TaskKind::Swim

@@ -19,6 +19,7 @@ mod catapult;
 mod check;
 mod compact;
 mod fitness;
+mod grow;
 mod habitat;
 mod jump;
 mod options;
@@ -34,6 +35,7 @@ pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
 pub use fitness::{Fitness, FitnessExpression, PROTOCOL_TERMS};
+pub use grow::{DEFAULT_RATE, Develop, DevelopWhen, Growing, GrowthTally};
 pub use habitat::{
     Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
 };

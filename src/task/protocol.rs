@@ -146,6 +146,8 @@ pub(super) struct Run<'p> {
     /// Whether a step found `cancel` set: the evaluation is then interrupted, whatever its
     /// protocol made of the failed step.
     interrupted: bool,
+    /// The development that goes on while the controller runs, when the creature grows.
+    pub(super) growing: Option<&'p mut super::grow::Growing>,
 }
 
 impl Run<'_> {
@@ -170,6 +172,20 @@ impl Run<'_> {
             )
         })?;
         self.steps += 1;
+        // Development goes on while the controller runs, and pauses while the creature
+        // comes to rest.
+        if self.phase != Phase::Settling
+            && let Some(growing) = self.growing.as_deref_mut()
+        {
+            let dt = self.world.control_step();
+            growing.step(&mut self.world, dt).map_err(|e| {
+                Evaluation::failed(
+                    self.task,
+                    Status::Invalid,
+                    format!("development failed at t = {:.3} s: {e}", self.world.time()),
+                )
+            })?;
+        }
         if self.record {
             let sample = Sample {
                 t: self.world.time(),
@@ -344,6 +360,9 @@ pub struct Setup<'a, 'w, O> {
     pub options: &'a O,
     /// Whether it is recorded, who is told its progress and what stops it.
     pub watch: Watch<'w>,
+    /// The development that goes on while the creature acts (`develop = "during"`), its
+    /// creature `creature`; none when the creature is finished.
+    pub growing: Option<&'w mut super::grow::Growing>,
 }
 
 /// How an evaluation is watched from outside: whether it is recorded, the callback told the
@@ -397,6 +416,7 @@ pub(super) fn on_flat_ground<O>(
             world: &world,
             options,
             watch,
+            growing: None,
         })
     })
 }
@@ -432,6 +452,7 @@ fn start<'p>(
         told: None,
         cancel: watch.cancel,
         interrupted: false,
+        growing: None,
     })
 }
 
@@ -451,6 +472,7 @@ pub(super) fn evaluate(
         world,
         options: bounds,
         watch,
+        growing,
     } = setup;
     let Watch {
         record,
@@ -467,7 +489,7 @@ pub(super) fn evaluate(
         task,
         creature,
         (sim, world),
-        (watch, max_steps),
+        (watch, max_steps, growing),
         bounds.limits(),
         protocol,
     )?;
@@ -475,11 +497,11 @@ pub(super) fn evaluate(
     Ok(evaluation)
 }
 
-fn evaluate_run(
+fn evaluate_run<'w>(
     task: &'static str,
     creature: &Creature,
     sim: (&SimOptions, &WorldSpec),
-    (watch, max_steps): (Watch<'_>, usize),
+    (watch, max_steps, growing): (Watch<'w>, usize, Option<&'w mut super::grow::Growing>),
     (max_height, seconds): (f64, f64),
     protocol: impl FnOnce(&mut Run<'_>) -> Result<(f64, BTreeMap<String, f64>), Evaluation>,
 ) -> Result<Evaluation, Interrupted> {
@@ -487,7 +509,7 @@ fn evaluate_run(
         return Ok(rejected);
     }
     let mut run = match start(task, creature, sim, watch, max_steps) {
-        Ok(run) => run,
+        Ok(run) => Run { growing, ..run },
         Err(failed) => return Ok(failed),
     };
     let outcome = protocol(&mut run);

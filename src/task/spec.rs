@@ -72,6 +72,9 @@ pub struct TaskSpec {
     pub trials: Trials,
     /// The task and its settings.
     pub task: TaskOptions,
+    /// When the creature develops (`develop`, `develop_rate`, `develop_t0`): before the
+    /// evaluation unless it says otherwise; the default is not written.
+    pub develop: super::Develop,
 }
 
 impl Serialize for TaskSpec {
@@ -80,12 +83,21 @@ impl Serialize for TaskSpec {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let flat = self.world.is_flat();
         let plain_trials = self.trials.is_default();
+        let during = self.develop.during();
         let fields = 3
+            + usize::from(during) * (2 + usize::from(self.develop.t0.is_some()))
             + usize::from(!flat)
             + usize::from(!plain_trials)
             + usize::from(!self.habitats.is_empty());
         let mut out = serializer.serialize_struct("TaskSpec", fields)?;
         out.serialize_field("task", &self.kind())?;
+        if during {
+            out.serialize_field("develop", &self.develop.when)?;
+            out.serialize_field("develop_rate", &self.develop.rate)?;
+            if let Some(t0) = self.develop.t0 {
+                out.serialize_field("develop_t0", &t0)?;
+            }
+        }
         out.serialize_field("sim", &self.sim)?;
         if !flat {
             out.serialize_field("world", &self.world)?;
@@ -119,6 +131,7 @@ impl TaskSpec {
             habitats: Vec::new(),
             trials: Trials::default(),
             task: TaskOptions::default_of(task),
+            develop: super::Develop::default(),
         }
     }
 
@@ -196,6 +209,17 @@ impl TaskSpec {
         creature: &Creature,
         watch: Watch<'_>,
     ) -> Result<Evaluation, Interrupted> {
+        self.evaluate_growing(creature, watch, None)
+    }
+
+    /// [`TaskSpec::evaluate_watched`], the creature growing as `growing` develops during the
+    /// evaluation (`develop = "during"`): `creature` is `growing`'s creature at its start.
+    pub fn evaluate_growing<'w>(
+        &self,
+        creature: &Creature,
+        watch: Watch<'w>,
+        growing: Option<&'w mut super::Growing>,
+    ) -> Result<Evaluation, Interrupted> {
         crate::with_options!(&self.task, T, options => {
             let evaluation = T::evaluate(Setup {
                 creature,
@@ -203,6 +227,7 @@ impl TaskSpec {
                 world: &self.world,
                 options,
                 watch,
+                growing,
             })?;
             Ok(match T::expression(options) {
                 Some(expression) => expression.score(evaluation),

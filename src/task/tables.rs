@@ -8,7 +8,7 @@ use std::sync::LazyLock;
 
 use serde::de::{self, Deserialize, Deserializer, MapAccess, Visitor};
 
-use super::{Habitat, TASKS, TaskKind, TaskOptions, TaskSpec, Trials};
+use super::{Develop, Habitat, TASKS, TaskKind, TaskOptions, TaskSpec, Trials};
 use crate::sim::{SettingError, SimOptions, WorldSpec};
 
 /// A `[task]` table as read: what `task =` names, the simulator's settings and every task's
@@ -26,16 +26,27 @@ pub struct TaskTables {
     pub habitats: Vec<Habitat>,
     /// The trials in each habitat (`[task.trials]`).
     pub trials: Trials,
+    /// When the creature develops (`develop`, `develop_rate`, `develop_t0`).
+    pub develop: Develop,
     /// The tasks' tables it holds, in the order read, each as the settings of the first task
     /// of the registry that reads it.
     tables: Vec<TaskOptions>,
 }
 
-/// The keys of `[task]`: `task`, `sim`, `world`, `trials`, `habitats` and each task's table,
+/// The keys of `[task]`: `task`, `develop`, `develop_rate`, `develop_t0`, `sim`, `world`, `trials`, `habitats` and each task's table,
 /// in the registry's order.
 fn fields() -> &'static [&'static str] {
     static FIELDS: LazyLock<Vec<&'static str>> = LazyLock::new(|| {
-        let mut fields = vec!["task", "sim", "world", "trials", "habitats"];
+        let mut fields = vec![
+            "task",
+            "develop",
+            "develop_rate",
+            "develop_t0",
+            "sim",
+            "world",
+            "trials",
+            "habitats",
+        ];
         for task in TASKS {
             if !fields.contains(&task.table) {
                 fields.push(task.table);
@@ -72,6 +83,7 @@ impl TaskTables {
             habitats: self.habitats.clone(),
             trials: self.trials.clone(),
             task,
+            develop: self.develop.clone(),
         }
     }
 
@@ -118,6 +130,7 @@ impl From<&TaskSpec> for TaskTables {
             world: spec.world.clone(),
             habitats: spec.habitats.clone(),
             trials: spec.trials.clone(),
+            develop: spec.develop.clone(),
             tables: vec![spec.task.clone()],
         }
     }
@@ -126,6 +139,9 @@ impl From<&TaskSpec> for TaskTables {
 /// A key of `[task]`.
 enum Key {
     Task,
+    Develop,
+    DevelopRate,
+    DevelopT0,
     Sim,
     World,
     Trials,
@@ -144,6 +160,9 @@ impl<'de> Deserialize<'de> for Key {
             fn visit_str<E: de::Error>(self, name: &str) -> Result<Key, E> {
                 match name {
                     "task" => Ok(Key::Task),
+                    "develop" => Ok(Key::Develop),
+                    "develop_rate" => Ok(Key::DevelopRate),
+                    "develop_t0" => Ok(Key::DevelopT0),
                     "sim" => Ok(Key::Sim),
                     "world" => Ok(Key::World),
                     "trials" => Ok(Key::Trials),
@@ -169,6 +188,7 @@ impl<'de> Deserialize<'de> for TaskTables {
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<TaskTables, A::Error> {
                 let (mut task, mut sim, mut world) = (None, None, None);
                 let (mut trials, mut habitats) = (None, None);
+                let (mut when, mut rate, mut t0) = (None, None, None);
                 let mut tables: Vec<TaskOptions> = Vec::new();
                 while let Some(key) = map.next_key::<Key>()? {
                     match key {
@@ -176,6 +196,18 @@ impl<'de> Deserialize<'de> for TaskTables {
                             return Err(de::Error::duplicate_field("task"));
                         }
                         Key::Task => task = Some(map.next_value()?),
+                        Key::Develop if when.is_some() => {
+                            return Err(de::Error::duplicate_field("develop"));
+                        }
+                        Key::Develop => when = Some(map.next_value()?),
+                        Key::DevelopRate if rate.is_some() => {
+                            return Err(de::Error::duplicate_field("develop_rate"));
+                        }
+                        Key::DevelopRate => rate = Some(map.next_value()?),
+                        Key::DevelopT0 if t0.is_some() => {
+                            return Err(de::Error::duplicate_field("develop_t0"));
+                        }
+                        Key::DevelopT0 => t0 = Some(map.next_value()?),
                         Key::Sim if sim.is_some() => return Err(de::Error::duplicate_field("sim")),
                         Key::Sim => sim = Some(map.next_value()?),
                         Key::World if world.is_some() => {
@@ -202,6 +234,11 @@ impl<'de> Deserialize<'de> for TaskTables {
                     world: world.unwrap_or_default(),
                     habitats: habitats.unwrap_or_default(),
                     trials: trials.unwrap_or_default(),
+                    develop: Develop {
+                        when: when.unwrap_or_default(),
+                        rate: rate.unwrap_or(super::DEFAULT_RATE),
+                        t0,
+                    },
                     tables,
                 })
             }

@@ -187,7 +187,9 @@ pub fn iterative_move(gains: &[f64]) -> f64 {
 /// check the height again, activate the controller for `activation` (1 s),
 /// stabilise again (at least `second_settle`, and until at rest), then walk with the
 /// controller on for `seconds`; D_w is the horizontal distance the root part's centre of mass
-/// travels. The fitness is the formula `options` names, or its expression's value.
+/// travels (for a creature that grows during the walk, its anchor, with the size terms of
+/// the body at the start of the walk: [`super::Growing`]). The fitness is the formula
+/// `options` names, or its expression's value.
 pub fn walker(
     creature: &Creature,
     sim: &SimOptions,
@@ -219,10 +221,24 @@ fn walker_watched(setup: Setup<'_, '_, WalkerOptions>) -> Result<Evaluation, Int
         run.settle(&options.rest, options.second_settle, sim.control_step)?;
         let measure_from = run.world.time();
         run.phase = Phase::Measuring;
-        let from = run.world.part_position(PartId(0));
+        // A growing creature: D_w at the root's anchor, which growth does not move, and the
+        // size terms of the body at the start of the walk.
+        let grows = run.growing.is_some();
+        let at_start: std::borrow::Cow<'_, Creature> = match run.growing.as_deref() {
+            Some(growing) => std::borrow::Cow::Owned(growing.creature().clone()),
+            None => std::borrow::Cow::Borrowed(creature),
+        };
+        let root = |world: &World| {
+            if grows {
+                world.root_anchor()
+            } else {
+                world.part_position(PartId(0))
+            }
+        };
+        let from = root(&run.world);
         // Iterative move: the centre of mass's horizontal gain over every whole second.
         let mut gains = Vec::new();
-        let mut last_second = centre_of_mass(&run.world, creature);
+        let mut last_second = centre_of_mass(&run.world, &at_start);
         let centre_from = last_second;
         // Hornby & Pollack's D_drag, measured only when the fitness reads it.
         let formula = match &options.fitness {
@@ -244,19 +260,26 @@ fn walker_watched(setup: Setup<'_, '_, WalkerOptions>) -> Result<Evaluation, Int
             }
             let elapsed = run.world.time() - start_time;
             if elapsed + 1e-9 >= (gains.len() + 1) as f64 {
-                let centre = centre_of_mass(&run.world, creature);
+                let centre = match run.growing.as_deref() {
+                    Some(growing) => centre_of_mass(&run.world, growing.creature()),
+                    None => centre_of_mass(&run.world, creature),
+                };
                 let d = centre - last_second;
                 gains.push((d.x * d.x + d.z * d.z).sqrt());
                 last_second = centre;
             }
         }
         let iterative = iterative_move(&gains);
-        let to = run.world.part_position(PartId(0));
+        let to = root(&run.world);
         let d = to - from;
         let distance = (d.x * d.x + d.z * d.z).sqrt();
-        let (c_l, c_s, c_v) = size_coefficients(creature);
-        let n = creature.parts.len() as f64;
-        let centre_moved = centre_of_mass(&run.world, creature) - centre_from;
+        let (c_l, c_s, c_v) = size_coefficients(&at_start);
+        let n = at_start.parts.len() as f64;
+        let centre_now = match run.growing.as_deref() {
+            Some(growing) => centre_of_mass(&run.world, growing.creature()),
+            None => centre_of_mass(&run.world, creature),
+        };
+        let centre_moved = centre_now - centre_from;
         let displacement = centre_moved.x.hypot(centre_moved.z);
         let dragged = drag.map_or(0.0, |drag| drag.dragged());
         // An expression's value is had from the terms once they are all in
@@ -269,7 +292,7 @@ fn walker_watched(setup: Setup<'_, '_, WalkerOptions>) -> Result<Evaluation, Int
             Some(WalkerFitness::Distance) => distance,
             Some(WalkerFitness::IterativeMove) => iterative,
             Some(WalkerFitness::BoxLover) => iterative * n,
-            Some(WalkerFitness::FatLover) => iterative * creature.mass(),
+            Some(WalkerFitness::FatLover) => iterative * at_start.mass(),
             Some(WalkerFitness::DwarfSlayer) => {
                 if n < 3.0 {
                     0.0
@@ -290,9 +313,19 @@ fn walker_watched(setup: Setup<'_, '_, WalkerOptions>) -> Result<Evaluation, Int
             ("kappa".to_string(), options.kappa),
             ("settled_at".to_string(), settled_at),
             ("iterative_move".to_string(), iterative),
-            ("mass".to_string(), creature.mass()),
+            ("mass".to_string(), at_start.mass()),
             ("measured_from".to_string(), measure_from),
         ]);
+        if let Some(growing) = run.growing.as_deref() {
+            // How much development remained during the evaluation, body against brain.
+            let tally = growing.tally();
+            terms.insert("grown_parts".into(), tally.parts as f64);
+            terms.insert("grown_length".into(), tally.length);
+            terms.insert("grown_neurons".into(), tally.neurons as f64);
+            terms.insert("grown_links".into(), tally.links as f64);
+            terms.insert("growth_stopped".into(), tally.stopped as f64);
+            terms.insert("growth_work".into(), run.world.growth_work());
+        }
         if sliding {
             terms.insert("displacement".into(), displacement);
             terms.insert("drag".into(), dragged);

@@ -34,6 +34,7 @@ mod genome_graph;
 mod genome_lsystem;
 mod genome_plastic;
 mod genome_plastic_lsystem;
+mod grow_while_walking;
 mod habitats;
 mod json;
 mod key;

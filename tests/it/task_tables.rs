@@ -136,7 +136,8 @@ fn a_table_of_no_task_is_refused_with_the_tables_there_are() {
     assert!(said.contains("climb.toml:3:"), "{said}");
     assert!(
         said.contains(
-            "its keys are task, sim, world, trials, habitats, walker, jump, catapult, stand, swim"
+            "its keys are task, develop, develop_rate, develop_t0, sim, world, trials, habitats, walker, \
+             jump, catapult, stand, swim"
         ),
         "{said}"
     );

@@ -1,0 +1,712 @@
+//! Growth applied to a running world: a part that lengthens as the turtle lengthens it
+//! ([`World::grow_part`]), and one step of development's [`Growth`] — parts resized, new parts
+//! with their joints, new neurons and links — applied honestly ([`World::apply_growth`]).
+//!
+//! Honest means that growth is not a motor:
+//!
+//! - a lengthened part keeps its near face (where it is jointed to its parent, where the turtle
+//!   started it) in place and its velocity field; what it carries beyond its far joints is
+//!   carried with it and moves with its field where it is put;
+//! - a new part arrives where the turtle puts it relative to its parent, at rest relative to
+//!   it (v + ω × r), so the creature's momentum rises by the new mass times that velocity and
+//!   by nothing else;
+//! - the energy growth brings (the potential and kinetic energy of added and moved mass) is
+//!   counted apart, as [`World::growth_work`], so the energy audit does not take it for energy
+//!   from nowhere, and still catches any energy the growth does not account for;
+//! - a part whose growth would reach into the ground, or into a part it is not jointed to (when
+//!   parts collide with each other), deeper than [`GROWTH_CLEARANCE`] where it did not already
+//!   reach (parts at most two joints away, which may meet it at a joint, aside), **stops growing** rather than pushing the creature: the step is refused and
+//!   tried again at the next one, so it grows again once it is clear; a new part that would
+//!   appear inside something waits the same way, and with it the rest of that step's new
+//!   parts, neurons and links.
+
+use ::nalgebra::{Isometry3, Point3, Translation3, Vector3};
+use rapier3d::math::{Pose, Real, Vector};
+use rapier3d::parry::query::intersection_test;
+use rapier3d::prelude::*;
+
+use super::motion::Attach;
+use super::parts::vector;
+use super::slots::PartSlot;
+use super::world::World;
+use crate::creature::{JointKind, Part, PartId};
+use crate::develop::{Growth, GrowthEvent};
+
+/// How deep (m) growth may reach into something it did not reach into before and still grow:
+/// far above the contact solver's resting overlap, far below a part.
+pub const GROWTH_CLEARANCE: f64 = 0.01;
+
+/// What applying one step of growth did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Grown {
+    /// Parts resized.
+    pub resized: usize,
+    /// Parts added (each with its joint).
+    pub added: usize,
+    /// Neurons added.
+    pub neurons: usize,
+    /// Links added.
+    pub links: usize,
+    /// Parts whose growth stopped this step (or new parts that wait), by id.
+    pub stopped: Vec<PartId>,
+    /// The energy growth brought this step (J).
+    pub work: f64,
+}
+
+fn pose_of(isometry: &Isometry3<f64>) -> Pose {
+    let q = isometry.rotation;
+    Pose::from_parts(
+        vector(&isometry.translation.vector),
+        rapier3d::math::Rotation::from_xyzw(q.i as Real, q.j as Real, q.k as Real, q.w as Real)
+            .normalize(),
+    )
+}
+
+fn isometry_of(part: &Part) -> Isometry3<f64> {
+    Isometry3::from_parts(Translation3::from(part.position), part.orientation)
+}
+
+impl World {
+    /// The energy growth has brought so far (J): what the audit does not count as energy from
+    /// nowhere.
+    pub fn growth_work(&self) -> f64 {
+        self.growth_work
+    }
+
+    /// The length of a control step (s).
+    pub fn control_step(&self) -> f64 {
+        self.options.control_step
+    }
+
+    /// The root part's anchor: the centre of its near face, where the turtle started it, a
+    /// point its own growth does not move.
+    pub fn root_anchor(&self) -> Vector3<f64> {
+        let (centre, orientation) = self.part_pose(PartId(0));
+        centre + orientation * Vector3::new(-self.part_size(PartId(0)).x / 2.0, 0.0, 0.0)
+    }
+
+    /// Whether a box of `size` at `pose` reaches deeper than [`GROWTH_CLEARANCE`] into the
+    /// ground, or into a part other than `id` and its `neighbours` (when parts collide), where a
+    /// box of `old` size at `old_pose` (if any) did not.
+    fn reaches_in(
+        &self,
+        id: Option<PartId>,
+        neighbours: &[PartId],
+        (pose, size): (Pose, Vector3<f64>),
+        old: Option<(Pose, Vector3<f64>)>,
+    ) -> bool {
+        let shrunk = |size: Vector3<f64>| {
+            let half = (size / 2.0).map(|h| (h - GROWTH_CLEARANCE).max(1e-6));
+            SharedShape::cuboid(half.x as Real, half.y as Real, half.z as Real)
+        };
+        let new_shape = shrunk(size);
+        let old_shape = old.map(|(p, s)| (p, shrunk(s)));
+        let hits = |at: &Pose, shape: &SharedShape, collider: ColliderHandle| {
+            let other = &self.colliders[collider];
+            intersection_test(at, shape.as_ref(), other.position(), other.shape())
+                .map(|i| i.intersecting)
+                .unwrap_or(false)
+        };
+        let blocks = |collider: ColliderHandle| {
+            hits(&pose, &new_shape, collider)
+                && !old_shape
+                    .as_ref()
+                    .is_some_and(|(p, s)| hits(p, s, collider))
+        };
+        if self.ground.colliders.iter().any(|&c| blocks(c)) {
+            return true;
+        }
+        if !self.options.self_collision {
+            return false;
+        }
+        self.part_ids()
+            .filter(|p| Some(*p) != id && !neighbours.contains(p))
+            .any(|p| {
+                // The other part where it is now (its collider may not be synchronised yet).
+                let other = &self.parts[p];
+                let at = self.part_world_pose(p);
+                let shape = self.colliders[other.collider].shape();
+                intersection_test(&pose, new_shape.as_ref(), &at, shape)
+                    .map(|i| i.intersecting)
+                    .unwrap_or(false)
+                    && !old_shape.as_ref().is_some_and(|(o, s)| {
+                        intersection_test(o, s.as_ref(), &at, shape)
+                            .map(|i| i.intersecting)
+                            .unwrap_or(false)
+                    })
+            })
+    }
+
+    /// The parts jointed to part `id`.
+    fn jointed_to(&self, id: PartId) -> Vec<PartId> {
+        self.joints
+            .iter()
+            .filter_map(|j| match j.parts {
+                (p, c) if p == id => Some(c),
+                (p, c) if c == id => Some(p),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The parts at most two joints from part `id` (its parent, children, siblings and
+    /// grandparent): those it may touch where they meet, as the builder lets parts meet at
+    /// their joints.
+    fn near(&self, id: PartId) -> Vec<PartId> {
+        let mut near = self.jointed_to(id);
+        for k in 0..near.len() {
+            for p in self.jointed_to(near[k]) {
+                if p != id && !near.contains(&p) {
+                    near.push(p);
+                }
+            }
+        }
+        near
+    }
+
+    /// Gives part `id` the edge lengths `size` as the turtle grows a part: its near face (the
+    /// −x face, where its joint to its parent sits) stays where it is, its length grows
+    /// beyond it and its thickness and width about its axis. Its body's mass, centre of mass
+    /// and inertia follow and the body keeps its velocity field; every joint anchor on it
+    /// moves with the face it sits on; each part jointed beyond it (fused to it or not) is
+    /// carried, with everything beyond, by its anchor's move, and moves with the part's
+    /// velocity field where it is put. Returns false, changing nothing, when the grown part
+    /// would reach into something (see the [module](self)).
+    ///
+    /// # Panics
+    ///
+    /// If `id` names no part of this world.
+    pub fn grow_part(&mut self, id: PartId, size: Vector3<f64>) -> bool {
+        let PartSlot {
+            body,
+            collider,
+            size: old,
+            ..
+        } = self.parts[id];
+        if size == old {
+            return true;
+        }
+        let in_body = self.colliders[collider]
+            .position_wrt_parent()
+            .copied()
+            .unwrap_or(Pose::IDENTITY);
+        let body_pose = *self.bodies[body].position();
+        // A point p of the part (in its axes, about its old centre) goes to f(p).
+        let s = Vector::new(
+            (size.x / old.x) as Real,
+            (size.y / old.y) as Real,
+            (size.z / old.z) as Real,
+        );
+        let half_x = (old.x / 2.0) as Real;
+        let f = move |p: Vector| Vector::new(s.x * (p.x + half_x) - half_x, s.y * p.y, s.z * p.z);
+        let new_in_body = in_body * Pose::from_translation(f(Vector::ZERO));
+        let neighbours = self.near(id);
+        if self.reaches_in(
+            Some(id),
+            &neighbours,
+            (body_pose * new_in_body, size),
+            Some((body_pose * in_body, old)),
+        ) {
+            return false;
+        }
+        let field = self.field_of(body);
+        let omega = self.bodies[body].angvel();
+        let energy = self.mechanical_energy();
+
+        // Where each part jointed beyond this one goes: by its anchor's move.
+        let mut moves: Vec<(PartId, Vector)> = Vec::new();
+        for j in self.joint_ids() {
+            let (parent, child) = self.joints[j].parts;
+            if parent != id {
+                continue;
+            }
+            // The anchor in this part's axes: the joint's frame, or, for a part fused to this
+            // one, the child's near face (where the turtle started it).
+            let anchor = match self.joint_data(j) {
+                Some(data) => (in_body.inverse() * data.local_frame1).translation,
+                None => {
+                    let child_pose = self.part_world_pose(child);
+                    let near = child_pose.transform_point(Vector::new(
+                        -(self.parts[child].size.x / 2.0) as Real,
+                        0.0,
+                        0.0,
+                    ));
+                    (body_pose * in_body).inverse_transform_point(near)
+                }
+            };
+            let by = (body_pose * in_body).rotation * (f(anchor) - anchor);
+            for part in self.beyond(child, id) {
+                moves.push((part, by));
+            }
+        }
+
+        // The part itself: shape, place in its body, its joints' frames and torques.
+        let half = size / 2.0;
+        let c = &mut self.colliders[collider];
+        c.set_shape(SharedShape::cuboid(
+            half.x as Real,
+            half.y as Real,
+            half.z as Real,
+        ));
+        c.set_position_wrt_parent(new_in_body);
+        self.parts[id].size = size;
+        let scaled = |frame: Pose| {
+            let mut local = in_body.inverse() * frame;
+            local.translation = f(local.translation);
+            in_body * local
+        };
+        for j in self.joint_ids() {
+            let (parent, child) = self.joints[j].parts;
+            if parent != id && child != id {
+                continue;
+            }
+            let (first, second) = (self.parts[parent].size, self.parts[child].size);
+            let slot = &mut self.joints[j];
+            slot.max_torque =
+                super::actuators::max_torque_between(&first, &second, slot.strength, &self.options);
+            self.with_joint(j, |data| {
+                if parent == id {
+                    data.set_local_frame1(scaled(data.local_frame1));
+                }
+                if child == id {
+                    data.set_local_frame2(scaled(data.local_frame2));
+                }
+            });
+        }
+
+        // What is carried: parts fused to this body slide in it, other bodies move whole.
+        let body_rotation = body_pose.rotation;
+        let mut bodies: Vec<(RigidBodyHandle, Vector)> = Vec::new();
+        for &(part, by) in &moves {
+            let (slot_body, slot_collider) = (self.parts[part].body, self.parts[part].collider);
+            self.parts[part].previous += by;
+            if slot_body == body {
+                let local = body_rotation.inverse() * by;
+                let c = &mut self.colliders[slot_collider];
+                let at = c.position_wrt_parent().copied().unwrap_or(Pose::IDENTITY);
+                c.set_position_wrt_parent(Pose::from_translation(local) * at);
+                for j in self.joint_ids() {
+                    let (p, q) = self.joints[j].parts;
+                    let (b1, b2) = self.joints[j].ends;
+                    let (first, second) = (p == part && b1 == body, q == part && b2 == body);
+                    if first || second {
+                        self.with_joint(j, |data| {
+                            if first {
+                                let frame = Pose::from_translation(local) * data.local_frame1;
+                                data.set_local_frame1(frame);
+                            }
+                            if second {
+                                let frame = Pose::from_translation(local) * data.local_frame2;
+                                data.set_local_frame2(frame);
+                            }
+                        });
+                    }
+                }
+            } else if !bodies.iter().any(|(b, _)| *b == slot_body) {
+                bodies.push((slot_body, by));
+            }
+        }
+        self.bodies[body].recompute_mass_properties_from_colliders(&self.colliders);
+        self.move_with(body, &field);
+        for (handle, by) in bodies {
+            let b = &mut self.bodies[handle];
+            let t = b.translation() + by;
+            b.set_translation(t, true);
+            let nudge = omega.cross(by);
+            if nudge != Vector::ZERO {
+                let v = b.linvel() + nudge;
+                b.set_linvel(v, true);
+            }
+        }
+        self.body_changed();
+        self.growth_work += self.energy - energy;
+        true
+    }
+
+    /// Part `from` and every part jointed beyond it, not back through `stop`.
+    fn beyond(&self, from: PartId, stop: PartId) -> Vec<PartId> {
+        let mut found = vec![from];
+        let mut next = 0;
+        while next < found.len() {
+            let at = found[next];
+            for joint in self.joints.iter() {
+                let (p, c) = joint.parts;
+                if p == at && c != stop && !found.contains(&c) {
+                    found.push(c);
+                }
+            }
+            next += 1;
+        }
+        found
+    }
+
+    /// Applies one step of development's growth (see [`Growth`]): resized parts grow as
+    /// [`World::grow_part`] grows them, new parts appear where the turtle puts them relative
+    /// to their parent as it is now, moving with it, jointed to it; new neurons and links join
+    /// the running brain, the neurons there were keeping their state. A part that stops
+    /// growing keeps its size in `growth`'s creature, and a new part that waits is taken out
+    /// of it with the rest of the step's new parts, neurons and links, so that the next step's
+    /// growth tries them again.
+    ///
+    /// # Panics
+    ///
+    /// If `growth` names parts, joints or neurons this world does not have: it must be the
+    /// growth from the creature this world holds.
+    pub fn apply_growth(&mut self, growth: &mut Growth) -> Grown {
+        let energy = self.mechanical_energy();
+        let mut grown = Grown::default();
+        let parts = self.part_count();
+        let counted = self.growth_work;
+        let neurons = self.brain.neuron_count();
+        let mut waiting = false;
+        for event in &growth.events {
+            match event {
+                GrowthEvent::Resize { part, size } => {
+                    if self.grow_part(*part, *size) {
+                        grown.resized += 1;
+                    } else {
+                        grown.stopped.push(*part);
+                    }
+                }
+                GrowthEvent::NewPart {
+                    part,
+                    shape,
+                    parent,
+                    spec,
+                    ..
+                } if !waiting => {
+                    // From the new string's coordinates to the world's, by the parent.
+                    let (at, turned) = self.part_pose(*parent);
+                    let there = Isometry3::from_parts(Translation3::from(at), turned)
+                        * isometry_of(&growth.creature.parts[parent.0]).inverse();
+                    let placed = Part {
+                        position: (there * Point3::from(shape.position)).coords,
+                        orientation: there.rotation * shape.orientation,
+                        ..shape.clone()
+                    };
+                    let mut neighbours = self.near(*parent);
+                    neighbours.push(*parent);
+                    if self.reaches_in(
+                        None,
+                        &neighbours,
+                        (pose_of(&isometry_of(&placed)), placed.size),
+                        None,
+                    ) {
+                        grown.stopped.push(*part);
+                        waiting = true;
+                        continue;
+                    }
+                    let attach = if spec.kind == JointKind::Rigid {
+                        Attach::FusedTo(*parent)
+                    } else {
+                        Attach::MovingWith(*parent)
+                    };
+                    let id = self.add_part(&placed, attach);
+                    debug_assert_eq!(id, *part);
+                    let joint = crate::creature::Joint {
+                        anchor: (there * Point3::from(spec.anchor)).coords,
+                        axes: spec.axes.iter().map(|a| there.rotation * a).collect(),
+                        ..spec.clone()
+                    };
+                    if self.add_joint(&joint).is_ok() {
+                        grown.added += 1;
+                    }
+                }
+                GrowthEvent::NewNeuron { spec, .. } if !waiting => {
+                    self.add_neuron(spec);
+                    grown.neurons += 1;
+                }
+                GrowthEvent::NewLink { link } if !waiting => {
+                    self.add_link(link);
+                    grown.links += 1;
+                }
+                _ => {}
+            }
+        }
+        // What the world did not take, the creature does not have.
+        for id in &grown.stopped {
+            if let Some(part) = growth.creature.parts.get_mut(id.0)
+                && id.0 < parts
+            {
+                part.size = self.parts[*id].size;
+            }
+        }
+        if waiting {
+            let pending = pending_links(growth);
+            let creature = &mut growth.creature;
+            creature.parts.truncate(self.part_count());
+            creature.joints.truncate(self.joint_count());
+            creature.brain.neurons.truncate(neurons);
+            let links = creature.brain.links.len() - pending;
+            creature.brain.links.truncate(links);
+            growth.events.retain(|e| match e {
+                GrowthEvent::Resize { .. } => true,
+                GrowthEvent::NewPart { part, .. } => part.0 < self.part_count(),
+                _ => false,
+            });
+        }
+        grown.work = self.mechanical_energy() - energy;
+        self.growth_work = counted + grown.work;
+        grown
+    }
+}
+
+/// The links `growth` adds.
+fn pending_links(growth: &Growth) -> usize {
+    growth
+        .events
+        .iter()
+        .filter(|e| matches!(e, GrowthEvent::NewLink { .. }))
+        .count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::creature::{Creature, Joint};
+    use crate::develop::creature_from_commands;
+    use crate::sim::{Exploded, SimOptions};
+    use ::nalgebra::{Matrix3, UnitQuaternion};
+
+    /// A 1 m × 0.25 m × 0.25 m root (62.5 kg), 5 m up in the air, pushed to move at
+    /// 1.0, 0.5, −0.25 m/s while it turns at 0.3, −0.2, 2.0 rad/s, flown for two control steps.
+    fn flying_root() -> World {
+        let sim = SimOptions {
+            drop_height: 5.0,
+            ..SimOptions::default()
+        };
+        let mut world = World::new(&creature_from_commands("forward(1)").unwrap(), &sim).unwrap();
+        world.set_part_velocity(
+            PartId(0),
+            Vector3::new(1.0, 0.5, -0.25),
+            Vector3::new(0.3, -0.2, 2.0),
+        );
+        for _ in 0..2 {
+            world.step(false).unwrap();
+        }
+        world
+    }
+
+    fn assert_near(actual: Vector3<f64>, expected: Vector3<f64>, tolerance: f64, what: &str) {
+        assert!(
+            (actual - expected).amax() < tolerance,
+            "{what}: {actual:?}, not {expected:?}"
+        );
+    }
+
+    /// A box's inertia in the world (kg·m²).
+    fn box_inertia(
+        mass: f64,
+        size: Vector3<f64>,
+        orientation: UnitQuaternion<f64>,
+    ) -> Matrix3<f64> {
+        let s = size.component_mul(&size);
+        let own =
+            Matrix3::from_diagonal(&Vector3::new(s.y + s.z, s.x + s.z, s.x + s.y)) * mass / 12.0;
+        let r = orientation.to_rotation_matrix();
+        r.matrix() * own * r.matrix().transpose()
+    }
+
+    #[test]
+    fn a_lengthened_part_keeps_its_near_face_and_velocity_field_and_gains_the_momentum_of_its_new_mass()
+     {
+        let mut world = flying_root();
+        let (v, w) = world.part_velocity(PartId(0));
+        let (c, q) = world.part_pose(PartId(0));
+        let near = c + q * Vector3::new(-0.5, 0.0, 0.0);
+
+        // 1 m → 1.5 m: 31.25 kg more, the centre 0.25 m further along the part's x axis.
+        assert!(world.grow_part(PartId(0), Vector3::new(1.5, 0.25, 0.25)));
+        let (c2, q2) = world.part_pose(PartId(0));
+        assert_near(
+            c2 + q2 * Vector3::new(-0.75, 0.0, 0.0),
+            near,
+            1e-5,
+            "the near face",
+        );
+        let d = q * Vector3::new(0.25, 0.0, 0.0);
+        assert_near(c2, c + d, 1e-5, "the centre");
+        // The velocity field is kept: the new centre moves as the old field's point there.
+        let at = v + w.cross(&d);
+        let (v2, w2) = world.part_velocity(PartId(0));
+        assert_near(v2, at, 1e-5, "the centre's velocity");
+        assert_near(w2, w, 1e-6, "the angular velocity");
+        // By hand: 93.75 kg at that velocity; about the origin m c × v + I ω.
+        assert_near(world.creature_momentum(), at * 93.75, 1e-3, "the momentum");
+        let spin = box_inertia(93.75, Vector3::new(1.5, 0.25, 0.25), q) * w;
+        assert_near(
+            world.creature_angular_momentum(),
+            (c + d).cross(&at) * 93.75 + spin,
+            1e-2,
+            "the angular momentum",
+        );
+    }
+
+    /// Growth that adds a 0.5 m tail with a hinge at the far end of a 1 m root, as a new
+    /// string built from the origin would place it.
+    fn tail_growth(world: &World) -> Growth {
+        let mut creature = creature_from_commands("forward(1)").unwrap();
+        let shape = Part {
+            size: Vector3::new(0.5, 0.25, 0.25),
+            position: Vector3::new(1.25, 0.0, 0.0),
+            orientation: UnitQuaternion::identity(),
+            density: 1000.0,
+            growing: true,
+        };
+        let spec = Joint {
+            parent: 0,
+            child: 1,
+            kind: JointKind::Revolute,
+            anchor: Vector3::new(1.0, 0.0, 0.0),
+            axes: vec![Vector3::z()],
+            limits: vec![(-0.5, 0.5)],
+            strength: 1.0,
+            growing: true,
+        };
+        creature.parts.push(shape.clone());
+        creature.joints.push(spec.clone());
+        assert_eq!(world.part_count(), 1);
+        Growth {
+            events: vec![GrowthEvent::NewPart {
+                part: PartId(1),
+                shape,
+                parent: PartId(0),
+                joint: crate::creature::JointId(0),
+                spec,
+            }],
+            creature,
+            lost: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_new_bud_arrives_at_its_place_on_its_parent_moving_with_it() {
+        let mut world = flying_root();
+        let (v, w) = world.part_velocity(PartId(0));
+        let (c, q) = world.part_pose(PartId(0));
+        let momentum = world.creature_momentum();
+        let angular = world.creature_angular_momentum();
+
+        let mut growth = tail_growth(&world);
+        let grown = world.apply_growth(&mut growth);
+        assert_eq!((grown.added, grown.resized), (1, 0));
+        assert!(grown.stopped.is_empty());
+        // Where the turtle puts it: 0.75 m along the root's axis from its centre.
+        let r = q * Vector3::new(0.75, 0.0, 0.0);
+        assert_near(
+            world.part_position(PartId(1)),
+            c + r,
+            1e-5,
+            "the bud's centre",
+        );
+        // By hand: 31.25 kg at v + ω × r, turning at ω.
+        let arrives = v + w.cross(&r);
+        assert_near(
+            world.part_velocity(PartId(1)).0,
+            arrives,
+            1e-5,
+            "its velocity",
+        );
+        assert_near(
+            world.creature_momentum() - momentum,
+            arrives * 31.25,
+            1e-3,
+            "the momentum gained",
+        );
+        let spin = box_inertia(31.25, Vector3::new(0.5, 0.25, 0.25), q) * w;
+        assert_near(
+            world.creature_angular_momentum() - angular,
+            (c + r).cross(&arrives) * 31.25 + spin,
+            1e-2,
+            "the angular momentum gained",
+        );
+        // The energy it brought is growth's work, not energy from nowhere.
+        assert!((world.growth_work() - grown.work).abs() < 1e-9);
+        assert!(grown.work > 0.0);
+    }
+
+    #[test]
+    fn the_audit_passes_honest_growth_and_still_catches_a_fake_source() {
+        let mut world = flying_root();
+        // The root lengthens by 2 cm a control step for 25 steps while it flies and turns.
+        for k in 1..=25 {
+            let size = Vector3::new(1.0 + 0.02 * k as f64, 0.25, 0.25);
+            assert!(world.grow_part(PartId(0), size));
+            world.step(false).unwrap();
+        }
+        let honest = world.peak_unexplained_energy();
+        assert!(honest < 0.5, "{honest} J from nowhere in honest growth");
+        assert!(
+            world.growth_work() > 1.0,
+            "{} J of growth",
+            world.growth_work()
+        );
+
+        // A fake source: 5 m/s more along x, given by no motor and no growth.
+        let body = world.parts[PartId(0)].body;
+        let v = world.bodies[body].linvel() + Vector::new(5.0, 0.0, 0.0);
+        world.bodies[body].set_linvel(v, true);
+        assert!(matches!(world.step(false), Err(Exploded::Energy(_))));
+    }
+
+    #[test]
+    fn a_root_that_lengthens_on_the_spot_walks_no_distance() {
+        let creature = creature_from_commands("forward(1)").unwrap();
+        let mut world = World::new(&creature, &SimOptions::default()).unwrap();
+        for _ in 0..60 {
+            world.step(false).unwrap();
+        }
+        let near = |world: &World| {
+            let (c, q) = world.part_pose(PartId(0));
+            let size = world.part_size(PartId(0));
+            c + q * Vector3::new(-size.x / 2.0, 0.0, 0.0)
+        };
+        let start = near(&world);
+        let centre = world.part_position(PartId(0));
+        // 1 m → 1.5 m, 1 cm a control step, lying on the ground.
+        for k in 1..=50 {
+            assert!(world.grow_part(PartId(0), Vector3::new(1.0 + 0.01 * k as f64, 0.25, 0.25)));
+            world.step(false).unwrap();
+        }
+        for _ in 0..20 {
+            world.step(false).unwrap();
+        }
+        let walked = (near(&world) - start).xz().norm();
+        assert!(walked < 1e-3, "the root's near face moved {walked} m");
+        let moved = world.part_position(PartId(0)).x - centre.x;
+        assert!((moved - 0.25).abs() < 1e-3, "the centre moved {moved} m");
+    }
+
+    #[test]
+    fn a_part_that_would_grow_into_the_ground_stops_growing() {
+        let creature = creature_from_commands("forward(1)").unwrap();
+        let mut world = World::new(&creature, &SimOptions::default()).unwrap();
+        for _ in 0..60 {
+            world.step(false).unwrap();
+        }
+        let energy = world.growth_work();
+        // Thicker about its axis, its underside would sink 5 cm into the ground.
+        assert!(!world.grow_part(PartId(0), Vector3::new(1.0, 0.35, 0.25)));
+        assert_eq!(world.part_size(PartId(0)), Vector3::new(1.0, 0.25, 0.25));
+        assert_eq!(world.growth_work(), energy);
+        // Growth in a step that applies it is reported as stopped, and the creature keeps
+        // the size the world has.
+        let mut growth = Growth {
+            events: vec![GrowthEvent::Resize {
+                part: PartId(0),
+                size: Vector3::new(1.0, 0.35, 0.25),
+            }],
+            creature: Creature {
+                parts: vec![Part {
+                    size: Vector3::new(1.0, 0.35, 0.25),
+                    ..creature.parts[0].clone()
+                }],
+                ..creature.clone()
+            },
+            lost: Vec::new(),
+        };
+        let grown = world.apply_growth(&mut growth);
+        assert_eq!(grown.stopped, [PartId(0)]);
+        assert_eq!(growth.creature.parts[0].size, Vector3::new(1.0, 0.25, 0.25));
+    }
+}

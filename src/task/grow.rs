@@ -1,0 +1,204 @@
+//! Growing while acting: a continuous development that goes on during an evaluation
+//! ([`Growing`]). The creature dropped is the one at developmental time t₀; then, while the
+//! protocol runs the controller (the walker's activation and walk), every control step of Δt
+//! seconds develops the grammar by `rate` × Δt and applies what changed to the world
+//! ([`World::apply_growth`]). While the protocol waits for the creature to come to rest,
+//! development pauses: the rest tests measure the body, not its growth.
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use crate::creature::Creature;
+use crate::develop::{BuildOptions, Growth, build, growth_between};
+use crate::lang::Diagnostic;
+use crate::lsystem::{DeriveOptions, Development, LSystem};
+use crate::sim::{Grown, World};
+
+/// When the creature develops: before the evaluation (today's protocol) or during it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DevelopWhen {
+    /// Development runs to its end, then the finished creature is evaluated.
+    #[default]
+    Before,
+    /// The creature at t₀ is evaluated, and development goes on during the evaluation.
+    During,
+}
+
+/// The default `rate`: one unit of developmental time per second of physics.
+pub const DEFAULT_RATE: f64 = 1.0;
+
+/// When a creature develops, as `[task]` says: `develop = "before"` (the default, not
+/// written) or `"during"`, with `develop_rate` (developmental time per second of physics)
+/// and `develop_t0` (the developmental time of the creature dropped; default: the grammar's
+/// first frame that builds a valid creature).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Develop {
+    /// Before or during the evaluation.
+    pub when: DevelopWhen,
+    /// Developmental time per second of physics.
+    pub rate: f64,
+    /// The developmental time of the creature dropped, if set.
+    pub t0: Option<f64>,
+}
+
+impl Default for Develop {
+    fn default() -> Self {
+        Develop {
+            when: DevelopWhen::Before,
+            rate: DEFAULT_RATE,
+            t0: None,
+        }
+    }
+}
+
+impl Develop {
+    /// Whether development goes on during the evaluation.
+    pub fn during(&self) -> bool {
+        self.when == DevelopWhen::During
+    }
+
+    /// Checks the rate (finite, above 0) and t₀ (finite, 0 or more).
+    pub fn check(&self) -> Result<(), crate::sim::SettingError> {
+        crate::sim::check_real("develop_rate", self.rate, 0.0, true)?;
+        match self.t0 {
+            Some(t0) if !(t0.is_finite() && t0 >= 0.0) => Err(
+                crate::sim::SettingError::out_of_range("develop_t0", "0 or more", t0),
+            ),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// How much a creature grew during an evaluation: Kriegman's measure of the development that
+/// remains, body against brain.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GrowthTally {
+    /// Parts added.
+    pub parts: usize,
+    /// Length gained (m): the sum of the parts' lengthening.
+    pub length: f64,
+    /// Neurons added.
+    pub neurons: usize,
+    /// Links added.
+    pub links: usize,
+    /// Steps at which some part stopped growing because it would have reached into
+    /// something.
+    pub stopped: usize,
+}
+
+/// A development that goes on while the creature acts: the grammar, the development at its
+/// current time, and the creature it has built, its parts, joints and neurons at their ids.
+pub struct Growing {
+    lsys: Arc<LSystem>,
+    development: Development,
+    derive: DeriveOptions,
+    build: BuildOptions,
+    rate: f64,
+    creature: Creature,
+    tally: GrowthTally,
+}
+
+impl Growing {
+    /// Starts the development of `lsys` and takes it to `t0`, or, with none, to its first
+    /// observation frame that builds a valid creature (the last frame if none does); `rate`
+    /// is developmental time per second of physics.
+    ///
+    /// # Errors
+    ///
+    /// What development reports (a diagnostic of the grammar).
+    pub fn start(
+        lsys: Arc<LSystem>,
+        derive: &DeriveOptions,
+        build_options: &BuildOptions,
+        rate: f64,
+        t0: Option<f64>,
+    ) -> Result<Growing, Diagnostic> {
+        let build_options = build_options.with_headers(&lsys);
+        let mut development = Development::start(Arc::clone(&lsys), derive)?;
+        let built = |development: &Development| -> Result<Creature, Diagnostic> {
+            let t = development.now();
+            let shown = lsys.interpret(development.current(), t, derive)?;
+            Ok(build(
+                &shown,
+                lsys.symbols(),
+                development.environment(),
+                Some(t),
+                &build_options,
+            ))
+        };
+        let creature = match t0 {
+            Some(t0) => {
+                development.advance_by(t0)?;
+                built(&development)?
+            }
+            None => loop {
+                let creature = built(&development)?;
+                if creature.is_valid() || !development.advance()? {
+                    break creature;
+                }
+            },
+        };
+        Ok(Growing {
+            lsys,
+            development,
+            derive: derive.clone(),
+            build: build_options,
+            rate,
+            creature,
+            tally: GrowthTally::default(),
+        })
+    }
+
+    /// The creature as it is now, its parts, joints and neurons at their ids.
+    pub fn creature(&self) -> &Creature {
+        &self.creature
+    }
+
+    /// The developmental time reached.
+    pub fn now(&self) -> f64 {
+        self.development.now()
+    }
+
+    /// How much it has grown since it started.
+    pub fn tally(&self) -> &GrowthTally {
+        &self.tally
+    }
+
+    /// Develops by `rate` × `seconds` and applies the growth to `world`, which must hold this
+    /// creature.
+    ///
+    /// # Errors
+    ///
+    /// What development reports.
+    pub fn step(&mut self, world: &mut World, seconds: f64) -> Result<Grown, Diagnostic> {
+        self.development.advance_by(self.rate * seconds)?;
+        let t = self.development.now();
+        let shown = self
+            .lsys
+            .interpret(self.development.current(), t, &self.derive)?;
+        let after = build(
+            &shown,
+            self.lsys.symbols(),
+            self.development.environment(),
+            Some(t),
+            &self.build,
+        );
+        let mut growth: Growth = growth_between(&self.creature, &after);
+        if growth.is_empty() {
+            return Ok(Grown::default());
+        }
+        let lengths: f64 = self.creature.parts.iter().map(|p| p.size.x).sum();
+        let grown = world.apply_growth(&mut growth);
+        self.creature = growth.creature;
+        let now: f64 = self.creature.parts.iter().map(|p| p.size.x).sum();
+        self.tally.parts += grown.added;
+        self.tally.neurons += grown.neurons;
+        self.tally.links += grown.links;
+        self.tally.stopped += usize::from(!grown.stopped.is_empty());
+        // Length gained by the parts there were and brought by the new ones.
+        self.tally.length += now - lengths;
+        Ok(grown)
+    }
+}
