@@ -404,6 +404,12 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
         let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
         tell!("{}", ontogeny::output::wrote(&files));
     }
+    show_evaluation(args, &evaluation)
+}
+
+/// Prints an evaluation of `args.file`: as JSON with `--json` (without its recording, which
+/// `--record` writes), else as text.
+fn show_evaluation(args: &EvalArgs, evaluation: &Evaluation) -> anyhow::Result<()> {
     if args.json {
         let mut shown = evaluation.clone();
         shown.recording.clear();
@@ -412,7 +418,7 @@ pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     }
     say!(
         "{}",
-        flags::evaluation_text(&input_name(&args.file), &evaluation)
+        flags::evaluation_text(&input_name(&args.file), evaluation)
     );
     Ok(())
 }
@@ -476,15 +482,7 @@ fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     let watch = ontogeny::task::Watch::uncancelled(false, &mut tell);
     let evaluation = spec.evaluate_growing(&creature, watch, Some(&mut growing))?;
     progress.finish();
-    if args.json {
-        say!("{}", serde_json::to_string_pretty(&evaluation)?);
-        return Ok(());
-    }
-    say!(
-        "{}",
-        flags::evaluation_text(&input_name(&args.file), &evaluation)
-    );
-    Ok(())
+    show_evaluation(args, &evaluation)
 }
 
 /// [`run`] for a task with habitats or trials: the creature grown in each habitat (with its
