@@ -63,9 +63,9 @@ pub(super) fn solid(c: [u8; 3]) -> Paint<'static> {
 }
 
 /// One GIF image of an opaque picture: a palette of the colours that carry meaning
-/// ([`KEY_COLOURS`], exact) and the 242 more (256 less the key colours) that NeuQuant fits to the rest of the picture;
-/// each pixel takes the nearest of the two candidates (its NeuQuant colour or the nearest
-/// key colour), so a red actuator stays the red of the legend.
+/// ([`KEY_COLOURS`], exact) and the 242 more (256 less the key colours) that NeuQuant fits
+/// to the rest of the picture; each pixel takes the nearest of the two candidates (its
+/// NeuQuant colour or the nearest key colour), so a red actuator stays the red of the legend.
 pub(super) fn gif_image(pixmap: &Pixmap) -> gif::Frame<'static> {
     let rgba = pixmap.data(); // opaque background: premultiplied = straight
     let quant = color_quant::NeuQuant::new(10, 256 - KEY_COLOURS.len(), rgba);
