@@ -59,7 +59,7 @@ pub struct GrowthArgs {
     /// where there is none).
     #[arg(long, conflicts_with = "json")]
     csv: bool,
-    /// Print one JSON array: a row per run and generation.
+    /// Print one JSON object: the directory and a row per run and generation.
     #[arg(long)]
     json: bool,
 }
@@ -183,7 +183,7 @@ fn growth_of(args: &GrowthArgs) -> anyhow::Result<()> {
         tell!("note: {note}");
     }
     if args.json {
-        say!("{}", lifetime::json(&rows));
+        say!("{}", lifetime::json(&args.dir, &rows));
     } else if args.csv {
         say!("{}", lifetime::csv(&rows));
     } else {

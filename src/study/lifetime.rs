@@ -219,10 +219,14 @@ pub fn csv(rows: &[GenerationGrowth]) -> String {
     lines.join("\n")
 }
 
-/// The measurement as one JSON array of the rows, as [`GenerationGrowth`] serialises (a
-/// figure that is none is `null`).
-pub fn json(rows: &[GenerationGrowth]) -> String {
-    serde_json::to_string_pretty(rows).unwrap_or_default()
+/// The measurement as one JSON object: `dir` and `generations`, a row per run and generation
+/// as [`GenerationGrowth`] serialises (a figure that is none is `null`).
+pub fn json(dir: &std::path::Path, rows: &[GenerationGrowth]) -> String {
+    let value = serde_json::json!({
+        "dir": dir.display().to_string(),
+        "generations": rows,
+    });
+    serde_json::to_string_pretty(&value).unwrap_or_default()
 }
 
 /// The measurement for people: per condition, a row per generation with the medians over its
