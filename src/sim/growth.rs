@@ -235,7 +235,7 @@ impl World {
                 }
             };
             let by = (body_pose * in_body).rotation * (f(anchor) - anchor);
-            for part in self.beyond(child, id) {
+            for part in self.joints.beyond(child, id, |joint| joint.parts) {
                 moves.push((part, by));
             }
         }
@@ -321,23 +321,6 @@ impl World {
         self.body_changed();
         self.growth_work += self.energy - energy;
         true
-    }
-
-    /// Part `from` and every part jointed beyond it, not back through `stop`.
-    fn beyond(&self, from: PartId, stop: PartId) -> Vec<PartId> {
-        let mut found = vec![from];
-        let mut next = 0;
-        while next < found.len() {
-            let at = found[next];
-            for joint in self.joints.iter() {
-                let (p, c) = joint.parts;
-                if p == at && c != stop && !found.contains(&c) {
-                    found.push(c);
-                }
-            }
-            next += 1;
-        }
-        found
     }
 
     /// Applies one step of development's growth (see [`Growth`]): resized parts grow as
