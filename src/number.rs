@@ -12,3 +12,9 @@ pub fn format_number(v: f64) -> String {
         _ => format!("{v}"),
     }
 }
+
+/// Numbers for people to read ([`format_number`]), separated by spaces: `0 0.5`.
+pub fn format_numbers(values: &[f64]) -> String {
+    let words: Vec<String> = values.iter().map(|&v| format_number(v)).collect();
+    words.join(" ")
+}

@@ -11,7 +11,7 @@ use ontogeny::front::start::{NewRun, StartError, start_run};
 use ontogeny::front::text::{self, RunTally};
 use ontogeny::lang::Source;
 use ontogeny::run::config::read_config_source;
-use ontogeny::run::{GenerationReport, Run, RunError, encoding_of_run};
+use ontogeny::run::{GenerationReport, Run, RunError, encoding_of_run, unknown_encoding_of_run};
 use ontogeny::sim::StepSetting;
 
 pub use super::bad;
@@ -173,9 +173,7 @@ pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     };
     if let Some(dir) = &args.resume {
         let encoding = encoding_of_run(dir).map_err(run_error)?;
-        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change, args.json), |other| Err(bad(
-            format!("{}: unknown encoding '{other}'", dir.display())
-        )));
+        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change, args.json), |other| Err(bad(unknown_encoding_of_run(dir, other))));
     }
     if args.allow_evaluator_change {
         return Err(bad(

@@ -7,7 +7,7 @@ use clap::Args;
 use ontogeny::encoding::Genome;
 use ontogeny::render::MAX_FPS;
 use ontogeny::run::pick::{PickError, individual_by_rank};
-use ontogeny::run::{Run, encoding_of_run};
+use ontogeny::run::{Run, encoding_of_run, unknown_encoding_of_run};
 use ontogeny::task::{Recording, TaskSpec};
 
 use super::physics::{FitnessArgs, SteppingArgs};
@@ -98,7 +98,7 @@ pub fn replay_run(args: &ReplayArgs) -> anyhow::Result<()> {
     with_genome!(
         encoding.as_str(),
         G => replay_typed::<G>(args),
-        |other| Err(super::bad(format!("{}: unknown encoding '{other}'", dir.display())))
+        |other| Err(super::bad(unknown_encoding_of_run(dir, other)))
     )
 }
 

@@ -7,7 +7,7 @@ use clap::{Args, Subcommand};
 use ontogeny::encoding::Genome;
 use ontogeny::front::text;
 use ontogeny::run::pick::PickError;
-use ontogeny::run::{Run, encoding_of_run};
+use ontogeny::run::{Run, encoding_of_run, unknown_encoding_of_run};
 use ontogeny::study::canalization::{self, Settings};
 use ontogeny::study::lifetime;
 use ontogeny::study::listing;
@@ -146,10 +146,7 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
             with_genome!(
                 encoding.as_str(),
                 G => canalization_of::<G>(args),
-                |other| Err(super::bad(format!(
-                    "{}: unknown encoding '{other}'",
-                    args.dir.display()
-                )))
+                |other| Err(super::bad(unknown_encoding_of_run(&args.dir, other)))
             )?;
         }
         RunsVerb::Plasticity(args) => plasticity_of(args)?,

@@ -9,7 +9,7 @@ use super::show::{develops_into, read_genome_file};
 use super::{DevelopError, Genome, ShowError};
 use crate::creature::{Creature, PhenotypeDifferences, Summary, phenotype_differences};
 use crate::environment::Environment;
-use crate::number::format_number;
+use crate::number::format_numbers;
 
 /// A habitat as the genome sees it: its name and the initial values of its chemical array
 /// (none: the genome's own).
@@ -159,10 +159,7 @@ impl HabitatPhenotypes {
 /// An array for people: `environment 0 0.5`, or `its own environment`.
 fn array_text(values: Option<&[f64]>) -> String {
     match values {
-        Some(v) => {
-            let v: Vec<String> = v.iter().map(|x| format_number(*x)).collect();
-            format!("environment {}", v.join(" "))
-        }
+        Some(v) => format!("environment {}", format_numbers(v)),
         None => "its own environment".to_string(),
     }
 }

@@ -155,6 +155,12 @@ pub struct Run<G: Genome> {
     written: Option<derived::Written>,
 }
 
+/// What is said of the run in `dir` when its encoding, `name`, is none of the registry's:
+/// `RUN: unknown encoding 'NAME'`.
+pub fn unknown_encoding_of_run(dir: &Path, name: &str) -> String {
+    format!("{}: unknown encoding '{name}'", dir.display())
+}
+
 /// The encoding of the run in `dir`, as its store records it (or, for a start interrupted
 /// before its store was made, as its `config.toml` says), read without changing anything.
 pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {

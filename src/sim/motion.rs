@@ -82,18 +82,7 @@ impl World {
         by: Vector,
         field: &Field,
     ) {
-        let mut carried = vec![from];
-        let mut next = 0;
-        while next < carried.len() {
-            let at = carried[next];
-            for joint in self.joints.iter() {
-                let (b1, b2) = joint.ends;
-                if b1 == at && b2 != stop && !carried.contains(&b2) {
-                    carried.push(b2);
-                }
-            }
-            next += 1;
-        }
+        let carried = self.joints.beyond(from, stop, |joint| joint.ends);
         let nudge = field.angular.cross(by);
         for &handle in &carried {
             let body = &mut self.bodies[handle];

@@ -108,6 +108,31 @@ pub(super) struct JointSlot {
     pub(super) torques: [f64; 3],
 }
 
+impl<I: From<usize> + Into<usize>> Keyed<I, JointSlot> {
+    /// `from` and everything jointed beyond it, not back through `stop`, found through each
+    /// joint's ends as `ends` reads them (its parts or its bodies, parent first): what a part
+    /// carries when it grows or moves.
+    pub(super) fn beyond<T: Copy + PartialEq>(
+        &self,
+        from: T,
+        stop: T,
+        ends: impl Fn(&JointSlot) -> (T, T),
+    ) -> Vec<T> {
+        let mut found = vec![from];
+        let mut next = 0;
+        while next < found.len() {
+            let at = found[next];
+            for (parent, child) in self.iter().map(&ends) {
+                if parent == at && child != stop && !found.contains(&child) {
+                    found.push(child);
+                }
+            }
+            next += 1;
+        }
+        found
+    }
+}
+
 /// What a world holds besides the creature, in rapier.
 pub(super) struct Ground {
     /// The ground's colliders: the first is the halfspace or the heightfield.

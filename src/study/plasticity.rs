@@ -40,10 +40,10 @@ use super::stats::median;
 use crate::creature::{Creature, phenotype_differences};
 use crate::encoding::Genome;
 use crate::evolve::habitats::{develop_in_habitats, evaluate_here};
-use crate::number::format_number;
+use crate::number::{format_number, format_numbers};
 use crate::run::pick::{PickError, individual_by_rank};
 use crate::run::store::RunStore;
-use crate::run::{Run, RunError, encoding_of_run};
+use crate::run::{Run, RunError, encoding_of_run, unknown_encoding_of_run};
 use crate::task::{Evaluation, FAILURE_FITNESS, Status, TaskSpec};
 
 /// Why plasticity could not be measured.
@@ -427,10 +427,7 @@ pub fn measure_runs(
         let champion = crate::with_genome!(
             encoding.as_str(),
             G => measure_run::<G>(found),
-            |other| Err(PlasticityError::Input(format!(
-                "{}: unknown encoding '{other}'",
-                found.dir.display()
-            )))
+            |other| Err(PlasticityError::Input(unknown_encoding_of_run(&found.dir, other)))
         )?;
         match champion {
             Some(champion) => measured.push(champion),
@@ -547,10 +544,7 @@ fn habitat_label(name: &str) -> &str {
 /// An array for people: `[0 0.5]`, or `own` (the genome's own).
 fn array_text(values: Option<&[f64]>) -> String {
     match values {
-        Some(v) => {
-            let v: Vec<String> = v.iter().map(|x| format_number(*x)).collect();
-            format!("[{}]", v.join(" "))
-        }
+        Some(v) => format!("[{}]", format_numbers(v)),
         None => "own".to_string(),
     }
 }

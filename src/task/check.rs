@@ -1,12 +1,13 @@
 //! The range check of every task setting, and the one limit on how long a task may run
 //! ([`MAX_SECONDS`]): each options type checks its own values ([`Bounds::check`]: here the
-//! walker's, the jump's and the catapult's, with what else they bound) and
+//! walker's and the catapult's, with what else they bound) and
 //! [`TaskSpec::check`] checks the task's with the simulator's, naming the key as a config
 //! file spells it (`[task.walker] seconds`).
 
+use super::protocol::bounds_of;
 use super::{
-    Bounds, CatapultOptions, JumpOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskOptions,
-    TaskSpec, WalkerOptions,
+    Bounds, CatapultOptions, MAX_TARGET_DISTANCE, Rest, TaskKind, TaskOptions, TaskSpec,
+    WalkerOptions,
 };
 use crate::sim::setting::check_real;
 use crate::sim::{Medium, SettingError};
@@ -54,15 +55,7 @@ impl Rest {
 }
 
 impl Bounds for WalkerOptions {
-    fn limits(&self) -> (f64, f64) {
-        (self.max_height, self.seconds)
-    }
-    fn max_steps(&self, dt: f64) -> usize {
-        WalkerOptions::max_steps(self, dt)
-    }
-    fn seconds(&mut self) -> &mut f64 {
-        &mut self.seconds
-    }
+    bounds_of!(max_height, seconds);
     /// Checks the walker's settings: `seconds` in (0, [`MAX_SECONDS`]], the activation and the
     /// second settling in [0, [`MAX_SECONDS`]], κ and the height limit finite and positive,
     /// and the rest criterion ([`Rest::check`], in the `rest` table).
@@ -76,36 +69,9 @@ impl Bounds for WalkerOptions {
     }
 }
 
-impl Bounds for JumpOptions {
-    fn limits(&self) -> (f64, f64) {
-        (self.max_height, self.seconds)
-    }
-    fn max_steps(&self, dt: f64) -> usize {
-        JumpOptions::max_steps(self, dt)
-    }
-    fn seconds(&mut self) -> &mut f64 {
-        &mut self.seconds
-    }
-    /// Checks the jump's settings: `seconds` in (0, [`MAX_SECONDS`]], the height limit finite
-    /// and positive, and the rest criterion ([`Rest::check`], in the `rest` table).
-    fn check(&self) -> Result<(), SettingError> {
-        check_duration("seconds", self.seconds)?;
-        check_real("max_height", self.max_height, 0.0, true)?;
-        self.rest.check().map_err(|e| e.within("rest"))
-    }
-}
-
 impl Bounds for CatapultOptions {
-    fn limits(&self) -> (f64, f64) {
-        (self.max_height, self.max_seconds)
-    }
-    fn max_steps(&self, dt: f64) -> usize {
-        CatapultOptions::max_steps(self, dt)
-    }
-    /// `max_seconds`: the catapult's measurement lasts until the projectile is at rest.
-    fn seconds(&mut self) -> &mut f64 {
-        &mut self.max_seconds
-    }
+    // `max_seconds`: the catapult's measurement lasts until the projectile is at rest.
+    bounds_of!(max_height, max_seconds);
     /// Checks the catapult's settings: the projectile's size (every edge) and density finite
     /// and positive, `max_seconds` in (0, [`MAX_SECONDS`]], the release delay and the rest
     /// duration in [0, [`MAX_SECONDS`]], the rest speed and the height limit finite and

@@ -629,6 +629,13 @@ mod tests {
         spec
     }
 
+    /// [`two_habitats`] with one trial and the mean, the cued habitat in `world`.
+    fn cued_in(world: WorldSpec) -> TaskSpec {
+        let mut spec = two_habitats(1, Aggregate::Mean);
+        spec.habitats[1].world = world;
+        spec
+    }
+
     #[test]
     fn an_individual_scores_the_aggregate_of_its_units_and_keeps_each() {
         let spec = two_habitats(2, Aggregate::Median);
@@ -701,12 +708,14 @@ mod tests {
 
     #[test]
     fn a_unit_scales_the_simulator_and_the_world_by_its_draw() {
-        let mut spec = two_habitats(1, Aggregate::Mean);
-        spec.habitats[1].world.rough = Some(crate::sim::world_spec::Rough {
-            amplitude: 0.1,
-            wavelength: 1.0,
-            seed: 1,
-            size: 20.0,
+        let spec = cued_in(WorldSpec {
+            rough: Some(crate::sim::world_spec::Rough {
+                amplitude: 0.1,
+                wavelength: 1.0,
+                seed: 1,
+                size: 20.0,
+            }),
+            ..WorldSpec::default()
         });
         let unit = Unit {
             habitat: 1,
@@ -793,10 +802,12 @@ mod tests {
 
     #[test]
     fn a_habitats_world_is_checked_as_the_tasks_world_is() {
-        let mut spec = two_habitats(1, Aggregate::Mean);
-        spec.habitats[1].world.slope = Some(crate::sim::world_spec::Slope {
-            degrees: 95.0,
-            direction: 0.0,
+        let mut spec = cued_in(WorldSpec {
+            slope: Some(crate::sim::world_spec::Slope {
+                degrees: 95.0,
+                direction: 0.0,
+            }),
+            ..WorldSpec::default()
         });
         assert_eq!(
             spec.check().unwrap_err().to_string(),

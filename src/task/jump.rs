@@ -2,50 +2,18 @@
 
 use std::collections::BTreeMap;
 
-use serde::{Deserialize, Serialize};
-
-use super::protocol::{Rest, Setup, evaluate, on_flat_ground, settle_steps, steps_in};
-use super::recording::Phase;
+use super::protocol::{Setup, on_flat_ground};
 use super::registry::expression_fitness;
-use super::{Evaluation, FitnessExpression, Task};
+use super::rested::{RestedOptions, evaluate_after_rest};
+use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
 use crate::sim::SimOptions;
 
-/// Settings of the jump task.
-#[derive(Clone, Debug, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct JumpOptions {
-    /// Seconds with the controller on, after the creature has come to rest.
-    pub seconds: f64,
-    /// Creatures taller than this (m) are not simulated.
-    pub max_height: f64,
-    /// When the creature is at rest, before jumping.
-    pub rest: Rest,
-    /// The fitness as an expression of the task's terms (`fitness = "height - resting_lowest_point"`); none:
-    /// the best height.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub fitness: Option<FitnessExpression>,
-}
-
-impl Default for JumpOptions {
-    fn default() -> Self {
-        JumpOptions {
-            seconds: 10.0,
-            max_height: 15.0,
-            rest: Rest::default(),
-            fitness: None,
-        }
-    }
-}
-
-impl JumpOptions {
-    /// The most control steps of `dt` the jump can take: the wait for rest at its time
-    /// limit, then the jump.
-    pub fn max_steps(&self, dt: f64) -> usize {
-        settle_steps(&self.rest, dt).saturating_add(steps_in(self.seconds, dt))
-    }
-}
+/// Settings of the jump task (`[task.jump]`): `seconds` of jumping after coming to rest.
+/// Its fitness may be an expression of its terms (`fitness = "height - resting_lowest_point"`);
+/// none: the best height.
+pub type JumpOptions = RestedOptions<JumpTask>;
 
 /// Jump (Walking with Dinosaurs 3.3.3): after coming to rest (and passing the height test
 /// again), the controller runs for `seconds`; the fitness is the best height of the
@@ -60,6 +28,7 @@ pub fn jump(
 }
 
 /// Walking with Dinosaurs' jump, in the registry ([`super::Task`]).
+#[derive(Clone, Copy, Debug)]
 pub struct JumpTask;
 
 impl Task for JumpTask {
@@ -74,16 +43,12 @@ impl Task for JumpTask {
         "height (m)"
     }
     fn evaluate(setup: Setup<'_, '_, JumpOptions>) -> Result<Evaluation, Interrupted> {
-        let Setup { sim, options, .. } = setup;
-        evaluate(Self::NAME, setup, |run| {
-            run.settle(&options.rest, 0.0, sim.control_step)?;
-            run.check_height(options.max_height)?;
+        evaluate_after_rest(Self::NAME, setup, |run, steps| {
             // Heights from the ground the creature was dropped on (0 on level ground).
             let ground = run.world.start_ground();
             let resting = (run.world.lowest_point() - ground).max(0.0);
             let mut best: f64 = 0.0;
-            run.phase = Phase::Measuring;
-            for _ in 0..steps_in(options.seconds, sim.control_step) {
+            for _ in 0..steps {
                 run.step(true)?;
                 best = best.max(run.world.lowest_point() - ground);
             }

@@ -26,6 +26,7 @@ mod options;
 mod protocol;
 mod recording;
 mod registry;
+mod rested;
 mod spec;
 mod stand;
 mod swim;
@@ -47,6 +48,7 @@ pub use recording::{
     recording_interval,
 };
 pub use registry::{TASKS, Task, TaskInfo, keyword_refusal, task_named, tasks_reading};
+pub use rested::RestedOptions;
 pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
 pub use swim::{SwimOptions, SwimTask, swim_viscosity};

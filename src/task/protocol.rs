@@ -345,6 +345,25 @@ pub trait Bounds {
     fn check(&self) -> Result<(), SettingError>;
 }
 
+/// [`Bounds::limits`], [`Bounds::max_steps`] and [`Bounds::seconds`] of settings whose height
+/// limit is the field `$height`, whose measurement is the field `$seconds` and whose most
+/// steps their own `max_steps` counts: `bounds_of!(max_height, seconds);` in their `impl
+/// Bounds`, beside their `check`.
+macro_rules! bounds_of {
+    ($height:ident, $seconds:ident) => {
+        fn limits(&self) -> (f64, f64) {
+            (self.$height, self.$seconds)
+        }
+        fn max_steps(&self, dt: f64) -> usize {
+            Self::max_steps(self, dt)
+        }
+        fn seconds(&mut self) -> &mut f64 {
+            &mut self.$seconds
+        }
+    };
+}
+pub(super) use bounds_of;
+
 /// One evaluation as a task's protocol is given it: the creature, the simulator's settings,
 /// the world, the task's settings `O`, and how it is watched. The watch has a lifetime of its
 /// own, `'w`, as a [`Watch`] cannot be lent for less than its own: a protocol may evaluate in

@@ -4,63 +4,19 @@
 
 use std::collections::BTreeMap;
 
-use serde::{Deserialize, Serialize};
-
-use super::protocol::{Bounds, Rest, Setup, evaluate, settle_steps, steps_in};
-use super::recording::Phase;
+use super::protocol::Setup;
 use super::registry::expression_fitness;
-use super::{Evaluation, FitnessExpression, Task};
+use super::rested::{RestedOptions, evaluate_after_rest};
+use super::{Evaluation, Task};
 use crate::cancel::Interrupted;
-use crate::sim::SettingError;
-use crate::sim::setting::check_real;
 
-/// Settings of the stand task (`[task.stand]`).
-#[derive(Clone, Debug, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct StandOptions {
-    /// Seconds with the controller on, after the creature has come to rest.
-    pub seconds: f64,
-    /// Creatures taller than this (m) are not simulated.
-    pub max_height: f64,
-    /// When the creature is at rest, before standing.
-    pub rest: Rest,
-    /// The fitness as an expression of the task's terms (`fitness = "height ^ 2"`); none:
-    /// the mean height.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub fitness: Option<FitnessExpression>,
-}
-
-impl Default for StandOptions {
-    fn default() -> Self {
-        StandOptions {
-            seconds: 10.0,
-            max_height: 15.0,
-            rest: Rest::default(),
-            fitness: None,
-        }
-    }
-}
-
-impl Bounds for StandOptions {
-    fn limits(&self) -> (f64, f64) {
-        (self.max_height, self.seconds)
-    }
-    fn max_steps(&self, dt: f64) -> usize {
-        settle_steps(&self.rest, dt).saturating_add(steps_in(self.seconds, dt))
-    }
-    fn seconds(&mut self) -> &mut f64 {
-        &mut self.seconds
-    }
-    /// Checks the settings: `seconds` in (0, [`super::MAX_SECONDS`]], the height limit finite
-    /// and positive, and the rest criterion (in the `rest` table).
-    fn check(&self) -> Result<(), SettingError> {
-        super::check_duration("seconds", self.seconds)?;
-        check_real("max_height", self.max_height, 0.0, true)?;
-        self.rest.check().map_err(|e| e.within("rest"))
-    }
-}
+/// Settings of the stand task (`[task.stand]`): `seconds` of standing after coming to rest.
+/// Its fitness may be an expression of its terms (`fitness = "height ^ 2"`); none: the mean
+/// height.
+pub type StandOptions = RestedOptions<StandTask>;
 
 /// Stand tall, in the registry.
+#[derive(Clone, Copy, Debug)]
 pub struct StandTask;
 
 impl Task for StandTask {
@@ -75,12 +31,7 @@ impl Task for StandTask {
         "mean height (m)"
     }
     fn evaluate(setup: Setup<'_, '_, StandOptions>) -> Result<Evaluation, Interrupted> {
-        let Setup { sim, options, .. } = setup;
-        evaluate(Self::NAME, setup, |run| {
-            run.settle(&options.rest, 0.0, sim.control_step)?;
-            run.check_height(options.max_height)?;
-            run.phase = Phase::Measuring;
-            let steps = steps_in(options.seconds, sim.control_step);
+        evaluate_after_rest(Self::NAME, setup, |run, steps| {
             let mut sum = 0.0;
             for _ in 0..steps {
                 run.step(true)?;

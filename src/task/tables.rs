@@ -177,6 +177,20 @@ impl<'de> Deserialize<'de> for Key {
     }
 }
 
+/// Reads the value of the key `key` of `map` into `slot`, refusing the key when `slot`
+/// holds a value already (the key given twice).
+fn once<'de, T: Deserialize<'de>, A: MapAccess<'de>>(
+    slot: &mut Option<T>,
+    key: &'static str,
+    map: &mut A,
+) -> Result<(), A::Error> {
+    if slot.is_some() {
+        return Err(de::Error::duplicate_field(key));
+    }
+    *slot = Some(map.next_value()?);
+    Ok(())
+}
+
 impl<'de> Deserialize<'de> for TaskTables {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<TaskTables, D::Error> {
         struct TablesVisitor;
@@ -192,36 +206,14 @@ impl<'de> Deserialize<'de> for TaskTables {
                 let mut tables: Vec<TaskOptions> = Vec::new();
                 while let Some(key) = map.next_key::<Key>()? {
                     match key {
-                        Key::Task if task.is_some() => {
-                            return Err(de::Error::duplicate_field("task"));
-                        }
-                        Key::Task => task = Some(map.next_value()?),
-                        Key::Develop if when.is_some() => {
-                            return Err(de::Error::duplicate_field("develop"));
-                        }
-                        Key::Develop => when = Some(map.next_value()?),
-                        Key::DevelopRate if rate.is_some() => {
-                            return Err(de::Error::duplicate_field("develop_rate"));
-                        }
-                        Key::DevelopRate => rate = Some(map.next_value()?),
-                        Key::DevelopT0 if t0.is_some() => {
-                            return Err(de::Error::duplicate_field("develop_t0"));
-                        }
-                        Key::DevelopT0 => t0 = Some(map.next_value()?),
-                        Key::Sim if sim.is_some() => return Err(de::Error::duplicate_field("sim")),
-                        Key::Sim => sim = Some(map.next_value()?),
-                        Key::World if world.is_some() => {
-                            return Err(de::Error::duplicate_field("world"));
-                        }
-                        Key::World => world = Some(map.next_value()?),
-                        Key::Trials if trials.is_some() => {
-                            return Err(de::Error::duplicate_field("trials"));
-                        }
-                        Key::Trials => trials = Some(map.next_value()?),
-                        Key::Habitats if habitats.is_some() => {
-                            return Err(de::Error::duplicate_field("habitats"));
-                        }
-                        Key::Habitats => habitats = Some(map.next_value()?),
+                        Key::Task => once(&mut task, "task", &mut map)?,
+                        Key::Develop => once(&mut when, "develop", &mut map)?,
+                        Key::DevelopRate => once(&mut rate, "develop_rate", &mut map)?,
+                        Key::DevelopT0 => once(&mut t0, "develop_t0", &mut map)?,
+                        Key::Sim => once(&mut sim, "sim", &mut map)?,
+                        Key::World => once(&mut world, "world", &mut map)?,
+                        Key::Trials => once(&mut trials, "trials", &mut map)?,
+                        Key::Habitats => once(&mut habitats, "habitats", &mut map)?,
                         Key::Table(kind) if tables.iter().any(|t| t.kind() == kind) => {
                             return Err(de::Error::duplicate_field(kind.table()));
                         }

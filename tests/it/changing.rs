@@ -4,10 +4,11 @@
 use std::sync::Arc;
 
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use ontogeny::creature::Creature;
 use ontogeny::creature::{
     Brain, Joint, JointId, JointKind, Link, Neuron, NeuronFunction, Part, PartId, Role, Sensor,
 };
-use ontogeny::develop::creature_from_commands;
+use ontogeny::develop::{Growth, GrowthEvent, creature_from_commands};
 use ontogeny::lsystem::{DeriveOptions, Development, LSystem, ModuleString};
 use ontogeny::sim::{Attach, BrainRuntime, SimOptions, World};
 
@@ -207,38 +208,67 @@ fn box_inertia(mass: f64, size: Vector3<f64>, orientation: UnitQuaternion<f64>) 
     r.matrix() * own * r.matrix().transpose()
 }
 
+/// The root's motion and the creature's momenta before a tail joins it.
+struct RootMotion {
+    /// The root's velocity (m/s) and angular velocity (rad/s).
+    v: Vector3<f64>,
+    w: Vector3<f64>,
+    /// The root's centre and orientation.
+    root: Vector3<f64>,
+    orientation: UnitQuaternion<f64>,
+    /// The creature's linear and angular momentum.
+    momentum: Vector3<f64>,
+    angular: Vector3<f64>,
+}
+
+impl RootMotion {
+    fn of(world: &World) -> RootMotion {
+        let (v, w) = world.part_velocity(PartId(0));
+        let (root, orientation) = world.part_pose(PartId(0));
+        RootMotion {
+            v,
+            w,
+            root,
+            orientation,
+            momentum: world.creature_momentum(),
+            angular: world.creature_angular_momentum(),
+        }
+    }
+
+    /// The 0.5 m tail (31.25 kg) `tail` is 0.75 m along the root's x axis from its centre,
+    /// moves as the root's material point there would (v + ω × r, turning at ω), and the
+    /// creature's momentum rose by the tail's: 31.25 kg × that velocity; its angular momentum
+    /// about the origin by m c × v + I ω.
+    fn assert_tail_arrived(&self, world: &World, tail: PartId) {
+        let centre = self.root + self.orientation * Vector3::new(0.75, 0.0, 0.0);
+        assert_near(world.part_position(tail), centre, 1e-5, "the tail's centre");
+        let arrives = self.v + self.w.cross(&(centre - self.root));
+        let (tail_v, tail_w) = world.part_velocity(tail);
+        assert_near(tail_v, arrives, 1e-5, "the tail's velocity");
+        assert_near(tail_w, self.w, 1e-6, "the tail's angular velocity");
+        assert_near(
+            world.creature_momentum() - self.momentum,
+            arrives * 31.25,
+            1e-3,
+            "the momentum gained",
+        );
+        let spin = box_inertia(31.25, Vector3::new(0.5, 0.25, 0.25), self.orientation) * self.w;
+        assert_near(
+            world.creature_angular_momentum() - self.angular,
+            centre.cross(&arrives) * 31.25 + spin,
+            1e-2,
+            "the angular momentum gained",
+        );
+    }
+}
+
 #[test]
 fn a_part_added_to_a_moving_creature_arrives_with_its_parent_s_velocity_and_momentum() {
     let mut world = flying_root();
-    let (v, w) = world.part_velocity(PartId(0));
-    let (root, orientation) = world.part_pose(PartId(0));
-    let momentum = world.creature_momentum();
-    let angular = world.creature_angular_momentum();
-
+    let before = RootMotion::of(&world);
     let (tail, joint) = add_tail(&mut world, Attach::MovingWith(PartId(0)));
-    // Where the tail was asked to be, with no drop lift: 0.75 m along the root's x axis.
-    let centre = root + orientation * Vector3::new(0.75, 0.0, 0.0);
-    assert_near(world.part_position(tail), centre, 1e-5, "the tail's centre");
-    // It moves as the root's material point there would: v + ω × r, turning at ω.
-    let arrives = v + w.cross(&(centre - root));
-    let (tail_v, tail_w) = world.part_velocity(tail);
-    assert_near(tail_v, arrives, 1e-5, "the tail's velocity");
-    assert_near(tail_w, w, 1e-6, "the tail's angular velocity");
-    // The creature's momentum rises by the tail's: 31.25 kg × that velocity; its angular
-    // momentum about the origin by m c × v + I ω.
-    assert_near(
-        world.creature_momentum() - momentum,
-        arrives * 31.25,
-        1e-3,
-        "the momentum gained",
-    );
-    let spin = box_inertia(31.25, Vector3::new(0.5, 0.25, 0.25), orientation) * w;
-    assert_near(
-        world.creature_angular_momentum() - angular,
-        centre.cross(&arrives) * 31.25 + spin,
-        1e-2,
-        "the angular momentum gained",
-    );
+    // Where the tail was asked to be, with no drop lift.
+    before.assert_tail_arrived(&world, tail);
     // Moving together, the hinge holds from the first step.
     world.step(false).unwrap();
     let (parent_side, child_side) = world.joint_anchors(joint).unwrap();
@@ -352,6 +382,165 @@ fn a_part_resized_under_a_child_carries_the_child_and_keeps_the_joint_closed() {
         gap < 1e-3,
         "the joint's anchors are {gap} m apart after a step"
     );
+}
+
+#[test]
+fn a_lengthened_part_keeps_its_near_face_and_velocity_field_and_gains_the_momentum_of_its_new_mass()
+{
+    let mut world = flying_root();
+    let (v, w) = world.part_velocity(PartId(0));
+    let (c, q) = world.part_pose(PartId(0));
+    let near = c + q * Vector3::new(-0.5, 0.0, 0.0);
+
+    // 1 m → 1.5 m: 31.25 kg more, the centre 0.25 m further along the part's x axis.
+    assert!(world.grow_part(PartId(0), Vector3::new(1.5, 0.25, 0.25)));
+    let (c2, q2) = world.part_pose(PartId(0));
+    assert_near(
+        c2 + q2 * Vector3::new(-0.75, 0.0, 0.0),
+        near,
+        1e-5,
+        "the near face",
+    );
+    let d = q * Vector3::new(0.25, 0.0, 0.0);
+    assert_near(c2, c + d, 1e-5, "the centre");
+    // The velocity field is kept: the new centre moves as the old field's point there.
+    let at = v + w.cross(&d);
+    let (v2, w2) = world.part_velocity(PartId(0));
+    assert_near(v2, at, 1e-5, "the centre's velocity");
+    assert_near(w2, w, 1e-6, "the angular velocity");
+    // By hand: 93.75 kg at that velocity; about the origin m c × v + I ω.
+    assert_near(world.creature_momentum(), at * 93.75, 1e-3, "the momentum");
+    let spin = box_inertia(93.75, Vector3::new(1.5, 0.25, 0.25), q) * w;
+    assert_near(
+        world.creature_angular_momentum(),
+        (c + d).cross(&at) * 93.75 + spin,
+        1e-2,
+        "the angular momentum",
+    );
+}
+
+/// Growth that adds a 0.5 m tail with a hinge at the far end of a 1 m root, as a new
+/// string built from the origin would place it.
+fn tail_growth(world: &World) -> Growth {
+    let mut creature = creature_from_commands("forward(1)").unwrap();
+    let shape = Part {
+        size: Vector3::new(0.5, 0.25, 0.25),
+        position: Vector3::new(1.25, 0.0, 0.0),
+        orientation: UnitQuaternion::identity(),
+        density: 1000.0,
+        growing: true,
+    };
+    let spec = Joint {
+        parent: 0,
+        child: 1,
+        kind: JointKind::Revolute,
+        anchor: Vector3::new(1.0, 0.0, 0.0),
+        axes: vec![Vector3::z()],
+        limits: vec![(-0.5, 0.5)],
+        strength: 1.0,
+        growing: true,
+    };
+    creature.parts.push(shape.clone());
+    creature.joints.push(spec.clone());
+    assert_eq!(world.part_count(), 1);
+    Growth {
+        events: vec![GrowthEvent::NewPart {
+            part: PartId(1),
+            shape,
+            parent: PartId(0),
+            joint: JointId(0),
+            spec,
+        }],
+        creature,
+        lost: Vec::new(),
+    }
+}
+
+#[test]
+fn a_new_bud_arrives_at_its_place_on_its_parent_moving_with_it() {
+    let mut world = flying_root();
+    let before = RootMotion::of(&world);
+    let mut growth = tail_growth(&world);
+    let grown = world.apply_growth(&mut growth);
+    assert_eq!((grown.added, grown.resized), (1, 0));
+    assert!(grown.stopped.is_empty());
+    // Where the turtle puts it.
+    before.assert_tail_arrived(&world, PartId(1));
+    // The energy it brought is growth's work, not energy from nowhere.
+    assert!((world.growth_work() - grown.work).abs() < 1e-9);
+    assert!(grown.work > 0.0);
+}
+
+#[test]
+fn the_audit_passes_honest_growth_of_a_flying_turning_root() {
+    let mut world = flying_root();
+    // The root lengthens by 2 cm a control step for 25 steps while it flies and turns.
+    for k in 1..=25 {
+        let size = Vector3::new(1.0 + 0.02 * k as f64, 0.25, 0.25);
+        assert!(world.grow_part(PartId(0), size));
+        world.step(false).unwrap();
+    }
+    let honest = world.peak_unexplained_energy();
+    assert!(honest < 0.5, "{honest} J from nowhere in honest growth");
+    assert!(
+        world.growth_work() > 1.0,
+        "{} J of growth",
+        world.growth_work()
+    );
+}
+
+#[test]
+fn a_root_that_lengthens_on_the_spot_walks_no_distance() {
+    let mut world = settled_root();
+    let near = |world: &World| {
+        let (c, q) = world.part_pose(PartId(0));
+        let size = world.part_size(PartId(0));
+        c + q * Vector3::new(-size.x / 2.0, 0.0, 0.0)
+    };
+    let start = near(&world);
+    let centre = world.part_position(PartId(0));
+    // 1 m → 1.5 m, 1 cm a control step, lying on the ground.
+    for k in 1..=50 {
+        assert!(world.grow_part(PartId(0), Vector3::new(1.0 + 0.01 * k as f64, 0.25, 0.25)));
+        world.step(false).unwrap();
+    }
+    for _ in 0..20 {
+        world.step(false).unwrap();
+    }
+    let walked = (near(&world) - start).xz().norm();
+    assert!(walked < 1e-3, "the root's near face moved {walked} m");
+    let moved = world.part_position(PartId(0)).x - centre.x;
+    assert!((moved - 0.25).abs() < 1e-3, "the centre moved {moved} m");
+}
+
+#[test]
+fn a_part_that_would_grow_into_the_ground_stops_growing() {
+    let creature = creature_from_commands("forward(1)").unwrap();
+    let mut world = settled_root();
+    let energy = world.growth_work();
+    // Thicker about its axis, its underside would sink 5 cm into the ground.
+    assert!(!world.grow_part(PartId(0), Vector3::new(1.0, 0.35, 0.25)));
+    assert_eq!(world.part_size(PartId(0)), Vector3::new(1.0, 0.25, 0.25));
+    assert_eq!(world.growth_work(), energy);
+    // Growth in a step that applies it is reported as stopped, and the creature keeps
+    // the size the world has.
+    let mut growth = Growth {
+        events: vec![GrowthEvent::Resize {
+            part: PartId(0),
+            size: Vector3::new(1.0, 0.35, 0.25),
+        }],
+        creature: Creature {
+            parts: vec![Part {
+                size: Vector3::new(1.0, 0.35, 0.25),
+                ..creature.parts[0].clone()
+            }],
+            ..creature.clone()
+        },
+        lost: Vec::new(),
+    };
+    let grown = world.apply_growth(&mut growth);
+    assert_eq!(grown.stopped, [PartId(0)]);
+    assert_eq!(growth.creature.parts[0].size, Vector3::new(1.0, 0.25, 0.25));
 }
 
 /// A neuron with `function`, `params` and `role`, no bias.

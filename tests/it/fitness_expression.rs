@@ -7,7 +7,7 @@
 use ontogeny::evolve::key::EvaluationKey;
 use ontogeny::task::{PROTOCOL_TERMS, Status, TASKS, TaskKind, TaskSpec};
 
-use crate::util::{grown, ontogeny, refused, scratch_dir, succeeded, tiny_run};
+use crate::util::{evolve_config, grown, ontogeny, refused, scratch_dir, succeeded, tiny_run};
 
 /// The walker of `seconds`, its fitness set to `fitness`.
 fn walker(fitness: &str, seconds: f64) -> TaskSpec {
@@ -108,34 +108,37 @@ fn config_with(name: &str, fitness: &str) -> std::path::PathBuf {
     path
 }
 
-#[test]
-fn an_unknown_term_is_refused_at_its_line_and_column_with_the_closest_term() {
-    let config = config_with("unknown", "D_x - 0.5 * drag");
-    let o = ontogeny(&[
-        "eval",
+/// `ontogeny eval FILE ARGS`, whatever its exit code.
+fn eval(file: &str, args: &[&str]) -> std::process::Output {
+    ontogeny(&[&["eval", file], args].concat())
+}
+
+/// Evaluating the snake with `config` (from [`config_with`]) is refused with `message`,
+/// pointed at the fitness on its fifth line, column 11.
+fn refused_at_the_fitness(config: &std::path::Path, message: &str) {
+    let o = eval(
         "examples/snake.lsys",
-        "--config",
-        config.to_str().unwrap(),
-    ]);
-    let said = refused(
-        &o,
-        "error: [task.walker] fitness reads D_x, which is not a term of the walker task (did \
-         you mean D_w?); its terms are D_w, C_l, C_s, C_v, N, kappa, settled_at, \
-         iterative_move, mass, measured_from, displacement, drag, joint_gap",
+        &["--config", config.to_str().unwrap()],
     );
+    let said = refused(&o, message);
     assert!(
         said.contains(&format!("--> {}:5:11", config.display())),
         "{said}"
     );
+}
+
+#[test]
+fn an_unknown_term_is_refused_at_its_line_and_column_with_the_closest_term() {
+    let config = config_with("unknown", "D_x - 0.5 * drag");
+    refused_at_the_fitness(
+        &config,
+        "error: [task.walker] fitness reads D_x, which is not a term of the walker task (did \
+         you mean D_w?); its terms are D_w, C_l, C_s, C_v, N, kappa, settled_at, \
+         iterative_move, mass, measured_from, displacement, drag, joint_gap",
+    );
     // As an evolution's config, before anything is written.
     let out = config.with_file_name("run");
-    let o = ontogeny(&[
-        "evolve",
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = evolve_config(&config, &out);
     refused(
         &o,
         "fitness reads D_x, which is not a term of the walker task",
@@ -146,23 +149,13 @@ fn an_unknown_term_is_refused_at_its_line_and_column_with_the_closest_term() {
 #[test]
 fn an_expression_that_does_not_parse_is_refused_with_what_was_expected() {
     let config = config_with("syntax", "D_w - * drag");
-    let o = ontogeny(&[
-        "eval",
-        "examples/snake.lsys",
-        "--config",
-        config.to_str().unwrap(),
-    ]);
-    let said = refused(
-        &o,
+    refused_at_the_fitness(
+        &config,
         "error: [task.walker] fitness \"D_w - * drag\" is not an expression of the walker \
          task's terms: expected a value, found '*' at column 7",
     );
-    assert!(
-        said.contains(&format!("--> {}:5:11", config.display())),
-        "{said}"
-    );
     // A misspelt formula is told the formula it was meant to be.
-    let o = ontogeny(&["eval", "examples/snake.lsys", "--fitness", "hornby-polack"]);
+    let o = eval("examples/snake.lsys", &["--fitness", "hornby-polack"]);
     refused(
         &o,
         "error: --fitness \"hornby-polack\" is not one of the walker task's formulas (did you \
@@ -173,17 +166,18 @@ fn an_expression_that_does_not_parse_is_refused_with_what_was_expected() {
 #[test]
 fn eval_fitness_takes_an_expression_for_every_task() {
     let thrower = grown("examples/thrower.lsys");
-    let o = ontogeny(&[
-        "eval",
+    let o = eval(
         "examples/thrower.lsys",
-        "--task",
-        "jump",
-        "--seconds",
-        "1",
-        "--fitness",
-        "2 * height",
-        "--json",
-    ]);
+        &[
+            "--task",
+            "jump",
+            "--seconds",
+            "1",
+            "--fitness",
+            "2 * height",
+            "--json",
+        ],
+    );
     let printed: serde_json::Value = serde_json::from_str(&succeeded(&o)).unwrap();
     let mut spec = TaskSpec::new(TaskKind::Jump);
     *spec.seconds_mut() = 1.0;
@@ -193,14 +187,10 @@ fn eval_fitness_takes_an_expression_for_every_task() {
     assert_eq!(printed["fitness"], serde_json::to_value(e.fitness).unwrap());
     assert_eq!(printed["terms"], serde_json::to_value(&e.terms).unwrap());
     // The catapult's terms are not the aim task's.
-    let o = ontogeny(&[
-        "eval",
+    let o = eval(
         "examples/thrower.lsys",
-        "--task",
-        "catapult",
-        "--fitness",
-        "D_p - D_t",
-    ]);
+        &["--task", "catapult", "--fitness", "D_p - D_t"],
+    );
     refused(
         &o,
         "error: --fitness reads D_t, which is not a term of the catapult task (did you mean \

@@ -57,16 +57,10 @@ mod tests {
         // 4 time units: generations born at t = 0, 1, 2, 3, 4 hold 2, 4, 8, 16, 32 tokens;
         // the first four matured into 30 parts, the last is just born.
         let mf = Grower::Maturing(Command::Forward);
-        let g = ContinuousGenome {
-            time: 4.0,
-            dt: 1.0,
-            environment: Vec::new(),
-            axiom: vec![
-                Token::Command(Command::Forward, Some(0.5)),
-                Token::Grower(mf),
-                Token::Grower(mf),
-            ],
-            rules: vec![Rule {
+        let g = ContinuousGenome::on_a_forward_part(
+            4.0,
+            &[mf, mf],
+            vec![Rule {
                 grower: mf,
                 threshold: 0.2,
                 rate: 0.2,
@@ -79,7 +73,7 @@ mod tests {
                 ],
                 plastic: None,
             }],
-        };
+        );
         let l = ContinuousLimits::default();
         g.check_limits(&l).unwrap();
         let lsys = LSystem::from_text("t", &g.to_text()).unwrap();

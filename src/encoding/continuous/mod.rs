@@ -731,6 +731,23 @@ impl Genome for ContinuousGenome {
 }
 
 #[cfg(test)]
+impl ContinuousGenome {
+    /// For tests: a genome of `time` time units observed every unit, with no environment,
+    /// whose axiom is a 0.5 m forward part followed by `growers`.
+    fn on_a_forward_part(time: f64, growers: &[Grower], rules: Vec<Rule>) -> ContinuousGenome {
+        let mut axiom = vec![Token::Command(Command::Forward, Some(0.5))];
+        axiom.extend(growers.iter().map(|&g| Token::Grower(g)));
+        ContinuousGenome {
+            time,
+            dt: 1.0,
+            environment: Vec::new(),
+            axiom,
+            rules,
+        }
+    }
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
 

@@ -778,22 +778,17 @@ mod tests {
 
     #[test]
     fn a_control_token_has_no_twin_and_may_vanish() {
-        let g = ContinuousGenome {
-            time: 2.0,
-            dt: 1.0,
-            environment: Vec::new(),
-            axiom: vec![
-                Token::Command(Command::Forward, Some(0.5)),
-                Token::Grower(Grower::Control(0)),
-            ],
-            rules: vec![Rule {
+        let g = ContinuousGenome::on_a_forward_part(
+            2.0,
+            &[Grower::Control(0)],
+            vec![Rule {
                 grower: Grower::Control(0),
                 threshold: 0.5,
                 rate: 0.5,
                 successor: vec![],
                 plastic: None,
             }],
-        };
+        );
         let text = g.to_text();
         assert!(text.contains("A(x) : x >= 0.5 -->\n"), "{text}");
         // A(0) grows for one time unit, then is deleted: the string is forward(0.5) alone.
