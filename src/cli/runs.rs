@@ -11,7 +11,7 @@ use ontogeny::run::{Run, encoding_of_run, unknown_encoding_of_run};
 use ontogeny::study::canalization::{self, Settings};
 use ontogeny::study::lifetime;
 use ontogeny::study::listing;
-use ontogeny::study::plasticity::{self, PlasticityError};
+use ontogeny::study::plasticity::{self, FoundRun, PlasticityError};
 
 /// Subcommands of `ontogeny runs`.
 #[derive(Subcommand)]
@@ -42,38 +42,26 @@ pub enum RunsVerb {
     /// directory, or one run's), its fitness in each habitat walked again, and its reaction
     /// norm: the body grown under each cue (each distinct chemical array of the habitats) and
     /// how those bodies differ. A table per condition, a row per champion, and a summary.
-    Plasticity(PlasticityArgs),
+    Plasticity(MeasuredRunsArgs),
     /// Measure development during the walk (Kriegman's measure) for runs whose creatures grow
     /// while they walk: per generation, what the best individual and the generation on average
     /// grew during their walks, body (parts, length) against brain (neurons, links). A table
     /// per condition, a row per generation (medians over the runs).
-    Growth(GrowthArgs),
+    Growth(MeasuredRunsArgs),
 }
 
-/// The flags of `ontogeny runs growth`.
+/// The flags of `ontogeny runs plasticity` and `ontogeny runs growth`: the runs measured and
+/// how the result is printed.
 #[derive(Args)]
-pub struct GrowthArgs {
+pub struct MeasuredRunsArgs {
     /// A comparison directory, a directory with runs under it, or a run directory.
     dir: PathBuf,
-    /// Print a CSV: a header, then a row per run and generation, every number in full (empty
-    /// where there is none).
+    /// Print a CSV: a header, then a row per champion and habitat (`plasticity`) or per run
+    /// and generation (`growth`), every number in full (empty where there is none).
     #[arg(long, conflicts_with = "json")]
     csv: bool,
-    /// Print one JSON object: the directory and a row per run and generation.
-    #[arg(long)]
-    json: bool,
-}
-
-/// The flags of `ontogeny runs plasticity`.
-#[derive(Args)]
-pub struct PlasticityArgs {
-    /// A comparison directory, a directory with runs under it, or a run directory.
-    dir: PathBuf,
-    /// Print a CSV: a header, then a row per champion and habitat, every number in full
-    /// (empty where there is none).
-    #[arg(long, conflicts_with = "json")]
-    csv: bool,
-    /// Print one JSON object: each condition's champions and summary.
+    /// Print one JSON object: each condition's champions and summary (`plasticity`), or the
+    /// directory and each run's generations (`growth`).
     #[arg(long)]
     json: bool,
 }
@@ -164,14 +152,22 @@ fn measurement_error(e: PlasticityError) -> anyhow::Error {
     }
 }
 
-/// `ontogeny runs growth`.
-fn growth_of(args: &GrowthArgs) -> anyhow::Result<()> {
-    let (runs, notes) = plasticity::find_runs(&args.dir).map_err(measurement_error)?;
+/// The runs under `dir` (as `runs plasticity` finds them) measured by `measure`, with a
+/// progress bar labelled `label` and the notes of both steps on standard error.
+fn measure_found<T>(
+    dir: &std::path::Path,
+    label: &str,
+    measure: impl FnOnce(
+        &[FoundRun],
+        &mut dyn FnMut(usize, usize),
+    ) -> Result<(Vec<T>, Vec<String>), PlasticityError>,
+) -> anyhow::Result<Vec<T>> {
+    let (runs, notes) = plasticity::find_runs(dir).map_err(measurement_error)?;
     for note in notes {
         tell!("note: {note}");
     }
-    let mut progress = super::progress::Progress::new("reading the runs");
-    let (rows, notes) = lifetime::measure_runs(&runs, &mut |done, all| {
+    let mut progress = super::progress::Progress::new(label);
+    let (measured, notes) = measure(&runs, &mut |done, all| {
         progress.set(done as f64 / all as f64)
     })
     .map_err(measurement_error)?;
@@ -179,40 +175,39 @@ fn growth_of(args: &GrowthArgs) -> anyhow::Result<()> {
     for note in notes {
         tell!("note: {note}");
     }
-    if args.json {
-        say!("{}", lifetime::json(&args.dir, &rows));
-    } else if args.csv {
-        say!("{}", lifetime::csv(&rows));
-    } else {
-        say!("{}", lifetime::text(&rows));
-    }
+    Ok(measured)
+}
+
+/// `ontogeny runs growth`.
+fn growth_of(args: &MeasuredRunsArgs) -> anyhow::Result<()> {
+    let rows = measure_found(&args.dir, "reading the runs", lifetime::measure_runs)?;
+    say!(
+        "{}",
+        if args.json {
+            lifetime::json(&args.dir, &rows)
+        } else if args.csv {
+            lifetime::csv(&rows)
+        } else {
+            lifetime::text(&rows)
+        }
+    );
     Ok(())
 }
 
 /// `ontogeny runs plasticity`.
-fn plasticity_of(args: &PlasticityArgs) -> anyhow::Result<()> {
+fn plasticity_of(args: &MeasuredRunsArgs) -> anyhow::Result<()> {
     let dir = &args.dir;
-    let error = measurement_error;
-    let (runs, notes) = plasticity::find_runs(dir).map_err(error)?;
-    for note in notes {
-        tell!("note: {note}");
-    }
-    let mut progress = super::progress::Progress::new("measuring plasticity");
-    let (champions, notes) = plasticity::measure_runs(&runs, &mut |done, all| {
-        progress.set(done as f64 / all as f64)
-    })
-    .map_err(error)?;
-    progress.finish();
-    for note in notes {
-        tell!("note: {note}");
-    }
-    if args.json {
-        say!("{}", plasticity::json(dir, &champions));
-    } else if args.csv {
-        say!("{}", plasticity::csv(&champions));
-    } else {
-        say!("{}", plasticity::text(dir, &champions));
-    }
+    let champions = measure_found(dir, "measuring plasticity", plasticity::measure_runs)?;
+    say!(
+        "{}",
+        if args.json {
+            plasticity::json(dir, &champions)
+        } else if args.csv {
+            plasticity::csv(&champions)
+        } else {
+            plasticity::text(dir, &champions)
+        }
+    );
     Ok(())
 }
 

@@ -14,7 +14,7 @@ use super::plasticity::{FoundRun, PlasticityError};
 use super::stats::median;
 use crate::encoding::Genome;
 use crate::evolve::ga::ranking;
-use crate::run::{Run, encoding_of_run};
+use crate::run::{Run, encoding_of_run, unknown_encoding_of_run};
 use crate::task::Evaluation;
 
 /// The evaluation terms that say how much a creature grew during its walk, in the order of
@@ -88,13 +88,20 @@ impl Grown {
     }
 }
 
-/// One generation of one run measured.
+/// One run measured, generation by generation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunGrowth {
+    /// Its condition (see `runs plasticity`).
+    pub condition: String,
+    /// Its name (`rep-K` in a comparison).
+    pub run: String,
+    /// Its complete generations, in order.
+    pub generations: Vec<GenerationGrowth>,
+}
+
+/// One generation measured.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct GenerationGrowth {
-    /// Its run's condition (see `runs plasticity`).
-    pub condition: String,
-    /// Its run's name (`rep-K` in a comparison).
-    pub run: String,
     /// The generation's index.
     pub generation: u32,
     /// The best individual's fitness.
@@ -103,41 +110,50 @@ pub struct GenerationGrowth {
     pub champion: Option<Grown>,
     /// The mean over the individuals with growth figures (`None`: none has them).
     pub mean: Option<Grown>,
-    /// Individuals with growth figures.
+    /// How many of the generation grew.
+    pub growers: Growers,
+}
+
+/// How many individuals of a generation grew during their walks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Growers {
+    /// Individuals with growth figures (walked, growing during the walk).
     pub measured: usize,
-    /// Of which those that grew anything during the walk.
+    /// Of which those that grew anything.
     pub growing: usize,
     /// The generation's individuals.
     pub population: usize,
 }
 
 /// Measures every complete generation of `found`, a run of genome `G`.
-pub fn measure_run<G: Genome>(found: &FoundRun) -> Result<Vec<GenerationGrowth>, PlasticityError> {
+pub fn measure_run<G: Genome>(found: &FoundRun) -> Result<RunGrowth, PlasticityError> {
     let run = Run::<G>::open_read_only(&found.dir)?;
-    let Some(last) = run.last_generation()? else {
-        return Ok(Vec::new());
-    };
-    let mut rows = Vec::with_capacity(last as usize + 1);
-    for generation in 0..=last {
+    let complete = run.last_generation()?.map_or(0, |last| last + 1);
+    let mut generations = Vec::with_capacity(complete as usize);
+    for generation in 0..complete {
         let population = run.population(generation)?;
         let grown: Vec<Grown> = population
             .iter()
             .filter_map(|i| Grown::of(&i.evaluation))
             .collect();
         let best = ranking(&population).first().map(|&b| &population[b]);
-        rows.push(GenerationGrowth {
-            condition: found.condition.clone(),
-            run: found.name.clone(),
+        generations.push(GenerationGrowth {
             generation,
             best: best.map_or(f64::NAN, |b| b.evaluation.fitness),
             champion: best.and_then(|b| Grown::of(&b.evaluation)),
             mean: Grown::mean(&grown),
-            measured: grown.len(),
-            growing: grown.iter().filter(|g| g.any()).count(),
-            population: population.len(),
+            growers: Growers {
+                measured: grown.len(),
+                growing: grown.iter().filter(|g| g.any()).count(),
+                population: population.len(),
+            },
         });
     }
-    Ok(rows)
+    Ok(RunGrowth {
+        condition: found.condition.clone(),
+        run: found.name.clone(),
+        generations,
+    })
 }
 
 /// Measures every run of `runs`, in order, with a note for each run left out (no complete
@@ -146,35 +162,32 @@ pub fn measure_run<G: Genome>(found: &FoundRun) -> Result<Vec<GenerationGrowth>,
 pub fn measure_runs(
     runs: &[FoundRun],
     progress: &mut dyn FnMut(usize, usize),
-) -> Result<(Vec<GenerationGrowth>, Vec<String>), PlasticityError> {
-    let mut rows = Vec::new();
+) -> Result<(Vec<RunGrowth>, Vec<String>), PlasticityError> {
+    let mut measured = Vec::new();
     let mut notes = Vec::new();
     for (done, found) in runs.iter().enumerate() {
         let encoding = encoding_of_run(&found.dir)?;
-        let measured = crate::with_genome!(
+        let run = crate::with_genome!(
             encoding.as_str(),
             G => measure_run::<G>(found),
-            |other| Err(PlasticityError::Input(format!(
-                "{}: unknown encoding '{other}'",
-                found.dir.display()
-            )))
+            |other| Err(PlasticityError::Input(unknown_encoding_of_run(&found.dir, other)))
         )?;
-        if measured.is_empty() {
+        if run.generations.is_empty() {
             notes.push(format!(
                 "{}: no complete generation yet; left out",
                 found.dir.display()
             ));
-        } else if measured.iter().all(|r| r.measured == 0) {
+        } else if run.generations.iter().all(|g| g.growers.measured == 0) {
             notes.push(format!(
                 "{}: its creatures do not grow during their walks (develop = \"before\"); left out",
                 found.dir.display()
             ));
         } else {
-            rows.extend(measured);
+            measured.push(run);
         }
         progress(done + 1, runs.len());
     }
-    if rows.is_empty() {
+    if measured.is_empty() {
         return Err(PlasticityError::Input(match runs {
             [one] => format!(
                 "{}: no generation with creatures that grow during their walks",
@@ -183,7 +196,7 @@ pub fn measure_runs(
             _ => "no run has a generation with creatures that grow during their walks".into(),
         }));
     }
-    Ok((rows, notes))
+    Ok((measured, notes))
 }
 
 /// The columns of [`csv`].
@@ -191,7 +204,7 @@ pub const CSV_COLUMNS: &str = "condition,run,generation,best,champion_parts,cham
 
 /// The measurement as CSV: [`CSV_COLUMNS`], then a row per run and generation, every number
 /// in full (empty where there is none).
-pub fn csv(rows: &[GenerationGrowth]) -> String {
+pub fn csv(runs: &[RunGrowth]) -> String {
     let number = |v: f64| {
         if v.is_finite() {
             v.to_string()
@@ -204,55 +217,72 @@ pub fn csv(rows: &[GenerationGrowth]) -> String {
         None => Default::default(),
     };
     let mut lines = vec![CSV_COLUMNS.to_string()];
-    for r in rows {
-        let mut cells = vec![
-            r.condition.clone(),
-            r.run.clone(),
-            r.generation.to_string(),
-            number(r.best),
-        ];
-        cells.extend(four(r.champion));
-        cells.extend(four(r.mean));
-        cells.extend([r.measured, r.growing, r.population].map(|n| n.to_string()));
-        lines.push(cells.join(","));
+    for run in runs {
+        for r in &run.generations {
+            let mut cells = vec![
+                run.condition.clone(),
+                run.run.clone(),
+                r.generation.to_string(),
+                number(r.best),
+            ];
+            cells.extend(four(r.champion));
+            cells.extend(four(r.mean));
+            let g = r.growers;
+            cells.extend([g.measured, g.growing, g.population].map(|n| n.to_string()));
+            lines.push(cells.join(","));
+        }
     }
     lines.join("\n")
 }
 
-/// The measurement as one JSON object: `dir` and `generations`, a row per run and generation
-/// as [`GenerationGrowth`] serialises (a figure that is none is `null`).
-pub fn json(dir: &std::path::Path, rows: &[GenerationGrowth]) -> String {
+/// The measurement as one JSON object: `dir` and `runs`, each as [`RunGrowth`] serialises (a
+/// figure that is none is `null`).
+pub fn json(dir: &std::path::Path, runs: &[RunGrowth]) -> String {
     let value = serde_json::json!({
         "dir": dir.display().to_string(),
-        "generations": rows,
+        "runs": runs,
     });
     serde_json::to_string_pretty(&value).unwrap_or_default()
+}
+
+/// The median over `runs`' generation `generation` of `figure` of what `pick` takes from it
+/// (`None` where no run has it).
+fn median_of(
+    runs: &[&RunGrowth],
+    generation: usize,
+    pick: fn(&GenerationGrowth) -> Option<Grown>,
+    figure: fn(&Grown) -> f64,
+) -> Option<f64> {
+    let values: Vec<f64> = runs
+        .iter()
+        .filter_map(|r| {
+            r.generations
+                .get(generation)
+                .and_then(pick)
+                .map(|g| figure(&g))
+        })
+        .collect();
+    (!values.is_empty()).then(|| median(&values))
 }
 
 /// The measurement for people: per condition, a row per generation with the medians over its
 /// runs of the best individual's figures and of the generation's means, and the share of the
 /// walked individuals that grew anything.
-pub fn text(rows: &[GenerationGrowth]) -> String {
-    let mut out = Vec::new();
-    let conditions: Vec<&str> = {
-        let mut seen: Vec<&str> = Vec::new();
-        for r in rows {
-            if !seen.contains(&r.condition.as_str()) {
-                seen.push(&r.condition);
-            }
+pub fn text(runs: &[RunGrowth]) -> String {
+    let mut conditions: Vec<&str> = Vec::new();
+    for r in runs {
+        if !conditions.contains(&r.condition.as_str()) {
+            conditions.push(&r.condition);
         }
-        seen
-    };
+    }
     let cell = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    let figures: [fn(&Grown) -> f64; 4] = [|g| g.parts, |g| g.length, |g| g.neurons, |g| g.links];
+    let mut out = Vec::new();
     for condition in conditions {
-        let of: Vec<&GenerationGrowth> = rows.iter().filter(|r| r.condition == condition).collect();
-        let runs = {
-            let mut names: Vec<&str> = of.iter().map(|r| r.run.as_str()).collect();
-            names.dedup();
-            names.len()
-        };
+        let of: Vec<&RunGrowth> = runs.iter().filter(|r| r.condition == condition).collect();
         out.push(format!(
-            "condition {condition}: {runs} run(s); medians over the runs of the best individual's growth during its walk and of the generation's mean"
+            "condition {condition}: {} run(s); medians over the runs of the best individual's growth during its walk and of the generation's mean",
+            of.len()
         ));
         out.push(format!(
             "{:>5} {:>4} | {:>7} {:>8} {:>8} {:>6} | {:>7} {:>8} {:>8} {:>6} | {:>7}",
@@ -268,34 +298,31 @@ pub fn text(rows: &[GenerationGrowth]) -> String {
             "links",
             "growing"
         ));
-        let last = of.iter().map(|r| r.generation).max().unwrap_or(0);
-        for generation in 0..=last {
-            let here: Vec<&&GenerationGrowth> =
-                of.iter().filter(|r| r.generation == generation).collect();
-            if here.is_empty() {
-                continue;
-            }
-            let middle = |f: fn(&Grown) -> f64, pick: fn(&GenerationGrowth) -> Option<Grown>| {
-                let values: Vec<f64> = here.iter().filter_map(|r| pick(r).map(|g| f(&g))).collect();
-                (!values.is_empty()).then(|| median(&values))
-            };
-            let champion = |r: &GenerationGrowth| r.champion;
-            let mean = |r: &GenerationGrowth| r.mean;
-            let (measured, growing) = here
+        let longest = of.iter().map(|r| r.generations.len()).max().unwrap_or(0);
+        for generation in 0..longest {
+            let here = of
                 .iter()
-                .fold((0, 0), |(m, g), r| (m + r.measured, g + r.growing));
+                .filter(|r| r.generations.len() > generation)
+                .count();
+            let mut cells: Vec<String> = Vec::new();
+            for pick in [
+                (|g: &GenerationGrowth| g.champion) as fn(&GenerationGrowth) -> Option<Grown>,
+                |g| g.mean,
+            ] {
+                for figure in figures {
+                    cells.push(cell(median_of(&of, generation, pick, figure)));
+                }
+            }
+            let (measured, growing) = of
+                .iter()
+                .filter_map(|r| r.generations.get(generation))
+                .fold((0, 0), |(m, g), r| {
+                    (m + r.growers.measured, g + r.growers.growing)
+                });
             let share = (measured > 0).then(|| growing as f64 / measured as f64);
             out.push(format!(
-                "{generation:>5} {:>4} | {:>7} {:>8} {:>8} {:>6} | {:>7} {:>8} {:>8} {:>6} | {:>7}",
-                here.len(),
-                cell(middle(|g| g.parts, champion)),
-                cell(middle(|g| g.length, champion)),
-                cell(middle(|g| g.neurons, champion)),
-                cell(middle(|g| g.links, champion)),
-                cell(middle(|g| g.parts, mean)),
-                cell(middle(|g| g.length, mean)),
-                cell(middle(|g| g.neurons, mean)),
-                cell(middle(|g| g.links, mean)),
+                "{generation:>5} {here:>4} | {:>7} {:>8} {:>8} {:>6} | {:>7} {:>8} {:>8} {:>6} | {:>7}",
+                cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6], cells[7],
                 cell(share),
             ));
         }
