@@ -10,7 +10,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::creature::Creature;
-use crate::develop::{BuildOptions, Growth, build, growth_between};
+use crate::develop::{BuildOptions, Growth, Seedling, build, growth_between};
 use crate::lang::Diagnostic;
 use crate::lsystem::{DeriveOptions, Development, LSystem};
 use crate::sim::{Grown, World};
@@ -68,6 +68,35 @@ impl Develop {
             ),
             _ => Ok(()),
         }
+    }
+}
+
+/// Why a creature cannot grow during an evaluation, or why its growing evaluation stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum GrowError {
+    /// The task does not grow its creature (only the walker does).
+    #[error("develop = \"during\": the {0} task does not grow its creature; only the walker does")]
+    Task(&'static str),
+    /// The grammar develops in discrete steps, named by its source.
+    #[error(
+        "develop = \"during\": {0} develops in discrete steps; only continuous development (a \
+         `time:` line, or --time) goes on during a walk"
+    )]
+    Discrete(String),
+    /// Development failed, before the evaluation or during it.
+    #[error(transparent)]
+    Development(#[from] Diagnostic),
+    /// The evaluation was interrupted.
+    #[error(transparent)]
+    Interrupted(#[from] crate::cancel::Interrupted),
+}
+
+/// Checks that `seedling` develops in continuous time, as a development that goes on during
+/// an evaluation must; `source` names the grammar in the refusal.
+pub fn check_continuous(seedling: &Seedling, source: &str) -> Result<(), GrowError> {
+    match seedling.is_continuous() {
+        true => Ok(()),
+        false => Err(GrowError::Discrete(source.to_string())),
     }
 }
 
@@ -149,6 +178,21 @@ impl Growing {
             creature,
             tally: GrowthTally::default(),
         })
+    }
+
+    /// [`Growing::start`] from `seedling` as `develop` says (its rate and t₀).
+    ///
+    /// # Errors
+    ///
+    /// What development reports.
+    pub fn from_seedling(seedling: &Seedling, develop: &Develop) -> Result<Growing, Diagnostic> {
+        Growing::start(
+            Arc::clone(&seedling.lsys),
+            &seedling.derive,
+            &seedling.build,
+            develop.rate,
+            develop.t0,
+        )
     }
 
     /// The creature as it is now, its parts, joints and neurons at their ids.

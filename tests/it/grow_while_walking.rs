@@ -1,13 +1,15 @@
 //! Growing while acting: a creature whose development goes on during the walk
 //! (`develop = "during"`).
 
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use ontogeny::develop::BuildOptions;
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::task::{Growing, Phase, Status, TaskKind, TaskSpec, Watch};
 
-use crate::util::{assert_bad_input, ontogeny, scratch_dir, succeeded};
+use crate::evolve::contents;
+use crate::util::{assert_bad_input, ontogeny, ontogeny_command, scratch_dir, succeeded};
 
 const EXAMPLE: &str = "examples/grow-while-walking.lsys";
 
@@ -138,16 +140,26 @@ fn a_grammar_in_discrete_steps_cannot_grow_during_a_walk() {
     );
 }
 
-#[test]
-fn a_run_that_would_grow_during_the_walk_is_refused() {
-    let out = scratch_dir("grow_while_walking_run");
-    let config = out.join("config.toml");
+/// A config of a tiny run of `encoding` whose walkers grow during their 0.5 s walks, with
+/// `extra` lines in its `[task]` table.
+fn growing_config(dir: &Path, encoding: &str, extra: &str) -> PathBuf {
+    let config = dir.join("config.toml");
     std::fs::write(
         &config,
-        "encoding = \"lsystem-continuous\"\n[ga]\npopulation = 4\ngenerations = 1\n\
-         [task]\ntask = \"walker\"\ndevelop = \"during\"\n",
+        format!(
+            "encoding = \"{encoding}\"\nseed = 5\n[ga]\npopulation = 6\ngenerations = 2\n\
+             [task]\ntask = \"walker\"\ndevelop = \"during\"\n{extra}\n\
+             [task.walker]\nseconds = 0.5\n"
+        ),
     )
     .unwrap();
+    config
+}
+
+#[test]
+fn a_run_of_a_genome_that_cannot_grow_during_the_walk_is_refused() {
+    let out = scratch_dir("grow_while_walking_refused");
+    let config = growing_config(&out, "lsystem", "");
     let said = assert_bad_input(
         &[
             "evolve",
@@ -156,9 +168,77 @@ fn a_run_that_would_grow_during_the_walk_is_refused() {
             "--out",
             out.join("run").to_str().unwrap(),
         ],
-        "develop must be \"before\" in a run (only `eval` grows a creature during its \
-         evaluation so far), not \"during\"",
+        "develop must be \"before\" with the lsystem genome (only lsystem-continuous grows \
+         during its evaluation), not \"during\"",
     );
-    assert!(said.contains("config.toml:7:11"), "{said}");
+    assert!(said.contains("config.toml:8:11"), "{said}");
     assert!(!out.join("run").exists());
+    // So is a task other than the walker.
+    let config = growing_config(&out, "lsystem-continuous", "");
+    let text = std::fs::read_to_string(&config).unwrap();
+    std::fs::write(
+        &config,
+        text.replace("task = \"walker\"", "task = \"jump\""),
+    )
+    .unwrap();
+    assert_bad_input(
+        &[
+            "evolve",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            out.join("run").to_str().unwrap(),
+        ],
+        "develop must be \"before\" on the jump task (only the walker grows its creature \
+         during its evaluation), not \"during\"",
+    );
+    assert!(!out.join("run").exists());
+}
+
+/// `ontogeny evolve --config CONFIG --out OUT EXTRA...`, which must succeed.
+fn evolve(config: &Path, out: &Path, extra: &[&str]) {
+    let output = ontogeny_command()
+        .args(["evolve", "--config"])
+        .arg(config)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap();
+    succeeded(&output);
+}
+
+#[test]
+fn an_evolution_growing_during_the_walk_is_the_same_on_any_thread_count_and_resumed() {
+    let dir = scratch_dir("grow_while_walking_evolve");
+    let config = growing_config(&dir, "lsystem-continuous", "develop_rate = 2");
+    evolve(&config, &dir.join("one"), &["--threads", "1"]);
+    evolve(&config, &dir.join("two"), &["--threads", "2"]);
+    assert_eq!(contents(&dir.join("one")), contents(&dir.join("two")));
+    // Stopped after one generation, then resumed to two: the same run.
+    let stopped = dir.join("stopped");
+    evolve(&config, &stopped, &["--gens", "1"]);
+    let resumed = ontogeny_command()
+        .args(["evolve", "--gens", "2", "--resume"])
+        .arg(&stopped)
+        .output()
+        .unwrap();
+    succeeded(&resumed);
+    assert_eq!(contents(&stopped), contents(&dir.join("one")));
+    // Its walkers grew during their walks: every evaluation that succeeded tallies it.
+    let store = ontogeny::run::store::RunStore::open_read_only(&dir.join("one").join("run.sqlite"))
+        .unwrap();
+    let individuals = store.individuals(0).unwrap();
+    let walked: Vec<serde_json::Value> = individuals
+        .iter()
+        .map(|i| serde_json::from_str::<serde_json::Value>(&i.genome_json).unwrap())
+        .filter(|json| json["evaluation"]["status"] == "ok")
+        .collect();
+    assert!(!walked.is_empty());
+    for json in &walked {
+        assert!(
+            json["evaluation"]["terms"]["grown_parts"].is_number(),
+            "{json}"
+        );
+    }
 }
