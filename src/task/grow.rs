@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use crate::creature::Creature;
 use crate::develop::{BuildOptions, Growth, Seedling, build, growth_between};
 use crate::lang::Diagnostic;
-use crate::lsystem::{DeriveOptions, Development, LSystem};
+use crate::lsystem::{DeriveOptions, Development, Event, LSystem};
 use crate::sim::{Grown, World};
 
 /// When the creature develops: before the evaluation (today's protocol) or during it.
@@ -127,6 +127,7 @@ pub struct Growing {
     rate: f64,
     creature: Creature,
     tally: GrowthTally,
+    events: Vec<Event>,
 }
 
 impl Growing {
@@ -169,6 +170,8 @@ impl Growing {
                 }
             },
         };
+        // The events that led to t₀ are not the evaluation's.
+        development.take_events();
         Ok(Growing {
             lsys,
             development,
@@ -177,6 +180,7 @@ impl Growing {
             rate,
             creature,
             tally: GrowthTally::default(),
+            events: Vec::new(),
         })
     }
 
@@ -205,6 +209,14 @@ impl Growing {
         self.development.now()
     }
 
+    /// The development's events (a bud maturing, a guard turning) since it started, in
+    /// order, each at the developmental time the dL-system located it at: exactly, whatever
+    /// the control step. Their growth reaches the world at the end of the control step they
+    /// fall in.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
     /// How much it has grown since it started.
     pub fn tally(&self) -> &GrowthTally {
         &self.tally
@@ -218,6 +230,7 @@ impl Growing {
     /// What development reports.
     pub fn step(&mut self, world: &mut World, seconds: f64) -> Result<Grown, Diagnostic> {
         self.development.advance_by(self.rate * seconds)?;
+        self.events.extend(self.development.take_events());
         let t = self.development.now();
         let shown = self
             .lsys

@@ -242,3 +242,44 @@ fn an_evolution_growing_during_the_walk_is_the_same_on_any_thread_count_and_resu
         );
     }
 }
+
+/// The events of the example's development during a 2 s walk at control step `step`, as
+/// (developmental time, module).
+fn events_at_control_step(step: f64) -> Vec<(f64, String)> {
+    let mut growing = Growing::start(
+        example(),
+        &DeriveOptions::default(),
+        &BuildOptions::default(),
+        1.0,
+        None,
+    )
+    .unwrap();
+    let creature = growing.creature().clone();
+    let mut spec = short_walk();
+    spec.sim.control_step = step;
+    let evaluation = spec
+        .evaluate_growing(
+            &creature,
+            Watch::uncancelled(false, &mut |_| {}),
+            Some(&mut growing),
+        )
+        .unwrap();
+    assert_eq!(evaluation.status, Status::Ok, "{evaluation:?}");
+    growing
+        .events()
+        .iter()
+        .map(|e| (e.t, e.module.clone()))
+        .collect()
+}
+
+#[test]
+fn events_during_the_walk_are_located_at_the_same_times_whatever_the_control_step() {
+    let coarse = events_at_control_step(1.0 / 60.0);
+    let fine = events_at_control_step(1.0 / 120.0);
+    assert!(!coarse.is_empty());
+    assert_eq!(coarse.len(), fine.len(), "{coarse:?}\n{fine:?}");
+    for ((t1, m1), (t2, m2)) in coarse.iter().zip(&fine) {
+        assert_eq!(m1, m2);
+        assert!((t1 - t2).abs() < 1e-9, "{t1} against {t2}");
+    }
+}
