@@ -283,3 +283,37 @@ fn events_during_the_walk_are_located_at_the_same_times_whatever_the_control_ste
         assert!((t1 - t2).abs() < 1e-9, "{t1} against {t2}");
     }
 }
+
+/// Two segments whose token A, once 1.5 time units old, sprouts a pair of legs that lengthen
+/// to 0.4 m, but only where slot 0 of the array holds more than 0.5.
+const CUE: &str = "time: 3\ntiming: exact\nenvironment: 0\n\
+    axiom: width(0.6) thickness(0.2) forward(0.8) forward(0.8) ?E(1, 0, 0) A(0)\n\
+    A(x) : x < 1.5 --> solve dx/dt = 1\n\
+    ?E(1, 0, c) < A(x) : x >= 1.5 && c > 0.5 --> [ left(1) mforward(0) ] [ right(1) mforward(0) ]\n\
+    mforward(x) : x < 0.4 --> solve dx/dt = 0.4\n\
+    mforward(x) : x >= 0.4 --> forward(x)\n";
+
+/// The parts `CUE` grows during a 2 s walk from an array whose slot 0 starts at `value`, as
+/// a habitat's array starts it.
+fn parts_grown_in(value: f64) -> f64 {
+    let seedling = ontogeny::develop::Seedling {
+        lsys: Arc::new(LSystem::from_text("cue.lsys", CUE).unwrap()),
+        derive: DeriveOptions {
+            env: vec![(0, value)],
+            ..DeriveOptions::default()
+        },
+        build: BuildOptions::default(),
+    };
+    let evaluation = short_walk()
+        .evaluate_grown_job(&seedling, None, Watch::uncancelled(false, &mut |_| {}))
+        .unwrap();
+    assert_eq!(evaluation.status, Status::Ok, "{evaluation:?}");
+    assert_eq!(evaluation.terms["N"], 2.0);
+    evaluation.terms["grown_parts"]
+}
+
+#[test]
+fn a_grammar_that_reads_its_array_grows_differently_during_the_walk_in_two_habitats() {
+    assert_eq!(parts_grown_in(0.0), 0.0);
+    assert_eq!(parts_grown_in(1.0), 2.0);
+}
