@@ -15,7 +15,8 @@ use ontogeny::run::champion::ChampionRecord;
 use ontogeny::sim::WorldSpec;
 use ontogeny::sim::{JointModel, SimOptions};
 use ontogeny::task::{
-    CatapultOptions, DevelopWhen, Evaluation, Recording, TaskKind, TaskSpec, WalkerOptions,
+    CatapultOptions, DevelopWhen, Evaluation, GrowError, Recording, TaskKind, TaskSpec,
+    WalkerOptions,
 };
 
 use super::derive::DevelopmentArgs;
@@ -429,12 +430,8 @@ fn show_evaluation(args: &EvalArgs, evaluation: &Evaluation) -> anyhow::Result<(
 fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     let spec = &inputs.spec;
     let refuse = |why: &str| Err(super::bad(format!("develop = \"during\": {why}")));
-    if spec.kind() != TaskKind::Walker {
-        return refuse(&format!(
-            "the {} task does not grow its creature; only the walker does",
-            spec.kind().name()
-        ));
-    }
+    spec.check_growing()
+        .map_err(|e| super::bad(e.to_string()))?;
     if !spec.is_plain() {
         return refuse("habitats and trials do not grow their creature yet");
     }
@@ -451,36 +448,32 @@ fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
         defines: args.development.defines.defines.clone(),
         seed: inputs.seed,
     };
-    let lsys = ontogeny::lsystem::LSystem::from_path_with(&args.file, &overrides)
-        .map_err(anyhow::Error::new)?;
-    let derive = ontogeny::lsystem::DeriveOptions {
-        seed: inputs.seed,
-        ..super::derive::derive_options(&args.development, inputs.max_modules)
+    let seedling = ontogeny::develop::Seedling {
+        lsys: std::sync::Arc::new(
+            ontogeny::lsystem::LSystem::from_path_with(&args.file, &overrides)
+                .map_err(anyhow::Error::new)?,
+        ),
+        derive: ontogeny::lsystem::DeriveOptions {
+            seed: inputs.seed,
+            ..super::derive::derive_options(&args.development, inputs.max_modules)
+        },
+        build: BuildOptions {
+            max_parts: inputs.max_parts,
+            ..BuildOptions::default()
+        },
     };
-    if !(lsys.is_continuous() || derive.time.is_some()) {
-        return refuse(&format!(
-            "{} develops in discrete steps; only continuous development (a `time:` line, or \
-             --time) goes on during a walk",
-            args.file.display()
-        ));
-    }
-    let build = BuildOptions {
-        max_parts: inputs.max_parts,
-        ..BuildOptions::default()
-    };
-    let mut growing = ontogeny::task::Growing::start(
-        std::sync::Arc::new(lsys),
-        &derive,
-        &build,
-        spec.develop.rate,
-        spec.develop.t0,
-    )
-    .map_err(anyhow::Error::new)?;
-    let creature = growing.creature().clone();
+    ontogeny::task::check_continuous(&seedling, &args.file.display().to_string())
+        .map_err(|e| super::bad(e.to_string()))?;
     let mut progress = Progress::new(flags::progress_label(spec));
     let mut tell = |f| progress.set(f);
     let watch = ontogeny::task::Watch::uncancelled(false, &mut tell);
-    let evaluation = spec.evaluate_growing(&creature, watch, Some(&mut growing))?;
+    let evaluation = spec
+        .evaluate_grown_job(&seedling, None, watch)
+        .map_err(|e| match e {
+            GrowError::Development(d) => anyhow::Error::new(d),
+            GrowError::Interrupted(i) => anyhow::Error::new(i),
+            e => super::bad(e.to_string()),
+        })?;
     progress.finish();
     show_evaluation(args, &evaluation)
 }

@@ -11,6 +11,7 @@
 mod brain;
 mod command;
 pub mod growth;
+mod seedling;
 mod shortcut;
 
 use nalgebra::{Unit, UnitQuaternion, Vector3};
@@ -22,6 +23,7 @@ use crate::lsystem::{ModuleString, SymbolTable, TurtleHeaders};
 use crate::number::format_number;
 pub use command::{Action, command_of};
 pub use growth::{ATTACHMENT_TOLERANCE, Growth, GrowthEvent, growth_between, growth_from_string};
+pub use seedling::Seedling;
 pub use shortcut::{LastFrame, Shortcut, grow_last};
 
 use brain::BrainBuilder;

@@ -156,6 +156,19 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
         self.develop(limits, seed)
     }
 
+    /// The grammar the genome develops from, with the options that derive and build it, in
+    /// its own chemical array or in `env` (a habitat's, of the size [`Genome::develop_in`]
+    /// asks for): what its creature grows from when it goes on developing during its
+    /// evaluation (`develop = "during"`). `None` for a genome that does not develop in
+    /// continuous time (the default).
+    fn seedling(
+        &self,
+        _limits: &Self::Limits,
+        _env: Option<&Environment>,
+    ) -> Option<Result<crate::develop::Seedling, DevelopError>> {
+        None
+    }
+
     /// The genome as text for people (for L-system genomes, a valid `.lsys` file).
     fn to_text(&self) -> String;
 

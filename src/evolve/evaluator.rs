@@ -12,7 +12,8 @@ use rayon::prelude::*;
 
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
-use crate::task::{Evaluation, TaskSpec, Unit, Watch};
+use crate::develop::Seedling;
+use crate::task::{Evaluation, GrowError, TaskSpec, Unit, Watch};
 
 /// One walk to simulate: a creature, and the unit of its individual's evaluation it is (its
 /// habitat, trial and draw), or `None` for the one walk of a plain specification.
@@ -23,6 +24,28 @@ pub struct Job<'a> {
     /// The unit ([`TaskSpec::evaluate_unit_watched`]), or `None`
     /// ([`TaskSpec::evaluate_watched`]).
     pub unit: Option<Unit>,
+    /// What the creature grows from during its evaluation (`develop = "during"`): then
+    /// `creature` is its creature at t₀, and the walk starts it anew
+    /// ([`TaskSpec::evaluate_grown_job`]). `None` for a creature that does not grow.
+    pub seedling: Option<&'a Seedling>,
+}
+
+impl Job<'_> {
+    /// The job's evaluation, watched as `watch` says: a growing creature whose development
+    /// fails during the walk is `invalid` (`development: ...`).
+    pub fn evaluate(&self, task: &TaskSpec, watch: Watch<'_>) -> Result<Evaluation, Interrupted> {
+        let Some(seedling) = self.seedling else {
+            return task.evaluate_job(self.creature, self.unit.as_ref(), watch);
+        };
+        match task.evaluate_grown_job(seedling, self.unit.as_ref(), watch) {
+            Ok(evaluation) => Ok(evaluation),
+            Err(GrowError::Interrupted(i)) => Err(i),
+            Err(e) => Ok(Evaluation::invalid(
+                task.task.name(),
+                format!("development: {e}"),
+            )),
+        }
+    }
 }
 
 /// What evaluates a batch of creatures.
@@ -56,7 +79,15 @@ impl Evaluator {
         jobs: &[Job<'_>],
         cancel: &Cancel,
     ) -> Result<Vec<Evaluation>, Interrupted> {
-        match self {
+        // A growing creature's grammar stays with this process: its walks run on its threads.
+        #[cfg(feature = "mpi")]
+        let this = match jobs.iter().any(|j| j.seedling.is_some()) {
+            true => Evaluator::Local,
+            false => self,
+        };
+        #[cfg(not(feature = "mpi"))]
+        let this = self;
+        match this {
             Evaluator::Local => jobs
                 .par_iter()
                 .map(|job| {
@@ -66,7 +97,7 @@ impl Evaluator {
                         progress: &mut |_| {},
                         cancel: Some(cancel),
                     };
-                    task.evaluate_job(job.creature, job.unit.as_ref(), watch)
+                    job.evaluate(task, watch)
                 })
                 .collect(),
             #[cfg(feature = "mpi")]

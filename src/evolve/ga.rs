@@ -13,7 +13,7 @@ use std::collections::HashMap;
 
 use super::cache::EvaluationCache;
 use super::evaluator::{Evaluator, Job};
-use super::habitats::develop_in_habitats;
+use super::habitats::develop_with_seedlings;
 use super::key::{EvaluationKey, KeyVersion};
 use super::record::GenerationRecord;
 use crate::cancel::{Cancel, Interrupted};
@@ -363,6 +363,9 @@ struct Unborn<G> {
 struct Developed<G> {
     unborn: Unborn<G>,
     creatures: Result<Vec<Creature>, String>,
+    /// What they grow from during their evaluation, one per habitat (`develop = "during"`;
+    /// none otherwise).
+    seedlings: Vec<crate::develop::Seedling>,
     key: Option<EvaluationKey>,
 }
 
@@ -391,9 +394,12 @@ impl<G: Genome> Evolution<G> {
         develop_seed: u64,
         version: KeyVersion,
     ) -> Option<EvaluationKey> {
-        develop_in_habitats(genome, &self.limits, develop_seed, &self.task)
+        develop_with_seedlings(genome, &self.limits, develop_seed, &self.task)
             .ok()
-            .map(|c| self.key_of_creatures(&c, version))
+            .map(|(c, _)| {
+                self.key_of_creatures(&c, version)
+                    .growing(&self.task, genome)
+            })
     }
 
     /// The key of an individual developed into `creatures` (one per habitat), of version
@@ -410,20 +416,23 @@ impl<G: Genome> Evolution<G> {
 
     /// Develops one genome in every habitat and keys its creatures with the task.
     fn develop(&self, unborn: Unborn<G>) -> Developed<G> {
-        let creatures = develop_in_habitats(
+        let (creatures, seedlings) = match develop_with_seedlings(
             &unborn.genome,
             &self.limits,
             unborn.develop_seed,
             &self.task,
-        )
-        .map_err(|e| e.to_string());
-        let key = creatures
-            .as_ref()
-            .ok()
-            .map(|c| self.key_of_creatures(c, self.key_version));
+        ) {
+            Ok((creatures, seedlings)) => (Ok(creatures), seedlings),
+            Err(e) => (Err(e.to_string()), Vec::new()),
+        };
+        let key = creatures.as_ref().ok().map(|c| {
+            self.key_of_creatures(c, self.key_version)
+                .growing(&self.task, &unborn.genome)
+        });
         Developed {
             unborn,
             creatures,
+            seedlings,
             key,
         }
     }
@@ -489,6 +498,7 @@ impl<G: Genome> Evolution<G> {
                 jobs.push(Job {
                     creature: &creatures[0],
                     unit: None,
+                    seedling: d.seedlings.first(),
                 });
                 Vec::new()
             } else {
@@ -496,6 +506,7 @@ impl<G: Genome> Evolution<G> {
                 jobs.extend(units.iter().map(|u| Job {
                     creature: &creatures[u.habitat as usize],
                     unit: Some(*u),
+                    seedling: d.seedlings.get(u.habitat as usize),
                 }));
                 units
             };

@@ -9,10 +9,11 @@ use super::evaluator::{Evaluator, Job};
 use super::key::{EvaluationKey, KeyVersion};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
+use crate::develop::Seedling;
 use crate::encoding::{DevelopError, Genome};
 use crate::environment::Environment;
 use crate::sim::WorldSpec;
-use crate::task::{Evaluation, TaskSpec, Watch};
+use crate::task::{Evaluation, Growing, TaskSpec, Watch};
 
 /// The creatures `genome` develops into with `seed`, one per habitat of `task` (one for a
 /// task without habitats): in a habitat with an array, [`Genome::develop_in`] it (an array
@@ -20,13 +21,54 @@ use crate::task::{Evaluation, TaskSpec, Watch};
 /// its own, its creature's controller gets the habitat's in place of its own when the two
 /// have the same length; in a habitat without one, [`Genome::develop`]. An error names the
 /// habitat it arose in.
+///
+/// When `task` develops its creatures during their evaluation (`develop = "during"`), each is
+/// the creature dropped: its seedling's ([`develop_with_seedlings`]) at t₀.
 pub fn develop_in_habitats<G: Genome>(
     genome: &G,
     limits: &G::Limits,
     seed: u64,
     task: &TaskSpec,
 ) -> Result<Vec<Creature>, DevelopError> {
-    (0..task.habitat_count())
+    develop_with_seedlings(genome, limits, seed, task).map(|(creatures, _)| creatures)
+}
+
+/// [`develop_in_habitats`], with the seedlings the creatures grow from during their
+/// evaluation, one per habitat, when `task` develops them during it (`develop = "during"`;
+/// none otherwise): each habitat's seedling develops in the habitat's array
+/// ([`Genome::seedling`]; a genome that does not develop in continuous time is an error), and
+/// its creature is the one it holds at t₀.
+pub fn develop_with_seedlings<G: Genome>(
+    genome: &G,
+    limits: &G::Limits,
+    seed: u64,
+    task: &TaskSpec,
+) -> Result<(Vec<Creature>, Vec<Seedling>), DevelopError> {
+    if task.develop.during() {
+        let seedlings = (0..task.habitat_count())
+            .map(|h| {
+                let env = task
+                    .habitat_environment(h)
+                    .map(|values| Environment::new(values.to_vec()));
+                genome
+                    .seedling(limits, env.as_ref())
+                    .unwrap_or_else(|| {
+                        Err(DevelopError(format!(
+                            "the {} genome does not develop during an evaluation",
+                            G::NAME
+                        )))
+                    })
+                    .and_then(|seedling| {
+                        let growing = Growing::from_seedling(&seedling, &task.develop)
+                            .map_err(|d| DevelopError(d.to_string()))?;
+                        Ok((growing.creature().clone(), seedling))
+                    })
+                    .map_err(|e| in_habitat(task, h, e))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        return Ok(seedlings.into_iter().unzip());
+    }
+    let creatures = (0..task.habitat_count())
         .map(|h| {
             match task.habitat_environment(h) {
                 Some(values) => genome
@@ -41,12 +83,18 @@ pub fn develop_in_habitats<G: Genome>(
                     }),
                 None => genome.develop(limits, seed),
             }
-            .map_err(|e| match task.habitat_name(h) {
-                "" => e,
-                name => DevelopError(format!("in habitat {name}: {}", e.0)),
-            })
+            .map_err(|e| in_habitat(task, h, e))
         })
-        .collect()
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((creatures, Vec::new()))
+}
+
+/// `e`, arisen in habitat `h` of `task`, naming it (when it has a name).
+fn in_habitat(task: &TaskSpec, h: usize, e: DevelopError) -> DevelopError {
+    match task.habitat_name(h) {
+        "" => e,
+        name => DevelopError(format!("in habitat {name}: {}", e.0)),
+    }
 }
 
 /// The evaluation of an individual developed into `creatures` (one per habitat of `task`,
@@ -62,13 +110,33 @@ pub fn evaluate_in_habitats(
     evaluator: Evaluator,
     cancel: &Cancel,
 ) -> Result<Evaluation, Interrupted> {
+    evaluate_grown_in_habitats(task, creatures, &[], generation, only, evaluator, cancel)
+}
+
+/// [`evaluate_in_habitats`] for creatures that grow from `seedlings` during their evaluation
+/// (one per habitat, [`develop_with_seedlings`]; none for creatures that do not grow): every
+/// walk starts its habitat's seedling anew.
+pub fn evaluate_grown_in_habitats(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    seedlings: &[Seedling],
+    generation: u32,
+    only: Option<usize>,
+    evaluator: Evaluator,
+    cancel: &Cancel,
+) -> Result<Evaluation, Interrupted> {
     if task.is_plain() {
         let watch = Watch {
             record: false,
             progress: &mut |_| {},
             cancel: Some(cancel),
         };
-        return task.evaluate_watched(&creatures[0], watch);
+        return Job {
+            creature: &creatures[0],
+            unit: None,
+            seedling: seedlings.first(),
+        }
+        .evaluate(task, watch);
     }
     let key = EvaluationKey::of_habitats(creatures, task, KeyVersion::default());
     let units: Vec<_> = task
@@ -81,6 +149,7 @@ pub fn evaluate_in_habitats(
         .map(|u| Job {
             creature: &creatures[u.habitat as usize],
             unit: Some(*u),
+            seedling: seedlings.get(u.habitat as usize),
         })
         .collect();
     let evaluations = evaluator.evaluate(task, &jobs, cancel)?;
@@ -115,10 +184,16 @@ pub fn evaluate_genome<G: Genome>(
     generation: u32,
     cancel: &Cancel,
 ) -> Result<Evaluation, Interrupted> {
-    match develop_in_habitats(genome, limits, seed, task) {
-        Ok(creatures) => {
-            evaluate_in_habitats(task, &creatures, generation, None, Evaluator::Local, cancel)
-        }
+    match develop_with_seedlings(genome, limits, seed, task) {
+        Ok((creatures, seedlings)) => evaluate_grown_in_habitats(
+            task,
+            &creatures,
+            &seedlings,
+            generation,
+            None,
+            Evaluator::Local,
+            cancel,
+        ),
         Err(e) => Ok(Evaluation::invalid(
             task.task.name(),
             format!("development: {e}"),

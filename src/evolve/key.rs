@@ -140,6 +140,30 @@ impl EvaluationKey {
         EvaluationKey(hasher.0.finalize().into())
     }
 
+    /// This key (of the creatures `genome` develops into) for a task whose creatures go on
+    /// developing during their evaluation (`develop = "during"`): the creature dropped does
+    /// not say how it grows, so the key hashes this one with the development's settings
+    /// (`develop`, `develop_rate`, `develop_t0` when set) and the genome's text. A task whose
+    /// creatures develop before their evaluation keeps this key as it is, so no key of a run
+    /// without `develop` changes.
+    pub fn growing<G: crate::encoding::Genome>(self, task: &TaskSpec, genome: &G) -> EvaluationKey {
+        if !task.develop.during() {
+            return self;
+        }
+        let mut hasher = CanonicalHasher(Sha256::new());
+        (
+            "develop",
+            self.0,
+            task.develop.when,
+            task.develop.rate,
+            task.develop.t0,
+            genome.to_text(),
+        )
+            .serialize(&mut hasher)
+            .expect("every key and setting serialises");
+        EvaluationKey(hasher.0.finalize().into())
+    }
+
     /// The key as 64 lowercase hexadecimal digits, as the run store keeps it.
     pub fn to_hex(&self) -> String {
         self.0.iter().map(|b| format!("{b:02x}")).collect()

@@ -88,6 +88,7 @@ pub fn resolve_ga_and_task<L>(
     file: &ConfigFile<L>,
     source: Option<&Source>,
     flags: &RunFlags,
+    encodings: &[&str],
 ) -> Result<(GaSettings, TaskSpec), Diagnostic> {
     let mut overrides = file.ga.clone();
     if let Some(p) = flags.preset {
@@ -115,7 +116,7 @@ pub fn resolve_ga_and_task<L>(
             .map_err(|e| plain(format!("--walks {walks} ({each} per individual): {e}")))?;
     }
     let other_tables = |tables: &TaskTables| tables.check_other_tables(task.task.table());
-    check_settings(&ga, &task)
+    check_settings(&ga, &task, encodings)
         .and_then(|()| file.task.as_ref().map_or(Ok(()), other_tables))
         .map_err(|e| {
             let run_table = format!("task.{}", task.task.table());
@@ -183,7 +184,7 @@ pub fn run_config<G: Genome>(
     verify_best: bool,
     cache: bool,
 ) -> Result<RunConfig<G::Limits>, Diagnostic> {
-    let (ga, task) = resolve_ga_and_task(&file, source, flags)?;
+    let (ga, task) = resolve_ga_and_task(&file, source, flags, &[G::NAME])?;
     Ok(RunConfig {
         encoding: G::NAME.to_string(),
         seed: seed.or(file.seed).unwrap_or(1),
@@ -301,7 +302,8 @@ pub fn plan_comparison(
         generations: Some(1),
         ..flags.clone()
     };
-    let (mut ga, task) = resolve_ga_and_task(file, source, &one_generation)?;
+    let encodings: Vec<&str> = names.iter().map(String::as_str).collect();
+    let (mut ga, task) = resolve_ga_and_task(file, source, &one_generation, &encodings)?;
     // The budget counts walks: an individual of K trials in H habitats walks K·H times.
     let walks = compare::walks_per_individual(&task);
     ga.generations =
@@ -460,7 +462,7 @@ fn condition_arm<G: Genome>(
         generations: Some(1),
         ..flags.clone()
     };
-    let (mut ga, task) = resolve_ga_and_task(&file, Some(source), &one_generation)?;
+    let (mut ga, task) = resolve_ga_and_task(&file, Some(source), &one_generation, &[G::NAME])?;
     let limits = file.limits.unwrap_or_default();
     crate::run::config::check_limits(&limits, Some(source))?;
     let walks = compare::walks_per_individual(&task);

@@ -337,7 +337,8 @@ pub fn read_run_config<L: DeserializeOwned + CheckedLimits>(
     source: &Source,
 ) -> Result<RunConfig<L>, Diagnostic> {
     let config: RunConfig<L> = parse_run_config(source)?;
-    check_settings(&config.ga, &config.task).map_err(|e| setting_diagnostic(source, &e))?;
+    check_settings(&config.ga, &config.task, &[config.encoding.as_str()])
+        .map_err(|e| setting_diagnostic(source, &e))?;
     check_limits(&config.limits, Some(source))?;
     Ok(config)
 }
@@ -440,16 +441,32 @@ fn differing_keys(prefix: &str, a: &toml::Table, b: &toml::Table, out: &mut Vec<
 }
 
 /// Checks the values a configuration may get wrong ([`GaSettings::check`] and
-/// [`TaskSpec::check`]); the error names the setting in its table (`[task.sim] substeps ...`).
-pub fn check_settings(ga: &GaSettings, task: &TaskSpec) -> Result<(), SettingError> {
+/// [`TaskSpec::check`]) for a run of each of `encodings`: `develop = "during"` only on the
+/// walker with the `lsystem-continuous` genome, the one whose creatures grow during their
+/// evaluation. The error names the setting in its table (`[task.sim] substeps ...`).
+pub fn check_settings(
+    ga: &GaSettings,
+    task: &TaskSpec,
+    encodings: &[&str],
+) -> Result<(), SettingError> {
     ga.check().map_err(|e| e.within("ga"))?;
     if task.develop.during() {
-        return Err(SettingError::out_of_range(
-            "develop",
-            "\"before\" in a run (only `eval` grows a creature during its evaluation so far)",
-            "\"during\"",
-        )
-        .within("task"));
+        let refuse = |why: String| {
+            Err(SettingError::out_of_range("develop", &why, "\"during\"").within("task"))
+        };
+        if task.check_growing().is_err() {
+            return refuse(format!(
+                "\"before\" on the {} task (only the walker grows its creature during its \
+                 evaluation)",
+                task.kind().name()
+            ));
+        }
+        let grows = <crate::encoding::ContinuousGenome as crate::encoding::Genome>::NAME;
+        if let Some(other) = encodings.iter().find(|&&e| e != grows) {
+            return refuse(format!(
+                "\"before\" with the {other} genome (only {grows} grows during its evaluation)"
+            ));
+        }
     }
     task.check()
 }

@@ -181,7 +181,7 @@ pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
 /// The run's settings and limits in range ([`check_settings`], [`CheckedLimits`]); the error
 /// names `name`, where they come from, and the key.
 fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
-    check_settings(&config.ga, &config.task)
+    check_settings(&config.ga, &config.task, &[config.encoding.as_str()])
         .and_then(|()| config.limits.check_ranges())
         .map_err(|e| {
             RunError::Config(Diagnostic::without_location(

@@ -10,9 +10,9 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::creature::Creature;
-use crate::develop::{BuildOptions, Growth, build, growth_between};
+use crate::develop::{BuildOptions, Growth, Seedling, build, growth_between};
 use crate::lang::Diagnostic;
-use crate::lsystem::{DeriveOptions, Development, LSystem};
+use crate::lsystem::{DeriveOptions, Development, Event, LSystem};
 use crate::sim::{Grown, World};
 
 /// When the creature develops: before the evaluation (today's protocol) or during it.
@@ -71,6 +71,35 @@ impl Develop {
     }
 }
 
+/// Why a creature cannot grow during an evaluation, or why its growing evaluation stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum GrowError {
+    /// The task does not grow its creature (only the walker does).
+    #[error("develop = \"during\": the {0} task does not grow its creature; only the walker does")]
+    Task(&'static str),
+    /// The grammar develops in discrete steps, named by its source.
+    #[error(
+        "develop = \"during\": {0} develops in discrete steps; only continuous development (a \
+         `time:` line, or --time) goes on during a walk"
+    )]
+    Discrete(String),
+    /// Development failed, before the evaluation or during it.
+    #[error(transparent)]
+    Development(#[from] Diagnostic),
+    /// The evaluation was interrupted.
+    #[error(transparent)]
+    Interrupted(#[from] crate::cancel::Interrupted),
+}
+
+/// Checks that `seedling` develops in continuous time, as a development that goes on during
+/// an evaluation must; `source` names the grammar in the refusal.
+pub fn check_continuous(seedling: &Seedling, source: &str) -> Result<(), GrowError> {
+    match seedling.is_continuous() {
+        true => Ok(()),
+        false => Err(GrowError::Discrete(source.to_string())),
+    }
+}
+
 /// How much a creature grew during an evaluation: Kriegman's measure of the development that
 /// remains, body against brain.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -98,6 +127,7 @@ pub struct Growing {
     rate: f64,
     creature: Creature,
     tally: GrowthTally,
+    events: Vec<Event>,
 }
 
 impl Growing {
@@ -140,6 +170,8 @@ impl Growing {
                 }
             },
         };
+        // The events that led to t₀ are not the evaluation's.
+        development.take_events();
         Ok(Growing {
             lsys,
             development,
@@ -148,7 +180,23 @@ impl Growing {
             rate,
             creature,
             tally: GrowthTally::default(),
+            events: Vec::new(),
         })
+    }
+
+    /// [`Growing::start`] from `seedling` as `develop` says (its rate and t₀).
+    ///
+    /// # Errors
+    ///
+    /// What development reports.
+    pub fn from_seedling(seedling: &Seedling, develop: &Develop) -> Result<Growing, Diagnostic> {
+        Growing::start(
+            Arc::clone(&seedling.lsys),
+            &seedling.derive,
+            &seedling.build,
+            develop.rate,
+            develop.t0,
+        )
     }
 
     /// The creature as it is now, its parts, joints and neurons at their ids.
@@ -159,6 +207,14 @@ impl Growing {
     /// The developmental time reached.
     pub fn now(&self) -> f64 {
         self.development.now()
+    }
+
+    /// The development's events (a bud maturing, a guard turning) since it started, in
+    /// order, each at the developmental time the dL-system located it at: exactly, whatever
+    /// the control step. Their growth reaches the world at the end of the control step they
+    /// fall in.
+    pub fn events(&self) -> &[Event] {
+        &self.events
     }
 
     /// How much it has grown since it started.
@@ -174,6 +230,7 @@ impl Growing {
     /// What development reports.
     pub fn step(&mut self, world: &mut World, seconds: f64) -> Result<Grown, Diagnostic> {
         self.development.advance_by(self.rate * seconds)?;
+        self.events.extend(self.development.take_events());
         let t = self.development.now();
         let shown = self
             .lsys

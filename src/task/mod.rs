@@ -36,7 +36,9 @@ pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
 pub use check::{MAX_SECONDS, check_duration};
 pub use fitness::{Fitness, FitnessExpression, PROTOCOL_TERMS};
-pub use grow::{DEFAULT_RATE, Develop, DevelopWhen, Growing, GrowthTally};
+pub use grow::{
+    DEFAULT_RATE, Develop, DevelopWhen, GrowError, Growing, GrowthTally, check_continuous,
+};
 pub use habitat::{
     Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
 };

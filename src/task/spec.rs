@@ -5,10 +5,12 @@ use serde::ser::{Serialize, SerializeStruct, Serializer};
 use serde::{Deserialize, Deserializer};
 
 use super::{
-    Evaluation, FitnessExpression, Habitat, Setup, Task, TaskOptions, TaskTables, Trials, Watch,
+    Evaluation, FitnessExpression, GrowError, Growing, Habitat, Setup, Task, TaskOptions,
+    TaskTables, Trials, Unit, Watch,
 };
 use crate::cancel::Interrupted;
 use crate::creature::Creature;
+use crate::develop::Seedling;
 use crate::sim::{SimOptions, WorldSpec};
 
 crate::for_each_task!(__task_kind!());
@@ -234,6 +236,46 @@ impl TaskSpec {
                 None => evaluation,
             })
         })
+    }
+
+    /// Checks that this task grows its creature during an evaluation: only the walker does.
+    pub fn check_growing(&self) -> Result<(), GrowError> {
+        match self.kind() {
+            TaskKind::Walker => Ok(()),
+            kind => Err(GrowError::Task(kind.name())),
+        }
+    }
+
+    /// The evaluation of the creature `seedling` grows into, developing during the
+    /// evaluation as [`TaskSpec::develop`] says ([`Growing`]): the creature at t₀ walks `unit`
+    /// (placed by its draw, with [`TaskSpec::unit_spec`]) or, for none, the one walk of this
+    /// specification. `eval` and the genetic algorithm's evaluator both evaluate a growing
+    /// creature through it.
+    ///
+    /// # Errors
+    ///
+    /// What development reports, before the walk or during it; [`GrowError::Interrupted`]
+    /// once `watch`'s token is set.
+    pub fn evaluate_grown_job(
+        &self,
+        seedling: &Seedling,
+        unit: Option<&Unit>,
+        watch: Watch<'_>,
+    ) -> Result<Evaluation, GrowError> {
+        let mut growing = Growing::from_seedling(seedling, &self.develop)?;
+        let (spec, creature) = match unit {
+            Some(unit) => (
+                std::borrow::Cow::Owned(self.unit_spec(unit)),
+                unit.perturbation.place(growing.creature()),
+            ),
+            None => (std::borrow::Cow::Borrowed(self), growing.creature().clone()),
+        };
+        let watch = Watch {
+            record: watch.record,
+            progress: &mut *watch.progress,
+            cancel: watch.cancel,
+        };
+        Ok(spec.evaluate_growing(&creature, watch, Some(&mut growing))?)
     }
 
     /// The most control steps the task can take (every phase at its longest), which sets how

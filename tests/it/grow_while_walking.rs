@@ -1,13 +1,15 @@
 //! Growing while acting: a creature whose development goes on during the walk
 //! (`develop = "during"`).
 
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use ontogeny::develop::BuildOptions;
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::task::{Growing, Phase, Status, TaskKind, TaskSpec, Watch};
 
-use crate::util::{assert_bad_input, ontogeny, scratch_dir, succeeded};
+use crate::evolve::contents;
+use crate::util::{assert_bad_input, ontogeny, ontogeny_command, scratch_dir, succeeded};
 
 const EXAMPLE: &str = "examples/grow-while-walking.lsys";
 
@@ -138,16 +140,26 @@ fn a_grammar_in_discrete_steps_cannot_grow_during_a_walk() {
     );
 }
 
-#[test]
-fn a_run_that_would_grow_during_the_walk_is_refused() {
-    let out = scratch_dir("grow_while_walking_run");
-    let config = out.join("config.toml");
+/// A config of a tiny run of `encoding` whose walkers grow during their 0.5 s walks, with
+/// `extra` lines in its `[task]` table.
+fn growing_config(dir: &Path, encoding: &str, extra: &str) -> PathBuf {
+    let config = dir.join("config.toml");
     std::fs::write(
         &config,
-        "encoding = \"lsystem-continuous\"\n[ga]\npopulation = 4\ngenerations = 1\n\
-         [task]\ntask = \"walker\"\ndevelop = \"during\"\n",
+        format!(
+            "encoding = \"{encoding}\"\nseed = 5\n[ga]\npopulation = 6\ngenerations = 2\n\
+             [task]\ntask = \"walker\"\ndevelop = \"during\"\n{extra}\n\
+             [task.walker]\nseconds = 0.5\n"
+        ),
     )
     .unwrap();
+    config
+}
+
+#[test]
+fn a_run_of_a_genome_that_cannot_grow_during_the_walk_is_refused() {
+    let out = scratch_dir("grow_while_walking_refused");
+    let config = growing_config(&out, "lsystem", "");
     let said = assert_bad_input(
         &[
             "evolve",
@@ -156,9 +168,152 @@ fn a_run_that_would_grow_during_the_walk_is_refused() {
             "--out",
             out.join("run").to_str().unwrap(),
         ],
-        "develop must be \"before\" in a run (only `eval` grows a creature during its \
-         evaluation so far), not \"during\"",
+        "develop must be \"before\" with the lsystem genome (only lsystem-continuous grows \
+         during its evaluation), not \"during\"",
     );
-    assert!(said.contains("config.toml:7:11"), "{said}");
+    assert!(said.contains("config.toml:8:11"), "{said}");
     assert!(!out.join("run").exists());
+    // So is a task other than the walker.
+    let config = growing_config(&out, "lsystem-continuous", "");
+    let text = std::fs::read_to_string(&config).unwrap();
+    std::fs::write(
+        &config,
+        text.replace("task = \"walker\"", "task = \"jump\""),
+    )
+    .unwrap();
+    assert_bad_input(
+        &[
+            "evolve",
+            "--config",
+            config.to_str().unwrap(),
+            "--out",
+            out.join("run").to_str().unwrap(),
+        ],
+        "develop must be \"before\" on the jump task (only the walker grows its creature \
+         during its evaluation), not \"during\"",
+    );
+    assert!(!out.join("run").exists());
+}
+
+/// `ontogeny evolve --config CONFIG --out OUT EXTRA...`, which must succeed.
+fn evolve(config: &Path, out: &Path, extra: &[&str]) {
+    let output = ontogeny_command()
+        .args(["evolve", "--config"])
+        .arg(config)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap();
+    succeeded(&output);
+}
+
+#[test]
+fn an_evolution_growing_during_the_walk_is_the_same_on_any_thread_count_and_resumed() {
+    let dir = scratch_dir("grow_while_walking_evolve");
+    let config = growing_config(&dir, "lsystem-continuous", "develop_rate = 2");
+    evolve(&config, &dir.join("one"), &["--threads", "1"]);
+    evolve(&config, &dir.join("two"), &["--threads", "2"]);
+    assert_eq!(contents(&dir.join("one")), contents(&dir.join("two")));
+    // Stopped after one generation, then resumed to two: the same run.
+    let stopped = dir.join("stopped");
+    evolve(&config, &stopped, &["--gens", "1"]);
+    let resumed = ontogeny_command()
+        .args(["evolve", "--gens", "2", "--resume"])
+        .arg(&stopped)
+        .output()
+        .unwrap();
+    succeeded(&resumed);
+    assert_eq!(contents(&stopped), contents(&dir.join("one")));
+    // Its walkers grew during their walks: every evaluation that succeeded tallies it.
+    let store = ontogeny::run::store::RunStore::open_read_only(&dir.join("one").join("run.sqlite"))
+        .unwrap();
+    let individuals = store.individuals(0).unwrap();
+    let walked: Vec<serde_json::Value> = individuals
+        .iter()
+        .map(|i| serde_json::from_str::<serde_json::Value>(&i.genome_json).unwrap())
+        .filter(|json| json["evaluation"]["status"] == "ok")
+        .collect();
+    assert!(!walked.is_empty());
+    for json in &walked {
+        assert!(
+            json["evaluation"]["terms"]["grown_parts"].is_number(),
+            "{json}"
+        );
+    }
+}
+
+/// The events of the example's development during a 2 s walk at control step `step`, as
+/// (developmental time, module).
+fn events_at_control_step(step: f64) -> Vec<(f64, String)> {
+    let mut growing = Growing::start(
+        example(),
+        &DeriveOptions::default(),
+        &BuildOptions::default(),
+        1.0,
+        None,
+    )
+    .unwrap();
+    let creature = growing.creature().clone();
+    let mut spec = short_walk();
+    spec.sim.control_step = step;
+    let evaluation = spec
+        .evaluate_growing(
+            &creature,
+            Watch::uncancelled(false, &mut |_| {}),
+            Some(&mut growing),
+        )
+        .unwrap();
+    assert_eq!(evaluation.status, Status::Ok, "{evaluation:?}");
+    growing
+        .events()
+        .iter()
+        .map(|e| (e.t, e.module.clone()))
+        .collect()
+}
+
+#[test]
+fn events_during_the_walk_are_located_at_the_same_times_whatever_the_control_step() {
+    let coarse = events_at_control_step(1.0 / 60.0);
+    let fine = events_at_control_step(1.0 / 120.0);
+    assert!(!coarse.is_empty());
+    assert_eq!(coarse.len(), fine.len(), "{coarse:?}\n{fine:?}");
+    for ((t1, m1), (t2, m2)) in coarse.iter().zip(&fine) {
+        assert_eq!(m1, m2);
+        assert!((t1 - t2).abs() < 1e-9, "{t1} against {t2}");
+    }
+}
+
+/// Two segments whose token A, once 1.5 time units old, sprouts a pair of legs that lengthen
+/// to 0.4 m, but only where slot 0 of the array holds more than 0.5.
+const CUE: &str = "time: 3\ntiming: exact\nenvironment: 0\n\
+    axiom: width(0.6) thickness(0.2) forward(0.8) forward(0.8) ?E(1, 0, 0) A(0)\n\
+    A(x) : x < 1.5 --> solve dx/dt = 1\n\
+    ?E(1, 0, c) < A(x) : x >= 1.5 && c > 0.5 --> [ left(1) mforward(0) ] [ right(1) mforward(0) ]\n\
+    mforward(x) : x < 0.4 --> solve dx/dt = 0.4\n\
+    mforward(x) : x >= 0.4 --> forward(x)\n";
+
+/// The parts `CUE` grows during a 2 s walk from an array whose slot 0 starts at `value`, as
+/// a habitat's array starts it.
+fn parts_grown_in(value: f64) -> f64 {
+    let seedling = ontogeny::develop::Seedling {
+        lsys: Arc::new(LSystem::from_text("cue.lsys", CUE).unwrap()),
+        derive: DeriveOptions {
+            env: vec![(0, value)],
+            ..DeriveOptions::default()
+        },
+        build: BuildOptions::default(),
+    };
+    let evaluation = short_walk()
+        .evaluate_grown_job(&seedling, None, Watch::uncancelled(false, &mut |_| {}))
+        .unwrap();
+    assert_eq!(evaluation.status, Status::Ok, "{evaluation:?}");
+    assert_eq!(evaluation.terms["N"], 2.0);
+    evaluation.terms["grown_parts"]
+}
+
+#[test]
+fn a_grammar_that_reads_its_array_grows_differently_during_the_walk_in_two_habitats() {
+    assert_eq!(parts_grown_in(0.0), 0.0);
+    assert_eq!(parts_grown_in(1.0), 2.0);
 }

@@ -2,15 +2,16 @@
 //! the printed file, building only the last frame.
 
 use super::*;
+use crate::develop::Seedling;
 
 impl ContinuousGenome {
-    /// The creature the genome grows into at the end of its developmental time, in its own
+    /// The grammar the genome's text compiles to, with the options that develop it in its own
     /// environment or in `env` (of the same size: its initial values replace the genome's).
-    pub(super) fn creature(
+    pub(super) fn seedling_in(
         &self,
         limits: &ContinuousLimits,
         env: Option<&Environment>,
-    ) -> Result<Creature, DevelopError> {
+    ) -> Result<Seedling, DevelopError> {
         let limits = limits.sane();
         // A genome from elsewhere (a store, a hand-edited file) may not fit: its time and
         // frames would be unbounded.
@@ -18,17 +19,34 @@ impl ContinuousGenome {
             .map_err(|e| DevelopError(format!("the genome exceeds its limits: {e}")))?;
         let lsys = LSystem::from_text(Self::NAME, &self.to_text())
             .map_err(|d| DevelopError(d.to_string()))?;
-        let options = DeriveOptions {
-            max_modules: limits.max_modules,
-            env: env
-                .map(|e| e.values().iter().copied().enumerate().collect())
-                .unwrap_or_default(),
-            ..DeriveOptions::default()
-        };
-        let build_options = BuildOptions {
-            max_parts: limits.max_parts,
-            ..BuildOptions::default()
-        };
+        Ok(Seedling {
+            lsys: std::sync::Arc::new(lsys),
+            derive: DeriveOptions {
+                max_modules: limits.max_modules,
+                env: env
+                    .map(|e| e.values().iter().copied().enumerate().collect())
+                    .unwrap_or_default(),
+                ..DeriveOptions::default()
+            },
+            build: BuildOptions {
+                max_parts: limits.max_parts,
+                ..BuildOptions::default()
+            },
+        })
+    }
+
+    /// The creature the genome grows into at the end of its developmental time, in its own
+    /// environment or in `env` (of the same size: its initial values replace the genome's).
+    pub(super) fn creature(
+        &self,
+        limits: &ContinuousLimits,
+        env: Option<&Environment>,
+    ) -> Result<Creature, DevelopError> {
+        let Seedling {
+            lsys,
+            derive: options,
+            build: build_options,
+        } = self.seedling_in(limits, env)?;
         // What `develop::grow` does, building only the last frame.
         let mut last = None;
         lsys.for_each_frame(&options, None, |frame| {

@@ -710,6 +710,21 @@ impl Genome for ContinuousGenome {
         self.creature(limits, array_read(&self.environment, env)?)
     }
 
+    fn seedling(
+        &self,
+        limits: &ContinuousLimits,
+        env: Option<&Environment>,
+    ) -> Option<Result<crate::develop::Seedling, DevelopError>> {
+        let env = match env {
+            Some(env) => match array_read(&self.environment, env) {
+                Ok(env) => env,
+                Err(e) => return Some(Err(e)),
+            },
+            None => None,
+        };
+        Some(self.seedling_in(limits, env))
+    }
+
     fn show(&self) -> String {
         grammar_shown_with_reads(&self.to_text(), &self.environment_reads())
     }

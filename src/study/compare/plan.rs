@@ -462,7 +462,8 @@ pub fn open(root: &Path) -> Result<(Manifest, Vec<Arm>), CompareError> {
     if manifest.conditions.is_empty() {
         let path = root.join("evolve.toml");
         let shared: Shared = toml::from_str(&read(&path)?).map_err(|e| bad(&path, &e))?;
-        check_settings(&shared.ga, &shared.task).map_err(|e| bad(&path, &e))?;
+        let encodings: Vec<&str> = manifest.encodings.iter().map(String::as_str).collect();
+        check_settings(&shared.ga, &shared.task, &encodings).map_err(|e| bad(&path, &e))?;
         let arms = encoding_arms(&manifest, &shared);
         return Ok((manifest, arms));
     }
@@ -470,7 +471,8 @@ pub fn open(root: &Path) -> Result<(Manifest, Vec<Arm>), CompareError> {
     for name in &manifest.conditions {
         let path = condition_file(root, name);
         let file: ConditionFile = toml::from_str(&read(&path)?).map_err(|e| bad(&path, &e))?;
-        check_settings(&file.ga, &file.task).map_err(|e| bad(&path, &e))?;
+        check_settings(&file.ga, &file.task, &[file.encoding.as_str()])
+            .map_err(|e| bad(&path, &e))?;
         arms.push(Arm {
             name: name.clone(),
             encoding: file.encoding,
