@@ -424,8 +424,8 @@ fn show_evaluation(args: &EvalArgs, evaluation: &Evaluation) -> anyhow::Result<(
 }
 
 /// [`run`] for a creature that develops during the evaluation: an `.lsys` in continuous
-/// time, on the walker, with one habitat and one trial, not recorded (the recording's format
-/// holds a fixed body).
+/// time, on the walker, with one habitat and one trial; `--record` records the parts as they
+/// appear and grow.
 fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     let spec = &inputs.spec;
     let refuse = |why: &str| Err(super::bad(format!("develop = \"during\": {why}")));
@@ -437,9 +437,6 @@ fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     }
     if !spec.is_plain() {
         return refuse("habitats and trials do not grow their creature yet");
-    }
-    if args.record.is_some() {
-        return refuse("a recording cannot hold a growing body yet (leave out --record)");
     }
     if args.file.extension().is_none_or(|e| e != "lsys") {
         return refuse(&format!(
@@ -477,11 +474,22 @@ fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     )
     .map_err(anyhow::Error::new)?;
     let creature = growing.creature().clone();
+    if let Some(dir) = &args.record {
+        ontogeny::output::check_folder(dir, FolderKind::Recording)?;
+        super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
+    }
     let mut progress = Progress::new(flags::progress_label(spec));
     let mut tell = |f| progress.set(f);
-    let watch = ontogeny::task::Watch::uncancelled(false, &mut tell);
+    let watch = ontogeny::task::Watch::uncancelled(args.record.is_some(), &mut tell);
     let evaluation = spec.evaluate_growing(&creature, watch, Some(&mut growing))?;
     progress.finish();
+    if let Some(dir) = &args.record {
+        // The creature as dropped; the samples hold its growth.
+        ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
+        write_recording(dir, &creature, &evaluation, &spec.world)?;
+        let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
+        tell!("{}", ontogeny::output::wrote(&files));
+    }
     show_evaluation(args, &evaluation)
 }
 
