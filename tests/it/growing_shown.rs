@@ -138,3 +138,59 @@ fn a_recording_whose_growth_names_a_part_out_of_turn_is_refused_with_exit_code_2
         "{said}"
     );
 }
+
+/// `xml` with every number in its attributes rounded to 9 decimals.
+fn rounded(xml: &str) -> String {
+    xml.split('"')
+        .map(|field| {
+            field
+                .split(' ')
+                .map(|w| match w.parse::<f64>() {
+                    Ok(x) => format!("{x:.9}"),
+                    Err(_) => w.to_string(),
+                })
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect::<Vec<_>>()
+        .join("\"")
+}
+
+#[test]
+fn export_writes_the_creature_at_a_developmental_time_as_a_walk_would_drop_it() {
+    // The creature a walk with develop_t0 = 2 drops: two segments and the first pair of legs.
+    let text = std::fs::read_to_string(EXAMPLE).unwrap();
+    let lsys = std::sync::Arc::new(ontogeny::lsystem::LSystem::from_text(EXAMPLE, &text).unwrap());
+    let growing = ontogeny::task::Growing::start(
+        lsys,
+        &ontogeny::lsystem::DeriveOptions::default(),
+        &ontogeny::develop::BuildOptions::default(),
+        1.0,
+        Some(2.0),
+    )
+    .unwrap();
+    assert_eq!(growing.creature().parts.len(), 4);
+    let expected = ontogeny::export::to_mjcf_in(
+        growing.creature(),
+        &ontogeny::sim::SimOptions::default(),
+        "grow-while-walking",
+        &ontogeny::sim::WorldSpec::default(),
+    )
+    .unwrap();
+    let out = ontogeny(&["export", EXAMPLE, "--time", "2"]);
+    // The same model, to the round-off of integrating development in other steps.
+    assert_eq!(rounded(&succeeded(&out)), rounded(&expected));
+    assert!(expected.contains("size=\"0.09999999999999994 0.075 0.075\""));
+    assert!(
+        stderr(&out).contains(
+            "note: MJCF has no growth: the model is the creature at developmental time 2 \
+             (choose another moment with --time T); in MuJoCo it does not grow"
+        ),
+        "{}",
+        stderr(&out)
+    );
+    // A grammar in discrete steps says nothing of growth.
+    let out = ontogeny(&["export", "examples/quadruped.lsys"]);
+    succeeded(&out);
+    assert!(!stderr(&out).contains("growth"), "{}", stderr(&out));
+}
