@@ -306,6 +306,20 @@ fn resume<G: Genome>(
                 "{}: complete ({total} generations); nothing to resume; its log.txt, fitness.svg and best genome written again",
                 dir.display()
             );
+            if json && let Some(last) = run.last_report().map_err(run_error)? {
+                // The final line of the run as it stands: nothing evaluated by this command.
+                let fitness = run.config().task.fitness_label();
+                let end = ontogeny::front::text::RunEnd {
+                    dir,
+                    fitness: &fitness,
+                    encoding: G::NAME,
+                    extension: G::TEXT_EXTENSION,
+                    last: &last,
+                    wall: 0.0,
+                };
+                let object = ontogeny::front::json::run_json(&RunTally::default(), &end);
+                say!("{}", serde_json::to_string_pretty(&object)?);
+            }
             return Ok(());
         }
         Some(g) => tell!("{}: resuming after generation {g}", dir.display()),

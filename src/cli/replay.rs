@@ -37,8 +37,8 @@ pub struct ReplayArgs {
     #[command(flatten)]
     fitness: FitnessArgs,
     /// For a run with `[[task.habitats]]`: the habitat named NAME alone (its creature, its
-    /// trials' aggregate, its first trial recorded) [default: every habitat, the first
-    /// habitat's first trial recorded].
+    /// trials' aggregate, its first trial recorded), written to `replay/gen-G-rank-K-NAME/`
+    /// [default: every habitat, the first habitat's first trial recorded].
     #[arg(long, value_name = "NAME")]
     habitat: Option<String>,
 }
@@ -127,6 +127,32 @@ fn changed_task(args: &ReplayArgs, task: &TaskSpec) -> anyhow::Result<Option<Tas
     Ok(Some(task))
 }
 
+/// The folder under `RUN/replay/` of generation `generation`'s rank `rank`: `gen-G-rank-K`,
+/// and with a habitat alone, `gen-G-rank-K-NAME` (`gen-G-rank-K-habitat-H`, H counted from 1,
+/// when the name is not a plain file name of letters, digits, `-`, `_` and `.`), so that the
+/// replays of each habitat stand side by side.
+fn replay_folder_name(
+    generation: u32,
+    rank: usize,
+    only: Option<usize>,
+    task: &TaskSpec,
+) -> String {
+    let plain = format!("gen-{generation}-rank-{rank}");
+    let Some(habitat) = only else {
+        return plain;
+    };
+    let name = task.habitat_name(habitat);
+    let simple = !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'));
+    if simple && !name.is_empty() {
+        format!("{plain}-{name}")
+    } else {
+        format!("{plain}-habitat-{}", habitat + 1)
+    }
+}
+
 fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
     let (dir, generation, rank, fps) = (&args.dir, args.generation, args.rank, args.fps);
     // Read-only: replaying never changes the run's store.
@@ -137,9 +163,15 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
             PickError::Run(e) => super::evolve::run_error(e),
             PickError::Input(message) => super::bad(message),
         })?;
+    let limits = &run.config().limits;
+    let task = changed.as_ref().unwrap_or(&run.config().task);
+    let only = match &args.habitat {
+        Some(name) => Some(task.habitat_named(name).map_err(super::bad)?),
+        None => None,
+    };
     let out = dir
         .join("replay")
-        .join(format!("gen-{generation}-rank-{rank}"));
+        .join(replay_folder_name(generation, rank, only, task));
     ontogeny::output::prepare_folder(&out, ontogeny::output::FolderKind::Replay)?;
     let genome_name = format!("genome.{}", G::TEXT_EXTENSION);
     let genome_path = out.join(&genome_name);
@@ -151,12 +183,6 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
         &out.join("behaviour.gif"),
     ])?;
     ontogeny::output::write(&genome_path, individual.genome.to_text())?;
-    let limits = &run.config().limits;
-    let task = changed.as_ref().unwrap_or(&run.config().task);
-    let only = match &args.habitat {
-        Some(name) => Some(task.habitat_named(name).map_err(super::bad)?),
-        None => None,
-    };
     let creatures = ontogeny::evolve::habitats::develop_in_habitats(
         &individual.genome,
         limits,

@@ -542,6 +542,22 @@ impl<G: Genome> Run<G> {
         Ok(self.store.last_generation()?)
     }
 
+    /// The last complete generation's report as the store holds it (its timings 0: nothing
+    /// ran), if any.
+    pub fn last_report(&self) -> Result<Option<GenerationReport>, RunError> {
+        let Some(stats) = self.store.generations()?.pop() else {
+            return Ok(None);
+        };
+        let fallbacks = self.fallbacks_by_generation()?.pop().unwrap_or_default();
+        Ok(Some(GenerationReport {
+            generation: stats.index,
+            stats,
+            wall_seconds: 0.0,
+            evaluation_seconds: 0.0,
+            fallbacks,
+        }))
+    }
+
     /// Reads generation `generation` back from the store.
     pub fn population(&self, generation: u32) -> Result<Vec<Individual<G>>, RunError> {
         self.store

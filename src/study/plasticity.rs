@@ -226,6 +226,8 @@ pub struct CueMorph {
     pub neurons: usize,
     /// Its parts' total volume (m³).
     pub volume: f64,
+    /// Its height as built, before it is dropped: the vertical extent of its bounding box (m).
+    pub height: f64,
 }
 
 /// How a champion's morphs differ (see the module's documentation).
@@ -304,6 +306,10 @@ pub fn reaction_norm(task: &TaskSpec, creatures: &[Creature]) -> (Vec<CueMorph>,
             joints: c.joints.len(),
             neurons: c.brain.neurons.len(),
             volume: c.parts.iter().map(|p| p.volume()).sum(),
+            height: {
+                let (lo, hi) = c.bounding_box();
+                hi.y - lo.y
+            },
         })
         .collect();
     if morphs.len() < 2 {
@@ -681,7 +687,7 @@ fn summary_line(s: &Summary) -> String {
 }
 
 /// The columns of [`csv`].
-pub const CSV_COLUMNS: &str = "condition,run,habitat,environment,fitness,status,stored_fitness,parts,joints,neurons,volume,depends_on_cue,parts_change,joints_change,neurons_change,volume_change,size_change";
+pub const CSV_COLUMNS: &str = "condition,run,habitat,environment,fitness,status,stored_fitness,parts,joints,neurons,volume,height,depends_on_cue,parts_change,joints_change,neurons_change,volume_change,size_change";
 
 /// A CSV field: quoted when it holds a comma, a quote or a line break.
 fn csv_field(s: &str) -> String {
@@ -695,7 +701,7 @@ fn csv_field(s: &str) -> String {
 /// The measurement as CSV: [`CSV_COLUMNS`], then a row per champion and habitat, every number
 /// in full (empty where there is none): the habitat's array (its values separated by spaces;
 /// empty for the genome's own), the fitness walked again and its status, the stored figure,
-/// the morph grown there (parts, joints, neurons, volume) and the champion's norm.
+/// the morph grown there (parts, joints, neurons, volume, height as built) and the champion's norm.
 pub fn csv(champions: &[ChampionPlasticity]) -> String {
     let mut lines = vec![CSV_COLUMNS.to_string()];
     let number = |v: f64| {
@@ -726,6 +732,7 @@ pub fn csv(champions: &[ChampionPlasticity]) -> String {
                     m.joints.to_string(),
                     m.neurons.to_string(),
                     number(m.volume),
+                    number(m.height),
                 ],
                 None => Default::default(),
             });

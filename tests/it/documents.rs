@@ -341,6 +341,7 @@ const CUT_DOWN: &[CutDown] = &[
             ("--replicates 10", "--replicates 2"),
             ("--evaluations 1500", "--evaluations 8"),
             ("--evaluations 2592", "--evaluations 32"),
+            ("--evaluations 160", "--evaluations 32"),
         ],
         &[("--pop", "4"), ("--seconds", "0.2")],
     ),

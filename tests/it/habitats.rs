@@ -477,3 +477,38 @@ fn evolve_walks_sets_the_generations_from_a_budget_of_walks() {
         "--walks",
     );
 }
+
+#[test]
+fn replay_habitat_writes_each_habitat_s_replay_beside_the_others() {
+    let dir = scratch_dir("habitats-replay");
+    let config = config(&dir, 1, "");
+    let run = dir.join("run");
+    evolve(&config, &run, &["--gens", "1"]);
+    for habitat in ["poor", "rich"] {
+        let output = ontogeny_command()
+            .arg("replay")
+            .arg(&run)
+            .args(["--habitat", habitat])
+            .output()
+            .unwrap();
+        succeeded(&output);
+    }
+    succeeded(&ontogeny_command().arg("replay").arg(&run).output().unwrap());
+    let mut folders: Vec<String> = std::fs::read_dir(run.join("replay"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    folders.sort();
+    assert_eq!(
+        folders,
+        ["gen-0-rank-1", "gen-0-rank-1-poor", "gen-0-rank-1-rich"]
+    );
+    for folder in &folders {
+        assert!(
+            run.join("replay")
+                .join(folder)
+                .join("behaviour.gif")
+                .is_file()
+        );
+    }
+}

@@ -77,6 +77,28 @@ fn evolve_json_prints_the_final_line_as_one_object_and_genome_show_json_its_cham
     );
     // The progress lines stay on standard error.
     assert!(stderr(&o).contains("generation 0: "), "{}", stderr(&o));
+    // Resuming the finished run prints the same object, with nothing evaluated this time.
+    let again = object(
+        &ontogeny_command()
+            .args(["evolve", "--json", "--resume"])
+            .arg(&run)
+            .output()
+            .unwrap(),
+    );
+    for key in [
+        "dir",
+        "encoding",
+        "fitness",
+        "generation",
+        "best",
+        "best_fine",
+        "files",
+    ] {
+        assert_eq!(again[key], json[key], "{key}");
+    }
+    assert_eq!(again["evaluations"], 0);
+    assert_eq!(again["simulated"], 0);
+    assert_eq!(again["seconds"], 0.0);
 
     // The champion's genome, shown as JSON: what the text says, as numbers.
     let best = run.join("best.lsys");

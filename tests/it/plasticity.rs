@@ -42,6 +42,10 @@ fn a_genome_that_reads_the_cue_grows_two_morphs_and_one_that_does_not_grows_one(
     // 0.5 + 2 × (0.5 + 0.3 + 0.3) = 2.7 m, volumes 0.15625 and 0.16875 m³.
     assert!((cues[0].volume - 0.15625).abs() < 1e-12, "{cues:?}");
     assert!((cues[1].volume - 0.16875).abs() < 1e-12, "{cues:?}");
+    // The turtle turns about the vertical only: both morphs lie flat, as high as a part is
+    // thick.
+    assert!((cues[0].height - 0.25).abs() < 1e-12, "{cues:?}");
+    assert!((cues[1].height - 0.25).abs() < 1e-12, "{cues:?}");
     let norm = norm.unwrap();
     assert!(norm.depends_on_cue);
     assert_eq!(norm.parts_change, 2.0);
