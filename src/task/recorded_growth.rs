@@ -13,7 +13,6 @@
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-use super::recording::Sample;
 use crate::creature::{Creature, Joint, Part, PartId};
 use crate::sim::{Grown, World};
 
@@ -127,11 +126,15 @@ fn appearance(creature: &Creature, id: PartId, size: Vector3<f64>) -> Option<Bod
     })
 }
 
-/// Why a recording's growth cannot be read: the sample (from 0) and what is wrong.
-pub fn check_growth(creature: &Creature, samples: &[Sample]) -> Result<(), String> {
+/// Why a recording's growth cannot be read: the sample (from 0) and what is wrong. Each sample
+/// is given as its changes and the number of parts it poses.
+pub fn check_growth<'s>(
+    creature: &Creature,
+    samples: impl IntoIterator<Item = (&'s [BodyChange], usize)>,
+) -> Result<(), String> {
     let mut parts = creature.parts.len();
-    for (i, sample) in samples.iter().enumerate() {
-        for change in &sample.growth {
+    for (i, (growth, posed)) in samples.into_iter().enumerate() {
+        for change in growth {
             let bad = match change {
                 BodyChange::Appears { part, joint, .. } => {
                     if part.0 != parts {
@@ -157,11 +160,10 @@ pub fn check_growth(creature: &Creature, samples: &[Sample]) -> Result<(), Strin
                 return Err(format!("frame {}: {bad}", i + 1));
             }
         }
-        if sample.parts.len() > parts {
+        if posed > parts {
             return Err(format!(
-                "frame {}: {} parts posed, but the body has {parts}",
-                i + 1,
-                sample.parts.len()
+                "frame {}: {posed} parts posed, but the body has {parts}",
+                i + 1
             ));
         }
     }
@@ -169,21 +171,23 @@ pub fn check_growth(creature: &Creature, samples: &[Sample]) -> Result<(), Strin
 }
 
 /// The body a recording shows at each sample: the creature as dropped, with the changes of
-/// every sample up to it (a recording whose growth [`check_growth`] passed).
+/// every sample up to it (a recording whose growth
+/// [`Recording::check_growth`](super::Recording::check_growth) passed).
 pub struct GrowingBody<'r> {
     first: &'r Creature,
-    samples: &'r [Sample],
+    /// Each sample's changes.
+    growth: Vec<&'r [BodyChange]>,
     body: Creature,
     /// The samples whose changes `body` holds.
     applied: usize,
 }
 
 impl<'r> GrowingBody<'r> {
-    /// The body of `creature` (as dropped), grown as `samples` say.
-    pub fn new(creature: &'r Creature, samples: &'r [Sample]) -> GrowingBody<'r> {
+    /// The body of `creature` (as dropped), grown as each sample's changes (`growth`) say.
+    pub fn new(creature: &'r Creature, growth: Vec<&'r [BodyChange]>) -> GrowingBody<'r> {
         GrowingBody {
             first: creature,
-            samples,
+            growth,
             body: creature.clone(),
             applied: 0,
         }
@@ -196,8 +200,8 @@ impl<'r> GrowingBody<'r> {
             self.body = self.first.clone();
             self.applied = 0;
         }
-        while self.applied <= i && self.applied < self.samples.len() {
-            for change in &self.samples[self.applied].growth {
+        while self.applied <= i && self.applied < self.growth.len() {
+            for change in self.growth[self.applied] {
                 apply(&mut self.body, change);
             }
             self.applied += 1;
@@ -250,16 +254,13 @@ mod tests {
     use super::*;
     use crate::develop::creature_from_commands;
 
-    fn sample(t: f64, parts: usize, growth: Vec<BodyChange>) -> Sample {
-        Sample {
-            t,
-            phase: None,
-            parts: vec![(Vector3::zeros(), UnitQuaternion::identity()); parts],
-            projectile: None,
-            projectile_size: None,
-            objects: Vec::new(),
-            growth,
-        }
+    /// A sample as the checks see it: its changes and how many parts it poses.
+    fn sample(_t: f64, parts: usize, growth: Vec<BodyChange>) -> (Vec<BodyChange>, usize) {
+        (growth, parts)
+    }
+
+    fn views(samples: &[(Vec<BodyChange>, usize)]) -> Vec<(&[BodyChange], usize)> {
+        samples.iter().map(|(g, n)| (g.as_slice(), *n)).collect()
     }
 
     #[test]
@@ -307,8 +308,11 @@ mod tests {
                 }],
             ),
         ];
-        assert_eq!(check_growth(&creature, &samples), Ok(()));
-        let mut body = GrowingBody::new(&creature, &samples);
+        assert_eq!(check_growth(&creature, views(&samples)), Ok(()));
+        let mut body = GrowingBody::new(
+            &creature,
+            views(&samples).into_iter().map(|v| v.0).collect(),
+        );
         assert_eq!(body.at(0).parts.len(), 1);
         let grown = body.at(1).clone();
         assert_eq!(grown.parts.len(), 2);
@@ -343,12 +347,12 @@ mod tests {
             ),
         ];
         assert_eq!(
-            check_growth(&creature, &samples),
+            check_growth(&creature, views(&samples)),
             Err("frame 2: part 3 changes before it appears".to_string())
         );
         let posed_more = vec![sample(0.0, 2, vec![])];
         assert_eq!(
-            check_growth(&creature, &posed_more),
+            check_growth(&creature, views(&posed_more)),
             Err("frame 1: 2 parts posed, but the body has 1".to_string())
         );
     }

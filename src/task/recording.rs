@@ -181,12 +181,17 @@ impl<'a> Recording<'a> {
     /// Why the recording's growth cannot be read, if it cannot: a part that appears out of
     /// turn or changes before it appears, or a sample posing more parts than the body has.
     pub fn check_growth(&self) -> Result<(), String> {
-        check_growth(&self.creature, &self.samples)
+        let samples = self.samples.iter();
+        check_growth(
+            &self.creature,
+            samples.map(|s| (s.growth.as_slice(), s.parts.len())),
+        )
     }
 
     /// The body at each sample, the creature as dropped grown as the samples say.
     pub fn bodies(&self) -> GrowingBody<'_> {
-        GrowingBody::new(&self.creature, &self.samples)
+        let growth = self.samples.iter().map(|s| s.growth.as_slice()).collect();
+        GrowingBody::new(&self.creature, growth)
     }
 
     /// The status as files spell it (`"self-intersecting"`), when the file holds one.

@@ -649,7 +649,8 @@ function showRecording(data, heading) {
       (f.phase ? `   ${phaseLabel(f.phase)}` : '') + (walked != null ? `   walked ${walked.toFixed(2)} m` : '');
     body.dataset.walked = walked != null ? walked.toFixed(6) : '';
   };
-  describe(data.creature, [...named, `task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
+  const grows = data.body ? [`grows to ${data.body.parts.length} parts during the recording`] : [];
+  describe(data.creature, [...named, ...grows, `task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
     `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);
   $('string').textContent = '';
   // Play at the speed of simulated time.
