@@ -425,8 +425,8 @@ fn show_evaluation(args: &EvalArgs, evaluation: &Evaluation) -> anyhow::Result<(
 }
 
 /// [`run`] for a creature that develops during the evaluation: an `.lsys` in continuous
-/// time, on the walker, with one habitat and one trial, not recorded (the recording's format
-/// holds a fixed body).
+/// time, on the walker, with one habitat and one trial; `--record` records the parts as they
+/// appear and grow.
 fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     let spec = &inputs.spec;
     let refuse = |why: &str| Err(super::bad(format!("develop = \"during\": {why}")));
@@ -434,9 +434,6 @@ fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
         .map_err(|e| super::bad(e.to_string()))?;
     if !spec.is_plain() {
         return refuse("habitats and trials do not grow their creature yet");
-    }
-    if args.record.is_some() {
-        return refuse("a recording cannot hold a growing body yet (leave out --record)");
     }
     if args.file.extension().is_none_or(|e| e != "lsys") {
         return refuse(&format!(
@@ -464,17 +461,35 @@ fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     };
     ontogeny::task::check_continuous(&seedling, &args.file.display().to_string())
         .map_err(|e| super::bad(e.to_string()))?;
+    let grow_error = |e: GrowError| match e {
+        GrowError::Development(d) => anyhow::Error::new(d),
+        GrowError::Interrupted(i) => anyhow::Error::new(i),
+        e => super::bad(e.to_string()),
+    };
+    // The creature as dropped, which a recording starts from; its samples hold its growth.
+    let creature = match &args.record {
+        Some(dir) => {
+            ontogeny::output::check_folder(dir, FolderKind::Recording)?;
+            super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
+            let growing = ontogeny::task::Growing::from_seedling(&seedling, &spec.develop)
+                .map_err(anyhow::Error::new)?;
+            Some(growing.creature().clone())
+        }
+        None => None,
+    };
     let mut progress = Progress::new(flags::progress_label(spec));
     let mut tell = |f| progress.set(f);
-    let watch = ontogeny::task::Watch::uncancelled(false, &mut tell);
+    let watch = ontogeny::task::Watch::uncancelled(args.record.is_some(), &mut tell);
     let evaluation = spec
         .evaluate_grown_job(&seedling, None, watch)
-        .map_err(|e| match e {
-            GrowError::Development(d) => anyhow::Error::new(d),
-            GrowError::Interrupted(i) => anyhow::Error::new(i),
-            e => super::bad(e.to_string()),
-        })?;
+        .map_err(grow_error)?;
     progress.finish();
+    if let (Some(dir), Some(creature)) = (&args.record, &creature) {
+        ontogeny::output::prepare_folder(dir, FolderKind::Recording)?;
+        write_recording(dir, creature, &evaluation, &spec.world)?;
+        let files = ["recording.json", "behaviour.gif"].map(|f| dir.join(f));
+        tell!("{}", ontogeny::output::wrote(&files));
+    }
     show_evaluation(args, &evaluation)
 }
 

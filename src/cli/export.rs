@@ -17,8 +17,8 @@ enum FormatArg {
     Mjcf,
 }
 
-/// Write a creature (an `.lsys` grown to its last frame, or a `creature.json`) with the
-/// simulator's settings as a MuJoCo MJCF model.
+/// Write a creature (an `.lsys` grown to its last frame, or to developmental time T with
+/// `--time T`, or a `creature.json`) with the simulator's settings as a MuJoCo MJCF model.
 #[derive(Args)]
 #[command(after_long_help = "\
 Writes the creature as a MuJoCo MJCF model: the body tree from the root part with a free \
@@ -26,11 +26,14 @@ joint, one box geom per part (sizes are half-extents), the joints as hinges with
 (radians; a joint of 2 or 3 degrees of freedom is 2 or 3 hinges), one actuator per driven \
 degree of freedom matching --actuator, contact exclusions between jointed parts, and the \
 density, friction and time step of the simulator. Ontogeny's Y-up world is rotated so that Z \
-is up. docs/guide/exporting.md details every mapping.
+is up. docs/guide/exporting.md details every mapping. MJCF has no growth: a grammar in \
+continuous time is exported as the creature at one developmental time (its `time:`, or \
+--time T), as a walk with `develop = \"during\"` drops it at `develop_t0` = T.
 
 Examples:
   ontogeny export examples/quadruped.lsys --out quadruped.xml
-  ontogeny export out/snake/creature.json --actuator angle > snake.xml")]
+  ontogeny export out/snake/creature.json --actuator angle > snake.xml
+  ontogeny export examples/grow-while-walking.lsys --time 2 --out grown-at-2.xml")]
 pub struct ExportArgs {
     /// An L-system file (`.lsys`, grown to its last frame) or a `creature.json`.
     file: PathBuf,
@@ -73,9 +76,31 @@ fn read_world(path: &std::path::Path) -> anyhow::Result<WorldSpec> {
     Ok(world)
 }
 
+/// The developmental time of the creature exported, when `args.file` is a grammar in
+/// continuous time: `--time`, else the file's `time:`.
+fn developmental_time(args: &ExportArgs) -> Option<f64> {
+    if args.file.extension().is_none_or(|e| e != "lsys") {
+        return None;
+    }
+    let overrides = ontogeny::lsystem::Overrides {
+        defines: args.development.defines.defines.clone(),
+        seed: args.development.seed.seed(),
+    };
+    let lsys = ontogeny::lsystem::LSystem::from_path_with(&args.file, &overrides).ok()?;
+    let derive = super::derive::derive_options(&args.development, 0);
+    derive.time.or(lsys.time())
+}
+
 /// Exports the creature.
 pub fn run(args: &ExportArgs) -> anyhow::Result<()> {
     let creature = load_creature(&args.file, &args.development, args.max_parts)?;
+    if let Some(t) = developmental_time(args) {
+        tell!(
+            "note: MJCF has no growth: the model is the creature at developmental time {} (choose \
+             another moment with --time T); in MuJoCo it does not grow",
+            ontogeny::number::format_number(t)
+        );
+    }
     let sim = args.physics.sim_options()?;
     let world = match &args.world {
         Some(path) => read_world(path)?,

@@ -71,6 +71,12 @@ pub fn run(args: &ReplayArgs) -> anyhow::Result<()> {
             path.display()
         ))
     })?;
+    recording.check_growth().map_err(|problem| {
+        super::bad(format!(
+            "{}: not a usable growth: {problem}",
+            path.display()
+        ))
+    })?;
     let gif = args.dir.join("behaviour.gif");
     super::check_outputs([&gif])?;
     let playback = super::eval::draw_recording(

@@ -182,7 +182,8 @@ pub fn trail(samples: &[Sample], until: usize) -> Vec<Vector3<f64>> {
 /// each image labelled with its simulated time and the protocol's phase (and, for a walker,
 /// the distance walked so far, with the root's path drawn on the ground), the projectile's
 /// trail so far drawn, and the aim task's target when there is one; the camera follows the
-/// creature. `progress` is told the fraction of images written.
+/// creature. A growing body is drawn as each sample has it: the parts that have appeared, at
+/// their sizes then. `progress` is told the fraction of images written.
 ///
 /// A recording without samples (an evaluation refused before simulating) is drawn as one
 /// image of the creature as built, checked, saying that nothing was recorded and `why`.
@@ -205,10 +206,12 @@ pub fn write_behaviour_gif(
     let target = recording.target_point();
     let walks = recording.task == "walker";
     let world = (!recording.world.is_flat()).then(|| Arc::new(Terrain::new(&recording.world)));
+    // The body at each image: a growing one has the parts that have appeared, at their sizes.
+    let mut bodies = recording.bodies();
     let poses: Vec<Creature> = playback
         .shown
         .iter()
-        .map(|&i| posed(creature, &samples[i]))
+        .map(|&i| posed(bodies.at(i), &samples[i]))
         .collect();
     let overlays: Vec<Overlay> = playback
         .shown
@@ -235,7 +238,7 @@ pub fn write_behaviour_gif(
         })
         .collect();
     let framing = Framing::Following {
-        parts: creature.parts.len(),
+        parts: bodies.at(samples.len() - 1).parts.len(),
     };
     write_gif(
         poses.iter(),
@@ -349,6 +352,7 @@ mod tests {
                 projectile: None,
                 projectile_size: None,
                 objects: Vec::new(),
+                growth: Vec::new(),
             })
             .collect()
     }

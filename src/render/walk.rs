@@ -88,6 +88,7 @@ mod tests {
             projectile: None,
             projectile_size: None,
             objects: Vec::new(),
+            growth: Vec::new(),
         }
     }
 

@@ -24,6 +24,7 @@ mod habitat;
 mod jump;
 mod options;
 mod protocol;
+mod recorded_growth;
 mod recording;
 mod registry;
 mod rested;
@@ -45,6 +46,7 @@ pub use habitat::{
 pub use jump::{JumpOptions, JumpTask, jump};
 pub use options::TaskOptions;
 pub use protocol::{Bounds, Rest, Setup, Watch};
+pub use recorded_growth::{BodyChange, GrowingBody};
 pub use recording::{
     MAX_RECORDED_FRAMES, MAX_RECORDED_SAMPLES, Phase, RecordedFrame, Recording, Sample,
     recording_interval,

@@ -9,11 +9,12 @@ use std::collections::BTreeMap;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
+use super::recorded_growth::GrowthRecorder;
 use super::recording::{Phase, Sample, recording_interval};
 use super::{Evaluation, Status};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
-use crate::sim::{SettingError, SimOptions, World, WorldSpec};
+use crate::sim::{Grown, SettingError, SimOptions, World, WorldSpec};
 
 /// When a creature counts as at rest (Chaumont et al. 3.3): for `duration` seconds in a row,
 /// every part's centre moves less than `distance` per 1/60 s (a speed, so the test means the
@@ -148,6 +149,8 @@ pub(super) struct Run<'p> {
     interrupted: bool,
     /// The development that goes on while the controller runs, when the creature grows.
     pub(super) growing: Option<&'p mut super::grow::Growing>,
+    /// What growth changed since the last sample kept, when recording a growing creature.
+    grew: GrowthRecorder,
 }
 
 impl Run<'_> {
@@ -178,13 +181,19 @@ impl Run<'_> {
             && let Some(growing) = self.growing.as_deref_mut()
         {
             let dt = self.world.control_step();
-            growing.step(&mut self.world, dt).map_err(|e| {
+            if self.record {
+                self.grew.begin(&self.world);
+            }
+            let grown = growing.step(&mut self.world, dt).map_err(|e| {
                 Evaluation::failed(
                     self.task,
                     Status::Invalid,
                     format!("development failed at t = {:.3} s: {e}", self.world.time()),
                 )
             })?;
+            if self.record && grown != Grown::default() {
+                self.grew.after(&self.world, growing.creature(), &grown);
+            }
         }
         if self.record {
             let sample = Sample {
@@ -207,6 +216,7 @@ impl Run<'_> {
                         (Vector3::from(p), UnitQuaternion::from_quaternion(q))
                     })
                     .collect(),
+                growth: Vec::new(),
             };
             self.keep(sample);
         }
@@ -216,8 +226,10 @@ impl Run<'_> {
 
     /// Keeps the sample of step `steps` if the recording's interval falls on it; otherwise
     /// holds it back, in case it is the last.
-    fn keep(&mut self, sample: Sample) {
-        if (self.steps - 1).is_multiple_of(self.interval) {
+    fn keep(&mut self, mut sample: Sample) {
+        let kept = (self.steps - 1).is_multiple_of(self.interval);
+        sample.growth = self.grew.for_sample(kept);
+        if kept {
             self.recording.push(sample);
             self.pending = None;
         } else {
@@ -472,6 +484,7 @@ fn start<'p>(
         cancel: watch.cancel,
         interrupted: false,
         growing: None,
+        grew: GrowthRecorder::default(),
     })
 }
 

@@ -9,6 +9,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 use super::compact;
+use super::recorded_growth::{BodyChange, GrowingBody, check_growth};
 use super::{Evaluation, Status};
 use crate::creature::Creature;
 use crate::sim::WorldSpec;
@@ -98,6 +99,10 @@ pub struct Sample {
         serialize_with = "compact::poses"
     )]
     pub objects: Vec<(Vector3<f64>, UnitQuaternion<f64>)>,
+    /// What changed in a growing body since the sample before: parts that appeared, were
+    /// resized or stopped growing (empty, and not written, for a body that does not grow).
+    #[serde(skip_serializing_if = "Vec::is_empty", default)]
+    pub growth: Vec<BodyChange>,
 }
 
 /// The `recording.json` file `eval --record` writes and `replay` and `view` read: the creature
@@ -168,6 +173,27 @@ impl<'a> Recording<'a> {
         self.target.map(|[x, y, z]| Vector3::new(x, y, z))
     }
 
+    /// Whether the body grows during the recording (some sample records a change).
+    pub fn grows(&self) -> bool {
+        self.samples.iter().any(|s| !s.growth.is_empty())
+    }
+
+    /// Why the recording's growth cannot be read, if it cannot: a part that appears out of
+    /// turn or changes before it appears, or a sample posing more parts than the body has.
+    pub fn check_growth(&self) -> Result<(), String> {
+        let samples = self.samples.iter();
+        check_growth(
+            &self.creature,
+            samples.map(|s| (s.growth.as_slice(), s.parts.len())),
+        )
+    }
+
+    /// The body at each sample, the creature as dropped grown as the samples say.
+    pub fn bodies(&self) -> GrowingBody<'_> {
+        let growth = self.samples.iter().map(|s| s.growth.as_slice()).collect();
+        GrowingBody::new(&self.creature, growth)
+    }
+
     /// The status as files spell it (`"self-intersecting"`), when the file holds one.
     pub fn status_name(&self) -> Option<&'static str> {
         self.status.map(Status::name)
@@ -197,6 +223,7 @@ mod tests {
                 projectile: None,
                 projectile_size: None,
                 objects: Vec::new(),
+                growth: Vec::new(),
             }],
             habitats: None,
         };
@@ -244,6 +271,7 @@ mod tests {
                 projectile: None,
                 projectile_size: None,
                 objects: Vec::new(),
+                growth: Vec::new(),
             }],
             habitats: None,
         };

@@ -503,19 +503,22 @@ pub fn recording_data(dir: &Path) -> Result<Value, ViewError> {
 
 /// The page's data for `recording`, titled `file`: the recording's keys, with `kind`
 /// (`recording`), `file`, the geometry of a world that is not flat (`scene`, see
-/// [`scene::scene`]) and, for a recording without samples, `no_frames` (see
-/// [`recording_data`]); or why its samples do not fit its creature.
+/// [`scene::scene`]), for a body that grows during the recording `body` (the body at the last
+/// sample, every part that appeared, in the creature's first axes: the page makes a mesh for
+/// each and shows those each sample poses, at the sizes its `growth` gives them) and, for a
+/// recording without samples, `no_frames` (see [`recording_data`]); or why its samples do not
+/// fit its creature or its growth.
 fn recording_value(recording: &crate::task::Recording, file: &str) -> Result<Value, String> {
-    let parts = recording.creature.parts.len();
-    if let Some(bad) = recording
-        .samples
-        .iter()
-        .position(|s| s.parts.len() != parts)
-    {
-        return Err(format!(
-            "frame {bad} has {} part poses for a creature of {parts} parts",
-            recording.samples[bad].parts.len(),
-        ));
+    recording.check_growth()?;
+    let mut bodies = recording.bodies();
+    for (i, sample) in recording.samples.iter().enumerate() {
+        let parts = bodies.at(i).parts.len();
+        if sample.parts.len() != parts {
+            return Err(format!(
+                "frame {i} has {} part poses for a creature of {parts} parts",
+                sample.parts.len(),
+            ));
+        }
     }
     // Through the recording's own text (not `serde_json::to_value`, which would widen its f32
     // poses back to f64 digits).
@@ -528,6 +531,10 @@ fn recording_value(recording: &crate::task::Recording, file: &str) -> Result<Val
     }
     if let Some(reason) = no_samples_reason(recording) {
         value["no_frames"] = json!(reason);
+    }
+    if recording.grows() {
+        let last = recording.samples.len() - 1;
+        value["body"] = serde_json::to_value(bodies.at(last)).map_err(|e| e.to_string())?;
     }
     Ok(value)
 }

@@ -201,6 +201,7 @@ fn poses_are_written_at_f32_precision() {
         projectile: Some(Vector3::new(2.0, 0.1f32 as f64, 0.0)),
         projectile_size: None,
         objects: Vec::new(),
+        growth: Vec::new(),
     };
     let text = serde_json::to_string(&frame).unwrap();
     assert_eq!(

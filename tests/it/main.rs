@@ -35,6 +35,7 @@ mod genome_lsystem;
 mod genome_plastic;
 mod genome_plastic_lsystem;
 mod grow_while_walking;
+mod growing_shown;
 mod habitats;
 mod json;
 mod key;

@@ -4,6 +4,7 @@
 
 pub(crate) mod browser;
 mod defines;
+mod growing;
 mod habitats;
 mod server;
 

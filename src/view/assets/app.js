@@ -491,6 +491,22 @@ function outcome(data) {
   return lines;
 }
 
+// Each frame's part sizes for a growing body: the creature's as dropped, then each frame's
+// growth (parts that appear, parts resized) in turn.
+function growthSizes(creature, frames) {
+  let sizes = creature.parts.map((p) => p.size);
+  return frames.map((f) => {
+    if (f.growth) {
+      sizes = sizes.slice();
+      for (const change of f.growth) {
+        if (change.appears) sizes[change.appears.part] = change.appears.shape.size;
+        else if (change.resized) sizes[change.resized.part] = change.resized.size;
+      }
+    }
+    return sizes;
+  });
+}
+
 // Plays a recording: a recording page's, or (with `heading`, the lines that name it) the walk of
 // a run's individual, shown inside the run page.
 function showRecording(data, heading) {
@@ -500,7 +516,10 @@ function showRecording(data, heading) {
   }
   const named = heading || [];
   const frames = data.frames;
-  const meshes = drawCreature(data.creature);
+  // A body that grows during the recording (`body`: every part that appears) has a mesh for
+  // each of its parts; a frame shows those it poses, at the sizes its growth gives them.
+  const meshes = drawCreature(data.body || data.creature);
+  const sizesAt = data.body ? growthSizes(data.creature, frames) : null;
   drawBrain(data.creature.brain, data.creature.joints);
   if (!frames.length) {
     // Refused before simulating: the creature as built, and why.
@@ -584,6 +603,15 @@ function showRecording(data, heading) {
   }
   onFrame = (i) => {
     const f = frames[i];
+    if (sizesAt) {
+      meshes.forEach((m, k) => {
+        m.visible = k < f.parts.length;
+        const size = sizesAt[i][k];
+        if (size) m.scale.set(size[0], size[1], size[2]);
+      });
+      for (const m of markers) m.visible = m.userData.joint.child < f.parts.length;
+      body.dataset.parts = String(f.parts.length);
+    }
     f.parts.forEach(([p, q], k) => {
       meshes[k].position.copy(v3(p));
       meshes[k].quaternion.copy(quat(q));
@@ -621,7 +649,8 @@ function showRecording(data, heading) {
       (f.phase ? `   ${phaseLabel(f.phase)}` : '') + (walked != null ? `   walked ${walked.toFixed(2)} m` : '');
     body.dataset.walked = walked != null ? walked.toFixed(6) : '';
   };
-  describe(data.creature, [...named, `task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
+  const grows = data.body ? [`grows to ${data.body.parts.length} parts during the recording`] : [];
+  describe(data.creature, [...named, ...grows, `task: ${data.task || '?'}`, ...outcome(data), `recorded frames: ${frames.length}`,
     `duration: ${frames[frames.length - 1].t.toFixed(2)} s`]);
   $('string').textContent = '';
   // Play at the speed of simulated time.

@@ -878,3 +878,22 @@ fn a_comparison_page_shows_its_report_plots_and_replicates_in_chromium() {
     let png = cmp.parent().unwrap().join("comparison.png");
     assert_snapshot(&browser, &cmp, &png);
 }
+
+#[test]
+#[ignore = "needs Chromium; run with: cargo test --release --test it -- --ignored browser::"]
+fn a_recording_of_a_growing_walk_shows_its_parts_as_they_appear_in_chromium() {
+    let browser = chromium();
+    let rec = crate::growing_shown::growing_recording("browser");
+    let recording: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(rec.join("recording.json")).unwrap())
+            .unwrap();
+    let frames = recording["frames"].as_array().unwrap();
+    let viewer = Viewer::start(&rec);
+    // The page draws the parts each frame poses: two at the start, six at the end.
+    for (frame, parts) in [(0, 2), (frames.len() - 1, 6)] {
+        let page = Page::load(&browser, &format!("{}?frame={frame}", viewer.url));
+        page.assert_ready();
+        assert_eq!(page.number("parts"), parts, "frame {frame}: {}", page.body);
+        assert_eq!(frames[frame]["parts"].as_array().unwrap().len(), parts);
+    }
+}
