@@ -37,7 +37,7 @@ pub use check::{MAX_SECONDS, check_duration};
 pub use fitness::{Fitness, FitnessExpression, PROTOCOL_TERMS};
 pub use grow::{DEFAULT_RATE, Develop, DevelopWhen, Growing, GrowthTally};
 pub use habitat::{
-    Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
+    Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Noise, Perturbation, Trials, Unit,
 };
 pub use jump::{JumpOptions, JumpTask, jump};
 pub use options::TaskOptions;
