@@ -2,9 +2,10 @@
 # The canalization figures of docs/results/plasticity.md: per condition and generation
 # measured, the share of champions whose body any noisy array changed (at each noise level)
 # and the median over champions of the mutants' |ΔV|/V and share changed; exact two-sided
-# Mann-Whitney tests between conditions of the last generation's mutational |ΔV|/V, and an
-# exact two-sided sign-flip (Wilcoxon signed-rank) test of its change from generation 0 to
-# the last within each condition.
+# Mann-Whitney tests between conditions of the last generation's mutational |ΔV|/V, and exact
+# two-sided sign-flip (Wilcoxon signed-rank) tests of the change of the mutants' |ΔV|/V and of
+# the share of mutants that change the body from generation 0 to the last within each
+# condition (Holm over the conditions).
 #   for c in plastic fixed random-cue; do for r in $(seq 1 10); do for n in 0.05 0.25 0.45; do
 #     ontogeny runs canalization runs/plasticity/$c/rep-$r --samples 20 --every 5 --noise $n --csv \
 #       | sed "1s/^/condition,run,noise,/;2,\$s/^/$c,rep-$r,$n,/"; done; done; done \
@@ -40,10 +41,16 @@ def exact_mw(a, b):
     return u, extreme / total, u / (len(a) * len(b))
 def signed_rank(d):
     d = [x for x in d if x != 0]
+    # Ranks of |d|, ties given their mean rank; the exact distribution over every sign flip.
     order = sorted(range(len(d)), key=lambda i: abs(d[i]))
-    ranks = [0.0] * len(d)
-    for position, i in enumerate(order):
-        ranks[i] = position + 1
+    ranks, i = [0.0] * len(d), 0
+    while i < len(d):
+        j = i
+        while j + 1 < len(d) and abs(d[order[j + 1]]) == abs(d[order[i]]):
+            j += 1
+        for k in range(i, j + 1):
+            ranks[order[k]] = (i + j) / 2 + 1
+        i = j + 1
     w = sum(r for r, x in zip(ranks, d) if x > 0)
     mean = sum(ranks) / 2
     extreme = total = 0
@@ -55,9 +62,22 @@ final = {c: of(c, last, noises[0], 'mutation_mean_volume_change') for c in condi
 for a, b in itertools.combinations(conditions, 2):
     u, p, a12 = exact_mw(final[a], final[b])
     print(f'generation {last} mutants |dV|/V {a} vs {b}: U = {u:.1f}, p = {p:.4f}, A12 = {a12:.2f}')
-for c in conditions:
-    by_run = lambda g: {r['run']: float(r['mutation_mean_volume_change']) for r in rows
-                        if r['condition'] == c and int(r['generation']) == g and r['noise'] == noises[0]}
-    first, end = by_run(0), by_run(last)
-    w, p = signed_rank([end[k] - first[k] for k in first])
-    print(f'{c}: mutants |dV|/V generation 0 -> {last}: W+ = {w:.1f}, p = {p:.4f}')
+def holm(ps):
+    order = sorted(range(len(ps)), key=lambda i: ps[i])
+    adjusted, running = [0.0] * len(ps), 0.0
+    for position, i in enumerate(order):
+        running = max(running, min(1.0, (len(ps) - position) * ps[i]))
+        adjusted[i] = running
+    return adjusted
+for column, name in [('mutation_mean_volume_change', 'mutants |dV|/V'), ('mutation_changed', 'share of mutants changed')]:
+    tests = []
+    for c in conditions:
+        by_run = lambda g: {r['run']: float(r[column]) for r in rows
+                            if r['condition'] == c and int(r['generation']) == g and r['noise'] == noises[0]}
+        first, end = by_run(0), by_run(last)
+        differences = [end[k] - first[k] for k in first]
+        w, p = signed_rank(differences)
+        tests.append((c, w, p, sum(d != 0 for d in differences), sum(d > 0 for d in differences)))
+    for (c, w, p, n, up), adjusted in zip(tests, holm([t[2] for t in tests])):
+        print(f'{c}: {name} generation 0 -> {last}: {up} of {n} non-zero changes up, W+ = {w:.1f}, '
+              f'p = {p:.4f}, Holm over the conditions {adjusted:.4f}')

@@ -9,6 +9,7 @@ use ontogeny::front::text;
 use ontogeny::run::pick::PickError;
 use ontogeny::run::{Run, encoding_of_run};
 use ontogeny::study::canalization::{self, Settings};
+use ontogeny::study::lifetime;
 use ontogeny::study::listing;
 use ontogeny::study::plasticity::{self, PlasticityError};
 
@@ -42,6 +43,25 @@ pub enum RunsVerb {
     /// norm: the body grown under each cue (each distinct chemical array of the habitats) and
     /// how those bodies differ. A table per condition, a row per champion, and a summary.
     Plasticity(PlasticityArgs),
+    /// Measure development during the walk (Kriegman's measure) for runs whose creatures grow
+    /// while they walk: per generation, what the best individual and the generation on average
+    /// grew during their walks, body (parts, length) against brain (neurons, links). A table
+    /// per condition, a row per generation (medians over the runs).
+    Growth(GrowthArgs),
+}
+
+/// The flags of `ontogeny runs growth`.
+#[derive(Args)]
+pub struct GrowthArgs {
+    /// A comparison directory, a directory with runs under it, or a run directory.
+    dir: PathBuf,
+    /// Print a CSV: a header, then a row per run and generation, every number in full (empty
+    /// where there is none).
+    #[arg(long, conflicts_with = "json")]
+    csv: bool,
+    /// Print one JSON object: the directory and a row per run and generation.
+    #[arg(long)]
+    json: bool,
 }
 
 /// The flags of `ontogeny runs plasticity`.
@@ -89,7 +109,8 @@ pub struct CanalizationArgs {
 
 /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
 /// directory (`runs list DIR`), the canalization of its champions (`runs canalization DIR`),
-/// the plasticity of champions (`runs plasticity DIR`).
+/// the plasticity of champions (`runs plasticity DIR`), development during the walk (`runs
+/// growth DIR`).
 #[derive(Args)]
 pub struct RunsArgs {
     #[command(subcommand)]
@@ -132,6 +153,41 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
             )?;
         }
         RunsVerb::Plasticity(args) => plasticity_of(args)?,
+        RunsVerb::Growth(args) => growth_of(args)?,
+    }
+    Ok(())
+}
+
+/// A measurement's error as the command line reports it: bad input exits 2.
+fn measurement_error(e: PlasticityError) -> anyhow::Error {
+    match e {
+        PlasticityError::Run(e) => super::evolve::run_error(e),
+        PlasticityError::Input(message) => super::bad(message),
+        PlasticityError::Other(message) => anyhow::anyhow!(message),
+    }
+}
+
+/// `ontogeny runs growth`.
+fn growth_of(args: &GrowthArgs) -> anyhow::Result<()> {
+    let (runs, notes) = plasticity::find_runs(&args.dir).map_err(measurement_error)?;
+    for note in notes {
+        tell!("note: {note}");
+    }
+    let mut progress = super::progress::Progress::new("reading the runs");
+    let (rows, notes) = lifetime::measure_runs(&runs, &mut |done, all| {
+        progress.set(done as f64 / all as f64)
+    })
+    .map_err(measurement_error)?;
+    progress.finish();
+    for note in notes {
+        tell!("note: {note}");
+    }
+    if args.json {
+        say!("{}", lifetime::json(&args.dir, &rows));
+    } else if args.csv {
+        say!("{}", lifetime::csv(&rows));
+    } else {
+        say!("{}", lifetime::text(&rows));
     }
     Ok(())
 }
@@ -139,11 +195,7 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
 /// `ontogeny runs plasticity`.
 fn plasticity_of(args: &PlasticityArgs) -> anyhow::Result<()> {
     let dir = &args.dir;
-    let error = |e: PlasticityError| match e {
-        PlasticityError::Run(e) => super::evolve::run_error(e),
-        PlasticityError::Input(message) => super::bad(message),
-        PlasticityError::Other(message) => anyhow::anyhow!(message),
-    };
+    let error = measurement_error;
     let (runs, notes) = plasticity::find_runs(dir).map_err(error)?;
     for note in notes {
         tell!("note: {note}");

@@ -10,6 +10,7 @@ pub mod bench;
 pub mod canalization;
 pub mod compare;
 pub mod fidelity;
+pub mod lifetime;
 pub mod listing;
 pub mod plasticity;
 pub mod stats;
