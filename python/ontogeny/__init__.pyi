@@ -164,7 +164,7 @@ def derive(
     warning that says so."""
 
 def evaluate(
-    creature: Creature,
+    creature: Union[Creature, _Path],
     task: _Task = "walker",
     *,
     seconds: Optional[float] = None,
@@ -184,8 +184,10 @@ def evaluate(
     expression of the task's terms (``"D_w - 0.5 * drag"``); an unknown term raises
     ValueError. ``config`` takes the task from a configuration file's ``[task]`` tables
     instead (its habitats and trials too, as ``ontogeny eval --config`` does: the walks are in
-    ``Evaluation.habitats``), and ``habitat`` walks in the habitat of that name alone; a
-    habitat that sets the chemical array a creature grows in raises ValueError."""
+    ``Evaluation.habitats``), and ``habitat`` walks in the habitat of that name alone. Given a
+    file's path (an ``.lsys`` grammar or a genome) in place of a creature, the file is grown in
+    each habitat from the habitat's chemical array, as ``ontogeny eval FILE --config`` grows
+    it; a creature already grown in a habitat that sets the array raises ValueError."""
 
 def evaluate_many(
     creatures: Sequence[Creature],
@@ -218,6 +220,11 @@ class Run:
         """One generation's individuals (default: every generation's), a dict each; in a run
         with habitats or trials, ``habitats`` lists each one's walks as
         ``Evaluation.habitats`` does."""
+    def habitats(self, generation: Optional[int] = None, rank: int = 1) -> List[Dict[str, Any]]:
+        """The walks of the individual of rank ``rank`` (1 = the best) in ``generation``
+        (default: the last complete one), as ``ontogeny replay --gen --rank`` picks it: each
+        habitat's and trial's fitness, status and terms from its stored evaluation; empty in a
+        run without habitats or trials."""
     def to_pandas(self, table: str = "generations") -> Any:
         """``"generations"`` or ``"individuals"`` as a pandas ``DataFrame``."""
 

@@ -1,8 +1,11 @@
 //! Evaluations from Python: `evaluate`, `evaluate_many` and the `Evaluation` class.
 
-use crate::common::{diagnostic_error, setting_named, task_named, thread_pool, value_error};
+use crate::common::{
+    diagnostic_error, load_error, require_exists, setting_named, task_named, thread_pool,
+    value_error, warn_all,
+};
 use crate::creature::PyCreature;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::interrupt::{interrupted_error, interruptible};
@@ -11,6 +14,7 @@ use numpy::ndarray::{Array1, Array3};
 use numpy::{PyArray1, PyArray3};
 use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
+use ontogeny::encoding::{LoadError, LoadOptions, Loaded, load_creature};
 use ontogeny::evolve::evaluator::Evaluator;
 use ontogeny::evolve::habitats::{evaluate_in_habitats, recorded_walk};
 use ontogeny::front::flags::{TaskFlags, option_of};
@@ -19,6 +23,7 @@ use ontogeny::run::config::read_task_config;
 use ontogeny::sim::knobs::{Knob, Value, knob};
 use ontogeny::sim::{ActuatorModel, JointModel, KNOBS, SimOptions, StrengthFrom};
 use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch, keyword_refusal};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt};
 use rayon::prelude::*;
@@ -332,33 +337,79 @@ fn named<T: Copy>(
 
 evaluating_function! {
     /// Evaluates a creature on a task, as `ontogeny eval FILE --task TASK` does, with the same
-    /// result bit for bit.
-    fn evaluate(py, creature: &PyCreature; args, record) -> PyResult<PyEvaluation> {
+    /// result bit for bit. Given a file's path in place of a creature, grows the file in each
+    /// habitat of `config=` (with the habitat's chemical array), as `ontogeny eval FILE
+    /// --config CONFIG` does.
+    fn evaluate(py, creature: &Bound<'_, PyAny>; args, record) -> PyResult<PyEvaluation> {
         let spec = args.spec()?;
-        let only = args.only(&spec)?;
-        let body = Arc::clone(&creature.creature);
-        let outcome = interruptible(py, |cancel| watched(&spec, &body, only, record, cancel))?
+        let creatures = match creature.cast::<PyCreature>() {
+            Ok(creature) => {
+                args.only(&spec)?;
+                let body = Arc::clone(&creature.get().creature);
+                vec![(*body).clone(); spec.habitat_count()]
+            }
+            Err(_) => {
+                let Ok(path) = creature.extract::<PathBuf>() else {
+                    return Err(PyTypeError::new_err(format!(
+                        "evaluate takes a Creature or a file's path, not {}",
+                        creature.get_type().name()?
+                    )));
+                };
+                require_exists(&path)?;
+                grown_in_habitats(py, &path, &spec)?
+            }
+        };
+        let only = args.habitat_index(&spec)?;
+        let outcome = interruptible(py, |cancel| watched(&spec, &creatures, only, record, cancel))?
             .map_err(interrupted_error)?;
         Ok(PyEvaluation { outcome })
     }
 }
 
+/// The creatures the file at `path` grows into, one per habitat of `spec` (one without
+/// habitats), each grown from the habitat's chemical array
+/// ([`LoadOptions::habitat_environment`]) as `ontogeny eval FILE --config` grows them; the
+/// notes of growing are `UserWarning`s. Ctrl-C stops it.
+fn grown_in_habitats(py: Python<'_>, path: &Path, spec: &TaskSpec) -> PyResult<Vec<Creature>> {
+    let loaded = interruptible(py, |cancel| {
+        (0..spec.habitat_count())
+            .map(|h| {
+                let options = LoadOptions {
+                    habitat_environment: spec.habitat_environment(h).map(<[f64]>::to_vec),
+                    cancel: cancel.clone(),
+                    ..LoadOptions::default()
+                };
+                load_creature(path, &options, &mut |_| {})
+            })
+            .collect::<Result<Vec<Loaded>, LoadError>>()
+    })?
+    .map_err(load_error)?;
+    let notes: Vec<String> = loaded.iter().flat_map(|l| l.notes.clone()).collect();
+    warn_all(py, &notes)?;
+    Ok(loaded.into_iter().map(|l| l.creature).collect())
+}
+
 impl TaskArgs<'_, '_> {
     /// The index of the habitat `habitat=` names in `spec` (a `ValueError` listing the
-    /// habitats when it names none), and that a creature already grown can walk in the
+    /// habitats when it names none).
+    fn habitat_index(&self, spec: &TaskSpec) -> PyResult<Option<usize>> {
+        self.habitat
+            .map(|name| spec.habitat_named(name).map_err(value_error))
+            .transpose()
+    }
+
+    /// [`TaskArgs::habitat_index`], and that a creature already grown can walk in the
     /// habitats evaluated: none of them may set the chemical array its body would grow in.
     fn only(&self, spec: &TaskSpec) -> PyResult<Option<usize>> {
-        let only = self
-            .habitat
-            .map(|name| spec.habitat_named(name).map_err(value_error))
-            .transpose()?;
+        let only = self.habitat_index(spec)?;
         for h in (0..spec.habitat_count()).filter(|h| only.is_none_or(|o| o == *h)) {
             if let Some(values) = spec.habitat_environment(h) {
                 return Err(value_error(format!(
                     "habitat '{}' sets the chemical array a creature grows in ({values:?}); a \
-                     creature already grown cannot grow again there: grow it with env= and \
-                     evaluate it in habitats that set none (or use `ontogeny eval FILE \
-                     --config`, which grows the grammar in each)",
+                     creature already grown cannot grow again there: evaluate its file \
+                     (evaluate(PATH, config=...) grows it in each habitat, as `ontogeny eval \
+                     FILE --config` does), or grow it with env= and evaluate it in habitats \
+                     that set none",
                     spec.habitat_name(h)
                 )));
             }
@@ -367,12 +418,12 @@ impl TaskArgs<'_, '_> {
     }
 }
 
-/// `spec`'s evaluation of `creature`, stopped by `cancel`: with habitats, the same body walks
-/// in each (or in habitat `only` alone) and their walks are combined, as `ontogeny eval
-/// --config` does; recorded, the first walk evaluated is the recording.
+/// `spec`'s evaluation of `creatures` (one per habitat of `spec`), stopped by `cancel`: with
+/// habitats, each habitat's walks (or those of habitat `only` alone), combined, as `ontogeny
+/// eval --config` does; recorded, the first walk evaluated is the recording.
 pub(crate) fn watched(
     spec: &TaskSpec,
-    creature: &Creature,
+    creatures: &[Creature],
     only: Option<usize>,
     record: bool,
     cancel: &Cancel,
@@ -383,12 +434,11 @@ pub(crate) fn watched(
             progress: &mut |_| {},
             cancel: Some(cancel),
         };
-        return spec.evaluate_watched(creature, watch);
+        return spec.evaluate_watched(&creatures[0], watch);
     }
-    let creatures = vec![creature.clone(); spec.habitat_count()];
-    let mut outcome = evaluate_in_habitats(spec, &creatures, 0, only, Evaluator::Local, cancel)?;
+    let mut outcome = evaluate_in_habitats(spec, creatures, 0, only, Evaluator::Local, cancel)?;
     if record {
-        outcome.recording = recorded_walk(spec, &creatures, only.unwrap_or(0))
+        outcome.recording = recorded_walk(spec, creatures, only.unwrap_or(0))
             .evaluation
             .recording;
     }
@@ -415,7 +465,7 @@ evaluating_function! {
             pool.install(|| {
                 bodies
                     .par_iter()
-                    .map(|c| watched(&spec, c, only, record, cancel))
+                    .map(|c| watched(&spec, &vec![(**c).clone(); spec.habitat_count()], only, record, cancel))
                     .collect::<Result<_, _>>()
             })
         })?

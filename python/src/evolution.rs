@@ -12,7 +12,10 @@ use ontogeny::encoding::Genome;
 use ontogeny::front::settings::{self, RunFlags};
 use ontogeny::front::start::{NewRun, StartError, start_run};
 use ontogeny::run::config::read_config_source;
+use ontogeny::run::pick::{PickError, individual_by_rank};
 use ontogeny::run::store::RunStore;
+use ontogeny::run::{Run, encoding_of_run};
+use ontogeny::task::HabitatResult;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -223,6 +226,43 @@ impl PyRun {
             }
         }
         Ok(list)
+    }
+
+    /// The walks of the individual of rank `rank` (1 = the best) in generation `generation`
+    /// (default: the last complete one), as `ontogeny replay RUN --gen G --rank K` picks it:
+    /// each habitat's and trial's walk from its stored evaluation, a list of dicts as
+    /// `Evaluation.habitats` gives them (`name`, `trial`, `parts`, `joints`, `fitness`,
+    /// `status`, `terms`, and `message` when something went wrong); empty in a run without
+    /// habitats or trials.
+    #[pyo3(signature = (generation=None, rank=1))]
+    fn habitats<'py>(
+        &self,
+        py: Python<'py>,
+        generation: Option<u32>,
+        rank: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let name = encoding_of_run(&self.dir).map_err(run_error)?;
+        let units: Vec<HabitatResult> = ontogeny::with_genome!(
+            name.as_str(),
+            G => {
+                let run = Run::<G>::open_read_only(&self.dir).map_err(run_error)?;
+                let (_, picked) = individual_by_rank(&run, &self.dir, generation, rank)
+                    .map_err(|e| match e {
+                        PickError::Run(e) => run_error(e),
+                        // Said with the keywords, not the command line's flags.
+                        PickError::Input(m) => value_error(
+                            m.replacen("--gen ", "generation=", 1).replacen("--rank", "rank", 1),
+                        ),
+                    })?;
+                Ok::<_, PyErr>(picked.evaluation.units().to_vec())
+            },
+            |other: &str| Err(value_error(format!(
+                "{}: unknown encoding '{other}'",
+                self.dir.display()
+            )))
+        )?;
+        let json = serde_json::to_string(&units).map_err(value_error)?;
+        py.import("json")?.call_method1("loads", (json,))
     }
 
     fn __repr__(&self) -> String {

@@ -1,6 +1,7 @@
 """Habitats from Python: ``evaluate(config=..., habitat=...)`` equals ``ontogeny eval --config``
-(each habitat's and trial's walk in ``Evaluation.habitats``), bad names and clashing keywords
-raise ``ValueError``, ``Run.individuals()`` gives each individual's walks, and
+(each habitat's and trial's walk in ``Evaluation.habitats``), a file is grown in each habitat's
+chemical array as ``eval FILE --config`` grows it, bad names and clashing keywords raise
+``ValueError``, ``Run.individuals()`` and ``Run.habitats()`` give each individual's walks, and
 ``genome_habitats`` gives what ``ontogeny genome show --habitats --json`` prints."""
 
 import json
@@ -61,6 +62,54 @@ def test_evaluate_in_habitats_equals_the_command_lines_eval(root, cli, config):
     assert ontogeny.evaluate(creature, seconds=0.5).habitats == []
 
 
+ARRAYS = """\
+[task]
+task = "walker"
+
+[task.walker]
+seconds = 0.5
+
+[task.trials]
+count = 2
+heading = 15
+strength = 10
+
+[[task.habitats]]
+name = "poor"
+environment = [0.0]
+
+[[task.habitats]]
+name = "rich"
+environment = [1.0]
+"""
+
+
+def test_evaluate_grows_a_file_in_each_habitats_array_as_the_command_lines_eval(
+    root, cli, tmp_path
+):
+    config = tmp_path / "arrays.toml"
+    config.write_text(ARRAYS)
+    plastic = root / "examples" / "plastic-lsystem.lsys"
+    ours = ontogeny.evaluate(plastic, config=config)
+    theirs = cli.json("eval", plastic, "--config", config, "--json")
+    assert json.loads(ours.to_json()) == theirs
+    # Grown in each habitat's array: 5 parts where chemical 0 is 0, 7 where it is 1.
+    assert [(w["name"], w["trial"], w["parts"]) for w in ours.habitats] == [
+        ("poor", 0, 5), ("poor", 1, 5), ("rich", 0, 7), ("rich", 1, 7),
+    ]
+    rich = ontogeny.evaluate(str(plastic), config=config, habitat="rich")
+    theirs = cli.json("eval", plastic, "--config", config, "--habitat", "rich", "--json")
+    assert rich.habitats == theirs["habitats"] == ours.habitats[2:]
+    assert rich.fitness == theirs["fitness"]
+    # A creature grown once cannot walk where its body would grow otherwise.
+    with pytest.raises(ValueError, match=r"evaluate\(PATH, config=\.\.\.\) grows it"):
+        ontogeny.evaluate(ontogeny.load(plastic), config=config)
+    with pytest.raises(FileNotFoundError, match="absent.lsys"):
+        ontogeny.evaluate(tmp_path / "absent.lsys", config=config)
+    with pytest.raises(TypeError, match="evaluate takes a Creature or a file's path, not int"):
+        ontogeny.evaluate(3, config=config)
+
+
 def test_a_bad_habitat_or_a_clashing_keyword_raises_value_error(root, config, tmp_path):
     creature = ontogeny.load(root / CHAIN)
     with pytest.raises(ValueError, match="no habitat 'marsh'; the habitats are level, hill"):
@@ -92,8 +141,17 @@ def test_a_runs_individuals_carry_their_walks_in_each_habitat(tmp_path, config):
         if individual["status"] == "ok":
             fitnesses = sorted(w["fitness"] for w in walks)
             assert individual["fitness"] == sum(fitnesses) / 4
+    # Run.habitats picks an individual by rank, as replay does: the best first.
+    ranked = sorted(run.individuals(0), key=lambda i: -i["fitness"])
+    assert run.habitats(0, 1) == ranked[0]["habitats"]
+    assert run.habitats() == run.habitats(0, rank=1)
+    with pytest.raises(ValueError, match="rank must be 1 to 4, not 5"):
+        run.habitats(0, 5)
+    with pytest.raises(ValueError, match="generation=3: .* has generations 0 to 0"):
+        run.habitats(3)
     plain = ontogeny.evolve(out=tmp_path / "plain", pop=4, gens=1, seconds=0.5, encoding="direct")
     assert "habitats" not in plain.individuals(0)[0]
+    assert plain.habitats() == []
 
 
 def test_genome_habitats_equals_genome_show_habitats(root, cli, tmp_path):

@@ -47,8 +47,10 @@ pub struct CompareArgs {
     /// Runs per encoding (default 10).
     #[arg(long)]
     replicates: Option<usize>,
-    /// The budget of every replicate, in walks simulated (evaluations times the walks of
-    /// each): the generations are as many as fit in it.
+    /// The budget of every replicate, in walks: every individual evaluated counts one walk per
+    /// habitat and trial, simulated or reused from the evaluation cache (an elite carried over
+    /// counts none; with fresh trials it is walked again and counts). The generations are as
+    /// many as fit in it.
     #[arg(long, required_unless_present_any = ["resume", "merge"])]
     evaluations: Option<u64>,
     /// The comparison's seed; replicate k's seed derives from it (default: the config's,

@@ -89,9 +89,10 @@ pub struct EvolveArgs {
     /// generations in all (at least as many as it has).
     #[arg(long)]
     gens: Option<usize>,
-    /// A budget of walks simulated instead of --gens: as many generations as fit in N walks,
-    /// counting the whole first generation, then every individual but the elite, each walking
-    /// once per habitat and trial (so K = 4 trials gets a quarter of the evaluations of K = 1).
+    /// A budget of walks instead of --gens: as many generations as fit in N walks, counting
+    /// the whole first generation, then every individual but the elite (the elite too with
+    /// fresh trials), each one walk per habitat and trial, simulated or reused from the
+    /// evaluation cache (so K = 4 trials gets a quarter of the evaluations of K = 1).
     #[arg(long, value_name = "N", conflicts_with = "gens")]
     walks: Option<u64>,
     /// The run's seed (default: the config's, else 1).
@@ -353,13 +354,14 @@ fn go<G: Genome>(run: &mut Run<G>, dir: &Path, json: bool) -> anyhow::Result<()>
     let mut last: Option<GenerationReport> = None;
     let fitness = run.config().task.fitness_label();
     let ga = run.config().ga.clone();
+    let fresh = run.config().task.trials.fresh;
     let threads = rayon::current_num_threads();
-    let start = text::start_line(G::NAME, &fitness, &ga, first as usize, threads);
+    let start = text::start_line(G::NAME, &fitness, &ga, fresh, first as usize, threads);
     tell!("{start}");
     let mut observer = |r: &GenerationReport| {
         tally.add(r);
         let line = text::generation_line(&fitness, r);
-        let left = text::evaluations_from(&ga, r.generation as usize + 1);
+        let left = text::evaluations_from(&ga, fresh, r.generation as usize + 1);
         let estimate = (last.is_none() && left > 0).then(|| text::estimate_line(r, left));
         match &bar {
             Some(bar) => {

@@ -14,7 +14,7 @@ use sha2::{Digest, Sha256};
 
 use crate::creature::Creature;
 use crate::sim::WorldSpec;
-use crate::task::{CatapultOptions, JumpOptions, TaskSpec, TaskTables, WalkerOptions};
+use crate::task::{CatapultOptions, JumpOptions, TaskSpec, TaskTables, Trials, WalkerOptions};
 
 /// A creature-and-task key: 32 bytes, written as 64 lowercase hexadecimal digits.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -116,7 +116,8 @@ impl EvaluationKey {
     /// habitats, the default trials) gives its one creature's key
     /// ([`EvaluationKey::of_version`]), so no key made before habitats changes; otherwise the
     /// key hashes each habitat's key (its creature with [`TaskSpec::in_habitat`]), each
-    /// habitat's name and array, and the trials.
+    /// habitat's name and array, and the trials (and each habitat's trials,
+    /// [`TaskSpec::trials_in`], when one sets its own noise ranges).
     pub fn of_habitats(
         creatures: &[Creature],
         task: &TaskSpec,
@@ -134,9 +135,16 @@ impl EvaluationKey {
         let habitats: Vec<(&str, Option<&[f64]>)> = (0..creatures.len())
             .map(|h| (task.habitat_name(h), task.habitat_environment(h)))
             .collect();
-        ("habitats", keys, habitats, &task.trials)
-            .serialize(&mut hasher)
-            .expect("every creature and task serialises");
+        // A habitat's own noise ranges join the key only when some habitat sets them, so no
+        // key made before habitats could set them changes.
+        let own_noise = task.habitats.iter().any(|h| h.trials.is_some());
+        if own_noise {
+            let trials: Vec<Trials> = (0..creatures.len()).map(|h| task.trials_in(h)).collect();
+            ("habitats", keys, habitats, &task.trials, trials).serialize(&mut hasher)
+        } else {
+            ("habitats", keys, habitats, &task.trials).serialize(&mut hasher)
+        }
+        .expect("every creature and task serialises");
         EvaluationKey(hasher.0.finalize().into())
     }
 

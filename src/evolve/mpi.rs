@@ -554,6 +554,7 @@ mod tests {
                 ..WorldSpec::default()
             },
             environment: None,
+            trials: None,
         }];
         task.trials.count = 2;
         task.trials.heading = 10.0;

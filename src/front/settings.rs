@@ -112,7 +112,7 @@ pub fn resolve_ga_and_task<L>(
             ));
         }
         let each = compare::walks_per_individual(&task);
-        ga.generations = generations_for(&ga, walks / each)
+        ga.generations = generations_for(&ga, task.trials.fresh, walks / each)
             .map_err(|e| plain(format!("--walks {walks} ({each} per individual): {e}")))?;
     }
     let other_tables = |tables: &TaskTables| tables.check_other_tables(task.task.table());
@@ -306,8 +306,8 @@ pub fn plan_comparison(
     let (mut ga, task) = resolve_ga_and_task(file, source, &one_generation, &encodings)?;
     // The budget counts walks: an individual of K trials in H habitats walks K·H times.
     let walks = compare::walks_per_individual(&task);
-    ga.generations =
-        generations_for(&ga, budget / walks).map_err(|e| plain(format!("--evaluations: {e}")))?;
+    ga.generations = generations_for(&ga, task.trials.fresh, budget / walks)
+        .map_err(|e| plain(format!("--evaluations: {e}")))?;
     Ok((
         Manifest {
             encodings: names,
@@ -466,7 +466,7 @@ fn condition_arm<G: Genome>(
     let limits = file.limits.unwrap_or_default();
     crate::run::config::check_limits(&limits, Some(source))?;
     let walks = compare::walks_per_individual(&task);
-    ga.generations = generations_for(&ga, budget / walks).map_err(|e| {
+    ga.generations = generations_for(&ga, task.trials.fresh, budget / walks).map_err(|e| {
         plain(format!(
             "condition {name} ({}): --evaluations: {e}",
             source.name()

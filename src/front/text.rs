@@ -27,8 +27,8 @@ pub fn generation_line(fitness: &str, r: &GenerationReport) -> String {
 }
 
 /// The evaluations a run of `ga` makes in its generations from `first` on (see
-/// [`evaluations_of`](crate::study::compare::evaluations_of)).
-pub fn evaluations_from(ga: &GaSettings, first: usize) -> u64 {
+/// [`evaluations_of`](crate::study::compare::evaluations_of); `fresh`: its trials are).
+pub fn evaluations_from(ga: &GaSettings, fresh: bool, first: usize) -> u64 {
     let before = GaSettings {
         generations: first,
         ..ga.clone()
@@ -36,24 +36,31 @@ pub fn evaluations_from(ga: &GaSettings, first: usize) -> u64 {
     let made = if first == 0 {
         0
     } else {
-        crate::study::compare::evaluations_of(&before)
+        crate::study::compare::evaluations_of(&before, fresh)
     };
-    crate::study::compare::evaluations_of(ga).saturating_sub(made)
+    crate::study::compare::evaluations_of(ga, fresh).saturating_sub(made)
 }
 
 /// What a run is about to do, said before it starts: its size (population × generations =
 /// evaluations), encoding, task and threads, from generation `first` on; its time is
-/// estimated once a generation is measured ([`estimate_line`]).
+/// estimated once a generation is measured ([`estimate_line`]). `fresh`: the trials are, so
+/// the elite is walked again each generation.
 pub fn start_line(
     encoding: &str,
     fitness: &str,
     ga: &GaSettings,
+    fresh: bool,
     first: usize,
     threads: usize,
 ) -> String {
-    let evaluations = crate::study::compare::evaluations_of(ga);
+    let evaluations = crate::study::compare::evaluations_of(ga, fresh);
+    let elite = if fresh {
+        "is walked again on fresh trials"
+    } else {
+        "is not evaluated again"
+    };
     let size = format!(
-        "population {} × {} generations = {evaluations} evaluations (the elite of {} is not evaluated again)",
+        "population {} × {} generations = {evaluations} evaluations (the elite of {} {elite})",
         ga.population,
         ga.generations,
         ga.survivors()
@@ -64,7 +71,7 @@ pub fn start_line(
         format!(
             "; generations {first} to {} left, {} evaluations",
             ga.generations.saturating_sub(1),
-            evaluations_from(ga, first)
+            evaluations_from(ga, fresh, first)
         )
     };
     format!(
@@ -569,16 +576,22 @@ mod tests {
             ..GaSettings::preset(Preset::Chaumont)
         };
         // 10, then 8 per generation (the elite of 2 carried over): 34 in all.
-        assert_eq!(evaluations_from(&ga, 0), 34);
-        assert_eq!(evaluations_from(&ga, 1), 24);
-        assert_eq!(evaluations_from(&ga, 4), 0);
+        assert_eq!(evaluations_from(&ga, false, 0), 34);
+        assert_eq!(evaluations_from(&ga, false, 1), 24);
+        assert_eq!(evaluations_from(&ga, false, 4), 0);
         assert_eq!(
-            start_line("direct", "jump, height (m)", &ga, 0, 2),
+            start_line("direct", "jump, height (m)", &ga, false, 0, 2),
             "evolving direct on jump, height (m): population 10 × 4 generations = 34 evaluations (the elite of 2 is not evaluated again); 2 threads; the time it takes is estimated after the first generation"
         );
         assert!(
-            start_line("direct", "jump, height (m)", &ga, 2, 1)
+            start_line("direct", "jump, height (m)", &ga, false, 2, 1)
                 .contains("; generations 2 to 3 left, 16 evaluations; 1 thread;")
+        );
+        // Fresh trials: 10 every generation, the elite walked again.
+        assert_eq!(evaluations_from(&ga, true, 1), 30);
+        assert_eq!(
+            start_line("direct", "jump, height (m)", &ga, true, 0, 2),
+            "evolving direct on jump, height (m): population 10 × 4 generations = 40 evaluations (the elite of 2 is walked again on fresh trials); 2 threads; the time it takes is estimated after the first generation"
         );
         // 10 evaluations in 2 s: 24 more take about 5 s.
         assert_eq!(

@@ -810,6 +810,7 @@ mod tests {
             name: name.into(),
             world: Default::default(),
             environment,
+            trials: None,
         };
         let task = TaskSpec {
             habitats: vec![

@@ -50,6 +50,33 @@ pub struct Habitat {
     /// The chemical array's initial values in this habitat; absent, the genome's own.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub environment: Option<Vec<f64>>,
+    /// The noise ranges of its trials that differ from `[task.trials]`'s
+    /// (`[task.habitats.trials]`); absent, the task's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trials: Option<Noise>,
+}
+
+/// A habitat's own noise ranges (`[task.habitats.trials]`): each one set replaces
+/// `[task.trials]`'s in that habitat ([`TaskSpec::trials_in`]); how many trials and how they
+/// combine stay the task's.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Noise {
+    /// See [`Trials::heading`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heading: Option<f64>,
+    /// See [`Trials::offset`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<f64>,
+    /// See [`Trials::strength`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub strength: Option<f64>,
+    /// See [`Trials::friction`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
+    /// See [`Trials::roughness`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roughness: Option<f64>,
 }
 
 /// How the fitnesses of an individual's units combine into its fitness.
@@ -168,6 +195,10 @@ impl Trials {
                 self.count,
             ));
         }
+        self.check_ranges()
+    }
+
+    fn check_ranges(&self) -> Result<(), SettingError> {
         for (key, value, most) in [
             ("heading", self.heading, MAX_HEADING),
             ("offset", self.offset, MAX_OFFSET),
@@ -373,17 +404,37 @@ impl TaskSpec {
         spec
     }
 
+    /// The trials of habitat `index`: `[task.trials]` with the ranges the habitat sets in
+    /// their place ([`Habitat::trials`]).
+    pub fn trials_in(&self, index: usize) -> Trials {
+        let mut trials = self.trials.clone();
+        if let Some(own) = self.habitats.get(index).and_then(|h| h.trials.as_ref()) {
+            for (range, set) in [
+                (&mut trials.heading, own.heading),
+                (&mut trials.offset, own.offset),
+                (&mut trials.strength, own.strength),
+                (&mut trials.friction, own.friction),
+                (&mut trials.roughness, own.roughness),
+            ] {
+                *range = set.unwrap_or(*range);
+            }
+        }
+        trials
+    }
+
     /// The units of an individual whose key is `key`: every trial of every habitat, habitat
-    /// by habitat, each with its draw (`generation` joins the seed when the trials are fresh).
+    /// by habitat, each with its draw from the habitat's ranges ([`TaskSpec::trials_in`];
+    /// `generation` joins the seed when the trials are fresh).
     pub fn units(&self, key: [u8; 32], generation: u32) -> Vec<Unit> {
         let fresh = self.trials.fresh.then_some(generation);
         (0..self.habitat_count() as u32)
             .flat_map(|habitat| {
+                let trials = self.trials_in(habitat as usize);
                 (0..self.trials.count).map(move |trial| Unit {
                     habitat,
                     trial,
-                    perturbation: if self.trials.noisy() {
-                        Perturbation::draw(&self.trials, key, habitat, trial, fresh)
+                    perturbation: if trials.noisy() {
+                        Perturbation::draw(&trials, key, habitat, trial, fresh)
                     } else {
                         Perturbation::default()
                     },
@@ -522,8 +573,8 @@ impl TaskSpec {
     }
 
     /// Checks the habitats and trials: at most [`MAX_HABITATS`] habitats with unique, non-empty
-    /// names, each world as [`WorldSpec::check`] checks `[task.world]` (in air), and each array
-    /// finite; the trials in range. The error
+    /// names, each world as [`WorldSpec::check`] checks `[task.world]` (in air), each array
+    /// finite, and each habitat's noise ranges as the trials' are; the trials in range. The error
     /// names the key as a config spells it (`[[task.habitats]] name`, `[task.trials] count`).
     pub(super) fn check_habitats(&self) -> Result<(), SettingError> {
         if self.habitats.len() > MAX_HABITATS {
@@ -581,6 +632,12 @@ impl TaskSpec {
                 e.problem = format!("{} (habitat '{}')", e.problem, h.name);
                 within(e.within("world"))
             })?;
+            if h.trials.is_some() {
+                self.trials_in(i).check_ranges().map_err(|mut e| {
+                    e.problem = format!("{} (habitat '{}')", e.problem, h.name);
+                    within(e.within("trials"))
+                })?;
+            }
         }
         self.trials.check().map_err(|e| e.within("task.trials"))
     }
@@ -622,6 +679,7 @@ mod tests {
                 name: name.into(),
                 world: WorldSpec::default(),
                 environment: None,
+                trials: None,
             })
             .to_vec();
         spec.trials.count = k;

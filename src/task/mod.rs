@@ -41,7 +41,7 @@ pub use grow::{
     DEFAULT_RATE, Develop, DevelopWhen, GrowError, Growing, GrowthTally, check_continuous,
 };
 pub use habitat::{
-    Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Perturbation, Trials, Unit,
+    Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Noise, Perturbation, Trials, Unit,
 };
 pub use jump::{JumpOptions, JumpTask, jump};
 pub use options::TaskOptions;

@@ -1,7 +1,9 @@
 //! Habitats and trials: a grammar that reads its environment grows a body per habitat,
 //! `eval` prints every habitat-trial and their aggregate (or one habitat's), identical
 //! creatures get identical trials, a tiny evolution is the same on one thread and two and
-//! when stopped and resumed, the store keeps every unit, and bad tables are refused.
+//! when stopped and resumed, the store keeps every unit, each habitat draws from its own
+//! noise ranges, budgets of walks count the elite walked again on fresh trials, and bad
+//! tables are refused.
 
 use std::path::{Path, PathBuf};
 
@@ -193,6 +195,18 @@ fn a_bad_habitats_table_is_refused_with_exit_code_2_at_its_line_and_column() {
         ),
         (
             "environment = [1]",
+            "environment = [1]\n[task.habitats.trials]\nheading = 200",
+            "[task.habitats.trials] heading must be in [0, 180], not 200 (habitat 'rich')",
+            "habitats.toml:27:11",
+        ),
+        (
+            "environment = [1]",
+            "environment = [1]\n[task.habitats.trials]\ncount = 3",
+            "unknown key count in [task.habitats.trials]",
+            "habitats.toml:27:1",
+        ),
+        (
+            "environment = [1]",
             "environment = [1]\ncolour = 3",
             "unknown key colour in [[task.habitats]]",
             "habitats.toml:26:1",
@@ -351,19 +365,109 @@ fn a_habitat_is_walked_in_its_own_world() {
     assert_ne!(walked[0], walked[1]);
 }
 
+#[test]
+fn each_habitat_draws_its_trials_from_its_own_ranges() {
+    use ontogeny::task::{Habitat, Noise, TaskKind, TaskSpec};
+    let habitat = |name: &str, trials: Option<Noise>| Habitat {
+        name: name.into(),
+        world: Default::default(),
+        environment: None,
+        trials,
+    };
+    let mut spec = TaskSpec::new(TaskKind::Walker);
+    spec.trials.count = 8;
+    spec.trials.strength = 10.0;
+    let slippery = Noise {
+        strength: Some(0.0),
+        friction: Some(50.0),
+        ..Noise::default()
+    };
+    spec.habitats = vec![habitat("calm", None), habitat("slippery", Some(slippery))];
+    assert!(spec.check().is_ok());
+    assert_eq!(spec.trials_in(1).friction, 50.0);
+    assert_eq!(spec.trials_in(1).count, 8);
+    let units = spec.units([5; 32], 0);
+    let (calm, slippery) = units.split_at(8);
+    // The calm habitat draws from [task.trials]: strength ±10%, friction as written.
+    assert!(
+        calm.iter()
+            .all(|u| (0.9..=1.1).contains(&u.perturbation.strength)
+                && u.perturbation.friction == 1.0)
+    );
+    assert!(calm.iter().any(|u| u.perturbation.strength != 1.0));
+    // The slippery one from its own: strength as written, friction ±50%.
+    assert!(
+        slippery
+            .iter()
+            .all(|u| u.perturbation.strength == 1.0
+                && (0.5..=1.5).contains(&u.perturbation.friction))
+    );
+    assert!(
+        slippery
+            .iter()
+            .any(|u| (u.perturbation.friction - 1.0).abs() > 0.1)
+    );
+}
+
+#[test]
+fn a_habitat_without_noise_walks_as_a_plain_task_beside_a_noisy_one() {
+    let dir = scratch_dir("habitats-own-noise");
+    let head = "[task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.5\n\n";
+    let config = dir.join("noise.toml");
+    std::fs::write(
+        &config,
+        format!(
+            "{head}[task.trials]\ncount = 2\nheading = 40\noffset = 0.2\n\n\
+             [[task.habitats]]\nname = \"noisy\"\n\n\
+             [[task.habitats]]\nname = \"quiet\"\n\
+             [task.habitats.trials]\nheading = 0\noffset = 0\n"
+        ),
+    )
+    .unwrap();
+    let plain = dir.join("plain.toml");
+    std::fs::write(&plain, head).unwrap();
+    let walker = "examples/hornby-walker.lsys";
+    let eval = |config: &Path| {
+        eval_json(&[
+            "eval",
+            walker,
+            "--config",
+            config.to_str().unwrap(),
+            "--json",
+        ])
+    };
+    let level = eval(&plain)["fitness"].as_f64().unwrap();
+    let e = eval(&config);
+    let walked: Vec<f64> = e["habitats"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
+    assert_eq!(walked.len(), 4, "{e}");
+    // The quiet habitat's two trials are the plain walk; the noisy one's differ from it.
+    assert_eq!(walked[2..], [level, level]);
+    assert!(
+        walked[..2].iter().all(|&w| w != level),
+        "{walked:?} {level}"
+    );
+}
+
 /// The generations `compare --plan` gives each replicate of `lsystem` under a walker config
-/// with `trials` trials, at a budget of `walks` walks.
-fn planned_generations(dir: &Path, trials: u32, walks: &str) -> String {
-    let config = dir.join(format!("trials-{trials}.toml"));
+/// with `trials` trials (drawn afresh each generation when `fresh`), at a budget of `walks`
+/// walks.
+fn planned_generations(dir: &Path, trials: u32, fresh: bool, walks: &str) -> String {
+    let name = if fresh { "fresh-" } else { "" };
+    let config = dir.join(format!("{name}trials-{trials}.toml"));
     std::fs::write(
         &config,
         format!(
             "[ga]\npopulation = 10\n\n[task]\ntask = \"walker\"\n\n[task.walker]\nseconds = 0.5\n\n\
-             [task.trials]\ncount = {trials}\nstrength = 10\n"
+             [task.trials]\ncount = {trials}\nstrength = 10\nfresh = {fresh}\n"
         ),
     )
     .unwrap();
-    let out = dir.join(format!("plan-{trials}"));
+    let out = dir.join(format!("plan-{name}{trials}-{walks}"));
     succeeded(
         &ontogeny_command()
             .args([
@@ -395,8 +499,14 @@ fn an_encoding_comparison_counts_its_budget_in_walks() {
     // The first generation evaluates all 10, each later one the 8 that are not elite: 12
     // generations make 10 + 8·11 = 98 evaluations, 13 would make 106. At 4 trials, a budget
     // of 400 walks is 100 evaluations, as a budget of 100 is at one.
-    assert_eq!(planned_generations(&dir, 4, "400"), "generations = 12");
-    assert_eq!(planned_generations(&dir, 1, "100"), "generations = 12");
+    assert_eq!(
+        planned_generations(&dir, 4, false, "400"),
+        "generations = 12"
+    );
+    assert_eq!(
+        planned_generations(&dir, 1, false, "100"),
+        "generations = 12"
+    );
     // Run, the report and the progress count walks: 40 walks are one generation of 10.
     let out = dir.join("run-4");
     let ran = ontogeny_command()
@@ -424,9 +534,42 @@ fn an_encoding_comparison_counts_its_budget_in_walks() {
 }
 
 #[test]
+fn a_budget_counts_the_elite_walked_again_on_fresh_trials() {
+    let dir = scratch_dir("habitats-fresh-budget");
+    // Population 10, elite 2, 4 trials: 40 walks a generation, fresh or not, at first; then
+    // 8 × 4 = 32 walks a generation, or 10 × 4 = 40 when the elite are walked again. 400 walks
+    // are 12 generations (40 + 11 · 32 = 392), or 10 fresh ones (40 + 9 · 40 = 400).
+    assert_eq!(
+        planned_generations(&dir, 4, false, "400"),
+        "generations = 12"
+    );
+    assert_eq!(
+        planned_generations(&dir, 4, true, "400"),
+        "generations = 10"
+    );
+    assert_eq!(planned_generations(&dir, 4, true, "399"), "generations = 9");
+    // Population 6, elite 1, 2 trials in 2 habitats: 24 walks in generation 0, then 5 × 4 = 20
+    // a generation, or 6 × 4 = 24 fresh. 64 walks are 2 fresh generations (48 walks), not 3.
+    let config = config(&dir, 2, "heading = 30\nfresh = true");
+    let run = dir.join("run");
+    let _ = std::fs::remove_dir_all(&run);
+    evolve(&config, &run, &["--walks", "64"]);
+    let stored = std::fs::read_to_string(run.join("config.toml")).unwrap();
+    assert!(stored.contains("generations = 2\n"), "{stored}");
+    let store = ontogeny::run::store::RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    let made: Vec<u64> = store
+        .generations()
+        .unwrap()
+        .iter()
+        .map(|g| g.evaluations)
+        .collect();
+    assert_eq!(made, [6, 6]);
+}
+
+#[test]
 fn evolve_walks_sets_the_generations_from_a_budget_of_walks() {
     let dir = scratch_dir("habitats-evolve-walks");
-    planned_generations(&dir, 4, "400");
+    planned_generations(&dir, 4, false, "400");
     let config = dir.join("trials-4.toml");
     let out = dir.join("run");
     let _ = std::fs::remove_dir_all(&out);

@@ -1,8 +1,9 @@
 //! One population evaluated over the ranks of an MPI job (the `mpi` feature; these tests run
 //! `mpirun` on this machine only): two and three ranks give the database of one process for
-//! two encodings, a killed worker rank ends the job with a message and a nonzero exit code
-//! and `evolve --resume` (one process or two ranks) then finishes the run to the result of an
-//! uninterrupted one, and a rank 0 that refuses its input ends every rank.
+//! two encodings, and two ranks for a run in habitats with noisy trials; a killed worker rank
+//! ends the job with a message and a nonzero exit code and `evolve --resume` (one process or
+//! two ranks) then finishes the run to the result of an uninterrupted one, and a rank 0 that
+//! refuses its input ends every rank.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -69,6 +70,26 @@ fn two_and_three_ranks_give_the_run_of_one_process() {
         }
         let _ = std::fs::remove_dir_all(dir);
     }
+}
+
+#[test]
+fn a_run_in_habitats_with_noisy_trials_over_two_ranks_is_the_run_of_one_process() {
+    let dir = scratch("habitats");
+    // Two habitats of two arrays, two noisy trials each: every walk a unit sent to a rank.
+    let run = |out: &Path| {
+        let mut command = ontogeny_command();
+        command
+            .args(["evolve", "--config", "examples/habitats.toml"])
+            .args(["--pop", "6", "--gens", "2", "--seconds", "0.5", "--out"])
+            .arg(out);
+        command
+    };
+    let one = dir.join("one");
+    succeeded(&run(&one).output().unwrap());
+    let two = dir.join("two");
+    succeeded(&under_mpirun(2, &run(&two)).output().unwrap());
+    assert_eq!(contents(&one), contents(&two));
+    let _ = std::fs::remove_dir_all(dir);
 }
 
 /// The run the kill test interrupts: long enough to be killed in its middle.

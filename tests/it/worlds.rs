@@ -1,6 +1,8 @@
 //! Worlds besides flat ground (`[task.world]`): a box on a slope rests or slides as the
-//! ground's friction says, a walker over steps, the rough ground's determinism, a rolling
-//! ball's path, and every example world run through `evolve`.
+//! ground's friction and its patches say, a walker over steps, distance on a slope and over
+//! steps as the root's horizontal displacement, the rest test and the explosion guard on rough
+//! ground, the rough ground's determinism, a rolling ball's path, and every example world run
+//! through `evolve`.
 
 use ontogeny::creature::{Creature, PartId};
 use ontogeny::develop::creature_from_commands;
@@ -80,6 +82,112 @@ fn a_box_on_a_30_degree_slope_slides_at_friction_0_8_tan_30_as_coulomb_says() {
         "strayed {} m sideways in {slid} m",
         p.z
     );
+}
+
+#[test]
+fn a_box_on_a_slope_slides_on_a_low_friction_patch_and_rests_off_it() {
+    // The ground holds the plank (1.2 tan 30°); a patch of 0.8 tan 30° lets it slide. The
+    // plank starts at the origin: on the patch round it, or off the patch far along z.
+    let tan = 30f64.to_radians().tan();
+    let slid_on = |patch_z: [f64; 2]| {
+        let spec = world_spec(&format!(
+            "slope = {{ degrees = 30 }}\nfriction = {{ coefficient = {}, patches = [\
+             {{ x = [-50, 50], z = [{}, {}], coefficient = {} }}] }}",
+            1.2 * tan,
+            patch_z[0],
+            patch_z[1],
+            0.8 * tan
+        ));
+        spec.check().unwrap();
+        let options = SimOptions {
+            drop_height: 0.001,
+            ..SimOptions::default()
+        };
+        let mut world = World::in_world(&plank(), &options, &spec).unwrap();
+        run(&mut world, 1.0);
+        let settled = world.part_position(PartId(0));
+        run(&mut world, 1.0);
+        (world.part_position(PartId(0)) - settled).norm()
+    };
+    let on = slid_on([-50.0, 50.0]);
+    let off = slid_on([20.0, 50.0]);
+    // On the patch it slides at 0.981 m/s²: more than 0.4 m in the second second.
+    assert!(on > 0.4, "slid {on} m on the patch");
+    assert!(off < 1e-3, "slid {off} m off the patch");
+}
+
+/// The walker's evaluation of `examples/quadruped.lsys` in `world`, 3 s walks, recorded.
+fn recorded_walker_over(world: &str) -> ontogeny::task::Evaluation {
+    let mut spec = TaskSpec::new(TaskKind::Walker);
+    spec.task
+        .get_mut::<ontogeny::task::WalkerOptions>()
+        .unwrap()
+        .seconds = 3.0;
+    spec.world = world_spec(world);
+    spec.check().unwrap();
+    spec.evaluate(&grown("examples/quadruped.lsys"), true)
+}
+
+#[test]
+fn distance_on_a_slope_and_over_steps_is_the_root_s_horizontal_displacement() {
+    for world in [
+        "slope = { degrees = 10, direction = 180 }",
+        "steps = { height = 0.04, depth = 0.2, count = 10, start = 0.3, way = \"down\" }",
+    ] {
+        let e = recorded_walker_over(world);
+        assert_eq!(
+            e.status,
+            ontogeny::task::Status::Ok,
+            "{world}: {:?}",
+            e.message
+        );
+        // The root part's centre where the measured walk starts and where it ends.
+        let from_t = e.terms["measured_from"];
+        let from = e
+            .recording
+            .iter()
+            .find(|s| (s.t - from_t).abs() < 1e-9)
+            .unwrap_or_else(|| panic!("{world}: no sample at {from_t} s"))
+            .parts[0]
+            .0;
+        let to = e.recording.last().unwrap().parts[0].0;
+        let d = to - from;
+        let horizontal = d.x.hypot(d.z);
+        // Positions are recorded at f32 precision.
+        assert!(
+            (e.terms["D_w"] - horizontal).abs() < 1e-5,
+            "{world}: D_w {} against {horizontal}",
+            e.terms["D_w"]
+        );
+        // The root climbed or fell on the way, so the distance in space is longer.
+        assert!(d.y.abs() > 0.005, "{world}: the root moved {} m up", d.y);
+        assert!(d.norm() > horizontal + 1e-5, "{world}");
+    }
+}
+
+#[test]
+fn on_rough_ground_a_resting_creature_passes_and_an_exploding_one_is_caught() {
+    let mut spec = TaskSpec::new(TaskKind::Walker);
+    spec.task
+        .get_mut::<ontogeny::task::WalkerOptions>()
+        .unwrap()
+        .seconds = 0.5;
+    spec.world = world_spec("rough = { amplitude = 0.05, wavelength = 0.5, seed = 3, size = 8 }");
+    spec.check().unwrap();
+    let snake = grown("examples/snake.lsys");
+    let calm = spec.evaluate(&snake, false);
+    assert_eq!(
+        calm.status,
+        ontogeny::task::Status::Ok,
+        "{:?}",
+        calm.message
+    );
+    spec.sim.actuator = ontogeny::sim::ActuatorModel::Velocity;
+    spec.sim.strength = 1e9;
+    spec.sim.max_speed = 1e6;
+    let wild = spec.evaluate(&snake, false);
+    assert_eq!(wild.status, ontogeny::task::Status::Exploded, "{wild:?}");
+    assert_eq!(wild.fitness, ontogeny::task::FAILURE_FITNESS);
 }
 
 fn walker_over(world: &str) -> ontogeny::task::Evaluation {

@@ -27,8 +27,8 @@ mod survey;
 pub use plan::{
     Arm, BUDGET_TOLERANCE, ConditionFile, MAX_CONDITION_NAME, MAX_REPLICATES, Manifest, Shared,
     check_budgets, check_condition_name, condition_file, create, duplicate_condition,
-    encoding_arms, evaluations_of, fitness_labels, generations_for, lock, open, replicate_config,
-    replicate_dir, replicate_seed, walks_per_individual,
+    encoding_arms, evaluated_per_generation, evaluations_of, fitness_labels, generations_for, lock,
+    open, replicate_config, replicate_dir, replicate_seed, walks_per_individual,
 };
 pub use replicate::{
     Champion, Replicate, ReplicateState, distinct_shapes_per_part, read_replicate,

@@ -184,7 +184,8 @@ impl Arm {
     /// The walks one of its replicates simulates: its evaluations
     /// ([`evaluations_of`]) times [`walks_per_individual`].
     pub fn walks(&self) -> u64 {
-        evaluations_of(&self.settings.ga) * walks_per_individual(&self.settings.task)
+        let task = &self.settings.task;
+        evaluations_of(&self.settings.ga, task.trials.fresh) * walks_per_individual(task)
     }
 }
 
@@ -272,24 +273,35 @@ pub fn check_budgets(arms: &[Arm]) -> Result<Option<String>, String> {
 /// The least share of the largest budget every arm's budget must reach ([`check_budgets`]).
 pub const BUDGET_TOLERANCE: f64 = 0.9;
 
-/// The evaluations a run of `ga` makes: the whole first generation, then every individual but
-/// the elite (carried over with its evaluation) in each later one.
-pub fn evaluations_of(ga: &GaSettings) -> u64 {
+/// The individuals a run of `ga` evaluates in each generation after the first: all but the
+/// elite (carried over with its evaluation), or the whole population when the trials are
+/// `fresh` (the elite is walked again on each generation's draws).
+pub fn evaluated_per_generation(ga: &GaSettings, fresh: bool) -> u64 {
     let population = ga.population as u64;
-    let children = population - ga.survivors() as u64;
-    population + (ga.generations as u64).saturating_sub(1) * children
+    if fresh {
+        population
+    } else {
+        population - ga.survivors() as u64
+    }
+}
+
+/// The evaluations a run of `ga` makes: the whole first generation, then
+/// [`evaluated_per_generation`] in each later one.
+pub fn evaluations_of(ga: &GaSettings, fresh: bool) -> u64 {
+    ga.population as u64
+        + (ga.generations as u64).saturating_sub(1) * evaluated_per_generation(ga, fresh)
 }
 
 /// The most generations whose evaluations fit in `budget` (see [`evaluations_of`]): at least
 /// the first generation must fit. Errors name the numbers.
-pub fn generations_for(ga: &GaSettings, budget: u64) -> Result<usize, String> {
+pub fn generations_for(ga: &GaSettings, fresh: bool, budget: u64) -> Result<usize, String> {
     let population = ga.population as u64;
     if budget < population {
         return Err(format!(
             "a budget of {budget} evaluations is smaller than one generation ({population} individuals)"
         ));
     }
-    let children = population - ga.survivors() as u64;
+    let children = evaluated_per_generation(ga, fresh);
     if children == 0 {
         return Err(format!(
             "elite {} keeps the whole population of {population}: no generation after the first evaluates anything",
@@ -498,25 +510,31 @@ mod tests {
     fn the_budget_counts_what_the_ga_evaluates() {
         // Population 10, elite 20% = 2: generation 0 costs 10, each later one 8.
         let g = ga(10, 1);
-        assert_eq!(generations_for(&g, 10), Ok(1));
-        assert_eq!(generations_for(&g, 17), Ok(1));
-        assert_eq!(generations_for(&g, 18), Ok(2));
-        assert_eq!(generations_for(&g, 100), Ok(12)); // 10 + 11·8 = 98
-        assert_eq!(evaluations_of(&ga(10, 12)), 98);
-        assert_eq!(evaluations_of(&ga(10, 1)), 10);
+        assert_eq!(generations_for(&g, false, 10), Ok(1));
+        assert_eq!(generations_for(&g, false, 17), Ok(1));
+        assert_eq!(generations_for(&g, false, 18), Ok(2));
+        assert_eq!(generations_for(&g, false, 100), Ok(12)); // 10 + 11·8 = 98
+        assert_eq!(evaluations_of(&ga(10, 12), false), 98);
+        assert_eq!(evaluations_of(&ga(10, 1), false), 10);
         assert!(
-            generations_for(&g, 9)
+            generations_for(&g, false, 9)
                 .unwrap_err()
                 .contains("smaller than one generation (10 individuals)")
         );
         // Population 6: elite round(1.2) = 1, so 5 per later generation.
-        assert_eq!(generations_for(&ga(6, 1), 16), Ok(3));
-        assert_eq!(evaluations_of(&ga(6, 3)), 16);
+        assert_eq!(generations_for(&ga(6, 1), false, 16), Ok(3));
+        assert_eq!(evaluations_of(&ga(6, 3), false), 16);
         let everyone = GaSettings {
             elite: 1.0,
             ..ga(6, 1)
         };
-        assert!(generations_for(&everyone, 60).is_err());
+        assert!(generations_for(&everyone, false, 60).is_err());
+        // Fresh trials walk the elite again: every generation evaluates all 10.
+        assert_eq!(evaluated_per_generation(&g, true), 10);
+        assert_eq!(evaluations_of(&ga(10, 10), true), 100);
+        assert_eq!(generations_for(&g, true, 100), Ok(10));
+        assert_eq!(generations_for(&g, true, 99), Ok(9));
+        assert_eq!(generations_for(&everyone, true, 60), Ok(10));
     }
 
     #[test]

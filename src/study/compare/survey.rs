@@ -37,7 +37,7 @@ fn made(arm: &Arm, generations: usize) -> u64 {
     }
     let mut ga = arm.settings.ga.clone();
     ga.generations = generations;
-    evaluations_of(&ga) * walks_per_individual(&arm.settings.task)
+    evaluations_of(&ga, arm.settings.task.trials.fresh) * walks_per_individual(&arm.settings.task)
 }
 
 /// A comparison's progress before its missing and unfinished replicates run.
