@@ -12,9 +12,9 @@ use serde::Serialize;
 
 use super::plasticity::{FoundRun, PlasticityError};
 use super::stats::median;
-use crate::encoding::Genome;
-use crate::evolve::ga::ranking;
-use crate::run::{Run, encoding_of_run, unknown_encoding_of_run};
+use crate::evolve::ga::ranking_by;
+use crate::run::folder::STORE_FILE;
+use crate::run::store::{IndividualRecord, RunStore};
 use crate::task::Evaluation;
 
 /// The evaluation terms that say how much a creature grew during its walk, in the order of
@@ -125,22 +125,38 @@ pub struct Growers {
     pub population: usize,
 }
 
-/// Measures every complete generation of `found`, a run of genome `G`.
-pub fn measure_run<G: Genome>(found: &FoundRun) -> Result<RunGrowth, PlasticityError> {
-    let run = Run::<G>::open_read_only(&found.dir)?;
-    let complete = run.last_generation()?.map_or(0, |last| last + 1);
+/// What an individual stored in a run grew during its walk, from the evaluation its record
+/// keeps (`None` when it keeps none, or none with growth figures).
+fn stored_growth(record: &IndividualRecord) -> Option<Grown> {
+    #[derive(serde::Deserialize)]
+    struct Stored {
+        evaluation: Evaluation,
+    }
+    let stored: Stored = serde_json::from_str(&record.genome_json).ok()?;
+    Grown::of(&stored.evaluation)
+}
+
+/// Measures every complete generation of `found`, read from its store (whatever its genome).
+pub fn measure_run(found: &FoundRun) -> Result<RunGrowth, PlasticityError> {
+    let store = RunStore::open_read_only(&found.dir.join(STORE_FILE))
+        .map_err(|e| PlasticityError::Run(e.into()))?;
+    let complete = store
+        .last_generation()
+        .map_err(|e| PlasticityError::Run(e.into()))?
+        .map_or(0, |last| last + 1);
     let mut generations = Vec::with_capacity(complete as usize);
     for generation in 0..complete {
-        let population = run.population(generation)?;
-        let grown: Vec<Grown> = population
-            .iter()
-            .filter_map(|i| Grown::of(&i.evaluation))
-            .collect();
-        let best = ranking(&population).first().map(|&b| &population[b]);
+        let population = store
+            .individuals(generation)
+            .map_err(|e| PlasticityError::Run(e.into()))?;
+        let grown: Vec<Grown> = population.iter().filter_map(stored_growth).collect();
+        let best = ranking_by(&population, |r| r.fitness)
+            .first()
+            .map(|&b| &population[b]);
         generations.push(GenerationGrowth {
             generation,
-            best: best.map_or(f64::NAN, |b| b.evaluation.fitness),
-            champion: best.and_then(|b| Grown::of(&b.evaluation)),
+            best: best.map_or(f64::NAN, |b| b.fitness),
+            champion: best.and_then(stored_growth),
             mean: Grown::mean(&grown),
             growers: Growers {
                 measured: grown.len(),
@@ -166,35 +182,31 @@ pub fn measure_runs(
     let mut measured = Vec::new();
     let mut notes = Vec::new();
     for (done, found) in runs.iter().enumerate() {
-        let encoding = encoding_of_run(&found.dir)?;
-        let run = crate::with_genome!(
-            encoding.as_str(),
-            G => measure_run::<G>(found),
-            |other| Err(PlasticityError::Input(unknown_encoding_of_run(&found.dir, other)))
-        )?;
-        if run.generations.is_empty() {
-            notes.push(format!(
-                "{}: no complete generation yet; left out",
-                found.dir.display()
-            ));
+        let run = measure_run(found)?;
+        let why_not = if run.generations.is_empty() {
+            Some("no complete generation yet")
         } else if run.generations.iter().all(|g| g.growers.measured == 0) {
-            notes.push(format!(
-                "{}: its creatures do not grow during their walks (develop = \"before\"); left out",
-                found.dir.display()
-            ));
+            Some("its creatures do not grow during their walks (develop = \"before\")")
         } else {
-            measured.push(run);
+            None
+        };
+        match why_not {
+            Some(why) => notes.push(format!("{}: {why}", found.dir.display())),
+            None => measured.push(run),
         }
         progress(done + 1, runs.len());
     }
     if measured.is_empty() {
-        return Err(PlasticityError::Input(match runs {
-            [one] => format!(
-                "{}: no generation with creatures that grow during their walks",
-                one.dir.display()
+        return Err(PlasticityError::Input(match (runs, notes.as_slice()) {
+            ([_], [why]) => why.clone(),
+            _ => format!(
+                "no run has a generation with creatures that grow during their walks: {}",
+                notes.join("; ")
             ),
-            _ => "no run has a generation with creatures that grow during their walks".into(),
         }));
+    }
+    for note in &mut notes {
+        note.push_str("; left out");
     }
     Ok((measured, notes))
 }

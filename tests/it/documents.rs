@@ -346,6 +346,7 @@ const CUT_DOWN: &[CutDown] = &[
         &[("--pop", "4"), ("--seconds", "0.2")],
     ),
     ("ontogeny runs plasticity ", &[], &[]),
+    ("ontogeny runs growth ", &[], &[]),
     (
         "ontogeny runs canalization ",
         &[("--samples 20", "--samples 4")],

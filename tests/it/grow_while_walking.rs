@@ -317,3 +317,93 @@ fn a_grammar_that_reads_its_array_grows_differently_during_the_walk_in_two_habit
     assert_eq!(parts_grown_in(0.0), 0.0);
     assert_eq!(parts_grown_in(1.0), 2.0);
 }
+
+#[test]
+fn runs_growth_gives_each_generation_s_best_and_mean_growth_from_the_store() {
+    let dir = scratch_dir("grow_while_walking_runs_growth");
+    let config = growing_config(&dir, "lsystem-continuous", "develop_rate = 2");
+    let run = dir.join("run");
+    evolve(&config, &run, &[]);
+    let shown: serde_json::Value = serde_json::from_str(&crate::util::stdout(&ontogeny(&[
+        "runs",
+        "growth",
+        run.to_str().unwrap(),
+        "--json",
+    ])))
+    .unwrap();
+    let generations = shown["runs"][0]["generations"].as_array().unwrap();
+    assert_eq!(generations.len(), 2);
+    let store = ontogeny::run::store::RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    let terms = [
+        "grown_parts",
+        "grown_length",
+        "grown_neurons",
+        "grown_links",
+    ];
+    let figures = ["parts", "length", "neurons", "links"];
+    for (g, shown) in generations.iter().enumerate() {
+        let individuals = store.individuals(g as u32).unwrap();
+        let evaluations: Vec<serde_json::Value> = individuals
+            .iter()
+            .map(|i| serde_json::from_str::<serde_json::Value>(&i.genome_json).unwrap())
+            .map(|json| json["evaluation"].clone())
+            .collect();
+        // The best: the highest fitness, the lowest index among equals.
+        let best = (0..individuals.len())
+            .rev()
+            .max_by(|&a, &b| individuals[a].fitness.total_cmp(&individuals[b].fitness))
+            .unwrap();
+        assert_eq!(shown["best"].as_f64(), Some(individuals[best].fitness));
+        let grew: Vec<&serde_json::Value> = evaluations
+            .iter()
+            .filter(|e| e["terms"]["grown_parts"].is_number())
+            .collect();
+        assert!(!grew.is_empty());
+        assert_eq!(shown["growers"]["measured"], grew.len());
+        assert_eq!(shown["growers"]["population"], individuals.len());
+        for (term, figure) in terms.iter().zip(figures) {
+            let mean = grew
+                .iter()
+                .map(|e| e["terms"][term].as_f64().unwrap())
+                .sum::<f64>()
+                / grew.len() as f64;
+            let got = shown["mean"][figure].as_f64().unwrap();
+            assert!((got - mean).abs() < 1e-12, "{term}: {got} against {mean}");
+            assert_eq!(
+                shown["champion"][figure], evaluations[best]["terms"][term],
+                "{term}"
+            );
+        }
+    }
+    // The CSV: a row per generation; the table: one per condition.
+    let csv = crate::util::stdout(&ontogeny(&[
+        "runs",
+        "growth",
+        run.to_str().unwrap(),
+        "--csv",
+    ]));
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        ontogeny::study::lifetime::CSV_COLUMNS
+    );
+    assert_eq!(csv.lines().count(), 3);
+    let table = crate::util::stdout(&ontogeny(&["runs", "growth", run.to_str().unwrap()]));
+    assert!(
+        table.contains(": 1 run(s); medians over the runs"),
+        "{table}"
+    );
+    assert_eq!(table.lines().count(), 2 + 2, "{table}");
+    // A run whose creatures develop before their walks has nothing to show: bad input.
+    let before = dir.join("before");
+    let text = std::fs::read_to_string(&config).unwrap();
+    let config = dir.join("before.toml");
+    std::fs::write(&config, text.replace("develop = \"during\"", "")).unwrap();
+    evolve(&config, &before, &["--gens", "1"]);
+    assert_bad_input(
+        &["runs", "growth", before.to_str().unwrap()],
+        &format!(
+            "{}: its creatures do not grow during their walks (develop = \"before\")",
+            before.display()
+        ),
+    );
+}
