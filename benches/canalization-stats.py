@@ -11,7 +11,10 @@
 #       | sed "1s/^/condition,run,noise,/;2,\$s/^/$c,rep-$r,$n,/"; done; done; done \
 #     | awk 'NR == 1 || !/^condition/' > canalization.csv
 #   python3 benches/canalization-stats.py canalization.csv
-import csv, itertools, statistics, sys
+import csv, itertools, statistics, sys, os
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from exact_tests import exact_mw, signed_rank, holm
+
 rows = list(csv.DictReader(open(sys.argv[1] if len(sys.argv) > 1 else 'docs/compare/plasticity/canalization.csv')))
 conditions = list(dict.fromkeys(r['condition'] for r in rows))
 noises = sorted(set(r['noise'] for r in rows), key=float)
@@ -27,48 +30,10 @@ for c in conditions:
         changed = statistics.median(of(c, g, noises[0], 'mutation_changed'))
         dv = statistics.median(of(c, g, noises[0], 'mutation_mean_volume_change'))
         print(f'{c} {g} {noise} {changed:.2f} {dv:.3f}')
-def exact_mw(a, b):
-    pooled = a + b
-    u_of = lambda x, y: sum((xi > yi) + 0.5 * (xi == yi) for xi in x for yi in y)
-    u, mean = u_of(a, b), len(a) * len(b) / 2
-    extreme = total = 0
-    for idx in itertools.combinations(range(len(pooled)), len(a)):
-        chosen = set(idx)
-        x = [pooled[i] for i in idx]
-        y = [pooled[i] for i in range(len(pooled)) if i not in chosen]
-        total += 1
-        extreme += abs(u_of(x, y) - mean) >= abs(u - mean) - 1e-9
-    return u, extreme / total, u / (len(a) * len(b))
-def signed_rank(d):
-    d = [x for x in d if x != 0]
-    # Ranks of |d|, ties given their mean rank; the exact distribution over every sign flip.
-    order = sorted(range(len(d)), key=lambda i: abs(d[i]))
-    ranks, i = [0.0] * len(d), 0
-    while i < len(d):
-        j = i
-        while j + 1 < len(d) and abs(d[order[j + 1]]) == abs(d[order[i]]):
-            j += 1
-        for k in range(i, j + 1):
-            ranks[order[k]] = (i + j) / 2 + 1
-        i = j + 1
-    w = sum(r for r, x in zip(ranks, d) if x > 0)
-    mean = sum(ranks) / 2
-    extreme = total = 0
-    for signs in itertools.product([0, 1], repeat=len(d)):
-        total += 1
-        extreme += abs(sum(r for r, s in zip(ranks, signs) if s) - mean) >= abs(w - mean) - 1e-9
-    return w, extreme / total
 final = {c: of(c, last, noises[0], 'mutation_mean_volume_change') for c in conditions}
 for a, b in itertools.combinations(conditions, 2):
     u, p, a12 = exact_mw(final[a], final[b])
     print(f'generation {last} mutants |dV|/V {a} vs {b}: U = {u:.1f}, p = {p:.4f}, A12 = {a12:.2f}')
-def holm(ps):
-    order = sorted(range(len(ps)), key=lambda i: ps[i])
-    adjusted, running = [0.0] * len(ps), 0.0
-    for position, i in enumerate(order):
-        running = max(running, min(1.0, (len(ps) - position) * ps[i]))
-        adjusted[i] = running
-    return adjusted
 for column, name in [('mutation_mean_volume_change', 'mutants |dV|/V'), ('mutation_changed', 'share of mutants changed')]:
     tests = []
     for c in conditions:

@@ -7,39 +7,14 @@
 # the fitness lost under the bars (a permutation p).
 #   ontogeny runs plasticity runs/cyclomorphosis --csv > norms.csv
 #   python3 benches/cyclomorphosis-stats.py norms.csv
-import csv, itertools, random, statistics, sys
+import csv, itertools, random, statistics, sys, os
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from exact_tests import exact_mw, ranks, spearman
+
 rows = list(csv.DictReader(open(sys.argv[1] if len(sys.argv) > 1 else 'docs/compare/cyclomorphosis/norms.csv')))
 champions = {}
 for r in rows:
     champions.setdefault((r['condition'], r['run']), {})[r['habitat']] = r
-def exact_mw(a, b):
-    pooled = a + b
-    u_of = lambda x, y: sum((xi > yi) + 0.5 * (xi == yi) for xi in x for yi in y)
-    u, mean = u_of(a, b), len(a) * len(b) / 2
-    extreme = total = 0
-    for idx in itertools.combinations(range(len(pooled)), len(a)):
-        chosen = set(idx)
-        x = [pooled[i] for i in idx]
-        y = [pooled[i] for i in range(len(pooled)) if i not in chosen]
-        total += 1
-        extreme += abs(u_of(x, y) - mean) >= abs(u - mean) - 1e-9
-    return u, extreme / total, u / (len(a) * len(b))
-def ranks(v):
-    order = sorted(range(len(v)), key=lambda i: v[i])
-    out, i = [0.0] * len(v), 0
-    while i < len(v):
-        j = i
-        while j + 1 < len(v) and v[order[j + 1]] == v[order[i]]:
-            j += 1
-        for k in range(i, j + 1):
-            out[order[k]] = (i + j) / 2 + 1
-        i = j + 1
-    return out
-def spearman(x, y):
-    rx, ry = ranks(x), ranks(y)
-    mx, my = statistics.mean(rx), statistics.mean(ry)
-    num = sum((a - mx) * (b - my) for a, b in zip(rx, ry))
-    return num / (sum((a - mx) ** 2 for a in rx) * sum((b - my) ** 2 for b in ry)) ** 0.5
 height, bars, lost = {}, {}, ([], [])
 for (cond, run), h in champions.items():
     o, b = h['open'], h['bars']
