@@ -19,12 +19,12 @@ use ontogeny::task::{TaskKind, TaskSpec};
 use serde::de::DeserializeOwned;
 
 /// What the CLI derives from a checked GA setting before it evolves anything.
-fn use_settings(ga: &GaSettings) {
+fn use_settings(ga: &GaSettings, fresh: bool) {
     let _ = ga.survivors();
     let _ = ga.breeder_count();
-    let _ = evaluations_of(ga);
-    let _ = generations_for(ga, 1_000);
-    let _ = generations_for(ga, u64::MAX);
+    let _ = evaluations_of(ga, fresh);
+    let _ = generations_for(ga, fresh, 1_000);
+    let _ = generations_for(ga, fresh, u64::MAX);
 }
 
 /// `evolve --config FILE`: the file's settings with the preset under them (`start`).
@@ -41,8 +41,8 @@ fn evolve_config<G: Genome>(source: &Source) {
         || TaskSpec::new(TaskKind::Walker),
         |tables| tables.spec(tables.kind()),
     );
-    match check_settings(&ga, &task) {
-        Ok(()) => use_settings(&ga),
+    match check_settings(&ga, &task, &[G::NAME]) {
+        Ok(()) => use_settings(&ga, task.trials.fresh),
         Err(e) => {
             let _ = e.to_string();
             return;
@@ -69,7 +69,7 @@ fn evolve_config<G: Genome>(source: &Source) {
 fn run_config<L: DeserializeOwned + CheckedLimits>(source: &Source) {
     match read_run_config::<L>(source) {
         // The genetic algorithm starts from these settings as they are.
-        Ok(config) => use_settings(&config.ga),
+        Ok(config) => use_settings(&config.ga, config.task.trials.fresh),
         Err(e) => {
             let _ = e.to_string();
         }
@@ -106,8 +106,8 @@ fuzz_target!(|data: &[u8]| {
             || TaskSpec::new(TaskKind::Walker),
             |tables| tables.spec(tables.kind()),
         );
-        if check_settings(&ga, &task).is_ok() {
-            let _ = generations_for(&ga, 1_000_000);
+        if check_settings(&ga, &task, &[]).is_ok() {
+            let _ = generations_for(&ga, task.trials.fresh, 1_000_000);
         }
     }
     // `compare --resume DIR` / `--merge DIR`: the text as `compare.toml` beside a valid
@@ -130,7 +130,7 @@ fuzz_target!(|data: &[u8]| {
             Ok((manifest, arms)) => {
                 let _ = arms.len() * manifest.replicates;
                 for arm in &arms {
-                    use_settings(&arm.settings.ga);
+                    use_settings(&arm.settings.ga, arm.settings.task.trials.fresh);
                 }
             }
             Err(e) => {

@@ -28,7 +28,7 @@ fn checked<G: Genome>(config: &Source) -> Option<G::Limits> {
         || TaskSpec::new(TaskKind::Walker),
         |tables| tables.spec(tables.kind()),
     );
-    check_settings(&ga, &task).ok()?;
+    check_settings(&ga, &task, &[G::NAME]).ok()?;
     let limits = file.limits.unwrap_or_default();
     match check_limits(&limits, Some(config)) {
         Ok(()) => Some(limits),
