@@ -885,20 +885,10 @@ pub fn schedule(k: usize, children: usize, asexual: f64, crossover: f64) -> Oper
     }
 }
 
-/// Indices of `population` from best to worst fitness (ties: lower index first).
+pub use super::ranking::ranking_by;
+
+/// Indices of `population` from best to worst fitness (ties: lower index first), as
+/// [`ranking_by`] orders them.
 pub fn ranking<G>(population: &[Individual<G>]) -> Vec<usize> {
     ranking_by(population, |individual| individual.evaluation.fitness)
-}
-
-/// Indices of `items` from best to worst `fitness` (ties: lower index first), in the total
-/// order of `f64`: the order of [`ranking`], for anything that has a fitness (the store's
-/// records of a generation, say), so a rank means the same everywhere.
-pub fn ranking_by<T>(items: &[T], fitness: impl Fn(&T) -> f64) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..items.len()).collect();
-    order.sort_by(|&a, &b| {
-        fitness(&items[b])
-            .total_cmp(&fitness(&items[a]))
-            .then(a.cmp(&b))
-    });
-    order
 }

@@ -13,4 +13,5 @@ pub mod habitats;
 pub mod key;
 #[cfg(feature = "mpi")]
 pub mod mpi;
+pub mod ranking;
 pub mod record;
