@@ -10,7 +10,7 @@ use ontogeny::task::{Growing, Phase, Status, TaskKind, TaskSpec, Watch};
 
 use crate::util::{
     assert_bad_input, assert_the_same_on_any_thread_count_and_resumed, evolve, ontogeny,
-    ontogeny_command, scratch_dir, succeeded,
+    scratch_dir, succeeded,
 };
 
 const EXAMPLE: &str = "examples/grow-while-walking.lsys";
