@@ -173,14 +173,14 @@ impl World {
 
     /// The creature's mass and centre of mass, from its bodies as they are now.
     fn creature_centre(&self) -> (f64, Vector3<f64>) {
-        let (mass, moment) = self.creature_bodies.iter().fold(
-            (0.0, Vector3::zeros()),
-            |(m, c), b| {
-                let body = &self.bodies[*b];
-                let mb = body.mass() as f64;
-                (m + mb, c + to_na(body.center_of_mass()) * mb)
-            },
-        );
+        let (mass, moment) =
+            self.creature_bodies
+                .iter()
+                .fold((0.0, Vector3::zeros()), |(m, c), b| {
+                    let body = &self.bodies[*b];
+                    let mb = body.mass() as f64;
+                    (m + mb, c + to_na(body.center_of_mass()) * mb)
+                });
         (mass, if mass > 0.0 { moment / mass } else { moment })
     }
 

@@ -433,7 +433,10 @@ fn a_lengthened_part_keeps_its_near_face_and_the_creature_s_momenta() {
     let (v2, w2) = world.part_velocity(PartId(0));
     assert_near(v2, v, 1e-4, "the centre's velocity");
     assert_near(w2, w, 1e-4, "the angular velocity");
-    assert!(world.kinetic_energy() < energy, "growth gave kinetic energy");
+    assert!(
+        world.kinetic_energy() < energy,
+        "growth gave kinetic energy"
+    );
 }
 
 /// Growth that adds a 0.5 m tail with a hinge at the far end of a 1 m root, as a new
@@ -484,9 +487,19 @@ fn a_new_bud_arrives_at_its_place_on_its_parent_and_the_creature_keeps_its_momen
     assert!(grown.stopped.is_empty());
     // Where the turtle puts it: 0.75 m along the root's x axis.
     let tail = before.root + before.orientation * Vector3::new(0.75, 0.0, 0.0);
-    assert_near(world.part_position(PartId(1)), tail, 1e-5, "the tail's centre");
+    assert_near(
+        world.part_position(PartId(1)),
+        tail,
+        1e-5,
+        "the tail's centre",
+    );
     // The creature's momenta are what they were: root and tail move as one 1.5 m box.
-    assert_near(world.creature_momentum(), before.momentum, 1e-3, "the momentum");
+    assert_near(
+        world.creature_momentum(),
+        before.momentum,
+        1e-3,
+        "the momentum",
+    );
     assert_near(
         world.creature_angular_momentum(),
         before.angular,
@@ -506,7 +519,10 @@ fn a_new_bud_arrives_at_its_place_on_its_parent_and_the_creature_keeps_its_momen
         assert_near(part_v, v, 1e-4, "a part's velocity");
         assert_near(part_w, w, 1e-4, "a part's angular velocity");
     }
-    assert!(world.kinetic_energy() < energy, "growth gave kinetic energy");
+    assert!(
+        world.kinetic_energy() < energy,
+        "growth gave kinetic energy"
+    );
     // The energy it brought (the tail's weight lifted 5 m up, less the kinetic energy it
     // cost) is growth's work, not energy from nowhere.
     assert!((world.growth_work() - grown.work).abs() < 1e-9);
