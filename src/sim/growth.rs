@@ -5,20 +5,29 @@
 //! Honest means that growth is not a motor:
 //!
 //! - a lengthened part keeps its near face (where it is jointed to its parent, where the turtle
-//!   started it) in place and its velocity field; what it carries beyond its far joints is
-//!   carried with it and moves with its field where it is put;
-//! - a new part arrives where the turtle puts it relative to its parent, at rest relative to
-//!   it (v + ω × r), so the creature's momentum rises by the new mass times that velocity and
-//!   by nothing else;
-//! - the energy growth brings (the potential and kinetic energy of added and moved mass) is
-//!   counted apart, as [`World::growth_work`], so the energy audit does not take it for energy
-//!   from nowhere, and still catches any energy the growth does not account for;
+//!   started it) in place; what it carries beyond its far joints is carried with it;
+//! - a new part appears where the turtle puts it relative to its parent, at rest relative to
+//!   it, so no joint is strained;
+//! - then the creature's velocities are given back the momenta they had before the step: its
+//!   linear momentum, its angular momentum about its centre of mass, and at most its kinetic
+//!   energy relative to its centre of mass (see `World::conserve_momenta` in `motion.rs`). The
+//!   creature grows as a closed body does, from within: growth neither pushes it, nor spins
+//!   it, nor gives it kinetic energy. A creature that spins while it grows a long limb slows,
+//!   as a skater who opens her arms does. (Mass that arrived moving with its parent, v + ω × r,
+//!   and kept that speed was a motor: a creature that swung a limb and then grew a chain of
+//!   parts at its tip multiplied its kinetic energy, and evolution found it: creatures that
+//!   "walked" over 100 m in 10 s.);
+//! - the energy growth brings (the potential energy of added and moved mass, less any kinetic
+//!   energy it costs) is counted apart, as [`World::growth_work`], so the energy audit does not
+//!   take it for energy from nowhere, and still catches any energy the growth does not
+//!   account for;
 //! - a part whose growth would reach into the ground, or into a part it is not jointed to (when
 //!   parts collide with each other), deeper than [`GROWTH_CLEARANCE`] where it did not already
-//!   reach (parts at most two joints away, which may meet it at a joint, aside), **stops growing** rather than pushing the creature: the step is refused and
-//!   tried again at the next one, so it grows again once it is clear; a new part that would
-//!   appear inside something waits the same way, and with it the rest of that step's new
-//!   parts, neurons and links.
+//!   reach (parts at most two joints away, which may meet it at a joint, aside), or would put a
+//!   part it carries there, **stops growing** rather than pushing the creature: the step is
+//!   refused and tried again at the next one, so it grows again once it is clear; a new part
+//!   that would appear inside something waits the same way, and with it the rest of that
+//!   step's new parts, neurons and links.
 
 use ::nalgebra::{Isometry3, Point3, Translation3, Vector3};
 use rapier3d::math::{Pose, Real, Vector};
@@ -212,6 +221,7 @@ impl World {
         let field = self.field_of(body);
         let omega = self.bodies[body].angvel();
         let energy = self.mechanical_energy();
+        let momenta = self.momenta();
 
         // Where each part jointed beyond this one goes: by its anchor's move.
         let mut moves: Vec<(PartId, Vector)> = Vec::new();
@@ -237,6 +247,24 @@ impl World {
             let by = (body_pose * in_body).rotation * (f(anchor) - anchor);
             for part in self.joints.beyond(child, id, |joint| joint.parts) {
                 moves.push((part, by));
+            }
+        }
+
+        // What it carries may not be put into something either.
+        let carried: Vec<PartId> = moves.iter().map(|&(part, _)| part).collect();
+        for &(part, by) in &moves {
+            let at = self.part_world_pose(part);
+            let size = self.parts[part].size;
+            let mut exempt = self.near(part);
+            exempt.extend(carried.iter().copied());
+            exempt.push(id);
+            if self.reaches_in(
+                Some(part),
+                &exempt,
+                (Pose::from_translation(by) * at, size),
+                Some((at, size)),
+            ) {
+                return false;
             }
         }
 
@@ -318,6 +346,7 @@ impl World {
                 b.set_linvel(v, true);
             }
         }
+        self.conserve_momenta(&momenta);
         self.body_changed();
         self.growth_work += self.energy - energy;
         true
@@ -337,6 +366,7 @@ impl World {
     /// growth from the creature this world holds.
     pub fn apply_growth(&mut self, growth: &mut Growth) -> Grown {
         let energy = self.mechanical_energy();
+        let momenta = self.momenta();
         let mut grown = Grown::default();
         let parts = self.part_count();
         let counted = self.growth_work;
@@ -428,6 +458,8 @@ impl World {
                 _ => false,
             });
         }
+        self.conserve_momenta(&momenta);
+        self.body_changed();
         grown.work = self.mechanical_energy() - energy;
         self.growth_work = counted + grown.work;
         grown

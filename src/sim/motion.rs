@@ -152,3 +152,111 @@ impl World {
             .sum()
     }
 }
+
+/// What a growth step conserves: the creature's linear momentum, its angular momentum about
+/// the world's origin, and (as a ceiling) its kinetic energy relative to its centre of mass.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Momenta {
+    linear: Vector3<f64>,
+    angular: Vector3<f64>,
+    internal: f64,
+}
+
+impl World {
+    /// The creature's kinetic energy (J): Σ over its bodies of ½ m v² + ½ ω·Iω.
+    pub fn kinetic_energy(&self) -> f64 {
+        self.creature_bodies
+            .iter()
+            .map(|b| self.bodies[*b].kinetic_energy() as f64)
+            .sum()
+    }
+
+    /// The creature's mass and centre of mass, from its bodies as they are now.
+    fn creature_centre(&self) -> (f64, Vector3<f64>) {
+        let (mass, moment) =
+            self.creature_bodies
+                .iter()
+                .fold((0.0, Vector3::zeros()), |(m, c), b| {
+                    let body = &self.bodies[*b];
+                    let mb = body.mass() as f64;
+                    (m + mb, c + to_na(body.center_of_mass()) * mb)
+                });
+        (mass, if mass > 0.0 { moment / mass } else { moment })
+    }
+
+    /// The creature's momenta now: what [`World::conserve_momenta`] restores.
+    pub(super) fn momenta(&self) -> Momenta {
+        let linear = self.creature_momentum();
+        let (mass, _) = self.creature_centre();
+        let bulk = if mass > 0.0 {
+            linear.norm_squared() / (2.0 * mass)
+        } else {
+            0.0
+        };
+        Momenta {
+            linear,
+            angular: self.creature_angular_momentum(),
+            internal: self.kinetic_energy() - bulk,
+        }
+    }
+
+    /// Gives the creature back the momenta it had `before` a growth step, after new or moved
+    /// mass was put in place moving with what holds it: one rigid motion (a + b × (x − c), c
+    /// the new centre of mass) added to every body restores the linear momentum and the
+    /// angular momentum about c; then, if the kinetic energy relative to the centre of mass
+    /// is still above what it was, every velocity relative to the centre of mass is scaled
+    /// down to it. Both keep every joint's two sides moving together. So growth brings mass
+    /// as a closed creature would, from within: it neither pushes the creature nor spins it,
+    /// and never raises its kinetic energy.
+    pub(super) fn conserve_momenta(&mut self, before: &Momenta) {
+        let (mass, centre) = self.creature_centre();
+        if mass <= 0.0 {
+            return;
+        }
+        let (linear, angular) = (self.creature_momentum(), self.creature_angular_momentum());
+        // Angular momenta about the new centre of mass: L_c = L_O − c × P.
+        let wanted = before.angular - centre.cross(&before.linear);
+        let now = angular - centre.cross(&linear);
+        // The creature's inertia about c (kg·m²), column by column.
+        let mut inertia = ::nalgebra::Matrix3::zeros();
+        for b in &self.creature_bodies {
+            let body = &self.bodies[*b];
+            let r = to_na(body.center_of_mass()) - centre;
+            let m = body.mass() as f64;
+            let own = body.mass_properties().effective_angular_inertia();
+            for (k, axis) in [Vector::X, Vector::Y, Vector::Z].into_iter().enumerate() {
+                let column = to_na(own * axis);
+                let e = Vector3::ith(k, 1.0);
+                let orbit = (e * r.norm_squared() - r * r[k]) * m;
+                inertia.set_column(k, &(inertia.column(k) + column + orbit));
+            }
+        }
+        let a = (before.linear - linear) / mass;
+        let b = inertia
+            .try_inverse()
+            .map(|inverse| inverse * (wanted - now))
+            .unwrap_or_else(Vector3::zeros);
+        for handle in self.creature_bodies.clone() {
+            let body = &mut self.bodies[handle];
+            let r = to_na(body.center_of_mass()) - centre;
+            let v = to_na(body.linvel()) + a + b.cross(&r);
+            let w = to_na(body.angvel()) + b;
+            body.set_linvel(vector(&v), true);
+            body.set_angvel(vector(&w), true);
+        }
+        // The kinetic energy relative to the centre of mass may not rise.
+        let bulk = before.linear.norm_squared() / (2.0 * mass);
+        let internal = self.kinetic_energy() - bulk;
+        if internal > before.internal.max(0.0) && internal > 0.0 {
+            let k = (before.internal.max(0.0) / internal).sqrt();
+            let v_c = before.linear / mass;
+            for handle in self.creature_bodies.clone() {
+                let body = &mut self.bodies[handle];
+                let v = v_c + (to_na(body.linvel()) - v_c) * k;
+                let w = to_na(body.angvel()) * k;
+                body.set_linvel(vector(&v), true);
+                body.set_angvel(vector(&w), true);
+            }
+        }
+    }
+}

@@ -36,6 +36,7 @@ mod genome_plastic;
 mod genome_plastic_lsystem;
 mod grow_while_walking;
 mod growing_shown;
+mod growth_honesty;
 mod habitats;
 mod json;
 mod key;
