@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # The growing-while-walking results page's statistics, from the re-walks of each condition's
-# champions (benches/growing-rewalk.sh) and Kriegman's measure per generation
-# (`ontogeny runs growth DIR --csv`):
+# champions (benches/rewalk.sh with STRENGTH=9000: "perturbed" is every joint 10% weaker)
+# and Kriegman's measure per generation (`ontogeny runs growth DIR --csv`):
 #   python3 benches/growing-stats.py REWALK.csv [REWALK.csv ...] --growth GROWTH.csv
 # Prints, per condition: the champions' stored distance and the share of it each kept with
 # every joint 10% weaker and at the fine reference (medians and each replicate), the exact
@@ -32,11 +32,11 @@ def num(x):
 shares = {}
 for r in rows:
     stored = num(r["stored"])
-    c = shares.setdefault(r["condition"], {"stored": [], "weaker": [], "fine": [], "reps": []})
+    c = shares.setdefault(r["encoding"], {"stored": [], "weaker": [], "fine": [], "reps": []})
     c["reps"].append(r["rep"])
     c["stored"].append(stored)
     for k in ("weaker", "fine"):
-        v = num(r[k])
+        v = num(r["perturbed" if k == "weaker" else k])
         c[k].append(None if stored in (None, 0) or v is None else v / stored)
 
 for cond, c in shares.items():

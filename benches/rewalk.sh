@@ -12,6 +12,12 @@
 # FILE's [task] table instead, e.g. the README's walker on flat ground for champions evolved
 # on rough ground; "stored" is then the walk at the default setting, and no flags are taken.
 #   CONFIG=examples/robust-baseline.toml bash benches/rewalk.sh runs/robust > rewalk-flat.csv
+# STRENGTH=S sets the perturbed walk's joint strength (default 10001, the default 10000 raised
+# by 0.01%); CONDITION=NAME walks only that condition's (or encoding's) champions, e.g. each
+# condition of the growing-while-walking comparison under its own configuration, its joints
+# 10% weaker:
+#   CONFIG=examples/growing-experiment-during.toml CONDITION=during STRENGTH=9000 \
+#     bash benches/rewalk.sh runs/growing-experiment > rewalk-during.csv
 ontogeny=${ONTOGENY:-target/release/ontogeny}
 dir=$1
 shift
@@ -21,7 +27,7 @@ walk() {
   local flags task=(--task walker --fitness distance)
   case $1 in
     stored) flags=("${own[@]}") ;;
-    perturbed) flags=("${own[@]}" --strength 10001) ;;
+    perturbed) flags=("${own[@]}" --strength "$strength") ;;
     fine) flags=(--setting fine) ;;
     fine16) flags=("${fine16[@]}") ;;
   esac
@@ -30,6 +36,7 @@ walk() {
     python3 -c 'import json,sys; print(json.load(sys.stdin)["fitness"])' 2>/dev/null || echo NA
 }
 own=("$@")
+strength=${STRENGTH:-10001}
 if [ -n "$CONFIG" ]; then
   if grep -q '^\[task\.sim\]' "$CONFIG"; then
     echo "rewalk.sh: $CONFIG has a [task.sim] table; give one without it" >&2
@@ -40,13 +47,14 @@ if [ -n "$CONFIG" ]; then
   # A copy of CONFIG with a [task.sim] table of the walk's settings.
   variant() { { cat "$CONFIG"; printf '\n[task.sim]\n%s\n' "$2"; } > "$tmp/$1.toml"; }
   variant stored 'setting = "default"'
-  variant perturbed 'strength = 10001'
+  variant perturbed "strength = $strength"
   variant fine 'setting = "fine"'
   variant fine16 "$(printf 'substeps = 16\nsolver_iterations = 8\npgs_iterations = 1\nrest_substeps = 16\nrest_solver_iterations = 8')"
 fi
 echo "encoding,rep,stored,perturbed,fine,fine16"
 for enc_dir in "$dir"/*/; do
   enc=$(basename "$enc_dir")
+  [ -z "$CONDITION" ] || [ "$enc" = "$CONDITION" ] || continue
   for rep in $(ls -d "$enc_dir"rep-* 2>/dev/null | sort -V); do
     [ -d "$rep" ] || continue
     f=$(ls "$rep"/best.* 2>/dev/null | head -1)
