@@ -403,7 +403,7 @@ mod tests {
         assert!(text.contains(r#"{"link":{"from":0,"to":"#), "{text}");
         let read: Vec<BodyChange> = serde_json::from_str(&text).unwrap();
         assert_eq!(read, changes);
-        let samples = vec![sample(0.0, 1, vec![]), sample(0.1, 1, changes)];
+        let samples = vec![(vec![], 1), (changes, 1)];
         assert_eq!(check_growth(&creature, views(&samples)), Ok(()));
         let mut body = GrowingBody::new(
             &creature,
@@ -414,13 +414,12 @@ mod tests {
         assert_eq!(grown.brain.neurons[n], spec);
         assert_eq!(grown.brain.links.last(), Some(&link));
         // A neuron out of turn, and a link to a neuron there is not, are refused.
-        let skipped = vec![sample(
-            0.0,
-            1,
+        let skipped = vec![(
             vec![BodyChange::Neuron {
                 neuron: n + 1,
                 spec,
             }],
+            1,
         )];
         assert_eq!(
             check_growth(&creature, views(&skipped)),
@@ -429,7 +428,7 @@ mod tests {
                 n + 1
             ))
         );
-        let dangling = vec![sample(0.0, 1, vec![BodyChange::Link { link }])];
+        let dangling = vec![(vec![BodyChange::Link { link }], 1)];
         assert_eq!(
             check_growth(&creature, views(&dangling)),
             Err(format!(
