@@ -94,7 +94,9 @@ class Evaluation:
         ``ontogeny eval --json`` lists them; empty for a task without habitats or trials."""
     @property
     def trajectory(self) -> Optional[npt.NDArray[np.float64]]:
-        """Every part's centre at each recorded moment: frames × parts × 3 (``record=True``)."""
+        """Every part's centre at each recorded moment: frames × parts × 3 (``record=True``);
+        parts counts every part the body had at any moment, and a part that appeared during
+        the walk (``develop = "during"``) has NaN rows before it appeared."""
     @property
     def times(self) -> Optional[npt.NDArray[np.float64]]:
         """The simulated time of each recorded moment, seconds (``record=True``)."""

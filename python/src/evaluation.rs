@@ -14,15 +14,19 @@ use numpy::ndarray::{Array1, Array3};
 use numpy::{PyArray1, PyArray3};
 use ontogeny::cancel::Cancel;
 use ontogeny::creature::Creature;
+use ontogeny::develop::{BuildOptions, Seedling};
 use ontogeny::encoding::{LoadError, LoadOptions, Loaded, load_creature};
 use ontogeny::evolve::evaluator::Evaluator;
 use ontogeny::evolve::habitats::{evaluate_in_habitats, recorded_walk};
 use ontogeny::front::flags::{TaskFlags, option_of};
 use ontogeny::lang::suggest::did_you_mean;
+use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::run::config::read_task_config;
 use ontogeny::sim::knobs::{Knob, Value, knob};
 use ontogeny::sim::{ActuatorModel, JointModel, KNOBS, SimOptions, StrengthFrom};
-use ontogeny::task::{Evaluation as Outcome, TaskSpec, Watch, keyword_refusal};
+use ontogeny::task::{
+    Evaluation as Outcome, GrowError, TaskSpec, Watch, check_continuous, keyword_refusal,
+};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt};
@@ -83,11 +87,13 @@ impl PyEvaluation {
     }
 
     /// Every part's centre at each recorded moment (frames × parts × 3, metres), or `None`
-    /// when the evaluation was not recorded.
+    /// when the evaluation was not recorded. `parts` counts every part the creature had at
+    /// any moment, by id: a body that grows during the walk has rows of NaN for a part at
+    /// the moments before it appeared.
     #[getter]
     fn trajectory<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray3<f64>>> {
         let samples = &self.outcome.recording;
-        let parts = samples.first()?.parts.len();
+        let parts = samples.iter().map(|s| s.parts.len()).max()?;
         let flat: Vec<f64> = samples
             .iter()
             .flat_map(|s| {
@@ -342,6 +348,9 @@ evaluating_function! {
     /// --config CONFIG` does.
     fn evaluate(py, creature: &Bound<'_, PyAny>; args, record) -> PyResult<PyEvaluation> {
         let spec = args.spec()?;
+        if spec.develop.during() {
+            return evaluate_growing(py, creature, &args, &spec, record);
+        }
         let creatures = match creature.cast::<PyCreature>() {
             Ok(creature) => {
                 args.only(&spec)?;
@@ -363,6 +372,56 @@ evaluating_function! {
         let outcome = interruptible(py, |cancel| watched(&spec, &creatures, only, record, cancel))?
             .map_err(interrupted_error)?;
         Ok(PyEvaluation { outcome })
+    }
+}
+
+/// `evaluate` of a grammar that develops during the walk (`develop = "during"` in
+/// `config=`), as `ontogeny eval FILE --config CONFIG` does: the creature at t₀ walks and
+/// grows. It takes the path of an `.lsys` file in continuous time, on the walker, with one
+/// habitat and one trial.
+fn evaluate_growing(
+    py: Python<'_>,
+    creature: &Bound<'_, PyAny>,
+    args: &TaskArgs<'_, '_>,
+    spec: &TaskSpec,
+    record: bool,
+) -> PyResult<PyEvaluation> {
+    let refuse = |why: String| Err(value_error(format!("develop = \"during\": {why}")));
+    let Ok(path) = creature.extract::<PathBuf>() else {
+        return refuse(format!(
+            "a grammar grows during the walk: give the path of its .lsys file, not a {}",
+            creature.get_type().name()?
+        ));
+    };
+    require_exists(&path)?;
+    spec.check_growing().map_err(value_error)?;
+    if !spec.is_plain() || args.habitat.is_some() {
+        return refuse("habitats and trials do not grow their creature yet".to_string());
+    }
+    if path.extension().is_none_or(|e| e != "lsys") {
+        return refuse(format!(
+            "{} is not an L-system file (.lsys): only a grammar grows",
+            path.display()
+        ));
+    }
+    let seedling = Seedling {
+        lsys: Arc::new(LSystem::from_path(&path).map_err(diagnostic_error)?),
+        derive: DeriveOptions::default(),
+        build: BuildOptions::default(),
+    };
+    check_continuous(&seedling, &path.display().to_string()).map_err(value_error)?;
+    let outcome = interruptible(py, |cancel| {
+        let watch = Watch {
+            record,
+            progress: &mut |_| {},
+            cancel: Some(cancel),
+        };
+        spec.evaluate_grown_job(&seedling, None, watch)
+    })?;
+    match outcome {
+        Ok(outcome) => Ok(PyEvaluation { outcome }),
+        Err(GrowError::Interrupted(i)) => Err(interrupted_error(i)),
+        Err(e) => Err(value_error(e)),
     }
 }
 

@@ -172,6 +172,30 @@ impl<G: Deref<Target = LSystem>> Development<G> {
         &self.env
     }
 
+    /// Takes `values` as the environment array (the array a creature's controller reads and
+    /// writes while the development goes on during its walk; the same length as this one) and,
+    /// if that changed it, processes the `?E` modules at the current instant, as at an event:
+    /// with exact timing the exchanges and rewriting passes until nothing changes, with
+    /// iterative timing one exchange. Returns whether the array differed.
+    ///
+    /// # Errors
+    ///
+    /// A bad `?E` module, or an instant that does not settle.
+    pub fn share_environment(&mut self, values: &[f64]) -> Result<bool, Diagnostic> {
+        if self.env.values() == values {
+            return Ok(false);
+        }
+        self.env = Environment::new(values.to_vec());
+        self.cache.valid = false;
+        match self.timing {
+            Timing::Exact => self.settle()?,
+            Timing::Iterative => {
+                self.exchange()?;
+            }
+        }
+        Ok(true)
+    }
+
     /// The index of the current observation (0 for t = 0).
     pub fn frame_number(&self) -> u64 {
         self.frame

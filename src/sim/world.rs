@@ -139,6 +139,14 @@ impl World {
         &self.environment
     }
 
+    /// Sets the environment array to `values` (a growing creature's development writes it
+    /// back after its `?E` exchanges). Slots past the shorter of the two are left as they are.
+    pub fn set_environment(&mut self, values: &[f64]) {
+        for (slot, &v) in self.environment.iter_mut().zip(values) {
+            *slot = v;
+        }
+    }
+
     /// The world pose of part `id`: its body's pose and the part's place in the body (always
     /// in step with the body, even before the colliders are synchronised).
     pub(super) fn part_world_pose(&self, id: PartId) -> Pose {

@@ -4,6 +4,12 @@
 //! seconds develops the grammar by `rate` × Δt and applies what changed to the world
 //! ([`World::apply_growth`]). While the protocol waits for the creature to come to rest,
 //! development pauses: the rest tests measure the body, not its growth.
+//!
+//! The development and the controller share one environment array: at each control step the
+//! development takes the world's array (what the controller's secreting neurons wrote), runs
+//! its `?E` exchanges at once if the array changed, develops (exchanging at its events and at
+//! the end, as any continuous development does) and writes the array back to the world,
+//! whose chemical sensors read it at the next control step.
 
 use std::sync::Arc;
 
@@ -229,7 +235,13 @@ impl Growing {
     ///
     /// What development reports.
     pub fn step(&mut self, world: &mut World, seconds: f64) -> Result<Grown, Diagnostic> {
+        // One environment array: the development takes the world's (what the controller
+        // secreted this step), exchanges at once if it changed, develops, and gives it back
+        // for the controller's next step.
+        self.development.share_environment(world.environment())?;
         self.development.advance_by(self.rate * seconds)?;
+        world.set_environment(self.development.environment().values());
+        self.creature.environment = self.development.environment().values().to_vec();
         self.events.extend(self.development.take_events());
         let t = self.development.now();
         let shown = self

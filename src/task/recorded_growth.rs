@@ -8,12 +8,13 @@
 //! step in several, the next sample kept) says what it is: its shape and its joint, placed
 //! relative to its parent part (its centre and axes), since the parent's pose is the sample's.
 //! A part that changed size says its new edge lengths; a part whose growth stopped because it
-//! would have reached into something says so.
+//! would have reached into something says so. A neuron or link added to the running brain is
+//! recorded too, by its index there, with the sample whose step added it.
 
 use nalgebra::{UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
-use crate::creature::{Creature, Joint, Part, PartId};
+use crate::creature::{Creature, Joint, Link, Neuron, Part, PartId};
 use crate::sim::{Grown, World};
 
 /// One change to a growing body, recorded with the first sample that shows it.
@@ -43,6 +44,19 @@ pub enum BodyChange {
     Stopped {
         /// The part.
         part: PartId,
+    },
+    /// A neuron added to the running brain; its index is the next one (the number of neurons
+    /// there were). Its parts and joints are named by id.
+    Neuron {
+        /// Its index in the brain.
+        neuron: usize,
+        /// The neuron.
+        spec: Neuron,
+    },
+    /// A link added to the running brain, between neurons named by their index there.
+    Link {
+        /// The link.
+        link: Link,
     },
 }
 
@@ -84,6 +98,20 @@ impl GrowthRecorder {
                     }
                 }
             }
+        }
+        // The brain's new neurons and links are the last ones of the creature's, in the
+        // order the running brain took them.
+        let neurons = &creature.brain.neurons;
+        let first = neurons.len().saturating_sub(grown.neurons);
+        for (k, spec) in neurons.iter().enumerate().skip(first) {
+            self.changes.push(BodyChange::Neuron {
+                neuron: k,
+                spec: spec.clone(),
+            });
+        }
+        let links = &creature.brain.links;
+        for link in &links[links.len().saturating_sub(grown.links)..] {
+            self.changes.push(BodyChange::Link { link: link.clone() });
         }
         for &id in &grown.stopped {
             let stopped = BodyChange::Stopped { part: id };
@@ -133,6 +161,7 @@ pub fn check_growth<'s>(
     samples: impl IntoIterator<Item = (&'s [BodyChange], usize)>,
 ) -> Result<(), String> {
     let mut parts = creature.parts.len();
+    let mut neurons = creature.brain.neurons.len();
     for (i, (growth, posed)) in samples.into_iter().enumerate() {
         for change in growth {
             let bad = match change {
@@ -153,6 +182,19 @@ pub fn check_growth<'s>(
                     if part.0 >= parts =>
                 {
                     Some(format!("{part} changes before it appears"))
+                }
+                BodyChange::Neuron { neuron, .. } if *neuron != neurons => Some(format!(
+                    "neuron {neuron} is added, but the next neuron is {neurons}"
+                )),
+                BodyChange::Neuron { .. } => {
+                    neurons += 1;
+                    None
+                }
+                BodyChange::Link { link } if link.from >= neurons || link.to >= neurons => {
+                    Some(format!(
+                        "a link from neuron {} to neuron {} is added, but the brain has {neurons}",
+                        link.from, link.to
+                    ))
                 }
                 _ => None,
             };
@@ -211,7 +253,8 @@ impl<'r> GrowingBody<'r> {
 }
 
 /// Applies `change` to `body`: a new part placed by its parent, a part resized (the anchors of
-/// the joints it holds kept at the same place on its faces), a stop changing nothing.
+/// the joints it holds kept at the same place on its faces), a stop changing nothing, a new
+/// neuron or link added to its brain.
 fn apply(body: &mut Creature, change: &BodyChange) {
     match change {
         BodyChange::Appears { part, shape, joint } => {
@@ -246,6 +289,12 @@ fn apply(body: &mut Creature, change: &BodyChange) {
             }
         }
         BodyChange::Stopped { .. } => {}
+        BodyChange::Neuron { neuron, spec } => {
+            if *neuron == body.brain.neurons.len() {
+                body.brain.neurons.push(spec.clone());
+            }
+        }
+        BodyChange::Link { link } => body.brain.links.push(link.clone()),
     }
 }
 
@@ -331,6 +380,61 @@ mod tests {
         );
         // Asked again from the start, it starts again.
         assert_eq!(body.at(0).parts.len(), 1);
+    }
+
+    #[test]
+    fn a_recorded_neuron_and_link_read_back_and_join_the_body_s_brain() {
+        let creature = creature_from_commands("forward(1)").unwrap();
+        let n = creature.brain.neurons.len();
+        let spec = creature.brain.neurons[0].clone();
+        let link = Link {
+            from: 0,
+            to: n,
+            weight: 0.5,
+        };
+        let changes = vec![
+            BodyChange::Neuron {
+                neuron: n,
+                spec: spec.clone(),
+            },
+            BodyChange::Link { link: link.clone() },
+        ];
+        let text = serde_json::to_string(&changes).unwrap();
+        assert!(text.contains(r#"{"link":{"from":0,"to":"#), "{text}");
+        let read: Vec<BodyChange> = serde_json::from_str(&text).unwrap();
+        assert_eq!(read, changes);
+        let samples = vec![(vec![], 1), (changes, 1)];
+        assert_eq!(check_growth(&creature, views(&samples)), Ok(()));
+        let mut body = GrowingBody::new(
+            &creature,
+            views(&samples).into_iter().map(|v| v.0).collect(),
+        );
+        let grown = body.at(1);
+        assert_eq!(grown.brain.neurons.len(), n + 1);
+        assert_eq!(grown.brain.neurons[n], spec);
+        assert_eq!(grown.brain.links.last(), Some(&link));
+        // A neuron out of turn, and a link to a neuron there is not, are refused.
+        let skipped = vec![(
+            vec![BodyChange::Neuron {
+                neuron: n + 1,
+                spec,
+            }],
+            1,
+        )];
+        assert_eq!(
+            check_growth(&creature, views(&skipped)),
+            Err(format!(
+                "frame 1: neuron {} is added, but the next neuron is {n}",
+                n + 1
+            ))
+        );
+        let dangling = vec![(vec![BodyChange::Link { link }], 1)];
+        assert_eq!(
+            check_growth(&creature, views(&dangling)),
+            Err(format!(
+                "frame 1: a link from neuron 0 to neuron {n} is added, but the brain has {n}"
+            ))
+        );
     }
 
     #[test]

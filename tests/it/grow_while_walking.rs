@@ -376,3 +376,92 @@ fn runs_growth_gives_each_generation_s_best_and_mean_growth_from_the_store() {
         ),
     );
 }
+
+/// A grammar that answers its environment: at developmental time 1 it writes 0.75 into slot
+/// 0, and once slot 1 holds more than 0.5 it writes that value plus 1 into slot 2.
+const ANSWERS: &str = "time: 3\n\
+    dt: 0.25\n\
+    timing: exact\n\
+    environment: 0 0 0\n\
+    axiom: forward(0.8) revolute1 forward(0.8) A(0) B ?E(1, 1, 0)\n\
+    A(x) : x < 1 --> solve dx/dt = 1\n\
+    A(x) : x >= 1 --> ?E(0, 0, 0.75)\n\
+    B > ?E(1, 1, c) : c > 0.5 --> ?E(0, 2, c + 1)\n";
+
+#[test]
+fn the_development_during_the_walk_shares_the_array_the_controller_reads_and_writes() {
+    use ontogeny::sim::{SimOptions, World};
+    let lsys = Arc::new(LSystem::from_text("answers.lsys", ANSWERS).unwrap());
+    let mut growing = Growing::start(
+        lsys,
+        &DeriveOptions::default(),
+        &BuildOptions::default(),
+        1.0,
+        Some(0.0),
+    )
+    .unwrap();
+    let mut world = World::new(growing.creature(), &SimOptions::default()).unwrap();
+    assert_eq!(world.environment(), &[0.0, 0.0, 0.0]);
+    // Steps of 0.25 s: the grammar's write at t = 1 reaches the array the controller's
+    // chemical sensors read at the end of the fourth step, not before.
+    for _ in 0..3 {
+        growing.step(&mut world, 0.25).unwrap();
+        assert_eq!(world.environment(), &[0.0, 0.0, 0.0]);
+    }
+    growing.step(&mut world, 0.25).unwrap();
+    assert_eq!(world.environment(), &[0.75, 0.0, 0.0]);
+    // The controller writes slot 1 (as a secreting neuron does): the grammar reads it at the
+    // start of the next step and answers within it.
+    world.set_environment(&[0.75, 0.9, 0.0]);
+    growing.step(&mut world, 0.25).unwrap();
+    assert_eq!(world.environment(), &[0.75, 0.9, 1.9]);
+    assert_eq!(growing.creature().environment, vec![0.75, 0.9, 1.9]);
+    // The grammar's `?E(0, 0, 0.75)` stays in its string and writes slot 0 at every
+    // exchange: a controller's write there lasts until the next one.
+    world.set_environment(&[0.5, 0.9, 1.9]);
+    growing.step(&mut world, 0.25).unwrap();
+    assert_eq!(world.environment(), &[0.75, 0.9, 1.9]);
+}
+
+/// A walker whose controller secretes its oscillator's output into slot 0 (with `secrete`),
+/// and whose grammar sprouts a pair of legs once it reads less than −0.5 there after
+/// developmental time 1 (the oscillator, fed back on itself, settles near −0.65 by then);
+/// without `secrete` nothing writes the slot, and it stays 0.
+fn secreting(secrete: &str) -> String {
+    format!(
+        "time: 3\n\
+         dt: 0.25\n\
+         timing: exact\n\
+         environment: 0\n\
+         axiom: width(0.6) thickness(0.2) forward(0.8) {secrete} forward(0.8) ?E(1, 0, 0) A(0)\n\
+         A(x) : x < 1 --> solve dx/dt = 1\n\
+         ?E(1, 0, c) < A(x) : x >= 1 && c < -0.5 --> [ left(1) mforward(0) ] [ right(1) mforward(0) ]\n\
+         mforward(x) : x < 0.4 --> solve dx/dt = 0.4\n\
+         mforward(x) : x >= 0.4 --> forward(x)\n"
+    )
+}
+
+fn secreting_walk(secrete: &str) -> ontogeny::task::Evaluation {
+    let seedling = ontogeny::develop::Seedling {
+        lsys: Arc::new(LSystem::from_text("secreting.lsys", &secreting(secrete)).unwrap()),
+        derive: DeriveOptions::default(),
+        build: BuildOptions::default(),
+    };
+    let evaluation = short_walk()
+        .evaluate_grown_job(&seedling, None, Watch::uncancelled(false, &mut |_| {}))
+        .unwrap();
+    assert_eq!(evaluation.status, Status::Ok, "{evaluation:?}");
+    evaluation
+}
+
+#[test]
+fn a_grammar_grows_legs_during_the_walk_when_its_controller_secretes_what_it_reads() {
+    let quiet = secreting_walk("");
+    assert_eq!(quiet.terms["grown_parts"], 0.0);
+    let secreted = secreting_walk("secrete(0)");
+    assert_eq!(secreted.terms["grown_parts"], 2.0);
+    // The same walk again, exchanges and all, to the bit.
+    let again = secreting_walk("secrete(0)");
+    assert_eq!(again.fitness.to_bits(), secreted.fitness.to_bits());
+    assert_eq!(again.terms, secreted.terms);
+}

@@ -194,3 +194,48 @@ fn export_writes_the_creature_at_a_developmental_time_as_a_walk_would_drop_it() 
     succeeded(&out);
     assert!(!stderr(&out).contains("growth"), "{}", stderr(&out));
 }
+
+#[test]
+fn a_growing_walk_records_the_neurons_and_links_its_terms_count() {
+    let dir = scratch_dir("growing-shown-brain").join("rec");
+    let out = ontogeny(&[
+        "eval",
+        EXAMPLE,
+        "--develop",
+        "during",
+        "--seconds",
+        "3",
+        "--json",
+        "--record",
+        dir.to_str().unwrap(),
+    ]);
+    succeeded(&out);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let recording = read(&dir);
+    assert_eq!(recording.check_growth(), Ok(()));
+    let changes: Vec<&BodyChange> = recording.samples.iter().flat_map(|s| &s.growth).collect();
+    let neurons: Vec<usize> = changes
+        .iter()
+        .filter_map(|c| match c {
+            BodyChange::Neuron { neuron, .. } => Some(*neuron),
+            _ => None,
+        })
+        .collect();
+    let links = changes
+        .iter()
+        .filter(|c| matches!(c, BodyChange::Link { .. }))
+        .count();
+    // Each leg brings its output neuron and the link that feeds it.
+    assert_eq!(json["terms"]["grown_neurons"], 4.0);
+    assert_eq!(json["terms"]["grown_links"], 4.0);
+    let dropped = recording.creature.brain.neurons.len();
+    assert_eq!(neurons, (dropped..dropped + 4).collect::<Vec<_>>());
+    assert_eq!(links, 4);
+    let last = recording.bodies().at(recording.samples.len() - 1).clone();
+    assert_eq!(last.brain.neurons.len(), dropped + 4);
+    assert_eq!(
+        last.brain.links.len(),
+        recording.creature.brain.links.len() + 4
+    );
+    assert_eq!(last.check_consistency(), Ok(()));
+}

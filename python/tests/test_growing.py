@@ -1,0 +1,54 @@
+"""A grammar that grows during the walk, from Python: ``evaluate(PATH, config=...)`` with
+``develop = "during"`` equals ``ontogeny eval PATH --config``, and its trajectory has a row
+for every part that ever existed, NaN before the part appeared."""
+
+import json
+
+import numpy as np
+import pytest
+
+import ontogeny
+
+EXAMPLE = "examples/grow-while-walking.lsys"
+
+CONFIG = """\
+[task]
+task = "walker"
+develop = "during"
+
+[task.walker]
+seconds = 2
+"""
+
+
+@pytest.fixture
+def config(tmp_path):
+    path = tmp_path / "growing.toml"
+    path.write_text(CONFIG)
+    return path
+
+
+def test_a_growing_walk_equals_the_command_lines_and_its_trajectory_gains_parts(root, cli, config):
+    ours = ontogeny.evaluate(root / EXAMPLE, config=config, record=True)
+    theirs = cli.json("eval", EXAMPLE, "--config", config, "--json")
+    assert ours.fitness == theirs["fitness"]
+    assert json.loads(ours.to_json()) == theirs
+    assert ours.terms["grown_parts"] == 4.0
+    trajectory = ours.trajectory
+    # Two segments dropped, four legs grown: six parts, by id.
+    assert trajectory.shape == (len(ours.times), 6, 3)
+    assert not np.isnan(trajectory[:, :2]).any()
+    # Each leg has NaN rows until it appears, and positions from then on.
+    for part in range(2, 6):
+        present = ~np.isnan(trajectory[:, part, 0])
+        assert not present[0]
+        assert present[-1]
+        first = int(np.argmax(present))
+        assert present[first:].all()
+        assert np.isnan(trajectory[:first, part]).all()
+
+
+def test_a_growing_walk_takes_a_grammar_s_path_not_a_creature(root, config):
+    creature = ontogeny.load(root / EXAMPLE)
+    with pytest.raises(ValueError, match=r'develop = "during": a grammar grows during the walk'):
+        ontogeny.evaluate(creature, config=config)
