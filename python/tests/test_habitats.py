@@ -12,7 +12,8 @@ import ontogeny
 
 CHAIN = "benches/chain10.lsys"
 
-CONFIG = """\
+# Half-second walks of the walker, two trials in each habitat: what the configs below share.
+WALKER_TRIALS = """\
 [task]
 task = "walker"
 
@@ -21,6 +22,9 @@ seconds = 0.5
 
 [task.trials]
 count = 2
+"""
+
+CONFIG = WALKER_TRIALS + """\
 offset = 0.2
 
 [[task.habitats]]
@@ -62,15 +66,7 @@ def test_evaluate_in_habitats_equals_the_command_lines_eval(root, cli, config):
     assert ontogeny.evaluate(creature, seconds=0.5).habitats == []
 
 
-ARRAYS = """\
-[task]
-task = "walker"
-
-[task.walker]
-seconds = 0.5
-
-[task.trials]
-count = 2
+ARRAYS = WALKER_TRIALS + """\
 heading = 15
 strength = 10
 

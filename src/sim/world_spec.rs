@@ -33,28 +33,28 @@ pub const MAX_LENGTH: f64 = 400.0;
 
 /// A creature's world besides the creature (the `[task.world]` table).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct WorldSpec {
     /// A plane ground tilted by an angle (none: level ground).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub slope: Option<Slope>,
     /// A flight of steps (none: no steps).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub steps: Option<Steps>,
     /// A rough ground: a seeded heightfield (none: smooth ground).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub rough: Option<Rough>,
     /// Fixed boxes (none: no obstacles).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub obstacles: Option<Obstacles>,
     /// Free bodies: balls and boxes, with a starting velocity.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub objects: Vec<Object>,
     /// The ground's friction and its patches (none: the simulator's `friction`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub friction: Option<GroundFriction>,
     /// The medium the creature is in.
-    #[serde(default, skip_serializing_if = "Medium::is_air")]
+    #[serde(skip_serializing_if = "Medium::is_air")]
     pub medium: Medium,
 }
 

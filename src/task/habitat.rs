@@ -60,22 +60,22 @@ pub struct Habitat {
 /// `[task.trials]`'s in that habitat ([`TaskSpec::trials_in`]); how many trials and how they
 /// combine stay the task's.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct Noise {
     /// See [`Trials::heading`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub heading: Option<f64>,
     /// See [`Trials::offset`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub offset: Option<f64>,
     /// See [`Trials::strength`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub strength: Option<f64>,
     /// See [`Trials::friction`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub friction: Option<f64>,
     /// See [`Trials::roughness`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub roughness: Option<f64>,
 }
 

@@ -254,9 +254,13 @@ mod tests {
     use super::*;
     use crate::develop::creature_from_commands;
 
-    /// A sample as the checks see it: its changes and how many parts it poses.
-    fn sample(_t: f64, parts: usize, growth: Vec<BodyChange>) -> (Vec<BodyChange>, usize) {
-        (growth, parts)
+    /// The samples of a growth from a one-part body, as the checks see them (each sample's
+    /// changes and how many parts it poses): a first sample of the one part unchanged, then one
+    /// sample per change, posing the given number of parts.
+    fn from_one_part(changes: Vec<(usize, BodyChange)>) -> Vec<(Vec<BodyChange>, usize)> {
+        let mut samples = vec![(vec![], 1)];
+        samples.extend(changes.into_iter().map(|(parts, c)| (vec![c], parts)));
+        samples
     }
 
     fn views(samples: &[(Vec<BodyChange>, usize)]) -> Vec<(&[BodyChange], usize)> {
@@ -288,26 +292,23 @@ mod tests {
             strength: 1.0,
             growing: false,
         };
-        let samples = vec![
-            sample(0.0, 1, vec![]),
-            sample(
-                0.1,
+        let samples = from_one_part(vec![
+            (
                 2,
-                vec![BodyChange::Appears {
+                BodyChange::Appears {
                     part: PartId(1),
                     shape,
                     joint,
-                }],
+                },
             ),
-            sample(
-                0.2,
+            (
                 2,
-                vec![BodyChange::Resized {
+                BodyChange::Resized {
                     part: PartId(0),
                     size: Vector3::new(2.0, size.y, size.z),
-                }],
+                },
             ),
-        ];
+        ]);
         assert_eq!(check_growth(&creature, views(&samples)), Ok(()));
         let mut body = GrowingBody::new(
             &creature,
@@ -335,22 +336,18 @@ mod tests {
     #[test]
     fn growth_that_names_a_part_out_of_turn_is_refused_with_its_frame() {
         let creature = creature_from_commands("forward(1)").unwrap();
-        let samples = vec![
-            sample(0.0, 1, vec![]),
-            sample(
-                0.1,
-                1,
-                vec![BodyChange::Resized {
-                    part: PartId(3),
-                    size: Vector3::repeat(1.0),
-                }],
-            ),
-        ];
+        let samples = from_one_part(vec![(
+            1,
+            BodyChange::Resized {
+                part: PartId(3),
+                size: Vector3::repeat(1.0),
+            },
+        )]);
         assert_eq!(
             check_growth(&creature, views(&samples)),
             Err("frame 2: part 3 changes before it appears".to_string())
         );
-        let posed_more = vec![sample(0.0, 2, vec![])];
+        let posed_more = vec![(vec![], 2)];
         assert_eq!(
             check_growth(&creature, views(&posed_more)),
             Err("frame 1: 2 parts posed, but the body has 1".to_string())

@@ -8,8 +8,10 @@ use ontogeny::develop::BuildOptions;
 use ontogeny::lsystem::{DeriveOptions, LSystem};
 use ontogeny::task::{Growing, Phase, Status, TaskKind, TaskSpec, Watch};
 
-use crate::evolve::contents;
-use crate::util::{assert_bad_input, ontogeny, ontogeny_command, scratch_dir, succeeded};
+use crate::util::{
+    assert_bad_input, assert_the_same_on_any_thread_count_and_resumed, evolve, ontogeny,
+    scratch_dir, succeeded,
+};
 
 const EXAMPLE: &str = "examples/grow-while-walking.lsys";
 
@@ -25,9 +27,9 @@ fn short_walk() -> TaskSpec {
     spec
 }
 
-/// The example evaluated growing from its first valid frame at one unit of developmental
-/// time per second, recorded.
-fn grown_walk() -> ontogeny::task::Evaluation {
+/// The example evaluated by `spec` growing from its first valid frame at one unit of
+/// developmental time per second, recorded or not, and its development after the walk.
+fn walk_growing(spec: &TaskSpec, record: bool) -> (ontogeny::task::Evaluation, Growing) {
     let mut growing = Growing::start(
         example(),
         &DeriveOptions::default(),
@@ -37,13 +39,19 @@ fn grown_walk() -> ontogeny::task::Evaluation {
     )
     .unwrap();
     let creature = growing.creature().clone();
-    short_walk()
+    let evaluation = spec
         .evaluate_growing(
             &creature,
-            Watch::uncancelled(true, &mut |_| {}),
+            Watch::uncancelled(record, &mut |_| {}),
             Some(&mut growing),
         )
-        .unwrap()
+        .unwrap();
+    (evaluation, growing)
+}
+
+/// The example's 2 s walk growing ([`walk_growing`]), recorded.
+fn grown_walk() -> ontogeny::task::Evaluation {
+    walk_growing(&short_walk(), true).0
 }
 
 #[test]
@@ -195,36 +203,12 @@ fn a_run_of_a_genome_that_cannot_grow_during_the_walk_is_refused() {
     assert!(!out.join("run").exists());
 }
 
-/// `ontogeny evolve --config CONFIG --out OUT EXTRA...`, which must succeed.
-fn evolve(config: &Path, out: &Path, extra: &[&str]) {
-    let output = ontogeny_command()
-        .args(["evolve", "--config"])
-        .arg(config)
-        .arg("--out")
-        .arg(out)
-        .args(extra)
-        .output()
-        .unwrap();
-    succeeded(&output);
-}
-
 #[test]
 fn an_evolution_growing_during_the_walk_is_the_same_on_any_thread_count_and_resumed() {
     let dir = scratch_dir("grow_while_walking_evolve");
     let config = growing_config(&dir, "lsystem-continuous", "develop_rate = 2");
-    evolve(&config, &dir.join("one"), &["--threads", "1"]);
-    evolve(&config, &dir.join("two"), &["--threads", "2"]);
-    assert_eq!(contents(&dir.join("one")), contents(&dir.join("two")));
     // Stopped after one generation, then resumed to two: the same run.
-    let stopped = dir.join("stopped");
-    evolve(&config, &stopped, &["--gens", "1"]);
-    let resumed = ontogeny_command()
-        .args(["evolve", "--gens", "2", "--resume"])
-        .arg(&stopped)
-        .output()
-        .unwrap();
-    succeeded(&resumed);
-    assert_eq!(contents(&stopped), contents(&dir.join("one")));
+    assert_the_same_on_any_thread_count_and_resumed(&config, &dir, "1", "2");
     // Its walkers grew during their walks: every evaluation that succeeded tallies it.
     let store = ontogeny::run::store::RunStore::open_read_only(&dir.join("one").join("run.sqlite"))
         .unwrap();
@@ -246,24 +230,9 @@ fn an_evolution_growing_during_the_walk_is_the_same_on_any_thread_count_and_resu
 /// The events of the example's development during a 2 s walk at control step `step`, as
 /// (developmental time, module).
 fn events_at_control_step(step: f64) -> Vec<(f64, String)> {
-    let mut growing = Growing::start(
-        example(),
-        &DeriveOptions::default(),
-        &BuildOptions::default(),
-        1.0,
-        None,
-    )
-    .unwrap();
-    let creature = growing.creature().clone();
     let mut spec = short_walk();
     spec.sim.control_step = step;
-    let evaluation = spec
-        .evaluate_growing(
-            &creature,
-            Watch::uncancelled(false, &mut |_| {}),
-            Some(&mut growing),
-        )
-        .unwrap();
+    let (evaluation, growing) = walk_growing(&spec, false);
     assert_eq!(evaluation.status, Status::Ok, "{evaluation:?}");
     growing
         .events()

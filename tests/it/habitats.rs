@@ -7,9 +7,9 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::evolve::contents;
 use crate::util::{
-    ontogeny, ontogeny_command, ontogeny_ok, refused, scratch_dir, stdout, succeeded,
+    assert_the_same_on_any_thread_count_and_resumed, evolve, ontogeny, ontogeny_command,
+    ontogeny_ok, refused, scratch_dir, stdout, succeeded,
 };
 
 /// Two flat habitats that differ in chemical 0 (`poor` 0, `rich` 1), `trials` trials each
@@ -232,36 +232,12 @@ fn a_bad_habitats_table_is_refused_with_exit_code_2_at_its_line_and_column() {
     }
 }
 
-/// `evolve --config CONFIG --out OUT` with `extra` flags; asserts that it succeeded.
-fn evolve(config: &Path, out: &Path, extra: &[&str]) {
-    let output = ontogeny_command()
-        .args(["evolve", "--config"])
-        .arg(config)
-        .arg("--out")
-        .arg(out)
-        .args(extra)
-        .output()
-        .unwrap();
-    succeeded(&output);
-}
-
 #[test]
 fn a_tiny_evolution_in_habitats_is_the_same_on_any_thread_count_and_resumed() {
     let dir = scratch_dir("habitats-evolve");
     let config = config(&dir, 2, "heading = 20\nstrength = 10");
-    evolve(&config, &dir.join("one"), &["--threads", "1"]);
-    evolve(&config, &dir.join("two"), &["--threads", "2"]);
-    assert_eq!(contents(&dir.join("one")), contents(&dir.join("two")));
     // Stopped after two generations, then resumed to three: the same run.
-    let stopped = dir.join("stopped");
-    evolve(&config, &stopped, &["--gens", "2"]);
-    let resumed = ontogeny_command()
-        .args(["evolve", "--gens", "3", "--resume"])
-        .arg(&stopped)
-        .output()
-        .unwrap();
-    succeeded(&resumed);
-    assert_eq!(contents(&stopped), contents(&dir.join("one")));
+    assert_the_same_on_any_thread_count_and_resumed(&config, &dir, "2", "3");
     // The store keeps each habitat's and trial's result in the individual's evaluation.
     let store = ontogeny::run::store::RunStore::open_read_only(&dir.join("one").join("run.sqlite"))
         .unwrap();
@@ -456,7 +432,7 @@ fn a_habitat_without_noise_walks_as_a_plain_task_beside_a_noisy_one() {
 /// The generations `compare --plan` gives each replicate of `lsystem` under a walker config
 /// with `trials` trials (drawn afresh each generation when `fresh`), at a budget of `walks`
 /// walks.
-fn planned_generations(dir: &Path, trials: u32, fresh: bool, walks: &str) -> String {
+fn planned_generations(dir: &Path, trials: u32, fresh: bool, walks: &str) -> u64 {
     let name = if fresh { "fresh-" } else { "" };
     let config = dir.join(format!("{name}trials-{trials}.toml"));
     std::fs::write(
@@ -488,9 +464,10 @@ fn planned_generations(dir: &Path, trials: u32, fresh: bool, walks: &str) -> Str
     let planned = std::fs::read_to_string(out.join("evolve.toml")).unwrap();
     planned
         .lines()
-        .find(|l| l.starts_with("generations = "))
+        .find_map(|l| l.strip_prefix("generations = "))
         .unwrap()
-        .to_string()
+        .parse()
+        .unwrap()
 }
 
 #[test]
@@ -499,14 +476,8 @@ fn an_encoding_comparison_counts_its_budget_in_walks() {
     // The first generation evaluates all 10, each later one the 8 that are not elite: 12
     // generations make 10 + 8·11 = 98 evaluations, 13 would make 106. At 4 trials, a budget
     // of 400 walks is 100 evaluations, as a budget of 100 is at one.
-    assert_eq!(
-        planned_generations(&dir, 4, false, "400"),
-        "generations = 12"
-    );
-    assert_eq!(
-        planned_generations(&dir, 1, false, "100"),
-        "generations = 12"
-    );
+    assert_eq!(planned_generations(&dir, 4, false, "400"), 12);
+    assert_eq!(planned_generations(&dir, 1, false, "100"), 12);
     // Run, the report and the progress count walks: 40 walks are one generation of 10.
     let out = dir.join("run-4");
     let ran = ontogeny_command()
@@ -539,15 +510,9 @@ fn a_budget_counts_the_elite_walked_again_on_fresh_trials() {
     // Population 10, elite 2, 4 trials: 40 walks a generation, fresh or not, at first; then
     // 8 × 4 = 32 walks a generation, or 10 × 4 = 40 when the elite are walked again. 400 walks
     // are 12 generations (40 + 11 · 32 = 392), or 10 fresh ones (40 + 9 · 40 = 400).
-    assert_eq!(
-        planned_generations(&dir, 4, false, "400"),
-        "generations = 12"
-    );
-    assert_eq!(
-        planned_generations(&dir, 4, true, "400"),
-        "generations = 10"
-    );
-    assert_eq!(planned_generations(&dir, 4, true, "399"), "generations = 9");
+    assert_eq!(planned_generations(&dir, 4, false, "400"), 12);
+    assert_eq!(planned_generations(&dir, 4, true, "400"), 10);
+    assert_eq!(planned_generations(&dir, 4, true, "399"), 9);
     // Population 6, elite 1, 2 trials in 2 habitats: 24 walks in generation 0, then 5 × 4 = 20
     // a generation, or 6 × 4 = 24 fresh. 64 walks are 2 fresh generations (48 walks), not 3.
     let config = config(&dir, 2, "heading = 30\nfresh = true");

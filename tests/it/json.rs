@@ -1,7 +1,7 @@
 //! The `--json` outputs of `evolve` (its final line), `compare`, `genome show` and `bench`:
 //! one JSON object on standard output, parsed here, with the figures the text gives.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use ontogeny::run::store::RunStore;
 use serde_json::Value;
@@ -215,47 +215,46 @@ fn bench_json_prints_one_creatures_speed_and_is_refused_with_fidelity() {
     assert!(stdout(&o).is_empty());
 }
 
-#[test]
-fn the_walker_examples_note_gives_the_walks_that_seconds_sets() {
-    let dir = scratch("default-seconds");
-    // A folder of the user's: refused once the settings are resolved, after the note.
+/// `ontogeny evolve ARGS --out MINE`, MINE a folder of the user's in `dir` (it holds
+/// `notes.txt`): refused (exit code 2) once the settings are resolved, after any note.
+/// Returns the folder and the standard error.
+fn evolve_into_a_folder_of_the_users(dir: &Path, args: &[&str]) -> (PathBuf, String) {
     let mine = dir.join("mine");
     std::fs::create_dir_all(&mine).unwrap();
     std::fs::write(mine.join("notes.txt"), "mine").unwrap();
     let o = ontogeny_command()
-        .args(["evolve", "--seconds", "2.5", "--out"])
+        .arg("evolve")
+        .args(args)
+        .arg("--out")
         .arg(&mine)
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let said = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {said}");
+    (mine, said)
+}
+
+#[test]
+fn the_walker_examples_note_gives_the_walks_that_seconds_sets() {
+    let dir = scratch("default-seconds");
+    let (_, said) = evolve_into_a_folder_of_the_users(&dir, &["--seconds", "2.5"]);
     assert!(
-        stderr(&o).contains(
+        said.contains(
             "100 creatures × 40 generations of 2.5-second walks (--seconds), fitness distance"
         ),
-        "{}",
-        stderr(&o)
+        "{said}"
     );
 }
 
 #[test]
 fn evolve_with_nothing_about_the_runs_size_starts_the_walker_example_and_says_so() {
     let dir = scratch("default");
-    // A folder of the user's: refused once the settings are resolved, after the note.
-    let mine = dir.join("mine");
-    std::fs::create_dir_all(&mine).unwrap();
-    std::fs::write(mine.join("notes.txt"), "mine").unwrap();
-    let o = ontogeny_command()
-        .args(["evolve", "--out"])
-        .arg(&mine)
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let (mine, said) = evolve_into_a_folder_of_the_users(&dir, &[]);
     assert!(
-        stderr(&o).starts_with(
+        said.starts_with(
             "note: no --config, --preset, --pop or --gens: starting the walker example (examples/evolve-walker.toml, built in"
         ),
-        "{}",
-        stderr(&o)
+        "{said}"
     );
     assert_eq!(
         std::fs::read_to_string(mine.join("notes.txt")).unwrap(),
@@ -263,15 +262,8 @@ fn evolve_with_nothing_about_the_runs_size_starts_the_walker_example_and_says_so
     );
     // With a size, no note; settings out of range are refused before any note.
     for args in [&["--pop", "4"][..], &["--seconds", "5000"][..]] {
-        let o = ontogeny_command()
-            .arg("evolve")
-            .args(args)
-            .arg("--out")
-            .arg(&mine)
-            .output()
-            .unwrap();
-        assert_eq!(o.status.code(), Some(2), "{args:?}");
-        assert!(!stderr(&o).contains("note: no --config"), "{}", stderr(&o));
+        let (_, said) = evolve_into_a_folder_of_the_users(&dir, args);
+        assert!(!said.contains("note: no --config"), "{args:?}: {said}");
     }
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -218,6 +218,43 @@ pub fn evolve_config(config: &Path, out: &Path) -> Output {
         .unwrap()
 }
 
+/// `ontogeny evolve --config CONFIG --out OUT EXTRA...`, which must succeed.
+pub fn evolve(config: &Path, out: &Path, extra: &[&str]) {
+    let output = ontogeny_command()
+        .args(["evolve", "--config"])
+        .arg(config)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap();
+    succeeded(&output);
+}
+
+/// Evolves `config` into `dir`'s `one` on one thread and `two` on two, and into `stopped`
+/// stopped after `stop` generations, then resumed to `end`; asserts that the three runs are
+/// the same ([`crate::evolve::contents`]).
+pub fn assert_the_same_on_any_thread_count_and_resumed(
+    config: &Path,
+    dir: &Path,
+    stop: &str,
+    end: &str,
+) {
+    evolve(config, &dir.join("one"), &["--threads", "1"]);
+    evolve(config, &dir.join("two"), &["--threads", "2"]);
+    let one = crate::evolve::contents(&dir.join("one"));
+    assert_eq!(one, crate::evolve::contents(&dir.join("two")));
+    let stopped = dir.join("stopped");
+    evolve(config, &stopped, &["--gens", stop]);
+    let resumed = ontogeny_command()
+        .args(["evolve", "--gens", end, "--resume"])
+        .arg(&stopped)
+        .output()
+        .unwrap();
+    succeeded(&resumed);
+    assert_eq!(crate::evolve::contents(&stopped), one);
+}
+
 /// The `ontogeny` binary as a command, for a test to add arguments, input or environment to.
 pub fn ontogeny_command() -> Command {
     Command::new(env!("CARGO_BIN_EXE_ontogeny"))

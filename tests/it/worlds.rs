@@ -116,16 +116,23 @@ fn a_box_on_a_slope_slides_on_a_low_friction_patch_and_rests_off_it() {
     assert!(off < 1e-3, "slid {off} m off the patch");
 }
 
-/// The walker's evaluation of `examples/quadruped.lsys` in `world`, 3 s walks, recorded.
-fn recorded_walker_over(world: &str) -> ontogeny::task::Evaluation {
+/// The walker's task in `world` (the text of a `[task.world]` table), walks of `seconds`,
+/// checked.
+fn walker_in(world: &str, seconds: f64) -> TaskSpec {
     let mut spec = TaskSpec::new(TaskKind::Walker);
     spec.task
         .get_mut::<ontogeny::task::WalkerOptions>()
         .unwrap()
-        .seconds = 3.0;
+        .seconds = seconds;
     spec.world = world_spec(world);
     spec.check().unwrap();
-    spec.evaluate(&grown("examples/quadruped.lsys"), true)
+    spec
+}
+
+/// The walker's evaluation of `examples/quadruped.lsys` in `world`, 3 s walks, recorded or
+/// not.
+fn walker_over(world: &str, record: bool) -> ontogeny::task::Evaluation {
+    walker_in(world, 3.0).evaluate(&grown("examples/quadruped.lsys"), record)
 }
 
 #[test]
@@ -134,7 +141,7 @@ fn distance_on_a_slope_and_over_steps_is_the_root_s_horizontal_displacement() {
         "slope = { degrees = 10, direction = 180 }",
         "steps = { height = 0.04, depth = 0.2, count = 10, start = 0.3, way = \"down\" }",
     ] {
-        let e = recorded_walker_over(world);
+        let e = walker_over(world, true);
         assert_eq!(
             e.status,
             ontogeny::task::Status::Ok,
@@ -167,13 +174,10 @@ fn distance_on_a_slope_and_over_steps_is_the_root_s_horizontal_displacement() {
 
 #[test]
 fn on_rough_ground_a_resting_creature_passes_and_an_exploding_one_is_caught() {
-    let mut spec = TaskSpec::new(TaskKind::Walker);
-    spec.task
-        .get_mut::<ontogeny::task::WalkerOptions>()
-        .unwrap()
-        .seconds = 0.5;
-    spec.world = world_spec("rough = { amplitude = 0.05, wavelength = 0.5, seed = 3, size = 8 }");
-    spec.check().unwrap();
+    let mut spec = walker_in(
+        "rough = { amplitude = 0.05, wavelength = 0.5, seed = 3, size = 8 }",
+        0.5,
+    );
     let snake = grown("examples/snake.lsys");
     let calm = spec.evaluate(&snake, false);
     assert_eq!(
@@ -190,22 +194,12 @@ fn on_rough_ground_a_resting_creature_passes_and_an_exploding_one_is_caught() {
     assert_eq!(wild.fitness, ontogeny::task::FAILURE_FITNESS);
 }
 
-fn walker_over(world: &str) -> ontogeny::task::Evaluation {
-    let mut spec = TaskSpec::new(TaskKind::Walker);
-    spec.task
-        .get_mut::<ontogeny::task::WalkerOptions>()
-        .unwrap()
-        .seconds = 3.0;
-    spec.world = world_spec(world);
-    spec.check().unwrap();
-    spec.evaluate(&grown("examples/quadruped.lsys"), false)
-}
-
 #[test]
 fn a_walker_over_steps_goes_a_horizontal_distance_other_than_on_flat_ground() {
-    let flat = walker_over("");
+    let flat = walker_over("", false);
     let steps = walker_over(
         "steps = { height = 0.04, depth = 0.2, count = 10, start = 0.3, way = \"down\" }",
+        false,
     );
     assert_eq!(
         flat.status,
@@ -226,9 +220,10 @@ fn a_walker_over_steps_goes_a_horizontal_distance_other_than_on_flat_ground() {
 #[test]
 fn one_seed_makes_one_rough_ground_and_one_evaluation_another_seed_another() {
     let rough = |seed| {
-        walker_over(&format!(
-            "rough = {{ amplitude = 0.05, wavelength = 0.5, seed = {seed}, size = 8 }}"
-        ))
+        walker_over(
+            &format!("rough = {{ amplitude = 0.05, wavelength = 0.5, seed = {seed}, size = 8 }}"),
+            false,
+        )
     };
     let (a, b, c) = (rough(1), rough(1), rough(2));
     assert_eq!(a.fitness.to_bits(), b.fitness.to_bits());
