@@ -125,8 +125,8 @@ fn a_recording_whose_growth_names_a_part_out_of_turn_is_refused_with_exit_code_2
     let dir = growing_recording("bad");
     let path = dir.join("recording.json");
     let text = std::fs::read_to_string(&path).unwrap();
-    // The first part to appear says it is part 7.
-    let bad = text.replacen(r#"{"appears":{"part":2,"#, r#"{"appears":{"part":7,"#, 1);
+    // The first part to appear says it is part 12.
+    let bad = text.replacen(r#"{"appears":{"part":3,"#, r#"{"appears":{"part":12,"#, 1);
     assert_ne!(bad, text);
     std::fs::write(&path, bad).unwrap();
     let out = ontogeny(&["replay", dir.to_str().unwrap()]);
@@ -134,7 +134,7 @@ fn a_recording_whose_growth_names_a_part_out_of_turn_is_refused_with_exit_code_2
     let said = stderr(&out);
     assert!(
         said.contains("not a usable growth: frame ")
-            && said.contains("part 7 appears, but the next part is 2"),
+            && said.contains("part 12 appears, but the next part is 3"),
         "{said}"
     );
 }
@@ -180,7 +180,13 @@ fn export_writes_the_creature_at_a_developmental_time_as_a_walk_would_drop_it() 
     let out = ontogeny(&["export", EXAMPLE, "--time", "2"]);
     // The same model, to the round-off of integrating development in other steps.
     assert_eq!(rounded(&succeeded(&out)), rounded(&expected));
-    assert!(expected.contains("size=\"0.10000000000000028 0.05 0.05\""));
+    // Each leg part, half grown at t = 2, is 0.2 m long (its half-size 0.1 m).
+    assert_eq!(
+        rounded(&expected)
+            .matches("size=\"0.100000000 0.050000000 0.050000000\"")
+            .count(),
+        4
+    );
     assert!(
         stderr(&out).contains(
             "note: MJCF has no growth: the model is the creature at developmental time 2 \
