@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 use crate::creature::Creature;
 use crate::develop::{BuildOptions, Growth, Seedling, build, growth_between};
 use crate::lang::Diagnostic;
-use crate::lsystem::{DeriveOptions, Development, Event, LSystem};
+use crate::lsystem::{DeriveOptions, Development, Event, LSystem, ModuleString};
 use crate::sim::{Grown, World};
 
 /// When the creature develops: before the evaluation (today's protocol) or during it.
@@ -134,6 +134,10 @@ pub struct Growing {
     creature: Creature,
     tally: GrowthTally,
     events: Vec<Event>,
+    /// The last interpreted string, the environment it was built with and the creature
+    /// built from them: a step whose string and environment are the same builds the same
+    /// creature (but for the time its problems carry), so it reuses this one.
+    last_built: Option<(ModuleString, Vec<f64>, Creature)>,
 }
 
 impl Growing {
@@ -187,6 +191,7 @@ impl Growing {
             creature,
             tally: GrowthTally::default(),
             events: Vec::new(),
+            last_built: None,
         })
     }
 
@@ -247,13 +252,32 @@ impl Growing {
         let shown = self
             .lsys
             .interpret(self.development.current(), t, &self.derive)?;
-        let after = build(
-            &shown,
-            self.lsys.symbols(),
-            self.development.environment(),
-            Some(t),
-            &self.build,
-        );
+        let environment = self.development.environment().values();
+        let after = match &self.last_built {
+            Some((string, values, built))
+                if same_bits(&string.params, &shown.params)
+                    && string.syms == shown.syms
+                    && string.bounds == shown.bounds
+                    && same_bits(values, environment) =>
+            {
+                let mut after = built.clone();
+                for problem in &mut after.problems {
+                    problem.t = Some(t);
+                }
+                after
+            }
+            _ => {
+                let after = build(
+                    &shown,
+                    self.lsys.symbols(),
+                    self.development.environment(),
+                    Some(t),
+                    &self.build,
+                );
+                self.last_built = Some((shown, environment.to_vec(), after.clone()));
+                after
+            }
+        };
         let mut growth: Growth = growth_between(&self.creature, &after);
         if growth.is_empty() {
             return Ok(Grown::default());
@@ -270,4 +294,9 @@ impl Growing {
         self.tally.length += now - lengths;
         Ok(grown)
     }
+}
+
+/// Whether `a` and `b` hold the same numbers, bit for bit (so 0 and −0 differ).
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
