@@ -231,17 +231,18 @@ fn a_growing_walk_records_the_neurons_and_links_its_terms_count() {
         .iter()
         .filter(|c| matches!(c, BodyChange::Link { .. }))
         .count();
-    // Each leg brings its output neuron and the link that feeds it.
-    assert_eq!(json["terms"]["grown_neurons"], 4.0);
-    assert_eq!(json["terms"]["grown_links"], 4.0);
+    // Each of the eight leg parts (a hip and a lower leg per leg) brings its output neuron
+    // and the link that feeds it.
+    assert_eq!(json["terms"]["grown_neurons"], 8.0);
+    assert_eq!(json["terms"]["grown_links"], 8.0);
     let dropped = recording.creature.brain.neurons.len();
-    assert_eq!(neurons, (dropped..dropped + 4).collect::<Vec<_>>());
-    assert_eq!(links, 4);
+    assert_eq!(neurons, (dropped..dropped + 8).collect::<Vec<_>>());
+    assert_eq!(links, 8);
     let last = recording.bodies().at(recording.samples.len() - 1).clone();
-    assert_eq!(last.brain.neurons.len(), dropped + 4);
+    assert_eq!(last.brain.neurons.len(), dropped + 8);
     assert_eq!(
         last.brain.links.len(),
-        recording.creature.brain.links.len() + 4
+        recording.creature.brain.links.len() + 8
     );
     assert_eq!(last.check_consistency(), Ok(()));
 }
