@@ -32,3 +32,15 @@ def cli():
 
     run.json = lambda *args: json.loads(run(*args))
     return run
+
+
+@pytest.fixture
+def write_config(tmp_path):
+    """Writes a configuration's text to a file named ``name`` in the test's folder; its path."""
+
+    def write(name: str, text: str) -> Path:
+        path = tmp_path / name
+        path.write_text(text)
+        return path
+
+    return write

@@ -22,10 +22,8 @@ seconds = 2
 
 
 @pytest.fixture
-def config(tmp_path):
-    path = tmp_path / "growing.toml"
-    path.write_text(CONFIG)
-    return path
+def config(write_config):
+    return write_config("growing.toml", CONFIG)
 
 
 def test_a_growing_walk_equals_the_command_lines_and_its_trajectory_gains_parts(root, cli, config):

@@ -38,10 +38,8 @@ slope = { degrees = 10 }
 
 
 @pytest.fixture
-def config(tmp_path):
-    path = tmp_path / "habitats.toml"
-    path.write_text(CONFIG)
-    return path
+def config(write_config):
+    return write_config("habitats.toml", CONFIG)
 
 
 def test_evaluate_in_habitats_equals_the_command_lines_eval(root, cli, config):

@@ -12,10 +12,10 @@ const EXAMPLE: &str = "examples/grow-while-walking.lsys";
 const OLD: &str = "tests/fixtures/old-recording";
 
 /// `eval --record` of the example growing during a 3 s walk, into a fresh scratch folder
-/// named after `name`; the folder.
-pub(crate) fn growing_recording(name: &str) -> PathBuf {
+/// named after `name`, with the flags `extra`; the folder and what the command printed.
+fn record_growing(name: &str, extra: &[&str]) -> (PathBuf, std::process::Output) {
     let dir = scratch_dir(&format!("growing-shown-{name}")).join("rec");
-    let out = ontogeny(&[
+    let mut args = vec![
         "eval",
         EXAMPLE,
         "--develop",
@@ -24,8 +24,16 @@ pub(crate) fn growing_recording(name: &str) -> PathBuf {
         "3",
         "--record",
         dir.to_str().unwrap(),
-    ]);
+    ];
+    args.extend_from_slice(extra);
+    let out = ontogeny(&args);
     succeeded(&out);
+    (dir, out)
+}
+
+/// [`record_growing`] with no more flags; the folder.
+pub(crate) fn growing_recording(name: &str) -> PathBuf {
+    let (dir, out) = record_growing(name, &[]);
     assert!(stderr(&out).contains("behaviour.gif"), "{}", stderr(&out));
     dir
 }
@@ -203,19 +211,7 @@ fn export_writes_the_creature_at_a_developmental_time_as_a_walk_would_drop_it() 
 
 #[test]
 fn a_growing_walk_records_the_neurons_and_links_its_terms_count() {
-    let dir = scratch_dir("growing-shown-brain").join("rec");
-    let out = ontogeny(&[
-        "eval",
-        EXAMPLE,
-        "--develop",
-        "during",
-        "--seconds",
-        "3",
-        "--json",
-        "--record",
-        dir.to_str().unwrap(),
-    ]);
-    succeeded(&out);
+    let (dir, out) = record_growing("brain", &["--json"]);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let recording = read(&dir);
     assert_eq!(recording.check_growth(), Ok(()));
