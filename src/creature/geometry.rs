@@ -73,7 +73,7 @@ impl Creature {
                 let at_a_joint = anchors[a]
                     .iter()
                     .filter(|p| anchors[b].iter().any(|q| (*p - q).norm() < 1e-9))
-                    .any(|p| contact_only(pa, pb, p));
+                    .any(|p| contact_only(pa, pb, p, 0.0));
                 if !at_a_joint {
                     pairs.push((a, b));
                 }
@@ -88,10 +88,25 @@ fn section_radius(p: &Part) -> f64 {
     0.5 * p.size.y.hypot(p.size.z)
 }
 
+/// Whether parts `a` and `b` overlap anywhere but in the contact region of a joint at one of
+/// `points` (the rule of [`Creature::interpenetrating_pairs`]), `slack` metres allowed for
+/// joints that have come a little apart: a joint point may lie that far inside a part and the
+/// overlap reach that much beyond the contact radius. With `slack` 0 this is the builder's
+/// rule to the micrometre.
+pub fn overlap_beyond_joints(a: &Part, b: &Part, points: &[Vector3<f64>], slack: f64) -> bool {
+    boxes_intersect(a, b) && !points.iter().any(|p| contact_only(a, b, p, slack))
+}
+
 /// Whether the overlap of two intersecting parts is only the contact region of a joint at
-/// `point` (see [`Creature::interpenetrating_pairs`]).
-fn contact_only(a: &Part, b: &Part, point: &Vector3<f64>) -> bool {
-    if inside(a, point) || inside(b, point) || inside(a, &b.position) || inside(b, &a.position) {
+/// `point` (see [`Creature::interpenetrating_pairs`]), give or take `slack` metres (see
+/// [`overlap_beyond_joints`]).
+fn contact_only(a: &Part, b: &Part, point: &Vector3<f64>, slack: f64) -> bool {
+    let margin = MARGIN + slack;
+    if inside(a, point, margin)
+        || inside(b, point, margin)
+        || inside(a, &b.position, MARGIN)
+        || inside(b, &a.position, MARGIN)
+    {
         return false;
     }
     let radius = section_radius(a).hypot(section_radius(b));
@@ -99,17 +114,16 @@ fn contact_only(a: &Part, b: &Part, point: &Vector3<f64>) -> bool {
     !corners.is_empty()
         && corners
             .iter()
-            .all(|c| (c - point).norm() <= radius + TOLERANCE)
+            .all(|c| (c - point).norm() <= radius + TOLERANCE + slack)
 }
 
 /// Slack (metres) for round-off in the overlap's corners.
 const TOLERANCE: f64 = 1e-9;
 
-/// Whether `point` lies strictly inside the part (inside its box shrunk by [`MARGIN`]): not
-/// on its surface.
-fn inside(part: &Part, point: &Vector3<f64>) -> bool {
+/// Whether `point` lies strictly inside the part, deeper than `margin` below its surface.
+fn inside(part: &Part, point: &Vector3<f64>, margin: f64) -> bool {
     let local = part.orientation.inverse() * (point - part.position);
-    (0..3).all(|k| local[k].abs() < part.size[k] / 2.0 - MARGIN)
+    (0..3).all(|k| local[k].abs() < part.size[k] / 2.0 - margin)
 }
 
 /// The corners of the overlap of two boxes (each shrunk by [`MARGIN`]), a convex polyhedron:

@@ -12,7 +12,7 @@ pub mod repeats;
 mod summary;
 
 pub use differences::{PhenotypeDifferences, phenotype_differences};
-pub use geometry::{boxes_intersect, interpenetration_messages};
+pub use geometry::{boxes_intersect, interpenetration_messages, overlap_beyond_joints};
 pub use ids::{JointId, PartId};
 pub use summary::{Summary, counted};
 

@@ -115,7 +115,7 @@ pub fn growth_from_string(
 ) -> Result<Growth, Diagnostic> {
     let shown = lsys.interpret(string, t, derive)?;
     let after = build(&shown, lsys.symbols(), env, Some(t), options);
-    Ok(growth_between(before, &after))
+    Ok(growth_between(before, &after, options.max_parts))
 }
 
 /// For each part of `creature`, the joint that holds it to its parent, if any.
@@ -188,10 +188,11 @@ fn same_neuron(a: &Neuron, b: &Neuron) -> bool {
 }
 
 /// What changed from `before` (parts, joints and neurons at their ids) to `after` (as the
-/// builder numbers them); see the [module](self) for how parts and neurons are matched.
+/// builder numbers them), the creature kept to `max_parts` parts (or the parts `before` has,
+/// if more); see the [module](self) for how parts and neurons are matched.
 ///
 /// A `before` with no parts is no creature yet: `after` is where growth starts, with no events.
-pub fn growth_between(before: &Creature, after: &Creature) -> Growth {
+pub fn growth_between(before: &Creature, after: &Creature, max_parts: usize) -> Growth {
     if before.parts.is_empty() {
         return Growth {
             events: Vec::new(),
@@ -277,6 +278,9 @@ pub fn growth_between(before: &Creature, after: &Creature) -> Growth {
             continue;
         };
         let part = creature.parts.len();
+        if part >= max_parts {
+            continue;
+        }
         let joint = creature.joints.len();
         id_of[k] = Some(part);
         joint_id_of[aj] = Some(joint);
@@ -511,6 +515,25 @@ mod tests {
                 }
             )]
         );
+    }
+
+    #[test]
+    fn a_creature_at_its_most_parts_grows_no_new_part_nor_its_sensor() {
+        let lsys = lsystem(BUD);
+        let before = grown(&lsys, 0.5);
+        let full = before.parts.len();
+        let after = grown(&lsys, 1.5);
+        assert_eq!(after.parts.len(), full + 1);
+        // At most 3 parts: the bud matures in the string but adds nothing to the creature.
+        let growth = growth_between(&before, &after, full);
+        assert!(growth.events.is_empty(), "{:?}", growth.events);
+        assert_eq!(growth.creature.parts.len(), full);
+        assert_eq!(growth.creature.joints.len(), before.joints.len());
+        assert_eq!(growth.creature.brain, before.brain);
+        // One more allowed: the part, its touch sensor and the sensor's link arrive.
+        let growth = growth_between(&before, &after, full + 1);
+        assert_eq!(growth.events.len(), 3, "{:?}", growth.events);
+        assert_eq!(growth.creature.parts.len(), full + 1);
     }
 
     #[test]

@@ -21,13 +21,16 @@
 //!   energy it costs) is counted apart, as [`World::growth_work`], so the energy audit does not
 //!   take it for energy from nowhere, and still catches any energy the growth does not
 //!   account for;
-//! - a part whose growth would reach into the ground, or into a part it is not jointed to (when
-//!   parts collide with each other), deeper than [`GROWTH_CLEARANCE`] where it did not already
-//!   reach (parts at most two joints away, which may meet it at a joint, aside), or would put a
-//!   part it carries there, **stops growing** rather than pushing the creature: the step is
-//!   refused and tried again at the next one, so it grows again once it is clear; a new part
-//!   that would appear inside something waits the same way, and with it the rest of that
-//!   step's new parts, neurons and links.
+//! - a part whose growth would reach into the ground, or into another part (when parts
+//!   collide with each other), deeper than [`GROWTH_CLEARANCE`] where it did not already reach,
+//!   or would put a part it carries there, **stops growing** rather than pushing the creature:
+//!   the step is refused and tried again at the next one, so it grows again once it is clear;
+//!   a new part that would appear inside something waits the same way, and with it the rest
+//!   of that step's new parts, neurons and links. Two parts may overlap only where the
+//!   builder lets them, in the contact region of a joint point they share (a joint between
+//!   them, or an anchor both hang from: `creature::overlap_beyond_joints`), so a part may turn
+//!   about its joint into its parent's corner but a new branch may not appear inside a
+//!   sibling (where the contact solver would push the two apart every step: a motor).
 
 use ::nalgebra::{Isometry3, Point3, Translation3, Vector3};
 use rapier3d::math::{Pose, Real, Vector};
@@ -37,8 +40,8 @@ use rapier3d::prelude::*;
 use super::motion::Attach;
 use super::parts::vector;
 use super::slots::PartSlot;
-use super::world::World;
-use crate::creature::{JointKind, Part, PartId};
+use super::world::{World, na_pose, to_na};
+use crate::creature::{JointKind, Part, PartId, boxes_intersect, overlap_beyond_joints};
 use crate::develop::{Growth, GrowthEvent};
 
 /// How deep (m) growth may reach into something it did not reach into before and still grow:
@@ -90,18 +93,49 @@ impl World {
     /// The root part's anchor: the centre of its near face, where the turtle started it, a
     /// point its own growth does not move.
     pub fn root_anchor(&self) -> Vector3<f64> {
-        let (centre, orientation) = self.part_pose(PartId(0));
-        centre + orientation * Vector3::new(-self.part_size(PartId(0)).x / 2.0, 0.0, 0.0)
+        self.near_face(PartId(0))
+    }
+
+    /// The centre of part `id`'s near face (its −x face, where the turtle started it) in the
+    /// world now.
+    fn near_face(&self, id: PartId) -> Vector3<f64> {
+        let (centre, orientation) = self.part_pose(id);
+        centre + orientation * Vector3::new(-self.part_size(id).x / 2.0, 0.0, 0.0)
+    }
+
+    /// The points where part `id` is jointed, in the world now, each with the part on the
+    /// joint's other side: a joint's anchor as each of its parts holds it (they differ by how
+    /// far the joint has come apart), a fused joint's at its child's near face.
+    fn joint_points(&self, id: PartId) -> Vec<(Vector3<f64>, PartId)> {
+        let mut points = Vec::new();
+        for j in self.joint_ids() {
+            let (parent, child) = self.joints[j].parts;
+            let other = match (parent == id, child == id) {
+                (true, _) => child,
+                (_, true) => parent,
+                _ => continue,
+            };
+            match self.joint_anchors(j) {
+                Some((first, second)) => points.extend([(first, other), (second, other)]),
+                None => points.push((self.near_face(child), other)),
+            }
+        }
+        points
     }
 
     /// Whether a box of `size` at `pose` reaches deeper than [`GROWTH_CLEARANCE`] into the
-    /// ground, or into a part other than `id` and its `neighbours` (when parts collide), where a
-    /// box of `old` size at `old_pose` (if any) did not.
+    /// ground, or (when parts collide) into a part not in `exempt` other than where they meet
+    /// at a joint, where a box of `old` size at `old_pose` (if any) did not. Where they meet at
+    /// a joint is the builder's rule ([`overlap_beyond_joints`]): the box's joint `points`
+    /// (each with the part on its other side) that the other part also holds — a joint between
+    /// them, or an anchor both hang from — may have the contact region of two parts leaving
+    /// it, [`GROWTH_CLEARANCE`] allowed for joints that have come apart. So a part may turn
+    /// about its joint into its parent's corner, but a branch may not appear inside a sibling.
     fn reaches_in(
         &self,
-        id: Option<PartId>,
-        neighbours: &[PartId],
+        exempt: &[PartId],
         (pose, size): (Pose, Vector3<f64>),
+        points: &[(Vector3<f64>, PartId)],
         old: Option<(Pose, Vector3<f64>)>,
     ) -> bool {
         let shrunk = |size: Vector3<f64>| {
@@ -128,49 +162,50 @@ impl World {
         if !self.options.self_collision {
             return false;
         }
-        self.part_ids()
-            .filter(|p| Some(*p) != id && !neighbours.contains(p))
-            .any(|p| {
-                // The other part where it is now (its collider may not be synchronised yet).
-                let other = &self.parts[p];
-                let at = self.part_world_pose(p);
-                let shape = self.colliders[other.collider].shape();
-                intersection_test(&pose, new_shape.as_ref(), &at, shape)
-                    .map(|i| i.intersecting)
-                    .unwrap_or(false)
-                    && !old_shape.as_ref().is_some_and(|(o, s)| {
-                        intersection_test(o, s.as_ref(), &at, shape)
-                            .map(|i| i.intersecting)
-                            .unwrap_or(false)
-                    })
-            })
-    }
-
-    /// The parts jointed to part `id`.
-    fn jointed_to(&self, id: PartId) -> Vec<PartId> {
-        self.joints
-            .iter()
-            .filter_map(|j| match j.parts {
-                (p, c) if p == id => Some(c),
-                (p, c) if c == id => Some(p),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// The parts at most two joints from part `id` (its parent, children, siblings and
-    /// grandparent): those it may touch where they meet, as the builder lets parts meet at
-    /// their joints.
-    fn near(&self, id: PartId) -> Vec<PartId> {
-        let mut near = self.jointed_to(id);
-        for k in 0..near.len() {
-            for p in self.jointed_to(near[k]) {
-                if p != id && !near.contains(&p) {
-                    near.push(p);
-                }
+        let box_at = |pose: &Pose, size: Vector3<f64>| {
+            let (position, orientation) = na_pose(pose);
+            Part {
+                size: size.map(|e| (e - 2.0 * GROWTH_CLEARANCE).max(2e-6)),
+                position,
+                orientation,
+                density: 0.0,
+                growing: false,
             }
-        }
-        near
+        };
+        let new = box_at(&pose, size);
+        let old = old.map(|(p, s)| box_at(&p, s));
+        self.part_ids().filter(|p| !exempt.contains(p)).any(|p| {
+            // The other part where it is now (its collider may not be synchronised yet).
+            let (position, orientation) = self.part_pose(p);
+            let other = Part {
+                size: self.parts[p].size,
+                position,
+                orientation,
+                density: 0.0,
+                growing: false,
+            };
+            let reach = (new.size.norm() + other.size.norm()) / 2.0;
+            if (new.position - other.position).norm_squared() > reach * reach
+                || !boxes_intersect(&new, &other)
+            {
+                return false;
+            }
+            let theirs = self.joint_points(p);
+            let shared: Vec<Vector3<f64>> = points
+                .iter()
+                .filter(|(x, partner)| {
+                    *partner == p
+                        || theirs
+                            .iter()
+                            .any(|(y, _)| (x - y).norm() <= GROWTH_CLEARANCE)
+                })
+                .map(|(x, _)| *x)
+                .collect();
+            overlap_beyond_joints(&new, &other, &shared, GROWTH_CLEARANCE)
+                && !old.as_ref().is_some_and(|old| {
+                    overlap_beyond_joints(old, &other, &shared, GROWTH_CLEARANCE)
+                })
+        })
     }
 
     /// Gives part `id` the edge lengths `size` as the turtle grows a part: its near face (the
@@ -186,6 +221,20 @@ impl World {
     ///
     /// If `id` names no part of this world.
     pub fn grow_part(&mut self, id: PartId, size: Vector3<f64>) -> bool {
+        let energy = self.mechanical_energy();
+        let momenta = self.momenta();
+        if !self.lengthen(id, size) {
+            return false;
+        }
+        self.conserve_momenta(&momenta);
+        self.body_changed();
+        self.growth_work += self.energy - energy;
+        true
+    }
+
+    /// [`World::grow_part`] but for giving the creature back its momenta and counting the
+    /// energy, which [`World::apply_growth`] does once for a whole step.
+    fn lengthen(&mut self, id: PartId, size: Vector3<f64>) -> bool {
         let PartSlot {
             body,
             collider,
@@ -209,20 +258,6 @@ impl World {
         let half_x = (old.x / 2.0) as Real;
         let f = move |p: Vector| Vector::new(s.x * (p.x + half_x) - half_x, s.y * p.y, s.z * p.z);
         let new_in_body = in_body * Pose::from_translation(f(Vector::ZERO));
-        let neighbours = self.near(id);
-        if self.reaches_in(
-            Some(id),
-            &neighbours,
-            (body_pose * new_in_body, size),
-            Some((body_pose * in_body, old)),
-        ) {
-            return false;
-        }
-        let field = self.field_of(body);
-        let omega = self.bodies[body].angvel();
-        let energy = self.mechanical_energy();
-        let momenta = self.momenta();
-
         // Where each part jointed beyond this one goes: by its anchor's move.
         let mut moves: Vec<(PartId, Vector)> = Vec::new();
         for j in self.joint_ids() {
@@ -250,23 +285,37 @@ impl World {
             }
         }
 
-        // What it carries may not be put into something either.
-        let carried: Vec<PartId> = moves.iter().map(|&(part, _)| part).collect();
+        // Neither the part nor what it carries may be put into something; what it carries
+        // moves with it.
+        let mut exempt: Vec<PartId> = moves.iter().map(|&(part, _)| part).collect();
+        exempt.push(id);
+        if self.reaches_in(
+            &exempt,
+            (body_pose * new_in_body, size),
+            &self.joint_points(id),
+            Some((body_pose * in_body, old)),
+        ) {
+            return false;
+        }
         for &(part, by) in &moves {
             let at = self.part_world_pose(part);
             let size = self.parts[part].size;
-            let mut exempt = self.near(part);
-            exempt.extend(carried.iter().copied());
-            exempt.push(id);
+            let points: Vec<(Vector3<f64>, PartId)> = self
+                .joint_points(part)
+                .into_iter()
+                .map(|(x, other)| (x + to_na(by), other))
+                .collect();
             if self.reaches_in(
-                Some(part),
                 &exempt,
                 (Pose::from_translation(by) * at, size),
+                &points,
                 Some((at, size)),
             ) {
                 return false;
             }
         }
+        let field = self.field_of(body);
+        let omega = self.bodies[body].angvel();
 
         // The part itself: shape, place in its body, its joints' frames and torques.
         let half = size / 2.0;
@@ -346,9 +395,6 @@ impl World {
                 b.set_linvel(v, true);
             }
         }
-        self.conserve_momenta(&momenta);
-        self.body_changed();
-        self.growth_work += self.energy - energy;
         true
     }
 
@@ -375,7 +421,7 @@ impl World {
         for event in &growth.events {
             match event {
                 GrowthEvent::Resize { part, size } => {
-                    if self.grow_part(*part, *size) {
+                    if self.lengthen(*part, *size) {
                         grown.resized += 1;
                     } else {
                         grown.stopped.push(*part);
@@ -397,12 +443,11 @@ impl World {
                         orientation: there.rotation * shape.orientation,
                         ..shape.clone()
                     };
-                    let mut neighbours = self.near(*parent);
-                    neighbours.push(*parent);
+                    let anchor = (there * Point3::from(spec.anchor)).coords;
                     if self.reaches_in(
-                        None,
-                        &neighbours,
+                        &[],
                         (pose_of(&isometry_of(&placed)), placed.size),
+                        &[(anchor, *parent)],
                         None,
                     ) {
                         grown.stopped.push(*part);
@@ -417,7 +462,7 @@ impl World {
                     let id = self.add_part(&placed, attach);
                     debug_assert_eq!(id, *part);
                     let joint = crate::creature::Joint {
-                        anchor: (there * Point3::from(spec.anchor)).coords,
+                        anchor,
                         axes: spec.axes.iter().map(|a| there.rotation * a).collect(),
                         ..spec.clone()
                     };

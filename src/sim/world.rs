@@ -79,6 +79,17 @@ pub fn to_na(v: Vector) -> Vector3<f64> {
     Vector3::new(v.x as f64, v.y as f64, v.z as f64)
 }
 
+/// A rapier pose as nalgebra's position and rotation.
+pub(super) fn na_pose(pose: &Pose) -> (Vector3<f64>, UnitQuaternion<f64>) {
+    let q = pose.rotation;
+    (
+        to_na(pose.translation),
+        UnitQuaternion::from_quaternion(Quaternion::new(
+            q.w as f64, q.x as f64, q.y as f64, q.z as f64,
+        )),
+    )
+}
+
 impl World {
     /// Wall-clock time spent inside rapier's physics pipeline so far (the rest of a step —
     /// sensors, brain, motors, checks — is the evaluator's overhead).
@@ -173,14 +184,7 @@ impl World {
     ///
     /// If `id` names no part of this world.
     pub fn part_pose(&self, id: PartId) -> (Vector3<f64>, UnitQuaternion<f64>) {
-        let pose = self.part_world_pose(id);
-        let q = pose.rotation;
-        (
-            to_na(pose.translation),
-            UnitQuaternion::from_quaternion(Quaternion::new(
-                q.w as f64, q.x as f64, q.y as f64, q.z as f64,
-            )),
-        )
+        na_pose(&self.part_world_pose(id))
     }
 
     /// Number of parts.

@@ -278,7 +278,7 @@ impl Growing {
                 after
             }
         };
-        let mut growth: Growth = growth_between(&self.creature, &after);
+        let mut growth: Growth = growth_between(&self.creature, &after, self.build.max_parts);
         if growth.is_empty() {
             return Ok(Grown::default());
         }

@@ -146,6 +146,19 @@ fn stored(out: &Path) -> Vec<IndividualRecord> {
         .collect()
 }
 
+/// The run in `dir` resumed. The lock the dropped run held may linger for a moment: a test
+/// beside this one that starts a process forks this one, and the child holds a copy of every
+/// open file until it executes its program.
+fn resume_when_free(dir: &Path) -> Run<DirectGenome> {
+    for _ in 0..100 {
+        match Run::<DirectGenome>::resume(dir) {
+            Err(RunError::Locked(_)) => std::thread::sleep(std::time::Duration::from_millis(20)),
+            resumed => return resumed.unwrap(),
+        }
+    }
+    panic!("{} stayed locked for 2 s", dir.display())
+}
+
 #[test]
 fn an_interrupted_run_keeps_its_stored_generations_and_resumes_to_the_uninterrupted_result() {
     let dir = scratch_dir("cancel-run");
@@ -169,10 +182,7 @@ fn an_interrupted_run_keeps_its_stored_generations_and_resumes_to_the_uninterrup
     assert_eq!(store.last_generation().unwrap(), Some(0));
     drop(store);
 
-    Run::<DirectGenome>::resume(&cut)
-        .unwrap()
-        .run(&mut |_| {})
-        .unwrap();
+    resume_when_free(&cut).run(&mut |_| {}).unwrap();
     let (a, b) = (stored(&whole), stored(&cut));
     assert_eq!(a.len(), 18);
     assert_eq!(a, b);

@@ -601,6 +601,92 @@ fn a_part_that_would_grow_into_the_ground_stops_growing() {
     assert_eq!(growth.creature.parts[0].size, Vector3::new(1.0, 0.25, 0.25));
 }
 
+/// Growth that adds to a root with a 0.5 m tail (`add_tail`) a 0.5 m branch leaving the
+/// root's end face, where the tail hangs from, turned `turn` radians about z from the tail,
+/// jointed to the root by `kind`, as a new string built from the origin would place it.
+fn branch_beside_the_tail(turn: f64, kind: JointKind) -> Growth {
+    let mut creature = creature_from_commands("forward(1)").unwrap();
+    let turned = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), turn);
+    let tail = Part {
+        size: Vector3::new(0.5, 0.25, 0.25),
+        position: Vector3::new(1.25, 0.0, 0.0),
+        orientation: UnitQuaternion::identity(),
+        density: 1000.0,
+        growing: false,
+    };
+    let shape = Part {
+        position: Vector3::new(1.0, 0.0, 0.0) + turned * Vector3::new(0.25, 0.0, 0.0),
+        orientation: turned,
+        growing: true,
+        ..tail.clone()
+    };
+    let hinge = |child: usize, axis: Vector3<f64>| Joint {
+        parent: 0,
+        child,
+        kind,
+        anchor: Vector3::new(1.0, 0.0, 0.0),
+        axes: if kind == JointKind::Rigid {
+            Vec::new()
+        } else {
+            vec![axis]
+        },
+        limits: if kind == JointKind::Rigid {
+            Vec::new()
+        } else {
+            vec![(-0.5, 0.5)]
+        },
+        strength: 1.0,
+        growing: false,
+    };
+    creature.parts.extend([tail, shape.clone()]);
+    let spec = hinge(2, Vector3::z());
+    creature.joints.extend([
+        Joint {
+            kind: JointKind::Revolute,
+            axes: vec![Vector3::z()],
+            limits: vec![(-0.5, 0.5)],
+            ..hinge(1, Vector3::z())
+        },
+        spec.clone(),
+    ]);
+    Growth {
+        events: vec![GrowthEvent::NewPart {
+            part: PartId(2),
+            shape,
+            parent: PartId(0),
+            joint: JointId(1),
+            spec,
+        }],
+        creature,
+        lost: Vec::new(),
+    }
+}
+
+#[test]
+fn a_new_branch_may_not_appear_inside_a_sibling_but_may_leave_their_anchor_beside_it() {
+    for kind in [JointKind::Rigid, JointKind::Revolute] {
+        // Where the tail is: the two would overlap by the tail's whole box, and the contact
+        // solver would push them apart every step.
+        let mut world = flying_root();
+        add_tail(&mut world, Attach::MovingWith(PartId(0)));
+        let mut growth = branch_beside_the_tail(0.0, kind);
+        let grown = world.apply_growth(&mut growth);
+        assert_eq!(grown.added, 0, "{kind:?}");
+        assert_eq!(grown.stopped, [PartId(2)], "{kind:?}");
+        assert_eq!(world.part_count(), 2);
+        assert_eq!(growth.creature.parts.len(), 2, "the creature lacks it too");
+        // Turned 90° from the tail it meets the tail and the root only in their joint's
+        // contact region (the builder's rule): it appears.
+        let mut world = flying_root();
+        add_tail(&mut world, Attach::MovingWith(PartId(0)));
+        let mut growth = branch_beside_the_tail(std::f64::consts::FRAC_PI_2, kind);
+        let grown = world.apply_growth(&mut growth);
+        assert_eq!((grown.added, grown.stopped.len()), (1, 0), "{kind:?}");
+        assert_eq!(world.part_count(), 3);
+        assert!(growth.creature.interpenetrating_pairs().is_empty());
+    }
+}
+
 /// A neuron with `function`, `params` and `role`, no bias.
 fn neuron(function: NeuronFunction, params: Vec<f64>) -> Neuron {
     Neuron {
