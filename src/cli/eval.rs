@@ -71,7 +71,8 @@ pub struct EvalArgs {
     #[command(flatten)]
     develop: Box<DevelopFlags>,
     /// Write recording.json (every part's pose per step; a long run keeps evenly spaced
-    /// steps, at most 12,000 frames) and behaviour.gif into DIR.
+    /// steps, at most 12,000 frames) and behaviour.gif into DIR; with habitats or trials, of
+    /// the first walk (of `--habitat`'s habitat, when given).
     #[arg(long, value_name = "DIR")]
     record: Option<PathBuf>,
     /// Print the evaluation as JSON.
@@ -93,7 +94,8 @@ struct DevelopFlags {
     /// When the creature develops: `before` the evaluation (the last frame of its growth is
     /// evaluated; the default) or `during` it (an `.lsys` in continuous time: the creature at
     /// `--develop-t0` is dropped, and development goes on during the walker's activation and
-    /// walk). Over the config's `develop`.
+    /// walk; with habitats or trials, it starts from each habitat's array and anew in each
+    /// trial). Over the config's `develop`.
     #[arg(long, value_parser = ["before", "during"])]
     develop: Option<String>,
     /// With `--develop during`: developmental time per second of physics, above 0

@@ -468,7 +468,7 @@ fn a_grammar_grows_legs_during_the_walk_when_its_controller_secretes_what_it_rea
 
 /// A config of a tiny run of the lsystem-continuous genome whose walkers grow during their
 /// 0.5 s walks in two habitats that differ in chemical 0, two noisy trials in each.
-fn growing_habitats_config(dir: &Path) -> PathBuf {
+pub(crate) fn growing_habitats_config(dir: &Path) -> PathBuf {
     let config = dir.join("config.toml");
     std::fs::write(
         &config,
@@ -569,5 +569,76 @@ fn eval_and_replay_of_a_champion_growing_in_habitats_give_its_stored_fitness() {
         !crate::util::stderr(&output).contains("differs"),
         "{}",
         crate::util::stderr(&output)
+    );
+}
+
+#[test]
+fn a_grammar_growing_during_the_walk_grows_legs_in_the_rich_habitat_alone() {
+    let args = [
+        "eval",
+        "examples/grow-where-rich.lsys",
+        "--config",
+        "examples/grow-while-walking-habitats.toml",
+        "--json",
+    ];
+    let e: serde_json::Value = serde_json::from_str(&succeeded(&ontogeny(&args))).unwrap();
+    let units = e["habitats"].as_array().unwrap();
+    let grown: Vec<(&str, f64, f64)> = units
+        .iter()
+        .map(|u| {
+            (
+                u["name"].as_str().unwrap(),
+                u["terms"]["N"].as_f64().unwrap(),
+                u["terms"]["grown_parts"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    // Dropped as two segments everywhere; where chemical 0 starts at 1 a pair of legs
+    // sprouts 1.5 s into development, where it starts at 0 none.
+    assert_eq!(
+        grown,
+        [
+            ("poor", 2.0, 0.0),
+            ("poor", 2.0, 0.0),
+            ("rich", 2.0, 2.0),
+            ("rich", 2.0, 2.0)
+        ]
+    );
+    // The aggregate's terms are the means of the walks'.
+    assert_eq!(e["terms"]["grown_parts"], 1.0);
+}
+
+#[test]
+fn eval_growing_in_habitats_refuses_an_unknown_habitat_and_a_grammar_in_discrete_steps() {
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/grow-where-rich.lsys",
+            "--config",
+            "examples/grow-while-walking-habitats.toml",
+            "--habitat",
+            "wet",
+        ],
+        "no habitat 'wet'; the habitats are poor, rich",
+    );
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/quadruped.lsys",
+            "--config",
+            "examples/grow-while-walking-habitats.toml",
+        ],
+        "error: develop = \"during\": examples/quadruped.lsys develops in discrete steps",
+    );
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/grow-where-rich.lsys",
+            "--develop",
+            "during",
+            "--habitat",
+            "rich",
+        ],
+        "no habitat 'rich': the task has no [[task.habitats]]",
     );
 }
