@@ -204,8 +204,8 @@ mod tests {
         assert_eq!(ChampionRecord::genome_text(&file), genome);
         // A file without a record is all genome, its comments included.
         assert_eq!(ChampionRecord::genome_text(genome), genome);
-        let late = format!("time: 3\n# evaluation: {{}}\naxiom: A(0)\n");
-        assert_eq!(ChampionRecord::genome_text(&late), late);
+        let late = "time: 3\n# evaluation: {}\naxiom: A(0)\n";
+        assert_eq!(ChampionRecord::genome_text(late), late);
     }
 
     #[test]
