@@ -17,10 +17,13 @@ use ontogeny::creature::Creature;
 use ontogeny::develop::{BuildOptions, Seedling};
 use ontogeny::encoding::{LoadError, LoadOptions, Loaded, load_creature};
 use ontogeny::evolve::evaluator::Evaluator;
-use ontogeny::evolve::habitats::{evaluate_in_habitats, recorded_walk};
+use ontogeny::evolve::habitats::{
+    Growth, evaluate_grown_in_habitats, grammar_in_habitats, recorded_walk,
+};
 use ontogeny::front::flags::{TaskFlags, option_of};
 use ontogeny::lang::suggest::did_you_mean;
 use ontogeny::lsystem::{DeriveOptions, LSystem};
+use ontogeny::run::champion::ChampionRecord;
 use ontogeny::run::config::read_task_config;
 use ontogeny::sim::knobs::{Knob, Value, knob};
 use ontogeny::sim::{ActuatorModel, JointModel, KNOBS, SimOptions, StrengthFrom};
@@ -369,7 +372,7 @@ evaluating_function! {
             }
         };
         let only = args.habitat_index(&spec)?;
-        let outcome = interruptible(py, |cancel| watched(&spec, &creatures, only, record, cancel))?
+        let outcome = interruptible(py, |cancel| watched(&spec, &creatures, None, only, record, cancel))?
             .map_err(interrupted_error)?;
         Ok(PyEvaluation { outcome })
     }
@@ -377,8 +380,9 @@ evaluating_function! {
 
 /// `evaluate` of a grammar that develops during the walk (`develop = "during"` in
 /// `config=`), as `ontogeny eval FILE --config CONFIG` does: the creature at t₀ walks and
-/// grows. It takes the path of an `.lsys` file in continuous time, on the walker, with one
-/// habitat and one trial.
+/// grows. It takes the path of an `.lsys` file in continuous time, on the walker; with
+/// habitats or trials, the grammar develops in each habitat's array and every unit walks it
+/// (those of `habitat=` alone, when given).
 fn evaluate_growing(
     py: Python<'_>,
     creature: &Bound<'_, PyAny>,
@@ -395,9 +399,7 @@ fn evaluate_growing(
     };
     require_exists(&path)?;
     spec.check_growing().map_err(value_error)?;
-    if !spec.is_plain() || args.habitat.is_some() {
-        return refuse("habitats and trials do not grow their creature yet".to_string());
-    }
+    let only = args.habitat_index(spec)?;
     if path.extension().is_none_or(|e| e != "lsys") {
         return refuse(format!(
             "{} is not an L-system file (.lsys): only a grammar grows",
@@ -410,6 +412,20 @@ fn evaluate_growing(
         build: BuildOptions::default(),
     };
     check_continuous(&seedling, &path.display().to_string()).map_err(value_error)?;
+    if !spec.is_plain() {
+        let (creatures, seedlings) = grammar_in_habitats(spec, &seedling)
+            .map_err(|e| value_error(format!("{}: {e}", path.display())))?;
+        // The trials' draws are keyed by the grammar's text, as a run keys its genome's: a
+        // champion file's text without the record above it.
+        let text = ontogeny::input::read_to_string(&path)
+            .map_err(|e| value_error(format!("cannot read {}: {e}", path.display())))?;
+        let growth = Growth::of(&seedlings, ChampionRecord::genome_text(&text));
+        let outcome = interruptible(py, |cancel| {
+            watched(spec, &creatures, growth, only, record, cancel)
+        })?
+        .map_err(interrupted_error)?;
+        return Ok(PyEvaluation { outcome });
+    }
     let outcome = interruptible(py, |cancel| {
         let watch = Watch {
             record,
@@ -483,6 +499,7 @@ impl TaskArgs<'_, '_> {
 pub(crate) fn watched(
     spec: &TaskSpec,
     creatures: &[Creature],
+    growth: Option<Growth<'_>>,
     only: Option<usize>,
     record: bool,
     cancel: &Cancel,
@@ -495,9 +512,10 @@ pub(crate) fn watched(
         };
         return spec.evaluate_watched(&creatures[0], watch);
     }
-    let mut outcome = evaluate_in_habitats(spec, creatures, 0, only, Evaluator::Local, cancel)?;
+    let mut outcome =
+        evaluate_grown_in_habitats(spec, creatures, growth, 0, only, Evaluator::Local, cancel)?;
     if record {
-        outcome.recording = recorded_walk(spec, creatures, only.unwrap_or(0))
+        outcome.recording = recorded_walk(spec, creatures, growth, only.unwrap_or(0))?
             .evaluation
             .recording;
     }
@@ -524,7 +542,7 @@ evaluating_function! {
             pool.install(|| {
                 bodies
                     .par_iter()
-                    .map(|c| watched(&spec, &vec![(**c).clone(); spec.habitat_count()], only, record, cancel))
+                    .map(|c| watched(&spec, &vec![(**c).clone(); spec.habitat_count()], None, only, record, cancel))
                     .collect::<Result<_, _>>()
             })
         })?

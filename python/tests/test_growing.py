@@ -50,3 +50,23 @@ def test_a_growing_walk_takes_a_grammar_s_path_not_a_creature(root, config):
     creature = ontogeny.load(root / EXAMPLE)
     with pytest.raises(ValueError, match=r'develop = "during": a grammar grows during the walk'):
         ontogeny.evaluate(creature, config=config)
+
+
+HABITATS = "examples/grow-while-walking-habitats.toml"
+CUE = "examples/grow-where-rich.lsys"
+
+
+def test_a_walk_growing_in_habitats_and_trials_equals_the_command_lines(root, cli):
+    ours = ontogeny.evaluate(root / CUE, config=root / HABITATS)
+    theirs = cli.json("eval", CUE, "--config", HABITATS, "--json")
+    assert ours.fitness == theirs["fitness"]
+    assert json.loads(ours.to_json()) == theirs
+    # Legs grow where chemical 0 starts at 1, none where it starts at 0.
+    grown = [(w["name"], w["terms"]["grown_parts"]) for w in ours.habitats]
+    assert grown == [("poor", 0.0), ("poor", 0.0), ("rich", 2.0), ("rich", 2.0)]
+    # One habitat alone: its walks, as in the whole evaluation; recorded, growing.
+    rich = ontogeny.evaluate(root / CUE, config=root / HABITATS, habitat="rich", record=True)
+    assert rich.habitats == ours.habitats[2:]
+    assert rich.trajectory.shape[1] == 4
+    with pytest.raises(ValueError, match=r"no habitat 'wet'; the habitats are poor, rich"):
+        ontogeny.evaluate(root / CUE, config=root / HABITATS, habitat="wet")

@@ -8,6 +8,7 @@ use anyhow::Context;
 use clap::Args;
 use ontogeny::creature::Creature;
 use ontogeny::develop::BuildOptions;
+use ontogeny::evolve::habitats::Growth;
 use ontogeny::front::flags::{self, TaskFlags};
 use ontogeny::output::FolderKind;
 use ontogeny::render::Playback;
@@ -70,7 +71,8 @@ pub struct EvalArgs {
     #[command(flatten)]
     develop: Box<DevelopFlags>,
     /// Write recording.json (every part's pose per step; a long run keeps evenly spaced
-    /// steps, at most 12,000 frames) and behaviour.gif into DIR.
+    /// steps, at most 12,000 frames) and behaviour.gif into DIR; with habitats or trials, of
+    /// the first walk (of `--habitat`'s habitat, when given).
     #[arg(long, value_name = "DIR")]
     record: Option<PathBuf>,
     /// Print the evaluation as JSON.
@@ -92,7 +94,8 @@ struct DevelopFlags {
     /// When the creature develops: `before` the evaluation (the last frame of its growth is
     /// evaluated; the default) or `during` it (an `.lsys` in continuous time: the creature at
     /// `--develop-t0` is dropped, and development goes on during the walker's activation and
-    /// walk). Over the config's `develop`.
+    /// walk; with habitats or trials, it starts from each habitat's array and anew in each
+    /// trial). Over the config's `develop`.
     #[arg(long, value_parser = ["before", "during"])]
     develop: Option<String>,
     /// With `--develop during`: developmental time per second of physics, above 0
@@ -361,13 +364,13 @@ fn with_develop_flags(args: &EvalArgs, inputs: &mut Inputs) -> anyhow::Result<()
 pub fn run(args: &EvalArgs) -> anyhow::Result<()> {
     let mut inputs = inputs(args)?;
     with_develop_flags(args, &mut inputs)?;
-    if inputs.spec.develop.during() {
-        return run_growing(args, &inputs);
-    }
     let only = match &args.habitat {
         Some(name) => Some(inputs.spec.habitat_named(name).map_err(super::bad)?),
         None => None,
     };
+    if inputs.spec.develop.during() {
+        return run_growing(args, &inputs, only);
+    }
     if !inputs.spec.is_plain() {
         return run_in_habitats(args, &inputs, only);
     }
@@ -425,16 +428,14 @@ fn show_evaluation(args: &EvalArgs, evaluation: &Evaluation) -> anyhow::Result<(
 }
 
 /// [`run`] for a creature that develops during the evaluation: an `.lsys` in continuous
-/// time, on the walker, with one habitat and one trial; `--record` records the parts as they
-/// appear and grow.
-fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
+/// time, on the walker; `--record` records the parts as they appear and grow. With habitats
+/// or trials, the grammar develops in each habitat's array and every unit (those of habitat
+/// `only`, when given) walks it, as evolution walks its genomes ([`walk_in_habitats`]).
+fn run_growing(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> anyhow::Result<()> {
     let spec = &inputs.spec;
     let refuse = |why: &str| Err(super::bad(format!("develop = \"during\": {why}")));
     spec.check_growing()
         .map_err(|e| super::bad(e.to_string()))?;
-    if !spec.is_plain() {
-        return refuse("habitats and trials do not grow their creature yet");
-    }
     if args.file.extension().is_none_or(|e| e != "lsys") {
         return refuse(&format!(
             "{} is not an L-system file (.lsys): only a grammar grows",
@@ -461,6 +462,17 @@ fn run_growing(args: &EvalArgs, inputs: &Inputs) -> anyhow::Result<()> {
     };
     ontogeny::task::check_continuous(&seedling, &args.file.display().to_string())
         .map_err(|e| super::bad(e.to_string()))?;
+    if !spec.is_plain() {
+        let (creatures, seedlings) =
+            ontogeny::evolve::habitats::grammar_in_habitats(spec, &seedling)
+                .map_err(|e| super::bad(format!("{}: {e}", args.file.display())))?;
+        // The trials' draws are keyed by the grammar's text, as a run keys its genome's: a
+        // champion file's text without the record above it.
+        let text = ontogeny::input::read_to_string(&args.file)
+            .with_context(|| format!("cannot read {}", args.file.display()))?;
+        let growth = Growth::of(&seedlings, ChampionRecord::genome_text(&text));
+        return walk_in_habitats(args, spec, &creatures, growth, only);
+    }
     let grow_error = |e: GrowError| match e {
         GrowError::Development(d) => anyhow::Error::new(d),
         GrowError::Interrupted(i) => anyhow::Error::new(i),
@@ -503,10 +515,6 @@ fn run_in_habitats(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> any
             "a task with several habitats grows the creature once in each; give a file, not -",
         ));
     }
-    if let Some(dir) = &args.record {
-        ontogeny::output::check_folder(dir, FolderKind::Recording)?;
-        super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
-    }
     let creatures = (0..spec.habitat_count())
         .map(|h| {
             load_creature_with(
@@ -519,15 +527,32 @@ fn run_in_habitats(args: &EvalArgs, inputs: &Inputs, only: Option<usize>) -> any
             )
         })
         .collect::<anyhow::Result<Vec<Creature>>>()?;
+    walk_in_habitats(args, spec, &creatures, None, only)
+}
+
+/// Walks `creatures` (one per habitat of `spec`, growing as `growth` says when they grow
+/// during their walks) in every unit (those of habitat `only`, when given), records the
+/// first unit's walk with `--record`, and prints a line per unit and the aggregate.
+fn walk_in_habitats(
+    args: &EvalArgs,
+    spec: &TaskSpec,
+    creatures: &[Creature],
+    growth: Option<Growth<'_>>,
+    only: Option<usize>,
+) -> anyhow::Result<()> {
+    if let Some(dir) = &args.record {
+        ontogeny::output::check_folder(dir, FolderKind::Recording)?;
+        super::check_outputs(["recording.json", "behaviour.gif"].map(|f| dir.join(f)))?;
+    }
     let mut progress = Progress::new(format!(
         "{} walks",
         spec.trials.count as usize * only.map_or(spec.habitat_count(), |_| 1)
     ));
-    let evaluation = ontogeny::evolve::habitats::evaluate_here(spec, &creatures, only)?;
+    let evaluation = ontogeny::evolve::habitats::evaluate_here(spec, creatures, growth, only)?;
     progress.finish();
     if let Some(dir) = &args.record {
         let habitat = only.unwrap_or(0);
-        let walk = ontogeny::evolve::habitats::recorded_walk(spec, &creatures, habitat);
+        let walk = ontogeny::evolve::habitats::recorded_walk(spec, creatures, growth, habitat)?;
         tell!(
             "note: recording {}trial 1",
             match spec.habitat_name(habitat) {

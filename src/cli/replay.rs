@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 use ontogeny::encoding::Genome;
+use ontogeny::evolve::habitats::Growth;
 use ontogeny::render::MAX_FPS;
 use ontogeny::run::pick::{PickError, individual_by_rank};
 use ontogeny::run::{Run, encoding_of_run, unknown_encoding_of_run};
@@ -183,25 +184,27 @@ fn replay_typed<G: Genome>(args: &ReplayArgs) -> anyhow::Result<()> {
         &out.join("behaviour.gif"),
     ])?;
     ontogeny::output::write(&genome_path, individual.genome.to_text())?;
-    let creatures = ontogeny::evolve::habitats::develop_in_habitats(
+    let (creatures, seedlings) = ontogeny::evolve::habitats::develop_with_seedlings(
         &individual.genome,
         limits,
         individual.develop_seed,
         task,
     )
     .map_err(|e| super::bad(format!("the genome does not develop: {e}")))?;
+    let text = individual.genome.to_text();
+    let growth = Growth::of(&seedlings, &text);
     let habitat = only.unwrap_or(0);
     let creature = &creatures[habitat];
     let title = format!("generation {generation}, rank {rank}");
     ontogeny::render::write_png(creature, &title, &png, 960, 600)
         .map_err(super::render_error(&png))?;
-    let walk = ontogeny::evolve::habitats::recorded_walk(task, &creatures, habitat);
+    let walk = ontogeny::evolve::habitats::recorded_walk(task, &creatures, growth, habitat)?;
     super::eval::write_recording_at(&out, &walk.creature, &walk.evaluation, &walk.world, fps)?;
     let evaluation = if task.is_plain() {
         walk.evaluation
     } else {
         // Every unit walked for the aggregate; the habitat's first trial recorded.
-        let evaluation = ontogeny::evolve::habitats::evaluate_here(task, &creatures, only)?;
+        let evaluation = ontogeny::evolve::habitats::evaluate_here(task, &creatures, growth, only)?;
         say!(
             "{}",
             ontogeny::front::flags::habitats_text(task, &evaluation)

@@ -2,7 +2,8 @@
 //! habitat's chemical array, [`Genome::develop_in`]), the key of those creatures, and the
 //! evaluation of one individual over every unit (habitat × trial) outside the genetic
 //! algorithm's batches — the fine reference re-walk, the viewer, `eval` and `replay` — and one
-//! walk of it recorded in a chosen habitat ([`recorded_walk`]). The genetic algorithm's batches
+//! walk of it recorded in a chosen habitat ([`recorded_walk`]); a grammar file that grows
+//! during its walks, in each habitat ([`grammar_in_habitats`]). The genetic algorithm's batches
 //! spread the same units over the evaluator (`ga`).
 
 use super::evaluator::{Evaluator, Job};
@@ -13,7 +14,7 @@ use crate::develop::Seedling;
 use crate::encoding::{DevelopError, Genome};
 use crate::environment::Environment;
 use crate::sim::WorldSpec;
-use crate::task::{Evaluation, Growing, TaskSpec, Watch};
+use crate::task::{Evaluation, Growing, TaskSpec, Unit, Watch};
 
 /// The creatures `genome` develops into with `seed`, one per habitat of `task` (one for a
 /// task without habitats): in a habitat with an array, [`Genome::develop_in`] it (an array
@@ -58,11 +59,7 @@ pub fn develop_with_seedlings<G: Genome>(
                             G::NAME
                         )))
                     })
-                    .and_then(|seedling| {
-                        let growing = Growing::from_seedling(&seedling, &task.develop)
-                            .map_err(|d| DevelopError(d.to_string()))?;
-                        Ok((growing.creature().clone(), seedling))
-                    })
+                    .and_then(|seedling| dropped(task, seedling))
                     .map_err(|e| in_habitat(task, h, e))
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -89,12 +86,89 @@ pub fn develop_with_seedlings<G: Genome>(
     Ok((creatures, Vec::new()))
 }
 
+/// The creature `seedling` holds at t₀ (`task`'s `develop_t0`), with the seedling.
+fn dropped(task: &TaskSpec, seedling: Seedling) -> Result<(Creature, Seedling), DevelopError> {
+    let growing = Growing::from_seedling(&seedling, &task.develop)
+        .map_err(|d| DevelopError(d.to_string()))?;
+    Ok((growing.creature().clone(), seedling))
+}
+
+/// A grammar file's [`develop_with_seedlings`]: `seedling` (a grammar read from a file, with
+/// its options) in each habitat of `task` (one for a task without habitats), and the creature
+/// each holds at t₀. In a habitat whose array has as many slots as the grammar's
+/// `environment:`, its development starts from the habitat's values (the seedling's own
+/// initial values, such as `--env`'s, still apply over them), as the grammar's last frame
+/// grows there ([`crate::encoding::load::LoadOptions::habitat_environment`]); another
+/// habitat leaves the grammar's own array. An error names the habitat it arose in.
+pub fn grammar_in_habitats(
+    task: &TaskSpec,
+    seedling: &Seedling,
+) -> Result<(Vec<Creature>, Vec<Seedling>), DevelopError> {
+    let slots = seedling.lsys.environment().len();
+    let grown = (0..task.habitat_count())
+        .map(|h| {
+            let mut here = seedling.clone();
+            if let Some(values) = task.habitat_environment(h).filter(|v| v.len() == slots) {
+                here.derive.env = values
+                    .iter()
+                    .copied()
+                    .enumerate()
+                    .chain(seedling.derive.env.iter().copied())
+                    .collect();
+            }
+            dropped(task, here).map_err(|e| in_habitat(task, h, e))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(grown.into_iter().unzip())
+}
+
 /// `e`, arisen in habitat `h` of `task`, naming it (when it has a name).
 fn in_habitat(task: &TaskSpec, h: usize, e: DevelopError) -> DevelopError {
     match task.habitat_name(h) {
         "" => e,
         name => DevelopError(format!("in habitat {name}: {}", e.0)),
     }
+}
+
+/// What an individual's creatures grow from during their walks (`develop = "during"`): a
+/// seedling per habitat ([`develop_with_seedlings`], [`grammar_in_habitats`]), and the text
+/// of its genome (or of its grammar file, without a champion's record), which keys the draws
+/// of its trials with the development's settings as the genetic algorithm keys them
+/// ([`EvaluationKey::growing_text`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Growth<'a> {
+    /// The seedling of each habitat, in order.
+    pub seedlings: &'a [Seedling],
+    /// The genome's text ([`Genome::to_text`]), or the grammar file's.
+    pub text: &'a str,
+}
+
+impl<'a> Growth<'a> {
+    /// The growth of creatures that grow from `seedlings` (one per habitat) and whose text is
+    /// `text`; `None` when there are no seedlings (creatures that do not grow).
+    pub fn of(seedlings: &'a [Seedling], text: &'a str) -> Option<Growth<'a>> {
+        (!seedlings.is_empty()).then_some(Growth { seedlings, text })
+    }
+}
+
+/// The units of an individual developed into `creatures` (growing from `growth`, when it
+/// grows during its walks) on `task`, drawn for generation `generation`: those of habitat
+/// `only`, when given.
+fn units_of(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    growth: Option<Growth<'_>>,
+    generation: u32,
+    only: Option<usize>,
+) -> Vec<Unit> {
+    let mut key = EvaluationKey::of_habitats(creatures, task, KeyVersion::default());
+    if let Some(growth) = growth {
+        key = key.growing_text(task, growth.text);
+    }
+    task.units(key.0, generation)
+        .into_iter()
+        .filter(|u| only.is_none_or(|h| u.habitat as usize == h))
+        .collect()
 }
 
 /// The evaluation of an individual developed into `creatures` (one per habitat of `task`,
@@ -110,21 +184,22 @@ pub fn evaluate_in_habitats(
     evaluator: Evaluator,
     cancel: &Cancel,
 ) -> Result<Evaluation, Interrupted> {
-    evaluate_grown_in_habitats(task, creatures, &[], generation, only, evaluator, cancel)
+    evaluate_grown_in_habitats(task, creatures, None, generation, only, evaluator, cancel)
 }
 
-/// [`evaluate_in_habitats`] for creatures that grow from `seedlings` during their evaluation
-/// (one per habitat, [`develop_with_seedlings`]; none for creatures that do not grow): every
-/// walk starts its habitat's seedling anew.
+/// [`evaluate_in_habitats`] for creatures that grow during their evaluation as `growth` says
+/// (`None` for creatures that do not grow): every walk starts its habitat's seedling anew,
+/// on the draws the genetic algorithm gives the individual.
 pub fn evaluate_grown_in_habitats(
     task: &TaskSpec,
     creatures: &[Creature],
-    seedlings: &[Seedling],
+    growth: Option<Growth<'_>>,
     generation: u32,
     only: Option<usize>,
     evaluator: Evaluator,
     cancel: &Cancel,
 ) -> Result<Evaluation, Interrupted> {
+    let seedlings = growth.map_or(&[][..], |g| g.seedlings);
     if task.is_plain() {
         let watch = Watch {
             record: false,
@@ -138,12 +213,7 @@ pub fn evaluate_grown_in_habitats(
         }
         .evaluate(task, watch);
     }
-    let key = EvaluationKey::of_habitats(creatures, task, KeyVersion::default());
-    let units: Vec<_> = task
-        .units(key.0, generation)
-        .into_iter()
-        .filter(|u| only.is_none_or(|h| u.habitat as usize == h))
-        .collect();
+    let units = units_of(task, creatures, growth, generation, only);
     let jobs: Vec<Job<'_>> = units
         .iter()
         .map(|u| Job {
@@ -156,16 +226,18 @@ pub fn evaluate_grown_in_habitats(
     Ok(task.combine(&units, evaluations, creatures))
 }
 
-/// [`evaluate_in_habitats`] for generation 0, on this process's threads, with nothing to stop
-/// it: the evaluation `eval` and `replay` show.
+/// [`evaluate_grown_in_habitats`] for generation 0, on this process's threads, with nothing
+/// to stop it: the evaluation `eval` and `replay` show.
 pub fn evaluate_here(
     task: &TaskSpec,
     creatures: &[Creature],
+    growth: Option<Growth<'_>>,
     only: Option<usize>,
 ) -> Result<Evaluation, Interrupted> {
-    evaluate_in_habitats(
+    evaluate_grown_in_habitats(
         task,
         creatures,
+        growth,
         0,
         only,
         Evaluator::Local,
@@ -173,9 +245,9 @@ pub fn evaluate_here(
     )
 }
 
-/// [`develop_in_habitats`] then [`evaluate_in_habitats`] on this process's threads: the
-/// evaluation the genetic algorithm gives `genome` (of `seed`) in generation `generation`; a
-/// genome that does not develop is `invalid`.
+/// [`develop_with_seedlings`] then [`evaluate_grown_in_habitats`] on this process's threads:
+/// the evaluation the genetic algorithm gives `genome` (of `seed`) in generation
+/// `generation`; a genome that does not develop is `invalid`.
 pub fn evaluate_genome<G: Genome>(
     genome: &G,
     limits: &G::Limits,
@@ -185,15 +257,18 @@ pub fn evaluate_genome<G: Genome>(
     cancel: &Cancel,
 ) -> Result<Evaluation, Interrupted> {
     match develop_with_seedlings(genome, limits, seed, task) {
-        Ok((creatures, seedlings)) => evaluate_grown_in_habitats(
-            task,
-            &creatures,
-            &seedlings,
-            generation,
-            None,
-            Evaluator::Local,
-            cancel,
-        ),
+        Ok((creatures, seedlings)) => {
+            let text = genome.to_text();
+            evaluate_grown_in_habitats(
+                task,
+                &creatures,
+                Growth::of(&seedlings, &text),
+                generation,
+                None,
+                Evaluator::Local,
+                cancel,
+            )
+        }
         Err(e) => Ok(Evaluation::invalid(
             task.task.name(),
             format!("development: {e}"),
@@ -204,7 +279,8 @@ pub fn evaluate_genome<G: Genome>(
 /// One walk of an individual, recorded: the creature as it was placed, its evaluation (with a
 /// recording) and the world it walked in.
 pub struct RecordedWalk {
-    /// The creature walked: developed in the habitat, placed by the trial's draw.
+    /// The creature walked: developed in the habitat, placed by the trial's draw (for one
+    /// that grows during the walk, the creature dropped; the recording holds its growth).
     pub creature: Creature,
     /// The walk's evaluation, with a recording.
     pub evaluation: Evaluation,
@@ -216,29 +292,37 @@ pub struct RecordedWalk {
 /// [`develop_in_habitats`]) recorded in habitat `habitat` (by index): for a plain task its one
 /// walk; otherwise that habitat's first trial as drawn for generation 0 (the draws of a run
 /// whose trials are not fresh), placed and scaled by its draw — what `replay --habitat` and
-/// the viewer's `--habitat` play.
-pub fn recorded_walk(task: &TaskSpec, creatures: &[Creature], habitat: usize) -> RecordedWalk {
-    if task.is_plain() {
-        let creature = creatures[0].clone();
-        let evaluation = task.evaluate(&creature, true);
-        return RecordedWalk {
-            creature,
+/// the viewer's `--habitat` play. A creature that grows during its walk grows as `growth`
+/// says (`None` for one that does not), as in its evaluation.
+pub fn recorded_walk(
+    task: &TaskSpec,
+    creatures: &[Creature],
+    growth: Option<Growth<'_>>,
+    habitat: usize,
+) -> Result<RecordedWalk, Interrupted> {
+    let unit = if task.is_plain() {
+        None
+    } else {
+        units_of(task, creatures, growth, 0, Some(habitat))
+            .first()
+            .copied()
+    };
+    let evaluation = Job {
+        creature: &creatures[habitat],
+        unit,
+        seedling: growth.and_then(|g| g.seedlings.get(habitat)),
+    }
+    .evaluate(task, Watch::uncancelled(true, &mut |_| {}))?;
+    Ok(match unit {
+        None => RecordedWalk {
+            creature: creatures[habitat].clone(),
             evaluation,
             world: task.world.clone(),
-        };
-    }
-    let key = EvaluationKey::of_habitats(creatures, task, KeyVersion::default());
-    let unit = task
-        .units(key.0, 0)
-        .into_iter()
-        .find(|u| u.habitat as usize == habitat)
-        .expect("every habitat has a trial");
-    let creature = unit.perturbation.place(&creatures[habitat]);
-    let spec = task.unit_spec(&unit);
-    let evaluation = spec.evaluate(&creature, true);
-    RecordedWalk {
-        creature,
-        evaluation,
-        world: spec.world,
-    }
+        },
+        Some(unit) => RecordedWalk {
+            creature: unit.perturbation.place(&creatures[habitat]),
+            evaluation,
+            world: task.unit_spec(&unit).world,
+        },
+    })
 }

@@ -155,6 +155,12 @@ impl EvaluationKey {
     /// creatures develop before their evaluation keeps this key as it is, so no key of a run
     /// without `develop` changes.
     pub fn growing<G: crate::encoding::Genome>(self, task: &TaskSpec, genome: &G) -> EvaluationKey {
+        self.growing_text(task, &genome.to_text())
+    }
+
+    /// [`EvaluationKey::growing`] of a genome whose text is `text` (or of a grammar file's
+    /// text, for a grammar that is no run's genome).
+    pub fn growing_text(self, task: &TaskSpec, text: &str) -> EvaluationKey {
         if !task.develop.during() {
             return self;
         }
@@ -165,7 +171,7 @@ impl EvaluationKey {
             task.develop.when,
             task.develop.rate,
             task.develop.t0,
-            genome.to_text(),
+            text,
         )
             .serialize(&mut hasher)
             .expect("every key and setting serialises");

@@ -108,6 +108,27 @@ impl ChampionRecord {
         Ok(None)
     }
 
+    /// The genome's text in `text`, a champion file in a text form with `#` comments: what
+    /// follows the record's comment line ([`ChampionRecord::file_text`] writes the genome's
+    /// [`crate::encoding::Genome::to_text`] there); all of `text` when it has no record.
+    pub fn genome_text(text: &str) -> &str {
+        let mut rest = text;
+        while let Some((line, after)) = rest.split_once('\n') {
+            let Some(comment) = line.trim_start().strip_prefix('#') else {
+                if line.trim().is_empty() {
+                    rest = after;
+                    continue;
+                }
+                break;
+            };
+            if comment.trim_start().starts_with(COMMENT_KEY) {
+                return after;
+            }
+            rest = after;
+        }
+        text
+    }
+
     /// `json`, a genome's JSON object, with the member `"champion"` holding `note` and the
     /// record (`{"note": ..., "evaluation": {...}}`) first.
     pub fn into_json(&self, json: &str, note: &str) -> String {
@@ -174,6 +195,17 @@ mod tests {
             value(genome)
         );
         assert!(ChampionRecord::of_text(genome).unwrap().is_none());
+    }
+
+    #[test]
+    fn a_champion_file_s_genome_text_is_what_follows_its_record() {
+        let genome = "# a genome's own comment\ntime: 3\naxiom: A(0)\n";
+        let file = format!("# note\n# evaluation: {{}}\n{genome}");
+        assert_eq!(ChampionRecord::genome_text(&file), genome);
+        // A file without a record is all genome, its comments included.
+        assert_eq!(ChampionRecord::genome_text(genome), genome);
+        let late = "time: 3\n# evaluation: {}\naxiom: A(0)\n";
+        assert_eq!(ChampionRecord::genome_text(late), late);
     }
 
     #[test]

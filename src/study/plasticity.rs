@@ -39,7 +39,7 @@ use super::listing::{self, Kind};
 use super::stats::median;
 use crate::creature::{Creature, phenotype_differences};
 use crate::encoding::Genome;
-use crate::evolve::habitats::{develop_in_habitats, evaluate_here};
+use crate::evolve::habitats::{Growth, develop_with_seedlings, evaluate_here};
 use crate::number::{format_number, format_numbers};
 use crate::run::pick::{PickError, individual_by_rank};
 use crate::run::store::RunStore;
@@ -389,11 +389,13 @@ pub fn measure_run<G: Genome>(
         status,
         stored: habitat_fitness(task, &best.evaluation, h),
     };
-    match develop_in_habitats(&best.genome, run.limits(), best.develop_seed, task) {
-        Ok(creatures) => {
+    match develop_with_seedlings(&best.genome, run.limits(), best.develop_seed, task) {
+        Ok((creatures, seedlings)) => {
+            let text = best.genome.to_text();
             for h in 0..task.habitat_count() {
-                let walked = evaluate_here(task, &creatures, Some(h))
-                    .map_err(|e| PlasticityError::Other(e.to_string()))?;
+                let walked =
+                    evaluate_here(task, &creatures, Growth::of(&seedlings, &text), Some(h))
+                        .map_err(|e| PlasticityError::Other(e.to_string()))?;
                 measured
                     .habitats
                     .push(habitat(h, walked.fitness, walked.status.name().into()));

@@ -10,7 +10,7 @@ use serde_json::{Value, json};
 use super::{Kind, Target, ViewError};
 use crate::creature::Creature;
 use crate::encoding::Genome;
-use crate::evolve::habitats::{develop_in_habitats, recorded_walk};
+use crate::evolve::habitats::{Growth, develop_in_habitats, develop_with_seedlings, recorded_walk};
 use crate::run::Run;
 use crate::run::pick::{PickError, individual_by_rank};
 use crate::task::Recording;
@@ -183,14 +183,16 @@ fn walk<G: Genome>(
         })?;
     let title = format!("generation {generation}, rank {rank}");
     let task = &run.config().task;
-    let creatures = develop_in_habitats(
+    let (creatures, seedlings) = develop_with_seedlings(
         &individual.genome,
         &run.config().limits,
         individual.develop_seed,
         task,
     )
     .map_err(|e| ViewError::BadFile(format!("{title}: the genome does not develop: {e}")))?;
-    let walked = recorded_walk(task, &creatures, habitat);
+    let text = individual.genome.to_text();
+    let walked = recorded_walk(task, &creatures, Growth::of(&seedlings, &text), habitat)
+        .map_err(|e| ViewError::BadFile(format!("{title}: {e}")))?;
     let recording = Recording::of(&walked.creature, &walked.evaluation).in_world(&walked.world);
     let mut value = super::recording_value(&recording, &title)
         .map_err(|e| ViewError::BadFile(format!("{title}: {e}")))?;

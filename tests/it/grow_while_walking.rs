@@ -465,3 +465,180 @@ fn a_grammar_grows_legs_during_the_walk_when_its_controller_secretes_what_it_rea
     assert_eq!(again.fitness.to_bits(), secreted.fitness.to_bits());
     assert_eq!(again.terms, secreted.terms);
 }
+
+/// A config of a tiny run of the lsystem-continuous genome whose walkers grow during their
+/// 0.5 s walks in two habitats that differ in chemical 0, two noisy trials in each.
+pub(crate) fn growing_habitats_config(dir: &Path) -> PathBuf {
+    let config = dir.join("config.toml");
+    std::fs::write(
+        &config,
+        "encoding = \"lsystem-continuous\"\nseed = 5\n\
+         [ga]\npopulation = 6\ngenerations = 2\nenvironment_reads = 0.5\n\
+         [task]\ntask = \"walker\"\ndevelop = \"during\"\ndevelop_rate = 2\n\
+         [task.walker]\nseconds = 0.5\n\
+         [task.trials]\ncount = 2\naggregate = \"mean\"\nheading = 20\nstrength = 10\n\
+         [[task.habitats]]\nname = \"poor\"\nenvironment = [0]\n\
+         [[task.habitats]]\nname = \"rich\"\nenvironment = [1]\n",
+    )
+    .unwrap();
+    config
+}
+
+#[test]
+fn eval_and_replay_of_a_champion_growing_in_habitats_give_its_stored_fitness() {
+    let dir = scratch_dir("grow_while_walking_habitats");
+    let config = growing_habitats_config(&dir);
+    let run = dir.join("run");
+    evolve(&config, &run, &[]);
+    let store = ontogeny::run::store::RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    let stored = store.generations().unwrap()[1].best;
+    let best = run.join("best.lsys");
+    let text = std::fs::read_to_string(&best).unwrap();
+    let record = ontogeny::run::champion::ChampionRecord::of_text(&text)
+        .unwrap()
+        .unwrap();
+    assert_eq!(record.fitness, stored);
+    assert_eq!(record.task.habitat_count(), 2);
+    let best = best.to_str().unwrap();
+    let eval = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec!["eval", best, "--json"];
+        args.extend_from_slice(extra);
+        serde_json::from_str(&succeeded(&ontogeny(&args))).unwrap()
+    };
+    // The file's record gives the task, habitats and trials: its fitness to the digit, the
+    // mean of its four walks, each of which grew.
+    let all = eval(&[]);
+    assert_eq!(all["status"], "ok", "{all}");
+    assert_eq!(all["fitness"].as_f64().unwrap(), stored, "{all}");
+    let units = all["habitats"].as_array().unwrap();
+    let places: Vec<(&str, u64)> = units
+        .iter()
+        .map(|u| (u["name"].as_str().unwrap(), u["trial"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(places, [("poor", 0), ("poor", 1), ("rich", 0), ("rich", 1)]);
+    let fitness: Vec<f64> = units
+        .iter()
+        .map(|u| u["fitness"].as_f64().unwrap())
+        .collect();
+    // The trials' noise is drawn per trial: the two walks of a habitat differ.
+    assert_ne!(fitness[0], fitness[1]);
+    assert_eq!(
+        all["fitness"].as_f64().unwrap(),
+        fitness.iter().sum::<f64>() / 4.0
+    );
+    assert!(all["terms"]["grown_parts"].is_number(), "{all}");
+    // The config gives the same evaluation.
+    let config = config.to_str().unwrap();
+    assert_eq!(eval(&["--config", config]), all);
+    // One habitat alone: the same walks as in the whole evaluation.
+    let rich = eval(&["--habitat", "rich"]);
+    assert_eq!(rich["habitats"].as_array().unwrap()[..], units[2..]);
+    // Recorded: the first unit's walk, growing as it walked.
+    let recorded = dir.join("recorded");
+    let output = ontogeny(&["eval", best, "--record", recorded.to_str().unwrap()]);
+    let said = succeeded(&output);
+    assert!(
+        crate::util::stderr(&output).contains("note: recording habitat poor, trial 1"),
+        "{}",
+        crate::util::stderr(&output)
+    );
+    assert!(said.contains("  habitat poor, trial 1: fitness "), "{said}");
+    let recording: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(recorded.join("recording.json")).unwrap())
+            .unwrap();
+    let frames = recording["frames"].as_array().unwrap();
+    assert!(
+        frames.iter().any(|f| f.get("growth").is_some()),
+        "no frame records growth"
+    );
+    assert!(recorded.join("behaviour.gif").is_file());
+    // `replay` re-evaluates the stored champion, growing, to the same fitness.
+    let output = crate::util::ontogeny_command()
+        .arg("replay")
+        .arg(&run)
+        .output()
+        .unwrap();
+    let said = succeeded(&output);
+    assert!(
+        said.contains(&format!(
+            "walker fitness {stored:.6} (ok; stored {stored:.6})"
+        )),
+        "{said}"
+    );
+    assert!(
+        !crate::util::stderr(&output).contains("differs"),
+        "{}",
+        crate::util::stderr(&output)
+    );
+}
+
+#[test]
+fn a_grammar_growing_during_the_walk_grows_legs_in_the_rich_habitat_alone() {
+    let args = [
+        "eval",
+        "examples/grow-where-rich.lsys",
+        "--config",
+        "examples/grow-while-walking-habitats.toml",
+        "--json",
+    ];
+    let e: serde_json::Value = serde_json::from_str(&succeeded(&ontogeny(&args))).unwrap();
+    let units = e["habitats"].as_array().unwrap();
+    let grown: Vec<(&str, f64, f64)> = units
+        .iter()
+        .map(|u| {
+            (
+                u["name"].as_str().unwrap(),
+                u["terms"]["N"].as_f64().unwrap(),
+                u["terms"]["grown_parts"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    // Dropped as two segments everywhere; where chemical 0 starts at 1 a pair of legs
+    // sprouts 1.5 s into development, where it starts at 0 none.
+    assert_eq!(
+        grown,
+        [
+            ("poor", 2.0, 0.0),
+            ("poor", 2.0, 0.0),
+            ("rich", 2.0, 2.0),
+            ("rich", 2.0, 2.0)
+        ]
+    );
+    // The aggregate's terms are the means of the walks'.
+    assert_eq!(e["terms"]["grown_parts"], 1.0);
+}
+
+#[test]
+fn eval_growing_in_habitats_refuses_an_unknown_habitat_and_a_grammar_in_discrete_steps() {
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/grow-where-rich.lsys",
+            "--config",
+            "examples/grow-while-walking-habitats.toml",
+            "--habitat",
+            "wet",
+        ],
+        "no habitat 'wet'; the habitats are poor, rich",
+    );
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/quadruped.lsys",
+            "--config",
+            "examples/grow-while-walking-habitats.toml",
+        ],
+        "error: develop = \"during\": examples/quadruped.lsys develops in discrete steps",
+    );
+    assert_bad_input(
+        &[
+            "eval",
+            "examples/grow-where-rich.lsys",
+            "--develop",
+            "during",
+            "--habitat",
+            "rich",
+        ],
+        "no habitat 'rich': the task has no [[task.habitats]]",
+    );
+}

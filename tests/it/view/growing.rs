@@ -45,3 +45,30 @@ fn the_served_recording_of_a_growing_walk_carries_the_parts_that_appear() {
     assert!(data.get("body").is_none());
     assert_eq!(data["frames"].as_array().unwrap().len(), 72);
 }
+
+#[test]
+fn the_walk_of_a_run_s_individual_growing_in_habitats_is_its_stored_walk_growing() {
+    let dir = super::scratch("growing-habitats");
+    let config = crate::grow_while_walking::growing_habitats_config(&dir);
+    let run = dir.join("run");
+    crate::util::evolve(&config, &run, &[]);
+    let store = ontogeny::run::store::RunStore::open_read_only(&run.join("run.sqlite")).unwrap();
+    let individuals = store.individuals(1).unwrap();
+    let best = ontogeny::evolve::ga::ranking_by(&individuals, |i| i.fitness)[0];
+    let json: serde_json::Value = serde_json::from_str(&individuals[best].genome_json).unwrap();
+    let stored = json["evaluation"]["habitats"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|u| u["name"] == "rich" && u["trial"] == 0)
+        .unwrap()
+        .clone();
+    let viewer = Viewer::start_with(&run, &["--habitat", "rich"]);
+    let walk = get_json(&viewer, "/walk.json?gen=1&rank=1");
+    assert_eq!(walk["habitat"], "rich");
+    // The rich habitat's first trial, as the run walked it: growing, on the run's draws.
+    assert_eq!(walk["fitness"], stored["fitness"]);
+    let grown = stored["terms"]["grown_parts"].as_f64().unwrap() as usize;
+    let parts = |key: &str| walk[key]["parts"].as_array().unwrap().len();
+    assert_eq!(parts("body"), parts("creature") + grown, "{walk}");
+}
