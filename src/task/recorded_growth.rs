@@ -178,9 +178,8 @@ pub fn check_growth<'s>(
                         None
                     }
                 }
-                BodyChange::Resized { part, .. } | BodyChange::Stopped { part }
-                    if part.0 >= parts =>
-                {
+                // (A part stopped before it appears is a new part waiting to appear.)
+                BodyChange::Resized { part, .. } if part.0 >= parts => {
                     Some(format!("{part} changes before it appears"))
                 }
                 BodyChange::Neuron { neuron, .. } if *neuron != neurons => Some(format!(
@@ -451,6 +450,8 @@ mod tests {
             check_growth(&creature, views(&samples)),
             Err("frame 2: part 3 changes before it appears".to_string())
         );
+        let waiting = from_one_part(vec![(1, BodyChange::Stopped { part: PartId(1) })]);
+        assert_eq!(check_growth(&creature, views(&waiting)), Ok(()));
         let posed_more = vec![(vec![], 2)];
         assert_eq!(
             check_growth(&creature, views(&posed_more)),
