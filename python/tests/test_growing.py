@@ -31,13 +31,14 @@ def test_a_growing_walk_equals_the_command_lines_and_its_trajectory_gains_parts(
     theirs = cli.json("eval", EXAMPLE, "--config", config, "--json")
     assert ours.fitness == theirs["fitness"]
     assert json.loads(ours.to_json()) == theirs
-    assert ours.terms["grown_parts"] == 4.0
+    assert ours.terms["grown_parts"] == 12.0
     trajectory = ours.trajectory
-    # Two segments dropped, four legs grown: six parts, by id.
-    assert trajectory.shape == (len(ours.times), 6, 3)
-    assert not np.isnan(trajectory[:, :2]).any()
-    # Each leg has NaN rows until it appears, and positions from then on.
-    for part in range(2, 6):
+    # Three segments dropped, four legs of a shoulder, a hip and a lower leg grown: fifteen
+    # parts, by id.
+    assert trajectory.shape == (len(ours.times), 15, 3)
+    assert not np.isnan(trajectory[:, :3]).any()
+    # Each leg part has NaN rows until it appears, and positions from then on.
+    for part in range(3, 15):
         present = ~np.isnan(trajectory[:, part, 0])
         assert not present[0]
         assert present[-1]

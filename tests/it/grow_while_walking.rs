@@ -58,8 +58,10 @@ fn grown_walk() -> ontogeny::task::Evaluation {
 fn a_creature_growing_during_the_walk_gains_parts_as_it_walks() {
     let evaluation = grown_walk();
     assert_eq!(evaluation.status, Status::Ok, "{evaluation:?}");
-    // Dropped as two segments, it has them at the start of the walk; a pair of legs appears
-    // half a second into the walk, another a second in.
+    // Dropped as three segments, it has them at the start of the walk; a pair of legs
+    // appears half a second into the walk, another a second in: first each leg's shoulder
+    // (two parts), at the next control step its hip and lower leg, buds one step long (four
+    // parts).
     let counts: Vec<(Option<Phase>, usize)> = evaluation
         .recording
         .iter()
@@ -68,22 +70,25 @@ fn a_creature_growing_during_the_walk_gains_parts_as_it_walks() {
     assert!(
         counts
             .iter()
-            .all(|&(phase, n)| phase == Some(Phase::Measuring) || n == 2)
+            .all(|&(phase, n)| phase == Some(Phase::Measuring) || n == 3)
     );
     let walking: Vec<usize> = counts
         .iter()
         .filter(|(phase, _)| *phase == Some(Phase::Measuring))
         .map(|&(_, n)| n)
         .collect();
-    assert_eq!(walking.first(), Some(&2));
-    assert!(walking.contains(&4));
-    assert_eq!(walking.last(), Some(&6));
+    assert_eq!(walking.first(), Some(&3));
+    for n in [5, 9, 11] {
+        assert!(walking.contains(&n), "{n} parts: {walking:?}");
+    }
+    assert_eq!(walking.last(), Some(&15));
     assert!(walking.windows(2).all(|w| w[0] <= w[1]));
-    assert_eq!(evaluation.terms["grown_parts"], 4.0);
-    assert_eq!(evaluation.terms["grown_neurons"], 4.0);
-    assert_eq!(evaluation.terms["grown_links"], 4.0);
-    // The size terms are the body's at the start of the walk: two parts.
-    assert_eq!(evaluation.terms["N"], 2.0);
+    assert_eq!(evaluation.terms["grown_parts"], 12.0);
+    // Each hip and lower leg brings its output neuron and the link that feeds it.
+    assert_eq!(evaluation.terms["grown_neurons"], 8.0);
+    assert_eq!(evaluation.terms["grown_links"], 8.0);
+    // The size terms are the body's at the start of the walk: three parts.
+    assert_eq!(evaluation.terms["N"], 3.0);
 }
 
 #[test]
@@ -102,11 +107,13 @@ fn eval_json(extra: &[&str]) -> serde_json::Value {
 fn eval_with_develop_during_adds_parts_during_the_walk_and_gives_the_same_twice() {
     let grown = eval_json(&["--develop", "during"]);
     assert_eq!(grown["status"], "ok");
-    assert_eq!(grown["terms"]["N"], 2.0);
-    assert_eq!(grown["terms"]["grown_parts"], 4.0);
-    assert_eq!(grown["terms"]["grown_neurons"], 4.0);
+    assert_eq!(grown["terms"]["N"], 3.0);
+    assert_eq!(grown["terms"]["grown_parts"], 12.0);
+    assert_eq!(grown["terms"]["grown_neurons"], 8.0);
     assert_eq!(eval_json(&["--develop", "during"]), grown);
-    // From the config's [task] table (a 4 s walk), the same growth.
+    // From the config's [task] table (a 4 s walk), the same growth, and the legs walk it
+    // forward as they grow: 2.02 m at the commit that set this example's gait, against
+    // 0.3 mm for a body whose outputs were constant.
     let args = [
         "eval",
         EXAMPLE,
@@ -115,16 +122,18 @@ fn eval_with_develop_during_adds_parts_during_the_walk_and_gives_the_same_twice(
         "--json",
     ];
     let config: serde_json::Value = serde_json::from_str(&succeeded(&ontogeny(&args))).unwrap();
-    assert_eq!(config["terms"]["grown_parts"], 4.0);
-    assert_eq!(config["terms"]["N"], 2.0);
+    assert_eq!(config["terms"]["grown_parts"], 12.0);
+    assert_eq!(config["terms"]["N"], 3.0);
+    let walked = config["terms"]["D_w"].as_f64().unwrap();
+    assert!(walked > 1.0, "walked {walked} m");
 }
 
 #[test]
 fn eval_with_develop_before_is_today_s_evaluation() {
     let today = eval_json(&[]);
     assert_eq!(eval_json(&["--develop", "before"]), today);
-    // The finished creature: six parts from the start, nothing grown.
-    assert_eq!(today["terms"]["N"], 6.0);
+    // The finished creature: fifteen parts from the start, nothing grown.
+    assert_eq!(today["terms"]["N"], 15.0);
     assert!(today["terms"].get("grown_parts").is_none());
 }
 

@@ -59,11 +59,12 @@ fn a_growing_walk_records_its_parts_as_they_appear_and_grow_and_reads_back() {
     let recording = read(&dir);
     assert!(recording.grows());
     assert_eq!(recording.check_growth(), Ok(()));
-    // Dropped as two segments; four leg parts appear during the walk.
-    assert_eq!(recording.creature.parts.len(), 2);
+    // Dropped as three segments; twelve leg parts appear during the walk (four legs of a
+    // shoulder, a hip and a lower leg).
+    assert_eq!(recording.creature.parts.len(), 3);
     let counts: Vec<usize> = recording.samples.iter().map(|s| s.parts.len()).collect();
-    assert_eq!(counts.first(), Some(&2));
-    assert_eq!(counts.last(), Some(&6));
+    assert_eq!(counts.first(), Some(&3));
+    assert_eq!(counts.last(), Some(&15));
     assert!(counts.windows(2).all(|w| w[0] <= w[1]));
     let appeared: Vec<usize> = recording
         .samples
@@ -77,7 +78,7 @@ fn a_growing_walk_records_its_parts_as_they_appear_and_grow_and_reads_back() {
             _ => None,
         })
         .collect();
-    assert_eq!(appeared, [2, 3, 4, 5]);
+    assert_eq!(appeared, (3..15).collect::<Vec<_>>());
     // Each part appears in the first sample that poses it.
     for (i, sample) in recording.samples.iter().enumerate().skip(1) {
         let new = sample
@@ -90,24 +91,38 @@ fn a_growing_walk_records_its_parts_as_they_appear_and_grow_and_reads_back() {
             sample.parts.len()
         );
     }
-    // The legs lengthen as the grammar says, 0.4 a unit of developmental time up to 0.4 m:
-    // the activation's second and the 3 s walk take development to t = 4, past the end of
-    // both pairs' growth (t = 2.5 and 3).
+    // The shoulders (parts 3 and 4, then 9 and 10) appear whole, 0.2 m long; the hips and
+    // lower legs lengthen as the grammar says, 0.4 a unit of developmental time up to
+    // 0.35 m: the activation's second and the 3 s walk take development to t = 4, past the
+    // end of both pairs' growth (t = 2.375 and 2.875, a little later where a leg pressed on
+    // the ground stopped growing for a step).
     let mut bodies = recording.bodies();
     let last = bodies.at(recording.samples.len() - 1).clone();
-    assert_eq!(last.parts.len(), 6);
-    assert_eq!(last.joints.len(), 5);
-    for leg in &last.parts[2..] {
-        assert!((leg.size.x - 0.4).abs() < 1e-9, "{}", leg.size);
+    assert_eq!(last.parts.len(), 15);
+    assert_eq!(last.joints.len(), 14);
+    for (id, leg) in last.parts.iter().enumerate().skip(3) {
+        let length = if [3, 4, 9, 10].contains(&id) {
+            0.2
+        } else {
+            0.35
+        };
+        assert!(
+            (leg.size.x - length).abs() < 1e-9,
+            "part {id}: {}",
+            leg.size
+        );
     }
-    // The first sample of the legs shows them one step long: 0.4 × 1/60 m.
+    // The first sample of the first pair's hips and lower legs shows them one step long:
+    // 0.4 × 1/60 m.
     let first = recording
         .samples
         .iter()
-        .position(|s| s.parts.len() == 4)
+        .position(|s| s.parts.len() == 9)
         .unwrap();
-    assert!((bodies.at(first).parts[2].size.x - 0.4 / 60.0).abs() < 1e-9);
-    assert_eq!(bodies.at(0).parts.len(), 2);
+    for id in 5..9 {
+        assert!((bodies.at(first).parts[id].size.x - 0.4 / 60.0).abs() < 1e-9);
+    }
+    assert_eq!(bodies.at(0).parts.len(), 3);
     // Written again, the same text: nothing is lost in the round trip.
     assert_eq!(serde_json::to_string(&recording).unwrap(), text);
 }
@@ -133,8 +148,8 @@ fn a_recording_whose_growth_names_a_part_out_of_turn_is_refused_with_exit_code_2
     let dir = growing_recording("bad");
     let path = dir.join("recording.json");
     let text = std::fs::read_to_string(&path).unwrap();
-    // The first part to appear says it is part 7.
-    let bad = text.replacen(r#"{"appears":{"part":2,"#, r#"{"appears":{"part":7,"#, 1);
+    // The first part to appear says it is part 16.
+    let bad = text.replacen(r#"{"appears":{"part":3,"#, r#"{"appears":{"part":16,"#, 1);
     assert_ne!(bad, text);
     std::fs::write(&path, bad).unwrap();
     let out = ontogeny(&["replay", dir.to_str().unwrap()]);
@@ -142,7 +157,7 @@ fn a_recording_whose_growth_names_a_part_out_of_turn_is_refused_with_exit_code_2
     let said = stderr(&out);
     assert!(
         said.contains("not a usable growth: frame ")
-            && said.contains("part 7 appears, but the next part is 2"),
+            && said.contains("part 16 appears, but the next part is 3"),
         "{said}"
     );
 }
@@ -166,7 +181,8 @@ fn rounded(xml: &str) -> String {
 
 #[test]
 fn export_writes_the_creature_at_a_developmental_time_as_a_walk_would_drop_it() {
-    // The creature a walk with develop_t0 = 2 drops: two segments and the first pair of legs.
+    // The creature a walk with develop_t0 = 2 drops: three segments, the first pair of legs
+    // half grown and the second pair's shoulders, sprouted at t = 2.
     let text = std::fs::read_to_string(EXAMPLE).unwrap();
     let lsys = std::sync::Arc::new(ontogeny::lsystem::LSystem::from_text(EXAMPLE, &text).unwrap());
     let growing = ontogeny::task::Growing::start(
@@ -177,7 +193,7 @@ fn export_writes_the_creature_at_a_developmental_time_as_a_walk_would_drop_it() 
         Some(2.0),
     )
     .unwrap();
-    assert_eq!(growing.creature().parts.len(), 4);
+    assert_eq!(growing.creature().parts.len(), 11);
     let expected = ontogeny::export::to_mjcf_in(
         growing.creature(),
         &ontogeny::sim::SimOptions::default(),
@@ -188,7 +204,14 @@ fn export_writes_the_creature_at_a_developmental_time_as_a_walk_would_drop_it() 
     let out = ontogeny(&["export", EXAMPLE, "--time", "2"]);
     // The same model, to the round-off of integrating development in other steps.
     assert_eq!(rounded(&succeeded(&out)), rounded(&expected));
-    assert!(expected.contains("size=\"0.09999999999999994 0.075 0.075\""));
+    // Each of the four shoulders, and each hip and lower leg of the first pair, half grown at
+    // t = 2, is 0.2 m long (its half-size 0.1 m) and 0.15 m across.
+    assert_eq!(
+        rounded(&expected)
+            .matches("size=\"0.100000000 0.075000000 0.075000000\"")
+            .count(),
+        8
+    );
     assert!(
         stderr(&out).contains(
             "note: MJCF has no growth: the model is the creature at developmental time 2 \
@@ -221,17 +244,18 @@ fn a_growing_walk_records_the_neurons_and_links_its_terms_count() {
         .iter()
         .filter(|c| matches!(c, BodyChange::Link { .. }))
         .count();
-    // Each leg brings its output neuron and the link that feeds it.
-    assert_eq!(json["terms"]["grown_neurons"], 4.0);
-    assert_eq!(json["terms"]["grown_links"], 4.0);
+    // Each hip and lower leg brings its output neuron and the link that feeds it (a
+    // shoulder, fused to the body, drives nothing).
+    assert_eq!(json["terms"]["grown_neurons"], 8.0);
+    assert_eq!(json["terms"]["grown_links"], 8.0);
     let dropped = recording.creature.brain.neurons.len();
-    assert_eq!(neurons, (dropped..dropped + 4).collect::<Vec<_>>());
-    assert_eq!(links, 4);
+    assert_eq!(neurons, (dropped..dropped + 8).collect::<Vec<_>>());
+    assert_eq!(links, 8);
     let last = recording.bodies().at(recording.samples.len() - 1).clone();
-    assert_eq!(last.brain.neurons.len(), dropped + 4);
+    assert_eq!(last.brain.neurons.len(), dropped + 8);
     assert_eq!(
         last.brain.links.len(),
-        recording.creature.brain.links.len() + 4
+        recording.creature.brain.links.len() + 8
     );
     assert_eq!(last.check_consistency(), Ok(()));
 }

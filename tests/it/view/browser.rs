@@ -889,8 +889,8 @@ fn a_recording_of_a_growing_walk_shows_its_parts_as_they_appear_in_chromium() {
             .unwrap();
     let frames = recording["frames"].as_array().unwrap();
     let viewer = Viewer::start(&rec);
-    // The page draws the parts each frame poses: two at the start, six at the end.
-    for (frame, parts) in [(0, 2), (frames.len() - 1, 6)] {
+    // The page draws the parts each frame poses: three at the start, fifteen at the end.
+    for (frame, parts) in [(0, 3), (frames.len() - 1, 15)] {
         let page = Page::load(&browser, &format!("{}?frame={frame}", viewer.url));
         page.assert_ready();
         assert_eq!(page.number("parts"), parts, "frame {frame}: {}", page.body);
