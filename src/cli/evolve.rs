@@ -181,6 +181,10 @@ pub fn set_threads(threads: Option<usize>) -> anyhow::Result<()> {
 /// Runs `ontogeny evolve`.
 pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
+    if let Some(path) = &args.profile {
+        // Refused before the run starts, rather than after its directory is made.
+        ontogeny::output::check_target(path).map_err(|e| bad(e.to_string()))?;
+    }
     let Some(_cluster) = ontogeny::evolve::evaluator::join_cluster()? else {
         return Ok(()); // a worker rank of an MPI job: it evaluated what rank 0 sent
     };
