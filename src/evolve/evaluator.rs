@@ -139,8 +139,8 @@ impl Evaluator {
         }
     }
 
-    /// How many processes evaluate: the ranks of the MPI job for [`Evaluator::Mpi`], 1 for
-    /// [`Evaluator::Local`].
+    /// How many processes evaluate: the ranks of the MPI job for `Evaluator::Mpi` (with the
+    /// `mpi` feature), 1 for [`Evaluator::Local`].
     pub fn ranks(self) -> u32 {
         match self {
             Evaluator::Local => 1,

@@ -275,3 +275,20 @@ fn a_bad_profile_or_machine_is_refused_with_exit_code_2() {
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn the_scaling_benchmark_runs_the_readme_s_evolution() {
+    // benches/scaling.sh carries its own copy of examples/evolve-walker.toml (it runs from
+    // the binary alone): the two hold the same settings.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let script = std::fs::read_to_string(root.join("benches/scaling.sh")).unwrap();
+    let start = script
+        .find("<<'TOML'\n")
+        .expect("the script's configuration")
+        + 9;
+    let length = script[start..].find("\nTOML\n").expect("its end");
+    let copy: toml::Table = toml::from_str(&script[start..start + length]).unwrap();
+    let example = std::fs::read_to_string(root.join("examples/evolve-walker.toml")).unwrap();
+    let example: toml::Table = toml::from_str(&example).unwrap();
+    assert_eq!(copy, example);
+}
