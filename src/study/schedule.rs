@@ -143,7 +143,8 @@ pub struct Prediction {
     /// Of which walking (the generations' makespans).
     pub walking_seconds: f64,
     /// The share of the threads' time spent walking while the generations walk: walk seconds
-    /// / (threads × walking seconds); what the barriers leave idle is the rest.
+    /// / (threads × walking seconds); what the barriers leave idle is the rest. NaN (`null` in
+    /// JSON) for a profile without walks.
     pub walking_share: f64,
     /// Evaluations (as the run counts them) per second.
     pub evaluations_per_second: f64,
@@ -204,7 +205,11 @@ pub fn table(name: &str, recorded: &Recorded, one: &Prediction, rows: &[Predicti
                 "{}×",
                 round(p.evaluations_per_second / one.evaluations_per_second, 2)
             ),
-            round(p.walking_share, 3),
+            if p.walking_share.is_finite() {
+                round(p.walking_share, 3)
+            } else {
+                "-".to_string() // no walk to share out
+            },
         ));
     }
     out.push_str(
