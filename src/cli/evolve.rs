@@ -61,7 +61,13 @@ pub fn preset_parser() -> impl clap::builder::TypedValueParser<Value = Preset> {
 }
 
 /// The flags that go with `--resume`; it refuses every other ([`super::conflicts_with_all_but`]).
-pub const WITH_RESUME: &[&str] = &["gens", "threads", "allow_evaluator_change", "json"];
+pub const WITH_RESUME: &[&str] = &[
+    "gens",
+    "threads",
+    "allow_evaluator_change",
+    "json",
+    "profile",
+];
 
 /// Evolve creatures: a genetic algorithm over an encoding, on a task, into a run directory
 /// (or `--resume` one).
@@ -131,6 +137,12 @@ pub struct EvolveArgs {
     /// run (the config's `cache = false`); results are the same either way.
     #[arg(long)]
     no_cache: bool,
+    /// Write where each generation's time goes to FILE (JSON Lines, a line per generation
+    /// this command runs): the seconds of breeding, developing, keying, evaluating, the fine
+    /// re-walk and writing, and every walk's seconds and the thread that ran it. For `ontogeny
+    /// runs schedule`; the run's results do not depend on it.
+    #[arg(long, value_name = "FILE")]
+    profile: Option<PathBuf>,
     /// Print the final line as one JSON object (the run's directory, encoding and fitness, the
     /// last generation's best and its fine reference, the counts and speed, the files
     /// written); progress and messages still go to standard error.
@@ -169,12 +181,16 @@ pub fn set_threads(threads: Option<usize>) -> anyhow::Result<()> {
 /// Runs `ontogeny evolve`.
 pub fn run(args: &EvolveArgs) -> anyhow::Result<()> {
     set_threads(args.threads)?;
+    if let Some(path) = &args.profile {
+        // Refused before the run starts, rather than after its directory is made.
+        ontogeny::output::check_target(path).map_err(|e| bad(e.to_string()))?;
+    }
     let Some(_cluster) = ontogeny::evolve::evaluator::join_cluster()? else {
         return Ok(()); // a worker rank of an MPI job: it evaluated what rank 0 sent
     };
     if let Some(dir) = &args.resume {
         let encoding = encoding_of_run(dir).map_err(run_error)?;
-        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args.gens, args.allow_evaluator_change, args.json), |other| Err(bad(unknown_encoding_of_run(dir, other))));
+        return with_genome!(encoding.as_str(), G => resume::<G>(dir, args), |other| Err(bad(unknown_encoding_of_run(dir, other))));
     }
     if args.allow_evaluator_change {
         return Err(bad(
@@ -281,17 +297,13 @@ fn start<G: Genome>(
         StartError::Settings(d) => anyhow::Error::new(d),
         StartError::Run(e) => run_error(e),
     })?;
-    go(&mut run, out, args.json)
+    go(&mut run, out, args.json, args.profile.as_deref())
 }
 
-fn resume<G: Genome>(
-    dir: &Path,
-    generations: Option<usize>,
-    allow_evaluator_change: bool,
-    json: bool,
-) -> anyhow::Result<()> {
-    let mut run = Run::<G>::resume_with(dir, allow_evaluator_change).map_err(run_error)?;
-    if let Some(generations) = generations {
+fn resume<G: Genome>(dir: &Path, args: &EvolveArgs) -> anyhow::Result<()> {
+    let json = args.json;
+    let mut run = Run::<G>::resume_with(dir, args.allow_evaluator_change).map_err(run_error)?;
+    if let Some(generations) = args.gens {
         run.extend(generations).map_err(run_error)?;
     }
     let done = run.last_generation().map_err(run_error)?;
@@ -324,12 +336,21 @@ fn resume<G: Genome>(
         Some(g) => tell!("{}: resuming after generation {g}", dir.display()),
         None => tell!("{}: resuming from the first generation", dir.display()),
     }
-    go(&mut run, dir, json)
+    go(&mut run, dir, json, args.profile.as_deref())
 }
 
 /// Runs the remaining generations with a progress bar on a terminal, log lines otherwise;
-/// the final line as JSON when `json` is set.
-fn go<G: Genome>(run: &mut Run<G>, dir: &Path, json: bool) -> anyhow::Result<()> {
+/// the final line as JSON when `json` is set; each generation's timings to `profile`, if
+/// given.
+fn go<G: Genome>(
+    run: &mut Run<G>,
+    dir: &Path,
+    json: bool,
+    profile: Option<&Path>,
+) -> anyhow::Result<()> {
+    if let Some(path) = profile {
+        run.set_profile(path).map_err(run_error)?;
+    }
     let total = run.config().ga.generations as u64;
     let first = run
         .last_generation()

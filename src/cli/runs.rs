@@ -7,11 +7,13 @@ use clap::{Args, Subcommand};
 use ontogeny::encoding::Genome;
 use ontogeny::front::text;
 use ontogeny::run::pick::PickError;
+use ontogeny::run::profile::read_profile;
 use ontogeny::run::{Run, encoding_of_run, unknown_encoding_of_run};
 use ontogeny::study::canalization::{self, Settings};
 use ontogeny::study::lifetime;
 use ontogeny::study::listing;
 use ontogeny::study::plasticity::{self, FoundRun, PlasticityError};
+use ontogeny::study::schedule::{self, Machine};
 
 /// Subcommands of `ontogeny runs`.
 #[derive(Subcommand)]
@@ -48,6 +50,29 @@ pub enum RunsVerb {
     /// grew during their walks, body (parts, length) against brain (neurons, links). A table
     /// per condition, a row per generation (medians over the runs).
     Growth(MeasuredRunsArgs),
+    /// Predict from a run's profile (`evolve --profile FILE`) the evaluations per second it
+    /// would reach on other numbers of threads (or MPI ranks × threads), under its own
+    /// generational schedule: each generation's walks in their recorded order, each to the
+    /// first thread free, a barrier at the generation's end, its time outside evaluation as
+    /// recorded. A row per machine.
+    Schedule(ScheduleArgs),
+}
+
+/// The flags of `ontogeny runs schedule`.
+#[derive(Args)]
+pub struct ScheduleArgs {
+    /// The profile, written by `ontogeny evolve --profile FILE`.
+    profile: PathBuf,
+    /// Threads per rank to predict for, comma-separated, each 1 to 1024 [default:
+    /// 1,2,4,...,1024].
+    #[arg(long, value_name = "N,N,...", value_delimiter = ',')]
+    threads: Vec<u32>,
+    /// MPI ranks, each with the threads of --threads, 1 to 1024.
+    #[arg(long, value_name = "R", default_value_t = 1)]
+    ranks: u32,
+    /// Print one JSON object: what the profile recorded and a prediction per machine.
+    #[arg(long)]
+    json: bool,
 }
 
 /// The flags of `ontogeny runs plasticity` and `ontogeny runs growth`: the runs measured and
@@ -98,7 +123,7 @@ pub struct CanalizationArgs {
 /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
 /// directory (`runs list DIR`), the canalization of its champions (`runs canalization DIR`),
 /// the plasticity of champions (`runs plasticity DIR`), development during the walk (`runs
-/// growth DIR`).
+/// growth DIR`), the speed of a profiled run on other machines (`runs schedule PROFILE`).
 #[derive(Args)]
 pub struct RunsArgs {
     #[command(subcommand)]
@@ -139,6 +164,7 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
         }
         RunsVerb::Plasticity(args) => plasticity_of(args)?,
         RunsVerb::Growth(args) => growth_of(args)?,
+        RunsVerb::Schedule(args) => schedule_of(args)?,
     }
     Ok(())
 }
@@ -176,6 +202,45 @@ fn measure_found<T>(
         tell!("note: {note}");
     }
     Ok(measured)
+}
+
+/// `ontogeny runs schedule`.
+fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
+    let threads = if args.threads.is_empty() {
+        schedule::default_threads()
+    } else {
+        args.threads.clone()
+    };
+    let machines: Vec<Machine> = threads
+        .iter()
+        .map(|&threads| Machine {
+            ranks: args.ranks,
+            threads,
+        })
+        .collect();
+    for machine in &machines {
+        machine.check().map_err(super::bad)?;
+    }
+    let profile = read_profile(&args.profile).map_err(|e| super::bad(e.to_string()))?;
+    let recorded = schedule::recorded(&profile);
+    let rows: Vec<_> = machines
+        .iter()
+        .map(|&m| schedule::predict(&profile, m))
+        .collect();
+    let name = args.profile.display().to_string();
+    if args.json {
+        say!("{}", schedule::json(&name, &recorded, &rows));
+    } else {
+        let one = schedule::predict(
+            &profile,
+            Machine {
+                ranks: 1,
+                threads: 1,
+            },
+        );
+        say!("{}", schedule::table(&name, &recorded, &one, &rows));
+    }
+    Ok(())
 }
 
 /// `ontogeny runs growth`.

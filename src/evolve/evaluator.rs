@@ -8,7 +8,11 @@
 //! call serves rank 0's jobs until rank 0 is done and returns `None` (the verb then has nothing
 //! to do); everywhere else it returns the [`Cluster`] to hold while the verb runs.
 
+use std::time::Instant;
+
 use rayon::prelude::*;
+
+use super::timing::WalkTime;
 
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
@@ -79,6 +83,19 @@ impl Evaluator {
         jobs: &[Job<'_>],
         cancel: &Cancel,
     ) -> Result<Vec<Evaluation>, Interrupted> {
+        self.evaluate_timed(task, jobs, cancel)
+            .map(|(evaluations, _)| evaluations)
+    }
+
+    /// [`Evaluator::evaluate`], with each job's wall time and the thread that ran it, in the
+    /// jobs' order (a [`WalkTime`] whose `individual` is the job's index in `jobs`); none when
+    /// the batch went to MPI ranks. Timing changes no evaluation.
+    pub fn evaluate_timed(
+        self,
+        task: &TaskSpec,
+        jobs: &[Job<'_>],
+        cancel: &Cancel,
+    ) -> Result<(Vec<Evaluation>, Vec<WalkTime>), Interrupted> {
         // A growing creature's grammar stays with this process: its walks run on its threads.
         #[cfg(feature = "mpi")]
         let this = match jobs.iter().any(|j| j.seedling.is_some()) {
@@ -88,25 +105,47 @@ impl Evaluator {
         #[cfg(not(feature = "mpi"))]
         let this = self;
         match this {
-            Evaluator::Local => jobs
-                .par_iter()
-                .map(|job| {
-                    cancel.check()?;
-                    let watch = Watch {
-                        record: false,
-                        progress: &mut |_| {},
-                        cancel: Some(cancel),
-                    };
-                    job.evaluate(task, watch)
-                })
-                .collect(),
+            Evaluator::Local => {
+                let timed: Vec<(Evaluation, WalkTime)> = jobs
+                    .par_iter()
+                    .enumerate()
+                    .map(|(index, job)| {
+                        cancel.check()?;
+                        let watch = Watch {
+                            record: false,
+                            progress: &mut |_| {},
+                            cancel: Some(cancel),
+                        };
+                        let started = Instant::now();
+                        let evaluation = job.evaluate(task, watch)?;
+                        let time = WalkTime {
+                            individual: index as u32,
+                            seconds: started.elapsed().as_secs_f64(),
+                            thread: rayon::current_thread_index().unwrap_or(0) as u32,
+                            rank: 0,
+                        };
+                        Ok((evaluation, time))
+                    })
+                    .collect::<Result<_, Interrupted>>()?;
+                Ok(timed.into_iter().unzip())
+            }
             #[cfg(feature = "mpi")]
             Evaluator::Mpi => {
                 let jobs: Vec<_> = jobs.iter().map(|j| (j.creature, j.unit)).collect();
                 let evaluations = super::mpi::evaluate(task, &jobs);
                 cancel.check()?;
-                Ok(evaluations)
+                Ok((evaluations, Vec::new()))
             }
+        }
+    }
+
+    /// How many processes evaluate: the ranks of the MPI job for `Evaluator::Mpi` (with the
+    /// `mpi` feature), 1 for [`Evaluator::Local`].
+    pub fn ranks(self) -> u32 {
+        match self {
+            Evaluator::Local => 1,
+            #[cfg(feature = "mpi")]
+            Evaluator::Mpi => super::mpi::ranks(),
         }
     }
 }

@@ -10,206 +10,20 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use std::collections::HashMap;
+use std::time::Instant;
 
 use super::cache::EvaluationCache;
 use super::evaluator::{Evaluator, Job};
 use super::habitats::develop_with_seedlings;
 use super::key::{EvaluationKey, KeyVersion};
 use super::record::GenerationRecord;
+use super::timing::{GenerationTimes, WalkTime};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
-use crate::sim::SettingError;
 use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
-/// The operators' schedule of a published genetic algorithm.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Preset {
-    /// Chaumont, Egli & Adami 2007, 5.7: the best 20% survive unchanged; every new creature
-    /// comes 40% from mutation alone, 30% from crossover and 30% from grafting of survivors.
-    Chaumont,
-    /// Walking with Dinosaurs 3.3: elites 20% survive, breeders the next 30%, the worst 50%
-    /// are waste; each new creature is a breeder crossed with an elite, then mutated at a rate
-    /// that rises as the fitness deviation falls.
-    Wwd,
-}
-
-impl Preset {
-    /// Every preset.
-    pub const ALL: [Preset; 2] = [Preset::Chaumont, Preset::Wwd];
-
-    /// Its name, as the command line and `config.toml` spell it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Preset::Chaumont => "chaumont",
-            Preset::Wwd => "wwd",
-        }
-    }
-
-    /// One line for people: where the schedule comes from.
-    pub fn summary(self) -> &'static str {
-        match self {
-            Preset::Chaumont => "Chaumont et al. 5.7",
-            Preset::Wwd => "Walking with Dinosaurs 3.3",
-        }
-    }
-
-    /// The preset named `name`.
-    pub fn named(name: &str) -> Option<Preset> {
-        Preset::ALL.into_iter().find(|p| p.name() == name)
-    }
-}
-
-/// The genetic algorithm's settings (the `[ga]` table of a run's `config.toml`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct GaSettings {
-    /// The schedule.
-    pub preset: Preset,
-    /// Individuals per generation.
-    pub population: usize,
-    /// Generations, the first (random) one included.
-    pub generations: usize,
-    /// The fraction kept unchanged, and not evaluated again, from one generation to the next.
-    pub elite: f64,
-    /// Walking with Dinosaurs: the fraction after the elite that breeds (the rest is waste).
-    pub breeders: f64,
-    /// Chaumont: the fraction of new individuals made by mutation alone.
-    pub asexual: f64,
-    /// Chaumont: the fraction of new individuals made by crossover (grafting makes the rest).
-    pub crossover: f64,
-    /// Per-site mutation probability of an asexual child (Chaumont: 10%), and the base rate
-    /// of Walking with Dinosaurs' adaptive mutation.
-    pub mutation_rate: f64,
-    /// Chaumont: the chance that a child of crossover or grafting is mutated (10%) ...
-    pub mutation_chance_after_mating: f64,
-    /// ... and its per-site mutation probability then (5%).
-    pub mutation_rate_after_mating: f64,
-    /// The chance that an operator makes, changes or removes an environment read of a
-    /// genome that can read its environment (`lsystem`, `lsystem-continuous`). 0, the
-    /// default, leaves genomes without reads and draws exactly as before the key existed; a
-    /// configuration without the key reads as 0, and 0 is not written.
-    #[serde(default, skip_serializing_if = "is_zero")]
-    pub environment_reads: f64,
-}
-
-/// Whether a setting is 0 (so that it is not written, and stored settings stay as they were).
-fn is_zero(v: &f64) -> bool {
-    *v == 0.0
-}
-
-impl GaSettings {
-    /// The preset's published settings.
-    pub fn preset(preset: Preset) -> GaSettings {
-        match preset {
-            Preset::Chaumont => GaSettings {
-                preset,
-                population: 300,
-                generations: 100,
-                elite: 0.2,
-                breeders: 0.0,
-                asexual: 0.4,
-                crossover: 0.3,
-                mutation_rate: 0.1,
-                mutation_chance_after_mating: 0.1,
-                mutation_rate_after_mating: 0.05,
-                environment_reads: 0.0,
-            },
-            Preset::Wwd => GaSettings {
-                preset,
-                population: 300,
-                generations: 100,
-                elite: 0.2,
-                breeders: 0.3,
-                asexual: 0.0,
-                crossover: 1.0,
-                mutation_rate: 0.05,
-                mutation_chance_after_mating: 1.0,
-                mutation_rate_after_mating: 0.05,
-                environment_reads: 0.0,
-            },
-        }
-    }
-
-    /// Checks every value; the error names the setting (its key in the `[ga]` table, or the
-    /// two keys whose sum is out of range).
-    pub fn check(&self) -> Result<(), SettingError> {
-        let fraction = |key: &'static str, v: f64| {
-            if (0.0..=1.0).contains(&v) {
-                Ok(())
-            } else {
-                Err(SettingError::out_of_range(key, "between 0 and 1", v))
-            }
-        };
-        if !(2..=100_000).contains(&self.population) {
-            return Err(SettingError::out_of_range(
-                "population",
-                "2 to 100000",
-                self.population,
-            ));
-        }
-        if !(1..=100_000).contains(&self.generations) {
-            return Err(SettingError::out_of_range(
-                "generations",
-                "1 to 100000",
-                self.generations,
-            ));
-        }
-        fraction("elite", self.elite)?;
-        fraction("breeders", self.breeders)?;
-        fraction("asexual", self.asexual)?;
-        fraction("crossover", self.crossover)?;
-        fraction("mutation_rate", self.mutation_rate)?;
-        fraction(
-            "mutation_chance_after_mating",
-            self.mutation_chance_after_mating,
-        )?;
-        fraction(
-            "mutation_rate_after_mating",
-            self.mutation_rate_after_mating,
-        )?;
-        fraction("environment_reads", self.environment_reads)?;
-        if self.asexual + self.crossover > 1.0 + 1e-12 {
-            return Err(SettingError::out_of_range(
-                "asexual + crossover",
-                "at most 1",
-                self.asexual + self.crossover,
-            ));
-        }
-        if self.elite + self.breeders > 1.0 + 1e-12 {
-            return Err(SettingError::out_of_range(
-                "elite + breeders",
-                "at most 1",
-                self.elite + self.breeders,
-            ));
-        }
-        if self.survivors() == 0 {
-            return Err(SettingError {
-                table: String::new(),
-                key: "elite",
-                problem: format!(
-                    "{} of a population of {} keeps nobody to breed from",
-                    self.elite, self.population
-                ),
-            });
-        }
-        Ok(())
-    }
-
-    /// How many individuals survive unchanged (at least one).
-    pub fn survivors(&self) -> usize {
-        ((self.elite * self.population as f64).round() as usize).clamp(1, self.population)
-    }
-
-    /// Walking with Dinosaurs: how many breeders follow the elite (at least one).
-    pub fn breeder_count(&self) -> usize {
-        ((self.breeders * self.population as f64).round() as usize).clamp(
-            1,
-            self.population - self.survivors().min(self.population - 1),
-        )
-    }
-}
+pub use super::settings::{GaSettings, Preset};
 
 /// How an individual was made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -414,7 +228,7 @@ impl<G: Genome> Evolution<G> {
         }
     }
 
-    /// Develops one genome in every habitat and keys its creatures with the task.
+    /// Develops one genome in every habitat (its key is left for [`Evolution::key_developed`]).
     fn develop(&self, unborn: Unborn<G>) -> Developed<G> {
         let (creatures, seedlings) = match develop_with_seedlings(
             &unborn.genome,
@@ -425,16 +239,20 @@ impl<G: Genome> Evolution<G> {
             Ok((creatures, seedlings)) => (Ok(creatures), seedlings),
             Err(e) => (Err(e.to_string()), Vec::new()),
         };
-        let key = creatures.as_ref().ok().map(|c| {
-            self.key_of_creatures(c, self.key_version)
-                .growing(&self.task, &unborn.genome)
-        });
         Developed {
             unborn,
             creatures,
             seedlings,
-            key,
+            key: None,
         }
+    }
+
+    /// Keys a developed genome's creatures with the task (none when it did not develop).
+    fn key_developed(&self, developed: &mut Developed<G>) {
+        developed.key = developed.creatures.as_ref().ok().map(|c| {
+            self.key_of_creatures(c, self.key_version)
+                .growing(&self.task, &developed.unborn.genome)
+        });
     }
 
     /// Develops and evaluates new individuals, in parallel, each walk (habitat × trial) a
@@ -443,19 +261,26 @@ impl<G: Genome> Evolution<G> {
     /// one's (decided before any simulation, so the result does not depend on the number of
     /// threads); every new evaluation joins the cache. With fresh trials (drawn anew each
     /// generation, `generation` joining the seed) no evaluation of another generation is
-    /// reused or kept.
+    /// reused or kept. `times` gets the wall time of developing, keying and evaluating, and
+    /// each walk's.
     fn evaluate_all(
         &self,
         unborn: Vec<Unborn<G>>,
         generation: u32,
         cache: &mut EvaluationCache,
         cancel: &Cancel,
+        times: &mut GenerationTimes,
     ) -> Result<Vec<Individual<G>>, Interrupted> {
         let fresh = self.task.trials.fresh;
-        let developed: Vec<Developed<G>> = unborn
+        let started = Instant::now();
+        let mut developed: Vec<Developed<G>> = unborn
             .into_par_iter()
             .map(|u| cancel.check().map(|()| self.develop(u)))
             .collect::<Result<_, _>>()?;
+        times.developing = started.elapsed().as_secs_f64();
+        let started = Instant::now();
+        developed.par_iter_mut().for_each(|d| self.key_developed(d));
+        times.keying = started.elapsed().as_secs_f64();
         let mut first_with: HashMap<EvaluationKey, usize> = HashMap::new();
         let sources: Vec<Source> = developed
             .iter()
@@ -512,7 +337,22 @@ impl<G: Genome> Evolution<G> {
             };
             owners.push((index, units, start..jobs.len()));
         }
-        let mut evaluations = Evaluator::current().evaluate(&self.task, &jobs, cancel)?;
+        let started = Instant::now();
+        let (mut evaluations, walks) =
+            Evaluator::current().evaluate_timed(&self.task, &jobs, cancel)?;
+        times.evaluating = started.elapsed().as_secs_f64();
+        // Each walk's job index becomes its individual's.
+        let mut owner_of_job = vec![0u32; jobs.len()];
+        for (index, _, range) in &owners {
+            owner_of_job[range.clone()].fill(*index as u32);
+        }
+        times.walks = walks
+            .into_iter()
+            .map(|w| WalkTime {
+                individual: owner_of_job[w.individual as usize],
+                ..w
+            })
+            .collect();
         for (index, units, range) in owners.into_iter().rev() {
             let mine: Vec<Evaluation> = evaluations.drain(range).collect();
             simulated[index] = Some(match &developed[index].creatures {
@@ -573,6 +413,17 @@ impl<G: Genome> Evolution<G> {
         cache: &mut EvaluationCache,
         cancel: &Cancel,
     ) -> Result<Vec<Individual<G>>, Interrupted> {
+        self.first_generation_timed(cache, cancel, &mut GenerationTimes::default())
+    }
+
+    /// [`Evolution::first_generation`], saying in `times` where its time went.
+    pub fn first_generation_timed(
+        &self,
+        cache: &mut EvaluationCache,
+        cancel: &Cancel,
+        times: &mut GenerationTimes,
+    ) -> Result<Vec<Individual<G>>, Interrupted> {
+        let started = Instant::now();
         let unborn: Vec<Unborn<G>> = (0..self.settings.population as u32)
             .into_par_iter()
             .map(|index| {
@@ -595,7 +446,8 @@ impl<G: Genome> Evolution<G> {
                 }
             })
             .collect();
-        self.evaluate_all(unborn, 0, cache, cancel)
+        times.breeding = started.elapsed().as_secs_f64();
+        self.evaluate_all(unborn, 0, cache, cancel, times)
     }
 
     /// The next generation, number `generation`, from `previous` (in any order): the elite
@@ -613,6 +465,21 @@ impl<G: Genome> Evolution<G> {
         cache: &mut EvaluationCache,
         cancel: &Cancel,
     ) -> Result<(Vec<Individual<G>>, u64), Interrupted> {
+        let mut times = GenerationTimes::default();
+        self.next_generation_timed(previous, generation, fallbacks, cache, cancel, &mut times)
+    }
+
+    /// [`Evolution::next_generation`], saying in `times` where its time went.
+    pub fn next_generation_timed(
+        &self,
+        previous: &[Individual<G>],
+        generation: u32,
+        fallbacks: &mut Fallbacks,
+        cache: &mut EvaluationCache,
+        cancel: &Cancel,
+        times: &mut GenerationTimes,
+    ) -> Result<(Vec<Individual<G>>, u64), Interrupted> {
+        let started = Instant::now();
         let order = ranking(previous);
         let population = self.settings.population;
         let survivors = self.settings.survivors().min(previous.len());
@@ -659,7 +526,12 @@ impl<G: Genome> Evolution<G> {
                 .collect();
             unborn.splice(0..0, elite);
         }
-        let born = self.evaluate_all(unborn, generation, cache, cancel)?;
+        times.breeding = started.elapsed().as_secs_f64();
+        let born = self.evaluate_all(unborn, generation, cache, cancel, times)?;
+        // The walks' individuals, counted from the first child, become the generation's.
+        for walk in &mut times.walks {
+            walk.individual += next.len() as u32;
+        }
         for op in fell_back.into_iter().flatten() {
             fallbacks.count(op);
         }

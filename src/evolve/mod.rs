@@ -1,9 +1,11 @@
-//! The genetic algorithm: [`ga`] (presets as data, a generational loop over any
-//! [`crate::encoding::Genome`], parallel evaluation), the evaluation cache and its keys
+//! The genetic algorithm: [`ga`] (a generational loop over any
+//! [`crate::encoding::Genome`], parallel evaluation) and its settings ([`settings`]: presets as
+//! data), the evaluation cache and its keys
 //! ([`cache`], [`key`]), an individual developed and evaluated in its habitats
 //! ([`habitats`]), where evaluations run ([`evaluator`]: this process's threads, or every
 //! rank of an MPI job with the `mpi` feature) and the version of their behaviour that a run
-//! records ([`evaluator_version`]), and a generation's record ([`record`]).
+//! records ([`evaluator_version`]), a generation's record ([`record`]), and where its time went
+//! ([`timing`]).
 
 pub mod cache;
 pub mod evaluator;
@@ -15,3 +17,5 @@ pub mod key;
 pub mod mpi;
 pub mod ranking;
 pub mod record;
+pub mod settings;
+pub mod timing;

@@ -206,6 +206,13 @@ impl Drop for Membership {
     }
 }
 
+/// The number of ranks of the job this process is rank 0 of (1 when it is none's).
+pub fn ranks() -> u32 {
+    master()
+        .as_ref()
+        .map_or(1, |state| state.workers.len() as u32 + 1)
+}
+
 /// The evaluations of `creatures` (with their units) on `task`, in order, over every rank of
 /// the job.
 pub fn evaluate(task: &TaskSpec, creatures: &[Job<'_>]) -> Vec<Evaluation> {

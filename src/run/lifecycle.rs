@@ -16,15 +16,18 @@ use std::time::Instant;
 use super::config::{RunConfig, check_settings, read_run_config, with_generations};
 use super::folder::{CONFIG_FILE, Claim, STORE_FILE, claim_folder};
 use super::lock::{DirectoryLock, LockError};
+use super::profile::{GenerationProfile, ProfileWriter};
 use super::store::{
     FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
 };
 use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::evolve::cache::EvaluationCache;
+use crate::evolve::evaluator::Evaluator;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
 use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator};
 use crate::evolve::key::{EvaluationKey, KeyVersion};
+use crate::evolve::timing::GenerationTimes;
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
 use crate::task::{Evaluation, TaskSpec, TaskTables};
@@ -153,6 +156,8 @@ pub struct Run<G: Genome> {
     cancel: Cancel,
     /// What the derived files hold, once written from the store ([`derived`]).
     written: Option<derived::Written>,
+    /// Where each generation's timings go ([`Run::set_profile`]), if anywhere.
+    profile: Option<ProfileWriter>,
 }
 
 /// What is said of the run in `dir` when its encoding, `name`, is none of the registry's:
@@ -474,6 +479,7 @@ impl<G: Genome> Run<G> {
             _lock: lock,
             cancel: Cancel::default(),
             written: None,
+            profile: None,
         }
     }
 
@@ -483,6 +489,14 @@ impl<G: Genome> Run<G> {
     /// last stored generation ([`Run::resume`]) and ends as an uninterrupted run would.
     pub fn set_cancel(&mut self, cancel: Cancel) {
         self.cancel = cancel;
+    }
+
+    /// Profiles the generations [`Run::run`] makes from now on: writes the file at `path` anew,
+    /// empty, and adds each generation's line ([`super::profile`]) once it is stored. The run's
+    /// results do not change.
+    pub fn set_profile(&mut self, path: &Path) -> Result<(), RunError> {
+        self.profile = Some(ProfileWriter::create(path)?);
+        Ok(())
     }
 
     /// The run's settings.
@@ -691,16 +705,33 @@ impl<G: Genome> Run<G> {
     ) -> Result<(), RunError> {
         self.cancel.check()?;
         let started = Instant::now();
-        let evaluations = self.breed(progress, generation)?;
+        let mut times = GenerationTimes::default();
+        let evaluations = self.breed(progress, generation, &mut times)?;
+        let fine_started = Instant::now();
         let best_fine = self.verify_best(progress)?;
+        let fine = fine_started.elapsed().as_secs_f64();
         let evaluation_seconds = started.elapsed().as_secs_f64();
         let mut stats = GenerationRecord {
             index: generation,
             best_fine,
             ..GenerationRecord::of(&progress.population, evaluations)
         };
+        let writing_started = Instant::now();
         self.record(&progress.population, &mut stats, started)?;
         self.advance_derived_files(&progress.population, &stats, &progress.fallbacks)?;
+        let writing = writing_started.elapsed().as_secs_f64();
+        if let Some(profile) = &mut self.profile {
+            profile.add(&GenerationProfile::new(
+                generation,
+                rayon::current_num_threads() as u32,
+                Evaluator::current().ranks(),
+                evaluations,
+                times,
+                fine,
+                writing,
+                started.elapsed().as_secs_f64(),
+            ))?;
+        }
         observer(&GenerationReport {
             generation,
             stats,

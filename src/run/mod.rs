@@ -3,8 +3,9 @@
 //! [`config_errors`]), its folder ([`folder`]), its database ([`store`], the only code that
 //! knows SQL), the lock that keeps a directory one process's ([`lock`]), the record of a
 //! champion's evaluation in its file ([`champion`]), its fitness plot ([`plot`]) with the
-//! spread of each generation's best over its habitats and trials ([`spread`]), and an
-//! individual picked by rank ([`pick`]).
+//! spread of each generation's best over its habitats and trials ([`spread`]), an
+//! individual picked by rank ([`pick`]), and where its generations' time went, when it is
+//! profiled ([`profile`]).
 
 pub mod champion;
 pub mod config;
@@ -14,6 +15,7 @@ mod lifecycle;
 pub mod lock;
 pub mod pick;
 pub mod plot;
+pub mod profile;
 pub mod spread;
 pub mod store;
 

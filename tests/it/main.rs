@@ -48,6 +48,7 @@ mod never_panics;
 mod old_release;
 mod outputs;
 mod plasticity;
+mod profile;
 mod render;
 mod rooms;
 mod store;

@@ -8,6 +8,7 @@ use super::{Run, RunError};
 use crate::encoding::Genome;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
 use crate::evolve::ga::{Fallbacks, Individual, Operator, ranking};
+use crate::evolve::timing::GenerationTimes;
 use crate::run::store::FineEvaluation;
 
 /// Where a run stands between two generations.
@@ -89,25 +90,28 @@ impl<G: Genome> Run<G> {
     }
 
     /// Makes and evaluates generation `generation` (random, or bred from the progress's
-    /// population, which it replaces); returns how many were evaluated.
+    /// population, which it replaces); returns how many were evaluated. `times` gets where
+    /// the time went.
     pub(super) fn breed(
         &mut self,
         progress: &mut Progress<G>,
         generation: u32,
+        times: &mut GenerationTimes,
     ) -> Result<u64, RunError> {
         let (next, evaluations) = if generation == 0 {
-            let first = self
-                .evolution
-                .first_generation(&mut self.cache, &self.cancel)?;
+            let first =
+                self.evolution
+                    .first_generation_timed(&mut self.cache, &self.cancel, times)?;
             let n = first.len() as u64;
             (first, n)
         } else {
-            self.evolution.next_generation(
+            self.evolution.next_generation_timed(
                 &progress.population,
                 generation,
                 &mut progress.fallbacks,
                 &mut self.cache,
                 &self.cancel,
+                times,
             )?
         };
         progress.population = next;

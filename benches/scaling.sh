@@ -1,0 +1,117 @@
+#!/bin/bash
+# How one evolution fills a machine's cores: for N = 1, 2, 4, ... up to the cores present
+# (nproc, which ends the list when it is no power of two), the ceiling — N one-thread runs at
+# once, each the same run — against one run with --threads N, at population 100 and 400. The
+# run is the README's evolution (examples/evolve-walker.toml: the lsystem genome, Chaumont's
+# schedule, 20-second walks, fitness distance) with --no-cache, for GENS generations.
+# Prints a table: evaluations per second of the ceiling (all N runs together) and of the one
+# run, and their ratio (1 is a run that fills N cores as N separate runs do). Every speed is
+# evaluations / wall-clock seconds of the processes, start-up and writing included.
+#
+# A benchmark, not a test: it needs only the release binary (no cargo, no repository):
+#   bash benches/scaling.sh
+#   ONTOGENY=/path/to/ontogeny GENS=10 POPS="100 400" bash benches/scaling.sh
+# Settings (environment):
+#   ONTOGENY  the binary (default target/release/ontogeny)
+#   GENS      generations per run (default 10: on 16 cores about 5 minutes for population 100
+#             in all, and four times as long for 400)
+#   POPS      the populations (default "100 400")
+#   THREADS   the thread counts (default 1 2 4 ... up to nproc)
+#   PROFILES  a directory to keep each N-thread run's profile in (evolve --profile), as
+#             PROFILES/pop-P-threads-N.jsonl, for `ontogeny runs schedule`
+# The runs go to a temporary directory, removed at the end.
+set -eu
+ontogeny=${ONTOGENY:-target/release/ontogeny}
+gens=${GENS:-10}
+pops=${POPS:-100 400}
+cores=$(nproc)
+if [ -z "${THREADS:-}" ]; then
+    THREADS=
+    n=1
+    while [ "$n" -lt "$cores" ]; do
+        THREADS="$THREADS $n"
+        n=$((n * 2))
+    done
+    THREADS="$THREADS $cores"
+fi
+if ! "$ontogeny" --version >/dev/null 2>&1; then
+    echo "error: $ontogeny does not run: build it (cargo build --release) or set ONTOGENY" >&2
+    exit 2
+fi
+work=$(mktemp -d "${TMPDIR:-/tmp}/ontogeny-scaling.XXXXXX")
+trap 'rm -rf "$work"' EXIT INT TERM
+# The README's evolution, examples/evolve-walker.toml, as it ships.
+cat >"$work/walker.toml" <<'TOML'
+encoding = "lsystem"
+seed = 1
+
+[ga]
+preset = "chaumont"
+population = 100
+generations = 40
+
+[task]
+task = "walker"
+
+[task.walker]
+seconds = 20
+fitness = "distance"
+TOML
+
+now() { date +%s.%N; }
+
+# evaluations OUT: the evaluations the run's --json final line in OUT counts.
+evaluations() {
+    sed -n 's/^  "evaluations": \([0-9]*\),$/\1/p' "$1"
+}
+
+# evolve NAME POP THREADS [FLAGS...]: one run into $work/NAME, its final line to NAME.json.
+evolve() {
+    local name=$1 pop=$2 threads=$3
+    shift 3
+    "$ontogeny" evolve --config "$work/walker.toml" --no-cache --pop "$pop" --gens "$gens" \
+        --threads "$threads" --json --out "$work/$name" "$@" \
+        >"$work/$name.json" 2>"$work/$name.err" || {
+        cat "$work/$name.err" >&2
+        exit 1
+    }
+}
+
+echo "# $("$ontogeny" --version), $cores cores ($(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)), $(date -u +%Y-%m-%dT%H:%MZ)"
+echo "# evolve --config examples/evolve-walker.toml --no-cache --pop P --gens $gens; load average before: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+printf '%-10s %7s %15s %15s %6s\n' population threads "ceiling eval/s" "one run eval/s" ratio
+for pop in $pops; do
+    for n in $THREADS; do
+        # The ceiling: N one-thread runs at once.
+        start=$(now)
+        pids=
+        for i in $(seq 1 "$n"); do
+            evolve "ceiling-$pop-$n-$i" "$pop" 1 &
+            pids="$pids $!"
+        done
+        for pid in $pids; do
+            wait "$pid"
+        done
+        end=$(now)
+        total=0
+        for i in $(seq 1 "$n"); do
+            total=$((total + $(evaluations "$work/ceiling-$pop-$n-$i.json")))
+        done
+        ceiling=$(awk -v e="$total" -v s="$start" -v t="$end" 'BEGIN { printf "%.1f", e / (t - s) }')
+        # One run with N threads.
+        profile=()
+        if [ -n "${PROFILES:-}" ]; then
+            mkdir -p "$PROFILES"
+            profile=(--profile "$PROFILES/pop-$pop-threads-$n.jsonl")
+        fi
+        start=$(now)
+        evolve "run-$pop-$n" "$pop" "$n" ${profile[@]+"${profile[@]}"}
+        end=$(now)
+        one=$(awk -v e="$(evaluations "$work/run-$pop-$n.json")" -v s="$start" -v t="$end" \
+            'BEGIN { printf "%.1f", e / (t - s) }')
+        ratio=$(awk -v a="$one" -v b="$ceiling" 'BEGIN { printf "%.2f", a / b }')
+        printf '%-10s %7s %15s %15s %6s\n' "$pop" "$n" "$ceiling" "$one" "$ratio"
+        rm -rf "$work"/ceiling-* "$work"/run-*
+    done
+done
+echo "# load average after: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"

@@ -1,0 +1,196 @@
+//! The genetic algorithm's settings: the operators' schedules of the published algorithms
+//! ([`Preset`]) and the sizes and rates of a run (the `[ga]` table, [`GaSettings`]), with
+//! their checks.
+
+use serde::{Deserialize, Serialize};
+
+use crate::sim::SettingError;
+
+/// The operators' schedule of a published genetic algorithm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Preset {
+    /// Chaumont, Egli & Adami 2007, 5.7: the best 20% survive unchanged; every new creature
+    /// comes 40% from mutation alone, 30% from crossover and 30% from grafting of survivors.
+    Chaumont,
+    /// Walking with Dinosaurs 3.3: elites 20% survive, breeders the next 30%, the worst 50%
+    /// are waste; each new creature is a breeder crossed with an elite, then mutated at a rate
+    /// that rises as the fitness deviation falls.
+    Wwd,
+}
+
+impl Preset {
+    /// Every preset.
+    pub const ALL: [Preset; 2] = [Preset::Chaumont, Preset::Wwd];
+
+    /// Its name, as the command line and `config.toml` spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Chaumont => "chaumont",
+            Preset::Wwd => "wwd",
+        }
+    }
+
+    /// One line for people: where the schedule comes from.
+    pub fn summary(self) -> &'static str {
+        match self {
+            Preset::Chaumont => "Chaumont et al. 5.7",
+            Preset::Wwd => "Walking with Dinosaurs 3.3",
+        }
+    }
+
+    /// The preset named `name`.
+    pub fn named(name: &str) -> Option<Preset> {
+        Preset::ALL.into_iter().find(|p| p.name() == name)
+    }
+}
+
+/// The genetic algorithm's settings (the `[ga]` table of a run's `config.toml`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaSettings {
+    /// The schedule.
+    pub preset: Preset,
+    /// Individuals per generation.
+    pub population: usize,
+    /// Generations, the first (random) one included.
+    pub generations: usize,
+    /// The fraction kept unchanged, and not evaluated again, from one generation to the next.
+    pub elite: f64,
+    /// Walking with Dinosaurs: the fraction after the elite that breeds (the rest is waste).
+    pub breeders: f64,
+    /// Chaumont: the fraction of new individuals made by mutation alone.
+    pub asexual: f64,
+    /// Chaumont: the fraction of new individuals made by crossover (grafting makes the rest).
+    pub crossover: f64,
+    /// Per-site mutation probability of an asexual child (Chaumont: 10%), and the base rate
+    /// of Walking with Dinosaurs' adaptive mutation.
+    pub mutation_rate: f64,
+    /// Chaumont: the chance that a child of crossover or grafting is mutated (10%) ...
+    pub mutation_chance_after_mating: f64,
+    /// ... and its per-site mutation probability then (5%).
+    pub mutation_rate_after_mating: f64,
+    /// The chance that an operator makes, changes or removes an environment read of a
+    /// genome that can read its environment (`lsystem`, `lsystem-continuous`). 0, the
+    /// default, leaves genomes without reads and draws exactly as before the key existed; a
+    /// configuration without the key reads as 0, and 0 is not written.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub environment_reads: f64,
+}
+
+/// Whether a setting is 0 (so that it is not written, and stored settings stay as they were).
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+impl GaSettings {
+    /// The preset's published settings.
+    pub fn preset(preset: Preset) -> GaSettings {
+        match preset {
+            Preset::Chaumont => GaSettings {
+                preset,
+                population: 300,
+                generations: 100,
+                elite: 0.2,
+                breeders: 0.0,
+                asexual: 0.4,
+                crossover: 0.3,
+                mutation_rate: 0.1,
+                mutation_chance_after_mating: 0.1,
+                mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
+            },
+            Preset::Wwd => GaSettings {
+                preset,
+                population: 300,
+                generations: 100,
+                elite: 0.2,
+                breeders: 0.3,
+                asexual: 0.0,
+                crossover: 1.0,
+                mutation_rate: 0.05,
+                mutation_chance_after_mating: 1.0,
+                mutation_rate_after_mating: 0.05,
+                environment_reads: 0.0,
+            },
+        }
+    }
+
+    /// Checks every value; the error names the setting (its key in the `[ga]` table, or the
+    /// two keys whose sum is out of range).
+    pub fn check(&self) -> Result<(), SettingError> {
+        let fraction = |key: &'static str, v: f64| {
+            if (0.0..=1.0).contains(&v) {
+                Ok(())
+            } else {
+                Err(SettingError::out_of_range(key, "between 0 and 1", v))
+            }
+        };
+        if !(2..=100_000).contains(&self.population) {
+            return Err(SettingError::out_of_range(
+                "population",
+                "2 to 100000",
+                self.population,
+            ));
+        }
+        if !(1..=100_000).contains(&self.generations) {
+            return Err(SettingError::out_of_range(
+                "generations",
+                "1 to 100000",
+                self.generations,
+            ));
+        }
+        fraction("elite", self.elite)?;
+        fraction("breeders", self.breeders)?;
+        fraction("asexual", self.asexual)?;
+        fraction("crossover", self.crossover)?;
+        fraction("mutation_rate", self.mutation_rate)?;
+        fraction(
+            "mutation_chance_after_mating",
+            self.mutation_chance_after_mating,
+        )?;
+        fraction(
+            "mutation_rate_after_mating",
+            self.mutation_rate_after_mating,
+        )?;
+        fraction("environment_reads", self.environment_reads)?;
+        if self.asexual + self.crossover > 1.0 + 1e-12 {
+            return Err(SettingError::out_of_range(
+                "asexual + crossover",
+                "at most 1",
+                self.asexual + self.crossover,
+            ));
+        }
+        if self.elite + self.breeders > 1.0 + 1e-12 {
+            return Err(SettingError::out_of_range(
+                "elite + breeders",
+                "at most 1",
+                self.elite + self.breeders,
+            ));
+        }
+        if self.survivors() == 0 {
+            return Err(SettingError {
+                table: String::new(),
+                key: "elite",
+                problem: format!(
+                    "{} of a population of {} keeps nobody to breed from",
+                    self.elite, self.population
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// How many individuals survive unchanged (at least one).
+    pub fn survivors(&self) -> usize {
+        ((self.elite * self.population as f64).round() as usize).clamp(1, self.population)
+    }
+
+    /// Walking with Dinosaurs: how many breeders follow the elite (at least one).
+    pub fn breeder_count(&self) -> usize {
+        ((self.breeders * self.population as f64).round() as usize).clamp(
+            1,
+            self.population - self.survivors().min(self.population - 1),
+        )
+    }
+}

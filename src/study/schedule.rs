@@ -1,0 +1,370 @@
+//! The schedule simulator: from a run's profile ([`crate::run::profile`]), the evaluations per
+//! second that another number of threads (or of MPI ranks × threads) would reach under the
+//! run's own generational schedule.
+//!
+//! Each generation is replayed: its walks, in the order the evaluator was handed them, go each
+//! to the first thread to fall free (greedy list scheduling, which approximates rayon's work
+//! stealing and the MPI dispatcher's one queue alike); the generation waits for its last walk
+//! (the barrier); and the time the generation spent outside the evaluator's batch (breeding,
+//! developing, keying, the fine re-walk, writing and the rest) is added as it was recorded.
+//! R ranks × T threads are R·T threads, with no cost for messages. The walks keep the times
+//! they had when recorded, so a prediction holds for a machine whose cores walk as fast as the
+//! recording's did (as many real cores as threads, no other load).
+
+use std::cmp::{Ordering, Reverse};
+use std::collections::BinaryHeap;
+
+use crate::number::format_number;
+use crate::run::profile::GenerationProfile;
+
+/// The most threads, and the most ranks, a prediction is made for.
+pub const MAX_THREADS: u32 = 1024;
+
+/// The thread counts predicted when none are asked for: 1, 2, 4, ..., 1,024.
+pub fn default_threads() -> Vec<u32> {
+    (0..=10).map(|k| 1 << k).collect()
+}
+
+/// A machine to predict for: `ranks` processes of `threads` threads each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Machine {
+    /// MPI ranks (1 without MPI).
+    pub ranks: u32,
+    /// Threads per rank.
+    pub threads: u32,
+}
+
+impl Machine {
+    /// Its threads in all, each of which walks.
+    pub fn slots(self) -> usize {
+        self.ranks as usize * self.threads as usize
+    }
+
+    /// Checks that both counts are 1 to [`MAX_THREADS`]; the error names the flag.
+    pub fn check(self) -> Result<(), String> {
+        for (flag, n) in [("--threads", self.threads), ("--ranks", self.ranks)] {
+            if !(1..=MAX_THREADS).contains(&n) {
+                return Err(format!("{flag} must be 1 to {MAX_THREADS}, not {n}"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A time at which a thread falls free, ordered by time, then by the thread's index.
+#[derive(PartialEq)]
+struct Free(f64, usize);
+
+impl Eq for Free {}
+
+impl PartialOrd for Free {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Free {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.0.total_cmp(&other.0).then(self.1.cmp(&other.1))
+    }
+}
+
+/// The time from the first walk's start to the last one's end when `walks` (seconds, in the
+/// order handed out) go each to the first of `slots` threads to fall free (the lowest-numbered
+/// among those free at once): greedy list scheduling. 0 for no walk; `slots` of 0 counts as 1.
+pub fn makespan(walks: &[f64], slots: usize) -> f64 {
+    let slots = slots.clamp(1, walks.len().max(1));
+    let mut free: BinaryHeap<Reverse<Free>> = (0..slots).map(|i| Reverse(Free(0.0, i))).collect();
+    let mut end: f64 = 0.0;
+    for &seconds in walks {
+        let Some(Reverse(Free(at, slot))) = free.pop() else {
+            break;
+        };
+        let done = at + seconds;
+        end = end.max(done);
+        free.push(Reverse(Free(done, slot)));
+    }
+    end
+}
+
+/// What a profile says of the run it was recorded from.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Recorded {
+    /// Generations profiled.
+    pub generations: usize,
+    /// Individuals evaluated, as the run counts them.
+    pub evaluations: u64,
+    /// Walks simulated, with their times.
+    pub walks: usize,
+    /// Seconds of walking, summed over threads.
+    pub walk_seconds: f64,
+    /// Wall-clock seconds of the generations, in all.
+    pub seconds: f64,
+    /// Of which outside the evaluator's batches.
+    pub outside_seconds: f64,
+    /// The threads of each rank and the ranks, as the first generation ran (a profile of a
+    /// resumed run may mix several).
+    pub machine: Machine,
+    /// `evaluations / seconds`: the speed measured.
+    pub evaluations_per_second: f64,
+}
+
+/// The profile's own figures.
+pub fn recorded(profile: &[GenerationProfile]) -> Recorded {
+    let evaluations: u64 = profile.iter().map(|g| g.evaluations).sum();
+    let seconds: f64 = profile.iter().map(|g| g.total).sum();
+    let first = profile.first();
+    Recorded {
+        generations: profile.len(),
+        evaluations,
+        walks: profile.iter().map(|g| g.walks.len()).sum(),
+        walk_seconds: profile
+            .iter()
+            .flat_map(|g| &g.walks)
+            .map(|w| w.seconds)
+            .sum(),
+        seconds,
+        outside_seconds: profile.iter().map(|g| g.outside_evaluation()).sum(),
+        machine: Machine {
+            ranks: first.map_or(1, |g| g.ranks),
+            threads: first.map_or(1, |g| g.threads),
+        },
+        evaluations_per_second: evaluations as f64 / seconds,
+    }
+}
+
+/// The simulator's prediction for one machine.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Prediction {
+    /// The machine.
+    pub machine: Machine,
+    /// Wall-clock seconds of every generation: its makespan and its time outside evaluation.
+    pub seconds: f64,
+    /// Of which walking (the generations' makespans).
+    pub walking_seconds: f64,
+    /// The share of the threads' time spent walking while the generations walk: walk seconds
+    /// / (threads × walking seconds); what the barriers leave idle is the rest. NaN (`null` in
+    /// JSON) for a profile without walks.
+    pub walking_share: f64,
+    /// Evaluations (as the run counts them) per second.
+    pub evaluations_per_second: f64,
+}
+
+/// The prediction for `machine` of the run profiled in `profile`.
+pub fn predict(profile: &[GenerationProfile], machine: Machine) -> Prediction {
+    let slots = machine.slots();
+    let mut walking = 0.0;
+    let mut outside = 0.0;
+    let mut walked = 0.0;
+    for g in profile {
+        let walks: Vec<f64> = g.walks.iter().map(|w| w.seconds).collect();
+        walking += makespan(&walks, slots);
+        walked += walks.iter().sum::<f64>();
+        outside += g.outside_evaluation();
+    }
+    let seconds = walking + outside;
+    let evaluations: u64 = profile.iter().map(|g| g.evaluations).sum();
+    Prediction {
+        machine,
+        seconds,
+        walking_seconds: walking,
+        walking_share: walked / (slots as f64 * walking),
+        evaluations_per_second: evaluations as f64 / seconds,
+    }
+}
+
+/// The predictions as a table for people: what was recorded, then a row per machine with its
+/// evaluations per second, the speed-up over one thread and the walking share.
+pub fn table(name: &str, recorded: &Recorded, one: &Prediction, rows: &[Prediction]) -> String {
+    let mut out = format!(
+        "{name}: {} generations, {} evaluations, {} walks ({} s of walking, {} s outside evaluation), recorded on {} rank{} × {} thread{}: {} evaluations/s measured\n",
+        recorded.generations,
+        recorded.evaluations,
+        recorded.walks,
+        round(recorded.walk_seconds, 1),
+        round(recorded.outside_seconds, 2),
+        recorded.machine.ranks,
+        plural(recorded.machine.ranks),
+        recorded.machine.threads,
+        plural(recorded.machine.threads),
+        round(recorded.evaluations_per_second, 2),
+    );
+    if recorded.walks == 0 && recorded.evaluations > 0 {
+        out.push_str(
+            "note: the profile holds no walk times (a run over MPI ranks does not record them): the predictions count only the time outside evaluation\n",
+        );
+    }
+    out.push_str("ranks  threads  evaluations/s  speed-up  walking share\n");
+    for p in rows {
+        out.push_str(&format!(
+            "{:>5}  {:>7}  {:>13}  {:>8}  {:>13}\n",
+            p.machine.ranks,
+            p.machine.threads,
+            round(p.evaluations_per_second, 2),
+            format!(
+                "{}×",
+                round(p.evaluations_per_second / one.evaluations_per_second, 2)
+            ),
+            if p.walking_share.is_finite() {
+                round(p.walking_share, 3)
+            } else {
+                "-".to_string() // no walk to share out
+            },
+        ));
+    }
+    out.push_str(
+        "predicted: each generation's walks in their recorded order, each to the first thread free, a barrier at each generation's end, the time outside evaluation as recorded",
+    );
+    out
+}
+
+/// The predictions as one JSON object: the profile's name and figures, and a prediction per
+/// machine.
+pub fn json(name: &str, recorded: &Recorded, rows: &[Prediction]) -> String {
+    serde_json::to_string_pretty(&serde_json::json!({
+        "profile": name,
+        "recorded": recorded,
+        "predictions": rows,
+    }))
+    .unwrap_or_default()
+}
+
+/// `value` rounded to `places` decimals, written as people read it.
+fn round(value: f64, places: i32) -> String {
+    let scale = 10f64.powi(places);
+    format_number((value * scale).round() / scale)
+}
+
+fn plural(n: u32) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::evolve::timing::WalkTime;
+
+    fn generation(walks: &[f64], outside: f64, evaluations: u64) -> GenerationProfile {
+        let evaluating = walks.iter().sum::<f64>();
+        GenerationProfile {
+            generation: 0,
+            threads: 1,
+            ranks: 1,
+            evaluations,
+            breeding: outside,
+            developing: 0.0,
+            keying: 0.0,
+            evaluating,
+            fine: 0.0,
+            writing: 0.0,
+            other: 0.0,
+            total: outside + evaluating,
+            walks: walks
+                .iter()
+                .enumerate()
+                .map(|(i, &seconds)| WalkTime {
+                    individual: i as u32,
+                    seconds,
+                    thread: 0,
+                    rank: 0,
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn greedy_list_scheduling_gives_the_hand_computed_makespan() {
+        let walks = [3.0, 1.0, 1.0, 1.0, 2.0];
+        // One thread: 3 + 1 + 1 + 1 + 2.
+        assert_eq!(makespan(&walks, 1), 8.0);
+        // Two: A takes 3 (0-3); B takes 1, 1, 1 (0-1, 1-2, 2-3); both fall free at 3 and the
+        // 2 ends at 5: greedy in this order, although 3 + 1 | 1 + 1 + 2 would end at 4.
+        assert_eq!(makespan(&walks, 2), 5.0);
+        // Three: A 3 (0-3); B 1 (0-1), C 1 (0-1); B 1 (1-2); C 2 (1-3).
+        assert_eq!(makespan(&walks, 3), 3.0);
+        // As many threads as walks, or more: the longest walk.
+        assert_eq!(makespan(&walks, 5), 3.0);
+        assert_eq!(makespan(&walks, 1024), 3.0);
+        assert_eq!(makespan(&[], 4), 0.0);
+        // The longest first packs them: 3 | 2 + 1, then 1 and 1 to the first free.
+        assert_eq!(makespan(&[3.0, 2.0, 1.0, 1.0, 1.0], 2), 4.0);
+    }
+
+    #[test]
+    fn a_prediction_adds_each_generation_s_barrier_and_its_time_outside_evaluation() {
+        // Generation 0: walks 3, 1, 1, 1, 2 and 0.5 s outside; generation 1: walks 2, 2, 2
+        // and 0.5 s outside; 5 + 3 = 8 evaluations.
+        let profile = [
+            generation(&[3.0, 1.0, 1.0, 1.0, 2.0], 0.5, 5),
+            generation(&[2.0, 2.0, 2.0], 0.5, 3),
+        ];
+        let one = predict(
+            &profile,
+            Machine {
+                ranks: 1,
+                threads: 1,
+            },
+        );
+        // 8.5 + 6.5 = 15 s.
+        assert_eq!(one.seconds, 15.0);
+        assert_eq!(one.evaluations_per_second, 8.0 / 15.0);
+        assert_eq!(one.walking_share, 1.0);
+        let two = predict(
+            &profile,
+            Machine {
+                ranks: 1,
+                threads: 2,
+            },
+        );
+        // 5 + 0.5, then 2 + 2 on one thread: 4 + 0.5; 10 s.
+        assert_eq!(two.seconds, 10.0);
+        assert_eq!(two.walking_seconds, 9.0);
+        assert_eq!(two.evaluations_per_second, 0.8);
+        // 14 s of walks on 2 threads × 9 s.
+        assert_eq!(two.walking_share, 14.0 / 18.0);
+        // 2 ranks × 2 threads are 4 threads: 3 + 0.5, 2 + 0.5.
+        let four = predict(
+            &profile,
+            Machine {
+                ranks: 2,
+                threads: 2,
+            },
+        );
+        assert_eq!(four.seconds, 6.0);
+        // The profile's own figures: 14 s of walks and 1 s outside, measured at 8 / 15.
+        let r = recorded(&profile);
+        assert_eq!((r.walks, r.walk_seconds, r.outside_seconds), (8, 14.0, 1.0));
+        assert_eq!(r.evaluations_per_second, 8.0 / 15.0);
+    }
+
+    #[test]
+    fn machines_beyond_the_limits_are_refused_by_flag() {
+        assert!(
+            Machine {
+                ranks: 1,
+                threads: 1024
+            }
+            .check()
+            .is_ok()
+        );
+        assert_eq!(
+            Machine {
+                ranks: 1,
+                threads: 0
+            }
+            .check()
+            .unwrap_err(),
+            "--threads must be 1 to 1024, not 0"
+        );
+        assert_eq!(
+            Machine {
+                ranks: 1025,
+                threads: 1
+            }
+            .check()
+            .unwrap_err(),
+            "--ranks must be 1 to 1024, not 1025"
+        );
+        assert_eq!(default_threads().last(), Some(&1024));
+    }
+}

@@ -1,0 +1,294 @@
+//! A run's profile (`evolve --profile FILE`): every walk the evaluator simulated once, on a
+//! thread of the run's, with a positive time, the steps of each generation within its whole;
+//! a profiled run the same to the digit as one not profiled, on one thread or two and resumed;
+//! and the schedule simulator (`runs schedule`) giving the makespans computed by hand.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::process::Output;
+
+use ontogeny::run::profile::{GenerationProfile, read_profile};
+use ontogeny::run::store::RunStore;
+
+use crate::util::{
+    assert_bad_input, evolve_walkers, ontogeny, ontogeny_command, scratch_dir, stdout, succeeded,
+};
+
+/// Walkers: a population of 8, `gens` generations of 1 s walks, into `out` (and `extra`
+/// flags).
+fn walkers_for(gens: &str, out: &Path, extra: &[&str]) -> Output {
+    let output = evolve_walkers("lsystem", "8")
+        .args(["--gens", gens, "--seconds", "1"])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    succeeded(&output);
+    output
+}
+
+/// [`walkers_for`] 3 generations.
+fn walkers(out: &Path, extra: &[&str]) -> Output {
+    walkers_for("3", out, extra)
+}
+
+/// The individuals of generation `g` of the run in `dir` that the evaluator walked: those
+/// neither carried over (the elite) nor reused from the cache, that developed (have a key).
+fn walked(dir: &Path, g: u32) -> BTreeSet<u32> {
+    let store = RunStore::open_read_only(&dir.join("run.sqlite")).unwrap();
+    store
+        .individuals(g)
+        .unwrap()
+        .into_iter()
+        .filter(|i| i.operator != "elite" && !i.reused && i.evaluation_key.is_some())
+        .map(|i| i.index)
+        .collect()
+}
+
+#[test]
+fn a_profile_holds_every_walk_once_with_its_time_and_thread() {
+    let dir = scratch_dir("profile-contents");
+    let run = dir.join("run");
+    let profile = dir.join("profile.jsonl");
+    walkers(
+        &run,
+        &["--threads", "2", "--profile", profile.to_str().unwrap()],
+    );
+    let generations: Vec<GenerationProfile> = read_profile(&profile).unwrap();
+    let stored = RunStore::open_read_only(&run.join("run.sqlite"))
+        .unwrap()
+        .generations()
+        .unwrap();
+    assert_eq!(generations.len(), 3);
+    let mut walks = 0;
+    for (g, s) in generations.iter().zip(&stored) {
+        assert_eq!(g.generation, s.index);
+        assert_eq!((g.threads, g.ranks), (2, 1));
+        assert_eq!(g.evaluations, s.evaluations);
+        // Every walked individual once, and no other.
+        let individuals: Vec<u32> = g.walks.iter().map(|w| w.individual).collect();
+        let once: BTreeSet<u32> = individuals.iter().copied().collect();
+        assert_eq!(once.len(), individuals.len(), "generation {}", g.generation);
+        assert_eq!(
+            once,
+            walked(&run, g.generation),
+            "generation {}",
+            g.generation
+        );
+        for w in &g.walks {
+            assert!(w.seconds > 0.0 && w.thread < 2 && w.rank == 0, "{w:?}");
+            // A walk lies within its batch, ...
+            assert!(w.seconds <= g.evaluating, "{w:?} in {}", g.evaluating);
+        }
+        // ... and two threads walk at most twice the batch's time.
+        let walking: f64 = g.walks.iter().map(|w| w.seconds).sum();
+        assert!(walking <= 2.0 * g.evaluating);
+        // The steps add up to the whole.
+        let steps = g.breeding + g.developing + g.keying + g.evaluating + g.fine + g.writing;
+        assert!(g.breeding > 0.0 && g.developing > 0.0 && g.writing > 0.0);
+        assert!((steps + g.other - g.total).abs() < 1e-9, "{g:?}");
+        walks += g.walks.len();
+    }
+    // The first generation's best is re-walked at the fine reference.
+    assert!(generations[0].fine > 0.0);
+    assert!(walks > 0);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_profiled_run_is_the_same_as_one_not_profiled_on_one_or_two_threads_and_resumed() {
+    let dir = scratch_dir("profile-same");
+    walkers(&dir.join("plain"), &["--threads", "1"]);
+    let plain = crate::evolve::contents(&dir.join("plain"));
+    for threads in ["1", "2"] {
+        let run = dir.join(format!("profiled-{threads}"));
+        let profile = dir.join(format!("profile-{threads}.jsonl"));
+        walkers(
+            &run,
+            &["--threads", threads, "--profile", profile.to_str().unwrap()],
+        );
+        assert_eq!(crate::evolve::contents(&run), plain, "{threads} threads");
+    }
+    // Stopped after two generations, then resumed with a profile of its own: the profile
+    // holds the generation the resume made, and the run is the same.
+    let stopped = dir.join("stopped");
+    walkers_for("2", &stopped, &[]);
+    let profile = dir.join("resumed.jsonl");
+    let resumed = ontogeny_command()
+        .args(["evolve", "--gens", "3", "--profile"])
+        .arg(&profile)
+        .arg("--resume")
+        .arg(&stopped)
+        .output()
+        .unwrap();
+    succeeded(&resumed);
+    assert_eq!(crate::evolve::contents(&stopped), plain);
+    let generations: Vec<u32> = read_profile(&profile)
+        .unwrap()
+        .iter()
+        .map(|g| g.generation)
+        .collect();
+    assert_eq!(generations, [2]);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A profile's line: one generation of `walks` (seconds, each on thread 0), `outside` seconds
+/// of breeding, and `evaluations` individuals evaluated.
+fn line(generation: u32, walks: &[f64], outside: f64, evaluations: u64) -> String {
+    let evaluating: f64 = walks.iter().sum();
+    let walks: Vec<String> = walks
+        .iter()
+        .enumerate()
+        .map(|(i, s)| format!(r#"{{"individual":{i},"seconds":{s},"thread":0,"rank":0}}"#))
+        .collect();
+    format!(
+        r#"{{"generation":{generation},"threads":1,"ranks":1,"evaluations":{evaluations},"breeding":{outside},"developing":0,"keying":0,"evaluating":{evaluating},"fine":0,"writing":0,"other":0,"total":{},"walks":[{}]}}"#,
+        outside + evaluating,
+        walks.join(",")
+    )
+}
+
+#[test]
+fn the_schedule_simulator_gives_the_hand_computed_makespans() {
+    let dir = scratch_dir("profile-schedule");
+    let profile = dir.join("hand.jsonl");
+    // One generation: walks of 3, 1, 1, 1 and 2 s, and 0.5 s outside evaluation.
+    std::fs::write(&profile, line(0, &[3.0, 1.0, 1.0, 1.0, 2.0], 0.5, 5) + "\n").unwrap();
+    let path = profile.to_str().unwrap();
+    let out = ontogeny(&["runs", "schedule", path, "--threads", "1,2,3,8", "--json"]);
+    let json: serde_json::Value = serde_json::from_str(&stdout(&succeeded_output(out))).unwrap();
+    let seconds: Vec<f64> = json["predictions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["seconds"].as_f64().unwrap())
+        .collect();
+    // 1 thread: 8 s of walks. 2: the 3 on one, the three 1s on the other, the 2 after the 3
+    // on whichever is free first (both at 3 s): 5 s (greedy; the best packing is 4). 3: 3 s.
+    // 8: the longest, 3 s. Each + 0.5 s.
+    assert_eq!(seconds, [8.5, 5.5, 3.5, 3.5]);
+    assert_eq!(
+        json["predictions"][1]["evaluations_per_second"].as_f64(),
+        Some(5.0 / 5.5)
+    );
+    assert_eq!(
+        json["recorded"]["evaluations_per_second"].as_f64(),
+        Some(5.0 / 8.5)
+    );
+    // With 2 ranks of 1 thread: 2 threads.
+    let out = ontogeny(&[
+        "runs",
+        "schedule",
+        path,
+        "--threads",
+        "1",
+        "--ranks",
+        "2",
+        "--json",
+    ]);
+    let json: serde_json::Value = serde_json::from_str(&stdout(&succeeded_output(out))).unwrap();
+    assert_eq!(json["predictions"][0]["seconds"].as_f64(), Some(5.5));
+    // Two generations (the second's 3 evaluations with 2 walks, one reused): each waits for
+    // its last walk: 3 | 2 + 1, then 1 and 1 (4 s), then 2 | 1 (2 s) on 2 threads.
+    std::fs::write(
+        &profile,
+        line(0, &[3.0, 2.0, 1.0, 1.0, 1.0], 0.0, 5) + "\n" + &line(1, &[2.0, 1.0], 0.0, 3),
+    )
+    .unwrap();
+    let text = stdout(&succeeded_output(ontogeny(&[
+        "runs",
+        "schedule",
+        path,
+        "--threads",
+        "2",
+    ])));
+    // 8 evaluations in 6 s on 2 threads: 1.33 a second, 1.83× one thread's 11 s; the
+    // threads walk 11 of their 12 s.
+    assert!(
+        text.contains("2 generations, 8 evaluations, 7 walks"),
+        "{text}"
+    );
+    assert!(
+        text.lines()
+            .any(|l| l.split_whitespace().collect::<Vec<_>>()
+                == ["1", "2", "1.33", "1.83×", "0.917"]),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+fn succeeded_output(output: Output) -> Output {
+    succeeded(&output);
+    output
+}
+
+#[test]
+fn a_bad_profile_or_machine_is_refused_with_exit_code_2() {
+    let dir = scratch_dir("profile-bad");
+    let profile = dir.join("bad.jsonl");
+    std::fs::write(
+        &profile,
+        line(0, &[1.0], 0.0, 1) + "\n{\"generation\": 1}\n",
+    )
+    .unwrap();
+    let path = profile.to_str().unwrap();
+    assert_bad_input(&["runs", "schedule", path], "bad.jsonl:2: not a generation");
+    std::fs::write(&profile, line(0, &[-1.0, 2.0], 0.0, 1)).unwrap();
+    assert_bad_input(&["runs", "schedule", path], "walk 0 took -1 s");
+    std::fs::write(&profile, "\n").unwrap();
+    assert_bad_input(&["runs", "schedule", path], "no generation in the profile");
+    std::fs::write(&profile, line(0, &[1.0], 0.0, 1)).unwrap();
+    assert_bad_input(
+        &["runs", "schedule", path, "--threads", "0"],
+        "--threads must be 1 to 1024, not 0",
+    );
+    assert_bad_input(
+        &["runs", "schedule", path, "--ranks", "2000"],
+        "--ranks must be 1 to 1024, not 2000",
+    );
+    let missing = dir.join("missing.jsonl");
+    assert_bad_input(
+        &["runs", "schedule", missing.to_str().unwrap()],
+        "missing.jsonl",
+    );
+    // A profile that is a directory is refused before the run starts.
+    let out = dir.join("run");
+    assert_bad_input(
+        &[
+            "evolve",
+            "--task",
+            "walker",
+            "--pop",
+            "4",
+            "--gens",
+            "1",
+            "--seconds",
+            "1",
+            "--profile",
+            dir.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        "not a regular file",
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn the_scaling_benchmark_runs_the_readme_s_evolution() {
+    // benches/scaling.sh carries its own copy of examples/evolve-walker.toml (it runs from
+    // the binary alone): the two hold the same settings.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let script = std::fs::read_to_string(root.join("benches/scaling.sh")).unwrap();
+    let start = script
+        .find("<<'TOML'\n")
+        .expect("the script's configuration")
+        + 9;
+    let length = script[start..].find("\nTOML\n").expect("its end");
+    let copy: toml::Table = toml::from_str(&script[start..start + length]).unwrap();
+    let example = std::fs::read_to_string(root.join("examples/evolve-walker.toml")).unwrap();
+    let example: toml::Table = toml::from_str(&example).unwrap();
+    assert_eq!(copy, example);
+}
