@@ -76,7 +76,7 @@ class Evaluation:
     def task(self) -> str: ...
     @property
     def fitness(self) -> float:
-        """The fitness; -999999 unless the status is ``ok``."""
+        """The fitness; -999999 unless the status is ``ok`` (0 for a walker that never came to rest)."""
     @property
     def status(self) -> str:
         """``ok``, ``unstable``, ``exploded``, ``self-intersecting``, ``too-tall`` or

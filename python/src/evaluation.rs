@@ -50,7 +50,7 @@ impl PyEvaluation {
         self.outcome.task.clone()
     }
 
-    /// The fitness; -999999 unless the status is `ok`.
+    /// The fitness; -999999 unless the status is `ok` (0 for a walker that never came to rest).
     #[getter]
     fn fitness(&self) -> f64 {
         self.outcome.fitness

@@ -14,6 +14,7 @@ use ontogeny::study::lifetime;
 use ontogeny::study::listing;
 use ontogeny::study::plasticity::{self, FoundRun, PlasticityError};
 use ontogeny::study::schedule::{self, Machine};
+use ontogeny::study::sustained::{self, SustainedSettings};
 
 /// Subcommands of `ontogeny runs`.
 #[derive(Subcommand)]
@@ -50,6 +51,11 @@ pub enum RunsVerb {
     /// grew during their walks, body (parts, length) against brain (neurons, links). A table
     /// per condition, a row per generation (medians over the runs).
     Growth(MeasuredRunsArgs),
+    /// Check sustained motion (Chaumont et al. 3.5): walk each run's champion (a
+    /// comparison's, the runs under a directory, or one run's; plain walker runs) for longer
+    /// than it was evolved for, and say whether it stopped: whether its root moved less than
+    /// --still metres in the last --window seconds. A row per champion, and how many stopped.
+    Sustained(SustainedArgs),
     /// Predict from a run's profile (`evolve --profile FILE`) the evaluations per second it
     /// would reach on other numbers of threads (or MPI ranks × threads), under its own
     /// generational schedule: each generation's walks in their recorded order, each to the
@@ -71,6 +77,25 @@ pub struct ScheduleArgs {
     #[arg(long, value_name = "R", default_value_t = 1)]
     ranks: u32,
     /// Print one JSON object: what the profile recorded and a prediction per machine.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The flags of `ontogeny runs sustained`.
+#[derive(Args)]
+pub struct SustainedArgs {
+    /// A comparison directory, a directory with runs under it, or a run directory.
+    dir: PathBuf,
+    /// Seconds of measured walking, in (0, 3600] (the runs walked 20 in Chaumont's protocol).
+    #[arg(long, default_value_t = 60.0)]
+    seconds: f64,
+    /// The last seconds of the walk whose movement says whether it stopped.
+    #[arg(long, default_value_t = 10.0)]
+    window: f64,
+    /// A champion whose root moved less than this (m) over the window has stopped.
+    #[arg(long, value_name = "M", default_value_t = 0.1)]
+    still: f64,
+    /// Print one JSON object: the settings and a walk per champion.
     #[arg(long)]
     json: bool,
 }
@@ -123,7 +148,7 @@ pub struct CanalizationArgs {
 /// Inspect runs: a run's generations (`runs show DIR`), the runs and comparisons under a
 /// directory (`runs list DIR`), the canalization of its champions (`runs canalization DIR`),
 /// the plasticity of champions (`runs plasticity DIR`), development during the walk (`runs
-/// growth DIR`), the speed of a profiled run on other machines (`runs schedule PROFILE`).
+/// growth DIR`), sustained motion (`runs sustained DIR`), the speed of a profiled run on other machines (`runs schedule PROFILE`).
 #[derive(Args)]
 pub struct RunsArgs {
     #[command(subcommand)]
@@ -164,6 +189,7 @@ pub fn run(args: &RunsArgs) -> anyhow::Result<()> {
         }
         RunsVerb::Plasticity(args) => plasticity_of(args)?,
         RunsVerb::Growth(args) => growth_of(args)?,
+        RunsVerb::Sustained(args) => sustained_of(args)?,
         RunsVerb::Schedule(args) => schedule_of(args)?,
     }
     Ok(())
@@ -254,6 +280,28 @@ fn growth_of(args: &MeasuredRunsArgs) -> anyhow::Result<()> {
             lifetime::csv(&rows)
         } else {
             lifetime::text(&rows)
+        }
+    );
+    Ok(())
+}
+
+/// `ontogeny runs sustained`.
+fn sustained_of(args: &SustainedArgs) -> anyhow::Result<()> {
+    let settings = SustainedSettings {
+        seconds: args.seconds,
+        window: args.window,
+        still: args.still,
+    };
+    settings.check().map_err(super::bad)?;
+    let walks = measure_found(&args.dir, "walking the champions", |runs, progress| {
+        sustained::walk_champions(runs, &settings, progress)
+    })?;
+    say!(
+        "{}",
+        if args.json {
+            serde_json::json!({ "settings": settings, "walks": walks }).to_string()
+        } else {
+            sustained::text(&settings, &walks)
         }
     );
     Ok(())

@@ -36,6 +36,16 @@ pub fn interpenetration_messages(pairs: &[(usize, usize)]) -> Vec<String> {
 }
 
 impl Creature {
+    /// Whether the creature's parts collide with each other from the start, as the task's
+    /// screening refuses it (`self-intersecting`): a pair of [`Creature::interpenetrating_pairs`],
+    /// or an interpenetration its development reported among its errors.
+    pub fn self_intersects(&self) -> bool {
+        self.problems
+            .iter()
+            .any(|p| p.severity == super::Severity::Error && p.message.contains("interpenetrate"))
+            || !self.interpenetrating_pairs().is_empty()
+    }
+
     /// The pairs of parts that interpenetrate other than in a joint's own contact region.
     ///
     /// Two parts may overlap only where they meet at a **joint point** — the anchor of a joint

@@ -8,4 +8,7 @@
 /// gives (a development rule, a rapier upgrade that moves bodies differently, a task's
 /// protocol or fitness formula); keep it when results stay the same bit for bit. Generations
 /// stored before the version was recorded are taken as version 1.
-pub const EVALUATOR_VERSION: u32 = 1;
+///
+/// Version 2: a creature that never comes to rest scores 0 (Chaumont et al. 3.3), not the
+/// failure floor.
+pub const EVALUATOR_VERSION: u32 = 2;

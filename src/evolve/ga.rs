@@ -430,13 +430,20 @@ impl<G: Genome> Evolution<G> {
                 let mut rng = individual_rng(self.seed, 0, index, 0);
                 let develop_seed = individual_rng(self.seed, 0, index, 1).random();
                 let (genome, operator) = match &self.init {
-                    // The first one is the grammar itself.
+                    // The first one is the grammar itself, as its author wrote it.
                     Some(init) if index == 0 => (init.clone(), Operator::Init),
                     Some(init) => (
-                        init.mutate(&self.limits, self.settings.mutation_rate, &mut rng),
+                        self.regenerated(
+                            develop_seed,
+                            || init.mutate(&self.limits, self.settings.mutation_rate, &mut rng),
+                            |g| g,
+                        ),
                         Operator::Init,
                     ),
-                    None => (G::random(&self.limits, &mut rng), Operator::Random),
+                    None => (
+                        self.regenerated(develop_seed, || G::random(&self.limits, &mut rng), |g| g),
+                        Operator::Random,
+                    ),
                 };
                 Unborn {
                     genome,
@@ -505,10 +512,14 @@ impl<G: Genome> Evolution<G> {
                 let index = (survivors + k) as u32;
                 let mut rng = individual_rng(self.seed, generation, index, 0);
                 let develop_seed = individual_rng(self.seed, generation, index, 1).random();
-                let child = match self.settings.preset {
-                    Preset::Chaumont => self.vary_chaumont(&ranked, k, children, &mut rng),
-                    Preset::Wwd => self.vary_wwd(&ranked, adaptive_rate, &mut rng),
-                };
+                let child = self.regenerated(
+                    develop_seed,
+                    || match self.settings.preset {
+                        Preset::Chaumont => self.vary_chaumont(&ranked, k, children, &mut rng),
+                        Preset::Wwd => self.vary_wwd(&ranked, adaptive_rate, &mut rng),
+                    },
+                    |child| &child.genome,
+                );
                 child.into_unborn(develop_seed)
             })
             .unzip();
@@ -538,6 +549,32 @@ impl<G: Genome> Evolution<G> {
         let evaluations = born.len() as u64;
         next.extend(born);
         Ok((next, evaluations))
+    }
+
+    /// A newborn made by `make`, made again while the creature it develops into (in its own
+    /// chemical array, from `develop_seed`) has parts that interpenetrate, at most
+    /// [`GaSettings::regenerate`] times in all (Chaumont et al. 5.5); the last try is kept,
+    /// and is evaluated as `self-intersecting` if it still collides. Only collisions are made
+    /// again: a genome that does not develop for another reason is kept, and fails as it
+    /// would have. Every try draws on from the newborn's own random stream, so the result
+    /// does not depend on threads or ranks; with one try nothing is developed here.
+    fn regenerated<T>(
+        &self,
+        develop_seed: u64,
+        mut make: impl FnMut() -> T,
+        genome: impl Fn(&T) -> &G,
+    ) -> T {
+        let mut newborn = make();
+        for _ in 1..self.settings.regenerate {
+            let collides = genome(&newborn)
+                .develop(&self.limits, develop_seed)
+                .is_ok_and(|creature| creature.self_intersects());
+            if !collides {
+                break;
+            }
+            newborn = make();
+        }
+        newborn
     }
 
     /// Walking with Dinosaurs' mutation rate: the base rate × 0.25 / σ, clamped to [½, 4] ×

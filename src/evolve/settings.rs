@@ -76,6 +76,25 @@ pub struct GaSettings {
     /// configuration without the key reads as 0, and 0 is not written.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub environment_reads: f64,
+    /// How many times a newborn whose parts interpenetrate is made again (Chaumont et al.
+    /// 5.5: "If such collisions occur, the creature is eliminated and the system generates a
+    /// new one until it finds a valid candidate"), its operator drawing again from the same
+    /// random stream; the last try is kept (and evaluated as `self-intersecting`). 1 makes
+    /// each newborn once. Chaumont's preset: 10; Walking with Dinosaurs': 1 (its illegal
+    /// creatures score the failure floor, 3.5.1). A configuration stored without the key, by
+    /// a release before it existed, reads as 1, and 1 is not written.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub regenerate: usize,
+}
+
+/// The value of [`GaSettings::regenerate`] a stored configuration without the key ran with.
+fn one() -> usize {
+    1
+}
+
+/// Whether [`GaSettings::regenerate`] is 1 (so that it is not written).
+fn is_one(v: &usize) -> bool {
+    *v == 1
 }
 
 /// Whether a setting is 0 (so that it is not written, and stored settings stay as they were).
@@ -99,6 +118,7 @@ impl GaSettings {
                 mutation_chance_after_mating: 0.1,
                 mutation_rate_after_mating: 0.05,
                 environment_reads: 0.0,
+                regenerate: 10,
             },
             Preset::Wwd => GaSettings {
                 preset,
@@ -112,6 +132,7 @@ impl GaSettings {
                 mutation_chance_after_mating: 1.0,
                 mutation_rate_after_mating: 0.05,
                 environment_reads: 0.0,
+                regenerate: 1,
             },
         }
     }
@@ -154,6 +175,13 @@ impl GaSettings {
             self.mutation_rate_after_mating,
         )?;
         fraction("environment_reads", self.environment_reads)?;
+        if !(1..=100).contains(&self.regenerate) {
+            return Err(SettingError::out_of_range(
+                "regenerate",
+                "1 to 100",
+                self.regenerate,
+            ));
+        }
         if self.asexual + self.crossover > 1.0 + 1e-12 {
             return Err(SettingError::out_of_range(
                 "asexual + crossover",

@@ -142,6 +142,8 @@ pub struct GaOverrides {
     pub mutation_rate_after_mating: Option<f64>,
     /// See [`GaSettings`].
     pub environment_reads: Option<f64>,
+    /// See [`GaSettings`].
+    pub regenerate: Option<usize>,
 }
 
 impl GaOverrides {
@@ -161,7 +163,8 @@ impl GaOverrides {
             mutation_rate,
             mutation_chance_after_mating,
             mutation_rate_after_mating,
-            environment_reads
+            environment_reads,
+            regenerate
         );
         s
     }

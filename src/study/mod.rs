@@ -4,7 +4,8 @@
 //! ([`bench`](mod@bench)), the runs and comparisons under a directory ([`listing`]), how
 //! much a run's champions vary under noise and mutation ([`canalization`]) and what
 //! champions do in each habitat and how their bodies answer the chemical cue
-//! ([`plasticity`]), and the evaluations per second a profiled run would reach on other
+//! ([`plasticity`]), whether champions go on walking after the time they were evolved for
+//! ([`sustained`]), and the evaluations per second a profiled run would reach on other
 //! numbers of threads and ranks ([`schedule`]).
 
 pub mod bench;
@@ -16,3 +17,4 @@ pub mod listing;
 pub mod plasticity;
 pub mod schedule;
 pub mod stats;
+pub mod sustained;

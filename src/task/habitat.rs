@@ -501,7 +501,8 @@ impl TaskSpec {
     /// The evaluation of an individual from its units' evaluations (in the order of
     /// [`TaskSpec::units`]) and its creatures, one per habitat (for their sizes). Every unit `ok`: status `ok`, the fitness and each term the
     /// trials' aggregate. Any unit failed: the first failure's status and message (naming its
-    /// habitat and trial) and the failure floor — a creature that cheats the physics in one
+    /// habitat and trial) and the failure floor (0 when that failure is a creature that never
+    /// came to rest, scored 0 by its task: [`super::UNSTABLE_FITNESS`]) — a creature that cheats the physics in one
     /// trial is refused, as the walker's guards refuse it in one walk.
     pub fn combine(
         &self,
@@ -536,7 +537,13 @@ impl TaskSpec {
             };
             return Evaluation {
                 task,
-                fitness: FAILURE_FITNESS,
+                // Its own task's score for that failure: 0 for a creature that never
+                // came to rest where scores are never negative, else the floor.
+                fitness: if failed.status == Status::Unstable {
+                    failed.fitness
+                } else {
+                    FAILURE_FITNESS
+                },
                 status: failed.status,
                 terms: BTreeMap::new(),
                 message: Some(format!(
@@ -736,6 +743,19 @@ mod tests {
             Some("habitat cued, trial 2: it blew up")
         );
         assert_eq!(e.units()[0].status, Status::Ok);
+    }
+
+    #[test]
+    fn a_unit_that_never_came_to_rest_keeps_its_tasks_score_for_it() {
+        // The walker scores a creature that never comes to rest 0 (Chaumont et al. 3.3); the
+        // individual takes that score, not the floor, with the unit's status.
+        let spec = two_habitats(2, Aggregate::Mean);
+        let units = spec.units([7; 32], 0);
+        let mut evaluations: Vec<Evaluation> =
+            (0..4).map(|_| evaluation(5.0, Status::Ok, 1.0)).collect();
+        evaluations[1] = evaluation(0.0, Status::Unstable, 0.0);
+        let e = spec.combine(&units, evaluations, &[]);
+        assert_eq!((e.fitness, e.status), (0.0, Status::Unstable));
     }
 
     #[test]

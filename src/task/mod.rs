@@ -68,6 +68,15 @@ pub use walker::{
 /// above, and an aim score D_p − D_t is at least −D_t ≥ −|target| > −[`MAX_TARGET_DISTANCE`].
 pub const FAILURE_FITNESS: f64 = -999_999.0;
 
+/// The fitness of a creature that never comes to rest when its protocol needs it to, in a
+/// task whose valid scores are never negative (the walker but for Hornby & Pollack's
+/// formula and fitness expressions, jump, stand): Chaumont et al. 3.3, "such individuals
+/// will never be considered stable, and no distance will ever be recorded for them, so their
+/// fitness will be zero". Every other failure scores [`FAILURE_FITNESS`] (5.4's "arbitrary
+/// low value" for explosions), and so does an unstable creature where a valid score may be
+/// negative (there 0 would rank it above creatures that did the task).
+pub const UNSTABLE_FITNESS: f64 = 0.0;
+
 /// The farthest an aim task's target may be from the projectile's start (m), so that every
 /// aim score stays above [`FAILURE_FITNESS`].
 pub const MAX_TARGET_DISTANCE: f64 = 100_000.0;
@@ -110,7 +119,9 @@ impl Status {
 pub struct Evaluation {
     /// The task's name.
     pub task: String,
-    /// The fitness; [`FAILURE_FITNESS`] unless the status is `ok`.
+    /// The fitness; [`FAILURE_FITNESS`] unless the status is `ok`, but for a creature that
+    /// never came to rest in a task whose valid scores are never negative (`unstable`,
+    /// [`UNSTABLE_FITNESS`], 0: Chaumont et al. 3.3).
     pub fitness: f64,
     /// How it ended.
     pub status: Status,

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::recorded_growth::GrowthRecorder;
 use super::recording::{Phase, Sample, recording_interval};
-use super::{Evaluation, Status};
+use super::{Evaluation, Status, UNSTABLE_FITNESS};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::{Creature, Severity};
 use crate::sim::{Grown, SettingError, SimOptions, World, WorldSpec};
@@ -44,6 +44,18 @@ impl Default for Rest {
             limit: 10.0,
         }
     }
+}
+
+/// `failure` scored as Chaumont et al. 3.3 score a creature that never comes to rest: 0
+/// ([`UNSTABLE_FITNESS`]: "no distance will ever be recorded for them, so their fitness will
+/// be zero") when the task's lowest valid score `floor` is 0; any other failure, or any
+/// failure where valid scores may be negative (there 0 would rank the creature above some
+/// that did the task), keeps the failure floor.
+pub(super) fn scored_if_unstable(mut failure: Evaluation, floor: Option<f64>) -> Evaluation {
+    if failure.status == Status::Unstable && floor == Some(0.0) {
+        failure.fitness = UNSTABLE_FITNESS;
+    }
+    failure
 }
 
 /// Whole control steps in `seconds` at time step `dt` (at least one when `seconds` > 0).

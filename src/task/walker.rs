@@ -7,7 +7,9 @@ use std::collections::BTreeMap;
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{Rest, Setup, evaluate, on_flat_ground, settle_steps, steps_in};
+use super::protocol::{
+    Rest, Setup, evaluate, on_flat_ground, scored_if_unstable, settle_steps, steps_in,
+};
 use super::recording::Phase;
 use super::{Evaluation, Fitness, FitnessExpression, MAX_TARGET_DISTANCE, Task};
 use crate::cancel::Interrupted;
@@ -212,13 +214,18 @@ fn walker_watched(setup: Setup<'_, '_, WalkerOptions>) -> Result<Evaluation, Int
         options,
         ..
     } = setup;
+    // A creature that never comes to rest scores 0 where valid scores never fall below 0.
+    let floor = WalkerTask::floor(options);
+    let unstable = |failure| scored_if_unstable(failure, floor);
     evaluate(WalkerTask::NAME, setup, |run| {
-        run.settle(&options.rest, 0.0, sim.control_step)?;
+        run.settle(&options.rest, 0.0, sim.control_step)
+            .map_err(unstable)?;
         let settled_at = run.world.time();
         run.check_height(options.max_height)?;
         run.phase = Phase::ControllerOn;
         run.run_for(options.activation, true, sim.control_step)?;
-        run.settle(&options.rest, options.second_settle, sim.control_step)?;
+        run.settle(&options.rest, options.second_settle, sim.control_step)
+            .map_err(unstable)?;
         let measure_from = run.world.time();
         run.phase = Phase::Measuring;
         // A growing creature: D_w at the root's anchor, which growth does not move, and the

@@ -712,6 +712,52 @@ fn the_projectile_is_measured_at_rest_or_the_run_is_unstable() {
 }
 
 #[test]
+fn a_walker_that_never_comes_to_rest_scores_zero_where_scores_are_never_negative() {
+    // Chaumont et al. 3.3: "Such individuals will never be considered stable, and no distance
+    // will ever be recorded for them, so their fitness will be zero." A snake dropped from its
+    // safe height cannot be at rest 0.2 s after it is let go (it is still falling).
+    use ontogeny::task::{Fitness, Rest, WalkerFitness};
+    let snake = grown("examples/snake.lsys");
+    let restless = |fitness: &str| {
+        let options = WalkerOptions {
+            rest: Rest {
+                limit: 0.2,
+                ..Rest::default()
+            },
+            fitness: Fitness::new(fitness),
+            ..short_walk()
+        };
+        task::walker(&snake, &SimOptions::default(), &options, false)
+    };
+    for formula in [
+        WalkerFitness::Normalised,
+        WalkerFitness::Distance,
+        WalkerFitness::IterativeMove,
+    ] {
+        let e = restless(formula.name());
+        assert_eq!(
+            (e.status, e.fitness),
+            (Status::Unstable, 0.0),
+            "{formula:?}"
+        );
+        assert!(e.message.unwrap().contains("not at rest"));
+    }
+    // Where a valid score may be negative, 0 would rank it above creatures that walked: the
+    // floor.
+    for fitness in ["hornby-pollack", "D_w - 1"] {
+        let e = restless(fitness);
+        assert_eq!(
+            (e.status, e.fitness),
+            (Status::Unstable, task::FAILURE_FITNESS),
+            "{fitness}"
+        );
+    }
+    // The same creature given time to settle walks, status ok.
+    let settled = task::walker(&snake, &SimOptions::default(), &short_walk(), false);
+    assert_eq!(settled.status, Status::Ok, "{:?}", settled.message);
+}
+
+#[test]
 fn the_height_test_applies_again_after_settling() {
     // A 3 m limb lying flat on a heavy cube, its hinge's limits [1.2, 1.5] rad: as built it
     // is 1 m tall, but the limit raises the limb to 1.2 rad (69°) as it settles.

@@ -53,6 +53,7 @@ mod render;
 mod rooms;
 mod store;
 mod stubs;
+mod sustained;
 mod swim;
 mod task_tables;
 mod textbook;
