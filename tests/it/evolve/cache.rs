@@ -170,7 +170,7 @@ fn a_version_2_database_is_migrated_to_the_current_version_on_resume() {
         )
         .unwrap();
     }
-    succeeded(&resume(&old));
+    succeeded(&resume_older_store(&old));
     let store = RunStore::open_read_only(&old.join("run.sqlite")).unwrap();
     assert_eq!(store.schema_version(), ontogeny::run::store::SCHEMA_VERSION);
     drop(store);
