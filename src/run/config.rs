@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use super::config_errors::{key_span, setting_diagnostic, toml_diagnostic};
 use crate::encoding::{CheckedLimits, ENCODINGS, encoding_named};
-use crate::evolve::ga::{GaSettings, Preset};
+use crate::evolve::ga::{GaSettings, Preset, WwdCrossover};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
@@ -142,6 +142,8 @@ pub struct GaOverrides {
     pub mutation_rate_after_mating: Option<f64>,
     /// See [`GaSettings`].
     pub environment_reads: Option<f64>,
+    /// See [`GaSettings`].
+    pub wwd_crossover: Option<WwdCrossover>,
 }
 
 impl GaOverrides {
@@ -161,7 +163,8 @@ impl GaOverrides {
             mutation_rate,
             mutation_chance_after_mating,
             mutation_rate_after_mating,
-            environment_reads
+            environment_reads,
+            wwd_crossover
         );
         s
     }
