@@ -280,6 +280,33 @@ impl Genome for DirectGenome {
         }
     }
 
+    /// Walking with Dinosaurs' crossover: a part of `other` other than its root (a branch
+    /// `[` ... `]`, or a tail: a part built after another, with what places it and what
+    /// follows it), copied as a branch and half turned (`left(2)`; see `encoding::mirror`),
+    /// replaces a part of `self` (or, when `self` has only its root, is inserted at a place
+    /// of it), drawn among the pairs that keep `max_modules`. `None` when `other` has only
+    /// its root or no copy fits.
+    fn mirroring_crossover(
+        &self,
+        other: &Self,
+        limits: &DirectLimits,
+        rng: &mut Rng,
+    ) -> Option<Self> {
+        let fits = |copy: &[Item], site: &super::mirror::Site| {
+            self.modules.len() - site.range.len() + copy.len() <= limits.modules()
+        };
+        let (copy, site) = super::mirror::copy_a_part(
+            &[&other.modules],
+            &[&self.modules],
+            &super::lsystem::ITEMS,
+            fits,
+            rng,
+        )?;
+        let mut modules = self.modules.clone();
+        modules.splice(site.range, copy);
+        Some(DirectGenome { modules })
+    }
+
     fn develop(&self, limits: &DirectLimits, seed: u64) -> Result<Creature, DevelopError> {
         if self.modules.is_empty() {
             return Err(DevelopError("the genome has no modules".into()));

@@ -19,6 +19,7 @@ pub mod graph;
 pub mod limits;
 pub mod load;
 pub mod lsystem;
+mod mirror;
 mod registry;
 mod show;
 mod show_habitats;
@@ -120,6 +121,23 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// A child of `self` with a piece of `other` grafted on, or `None` when the encoding has
     /// no grafting.
     fn graft(&self, other: &Self, limits: &Self::Limits, rng: &mut Rng) -> Option<Self> {
+        let _ = (other, limits, rng);
+        None
+    }
+
+    /// Walking with Dinosaurs' crossover (3.3.1): a child of `self` (the breeder) in which a
+    /// part of `other` (the elite), copied whole with everything that grows from it, replaces
+    /// a part of `self`; a copied body part is turned half a turn, "to have a greater chance
+    /// of creating a mirroring part". What a part is and about which axis it turns is each
+    /// encoding's (see its implementation). `None` when the encoding has no such crossover
+    /// (the default) or `other` has no part to copy that fits `limits`: the genetic algorithm
+    /// then mutates `self` alone and counts the fallback.
+    fn mirroring_crossover(
+        &self,
+        other: &Self,
+        limits: &Self::Limits,
+        rng: &mut Rng,
+    ) -> Option<Self> {
         let _ = (other, limits, rng);
         None
     }

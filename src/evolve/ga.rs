@@ -23,7 +23,7 @@ use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
-pub use super::settings::{GaSettings, Preset};
+pub use super::settings::{GaSettings, Preset, WwdCrossover};
 
 /// How an individual was made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -655,9 +655,11 @@ impl<G: Genome> Evolution<G> {
     }
 
     /// Walking with Dinosaurs 3.3's variation: a breeder (ranked after the elite; the elite
-    /// when there are none) receives a part of an elite's genome by crossover (3.3.1), and
-    /// every new creature is then mutated at the adaptive `rate` (3.3.2). An encoding without
-    /// crossover mutates the breeder alone, and says so.
+    /// when there are none) receives a part of an elite's genome by crossover (3.3.1: the
+    /// `wwd_crossover` key, the report's mirroring crossover or the encoding's plain one), and
+    /// every new creature is then mutated at the adaptive `rate` (3.3.2). Where the encoding
+    /// makes no child (it lacks the crossover, or the elite has no part that fits), the
+    /// breeder is mutated alone, and the fallback is counted.
     fn vary_wwd(&self, ranked: &Ranked<G>, rate: f64, rng: &mut Rng) -> Child<G> {
         let (order, survivors) = (ranked.order, ranked.survivors);
         let breeders_end = (survivors + self.settings.breeder_count()).min(order.len());
@@ -669,7 +671,12 @@ impl<G: Genome> Evolution<G> {
         let e = pick(rng, ranked.elite());
         let b = pick(rng, breeders);
         let breeder = &ranked.previous[b].genome;
-        match breeder.crossover(&ranked.previous[e].genome, &self.limits, rng) {
+        let elite = &ranked.previous[e].genome;
+        let mated = match self.settings.wwd_crossover {
+            WwdCrossover::Mirroring => breeder.mirroring_crossover(elite, &self.limits, rng),
+            WwdCrossover::Plain => breeder.crossover(elite, &self.limits, rng),
+        };
+        match mated {
             Some(child) => Child::new(
                 child.mutate(&self.limits, rate, rng),
                 vec![b, e],

@@ -45,6 +45,28 @@ impl Preset {
     }
 }
 
+/// How the `wwd` preset crosses a breeder with an elite (the `[ga]` key `wwd_crossover`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WwdCrossover {
+    /// The encoding's ordinary crossover ([`crate::encoding::Genome::crossover`]): what runs
+    /// begun before the key existed used, and what a `config.toml` without the key reads.
+    #[default]
+    Plain,
+    /// Walking with Dinosaurs 3.3.1's crossover: a whole part of the elite, copied and turned
+    /// half a turn, replaces a part of the breeder
+    /// ([`crate::encoding::Genome::mirroring_crossover`]). New `wwd` runs use it.
+    Mirroring,
+}
+
+impl WwdCrossover {
+    /// Whether it is [`WwdCrossover::Plain`] (then the key is not written, and stored settings
+    /// stay as they were).
+    pub fn is_plain(&self) -> bool {
+        *self == WwdCrossover::Plain
+    }
+}
+
 /// The genetic algorithm's settings (the `[ga]` table of a run's `config.toml`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -85,6 +107,12 @@ pub struct GaSettings {
     /// a release before it existed, reads as 1, and 1 is not written.
     #[serde(default = "one", skip_serializing_if = "is_one")]
     pub regenerate: usize,
+    /// Walking with Dinosaurs: how a breeder and an elite are crossed. The `wwd` preset's is
+    /// `mirroring` (3.3.1); a configuration without the key reads as `plain`, the crossover
+    /// runs begun before the key existed used, so that they resume as they ran; `plain` is
+    /// not written. Chaumont's preset does not read it.
+    #[serde(default, skip_serializing_if = "WwdCrossover::is_plain")]
+    pub wwd_crossover: WwdCrossover,
 }
 
 /// The value of [`GaSettings::regenerate`] a stored configuration without the key ran with.
@@ -119,6 +147,7 @@ impl GaSettings {
                 mutation_rate_after_mating: 0.05,
                 environment_reads: 0.0,
                 regenerate: 10,
+                wwd_crossover: WwdCrossover::Plain,
             },
             Preset::Wwd => GaSettings {
                 preset,
@@ -133,6 +162,7 @@ impl GaSettings {
                 mutation_rate_after_mating: 0.05,
                 environment_reads: 0.0,
                 regenerate: 1,
+                wwd_crossover: WwdCrossover::Mirroring,
             },
         }
     }

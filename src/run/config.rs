@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use super::config_errors::{key_span, setting_diagnostic, toml_diagnostic};
 use crate::encoding::{CheckedLimits, ENCODINGS, encoding_named};
-use crate::evolve::ga::{GaSettings, Preset};
+use crate::evolve::ga::{GaSettings, Preset, WwdCrossover};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
@@ -144,6 +144,8 @@ pub struct GaOverrides {
     pub environment_reads: Option<f64>,
     /// See [`GaSettings`].
     pub regenerate: Option<usize>,
+    /// See [`GaSettings`].
+    pub wwd_crossover: Option<WwdCrossover>,
 }
 
 impl GaOverrides {
@@ -164,7 +166,8 @@ impl GaOverrides {
             mutation_chance_after_mating,
             mutation_rate_after_mating,
             environment_reads,
-            regenerate
+            regenerate,
+            wwd_crossover
         );
         s
     }

@@ -42,6 +42,7 @@ mod json;
 mod key;
 mod limits;
 mod long_runs;
+mod mirroring;
 #[cfg(feature = "mpi")]
 mod mpi;
 mod never_panics;

@@ -68,7 +68,7 @@ pub fn grown_with_caps(text: &str, max_modules: usize, max_parts: usize) -> Crea
 }
 
 /// Asserts that a genome type's operators are functions of their random source: the same
-/// seed gives the same random genome, mutant, child and creature, another seed another
+/// seed gives the same random genome, mutant, child (of each crossover) and creature, another seed another
 /// genome.
 pub fn assert_determined_by_the_random_source<G: ontogeny::encoding::Genome + PartialEq>(
     limits: &G::Limits,
@@ -90,6 +90,10 @@ pub fn assert_determined_by_the_random_source<G: ontogeny::encoding::Genome + Pa
     assert_eq!(
         a.graft(&other, limits, &mut rng(5)),
         a.graft(&other, limits, &mut rng(5))
+    );
+    assert_eq!(
+        a.mirroring_crossover(&other, limits, &mut rng(5)),
+        a.mirroring_crossover(&other, limits, &mut rng(5))
     );
     assert_eq!(a.develop(limits, 3), a.develop(limits, 3));
 }

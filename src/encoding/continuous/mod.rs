@@ -31,6 +31,7 @@ use crate::lang::commands::{Argument, Command};
 use crate::lsystem::{DeriveOptions, LSystem, Timing};
 
 mod develop;
+mod mirror;
 mod operators;
 mod text;
 
@@ -687,6 +688,17 @@ impl Genome for ContinuousGenome {
 
     fn crossover(&self, other: &Self, limits: &ContinuousLimits, rng: &mut Rng) -> Option<Self> {
         Some(self.child(other, limits, rng))
+    }
+
+    /// A part of `other`'s axiom or successors, half turned (`left(1) left(1)`), replaces a
+    /// part of `self`'s (see `ContinuousGenome::mirrored_child`).
+    fn mirroring_crossover(
+        &self,
+        other: &Self,
+        limits: &ContinuousLimits,
+        rng: &mut Rng,
+    ) -> Option<Self> {
+        self.mirrored_child(other, limits, rng)
     }
 
     fn allow_environment_reads(limits: &mut ContinuousLimits, probability: f64) {

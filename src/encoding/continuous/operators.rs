@@ -572,7 +572,7 @@ impl ContinuousGenome {
     /// Keeps what reads and writes the environment within it (no random draws): slots past
     /// its end become its last; without an environment, plastic branches and the neurons
     /// that need one go.
-    fn fit_environment(&mut self, limits: &ContinuousLimits) {
+    pub(super) fn fit_environment(&mut self, limits: &ContinuousLimits) {
         let slots = self.environment.len();
         let fit = |seq: &mut Vec<Token>| {
             if slots == 0 {

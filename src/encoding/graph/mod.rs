@@ -36,6 +36,7 @@ use crate::creature::{
 };
 
 mod develop;
+mod mirror;
 mod operators;
 mod text;
 
@@ -477,6 +478,19 @@ impl Genome for GraphGenome {
 
     fn graft(&self, other: &Self, limits: &GraphLimits, rng: &mut Rng) -> Option<Self> {
         GraphGenome::regenerate(limits, rng, |rng| self.graft_once(other, limits, rng))
+    }
+
+    /// A part of `other` (a node, the nodes it reaches and the connection that places it),
+    /// its connection half turned about the parent's up axis, replaces what one of `self`'s
+    /// connections grew (see `graph::mirror`); made again while its parts interpenetrate, as
+    /// every newborn is.
+    fn mirroring_crossover(
+        &self,
+        other: &Self,
+        limits: &GraphLimits,
+        rng: &mut Rng,
+    ) -> Option<Self> {
+        GraphGenome::regenerate(limits, rng, |rng| self.mirror_once(other, limits, rng))
     }
 
     fn develop(&self, limits: &GraphLimits, _seed: u64) -> Result<Creature, DevelopError> {

@@ -552,39 +552,52 @@ impl GraphGenome {
             return None;
         }
         let (_, list) = &candidates[rng.random_range(0..candidates.len())];
-        // Renumber: the kept nodes of the first parent, then the grafted ones.
-        let mut index1 = vec![MARK; g.nodes.len()];
-        let mut next = 0;
-        for (a, k) in keep.iter().enumerate() {
-            if *k {
-                index1[a] = next;
-                next += 1;
-            }
-        }
-        let mut index2 = vec![MARK; other.nodes.len()];
-        for (k, b) in list.iter().enumerate() {
-            index2[*b] = kept + k;
-        }
-        let mut nodes: Vec<Node> = Vec::with_capacity(kept + list.len());
-        for (a, node) in g.nodes.iter().enumerate() {
-            if keep[a] {
-                let mut node = node.clone();
-                for c in &mut node.connections {
-                    c.to = if c.to == MARK { kept } else { index1[c.to] };
-                }
-                nodes.push(node);
-            }
-        }
-        for b in list {
-            let mut node = other.nodes[*b].clone();
-            for c in &mut node.connections {
-                c.to = index2[c.to];
-            }
-            nodes.push(node);
-        }
         Some(GraphGenome {
-            nodes,
+            nodes: joined(&g.nodes, &keep, other, list),
             neurons: g.neurons,
         })
     }
+}
+
+/// The nodes of a graft: the `keep` nodes of `nodes`, then `other`'s nodes `list` (the first
+/// the one grafted on), renumbered; the one connection of `nodes` that leads to `usize::MAX`
+/// leads to the first grafted node.
+pub(super) fn joined(
+    nodes: &[Node],
+    keep: &[bool],
+    other: &GraphGenome,
+    list: &[usize],
+) -> Vec<Node> {
+    const MARK: usize = usize::MAX;
+    let kept = keep.iter().filter(|k| **k).count();
+    let mut index1 = vec![MARK; nodes.len()];
+    let mut next = 0;
+    for (a, k) in keep.iter().enumerate() {
+        if *k {
+            index1[a] = next;
+            next += 1;
+        }
+    }
+    let mut index2 = vec![MARK; other.nodes.len()];
+    for (k, b) in list.iter().enumerate() {
+        index2[*b] = kept + k;
+    }
+    let mut joined: Vec<Node> = Vec::with_capacity(kept + list.len());
+    for (a, node) in nodes.iter().enumerate() {
+        if keep[a] {
+            let mut node = node.clone();
+            for c in &mut node.connections {
+                c.to = if c.to == MARK { kept } else { index1[c.to] };
+            }
+            joined.push(node);
+        }
+    }
+    for b in list {
+        let mut node = other.nodes[*b].clone();
+        for c in &mut node.connections {
+            c.to = index2[c.to];
+        }
+        joined.push(node);
+    }
+    joined
 }

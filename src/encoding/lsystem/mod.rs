@@ -31,6 +31,7 @@ use crate::lang::{self, Source};
 use crate::lsystem::{DeriveOptions, LSystem, ModuleString};
 
 mod develop;
+mod mirror;
 mod operators;
 mod reads;
 mod seed;
@@ -38,6 +39,7 @@ mod text;
 
 pub use develop::is_driven_walker;
 pub(crate) use develop::{develop_text, grown_size, last_frame};
+pub(crate) use mirror::ITEMS;
 pub(crate) use operators::{
     balance, is_balanced, perturb_argument, pick_run, random_command, random_run,
 };
@@ -505,6 +507,17 @@ impl Genome for LSystemGenome {
 
     fn crossover(&self, other: &Self, limits: &LSystemLimits, rng: &mut Rng) -> Option<Self> {
         self.child(other, limits, rng)
+    }
+
+    /// A part of one of `other`'s successors, half turned (`left(2)`), replaces a part of one
+    /// of `self`'s (see `LSystemGenome::mirrored_child`).
+    fn mirroring_crossover(
+        &self,
+        other: &Self,
+        limits: &LSystemLimits,
+        rng: &mut Rng,
+    ) -> Option<Self> {
+        self.mirrored_child(other, limits, rng)
     }
 
     fn allow_environment_reads(limits: &mut LSystemLimits, probability: f64) {

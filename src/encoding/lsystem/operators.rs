@@ -390,21 +390,7 @@ impl LSystemGenome {
         let target = &mut child.productions[i].pairs[j].successor;
         // Calls into productions the child lacks wrap round; arguments fit the child's
         // parameter count.
-        let adapt = |item: &Item| match item {
-            Item::Call(t, args) => {
-                let mut args = args.clone();
-                args.resize(params, Arg::Const(0.0));
-                for a in &mut args {
-                    if let Arg::Plus(k, _) | Arg::Times(k, _) = a
-                        && *k >= params
-                    {
-                        *a = Arg::Const(0.0);
-                    }
-                }
-                Item::Call(t % n, args)
-            }
-            other => other.clone(),
-        };
+        let adapt = |item: &Item| super::mirror::adapted(item, n, params);
         match rng.random_range(0..3) {
             0 => {
                 // Replace the whole successor.
