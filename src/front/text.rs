@@ -418,10 +418,10 @@ pub fn comparison_summary(
             e.median_description_bytes
         ));
     }
-    for (pairs, what) in [(&r.pairs, "best"), (&r.fine_pairs, "fine")] {
+    for (pairs, what) in [(&r.pairs, ""), (&r.fine_pairs, "at the fine reference: ")] {
         for p in pairs {
             lines.push(format!(
-                "  {what} {} vs {}{}: U {} p {:.4} ({} {:.4}) A12 {:.3} ({}): {}",
+                "  {what}{} vs {}{}: U {} p {:.4} ({} {:.4}) A12 {:.3} ({}): {}",
                 p.a,
                 p.b,
                 if p.primary { " (primary)" } else { "" },
@@ -487,7 +487,7 @@ pub fn power_line(power: &crate::study::compare::Power, kind: &str) -> String {
         format!(" (one pair at 0.05 needs {n} a side for power 0.8 at A12 {LARGE_A12})")
     });
     format!(
-        "power: {} replicates per {kind}; {}{needed}",
+        "power: {} replicates per {kind}, {}{needed}",
         power.replicates,
         parts.join("; ")
     )
