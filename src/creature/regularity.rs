@@ -33,7 +33,8 @@ pub const MIRROR_TOLERANCE: f64 = 0.02;
 /// Reflected axes match when the absolute cosine of their angle is at least this (about 2.6°).
 pub const MIRROR_AXIS_COSINE: f64 = 0.999;
 
-/// The three measures ([module documentation](self)). An empty body scores NaN on each.
+/// The three measures: the share of parts in repeated sub-assemblies, the share with a mirror
+/// partner, the compressed description's bytes per part. An empty body scores NaN on each.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Regularity {
     /// The share of parts in a repeated sub-assembly, 0 to 1; higher is more regular.
@@ -191,7 +192,8 @@ fn symmetry_share(creature: &Creature) -> f64 {
 }
 
 /// The body's canonical description: each part's subtree written as its attachment to its
-/// parent (see [`attachment`]) and its children's subtrees in sorted order, lengths divided
+/// parent (the joint's kind, anchor and axes, the part's centre, rotation and edges, in the
+/// parent's frame) and its children's subtrees in sorted order, lengths divided
 /// by the root's longest edge; parts no joint reaches are further roots, also sorted.
 pub fn canonical_description(creature: &Creature) -> String {
     if creature.parts.is_empty() {
