@@ -33,7 +33,7 @@ pub const WITH_MERGE: &[&str] = &["json"];
 pub struct CompareArgs {
     /// The encodings to compare, comma-separated (e.g. lsystem,direct), under the shared
     /// settings of --config and the flags.
-    #[arg(long, value_parser = encoding_parser(), value_delimiter = ',', required_unless_present_any = ["resume", "merge", "condition"])]
+    #[arg(long, value_parser = encoding_parser(), value_delimiter = ',', required_unless_present_any = ["resume", "merge", "condition", "power_for"])]
     encodings: Vec<EncodingArg>,
     /// A condition to compare, NAME=CONFIG.toml: a whole run config (encoding, [ga] without
     /// generations, [task], [limits]); repeat it for each condition. NAME (letters, digits, -
@@ -51,15 +51,25 @@ pub struct CompareArgs {
     /// habitat and trial, simulated or reused from the evaluation cache (an elite carried over
     /// counts none; with fresh trials it is walked again and counts). The generations are as
     /// many as fit in it.
-    #[arg(long, required_unless_present_any = ["resume", "merge"])]
+    #[arg(long, required_unless_present_any = ["resume", "merge", "power_for"])]
     evaluations: Option<u64>,
     /// The comparison's seed; replicate k's seed derives from it (default: the config's,
     /// else 1).
     #[arg(long)]
     seed: Option<u64>,
     /// The comparison directory to create.
-    #[arg(long, value_name = "DIR", required_unless_present_any = ["resume", "merge"])]
+    #[arg(long, value_name = "DIR", required_unless_present_any = ["resume", "merge", "power_for"])]
     out: Option<PathBuf>,
+    /// The primary pair, A,B (two of the encodings or conditions): tested alone at α = 0.05,
+    /// the other pairs secondary, Holm-corrected among themselves. Kept in the comparison's
+    /// compare.toml for --resume and --merge.
+    #[arg(long, value_name = "A,B", value_delimiter = ',', conflicts_with_all = ["resume", "merge"])]
+    primary: Vec<String>,
+    /// Print the replicates per side that a two-sided Mann–Whitney test needs to detect this
+    /// A12 (e.g. 0.71, a large effect) with power 0.8, for one pair at α = 0.05 and for 3 and
+    /// 6 pairs under Holm, and run nothing.
+    #[arg(long, value_name = "A12", conflicts_with_all = ["resume", "merge", "plan", "condition", "encodings", "json"])]
+    power_for: Option<f64>,
     /// The genetic algorithm's schedule (default: the config's, else chaumont).
     #[arg(long, value_parser = super::evolve::preset_parser())]
     preset: Option<ontogeny::evolve::ga::Preset>,
@@ -135,6 +145,9 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     let Some(_cluster) = ontogeny::evolve::evaluator::join_cluster()? else {
         return Ok(()); // a worker rank of an MPI job: it evaluated what rank 0 sent
     };
+    if let Some(a12) = args.power_for {
+        return power_for(a12);
+    }
     if let Some(root) = &args.merge {
         let _lock = compare::lock(root).map_err(compare_error)?;
         let (manifest, arms) = compare::open(root).map_err(compare_error)?;
@@ -155,6 +168,11 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     } else {
         plan_conditions(args)?
     };
+    let mut manifest = manifest;
+    manifest.primary = args.primary.clone();
+    manifest
+        .check()
+        .map_err(|e| bad(format!("--primary: {}", e.trim_start_matches("primary "))))?;
     let _lock = compare::create(root, &manifest, &arms).map_err(compare_error)?;
     // Read back what was written, so that a direct run and `--plan` commands start from the
     // same settings.
@@ -184,6 +202,34 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<()> {
     }
     run_all(root, &manifest, &arms, !args.no_cache)?;
     report(root, &manifest, &arms, false, args.json)
+}
+
+/// `compare --power-for A12`: the replicates a side needed to detect `a12` with power 0.8,
+/// for one pair and for 3 and 6 pairs.
+fn power_for(a12: f64) -> anyhow::Result<()> {
+    use ontogeny::study::stats;
+    if !(a12 > 0.0 && a12 < 1.0) || a12 == 0.5 {
+        return Err(bad(format!(
+            "--power-for takes an A12 between 0 and 1 other than 0.5 (no effect), not {a12}"
+        )));
+    }
+    say!(
+        "replicates per side for power {} at A12 {a12} (or {:.2}), two-sided Mann-Whitney:",
+        stats::POWER,
+        1.0 - a12
+    );
+    for pairs in [1, 3, 6] {
+        let level = stats::ALPHA / pairs as f64;
+        let n = stats::replicates_for(a12, pairs)
+            .map_or_else(|| "more than 10000".to_string(), |n| n.to_string());
+        let what = if pairs == 1 {
+            "1 pair (a primary pair)".to_string()
+        } else {
+            format!("{pairs} pairs (Holm)")
+        };
+        say!("  {what:<24} level {level:.4}: {n}");
+    }
+    Ok(())
 }
 
 /// The flags that set every replicate's genetic algorithm and task.

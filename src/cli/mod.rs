@@ -338,6 +338,8 @@ mod tests {
             "setting",
             "config",
             "plan",
+            "primary",
+            "power_for",
         ];
         let with = |extra: &[&str]| sorted(&[&comparison[..], extra].concat());
         assert_eq!(conflicts("compare", "resume"), with(&["merge"]));

@@ -8,12 +8,17 @@
 mod differences;
 mod geometry;
 mod ids;
+mod regularity;
 pub mod repeats;
 mod summary;
 
 pub use differences::{PhenotypeDifferences, phenotype_differences};
 pub use geometry::{boxes_intersect, interpenetration_messages, overlap_beyond_joints};
 pub use ids::{JointId, PartId};
+pub use regularity::{
+    LENGTH_STEP, MIRROR_AXIS_COSINE, MIRROR_TOLERANCE, Regularity, canonical_description,
+    regularity,
+};
 pub use summary::{Summary, counted};
 
 use nalgebra::{UnitQuaternion, Vector3};

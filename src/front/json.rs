@@ -53,10 +53,14 @@ pub fn run_json(tally: &RunTally, end: &RunEnd<'_>) -> Value {
 /// "unfinished", "encodings" (or "conditions", each with "condition" and "encoding"): [{"encoding",
 /// "walks", "replicates", "best": {"mean", "sd", "ci95"}, "mean_fine", "fine_replicates",
 /// "fine_failed", "median_parts", "median_joints", "median_neurons",
-/// "median_shapes_per_part", "evaluations_per_second", "simulated", "reused"}], "pairs":
-/// [{"a", "b", "u", "p", "holm_p", "a12", "a12_magnitude", "detected", "detectable_a12"
-/// (null: none is), "verdict"}], "power": {"replicates", "pairs", "level", "power",
-/// "detectable_a12", "method"} | null, "too_few", "files"}`.
+/// "median_repeated", "median_symmetry", "median_description_bytes",
+/// "evaluations_per_second", "simulated", "reused"}], "pairs" (of the best fitness) and
+/// "fine_pairs" (of the fitness at the fine reference): [{"a", "b", "primary", "u", "p",
+/// "holm_p", "a12", "a12_magnitude", "detected", "detectable_a12" (null: none is),
+/// "verdict"}], "primary": [a, b] | null, "power": {"replicates", "pairs" (the secondary
+/// ones: all without a primary pair), "level", "power", "detectable_a12", "method",
+/// "power_at_large", "primary": {"level", "detectable_a12", "power_at_large"} | null,
+/// "needed_for_large"} | null, "too_few", "files"}`.
 pub fn comparison_json(
     root: &Path,
     arms: &[Arm],
@@ -84,7 +88,9 @@ pub fn comparison_json(
                 "median_parts": number(e.median_parts),
                 "median_joints": number(e.median_joints),
                 "median_neurons": number(e.median_neurons),
-                "median_shapes_per_part": number(e.median_shapes_per_part),
+                "median_repeated": number(e.median_repeated),
+                "median_symmetry": number(e.median_symmetry),
+                "median_description_bytes": number(e.median_description_bytes),
                 "evaluations_per_second": number(e.evaluations_per_second),
                 "simulated": e.simulated,
                 "reused": e.reused,
@@ -95,32 +101,42 @@ pub fn comparison_json(
             o
         })
         .collect();
-    let pairs: Vec<Value> = r
-        .pairs
-        .iter()
-        .map(|p| {
-            json!({
-                "a": p.a,
-                "b": p.b,
-                "u": number(p.test.u),
-                "p": number(p.test.p),
-                "holm_p": number(p.holm_p),
-                "a12": number(p.a12),
-                "a12_magnitude": crate::study::stats::a12_magnitude(p.a12),
-                "detected": p.detected(),
-                "detectable_a12": p.detectable.a12().map_or(Value::Null, number),
-                "verdict": p.verdict(),
+    let pairs = |pairs: &[crate::study::compare::Pair]| -> Vec<Value> {
+        pairs
+            .iter()
+            .map(|p| {
+                json!({
+                    "a": p.a,
+                    "b": p.b,
+                    "primary": p.primary,
+                    "u": number(p.test.u),
+                    "p": number(p.test.p),
+                    "holm_p": number(p.holm_p),
+                    "a12": number(p.a12),
+                    "a12_magnitude": crate::study::stats::a12_magnitude(p.a12),
+                    "detected": p.detected(),
+                    "detectable_a12": p.detectable.a12().map_or(Value::Null, number),
+                    "verdict": p.verdict(),
+                })
             })
-        })
-        .collect();
-    let power = r.power.map(|d| {
+            .collect()
+    };
+    let power = r.power.as_ref().map(|w| {
+        let secondary = w.secondary_detectable;
         json!({
-            "replicates": d.m,
-            "pairs": r.arms.len() * (r.arms.len() - 1) / 2,
-            "level": d.level,
+            "replicates": w.replicates,
+            "pairs": w.secondary,
+            "level": secondary.map_or(Value::Null, |d| json!(d.level)),
             "power": crate::study::stats::POWER,
-            "detectable_a12": d.a12().map_or(Value::Null, number),
-            "method": d.method.name(),
+            "detectable_a12": secondary.and_then(|d| d.a12()).map_or(Value::Null, number),
+            "method": secondary.map_or(Value::Null, |d| json!(d.method.name())),
+            "power_at_large": w.secondary_power.map_or(Value::Null, number),
+            "primary": w.primary_detectable.map_or(Value::Null, |d| json!({
+                "level": d.level,
+                "detectable_a12": d.a12().map_or(Value::Null, number),
+                "power_at_large": w.primary_power.map_or(Value::Null, number),
+            })),
+            "needed_for_large": w.needed,
         })
     });
     let files: Vec<String> = ["report.md", "summary.csv", "fitness.svg", "parts.svg"]
@@ -140,7 +156,15 @@ pub fn comparison_json(
         "encodings"
     }] = json!(summaries);
     for (key, value) in [
-        ("pairs", json!(pairs)),
+        ("pairs", json!(pairs(&r.pairs))),
+        ("fine_pairs", json!(pairs(&r.fine_pairs))),
+        (
+            "primary",
+            r.power
+                .as_ref()
+                .and_then(|w| w.primary.clone())
+                .map_or(Value::Null, |(a, b)| json!([a, b])),
+        ),
         ("power", json!(power)),
         ("too_few", json!(r.too_few)),
         ("files", json!(files)),

@@ -315,6 +315,7 @@ pub fn plan_comparison(
             replicates,
             evaluations: budget,
             seed: seed.or(file.seed).unwrap_or(1),
+            primary: Vec::new(),
         },
         Shared { ga, task },
     ))
@@ -434,6 +435,7 @@ pub fn plan_conditions(
             replicates,
             evaluations: budget,
             seed: seed.unwrap_or(1),
+            primary: Vec::new(),
         },
         arms,
         note,

@@ -402,7 +402,7 @@ pub fn comparison_summary(
             format!("± {:.4}, sd {:.4}", e.best.ci95, e.best.sd)
         };
         lines.push(format!(
-            "  {:<20} n {:>3}  best {:.4} ({spread}; at the fine reference {:.4}{})  parts {}  shapes/part {:.3}",
+            "  {:<20} n {:>3}  best {:.4} ({spread}; at the fine reference {:.4}{})  parts {}  repeated {:.2}  mirrored {:.2}  bytes/part {:.1}",
             e.name,
             e.replicates,
             e.best.mean,
@@ -413,32 +413,30 @@ pub fn comparison_summary(
                 String::new()
             },
             e.median_parts,
-            e.median_shapes_per_part
+            e.median_repeated,
+            e.median_symmetry,
+            e.median_description_bytes
         ));
     }
-    for p in &r.pairs {
-        lines.push(format!(
-            "  {} vs {}: U {} p {:.4} (Holm {:.4}) A12 {:.3} ({}): {}",
-            p.a,
-            p.b,
-            p.test.u,
-            p.test.p,
-            p.holm_p,
-            p.a12,
-            crate::study::stats::a12_magnitude(p.a12),
-            p.verdict()
-        ));
+    for (pairs, what) in [(&r.pairs, ""), (&r.fine_pairs, "at the fine reference: ")] {
+        for p in pairs {
+            lines.push(format!(
+                "  {what}{} vs {}{}: U {} p {:.4} ({} {:.4}) A12 {:.3} ({}): {}",
+                p.a,
+                p.b,
+                if p.primary { " (primary)" } else { "" },
+                p.test.u,
+                p.test.p,
+                if p.primary { "alone" } else { "Holm" },
+                p.holm_p,
+                p.a12,
+                crate::study::stats::a12_magnitude(p.a12),
+                p.verdict()
+            ));
+        }
     }
-    if let Some(d) = r.power {
-        let pairs = r.arms.len() * (r.arms.len() - 1) / 2;
-        lines.push(format!(
-            "power: {} replicates per {}, {pairs} pair{}, each tested at {:.4}: detects {}",
-            d.m,
-            r.kind,
-            if pairs == 1 { "" } else { "s" },
-            d.level,
-            d.words(),
-        ));
+    if let Some(power) = &r.power {
+        lines.push(power_line(power, r.kind));
     }
     if !r.too_few.is_empty() {
         lines.push(format!(
@@ -453,6 +451,46 @@ pub fn comparison_summary(
     let mut lines: Vec<Line> = lines.into_iter().map(Line::Result).collect();
     lines.push(Line::Message(crate::output::wrote(&files)));
     lines
+}
+
+/// The summary's line on a comparison's power as planned: the primary pair's and the
+/// secondary pairs' levels, the effects they detect and their power at a large effect.
+pub fn power_line(power: &crate::study::compare::Power, kind: &str) -> String {
+    use crate::study::compare::LARGE_A12;
+    let mut parts = Vec::new();
+    if let (Some((a, b)), Some(d), Some(p)) = (
+        &power.primary,
+        &power.primary_detectable,
+        power.primary_power,
+    ) {
+        parts.push(format!(
+            "primary {a} vs {b} tested at {:.4}: detects {}; power {p:.2} at A12 {LARGE_A12}",
+            d.level,
+            d.words()
+        ));
+    }
+    if let (Some(d), Some(p)) = (&power.secondary_detectable, power.secondary_power) {
+        let n = power.secondary;
+        parts.push(format!(
+            "{n} {}pair{}, each tested at {:.4}: detects {}; power {p:.2} at A12 {LARGE_A12}",
+            if power.primary.is_some() {
+                "secondary "
+            } else {
+                ""
+            },
+            if n == 1 { "" } else { "s" },
+            d.level,
+            d.words()
+        ));
+    }
+    let needed = power.needed.map_or(String::new(), |n| {
+        format!(" (one pair at 0.05 needs {n} a side for power 0.8 at A12 {LARGE_A12})")
+    });
+    format!(
+        "power: {} replicates per {kind}, {}{needed}",
+        power.replicates,
+        parts.join("; ")
+    )
 }
 
 /// The `ontogeny evolve` commands of a comparison's `--plan`, one per replicate, with

@@ -405,6 +405,27 @@ pub fn detectable_a12(m: usize, n: usize, pairs: usize) -> Detectable {
         out.distance = (d < 0.5).then_some(d);
         return out;
     }
+    let Some(power) = exact_power(m, n, level) else {
+        return out;
+    };
+    let (mut lo, mut hi) = (0.0, 16.0);
+    for _ in 0..40 {
+        let mid = (lo + hi) / 2.0;
+        if power(mid) >= POWER {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    out.distance = Some(Normal::standard().cdf(hi / std::f64::consts::SQRT_2) - 0.5);
+    out
+}
+
+/// The simulated power of the exact two-sided Mann–Whitney test of samples of sizes `m` and
+/// `n` (at most [`EXACT_MAX`]) at `level`, as a function of the shift δ of the first sample
+/// ([`detectable_a12`] says how); `None` when even samples that do not overlap are not
+/// significant at that level (the power is 0 at any δ).
+fn exact_power(m: usize, n: usize, level: f64) -> Option<impl Fn(f64) -> f64> {
     // The rejection region over U = 0 ..= mn: p as `mann_whitney` computes it, at most the level.
     let counts = u_counts(m, n);
     let total: f64 = counts.iter().sum();
@@ -424,7 +445,7 @@ pub fn detectable_a12(m: usize, n: usize, pairs: usize) -> Detectable {
         })
         .collect();
     if !reject[m * n] {
-        return out;
+        return None;
     }
     let mut rng = ChaCha8Rng::seed_from_u64(0x0005_eed0_fa12);
     let mut draw = |size: usize| {
@@ -433,7 +454,7 @@ pub fn detectable_a12(m: usize, n: usize, pairs: usize) -> Detectable {
         v
     };
     let draws: Vec<(Vec<f64>, Vec<f64>)> = (0..POWER_DRAWS).map(|_| (draw(m), draw(n))).collect();
-    let power = |delta: f64| {
+    Some(move |delta: f64| {
         let hits = draws
             .iter()
             .filter(|(x, y)| {
@@ -449,18 +470,36 @@ pub fn detectable_a12(m: usize, n: usize, pairs: usize) -> Detectable {
             })
             .count();
         hits as f64 / draws.len() as f64
-    };
-    let (mut lo, mut hi) = (0.0, 16.0);
-    for _ in 0..40 {
-        let mid = (lo + hi) / 2.0;
-        if power(mid) >= POWER {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
+    })
+}
+
+/// The power of a two-sided Mann–Whitney test of samples of sizes `m` and `n`, when `pairs`
+/// pairs are tested (each at [`ALPHA`] / `pairs`, as in [`detectable_a12`]), to detect an
+/// effect of `a12` (a shift δ of normal samples, A12 = Φ(δ/√2); `a12` and 1 − `a12` have the
+/// same power): simulated through the exact test with both samples of at most [`EXACT_MAX`]
+/// values, else Noether's approximation, power = Φ(|A12 − 0.5| · √(12mn/(m + n)) −
+/// z(1 − level/2)). 0 with an empty sample or an `a12` outside (0, 1).
+pub fn power_at(m: usize, n: usize, pairs: usize, a12: f64) -> f64 {
+    let level = ALPHA / pairs.max(1) as f64;
+    if m == 0 || n == 0 || !(a12 > 0.0 && a12 < 1.0) {
+        return 0.0;
     }
-    out.distance = Some(Normal::standard().cdf(hi / std::f64::consts::SQRT_2) - 0.5);
-    out
+    let normal = Normal::standard();
+    let a = a12.max(1.0 - a12);
+    if m > EXACT_MAX || n > EXACT_MAX {
+        let scale = (12.0 * (m * n) as f64 / (m + n) as f64).sqrt();
+        return normal.cdf((a - 0.5) * scale - normal.inverse_cdf(1.0 - level / 2.0));
+    }
+    exact_power(m, n, level).map_or(0.0, |power| {
+        power(std::f64::consts::SQRT_2 * normal.inverse_cdf(a))
+    })
+}
+
+/// The fewest replicates per side (the same on both) whose two-sided Mann–Whitney test, with
+/// `pairs` pairs tested, detects an effect of `a12` with power [`POWER`] ([`power_at`]);
+/// `None` for no effect (0.5) or when even 10,000 a side would not.
+pub fn replicates_for(a12: f64, pairs: usize) -> Option<usize> {
+    (2..=10_000).find(|&n| power_at(n, n, pairs, a12) >= POWER)
 }
 
 #[cfg(test)]
@@ -676,5 +715,34 @@ mod tests {
         let simulated = detectable_a12(30, 30, 1).distance.unwrap();
         let noether = 2.801585 / (12.0f64 * 900.0 / 60.0).sqrt();
         assert!((simulated - noether).abs() < 0.02, "{simulated} {noether}");
+    }
+
+    #[test]
+    fn power_at_an_effect_agrees_with_the_detectable_effect_and_noethers_formula() {
+        // The detectable effect of 10 a side is where the power reaches 0.8.
+        let d = detectable_a12(10, 10, 1).a12().unwrap();
+        assert!((power_at(10, 10, 1, d) - POWER).abs() < 0.01);
+        assert!(power_at(10, 10, 1, d - 0.03) < POWER);
+        // A12 and 1 − A12 have the same power; no effect, or an empty side, none.
+        assert_eq!(power_at(10, 10, 1, 0.3), power_at(10, 10, 1, 0.7));
+        assert_eq!(power_at(0, 10, 1, 0.9), 0.0);
+        // Three a side and three pairs: nothing is significant, so no power at all.
+        assert_eq!(power_at(3, 3, 3, 0.99), 0.0);
+        // 50 a side at A12 0.71, level 0.05: Φ(0.21 · √300 − 1.959964) = Φ(3.637307 −
+        // 1.959964) = Φ(1.677343) = 0.953264.
+        assert!((power_at(50, 50, 1, 0.71) - 0.953264).abs() < 1e-5);
+    }
+
+    #[test]
+    fn replicates_for_a_large_effect_are_the_fewest_that_reach_the_power() {
+        // Noether's formula asks √(6n) ≥ (1.959964 + 0.841621) / 0.21 = 13.3409, n ≥ 29.7:
+        // 30 a side. The exact test's simulated power gets there a little sooner or later.
+        let n = replicates_for(0.71, 1).unwrap();
+        assert!(power_at(n, n, 1, 0.71) >= POWER);
+        assert!(power_at(n - 1, n - 1, 1, 0.71) < POWER);
+        assert!((25..=32).contains(&n), "{n}");
+        // More pairs (a stricter level) need more replicates; no effect needs infinitely many.
+        assert!(replicates_for(0.71, 3).unwrap() > n);
+        assert_eq!(replicates_for(0.5, 1), None);
     }
 }

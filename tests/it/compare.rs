@@ -65,9 +65,9 @@ fn numbers_of(dir: &Path, arms: &[&str]) -> String {
         .filter(|l| arms.iter().any(|arm| l.starts_with(&format!("| {arm}"))))
     {
         let cells: Vec<&str> = line.split('|').collect();
-        // A line of the arms' table has 13 cells; drop evaluations/s.
-        let keep = if cells.len() == 15 {
-            &cells[..13]
+        // A line of the arms' table has 15 cells; drop evaluations/s.
+        let keep = if cells.len() == 17 {
+            &cells[..15]
         } else {
             &cells[..]
         };
@@ -594,15 +594,15 @@ fn a_comparison_without_cache_reports_the_same_numbers_with_nothing_reused() {
     let split = |dir: &Path| -> Vec<(String, u64, u64)> {
         let csv = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
         let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-        assert_eq!(header[10..], ["simulated", "reused", "wall_seconds"]);
+        assert_eq!(header[12..], ["simulated", "reused", "wall_seconds"]);
         csv.lines()
             .skip(1)
             .map(|line| {
                 let cells: Vec<&str> = line.split(',').collect();
                 (
-                    cells[..10].join(","),
-                    cells[10].parse().unwrap(),
-                    cells[11].parse().unwrap(),
+                    cells[..12].join(","),
+                    cells[12].parse().unwrap(),
+                    cells[13].parse().unwrap(),
                 )
             })
             .collect()
@@ -725,7 +725,11 @@ fn two_conditions_run_resume_and_report_both_names_and_their_power() {
         "| a | b | U | p | method | Holm p | A12 | effect | detectable | verdict |",
         "| none | not detected at this power (none is detectable with 3 and 3 replicates) |",
         "Power: with 3 replicates per condition and 1 pair, each pair is tested at 0.05 / 1 = 0.0500",
-        "The comparison detects nothing: with 3 and 3 replicates no result reaches p ≤ 0.0500.",
+        "The comparison detects nothing: with 3 and 3 replicates no result reaches p ≤ 0.0500, \
+         and has power 0.00 for A12 = 0.71.",
+        "tests of the champions' fitness at the fine reference",
+        "| condition | n | mean best | at the fine reference | sd | 95% CI | parts | joints | \
+         neurons | repeated | mirrored | bytes/part |",
     ] {
         assert!(md.contains(text), "{text:?} not in:\n{md}");
     }
@@ -750,8 +754,11 @@ fn two_conditions_run_resume_and_report_both_names_and_their_power() {
     assert_eq!(
         json["power"],
         serde_json::json!({"replicates": 3, "pairs": 1, "level": 0.05, "power": 0.8,
-            "detectable_a12": null, "method": "simulated"})
+            "detectable_a12": null, "method": "simulated", "power_at_large": 0.0,
+            "primary": null, "needed_for_large": 29})
     );
+    assert_eq!(json["primary"], serde_json::Value::Null);
+    assert_eq!(json["fine_pairs"][0]["a"], "low");
     // A replicate lost and the comparison resumed: the same report.
     let before = numbers_of(&out, &["low", "high"]);
     std::fs::remove_dir_all(out.join("high/rep-2")).unwrap();
@@ -907,5 +914,139 @@ fn bad_conditions_exit_2_with_a_clear_message_and_write_nothing() {
         "'--condition <NAME=CONFIG.toml>' cannot be used with '--config <FILE.toml>'",
     );
     assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_primary_pair_is_tested_alone_kept_for_merge_and_refused_when_not_compared() {
+    let dir = scratch("primary");
+    let out = dir.join("cmp");
+    let stdout = succeeded(
+        &tiny(&out)
+            .args(["--primary", "direct,lsystem"])
+            .output()
+            .unwrap(),
+    );
+    // The primary pair in the order named, tested alone; the two others secondary.
+    assert!(
+        stdout.contains("\n  direct vs lsystem (primary): U "),
+        "{stdout}"
+    );
+    assert!(stdout.contains("(alone "), "{stdout}");
+    assert!(
+        stdout.contains("primary direct vs lsystem tested at 0.0500: detects nothing"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("2 secondary pairs, each tested at 0.0250"),
+        "{stdout}"
+    );
+    let manifest = std::fs::read_to_string(out.join("compare.toml")).unwrap();
+    assert!(
+        manifest.contains("primary = [\"direct\", \"lsystem\"]"),
+        "{manifest}"
+    );
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for text in [
+        "| direct | lsystem | primary |",
+        "The primary pair, direct against lsystem, is tested alone at 0.05",
+        "tests of the champions' fitness at the fine reference",
+        "needs 29 replicates a side to detect A12 = 0.71",
+    ] {
+        assert!(md.contains(text), "{text:?} not in:\n{md}");
+    }
+    // A merge reads the primary pair from the plan.
+    let json: serde_json::Value = serde_json::from_str(&succeeded(
+        &ontogeny_command()
+            .args(["compare", "--json", "--merge"])
+            .arg(&out)
+            .output()
+            .unwrap(),
+    ))
+    .unwrap();
+    assert_eq!(json["primary"], serde_json::json!(["direct", "lsystem"]));
+    assert_eq!(json["pairs"][0]["primary"], false);
+    let primary: Vec<&serde_json::Value> = json["pairs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["primary"] == true)
+        .collect();
+    assert_eq!(primary.len(), 1);
+    assert_eq!(
+        (&primary[0]["a"], &primary[0]["b"]),
+        (&"direct".into(), &"lsystem".into())
+    );
+    // A pair that is not two of the encodings compared is refused before anything is made.
+    let bad = dir.join("bad");
+    let o = tiny(&bad)
+        .args(["--primary", "direct,graph"])
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        "--primary: names graph, which is not one of the encodings compared",
+    );
+    assert!(!bad.join("compare.toml").exists());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn power_for_an_effect_prints_the_replicates_needed_and_refuses_no_effect() {
+    let o = ontogeny_command()
+        .args(["compare", "--power-for", "0.71"])
+        .output()
+        .unwrap();
+    let stdout = succeeded(&o);
+    // The same figure the library's test bounds (Noether's formula asks 30).
+    assert!(
+        stdout.contains("1 pair (a primary pair)  level 0.0500: 29\n"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("3 pairs (Holm)"), "{stdout}");
+    for bad in ["0.5", "1.2", "nan"] {
+        let o = ontogeny_command()
+            .args(["compare", "--power-for", bad])
+            .output()
+            .unwrap();
+        refused(&o, "--power-for");
+    }
+}
+
+#[test]
+fn hornby_and_pollacks_conditions_give_every_encoding_the_same_limits() {
+    let dir = scratch("hp-equal");
+    let out = dir.join("cmp");
+    let mut c = ontogeny_command();
+    c.args(["compare", "--plan"]);
+    for e in ["lsystem", "direct", "lsystem-continuous", "graph"] {
+        c.arg("--condition")
+            .arg(format!("{e}=examples/compare-hornby-pollack-{e}.toml"));
+    }
+    c.args([
+        "--primary",
+        "lsystem,direct",
+        "--replicates",
+        "2",
+        "--evaluations",
+        "3940",
+        "--out",
+    ])
+    .arg(&out);
+    succeeded(&c.output().unwrap());
+    for e in ["lsystem", "direct", "lsystem-continuous", "graph"] {
+        let settings = std::fs::read_to_string(out.join(e).join("evolve.toml")).unwrap();
+        assert!(
+            settings.contains(&format!("encoding = \"{e}\"")),
+            "{settings}"
+        );
+        assert!(settings.contains("max_parts = 20\n"), "{settings}");
+        assert!(settings.contains("generations = 49\n"), "{settings}");
+    }
+    let manifest = std::fs::read_to_string(out.join("compare.toml")).unwrap();
+    assert!(
+        manifest.contains("primary = [\"lsystem\", \"direct\"]"),
+        "{manifest}"
+    );
     let _ = std::fs::remove_dir_all(dir);
 }

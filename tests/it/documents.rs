@@ -330,7 +330,9 @@ const CUT_DOWN: &[CutDown] = &[
         "ontogeny compare --encodings ",
         &[
             ("--replicates 10", "--replicates 2"),
+            ("--replicates 29", "--replicates 2"),
             ("--evaluations 8100", "--evaluations 8"),
+            ("--evaluations 3940", "--evaluations 8"),
             ("--pop 100", "--pop 4"),
         ],
         &[("--seconds", "0.2")],

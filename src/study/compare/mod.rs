@@ -16,25 +16,25 @@
 //! [`Genome`](crate::encoding::Genome).
 //!
 //! The comparison's directory and plan are in `plan`, reading a finished replicate in
-//! `replicate`, the statistics and the files of the report in [`report`], where a comparison stands in
-//! [`survey`].
+//! `replicate`, the pairwise tests and the power in `pairs`, the statistics and the files of
+//! the report in [`report`], where a comparison stands in [`survey`].
 
+mod pairs;
 mod plan;
 mod replicate;
 mod report;
 mod survey;
 
+pub use pairs::{LARGE_A12, Pair, Power, is_primary, pairwise, planned_power, power_note};
 pub use plan::{
     Arm, BUDGET_TOLERANCE, ConditionFile, MAX_CONDITION_NAME, MAX_REPLICATES, Manifest, Shared,
     check_budgets, check_condition_name, condition_file, create, duplicate_condition,
     encoding_arms, evaluated_per_generation, evaluations_of, fitness_labels, generations_for, lock,
     open, replicate_config, replicate_dir, replicate_seed, walks_per_individual,
 };
-pub use replicate::{
-    Champion, Replicate, ReplicateState, distinct_shapes_per_part, read_replicate,
-};
+pub use replicate::{Champion, Replicate, ReplicateState, read_replicate};
 pub use report::{
-    ArmSummary, MIN_REPLICATES_FOR_STATISTICS, Pair, Report, power_note, report, too_few_note,
+    ArmSummary, MIN_REPLICATES_FOR_STATISTICS, Report, fine_sample, report, too_few_note,
     write_report,
 };
 pub use survey::{Survey, gather, replicate_state, survey};

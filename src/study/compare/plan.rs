@@ -34,6 +34,11 @@ pub struct Manifest {
     pub evaluations: u64,
     /// The seed every replicate's seed derives from.
     pub seed: u64,
+    /// The primary pair, two of the names compared (none: every pair is secondary): tested
+    /// alone at the full level, the others Holm-corrected among themselves. Kept here so that
+    /// `--resume` and `--merge` report it.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub primary: Vec<String>,
 }
 
 /// The most replicates per encoding a comparison may have.
@@ -115,6 +120,22 @@ impl Manifest {
                 .find(|x| x.eq_ignore_ascii_case(c))
             {
                 return Err(duplicate_condition(first, c));
+            }
+        }
+        if !self.primary.is_empty() {
+            if self.primary.len() != 2 || self.primary[0] == self.primary[1] {
+                return Err(format!(
+                    "primary names a pair: two different {}s, not {}",
+                    self.kind(),
+                    self.primary.join(",")
+                ));
+            }
+            if let Some(x) = self.primary.iter().find(|x| !self.names().contains(x)) {
+                return Err(format!(
+                    "primary names {x}, which is not one of the {}s compared ({})",
+                    self.kind(),
+                    self.names().join(", ")
+                ));
             }
         }
         if !(1..=MAX_REPLICATES).contains(&self.replicates) {
@@ -585,8 +606,33 @@ mod tests {
             replicates: 2,
             evaluations: 10,
             seed: 1,
+            primary: vec![],
         };
         assert_eq!(m.check(), Ok(()));
+        // A primary pair is two different names of the comparison.
+        let primary = |p: &[&str]| Manifest {
+            primary: p.iter().map(|s| s.to_string()).collect(),
+            ..m.clone()
+        };
+        assert_eq!(primary(&["b", "a"]).check(), Ok(()));
+        assert!(
+            primary(&["a"])
+                .check()
+                .unwrap_err()
+                .contains("names a pair")
+        );
+        assert!(
+            primary(&["a", "a"])
+                .check()
+                .unwrap_err()
+                .contains("names a pair")
+        );
+        assert!(
+            primary(&["a", "c"])
+                .check()
+                .unwrap_err()
+                .contains("primary names c, which is not one of the conditions compared (a, b)")
+        );
         assert_eq!((m.names(), m.kind()), (&m.conditions[..], "condition"));
         let both = Manifest {
             encodings: vec!["lsystem".into()],

@@ -2,12 +2,11 @@
 //! brain and regularity), read from its run store after checking that its settings are this
 //! comparison's.
 
-use std::collections::BTreeSet;
 use std::path::Path;
 
 use super::CompareError;
 use super::plan::{Arm, Manifest, replicate_config, replicate_dir};
-use crate::creature::Creature;
+use crate::creature::{Regularity, regularity};
 use crate::encoding::Genome;
 use crate::evolve::ga::Individual;
 use crate::lang::Source;
@@ -29,29 +28,9 @@ pub struct Champion {
     pub joints: u32,
     /// Neurons.
     pub neurons: u32,
-    /// Distinct part shapes per part (see [`distinct_shapes_per_part`]); NaN when it has no
-    /// parts.
-    pub shapes_per_part: f64,
-}
-
-/// The regularity measure: the number of distinct part shapes divided by the number of
-/// parts. A shape is a part's three edge lengths, sorted (a turned box is the same box) and
-/// rounded to the millimetre. 1 means every part differs; 1/parts, that one shape is used
-/// throughout. Lower is more regular. NaN without parts.
-pub fn distinct_shapes_per_part(creature: &Creature) -> f64 {
-    if creature.parts.is_empty() {
-        return f64::NAN;
-    }
-    let shapes: BTreeSet<[i64; 3]> = creature
-        .parts
-        .iter()
-        .map(|p| {
-            let mut s = [p.size.x, p.size.y, p.size.z].map(|v| (v * 1000.0).round() as i64);
-            s.sort_unstable();
-            s
-        })
-        .collect();
-    shapes.len() as f64 / creature.parts.len() as f64
+    /// The regularity of its body ([`Regularity`]); NaN on each measure when it has no
+    /// parts or does not develop.
+    pub regularity: Regularity,
 }
 
 /// One finished replicate, as the report uses it.
@@ -153,10 +132,18 @@ pub fn read_replicate<G: Genome>(
             G::NAME
         ))
     })?;
-    let shapes_per_part = individual
+    // Developed again from the stored genome: a run of any age has its champion's body.
+    let regularity = individual
         .genome
         .develop(&config.limits, individual.develop_seed)
-        .map_or(f64::NAN, |c| distinct_shapes_per_part(&c));
+        .map_or(
+            Regularity {
+                repeated: f64::NAN,
+                symmetry: f64::NAN,
+                description_bytes: f64::NAN,
+            },
+            |c| regularity(&c),
+        );
     Ok(ReplicateState::Done(Box::new(Replicate {
         name: arm.name.clone(),
         k,
@@ -174,40 +161,7 @@ pub fn read_replicate<G: Genome>(
             parts: record.parts,
             joints: record.joints,
             neurons: record.neurons,
-            shapes_per_part,
+            regularity,
         },
     })))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn regularity_counts_distinct_shapes() {
-        use crate::creature::Part;
-        use nalgebra::{UnitQuaternion, Vector3};
-        let part = |x: f64, y: f64, z: f64| Part {
-            size: Vector3::new(x, y, z),
-            position: Vector3::zeros(),
-            orientation: UnitQuaternion::identity(),
-            density: 1.0,
-            growing: false,
-        };
-        let mut c = Creature::default();
-        assert!(distinct_shapes_per_part(&c).is_nan());
-        // Four parts: two equal boxes, the same box turned, and another: 2 shapes / 4 parts.
-        c.parts = vec![
-            part(1.0, 0.2, 0.1),
-            part(1.0, 0.2, 0.1),
-            part(0.1, 1.0, 0.2),
-            part(0.5, 0.2, 0.1),
-        ];
-        assert_eq!(distinct_shapes_per_part(&c), 0.5);
-        // Below a millimetre apart is the same shape.
-        c.parts[1].size.x = 1.0004;
-        assert_eq!(distinct_shapes_per_part(&c), 0.5);
-        c.parts[1].size.x = 1.002;
-        assert_eq!(distinct_shapes_per_part(&c), 0.75);
-    }
 }

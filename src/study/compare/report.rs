@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use super::CompareError;
+use super::pairs::{Pair, Power, pairwise, planned_power, power_note};
 use super::plan::{Arm, Manifest, walks_per_individual};
 use super::replicate::{Champion, Replicate};
 use crate::run::plot::{self, Band};
@@ -38,8 +39,18 @@ pub struct ArmSummary {
     pub median_joints: f64,
     /// See `median_parts`.
     pub median_neurons: f64,
-    /// The champions' median distinct part shapes per part.
-    pub median_shapes_per_part: f64,
+    /// The champions' median share of parts in repeated sub-assemblies
+    /// ([`Regularity::repeated`](crate::creature::Regularity::repeated); higher is more
+    /// regular).
+    pub median_repeated: f64,
+    /// The champions' median share of parts with a mirror partner
+    /// ([`Regularity::symmetry`](crate::creature::Regularity::symmetry); higher is more
+    /// regular).
+    pub median_symmetry: f64,
+    /// The champions' median compressed description in bytes per part
+    /// ([`Regularity::description_bytes`](crate::creature::Regularity::description_bytes);
+    /// lower is more regular).
+    pub median_description_bytes: f64,
     /// Evaluations per second over all its replicates.
     pub evaluations_per_second: f64,
     /// Evaluations its replicates simulated, in all.
@@ -47,47 +58,6 @@ pub struct ArmSummary {
     /// Evaluations its replicates reused from an identical creature evaluated earlier in the
     /// same run, in all.
     pub reused: u64,
-}
-
-/// One pairwise test.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Pair {
-    /// The first encoding or condition.
-    pub a: String,
-    /// The second.
-    pub b: String,
-    /// The test of a's best fitness against b's.
-    pub test: stats::MannWhitney,
-    /// Holm-corrected p over all pairs.
-    pub holm_p: f64,
-    /// Vargha–Delaney A12 of a over b.
-    pub a12: f64,
-    /// The smallest effect this test detects with power [`stats::POWER`], with these
-    /// replicates and this many pairs.
-    pub detectable: stats::Detectable,
-}
-
-impl Pair {
-    /// Whether the test found a difference: Holm's p at most [`stats::ALPHA`].
-    pub fn detected(&self) -> bool {
-        self.holm_p <= stats::ALPHA
-    }
-
-    /// What the test found, in words: "detected", or "not detected at this power (smallest
-    /// detectable A12 0.84)" — never "no difference", which a test that finds nothing does
-    /// not show.
-    pub fn verdict(&self) -> String {
-        if self.detected() {
-            return format!("detected (Holm p ≤ {})", stats::ALPHA);
-        }
-        match self.detectable.a12() {
-            Some(a) => format!("not detected at this power (smallest detectable A12 {a:.2})"),
-            None => format!(
-                "not detected at this power (none is detectable with {} and {} replicates)",
-                self.detectable.m, self.detectable.n
-            ),
-        }
-    }
 }
 
 /// The fewest replicates of an encoding that statistics are given for: below it, an
@@ -102,17 +72,35 @@ pub struct Report {
     pub kind: &'static str,
     /// Per encoding or condition, in the manifest's order.
     pub arms: Vec<ArmSummary>,
-    /// Every pair of encodings with at least [`MIN_REPLICATES_FOR_STATISTICS`] replicates
-    /// each, in the manifest's order.
+    /// The tests of the best fitness between every pair of encodings with at least
+    /// [`MIN_REPLICATES_FOR_STATISTICS`] replicates each, in the manifest's order.
     pub pairs: Vec<Pair>,
+    /// The same pairs' tests of their champions' fitness at the fine reference
+    /// ([`fine_sample`]), between those with at least [`MIN_REPLICATES_FOR_STATISTICS`]
+    /// champions re-walked each.
+    pub fine_pairs: Vec<Pair>,
     /// The encodings with fewer than [`MIN_REPLICATES_FOR_STATISTICS`] replicates: no
     /// statistics, and no test of their pairs.
     pub too_few: Vec<String>,
     /// The walks every replicate made (of the arm that made most, when they differ).
     pub evaluations: u64,
     /// The comparison's power as planned: the effect each pair detects with the planned
-    /// replicates on every side and every pair tested; `None` with one side only.
-    pub power: Option<stats::Detectable>,
+    /// replicates on every side and every pair tested, the primary pair apart; `None` with one
+    /// side only.
+    pub power: Option<Power>,
+}
+
+/// The values the fine-reference tests compare: the champions' fitness re-walked at the fine
+/// reference, leaving out the champions not re-walked (NaN: runs that predate it). A re-walk
+/// that failed (unstable, exploded: the failure floor, [`crate::task::FAILURE_FITNESS`]) keeps
+/// its floor, below every fitness: it ranks lowest, tied with the other failures.
+pub fn fine_sample(replicates: &[&Replicate]) -> Vec<f64> {
+    replicates
+        .iter()
+        .map(|r| r.champion.fine_fitness)
+        .filter(|f| !f.is_nan())
+        .map(|f| f.max(crate::task::FAILURE_FITNESS))
+        .collect()
 }
 
 /// The statistics of `replicates` (finished ones, any order) of the comparison of `arms`.
@@ -158,7 +146,9 @@ pub fn report(manifest: &Manifest, arms: &[Arm], replicates: &[Replicate]) -> Re
                 median_parts: pick(|c| c.parts as f64),
                 median_joints: pick(|c| c.joints as f64),
                 median_neurons: pick(|c| c.neurons as f64),
-                median_shapes_per_part: pick(|c| c.shapes_per_part),
+                median_repeated: pick(|c| c.regularity.repeated),
+                median_symmetry: pick(|c| c.regularity.symmetry),
+                median_description_bytes: pick(|c| c.regularity.description_bytes),
                 evaluations_per_second: if wall > 0.0 {
                     evaluations as f64 / wall
                 } else {
@@ -175,73 +165,29 @@ pub fn report(manifest: &Manifest, arms: &[Arm], replicates: &[Replicate]) -> Re
         .map(|e| e.name.clone())
         .collect();
     let names = manifest.names();
-    let mut samples = Vec::new();
-    for (i, a) in names.iter().enumerate() {
-        for b in &names[i + 1..] {
-            if too_few.contains(a) || too_few.contains(b) {
-                continue;
-            }
-            let best = |e: &str| -> Vec<f64> { of(e).iter().map(|r| r.champion.fitness).collect() };
-            samples.push((a, b, best(a), best(b)));
-        }
-    }
-    let tested = samples.len();
-    let mut pairs: Vec<Pair> = samples
-        .into_iter()
-        .map(|(a, b, x, y)| Pair {
-            a: a.clone(),
-            b: b.clone(),
-            test: stats::mann_whitney(&x, &y),
-            holm_p: f64::NAN,
-            a12: stats::a12(&x, &y),
-            detectable: stats::detectable_a12(x.len(), y.len(), tested),
-        })
-        .collect();
-    let corrected = stats::holm(&pairs.iter().map(|p| p.test.p).collect::<Vec<_>>());
-    for (p, h) in pairs.iter_mut().zip(corrected) {
-        p.holm_p = h;
-    }
-    let planned_pairs = names.len() * names.len().saturating_sub(1) / 2;
+    let pairs = pairwise(names, &too_few, &manifest.primary, |e| {
+        of(e).iter().map(|r| r.champion.fitness).collect()
+    });
+    // An arm with too few champions re-walked has no fine-reference test.
+    let mut too_few_fine = too_few.clone();
+    too_few_fine.extend(
+        summaries
+            .iter()
+            .filter(|e| e.fine_replicates < MIN_REPLICATES_FOR_STATISTICS)
+            .map(|e| e.name.clone()),
+    );
+    let fine_pairs = pairwise(names, &too_few_fine, &manifest.primary, |e| {
+        fine_sample(&of(e))
+    });
     Report {
         kind: manifest.kind(),
         pairs,
+        fine_pairs,
         too_few,
         evaluations: summaries.iter().map(|a| a.walks).max().unwrap_or(0),
         arms: summaries,
-        power: (planned_pairs > 0).then(|| {
-            stats::detectable_a12(manifest.replicates, manifest.replicates, planned_pairs)
-        }),
+        power: planned_power(names.len(), manifest.replicates, &manifest.primary),
     }
-}
-
-/// The report's paragraph on power, for the comparison as planned (`r.power`: its replicates
-/// on every side, every pair tested): the level each pair is tested at, the effect it detects
-/// with probability [`stats::POWER`] and how that was computed.
-pub fn power_note(r: &Report) -> Option<String> {
-    let d = r.power?;
-    let pairs = r.arms.len() * (r.arms.len() - 1) / 2;
-    let method = match (d.distance, d.method) {
-        (None, _) => String::new(),
-        (Some(_), stats::PowerMethod::Simulated) => format!(
-            " (simulated: {} pairs of normal samples, one shifted by δ, A12 = Φ(δ/√2), \
-             through the exact test)",
-            stats::POWER_DRAWS
-        ),
-        (Some(_), stats::PowerMethod::Noether) => " (Noether's normal approximation)".into(),
-    };
-    Some(format!(
-        "Power: with {} replicates per {} and {pairs} pair{}, each pair is tested at {} / {pairs} \
-         = {:.4} (two-sided; the strictest level Holm's correction uses, so it holds for every \
-         pair). The comparison detects {}{method}. A pair whose Holm p is above {} is \
-         \"not detected at this power\": a smaller difference may exist.",
-        d.m,
-        r.kind,
-        if pairs == 1 { "" } else { "s" },
-        stats::ALPHA,
-        d.level,
-        d.words(),
-        stats::ALPHA,
-    ))
 }
 
 /// Writes `text` to `path` whole or not at all ([`crate::output::write`]): a reader never sees
@@ -370,8 +316,8 @@ pub fn write_report(
         md,
         "Best fitness of each replicate: mean, sample standard deviation and the 95% confidence \
          interval of the mean (Student's t). Champions (each replicate's best individual): \
-         median parts, joints and neurons, and median distinct part shapes per part (lower is \
-         more regular). \"At the fine reference\": the mean of the replicates' final \
+         median parts, joints and neurons, and three median measures of how regular their \
+         bodies are (see Regularity below). \"At the fine reference\": the mean of the replicates' final \
          champions walked again with 4 physics substeps of 8 solver iterations (the stored \
          best comes from the run's own stepping, 4 substeps of 4 iterations by default; a \
          much lower value means the champions exploit it, or were lucky), over the replicates that recorded it when fewer. \
@@ -394,7 +340,9 @@ pub fn write_report(
             num(e.median_parts, 1),
             num(e.median_joints, 1),
             num(e.median_neurons, 1),
-            num(e.median_shapes_per_part, 3),
+            num(e.median_repeated, 2),
+            num(e.median_symmetry, 2),
+            num(e.median_description_bytes, 1),
             e.simulated.to_string(),
             e.reused.to_string(),
             num(e.evaluations_per_second, 1),
@@ -412,7 +360,9 @@ pub fn write_report(
             "parts",
             "joints",
             "neurons",
-            "shapes/part",
+            "repeated",
+            "mirrored",
+            "bytes/part",
             "simulated",
             "reused",
             "evaluations/s",
@@ -422,55 +372,58 @@ pub fn write_report(
     if !r.too_few.is_empty() {
         let _ = writeln!(md, "\n**No statistics** {}.", too_few_note(&r.too_few));
     }
-    if !r.pairs.is_empty() {
+    let _ = writeln!(
+        md,
+        "\nRegularity (of each champion's body, developed again from its genome; medians \
+         above): **repeated**, the share of parts whose sub-assembly (the part with its joints \
+         and children, lengths divided by its longest edge and rounded to {step}) is another \
+         part's too, higher is more regular (a chain of n equal segments scores (n − 1)/n); \
+         **mirrored**, the share of parts with a mirror partner of the same edges across the \
+         best of the root's three planes (centres and edges within {tol} of the root's \
+         longest edge), higher is more regular (the root is its own partner, so a one-part body \
+         scores 1); **bytes/part**, the deflate-compressed size of the body's canonical \
+         description (its tree, children sorted, lengths rounded) per part, lower is more \
+         regular.",
+        step = crate::creature::LENGTH_STEP,
+        tol = crate::creature::MIRROR_TOLERANCE,
+    );
+    let primary = match manifest.primary.as_slice() {
+        [a, b] => format!(
+            "The primary pair, {a} against {b}, is tested alone at {}; the other (secondary) \
+             pairs are Holm-corrected among themselves. ",
+            stats::ALPHA
+        ),
+        _ => String::new(),
+    };
+    for (pairs, what) in [
+        (&r.pairs, "the best fitness (stored)"),
+        (
+            &r.fine_pairs,
+            "the champions' fitness at the fine reference (a champion not re-walked is left \
+             out; a re-walk that failed keeps the failure floor and ranks lowest, tied with \
+             any other failure, which forces the normal approximation)",
+        ),
+    ] {
+        if pairs.is_empty() {
+            continue;
+        }
         let _ = writeln!(
             md,
-            "\nPairwise two-sided Mann–Whitney U tests of the best fitness (exact distribution \
-             without ties and up to {} replicates, else the normal approximation with tie and \
-             continuity corrections), Holm-corrected over the {} pairs; A12 is Vargha and \
-             Delaney's probability that a replicate of the first {} beats one of the second \
-             (0.5: no effect); detectable: the smallest A12 the pair's test detects with \
-             probability {} (see Power below).\n",
+            "\nPairwise two-sided Mann–Whitney U tests of {what} (exact distribution without \
+             ties and up to {} replicates, else the normal approximation with tie and continuity \
+             corrections). {primary}Holm p: the p the verdict reads (Holm-corrected over the \
+             pairs it is tested with; the primary pair's own). A12 is Vargha and Delaney's \
+             probability that a replicate of the first {} beats one of the second (0.5: no \
+             effect); detectable: the smallest A12 the pair's test detects with probability {} \
+             (see Power below).\n",
             stats::EXACT_MAX,
-            r.pairs.len(),
             r.kind,
             stats::POWER,
         );
-        let rows = r.pairs.iter().map(|p| {
-            vec![
-                p.a.clone(),
-                p.b.clone(),
-                num(p.test.u, 1),
-                num(p.test.p, 4),
-                p.test.method.name().to_string(),
-                num(p.holm_p, 4),
-                num(p.a12, 3),
-                stats::a12_magnitude(p.a12).to_string(),
-                p.detectable
-                    .a12()
-                    .map_or_else(|| "none".to_string(), |a| format!("{a:.2}")),
-                p.verdict(),
-            ]
-        });
-        markdown_table(
-            &mut md,
-            &[
-                "a",
-                "b",
-                "U",
-                "p",
-                "method",
-                "Holm p",
-                "A12",
-                "effect",
-                "detectable",
-                "verdict",
-            ],
-            rows,
-        );
+        pair_table(&mut md, pairs);
     }
-    if let Some(note) = power_note(&r) {
-        let _ = writeln!(md, "\n{note}");
+    if let Some(power) = &r.power {
+        let _ = writeln!(md, "\n{}", power_note(power, r.kind));
     }
     let _ = writeln!(
         md,
@@ -479,7 +432,7 @@ pub fn write_report(
     write_file(&root.join("report.md"), &md)?;
 
     let mut csv = format!(
-        "{},replicate,seed,evaluations,best_fitness,best_fine,parts,joints,neurons,shapes_per_part,simulated,reused,wall_seconds\n",
+        "{},replicate,seed,evaluations,best_fitness,best_fine,parts,joints,neurons,repeated,mirrored,bytes_per_part,simulated,reused,wall_seconds\n",
         r.kind
     );
     let mut sorted: Vec<&Replicate> = replicates.iter().collect();
@@ -489,7 +442,7 @@ pub fn write_report(
         let c = &rep.champion;
         let _ = writeln!(
             csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{:.3}",
             rep.name,
             rep.k,
             rep.seed,
@@ -499,7 +452,9 @@ pub fn write_report(
             c.parts,
             c.joints,
             c.neurons,
-            c.shapes_per_part,
+            c.regularity.repeated,
+            c.regularity.symmetry,
+            c.regularity.description_bytes,
             rep.evaluations - rep.reused,
             rep.reused,
             rep.wall_seconds
@@ -605,6 +560,48 @@ fn fine_cell(e: &ArmSummary) -> String {
     }
 }
 
+/// Appends the table of `pairs`' tests (with a column saying which is the primary pair, when
+/// one is).
+fn pair_table(md: &mut String, pairs: &[Pair]) {
+    let primary = pairs.iter().any(|p| p.primary);
+    let rows = pairs.iter().map(|p| {
+        let mut row = vec![
+            p.a.clone(),
+            p.b.clone(),
+            num(p.test.u, 1),
+            num(p.test.p, 4),
+            p.test.method.name().to_string(),
+            num(p.holm_p, 4),
+            num(p.a12, 3),
+            stats::a12_magnitude(p.a12).to_string(),
+            p.detectable
+                .a12()
+                .map_or_else(|| "none".to_string(), |a| format!("{a:.2}")),
+            p.verdict(),
+        ];
+        if primary {
+            row.insert(2, if p.primary { "primary" } else { "secondary" }.into());
+        }
+        row
+    });
+    let mut header = vec![
+        "a",
+        "b",
+        "U",
+        "p",
+        "method",
+        "Holm p",
+        "A12",
+        "effect",
+        "detectable",
+        "verdict",
+    ];
+    if primary {
+        header.insert(2, "test");
+    }
+    markdown_table(md, &header, rows);
+}
+
 /// Appends a Markdown table: its header, the separator line, one line per row.
 fn markdown_table(md: &mut String, header: &[&str], rows: impl Iterator<Item = Vec<String>>) {
     let _ = writeln!(md, "| {} |", header.join(" | "));
@@ -636,7 +633,11 @@ mod tests {
                 parts,
                 joints: parts.saturating_sub(1),
                 neurons: 2 * parts,
-                shapes_per_part: 1.0,
+                regularity: crate::creature::Regularity {
+                    repeated: 0.5,
+                    symmetry: 1.0,
+                    description_bytes: 20.0,
+                },
             },
         }
     }
@@ -649,6 +650,7 @@ mod tests {
             replicates: 3,
             evaluations: 11,
             seed: 1,
+            primary: vec![],
         };
         let shared = Shared {
             ga: ga(6, 2),
@@ -714,21 +716,26 @@ mod tests {
         assert!((r.pairs[1].holm_p - 0.7).abs() < 1e-12);
         // Three replicates a side cannot reach p ≤ 0.05/3: nothing is detectable, and each
         // pair says so rather than "no difference".
-        assert_eq!(r.power.unwrap().distance, None);
-        assert_eq!(
-            (r.power.unwrap().m, r.power.unwrap().level),
-            (3, 0.05 / 3.0)
-        );
+        let power = r.power.clone().unwrap();
+        let d = power.secondary_detectable.unwrap();
+        assert_eq!((d.distance, d.m, d.level), (None, 3, 0.05 / 3.0));
+        assert_eq!(power.primary, None);
         assert!(!ab.detected());
         assert_eq!(
             ab.verdict(),
             "not detected at this power (none is detectable with 3 and 3 replicates)"
         );
-        assert!(
-            power_note(&r)
-                .unwrap()
-                .contains("each pair is tested at 0.05 / 3 = 0.0167")
-        );
+        assert!(power_note(&power, r.kind).contains("each pair is tested at 0.05 / 3 = 0.0167"));
+        // The fine reference: a's 0.25, 0.5, 0.75 against b's 1, 1.25 and the failure floor,
+        // which ranks lowest: U of a = 3 (each of a's beats the failure), A12 = 3/9; the tie-free
+        // exact p = 2 · P(U ≤ 3) = 0.7. c has two re-walked champions: tested on those.
+        let fine_ab = &r.fine_pairs[0];
+        assert_eq!(fine_ab.test.u, 3.0);
+        assert!((fine_ab.test.p - 0.7).abs() < 1e-12);
+        assert_eq!(r.fine_pairs.len(), 3);
+        assert_eq!(r.fine_pairs[1].detectable.n, 2);
+        // The regularity medians.
+        assert_eq!((a.median_repeated, a.median_symmetry), (0.5, 1.0));
         // The band: the mean of the best so far, 1, 2, 3 → 2 ± t(2)·1/√3.
         let b = band("a", &reps, None, 1);
         assert_eq!(b.points.len(), 2);
