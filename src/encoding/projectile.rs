@@ -39,7 +39,9 @@ pub(crate) fn mutated(
     step: Step,
     rng: &mut Rng,
 ) -> Option<[f64; 3]> {
-    let start = start?;
+    let Some(start) = start else {
+        return genes;
+    };
     let rate = clamp_rate(rate);
     let mut edges = genes.unwrap_or(start);
     for edge in &mut edges {
