@@ -27,6 +27,11 @@ use serde::{Deserialize, Serialize};
 /// The default density of a part (kg/m³): water's, and MuJoCo's default.
 pub const DEFAULT_DENSITY: f64 = 1000.0;
 
+/// The range of every edge (m) of a projectile that evolves with its thrower (the genomes'
+/// projectile genes, `evolve_projectile`): Chaumont et al. give none; from a 5 cm tile to a
+/// 1 m block, 0.125 kg to 1 t at water's density.
+pub const PROJECTILE_EDGE: (f64, f64) = (0.05, 1.0);
+
 /// A creature: body, brain, and what development had to say about it.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Creature {
@@ -40,6 +45,13 @@ pub struct Creature {
     pub environment: Vec<f64>,
     /// Problems found while building it; a creature with an error-level problem is invalid.
     pub problems: Vec<Problem>,
+    /// The edge lengths (m) of the projectile it throws, when it has one of its own: its
+    /// genome carries one (a run whose `[task.catapult]` sets `evolve_projectile`) or its
+    /// file names one (a grammar's `# projectile: X Y Z` line, `creature.json`'s
+    /// `projectile`). The catapult and aim tasks throw this box in place of their
+    /// `projectile_size`. None for every other creature.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub projectile: Option<[f64; 3]>,
 }
 
 /// A rigid box.
@@ -543,6 +555,11 @@ impl Creature {
         }
         if self.environment.iter().any(|v| !v.is_finite()) {
             return Err("the environment holds a value that is not finite".to_string());
+        }
+        if let Some(size) = self.projectile
+            && !size.iter().all(|x| x.is_finite() && *x > 0.0)
+        {
+            return Err("its projectile has a size that is not positive and finite".to_string());
         }
         Ok(())
     }

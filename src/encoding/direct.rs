@@ -44,6 +44,10 @@ pub struct DirectLimits {
     /// L-system successor without calls (and as often a driven walker: 19.5% against 19.6%
     /// over 1000 seeds). At most `max_modules`.
     pub random_length: usize,
+    /// The projectile newborns carry when the run evolves it (set by
+    /// [`Genome::evolve_projectile`]; not a key of the limits). None: no genome carries one.
+    #[serde(skip)]
+    pub projectile: Option<[f64; 3]>,
 }
 
 impl Default for DirectLimits {
@@ -59,6 +63,7 @@ impl From<&LSystemLimits> for DirectLimits {
             max_modules: l.max_modules,
             max_parts: l.max_parts,
             random_length: l.max_successor,
+            projectile: l.projectile,
         }
     }
 }
@@ -81,6 +86,10 @@ impl DirectLimits {
 pub struct DirectGenome {
     /// The modules: commands with constant arguments, `[` and `]` (never calls).
     pub modules: Vec<Item>,
+    /// The edge lengths (m) of the projectile it throws, when its run evolves the projectile
+    /// (the printed `# projectile:` line; see [`Genome::evolve_projectile`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub projectile: Option<[f64; 3]>,
 }
 
 /// How many insertion (and deletion) sites a string of `len` modules has: one per started
@@ -96,6 +105,7 @@ impl DirectGenome {
     /// modules, commands only with finite constant arguments where they take one, balanced
     /// brackets. `Err` says what is wrong.
     pub fn check(&self, limits: &DirectLimits) -> Result<(), String> {
+        super::projectile::check(self.projectile)?;
         let n = self.modules.len();
         if n == 0 || n > limits.modules() {
             return Err(format!("{n} modules, not 1 to {}", limits.modules()));
@@ -221,7 +231,10 @@ impl DirectGenome {
         let end = run.end.min(run.start + room);
         let mut modules = self.modules.clone();
         modules.splice(out, other.modules[run.start..end].iter().cloned());
-        let mut child = DirectGenome { modules };
+        let mut child = DirectGenome {
+            modules,
+            projectile: self.projectile,
+        };
         child.settle(self);
         child
     }
@@ -254,6 +267,7 @@ impl Genome for DirectGenome {
         let len = rng.random_range(1..=limits.random_modules());
         DirectGenome {
             modules: random_run(len, 0, 0, 0, rng),
+            projectile: limits.projectile,
         }
     }
 
@@ -263,7 +277,23 @@ impl Genome for DirectGenome {
         g.perturb_arguments(rate, rng);
         g.insert_runs(limits, rate, rng);
         g.delete_runs(rate, rng);
+        // Last, so that a run whose projectile does not evolve draws as it always has.
+        g.projectile = super::projectile::mutated(
+            g.projectile,
+            limits.projectile,
+            rate,
+            super::projectile::Step::Stepwise,
+            rng,
+        );
         g
+    }
+
+    fn evolve_projectile(limits: &mut DirectLimits, start: [f64; 3]) {
+        limits.projectile = Some(start);
+    }
+
+    fn projectile(&self) -> Option<[f64; 3]> {
+        self.projectile
     }
 
     fn crossover(&self, other: &Self, limits: &DirectLimits, rng: &mut Rng) -> Option<Self> {
@@ -304,7 +334,11 @@ impl Genome for DirectGenome {
         )?;
         let mut modules = self.modules.clone();
         modules.splice(site.range, copy);
-        Some(DirectGenome { modules })
+        // The breeder's projectile, whole (Chaumont 4.1: one projectile only).
+        Some(DirectGenome {
+            modules,
+            projectile: self.projectile,
+        })
     }
 
     fn develop(&self, limits: &DirectLimits, seed: u64) -> Result<Creature, DevelopError> {
@@ -318,6 +352,10 @@ impl Genome for DirectGenome {
             seed,
             None,
         )
+        .map(|c| Creature {
+            projectile: self.projectile,
+            ..c
+        })
     }
 
     fn to_text(&self) -> String {
@@ -325,6 +363,12 @@ impl Genome for DirectGenome {
             "# A direct genome (Hornby & Pollack 2001's non-generative encoding): {} module(s).\naxiom:",
             self.modules.len()
         );
+        let line = super::projectile::text_line(self.projectile);
+        if !line.is_empty() {
+            // After the first line: the line names the genome, and stays first.
+            let at = out.find('\n').map_or(0, |i| i + 1);
+            out.insert_str(at, &line);
+        }
         for item in &self.modules {
             out.push(' ');
             push_item_text(item, &mut out);
@@ -376,7 +420,10 @@ impl Genome for DirectGenome {
 fn from_lsys(name: &str, text: &str, limits: &DirectLimits) -> Result<DirectGenome, DevelopError> {
     let modules = derived_items(name, text, limits.modules())
         .map_err(|problems| refuse(problems.join("; ")))?;
-    let genome = DirectGenome { modules };
+    let genome = DirectGenome {
+        modules,
+        projectile: super::projectile::read_line(text)?,
+    };
     genome.check(limits).map_err(refuse)?;
     Ok(genome)
 }

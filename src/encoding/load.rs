@@ -158,7 +158,10 @@ fn creature_json(file: &Path, text: &str, max_parts: usize) -> Result<Creature, 
 fn graph_genome(file: &Path, text: &str) -> Result<Creature, LoadError> {
     let limits = GraphLimits::default();
     let genome = GraphGenome::from_file_text(&file.display().to_string(), text, &limits)?;
-    Ok(genome.creature(limits.max_parts))
+    Ok(Creature {
+        projectile: genome.projectile,
+        ..genome.creature(limits.max_parts)
+    })
 }
 
 /// Whether a text that does not read as JSON is a graph genome all the same: it has the
@@ -215,7 +218,13 @@ pub fn grow_grammar(
         progress,
     )?;
     notes.extend(last.shortcut.map(|s| format!("note: {s}")));
-    let creature = last.frame.creature;
+    // A genome's `# projectile:` line (or a hand-written one) names the projectile it throws.
+    let projectile = super::projectile::read_line(lsys.source().text())
+        .map_err(|e| bad(format!("{}: {}", lsys.source().name(), e.0)))?;
+    let creature = Creature {
+        projectile,
+        ..last.frame.creature
+    };
     notes.extend(said_once(
         creature
             .problems

@@ -20,6 +20,7 @@ pub mod limits;
 pub mod load;
 pub mod lsystem;
 mod mirror;
+pub(crate) mod projectile;
 mod registry;
 mod show;
 mod show_habitats;
@@ -104,6 +105,21 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
     /// whose genomes read no environment, changes nothing.
     fn allow_environment_reads(limits: &mut Self::Limits, probability: f64) {
         let _ = (limits, probability);
+    }
+
+    /// Lets the genomes carry their thrower's projectile as genes, its three edge lengths
+    /// (m), newborns starting from `start` (called when a run whose `[task.catapult]` sets
+    /// `evolve_projectile` is assembled; see the `projectile` module). Every encoding of the
+    /// registry does; the default, for a genome without projectile genes, changes nothing
+    /// (its creatures throw the task's projectile).
+    fn evolve_projectile(limits: &mut Self::Limits, start: [f64; 3]) {
+        let _ = (limits, start);
+    }
+
+    /// The edge lengths (m) of the projectile the genome carries, when it carries one (none
+    /// by default).
+    fn projectile(&self) -> Option<[f64; 3]> {
+        None
     }
 
     /// A random genome within `limits`.

@@ -195,6 +195,12 @@ pub fn generation_table(dir: &Path) -> Result<String, StoreError> {
     let task = run
         .task_spec()
         .map_or_else(|| format!("{} task", run.task), |spec| spec.fitness_label());
+    // A run whose projectile evolves shows each generation's best's projectile.
+    let evolves_projectile = run.task_spec().is_some_and(|spec| {
+        spec.task
+            .get::<crate::task::CatapultOptions>()
+            .is_some_and(|c| c.evolve_projectile)
+    });
     let mut lines = vec![
         format!(
             "{}: {} encoding, {task}, seed {}, ontogeny {}",
@@ -215,7 +221,11 @@ pub fn generation_table(dir: &Path) -> Result<String, StoreError> {
             "evals",
             "seconds",
             "evals/s"
-        ),
+        ) + if evolves_projectile {
+            "  projectile (m; kg)"
+        } else {
+            ""
+        },
     ];
     for g in store.generations()? {
         // "–" where the best was not re-walked at the fine reference; a status other than ok
@@ -237,8 +247,38 @@ pub fn generation_table(dir: &Path) -> Result<String, StoreError> {
             g.wall_seconds,
             g.evaluations_per_second
         ));
+        if evolves_projectile {
+            let shown = best_projectile(&store, g.index)?;
+            if let Some(row) = lines.last_mut() {
+                row.push_str(&format!("  {shown}"));
+            }
+        }
     }
     Ok(lines.join("\n"))
+}
+
+/// The projectile generation `generation`'s best threw, from its terms: `0.31 × 0.29 × 0.07,
+/// 6.3`; "–" when the best has none (it failed before throwing).
+fn best_projectile(store: &RunStore, generation: u32) -> Result<String, StoreError> {
+    let individuals = store.individuals(generation)?;
+    let best = individuals
+        .iter()
+        .filter(|i| !i.fitness.is_nan())
+        .reduce(|b, i| if i.fitness > b.fitness { i } else { b });
+    let terms: Option<std::collections::BTreeMap<String, f64>> =
+        best.and_then(|i| serde_json::from_str(&i.terms_json).ok());
+    let term = |name: &str| terms.as_ref().and_then(|t| t.get(name).copied());
+    Ok(
+        match (
+            term("projectile_x"),
+            term("projectile_y"),
+            term("projectile_z"),
+            term("projectile_mass"),
+        ) {
+            (Some(x), Some(y), Some(z), Some(m)) => format!("{x:.3} × {y:.3} × {z:.3}; {m:.2}"),
+            _ => "–".to_string(),
+        },
+    )
 }
 
 /// The columns of [`generation_csv`], in order.

@@ -461,6 +461,12 @@ impl<G: Genome> Run<G> {
         };
         let mut limits = config.limits.clone();
         G::adapt_limits(&mut limits, purpose);
+        if let Some(catapult) = config.task.task.get::<crate::task::CatapultOptions>()
+            && catapult.evolve_projectile
+        {
+            let [x, y, z] = catapult.projectile_size.into();
+            G::evolve_projectile(&mut limits, [x, y, z]);
+        }
         G::allow_environment_reads(&mut limits, config.ga.environment_reads);
         Run {
             cache: EvaluationCache::new(config.cache),

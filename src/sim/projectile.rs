@@ -105,6 +105,12 @@ impl World {
         }
     }
 
+    /// The projectile's mass (kg), as the physics holds it, when there is one.
+    pub fn projectile_mass(&self) -> Option<f64> {
+        self.projectile
+            .map(|(body, _)| self.bodies[body].mass() as f64)
+    }
+
     /// The projectile's centre and speed, when there is one.
     pub fn projectile_state(&self) -> Option<(Vector3<f64>, f64)> {
         self.projectile.map(|(body, _)| {

@@ -20,6 +20,10 @@ impl Task for AimTask {
         "release_step",
         "release_time",
         "seconds",
+        "projectile_x",
+        "projectile_y",
+        "projectile_z",
+        "projectile_mass",
         "target_x",
         "target_y",
         "target_z",
@@ -82,5 +86,28 @@ mod tests {
         assert_eq!(CatapultTask::check_options(&options), Ok(()));
         options.target = Some(nalgebra::Vector3::new(6e4, 0.0, 8e4));
         assert_eq!(AimTask::check_options(&options), Ok(()));
+    }
+
+    #[test]
+    fn an_evolving_projectile_starts_within_its_range() {
+        let mut options = CatapultOptions {
+            evolve_projectile: true,
+            projectile_size: nalgebra::Vector3::new(2.0, 0.2, 0.2),
+            ..CatapultOptions::default()
+        };
+        let refusal = "projectile_size must be within [0.05, 1] m on every edge when the \
+                       projectile evolves, not [2, 0.2, 0.2]";
+        assert_eq!(
+            CatapultTask::check_options(&options)
+                .unwrap_err()
+                .to_string(),
+            refusal
+        );
+        assert_eq!(
+            AimTask::check_options(&options).unwrap_err().to_string(),
+            refusal
+        );
+        options.evolve_projectile = false;
+        assert_eq!(CatapultTask::check_options(&options), Ok(()));
     }
 }

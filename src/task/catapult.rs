@@ -36,6 +36,19 @@ pub struct CatapultOptions {
     pub max_height: f64,
     /// The aim task's target, relative to where the projectile starts (metres; y is up).
     pub target: Option<Vector3<f64>>,
+    /// Whether the projectile's edge lengths evolve with the thrower (Chaumont et al. 4.1:
+    /// "mutations are allowed on the size and shape of the projectile"): every genome of the
+    /// run carries them as genes, starting at `projectile_size`, and its creature throws its
+    /// own projectile (of `projectile_density`; [`CatapultOptions::projectile_for`]). False:
+    /// genomes carry none, and their creatures throw `projectile_size`.
+    #[serde(skip_serializing_if = "is_false")]
+    pub evolve_projectile: bool,
+    /// Whether the aim task's creatures sense the target (their `target` sensors read its
+    /// bearing). False, as Chaumont et al.'s aimers ("the individuals do not have sensors to
+    /// retrieve information about the target", 4.3): every `target` sensor reads 0, as in
+    /// the catapult task.
+    #[serde(skip_serializing_if = "is_true")]
+    pub target_sensor: bool,
     /// The fitness as an expression of the task's terms (`fitness = "D_p - release_time"`); none:
     /// the catapult's distance, the aim task's distance less the miss.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -53,12 +66,32 @@ impl Default for CatapultOptions {
             max_seconds: 60.0,
             max_height: 15.0,
             target: None,
+            evolve_projectile: false,
+            target_sensor: true,
             fitness: None,
         }
     }
 }
 
+fn is_false(b: &bool) -> bool {
+    !b
+}
+
+fn is_true(b: &bool) -> bool {
+    *b
+}
+
 impl CatapultOptions {
+    /// The edge lengths (m) of the projectile `creature` throws: its own
+    /// ([`Creature::projectile`], which only a genome whose projectile evolved, or a file
+    /// that names one, gives it), else `projectile_size`.
+    pub fn projectile_for(&self, creature: &Creature) -> Vector3<f64> {
+        match creature.projectile {
+            Some([x, y, z]) => Vector3::new(x, y, z),
+            None => self.projectile_size,
+        }
+    }
+
     /// The most control steps of `dt` the catapult and aim tasks can take: `max_seconds`.
     pub fn max_steps(&self, dt: f64) -> usize {
         steps_in(self.max_seconds, dt)
@@ -110,7 +143,12 @@ pub fn catapult(
 pub(super) fn catapult_watched(
     setup: Setup<'_, '_, CatapultOptions>,
 ) -> Result<Evaluation, Interrupted> {
-    let Setup { sim, options, .. } = setup;
+    let Setup {
+        sim,
+        options,
+        creature,
+        ..
+    } = setup;
     let task: &'static str = if options.target.is_some() {
         "aim"
     } else {
@@ -125,18 +163,21 @@ pub(super) fn catapult_watched(
             format!("the target must be within {MAX_TARGET_DISTANCE} m of the projectile"),
         ));
     }
+    let projectile = options.projectile_for(creature);
     // The target in the world, once the projectile is placed: kept in the terms of a failed
     // evaluation too, so that its recording can show the target.
     let placed_target = std::cell::Cell::new(None);
     let mut evaluation = evaluate(task, setup, |run| {
         run.world
-            .attach_projectile(options.projectile_size, options.projectile_density);
-        run.projectile_size = Some(options.projectile_size);
+            .attach_projectile(projectile, options.projectile_density);
+        run.projectile_size = Some(projectile);
         run.phase = Phase::Throwing;
         let (start_position, _) = run.world.projectile_state().expect("attached");
         let target = options.target.map(|t| start_position + t);
         placed_target.set(target);
-        run.world.set_target(target);
+        // Without the target sensor, `target` sensors read 0, as the catapult's do.
+        run.world
+            .set_target(target.filter(|_| options.target_sensor));
         let mut released_at = None;
         let mut release_point = start_position;
         let mut trajectory = Vec::new();
@@ -199,6 +240,13 @@ pub(super) fn catapult_watched(
                 released_at as f64 * sim.control_step,
             ),
             ("seconds".to_string(), run.world.time()),
+            ("projectile_x".to_string(), projectile.x),
+            ("projectile_y".to_string(), projectile.y),
+            ("projectile_z".to_string(), projectile.z),
+            (
+                "projectile_mass".to_string(),
+                projectile.x * projectile.y * projectile.z * options.projectile_density,
+            ),
         ]);
         let fitness = match target {
             Some(target) => {
@@ -234,7 +282,16 @@ impl super::Task for CatapultTask {
     const SUMMARY: &'static str =
         "Chaumont et al.'s catapult: distance the projectile travels (eq. 2)";
     const THROWS: bool = true;
-    const TERMS: &'static [&'static str] = &["D_p", "release_step", "release_time", "seconds"];
+    const TERMS: &'static [&'static str] = &[
+        "D_p",
+        "release_step",
+        "release_time",
+        "seconds",
+        "projectile_x",
+        "projectile_y",
+        "projectile_z",
+        "projectile_mass",
+    ];
     type Options = CatapultOptions;
 
     expression_fitness!();
@@ -242,6 +299,7 @@ impl super::Task for CatapultTask {
     fn reads(options: &CatapultOptions) -> CatapultOptions {
         CatapultOptions {
             target: None,
+            target_sensor: true,
             ..options.clone()
         }
     }

@@ -75,7 +75,9 @@ impl Bounds for CatapultOptions {
     /// Checks the catapult's settings: the projectile's size (every edge) and density finite
     /// and positive, `max_seconds` in (0, [`MAX_SECONDS`]], the release delay and the rest
     /// duration in [0, [`MAX_SECONDS`]], the rest speed and the height limit finite and
-    /// positive. The target, which only the aim task reads, is [`CatapultOptions::check_target`]'s.
+    /// positive; when the projectile evolves, its starting edges within
+    /// [`PROJECTILE_EDGE`](crate::creature::PROJECTILE_EDGE). The target, which only the aim
+    /// task reads, is [`CatapultOptions::check_target`]'s.
     fn check(&self) -> Result<(), SettingError> {
         for edge in self.projectile_size.iter() {
             check_real("projectile_size", *edge, 0.0, true)?;
@@ -85,7 +87,17 @@ impl Bounds for CatapultOptions {
         check_phase("release_delay", self.release_delay)?;
         check_real("rest_speed", self.rest_speed, 0.0, true)?;
         check_phase("rest_duration", self.rest_duration)?;
-        check_real("max_height", self.max_height, 0.0, true)
+        check_real("max_height", self.max_height, 0.0, true)?;
+        let (lo, hi) = crate::creature::PROJECTILE_EDGE;
+        if self.evolve_projectile && !self.projectile_size.iter().all(|e| (lo..=hi).contains(e)) {
+            let s = self.projectile_size;
+            return Err(SettingError::out_of_range(
+                "projectile_size",
+                &format!("within [{lo}, {hi}] m on every edge when the projectile evolves"),
+                format!("[{}, {}, {}]", s.x, s.y, s.z),
+            ));
+        }
+        Ok(())
     }
 }
 

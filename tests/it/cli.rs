@@ -902,7 +902,8 @@ fn flags_the_task_does_not_use_are_warned_about() {
         stderr(&o).contains(
             "error: --fitness \"distance\" is a formula of the walker task, not of the catapult \
              task, whose fitness may be an expression of its terms: D_p, release_step, \
-             release_time, seconds, joint_gap"
+             release_time, seconds, projectile_x, projectile_y, projectile_z, \
+             projectile_mass, joint_gap"
         ),
         "{}",
         stderr(&o)

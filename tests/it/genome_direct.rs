@@ -23,7 +23,10 @@ fn f(l: f64) -> Item {
 }
 
 fn genome(modules: Vec<Item>) -> DirectGenome {
-    DirectGenome { modules }
+    DirectGenome {
+        modules,
+        projectile: None,
+    }
 }
 
 /// The modules of a genome as the axiom writes them.
@@ -479,6 +482,7 @@ fn limits_strategy() -> impl Strategy<Value = DirectLimits> {
             max_modules,
             max_parts,
             random_length,
+            projectile: None,
         }
     })
 }

@@ -61,6 +61,7 @@ fn two_nodes() -> GraphGenome {
     GraphGenome {
         nodes: vec![root, limb],
         neurons: vec![],
+        projectile: None,
     }
 }
 
@@ -159,6 +160,7 @@ fn reflection_mirrors_a_limb_and_everything_below_it_across_the_roots_plane() {
     let g = GraphGenome {
         nodes: vec![root, limb],
         neurons: vec![],
+        projectile: None,
     };
     let c = develop(&g);
     assert!(c.is_valid(), "{:?}", c.problems);
@@ -197,6 +199,7 @@ fn chain(sizes: &[f64]) -> GraphGenome {
     GraphGenome {
         nodes,
         neurons: vec![],
+        projectile: None,
     }
 }
 
@@ -353,6 +356,7 @@ fn driven(kind: JointKind, drive: &[f64]) -> GraphGenome {
     GraphGenome {
         nodes: vec![root, limb],
         neurons: vec![],
+        projectile: None,
     }
 }
 
@@ -451,6 +455,7 @@ fn small_limits() -> impl Strategy<Value = GraphLimits> {
                     max_global_neurons: global,
                     max_inputs: inputs,
                     regenerate_tries: 2,
+                    projectile: None,
                     joint_kinds: if sims {
                         JointSet::Sims
                     } else {
@@ -770,6 +775,7 @@ fn a_graph_genome_far_beyond_the_node_limit_is_refused_by_its_sizes_with_the_lim
     let genome = GraphGenome {
         nodes: vec![one; 100_000],
         neurons: vec![],
+        projectile: None,
     };
     let text = serde_json::to_string(&genome).unwrap();
     let err = GraphGenome::from_text(&text, &GraphLimits::default()).unwrap_err();
@@ -792,6 +798,7 @@ fn a_graph_genome_far_beyond_the_node_limit_is_refused_by_its_sizes_with_the_lim
     let text = serde_json::to_string(&GraphGenome {
         nodes: vec![wide],
         neurons: vec![],
+        projectile: None,
     })
     .unwrap();
     let err = GraphGenome::from_text(&text, &GraphLimits::default()).unwrap_err();

@@ -66,6 +66,7 @@ fn chain() -> LSystemGenome {
             read: None,
         }],
         environment: Vec::new(),
+        projectile: None,
     }
 }
 

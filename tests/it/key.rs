@@ -315,3 +315,32 @@ const PINNED_LEAVES: &[&str] = &[
     "/walker/second_settle",
     "/walker/seconds",
 ];
+
+#[test]
+fn the_aim_task_s_target_sensor_and_a_creature_s_projectile_change_the_key() {
+    use ontogeny::task::CatapultOptions;
+    let c = creature();
+    let with = |kind: TaskKind, change: &dyn Fn(&mut CatapultOptions)| {
+        let mut spec = TaskSpec::new(kind);
+        change(spec.task.get_mut::<CatapultOptions>().unwrap());
+        EvaluationKey::of(&c, &spec)
+    };
+    let blind = |o: &mut CatapultOptions| o.target_sensor = false;
+    let plain = |_: &mut CatapultOptions| {};
+    // The aim task reads the switch; the catapult, which senses no target, does not.
+    assert_ne!(with(TaskKind::Aim, &blind), with(TaskKind::Aim, &plain));
+    assert_eq!(
+        with(TaskKind::Catapult, &blind),
+        with(TaskKind::Catapult, &plain)
+    );
+    // A creature with a projectile of its own is another creature to evaluate.
+    let thrower = Creature {
+        projectile: Some([0.3, 0.05, 0.3]),
+        ..creature()
+    };
+    let spec = TaskSpec::new(TaskKind::Catapult);
+    assert_ne!(
+        EvaluationKey::of(&thrower, &spec),
+        EvaluationKey::of(&c, &spec)
+    );
+}

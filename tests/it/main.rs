@@ -50,6 +50,7 @@ mod old_release;
 mod outputs;
 mod plasticity;
 mod profile;
+mod projectile;
 mod render;
 mod rooms;
 mod store;

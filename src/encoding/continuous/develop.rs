@@ -61,7 +61,12 @@ impl ContinuousGenome {
             Ok::<(), crate::lang::Diagnostic>(())
         })
         .map_err(|d| DevelopError(d.to_string()))?;
-        last.ok_or_else(|| DevelopError("development showed no last frame".into()))
+        let creature =
+            last.ok_or_else(|| DevelopError("development showed no last frame".into()))?;
+        Ok(Creature {
+            projectile: self.projectile,
+            ..creature
+        })
     }
 }
 

@@ -84,6 +84,10 @@ pub struct ContinuousLimits {
     /// limits). 0, the default, draws exactly as a genome without reads always has.
     #[serde(skip)]
     pub environment_reads: f64,
+    /// The projectile newborns carry when the run evolves it (set by
+    /// [`Genome::evolve_projectile`]; not a key of the limits). None: no genome carries one.
+    #[serde(skip)]
+    pub projectile: Option<[f64; 3]>,
 }
 
 impl Default for ContinuousLimits {
@@ -103,6 +107,7 @@ impl Default for ContinuousLimits {
             max_parts: 50,
             max_modules: 5000,
             environment_reads: 0.0,
+            projectile: None,
         }
     }
 }
@@ -175,6 +180,7 @@ impl ContinuousLimits {
             } else {
                 0.0
             },
+            projectile: self.projectile,
         }
     }
 
@@ -371,6 +377,10 @@ pub struct ContinuousGenome {
     /// genome has none. Its length is the array's size.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub environment: Vec<f64>,
+    /// The edge lengths (m) of the projectile it throws, when its run evolves the projectile
+    /// (the printed `# projectile:` line; see [`Genome::evolve_projectile`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub projectile: Option<[f64; 3]>,
 }
 
 /// Most frames (time / dt) a genome may show: each costs a restart of the ODE solver.
@@ -385,6 +395,7 @@ impl ContinuousGenome {
     /// `Err` naming the first way the genome exceeds `limits` (or is malformed: unbalanced
     /// brackets, rules out of order, a parameter outside its range, ...).
     pub fn check_limits(&self, limits: &ContinuousLimits) -> Result<(), String> {
+        super::projectile::check(self.projectile)?;
         if !(self.time > 0.0 && self.time <= limits.time) {
             return Err(format!(
                 "its time, {}, is not in (0, {}] (the limit 'time')",
@@ -705,6 +716,14 @@ impl Genome for ContinuousGenome {
         limits.environment_reads = probability;
     }
 
+    fn evolve_projectile(limits: &mut ContinuousLimits, start: [f64; 3]) {
+        limits.projectile = Some(start);
+    }
+
+    fn projectile(&self) -> Option<[f64; 3]> {
+        self.projectile
+    }
+
     fn develop(&self, limits: &ContinuousLimits, _seed: u64) -> Result<Creature, DevelopError> {
         self.creature(limits, None)
     }
@@ -748,11 +767,16 @@ impl Genome for ContinuousGenome {
     fn from_lsys(text: &str, limits: &ContinuousLimits) -> Result<Self, DevelopError> {
         let lsys =
             LSystem::from_text("init.lsys", text).map_err(|d| DevelopError(d.to_string()))?;
-        from_file(&lsys, limits).map_err(|e| {
+        let projectile = super::projectile::read_line(text)?;
+        let genome = from_file(&lsys, limits).map_err(|e| {
             DevelopError(format!(
                 "this file does not fit the {} genome: {e}",
                 Self::NAME
             ))
+        })?;
+        Ok(ContinuousGenome {
+            projectile,
+            ..genome
         })
     }
 }
@@ -770,6 +794,7 @@ impl ContinuousGenome {
             environment: Vec::new(),
             axiom,
             rules,
+            projectile: None,
         }
     }
 }

@@ -486,6 +486,7 @@ impl ContinuousGenome {
             axiom: Vec::new(),
             rules: Vec::new(),
             environment: Vec::new(),
+            projectile: limits.projectile,
         };
         for &g in &active {
             genome.insert_rule(random_rule(g, &limits, &active, rng));
@@ -712,6 +713,14 @@ impl ContinuousGenome {
         }
         g.mutate_reads(&limits, &active, rate, rng);
         g.fit_environment(&limits);
+        // Last, so that a run whose projectile does not evolve draws as it always has.
+        g.projectile = crate::encoding::projectile::mutated(
+            g.projectile,
+            limits.projectile,
+            rate,
+            crate::encoding::projectile::Step::Stepwise,
+            rng,
+        );
         g
     }
 
@@ -825,6 +834,7 @@ mod tests {
             time: 4.0,
             dt: 1.0,
             environment: Vec::new(),
+            projectile: None,
             axiom: vec![Token::Command(Command::Forward, Some(t))],
             rules: vec![
                 rule(Grower::Control(0), t),

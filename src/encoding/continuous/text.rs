@@ -10,6 +10,7 @@ impl ContinuousGenome {
         let mut s = String::new();
         s.push_str("# An lsystem-continuous genome (Matos & Arita, section 3.2): every rule\n");
         s.push_str("# grows a maturing token linearly until its threshold, then matures it.\n");
+        s.push_str(&crate::encoding::projectile::text_line(self.projectile));
         s.push_str(&format!("time: {}\n", self.time));
         s.push_str(&format!("dt: {}\n", self.dt));
         s.push_str("timing: exact\n");
@@ -344,6 +345,7 @@ pub(super) fn from_file(
         axiom,
         rules: Vec::new(),
         environment,
+        projectile: None,
     };
     for rule in rules {
         genome.insert_rule(rule);
@@ -389,6 +391,7 @@ mod tests {
             time: 4.0,
             dt: 0.5,
             environment: Vec::new(),
+            projectile: None,
             axiom: vec![Token::Grower(Grower::Maturing(Command::Forward))],
             rules: vec![Rule {
                 grower: Grower::Maturing(Command::Forward),

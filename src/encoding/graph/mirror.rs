@@ -100,6 +100,8 @@ impl GraphGenome {
         Some(GraphGenome {
             nodes: joined(&g.nodes, &keep, other, list),
             neurons: g.neurons,
+            // The breeder's projectile, whole (Chaumont 4.1: one projectile only).
+            projectile: g.projectile,
         })
     }
 }

@@ -101,6 +101,10 @@ pub struct GraphLimits {
     /// What the creatures are for: set from the task when a run is assembled, never written.
     #[serde(skip)]
     pub purpose: Purpose,
+    /// The projectile newborns carry when the run evolves it (set by
+    /// [`Genome::evolve_projectile`]; not a key of the limits). None: no genome carries one.
+    #[serde(skip)]
+    pub projectile: Option<[f64; 3]>,
 }
 
 impl Default for GraphLimits {
@@ -116,6 +120,7 @@ impl Default for GraphLimits {
             regenerate_tries: 10,
             joint_kinds: JointSet::OneAxis,
             purpose: Purpose::Locomotion,
+            projectile: None,
         }
     }
 }
@@ -141,6 +146,11 @@ pub struct GraphGenome {
     /// Neurons that exist once for the whole creature.
     #[serde(default)]
     pub neurons: Vec<NeuronGene>,
+    /// The edge lengths (m) of the projectile it throws, when its run evolves the projectile
+    /// (Chaumont et al. 4.1, Figure 3: the projectile is a gene of its own; see
+    /// [`Genome::evolve_projectile`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub projectile: Option<[f64; 3]>,
 }
 
 /// A node: one part, its joint to its parent, its local neurons and its connections.
@@ -320,6 +330,7 @@ impl GraphGenome {
     /// exist, limits per degree of freedom, values in their ranges); `Err` says what is not.
     pub fn check(&self, limits: &GraphLimits) -> Result<(), String> {
         GenomeShape::of(self).check(limits)?;
+        super::projectile::check(self.projectile)?;
         let n = self.nodes.len();
         let within = |x: f64, (lo, hi): (f64, f64)| x.is_finite() && x >= lo && x <= hi;
         let check_neuron = |where_: &str, g: &NeuronGene| -> Result<(), String> {
@@ -466,8 +477,26 @@ impl Genome for GraphGenome {
 
     fn mutate(&self, limits: &GraphLimits, rate: f64, rng: &mut Rng) -> Self {
         let rate = clamp_rate(rate);
-        GraphGenome::regenerate(limits, rng, |rng| Some(self.mutate_once(limits, rate, rng)))
-            .expect("mutation always makes a genome")
+        let mut g =
+            GraphGenome::regenerate(limits, rng, |rng| Some(self.mutate_once(limits, rate, rng)))
+                .expect("mutation always makes a genome");
+        // Last, so that a run whose projectile does not evolve draws as it always has.
+        g.projectile = super::projectile::mutated(
+            self.projectile,
+            limits.projectile,
+            rate,
+            super::projectile::Step::Gaussian,
+            rng,
+        );
+        g
+    }
+
+    fn evolve_projectile(limits: &mut GraphLimits, start: [f64; 3]) {
+        limits.projectile = Some(start);
+    }
+
+    fn projectile(&self) -> Option<[f64; 3]> {
+        self.projectile
     }
 
     fn crossover(&self, other: &Self, limits: &GraphLimits, rng: &mut Rng) -> Option<Self> {
@@ -495,7 +524,10 @@ impl Genome for GraphGenome {
 
     fn develop(&self, limits: &GraphLimits, _seed: u64) -> Result<Creature, DevelopError> {
         self.check(limits).map_err(DevelopError)?;
-        Ok(self.creature(limits.max_parts))
+        Ok(Creature {
+            projectile: self.projectile,
+            ..self.creature(limits.max_parts)
+        })
     }
 
     fn to_text(&self) -> String {

@@ -394,7 +394,11 @@ impl GraphGenome {
                 }
             }
         }
-        let mut g = GraphGenome { nodes, neurons };
+        let mut g = GraphGenome {
+            nodes,
+            neurons,
+            projectile: limits.projectile,
+        };
         g.collect_garbage();
         g
     }
@@ -515,7 +519,12 @@ impl GraphGenome {
         let mut neurons: Vec<NeuronGene> = self.neurons[..kg].to_vec();
         neurons.extend(other.neurons.iter().skip(kg).cloned());
         neurons.truncate(limits.max_global_neurons);
-        let mut g = GraphGenome { nodes, neurons };
+        // The first parent's projectile, whole (Chaumont 4.1: "one projectile only").
+        let mut g = GraphGenome {
+            nodes,
+            neurons,
+            projectile: self.projectile,
+        };
         g.collect_garbage();
         g
     }
@@ -555,6 +564,7 @@ impl GraphGenome {
         Some(GraphGenome {
             nodes: joined(&g.nodes, &keep, other, list),
             neurons: g.neurons,
+            projectile: g.projectile,
         })
     }
 }

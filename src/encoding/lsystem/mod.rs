@@ -92,6 +92,10 @@ pub struct LSystemLimits {
     /// exactly as a genome without reads always has.
     #[serde(skip)]
     pub environment_reads: f64,
+    /// The projectile newborns carry when the run evolves it (set by
+    /// [`Genome::evolve_projectile`]; not a key of the limits). None: no genome carries one.
+    #[serde(skip)]
+    pub projectile: Option<[f64; 3]>,
 }
 
 impl Default for LSystemLimits {
@@ -105,6 +109,7 @@ impl Default for LSystemLimits {
             max_modules: 1_000,
             max_parts: 50,
             environment_reads: 0.0,
+            projectile: None,
         }
     }
 }
@@ -358,11 +363,23 @@ pub struct LSystemGenome {
     /// genome has none. Its length is the array's size.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub environment: Vec<f64>,
+    /// The edge lengths (m) of the projectile it throws, when its run evolves the projectile
+    /// (the printed `# projectile:` line; see [`Genome::evolve_projectile`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub projectile: Option<[f64; 3]>,
 }
 
 // ---- the genome ----------------------------------------------------------------------
 
 impl LSystemGenome {
+    /// `creature`, developed from this genome, with the projectile the genome carries.
+    fn throwing(&self, creature: Creature) -> Creature {
+        Creature {
+            projectile: self.projectile,
+            ..creature
+        }
+    }
+
     /// The number of items in the longest successor.
     pub fn longest_successor(&self) -> usize {
         self.successors().map(Vec::len).max().unwrap_or(0)
@@ -378,6 +395,7 @@ impl LSystemGenome {
     /// pair, calls name existing productions with one argument per parameter, parameters
     /// named exist, and every successor's brackets are balanced. `Err` says what is wrong.
     pub fn check(&self, limits: &LSystemLimits) -> Result<(), String> {
+        super::projectile::check(self.projectile)?;
         let params = limits.param_count();
         if self.productions.is_empty() || self.productions.len() > limits.productions() {
             return Err(format!(
@@ -524,6 +542,14 @@ impl Genome for LSystemGenome {
         limits.environment_reads = probability;
     }
 
+    fn evolve_projectile(limits: &mut LSystemLimits, start: [f64; 3]) {
+        limits.projectile = Some(start);
+    }
+
+    fn projectile(&self) -> Option<[f64; 3]> {
+        self.projectile
+    }
+
     fn develop(&self, limits: &LSystemLimits, seed: u64) -> Result<Creature, DevelopError> {
         develop_text(
             &self.to_text(),
@@ -532,6 +558,7 @@ impl Genome for LSystemGenome {
             seed,
             None,
         )
+        .map(|c| self.throwing(c))
     }
 
     fn environment_values(&self) -> &[f64] {
@@ -551,6 +578,7 @@ impl Genome for LSystemGenome {
             seed,
             array_read(&self.environment, env)?,
         )
+        .map(|c| self.throwing(c))
     }
 
     fn show(&self) -> String {

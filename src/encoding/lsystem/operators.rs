@@ -309,6 +309,7 @@ impl LSystemGenome {
             derivation_length: limits.derivation_length,
             productions,
             environment: Vec::new(),
+            projectile: limits.projectile,
         };
         genome.add_random_reads(limits, rng);
         genome
@@ -366,6 +367,14 @@ impl LSystemGenome {
         }
         g.mutate_reads(limits, rate, rng);
         g.fit_environment();
+        // Last, so that a run whose projectile does not evolve draws as it always has.
+        g.projectile = crate::encoding::projectile::mutated(
+            g.projectile,
+            limits.projectile,
+            rate,
+            crate::encoding::projectile::Step::Stepwise,
+            rng,
+        );
         g
     }
 
@@ -510,6 +519,7 @@ mod tests {
                 production(vec![call(1)]),
             ],
             environment: Vec::new(),
+            projectile: None,
         };
         g.remove_production(1);
         assert_eq!(

@@ -426,6 +426,7 @@ fn structural(
         derivation_length,
         productions,
         environment,
+        projectile: None,
     };
     Ok((genome, notes))
 }
@@ -637,7 +638,8 @@ pub(super) fn genome_as_written(
 ) -> Result<LSystemGenome, DevelopError> {
     let lsys = LSystem::from_text("file.lsys", text).map_err(|d| DevelopError(without_flags(d)))?;
     match structural("file.lsys", text, &lsys) {
-        Ok((genome, notes)) if notes.is_empty() => {
+        Ok((mut genome, notes)) if notes.is_empty() => {
+            genome.projectile = crate::encoding::projectile::read_line(text)?;
             genome.check(limits).map_err(refuse)?;
             Ok(genome)
         }
@@ -659,7 +661,7 @@ pub(super) fn seed_from_lsys(
 ) -> Result<Seed<LSystemGenome>, DevelopError> {
     // The language's own checks first: a file that does not compile gets its located error.
     let lsys = LSystem::from_text(name, text).map_err(|d| DevelopError(without_flags(d)))?;
-    let (genome, mut notes) = match structural(name, text, &lsys) {
+    let (mut genome, mut notes) = match structural(name, text, &lsys) {
         Ok((mut genome, notes)) => {
             // Every production takes at least the limits' parameters, as random genomes do.
             let params = genome.start.len().max(limits.param_count());
@@ -697,6 +699,7 @@ pub(super) fn seed_from_lsys(
                         read: None,
                     }],
                     environment: Vec::new(),
+                    projectile: None,
                 };
                 (genome, vec![note])
             }
@@ -716,6 +719,7 @@ pub(super) fn seed_from_lsys(
             }
         },
     };
+    genome.projectile = crate::encoding::projectile::read_line(text)?;
     // A run's seed is grown, and the limits on modules and parts widened to fit it; a
     // genome read back is only checked.
     let grown = match grow.then(|| grown_size(&genome.to_text())) {

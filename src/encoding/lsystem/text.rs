@@ -18,6 +18,7 @@ impl LSystemGenome {
             self.productions.len(),
             self.start.len()
         ));
+        out.push_str(&crate::encoding::projectile::text_line(self.projectile));
         out.push_str(&format!("derivation length: {}\n", self.derivation_length));
         if !self.environment.is_empty() {
             let values: Vec<String> = self.environment.iter().map(f64::to_string).collect();
