@@ -70,6 +70,7 @@ fn a_leg_on_the_right_of_a_direct_genome_is_copied_onto_the_left() {
             cmd(C::Forward, 0.5),
             Item::Pop,
         ],
+        projectile: None,
     };
     let breeder = DirectGenome {
         modules: vec![
@@ -79,6 +80,7 @@ fn a_leg_on_the_right_of_a_direct_genome_is_copied_onto_the_left() {
             cmd(C::Forward, 0.3),
             Item::Pop,
         ],
+        projectile: None,
     };
     let grown_elite = elite.develop(&limits, 0).unwrap();
     assert_pose(&grown_elite, 1, [1.0, 0.0, 0.25], about_up(-FRAC_PI_2));
@@ -130,6 +132,7 @@ fn a_branch_of_an_lsystem_successor_is_copied_half_turned_and_its_calls_fit_the_
         derivation_length: 2,
         productions,
         environment: Vec::new(),
+        projectile: None,
     };
     // The elite's leg calls its P2, which the one-production breeder lacks: 2 % 1 = P0.
     let elite = genome(vec![
@@ -213,11 +216,13 @@ fn a_leg_on_the_right_face_of_a_graph_genome_is_copied_onto_the_left_face() {
     let elite = GraphGenome {
         nodes: vec![root.clone(), leg_node([0.5, 0.1, 0.1])],
         neurons: vec![],
+        projectile: None,
     };
     root.connections = vec![on_face(Face::Front)];
     let breeder = GraphGenome {
         nodes: vec![root, leg_node([0.3, 0.3, 0.3])],
         neurons: vec![],
+        projectile: None,
     };
     let grown_elite = elite.develop(&limits, 0).unwrap();
     assert_pose(&grown_elite, 1, [0.0, 0.0, 0.45], about_up(-FRAC_PI_2));
