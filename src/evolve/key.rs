@@ -447,11 +447,18 @@ fn hashed_name(key: &'static str) -> &'static str {
         .map_or(key, |(_, before)| before)
 }
 
-/// Fields that a release added to settings that keys hash, written (and hashed) only when
-/// set: a task's fitness expression (`fitness` of the jump's, catapult's, stand's and swim's
-/// tables; the walker's `fitness` is always written). Unset, such a field adds nothing to the
-/// key, so that the keys of every configuration without it stay as they were.
-const ADDED_WHEN_SET: &[&str] = &["fitness"];
+/// Fields that a release added to settings and creatures that keys hash, written (and
+/// hashed) only when set: a task's fitness expression (`fitness` of the jump's, catapult's,
+/// stand's and swim's tables; the walker's `fitness` is always written), the catapult's
+/// `evolve_projectile` and `target_sensor` (written when not their defaults), and a
+/// creature's own `projectile`. Unset, such a field adds nothing to the key, so that the keys
+/// of every configuration and creature without it stay as they were.
+const ADDED_WHEN_SET: &[&str] = &[
+    "fitness",
+    "evolve_projectile",
+    "target_sensor",
+    "projectile",
+];
 
 macro_rules! fields {
     ($trait:ident) => {
