@@ -350,6 +350,7 @@ const CUT_DOWN: &[CutDown] = &[
     ("ontogeny runs plasticity ", &[], &[]),
     ("ontogeny runs growth ", &[], &[]),
     ("ontogeny runs schedule ", &[], &[]),
+    ("ontogeny runs show ", &[], &[]),
     (
         "ontogeny runs canalization ",
         &[("--samples 20", "--samples 4")],
