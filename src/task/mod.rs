@@ -8,7 +8,7 @@
 //! ([`for_each_task!`](crate::for_each_task)), the protocol's common steps (screening, waiting for rest, recording) are in
 //! `protocol`, the recording's file format in `recording`, and a task's specification as data
 //! in [`TaskSpec`]: the simulator's settings and one task's ([`TaskOptions`]), read from a
-//! `[task]` table that may hold several tasks' ([`TaskTables`]), and the habitats and trials one evaluation spans in `habitat`.
+//! `[task]` table that may hold several tasks' ([`TaskTables`]), the habitats one evaluation spans in `habitat` and the noisy trials drawn in each in `trials`.
 
 use std::collections::BTreeMap;
 
@@ -32,6 +32,7 @@ mod spec;
 mod stand;
 mod swim;
 mod tables;
+mod trials;
 mod walker;
 pub use aim::AimTask;
 pub use catapult::{CatapultOptions, CatapultTask, catapult, distance_to_trajectory};
@@ -40,9 +41,7 @@ pub use fitness::{Fitness, FitnessExpression, PROTOCOL_TERMS};
 pub use grow::{
     DEFAULT_RATE, Develop, DevelopWhen, GrowError, Growing, GrowthTally, check_continuous,
 };
-pub use habitat::{
-    Aggregate, Habitat, HabitatResult, MAX_HABITATS, MAX_TRIALS, Noise, Perturbation, Trials, Unit,
-};
+pub use habitat::{Habitat, HabitatResult, MAX_HABITATS, Noise, Unit};
 pub use jump::{JumpOptions, JumpTask, jump};
 pub use options::TaskOptions;
 pub use protocol::{Bounds, Rest, Setup, Watch};
@@ -57,6 +56,7 @@ pub use spec::{TaskKind, TaskSpec};
 pub use stand::{StandOptions, StandTask};
 pub use swim::{SwimOptions, SwimTask, swim_viscosity};
 pub use tables::TaskTables;
+pub use trials::{Aggregate, MAX_TRIALS, Perturbation, Trials};
 pub use walker::{
     WalkerFitness, WalkerOptions, WalkerTask, iterative_move, size_coefficients, walker,
 };
