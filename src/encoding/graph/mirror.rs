@@ -6,7 +6,7 @@
 //! connection, from a new one on its root); nodes of the breeder nothing reaches any more go,
 //! as in grafting.
 
-use super::operators::joined;
+use super::operators::{graft_site, joined};
 use super::*;
 
 /// `c` turned half a turn about its parent part's up axis (the parent's thickness axis, y,
@@ -62,23 +62,10 @@ impl GraphGenome {
             return None;
         }
         let mut g = self.clone();
-        let sites = crate::encoding::index_pairs(&g.nodes, |n| n.connections.len());
-        let (i, j) = if sites.is_empty() {
-            if limits.max_connections == 0 || g.nodes.is_empty() {
-                return None;
-            }
+        let ((i, j), keep, room) = graft_site(&mut g, limits, rng, |_| {
             let (a, k) = donors[0];
-            g.nodes[0]
-                .connections
-                .push(other.nodes[a].connections[k].clone());
-            (0, 0)
-        } else {
-            sites[rng.random_range(0..sites.len())]
-        };
-        g.nodes[i].connections[j].to = MARK;
-        let keep = reachable_from(&g.nodes, 0);
-        let kept = keep.iter().filter(|k| **k).count();
-        let room = limits.nodes().saturating_sub(kept);
+            other.nodes[a].connections[k].clone()
+        })?;
         let fitting: Vec<((usize, usize), Vec<usize>)> = donors
             .into_iter()
             .map(|(a, k)| {

@@ -535,24 +535,11 @@ impl GraphGenome {
         limits: &GraphLimits,
         rng: &mut Rng,
     ) -> Option<GraphGenome> {
-        const MARK: usize = usize::MAX;
         let mut g = self.clone();
-        let sites = crate::encoding::index_pairs(&g.nodes, |n| n.connections.len());
-        let (i, j) = if sites.is_empty() {
-            // No connection to redirect: a new one from the root, if it has room.
-            if limits.max_connections == 0 {
-                return None;
-            }
-            let c = random_connection(1, limits, true, rng);
-            g.nodes[0].connections.push(c);
-            (0, 0)
-        } else {
-            sites[rng.random_range(0..sites.len())]
-        };
-        g.nodes[i].connections[j].to = MARK;
-        let keep = reachable_from(&g.nodes, 0);
-        let kept = keep.iter().filter(|k| **k).count();
-        let room = limits.nodes().saturating_sub(kept);
+        // No connection to redirect: a new one from the root.
+        let (_, keep, room) = graft_site(&mut g, limits, rng, |rng| {
+            random_connection(1, limits, true, rng)
+        })?;
         let candidates: Vec<(usize, Vec<usize>)> = (0..other.nodes.len())
             .map(|b| (b, reachable_list(&other.nodes, b)))
             .filter(|(_, list)| list.len() <= room)
@@ -567,6 +554,35 @@ impl GraphGenome {
             projectile: g.projectile,
         })
     }
+}
+
+/// Where a graft (or a mirroring copy) goes in `g`: one of its connections drawn uniformly,
+/// or, when it has none, a new one on its root that `new_root` makes (`None` when the root has
+/// no room for one: `max_connections` is 0). That connection is marked to lead to `usize::MAX`
+/// (what [`joined`] hangs the grafted nodes from). Returns its place (node, index), which of
+/// `g`'s nodes the root still reaches, and the room `max_nodes` leaves for grafted nodes.
+pub(super) fn graft_site(
+    g: &mut GraphGenome,
+    limits: &GraphLimits,
+    rng: &mut Rng,
+    new_root: impl FnOnce(&mut Rng) -> Connection,
+) -> Option<((usize, usize), Vec<bool>, usize)> {
+    let sites = crate::encoding::index_pairs(&g.nodes, |n| n.connections.len());
+    let (i, j) = if sites.is_empty() {
+        if limits.max_connections == 0 || g.nodes.is_empty() {
+            return None;
+        }
+        let c = new_root(rng);
+        g.nodes[0].connections.push(c);
+        (0, 0)
+    } else {
+        sites[rng.random_range(0..sites.len())]
+    };
+    g.nodes[i].connections[j].to = usize::MAX;
+    let keep = reachable_from(&g.nodes, 0);
+    let kept = keep.iter().filter(|k| **k).count();
+    let room = limits.nodes().saturating_sub(kept);
+    Some(((i, j), keep, room))
 }
 
 /// The nodes of a graft: the `keep` nodes of `nodes`, then `other`'s nodes `list` (the first
