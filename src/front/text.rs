@@ -476,7 +476,11 @@ pub fn comparison_summary(
         }
     }
     if let Some(power) = &r.power {
-        lines.push(power_line(power, r.kind));
+        let line = power_line(power, r.kind);
+        lines.push(match unfinished.is_empty() {
+            true => line,
+            false => format!("{line} (as planned; each pair's own is on its line)"),
+        });
     }
     if !r.too_few.is_empty() {
         lines.push(format!(

@@ -210,12 +210,21 @@ fn planned_replicates_merged_equal_a_direct_comparison() {
             .output()
             .unwrap(),
     );
-    assert!(partial.contains("not yet in the report"), "{partial}");
     assert!(
-        std::fs::read_to_string(planned.join("report.md"))
-            .unwrap()
-            .contains("**Incomplete**")
+        partial.contains(
+            "not yet in the report: lsystem rep-2 (not started), lsystem-continuous rep-2 \
+             (not started), direct rep-2 (not started)"
+        ),
+        "{partial}"
     );
+    // The power paragraph is the plan's; the pairs' own are in their tables.
+    assert!(
+        partial.contains("(as planned; each pair's own"),
+        "{partial}"
+    );
+    let report = std::fs::read_to_string(planned.join("report.md")).unwrap();
+    assert!(report.contains("**Incomplete**"), "{report}");
+    assert!(report.contains("That is the power as planned"), "{report}");
     for line in &lines[3..] {
         run_planned(line);
     }

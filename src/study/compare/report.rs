@@ -423,7 +423,14 @@ pub fn write_report(
         pair_table(&mut md, pairs);
     }
     if let Some(power) = &r.power {
-        let _ = writeln!(md, "\n{}", power_note(power, r.kind));
+        let mut note = power_note(power, r.kind);
+        if !unfinished.is_empty() {
+            note.push_str(
+                " That is the power as planned: this report is incomplete, and each pair's own \
+                 detectable effect, at the replicates it has, is in its table.",
+            );
+        }
+        let _ = writeln!(md, "\n{note}");
     }
     let _ = writeln!(
         md,

@@ -73,8 +73,9 @@ pub fn survey(root: &Path, manifest: &Manifest, arms: &[Arm]) -> Result<Survey, 
     Ok(survey)
 }
 
-/// The finished replicates, and a description of each unfinished one (`lsystem rep-2 (3 of
-/// 10 generations)`, `... (not started)`), arm by arm.
+/// The finished replicates, and a description of the unfinished ones arm by arm: each one
+/// started (`lsystem rep-2 (3 of 10 generations)`) and each run of consecutive ones not
+/// started (`lsystem rep-4 (not started)`, `lsystem rep-11 to rep-29 (not started)`).
 pub fn gather(
     root: &Path,
     manifest: &Manifest,
@@ -84,16 +85,53 @@ pub fn gather(
     let mut unfinished = Vec::new();
     for arm in arms {
         let name = &arm.name;
+        // The first of the current run of replicates not started.
+        let mut missing_from: Option<usize> = None;
         for k in 1..=manifest.replicates {
-            match replicate_state(root, manifest, arm, k)? {
+            let state = replicate_state(root, manifest, arm, k)?;
+            if !matches!(state, ReplicateState::Missing)
+                && let Some(first) = missing_from.take()
+            {
+                unfinished.push(not_started(name, first, k - 1));
+            }
+            match state {
                 ReplicateState::Done(r) => finished.push(*r),
                 ReplicateState::Partial(g) => unfinished.push(format!(
                     "{name} rep-{k} ({g} of {} generations)",
                     arm.settings.ga.generations
                 )),
-                ReplicateState::Missing => unfinished.push(format!("{name} rep-{k} (not started)")),
+                ReplicateState::Missing => {
+                    missing_from.get_or_insert(k);
+                }
             }
+        }
+        if let Some(first) = missing_from {
+            unfinished.push(not_started(name, first, manifest.replicates));
         }
     }
     Ok((finished, unfinished))
+}
+
+/// Replicates `first..=last` of `name`, none started: `direct rep-3 (not started)` or
+/// `direct rep-3 to rep-29 (not started)`.
+fn not_started(name: &str, first: usize, last: usize) -> String {
+    if first == last {
+        format!("{name} rep-{first} (not started)")
+    } else {
+        format!("{name} rep-{first} to rep-{last} (not started)")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn replicates_not_started_are_named_as_one_run() {
+        assert_eq!(not_started("direct", 3, 3), "direct rep-3 (not started)");
+        assert_eq!(
+            not_started("graph", 11, 29),
+            "graph rep-11 to rep-29 (not started)"
+        );
+    }
 }
