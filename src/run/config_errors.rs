@@ -150,6 +150,15 @@ fn in_words(message: &str, path: &[String], written: Option<&str>) -> (String, O
             return (format!("{key} must be {wanted}, not {found}"), example);
         }
     }
+    // An enum's value of another type: toml says only "wanted string or table".
+    if message == "wanted string or table" {
+        let example = default_of(path).map(|v| format!("e.g. {} = {v}", path[path.len() - 1]));
+        let found = written.map_or(String::new(), |w| format!(", not {w}"));
+        return (
+            format!("{key} must be a string in double quotes{found}"),
+            example,
+        );
+    }
     // "unknown variant `walkr`, expected one of `walker`, `jump`"
     if let Some(rest) = message.strip_prefix("unknown variant `")
         && let Some((given, names)) = rest.split_once('`')
@@ -250,6 +259,18 @@ mod tests {
         for part in parts {
             assert!(message.contains(part), "{part:?} not in {message}");
         }
+    }
+
+    #[test]
+    fn a_choice_of_the_wrong_type_is_named_with_an_example() {
+        says(
+            "[ga]\npreset = 3\n",
+            &[
+                "[ga] preset must be a string in double quotes, not 3",
+                "e.g. preset = \"chaumont\"",
+                "run.toml:2:10",
+            ],
+        );
     }
 
     #[test]
