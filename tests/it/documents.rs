@@ -577,39 +577,41 @@ fn the_commands_reference_lists_the_command_table() {
     }
 }
 
-/// Every fitness the reference documents (and the examples' own comments) quote for a
+/// Every fitness the reference documents, the evolution results (each shipped champion at its
+/// recorded evaluation and at the fine reference) and the examples' own comments quote for a
 /// shipped file, evaluated again: the quoted text is in the document, and `eval` with the
 /// flags gives that number at the quoted precision.
 #[test]
 fn the_fitness_figures_the_documents_quote_for_shipped_files_are_what_eval_gives() {
-    let quadruped: &[&str] = &[];
-    let figures: [(&str, &str, &str, &[&str], usize); 5] = [
+    let no_flags: &[&str] = &[];
+    let fine: &[&str] = &["--setting", "fine"];
+    let figures: [(&str, &str, &str, &[&str], usize); 19] = [
         (
             "docs/reference/genomes.md",
             "gives it 0.002242",
             "examples/hornby-walker.lsys",
-            quadruped,
+            no_flags,
             6,
         ),
         (
             "docs/reference/genomes.md",
             "the quadruped 0.318288",
             "examples/quadruped.lsys",
-            quadruped,
+            no_flags,
             6,
         ),
         (
             "docs/reference/genomes.md",
             "`quadruped.lsys` gets 0.318288",
             "examples/quadruped.lsys",
-            quadruped,
+            no_flags,
             6,
         ),
         (
             "docs/reference/genomes.md",
             "walker fitness 0.002964",
             "examples/continuous-walker.lsys",
-            quadruped,
+            no_flags,
             6,
         ),
         (
@@ -618,6 +620,104 @@ fn the_fitness_figures_the_documents_quote_for_shipped_files_are_what_eval_gives
             "examples/quadruped.lsys",
             &["--fitness", "distance"],
             2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**D_w = 12.92 m**",
+            "docs/evolve/continuous-best.lsys",
+            no_flags,
+            2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**7.23 m** at the fine reference",
+            "docs/evolve/continuous-best.lsys",
+            fine,
+            2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "`ontogeny eval docs/evolve/continuous-best.lsys` gives 12.921048",
+            "docs/evolve/continuous-best.lsys",
+            no_flags,
+            6,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**D_w = 20.56 m**",
+            "docs/evolve/direct-best.lsys",
+            no_flags,
+            2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**20.40 m** at the fine",
+            "docs/evolve/direct-best.lsys",
+            fine,
+            2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**D_w = 28.33 m**",
+            "docs/evolve/graph-walker-best.json",
+            no_flags,
+            2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**4.08 m** at the fine reference",
+            "docs/evolve/graph-walker-best.json",
+            fine,
+            2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "`ontogeny eval docs/evolve/graph-catapult-best.json` gives 197.438616",
+            "docs/evolve/graph-catapult-best.json",
+            no_flags,
+            6,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**118.8 m** (60%) at the fine reference",
+            "docs/evolve/graph-catapult-best.json",
+            fine,
+            1,
+        ),
+        (
+            "docs/results/evolution.md",
+            "`ontogeny eval docs/evolve/graph-projectile-best.json` gives 139.722968",
+            "docs/evolve/graph-projectile-best.json",
+            no_flags,
+            6,
+        ),
+        (
+            "docs/results/evolution.md",
+            "**0.75 m** at the fine reference",
+            "docs/evolve/graph-projectile-best.json",
+            fine,
+            2,
+        ),
+        (
+            "docs/results/evolution.md",
+            "`ontogeny eval docs/evolve/graph-aim-best.json` gives 152.148642",
+            "docs/evolve/graph-aim-best.json",
+            no_flags,
+            6,
+        ),
+        (
+            "docs/results/evolution.md",
+            "and **93.2** at the fine reference",
+            "docs/evolve/graph-aim-best.json",
+            fine,
+            1,
+        ),
+        (
+            "docs/results/evolution.md",
+            "scoring the same\n152.148642",
+            "docs/evolve/graph-aim-blind-best.json",
+            no_flags,
+            6,
         ),
     ];
     for (document, quoted, file, flags, digits) in figures {
