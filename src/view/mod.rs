@@ -124,6 +124,13 @@ impl Target {
                  by grow --out, eval --record or evolve)"
             )));
         }
+        if path.exists() && !path.is_dir() {
+            // A device, a pipe or a socket: nothing view can show, and not to be read.
+            return Err(ViewError::NotViewable(format!(
+                "{shown}: not a regular file or a directory (view shows an .lsys file, or a \
+                 directory written by grow --out, eval --record or evolve)"
+            )));
+        }
         if !path.is_dir() {
             return Err(ViewError::NotViewable(format!(
                 "{shown}: no such file or directory"

@@ -387,6 +387,13 @@ fn endless_streams_are_refused_at_the_cap_by_every_verb_that_reads() {
         assert!(!said.contains("panicked"), "{args:?}: {said}");
     }
     assert!(!dir.join("run").exists(), "a refused input wrote the run");
+    // `view` reads no stream: it says what the path is and starts no server or browser.
+    let snapshot = dir.join("view.png");
+    refused(
+        &ontogeny(&["view", "/dev/zero", "--snapshot", arg(&snapshot)]),
+        "/dev/zero: not a regular file or a directory",
+    );
+    assert!(!snapshot.exists());
 }
 
 #[test]
