@@ -162,7 +162,8 @@ impl DirectGenome {
             if room > 0 && rng.random_bool(rate) {
                 let len = rng.random_range(1..=room.min(MAX_RUN));
                 let at = rng.random_range(0..=self.modules.len());
-                self.modules.splice(at..at, random_run(len, 0, 0, 0, 0, rng));
+                self.modules
+                    .splice(at..at, random_run(len, 0, 0, 0, 0, rng));
             }
         }
     }

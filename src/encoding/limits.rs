@@ -6,8 +6,8 @@
 
 use std::fmt::Display;
 
-use super::{ContinuousLimits, DirectLimits, GraphLimits, LSystemLimits};
 use super::lsystem::MOST_REPEAT;
+use super::{ContinuousLimits, DirectLimits, GraphLimits, LSystemLimits};
 use crate::sim::SettingError;
 
 /// The most modules any encoding's `max_modules` may allow: a derived string (or a direct

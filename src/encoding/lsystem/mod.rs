@@ -94,7 +94,9 @@ pub struct LSystemLimits {
     /// Pollack's "repeat the enclosed block of build commands n times"): random successors
     /// and mutation make blocks with counts of 2 to this. 0, the default, makes none, and
     /// the operators draw exactly as they did before the genome had repeat blocks. However
-    /// blocks nest, development interprets at most `max_modules` modules in all.
+    /// blocks nest, development interprets at most `max_modules` modules in all. Not
+    /// written when 0, so that a run's stored configuration stays as it was.
+    #[serde(skip_serializing_if = "is_zero")]
     pub max_repeat: usize,
     /// The chance that operators make, change or remove an environment read or a `chem` or
     /// `secrete` neuron (the `[ga]` key `environment_reads`, set by
@@ -123,6 +125,11 @@ impl Default for LSystemLimits {
             projectile: None,
         }
     }
+}
+
+/// Whether a count is 0 (so that it is not written).
+fn is_zero(v: &usize) -> bool {
+    *v == 0
 }
 
 impl LSystemLimits {

@@ -585,6 +585,56 @@ mod tests {
     }
 
     #[test]
+    fn a_repeat_count_moves_one_step_and_stays_in_range() {
+        let mut rng = Rng::seed_from_u64(4);
+        let mut seen = std::collections::BTreeSet::new();
+        for _ in 0..200 {
+            for (n, most, allowed) in [
+                (2, 4, &[3][..]),
+                (3, 4, &[2, 4][..]),
+                (4, 4, &[3][..]),
+                (2, 2, &[2][..]),
+            ] {
+                let m = perturbed_count(n, most, &mut rng);
+                assert!(allowed.contains(&m), "{n} of at most {most}: {m}");
+                seen.insert((n, most, m));
+            }
+        }
+        assert_eq!(seen.len(), 5);
+    }
+
+    #[test]
+    fn blocks_are_wrapped_around_well_nested_runs_and_unwrapped_keeping_their_items() {
+        let mut rng = Rng::seed_from_u64(9);
+        let start = vec![fwd(1.0), Item::Push, fwd(2.0), Item::Pop, fwd(3.0)];
+        for _ in 0..200 {
+            let mut s = start.clone();
+            wrap_in_block(&mut s, 4, &mut rng);
+            assert!(is_balanced(&s), "{s:?}");
+            assert_eq!(s.len(), start.len() + 2);
+            let mut kept = s.clone();
+            kept.retain(|i| !matches!(i, Item::RepeatOpen | Item::RepeatClose(_)));
+            assert_eq!(kept, start);
+            unwrap_block(&mut s, &mut rng);
+            assert_eq!(s, start);
+        }
+        // A typed balance: `[ { ] }` keeps the block, drops the bracket's ends.
+        let mut items = vec![
+            Item::Push,
+            Item::RepeatOpen,
+            fwd(1.0),
+            Item::Pop,
+            Item::RepeatClose(2),
+        ];
+        assert!(!is_balanced(&items));
+        balance(&mut items);
+        assert_eq!(
+            items,
+            vec![Item::RepeatOpen, fwd(1.0), Item::RepeatClose(2)]
+        );
+    }
+
+    #[test]
     fn perturbation_stays_in_range_and_on_the_grid() {
         let mut rng = Rng::seed_from_u64(3);
         let mut turn = 1.0;
