@@ -240,10 +240,14 @@ fn nested_ends(items: &[Item], at: usize) -> Vec<usize> {
 /// Wraps a random well-nested run of a well-nested `successor` in a new repeat block of a
 /// count of 2 to `most`.
 fn wrap_in_block(successor: &mut Vec<Item>, most: usize, rng: &mut Rng) {
-    if successor.is_empty() {
+    // A block starts at any item but a close (from which no run stays inside).
+    let starts: Vec<usize> = (0..successor.len())
+        .filter(|&k| !matches!(bracket(&successor[k]), Some((false, _))))
+        .collect();
+    if starts.is_empty() {
         return;
     }
-    let at = rng.random_range(0..successor.len());
+    let at = starts[rng.random_range(0..starts.len())];
     let ends = nested_ends(successor, at);
     if ends.is_empty() {
         return;
