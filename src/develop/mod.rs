@@ -59,6 +59,11 @@ pub struct BuildOptions {
     pub default_length: f64,
     /// Most repetitions of one `{ ... }(n)` block.
     pub max_repeat: usize,
+    /// The most modules repeat blocks may make the builder interpret beyond the string's
+    /// own length (a block's second and later passes, over all blocks): past it the creature
+    /// is invalid and building stops. [`MAX_REPEATED_MODULES`] by default; a genome sets it
+    /// lower, so that its development's work stays within its own budget.
+    pub max_repeated_modules: usize,
     /// The textbook turtle's settings (a file's `angle:`, `step:`, `heading:`; see
     /// [`BuildOptions::with_headers`]).
     pub turtle: TurtleHeaders,
@@ -78,6 +83,7 @@ impl Default for BuildOptions {
             default_thickness: 0.25,
             default_length: 1.0,
             max_repeat: 100,
+            max_repeated_modules: MAX_REPEATED_MODULES,
             turtle: TurtleHeaders::default(),
             for_picture: false,
             cancel: crate::cancel::Cancel::default(),
@@ -161,7 +167,7 @@ pub struct Builder<'a> {
     /// For each `{` of the string, the index of its `}` (bracket matching, done once).
     closes: Vec<Option<usize>>,
     /// Modules interpreted so far, and the most allowed (the string's length plus
-    /// [`MAX_REPEATED_MODULES`]).
+    /// [`BuildOptions::max_repeated_modules`]).
     interpreted: usize,
     most_interpreted: usize,
     /// Set when the part limit is passed: the creature is invalid and building stops at
@@ -203,7 +209,7 @@ pub fn build(
 ) -> Creature {
     let mut builder = Builder::new(symbols, options, t, env.len());
     builder.closes = matching_closes(string, &builder.commands);
-    builder.most_interpreted = string.len().saturating_add(MAX_REPEATED_MODULES);
+    builder.most_interpreted = string.len().saturating_add(options.max_repeated_modules);
     builder.run(string, 0, string.len(), 0);
     let mut creature = builder.finish();
     creature.environment = env.values().to_vec();
@@ -281,8 +287,9 @@ impl<'a> Builder<'a> {
                     string,
                     i,
                     format!(
-                        "repeat blocks make the builder interpret more than {MAX_REPEATED_MODULES} \
-                         modules beyond the string's own: building stopped here"
+                        "repeat blocks make the builder interpret more than {} \
+                         modules beyond the string's own: building stopped here",
+                        self.options.max_repeated_modules
                     ),
                 );
                 self.stopped = true;

@@ -114,7 +114,10 @@ impl DirectGenome {
             let ok = match item {
                 Item::Push | Item::Pop | Item::Command(_, None) => true,
                 Item::Command(c, Some(Arg::Const(v))) => c.has_argument() && v.is_finite(),
-                Item::Command(_, Some(_)) | Item::Call(..) => false,
+                Item::Command(_, Some(_))
+                | Item::Call(..)
+                | Item::RepeatOpen
+                | Item::RepeatClose(_) => false,
             };
             if !ok {
                 return Err(format!("module {k} is malformed: {item:?}"));
@@ -159,7 +162,8 @@ impl DirectGenome {
             if room > 0 && rng.random_bool(rate) {
                 let len = rng.random_range(1..=room.min(MAX_RUN));
                 let at = rng.random_range(0..=self.modules.len());
-                self.modules.splice(at..at, random_run(len, 0, 0, 0, rng));
+                self.modules
+                    .splice(at..at, random_run(len, 0, 0, 0, 0, rng));
             }
         }
     }
@@ -266,7 +270,7 @@ impl Genome for DirectGenome {
     fn random(limits: &DirectLimits, rng: &mut Rng) -> Self {
         let len = rng.random_range(1..=limits.random_modules());
         DirectGenome {
-            modules: random_run(len, 0, 0, 0, rng),
+            modules: random_run(len, 0, 0, 0, 0, rng),
             projectile: limits.projectile,
         }
     }
@@ -439,6 +443,12 @@ pub(crate) fn without_flags(mut d: lang::Diagnostic) -> String {
 pub(crate) const NOT_USED: &str = "not used: repeat blocks, maturing m-commands but mforward, chem, secrete, \
      target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of \
      90°, and heading: up";
+
+/// What the L-system genome leaves out of the language: [`NOT_USED`] but repeat blocks,
+/// which it writes.
+pub(crate) const LSYSTEM_NOT_USED: &str = "not used: maturing m-commands but mforward, target, \
+     release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and \
+     heading: up";
 
 /// The genome's items that build exactly what the textbook's command `c` with argument `arg`
 /// builds under the file's `turtle` headers: `F(l)` is `forward(l)` (by default the file's

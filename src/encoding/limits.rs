@@ -6,6 +6,7 @@
 
 use std::fmt::Display;
 
+use super::lsystem::MOST_REPEAT;
 use super::{ContinuousLimits, DirectLimits, GraphLimits, LSystemLimits};
 use crate::sim::SettingError;
 
@@ -73,7 +74,17 @@ impl CheckedLimits for LSystemLimits {
         count("max_successor", self.max_successor, 1, 256)?;
         count("derivation_length", self.derivation_length, 0, 64)?;
         count("max_modules", self.max_modules, 1, MOST_MODULES)?;
-        count("max_parts", self.max_parts, 1, MOST_PARTS)
+        count("max_parts", self.max_parts, 1, MOST_PARTS)?;
+        // A block repeated once is no block: 0 (none) or 2 and more.
+        if self.max_repeat == 1 || self.max_repeat > MOST_REPEAT {
+            return Err(SettingError::out_of_range(
+                "max_repeat",
+                &format!("0 (no repeat blocks) or 2 to {MOST_REPEAT}"),
+                self.max_repeat,
+            )
+            .within("limits"));
+        }
+        Ok(())
     }
 }
 
@@ -161,6 +172,25 @@ mod tests {
             limits.check_ranges().unwrap_err().to_string(),
             "[limits] max_successor must be 1 to 256, not 100000000"
         );
+        for (max_repeat, error) in [
+            (0, None),
+            (1, Some("1")),
+            (2, None),
+            (100, None),
+            (101, Some("101")),
+        ] {
+            let limits = LSystemLimits {
+                max_repeat,
+                ..LSystemLimits::default()
+            };
+            assert_eq!(
+                limits.check_ranges().err().map(|e| e.to_string()),
+                error.map(|v| format!(
+                    "[limits] max_repeat must be 0 (no repeat blocks) or 2 to 100, not {v}"
+                ))
+            );
+            assert_eq!(limits.validate().is_err(), error.is_some());
+        }
         let limits = ContinuousLimits {
             dt: 1e-9,
             ..ContinuousLimits::default()

@@ -345,7 +345,7 @@ fn a_grammar_is_rewritten_into_the_genomes_forms_and_its_limits_widened_to_fit()
         "this file does not fit the lsystem genome: its rules cannot be the genome's:\n  \
          line 3, column 21: 'chem' reads or writes the environment, and the file has none ('environment:')\n  \
          line 3, column 10: the successor's brackets are not balanced\n  \
-         line 4, column 7: 'mforward' is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n\
+         line 4, column 7: 'mforward' is not a command the genome uses (not used: maturing m-commands but mforward, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n\
          nor can the string it derives:\n  \
          line 3, column 21: 'chem' (first at module 2 of the derived string) is not a command the genome uses (not used: repeat blocks, maturing m-commands but mforward, chem, secrete, target, release; of the textbook's symbols f, a bare !, turns by other than a multiple of 90°, and heading: up)\n  \
          the brackets of its derived string are not balanced"

@@ -32,6 +32,7 @@ mod genome_continuous;
 mod genome_direct;
 mod genome_graph;
 mod genome_lsystem;
+mod genome_lsystem_repeat;
 mod genome_plastic;
 mod genome_plastic_lsystem;
 mod grow_while_walking;

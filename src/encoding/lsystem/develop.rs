@@ -7,7 +7,11 @@ use super::*;
 /// Grows `text` as `ontogeny grow --max-modules M --max-parts P` does, building only the
 /// last frame (`develop::grow` builds every frame the same way, so its last creature is this
 /// one); `seed` drives stochastic rules; `env`, of the size of the text's `environment:`,
-/// replaces its initial values (as `--env` does).
+/// replaces its initial values (as `--env` does). One budget more than `grow`'s: the
+/// builder interprets at most `max_modules` modules in all, the passes of repeat blocks
+/// included (past it the creature is invalid), so that a genome's repeat blocks never make
+/// its development more work than a string of `max_modules` modules; a text without repeat
+/// blocks develops exactly as `grow` grows it.
 pub(crate) fn develop_text(
     text: &str,
     max_modules: usize,
@@ -30,6 +34,10 @@ pub(crate) fn develop_text(
         ..BuildOptions::default()
     };
     last_frame(&lsys, &options, |shown, env, t| {
+        let build_options = BuildOptions {
+            max_repeated_modules: max_modules.saturating_sub(shown.len()),
+            ..build_options
+        };
         build(shown, lsys.symbols(), env, Some(t), &build_options)
     })
     .map_err(|d| DevelopError(d.to_string()))

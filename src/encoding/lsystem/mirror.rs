@@ -70,6 +70,9 @@ impl LSystemGenome {
             .flat_map(|p| p.pairs.iter_mut().map(|pair| &mut pair.successor))
             .nth(site.seq)?;
         target.splice(site.range, copy.iter().map(|i| adapted(i, n, params)));
+        // A copied part may hold one end of a repeat block only; without blocks this keeps
+        // everything.
+        balance(target);
         if other.environment.len() > child.environment.len() {
             child.environment = other.environment.clone();
         }

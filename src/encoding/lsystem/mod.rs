@@ -56,6 +56,10 @@ const OFFSET_RANGE: (f64, f64) = (-2.0, 2.0);
 /// Longest run inserted or deleted by one mutation.
 pub(crate) const MAX_RUN: usize = 3;
 
+/// The largest `max_repeat` any run may set: the builder's own cap on one block's count
+/// ([`BuildOptions::max_repeat`]'s default).
+pub(crate) const MOST_REPEAT: usize = 100;
+
 /// The limits of the L-system genome: every operator keeps a genome within them. They are
 /// part of a run's configuration (`config.toml`); unknown keys are refused.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -86,6 +90,14 @@ pub struct LSystemLimits {
     /// A creature with more parts than this is invalid (the language's `--max-parts`).
     /// Hornby & Pollack capped their creatures' bars; 50 keeps evaluations fast.
     pub max_parts: usize,
+    /// The largest count of a repeat block `{ ... }(n)` the genome may write (Hornby &
+    /// Pollack's "repeat the enclosed block of build commands n times"): random successors
+    /// and mutation make blocks with counts of 2 to this. 0, the default, makes none, and
+    /// the operators draw exactly as they did before the genome had repeat blocks. However
+    /// blocks nest, development interprets at most `max_modules` modules in all. Not
+    /// written when 0, so that a run's stored configuration stays as it was.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub max_repeat: usize,
     /// The chance that operators make, change or remove an environment read or a `chem` or
     /// `secrete` neuron (the `[ga]` key `environment_reads`, set by
     /// [`Genome::allow_environment_reads`]; not a key of the limits). 0, the default, draws
@@ -108,10 +120,16 @@ impl Default for LSystemLimits {
             derivation_length: 6,
             max_modules: 1_000,
             max_parts: 50,
+            max_repeat: 0,
             environment_reads: 0.0,
             projectile: None,
         }
     }
+}
+
+/// Whether a count is 0 (so that it is not written).
+fn is_zero(v: &usize) -> bool {
+    *v == 0
 }
 
 impl LSystemLimits {
@@ -134,6 +152,12 @@ impl LSystemLimits {
         }
         if self.max_modules == 0 || self.max_parts == 0 {
             return Err("max_modules and max_parts must be at least 1".into());
+        }
+        if self.max_repeat == 1 || self.max_repeat > MOST_REPEAT {
+            return Err(format!(
+                "max_repeat must be 0 (no repeat blocks) or 2 to {MOST_REPEAT}, not {}",
+                self.max_repeat
+            ));
         }
         Ok(())
     }
@@ -326,6 +350,11 @@ pub enum Item {
     Command(Command, Option<Arg>),
     /// A call of production `P<index>` with one argument per parameter.
     Call(usize, Vec<Arg>),
+    /// `{`: opens a repeat block (L-system genome only).
+    RepeatOpen,
+    /// `}(n)`: closes a repeat block, whose items the builder interprets `n` times (a whole
+    /// number of 2 to the limits' `max_repeat`).
+    RepeatClose(usize),
 }
 
 /// A condition–successor pair: the successor applies when the condition holds (always,
@@ -393,7 +422,8 @@ impl LSystemGenome {
 
     /// Whether the genome lies within `limits` and is well formed: every production has a
     /// pair, calls name existing productions with one argument per parameter, parameters
-    /// named exist, and every successor's brackets are balanced. `Err` says what is wrong.
+    /// named exist, every successor's brackets and repeat blocks are balanced, and every
+    /// block's count is within `max_repeat`. `Err` says what is wrong.
     pub fn check(&self, limits: &LSystemLimits) -> Result<(), String> {
         super::projectile::check(self.projectile)?;
         let params = limits.param_count();
@@ -459,7 +489,9 @@ impl LSystemGenome {
                     ));
                 }
                 if !is_balanced(&pair.successor) {
-                    return Err(format!("a successor of P{i} has unbalanced brackets"));
+                    return Err(format!(
+                        "a successor of P{i} has unbalanced brackets or repeat blocks"
+                    ));
                 }
                 for item in &pair.successor {
                     if let Item::Command(c, arg) = item
@@ -486,8 +518,22 @@ impl LSystemGenome {
                         }
                         continue;
                     }
+                    if let Item::RepeatClose(n) = item
+                        && !(2..=limits.max_repeat).contains(n)
+                    {
+                        return Err(match limits.max_repeat {
+                            0 => format!(
+                                "a successor of P{i} has a repeat block, and the limits allow \
+                                 none (max_repeat 0)"
+                            ),
+                            most => format!(
+                                "a successor of P{i} repeats a block {n} times, not 2 to {most} \
+                                 (max_repeat)"
+                            ),
+                        });
+                    }
                     let ok = match item {
-                        Item::Push | Item::Pop => true,
+                        Item::Push | Item::Pop | Item::RepeatOpen | Item::RepeatClose(_) => true,
                         Item::Command(c, arg) => match arg {
                             None => true,
                             Some(a) => c.argument() != Argument::None && arg_ok(a),

@@ -69,18 +69,26 @@ pub(super) fn random_condition(params: usize, rng: &mut Rng) -> Option<Condition
     })
 }
 
+/// The chance that a random run, where three items or more are left to draw, draws a
+/// repeat block next (when the limits allow blocks): about as often as a branch, so that
+/// about half of the random genomes of the default sizes hold one.
+const REPEAT_CHANCE: f64 = 0.06;
+
 /// A random, well-nested run of exactly `len` items for a successor of production `home` of
-/// a genome of `productions` productions; with `productions == 0` (the direct genome) a run
-/// of commands and brackets only, where a call would have been a random command.
+/// a genome of `productions` productions, with repeat blocks of counts 2 to `repeat` (none
+/// when `repeat` is below 2: then nothing more is drawn than before the genome had blocks);
+/// with `productions == 0` (the direct genome) a run of commands and brackets only, where a
+/// call would have been a random command.
 pub(crate) fn random_run(
     len: usize,
     home: usize,
     productions: usize,
     params: usize,
+    repeat: usize,
     rng: &mut Rng,
 ) -> Vec<Item> {
     let mut out = Vec::with_capacity(len);
-    push_random_run(&mut out, len, home, productions, params, rng);
+    push_random_run(&mut out, len, home, productions, params, repeat, rng);
     out
 }
 
@@ -90,16 +98,26 @@ pub(super) fn push_random_run(
     home: usize,
     productions: usize,
     params: usize,
+    repeat: usize,
     rng: &mut Rng,
 ) {
     let mut left = len;
     while left > 0 {
+        if repeat >= 2 && left >= 3 && rng.random_bool(REPEAT_CHANCE) {
+            // A repeat block around a shorter run.
+            let inner = rng.random_range(1..=(left - 2).min(6));
+            out.push(Item::RepeatOpen);
+            push_random_run(out, inner, home, productions, params, repeat, rng);
+            out.push(Item::RepeatClose(rng.random_range(2..=repeat)));
+            left -= inner + 2;
+            continue;
+        }
         let draw = rng.random_range(0..100);
         if draw < 12 && left >= 3 {
             // A branch around a shorter run.
             let inner = rng.random_range(1..=(left - 2).min(6));
             out.push(Item::Push);
-            push_random_run(out, inner, home, productions, params, rng);
+            push_random_run(out, inner, home, productions, params, repeat, rng);
             out.push(Item::Pop);
             left -= inner + 2;
         } else if draw < 24 {
@@ -133,20 +151,37 @@ pub(super) fn push_random_run(
     }
 }
 
-/// Drops brackets that have no partner, so that a successor is well nested. Only removes
-/// items, so it never breaks a limit.
+/// The kind of bracket an item opens or closes: `[` `]` (0), `{` `}(n)` (1); `None` for
+/// any other item.
+fn bracket(item: &Item) -> Option<(bool, u8)> {
+    match item {
+        Item::Push => Some((true, 0)),
+        Item::Pop => Some((false, 0)),
+        Item::RepeatOpen => Some((true, 1)),
+        Item::RepeatClose(_) => Some((false, 1)),
+        _ => None,
+    }
+}
+
+/// Drops brackets and repeat-block ends that have no partner, so that a successor is well
+/// nested: a close goes when the innermost open item is not of its kind (or there is none),
+/// an open item that is never closed goes. Only removes items, so it never breaks a limit.
 pub(crate) fn balance(items: &mut Vec<Item>) {
-    let mut open = Vec::new();
+    let mut open: Vec<(usize, u8)> = Vec::new();
     let mut drop = vec![false; items.len()];
     for (k, item) in items.iter().enumerate() {
-        match item {
-            Item::Push => open.push(k),
-            // The guard pops the partner when there is one; a `]` without one goes.
-            Item::Pop if open.pop().is_none() => drop[k] = true,
-            _ => {}
+        match bracket(item) {
+            Some((true, kind)) => open.push((k, kind)),
+            Some((false, kind)) => match open.last() {
+                Some(&(_, top)) if top == kind => {
+                    open.pop();
+                }
+                _ => drop[k] = true,
+            },
+            None => {}
         }
     }
-    for k in open {
+    for (k, _) in open {
         drop[k] = true;
     }
     let mut k = 0;
@@ -156,18 +191,88 @@ pub(crate) fn balance(items: &mut Vec<Item>) {
     });
 }
 
-/// Whether every `[` of `items` has its `]` and every `]` its `[`.
+/// Whether every `[` of `items` has its `]` and every `{` its `}(n)`, well nested (no
+/// `[ { ] }`).
 pub(crate) fn is_balanced(items: &[Item]) -> bool {
-    let mut depth = 0usize;
+    let mut open: Vec<u8> = Vec::new();
     for item in items {
-        match item {
-            Item::Push => depth += 1,
-            Item::Pop if depth == 0 => return false,
-            Item::Pop => depth -= 1,
+        match bracket(item) {
+            Some((true, kind)) => open.push(kind),
+            Some((false, kind)) if open.pop() != Some(kind) => return false,
             _ => {}
         }
     }
-    depth == 0
+    open.is_empty()
+}
+
+/// A repeat count of 2 to `most` moved one step up or down (Hornby & Pollack's "perturbing
+/// a parameter of a command by adding or subtracting a small value"), back inside at either
+/// end.
+fn perturbed_count(n: usize, most: usize, rng: &mut Rng) -> usize {
+    let up = rng.random_bool(0.5);
+    let n = if up { n + 1 } else { n.saturating_sub(1) };
+    match n {
+        n if n > most => most.saturating_sub(1).max(2),
+        n if n < 2 => 3.min(most),
+        n => n,
+    }
+}
+
+/// The ends `b` such that `items[at..b]` is a well-nested run that does not leave the
+/// bracket or block `at` stands in (empty when `items[at]` closes one).
+fn nested_ends(items: &[Item], at: usize) -> Vec<usize> {
+    let mut ends = Vec::new();
+    let mut depth = 0usize;
+    for (k, item) in items.iter().enumerate().skip(at) {
+        match bracket(item) {
+            Some((true, _)) => depth += 1,
+            Some((false, _)) if depth == 0 => break,
+            Some((false, _)) => depth -= 1,
+            None => {}
+        }
+        if depth == 0 {
+            ends.push(k + 1);
+        }
+    }
+    ends
+}
+
+/// Wraps a random well-nested run of a well-nested `successor` in a new repeat block of a
+/// count of 2 to `most`.
+fn wrap_in_block(successor: &mut Vec<Item>, most: usize, rng: &mut Rng) {
+    // A block starts at any item but a close (from which no run stays inside).
+    let starts: Vec<usize> = (0..successor.len())
+        .filter(|&k| !matches!(bracket(&successor[k]), Some((false, _))))
+        .collect();
+    if starts.is_empty() {
+        return;
+    }
+    let at = starts[rng.random_range(0..starts.len())];
+    let ends = nested_ends(successor, at);
+    if ends.is_empty() {
+        return;
+    }
+    let end = ends[rng.random_range(0..ends.len())];
+    let n = rng.random_range(2..=most);
+    successor.insert(end, Item::RepeatClose(n));
+    successor.insert(at, Item::RepeatOpen);
+}
+
+/// Removes a random repeat block's `{` and `}(n)` of a well-nested `successor`, keeping what
+/// they enclose; does nothing (and draws nothing) when it has none.
+fn unwrap_block(successor: &mut Vec<Item>, rng: &mut Rng) {
+    let opens: Vec<usize> = (0..successor.len())
+        .filter(|&k| matches!(successor[k], Item::RepeatOpen))
+        .collect();
+    if opens.is_empty() {
+        return;
+    }
+    let at = opens[rng.random_range(0..opens.len())];
+    // The close that ends the block: the last of the well-nested runs from `at`.
+    if let Some(&end) = nested_ends(successor, at).first() {
+        successor.remove(end - 1);
+        successor.remove(at);
+    }
 }
 impl LSystemGenome {
     /// Removes production `k`: calls of it disappear and later productions move down one.
@@ -213,14 +318,19 @@ impl LSystemGenome {
                     } else {
                         random_condition(params, rng)
                     },
-                    successor: random_run(len, home, productions, params, rng),
+                    successor: random_run(len, home, productions, params, limits.max_repeat, rng),
                 }
             })
             .collect();
         Production { pairs, read: None }
     }
 
-    /// Mutates one successor in place (its items and runs).
+    /// Mutates one successor in place (its items and runs). Repeat blocks are build commands
+    /// as Hornby & Pollack's mutation sees them: a block's count is a parameter, perturbed
+    /// one step; an inserted run may hold blocks; a deleted run takes the ends of blocks it
+    /// cuts (what they enclosed stays). Where the limits allow blocks, each successor also
+    /// has a block wrapped around one of its well-nested runs, and one of its blocks
+    /// unwrapped, each with probability `rate`.
     pub(super) fn mutate_successor(
         successor: &mut Vec<Item>,
         home: usize,
@@ -232,7 +342,12 @@ impl LSystemGenome {
         let params = limits.param_count();
         for item in successor.iter_mut() {
             // Replace a command (or call) by another.
-            if rng.random_bool(rate) && !matches!(item, Item::Push | Item::Pop) {
+            if rng.random_bool(rate)
+                && !matches!(
+                    item,
+                    Item::Push | Item::Pop | Item::RepeatOpen | Item::RepeatClose(_)
+                )
+            {
                 *item = if rng.random_bool(0.8) {
                     random_command(rng)
                 } else {
@@ -253,6 +368,7 @@ impl LSystemGenome {
                         let v = arg.constant_mut();
                         *v = perturb_stepwise(*v, range, 1.0 / GRID, GRID, rng);
                     }
+                    Item::RepeatClose(n) => *n = perturbed_count(*n, limits.max_repeat, rng),
                     _ => {}
                 }
             }
@@ -262,7 +378,7 @@ impl LSystemGenome {
         if room > 0 && rng.random_bool(rate) {
             let len = rng.random_range(1..=room.min(MAX_RUN));
             let at = rng.random_range(0..=successor.len());
-            let run = random_run(len, home, productions, params, rng);
+            let run = random_run(len, home, productions, params, limits.max_repeat, rng);
             successor.splice(at..at, run);
         }
         // Delete a run.
@@ -272,6 +388,16 @@ impl LSystemGenome {
             successor.drain(at..at + len);
         }
         balance(successor);
+        // Wrap a run in a repeat block, unwrap a block: only where the limits allow blocks,
+        // so that without them nothing more is drawn.
+        if limits.max_repeat >= 2 {
+            if successor.len() + 2 <= limits.max_successor && rng.random_bool(rate) {
+                wrap_in_block(successor, limits.max_repeat, rng);
+            }
+            if successor.contains(&Item::RepeatOpen) && rng.random_bool(rate) {
+                unwrap_block(successor, rng);
+            }
+        }
     }
 }
 /// Perturbs the argument of command `c`: a constant within the argument's range and on its
@@ -346,7 +472,7 @@ impl LSystemGenome {
                 let len = rng.random_range(0..=limits.max_successor);
                 let pair = Pair {
                     condition: random_condition(params, rng),
-                    successor: random_run(len, home, n, params, rng),
+                    successor: random_run(len, home, n, params, limits.max_repeat, rng),
                 };
                 let at = rng.random_range(0..p.pairs.len());
                 p.pairs.insert(at, pair);
@@ -460,6 +586,56 @@ mod tests {
         let kept = items.clone();
         balance(&mut items);
         assert_eq!(items, kept);
+    }
+
+    #[test]
+    fn a_repeat_count_moves_one_step_and_stays_in_range() {
+        let mut rng = Rng::seed_from_u64(4);
+        let mut seen = std::collections::BTreeSet::new();
+        for _ in 0..200 {
+            for (n, most, allowed) in [
+                (2, 4, &[3][..]),
+                (3, 4, &[2, 4][..]),
+                (4, 4, &[3][..]),
+                (2, 2, &[2][..]),
+            ] {
+                let m = perturbed_count(n, most, &mut rng);
+                assert!(allowed.contains(&m), "{n} of at most {most}: {m}");
+                seen.insert((n, most, m));
+            }
+        }
+        assert_eq!(seen.len(), 5);
+    }
+
+    #[test]
+    fn blocks_are_wrapped_around_well_nested_runs_and_unwrapped_keeping_their_items() {
+        let mut rng = Rng::seed_from_u64(9);
+        let start = vec![fwd(1.0), Item::Push, fwd(2.0), Item::Pop, fwd(3.0)];
+        for _ in 0..200 {
+            let mut s = start.clone();
+            wrap_in_block(&mut s, 4, &mut rng);
+            assert!(is_balanced(&s), "{s:?}");
+            assert_eq!(s.len(), start.len() + 2);
+            let mut kept = s.clone();
+            kept.retain(|i| !matches!(i, Item::RepeatOpen | Item::RepeatClose(_)));
+            assert_eq!(kept, start);
+            unwrap_block(&mut s, &mut rng);
+            assert_eq!(s, start);
+        }
+        // A typed balance: `[ { ] }` keeps the block, drops the bracket's ends.
+        let mut items = vec![
+            Item::Push,
+            Item::RepeatOpen,
+            fwd(1.0),
+            Item::Pop,
+            Item::RepeatClose(2),
+        ];
+        assert!(!is_balanced(&items));
+        balance(&mut items);
+        assert_eq!(
+            items,
+            vec![Item::RepeatOpen, fwd(1.0), Item::RepeatClose(2)]
+        );
     }
 
     #[test]

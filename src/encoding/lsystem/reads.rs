@@ -61,7 +61,7 @@ impl LSystemGenome {
         production.read = Some(slot);
         if production.pairs.len() < limits.pairs() {
             let len = rng.random_range(0..=limits.max_successor);
-            let successor = random_run(len, k, n, params, rng);
+            let successor = random_run(len, k, n, params, limits.max_repeat, rng);
             production.pairs.insert(
                 0,
                 Pair {

@@ -7,7 +7,7 @@
 
 use super::*;
 use crate::encoding::Seed;
-use crate::encoding::direct::{NOT_USED, derived_items, textbook_items, without_flags};
+use crate::encoding::direct::{LSYSTEM_NOT_USED, derived_items, textbook_items, without_flags};
 use crate::encoding::limits::{CheckedLimits, MOST_MODULES};
 use crate::lsystem::TurtleHeaders;
 
@@ -498,6 +498,23 @@ fn items(
         match call.name.as_str() {
             "[" => out.push(Item::Push),
             "]" => out.push(Item::Pop),
+            "{" => out.push(Item::RepeatOpen),
+            "}" => match call.args.as_slice() {
+                [n] => match constant(n) {
+                    Some(v) if v.fract() == 0.0 && (2.0..=MOST_REPEAT as f64).contains(&v) => {
+                        out.push(Item::RepeatClose(v as usize));
+                    }
+                    _ => reasons.push(format!(
+                        "{}: a repeat block's count in the genome is a whole number of 2 to {MOST_REPEAT}, not '{}'",
+                        place(n.span()),
+                        snippet(n.span())
+                    )),
+                },
+                _ => reasons.push(format!(
+                    "{}: a repeat block ends with its count, '}}(n)'",
+                    place(call.span)
+                )),
+            },
             name => {
                 if let Some(c) =
                     Command::from_name(name).filter(|c| ENVIRONMENT_COMMANDS.contains(c))
@@ -546,9 +563,9 @@ fn items(
                     let args = call.args.iter().map(|a| arg(a, reasons)).collect();
                     out.push(Item::Call(k, args));
                     calls.push((k, read.take().map(|(slot, _)| slot), call.span));
-                } else if lang::is_builtin_command(name) || name == "{" || name == "}" {
+                } else if lang::is_builtin_command(name) {
                     reasons.push(format!(
-                        "{}: '{name}' is not a command the genome uses ({NOT_USED})",
+                        "{}: '{name}' is not a command the genome uses ({LSYSTEM_NOT_USED})",
                         place(call.span)
                     ));
                 }
@@ -592,6 +609,15 @@ fn widened(
     out.params = out.params.max(genome.start.len());
     out.max_successor = out.max_successor.max(longest.unwrap_or(0));
     out.derivation_length = out.derivation_length.max(genome.derivation_length);
+    let most_count = genome
+        .successors()
+        .flatten()
+        .filter_map(|item| match item {
+            Item::RepeatClose(n) => Some(*n),
+            _ => None,
+        })
+        .max();
+    out.max_repeat = out.max_repeat.max(most_count.unwrap_or(0));
     if let Some((modules, parts)) = grown {
         out.max_modules = out.max_modules.max(modules);
         // A creature of more parts than any run may hold is invalid whatever the limits.
@@ -614,6 +640,7 @@ fn widened(
         ),
         ("max_modules", limits.max_modules, out.max_modules),
         ("max_parts", limits.max_parts, out.max_parts),
+        ("max_repeat", limits.max_repeat, out.max_repeat),
     ]
     .iter()
     .filter(|(_, was, now)| was != now)

@@ -81,6 +81,8 @@ pub(crate) fn push_item_text(item: &Item, out: &mut String) {
     match item {
         Item::Push => out.push('['),
         Item::Pop => out.push(']'),
+        Item::RepeatOpen => out.push('{'),
+        Item::RepeatClose(n) => out.push_str(&format!("}}({n})")),
         Item::Command(c, None) => out.push_str(c.name()),
         Item::Command(c, Some(a)) => out.push_str(&format!("{}({})", c.name(), a.text())),
         Item::Call(t, args) if args.is_empty() => out.push_str(&format!("P{t}")),
