@@ -539,8 +539,22 @@ struct Lines {
     scale: f32,
 }
 
+/// The line that gives the size of the projectile a creature throws when it has one of its
+/// own (an evolved one, or a file's `projectile` line), in centimetres: the picture draws
+/// the body only, and where the task holds the projectile is the task's.
+pub(crate) fn projectile_line(creature: &Creature) -> Option<String> {
+    creature.projectile.map(|[x, y, z]| {
+        format!(
+            "projectile {:.1} x {:.1} x {:.1} cm",
+            x * 100.0,
+            y * 100.0,
+            z * 100.0
+        )
+    })
+}
+
 /// Lines of text, top left: the overlay's label; with checks, the creature's counts and
-/// validity and its problems after them (wrapped, repeated ones once, at most a few, then
+/// validity, the size of its own projectile (if it has one), and its problems after them (wrapped, repeated ones once, at most a few, then
 /// how many more), and a red
 /// frame round an invalid creature.
 fn write_text(
@@ -605,6 +619,17 @@ fn write_text(
             true,
         );
         y += line;
+        if let Some(text) = projectile_line(creature) {
+            draw_text(
+                pixmap,
+                (rx + 8.0, y),
+                &fit(&text, room, text_scale),
+                text_scale,
+                INK,
+                true,
+            );
+            y += line;
+        }
         let room_lines = ((rh - y - 24.0) / line).floor().max(0.0) as usize;
         let columns = (room / (8.0 * text_scale)).floor().max(8.0) as usize;
         for (text, colour) in listed_lines(problems, columns, room_lines) {

@@ -345,6 +345,31 @@ mod tests {
     }
 
     #[test]
+    fn a_creature_with_its_own_projectile_is_captioned_with_its_size() {
+        let plain = arm();
+        let mut thrower = plain.clone();
+        thrower.projectile = Some([0.162, 0.243, 0.218]);
+        assert_eq!(body::projectile_line(&plain), None);
+        assert_eq!(
+            body::projectile_line(&thrower).as_deref(),
+            Some("projectile 16.2 x 24.3 x 21.8 cm")
+        );
+        // The caption is one more line of ink under the counts, top left.
+        let ink = |c: &Creature| {
+            let pic = checked_picture(c, "arm", 960, 600).unwrap();
+            (0..120)
+                .flat_map(|y| (0..600).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    let i = 4 * (y * 960 + x) as usize;
+                    pic.data()[i..i + 3] == INK[..]
+                })
+                .count()
+        };
+        let (without, with) = (ink(&plain), ink(&thrower));
+        assert!(with > without + 200, "{without} then {with}");
+    }
+
+    #[test]
     fn an_invalid_creature_is_marked_and_a_valid_one_is_not() {
         let valid = arm();
         let pic = checked_picture(&valid, "arm", 960, 600).unwrap();
