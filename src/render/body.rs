@@ -554,9 +554,9 @@ pub(crate) fn projectile_line(creature: &Creature) -> Option<String> {
 }
 
 /// Lines of text, top left: the overlay's label; with checks, the creature's counts and
-/// validity, the size of its own projectile (if it has one), and its problems after them (wrapped, repeated ones once, at most a few, then
-/// how many more), and a red
-/// frame round an invalid creature.
+/// validity, the size of its own projectile (if it has one), and its problems after them
+/// (wrapped, repeated ones once, at most a few, then how many more), and a red frame round an
+/// invalid creature.
 fn write_text(
     pixmap: &mut Pixmap,
     text: &Lines,
@@ -568,17 +568,21 @@ fn write_text(
     let (rx, ry, rw, rh) = text.region;
     let (room, text_scale) = (text.room, text.scale);
     let line = 10.0 * text_scale + 2.0;
-    let mut y = ry + 6.0;
-    for text in &overlay.label {
+    // Writes one line at height `y`, cut to the room, and returns the next line's height.
+    let write_line = |pixmap: &mut Pixmap, y: f32, text: &str, colour: [u8; 3]| {
         draw_text(
             pixmap,
             (rx + 8.0, y),
             &fit(text, room, text_scale),
             text_scale,
-            INK,
+            colour,
             true,
         );
-        y += line;
+        y + line
+    };
+    let mut y = ry + 6.0;
+    for text in &overlay.label {
+        y = write_line(pixmap, y, text, INK);
     }
     if checks == Checks::On {
         let mut problems: Vec<(String, [u8; 3])> = Vec::new();
@@ -610,38 +614,14 @@ fn write_text(
                 (true, true) => "valid as a picture only",
             }
         );
-        draw_text(
-            pixmap,
-            (rx + 8.0, y),
-            &fit(&summary, room, text_scale),
-            text_scale,
-            if valid { INK } else { MARK },
-            true,
-        );
-        y += line;
+        y = write_line(pixmap, y, &summary, if valid { INK } else { MARK });
         if let Some(text) = projectile_line(creature) {
-            draw_text(
-                pixmap,
-                (rx + 8.0, y),
-                &fit(&text, room, text_scale),
-                text_scale,
-                INK,
-                true,
-            );
-            y += line;
+            y = write_line(pixmap, y, &text, INK);
         }
         let room_lines = ((rh - y - 24.0) / line).floor().max(0.0) as usize;
         let columns = (room / (8.0 * text_scale)).floor().max(8.0) as usize;
         for (text, colour) in listed_lines(problems, columns, room_lines) {
-            draw_text(
-                pixmap,
-                (rx + 8.0, y),
-                &fit(&text, room, text_scale),
-                text_scale,
-                colour,
-                true,
-            );
-            y += line;
+            y = write_line(pixmap, y, &text, colour);
         }
         if !valid && let Some(rect) = Rect::from_xywh(rx + 1.5, ry + 1.5, rw - 3.0, rh - 3.0) {
             let stroke = stroke_width(3.0);
