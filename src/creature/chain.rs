@@ -138,6 +138,9 @@ mod tests {
 
     #[test]
     fn a_closed_row_is_counted_once_round() {
-        assert_eq!(body(4, &[(0, 1), (1, 2), (2, 3), (3, 0)]).longest_chain(), 4);
+        assert_eq!(
+            body(4, &[(0, 1), (1, 2), (2, 3), (3, 0)]).longest_chain(),
+            4
+        );
     }
 }

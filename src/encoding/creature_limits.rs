@@ -65,8 +65,7 @@ mod tests {
         // Three parts in a row; the brain's first oscillator and one output neuron for the
         // hinge: 2 neurons.
         let grown =
-            creature_from_commands("forward(1) revolute2 forward(1) output(1) forward(1)")
-                .unwrap();
+            creature_from_commands("forward(1) revolute2 forward(1) output(1) forward(1)").unwrap();
         assert_eq!((grown.neuron_count(), grown.longest_chain()), (2, 3));
         assert!(grown.is_valid());
         let at = |max_neurons, max_chain| CreatureLimits {

@@ -32,8 +32,11 @@ pub trait CheckedLimits {
     /// `Err` names the first key out of its range, in the table `limits`.
     fn check_ranges(&self) -> Result<(), SettingError>;
 
-    /// The keys every encoding shares on the creature its genome develops into.
-    fn creature_limits(&self) -> CreatureLimits;
+    /// The keys every encoding shares on the creature its genome develops into; none by
+    /// default (for an encoding of a library's user that has not these keys).
+    fn creature_limits(&self) -> CreatureLimits {
+        CreatureLimits::default()
+    }
 }
 
 /// The ranges of the keys every encoding shares: `max_neurons` 1 to [`MOST_NEURONS`] and
