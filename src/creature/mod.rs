@@ -5,6 +5,7 @@
 //! some of which read sensors and some of which drive actuators. Positions and orientations
 //! are in world coordinates: Y is up, the ground is the plane y = 0, lengths are in metres.
 
+mod chain;
 mod differences;
 mod geometry;
 mod ids;
@@ -575,6 +576,12 @@ impl Creature {
             ));
         }
         self.check_consistency()
+    }
+
+    /// The number of neurons of its brain, sensors and actuators included: the count the run
+    /// store keeps in its `neurons` column and the one `[limits] max_neurons` bounds.
+    pub fn neuron_count(&self) -> usize {
+        self.brain.neurons.len()
     }
 
     /// Whether the evaluator may simulate it (no error-level problem, at least one part).

@@ -44,6 +44,17 @@ pub struct DirectLimits {
     /// L-system successor without calls (and as often a driven walker: 19.5% against 19.6%
     /// over 1000 seeds). At most `max_modules`.
     pub random_length: usize,
+    /// A creature with more neurons than this (sensors and actuators included, as the run
+    /// store's `neurons` column counts them) is invalid. Absent (the default): no limit. Not
+    /// written when absent, so that a run's stored configuration stays as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_neurons: Option<usize>,
+    /// A creature whose body has a longer unbranched row of parts than this
+    /// ([`Creature::longest_chain`](crate::creature::Creature::longest_chain); Hornby &
+    /// Pollack's bars in a row) is invalid. Absent (the default): no limit. Not written when
+    /// absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_chain: Option<usize>,
     /// The projectile newborns carry when the run evolves it (set by
     /// [`Genome::evolve_projectile`]; not a key of the limits). None: no genome carries one.
     #[serde(skip)]
@@ -63,6 +74,8 @@ impl From<&LSystemLimits> for DirectLimits {
             max_modules: l.max_modules,
             max_parts: l.max_parts,
             random_length: l.max_successor,
+            max_neurons: l.max_neurons,
+            max_chain: l.max_chain,
             projectile: l.projectile,
         }
     }

@@ -2,10 +2,13 @@
 //! one table of them, so that no key goes unchecked and none can ask for a genome or a
 //! development that exhausts memory or runs for minutes. A key out of its range is a
 //! [`SettingError`] in the table `limits` (`[limits] max_pairs must be 1 to 16, not 0`),
-//! which a configuration file's reader places at the key's line and column.
+//! which a configuration file's reader places at the key's line and column. The keys every
+//! encoding shares on its creatures (`max_neurons`, `max_chain`: [`CreatureLimits`]) have one
+//! range for all.
 
 use std::fmt::Display;
 
+use super::creature_limits::CreatureLimits;
 use super::lsystem::MOST_REPEAT;
 use super::{ContinuousLimits, DirectLimits, GraphLimits, LSystemLimits};
 use crate::sim::SettingError;
@@ -17,6 +20,9 @@ pub const MOST_MODULES: usize = 100_000;
 /// The most parts any encoding's `max_parts` may allow.
 pub const MOST_PARTS: usize = 1_000;
 
+/// The most neurons any encoding's `max_neurons` may allow.
+pub const MOST_NEURONS: usize = 10_000;
+
 /// The most observation steps (`time / dt`) of a continuous genome: as many frames as
 /// `ontogeny grow --out` keeps.
 pub const MOST_CONTINUOUS_FRAMES: f64 = 10_000.0;
@@ -25,6 +31,37 @@ pub const MOST_CONTINUOUS_FRAMES: f64 = 10_000.0;
 pub trait CheckedLimits {
     /// `Err` names the first key out of its range, in the table `limits`.
     fn check_ranges(&self) -> Result<(), SettingError>;
+
+    /// The keys every encoding shares on the creature its genome develops into; none by
+    /// default (for an encoding of a library's user that has not these keys).
+    fn creature_limits(&self) -> CreatureLimits {
+        CreatureLimits::default()
+    }
+}
+
+/// The ranges of the keys every encoding shares: `max_neurons` 1 to [`MOST_NEURONS`] and
+/// `max_chain` 1 to [`MOST_PARTS`], where set.
+fn shared(limits: CreatureLimits) -> Result<(), SettingError> {
+    if let Some(most) = limits.max_neurons {
+        count("max_neurons", most, 1, MOST_NEURONS)?;
+    }
+    if let Some(most) = limits.max_chain {
+        count("max_chain", most, 1, MOST_PARTS)?;
+    }
+    Ok(())
+}
+
+/// The shared keys of an encoding's limits that hold them as fields `max_neurons` and
+/// `max_chain`.
+macro_rules! creature_limits {
+    () => {
+        fn creature_limits(&self) -> CreatureLimits {
+            CreatureLimits {
+                max_neurons: self.max_neurons,
+                max_chain: self.max_chain,
+            }
+        }
+    };
 }
 
 /// A count `value` of key `key` within `least..=most`.
@@ -67,7 +104,10 @@ fn real(
 }
 
 impl CheckedLimits for LSystemLimits {
+    creature_limits!();
+
     fn check_ranges(&self) -> Result<(), SettingError> {
+        shared(self.creature_limits())?;
         count("max_productions", self.max_productions, 1, 64)?;
         count("max_pairs", self.max_pairs, 1, 16)?;
         count("params", self.params, 0, 8)?;
@@ -89,7 +129,10 @@ impl CheckedLimits for LSystemLimits {
 }
 
 impl CheckedLimits for ContinuousLimits {
+    creature_limits!();
+
     fn check_ranges(&self) -> Result<(), SettingError> {
+        shared(self.creature_limits())?;
         count("max_rules", self.max_rules, 1, 64)?;
         count("control_tokens", self.control_tokens, 0, 26)?;
         count("max_axiom", self.max_axiom, 1, 256)?;
@@ -130,7 +173,10 @@ impl CheckedLimits for ContinuousLimits {
 }
 
 impl CheckedLimits for DirectLimits {
+    creature_limits!();
+
     fn check_ranges(&self) -> Result<(), SettingError> {
+        shared(self.creature_limits())?;
         count("max_modules", self.max_modules, 1, MOST_MODULES)?;
         count("max_parts", self.max_parts, 1, MOST_PARTS)?;
         count("random_length", self.random_length, 1, self.max_modules)
@@ -138,7 +184,10 @@ impl CheckedLimits for DirectLimits {
 }
 
 impl CheckedLimits for GraphLimits {
+    creature_limits!();
+
     fn check_ranges(&self) -> Result<(), SettingError> {
+        shared(self.creature_limits())?;
         count("max_nodes", self.max_nodes, 1, 100)?;
         count("max_parts", self.max_parts, 1, MOST_PARTS)?;
         count("max_connections", self.max_connections, 0, 16)?;

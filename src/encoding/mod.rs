@@ -13,6 +13,7 @@ use crate::environment::Environment;
 use crate::lang::ast::{Expr, UnaryOp};
 
 pub mod continuous;
+mod creature_limits;
 pub mod direct;
 mod draw;
 pub mod graph;
@@ -28,6 +29,7 @@ mod show_habitats;
 /// The building commands genomes write (the language's one table of commands).
 pub use crate::lang::commands as command;
 pub use continuous::{ContinuousGenome, ContinuousLimits};
+pub use creature_limits::CreatureLimits;
 pub use direct::{DirectGenome, DirectLimits};
 pub use graph::{GraphGenome, GraphLimits, JointSet};
 pub use limits::CheckedLimits;

@@ -387,7 +387,7 @@ impl<G: Genome> Evolution<G> {
                 Ok(c) => (
                     c.parts.len() as u32,
                     c.joints.len() as u32,
-                    c.brain.neurons.len() as u32,
+                    c.neuron_count() as u32,
                 ),
                 Err(_) => (0, 0, 0),
             };

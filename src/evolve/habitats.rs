@@ -11,7 +11,7 @@ use super::key::{EvaluationKey, KeyVersion};
 use crate::cancel::{Cancel, Interrupted};
 use crate::creature::Creature;
 use crate::develop::Seedling;
-use crate::encoding::{DevelopError, Genome};
+use crate::encoding::{CheckedLimits, DevelopError, Genome};
 use crate::environment::Environment;
 use crate::sim::WorldSpec;
 use crate::task::{Evaluation, Growing, TaskSpec, Unit, Watch};
@@ -25,6 +25,11 @@ use crate::task::{Evaluation, Growing, TaskSpec, Unit, Watch};
 ///
 /// When `task` develops its creatures during their evaluation (`develop = "during"`), each is
 /// the creature dropped: its seedling's ([`develop_with_seedlings`]) at t₀.
+///
+/// Every creature is held to the limits all encodings share ([`CheckedLimits::creature_limits`]:
+/// `max_neurons`, `max_chain`): one past them gets an error-level problem that makes it
+/// invalid, as a creature past `max_parts` is (a creature that grows during its evaluation
+/// is held to them at t₀, and does not develop when it breaks one then).
 pub fn develop_in_habitats<G: Genome>(
     genome: &G,
     limits: &G::Limits,
@@ -45,6 +50,7 @@ pub fn develop_with_seedlings<G: Genome>(
     seed: u64,
     task: &TaskSpec,
 ) -> Result<(Vec<Creature>, Vec<Seedling>), DevelopError> {
+    let shared = limits.creature_limits();
     if task.develop.during() {
         let seedlings = (0..task.habitat_count())
             .map(|h| {
@@ -60,6 +66,14 @@ pub fn develop_with_seedlings<G: Genome>(
                         )))
                     })
                     .and_then(|seedling| dropped(task, seedling))
+                    .and_then(|(creature, seedling)| {
+                        // The walk grows its creature anew from the seedling: a creature
+                        // past a limit at t₀ does not develop.
+                        match shared.broken(&creature) {
+                            broken if broken.is_empty() => Ok((creature, seedling)),
+                            broken => Err(DevelopError(broken.join("; "))),
+                        }
+                    })
                     .map_err(|e| in_habitat(task, h, e))
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -80,6 +94,10 @@ pub fn develop_with_seedlings<G: Genome>(
                     }),
                 None => genome.develop(limits, seed),
             }
+            .map(|mut creature| {
+                shared.apply(&mut creature);
+                creature
+            })
             .map_err(|e| in_habitat(task, h, e))
         })
         .collect::<Result<Vec<_>, _>>()?;

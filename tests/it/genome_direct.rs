@@ -482,6 +482,8 @@ fn limits_strategy() -> impl Strategy<Value = DirectLimits> {
             max_modules,
             max_parts,
             random_length,
+            max_neurons: None,
+            max_chain: None,
             projectile: None,
         }
     })

@@ -455,6 +455,8 @@ fn small_limits() -> impl Strategy<Value = GraphLimits> {
                     max_global_neurons: global,
                     max_inputs: inputs,
                     regenerate_tries: 2,
+                    max_neurons: None,
+                    max_chain: None,
                     projectile: None,
                     joint_kinds: if sims {
                         JointSet::Sims

@@ -263,6 +263,86 @@ const OUT_OF_RANGE: &[(&str, &str, &str)] = &[
         "regenerate_tries = 101",
         "regenerate_tries must be 1 to 100, not 101",
     ),
+    (
+        "lsystem",
+        "max_neurons = 0",
+        "max_neurons must be 1 to 10000, not 0",
+    ),
+    (
+        "lsystem",
+        "max_neurons = 10001",
+        "max_neurons must be 1 to 10000, not 10001",
+    ),
+    (
+        "lsystem",
+        "max_chain = 0",
+        "max_chain must be 1 to 1000, not 0",
+    ),
+    (
+        "lsystem",
+        "max_chain = 1001",
+        "max_chain must be 1 to 1000, not 1001",
+    ),
+    (
+        "lsystem-continuous",
+        "max_neurons = 0",
+        "max_neurons must be 1 to 10000, not 0",
+    ),
+    (
+        "lsystem-continuous",
+        "max_neurons = 10001",
+        "max_neurons must be 1 to 10000, not 10001",
+    ),
+    (
+        "lsystem-continuous",
+        "max_chain = 0",
+        "max_chain must be 1 to 1000, not 0",
+    ),
+    (
+        "lsystem-continuous",
+        "max_chain = 1001",
+        "max_chain must be 1 to 1000, not 1001",
+    ),
+    (
+        "direct",
+        "max_neurons = 0",
+        "max_neurons must be 1 to 10000, not 0",
+    ),
+    (
+        "direct",
+        "max_neurons = 10001",
+        "max_neurons must be 1 to 10000, not 10001",
+    ),
+    (
+        "direct",
+        "max_chain = 0",
+        "max_chain must be 1 to 1000, not 0",
+    ),
+    (
+        "direct",
+        "max_chain = 1001",
+        "max_chain must be 1 to 1000, not 1001",
+    ),
+    (
+        "graph",
+        "max_neurons = 0",
+        "max_neurons must be 1 to 10000, not 0",
+    ),
+    (
+        "graph",
+        "max_neurons = 10001",
+        "max_neurons must be 1 to 10000, not 10001",
+    ),
+    (
+        "graph",
+        "max_chain = 0",
+        "max_chain must be 1 to 1000, not 0",
+    ),
+    (
+        "graph",
+        "max_chain = 1001",
+        "max_chain must be 1 to 1000, not 1001",
+    ),
 ];
 
 /// A one-generation config of `encoding` whose `[limits]` table (line 6) holds `line`.

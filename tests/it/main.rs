@@ -31,6 +31,7 @@ mod ga;
 mod genome_continuous;
 mod genome_direct;
 mod genome_graph;
+mod genome_limits_common;
 mod genome_lsystem;
 mod genome_lsystem_repeat;
 mod genome_plastic;

@@ -79,6 +79,17 @@ pub struct ContinuousLimits {
     /// (`DeriveOptions::max_modules`); a safety net, far above what the other limits allow
     /// (about 2,000 modules). Default 5,000.
     pub max_modules: usize,
+    /// A creature with more neurons than this (sensors and actuators included, as the run
+    /// store's `neurons` column counts them) is invalid. Absent (the default): no limit. Not
+    /// written when absent, so that a run's stored configuration stays as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_neurons: Option<usize>,
+    /// A creature whose body has a longer unbranched row of parts than this
+    /// ([`Creature::longest_chain`](crate::creature::Creature::longest_chain); Hornby &
+    /// Pollack's bars in a row) is invalid. Absent (the default): no limit. Not written when
+    /// absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_chain: Option<usize>,
     /// The chance that operators make, change or remove an environment read (the `[ga]` key
     /// `environment_reads`, set by [`Genome::allow_environment_reads`]; not a key of the
     /// limits). 0, the default, draws exactly as a genome without reads always has.
@@ -106,6 +117,8 @@ impl Default for ContinuousLimits {
             max_duration: 3.0,
             max_parts: 50,
             max_modules: 5000,
+            max_neurons: None,
+            max_chain: None,
             environment_reads: 0.0,
             projectile: None,
         }
@@ -175,6 +188,8 @@ impl ContinuousLimits {
             max_duration,
             max_parts: self.max_parts.max(2),
             max_modules: self.max_modules.max(self.max_axiom.max(1)),
+            max_neurons: self.max_neurons,
+            max_chain: self.max_chain,
             environment_reads: if self.environment_reads.is_finite() {
                 self.environment_reads.clamp(0.0, 1.0)
             } else {

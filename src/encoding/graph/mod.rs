@@ -98,6 +98,17 @@ pub struct GraphLimits {
     /// The joint kinds of new nodes and joint mutations: `one-axis` (default, Chaumont 5.1)
     /// or `sims` (all seven). A genome that holds other kinds still loads and keeps them.
     pub joint_kinds: JointSet,
+    /// A creature with more neurons than this (sensors and actuators included, as the run
+    /// store's `neurons` column counts them) is invalid. Absent (the default): no limit. Not
+    /// written when absent, so that a run's stored configuration stays as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_neurons: Option<usize>,
+    /// A creature whose body has a longer unbranched row of parts than this
+    /// ([`Creature::longest_chain`](crate::creature::Creature::longest_chain); Hornby &
+    /// Pollack's bars in a row) is invalid. Absent (the default): no limit. Not written when
+    /// absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_chain: Option<usize>,
     /// What the creatures are for: set from the task when a run is assembled, never written.
     #[serde(skip)]
     pub purpose: Purpose,
@@ -119,6 +130,8 @@ impl Default for GraphLimits {
             max_inputs: 3,
             regenerate_tries: 10,
             joint_kinds: JointSet::OneAxis,
+            max_neurons: None,
+            max_chain: None,
             purpose: Purpose::Locomotion,
             projectile: None,
         }

@@ -98,6 +98,17 @@ pub struct LSystemLimits {
     /// written when 0, so that a run's stored configuration stays as it was.
     #[serde(skip_serializing_if = "is_zero")]
     pub max_repeat: usize,
+    /// A creature with more neurons than this (sensors and actuators included, as the run
+    /// store's `neurons` column counts them) is invalid. Absent (the default): no limit. Not
+    /// written when absent, so that a run's stored configuration stays as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_neurons: Option<usize>,
+    /// A creature whose body has a longer unbranched row of parts than this
+    /// ([`Creature::longest_chain`](crate::creature::Creature::longest_chain); Hornby &
+    /// Pollack's bars in a row) is invalid. Absent (the default): no limit. Not written when
+    /// absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_chain: Option<usize>,
     /// The chance that operators make, change or remove an environment read or a `chem` or
     /// `secrete` neuron (the `[ga]` key `environment_reads`, set by
     /// [`Genome::allow_environment_reads`]; not a key of the limits). 0, the default, draws
@@ -121,6 +132,8 @@ impl Default for LSystemLimits {
             max_modules: 1_000,
             max_parts: 50,
             max_repeat: 0,
+            max_neurons: None,
+            max_chain: None,
             environment_reads: 0.0,
             projectile: None,
         }

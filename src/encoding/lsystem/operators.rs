@@ -342,12 +342,7 @@ impl LSystemGenome {
         let params = limits.param_count();
         for item in successor.iter_mut() {
             // Replace a command (or call) by another.
-            if rng.random_bool(rate)
-                && !matches!(
-                    item,
-                    Item::Push | Item::Pop | Item::RepeatOpen | Item::RepeatClose(_)
-                )
-            {
+            if rng.random_bool(rate) && bracket(item).is_none() {
                 *item = if rng.random_bool(0.8) {
                     random_command(rng)
                 } else {
