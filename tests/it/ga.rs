@@ -91,6 +91,7 @@ fn evolution(preset: Preset, population: usize) -> Evolution<Toy> {
         init: None,
         key_version: Default::default(),
         key_tables: None,
+        walk_order: Default::default(),
     }
 }
 
