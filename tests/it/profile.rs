@@ -295,7 +295,11 @@ fn the_simulator_models_the_levers_on_a_profile_recorded_without_them() {
     let path = profile.to_str().unwrap();
     let seconds = |levers: &[&str]| {
         let out = ontogeny(
-            &[&["runs", "schedule", path, "--threads", "2", "--json"], levers].concat(),
+            &[
+                &["runs", "schedule", path, "--threads", "2", "--json"],
+                levers,
+            ]
+            .concat(),
         );
         let json: serde_json::Value =
             serde_json::from_str(&stdout(&succeeded_output(out))).unwrap();
