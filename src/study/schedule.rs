@@ -3,10 +3,11 @@
 //! run's own generational schedule.
 //!
 //! Each generation is replayed: its walks, in the order the evaluator was handed them, go each
-//! to the first thread to fall free (greedy list scheduling, which approximates rayon's work
-//! stealing and the MPI dispatcher's one queue alike); the generation waits for its last walk
-//! (the barrier); and the time the generation spent outside the evaluator's batch (breeding,
-//! developing, keying, the fine re-walk, writing and the rest) is added as it was recorded.
+//! to the first thread to fall free (greedy list scheduling, as the evaluator hands walks out
+//! to its threads and the MPI dispatcher from its one queue); the generation waits for its
+//! last walk (the barrier); and the time the generation spent outside the evaluator's batch
+//! (breeding, developing, keying, the fine re-walk, writing and the rest) is added as it was
+//! recorded.
 //! R ranks × T threads are R·T threads, with no cost for messages. The walks keep the times
 //! they had when recorded, so a prediction holds for a machine whose cores walk as fast as the
 //! recording's did (as many real cores as threads, no other load).
