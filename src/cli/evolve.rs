@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, encoding_named};
-use ontogeny::evolve::ga::Preset;
+use ontogeny::evolve::ga::{Preset, WalkOrder};
 use ontogeny::front::settings::{self, RunFlags};
 use ontogeny::front::start::{NewRun, StartError, start_run};
 use ontogeny::front::text::{self, RunTally};
@@ -60,6 +60,17 @@ pub fn preset_parser() -> impl clap::builder::TypedValueParser<Value = Preset> {
     })
 }
 
+/// Parses `--walk-order`: one of the library's walk orders by its name, every name listed in
+/// the help with its summary.
+fn walk_order_parser() -> impl clap::builder::TypedValueParser<Value = WalkOrder> {
+    use clap::builder::TypedValueParser;
+    let names =
+        WalkOrder::ALL.map(|o| clap::builder::PossibleValue::new(o.name()).help(o.summary()));
+    clap::builder::PossibleValuesParser::new(names).try_map(|name: String| {
+        WalkOrder::named(&name).ok_or_else(|| format!("unknown walk order '{name}'"))
+    })
+}
+
 /// The flags that go with `--resume`; it refuses every other ([`super::conflicts_with_all_but`]).
 pub const WITH_RESUME: &[&str] = &[
     "gens",
@@ -67,6 +78,7 @@ pub const WITH_RESUME: &[&str] = &[
     "allow_evaluator_change",
     "json",
     "profile",
+    "walk_order",
 ];
 
 /// Evolve creatures: a genetic algorithm over an encoding, on a task, into a run directory
@@ -143,6 +155,11 @@ pub struct EvolveArgs {
     /// runs schedule`; the run's results do not depend on it.
     #[arg(long, value_name = "FILE")]
     profile: Option<PathBuf>,
+    /// The order in which each generation's walks are handed to the threads, each to the
+    /// first thread free: the longest likely first keeps the threads busy until the
+    /// generation's end. The run's results do not depend on it; for benchmarks.
+    #[arg(long, value_name = "ORDER", value_parser = walk_order_parser(), default_value = "longest-first")]
+    walk_order: WalkOrder,
     /// Print the final line as one JSON object (the run's directory, encoding and fitness, the
     /// last generation's best and its fine reference, the counts and speed, the files
     /// written); progress and messages still go to standard error.
@@ -297,7 +314,13 @@ fn start<G: Genome>(
         StartError::Settings(d) => anyhow::Error::new(d),
         StartError::Run(e) => run_error(e),
     })?;
-    go(&mut run, out, args.json, args.profile.as_deref())
+    go(
+        &mut run,
+        out,
+        args.json,
+        args.profile.as_deref(),
+        args.walk_order,
+    )
 }
 
 fn resume<G: Genome>(dir: &Path, args: &EvolveArgs) -> anyhow::Result<()> {
@@ -336,18 +359,26 @@ fn resume<G: Genome>(dir: &Path, args: &EvolveArgs) -> anyhow::Result<()> {
         Some(g) => tell!("{}: resuming after generation {g}", dir.display()),
         None => tell!("{}: resuming from the first generation", dir.display()),
     }
-    go(&mut run, dir, json, args.profile.as_deref())
+    go(
+        &mut run,
+        dir,
+        json,
+        args.profile.as_deref(),
+        args.walk_order,
+    )
 }
 
 /// Runs the remaining generations with a progress bar on a terminal, log lines otherwise;
 /// the final line as JSON when `json` is set; each generation's timings to `profile`, if
-/// given.
+/// given; the walks handed out in `walk_order`.
 fn go<G: Genome>(
     run: &mut Run<G>,
     dir: &Path,
     json: bool,
     profile: Option<&Path>,
+    walk_order: WalkOrder,
 ) -> anyhow::Result<()> {
+    run.set_walk_order(walk_order);
     if let Some(path) = profile {
         run.set_profile(path).map_err(run_error)?;
     }

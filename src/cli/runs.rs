@@ -76,6 +76,15 @@ pub struct ScheduleArgs {
     /// MPI ranks, each with the threads of --threads, 1 to 1024.
     #[arg(long, value_name = "R", default_value_t = 1)]
     ranks: u32,
+    /// Model each generation's walks handed out longest-first, by their creatures' parts
+    /// (`evolve --walk-order longest-first`, the default), on a profile recorded in the
+    /// individuals' order.
+    #[arg(long)]
+    longest_first: bool,
+    /// Model the fine re-walk of each generation's best walked beside the next generation's
+    /// walks, first in its batch, instead of alone before the generation is stored.
+    #[arg(long)]
+    fine_beside: bool,
     /// Print one JSON object: what the profile recorded and a prediction per machine.
     #[arg(long)]
     json: bool,
@@ -248,14 +257,24 @@ fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
         machine.check().map_err(super::bad)?;
     }
     let profile = read_profile(&args.profile).map_err(|e| super::bad(e.to_string()))?;
+    let levers = schedule::Levers {
+        longest_first: args.longest_first,
+        fine_beside: args.fine_beside,
+    };
+    if levers.longest_first && !schedule::records_parts(&profile) {
+        return Err(super::bad(format!(
+            "{}: the profile records no creature sizes (it was written by an older ontogeny): --longest-first needs them; profile the run again",
+            args.profile.display()
+        )));
+    }
     let recorded = schedule::recorded(&profile);
     let rows: Vec<_> = machines
         .iter()
-        .map(|&m| schedule::predict(&profile, m))
+        .map(|&m| schedule::predict(&profile, m, levers))
         .collect();
     let name = args.profile.display().to_string();
     if args.json {
-        say!("{}", schedule::json(&name, &recorded, &rows));
+        say!("{}", schedule::json(&name, &recorded, &rows, levers));
     } else {
         let one = schedule::predict(
             &profile,
@@ -263,8 +282,9 @@ fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
                 ranks: 1,
                 threads: 1,
             },
+            levers,
         );
-        say!("{}", schedule::table(&name, &recorded, &one, &rows));
+        say!("{}", schedule::table(&name, &recorded, &one, &rows, levers));
     }
     Ok(())
 }

@@ -74,7 +74,8 @@ impl Evaluator {
     }
 
     /// The evaluations of `jobs` on `task`, in order, each job a separate unit of parallel
-    /// work; `Interrupted` once `cancel` is set (on this process's threads, every evaluation
+    /// work, handed out in the order of `jobs` (each to the first thread, or rank, to fall
+    /// free); `Interrupted` once `cancel` is set (on this process's threads, every evaluation
     /// stops at its next control step and no new one starts; a batch sent to MPI ranks runs to
     /// its end first).
     pub fn evaluate(
@@ -106,9 +107,13 @@ impl Evaluator {
         let this = self;
         match this {
             Evaluator::Local => {
-                let timed: Vec<(Evaluation, WalkTime)> = jobs
-                    .par_iter()
+                // Handed out in order, one walk to each thread as it falls free (a shared
+                // iterator), and put back in order: whatever thread runs a walk, its result
+                // lands in its job's place.
+                let mut timed: Vec<(usize, Evaluation, WalkTime)> = jobs
+                    .iter()
                     .enumerate()
+                    .par_bridge()
                     .map(|(index, job)| {
                         cancel.check()?;
                         let watch = Watch {
@@ -123,10 +128,14 @@ impl Evaluator {
                             seconds: started.elapsed().as_secs_f64(),
                             thread: rayon::current_thread_index().unwrap_or(0) as u32,
                             rank: 0,
+                            parts: job.creature.parts.len() as u32,
                         };
-                        Ok((evaluation, time))
+                        Ok((index, evaluation, time))
                     })
                     .collect::<Result<_, Interrupted>>()?;
+                timed.sort_unstable_by_key(|(index, _, _)| *index);
+                let timed: Vec<(Evaluation, WalkTime)> =
+                    timed.into_iter().map(|(_, e, t)| (e, t)).collect();
                 Ok(timed.into_iter().unzip())
             }
             #[cfg(feature = "mpi")]

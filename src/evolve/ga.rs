@@ -162,6 +162,64 @@ pub struct Evolution<G: Genome> {
     /// which version 1 keys hash ([`EvaluationKey::of_tables`]); `None`: the task's own
     /// table and the other tasks' defaults.
     pub key_tables: Option<TaskTables>,
+    /// The order a generation's walks are handed to the evaluator in: it changes when each
+    /// walk starts, never a result.
+    pub walk_order: WalkOrder,
+}
+
+/// The order in which a generation's walks are handed to the evaluator, each to the first
+/// thread (or rank) to fall free. Results are put back in their individuals' places, so the
+/// order changes how well the threads are kept busy before the generation's end, never a
+/// result: a run is the same to the digit in either order.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WalkOrder {
+    /// The likely-longest first: walks of creatures with more parts first (a step's cost
+    /// grows with the parts), ties in the individuals' order; so that a long walk does not
+    /// start last and hold the generation's end while the other threads idle. A pure function
+    /// of the generation's creatures: no clock is read.
+    #[default]
+    LongestFirst,
+    /// The individuals' order.
+    Index,
+}
+
+impl WalkOrder {
+    /// Every order.
+    pub const ALL: [WalkOrder; 2] = [WalkOrder::LongestFirst, WalkOrder::Index];
+
+    /// Its name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            WalkOrder::LongestFirst => "longest-first",
+            WalkOrder::Index => "index",
+        }
+    }
+
+    /// One line for people.
+    pub fn summary(self) -> &'static str {
+        match self {
+            WalkOrder::LongestFirst => {
+                "creatures with more parts first, ties in the individuals' order (the default)"
+            }
+            WalkOrder::Index => "in the individuals' order",
+        }
+    }
+
+    /// The order named `name`.
+    pub fn named(name: &str) -> Option<WalkOrder> {
+        WalkOrder::ALL.into_iter().find(|o| o.name() == name)
+    }
+
+    /// The order in which to hand out walks of creatures with `parts` parts (a walk each, in
+    /// the individuals' order): their indices.
+    pub fn order(self, parts: &[usize]) -> Vec<usize> {
+        let mut order: Vec<usize> = (0..parts.len()).collect();
+        if self == WalkOrder::LongestFirst {
+            // Stable: ties keep the individuals' order.
+            order.sort_by_key(|&i| std::cmp::Reverse(parts[i]));
+        }
+        order
+    }
 }
 
 /// A new individual before evaluation.
@@ -337,11 +395,27 @@ impl<G: Genome> Evolution<G> {
             };
             owners.push((index, units, start..jobs.len()));
         }
+        // Handed out in the walk order, put back in the jobs' order.
+        let order = self.walk_order.order(
+            &jobs
+                .iter()
+                .map(|j| j.creature.parts.len())
+                .collect::<Vec<_>>(),
+        );
+        let handed: Vec<Job<'_>> = order.iter().map(|&j| jobs[j]).collect();
         let started = Instant::now();
-        let (mut evaluations, walks) =
-            Evaluator::current().evaluate_timed(&self.task, &jobs, cancel)?;
+        let (evaluations_handed, walks) =
+            Evaluator::current().evaluate_timed(&self.task, &handed, cancel)?;
         times.evaluating = started.elapsed().as_secs_f64();
-        // Each walk's job index becomes its individual's.
+        let mut evaluations: Vec<Option<Evaluation>> = vec![None; jobs.len()];
+        for (&j, evaluation) in order.iter().zip(evaluations_handed) {
+            evaluations[j] = Some(evaluation);
+        }
+        let mut evaluations: Vec<Evaluation> = evaluations
+            .into_iter()
+            .map(|e| e.expect("every job is handed out once"))
+            .collect();
+        // Each walk's job index becomes its individual's; the walks stay in the order handed.
         let mut owner_of_job = vec![0u32; jobs.len()];
         for (index, _, range) in &owners {
             owner_of_job[range.clone()].fill(*index as u32);
@@ -349,7 +423,7 @@ impl<G: Genome> Evolution<G> {
         times.walks = walks
             .into_iter()
             .map(|w| WalkTime {
-                individual: owner_of_job[w.individual as usize],
+                individual: owner_of_job[order[w.individual as usize]],
                 ..w
             })
             .collect();

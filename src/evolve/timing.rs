@@ -14,6 +14,11 @@ pub struct WalkTime {
     pub thread: u32,
     /// The MPI rank that ran it (0 without MPI).
     pub rank: u32,
+    /// The parts of the creature it walked: what the longest-first order ranks walks by
+    /// ([`crate::evolve::ga::WalkOrder::LongestFirst`]). 0 in a profile written before it
+    /// was recorded.
+    #[serde(default)]
+    pub parts: u32,
 }
 
 /// Wall-clock seconds of the steps of one generation inside the genetic algorithm, and its

@@ -25,7 +25,7 @@ use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::evolve::cache::EvaluationCache;
 use crate::evolve::evaluator::Evaluator;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
-use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator};
+use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator, WalkOrder};
 use crate::evolve::key::{EvaluationKey, KeyVersion};
 use crate::evolve::timing::GenerationTimes;
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
@@ -479,6 +479,7 @@ impl<G: Genome> Run<G> {
                 init,
                 key_version: KeyVersion::default(),
                 key_tables: None,
+                walk_order: WalkOrder::default(),
             },
             config,
             store,
@@ -503,6 +504,12 @@ impl<G: Genome> Run<G> {
     pub fn set_profile(&mut self, path: &Path) -> Result<(), RunError> {
         self.profile = Some(ProfileWriter::create(path)?);
         Ok(())
+    }
+
+    /// Hands each generation's walks to the evaluator in `order` from now on. The run's
+    /// results do not change: only when each walk starts.
+    pub fn set_walk_order(&mut self, order: WalkOrder) {
+        self.evolution.walk_order = order;
     }
 
     /// The run's settings.

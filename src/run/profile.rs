@@ -3,7 +3,7 @@
 //! line holds the wall time of its steps (breeding, developing, keying, evaluating, the fine
 //! re-walk of its best, writing the store and the derived files, and the rest), the threads and
 //! ranks that ran it, and each walk the evaluator simulated, in the order it was handed them,
-//! with its wall time and the thread and rank that ran it.
+//! with its wall time, the thread and rank that ran it, and its creature's parts.
 //!
 //! The profile is kept apart from the run store: timings differ from one run to the next, and
 //! the store of a run is the same on any number of threads, timed or not.

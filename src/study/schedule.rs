@@ -3,13 +3,20 @@
 //! run's own generational schedule.
 //!
 //! Each generation is replayed: its walks, in the order the evaluator was handed them, go each
-//! to the first thread to fall free (greedy list scheduling, which approximates rayon's work
-//! stealing and the MPI dispatcher's one queue alike); the generation waits for its last walk
-//! (the barrier); and the time the generation spent outside the evaluator's batch (breeding,
-//! developing, keying, the fine re-walk, writing and the rest) is added as it was recorded.
+//! to the first thread to fall free (greedy list scheduling, as the evaluator hands walks out
+//! to its threads and the MPI dispatcher from its one queue); the generation waits for its
+//! last walk (the barrier); and the time the generation spent outside the evaluator's batch
+//! (breeding, developing, keying, the fine re-walk, writing and the rest) is added as it was
+//! recorded.
 //! R ranks × T threads are R·T threads, with no cost for messages. The walks keep the times
 //! they had when recorded, so a prediction holds for a machine whose cores walk as fast as the
 //! recording's did (as many real cores as threads, no other load).
+//!
+//! Two levers can be modelled on a profile recorded without them ([`Levers`]): the walks
+//! handed out longest-first (by their creatures' parts, as the genetic algorithm's
+//! [`crate::evolve::ga::WalkOrder::LongestFirst`] orders them), and the fine re-walk of each
+//! generation's best run as one more walk at the head of the next generation's batch instead
+//! of alone before its generation is stored.
 
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
@@ -133,6 +140,47 @@ pub fn recorded(profile: &[GenerationProfile]) -> Recorded {
     }
 }
 
+/// The changes to the run's schedule a prediction models, beyond what the profile recorded.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Levers {
+    /// Each generation's walks handed out by their creatures' parts, most first, ties in the
+    /// recorded order (a stable sort: on a profile recorded in the individuals' order, the
+    /// order [`crate::evolve::ga::WalkOrder::LongestFirst`] hands them out in).
+    pub longest_first: bool,
+    /// Each generation's fine re-walk (its recorded `fine` seconds) taken out of its time
+    /// outside evaluation and walked first in the next generation's batch, beside its walks;
+    /// the last generation's stays where it was, as there is no next batch.
+    pub fine_beside: bool,
+}
+
+/// Each generation's walks (seconds) as the levers hand them out, and its seconds outside
+/// evaluation.
+pub fn replayed(profile: &[GenerationProfile], levers: Levers) -> Vec<(Vec<f64>, f64)> {
+    profile
+        .iter()
+        .enumerate()
+        .map(|(i, g)| {
+            let mut walks: Vec<(u32, f64)> = g.walks.iter().map(|w| (w.parts, w.seconds)).collect();
+            if levers.longest_first {
+                walks.sort_by_key(|&(parts, _)| Reverse(parts));
+            }
+            let mut seconds: Vec<f64> = walks.into_iter().map(|(_, s)| s).collect();
+            let mut outside = g.outside_evaluation();
+            if levers.fine_beside {
+                if i + 1 < profile.len() {
+                    outside = (outside - g.fine).max(0.0);
+                }
+                if let Some(previous) = i.checked_sub(1).map(|p| profile[p].fine)
+                    && previous > 0.0
+                {
+                    seconds.insert(0, previous);
+                }
+            }
+            (seconds, outside)
+        })
+        .collect()
+}
+
 /// The simulator's prediction for one machine.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Prediction {
@@ -150,17 +198,16 @@ pub struct Prediction {
     pub evaluations_per_second: f64,
 }
 
-/// The prediction for `machine` of the run profiled in `profile`.
-pub fn predict(profile: &[GenerationProfile], machine: Machine) -> Prediction {
+/// The prediction for `machine` of the run profiled in `profile`, with `levers`.
+pub fn predict(profile: &[GenerationProfile], machine: Machine, levers: Levers) -> Prediction {
     let slots = machine.slots();
     let mut walking = 0.0;
     let mut outside = 0.0;
     let mut walked = 0.0;
-    for g in profile {
-        let walks: Vec<f64> = g.walks.iter().map(|w| w.seconds).collect();
+    for (walks, out) in replayed(profile, levers) {
         walking += makespan(&walks, slots);
         walked += walks.iter().sum::<f64>();
-        outside += g.outside_evaluation();
+        outside += out;
     }
     let seconds = walking + outside;
     let evaluations: u64 = profile.iter().map(|g| g.evaluations).sum();
@@ -174,8 +221,15 @@ pub fn predict(profile: &[GenerationProfile], machine: Machine) -> Prediction {
 }
 
 /// The predictions as a table for people: what was recorded, then a row per machine with its
-/// evaluations per second, the speed-up over one thread and the walking share.
-pub fn table(name: &str, recorded: &Recorded, one: &Prediction, rows: &[Prediction]) -> String {
+/// evaluations per second, the speed-up over one thread and the walking share, and how they
+/// were predicted (with `levers`).
+pub fn table(
+    name: &str,
+    recorded: &Recorded,
+    one: &Prediction,
+    rows: &[Prediction],
+    levers: Levers,
+) -> String {
     let mut out = format!(
         "{name}: {} generations, {} evaluations, {} walks ({} s of walking, {} s outside evaluation), recorded on {} rank{} × {} thread{}: {} evaluations/s measured\n",
         recorded.generations,
@@ -212,18 +266,36 @@ pub fn table(name: &str, recorded: &Recorded, one: &Prediction, rows: &[Predicti
             },
         ));
     }
-    out.push_str(
-        "predicted: each generation's walks in their recorded order, each to the first thread free, a barrier at each generation's end, the time outside evaluation as recorded",
-    );
+    out.push_str(&format!(
+        "predicted: each generation's walks {}, each to the first thread free, a barrier at each generation's end, the time outside evaluation as recorded{}",
+        if levers.longest_first {
+            "by their creatures' parts, most first (ties in their recorded order)"
+        } else {
+            "in their recorded order"
+        },
+        if levers.fine_beside {
+            " but for the fine re-walk of each generation's best, walked first in the next generation's batch (the last one's as recorded)"
+        } else {
+            ""
+        },
+    ));
     out
 }
 
-/// The predictions as one JSON object: the profile's name and figures, and a prediction per
-/// machine.
-pub fn json(name: &str, recorded: &Recorded, rows: &[Prediction]) -> String {
+/// Whether the profile records its walks' creature sizes, which `longest_first` needs: a
+/// profile written before they were recorded has 0 parts for every walk.
+pub fn records_parts(profile: &[GenerationProfile]) -> bool {
+    let mut walks = profile.iter().flat_map(|g| &g.walks).peekable();
+    walks.peek().is_none() || walks.any(|w| w.parts > 0)
+}
+
+/// The predictions as one JSON object: the profile's name and figures, the levers modelled,
+/// and a prediction per machine.
+pub fn json(name: &str, recorded: &Recorded, rows: &[Prediction], levers: Levers) -> String {
     serde_json::to_string_pretty(&serde_json::json!({
         "profile": name,
         "recorded": recorded,
+        "levers": levers,
         "predictions": rows,
     }))
     .unwrap_or_default()
@@ -267,6 +339,7 @@ mod tests {
                     seconds,
                     thread: 0,
                     rank: 0,
+                    parts: 0,
                 })
                 .collect(),
         }
@@ -304,6 +377,7 @@ mod tests {
                 ranks: 1,
                 threads: 1,
             },
+            Levers::default(),
         );
         // 8.5 + 6.5 = 15 s.
         assert_eq!(one.seconds, 15.0);
@@ -315,6 +389,7 @@ mod tests {
                 ranks: 1,
                 threads: 2,
             },
+            Levers::default(),
         );
         // 5 + 0.5, then 2 + 2 on one thread: 4 + 0.5; 10 s.
         assert_eq!(two.seconds, 10.0);
@@ -329,12 +404,81 @@ mod tests {
                 ranks: 2,
                 threads: 2,
             },
+            Levers::default(),
         );
         assert_eq!(four.seconds, 6.0);
         // The profile's own figures: 14 s of walks and 1 s outside, measured at 8 / 15.
         let r = recorded(&profile);
         assert_eq!((r.walks, r.walk_seconds, r.outside_seconds), (8, 14.0, 1.0));
         assert_eq!(r.evaluations_per_second, 8.0 / 15.0);
+    }
+
+    #[test]
+    fn the_levers_reorder_the_walks_and_move_the_fine_re_walk_into_the_next_batch() {
+        // Generation 0: walks of 1, 1, 1 and 3 s by creatures of 2, 2, 3 and 9 parts, 0.5 s
+        // outside evaluation of which 0.4 s the fine re-walk; generation 1: walks of 2 and 2 s
+        // (4 and 4 parts), 0.5 s outside of which 0.4 s fine.
+        let mut g0 = generation(&[1.0, 1.0, 1.0, 3.0], 0.5, 4);
+        for (w, parts) in g0.walks.iter_mut().zip([2, 2, 3, 9]) {
+            w.parts = parts;
+        }
+        g0.fine = 0.4;
+        let mut g1 = generation(&[2.0, 2.0], 0.5, 2);
+        for w in &mut g1.walks {
+            w.parts = 4;
+        }
+        g1.fine = 0.4;
+        let profile = [g0, g1];
+        let two = Machine {
+            ranks: 1,
+            threads: 2,
+        };
+        // As recorded: 1 | 1, then 1 to the first free (A, 1-2), 3 to B (1-4): 4 s; then 2 |
+        // 2: 2 s. 6 s of walking + 1 s outside.
+        let plain = predict(&profile, two, Levers::default());
+        assert_eq!((plain.walking_seconds, plain.seconds), (6.0, 7.0));
+        // Longest first: 3 (9 parts) to A, then 1 (3 parts), 1, 1 to B: 3 s; then 2 | 2.
+        let longest = Levers {
+            longest_first: true,
+            fine_beside: false,
+        };
+        assert_eq!(
+            replayed(&profile, longest)[0],
+            (vec![3.0, 1.0, 1.0, 1.0], 0.5)
+        );
+        let p = predict(&profile, two, longest);
+        assert_eq!((p.walking_seconds, p.seconds), (5.0, 6.0));
+        // Fine beside: generation 0's 0.4 s leaves its 0.5 s outside (0.1 s left) and walks
+        // first in generation 1's batch: 0.4 | 2, then 2 to A (0.4-2.4): 2.4 s. The last
+        // generation's fine re-walk stays outside (0.5 s).
+        let beside = Levers {
+            longest_first: false,
+            fine_beside: true,
+        };
+        assert_eq!(replayed(&profile, beside)[1], (vec![0.4, 2.0, 2.0], 0.5));
+        let p = predict(&profile, two, beside);
+        assert!((p.walking_seconds - 6.4).abs() < 1e-12);
+        assert!((p.seconds - 7.0).abs() < 1e-12);
+        // Both: 3 s, then 2.4 s walking, 0.1 + 0.5 s outside: 6 s; 6 evaluations.
+        let both = Levers {
+            longest_first: true,
+            fine_beside: true,
+        };
+        let p = predict(&profile, two, both);
+        assert!((p.seconds - 6.0).abs() < 1e-12);
+        assert!((p.evaluations_per_second - 1.0).abs() < 1e-12);
+        // Walks 10 + 0.4 s on 2 threads × 5.4 s.
+        assert!((p.walking_share - 10.4 / 10.8).abs() < 1e-12);
+        // One thread: the levers only move time about: 10 s of walks, 0.4 + 0.4 of fine
+        // re-walks and 0.2 s else: 11 s either way.
+        let one = Machine {
+            ranks: 1,
+            threads: 1,
+        };
+        assert!((predict(&profile, one, both).seconds - 11.0).abs() < 1e-12);
+        assert_eq!(predict(&profile, one, Levers::default()).seconds, 11.0);
+        assert!(records_parts(&profile));
+        assert!(!records_parts(&[generation(&[1.0], 0.0, 1)]));
     }
 
     #[test]

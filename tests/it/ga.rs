@@ -91,6 +91,7 @@ fn evolution(preset: Preset, population: usize) -> Evolution<Toy> {
         init: None,
         key_version: Default::default(),
         key_tables: None,
+        walk_order: Default::default(),
     }
 }
 
@@ -255,6 +256,7 @@ fn newborns_whose_parts_collide_are_made_again_as_chaumont_made_them() {
             init: None,
             key_version: Default::default(),
             key_tables: None,
+            walk_order: Default::default(),
         };
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

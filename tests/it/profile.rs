@@ -133,6 +133,58 @@ fn a_profiled_run_is_the_same_as_one_not_profiled_on_one_or_two_threads_and_resu
     let _ = std::fs::remove_dir_all(dir);
 }
 
+#[test]
+fn the_walk_order_changes_no_result_on_one_two_or_three_threads() {
+    let dir = scratch_dir("profile-walk-order");
+    walkers(
+        &dir.join("index"),
+        &["--threads", "1", "--walk-order", "index"],
+    );
+    let plain = crate::evolve::contents(&dir.join("index"));
+    for threads in ["1", "2", "3"] {
+        let run = dir.join(format!("longest-{threads}"));
+        let profile = dir.join(format!("longest-{threads}.jsonl"));
+        walkers(
+            &run,
+            &["--threads", threads, "--profile", profile.to_str().unwrap()],
+        );
+        assert_eq!(crate::evolve::contents(&run), plain, "{threads} threads");
+        // The walks were handed out by their creatures' parts, most first, ties in the
+        // individuals' order.
+        for g in read_profile(&profile).unwrap() {
+            let handed: Vec<(u32, u32)> = g.walks.iter().map(|w| (w.parts, w.individual)).collect();
+            let mut sorted = handed.clone();
+            sorted.sort_by_key(|&(parts, individual)| (std::cmp::Reverse(parts), individual));
+            assert_eq!(handed, sorted, "generation {}", g.generation);
+            // The creatures' sizes are recorded (a creature with no part walks too, briefly).
+            assert!(handed.iter().any(|&(parts, _)| parts > 0), "{handed:?}");
+        }
+    }
+    // In the individuals' order, on two threads: the same run, its walks in their order.
+    let profile = dir.join("index-2.jsonl");
+    walkers(
+        &dir.join("index-2"),
+        &[
+            "--threads",
+            "2",
+            "--walk-order",
+            "index",
+            "--profile",
+            profile.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(crate::evolve::contents(&dir.join("index-2")), plain);
+    for g in read_profile(&profile).unwrap() {
+        let individuals: Vec<u32> = g.walks.iter().map(|w| w.individual).collect();
+        assert!(individuals.is_sorted(), "{individuals:?}");
+    }
+    assert_bad_input(
+        &["evolve", "--walk-order", "shortest"],
+        "invalid value 'shortest' for '--walk-order <ORDER>'",
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 /// A profile's line: one generation of `walks` (seconds, each on thread 0), `outside` seconds
 /// of breeding, and `evaluations` individuals evaluated.
 fn line(generation: u32, walks: &[f64], outside: f64, evaluations: u64) -> String {
@@ -214,6 +266,61 @@ fn the_schedule_simulator_gives_the_hand_computed_makespans() {
             .any(|l| l.split_whitespace().collect::<Vec<_>>()
                 == ["1", "2", "1.33", "1.83×", "0.917"]),
         "{text}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn the_simulator_models_the_levers_on_a_profile_recorded_without_them() {
+    let dir = scratch_dir("profile-levers");
+    let profile = dir.join("levers.jsonl");
+    // Generation 0: walks of 1, 1, 1 and 3 s by creatures of 2, 2, 3 and 9 parts, 0.5 s
+    // outside evaluation of which 0.4 s re-walking its best at the fine reference;
+    // generation 1: walks of 2 and 2 s by 4-part creatures, the same 0.5 s outside.
+    let with = |line: String, parts: &[u32]| {
+        let mut value: serde_json::Value = serde_json::from_str(&line).unwrap();
+        for (w, &p) in value["walks"].as_array_mut().unwrap().iter_mut().zip(parts) {
+            w["parts"] = p.into();
+        }
+        value["fine"] = 0.4.into();
+        value["breeding"] = 0.1.into();
+        value.to_string()
+    };
+    std::fs::write(
+        &profile,
+        with(line(0, &[1.0, 1.0, 1.0, 3.0], 0.5, 4), &[2, 2, 3, 9])
+            + "\n"
+            + &with(line(1, &[2.0, 2.0], 0.5, 2), &[4, 4]),
+    )
+    .unwrap();
+    let path = profile.to_str().unwrap();
+    let seconds = |levers: &[&str]| {
+        let out = ontogeny(
+            &[
+                &["runs", "schedule", path, "--threads", "2", "--json"],
+                levers,
+            ]
+            .concat(),
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&stdout(&succeeded_output(out))).unwrap();
+        json["predictions"][0]["seconds"].as_f64().unwrap()
+    };
+    // As recorded, on 2 threads: 1 | 1, the third 1 to the first thread (1-2), the 3 to the
+    // second (1-4): 4 s; then 2 | 2: 2 s; + 1 s outside: 7 s.
+    assert_eq!(seconds(&[]), 7.0);
+    // Longest first: the 3 (9 parts) | 1, 1, 1: 3 s; then 2 s; + 1: 6 s.
+    assert_eq!(seconds(&["--longest-first"]), 6.0);
+    // The fine re-walk beside: generation 0 keeps 0.1 s outside, generation 1 walks 0.4 | 2,
+    // then 2 (0.4-2.4): 4 + 2.4 + 0.1 + 0.5 = 7 s.
+    assert!((seconds(&["--fine-beside"]) - 7.0).abs() < 1e-9);
+    // Both: 3 + 2.4 + 0.6 = 6 s.
+    assert!((seconds(&["--longest-first", "--fine-beside"]) - 6.0).abs() < 1e-9);
+    // A profile without the creatures' sizes cannot be ordered by them.
+    std::fs::write(&profile, line(0, &[1.0, 2.0], 0.0, 2)).unwrap();
+    assert_bad_input(
+        &["runs", "schedule", path, "--longest-first"],
+        "records no creature sizes",
     );
     let _ = std::fs::remove_dir_all(dir);
 }
