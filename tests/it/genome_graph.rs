@@ -20,7 +20,8 @@ fn rng(seed: u64) -> Rng {
     Rng::seed_from_u64(seed)
 }
 
-fn node(size: [f64; 3], joint: JointKind, recursive_limit: u32) -> Node {
+/// A graph node of `size` joined to its parent by `joint`, with no neurons or connections.
+pub(crate) fn node(size: [f64; 3], joint: JointKind, recursive_limit: u32) -> Node {
     Node {
         size,
         joint,
@@ -31,7 +32,8 @@ fn node(size: [f64; 3], joint: JointKind, recursive_limit: u32) -> Node {
     }
 }
 
-fn straight(to: usize, face: Face, scale: f64) -> Connection {
+/// A connection from a node's `face` to node `to`, straight out, at `scale`.
+pub(crate) fn straight(to: usize, face: Face, scale: f64) -> Connection {
     Connection {
         to,
         face,

@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use ontogeny::creature::{Creature, Face, JointKind, NeuronFunction};
-use ontogeny::encoding::graph::{Connection, Effector, Input, NeuronGene, Node, Source};
+use ontogeny::encoding::graph::{Effector, Input, NeuronGene, Source};
 use ontogeny::encoding::{
     CheckedLimits, ContinuousGenome, ContinuousLimits, DirectGenome, DirectLimits, Genome,
     GraphGenome, GraphLimits, LSystemGenome, LSystemLimits, Rng,
@@ -19,6 +19,7 @@ use ontogeny::run::store::RunStore;
 use ontogeny::task::{TaskKind, TaskSpec};
 use rand::SeedableRng;
 
+use crate::genome_graph::{node, straight};
 use crate::util::{
     assert_the_same_on_any_thread_count_and_resumed, evolve, operators_fingerprint, scratch_dir,
 };
@@ -135,31 +136,6 @@ fn an_lsystem_continuous_creature_is_held_to_max_neurons_and_max_chain() {
     };
     assert_eq!(developed(&g, &limits(None, None)).parts.len(), 10);
     held_to_both_keys(&g, limits, 9, 3);
-}
-
-/// A graph node of `size` joined to its parent by `joint`, with no neurons or connections.
-fn node(size: [f64; 3], joint: JointKind, recursive_limit: u32) -> Node {
-    Node {
-        size,
-        joint,
-        limits: vec![(-1.0, 1.0); joint.dof()],
-        recursive_limit,
-        neurons: vec![],
-        connections: vec![],
-    }
-}
-
-/// A connection from a node's `face` to node `to`, straight out, at `scale`.
-fn straight(to: usize, face: Face, scale: f64) -> Connection {
-    Connection {
-        to,
-        face,
-        position: [0.0, 0.0],
-        orientation: [0.0, 0.0, 0.0],
-        scale,
-        reflection: false,
-        terminal_only: false,
-    }
 }
 
 #[test]
