@@ -13,7 +13,8 @@ use ontogeny::study::canalization::{self, Settings};
 use ontogeny::study::lifetime;
 use ontogeny::study::listing;
 use ontogeny::study::plasticity::{self, FoundRun, PlasticityError};
-use ontogeny::study::schedule::{self, Machine};
+use ontogeny::study::schedule::{self, Machine, Schedule};
+use ontogeny::study::steady_schedule;
 use ontogeny::study::sustained::{self, SustainedSettings};
 
 /// Subcommands of `ontogeny runs`.
@@ -58,9 +59,10 @@ pub enum RunsVerb {
     Sustained(SustainedArgs),
     /// Predict from a run's profile (`evolve --profile FILE`) the evaluations per second it
     /// would reach on other numbers of threads (or MPI ranks × threads), under its own
-    /// generational schedule: each generation's walks in their recorded order, each to the
+    /// generational schedule (each generation's walks in their recorded order, each to the
     /// first thread free, a barrier at the generation's end, its time outside evaluation as
-    /// recorded. A row per machine.
+    /// recorded) or a steady-state one (--steady-state). --population and --driver-us project
+    /// to populations and costs no run recorded. A row per machine.
     Schedule(ScheduleArgs),
 }
 
@@ -85,6 +87,23 @@ pub struct ScheduleArgs {
     /// walks, first in its batch, instead of alone before the generation is stored.
     #[arg(long)]
     fine_beside: bool,
+    /// Replay the profile as a steady-state run with W births in flight (no generation
+    /// barrier; births integrated in order; 1 to 1000000) instead of generationally.
+    #[arg(long, value_name = "W", conflicts_with_all = ["longest_first", "fine_beside"])]
+    steady_state: Option<usize>,
+    /// Replay generations of N evaluations of one walk each, drawn at random (seed 1, with
+    /// replacement) from the profile's walks, in place of the recorded generations (1 to
+    /// 1000000): a projection to a population no run recorded.
+    #[arg(long, value_name = "N")]
+    population: Option<usize>,
+    /// With --population: how many generations to draw [default: the profile's].
+    #[arg(long, value_name = "G", requires = "population")]
+    generations: Option<usize>,
+    /// Charge each evaluation this many microseconds of serial work on the driver (rank 0's
+    /// breeding, developing and keying) in place of the recorded time outside evaluation (the
+    /// fine re-walks kept): a projection to a cheaper or dearer rank 0. 0 to 1000000.
+    #[arg(long, value_name = "US")]
+    driver_us: Option<f64>,
     /// Print one JSON object: what the profile recorded and a prediction per machine.
     #[arg(long)]
     json: bool,
@@ -256,7 +275,7 @@ fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
     for machine in &machines {
         machine.check().map_err(super::bad)?;
     }
-    let profile = read_profile(&args.profile).map_err(|e| super::bad(e.to_string()))?;
+    let mut profile = read_profile(&args.profile).map_err(|e| super::bad(e.to_string()))?;
     let levers = schedule::Levers {
         longest_first: args.longest_first,
         fine_beside: args.fine_beside,
@@ -267,24 +286,76 @@ fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
             args.profile.display()
         )));
     }
+    let limit = 1_000_000;
+    for (flag, value) in [
+        ("--steady-state", args.steady_state),
+        ("--population", args.population),
+        ("--generations", args.generations),
+    ] {
+        if let Some(n) = value
+            && !(1..=limit).contains(&n)
+        {
+            return Err(super::bad(format!("{flag} must be 1 to {limit}, not {n}")));
+        }
+    }
+    if let Some(population) = args.population {
+        let generations = args.generations.unwrap_or(profile.len());
+        if population.saturating_mul(generations) > 10 * limit {
+            return Err(super::bad(format!(
+                "--population {population} × --generations {generations} is over {} walks; draw fewer",
+                10 * limit
+            )));
+        }
+        profile = steady_schedule::resampled(&profile, population, generations, 1);
+        if profile.is_empty() {
+            return Err(super::bad(format!(
+                "{}: the profile holds no walk times to draw from (a run over MPI ranks does not record them)",
+                args.profile.display()
+            )));
+        }
+    }
+    if let Some(us) = args.driver_us {
+        if !(0.0..=1e6).contains(&us) {
+            return Err(super::bad(format!(
+                "--driver-us must be 0 to 1000000, not {us}"
+            )));
+        }
+        profile = steady_schedule::with_driver(&profile, us * 1e-6);
+    }
+    let plan = match args.steady_state {
+        Some(in_flight) => Schedule::SteadyState { in_flight },
+        None => Schedule::Generational(levers),
+    };
     let recorded = schedule::recorded(&profile);
     let rows: Vec<_> = machines
         .iter()
-        .map(|&m| schedule::predict(&profile, m, levers))
+        .map(|&m| plan.predict(&profile, m))
         .collect();
-    let name = args.profile.display().to_string();
+    let mut name = args.profile.display().to_string();
+    if let Some(population) = args.population {
+        name.push_str(&format!(
+            " (its walks drawn into {} generations of {population}: what follows is of the drawn profile, not measured)",
+            profile.len()
+        ));
+    }
+    if let Some(us) = args.driver_us {
+        name.push_str(&format!(" (driver {us} µs an evaluation)"));
+    }
+    let ceiling = schedule::ceiling_per_thread(&profile);
     if args.json {
-        say!("{}", schedule::json(&name, &recorded, &rows, levers));
+        say!("{}", schedule::json(&name, &recorded, ceiling, &rows, plan));
     } else {
-        let one = schedule::predict(
+        let one = plan.predict(
             &profile,
             Machine {
                 ranks: 1,
                 threads: 1,
             },
-            levers,
         );
-        say!("{}", schedule::table(&name, &recorded, &one, &rows, levers));
+        say!(
+            "{}",
+            schedule::table(&name, &recorded, (&one, ceiling), &rows, plan)
+        );
     }
     Ok(())
 }

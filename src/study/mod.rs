@@ -6,7 +6,8 @@
 //! champions do in each habitat and how their bodies answer the chemical cue
 //! ([`plasticity`]), whether champions go on walking after the time they were evolved for
 //! ([`sustained`]), and the evaluations per second a profiled run would reach on other
-//! numbers of threads and ranks ([`schedule`]).
+//! numbers of threads and ranks, generational ([`schedule`]) or steady-state
+//! ([`steady_schedule`]).
 
 pub mod bench;
 pub mod canalization;
@@ -17,4 +18,5 @@ pub mod listing;
 pub mod plasticity;
 pub mod schedule;
 pub mod stats;
+pub mod steady_schedule;
 pub mod sustained;

@@ -60,7 +60,7 @@ impl Machine {
 
 /// A time at which a thread falls free, ordered by time, then by the thread's index.
 #[derive(PartialEq)]
-struct Free(f64, usize);
+pub(crate) struct Free(pub(crate) f64, pub(crate) usize);
 
 impl Eq for Free {}
 
@@ -220,15 +220,75 @@ pub fn predict(profile: &[GenerationProfile], machine: Machine, levers: Levers) 
     }
 }
 
+/// The schedule a prediction replays a profile under.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Schedule {
+    /// The generational algorithm's, with the levers modelled ([`predict`]).
+    Generational(Levers),
+    /// A steady-state algorithm's, with this many births in flight and the profile's first
+    /// generation as its population ([`super::steady_schedule::predict_steady`]).
+    SteadyState {
+        /// Births in flight, at least 1.
+        in_flight: usize,
+    },
+}
+
+impl Schedule {
+    /// The prediction for `machine` of the run profiled in `profile` under this schedule.
+    pub fn predict(self, profile: &[GenerationProfile], machine: Machine) -> Prediction {
+        match self {
+            Schedule::Generational(levers) => predict(profile, machine, levers),
+            Schedule::SteadyState { in_flight } => {
+                super::steady_schedule::predict_steady(profile, machine, in_flight, 0)
+            }
+        }
+    }
+
+    /// How the prediction replays the profile, in words.
+    pub fn describe(self) -> String {
+        match self {
+            Schedule::Generational(levers) => format!(
+                "each generation's walks {}, each to the first thread free, a barrier at each generation's end, the time outside evaluation as recorded{}",
+                if levers.longest_first {
+                    "by their creatures' parts, most first (ties in their recorded order)"
+                } else {
+                    "in their recorded order"
+                },
+                if levers.fine_beside {
+                    " but for the fine re-walk of each generation's best, walked first in the next generation's batch (the last one's as recorded)"
+                } else {
+                    ""
+                },
+            ),
+            Schedule::SteadyState { in_flight } => format!(
+                "steady-state, {in_flight} birth{} in flight: the recorded individuals as births in order, each bred once the birth {in_flight} before it is integrated (after the first generation), the time outside evaluation shared equally among the births and spent on one driver before each birth, each walk to the first thread free, births integrated in order",
+                if in_flight == 1 { "" } else { "s" },
+            ),
+        }
+    }
+}
+
+/// The ceiling's speed per thread: the generational schedule's on one thread, as one of as
+/// many independent one-thread runs as there are threads would go.
+pub fn ceiling_per_thread(profile: &[GenerationProfile]) -> f64 {
+    let one = Machine {
+        ranks: 1,
+        threads: 1,
+    };
+    predict(profile, one, Levers::default()).evaluations_per_second
+}
+
 /// The predictions as a table for people: what was recorded, then a row per machine with its
-/// evaluations per second, the speed-up over one thread and the walking share, and how they
-/// were predicted (with `levers`).
+/// evaluations per second, the speed-up over the same schedule on one thread (`one`), the
+/// share of the ceiling (its speed over `ceiling` per thread: as many independent one-thread
+/// runs of the generational schedule would reach 1) and the walking share, and how they were
+/// predicted (under `schedule`).
 pub fn table(
     name: &str,
     recorded: &Recorded,
-    one: &Prediction,
+    (one, ceiling): (&Prediction, f64),
     rows: &[Prediction],
-    levers: Levers,
+    schedule: Schedule,
 ) -> String {
     let mut out = format!(
         "{name}: {} generations, {} evaluations, {} walks ({} s of walking, {} s outside evaluation), recorded on {} rank{} × {} thread{}: {} evaluations/s measured\n",
@@ -248,16 +308,18 @@ pub fn table(
             "note: the profile holds no walk times (a run over MPI ranks does not record them): the predictions count only the time outside evaluation\n",
         );
     }
-    out.push_str("ranks  threads  evaluations/s  speed-up  walking share\n");
+    out.push_str("ranks  threads  evaluations/s  speed-up  of ceiling  walking share\n");
     for p in rows {
+        let speed_up = p.evaluations_per_second / one.evaluations_per_second;
         out.push_str(&format!(
-            "{:>5}  {:>7}  {:>13}  {:>8}  {:>13}\n",
+            "{:>5}  {:>7}  {:>13}  {:>8}  {:>10}  {:>13}\n",
             p.machine.ranks,
             p.machine.threads,
             round(p.evaluations_per_second, 2),
-            format!(
-                "{}×",
-                round(p.evaluations_per_second / one.evaluations_per_second, 2)
+            format!("{}×", round(speed_up, 2)),
+            round(
+                p.evaluations_per_second / (ceiling * p.machine.slots() as f64),
+                3
             ),
             if p.walking_share.is_finite() {
                 round(p.walking_share, 3)
@@ -266,19 +328,7 @@ pub fn table(
             },
         ));
     }
-    out.push_str(&format!(
-        "predicted: each generation's walks {}, each to the first thread free, a barrier at each generation's end, the time outside evaluation as recorded{}",
-        if levers.longest_first {
-            "by their creatures' parts, most first (ties in their recorded order)"
-        } else {
-            "in their recorded order"
-        },
-        if levers.fine_beside {
-            " but for the fine re-walk of each generation's best, walked first in the next generation's batch (the last one's as recorded)"
-        } else {
-            ""
-        },
-    ));
+    out.push_str(&format!("predicted: {}", schedule.describe()));
     out
 }
 
@@ -289,13 +339,28 @@ pub fn records_parts(profile: &[GenerationProfile]) -> bool {
     walks.peek().is_none() || walks.any(|w| w.parts > 0)
 }
 
-/// The predictions as one JSON object: the profile's name and figures, the levers modelled,
-/// and a prediction per machine.
-pub fn json(name: &str, recorded: &Recorded, rows: &[Prediction], levers: Levers) -> String {
+/// The predictions as one JSON object: the profile's name and figures, the schedule (its
+/// `algorithm`, the generational levers modelled, the steady-state's births in flight), the
+/// ceiling's evaluations per second per thread ([`ceiling_per_thread`]) and a prediction per
+/// machine.
+pub fn json(
+    name: &str,
+    recorded: &Recorded,
+    ceiling: f64,
+    rows: &[Prediction],
+    schedule: Schedule,
+) -> String {
+    let (algorithm, levers, in_flight) = match schedule {
+        Schedule::Generational(levers) => ("generational", levers, None),
+        Schedule::SteadyState { in_flight } => ("steady-state", Levers::default(), Some(in_flight)),
+    };
     serde_json::to_string_pretty(&serde_json::json!({
         "profile": name,
         "recorded": recorded,
+        "algorithm": algorithm,
         "levers": levers,
+        "in_flight": in_flight,
+        "ceiling_per_thread": ceiling,
         "predictions": rows,
     }))
     .unwrap_or_default()

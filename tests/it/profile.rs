@@ -255,8 +255,8 @@ fn the_schedule_simulator_gives_the_hand_computed_makespans() {
         "--threads",
         "2",
     ])));
-    // 8 evaluations in 6 s on 2 threads: 1.33 a second, 1.83× one thread's 11 s; the
-    // threads walk 11 of their 12 s.
+    // 8 evaluations in 6 s on 2 threads: 1.33 a second, 1.83× one thread's 11 s, 0.917 of
+    // two one-thread runs; the threads walk 11 of their 12 s.
     assert!(
         text.contains("2 generations, 8 evaluations, 7 walks"),
         "{text}"
@@ -264,7 +264,7 @@ fn the_schedule_simulator_gives_the_hand_computed_makespans() {
     assert!(
         text.lines()
             .any(|l| l.split_whitespace().collect::<Vec<_>>()
-                == ["1", "2", "1.33", "1.83×", "0.917"]),
+                == ["1", "2", "1.33", "1.83×", "0.917", "0.917"]),
         "{text}"
     );
     let _ = std::fs::remove_dir_all(dir);
@@ -321,6 +321,104 @@ fn the_simulator_models_the_levers_on_a_profile_recorded_without_them() {
     assert_bad_input(
         &["runs", "schedule", path, "--longest-first"],
         "records no creature sizes",
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn the_simulator_replays_a_profile_as_a_steady_state_run_and_projects_it() {
+    let dir = scratch_dir("profile-steady");
+    let profile = dir.join("steady.jsonl");
+    // A population of 2 (walks of 3 and 1 s), then 2 births (1 and 1 s); nothing outside.
+    std::fs::write(
+        &profile,
+        line(0, &[3.0, 1.0], 0.0, 2) + "\n" + &line(1, &[1.0, 1.0], 0.0, 2),
+    )
+    .unwrap();
+    let path = profile.to_str().unwrap();
+    let json = |flags: &[&str]| -> serde_json::Value {
+        let out = ontogeny(&[&["runs", "schedule", path, "--json"], flags].concat());
+        serde_json::from_str(&stdout(&succeeded_output(out))).unwrap()
+    };
+    let seconds = |flags: &[&str]| json(flags)["predictions"][0]["seconds"].as_f64().unwrap();
+    // Generational on 2 threads: 3 | 1, then 1 | 1: 4 s.
+    assert_eq!(seconds(&["--threads", "2"]), 4.0);
+    // Steady-state, 1 in flight: births 0 and 1 at once (0-3, 0-1), integrated at 3; birth 2
+    // waits for birth 1 (3-4), birth 3 for birth 2 (4-5): 5 s.
+    let one = json(&["--threads", "2", "--steady-state", "1"]);
+    assert_eq!(one["algorithm"], "steady-state");
+    assert_eq!(one["in_flight"], 1);
+    assert_eq!(one["predictions"][0]["seconds"].as_f64(), Some(5.0));
+    // 2 in flight: births 2 and 3 both bred once the population is in (3 s): 3-4 each.
+    assert_eq!(seconds(&["--threads", "2", "--steady-state", "2"]), 4.0);
+    // A driver of 0.5 s an evaluation before each birth: births handed at 0.5, 1 (0.5-3.5,
+    // 1-2); integrated at 3.5; birth 2 at 4 (4-5), birth 3 at 4.5 (4.5-5.5).
+    assert!(
+        (seconds(&[
+            "--threads",
+            "2",
+            "--steady-state",
+            "2",
+            "--driver-us",
+            "500000"
+        ]) - 5.5)
+            .abs()
+            < 1e-9
+    );
+    // The same driver generationally: 1 s outside each generation + 3 + 1.
+    assert!((seconds(&["--threads", "2", "--driver-us", "500000"]) - 6.0).abs() < 1e-9);
+    // Drawn generations: 3 of 50 walks, each one of the four recorded, the same every time.
+    let drawn = json(&["--population", "50", "--generations", "3", "--threads", "4"]);
+    assert_eq!(drawn["recorded"]["evaluations"], 150);
+    assert_eq!(drawn["recorded"]["walks"], 150);
+    assert_eq!(
+        drawn,
+        json(&["--population", "50", "--generations", "3", "--threads", "4"])
+    );
+    let table = stdout(&succeeded_output(ontogeny(&[
+        "runs",
+        "schedule",
+        path,
+        "--population",
+        "50",
+        "--threads",
+        "4",
+    ])));
+    assert!(
+        table.contains("drawn into 2 generations of 50") && table.contains("not measured"),
+        "{table}"
+    );
+    // Bad values are refused, by flag.
+    assert_bad_input(
+        &["runs", "schedule", path, "--steady-state", "0"],
+        "--steady-state must be 1 to 1000000, not 0",
+    );
+    assert_bad_input(
+        &["runs", "schedule", path, "--driver-us", "NaN"],
+        "--driver-us must be 0 to 1000000, not NaN",
+    );
+    assert_bad_input(
+        &[
+            "runs",
+            "schedule",
+            path,
+            "--population",
+            "1000000",
+            "--generations",
+            "1000",
+        ],
+        "draw fewer",
+    );
+    assert_bad_input(
+        &[
+            "runs",
+            "schedule",
+            path,
+            "--steady-state",
+            "4",
+            "--longest-first",
+        ],
+        "cannot be used with",
     );
     let _ = std::fs::remove_dir_all(dir);
 }
