@@ -88,6 +88,32 @@ fn mutants_shares_are_fractions_and_a_rate_of_0_changes_nothing() {
 }
 
 #[test]
+fn a_sample_past_the_runs_max_chain_counts_as_failed_as_the_run_would_call_it_invalid() {
+    // The hand-written walker (`examples/continuous-walker.lsys`): 10 parts whose longest
+    // chain is 3 (a body segment, a hip and its knee; `genome_limits_common`). Under
+    // `max_chain = 2` the run calls every creature it develops into invalid, so every noisy
+    // sample of its array (it reads none: each is the same body) fails.
+    let text = std::fs::read_to_string("examples/continuous-walker.lsys").unwrap();
+    let limits = ContinuousLimits {
+        max_chain: Some(2),
+        ..ContinuousLimits::default()
+    };
+    let genome = ContinuousGenome::from_lsys(&text, &limits).unwrap();
+    let m = measure(
+        &genome,
+        &limits,
+        0,
+        &[Environment::new(vec![0.5])],
+        &Settings {
+            mutation_rate: 0.0,
+            ..settings(4, 0.05)
+        },
+    );
+    assert_eq!(m.noise.failed, Some(1.0), "{m:?}");
+    assert_eq!(m.mutation.failed, Some(1.0), "{m:?}");
+}
+
+#[test]
 fn every_k_th_generation_is_measured_and_the_last() {
     assert_eq!(generations_measured(5, 2), [0, 2, 4, 5]);
     assert_eq!(generations_measured(4, 2), [0, 2, 4]);
