@@ -1,7 +1,7 @@
 //! The limits every encoding shares on the creature its genome develops into, whatever made
 //! it: `[limits] max_neurons` (the brain's neurons, sensors and actuators included, counted as
 //! the run store's `neurons` column counts them) and `[limits] max_chain` (the parts of the
-//! body's longest unbranched row, Hornby & Pollack's "bars in a row";
+//! body's longest sequence joined end to end, Hornby & Pollack's "bars in a row";
 //! [`Creature::longest_chain`]). Both are absent unless a run sets them; a developed creature
 //! past one is invalid, with an error-level problem that says which, as a creature with more
 //! parts than `max_parts` is.

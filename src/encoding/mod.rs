@@ -192,6 +192,25 @@ pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + Deserializ
         self.develop(limits, seed)
     }
 
+    /// Develops the genome as a run develops it outside its habitats: in `env`
+    /// ([`Genome::develop_in`]) or in its own array ([`Genome::develop`]), with the creature
+    /// held to the limits every encoding shares ([`CheckedLimits::creature_limits`]:
+    /// `max_neurons`, `max_chain`), one past them marked invalid by an error-level problem.
+    /// What studies of stored genomes develop with, so that they see what the run saw.
+    fn develop_held(
+        &self,
+        limits: &Self::Limits,
+        seed: u64,
+        env: Option<&Environment>,
+    ) -> Result<Creature, DevelopError> {
+        let mut creature = match env {
+            Some(env) => self.develop_in(limits, seed, env)?,
+            None => self.develop(limits, seed)?,
+        };
+        limits.creature_limits().apply(&mut creature);
+        Ok(creature)
+    }
+
     /// The grammar the genome develops from, with the options that derive and build it, in
     /// its own chemical array or in `env` (a habitat's, of the size [`Genome::develop_in`]
     /// asks for): what its creature grows from when it goes on developing during its

@@ -156,7 +156,7 @@ pub fn measure<G: Genome>(
 ) -> Measurement {
     let references: Vec<Option<Creature>> = arrays
         .iter()
-        .map(|env| genome.develop_in(limits, develop_seed, env).ok())
+        .map(|env| genome.develop_held(limits, develop_seed, Some(env)).ok())
         .collect();
     let samples = settings.samples;
     let mutants: Vec<G> = (0..samples)
@@ -176,7 +176,10 @@ pub fn measure<G: Genome>(
             let mut rng = individual_rng(settings.seed, a as u32 + 1, i as u32, 0);
             let env = noisy(&arrays[a], settings.noise, &mut rng);
             let reference = references[a].as_ref().expect("a measured array");
-            compare(reference, genome.develop_in(limits, develop_seed, &env))
+            compare(
+                reference,
+                genome.develop_held(limits, develop_seed, Some(&env)),
+            )
         })
         .collect();
     let mutation: Vec<Outcome> = pairs
@@ -185,7 +188,7 @@ pub fn measure<G: Genome>(
             let reference = references[a].as_ref().expect("a measured array");
             compare(
                 reference,
-                mutants[i].develop_in(limits, develop_seed, &arrays[a]),
+                mutants[i].develop_held(limits, develop_seed, Some(&arrays[a])),
             )
         })
         .collect();

@@ -225,8 +225,9 @@ pub fn predict(profile: &[GenerationProfile], machine: Machine, levers: Levers) 
 pub enum Schedule {
     /// The generational algorithm's, with the levers modelled ([`predict`]).
     Generational(Levers),
-    /// A steady-state algorithm's, with this many births in flight and the profile's first
-    /// generation as its population ([`super::steady_schedule::predict_steady`]).
+    /// A steady-state algorithm's, with this many births in flight, the profile's first
+    /// generation as its population and its second's evaluations as its blocks
+    /// ([`super::steady_schedule::predict_steady`]).
     SteadyState {
         /// Births in flight, at least 1.
         in_flight: usize,
@@ -239,7 +240,7 @@ impl Schedule {
         match self {
             Schedule::Generational(levers) => predict(profile, machine, levers),
             Schedule::SteadyState { in_flight } => {
-                super::steady_schedule::predict_steady(profile, machine, in_flight, 0)
+                super::steady_schedule::predict_steady(profile, machine, in_flight)
             }
         }
     }
@@ -261,7 +262,7 @@ impl Schedule {
                 },
             ),
             Schedule::SteadyState { in_flight } => format!(
-                "steady-state, {in_flight} birth{} in flight: the recorded individuals as births in order, each bred once the birth {in_flight} before it is integrated (after the first generation), the time outside evaluation shared equally among the births and spent on one driver before each birth, each walk to the first thread free, births integrated in order",
+                "steady-state, {in_flight} birth{} in flight: the recorded individuals as births in order, the first generation bred at once, each later birth once the last generation that ended {in_flight} births before it is integrated, the time outside evaluation shared equally among the births and spent on one driver before each birth, each walk to the first thread free, births integrated in order",
                 if in_flight == 1 { "" } else { "s" },
             ),
         }

@@ -1,9 +1,10 @@
 //! The schedule simulator's steady-state schedule, and the reshaped profiles it projects from.
 //!
-//! A steady-state algorithm has no generation barrier: births are numbered, a fixed number of
-//! them are in flight, and birth `b` (after the first population) is bred as soon as birth
-//! `b − in_flight` has been integrated, integration following birth order whatever order the
-//! walks finish in. [`predict_steady`] replays a profile's walks as such births: the births of
+//! A steady-state algorithm has no generation barrier: births are numbered, at least a fixed
+//! number of them are in flight, and birth `b` (after the first population) is bred as soon as
+//! the last generation (block of births) that ended `in_flight` births before it has been
+//! integrated, integration following birth order whatever order the walks finish in
+//! ([`crate::evolve::steady`]). [`predict_steady`] replays a profile's walks as such births: the births of
 //! each recorded generation in its individuals' order (a birth's walks together), each bred by
 //! one driver (rank 0's main thread) that spends the profile's time outside evaluation, shared
 //! equally among the births, on each birth before handing its walks out; every walk goes to the
@@ -49,14 +50,15 @@ pub fn births(profile: &[GenerationProfile]) -> Vec<Vec<f64>> {
 }
 
 /// The prediction for `machine` of the run profiled in `profile`, had it been steady-state
-/// with `in_flight` births in flight (at least 1) and a population of `population` (the first
-/// `population` births are bred at once; 0 takes the profile's first generation's
-/// evaluations).
+/// with `in_flight` births in flight (at least 1), as `evolve --algorithm steady-state` breeds:
+/// the profile's first generation is the population P, bred at once; its later generations'
+/// evaluations (the first of them, C) are the blocks of births each stored generation ends;
+/// birth b ≥ P is bred once the last generation that ended at or before birth b + 1 − W (W =
+/// `in_flight`; the first generation when none did) is integrated.
 pub fn predict_steady(
     profile: &[GenerationProfile],
     machine: Machine,
     in_flight: usize,
-    population: usize,
 ) -> Prediction {
     let births = births(profile);
     let outside: f64 = profile.iter().map(|g| g.outside_evaluation()).sum();
@@ -65,11 +67,11 @@ pub fn predict_steady(
     } else {
         outside / births.len() as f64
     };
-    let population = if population == 0 {
-        profile.first().map_or(0, |g| g.evaluations as usize)
-    } else {
-        population
-    };
+    let population = profile.first().map_or(0, |g| g.evaluations as usize);
+    let children = profile
+        .get(1)
+        .map_or(population, |g| g.evaluations as usize)
+        .max(1);
     let slots = machine.slots().max(1);
     let mut free: BinaryHeap<Reverse<Free>> = (0..slots).map(|i| Reverse(Free(0.0, i))).collect();
     let in_flight = in_flight.max(1);
@@ -77,12 +79,14 @@ pub fn predict_steady(
     let mut driver_free = 0.0_f64;
     let mut walked = 0.0;
     for (b, walks) in births.iter().enumerate() {
-        // Bred from the population that integrated birth b − in_flight (and, after the first
-        // population, never before the whole first population is in).
+        // Bred from the last generation that ended at or before birth b + 1 − W: it waits
+        // for that generation's last birth.
         let after = if b < population {
             0.0
         } else {
-            integrated[(b - in_flight.min(b)).max(population - 1)]
+            let at = (b + 1).saturating_sub(in_flight);
+            let blocks = at.saturating_sub(population) / children;
+            integrated[population + blocks * children - 1]
         };
         let handed = driver_free.max(after) + driver;
         driver_free = handed;
@@ -231,27 +235,34 @@ mod tests {
 
     #[test]
     fn a_steady_state_replay_gives_the_hand_computed_times() {
-        // A population of 2, then 2 more births; walks 3, 1 | 1, 1; no time outside.
+        // A population of 2 (walks of 3 and 1 s), then generations of one birth (1 s each):
+        // P = 2, C = 1; no time outside.
         let profile = [
+            generation(&[(0, 3.0), (1, 1.0)], 0.0, 2),
+            generation(&[(0, 1.0)], 0.0, 1),
+            generation(&[(0, 1.0)], 0.0, 1),
+            generation(&[(0, 1.0)], 0.0, 1),
+        ];
+        // One in flight, 2 threads: births 0 and 1 at once (0-3, 0-1), integrated at 3. Birth
+        // 2 is bred from generation 0 (ended at birth 2 = 2 + 1 − 1): 3-4; birth 3 from
+        // generation 1 (its birth 2 integrated at 4): 4-5; birth 4 from generation 2: 5-6.
+        let p = predict_steady(&profile, TWO, 1);
+        assert_eq!(p.seconds, 6.0);
+        assert_eq!(p.evaluations_per_second, 5.0 / 6.0);
+        assert_eq!(p.walking_share, 7.0 / 12.0);
+        // Two in flight: births 2 and 3 from generation 0 (3-4 each, on both threads); birth
+        // 4 from generation 1 (ended at birth 3 = 4 + 1 − 2, integrated at 4): 4-5.
+        assert_eq!(predict_steady(&profile, TWO, 2).seconds, 5.0);
+        // Generationally: 3, then 1, 1, 1.
+        let generational = super::super::schedule::predict(&profile, TWO, Default::default());
+        assert_eq!(generational.seconds, 6.0);
+        // Blocks of 2 (P = C = 2): birth 3 is bred from generation 0 like birth 2, even with
+        // one in flight: 3-4 on both threads.
+        let pairs = [
             generation(&[(0, 3.0), (1, 1.0)], 0.0, 2),
             generation(&[(0, 1.0), (1, 1.0)], 0.0, 2),
         ];
-        // One in flight, 2 threads: births 0 (0-3) and 1 (0-1) at once; integrated at 3 and
-        // 3. Birth 2 waits for birth 1 (b − 1, and the whole population): 3-4; birth 3 waits
-        // for birth 2: 4-5.
-        let p = predict_steady(&profile, TWO, 1, 0);
-        assert_eq!(p.seconds, 5.0);
-        assert_eq!(p.evaluations_per_second, 4.0 / 5.0);
-        assert_eq!(p.walking_share, 6.0 / 10.0);
-        // Two in flight: birth 2 is bred from the population after birth 0 (but not before the
-        // population is in, at 3): 3-4; birth 3 after birth 1 (3): 3-4 on the other thread.
-        assert_eq!(predict_steady(&profile, TWO, 2, 0).seconds, 4.0);
-        // A population of 1: birth 1 waits for birth 0 (at 3): 3-4; then, 2 in flight, birth 2
-        // waits for birth 0 (3): 3-4, and birth 3 for birth 1 (4): 4-5.
-        assert_eq!(predict_steady(&profile, TWO, 2, 1).seconds, 5.0);
-        // The generational schedule of the same walks: 3 + 1.
-        let generational = super::super::schedule::predict(&profile, TWO, Default::default());
-        assert_eq!(generational.seconds, 4.0);
+        assert_eq!(predict_steady(&pairs, TWO, 1).seconds, 4.0);
     }
 
     #[test]
@@ -268,7 +279,7 @@ mod tests {
             ranks: 1,
             threads: 4,
         };
-        assert!((predict_steady(&profile, four, 4, 0).seconds - 1.8).abs() < 1e-12);
+        assert!((predict_steady(&profile, four, 4).seconds - 1.8).abs() < 1e-12);
         // Generational: 0.8 outside + 1 s walking.
         assert!(
             (super::super::schedule::predict(&profile, four, Default::default()).seconds - 1.8)
@@ -278,7 +289,7 @@ mod tests {
         // A driver of 0.05 s an evaluation in place of the recorded time.
         let cheap = with_driver(&profile, 0.05);
         assert!((cheap[0].outside_evaluation() - 0.2).abs() < 1e-12);
-        assert!((predict_steady(&cheap, four, 4, 0).seconds - 1.2).abs() < 1e-12);
+        assert!((predict_steady(&cheap, four, 4).seconds - 1.2).abs() < 1e-12);
     }
 
     #[test]

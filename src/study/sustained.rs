@@ -128,7 +128,10 @@ pub fn walk_champion<G: Genome>(
     }
     let (generation, best) = individual_by_rank(&run, dir, None, 1)?;
     *task.seconds_mut() = settings.seconds;
-    let walked = match best.genome.develop(run.limits(), best.develop_seed) {
+    let walked = match best
+        .genome
+        .develop_held(run.limits(), best.develop_seed, None)
+    {
         Ok(creature) => task.evaluate(&creature, true),
         Err(e) => Evaluation::invalid(task.kind().name(), e.0),
     };

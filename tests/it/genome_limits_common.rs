@@ -1,7 +1,7 @@
 //! The two `[limits]` keys every genome shares on the creature it develops into:
 //! `max_neurons` (the brain's neurons, sensors and actuators included, as the run store's
-//! `neurons` column counts them) and `max_chain` (the parts of the body's longest unbranched
-//! row, Hornby & Pollack's "bars in a row"). For each of the four genomes, a creature whose
+//! `neurons` column counts them) and `max_chain` (the parts of the body's longest sequence
+//! joined end to end, Hornby & Pollack's "bars in a row"). For each of the four genomes, a creature whose
 //! neurons and chain are counted by hand is invalid one below each count and valid at it;
 //! the keys' ranges are checked; absent, they change no stored configuration, no draw of the
 //! operators and no run; set, a run is the same on any thread count and resumed.
@@ -108,8 +108,8 @@ fn an_lsystem_creature_is_held_to_max_neurons_and_max_chain() {
 #[test]
 fn a_direct_creature_is_held_to_max_neurons_and_max_chain() {
     // A T: the root carries a hinged leg to each side (each driven by an output neuron) and a
-    // row of two parts ahead. The root has three neighbours, so the longest chain is the root
-    // and the row ahead: 3 parts. Neurons: the oscillator and two outputs, 3.
+    // row of two parts ahead. The longest chain runs from a leg through the root along the
+    // row ahead: 4 parts. Neurons: the oscillator and two outputs, 3.
     let text = "axiom: forward(1) [ left(1) revolute2 forward(1) output(1) ] \
                 [ right(1) revolute2 forward(1) output(1) ] forward(1) forward(1)\n";
     let g = DirectGenome::from_lsys(text, &DirectLimits::default()).unwrap();
@@ -118,15 +118,15 @@ fn a_direct_creature_is_held_to_max_neurons_and_max_chain() {
         max_chain,
         ..DirectLimits::default()
     };
-    held_to_both_keys(&g, limits, 3, 3);
+    held_to_both_keys(&g, limits, 3, 4);
 }
 
 #[test]
 fn an_lsystem_continuous_creature_is_held_to_max_neurons_and_max_chain() {
     // The hand-written walker: two body segments, a pair of legs on each (hip, then knee),
-    // 10 parts. Each segment has three neighbours (the other and its two hips), so the
-    // longest chains are a segment, a hip and its knee: 3 parts. Neurons: the oscillator and
-    // an output for each of the 4 hips and 4 knees, 9.
+    // 10 parts. The longest chain runs from a knee of the first segment's legs through its
+    // hip, both segments, and a hip and knee of the second's: 6 parts. Neurons: the
+    // oscillator and an output for each of the 4 hips and 4 knees, 9.
     let text = std::fs::read_to_string("examples/continuous-walker.lsys").unwrap();
     let g = ContinuousGenome::from_lsys(&text, &ContinuousLimits::default()).unwrap();
     let limits = |max_neurons, max_chain| ContinuousLimits {
@@ -135,7 +135,7 @@ fn an_lsystem_continuous_creature_is_held_to_max_neurons_and_max_chain() {
         ..ContinuousLimits::default()
     };
     assert_eq!(developed(&g, &limits(None, None)).parts.len(), 10);
-    held_to_both_keys(&g, limits, 9, 3);
+    held_to_both_keys(&g, limits, 9, 6);
 }
 
 #[test]
@@ -382,4 +382,22 @@ fn the_example_runs_and_keeps_its_keys() {
         stored.contains("max_chain = 6\n") && stored.contains("max_neurons = 30\n"),
         "{stored}"
     );
+}
+
+#[test]
+fn a_straight_row_of_bars_with_side_nubs_is_still_a_row_of_its_length() {
+    // Hornby & Pollack bound "sequence[s] of more than N bars in a row that [are] not part of
+    // a cycle", to keep creatures physically plausible. A straight row of 11 parts (11 m)
+    // with a short nub hung off each of the 9 inner ones is a sequence of 11 bars in a row
+    // however many nubs hang off it: a nub adds no support. Its longest path runs from one end
+    // of the row to the other (11 parts), or from the first inner part's nub to the far end
+    // (also 11).
+    let text = format!(
+        "axiom: forward(1){} forward(1)\n",
+        " forward(1) [ left(1) forward(0.3) ]".repeat(9)
+    );
+    let g = DirectGenome::from_lsys(&text, &DirectLimits::default()).unwrap();
+    let c = developed(&g, &DirectLimits::default());
+    assert_eq!(c.parts.len(), 20);
+    assert_eq!(c.longest_chain(), 11);
 }

@@ -329,10 +329,17 @@ fn the_simulator_models_the_levers_on_a_profile_recorded_without_them() {
 fn the_simulator_replays_a_profile_as_a_steady_state_run_and_projects_it() {
     let dir = scratch_dir("profile-steady");
     let profile = dir.join("steady.jsonl");
-    // A population of 2 (walks of 3 and 1 s), then 2 births (1 and 1 s); nothing outside.
+    // A population of 2 (walks of 3 and 1 s), then three generations of one birth (1 s
+    // each); nothing outside.
     std::fs::write(
         &profile,
-        line(0, &[3.0, 1.0], 0.0, 2) + "\n" + &line(1, &[1.0, 1.0], 0.0, 2),
+        [
+            line(0, &[3.0, 1.0], 0.0, 2),
+            line(1, &[1.0], 0.0, 1),
+            line(2, &[1.0], 0.0, 1),
+            line(3, &[1.0], 0.0, 1),
+        ]
+        .join("\n"),
     )
     .unwrap();
     let path = profile.to_str().unwrap();
@@ -341,18 +348,21 @@ fn the_simulator_replays_a_profile_as_a_steady_state_run_and_projects_it() {
         serde_json::from_str(&stdout(&succeeded_output(out))).unwrap()
     };
     let seconds = |flags: &[&str]| json(flags)["predictions"][0]["seconds"].as_f64().unwrap();
-    // Generational on 2 threads: 3 | 1, then 1 | 1: 4 s.
-    assert_eq!(seconds(&["--threads", "2"]), 4.0);
+    // Generational on 2 threads: 3 | 1, then 1, 1, 1: 6 s.
+    assert_eq!(seconds(&["--threads", "2"]), 6.0);
     // Steady-state, 1 in flight: births 0 and 1 at once (0-3, 0-1), integrated at 3; birth 2
-    // waits for birth 1 (3-4), birth 3 for birth 2 (4-5): 5 s.
+    // is bred from generation 0 (3-4), birth 3 from generation 1 once birth 2 is in (4-5),
+    // birth 4 from generation 2 (5-6): 6 s.
     let one = json(&["--threads", "2", "--steady-state", "1"]);
     assert_eq!(one["algorithm"], "steady-state");
     assert_eq!(one["in_flight"], 1);
-    assert_eq!(one["predictions"][0]["seconds"].as_f64(), Some(5.0));
-    // 2 in flight: births 2 and 3 both bred once the population is in (3 s): 3-4 each.
-    assert_eq!(seconds(&["--threads", "2", "--steady-state", "2"]), 4.0);
-    // A driver of 0.5 s an evaluation before each birth: births handed at 0.5, 1 (0.5-3.5,
-    // 1-2); integrated at 3.5; birth 2 at 4 (4-5), birth 3 at 4.5 (4.5-5.5).
+    assert_eq!(one["predictions"][0]["seconds"].as_f64(), Some(6.0));
+    // 2 in flight: births 2 and 3 from generation 0 (3-4 each), birth 4 from generation 1
+    // (4-5): 5 s.
+    assert_eq!(seconds(&["--threads", "2", "--steady-state", "2"]), 5.0);
+    // A driver of 0.5 s an evaluation before each birth: births handed at 0.5 and 1 (0.5-3.5,
+    // 1-2), integrated at 3.5; birth 2 at 4 (4-5), birth 3 at 4.5 (4.5-5.5), birth 4 once
+    // birth 2 is in (5), at 5.5: 5.5-6.5.
     assert!(
         (seconds(&[
             "--threads",
@@ -361,13 +371,13 @@ fn the_simulator_replays_a_profile_as_a_steady_state_run_and_projects_it() {
             "2",
             "--driver-us",
             "500000"
-        ]) - 5.5)
+        ]) - 6.5)
             .abs()
             < 1e-9
     );
-    // The same driver generationally: 1 s outside each generation + 3 + 1.
-    assert!((seconds(&["--threads", "2", "--driver-us", "500000"]) - 6.0).abs() < 1e-9);
-    // Drawn generations: 3 of 50 walks, each one of the four recorded, the same every time.
+    // The same driver generationally: 1 + 3, then 0.5 + 1 three times: 8.5 s.
+    assert!((seconds(&["--threads", "2", "--driver-us", "500000"]) - 8.5).abs() < 1e-9);
+    // Drawn generations: 3 of 50 walks, each one of the five recorded, the same every time.
     let drawn = json(&["--population", "50", "--generations", "3", "--threads", "4"]);
     assert_eq!(drawn["recorded"]["evaluations"], 150);
     assert_eq!(drawn["recorded"]["walks"], 150);
@@ -385,7 +395,7 @@ fn the_simulator_replays_a_profile_as_a_steady_state_run_and_projects_it() {
         "4",
     ])));
     assert!(
-        table.contains("drawn into 2 generations of 50") && table.contains("not measured"),
+        table.contains("drawn into 4 generations of 50") && table.contains("not measured"),
         "{table}"
     );
     // Bad values are refused, by flag.
