@@ -86,6 +86,8 @@ pub(crate) fn evolve(
         seconds,
         setting: setting.map(setting_named).transpose()?,
         target,
+        algorithm: None,
+        in_flight: None,
     };
     let pool = thread_pool(threads)?;
     let source = config

@@ -244,6 +244,8 @@ fn run_flags(args: &CompareArgs) -> RunFlags {
         seconds: args.seconds,
         setting: args.setting,
         target: None,
+        algorithm: None,
+        in_flight: None,
     }
 }
 

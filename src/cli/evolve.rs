@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use ontogeny::encoding::{ENCODINGS, EncodingInfo, Genome, encoding_named};
-use ontogeny::evolve::ga::{Preset, WalkOrder};
+use ontogeny::evolve::ga::{Algorithm, Preset, WalkOrder};
 use ontogeny::front::settings::{self, RunFlags};
 use ontogeny::front::start::{NewRun, StartError, start_run};
 use ontogeny::front::text::{self, RunTally};
@@ -60,6 +60,17 @@ pub fn preset_parser() -> impl clap::builder::TypedValueParser<Value = Preset> {
     })
 }
 
+/// Parses `--algorithm`: one of the library's algorithms by its name, every name listed in
+/// the help with its summary.
+fn algorithm_parser() -> impl clap::builder::TypedValueParser<Value = Algorithm> {
+    use clap::builder::TypedValueParser;
+    let names =
+        Algorithm::ALL.map(|a| clap::builder::PossibleValue::new(a.name()).help(a.summary()));
+    clap::builder::PossibleValuesParser::new(names).try_map(|name: String| {
+        Algorithm::named(&name).ok_or_else(|| format!("unknown algorithm '{name}'"))
+    })
+}
+
 /// Parses `--walk-order`: one of the library's walk orders by its name, every name listed in
 /// the help with its summary.
 fn walk_order_parser() -> impl clap::builder::TypedValueParser<Value = WalkOrder> {
@@ -100,6 +111,18 @@ pub struct EvolveArgs {
     /// The genetic algorithm's schedule (default: the config's, else chaumont).
     #[arg(long, value_parser = preset_parser())]
     preset: Option<Preset>,
+    /// How generations follow one another (default: the config's, else generational):
+    /// steady-state breeds one creature at a time and replaces the population's worst, with no
+    /// wait at a generation's end, so that every thread stays busy. Results never depend on
+    /// the threads.
+    #[arg(long, value_parser = algorithm_parser())]
+    algorithm: Option<Algorithm>,
+    /// Steady-state: the evaluations in flight at the least, W (default: the config's, else
+    /// 32); each creature is bred from the last generation that ended at least W births
+    /// before it. Part of the algorithm: results depend on it (never on --threads); give at
+    /// least twice the threads you run on.
+    #[arg(long, value_name = "W")]
+    in_flight: Option<usize>,
     /// Individuals per generation (default: the preset's, 300).
     #[arg(long)]
     pop: Option<usize>,
@@ -273,6 +296,8 @@ fn run_flags(args: &EvolveArgs) -> RunFlags {
         seconds: args.seconds,
         setting: args.setting,
         target: args.target,
+        algorithm: args.algorithm,
+        in_flight: args.in_flight,
     }
 }
 

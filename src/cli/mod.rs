@@ -319,7 +319,9 @@ mod tests {
                 "setting",
                 "target",
                 "no_verify_best",
-                "no_cache"
+                "no_cache",
+                "algorithm",
+                "in_flight"
             ])
         );
         // A comparison's own flags, refused beside both.

@@ -23,7 +23,7 @@ use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
-pub use super::settings::{GaSettings, Preset, WwdCrossover};
+pub use super::settings::{Algorithm, GaSettings, Preset, WwdCrossover};
 
 /// How an individual was made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -223,22 +223,22 @@ impl WalkOrder {
 }
 
 /// A new individual before evaluation.
-struct Unborn<G> {
-    genome: G,
-    develop_seed: u64,
-    parents: Vec<u32>,
-    operator: Operator,
+pub(super) struct Unborn<G> {
+    pub(super) genome: G,
+    pub(super) develop_seed: u64,
+    pub(super) parents: Vec<u32>,
+    pub(super) operator: Operator,
 }
 
 /// A new individual developed, before evaluation: its creatures, one per habitat (or why it
 /// has none), and key.
-struct Developed<G> {
-    unborn: Unborn<G>,
-    creatures: Result<Vec<Creature>, String>,
+pub(super) struct Developed<G> {
+    pub(super) unborn: Unborn<G>,
+    pub(super) creatures: Result<Vec<Creature>, String>,
     /// What they grow from during their evaluation, one per habitat (`develop = "during"`;
     /// none otherwise).
-    seedlings: Vec<crate::develop::Seedling>,
-    key: Option<EvaluationKey>,
+    pub(super) seedlings: Vec<crate::develop::Seedling>,
+    pub(super) key: Option<EvaluationKey>,
 }
 
 /// Where a new individual's evaluation comes from.
@@ -287,7 +287,7 @@ impl<G: Genome> Evolution<G> {
     }
 
     /// Develops one genome in every habitat (its key is left for [`Evolution::key_developed`]).
-    fn develop(&self, unborn: Unborn<G>) -> Developed<G> {
+    pub(super) fn develop(&self, unborn: Unborn<G>) -> Developed<G> {
         let (creatures, seedlings) = match develop_with_seedlings(
             &unborn.genome,
             &self.limits,
@@ -306,7 +306,7 @@ impl<G: Genome> Evolution<G> {
     }
 
     /// Keys a developed genome's creatures with the task (none when it did not develop).
-    fn key_developed(&self, developed: &mut Developed<G>) {
+    pub(super) fn key_developed(&self, developed: &mut Developed<G>) {
         developed.key = developed.creatures.as_ref().ok().map(|c| {
             self.key_of_creatures(c, self.key_version)
                 .growing(&self.task, &developed.unborn.genome)
@@ -582,20 +582,7 @@ impl<G: Genome> Evolution<G> {
         let adaptive_rate = self.adaptive_rate(previous);
         let (unborn, fell_back): (Vec<Unborn<G>>, Vec<Option<Operator>>) = (0..children)
             .into_par_iter()
-            .map(|k| {
-                let index = (survivors + k) as u32;
-                let mut rng = individual_rng(self.seed, generation, index, 0);
-                let develop_seed = individual_rng(self.seed, generation, index, 1).random();
-                let child = self.regenerated(
-                    develop_seed,
-                    || match self.settings.preset {
-                        Preset::Chaumont => self.vary_chaumont(&ranked, k, children, &mut rng),
-                        Preset::Wwd => self.vary_wwd(&ranked, adaptive_rate, &mut rng),
-                    },
-                    |child| &child.genome,
-                );
-                child.into_unborn(develop_seed)
-            })
+            .map(|k| self.child(&ranked, adaptive_rate, generation, k, children))
             .unzip();
         let mut unborn = unborn;
         if self.task.trials.fresh {
@@ -623,6 +610,31 @@ impl<G: Genome> Evolution<G> {
         let evaluations = born.len() as u64;
         next.extend(born);
         Ok((next, evaluations))
+    }
+
+    /// Child `k` of the `children` of generation `generation`, bred from `ranked` (the
+    /// mutation rate `adaptive_rate` for Walking with Dinosaurs' preset), and the operator it
+    /// fell back from, if any: a pure function of its arguments and the run's seed.
+    pub(super) fn child(
+        &self,
+        ranked: &Ranked<G>,
+        adaptive_rate: f64,
+        generation: u32,
+        k: usize,
+        children: usize,
+    ) -> (Unborn<G>, Option<Operator>) {
+        let index = (ranked.survivors + k) as u32;
+        let mut rng = individual_rng(self.seed, generation, index, 0);
+        let develop_seed = individual_rng(self.seed, generation, index, 1).random();
+        let child = self.regenerated(
+            develop_seed,
+            || match self.settings.preset {
+                Preset::Chaumont => self.vary_chaumont(ranked, k, children, &mut rng),
+                Preset::Wwd => self.vary_wwd(ranked, adaptive_rate, &mut rng),
+            },
+            |child| &child.genome,
+        );
+        child.into_unborn(develop_seed)
     }
 
     /// A newborn made by `make`, made again while the creature it develops into (in its own
@@ -655,7 +667,7 @@ impl<G: Genome> Evolution<G> {
     /// the base rate, where σ is the standard deviation of the valid individuals' fitness
     /// normalised to [0, 1] (0.25 is near a uniform spread's 0.29): less diversity, more
     /// mutation. Chaumont's preset does not adapt.
-    fn adaptive_rate(&self, previous: &[Individual<G>]) -> f64 {
+    pub(super) fn adaptive_rate(&self, previous: &[Individual<G>]) -> f64 {
         let base = self.settings.mutation_rate;
         if self.settings.preset != Preset::Wwd {
             return base;
@@ -769,10 +781,10 @@ impl<G: Genome> Evolution<G> {
 
 /// The previous generation as variation sees it: its members, their indices ranked best
 /// first ([`ranking`]), and how many of the first are the elite.
-struct Ranked<'a, G> {
-    previous: &'a [Individual<G>],
-    order: &'a [usize],
-    survivors: usize,
+pub(super) struct Ranked<'a, G> {
+    pub(super) previous: &'a [Individual<G>],
+    pub(super) order: &'a [usize],
+    pub(super) survivors: usize,
 }
 
 impl<G> Ranked<'_, G> {

@@ -4,7 +4,7 @@
 //! ([`cache`], [`key`]), an individual developed and evaluated in its habitats
 //! ([`habitats`]), where evaluations run ([`evaluator`]: this process's threads, or every
 //! rank of an MPI job with the `mpi` feature) and the version of their behaviour that a run
-//! records ([`evaluator_version`]), a generation's record ([`record`]), and where its time went
+//! records ([`evaluator_version`]), the steady-state algorithm ([`steady`]), a generation's record ([`record`]), and where its time went
 //! ([`timing`]).
 
 pub mod cache;
@@ -18,4 +18,5 @@ pub mod mpi;
 pub mod ranking;
 pub mod record;
 pub mod settings;
+pub mod steady;
 pub mod timing;

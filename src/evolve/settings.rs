@@ -67,6 +67,59 @@ impl WwdCrossover {
     }
 }
 
+/// How a run's generations follow one another (the `[ga]` key `algorithm`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Algorithm {
+    /// A whole generation is bred, evaluated, and replaces the last but its elite: the
+    /// published protocols (Chaumont et al., Walking with Dinosaurs). What a configuration
+    /// without the key reads; it is not written.
+    #[default]
+    Generational,
+    /// Births one at a time, each bred from the last stored generation that ended at least
+    /// `in_flight` births before it, integrated in birth order, replacing the population's
+    /// worst if better ([`crate::evolve::steady`]): no barrier between generations.
+    SteadyState,
+}
+
+impl Algorithm {
+    /// Every algorithm.
+    pub const ALL: [Algorithm; 2] = [Algorithm::Generational, Algorithm::SteadyState];
+
+    /// Its name, as the command line and `config.toml` spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Algorithm::Generational => "generational",
+            Algorithm::SteadyState => "steady-state",
+        }
+    }
+
+    /// One line for people.
+    pub fn summary(self) -> &'static str {
+        match self {
+            Algorithm::Generational => "whole generations, the published protocols (the default)",
+            Algorithm::SteadyState => {
+                "one birth at a time, the worst replaced: no barrier between generations"
+            }
+        }
+    }
+
+    /// The algorithm named `name`.
+    pub fn named(name: &str) -> Option<Algorithm> {
+        Algorithm::ALL.into_iter().find(|a| a.name() == name)
+    }
+
+    /// Whether it is [`Algorithm::Generational`] (then the key is not written, and stored
+    /// settings stay as they were).
+    pub fn is_generational(&self) -> bool {
+        *self == Algorithm::Generational
+    }
+}
+
+/// The evaluations a steady-state run keeps in flight at the least when `in_flight` is not
+/// given: twice 16 threads.
+pub const DEFAULT_IN_FLIGHT: usize = 32;
+
 /// The genetic algorithm's settings (the `[ga]` table of a run's `config.toml`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -113,6 +166,16 @@ pub struct GaSettings {
     /// not written. Chaumont's preset does not read it.
     #[serde(default, skip_serializing_if = "WwdCrossover::is_plain")]
     pub wwd_crossover: WwdCrossover,
+    /// How generations follow one another. A configuration without the key reads as
+    /// `generational`, which is not written.
+    #[serde(default, skip_serializing_if = "Algorithm::is_generational")]
+    pub algorithm: Algorithm,
+    /// Steady-state: the evaluations in flight at the least, W: birth b is bred from the last
+    /// generation that ended at or before birth b + 1 − W. Part of the algorithm (a result
+    /// depends on it, never on the threads or ranks). `None` (not written) for a generational
+    /// run; a steady-state run stores it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub in_flight: Option<usize>,
 }
 
 /// The value of [`GaSettings::regenerate`] a stored configuration without the key ran with.
@@ -148,6 +211,8 @@ impl GaSettings {
                 environment_reads: 0.0,
                 regenerate: 10,
                 wwd_crossover: WwdCrossover::Plain,
+                algorithm: Algorithm::Generational,
+                in_flight: None,
             },
             Preset::Wwd => GaSettings {
                 preset,
@@ -163,6 +228,8 @@ impl GaSettings {
                 environment_reads: 0.0,
                 regenerate: 1,
                 wwd_crossover: WwdCrossover::Mirroring,
+                algorithm: Algorithm::Generational,
+                in_flight: None,
             },
         }
     }
@@ -236,7 +303,45 @@ impl GaSettings {
                 ),
             });
         }
-        Ok(())
+        self.check_algorithm()
+    }
+
+    /// The steady-state algorithm's checks: `in_flight` only with it, 1 to 100000, and a
+    /// child to breed in each block.
+    fn check_algorithm(&self) -> Result<(), SettingError> {
+        match (self.algorithm, self.in_flight) {
+            (Algorithm::Generational, Some(_)) => Err(SettingError {
+                table: String::new(),
+                key: "in_flight",
+                problem: "is read by algorithm = \"steady-state\" only".into(),
+            }),
+            (Algorithm::SteadyState, Some(w)) if !(1..=100_000).contains(&w) => {
+                Err(SettingError::out_of_range("in_flight", "1 to 100000", w))
+            }
+            (Algorithm::SteadyState, _) if self.survivors() >= self.population => {
+                Err(SettingError {
+                    table: String::new(),
+                    key: "elite",
+                    problem: format!(
+                        "{} of a population of {} keeps everyone: steady-state breeds the rest",
+                        self.elite, self.population
+                    ),
+                })
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The children of a generation: the population less the elite (a steady-state run's
+    /// block of births).
+    pub fn children(&self) -> usize {
+        self.population - self.survivors().min(self.population)
+    }
+
+    /// Steady-state: the evaluations in flight at the least ([`DEFAULT_IN_FLIGHT`] when not
+    /// given).
+    pub fn in_flight(&self) -> usize {
+        self.in_flight.unwrap_or(DEFAULT_IN_FLIGHT)
     }
 
     /// How many individuals survive unchanged (at least one).

@@ -10,7 +10,7 @@ use crate::lang::{Diagnostic, DiagnosticKind, Source, read_grammar};
 use crate::sim::StepSetting;
 use crate::task::{CatapultOptions, TaskKind, TaskSpec, TaskTables, keyword_refusal};
 
-use crate::evolve::ga::{GaSettings, Preset};
+use crate::evolve::ga::{Algorithm, GaSettings, Preset};
 use crate::run::config::{ConfigFile, RunConfig, check_settings};
 use crate::run::config_errors::setting_diagnostic;
 use crate::study::compare::{self, Arm, Manifest, Shared, generations_for};
@@ -38,6 +38,10 @@ pub struct RunFlags {
     pub setting: Option<StepSetting>,
     /// `--target` (the aim task's, metres from the projectile's start).
     pub target: Option<[f64; 3]>,
+    /// `--algorithm`.
+    pub algorithm: Option<Algorithm>,
+    /// `--in-flight`.
+    pub in_flight: Option<usize>,
 }
 
 /// A message about the command line's or a config file's settings as a diagnostic (exit code
@@ -100,6 +104,12 @@ pub fn resolve_ga_and_task<L>(
     if flags.generations.is_some() {
         overrides.generations = flags.generations;
     }
+    if flags.algorithm.is_some() {
+        overrides.algorithm = flags.algorithm;
+    }
+    if flags.in_flight.is_some() {
+        overrides.in_flight = flags.in_flight;
+    }
     let mut ga = overrides.resolve();
     if let Some(s) = flags.seconds {
         crate::task::check_duration("seconds", s).map_err(|e| plain(e.for_flag("--seconds")))?;
@@ -123,6 +133,8 @@ pub fn resolve_ga_and_task<L>(
             let flag = match (e.table.as_str(), e.key) {
                 ("ga", "population") if flags.population.is_some() => Some("--pop"),
                 ("ga", "generations") if flags.generations.is_some() => Some("--gens"),
+                ("ga", "in_flight") if flags.in_flight.is_some() => Some("--in-flight"),
+                ("ga", "algorithm") if flags.algorithm.is_some() => Some("--algorithm"),
                 (table, "fitness") if flags.fitness.is_some() && table == run_table => {
                     Some("--fitness")
                 }

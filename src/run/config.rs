@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize, de::DeserializeOwned};
 
 use super::config_errors::{key_span, setting_diagnostic, toml_diagnostic};
 use crate::encoding::{CheckedLimits, ENCODINGS, encoding_named};
-use crate::evolve::ga::{GaSettings, Preset, WwdCrossover};
+use crate::evolve::ga::{Algorithm, GaSettings, Preset, WwdCrossover};
 use crate::lang::suggest::did_you_mean;
 use crate::lang::{Diagnostic, DiagnosticKind, FileKind, Source, read_as};
 use crate::sim::SettingError;
@@ -146,6 +146,10 @@ pub struct GaOverrides {
     pub regenerate: Option<usize>,
     /// See [`GaSettings`].
     pub wwd_crossover: Option<WwdCrossover>,
+    /// See [`GaSettings`].
+    pub algorithm: Option<Algorithm>,
+    /// See [`GaSettings`].
+    pub in_flight: Option<usize>,
 }
 
 impl GaOverrides {
@@ -167,8 +171,14 @@ impl GaOverrides {
             mutation_rate_after_mating,
             environment_reads,
             regenerate,
-            wwd_crossover
+            wwd_crossover,
+            algorithm
         );
+        s.in_flight = self.in_flight;
+        if s.algorithm == Algorithm::SteadyState {
+            // Stored with the run, so that a later default cannot change it.
+            s.in_flight = Some(s.in_flight());
+        }
         s
     }
 }
@@ -456,6 +466,15 @@ pub fn check_settings(
     encodings: &[&str],
 ) -> Result<(), SettingError> {
     ga.check().map_err(|e| e.within("ga"))?;
+    if ga.algorithm == Algorithm::SteadyState && task.trials.fresh {
+        return Err(SettingError {
+            table: "ga".into(),
+            key: "algorithm",
+            problem: "\"steady-state\" keeps each evaluation for life, and fresh trials draw \
+                      anew each generation: use \"generational\" with fresh trials"
+                .into(),
+        });
+    }
     if task.develop.during() {
         let refuse = |why: String| {
             Err(SettingError::out_of_range("develop", &why, "\"during\"").within("task"))

@@ -25,7 +25,7 @@ use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::evolve::cache::EvaluationCache;
 use crate::evolve::evaluator::Evaluator;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
-use crate::evolve::ga::{Evolution, Fallbacks, Individual, Operator, WalkOrder};
+use crate::evolve::ga::{Algorithm, Evolution, Fallbacks, Individual, Operator, WalkOrder};
 use crate::evolve::key::{EvaluationKey, KeyVersion};
 use crate::evolve::timing::GenerationTimes;
 use crate::lang::{Diagnostic, DiagnosticKind, Source};
@@ -34,6 +34,7 @@ use crate::task::{Evaluation, TaskSpec, TaskTables};
 
 pub mod derived;
 mod progress;
+mod steady;
 
 use progress::Progress;
 
@@ -698,8 +699,11 @@ impl<G: Genome> Run<G> {
     /// store and the derived files advanced by it ([`derived`]).
     pub fn run(&mut self, observer: &mut dyn FnMut(&GenerationReport)) -> Result<(), RunError> {
         let mut progress = self.progress()?;
-        let outcome = (progress.next..self.config.ga.generations as u32)
-            .try_for_each(|generation| self.generation(&mut progress, generation, observer));
+        let outcome = match self.config.ga.algorithm {
+            Algorithm::Generational => (progress.next..self.config.ga.generations as u32)
+                .try_for_each(|generation| self.generation(&mut progress, generation, observer)),
+            Algorithm::SteadyState => self.run_steady(&mut progress, observer),
+        };
         if outcome.is_err() {
             // Stopped early: the plot shows every stored generation, as a resume draws it.
             // Should that fail too, the first error is the one to tell.
@@ -720,6 +724,21 @@ impl<G: Genome> Run<G> {
         let started = Instant::now();
         let mut times = GenerationTimes::default();
         let evaluations = self.breed(progress, generation, &mut times)?;
+        self.conclude(progress, generation, evaluations, times, started, observer)
+    }
+
+    /// The end of generation `generation`, bred and evaluated since `started` (`evaluations`
+    /// simulated, its steps' `times`): its best re-walked at the fine reference, stored, the
+    /// derived files advanced, `observer` told.
+    fn conclude(
+        &mut self,
+        progress: &mut Progress<G>,
+        generation: u32,
+        evaluations: u64,
+        times: GenerationTimes,
+        started: Instant,
+        observer: &mut dyn FnMut(&GenerationReport),
+    ) -> Result<(), RunError> {
         let fine_started = Instant::now();
         let best_fine = self.verify_best(progress)?;
         let fine = fine_started.elapsed().as_secs_f64();
@@ -830,9 +849,14 @@ impl<G: Genome> Run<G> {
     /// How many children each stored generation had made by mutation instead of the
     /// scheduled operator, counted from the first generation through that one (index 0 is
     /// the first generation's, always none).
+    /// A steady-state run counts none (a stored slot does not say what its birth was
+    /// scheduled to be).
     fn fallbacks_by_generation(&self) -> Result<Vec<Fallbacks>, RunError> {
         let generations = self.store.generations()?;
         let mut fallen = vec![Fallbacks::default(); generations.len()];
+        if self.config.ga.algorithm == Algorithm::SteadyState {
+            return Ok(fallen);
+        }
         for (generation, index) in self.store.individuals_made_by(Operator::Mutation.name())? {
             if let Some(f) = fallen.get_mut(generation as usize) {
                 f.count_stored(&self.config.ga, index as usize, Operator::Mutation);

@@ -9,6 +9,7 @@ mod cache;
 mod champion;
 mod derived;
 mod resume;
+mod steady;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

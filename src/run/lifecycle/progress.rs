@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use super::{Run, RunError};
 use crate::encoding::Genome;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
-use crate::evolve::ga::{Fallbacks, Individual, Operator, ranking};
+use crate::evolve::ga::{Algorithm, Fallbacks, Individual, Operator, ranking};
 use crate::evolve::timing::GenerationTimes;
 use crate::run::store::FineEvaluation;
 
@@ -127,11 +127,17 @@ impl<G: Genome> Run<G> {
         progress: &mut Progress<G>,
     ) -> Result<Option<FineEvaluation>, RunError> {
         let best = ranking(&progress.population).first().copied();
+        let steady = self.config.ga.algorithm == Algorithm::SteadyState;
         let best_fine = match best {
             Some(best) if self.config.verify_best => {
                 let b = &progress.population[best];
                 Some(match &progress.previous_best {
-                    Some((p, fine)) if b.operator == Operator::Elite && b.parents == [*p] => {
+                    // A steady-state run's best in the same slot, not replaced since
+                    // ([`Run::run_steady`] forgets it otherwise), is the same individual.
+                    Some((p, fine))
+                        if (b.operator == Operator::Elite && b.parents == [*p])
+                            || (steady && best as u32 == *p) =>
+                    {
                         fine.clone()
                     }
                     _ => match b.key.and_then(|k| self.cache.fine(&k).cloned()) {

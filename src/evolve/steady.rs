@@ -1,0 +1,293 @@
+//! The steady-state algorithm (`[ga] algorithm = "steady-state"`): births one at a time, no
+//! barrier between generations, and the same result on any number of threads or ranks.
+//!
+//! Births are numbered b = 0, 1, 2, …. The first P (the population) are generation 0, made
+//! exactly as the generational algorithm makes it. After it, births come in blocks of C, the
+//! children the generational algorithm makes per generation (the population less the elite):
+//! block k ≥ 1 holds births P + (k − 1)·C to P + k·C − 1, and once its last birth is
+//! integrated the population is stored as generation k (so a run's plots, `runs show` and the
+//! viewer read it as they read any run). Birth b:
+//!
+//! - is **bred** from generation s(b), the last generation that ended at or before birth
+//!   b + 1 − W, where W is `in_flight` (generation 0 when none did): by the preset's operator
+//!   for its place j in its block ([`super::ga::schedule`] over C) and the preset's
+//!   selection of parents among that generation's ranked survivors, with the random streams
+//!   of individual (survivors + j) of generation k, as the generational algorithm would make
+//!   child j of generation k. So at least W evaluations can be in flight at any moment (at
+//!   most W + C − 1), whatever the number of threads; W is part of the algorithm.
+//! - is **evaluated** anywhere, in any order; an identical creature (same key) stored in a
+//!   generation up to s(b) lends it its evaluation instead (when the run's cache is on).
+//! - is **integrated** strictly in birth order: it replaces the population's worst (the last
+//!   of [`super::ga::ranking`]: lowest fitness, among equals the highest index) if its fitness
+//!   is greater ("replace-worst"); on a tie the incumbent stays. The best is never lost, as
+//!   with the generational algorithm's elite, and a creature stays in its slot for life.
+//!
+//! Replace-worst rather than a tournament: it needs no random draw at integration (so nothing
+//! but the birth order decides), it is elitist like the published generational protocols, and
+//! its selection pressure comes from the preset's breeding, which is the presets' own.
+//!
+//! Breeding from stored generations, rather than from the population after birth b − W,
+//! makes a resume exact with nothing more in the store than a generational run keeps: the
+//! births in flight when a run was killed are bred again, the same, from the generations
+//! stored.
+
+use std::collections::HashMap;
+use std::time::Instant;
+
+use super::ga::{Evolution, Individual, Operator, Ranked, Unborn, ranking};
+use super::key::EvaluationKey;
+use super::timing::WalkTime;
+use crate::cancel::{Cancel, Interrupted};
+use crate::encoding::Genome;
+use crate::task::{Evaluation, Watch};
+
+/// The arithmetic of births and blocks: the population P, the block C and the evaluations in
+/// flight W.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Blocks {
+    /// P: the population, and the births of generation 0.
+    pub population: u64,
+    /// C: the births of each later generation (at least 1).
+    pub children: u64,
+    /// W: the evaluations in flight at the least (at least 1).
+    pub in_flight: u64,
+}
+
+impl Blocks {
+    /// The births of a run with `settings`.
+    pub fn of(settings: &super::ga::GaSettings) -> Blocks {
+        Blocks {
+            population: settings.population as u64,
+            children: settings.children().max(1) as u64,
+            in_flight: settings.in_flight().max(1) as u64,
+        }
+    }
+
+    /// How many births are integrated once generation `generation` is complete.
+    pub fn end_of(&self, generation: u32) -> u64 {
+        self.population + generation as u64 * self.children
+    }
+
+    /// The generation birth `birth` (≥ P) belongs to, and its place in it.
+    pub fn place(&self, birth: u64) -> (u32, usize) {
+        let after = birth - self.population;
+        (
+            1 + (after / self.children) as u32,
+            (after % self.children) as usize,
+        )
+    }
+
+    /// s(b): the generation birth `birth` (≥ P) is bred from, the last that ended at or before
+    /// birth b + 1 − W (generation 0 when none did).
+    pub fn source(&self, birth: u64) -> u32 {
+        let ready = birth + 1;
+        if ready < self.population + self.in_flight {
+            0
+        } else {
+            ((ready - self.in_flight - self.population) / self.children) as u32
+        }
+    }
+}
+
+/// Replace-worst: the slot of `population` a newborn of fitness `fitness` takes, the slot of
+/// the worst (the last of [`ranking`]), if its fitness is greater in `f64`'s total order (the
+/// ranking's); `None` (it is not kept) otherwise, ties included.
+pub fn replace_worst<G>(population: &[Individual<G>], fitness: f64) -> Option<usize> {
+    let worst = *ranking(population).last()?;
+    fitness
+        .total_cmp(&population[worst].evaluation.fitness)
+        .is_gt()
+        .then_some(worst)
+}
+
+/// A stored generation as breeding reads it: its members, ranked, and Walking with Dinosaurs'
+/// mutation rate over them.
+#[derive(Debug)]
+pub struct Snapshot<G> {
+    population: Vec<Individual<G>>,
+    order: Vec<usize>,
+    rate: f64,
+}
+
+impl<G: Genome> Snapshot<G> {
+    /// The generation `population` of the run of `evolution`, ready to breed from.
+    pub fn new(evolution: &Evolution<G>, population: Vec<Individual<G>>) -> Snapshot<G> {
+        Snapshot {
+            order: ranking(&population),
+            rate: evolution.adaptive_rate(&population),
+            population,
+        }
+    }
+}
+
+/// The evaluations stored so far by key, with the first generation each key was stored in:
+/// what a steady-state birth may reuse (a creature stored up to the generation it was bred
+/// from), the same in a run and in its resume.
+#[derive(Clone, Debug, Default)]
+pub struct Lookup {
+    evaluations: HashMap<EvaluationKey, (u32, Evaluation)>,
+}
+
+impl Lookup {
+    /// Adds generation `generation`'s members (a key seen before keeps its first).
+    pub fn add<G>(&mut self, generation: u32, population: &[Individual<G>]) {
+        for i in population {
+            if let Some(key) = i.key {
+                self.evaluations
+                    .entry(key)
+                    .or_insert_with(|| (generation, i.evaluation.clone()));
+            }
+        }
+    }
+
+    /// The evaluation of `key`, if a generation up to `generation` stored it.
+    pub fn find(&self, key: &EvaluationKey, generation: u32) -> Option<&Evaluation> {
+        self.evaluations
+            .get(key)
+            .filter(|(first, _)| *first <= generation)
+            .map(|(_, e)| e)
+    }
+}
+
+/// One birth, evaluated, waiting to be integrated.
+#[derive(Debug)]
+pub struct Birth<G> {
+    /// Its number, b.
+    pub number: u64,
+    /// The newborn; its parents are indices in generation s(b).
+    pub individual: Individual<G>,
+    /// Whether it was simulated (rather than reusing a stored evaluation).
+    pub simulated: bool,
+    /// The operator the encoding could not apply, if it fell back to mutation.
+    pub fell_back: Option<Operator>,
+    /// Its evaluation's wall time and thread (its `individual` the birth's place in its block).
+    pub walk: WalkTime,
+}
+
+impl<G: Genome> Evolution<G> {
+    /// Birth `number` (≥ P), bred from `snapshot`, generation s(b), developed, keyed and
+    /// evaluated on this thread, or given the evaluation `lookup` holds for its key up to
+    /// s(b) (`None`: the cache is off); `Interrupted` once `cancel` is set.
+    pub fn birth(
+        &self,
+        number: u64,
+        snapshot: &Snapshot<G>,
+        lookup: Option<&std::sync::RwLock<Lookup>>,
+        cancel: &Cancel,
+    ) -> Result<Birth<G>, Interrupted> {
+        cancel.check()?;
+        let blocks = Blocks::of(&self.settings);
+        let (generation, place) = blocks.place(number);
+        let source = blocks.source(number);
+        let survivors = self.settings.survivors().min(snapshot.population.len());
+        let ranked = Ranked {
+            previous: &snapshot.population,
+            order: &snapshot.order,
+            survivors,
+        };
+        let children = blocks.children as usize;
+        let (unborn, fell_back) = self.child(&ranked, snapshot.rate, generation, place, children);
+        let started = Instant::now();
+        let mut developed = self.develop(unborn);
+        self.key_developed(&mut developed);
+        let stored = match (developed.key, lookup) {
+            (Some(key), Some(lookup)) => lookup
+                .read()
+                .unwrap_or_else(|poisoned| poisoned.into_inner())
+                .find(&key, source)
+                .cloned(),
+            _ => None,
+        };
+        let simulated = stored.is_none();
+        let evaluation = match stored {
+            Some(e) => e,
+            None => self.evaluate_developed(&developed, cancel)?,
+        };
+        let size = match developed.creatures.as_ref().map(|c| &c[0]) {
+            Ok(c) => (
+                c.parts.len() as u32,
+                c.joints.len() as u32,
+                c.neuron_count() as u32,
+            ),
+            Err(_) => (0, 0, 0),
+        };
+        let walk = WalkTime {
+            individual: place as u32,
+            seconds: started.elapsed().as_secs_f64(),
+            thread: rayon::current_thread_index().unwrap_or(0) as u32,
+            rank: 0,
+            parts: size.0,
+        };
+        let Unborn {
+            genome,
+            develop_seed,
+            parents,
+            operator,
+        } = developed.unborn;
+        Ok(Birth {
+            number,
+            individual: Individual {
+                genome,
+                develop_seed,
+                parents,
+                operator,
+                evaluation,
+                size,
+                key: developed.key,
+                reused: !simulated,
+            },
+            simulated,
+            fell_back,
+            walk,
+        })
+    }
+
+    /// The evaluation of a developed newborn, its walks (one per habitat and trial) one after
+    /// another on this thread, combined as the generational algorithm combines them.
+    fn evaluate_developed(
+        &self,
+        developed: &super::ga::Developed<G>,
+        cancel: &Cancel,
+    ) -> Result<Evaluation, Interrupted> {
+        let (Ok(creatures), Some(key)) = (&developed.creatures, developed.key) else {
+            let why = developed
+                .creatures
+                .as_ref()
+                .err()
+                .cloned()
+                .unwrap_or_default();
+            return Ok(Evaluation::invalid(
+                self.task.task.name(),
+                format!("development: {why}"),
+            ));
+        };
+        let walk = |job: super::evaluator::Job<'_>| {
+            let watch = Watch {
+                record: false,
+                progress: &mut |_| {},
+                cancel: Some(cancel),
+            };
+            job.evaluate(&self.task, watch)
+        };
+        if self.task.is_plain() {
+            return walk(super::evaluator::Job {
+                creature: &creatures[0],
+                unit: None,
+                seedling: developed.seedlings.first(),
+            });
+        }
+        // Trials are never fresh in a steady-state run: the generation does not join them.
+        let units = self.task.units(key.0, 0);
+        let evaluations = units
+            .iter()
+            .map(|u| {
+                walk(super::evaluator::Job {
+                    creature: &creatures[u.habitat as usize],
+                    unit: Some(*u),
+                    seedling: developed.seedlings.get(u.habitat as usize),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(self.task.combine(&units, evaluations, creatures))
+    }
+}
