@@ -117,10 +117,10 @@ pub struct EvolveArgs {
     /// the threads.
     #[arg(long, value_parser = algorithm_parser())]
     algorithm: Option<Algorithm>,
-    /// Steady-state: the evaluations in flight at the least, W (default: the config's, else
-    /// 32); each creature is bred from the last generation that ended at least W births
-    /// before it. Part of the algorithm: results depend on it (never on --threads); give at
-    /// least twice the threads you run on.
+    /// Steady-state: the births in flight at the least, W (default: the config's, else 32);
+    /// each creature is bred from the last generation that ended at least W births before it.
+    /// Part of the algorithm: results depend on it (never on --threads); give several times
+    /// the threads you run on (50 to 100 on 16 threads, by the schedule simulator).
     #[arg(long, value_name = "W")]
     in_flight: Option<usize>,
     /// Individuals per generation (default: the preset's, 300).
@@ -180,7 +180,8 @@ pub struct EvolveArgs {
     profile: Option<PathBuf>,
     /// The order in which each generation's walks are handed to the threads, each to the
     /// first thread free: the longest likely first keeps the threads busy until the
-    /// generation's end. The run's results do not depend on it; for benchmarks.
+    /// generation's end (the generational algorithm, and a steady-state run's generation 0).
+    /// The run's results do not depend on it; for benchmarks.
     #[arg(long, value_name = "ORDER", value_parser = walk_order_parser(), default_value = "longest-first")]
     walk_order: WalkOrder,
     /// Print the final line as one JSON object (the run's directory, encoding and fitness, the

@@ -46,7 +46,7 @@ fn replace_worst_takes_the_worst_slot_only_when_strictly_better() {
     // Among equal worst, the highest index is the worst (the ranking puts it last).
     let tied: Vec<_> = [2.0, 1.0, 1.0].map(of_fitness).into();
     assert_eq!(replace_worst(&tied, 1.5), Some(2));
-    // The failure floor of -1e9 loses to any ordinary fitness.
+    // A fitness far below any walk (under the failure floor, -999999) loses to an ordinary one.
     let failing: Vec<_> = [0.2, -1e9, 0.1].map(of_fitness).into();
     assert_eq!(replace_worst(&failing, 0.0), Some(1));
 }
