@@ -17,10 +17,15 @@
 //! [`crate::evolve::ga::WalkOrder::LongestFirst`] orders them), and the fine re-walk of each
 //! generation's best run as one more walk at the head of the next generation's batch instead
 //! of alone before its generation is stored.
+//!
+//! [`predict_steady`] replays the same births under a steady-state schedule instead (no
+//! barrier; see [`crate::evolve::steady`]); [`super::steady_schedule`] makes its births and
+//! reshapes profiles for projections.
 
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
+use super::steady_schedule::births;
 use crate::number::format_number;
 use crate::run::profile::GenerationProfile;
 
@@ -60,7 +65,7 @@ impl Machine {
 
 /// A time at which a thread falls free, ordered by time, then by the thread's index.
 #[derive(PartialEq)]
-pub(crate) struct Free(pub(crate) f64, pub(crate) usize);
+struct Free(f64, usize);
 
 impl Eq for Free {}
 
@@ -220,6 +225,71 @@ pub fn predict(profile: &[GenerationProfile], machine: Machine, levers: Levers) 
     }
 }
 
+/// The prediction for `machine` of the run profiled in `profile`, had it been steady-state
+/// with `in_flight` births in flight (at least 1), as `evolve --algorithm steady-state` breeds:
+/// the profile's first generation is the population P, bred at once; its later generations'
+/// evaluations (the first of them, C) are the blocks of births each stored generation ends;
+/// birth b ≥ P is bred once the last generation that ended at or before birth b + 1 − W (W =
+/// `in_flight`; the first generation when none did) is integrated.
+pub fn predict_steady(
+    profile: &[GenerationProfile],
+    machine: Machine,
+    in_flight: usize,
+) -> Prediction {
+    let births = births(profile);
+    let outside: f64 = profile.iter().map(|g| g.outside_evaluation()).sum();
+    let driver = if births.is_empty() {
+        0.0
+    } else {
+        outside / births.len() as f64
+    };
+    let population = profile.first().map_or(0, |g| g.evaluations as usize);
+    let children = profile
+        .get(1)
+        .map_or(population, |g| g.evaluations as usize)
+        .max(1);
+    let slots = machine.slots().max(1);
+    let mut free: BinaryHeap<Reverse<Free>> = (0..slots).map(|i| Reverse(Free(0.0, i))).collect();
+    let in_flight = in_flight.max(1);
+    let mut integrated: Vec<f64> = Vec::with_capacity(births.len());
+    let mut driver_free = 0.0_f64;
+    let mut walked = 0.0;
+    for (b, walks) in births.iter().enumerate() {
+        // Bred from the last generation that ended at or before birth b + 1 − W: it waits
+        // for that generation's last birth.
+        let after = if b < population {
+            0.0
+        } else {
+            let at = (b + 1).saturating_sub(in_flight);
+            let blocks = at.saturating_sub(population) / children;
+            integrated[population + blocks * children - 1]
+        };
+        let handed = driver_free.max(after) + driver;
+        driver_free = handed;
+        let mut finished = handed;
+        for &seconds in walks {
+            let Some(Reverse(Free(at, slot))) = free.pop() else {
+                break;
+            };
+            let done = at.max(handed) + seconds;
+            finished = finished.max(done);
+            walked += seconds;
+            free.push(Reverse(Free(done, slot)));
+        }
+        let previous = integrated.last().copied().unwrap_or(0.0);
+        integrated.push(finished.max(previous));
+    }
+    let seconds = integrated.last().copied().unwrap_or(0.0);
+    let evaluations: u64 = profile.iter().map(|g| g.evaluations).sum();
+    Prediction {
+        machine,
+        seconds,
+        walking_seconds: seconds,
+        walking_share: walked / (slots as f64 * seconds),
+        evaluations_per_second: evaluations as f64 / seconds,
+    }
+}
+
 /// The schedule a prediction replays a profile under.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Schedule {
@@ -227,7 +297,7 @@ pub enum Schedule {
     Generational(Levers),
     /// A steady-state algorithm's, with this many births in flight, the profile's first
     /// generation as its population and its second's evaluations as its blocks
-    /// ([`super::steady_schedule::predict_steady`]).
+    /// ([`predict_steady`]).
     SteadyState {
         /// Births in flight, at least 1.
         in_flight: usize,
@@ -239,9 +309,7 @@ impl Schedule {
     pub fn predict(self, profile: &[GenerationProfile], machine: Machine) -> Prediction {
         match self {
             Schedule::Generational(levers) => predict(profile, machine, levers),
-            Schedule::SteadyState { in_flight } => {
-                super::steady_schedule::predict_steady(profile, machine, in_flight)
-            }
+            Schedule::SteadyState { in_flight } => predict_steady(profile, machine, in_flight),
         }
     }
 
@@ -576,5 +644,97 @@ mod tests {
             "--ranks must be 1 to 1024, not 1025"
         );
         assert_eq!(default_threads().last(), Some(&1024));
+    }
+
+    fn births_generation(
+        walks: &[(u32, f64)],
+        outside: f64,
+        evaluations: u64,
+    ) -> GenerationProfile {
+        let evaluating = walks.iter().map(|w| w.1).sum::<f64>();
+        GenerationProfile {
+            generation: 0,
+            threads: 1,
+            ranks: 1,
+            evaluations,
+            breeding: outside,
+            developing: 0.0,
+            keying: 0.0,
+            evaluating,
+            fine: 0.0,
+            writing: 0.0,
+            other: 0.0,
+            total: outside + evaluating,
+            walks: walks
+                .iter()
+                .map(|&(individual, seconds)| WalkTime {
+                    individual,
+                    seconds,
+                    thread: 0,
+                    rank: 0,
+                    parts: 3,
+                })
+                .collect(),
+        }
+    }
+
+    const TWO: Machine = Machine {
+        ranks: 1,
+        threads: 2,
+    };
+
+    #[test]
+    fn a_steady_state_replay_gives_the_hand_computed_times() {
+        // A population of 2 (walks of 3 and 1 s), then generations of one birth (1 s each):
+        // P = 2, C = 1; no time outside.
+        let profile = [
+            births_generation(&[(0, 3.0), (1, 1.0)], 0.0, 2),
+            births_generation(&[(0, 1.0)], 0.0, 1),
+            births_generation(&[(0, 1.0)], 0.0, 1),
+            births_generation(&[(0, 1.0)], 0.0, 1),
+        ];
+        // One in flight, 2 threads: births 0 and 1 at once (0-3, 0-1), integrated at 3. Birth
+        // 2 is bred from generation 0 (ended at birth 2 = 2 + 1 − 1): 3-4; birth 3 from
+        // generation 1 (its birth 2 integrated at 4): 4-5; birth 4 from generation 2: 5-6.
+        let p = predict_steady(&profile, TWO, 1);
+        assert_eq!(p.seconds, 6.0);
+        assert_eq!(p.evaluations_per_second, 5.0 / 6.0);
+        assert_eq!(p.walking_share, 7.0 / 12.0);
+        // Two in flight: births 2 and 3 from generation 0 (3-4 each, on both threads); birth
+        // 4 from generation 1 (ended at birth 3 = 4 + 1 − 2, integrated at 4): 4-5.
+        assert_eq!(predict_steady(&profile, TWO, 2).seconds, 5.0);
+        // Generationally: 3, then 1, 1, 1.
+        let generational = predict(&profile, TWO, Default::default());
+        assert_eq!(generational.seconds, 6.0);
+        // Blocks of 2 (P = C = 2): birth 3 is bred from generation 0 like birth 2, even with
+        // one in flight: 3-4 on both threads.
+        let pairs = [
+            births_generation(&[(0, 3.0), (1, 1.0)], 0.0, 2),
+            births_generation(&[(0, 1.0), (1, 1.0)], 0.0, 2),
+        ];
+        assert_eq!(predict_steady(&pairs, TWO, 1).seconds, 4.0);
+    }
+
+    #[test]
+    fn the_driver_s_time_is_serial_before_each_birth_is_handed_out() {
+        // 4 births of one 1-s walk; 0.8 s outside in all: 0.2 s a birth on the driver.
+        let profile = [births_generation(
+            &[(0, 1.0), (1, 1.0), (2, 1.0), (3, 1.0)],
+            0.8,
+            4,
+        )];
+        // 4 threads, all births of the first population: handed at 0.2, 0.4, 0.6, 0.8, the
+        // last ends at 1.8.
+        let four = Machine {
+            ranks: 1,
+            threads: 4,
+        };
+        assert!((predict_steady(&profile, four, 4).seconds - 1.8).abs() < 1e-12);
+        // Generational: 0.8 outside + 1 s walking.
+        assert!((predict(&profile, four, Default::default()).seconds - 1.8).abs() < 1e-12);
+        // A driver of 0.05 s an evaluation in place of the recorded time.
+        let cheap = super::super::steady_schedule::with_driver(&profile, 0.05);
+        assert!((cheap[0].outside_evaluation() - 0.2).abs() < 1e-12);
+        assert!((predict_steady(&cheap, four, 4).seconds - 1.2).abs() < 1e-12);
     }
 }

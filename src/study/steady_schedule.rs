@@ -1,26 +1,13 @@
-//! The schedule simulator's steady-state schedule, and the reshaped profiles it projects from.
-//!
-//! A steady-state algorithm has no generation barrier: births are numbered, at least a fixed
-//! number of them are in flight, and birth `b` (after the first population) is bred as soon as
-//! the last generation (block of births) that ended `in_flight` births before it has been
-//! integrated, integration following birth order whatever order the walks finish in
-//! ([`crate::evolve::steady`]). [`predict_steady`] replays a profile's walks as such births: the births of
-//! each recorded generation in its individuals' order (a birth's walks together), each bred by
-//! one driver (rank 0's main thread) that spends the profile's time outside evaluation, shared
-//! equally among the births, on each birth before handing its walks out; every walk goes to the
-//! first thread free; the run ends when its last birth is integrated.
-//!
-//! For projections to machines and populations no run was recorded on, a profile can be
-//! reshaped: [`with_driver`] puts a given serial cost per evaluation in place of the recorded
-//! time outside evaluation (rank 0's cost of breeding, developing and keying one individual),
-//! and [`resampled`] draws generations of another size from the profile's walks.
-
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+//! What the schedule simulator replays besides a profile's own generations: the births a
+//! steady-state replay is made of ([`births`]; the replay itself is the schedule module's
+//! `predict_steady`), and profiles reshaped for projections to machines and
+//! populations no run was recorded on: [`with_driver`] puts a given serial cost per evaluation
+//! in place of the recorded time outside evaluation (rank 0's cost of breeding, developing
+//! and keying one individual), and [`resampled`] draws generations of another size from the
+//! profile's walks.
 
 use rand::{RngExt, SeedableRng};
 
-use super::schedule::{Free, Machine, Prediction};
 use crate::encoding::Rng;
 use crate::evolve::timing::WalkTime;
 use crate::run::profile::GenerationProfile;
@@ -47,71 +34,6 @@ pub fn births(profile: &[GenerationProfile]) -> Vec<Vec<f64>> {
         births.extend((walked..g.evaluations).map(|_| Vec::new()));
     }
     births
-}
-
-/// The prediction for `machine` of the run profiled in `profile`, had it been steady-state
-/// with `in_flight` births in flight (at least 1), as `evolve --algorithm steady-state` breeds:
-/// the profile's first generation is the population P, bred at once; its later generations'
-/// evaluations (the first of them, C) are the blocks of births each stored generation ends;
-/// birth b ≥ P is bred once the last generation that ended at or before birth b + 1 − W (W =
-/// `in_flight`; the first generation when none did) is integrated.
-pub fn predict_steady(
-    profile: &[GenerationProfile],
-    machine: Machine,
-    in_flight: usize,
-) -> Prediction {
-    let births = births(profile);
-    let outside: f64 = profile.iter().map(|g| g.outside_evaluation()).sum();
-    let driver = if births.is_empty() {
-        0.0
-    } else {
-        outside / births.len() as f64
-    };
-    let population = profile.first().map_or(0, |g| g.evaluations as usize);
-    let children = profile
-        .get(1)
-        .map_or(population, |g| g.evaluations as usize)
-        .max(1);
-    let slots = machine.slots().max(1);
-    let mut free: BinaryHeap<Reverse<Free>> = (0..slots).map(|i| Reverse(Free(0.0, i))).collect();
-    let in_flight = in_flight.max(1);
-    let mut integrated: Vec<f64> = Vec::with_capacity(births.len());
-    let mut driver_free = 0.0_f64;
-    let mut walked = 0.0;
-    for (b, walks) in births.iter().enumerate() {
-        // Bred from the last generation that ended at or before birth b + 1 − W: it waits
-        // for that generation's last birth.
-        let after = if b < population {
-            0.0
-        } else {
-            let at = (b + 1).saturating_sub(in_flight);
-            let blocks = at.saturating_sub(population) / children;
-            integrated[population + blocks * children - 1]
-        };
-        let handed = driver_free.max(after) + driver;
-        driver_free = handed;
-        let mut finished = handed;
-        for &seconds in walks {
-            let Some(Reverse(Free(at, slot))) = free.pop() else {
-                break;
-            };
-            let done = at.max(handed) + seconds;
-            finished = finished.max(done);
-            walked += seconds;
-            free.push(Reverse(Free(done, slot)));
-        }
-        let previous = integrated.last().copied().unwrap_or(0.0);
-        integrated.push(finished.max(previous));
-    }
-    let seconds = integrated.last().copied().unwrap_or(0.0);
-    let evaluations: u64 = profile.iter().map(|g| g.evaluations).sum();
-    Prediction {
-        machine,
-        seconds,
-        walking_seconds: seconds,
-        walking_share: walked / (slots as f64 * seconds),
-        evaluations_per_second: evaluations as f64 / seconds,
-    }
 }
 
 /// `profile` with `seconds` of serial work per evaluation in place of each generation's
@@ -218,11 +140,6 @@ mod tests {
         }
     }
 
-    const TWO: Machine = Machine {
-        ranks: 1,
-        threads: 2,
-    };
-
     #[test]
     fn births_group_an_individual_s_walks_and_count_the_unwalked() {
         // Individual 1's two walks were handed out apart; individual 3 was reused.
@@ -231,65 +148,6 @@ mod tests {
             births(&[g]),
             vec![vec![2.0], vec![1.0, 3.0], vec![4.0], vec![]]
         );
-    }
-
-    #[test]
-    fn a_steady_state_replay_gives_the_hand_computed_times() {
-        // A population of 2 (walks of 3 and 1 s), then generations of one birth (1 s each):
-        // P = 2, C = 1; no time outside.
-        let profile = [
-            generation(&[(0, 3.0), (1, 1.0)], 0.0, 2),
-            generation(&[(0, 1.0)], 0.0, 1),
-            generation(&[(0, 1.0)], 0.0, 1),
-            generation(&[(0, 1.0)], 0.0, 1),
-        ];
-        // One in flight, 2 threads: births 0 and 1 at once (0-3, 0-1), integrated at 3. Birth
-        // 2 is bred from generation 0 (ended at birth 2 = 2 + 1 − 1): 3-4; birth 3 from
-        // generation 1 (its birth 2 integrated at 4): 4-5; birth 4 from generation 2: 5-6.
-        let p = predict_steady(&profile, TWO, 1);
-        assert_eq!(p.seconds, 6.0);
-        assert_eq!(p.evaluations_per_second, 5.0 / 6.0);
-        assert_eq!(p.walking_share, 7.0 / 12.0);
-        // Two in flight: births 2 and 3 from generation 0 (3-4 each, on both threads); birth
-        // 4 from generation 1 (ended at birth 3 = 4 + 1 − 2, integrated at 4): 4-5.
-        assert_eq!(predict_steady(&profile, TWO, 2).seconds, 5.0);
-        // Generationally: 3, then 1, 1, 1.
-        let generational = super::super::schedule::predict(&profile, TWO, Default::default());
-        assert_eq!(generational.seconds, 6.0);
-        // Blocks of 2 (P = C = 2): birth 3 is bred from generation 0 like birth 2, even with
-        // one in flight: 3-4 on both threads.
-        let pairs = [
-            generation(&[(0, 3.0), (1, 1.0)], 0.0, 2),
-            generation(&[(0, 1.0), (1, 1.0)], 0.0, 2),
-        ];
-        assert_eq!(predict_steady(&pairs, TWO, 1).seconds, 4.0);
-    }
-
-    #[test]
-    fn the_driver_s_time_is_serial_before_each_birth_is_handed_out() {
-        // 4 births of one 1-s walk; 0.8 s outside in all: 0.2 s a birth on the driver.
-        let profile = [generation(
-            &[(0, 1.0), (1, 1.0), (2, 1.0), (3, 1.0)],
-            0.8,
-            4,
-        )];
-        // 4 threads, all births of the first population: handed at 0.2, 0.4, 0.6, 0.8, the
-        // last ends at 1.8.
-        let four = Machine {
-            ranks: 1,
-            threads: 4,
-        };
-        assert!((predict_steady(&profile, four, 4).seconds - 1.8).abs() < 1e-12);
-        // Generational: 0.8 outside + 1 s walking.
-        assert!(
-            (super::super::schedule::predict(&profile, four, Default::default()).seconds - 1.8)
-                .abs()
-                < 1e-12
-        );
-        // A driver of 0.05 s an evaluation in place of the recorded time.
-        let cheap = with_driver(&profile, 0.05);
-        assert!((cheap[0].outside_evaluation() - 0.2).abs() < 1e-12);
-        assert!((predict_steady(&cheap, four, 4).seconds - 1.2).abs() < 1e-12);
     }
 
     #[test]
