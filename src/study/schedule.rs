@@ -450,33 +450,14 @@ mod tests {
     use super::*;
     use crate::evolve::timing::WalkTime;
 
+    /// A generation whose walks of `walks` seconds are its individuals' in order.
     fn generation(walks: &[f64], outside: f64, evaluations: u64) -> GenerationProfile {
-        let evaluating = walks.iter().sum::<f64>();
-        GenerationProfile {
-            generation: 0,
-            threads: 1,
-            ranks: 1,
-            evaluations,
-            breeding: outside,
-            developing: 0.0,
-            keying: 0.0,
-            evaluating,
-            fine: 0.0,
-            writing: 0.0,
-            other: 0.0,
-            total: outside + evaluating,
-            walks: walks
-                .iter()
-                .enumerate()
-                .map(|(i, &seconds)| WalkTime {
-                    individual: i as u32,
-                    seconds,
-                    thread: 0,
-                    rank: 0,
-                    parts: 0,
-                })
-                .collect(),
-        }
+        let owned: Vec<(u32, f64)> = walks
+            .iter()
+            .enumerate()
+            .map(|(i, &seconds)| (i as u32, seconds))
+            .collect();
+        births_generation(&owned, outside, evaluations)
     }
 
     #[test]
@@ -646,6 +627,8 @@ mod tests {
         assert_eq!(default_threads().last(), Some(&1024));
     }
 
+    /// A generation whose walks are (individual, seconds), in the order handed out; every
+    /// creature of 0 parts (not recorded).
     fn births_generation(
         walks: &[(u32, f64)],
         outside: f64,
@@ -672,7 +655,7 @@ mod tests {
                     seconds,
                     thread: 0,
                     rank: 0,
-                    parts: 3,
+                    parts: 0,
                 })
                 .collect(),
         }
