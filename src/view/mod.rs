@@ -570,7 +570,8 @@ pub fn no_samples_reason(recording: &crate::task::Recording) -> Option<String> {
 /// "valid_fraction", "evaluations", "best_fine" (the best re-walked at the fine reference, or
 /// null)}]}`; for a run with habitats or trials, each generation also has "spread_low" and
 /// "spread_high", the lowest and highest fitness of its best's walks
-/// ([`crate::run::spread`]).
+/// ([`crate::run::spread`]); "algorithm": `null` for the generational GA, else
+/// `{"name": "steady-state", "in_flight": W}` (each stored generation then a block of births).
 pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
     let store = crate::run::store::RunStore::open_read_only(&dir.join("run.sqlite"))
         .map_err(|e| ViewError::BadFile(e.to_string()))?;
@@ -607,9 +608,28 @@ pub fn run_data(dir: &Path) -> Result<Value, ViewError> {
         "encoding": run.encoding,
         "task": run.task,
         "seed": run.seed,
+        "algorithm": algorithm_data(&run.config),
         "fitness": spec.map(|spec| format!("fitness: {}", spec.fitness_measure())),
         "generations": generations,
     }))
+}
+
+/// The run's algorithm as [`run_data`] gives it: `null` for the generational GA (also when its
+/// settings cannot be read), else its name and births in flight.
+fn algorithm_data(config: &str) -> Value {
+    let settings: Option<crate::evolve::settings::GaSettings> =
+        crate::run::config::parse_table(config)
+            .ok()
+            .and_then(|table| table.get("ga")?.clone().try_into().ok());
+    match settings {
+        Some(ga) if !ga.algorithm.is_generational() => {
+            let in_flight = ga
+                .in_flight
+                .unwrap_or(crate::evolve::settings::DEFAULT_IN_FLIGHT);
+            json!({ "name": ga.algorithm.name(), "in_flight": in_flight })
+        }
+        _ => Value::Null,
+    }
 }
 
 /// A generation's individuals, best first in the GA's order ([`crate::evolve::ga::ranking`],

@@ -681,7 +681,10 @@ function stopRecording() {
 
 function showRun(data) {
   body.dataset.kind = 'run';
-  $('file').textContent = `${data.file}  (${data.encoding} on ${data.task})`;
+  const algorithm = data.algorithm
+    ? `, ${data.algorithm.name}, ${data.algorithm.in_flight} births in flight`
+    : '';
+  $('file').textContent = `${data.file}  (${data.encoding} on ${data.task}${algorithm})`;
   playButton.style.display = 'none';
   slider.style.display = 'none';
   const rows = [];

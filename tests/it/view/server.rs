@@ -580,6 +580,8 @@ fn a_run_page_says_what_the_fitness_measures_and_the_fine_reference_of_each_best
         data["fitness"],
         format!("fitness: {}", spec.fitness_measure())
     );
+    // A generational run names no algorithm.
+    assert!(data["algorithm"].is_null(), "{}", data["algorithm"]);
     let pages = data["generations"].as_array().unwrap();
     assert_eq!(pages.len(), generations.len());
     assert!(generations.iter().any(|g| g.best_fine.is_some()));
@@ -589,6 +591,44 @@ fn a_run_page_says_what_the_fitness_measures_and_the_fine_reference_of_each_best
             None => assert!(page["best_fine"].is_null(), "{page}"),
         }
     }
+}
+
+#[test]
+fn a_steady_state_run_page_names_its_algorithm_and_births_in_flight() {
+    let run = scratch("steady-page").join("run");
+    let out = ontogeny_command()
+        .args([
+            "evolve",
+            "--encoding",
+            "direct",
+            "--task",
+            "walker",
+            "--algorithm",
+            "steady-state",
+            "--in-flight",
+            "3",
+            "--pop",
+            "4",
+            "--gens",
+            "2",
+            "--seconds",
+            "0.5",
+            "--seed",
+            "3",
+            "--out",
+        ])
+        .arg(&run)
+        .output()
+        .unwrap();
+    succeeded(&out);
+    let viewer = Viewer::start(&run);
+    let data = get_json(&viewer, "/data.json");
+    assert_eq!(
+        data["algorithm"],
+        serde_json::json!({ "name": "steady-state", "in_flight": 3 })
+    );
+    // Each stored block of births is a generation of the page.
+    assert_eq!(data["generations"].as_array().unwrap().len(), 2);
 }
 
 /// A tiny comparison made by `ontogeny compare` (direct against lsystem, one replicate each, 9
