@@ -19,6 +19,11 @@
 #   THREADS   the thread counts (default 1 2 4 ... up to nproc)
 #   PROFILES  a directory to keep each N-thread run's profile in (evolve --profile), as
 #             PROFILES/pop-P-threads-N.jsonl, for `ontogeny runs schedule`
+#   STEADY    births in flight W of steady-state runs to measure beside the generational one
+#             (default none), e.g. STEADY="32 100": for each N, one run with --threads N
+#             --algorithm steady-state --in-flight W, as many evaluations (a block of births
+#             a generation), its ratio to the same ceiling; profiles as
+#             PROFILES/pop-P-threads-N-steady-W.jsonl
 # The runs go to a temporary directory, removed at the end.
 set -eu
 ontogeny=${ONTOGENY:-target/release/ontogeny}
@@ -79,7 +84,7 @@ evolve() {
 
 echo "# $("$ontogeny" --version), $cores cores ($(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)), $(date -u +%Y-%m-%dT%H:%MZ)"
 echo "# evolve --config examples/evolve-walker.toml --no-cache --pop P --gens $gens; load average before: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
-printf '%-10s %7s %15s %15s %6s\n' population threads "ceiling eval/s" "one run eval/s" ratio
+printf '%-10s %7s %-22s %15s %15s %6s\n' population threads algorithm "ceiling eval/s" "one run eval/s" ratio
 for pop in $pops; do
     for n in $THREADS; do
         # The ceiling: N one-thread runs at once.
@@ -98,19 +103,28 @@ for pop in $pops; do
             total=$((total + $(evaluations "$work/ceiling-$pop-$n-$i.json")))
         done
         ceiling=$(awk -v e="$total" -v s="$start" -v t="$end" 'BEGIN { printf "%.1f", e / (t - s) }')
-        # One run with N threads.
-        profile=()
-        if [ -n "${PROFILES:-}" ]; then
-            mkdir -p "$PROFILES"
-            profile=(--profile "$PROFILES/pop-$pop-threads-$n.jsonl")
-        fi
-        start=$(now)
-        evolve "run-$pop-$n" "$pop" "$n" ${profile[@]+"${profile[@]}"}
-        end=$(now)
-        one=$(awk -v e="$(evaluations "$work/run-$pop-$n.json")" -v s="$start" -v t="$end" \
-            'BEGIN { printf "%.1f", e / (t - s) }')
-        ratio=$(awk -v a="$one" -v b="$ceiling" 'BEGIN { printf "%.2f", a / b }')
-        printf '%-10s %7s %15s %15s %6s\n' "$pop" "$n" "$ceiling" "$one" "$ratio"
+        # One run with N threads: generational, then steady-state at each W of STEADY.
+        for algorithm in generational ${STEADY:-}; do
+            flags=()
+            name="run-$pop-$n"
+            label=generational
+            if [ "$algorithm" != generational ]; then
+                flags=(--algorithm steady-state --in-flight "$algorithm")
+                name="run-$pop-$n-steady-$algorithm"
+                label="steady-state W=$algorithm"
+            fi
+            if [ -n "${PROFILES:-}" ]; then
+                mkdir -p "$PROFILES"
+                flags+=(--profile "$PROFILES/pop-$pop-threads-$n${name#run-"$pop"-"$n"}.jsonl")
+            fi
+            start=$(now)
+            evolve "$name" "$pop" "$n" ${flags[@]+"${flags[@]}"}
+            end=$(now)
+            one=$(awk -v e="$(evaluations "$work/$name.json")" -v s="$start" -v t="$end" \
+                'BEGIN { printf "%.1f", e / (t - s) }')
+            ratio=$(awk -v a="$one" -v b="$ceiling" 'BEGIN { printf "%.2f", a / b }')
+            printf '%-10s %7s %-22s %15s %15s %6s\n' "$pop" "$n" "$label" "$ceiling" "$one" "$ratio"
+        done
         rm -rf "$work"/ceiling-* "$work"/run-*
     done
 done
