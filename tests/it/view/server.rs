@@ -200,6 +200,12 @@ pub(super) fn tiny_run(name: &str) -> PathBuf {
 
 /// [`tiny_run`] into `run`, with walks of `seconds`.
 fn tiny_run_of(run: PathBuf, seconds: &str) -> PathBuf {
+    tiny_run_with(run, &["--gens", "1", "--seconds", seconds])
+}
+
+/// A run of 4 direct walkers (seed 3) into `run`, with `flags` added (its generations and
+/// walks' seconds among them).
+fn tiny_run_with(run: PathBuf, flags: &[&str]) -> PathBuf {
     let out = ontogeny_command()
         .args([
             "evolve",
@@ -209,14 +215,11 @@ fn tiny_run_of(run: PathBuf, seconds: &str) -> PathBuf {
             "walker",
             "--pop",
             "4",
-            "--gens",
-            "1",
-            "--seconds",
-            seconds,
             "--seed",
             "3",
-            "--out",
         ])
+        .args(flags)
+        .arg("--out")
         .arg(&run)
         .output()
         .unwrap();
@@ -595,32 +598,19 @@ fn a_run_page_says_what_the_fitness_measures_and_the_fine_reference_of_each_best
 
 #[test]
 fn a_steady_state_run_page_names_its_algorithm_and_births_in_flight() {
-    let run = scratch("steady-page").join("run");
-    let out = ontogeny_command()
-        .args([
-            "evolve",
-            "--encoding",
-            "direct",
-            "--task",
-            "walker",
+    let run = tiny_run_with(
+        scratch("steady-page").join("run"),
+        &[
             "--algorithm",
             "steady-state",
             "--in-flight",
             "3",
-            "--pop",
-            "4",
             "--gens",
             "2",
             "--seconds",
             "0.5",
-            "--seed",
-            "3",
-            "--out",
-        ])
-        .arg(&run)
-        .output()
-        .unwrap();
-    succeeded(&out);
+        ],
+    );
     let viewer = Viewer::start(&run);
     let data = get_json(&viewer, "/data.json");
     assert_eq!(
