@@ -2,8 +2,9 @@
 //! `mpirun` on this machine only): two and three ranks give the database of one process for
 //! two encodings, and two ranks for a run in habitats with noisy trials; a killed worker rank
 //! ends the job with a message and a nonzero exit code and `evolve --resume` (one process or
-//! two ranks) then finishes the run to the result of an uninterrupted one, and a rank 0 that
-//! refuses its input ends every rank.
+//! two ranks) then finishes the run to the result of an uninterrupted one, a rank 0 that
+//! refuses its input ends every rank, and a job launched from a host file, as on a cluster,
+//! gives the run of one process.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -182,4 +183,34 @@ fn a_rank_0_that_refuses_its_input_ends_every_rank_with_exit_code_2() {
         .arg(dir.join("missing"));
     let output = under_mpirun(3, &resume).output().unwrap();
     refused(&output, "missing");
+}
+
+/// A job launched as on a cluster: `mpirun --hostfile` with a host file naming the machines and
+/// the ranks each may run (here this machine alone, by its loopback name, three slots, so no
+/// oversubscription is asked for) gives the run of one process.
+#[test]
+fn a_job_launched_from_a_host_file_gives_the_run_of_one_process() {
+    let dir = scratch("hostfile");
+    let hosts = dir.join("hosts");
+    std::fs::write(&hosts, "localhost slots=3\n").unwrap();
+    let one = dir.join("one");
+    succeeded(&small("lsystem", &one).output().unwrap());
+    let many = dir.join("from-hosts");
+    let command = small("lsystem", &many);
+    let output = Command::new("mpirun")
+        .arg("--hostfile")
+        .arg(&hosts)
+        .args(["--mca", "mpi_yield_when_idle", "1"])
+        .args(["--mca", "btl", "self,vader,tcp"])
+        .args(["--mca", "btl_tcp_if_include", "lo"])
+        .args(["-np", "3"])
+        .arg(command.get_program())
+        .args(command.get_args())
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .output()
+        .unwrap();
+    succeeded(&output);
+    assert_eq!(contents(&one), contents(&many));
+    let _ = std::fs::remove_dir_all(dir);
 }
