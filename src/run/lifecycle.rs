@@ -32,6 +32,7 @@ use crate::task::{Evaluation, TaskSpec, TaskTables};
 
 pub mod derived;
 mod error;
+mod pool;
 mod progress;
 mod steady;
 
@@ -101,7 +102,8 @@ pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
 }
 
 /// The run's settings and limits in range ([`check_settings`], [`CheckedLimits`]); the error
-/// names `name`, where they come from, and the key.
+/// names `name`, where they come from, and the key. Its algorithm must run on this process's
+/// evaluator ([`check_ranks`]): a start or resume is refused before anything is written.
 fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
     check_settings(&config.ga, &config.task, &[config.encoding.as_str()])
         .and_then(|()| config.limits.check_ranges())
@@ -110,7 +112,22 @@ fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Resu
                 DiagnosticKind::Semantic,
                 format!("{name}: {e}"),
             ))
-        })
+        })?;
+    check_ranks(config.ga.algorithm, Evaluator::current().ranks())
+}
+
+/// Whether `algorithm` runs over `ranks` processes: the steady-state algorithm runs on one
+/// process's threads only, so over several MPI ranks it is refused.
+pub fn check_ranks(algorithm: Algorithm, ranks: u32) -> Result<(), RunError> {
+    if algorithm.is_generational() || ranks <= 1 {
+        return Ok(());
+    }
+    Err(RunError::Config(Diagnostic::without_location(
+        DiagnosticKind::Semantic,
+        "algorithm \"steady-state\" runs on one process's threads: start it without an MPI \
+         launcher (over MPI ranks only \"generational\" runs)"
+            .to_string(),
+    )))
 }
 
 impl<G: Genome> Run<G> {
@@ -640,17 +657,26 @@ impl<G: Genome> Run<G> {
         let started = Instant::now();
         let mut times = GenerationTimes::default();
         let evaluations = self.breed(progress, generation, &mut times)?;
-        self.conclude(progress, generation, evaluations, times, started, observer)
+        self.conclude(
+            progress,
+            generation,
+            (evaluations, None),
+            times,
+            started,
+            observer,
+        )
     }
 
     /// The end of generation `generation`, bred and evaluated since `started` (`evaluations`
-    /// simulated, its steps' `times`): its best re-walked at the fine reference, stored, the
-    /// derived files advanced, `observer` told.
+    /// made, and how many of them reused a stored evaluation where its members do not say:
+    /// a steady-state block's births that reused one and were not kept; its steps' `times`):
+    /// its best re-walked at the fine reference, stored, the derived files advanced,
+    /// `observer` told.
     fn conclude(
         &mut self,
         progress: &mut Progress<G>,
         generation: u32,
-        evaluations: u64,
+        (evaluations, reused): (u64, Option<u64>),
         times: GenerationTimes,
         started: Instant,
         observer: &mut dyn FnMut(&GenerationReport),
@@ -664,6 +690,9 @@ impl<G: Genome> Run<G> {
             best_fine,
             ..GenerationRecord::of(&progress.population, evaluations)
         };
+        if let Some(reused) = reused {
+            stats.reused = reused;
+        }
         let writing_started = Instant::now();
         self.record(&progress.population, &mut stats, started)?;
         self.advance_derived_files(&progress.population, &stats, &progress.fallbacks)?;

@@ -80,6 +80,12 @@ pub enum RunError {
     /// A file of the run could not be written, or its target is not a regular file.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// A thread evaluating a steady-state birth panicked (a fault of this program): the run
+    /// stopped, and resumes after its last stored generation.
+    #[error(
+        "a thread evaluating a birth panicked ({0}): the run stopped after its last stored generation (resume it with `ontogeny evolve --resume`); this is a fault of ontogeny, please report it"
+    )]
+    Panicked(String),
     /// The run's cancellation token was set ([`crate::run::Run::set_cancel`]): the generation under way
     /// was dropped, and the run resumes after its last stored generation.
     #[error(transparent)]
