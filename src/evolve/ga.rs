@@ -34,7 +34,10 @@ pub struct Individual<G> {
     pub genome: G,
     /// The seed of its development (stochastic rules), kept with it for life.
     pub develop_seed: u64,
-    /// Its parents' indices in the previous generation.
+    /// Its parents' indices in the generation it was bred from: the previous generation in
+    /// a generational run (an elite's own index there); in a steady-state run the generation
+    /// its birth was bred from ([`super::steady::Blocks::source`]), and a member kept from an
+    /// earlier block keeps its birth's parents and operator.
     pub parents: Vec<u32>,
     /// How it was made.
     pub operator: Operator,

@@ -50,7 +50,8 @@ pub const RESUMABLE_KEYS: [&str; 1] = ["ga.generations"];
 pub struct GenerationReport {
     /// The generation's index.
     pub generation: u32,
-    /// Its figures, as stored.
+    /// Its figures, as stored, but for `reused` in a steady-state run: every birth of the
+    /// block that reused an evaluation, kept or not (the store counts the members kept).
     pub stats: GenerationRecord,
     /// Wall-clock seconds it took (development, evaluation and bookkeeping).
     pub wall_seconds: f64,
@@ -668,10 +669,10 @@ impl<G: Genome> Run<G> {
     }
 
     /// The end of generation `generation`, bred and evaluated since `started` (`evaluations`
-    /// made, and how many of them reused a stored evaluation where its members do not say:
-    /// a steady-state block's births that reused one and were not kept; its steps' `times`):
-    /// its best re-walked at the fine reference, stored, the derived files advanced,
-    /// `observer` told.
+    /// made, and how many of them reused a stored evaluation where its members do not say,
+    /// as a steady-state block's births that reused one and were not kept, for the report
+    /// to `observer` only; its steps' `times`): its best re-walked at the fine reference,
+    /// stored, the derived files advanced, `observer` told.
     fn conclude(
         &mut self,
         progress: &mut Progress<G>,
@@ -690,9 +691,6 @@ impl<G: Genome> Run<G> {
             best_fine,
             ..GenerationRecord::of(&progress.population, evaluations)
         };
-        if let Some(reused) = reused {
-            stats.reused = reused;
-        }
         let writing_started = Instant::now();
         self.record(&progress.population, &mut stats, started)?;
         self.advance_derived_files(&progress.population, &stats, &progress.fallbacks)?;
@@ -708,6 +706,11 @@ impl<G: Genome> Run<G> {
                 writing,
                 started.elapsed().as_secs_f64(),
             ))?;
+        }
+        // The store counts the reused among the members; the report, every evaluation
+        // reused this generation where the members do not say (a birth not kept).
+        if let Some(reused) = reused {
+            stats.reused = reused;
         }
         observer(&GenerationReport {
             generation,
