@@ -200,7 +200,7 @@ pub fn run_error(e: RunError) -> anyhow::Error {
             anyhow::Error::new(source).context(format!("{}", path.display()))
         }
         RunError::Store(e) if !e.is_bad_input() => anyhow::anyhow!("{e}"),
-        e @ RunError::Plot(_) => anyhow::anyhow!("{e}"),
+        e @ (RunError::Plot(_) | RunError::Panicked(_)) => anyhow::anyhow!("{e}"),
         other => bad(other.to_string()),
     }
 }

@@ -375,6 +375,7 @@ mod tests {
         };
         assert_eq!(code(RunError::Store(cannot_move)), 1);
         assert_eq!(code(RunError::Plot("cannot draw".into())), 1);
+        assert_eq!(code(RunError::Panicked("a fault".into())), 1);
         let damaged = StoreError::Corrupt {
             path: path.clone(),
             detail: "the file is truncated".into(),

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::{Args, Subcommand};
 use ontogeny::encoding::Genome;
+use ontogeny::evolve::settings::MAX_IN_FLIGHT;
 use ontogeny::front::text;
 use ontogeny::run::pick::PickError;
 use ontogeny::run::profile::read_profile;
@@ -88,7 +89,8 @@ pub struct ScheduleArgs {
     #[arg(long)]
     fine_beside: bool,
     /// Replay the profile as a steady-state run with W births in flight (no generation
-    /// barrier; births integrated in order; 1 to 1000000) instead of generationally.
+    /// barrier; births integrated in order; 1 to 100000, as `evolve --in-flight`) instead of
+    /// generationally.
     #[arg(long, value_name = "W", conflicts_with_all = ["longest_first", "fine_beside"])]
     steady_state: Option<usize>,
     /// Replay generations of N evaluations of one walk each, drawn at random (seed 1, with
@@ -287,15 +289,15 @@ fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
         )));
     }
     let limit = 1_000_000;
-    for (flag, value) in [
-        ("--steady-state", args.steady_state),
-        ("--population", args.population),
-        ("--generations", args.generations),
+    for (flag, value, most) in [
+        ("--steady-state", args.steady_state, MAX_IN_FLIGHT),
+        ("--population", args.population, limit),
+        ("--generations", args.generations, limit),
     ] {
         if let Some(n) = value
-            && !(1..=limit).contains(&n)
+            && !(1..=most).contains(&n)
         {
-            return Err(super::bad(format!("{flag} must be 1 to {limit}, not {n}")));
+            return Err(super::bad(format!("{flag} must be 1 to {most}, not {n}")));
         }
     }
     if let Some(population) = args.population {
@@ -334,8 +336,9 @@ fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
     let mut name = args.profile.display().to_string();
     if let Some(population) = args.population {
         name.push_str(&format!(
-            " (its walks drawn into {} generations of {population}: what follows is of the drawn profile, not measured)",
-            profile.len()
+            " (its walks drawn into {} generation{} of {population}: what follows is of the drawn profile, not measured)",
+            profile.len(),
+            if profile.len() == 1 { "" } else { "s" }
         ));
     }
     if let Some(us) = args.driver_us {

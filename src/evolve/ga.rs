@@ -23,39 +23,9 @@ use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
+pub use super::operator::{Fallbacks, Operator, schedule};
 pub use super::settings::{Algorithm, GaSettings, Preset, WwdCrossover};
-
-/// How an individual was made.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Operator {
-    /// A random genome of the first generation.
-    Random,
-    /// A mutant of a hand-written grammar (`--init`), in the first generation.
-    Init,
-    /// Kept unchanged from the previous generation.
-    Elite,
-    /// Mutation alone.
-    Mutation,
-    /// Crossover (then perhaps mutation).
-    Crossover,
-    /// Grafting (then perhaps mutation).
-    Graft,
-}
-
-impl Operator {
-    /// The name the run store uses.
-    pub fn name(self) -> &'static str {
-        match self {
-            Operator::Random => "random",
-            Operator::Init => "init",
-            Operator::Elite => "elite",
-            Operator::Mutation => "mutation",
-            Operator::Crossover => "crossover",
-            Operator::Graft => "graft",
-        }
-    }
-}
+pub use super::walk_order::WalkOrder;
 
 /// One member of a generation: its genome, how it was made, and its evaluation.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -64,7 +34,10 @@ pub struct Individual<G> {
     pub genome: G,
     /// The seed of its development (stochastic rules), kept with it for life.
     pub develop_seed: u64,
-    /// Its parents' indices in the previous generation.
+    /// Its parents' indices in the generation it was bred from: the previous generation in
+    /// a generational run (an elite's own index there); in a steady-state run the generation
+    /// its birth was bred from ([`super::steady::Blocks::source`]), and a member kept from an
+    /// earlier block keeps its birth's parents and operator.
     pub parents: Vec<u32>,
     /// How it was made.
     pub operator: Operator,
@@ -165,61 +138,6 @@ pub struct Evolution<G: Genome> {
     /// The order a generation's walks are handed to the evaluator in: it changes when each
     /// walk starts, never a result.
     pub walk_order: WalkOrder,
-}
-
-/// The order in which a generation's walks are handed to the evaluator, each to the first
-/// thread (or rank) to fall free. Results are put back in their individuals' places, so the
-/// order changes how well the threads are kept busy before the generation's end, never a
-/// result: a run is the same to the digit in either order.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum WalkOrder {
-    /// The likely-longest first: walks of creatures with more parts first (a step's cost
-    /// grows with the parts), ties in the individuals' order; so that a long walk does not
-    /// start last and hold the generation's end while the other threads idle. A pure function
-    /// of the generation's creatures: no clock is read.
-    #[default]
-    LongestFirst,
-    /// The individuals' order.
-    Index,
-}
-
-impl WalkOrder {
-    /// Every order.
-    pub const ALL: [WalkOrder; 2] = [WalkOrder::LongestFirst, WalkOrder::Index];
-
-    /// Its name on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            WalkOrder::LongestFirst => "longest-first",
-            WalkOrder::Index => "index",
-        }
-    }
-
-    /// One line for people.
-    pub fn summary(self) -> &'static str {
-        match self {
-            WalkOrder::LongestFirst => {
-                "creatures with more parts first, ties in the individuals' order (the default)"
-            }
-            WalkOrder::Index => "in the individuals' order",
-        }
-    }
-
-    /// The order named `name`.
-    pub fn named(name: &str) -> Option<WalkOrder> {
-        WalkOrder::ALL.into_iter().find(|o| o.name() == name)
-    }
-
-    /// The order in which to hand out walks of creatures with `parts` parts (a walk each, in
-    /// the individuals' order): their indices.
-    pub fn order(self, parts: &[usize]) -> Vec<usize> {
-        let mut order: Vec<usize> = (0..parts.len()).collect();
-        if self == WalkOrder::LongestFirst {
-            // Stable: ties keep the individuals' order.
-            order.sort_by_key(|&i| std::cmp::Reverse(parts[i]));
-        }
-        order
-    }
 }
 
 /// A new individual before evaluation.
@@ -827,63 +745,6 @@ impl<G> Child<G> {
             },
             self.fell_back_from,
         )
-    }
-}
-
-/// Children made by mutation because the encoding lacks the scheduled operator.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Fallbacks {
-    /// Instead of crossover.
-    pub crossover: u64,
-    /// Instead of grafting.
-    pub graft: u64,
-}
-
-impl Fallbacks {
-    fn count(&mut self, op: Operator) {
-        match op {
-            Operator::Crossover => self.crossover += 1,
-            _ => self.graft += 1,
-        }
-    }
-
-    /// Counts individual `index` of a generation after the first, stored as made by
-    /// `operator` in a run with `settings`: a child made by mutation alone where the schedule
-    /// asked for crossover or grafting is one the encoding could not mate. The schedule is a
-    /// function of the index alone ([`schedule`]; Walking with Dinosaurs' always mates), so
-    /// the count read back from a run store equals the one the run made.
-    pub fn count_stored(&mut self, settings: &GaSettings, index: usize, operator: Operator) {
-        let survivors = settings.survivors().min(settings.population);
-        if index < survivors || operator != Operator::Mutation {
-            return;
-        }
-        let scheduled = match settings.preset {
-            Preset::Chaumont => schedule(
-                index - survivors,
-                settings.population - survivors,
-                settings.asexual,
-                settings.crossover,
-            ),
-            Preset::Wwd => Operator::Crossover,
-        };
-        if scheduled != Operator::Mutation {
-            self.count(scheduled);
-        }
-    }
-}
-
-/// Chaumont's operator for child `k` of `children`: the first round(asexual × children) by
-/// mutation, the next round(crossover × children) by crossover, the rest by grafting (exact
-/// proportions rather than a draw per child, so every generation has the preset's mix).
-pub fn schedule(k: usize, children: usize, asexual: f64, crossover: f64) -> Operator {
-    let by_mutation = (asexual * children as f64).round() as usize;
-    let by_crossover = (crossover * children as f64).round() as usize;
-    if k < by_mutation {
-        Operator::Mutation
-    } else if k < by_mutation + by_crossover {
-        Operator::Crossover
-    } else {
-        Operator::Graft
     }
 }
 

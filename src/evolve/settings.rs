@@ -120,6 +120,10 @@ impl Algorithm {
 /// given: twice 16 threads.
 pub const DEFAULT_IN_FLIGHT: usize = 32;
 
+/// The most births a steady-state run may keep in flight (`in_flight`, `evolve --in-flight`),
+/// and the most `runs schedule --steady-state` replays.
+pub const MAX_IN_FLIGHT: usize = 100_000;
+
 /// The genetic algorithm's settings (the `[ga]` table of a run's `config.toml`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -306,7 +310,7 @@ impl GaSettings {
         self.check_algorithm()
     }
 
-    /// The steady-state algorithm's checks: `in_flight` only with it, 1 to 100000, and a
+    /// The steady-state algorithm's checks: `in_flight` only with it, 1 to [`MAX_IN_FLIGHT`], and a
     /// child to breed in each block.
     fn check_algorithm(&self) -> Result<(), SettingError> {
         match (self.algorithm, self.in_flight) {
@@ -315,9 +319,9 @@ impl GaSettings {
                 key: "in_flight",
                 problem: "is read by algorithm = \"steady-state\" only".into(),
             }),
-            (Algorithm::SteadyState, Some(w)) if !(1..=100_000).contains(&w) => {
-                Err(SettingError::out_of_range("in_flight", "1 to 100000", w))
-            }
+            (Algorithm::SteadyState, Some(w)) if !(1..=MAX_IN_FLIGHT).contains(&w) => Err(
+                SettingError::out_of_range("in_flight", &format!("1 to {MAX_IN_FLIGHT}"), w),
+            ),
             (Algorithm::SteadyState, _) if self.survivors() >= self.population => {
                 Err(SettingError {
                     table: String::new(),

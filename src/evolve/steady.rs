@@ -31,7 +31,8 @@
 //! births in flight when a run was killed are bred again, the same, from the generations
 //! stored.
 
-use std::collections::HashMap;
+use std::cmp::Reverse;
+use std::collections::{BTreeSet, HashMap};
 use std::time::Instant;
 
 use super::ga::{Evolution, Individual, Operator, Ranked, Unborn, ranking};
@@ -91,13 +92,73 @@ impl Blocks {
 
 /// Replace-worst: the slot of `population` a newborn of fitness `fitness` takes, the slot of
 /// the worst (the last of [`ranking`]), if its fitness is greater in `f64`'s total order (the
-/// ranking's); `None` (it is not kept) otherwise, ties included.
+/// ranking's); `None` (it is not kept) otherwise, ties included. A run integrates its births
+/// through [`Standings`], which gives the same slots without ranking the population each time.
 pub fn replace_worst<G>(population: &[Individual<G>], fitness: f64) -> Option<usize> {
-    let worst = *ranking(population).last()?;
-    fitness
-        .total_cmp(&population[worst].evaluation.fitness)
-        .is_gt()
-        .then_some(worst)
+    Standings::of(population).replace_worst(fitness)
+}
+
+/// A fitness in `f64`'s total order (the order of [`ranking`]: NaN above +∞).
+#[derive(Clone, Copy, Debug)]
+struct Total(f64);
+
+impl PartialEq for Total {
+    fn eq(&self, other: &Total) -> bool {
+        self.0.total_cmp(&other.0).is_eq()
+    }
+}
+
+impl Eq for Total {}
+
+impl PartialOrd for Total {
+    fn partial_cmp(&self, other: &Total) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Total {
+    fn cmp(&self, other: &Total) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
+    }
+}
+
+/// The population's slots in the order of [`ranking`], reversed: worst first (lowest fitness,
+/// among equals the highest index), kept as an ordered set so that each replace-worst costs
+/// O(log P) rather than a ranking of the whole population.
+#[derive(Clone, Debug)]
+pub struct Standings {
+    worst_first: BTreeSet<(Total, Reverse<usize>)>,
+}
+
+impl Standings {
+    /// The standings of `population`'s slots.
+    pub fn of<G>(population: &[Individual<G>]) -> Standings {
+        Standings {
+            worst_first: population
+                .iter()
+                .enumerate()
+                .map(|(slot, i)| (Total(i.evaluation.fitness), Reverse(slot)))
+                .collect(),
+        }
+    }
+
+    /// The worst slot: the last of [`ranking`] (`None` for no population).
+    pub fn worst(&self) -> Option<usize> {
+        self.worst_first.first().map(|&(_, Reverse(slot))| slot)
+    }
+
+    /// Replace-worst ([`replace_worst`]): the slot a newborn of fitness `fitness` takes, which
+    /// then holds `fitness` in these standings; `None`, and nothing changed, when it is not
+    /// greater than the worst's.
+    pub fn replace_worst(&mut self, fitness: f64) -> Option<usize> {
+        let &(worst, Reverse(slot)) = self.worst_first.first()?;
+        if !Total(fitness).gt(&worst) {
+            return None;
+        }
+        self.worst_first.pop_first();
+        self.worst_first.insert((Total(fitness), Reverse(slot)));
+        Some(slot)
+    }
 }
 
 /// A stored generation as breeding reads it: its members, ranked, and Walking with Dinosaurs'
@@ -289,5 +350,89 @@ impl<G: Genome> Evolution<G> {
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(self.task.combine(&units, evaluations, creatures))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::{RngExt, SeedableRng};
+
+    use super::*;
+    use crate::task::Evaluation;
+
+    fn of_fitness(fitness: f64) -> Individual<()> {
+        Individual {
+            genome: (),
+            develop_seed: 0,
+            parents: Vec::new(),
+            operator: Operator::Random,
+            evaluation: Evaluation {
+                fitness,
+                ..Evaluation::invalid("walker", String::new())
+            },
+            size: (0, 0, 0),
+            key: None,
+            reused: false,
+        }
+    }
+
+    #[test]
+    fn the_standings_worst_is_the_rankings_last_after_every_replacement() {
+        // Fitnesses from a small set, so that ties are common, with the failure floor, NaN
+        // (above every number in the total order) and both zeros.
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            2.0,
+            2.0,
+            -999_999.0,
+            f64::NAN,
+            0.5,
+            3.0,
+            -1.0,
+        ];
+        let mut rng = crate::encoding::Rng::seed_from_u64(7);
+        for size in [1, 2, 5, 17] {
+            let mut population: Vec<Individual<()>> = (0..size)
+                .map(|_| of_fitness(values[rng.random_range(0..values.len())]))
+                .collect();
+            let mut standings = Standings::of(&population);
+            let mut replaced = 0;
+            for _ in 0..2_000 {
+                assert_eq!(standings.worst(), ranking(&population).last().copied());
+                let fitness = values[rng.random_range(0..values.len())];
+                // Replace-worst by the ranking itself: its last, if strictly below.
+                let worst = *ranking(&population).last().unwrap();
+                let expected = fitness
+                    .total_cmp(&population[worst].evaluation.fitness)
+                    .is_gt()
+                    .then_some(worst);
+                assert_eq!(standings.replace_worst(fitness), expected, "{fitness}");
+                if let Some(slot) = expected {
+                    population[slot] = of_fitness(fitness);
+                    replaced += 1;
+                }
+            }
+            assert!(replaced > 0, "some births are kept");
+        }
+    }
+
+    #[test]
+    fn the_worst_by_hand() {
+        // Worst first: 1.0 at slot 2 (the higher of the two equal lows), then slot 0.
+        let population: Vec<_> = [1.0, 3.0, 1.0].map(of_fitness).into();
+        let mut standings = Standings::of(&population);
+        assert_eq!(standings.worst(), Some(2));
+        assert_eq!(
+            standings.replace_worst(1.0),
+            None,
+            "a tie keeps the incumbent"
+        );
+        assert_eq!(standings.replace_worst(2.0), Some(2));
+        assert_eq!(standings.worst(), Some(0));
+        // NaN is above every number in the total order: it replaces, and is never the worst.
+        assert_eq!(standings.replace_worst(f64::NAN), Some(0));
+        assert_eq!(standings.worst(), Some(2));
     }
 }

@@ -59,12 +59,21 @@ pub fn start_line(
     } else {
         "is not evaluated again"
     };
-    let size = format!(
-        "population {} × {} generations = {evaluations} evaluations (the elite of {} {elite})",
-        ga.population,
-        ga.generations,
-        ga.survivors()
-    );
+    let size = match ga.algorithm.is_generational() {
+        true => format!(
+            "population {} × {} generations = {evaluations} evaluations (the elite of {} {elite})",
+            ga.population,
+            ga.generations,
+            ga.survivors()
+        ),
+        false => format!(
+            "steady-state, {} births in flight: population {} × {} generations = {evaluations} evaluations (after generation 0, a generation every {} births, each replacing the population's worst if it is better)",
+            ga.in_flight(),
+            ga.population,
+            ga.generations,
+            ga.children()
+        ),
+    };
     let left = if first == 0 {
         String::new()
     } else {
@@ -674,6 +683,16 @@ mod tests {
         assert_eq!(
             start_line("direct", "jump, height (m)", &ga, true, 0, 2),
             "evolving direct on jump, height (m): population 10 × 4 generations = 40 evaluations (the elite of 2 is walked again on fresh trials); 2 threads; the time it takes is estimated after the first generation"
+        );
+        // Steady-state: the same births, said as births in flight and blocks of 8.
+        let steady = GaSettings {
+            algorithm: crate::evolve::ga::Algorithm::SteadyState,
+            in_flight: Some(6),
+            ..ga.clone()
+        };
+        assert_eq!(
+            start_line("direct", "jump, height (m)", &steady, false, 0, 2),
+            "evolving direct on jump, height (m): steady-state, 6 births in flight: population 10 × 4 generations = 34 evaluations (after generation 0, a generation every 8 births, each replacing the population's worst if it is better); 2 threads; the time it takes is estimated after the first generation"
         );
         // 10 evaluations in 2 s: 24 more take about 5 s.
         assert_eq!(

@@ -15,11 +15,9 @@ use std::time::Instant;
 
 use super::config::{RunConfig, check_settings, read_run_config, with_generations};
 use super::folder::{CONFIG_FILE, Claim, STORE_FILE, claim_folder};
-use super::lock::{DirectoryLock, LockError};
+use super::lock::DirectoryLock;
 use super::profile::{GenerationProfile, ProfileWriter};
-use super::store::{
-    FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoreError,
-};
+use super::store::{FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore};
 use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::evolve::cache::EvaluationCache;
@@ -33,96 +31,15 @@ use crate::output;
 use crate::task::{Evaluation, TaskSpec, TaskTables};
 
 pub mod derived;
+mod error;
+mod pool;
 mod progress;
 mod steady;
 
+pub use error::RunError;
+use error::io;
+
 use progress::Progress;
-
-/// Why a run could not start, resume or go on.
-#[derive(Debug, thiserror::Error)]
-pub enum RunError {
-    /// `--out` names a run that exists.
-    #[error(
-        "{0} already holds a run: resume it with `ontogeny evolve --resume {0}`, or choose another --out"
-    )]
-    Exists(PathBuf),
-    /// A directory that is not a run.
-    #[error(
-        "{0} holds no run (no run.sqlite with a run in it): start one with `ontogeny evolve --out {0}`"
-    )]
-    NotARun(PathBuf),
-    /// Another process is writing the run.
-    #[error(transparent)]
-    Locked(#[from] LockError),
-    /// `config.toml` was edited since the run started: resuming would mix two settings in
-    /// one store.
-    #[error(
-        "{}: {} differ{} from the settings the run was started with (kept in run.sqlite); a resumed run must go on as it began: undo the edit, or start a new run with --out",
-        path.display(),
-        keys.join(", "),
-        if keys.len() == 1 { "s" } else { "" }
-    )]
-    ConfigChanged {
-        /// The run's `config.toml`.
-        path: PathBuf,
-        /// The settings that differ, as dotted TOML keys.
-        keys: Vec<String>,
-    },
-    /// The run's last generation was evaluated by another evaluator than this program's:
-    /// going on would mix two evaluators' results in one run.
-    #[error(
-        "{}: its last generation ({generation}) was evaluated by evaluator version {stored}, and this ontogeny evaluates with version {current}: going on would mix the evaluations of two evaluators in one run. Resume it with an ontogeny of evaluator version {stored}, start a new run with --out, or pass --allow-evaluator-change to go on with version {current} (the store records the generation where the version changes)",
-        dir.display()
-    )]
-    EvaluatorChanged {
-        /// The run directory.
-        dir: PathBuf,
-        /// The run's last stored generation.
-        generation: u32,
-        /// The evaluator version that made it.
-        stored: u32,
-        /// This program's ([`EVALUATOR_VERSION`]).
-        current: u32,
-    },
-    /// A bad configuration.
-    #[error("{0}")]
-    Config(Diagnostic),
-    /// The database refused.
-    #[error(transparent)]
-    Store(#[from] StoreError),
-    /// A file could not be read or written.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// What went wrong.
-        source: std::io::Error,
-    },
-    /// A stored individual does not read back (a database written by another encoding or
-    /// version).
-    #[error("{0}")]
-    Corrupt(String),
-    /// A run cannot be extended to the generations asked for.
-    #[error("{0}")]
-    Extend(String),
-    /// The plot could not be drawn.
-    #[error("{0}")]
-    Plot(String),
-    /// A file of the run could not be written, or its target is not a regular file.
-    #[error(transparent)]
-    Output(#[from] crate::output::OutputError),
-    /// The run's cancellation token was set ([`Run::set_cancel`]): the generation under way
-    /// was dropped, and the run resumes after its last stored generation.
-    #[error(transparent)]
-    Interrupted(#[from] Interrupted),
-}
-
-fn io(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
-    move |source| RunError::Io {
-        path: path.to_path_buf(),
-        source,
-    }
-}
 
 /// The settings a resume may change (by `--gens`, or in `config.toml`): the number of
 /// generations, as no choice of the genetic algorithm depends on it.
@@ -133,7 +50,8 @@ pub const RESUMABLE_KEYS: [&str; 1] = ["ga.generations"];
 pub struct GenerationReport {
     /// The generation's index.
     pub generation: u32,
-    /// Its figures, as stored.
+    /// Its figures, as stored, but for `reused` in a steady-state run: every birth of the
+    /// block that reused an evaluation, kept or not (the store counts the members kept).
     pub stats: GenerationRecord,
     /// Wall-clock seconds it took (development, evaluation and bookkeeping).
     pub wall_seconds: f64,
@@ -185,7 +103,8 @@ pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
 }
 
 /// The run's settings and limits in range ([`check_settings`], [`CheckedLimits`]); the error
-/// names `name`, where they come from, and the key.
+/// names `name`, where they come from, and the key. Its algorithm must run on this process's
+/// evaluator ([`check_ranks`]): a start or resume is refused before anything is written.
 fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
     check_settings(&config.ga, &config.task, &[config.encoding.as_str()])
         .and_then(|()| config.limits.check_ranges())
@@ -194,7 +113,22 @@ fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Resu
                 DiagnosticKind::Semantic,
                 format!("{name}: {e}"),
             ))
-        })
+        })?;
+    check_ranks(config.ga.algorithm, Evaluator::current().ranks())
+}
+
+/// Whether `algorithm` runs over `ranks` processes: the steady-state algorithm runs on one
+/// process's threads only, so over several MPI ranks it is refused.
+pub fn check_ranks(algorithm: Algorithm, ranks: u32) -> Result<(), RunError> {
+    if algorithm.is_generational() || ranks <= 1 {
+        return Ok(());
+    }
+    Err(RunError::Config(Diagnostic::without_location(
+        DiagnosticKind::Semantic,
+        "algorithm \"steady-state\" runs on one process's threads: start it without an MPI \
+         launcher (over MPI ranks only \"generational\" runs)"
+            .to_string(),
+    )))
 }
 
 impl<G: Genome> Run<G> {
@@ -724,17 +658,26 @@ impl<G: Genome> Run<G> {
         let started = Instant::now();
         let mut times = GenerationTimes::default();
         let evaluations = self.breed(progress, generation, &mut times)?;
-        self.conclude(progress, generation, evaluations, times, started, observer)
+        self.conclude(
+            progress,
+            generation,
+            (evaluations, None),
+            times,
+            started,
+            observer,
+        )
     }
 
     /// The end of generation `generation`, bred and evaluated since `started` (`evaluations`
-    /// simulated, its steps' `times`): its best re-walked at the fine reference, stored, the
-    /// derived files advanced, `observer` told.
+    /// made, and how many of them reused a stored evaluation where its members do not say,
+    /// as a steady-state block's births that reused one and were not kept, for the report
+    /// to `observer` only; its steps' `times`): its best re-walked at the fine reference,
+    /// stored, the derived files advanced, `observer` told.
     fn conclude(
         &mut self,
         progress: &mut Progress<G>,
         generation: u32,
-        evaluations: u64,
+        (evaluations, reused): (u64, Option<u64>),
         times: GenerationTimes,
         started: Instant,
         observer: &mut dyn FnMut(&GenerationReport),
@@ -763,6 +706,11 @@ impl<G: Genome> Run<G> {
                 writing,
                 started.elapsed().as_secs_f64(),
             ))?;
+        }
+        // The store counts the reused among the members; the report, every evaluation
+        // reused this generation where the members do not say (a birth not kept).
+        if let Some(reused) = reused {
+            stats.reused = reused;
         }
         observer(&GenerationReport {
             generation,

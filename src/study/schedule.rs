@@ -360,8 +360,9 @@ pub fn table(
     schedule: Schedule,
 ) -> String {
     let mut out = format!(
-        "{name}: {} generations, {} evaluations, {} walks ({} s of walking, {} s outside evaluation), recorded on {} rank{} × {} thread{}: {} evaluations/s measured\n",
+        "{name}: {} generation{}, {} evaluations, {} walks ({} s of walking, {} s outside evaluation), recorded on {} rank{} × {} thread{}: {} evaluations/s measured\n",
         recorded.generations,
+        plural(recorded.generations),
         recorded.evaluations,
         recorded.walks,
         round(recorded.walk_seconds, 1),
@@ -441,8 +442,12 @@ fn round(value: f64, places: i32) -> String {
     format_number((value * scale).round() / scale)
 }
 
-fn plural(n: u32) -> &'static str {
-    if n == 1 { "" } else { "s" }
+fn plural(n: impl TryInto<u32>) -> &'static str {
+    if n.try_into().ok() == Some(1) {
+        ""
+    } else {
+        "s"
+    }
 }
 
 #[cfg(test)]

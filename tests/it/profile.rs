@@ -228,6 +228,12 @@ fn the_schedule_simulator_gives_the_hand_computed_makespans() {
         json["recorded"]["evaluations_per_second"].as_f64(),
         Some(5.0 / 8.5)
     );
+    // The table names one generation in the singular.
+    let text = stdout(&succeeded_output(ontogeny(&["runs", "schedule", path])));
+    assert!(
+        text.contains(": 1 generation, 5 evaluations, 5 walks"),
+        "{text}"
+    );
     // With 2 ranks of 1 thread: 2 threads.
     let out = ontogeny(&[
         "runs",
@@ -401,7 +407,12 @@ fn the_simulator_replays_a_profile_as_a_steady_state_run_and_projects_it() {
     // Bad values are refused, by flag.
     assert_bad_input(
         &["runs", "schedule", path, "--steady-state", "0"],
-        "--steady-state must be 1 to 1000000, not 0",
+        "--steady-state must be 1 to 100000, not 0",
+    );
+    // The most births in flight `evolve --in-flight` takes, and not one more.
+    assert_bad_input(
+        &["runs", "schedule", path, "--steady-state", "100001"],
+        "--steady-state must be 1 to 100000, not 100001",
     );
     assert_bad_input(
         &["runs", "schedule", path, "--driver-us", "NaN"],

@@ -200,8 +200,13 @@ impl<G: Genome> Run<G> {
     /// Draws `fitness.svg` of `generations`, with the spread of each one's best over its
     /// walks, `spreads` (none without habitats or trials).
     fn draw(&self, generations: &[GenerationRecord], spreads: &[Spread]) -> Result<(), RunError> {
+        let ga = &self.config.ga;
+        let algorithm = match ga.algorithm.is_generational() {
+            true => String::new(),
+            false => format!(", steady-state ({} in flight)", ga.in_flight()),
+        };
         let title = format!(
-            "{}: {} on the {} task",
+            "{}: {} on the {} task{algorithm}",
             self.dir.display(),
             G::NAME,
             self.config.task.task.name()

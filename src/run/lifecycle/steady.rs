@@ -5,21 +5,32 @@
 //! threads never wait for a generation's end: only the births of the block after next wait.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::sync::{Arc, Mutex, RwLock, mpsc};
+use std::sync::{Arc, RwLock};
 use std::time::Instant;
 
+use super::pool::{Panicked, with_workers};
 use super::progress::Progress;
 use super::{GenerationReport, Run, RunError};
-use crate::cancel::Interrupted;
+use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::Genome;
-use crate::evolve::evaluator::Evaluator;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
-use crate::evolve::steady::{Birth, Blocks, Lookup, Snapshot, replace_worst};
+use crate::evolve::steady::{Birth, Blocks, Lookup, Snapshot, Standings};
 use crate::evolve::timing::{GenerationTimes, WalkTime};
-use crate::lang::{Diagnostic, DiagnosticKind};
 
 /// A birth to make: its number and the generation it is bred from.
 type Order<G> = (u64, Arc<Snapshot<G>>);
+
+/// Sets the run's cancellation token if the thread unwinds while it is held, so that the
+/// births in flight stop rather than run to their end.
+struct CancelOnUnwind(Cancel);
+
+impl Drop for CancelOnUnwind {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.cancel();
+        }
+    }
+}
 
 /// What happened in the block of births being integrated.
 struct Block {
@@ -28,6 +39,8 @@ struct Block {
     replaced: BTreeSet<usize>,
     /// Each birth's evaluation, in birth order.
     walks: Vec<WalkTime>,
+    /// The births that reused a stored evaluation rather than simulate, kept or not.
+    reused: u64,
 }
 
 impl Block {
@@ -36,6 +49,7 @@ impl Block {
             started: Instant::now(),
             replaced: BTreeSet::new(),
             walks: Vec::new(),
+            reused: 0,
         }
     }
 }
@@ -48,14 +62,6 @@ impl<G: Genome> Run<G> {
         progress: &mut Progress<G>,
         observer: &mut dyn FnMut(&GenerationReport),
     ) -> Result<(), RunError> {
-        if Evaluator::current().ranks() > 1 {
-            return Err(RunError::Config(Diagnostic::without_location(
-                DiagnosticKind::Semantic,
-                "algorithm \"steady-state\" runs on one process's threads: start it without an \
-                 MPI launcher (over MPI ranks only \"generational\" runs)"
-                    .to_string(),
-            )));
-        }
         let generations = self.config.ga.generations as u32;
         if progress.next == 0 && generations > 0 {
             self.generation(progress, 0, observer)?;
@@ -81,36 +87,19 @@ impl<G: Genome> Run<G> {
         }
         let lookup = self.stored_lookup(last)?.map(|l| Arc::new(RwLock::new(l)));
         let threads = rayon::current_num_threads().max(1);
-        let (order_tx, order_rx) = mpsc::channel::<Order<G>>();
-        let order_rx = Mutex::new(order_rx);
-        let (birth_tx, birth_rx) = mpsc::channel::<Result<Birth<G>, Interrupted>>();
-        std::thread::scope(|scope| {
-            for thread in 0..threads {
-                let (order_rx, birth_tx) = (&order_rx, birth_tx.clone());
-                let (evolution, lookup) = (&evolution, &lookup);
-                let cancel = self.cancel.clone();
-                scope.spawn(move || {
-                    loop {
-                        let next = order_rx
-                            .lock()
-                            .unwrap_or_else(|poisoned| poisoned.into_inner())
-                            .recv();
-                        let Ok((number, snapshot)) = next else {
-                            return; // the run is over: no more births
-                        };
-                        let birth = evolution
-                            .birth(number, &snapshot, lookup.as_deref(), &cancel)
-                            .map(|mut b| {
-                                b.walk.thread = thread as u32;
-                                b
-                            });
-                        if birth_tx.send(birth).is_err() {
-                            return;
-                        }
-                    }
-                });
-            }
-            drop(birth_tx);
+        let mut standings = Standings::of(&progress.population);
+        let cancel = self.cancel.clone();
+        let work = |thread: usize, (number, snapshot): Order<G>| {
+            evolution
+                .birth(number, &snapshot, lookup.as_deref(), &cancel)
+                .map(|mut b| {
+                    b.walk.thread = thread as u32;
+                    b
+                })
+        };
+        with_workers(threads, work, |orders, births| {
+            // A panic of this thread stops the births in flight at their next control step.
+            let _stop = CancelOnUnwind(self.cancel.clone());
             let mut bred = integrated;
             let mut stored = last;
             let mut waiting: BTreeMap<u64, Birth<G>> = BTreeMap::new();
@@ -120,13 +109,17 @@ impl<G: Genome> Run<G> {
                     while bred < end && blocks.source(bred) <= stored {
                         let snapshot = snapshots[&blocks.source(bred)].clone();
                         // The workers hold the receiver until this function returns.
-                        let _ = order_tx.send((bred, snapshot));
+                        let _ = orders.send((bred, snapshot));
                         bred += 1;
                     }
-                    let birth = birth_rx.recv().map_err(|_| Interrupted)??;
+                    let birth = match births.recv() {
+                        Ok(Ok(birth)) => birth?,
+                        Ok(Err(Panicked(message))) => return Err(RunError::Panicked(message)),
+                        Err(_) => return Err(RunError::Interrupted(Interrupted)),
+                    };
                     waiting.insert(birth.number, birth);
                     while let Some(birth) = waiting.remove(&integrated) {
-                        self.integrate(progress, &mut block, birth);
+                        self.integrate(progress, &mut standings, &mut block, birth);
                         integrated += 1;
                         if integrated < blocks.end_of(stored + 1) {
                             continue;
@@ -134,6 +127,8 @@ impl<G: Genome> Run<G> {
                         stored += 1;
                         let done = std::mem::replace(&mut block, Block::new());
                         self.conclude_block(progress, stored, done, observer)?;
+                        // The next block's clock starts once this one is stored.
+                        block.started = Instant::now();
                         if let Some(lookup) = &lookup {
                             lookup
                                 .write()
@@ -152,16 +147,23 @@ impl<G: Genome> Run<G> {
                 // The births in flight stop at their next control step.
                 self.cancel.cancel();
             }
-            drop(order_tx);
             outcome
         })
     }
 
     /// Integrates `birth` into the population (replace-worst), noting it in `block`.
-    fn integrate(&mut self, progress: &mut Progress<G>, block: &mut Block, birth: Birth<G>) {
+    fn integrate(
+        &mut self,
+        progress: &mut Progress<G>,
+        standings: &mut Standings,
+        block: &mut Block,
+        birth: Birth<G>,
+    ) {
         block.walks.push(birth.walk);
-        if let Some(slot) = replace_worst(&progress.population, birth.individual.evaluation.fitness)
-        {
+        if !birth.simulated {
+            block.reused += 1;
+        }
+        if let Some(slot) = standings.replace_worst(birth.individual.evaluation.fitness) {
             progress.population[slot] = birth.individual;
             block.replaced.insert(slot);
         }
@@ -181,7 +183,8 @@ impl<G: Genome> Run<G> {
             progress.previous_best = None;
         }
         // As a generational run's elite, a member born before this block is stored as not
-        // reused: `reused` marks the births of this block that reused an evaluation.
+        // reused: `reused` marks the births of this block that reused an evaluation (the
+        // generation's count of reused evaluations is the block's, kept or not).
         for (slot, member) in progress.population.iter_mut().enumerate() {
             if !block.replaced.contains(&slot) {
                 member.reused = false;
@@ -193,7 +196,8 @@ impl<G: Genome> Run<G> {
             walks: block.walks,
             ..GenerationTimes::default()
         };
-        self.conclude(progress, generation, births, times, block.started, observer)
+        let counts = (births, Some(block.reused));
+        self.conclude(progress, generation, counts, times, block.started, observer)
     }
 
     /// The evaluations a steady-state birth may reuse: every member of the stored generations

@@ -42,7 +42,10 @@ pub struct IndividualRecord {
     pub generation: u32,
     /// Its index within the generation, from 0.
     pub index: u32,
-    /// Its parents' indices in the previous generation (empty for a random individual).
+    /// Its parents' indices (empty for a random individual) in the generation it was bred
+    /// from: the previous generation in a generational run; in a steady-state run the
+    /// generation its birth was bred from, which the store does not record, and a member
+    /// kept from an earlier block keeps its birth's parents and operator.
     pub parents: Vec<u32>,
     /// The operator that made it, e.g. `mutation`, `crossover`, `random`, `elite`.
     pub operator: String,

@@ -8,8 +8,10 @@ use std::path::Path;
 use std::process::Command;
 
 use ontogeny::encoding::{DirectGenome, Genome};
-use ontogeny::evolve::ga::{Individual, Operator, individual_rng};
+use ontogeny::evolve::ga::{Algorithm, Individual, Operator, individual_rng};
 use ontogeny::evolve::steady::{Blocks, replace_worst};
+use ontogeny::run::check_ranks;
+use ontogeny::run::profile::read_profile;
 use ontogeny::run::store::RunStore;
 use ontogeny::task::Evaluation;
 
@@ -191,6 +193,50 @@ fn each_block_of_births_is_a_generation_whose_slots_only_improve() {
         .unwrap();
     succeeded(&shown);
     let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_steady_runs_profile_counts_each_blocks_time_once_and_its_words_say_steady_state() {
+    let dir = scratch("steady-profile");
+    let out = dir.join("run");
+    let profile = dir.join("profile.jsonl");
+    let started = std::time::Instant::now();
+    let output = steady_command("direct", &out, "6", &["--in-flight", "3", "--profile"])
+        .arg(&profile)
+        .output()
+        .unwrap();
+    let wall = started.elapsed().as_secs_f64();
+    succeeded(&output);
+    // Each generation's time runs from the end of the one before (a block's clock starts
+    // once the block before is stored, fine re-walk and writing included): the times of
+    // one command's generations, one after another, add up to no more than its wall time.
+    let generations = read_profile(&profile).unwrap();
+    assert_eq!(generations.len(), 6);
+    let total: f64 = generations.iter().map(|g| g.total).sum();
+    assert!(total <= wall, "{total} s profiled in {wall} s");
+    for g in &generations {
+        assert!(g.evaluating + g.fine + g.writing <= g.total + 1e-9, "{g:?}");
+    }
+    // The opening line and the plot's title say the algorithm and its births in flight.
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("steady-state, 3 births in flight: population 12 × 6 generations"),
+        "{stderr}"
+    );
+    let plot = std::fs::read_to_string(out.join("fitness.svg")).unwrap();
+    assert!(plot.contains("steady-state (3 in flight)"), "{plot}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn steady_state_is_refused_over_several_ranks_before_a_run_starts() {
+    // The check a start and a resume make before anything is written.
+    let refused = check_ranks(Algorithm::SteadyState, 2)
+        .unwrap_err()
+        .to_string();
+    assert!(refused.contains("without an MPI launcher"), "{refused}");
+    assert!(check_ranks(Algorithm::SteadyState, 1).is_ok());
+    assert!(check_ranks(Algorithm::Generational, 4).is_ok());
 }
 
 #[test]
