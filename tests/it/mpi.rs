@@ -21,9 +21,16 @@ fn scratch(name: &str) -> PathBuf {
 /// `command` (an `ontogeny` command) started by `mpirun` as `ranks` processes on this machine
 /// alone: more processes than cores allowed, waiting ranks yielding their core, root allowed.
 fn under_mpirun(ranks: usize, command: &Command) -> Command {
+    launched(&["--oversubscribe".as_ref()], ranks, command)
+}
+
+/// `command` started by `mpirun` with the launcher's arguments `launch` first, as `ranks`
+/// processes over the loopback interface: waiting ranks yielding their core, root allowed.
+fn launched(launch: &[&std::ffi::OsStr], ranks: usize, command: &Command) -> Command {
     let mut mpirun = Command::new("mpirun");
     mpirun
-        .args(["--oversubscribe", "--mca", "mpi_yield_when_idle", "1"])
+        .args(launch)
+        .args(["--mca", "mpi_yield_when_idle", "1"])
         .args(["--mca", "btl", "self,vader,tcp"])
         .args(["--mca", "btl_tcp_if_include", "lo"])
         .args(["-np", &ranks.to_string()])
@@ -197,17 +204,7 @@ fn a_job_launched_from_a_host_file_gives_the_run_of_one_process() {
     succeeded(&small("lsystem", &one).output().unwrap());
     let many = dir.join("from-hosts");
     let command = small("lsystem", &many);
-    let output = Command::new("mpirun")
-        .arg("--hostfile")
-        .arg(&hosts)
-        .args(["--mca", "mpi_yield_when_idle", "1"])
-        .args(["--mca", "btl", "self,vader,tcp"])
-        .args(["--mca", "btl_tcp_if_include", "lo"])
-        .args(["-np", "3"])
-        .arg(command.get_program())
-        .args(command.get_args())
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+    let output = launched(&["--hostfile".as_ref(), hosts.as_os_str()], 3, &command)
         .output()
         .unwrap();
     succeeded(&output);
