@@ -22,7 +22,9 @@
 #   STEADY    births in flight W of steady-state runs to measure beside the generational one
 #             (default none), e.g. STEADY="32 100": for each N, one run with --threads N
 #             --algorithm steady-state --in-flight W, as many evaluations (a block of births
-#             a generation), its ratio to the same ceiling; profiles as
+#             a generation), against its own ceiling (N one-thread runs of that steady-state
+#             run at once: it makes other creatures than the generational run, so only its
+#             own one-thread runs do the same work); profiles as
 #             PROFILES/pop-P-threads-N-steady-W.jsonl
 # The runs go to a temporary directory, removed at the end.
 set -eu
@@ -85,25 +87,33 @@ evolve() {
 echo "# $("$ontogeny" --version), $cores cores ($(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)), $(date -u +%Y-%m-%dT%H:%MZ)"
 echo "# evolve --config examples/evolve-walker.toml --no-cache --pop P --gens $gens; load average before: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 printf '%-10s %7s %-22s %15s %15s %6s\n' population threads algorithm "ceiling eval/s" "one run eval/s" ratio
+# ceiling POP N NAME [FLAGS...]: N one-thread runs of the same run at once; prints their
+# evaluations per second together.
+ceiling() {
+    local pop=$1 n=$2 name=$3 start end total pids i
+    shift 3
+    start=$(now)
+    pids=
+    for i in $(seq 1 "$n"); do
+        evolve "ceiling-$name-$i" "$pop" 1 "$@" &
+        pids="$pids $!"
+    done
+    for pid in $pids; do
+        wait "$pid"
+    done
+    end=$(now)
+    total=0
+    for i in $(seq 1 "$n"); do
+        total=$((total + $(evaluations "$work/ceiling-$name-$i.json")))
+    done
+    awk -v e="$total" -v s="$start" -v t="$end" 'BEGIN { printf "%.1f", e / (t - s) }'
+}
 for pop in $pops; do
     for n in $THREADS; do
-        # The ceiling: N one-thread runs at once.
-        start=$(now)
-        pids=
-        for i in $(seq 1 "$n"); do
-            evolve "ceiling-$pop-$n-$i" "$pop" 1 &
-            pids="$pids $!"
-        done
-        for pid in $pids; do
-            wait "$pid"
-        done
-        end=$(now)
-        total=0
-        for i in $(seq 1 "$n"); do
-            total=$((total + $(evaluations "$work/ceiling-$pop-$n-$i.json")))
-        done
-        ceiling=$(awk -v e="$total" -v s="$start" -v t="$end" 'BEGIN { printf "%.1f", e / (t - s) }')
-        # One run with N threads: generational, then steady-state at each W of STEADY.
+        # One run with N threads against its ceiling: generational, then steady-state at each
+        # W of STEADY. A steady-state run makes other creatures than the generational one (its
+        # walks may be cheaper or dearer), so its ceiling is N one-thread runs of itself: its
+        # results do not depend on the threads, so they do the same work.
         for algorithm in generational ${STEADY:-}; do
             flags=()
             name="run-$pop-$n"
@@ -113,6 +123,7 @@ for pop in $pops; do
                 name="run-$pop-$n-steady-$algorithm"
                 label="steady-state W=$algorithm"
             fi
+            top=$(ceiling "$pop" "$n" "${name#run-}" ${flags[@]+"${flags[@]}"})
             if [ -n "${PROFILES:-}" ]; then
                 mkdir -p "$PROFILES"
                 flags+=(--profile "$PROFILES/pop-$pop-threads-$n${name#run-"$pop"-"$n"}.jsonl")
@@ -122,10 +133,10 @@ for pop in $pops; do
             end=$(now)
             one=$(awk -v e="$(evaluations "$work/$name.json")" -v s="$start" -v t="$end" \
                 'BEGIN { printf "%.1f", e / (t - s) }')
-            ratio=$(awk -v a="$one" -v b="$ceiling" 'BEGIN { printf "%.2f", a / b }')
-            printf '%-10s %7s %-22s %15s %15s %6s\n' "$pop" "$n" "$label" "$ceiling" "$one" "$ratio"
+            ratio=$(awk -v a="$one" -v b="$top" 'BEGIN { printf "%.2f", a / b }')
+            printf '%-10s %7s %-22s %15s %15s %6s\n' "$pop" "$n" "$label" "$top" "$one" "$ratio"
+            rm -rf "$work"/ceiling-* "$work"/run-*
         done
-        rm -rf "$work"/ceiling-* "$work"/run-*
     done
 done
 echo "# load average after: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
