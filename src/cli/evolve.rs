@@ -173,8 +173,8 @@ pub struct EvolveArgs {
     #[arg(long)]
     no_cache: bool,
     /// Write where each generation's time goes to FILE (JSON Lines, a line per generation
-    /// this command runs): the seconds of breeding, developing, keying, evaluating, the fine
-    /// re-walk and writing, and every walk's seconds and the thread that ran it. For `ontogeny
+    /// this command runs): the seconds of breeding, developing, keying, evaluating, waiting
+    /// for the fine re-walk and writing, and every walk's seconds and the thread that ran it. For `ontogeny
     /// runs schedule`; the run's results do not depend on it.
     #[arg(long, value_name = "FILE")]
     profile: Option<PathBuf>,

@@ -85,7 +85,8 @@ pub struct ScheduleArgs {
     #[arg(long)]
     longest_first: bool,
     /// Model the fine re-walk of each generation's best walked beside the next generation's
-    /// walks, first in its batch, instead of alone before the generation is stored.
+    /// walks, first in its batch, on a profile recorded while it was walked alone before the
+    /// generation was stored (by Ontogeny before it walked it beside, as `evolve` does now).
     #[arg(long)]
     fine_beside: bool,
     /// Replay the profile as a steady-state run with W births in flight (no generation

@@ -32,6 +32,7 @@ use crate::task::{Evaluation, TaskSpec, TaskTables};
 
 pub mod derived;
 mod error;
+mod generational;
 mod pool;
 mod progress;
 mod steady;
@@ -634,8 +635,7 @@ impl<G: Genome> Run<G> {
     pub fn run(&mut self, observer: &mut dyn FnMut(&GenerationReport)) -> Result<(), RunError> {
         let mut progress = self.progress()?;
         let outcome = match self.config.ga.algorithm {
-            Algorithm::Generational => (progress.next..self.config.ga.generations as u32)
-                .try_for_each(|generation| self.generation(&mut progress, generation, observer)),
+            Algorithm::Generational => self.run_generational(&mut progress, observer),
             Algorithm::SteadyState => self.run_steady(&mut progress, observer),
         };
         if outcome.is_err() {
@@ -682,19 +682,55 @@ impl<G: Genome> Run<G> {
         started: Instant,
         observer: &mut dyn FnMut(&GenerationReport),
     ) -> Result<(), RunError> {
+        let evaluated = started.elapsed().as_secs_f64();
         let fine_started = Instant::now();
         let best_fine = self.verify_best(progress)?;
         let fine = fine_started.elapsed().as_secs_f64();
-        let evaluation_seconds = started.elapsed().as_secs_f64();
+        self.store_generation(
+            Concluded {
+                generation,
+                population: &progress.population,
+                fallbacks: &progress.fallbacks,
+                evaluations,
+                reused,
+                times,
+                evaluated,
+                best_fine,
+                fine,
+            },
+            observer,
+        )
+    }
+
+    /// Stores a generation whose best's fine reference figure is known, advances the derived
+    /// files, writes its profile line and tells `observer`.
+    fn store_generation(
+        &mut self,
+        concluded: Concluded<'_, G>,
+        observer: &mut dyn FnMut(&GenerationReport),
+    ) -> Result<(), RunError> {
+        let Concluded {
+            generation,
+            population,
+            fallbacks,
+            evaluations,
+            reused,
+            times,
+            evaluated,
+            best_fine,
+            fine,
+        } = concluded;
         let mut stats = GenerationRecord {
             index: generation,
             best_fine,
-            ..GenerationRecord::of(&progress.population, evaluations)
+            ..GenerationRecord::of(population, evaluations)
         };
         let writing_started = Instant::now();
-        self.record(&progress.population, &mut stats, started)?;
-        self.advance_derived_files(&progress.population, &stats, &progress.fallbacks)?;
+        let until_written = |writing: f64| evaluated + fine + writing;
+        self.record(population, &mut stats, &until_written)?;
+        self.advance_derived_files(population, &stats, fallbacks)?;
         let writing = writing_started.elapsed().as_secs_f64();
+        let wall_seconds = until_written(writing);
         if let Some(profile) = &mut self.profile {
             profile.add(&GenerationProfile::new(
                 generation,
@@ -704,7 +740,7 @@ impl<G: Genome> Run<G> {
                 times,
                 fine,
                 writing,
-                started.elapsed().as_secs_f64(),
+                wall_seconds,
             ))?;
         }
         // The store counts the reused among the members; the report, every evaluation
@@ -715,9 +751,9 @@ impl<G: Genome> Run<G> {
         observer(&GenerationReport {
             generation,
             stats,
-            wall_seconds: started.elapsed().as_secs_f64(),
-            evaluation_seconds,
-            fallbacks: progress.fallbacks.clone(),
+            wall_seconds,
+            evaluation_seconds: evaluated + fine,
+            fallbacks: fallbacks.clone(),
         });
         Ok(())
     }
@@ -739,30 +775,24 @@ impl<G: Genome> Run<G> {
         individual: &Individual<G>,
         cancel: &Cancel,
     ) -> Result<FineEvaluation, Interrupted> {
-        let task = self.fine_task();
-        // Drawn as generation 0's trials: with fresh trials, the fine re-walk of every
-        // generation's best sees the same draws of its creature.
-        let evaluation = crate::evolve::habitats::evaluate_genome(
+        fine_walk(
             &individual.genome,
             &self.evolution.limits,
             individual.develop_seed,
-            &task,
-            0,
+            &self.fine_task(),
             cancel,
-        )?;
-        Ok(FineEvaluation {
-            fitness: evaluation.fitness,
-            status: status_text(&evaluation),
-        })
+        )
     }
 
-    /// Stores a generation (one transaction); `stats` gets its timings first.
+    /// Stores a generation (one transaction); `stats` gets its timings first: its wall
+    /// seconds are `wall(seconds spent writing so far)`.
     fn record(
         &mut self,
         population: &[Individual<G>],
         stats: &mut GenerationRecord,
-        started: Instant,
+        wall: &dyn Fn(f64) -> f64,
     ) -> Result<(), RunError> {
+        let writing_started = Instant::now();
         let generation = stats.index;
         let individuals = population
             .iter()
@@ -788,7 +818,7 @@ impl<G: Genome> Run<G> {
                 })
             })
             .collect::<Result<Vec<_>, RunError>>()?;
-        stats.wall_seconds = started.elapsed().as_secs_f64();
+        stats.wall_seconds = wall(writing_started.elapsed().as_secs_f64());
         stats.evaluations_per_second = stats.evaluations as f64 / stats.wall_seconds.max(1e-9);
         self.store.write_generation(stats, &individuals)?;
         Ok(())
@@ -818,6 +848,42 @@ impl<G: Genome> Run<G> {
         }
         Ok(fallen)
     }
+}
+
+/// A generation bred and evaluated, with its best's fine reference figure: what
+/// [`Run::store_generation`] stores.
+struct Concluded<'a, G> {
+    generation: u32,
+    population: &'a [Individual<G>],
+    /// Children made by mutation so far because the encoding lacks an operator.
+    fallbacks: &'a Fallbacks,
+    evaluations: u64,
+    /// A steady-state block's births that reused an evaluation, kept or not.
+    reused: Option<u64>,
+    times: GenerationTimes,
+    /// Seconds from its start to the end of its walks.
+    evaluated: f64,
+    best_fine: Option<FineEvaluation>,
+    /// Seconds the run waited for the fine re-walk.
+    fine: f64,
+}
+
+/// `genome` developed with `limits` and its development seed and evaluated with the fine
+/// reference `task` (generation 0's trials, so that every generation's best sees the same
+/// draws of its creature): the figure stored beside a generation's best.
+fn fine_walk<G: Genome>(
+    genome: &G,
+    limits: &G::Limits,
+    develop_seed: u64,
+    task: &TaskSpec,
+    cancel: &Cancel,
+) -> Result<FineEvaluation, Interrupted> {
+    let evaluation =
+        crate::evolve::habitats::evaluate_genome(genome, limits, develop_seed, task, 0, cancel)?;
+    Ok(FineEvaluation {
+        fitness: evaluation.fitness,
+        status: status_text(&evaluation),
+    })
 }
 
 fn status_name<G>(i: &Individual<G>) -> String {

@@ -1,7 +1,8 @@
 //! A run's profile (`ontogeny evolve --profile FILE`): where each generation's time went, one
 //! JSON object per line (JSON Lines), written as each generation is stored. A generation's
-//! line holds the wall time of its steps (breeding, developing, keying, evaluating, the fine
-//! re-walk of its best, writing the store and the derived files, and the rest), the threads and
+//! line holds the wall time of its steps (breeding, developing, keying, evaluating, the wait
+//! for the fine re-walk of its best, writing the store and the derived files, and the rest),
+//! the threads and
 //! ranks that ran it, and each walk the evaluator simulated, in the order it was handed them,
 //! with its wall time, the thread and rank that ran it, and its creature's parts.
 //!
@@ -36,8 +37,10 @@ pub struct GenerationProfile {
     pub keying: f64,
     /// ... in the evaluator's batch of walks (the part that runs in parallel over threads).
     pub evaluating: f64,
-    /// ... re-walking the generation's best at the fine reference setting (0 when it is not,
-    /// or when its fine evaluation was known).
+    /// ... waiting for the re-walk of the generation's best at the fine reference setting:
+    /// in a generational run it walks beside the next generation, so this is the part not
+    /// hidden behind that generation's work (0 when it is not re-walked, or its fine
+    /// evaluation was known); in a steady-state run's blocks, the re-walk itself.
     pub fine: f64,
     /// ... storing the generation and advancing the derived files.
     pub writing: f64,

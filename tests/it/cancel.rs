@@ -188,3 +188,25 @@ fn an_interrupted_run_keeps_its_stored_generations_and_resumes_to_the_uninterrup
     assert_eq!(a, b);
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn each_generation_is_stored_with_its_fine_figure_when_it_is_reported() {
+    // The fine re-walk of a generation's best walks beside the next generation; the
+    // generation is stored, with its figure, before it is reported.
+    let dir = scratch_dir("reported-stored");
+    let out = dir.join("run");
+    let mut reported = Vec::new();
+    start_run(&out)
+        .run(&mut |report| {
+            let store = RunStore::open_read_only(&out.join("run.sqlite")).unwrap();
+            let generations = store.generations().unwrap();
+            let last = generations.last().unwrap();
+            assert_eq!(last.index, report.generation);
+            assert!(last.best_fine.is_some());
+            assert_eq!(last.best_fine, report.stats.best_fine);
+            reported.push(report.generation);
+        })
+        .unwrap();
+    assert_eq!(reported, [0, 1, 2]);
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -56,7 +56,7 @@ pub(super) fn with_workers<O: Send, R: Send, X>(
 }
 
 /// The message of a panic's payload.
-fn message(payload: &(dyn Any + Send)) -> String {
+pub(super) fn message(payload: &(dyn Any + Send)) -> String {
     match (
         payload.downcast_ref::<&str>(),
         payload.downcast_ref::<String>(),

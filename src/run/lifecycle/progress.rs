@@ -126,35 +126,66 @@ impl<G: Genome> Run<G> {
         &mut self,
         progress: &mut Progress<G>,
     ) -> Result<Option<FineEvaluation>, RunError> {
-        let best = ranking(&progress.population).first().copied();
-        let steady = self.config.ga.algorithm == Algorithm::SteadyState;
-        let best_fine = match best {
-            Some(best) if self.config.verify_best => {
+        let best_fine = match self.fine_to_find(progress) {
+            FineToFind::Unasked => None,
+            FineToFind::Known(_, fine) => Some(fine),
+            FineToFind::Walk(best) => {
                 let b = &progress.population[best];
-                Some(match &progress.previous_best {
-                    // A steady-state run's best in the same slot, not replaced since
-                    // ([`Run::run_steady`] forgets it otherwise), is the same individual.
-                    Some((p, fine))
-                        if (b.operator == Operator::Elite && b.parents == [*p])
-                            || (steady && best as u32 == *p) =>
-                    {
-                        fine.clone()
-                    }
-                    _ => match b.key.and_then(|k| self.cache.fine(&k).cloned()) {
-                        Some(fine) => fine,
-                        None => {
-                            let fine = self.fine_evaluation(b, &self.cancel)?;
-                            if let Some(key) = b.key {
-                                self.cache.insert_fine(key, &fine);
-                            }
-                            fine
-                        }
-                    },
-                })
+                let fine = self.fine_evaluation(b, &self.cancel)?;
+                if let Some(key) = b.key {
+                    self.cache.insert_fine(key, &fine);
+                }
+                Some(fine)
             }
-            _ => None,
         };
-        progress.previous_best = best.zip(best_fine.clone()).map(|(b, f)| (b as u32, f));
+        let best = ranking(&progress.population).first().copied();
+        progress.remember_best(best, best_fine.clone());
         Ok(best_fine)
+    }
+
+    /// Where the fine reference figure of the population's best comes from: none asked
+    /// (`verify_best` off, or no population), one known already (the previous generation's
+    /// best's when this is its elite copy, or the cache's), or a walk to make.
+    pub(super) fn fine_to_find(&self, progress: &Progress<G>) -> FineToFind {
+        let Some(best) = ranking(&progress.population).first().copied() else {
+            return FineToFind::Unasked;
+        };
+        if !self.config.verify_best {
+            return FineToFind::Unasked;
+        }
+        let steady = self.config.ga.algorithm == Algorithm::SteadyState;
+        let b = &progress.population[best];
+        match &progress.previous_best {
+            // A steady-state run's best in the same slot, not replaced since
+            // ([`Run::run_steady`] forgets it otherwise), is the same individual.
+            Some((p, fine))
+                if (b.operator == Operator::Elite && b.parents == [*p])
+                    || (steady && best as u32 == *p) =>
+            {
+                FineToFind::Known(best, fine.clone())
+            }
+            _ => match b.key.and_then(|k| self.cache.fine(&k).cloned()) {
+                Some(fine) => FineToFind::Known(best, fine),
+                None => FineToFind::Walk(best),
+            },
+        }
+    }
+}
+
+/// Where a generation's best's fine reference figure comes from ([`Run::fine_to_find`]).
+pub(super) enum FineToFind {
+    /// `verify_best` is off, or there is no population.
+    Unasked,
+    /// The best (its index) and its figure, known without a walk.
+    Known(usize, FineEvaluation),
+    /// The best (its index), to walk at the fine reference.
+    Walk(usize),
+}
+
+impl<G> Progress<G> {
+    /// Remembers the fine reference figure of the best of the generation just concluded
+    /// (its index), for the next generation: an elite copy of it needs no second walk.
+    pub(super) fn remember_best(&mut self, best: Option<usize>, fine: Option<FineEvaluation>) {
+        self.previous_best = best.zip(fine).map(|(b, f)| (b as u32, f));
     }
 }
