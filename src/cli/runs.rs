@@ -278,10 +278,14 @@ fn schedule_of(args: &ScheduleArgs) -> anyhow::Result<()> {
     for machine in &machines {
         machine.check().map_err(super::bad)?;
     }
-    let mut profile = read_profile(&args.profile).map_err(|e| super::bad(e.to_string()))?;
+    let recorded = read_profile(&args.profile).map_err(|e| super::bad(e.to_string()))?;
+    // A generational run walks its fine re-walks beside the next generation: replayed as
+    // walked alone, with that lever on, as the run scheduled them.
+    let beside = recorded.iter().any(|g| g.fine_walk.is_some());
+    let mut profile: Vec<_> = recorded.iter().map(|g| g.walked_alone()).collect();
     let levers = schedule::Levers {
         longest_first: args.longest_first,
-        fine_beside: args.fine_beside,
+        fine_beside: args.fine_beside || (beside && args.steady_state.is_none()),
     };
     if levers.longest_first && !schedule::records_parts(&profile) {
         return Err(super::bad(format!(

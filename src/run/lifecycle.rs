@@ -427,8 +427,9 @@ impl<G: Genome> Run<G> {
     }
 
     /// Lets `cancel` stop [`Run::run`]: once it is set, the evaluations under way stop at
-    /// their next control step, the generation they belong to is dropped (nothing of it is
-    /// stored), and `run` returns [`RunError::Interrupted`]. The run then resumes from its
+    /// their next control step, the generations not yet stored are dropped (the one under
+    /// way, and in a generational run the one before it when its best's fine re-walk was still
+    /// walking), and `run` returns [`RunError::Interrupted`]. The run then resumes from its
     /// last stored generation ([`Run::resume`]) and ends as an uninterrupted run would.
     pub fn set_cancel(&mut self, cancel: Cancel) {
         self.cancel = cancel;
@@ -697,6 +698,7 @@ impl<G: Genome> Run<G> {
                 evaluated,
                 best_fine,
                 fine,
+                fine_walk: None,
             },
             observer,
         )
@@ -719,6 +721,7 @@ impl<G: Genome> Run<G> {
             evaluated,
             best_fine,
             fine,
+            fine_walk,
         } = concluded;
         let mut stats = GenerationRecord {
             index: generation,
@@ -732,16 +735,20 @@ impl<G: Genome> Run<G> {
         let writing = writing_started.elapsed().as_secs_f64();
         let wall_seconds = until_written(writing);
         if let Some(profile) = &mut self.profile {
-            profile.add(&GenerationProfile::new(
-                generation,
-                rayon::current_num_threads() as u32,
-                Evaluator::current().ranks(),
-                evaluations,
-                times,
-                fine,
-                writing,
-                wall_seconds,
-            ))?;
+            let line = GenerationProfile {
+                fine_walk,
+                ..GenerationProfile::new(
+                    generation,
+                    rayon::current_num_threads() as u32,
+                    Evaluator::current().ranks(),
+                    evaluations,
+                    times,
+                    fine,
+                    writing,
+                    wall_seconds,
+                )
+            };
+            profile.add(&line)?;
         }
         // The store counts the reused among the members; the report, every evaluation
         // reused this generation where the members do not say (a birth not kept).
@@ -866,6 +873,9 @@ struct Concluded<'a, G> {
     best_fine: Option<FineEvaluation>,
     /// Seconds the run waited for the fine re-walk.
     fine: f64,
+    /// The fine re-walk's own seconds when it walked beside the next generation (0 when its
+    /// figure was known); `None` when `fine` is the walk itself.
+    fine_walk: Option<f64>,
 }
 
 /// `genome` developed with `limits` and its development seed and evaluated with the fine

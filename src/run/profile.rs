@@ -42,6 +42,11 @@ pub struct GenerationProfile {
     /// hidden behind that generation's work (0 when it is not re-walked, or its fine
     /// evaluation was known); in a steady-state run's blocks, the re-walk itself.
     pub fine: f64,
+    /// In a generational run, whose fine re-walk walks beside the next generation: the walk's
+    /// own seconds (0 when its figure was known without one). `None` where `fine` is the
+    /// walk itself: a steady-state run, and profiles written before the walk went beside.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fine_walk: Option<f64>,
     /// ... storing the generation and advancing the derived files.
     pub writing: f64,
     /// ... in everything else (the cache, combining a walk's units, the statistics).
@@ -78,10 +83,27 @@ impl GenerationProfile {
             keying: times.keying,
             evaluating: times.evaluating,
             fine,
+            fine_walk: None,
             writing,
             other: (total - steps - fine - writing).max(0.0),
             total,
             walks: times.walks,
+        }
+    }
+
+    /// The line as if its fine re-walk had been walked alone before the generation was
+    /// stored: `fine` the walk's own seconds and `total` with them in place of the wait (a
+    /// line whose `fine` is the walk already is returned as it is). The schedule simulator
+    /// replays every profile so, and models the walk beside the next generation as a lever.
+    pub fn walked_alone(&self) -> GenerationProfile {
+        match self.fine_walk {
+            Some(walk) => GenerationProfile {
+                total: self.total - self.fine + walk,
+                fine: walk,
+                fine_walk: None,
+                ..self.clone()
+            },
+            None => self.clone(),
         }
     }
 

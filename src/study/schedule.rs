@@ -650,6 +650,7 @@ mod tests {
             keying: 0.0,
             evaluating,
             fine: 0.0,
+            fine_walk: None,
             writing: 0.0,
             other: 0.0,
             total: outside + evaluating,

@@ -90,8 +90,17 @@ fn a_profile_holds_every_walk_once_with_its_time_and_thread() {
         assert!((steps + g.other - g.total).abs() < 1e-9, "{g:?}");
         walks += g.walks.len();
     }
-    // The first generation's best is re-walked at the fine reference.
-    assert!(generations[0].fine > 0.0);
+    // The first generation's best is re-walked at the fine reference, beside the next
+    // generation: the walk's own seconds are recorded, and the wait for it is no longer.
+    assert!(generations[0].fine_walk.is_some_and(|walk| walk > 0.0));
+    assert!(generations[0].fine <= generations[0].fine_walk.unwrap());
+    assert!(generations.iter().all(|g| g.fine_walk.is_some()));
+    // Replayed as walked alone: the walk in place of the wait, the whole still the sum.
+    let alone = generations[0].walked_alone();
+    assert_eq!(alone.fine, generations[0].fine_walk.unwrap());
+    assert_eq!(alone.fine_walk, None);
+    let steps = alone.breeding + alone.developing + alone.keying + alone.evaluating;
+    assert!((steps + alone.fine + alone.writing + alone.other - alone.total).abs() < 1e-9);
     assert!(walks > 0);
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -80,14 +80,15 @@ pub enum RunError {
     /// A file of the run could not be written, or its target is not a regular file.
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
-    /// A thread evaluating a steady-state birth panicked (a fault of this program): the run
-    /// stopped, and resumes after its last stored generation.
+    /// A thread evaluating a steady-state birth, or re-walking a generation's best at the
+    /// fine reference, panicked (a fault of this program): the run stopped, and resumes after
+    /// its last stored generation.
     #[error(
-        "a thread evaluating a birth panicked ({0}): the run stopped after its last stored generation (resume it with `ontogeny evolve --resume`); this is a fault of ontogeny, please report it"
+        "a thread of the run panicked ({0}): the run stopped after its last stored generation (resume it with `ontogeny evolve --resume`); this is a fault of ontogeny, please report it"
     )]
     Panicked(String),
-    /// The run's cancellation token was set ([`crate::run::Run::set_cancel`]): the generation under way
-    /// was dropped, and the run resumes after its last stored generation.
+    /// The run's cancellation token was set ([`crate::run::Run::set_cancel`]): the generations
+    /// not yet stored were dropped, and the run resumes after its last stored generation.
     #[error(transparent)]
     Interrupted(#[from] Interrupted),
 }

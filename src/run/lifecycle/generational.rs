@@ -1,7 +1,10 @@
 //! The run loop of a generational run: each generation bred and evaluated while the fine
 //! reference re-walk of the previous generation's best walks beside it, on a thread of its
-//! own, so that no thread waits for that one long walk between two generations. A generation
-//! is stored once its best's fine figure is in: after the next generation's walks.
+//! own (with a one-thread pool of its own, so that it takes nothing from the run's threads and
+//! never waits on them), so that the run's threads do not wait for that one long walk between
+//! two generations. A generation whose best needs the walk is stored once its figure is in:
+//! after the next generation's walks; one whose figure is known (an elite copy of the previous
+//! best, the cache's, or none asked) is stored at once.
 //!
 //! The fine figure only reports, and it is a pure function of the genome and the task, so the
 //! run and its store are those of a run that re-walks each best before going on. A run
@@ -9,7 +12,9 @@
 //! resumed, the same: it loses at most the work of the two generations it was between.
 
 use std::thread::{Scope, ScopedJoinHandle};
-use std::time::Instant;
+use std::time::{Duration, Instant};
+
+use rayon::{ThreadPool, ThreadPoolBuilder};
 
 use super::pool::message;
 use super::progress::{FineToFind, Progress};
@@ -36,10 +41,11 @@ struct Pending<'scope, G> {
     fine: Fine<'scope>,
 }
 
-/// A generation's best's fine reference figure: known, or walking on its own thread.
+/// A generation's best's fine reference figure: known, or walking on its own thread (the
+/// walk's result and its own duration).
 enum Fine<'scope> {
     Known(Option<FineEvaluation>),
-    Walking(ScopedJoinHandle<'scope, Result<FineEvaluation, Interrupted>>),
+    Walking(ScopedJoinHandle<'scope, (Result<FineEvaluation, Interrupted>, Duration)>),
 }
 
 impl<G: Genome> Run<G> {
@@ -51,6 +57,13 @@ impl<G: Genome> Run<G> {
         observer: &mut dyn FnMut(&GenerationReport),
     ) -> Result<(), RunError> {
         let generations = self.config.ga.generations as u32;
+        // Without a pool of its own (the system refused a thread), each best is re-walked
+        // before its generation is stored, as a steady-state run does.
+        let fine_pool = ThreadPoolBuilder::new()
+            .num_threads(1)
+            .thread_name(|_| "fine re-walk".to_string())
+            .build()
+            .ok();
         std::thread::scope(|scope| {
             let mut pending: Option<Pending<'_, G>> = None;
             let mut outcome = (|| -> Result<(), RunError> {
@@ -63,12 +76,19 @@ impl<G: Genome> Run<G> {
                     if let Some(previous) = pending.take() {
                         self.conclude_pending(progress, previous, observer)?;
                     }
-                    pending = Some(self.begin_fine(
-                        scope,
-                        progress,
-                        generation,
-                        (evaluations, times, evaluated),
-                    ));
+                    // Told to stop (by the observer, say): nothing more is stored.
+                    self.cancel.check()?;
+                    let Some(pool) = &fine_pool else {
+                        let counts = (evaluations, None);
+                        self.conclude(progress, generation, counts, times, started, observer)?;
+                        continue;
+                    };
+                    let this = (evaluations, times, evaluated);
+                    let set_aside = self.begin_fine(scope, pool, progress, generation, this);
+                    match set_aside.fine {
+                        Fine::Known(_) => self.conclude_pending(progress, set_aside, observer)?,
+                        Fine::Walking(_) => pending = Some(set_aside),
+                    }
                 }
                 Ok(())
             })();
@@ -78,9 +98,15 @@ impl<G: Genome> Run<G> {
                 outcome = self.conclude_pending(progress, last, observer);
             }
             if outcome.is_err() {
-                // A fine re-walk still walking stops at its next control step; the scope
-                // waits for it.
+                // A fine re-walk still walking stops at its next control step.
                 self.cancel.cancel();
+                if let Some(Pending {
+                    fine: Fine::Walking(walking),
+                    ..
+                }) = pending.take()
+                {
+                    let _ = walking.join();
+                }
             }
             outcome
         })
@@ -88,10 +114,11 @@ impl<G: Genome> Run<G> {
 
     /// Generation `generation`, just evaluated (`evaluations` made in `evaluated` seconds,
     /// its steps' `times`), set aside with its best's fine reference figure known or being
-    /// walked on a thread of `scope`.
+    /// walked on a thread of `scope` in `pool`.
     fn begin_fine<'scope>(
         &self,
         scope: &'scope Scope<'scope, '_>,
+        pool: &'scope ThreadPool,
         progress: &Progress<G>,
         generation: u32,
         (evaluations, times, evaluated): (u64, GenerationTimes, f64),
@@ -110,8 +137,12 @@ impl<G: Genome> Run<G> {
                 let limits = self.evolution.limits.clone();
                 let task = self.fine_task();
                 let cancel = self.cancel.clone();
-                let walking =
-                    scope.spawn(move || fine_walk(&genome, &limits, develop_seed, &task, &cancel));
+                let walking = scope.spawn(move || {
+                    let started = Instant::now();
+                    let fine =
+                        pool.install(|| fine_walk(&genome, &limits, develop_seed, &task, &cancel));
+                    (fine, started.elapsed())
+                });
                 (Some(best), Fine::Walking(walking))
             }
         };
@@ -135,17 +166,18 @@ impl<G: Genome> Run<G> {
         observer: &mut dyn FnMut(&GenerationReport),
     ) -> Result<(), RunError> {
         let waited = Instant::now();
-        let best_fine = match pending.fine {
-            Fine::Known(fine) => fine,
+        let (best_fine, walk) = match pending.fine {
+            Fine::Known(fine) => (fine, 0.0),
             Fine::Walking(walking) => {
-                let fine = walking
+                let (fine, walk) = walking
                     .join()
-                    .map_err(|panic| RunError::Panicked(message(panic.as_ref())))??;
+                    .map_err(|panic| RunError::Panicked(message(panic.as_ref())))?;
+                let fine = fine?;
                 let key = pending.best.and_then(|b| pending.population[b].key);
                 if let Some(key) = key {
                     self.cache.insert_fine(key, &fine);
                 }
-                Some(fine)
+                (Some(fine), walk.as_secs_f64())
             }
         };
         let fine = waited.elapsed().as_secs_f64();
@@ -161,6 +193,7 @@ impl<G: Genome> Run<G> {
                 evaluated: pending.evaluated,
                 best_fine,
                 fine,
+                fine_walk: Some(walk),
             },
             observer,
         )

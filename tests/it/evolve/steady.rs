@@ -216,6 +216,8 @@ fn a_steady_runs_profile_counts_each_blocks_time_once_and_its_words_say_steady_s
     assert!(total <= wall, "{total} s profiled in {wall} s");
     for g in &generations {
         assert!(g.evaluating + g.fine + g.writing <= g.total + 1e-9, "{g:?}");
+        // A steady-state run re-walks each block's best before storing it: `fine` is the walk.
+        assert_eq!(g.fine_walk, None);
     }
     // The opening line and the plot's title say the algorithm and its births in flight.
     let stderr = String::from_utf8_lossy(&output.stderr);
