@@ -78,6 +78,7 @@ fn individuals(generation: u32, fitness: [f64; 4]) -> Vec<IndividualRecord> {
             neurons: 10 * i,
             reused: false,
             evaluation_key: None,
+            parents_generation: None,
         })
         .collect()
 }

@@ -33,6 +33,7 @@ fn of_fitness(fitness: f64) -> Individual<DirectGenome> {
         size: (0, 0, 0),
         key: None,
         reused: false,
+        parents_generation: None,
     }
 }
 
