@@ -118,3 +118,39 @@ pub(super) fn verify_row(
         }),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_trailing_nulls_after_the_columns_always_covered_are_left_out() {
+        let null = |v: &i32| *v == 0;
+        // Always covered: the first two, NULL or not.
+        assert_eq!(covered(vec![1, 0], 2, null), [1, 0]);
+        // After them, up to the last value that is not NULL.
+        assert_eq!(covered(vec![1, 0, 0, 0], 2, null), [1, 0]);
+        assert_eq!(covered(vec![1, 2, 0, 3], 2, null), [1, 2, 0, 3]);
+        assert_eq!(covered(vec![1, 2, 3, 0], 2, null), [1, 2, 3]);
+    }
+
+    #[test]
+    fn a_null_left_out_gives_the_checksum_of_the_row_without_the_column() {
+        let v4 = [Value::Integer(1), Value::Null, Value::Text("a".into())];
+        let with_null = [v4.to_vec(), vec![Value::Null]].concat();
+        let with_value = [v4.to_vec(), vec![Value::Integer(0)]].concat();
+        assert_eq!(
+            checksum_of("individual", &with_null, 3),
+            checksum_of("individual", &v4, 3)
+        );
+        assert_ne!(
+            checksum_of("individual", &with_value, 3),
+            checksum_of("individual", &v4, 3)
+        );
+        // Where every column is always covered, a NULL last counts.
+        assert_ne!(
+            checksum_of("individual", &with_null, 4),
+            checksum_of("individual", &v4, 3)
+        );
+    }
+}

@@ -1,6 +1,6 @@
-//! The run store's reads. In a store of schema version 4 or later each verifies the checksum of
-//! every row it reads ([`super::checksum`]) before using any of its values, and the reads of
-//! a generation check that it holds exactly the individuals its record counts: a damaged
+//! The run store's reads. In a store of schema version 4 or later each verifies the checksum
+//! of every row it reads ([`super::checksum`]) before using any of its values, and the reads
+//! of a generation check that it holds exactly the individuals its record counts: a damaged
 //! record is [`StoreError::Damaged`], never data. A store of an older schema (read-only: one
 //! opened for writing was migrated) has no checksums, and is read as it is.
 
@@ -149,8 +149,9 @@ impl RunStore {
     }
 
     /// A generation's individuals, in index order (empty if the generation is not stored).
-    /// In a store of schema version 4 or later they must be exactly the individuals its record counts,
-    /// indexed from 0: a row missing, moved or repeated is [`StoreError::Damaged`].
+    /// In a store of schema version 4 or later they must be exactly the individuals its
+    /// record counts, indexed from 0: a row missing, moved or repeated is
+    /// [`StoreError::Damaged`].
     pub fn individuals(&self, generation: u32) -> Result<Vec<IndividualRecord>, StoreError> {
         let individuals = self.individual_rows(
             "WHERE generation = ?1 ORDER BY individual",
