@@ -282,7 +282,7 @@ fn a_steady_runs_lineage_names_the_generation_each_newborn_was_bred_from() {
                 .find(|(birth, _, born)| {
                     blocks.place(*birth).0 == g
                         && serde_json::to_value(born).unwrap()["genome"] == genome["genome"]
-                        && born.develop_seed.to_string() == genome["develop_seed"].to_string()
+                        && genome["develop_seed"] == born.develop_seed
                 })
                 .unwrap_or_else(|| panic!("{g}/{slot} is none of block {g}'s births"));
             assert_eq!(
