@@ -181,8 +181,10 @@ impl PyRun {
     }
 
     /// The individuals of one generation (default: every generation's), a dict each with the
-    /// run store's columns: `generation`, `individual`, `parents`, `operator`, `genome_text`,
-    /// `fitness`, `status`, `terms`, `parts`, `joints`, `neurons`, `reused`; in a run with
+    /// run store's columns: `generation`, `individual`, `parents`, `parents_generation` (the
+    /// generation `parents` index; `None` in generation 0 and in rows stored before it was
+    /// recorded, where it is the previous generation), `operator`, `genome_text`, `fitness`,
+    /// `status`, `terms`, `parts`, `joints`, `neurons`, `reused`; in a run with
     /// habitats or trials also `habitats`, each habitat's and trial's walk (a list of dicts
     /// as `Evaluation.habitats` gives them).
     #[pyo3(signature = (generation=None))]
@@ -207,6 +209,7 @@ impl PyRun {
                 dict.set_item("generation", i.generation)?;
                 dict.set_item("individual", i.index)?;
                 dict.set_item("parents", i.parents)?;
+                dict.set_item("parents_generation", i.parents_generation)?;
                 dict.set_item("operator", i.operator)?;
                 dict.set_item("genome_text", i.genome_text)?;
                 dict.set_item("fitness", i.fitness)?;

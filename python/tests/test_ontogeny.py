@@ -317,6 +317,9 @@ def test_an_evolution_equals_the_command_lines_and_reads_back(tmp_path, cli):
     individuals = run.individuals(1)
     assert len(individuals) == 6
     assert {"fitness", "status", "genome_text", "parts", "terms"} <= set(individuals[0])
+    # Generation 1's parents are in generation 0; generation 0 has none.
+    assert [i["parents_generation"] for i in individuals] == [0] * 6
+    assert [i["parents_generation"] for i in run.individuals(0)] == [None] * 6
     assert len(run.individuals()) == 12
     assert ontogeny.Run(tmp_path / "py").settings()["encoding"] == "direct"
     with pytest.raises(ValueError, match="already holds a run"):

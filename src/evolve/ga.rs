@@ -34,10 +34,9 @@ pub struct Individual<G> {
     pub genome: G,
     /// The seed of its development (stochastic rules), kept with it for life.
     pub develop_seed: u64,
-    /// Its parents' indices in the generation it was bred from: the previous generation in
-    /// a generational run (an elite's own index there); in a steady-state run the generation
-    /// its birth was bred from ([`super::steady::Blocks::source`]), and a member kept from an
-    /// earlier block keeps its birth's parents and operator.
+    /// Its parents' indices in generation [`Individual::parents_generation`]: for an elite (a
+    /// member carried over from the previous generation, or in a steady-state run kept
+    /// through a block) its own index there.
     pub parents: Vec<u32>,
     /// How it was made.
     pub operator: Operator,
@@ -54,6 +53,12 @@ pub struct Individual<G> {
     /// JSON form: the run store keeps it in a column.
     #[serde(skip)]
     pub reused: bool,
+    /// The generation its `parents` index: the previous generation in a generational run and
+    /// for an elite; for a steady-state run's newborn the generation its birth was bred from
+    /// ([`super::steady::Blocks::source`]); `None` in generation 0 (no parents). Not part of
+    /// its JSON form: the run store keeps it in a column.
+    #[serde(skip)]
+    pub parents_generation: Option<u32>,
 }
 
 impl GenerationRecord {
@@ -392,6 +397,7 @@ impl<G: Genome> Evolution<G> {
                 size,
                 key: d.key,
                 reused,
+                parents_generation: generation.checked_sub(1),
             });
         }
         Ok(born)
@@ -488,6 +494,7 @@ impl<G: Genome> Evolution<G> {
                 operator: Operator::Elite,
                 parents: vec![i as u32],
                 reused: false,
+                parents_generation: generation.checked_sub(1),
                 ..previous[i].clone()
             })
             .collect();

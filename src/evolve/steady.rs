@@ -22,6 +22,11 @@
 //!   is greater ("replace-worst"); on a tie the incumbent stays. The best is never lost, as
 //!   with the generational algorithm's elite, and a creature stays in its slot for life.
 //!
+//! Lineage: a newborn's parents are its indices in generation s(b), which it records
+//! (`parents_generation`); a member of generation k not replaced during block k is stored
+//! as the generational algorithm stores its elite, operator `elite` and parents its own
+//! slot in generation k − 1.
+//!
 //! Replace-worst rather than a tournament: it needs no random draw at integration (so nothing
 //! but the birth order decides), it is elitist like the published generational protocols, and
 //! its selection pressure comes from the preset's breeding, which is the presets' own.
@@ -215,7 +220,7 @@ impl Lookup {
 pub struct Birth<G> {
     /// Its number, b.
     pub number: u64,
-    /// The newborn; its parents are indices in generation s(b).
+    /// The newborn; its parents are indices in generation s(b), its `parents_generation`.
     pub individual: Individual<G>,
     /// Whether it was simulated (rather than reusing a stored evaluation).
     pub simulated: bool,
@@ -296,6 +301,7 @@ impl<G: Genome> Evolution<G> {
                 size,
                 key: developed.key,
                 reused: !simulated,
+                parents_generation: Some(source),
             },
             simulated,
             fell_back,
@@ -373,6 +379,7 @@ mod tests {
             size: (0, 0, 0),
             key: None,
             reused: false,
+            parents_generation: None,
         }
     }
 

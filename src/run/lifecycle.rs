@@ -544,6 +544,7 @@ impl<G: Genome> Run<G> {
                         ))
                     })?;
                 individual.reused = r.reused;
+                individual.parents_generation = r.parents_generation;
                 individual.key = r
                     .evaluation_key
                     .as_deref()
@@ -822,6 +823,7 @@ impl<G: Genome> Run<G> {
                     neurons: i.size.2,
                     reused: i.reused,
                     evaluation_key: i.key.map(|k| k.to_hex()),
+                    parents_generation: i.parents_generation,
                 })
             })
             .collect::<Result<Vec<_>, RunError>>()?;

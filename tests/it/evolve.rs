@@ -84,7 +84,8 @@ enum CacheColumns {
     Both,
     /// `evaluation_key` alone.
     Key,
-    /// Neither.
+    /// Neither, nor the generation of the individuals' parents: what a store migrated from
+    /// schema version 1 or 2 lacks.
     Neither,
 }
 
@@ -124,7 +125,10 @@ fn contents_of(dir: &Path, with_fine: bool, cache: CacheColumns) -> String {
                 i.genome_text
             );
             if cache != CacheColumns::Neither {
-                out += &format!("{:?}\n", i.evaluation_key);
+                out += &format!(
+                    "{:?} parents in {:?}\n",
+                    i.evaluation_key, i.parents_generation
+                );
             }
             if cache == CacheColumns::Both {
                 out += &format!("reused {}\n", i.reused);

@@ -78,6 +78,7 @@ fn individuals(generation: u32, fitness: [f64; 4]) -> Vec<IndividualRecord> {
             neurons: 10 * i,
             reused: false,
             evaluation_key: None,
+            parents_generation: None,
         })
         .collect()
 }
@@ -464,6 +465,12 @@ FROM individual GROUP BY generation ORDER BY generation;";
 const VALID_PER_OPERATOR: &str = "SELECT operator, count(*) AS individuals,
        round(avg(status = 'ok'), 3) AS valid_fraction
 FROM individual GROUP BY operator ORDER BY operator;";
+const PARENTS_OF: &str =
+    "SELECT parent.generation, parent.individual, parent.operator, parent.fitness
+FROM individual AS child, json_each(child.parents) AS p
+JOIN individual AS parent
+  ON parent.generation = child.parents_generation AND parent.individual = p.value
+WHERE child.generation = 3 AND child.individual = 0;";
 
 #[test]
 fn the_run_store_reference_s_queries_work() {
@@ -474,6 +481,7 @@ fn the_run_store_reference_s_queries_work() {
     .unwrap();
     assert!(readme.contains(BEST_PER_GENERATION));
     assert!(readme.contains(VALID_PER_OPERATOR));
+    assert!(readme.contains(PARENTS_OF));
     let path = finished_store(&scratch("readme"));
     let conn = rusqlite::Connection::open(&path).unwrap();
 
@@ -502,6 +510,36 @@ fn the_run_store_reference_s_queries_work() {
             ("crossover".into(), 4, 0.5),
             ("mutation".into(), 2, 1.0),
             ("random".into(), 2, 1.0)
+        ]
+    );
+
+    // Individual 0 of generation 3, a crossover of individuals 1 and 2 of generation 1 (bred
+    // two generations back, as a steady-state birth may be).
+    drop(conn);
+    let mut store = RunStore::open(&path).unwrap();
+    store
+        .write_generation(&generation(2), &individuals(2, [1.0; 4]))
+        .unwrap();
+    let mut is = individuals(3, [1.0; 4]);
+    is[0].parents = vec![1, 2];
+    is[0].operator = "crossover".into();
+    is[0].parents_generation = Some(1);
+    store.write_generation(&generation(3), &is).unwrap();
+    drop(store);
+    let conn = rusqlite::Connection::open(&path).unwrap();
+    let parents: Vec<(u32, u32, String, f64)> = conn
+        .prepare(PARENTS_OF)
+        .unwrap()
+        .query_map([], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?)))
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap();
+    // Generation 1's fitness is [4, 2, 3, floor], its operators random, mutation, crossover.
+    assert_eq!(
+        parents,
+        vec![
+            (1, 1, "mutation".into(), 2.0),
+            (1, 2, "crossover".into(), 3.0)
         ]
     );
 }

@@ -361,18 +361,105 @@ pub fn grow_creature_json(file: &Path, out: &Path, extra: &[&str]) -> serde_json
     serde_json::from_str(&std::fs::read_to_string(out.join("creature.json")).unwrap()).unwrap()
 }
 
-/// The SQL that takes a run store of the current schema back to version 3: the checksums,
-/// the evaluator versions and the counts of individuals dropped. A test that edits a store's
-/// records by hand runs it after, and sets `user_version` to 3: the resume migrates the
-/// store again, checksumming the records as they are, as it does a store an older ontogeny
-/// wrote.
+/// The SQL that takes a run store of the current schema back to version 3: the parents'
+/// generations, the checksums, the evaluator versions and the counts of individuals
+/// dropped. A test that edits a store's records by hand runs it after, and sets
+/// `user_version` to 3: the resume migrates the store again, checksumming the records as
+/// they are, as it does a store an older ontogeny wrote.
 pub const DROP_VERSION_4: &str = "
+    ALTER TABLE individual DROP COLUMN parents_generation;
     ALTER TABLE run DROP COLUMN checksum;
     ALTER TABLE generation DROP COLUMN checksum;
     ALTER TABLE generation DROP COLUMN individuals;
     ALTER TABLE generation DROP COLUMN evaluator;
     ALTER TABLE individual DROP COLUMN checksum;
 ";
+
+/// A row's checksum as the run store reference documents it, computed here on its own: the
+/// first 8 bytes, in hexadecimal, of a SHA-256 over the table's name, a 0 byte, and each
+/// value with its type (0 for NULL; 1 and 8 big-endian bytes for an INTEGER; 2 and the 8
+/// bytes of a REAL; 3, the length as 8 bytes and the bytes of a TEXT).
+pub fn documented_checksum(table: &str, values: &[rusqlite::types::Value]) -> String {
+    use rusqlite::types::Value;
+    use sha2::{Digest, Sha256};
+    let mut hasher = Sha256::new();
+    hasher.update(table.as_bytes());
+    hasher.update([0]);
+    for value in values {
+        match value {
+            Value::Null => hasher.update([0]),
+            Value::Integer(i) => {
+                hasher.update([1]);
+                hasher.update(i.to_be_bytes());
+            }
+            Value::Real(x) => {
+                hasher.update([2]);
+                hasher.update(x.to_bits().to_be_bytes());
+            }
+            Value::Text(t) => {
+                hasher.update([3]);
+                hasher.update((t.len() as u64).to_be_bytes());
+                hasher.update(t.as_bytes());
+            }
+            Value::Blob(_) => unreachable!("the run store holds no BLOB"),
+        }
+    }
+    hasher.finalize()[..8]
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect()
+}
+
+/// The columns of a version-4 store's `individual` table a checksum covers.
+pub const INDIVIDUAL_COLUMNS_V4: &str = "generation, individual, parents, operator, genome_text, \
+    genome_json, fitness, status, terms_json, parts, joints, neurons, reused, evaluation_key";
+
+/// Turns the run store at `path` (of a steady-state run) back into schema version 4, as an
+/// ontogeny that knew version 4 only wrote it: a member kept through a block carries its
+/// row of the generation before (its birth's parents, operator and genome JSON), no
+/// `parents_generation` column, every individual checksummed over version 4's columns
+/// ([`documented_checksum`]), the log folded in.
+pub fn make_steady_version_4(path: &Path) {
+    use rusqlite::types::Value;
+    let conn = rusqlite::Connection::open(path).unwrap();
+    let rows = |sql: &str| -> Vec<Vec<Value>> {
+        let mut stmt = conn.prepare(sql).unwrap();
+        let n = stmt.column_count();
+        stmt.query_map([], |r| (0..n).map(|i| r.get::<_, Value>(i)).collect())
+            .unwrap()
+            .collect::<Result<_, _>>()
+            .unwrap()
+    };
+    // In generation order, so that a member kept through several blocks takes its birth's.
+    let elites = rows(
+        "SELECT generation, individual FROM individual WHERE operator = 'elite' \
+         AND generation > 0 ORDER BY generation, individual",
+    );
+    for elite in elites {
+        conn.execute(
+            "UPDATE individual SET (parents, operator, genome_json) = \
+             (SELECT parents, operator, genome_json FROM individual AS before \
+              WHERE before.generation = ?1 - 1 AND before.individual = ?2) \
+             WHERE generation = ?1 AND individual = ?2",
+            rusqlite::params_from_iter(&elite),
+        )
+        .unwrap();
+    }
+    conn.execute_batch("ALTER TABLE individual DROP COLUMN parents_generation;")
+        .unwrap();
+    for row in rows(&format!(
+        "SELECT rowid, {INDIVIDUAL_COLUMNS_V4} FROM individual"
+    )) {
+        let checksum = documented_checksum("individual", &row[1..]);
+        conn.execute(
+            "UPDATE individual SET checksum = ?1 WHERE rowid = ?2",
+            rusqlite::params![checksum, row[0]],
+        )
+        .unwrap();
+    }
+    conn.execute_batch("PRAGMA user_version = 4; PRAGMA wal_checkpoint(TRUNCATE);")
+        .unwrap();
+}
 
 /// Turns the run store at `path` back into schema version 1, as an older ontogeny wrote it:
 /// the checksums, evaluator versions and counts of individuals, the cache's columns and the

@@ -14,6 +14,7 @@ use super::{GenerationReport, Run, RunError};
 use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::Genome;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
+use crate::evolve::ga::Operator;
 use crate::evolve::steady::{Birth, Blocks, Lookup, Snapshot, Standings};
 use crate::evolve::timing::{GenerationTimes, WalkTime};
 
@@ -183,11 +184,15 @@ impl<G: Genome> Run<G> {
             progress.previous_best = None;
         }
         // As a generational run's elite, a member born before this block is stored as not
-        // reused: `reused` marks the births of this block that reused an evaluation (the
-        // generation's count of reused evaluations is the block's, kept or not).
+        // reused (`reused` marks the births of this block that reused an evaluation: the
+        // generation's count of reused evaluations is the block's, kept or not), made by
+        // `elite` from itself, its own slot in the generation before.
         for (slot, member) in progress.population.iter_mut().enumerate() {
             if !block.replaced.contains(&slot) {
                 member.reused = false;
+                member.operator = Operator::Elite;
+                member.parents = vec![slot as u32];
+                member.parents_generation = generation.checked_sub(1);
             }
         }
         let births = block.walks.len() as u64;

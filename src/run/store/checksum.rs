@@ -8,6 +8,11 @@
 //! NULL, an INTEGER (8 bytes), a REAL (its 8 bytes, with −0 read as 0, as SQLite stores it), a
 //! TEXT or BLOB (its length, then its bytes). The first 8 bytes of it, as 16 hexadecimal
 //! digits, are stored in the row's `checksum` column.
+//!
+//! A column added to a table after schema version 4 (`individual.parents_generation`) is
+//! covered only where it holds a value: the values after a table's version-4 columns are
+//! covered up to the last of them that is not NULL. So a row stored before the column was
+//! added (NULL in it) keeps its checksum, and a migration rewrites no row.
 
 use std::path::Path;
 
@@ -56,25 +61,43 @@ pub(super) fn checksum<'a>(table: &str, values: impl IntoIterator<Item = ValueRe
         .collect()
 }
 
-/// The checksum of a row about to be written, from the values bound to its columns.
-pub(super) fn checksum_of(table: &str, values: &[Value]) -> String {
-    checksum(table, values.iter().map(ValueRef::from))
+/// The values of a row whose first `always` values (its table's columns of schema version
+/// 4) a checksum always covers: those, then the later ones up to the last that is not NULL.
+pub(super) fn covered<T>(
+    mut values: Vec<T>,
+    always: usize,
+    is_null: impl Fn(&T) -> bool,
+) -> Vec<T> {
+    while values.len() > always && values.last().is_some_and(&is_null) {
+        values.pop();
+    }
+    values
 }
 
-/// Checks that the first `columns` values of `row` (a row of `table`) match the checksum
-/// read after them; else the store at `path` is damaged in `what` ("individual 3 of
-/// generation 1").
+/// The checksum of a row about to be written, from the values bound to its columns, the
+/// first `always` of them always covered ([`covered`]).
+pub(super) fn checksum_of(table: &str, values: &[Value], always: usize) -> String {
+    let values = covered(values.iter().map(ValueRef::from).collect(), always, |v| {
+        matches!(v, ValueRef::Null)
+    });
+    checksum(table, values)
+}
+
+/// Checks that the first `columns` values of `row` (a row of `table`, the first `always` of
+/// them always covered: [`covered`]) match the checksum read after them; else the store at
+/// `path` is damaged in `what` ("individual 3 of generation 1").
 pub(super) fn verify_row(
     path: &Path,
     table: &str,
     row: &Row<'_>,
-    columns: usize,
+    (always, columns): (usize, usize),
     what: impl FnOnce() -> String,
 ) -> Result<(), StoreError> {
     let read = || -> rusqlite::Result<(String, Option<String>)> {
         let values = (0..columns)
             .map(|i| row.get_ref(i))
             .collect::<rusqlite::Result<Vec<_>>>()?;
+        let values = covered(values, always, |v| matches!(v, ValueRef::Null));
         let stored = match row.get_ref(columns)? {
             ValueRef::Text(t) => Some(String::from_utf8_lossy(t).into_owned()),
             _ => None,
@@ -93,5 +116,41 @@ pub(super) fn verify_row(
             what: what(),
             detail: format!("it does not read back ({e})"),
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_trailing_nulls_after_the_columns_always_covered_are_left_out() {
+        let null = |v: &i32| *v == 0;
+        // Always covered: the first two, NULL or not.
+        assert_eq!(covered(vec![1, 0], 2, null), [1, 0]);
+        // After them, up to the last value that is not NULL.
+        assert_eq!(covered(vec![1, 0, 0, 0], 2, null), [1, 0]);
+        assert_eq!(covered(vec![1, 2, 0, 3], 2, null), [1, 2, 0, 3]);
+        assert_eq!(covered(vec![1, 2, 3, 0], 2, null), [1, 2, 3]);
+    }
+
+    #[test]
+    fn a_null_left_out_gives_the_checksum_of_the_row_without_the_column() {
+        let v4 = [Value::Integer(1), Value::Null, Value::Text("a".into())];
+        let with_null = [v4.to_vec(), vec![Value::Null]].concat();
+        let with_value = [v4.to_vec(), vec![Value::Integer(0)]].concat();
+        assert_eq!(
+            checksum_of("individual", &with_null, 3),
+            checksum_of("individual", &v4, 3)
+        );
+        assert_ne!(
+            checksum_of("individual", &with_value, 3),
+            checksum_of("individual", &v4, 3)
+        );
+        // Where every column is always covered, a NULL last counts.
+        assert_ne!(
+            checksum_of("individual", &with_null, 4),
+            checksum_of("individual", &v4, 3)
+        );
     }
 }

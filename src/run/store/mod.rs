@@ -42,8 +42,9 @@ use checksum::checksum_of;
 use error::{classify, io_error, sqlite, write_error};
 use records::real;
 use schema::{
-    GENERATION_COLUMNS, INDIVIDUAL_COLUMNS_ALL, MIGRATE_1_TO_2, MIGRATE_2_TO_3, MIGRATE_3_TO_4,
-    RUN_COLUMNS, SCHEMA, check_header, check_store, checksum_rows,
+    GENERATION_COLUMNS, INDIVIDUAL_COLUMNS_ALL, INDIVIDUAL_COLUMNS_V4, MIGRATE_1_TO_2,
+    MIGRATE_2_TO_3, MIGRATE_3_TO_4, MIGRATE_4_TO_5, RUN_COLUMNS, SCHEMA, check_header, check_store,
+    checksum_rows,
 };
 
 /// An open run store.
@@ -177,7 +178,7 @@ impl RunStore {
                         "INSERT INTO run ({}, checksum) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
                         RUN_COLUMNS.join(", ")
                     ),
-                    params_from_iter(with_checksum("run", values)),
+                    params_from_iter(with_checksum("run", values, RUN_COLUMNS.len())),
                 )
             })
             .and_then(|_| tx.commit())
@@ -249,6 +250,9 @@ impl RunStore {
                 if version < 4 {
                     tx.execute_batch(MIGRATE_3_TO_4)?;
                     checksum_rows(&tx)?;
+                }
+                if version < 5 {
+                    tx.execute_batch(MIGRATE_4_TO_5)?;
                 }
                 tx.pragma_update(None, "user_version", SCHEMA_VERSION)
             };
@@ -348,7 +352,7 @@ impl RunStore {
             config: config.to_string(),
             ..self.run()?
         };
-        let checksum = checksum_of("run", &run_values(&run));
+        let checksum = checksum_of("run", &run_values(&run), RUN_COLUMNS.len());
         self.conn
             .execute(
                 "UPDATE run SET config = ?1, checksum = ?2 WHERE id = 1",
@@ -424,7 +428,11 @@ impl RunStore {
                 GENERATION_COLUMNS.join(", "),
                 placeholders(GENERATION_COLUMNS.len() + 1)
             ),
-            params_from_iter(with_checksum("generation", values)),
+            params_from_iter(with_checksum(
+                "generation",
+                values,
+                GENERATION_COLUMNS.len(),
+            )),
         )
         .map_err(|e| write_error(&path, g, "the generation row".into(), e))?;
         {
@@ -452,9 +460,11 @@ impl RunStore {
                     Value::from(i.neurons),
                     Value::from(i.reused),
                     i.evaluation_key.clone().map_or(Value::Null, Value::from),
+                    i.parents_generation.map_or(Value::Null, Value::from),
                 ];
+                let values = with_checksum("individual", values, INDIVIDUAL_COLUMNS_V4.len());
                 insert
-                    .execute(params_from_iter(with_checksum("individual", values)))
+                    .execute(params_from_iter(values))
                     .map_err(|e| write_error(&path, g, format!("individual {}", i.index), e))?;
             }
         }
@@ -536,9 +546,10 @@ fn run_values(run: &RunRecord) -> Vec<Value> {
     ]
 }
 
-/// `values` of a row of `table`, followed by their checksum.
-fn with_checksum(table: &str, mut values: Vec<Value>) -> Vec<Value> {
-    let checksum = checksum_of(table, &values);
+/// `values` of a row of `table`, followed by their checksum (which always covers the first
+/// `always`: [`checksum::covered`]).
+fn with_checksum(table: &str, mut values: Vec<Value>, always: usize) -> Vec<Value> {
+    let checksum = checksum_of(table, &values, always);
     values.push(Value::from(checksum));
     values
 }

@@ -1,6 +1,6 @@
-//! The run store's reads. In a store of schema version 4 each verifies the checksum of
-//! every row it reads ([`super::checksum`]) before using any of its values, and the reads of
-//! a generation check that it holds exactly the individuals its record counts: a damaged
+//! The run store's reads. In a store of schema version 4 or later each verifies the checksum
+//! of every row it reads ([`super::checksum`]) before using any of its values, and the reads
+//! of a generation check that it holds exactly the individuals its record counts: a damaged
 //! record is [`StoreError::Damaged`], never data. A store of an older schema (read-only: one
 //! opened for writing was migrated) has no checksums, and is read as it is.
 
@@ -9,7 +9,10 @@ use rusqlite::Row;
 use super::checksum::verify_row;
 use super::error::{StoreError, classify};
 use super::records::{get_real, individual_from_row};
-use super::schema::{GENERATION_COLUMNS, INDIVIDUAL_COLUMNS, INDIVIDUAL_COLUMNS_ALL, RUN_COLUMNS};
+use super::schema::{
+    GENERATION_COLUMNS, INDIVIDUAL_COLUMNS, INDIVIDUAL_COLUMNS_ALL, INDIVIDUAL_COLUMNS_V4,
+    RUN_COLUMNS,
+};
 use super::{FineEvaluation, GenerationRecord, IndividualRecord, RunRecord, RunStore, StoredKey};
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
 
@@ -36,7 +39,8 @@ impl RunStore {
         };
         let read = |r: &Row<'_>| -> Result<(String, String, String, String, String), StoreError> {
             if self.checksummed() {
-                verify_row(&self.path, "run", r, RUN_COLUMNS.len(), || "the run".into())?;
+                let columns = (RUN_COLUMNS.len(), RUN_COLUMNS.len());
+                verify_row(&self.path, "run", r, columns, || "the run".into())?;
             }
             let get = || Ok((r.get(1)?, r.get(2)?, r.get(3)?, r.get(4)?, r.get(5)?));
             get().map_err(|e| classify(&self.path, "cannot read the run row", e))
@@ -131,7 +135,7 @@ impl RunStore {
                         &self.path,
                         "generation",
                         r,
-                        GENERATION_COLUMNS.len(),
+                        (GENERATION_COLUMNS.len(), GENERATION_COLUMNS.len()),
                         || match r.get::<_, i64>(0) {
                             Ok(g) => format!("generation {g}"),
                             Err(_) => "a generation".into(),
@@ -145,8 +149,9 @@ impl RunStore {
     }
 
     /// A generation's individuals, in index order (empty if the generation is not stored).
-    /// In a store of schema version 4 they must be exactly the individuals its record counts,
-    /// indexed from 0: a row missing, moved or repeated is [`StoreError::Damaged`].
+    /// In a store of schema version 4 or later they must be exactly the individuals its
+    /// record counts, indexed from 0: a row missing, moved or repeated is
+    /// [`StoreError::Damaged`].
     pub fn individuals(&self, generation: u32) -> Result<Vec<IndividualRecord>, StoreError> {
         let individuals = self.individual_rows(
             "WHERE generation = ?1 ORDER BY individual",
@@ -190,7 +195,7 @@ impl RunStore {
         Ok(individuals)
     }
 
-    /// Verifies every record of the store (schema version 4; an older store has no
+    /// Verifies every record of the store (schema version 4 or later; an older store has no
     /// checksums): the run, every generation, every individual, and that each generation
     /// holds exactly the individuals its record counts. Reads only.
     pub fn verify(&self) -> Result<(), StoreError> {
@@ -322,10 +327,12 @@ impl RunStore {
         params: impl rusqlite::Params,
         action: &str,
     ) -> Result<Vec<IndividualRecord>, StoreError> {
-        // A store older than version 3 (opened read-only) reads `reused` as 0 and no key.
+        // A store older than version 3 (opened read-only) reads `reused` as 0 and no key,
+        // one older than version 5 no parents' generation.
         let columns = match self.version {
-            ..=2 => format!("{INDIVIDUAL_COLUMNS}, 0, NULL, NULL"),
-            3 => format!("{}, NULL", INDIVIDUAL_COLUMNS_ALL.join(", ")),
+            ..=2 => format!("{INDIVIDUAL_COLUMNS}, 0, NULL, NULL, NULL"),
+            3 => format!("{}, NULL, NULL", INDIVIDUAL_COLUMNS_V4.join(", ")),
+            4 => format!("{}, NULL, checksum", INDIVIDUAL_COLUMNS_V4.join(", ")),
             _ => format!("{}, checksum", INDIVIDUAL_COLUMNS_ALL.join(", ")),
         };
         self.read_rows(
@@ -338,7 +345,7 @@ impl RunStore {
                         &self.path,
                         "individual",
                         r,
-                        INDIVIDUAL_COLUMNS_ALL.len(),
+                        (INDIVIDUAL_COLUMNS_V4.len(), INDIVIDUAL_COLUMNS_ALL.len()),
                         || match (r.get::<_, i64>(1), r.get::<_, i64>(0)) {
                             (Ok(i), Ok(g)) => format!("individual {i} of generation {g}"),
                             _ => "an individual".into(),

@@ -42,11 +42,18 @@ pub struct IndividualRecord {
     pub generation: u32,
     /// Its index within the generation, from 0.
     pub index: u32,
-    /// Its parents' indices (empty for a random individual) in the generation it was bred
-    /// from: the previous generation in a generational run; in a steady-state run the
-    /// generation its birth was bred from, which the store does not record, and a member
-    /// kept from an earlier block keeps its birth's parents and operator.
+    /// Its parents' indices (empty for a random individual) in generation
+    /// [`IndividualRecord::parents_generation`]: for an elite (operator `elite`, a member
+    /// carried over, or in a steady-state run kept through a block) its own index in the
+    /// generation before.
     pub parents: Vec<u32>,
+    /// The generation its `parents` index: the previous generation in a generational run
+    /// and for an elite; for a steady-state run's newborn the generation its birth was bred
+    /// from ([`crate::evolve::steady::Blocks::source`]). `None` for an individual of
+    /// generation 0 (it has no parents), and for one stored before schema version 5, whose
+    /// parents are in the previous generation (in a steady-state run, the generation its
+    /// birth was bred from, not recorded).
+    pub parents_generation: Option<u32>,
     /// The operator that made it, e.g. `mutation`, `crossover`, `random`, `elite`.
     pub operator: String,
     /// The genome as text, for people (an L-system's `.lsys` text, say).
@@ -119,5 +126,6 @@ pub(super) fn individual_from_row(r: &Row<'_>) -> rusqlite::Result<IndividualRec
         neurons: r.get(11)?,
         reused: r.get(12)?,
         evaluation_key: r.get(13)?,
+        parents_generation: r.get(14)?,
     })
 }

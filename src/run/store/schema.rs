@@ -56,6 +56,8 @@ CREATE TABLE individual (
     reused      INTEGER NOT NULL CHECK (reused IN (0, 1)),
     evaluation_key TEXT CHECK (evaluation_key IS NULL OR length(evaluation_key) = 64),
     checksum    TEXT NOT NULL CHECK (length(checksum) = 16),
+    parents_generation INTEGER
+        CHECK (parents_generation IS NULL OR parents_generation BETWEEN 0 AND generation - 1),
     PRIMARY KEY (generation, individual)
 ) STRICT;
 ";
@@ -91,13 +93,21 @@ UPDATE generation SET individuals =
     (SELECT count(*) FROM individual WHERE individual.generation = generation.generation);
 ";
 
+/// Version 4 to 5: the generation an individual's parents index, NULL in every row stored
+/// before (whose checksums do not cover a NULL there: [`super::checksum::covered`]), so no
+/// row is rewritten.
+pub(super) const MIGRATE_4_TO_5: &str = "
+ALTER TABLE individual ADD COLUMN parents_generation INTEGER
+    CHECK (parents_generation IS NULL OR parents_generation BETWEEN 0 AND generation - 1);
+";
+
 /// Fills the `checksum` column of every row of every table (the last step of
 /// [`MIGRATE_3_TO_4`]), on the migration's transaction.
 pub(super) fn checksum_rows(conn: &Connection) -> rusqlite::Result<()> {
     for (table, columns) in [
         ("run", RUN_COLUMNS),
         ("generation", GENERATION_COLUMNS),
-        ("individual", INDIVIDUAL_COLUMNS_ALL),
+        ("individual", INDIVIDUAL_COLUMNS_V4),
     ] {
         let mut update = conn.prepare(&format!(
             "UPDATE {table} SET checksum = ?1 WHERE rowid = ?2"
@@ -148,8 +158,38 @@ const GENERATION_COLUMNS_V1: &[&str] = GENERATION_COLUMN_NAMES.split_at(9).0;
 /// The columns of the `generation` table in schema versions 2 and 3: the first eleven.
 const GENERATION_COLUMNS_V2: &[&str] = GENERATION_COLUMN_NAMES.split_at(11).0;
 
-/// The columns of the `individual` table (schema version 4), `checksum` last.
-const INDIVIDUAL_COLUMN_NAMES: [&str; 15] = [
+/// The columns of the `individual` table a checksum covers, in the order reads select them:
+/// those of schema version 4 ([`INDIVIDUAL_COLUMNS_V4`]), always covered, then
+/// `parents_generation` (schema version 5), covered where it is not NULL
+/// ([`super::checksum::covered`]).
+pub(super) const INDIVIDUAL_COLUMNS_ALL: &[&str] = &[
+    "generation",
+    "individual",
+    "parents",
+    "operator",
+    "genome_text",
+    "genome_json",
+    "fitness",
+    "status",
+    "terms_json",
+    "parts",
+    "joints",
+    "neurons",
+    "reused",
+    "evaluation_key",
+    "parents_generation",
+];
+
+/// The columns of the `individual` table a checksum always covers: those of schema
+/// version 4 but `checksum`, the first fourteen.
+pub(super) const INDIVIDUAL_COLUMNS_V4: &[&str] = INDIVIDUAL_COLUMNS_ALL.split_at(14).0;
+
+/// The columns of the `individual` table before schema version 3: the first twelve.
+const INDIVIDUAL_COLUMNS_V2: &[&str] = INDIVIDUAL_COLUMNS_ALL.split_at(12).0;
+
+/// The columns of the `individual` table (schema version 5) in the table's order: those of
+/// version 4, `checksum`, then the column version 5 added (`ALTER TABLE` adds it last).
+const INDIVIDUAL_COLUMN_NAMES: [&str; 16] = [
     "generation",
     "individual",
     "parents",
@@ -165,15 +205,10 @@ const INDIVIDUAL_COLUMN_NAMES: [&str; 15] = [
     "reused",
     "evaluation_key",
     "checksum",
+    "parents_generation",
 ];
 
-/// The columns of the `individual` table a checksum covers (all but `checksum`).
-pub(super) const INDIVIDUAL_COLUMNS_ALL: &[&str] = INDIVIDUAL_COLUMN_NAMES.split_at(14).0;
-
-/// The columns of the `individual` table before schema version 3: the first twelve.
-const INDIVIDUAL_COLUMNS_V2: &[&str] = INDIVIDUAL_COLUMN_NAMES.split_at(12).0;
-
-/// Each table's columns, in order, as `open` expects to find them (schema version 4).
+/// Each table's columns, in order, as `open` expects to find them (schema version 5).
 const TABLES: [(&str, &[&str]); 3] = [
     (
         "run",
@@ -297,12 +332,13 @@ pub(super) fn check_store(path: &Path, conn: &Connection) -> Result<i64, StoreEr
     }
     for (table, expected) in TABLES {
         let expected = match table {
+            "individual" if version == 4 => &INDIVIDUAL_COLUMN_NAMES[..15],
             _ if version >= 4 => expected,
             "run" => RUN_COLUMNS,
             "generation" if version < 2 => GENERATION_COLUMNS_V1,
             "generation" => GENERATION_COLUMNS_V2,
             "individual" if version < 3 => INDIVIDUAL_COLUMNS_V2,
-            _ => INDIVIDUAL_COLUMNS_ALL,
+            _ => INDIVIDUAL_COLUMNS_V4,
         };
         let mut columns: Vec<String> = Vec::new();
         conn.pragma(None, "table_info", table, |r| {

@@ -18,7 +18,11 @@
 ///   generation ([`crate::evolve::evaluator_version`]), and `generation.individuals`, how
 ///   many individuals it has. Older versions are migrated on writing: their rows are
 ///   checksummed as they are, their generations taken as evaluator version 1.
-pub const SCHEMA_VERSION: i64 = 4;
+/// - 5: `individual.parents_generation`, the generation an individual's `parents` index
+///   (NULL for one without parents, and in rows stored before). Version 4 is migrated on
+///   writing by adding the column: a NULL `parents_generation` is left out of a row's
+///   checksum, so the rows stored before keep theirs and still verify.
+pub const SCHEMA_VERSION: i64 = 5;
 
 /// The oldest schema version this program reads (and migrates when it writes).
 pub const OLDEST_SCHEMA_VERSION: i64 = 1;

@@ -2,17 +2,20 @@
 //! of births checked by hand; a run the same on 1, 2 and 3 threads, changed by its
 //! `in_flight`, its generation 0 the generational run's, each block of births one generation
 //! row in which every slot only ever improves; killed and resumed, or extended, to the same
-//! result; its settings in `config.toml` and bad values refused with exit code 2.
+//! result; its lineage stored (each newborn's parents in the generation its birth was bred
+//! from, each member kept through a block an elite of itself); its settings in `config.toml`
+//! and bad values refused with exit code 2.
 
 use std::path::Path;
 use std::process::Command;
 
+use ontogeny::cancel::Cancel;
 use ontogeny::encoding::{DirectGenome, Genome};
-use ontogeny::evolve::ga::{Algorithm, Individual, Operator, individual_rng};
-use ontogeny::evolve::steady::{Blocks, replace_worst};
-use ontogeny::run::check_ranks;
+use ontogeny::evolve::ga::{Algorithm, Evolution, Individual, Operator, individual_rng};
+use ontogeny::evolve::steady::{Blocks, Snapshot, replace_worst};
 use ontogeny::run::profile::read_profile;
 use ontogeny::run::store::RunStore;
+use ontogeny::run::{Run, check_ranks};
 use ontogeny::task::Evaluation;
 
 use super::{contents, scratch};
@@ -33,6 +36,7 @@ fn of_fitness(fitness: f64) -> Individual<DirectGenome> {
         size: (0, 0, 0),
         key: None,
         reused: false,
+        parents_generation: None,
     }
 }
 
@@ -96,7 +100,8 @@ fn steady_command(encoding: &str, out: &Path, gens: &str, extra: &[&str]) -> Com
     c
 }
 
-/// Every stored generation's individuals' fitness and genome, by slot.
+/// Every stored generation's individuals' fitness and genome (its JSON, lineage and all), by
+/// slot.
 fn slots(dir: &Path) -> Vec<Vec<(f64, String)>> {
     let store = RunStore::open_read_only(&dir.join("run.sqlite")).unwrap();
     let last = store.last_generation().unwrap().unwrap();
@@ -168,8 +173,9 @@ fn each_block_of_births_is_a_generation_whose_slots_only_improve() {
         assert_eq!(slots[k].len(), 12);
         let mut changed = 0;
         for (slot, (now, before)) in slots[k].iter().zip(&slots[k - 1]).enumerate() {
-            // A newborn takes a slot only from a worse individual.
-            if now.1 != before.1 {
+            // A newborn takes a slot only from a worse individual; a member not replaced is
+            // stored as an elite of itself.
+            if genome_alone(&now.1) != genome_alone(&before.1) {
                 changed += 1;
                 assert!(
                     now.0 > before.0,
@@ -177,6 +183,9 @@ fn each_block_of_births_is_a_generation_whose_slots_only_improve() {
                 );
             } else {
                 assert_eq!(now.0.to_bits(), before.0.to_bits());
+                let lineage: serde_json::Value = serde_json::from_str(&now.1).unwrap();
+                assert_eq!(lineage["operator"], "elite", "generation {k}, slot {slot}");
+                assert_eq!(lineage["parents"], serde_json::json!([slot]));
             }
         }
         assert!(changed <= 10, "generation {k}: {changed} slots changed");
@@ -192,6 +201,183 @@ fn each_block_of_births_is_a_generation_whose_slots_only_improve() {
         .output()
         .unwrap();
     succeeded(&shown);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A stored individual's genome JSON without its lineage (`parents`, `operator`).
+fn genome_alone(json: &str) -> serde_json::Value {
+    let mut value: serde_json::Value = serde_json::from_str(json).unwrap();
+    let object = value.as_object_mut().unwrap();
+    object.remove("parents");
+    object.remove("operator");
+    value
+}
+
+#[test]
+fn a_steady_runs_lineage_names_the_generation_each_newborn_was_bred_from() {
+    // Population 12, 2 survivors: blocks of C = 10 births; W = 4. Birth b is bred from the
+    // last generation g with 12 + 10 g <= b + 1 - 4 (generation 0 when none):
+    // generation 1's births 12..=21 from generation 0; generation 2's 22..=24 from 0 and
+    // 25..=31 from 1; generation 3's 32..=34 from 1 and 35..=41 from 2.
+    let sources: Vec<(u64, u32)> = (12..=21)
+        .map(|b| (b, 0))
+        .chain((22..=24).map(|b| (b, 0)))
+        .chain((25..=31).map(|b| (b, 1)))
+        .chain((32..=34).map(|b| (b, 1)))
+        .chain((35..=41).map(|b| (b, 2)))
+        .collect();
+    let dir = scratch("steady-lineage");
+    let out = dir.join("run");
+    succeeded(
+        &steady_command("direct", &out, "4", &["--in-flight", "4"])
+            .output()
+            .unwrap(),
+    );
+    let run = Run::<DirectGenome>::open_read_only(&out).unwrap();
+    let config = run.config();
+    let blocks = Blocks::of(&config.ga);
+    for &(birth, source) in &sources {
+        assert_eq!(blocks.source(birth), source, "birth {birth}");
+    }
+    // Every birth bred again, as the run bred it, from the generation by hand above.
+    let evolution = Evolution::<DirectGenome> {
+        settings: config.ga.clone(),
+        limits: run.limits().clone(),
+        task: config.task.clone(),
+        seed: config.seed,
+        init: None,
+        key_version: Default::default(),
+        key_tables: None,
+        walk_order: Default::default(),
+    };
+    let births: Vec<(u64, u32, Individual<DirectGenome>)> = sources
+        .iter()
+        .map(|&(birth, source)| {
+            let snapshot = Snapshot::new(&evolution, run.population(source).unwrap());
+            let born = evolution
+                .birth(birth, &snapshot, None, &Cancel::default())
+                .unwrap();
+            (birth, source, born.individual)
+        })
+        .collect();
+    let store = RunStore::open_read_only(&out.join("run.sqlite")).unwrap();
+    let mut two_back = 0;
+    let mut elites = 0;
+    for g in 1..=3u32 {
+        let before = store.individuals(g - 1).unwrap();
+        for (slot, i) in store.individuals(g).unwrap().into_iter().enumerate() {
+            let genome = genome_alone(&i.genome_json);
+            if i.operator == "elite" {
+                // Kept through block g: itself, in its slot, in generation g - 1.
+                assert_eq!(i.parents, [slot as u32], "{g}/{slot}");
+                assert_eq!(i.parents_generation, Some(g - 1), "{g}/{slot}");
+                assert_eq!(genome, genome_alone(&before[slot].genome_json));
+                assert_eq!(i.fitness.to_bits(), before[slot].fitness.to_bits());
+                elites += 1;
+                continue;
+            }
+            // A newborn of block g: one of its births, the same genome and parents.
+            let (birth, source, born) = births
+                .iter()
+                .find(|(birth, _, born)| {
+                    blocks.place(*birth).0 == g
+                        && serde_json::to_value(born).unwrap()["genome"] == genome["genome"]
+                        && genome["develop_seed"] == born.develop_seed
+                })
+                .unwrap_or_else(|| panic!("{g}/{slot} is none of block {g}'s births"));
+            assert_eq!(
+                i.parents_generation,
+                Some(*source),
+                "{g}/{slot}: birth {birth}"
+            );
+            assert_eq!(i.parents, born.parents, "{g}/{slot}: birth {birth}");
+            assert_eq!(
+                i.operator,
+                born.operator.name(),
+                "{g}/{slot}: birth {birth}"
+            );
+            assert!(!i.parents.is_empty());
+            let parents = store.individuals(*source).unwrap();
+            assert!(
+                i.parents.iter().all(|&p| (p as usize) < parents.len()),
+                "{g}/{slot}: {:?}",
+                i.parents
+            );
+            if *source + 2 == g {
+                two_back += 1;
+            }
+        }
+    }
+    assert!(elites > 0, "some members are kept through a block");
+    assert!(
+        two_back > 0,
+        "some newborn kept was bred two generations back"
+    );
+    // Generation 0 was made at random: no parents, and no generation of them.
+    for i in store.individuals(0).unwrap() {
+        assert_eq!((i.parents.len(), i.parents_generation), (0, None));
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_steady_run_stored_by_schema_version_4_resumes_to_the_same_run_and_records_lineage_on() {
+    let dir = scratch("steady-version-4");
+    let whole = dir.join("whole");
+    let flags = ["--in-flight", "4"];
+    succeeded(
+        &steady_command("direct", &whole, "4", &flags)
+            .output()
+            .unwrap(),
+    );
+    // The same run's first 2 generations as an ontogeny of schema version 4 stored them.
+    let old = dir.join("old");
+    succeeded(
+        &steady_command("direct", &old, "2", &flags)
+            .output()
+            .unwrap(),
+    );
+    let path = old.join("run.sqlite");
+    crate::util::make_steady_version_4(&path);
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), 4);
+    store.verify().unwrap();
+    let kept = store.individuals(1).unwrap();
+    assert!(kept.iter().all(|i| i.operator != "elite"), "{kept:?}");
+    drop(store);
+    let resumed = ontogeny_command()
+        .args(["evolve", "--gens", "4", "--resume"])
+        .arg(&old)
+        .output()
+        .unwrap();
+    succeeded(&resumed);
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), ontogeny::run::store::SCHEMA_VERSION);
+    store.verify().unwrap();
+    let fresh = RunStore::open_read_only(&whole.join("run.sqlite")).unwrap();
+    for g in 0..4 {
+        let (migrated, unbroken) = (store.individuals(g).unwrap(), fresh.individuals(g).unwrap());
+        assert_eq!(migrated.len(), 12);
+        for (m, u) in migrated.iter().zip(&unbroken) {
+            if g >= 2 {
+                // Stored after the migration: the unbroken run's rows, lineage and all.
+                assert_eq!(m, u);
+            } else {
+                // Stored before: the same creatures, their lineage as version 4 kept it.
+                assert_eq!(genome_alone(&m.genome_json), genome_alone(&u.genome_json));
+                assert_eq!(m.fitness.to_bits(), u.fitness.to_bits());
+                assert_eq!(m.parents_generation, None);
+            }
+        }
+        let (a, b) = (
+            &store.generations().unwrap()[g as usize],
+            &fresh.generations().unwrap()[g as usize],
+        );
+        assert_eq!(
+            (a.best, a.mean, a.evaluations),
+            (b.best, b.mean, b.evaluations)
+        );
+    }
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -1,7 +1,7 @@
-//! Older run stores: version 1, 2 and 3 files read as they are and migrated when opened for
-//! writing (their records checksummed as they are), a migration that fails part-way leaving
-//! the file as it was, a schema older than version 1 refused, and the cache's columns read
-//! back.
+//! Older run stores: version 1, 2, 3 and 4 files read as they are and migrated when opened
+//! for writing (their records checksummed as they are; a version-4 file's checksums kept),
+//! a migration that fails part-way leaving the file as it was, a schema older than version 1
+//! refused, and the cache's and the lineage's columns read back.
 
 use super::*;
 
@@ -360,7 +360,7 @@ fn a_migration_that_fails_part_way_leaves_the_store_as_it_was() {
     let message = err.to_string();
     assert!(
         message.contains(
-            "cannot migrate the schema from version 3 to 4 (nothing was changed): the disk is gone"
+            "cannot migrate the schema from version 3 to 5 (nothing was changed): the disk is gone"
         ),
         "{message}"
     );
@@ -379,4 +379,144 @@ fn a_migration_that_fails_part_way_leaves_the_store_as_it_was() {
         RunStore::open(&path).unwrap().schema_version(),
         SCHEMA_VERSION
     );
+}
+
+/// Every individual row's `checksum`, in generation and index order.
+fn stored_checksums(path: &Path) -> Vec<String> {
+    let conn = rusqlite::Connection::open(path).unwrap();
+    let mut stmt = conn
+        .prepare("SELECT checksum FROM individual ORDER BY generation, individual")
+        .unwrap();
+    stmt.query_map([], |r| r.get(0))
+        .unwrap()
+        .collect::<Result<_, _>>()
+        .unwrap()
+}
+
+/// The values of individual `index` of generation `generation` in `columns`, for
+/// [`crate::util::documented_checksum`], and its stored checksum.
+fn row_values(
+    path: &Path,
+    columns: &str,
+    generation: u32,
+    index: u32,
+) -> (Vec<rusqlite::types::Value>, String) {
+    let conn = rusqlite::Connection::open(path).unwrap();
+    let n = columns.split(',').count();
+    conn.query_row(
+        &format!(
+            "SELECT {columns}, checksum FROM individual WHERE generation = ?1 AND individual = ?2"
+        ),
+        [generation, index],
+        |r| {
+            let values = (0..n).map(|i| r.get(i)).collect::<Result<_, _>>()?;
+            Ok((values, r.get(n)?))
+        },
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_version_4_store_is_migrated_by_adding_the_parents_generation_and_its_rows_still_verify() {
+    use crate::util::{INDIVIDUAL_COLUMNS_V4, documented_checksum};
+    let dir = scratch("version-4");
+    let path = finished_store(&dir);
+    {
+        // Version 4: no parents_generation column.
+        let conn = rusqlite::Connection::open(&path).unwrap();
+        conn.execute_batch(
+            "ALTER TABLE individual DROP COLUMN parents_generation;
+             PRAGMA user_version = 4;
+             PRAGMA wal_checkpoint(TRUNCATE);",
+        )
+        .unwrap();
+    }
+    // Its rows hold the checksums version 4 documents: over its fourteen columns.
+    let (values, stored) = row_values(&path, INDIVIDUAL_COLUMNS_V4, 1, 2);
+    assert_eq!(documented_checksum("individual", &values), stored);
+    let checksums = stored_checksums(&path);
+    let before = fs::read(&path).unwrap();
+    let store = RunStore::open_read_only(&path).unwrap();
+    assert_eq!(store.schema_version(), 4);
+    store.verify().unwrap();
+    let old = held(&store);
+    assert!(
+        old.2
+            .iter()
+            .flatten()
+            .all(|i| i.parents_generation.is_none()),
+        "no parents' generation in a version-4 store"
+    );
+    drop(store);
+    assert_eq!(
+        fs::read(&path).unwrap(),
+        before,
+        "a read-only open changed it"
+    );
+
+    // Migrated: the column added, every row as it was, its checksum untouched and verified.
+    let mut store = RunStore::open(&path).unwrap();
+    assert_eq!(store.schema_version(), SCHEMA_VERSION);
+    store.verify().unwrap();
+    assert_eq!(held(&store), old);
+    assert_eq!(stored_checksums(&path), checksums, "no row was rewritten");
+    // A new generation records where its parents are, and its checksum covers it.
+    let mut new = individuals(2, [1.0; 4]);
+    for i in &mut new[1..] {
+        i.parents_generation = Some(1);
+    }
+    store.write_generation(&generation(2), &new).unwrap();
+    assert_eq!(store.individuals(2).unwrap(), new);
+    let columns = format!("{INDIVIDUAL_COLUMNS_V4}, parents_generation");
+    let (values, stored) = row_values(&path, &columns, 2, 1);
+    assert_eq!(values[14], rusqlite::types::Value::Integer(1));
+    assert_eq!(documented_checksum("individual", &values), stored);
+    // Individual 0 has no parents: its NULL is left out, as in a version-4 row.
+    let (values, stored) = row_values(&path, INDIVIDUAL_COLUMNS_V4, 2, 0);
+    assert_eq!(documented_checksum("individual", &values), stored);
+    // A parents' generation that is not an earlier generation breaks the schema.
+    let mut bad = individuals(3, [1.0; 4]);
+    bad[1].parents_generation = Some(3);
+    assert!(matches!(
+        store.write_generation(&generation(3), &bad),
+        Err(StoreError::InvalidRecord { .. })
+    ));
+    drop(store);
+    rusqlite::Connection::open(&path)
+        .unwrap()
+        .execute_batch("PRAGMA wal_checkpoint(TRUNCATE);")
+        .unwrap();
+    // A parents' generation changed behind the store's back, or given to a row stored
+    // before, is refused naming the record.
+    for (edit, record) in [
+        (
+            "UPDATE individual SET parents_generation = 0 WHERE generation = 2 AND individual = 1",
+            "individual 1 of generation 2",
+        ),
+        (
+            "UPDATE individual SET parents_generation = NULL WHERE generation = 2 AND individual = 3",
+            "individual 3 of generation 2",
+        ),
+        (
+            "UPDATE individual SET parents_generation = 0 WHERE generation = 1 AND individual = 2",
+            "individual 2 of generation 1",
+        ),
+    ] {
+        let copy = dir.join("edited.sqlite");
+        fs::copy(&path, &copy).unwrap();
+        rusqlite::Connection::open(&copy)
+            .unwrap()
+            .execute_batch(edit)
+            .unwrap();
+        let err = RunStore::open_read_only(&copy)
+            .unwrap()
+            .verify()
+            .unwrap_err();
+        assert!(
+            err.to_string()
+                .contains(&format!("the record of {record} is damaged")),
+            "{edit}: {err}"
+        );
+        fs::remove_file(&copy).unwrap();
+    }
 }
