@@ -16,9 +16,10 @@ use std::time::{Duration, Instant};
 
 use rayon::{ThreadPool, ThreadPoolBuilder};
 
+use super::conclude::{Concluded, fine_walk};
 use super::pool::message;
 use super::progress::{FineToFind, Progress};
-use super::{Concluded, GenerationReport, Run, RunError, fine_walk};
+use super::{GenerationReport, Run, RunError};
 use crate::cancel::Interrupted;
 use crate::encoding::Genome;
 use crate::evolve::ga::{Fallbacks, Individual};
