@@ -28,6 +28,7 @@ use crate::lang::{Diagnostic, DiagnosticKind, Source};
 use crate::output;
 use crate::task::{Evaluation, TaskTables};
 
+mod beside;
 mod conclude;
 pub mod derived;
 mod error;

@@ -16,28 +16,6 @@ use crate::run::store::{FineEvaluation, GenerationRecord, IndividualRecord};
 use crate::task::TaskSpec;
 
 impl<G: Genome> Run<G> {
-    /// One generation: bred and evaluated, its best re-walked at the fine reference, stored,
-    /// the derived files advanced, `observer` told.
-    pub(super) fn generation(
-        &mut self,
-        progress: &mut Progress<G>,
-        generation: u32,
-        observer: &mut dyn FnMut(&GenerationReport),
-    ) -> Result<(), RunError> {
-        self.cancel.check()?;
-        let started = Instant::now();
-        let mut times = GenerationTimes::default();
-        let evaluations = self.breed(progress, generation, &mut times)?;
-        self.conclude(
-            progress,
-            generation,
-            (evaluations, None),
-            times,
-            started,
-            observer,
-        )
-    }
-
     /// The end of generation `generation`, bred and evaluated since `started` (`evaluations`
     /// made, and how many of them reused a stored evaluation where its members do not say,
     /// as a steady-state block's births that reused one and were not kept, for the report

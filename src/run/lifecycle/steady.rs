@@ -1,20 +1,26 @@
 //! The run loop of a steady-state run ([`crate::evolve::steady`]): generation 0 as the
 //! generational algorithm makes it, then births handed to this process's threads as soon as
-//! the generation they are bred from is stored, evaluated in any order, integrated in birth
-//! order through a reorder buffer, and every block of births stored as a generation. The
-//! threads never wait for a generation's end: only the births of the block after next wait.
+//! the generation they are bred from is integrated, evaluated in any order, integrated in
+//! birth order through a reorder buffer, and every block of births stored as a generation once
+//! its best's fine reference figure, walked beside the births that follow
+//! ([`super::beside`]), is in. The threads never wait for a generation's end: only the births
+//! of the block after next wait.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, RwLock};
+use std::thread::Scope;
 use std::time::Instant;
 
+use rayon::ThreadPool;
+
+use super::beside::{Evaluated, Pending, fine_pool};
 use super::pool::{Panicked, with_workers};
 use super::progress::Progress;
 use super::{GenerationReport, Run, RunError};
 use crate::cancel::{Cancel, Interrupted};
 use crate::encoding::Genome;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
-use crate::evolve::ga::Operator;
+use crate::evolve::ga::{Individual, Operator};
 use crate::evolve::steady::{Birth, Blocks, Lookup, Snapshot, Standings};
 use crate::evolve::timing::{GenerationTimes, WalkTime};
 
@@ -57,16 +63,56 @@ impl Block {
 
 impl<G: Genome> Run<G> {
     /// Runs a steady-state run's remaining generations (generation 0 first, if the store has
-    /// none), calling `observer` after each.
+    /// none), calling `observer` after each is stored. Each generation's best is re-walked at
+    /// the fine reference beside the births that follow it ([`super::beside`]): births bred
+    /// from a generation start as soon as its last birth is integrated, and the generation is
+    /// stored once its figure is in, before the next one.
     pub(super) fn run_steady(
         &mut self,
         progress: &mut Progress<G>,
         observer: &mut dyn FnMut(&GenerationReport),
     ) -> Result<(), RunError> {
+        let fine_pool = fine_pool();
+        std::thread::scope(|scope| {
+            let mut pending: Option<Pending<'_, G>> = None;
+            let pool = fine_pool.as_ref();
+            let outcome = self.steady_blocks(scope, pool, progress, &mut pending, observer);
+            self.finish_beside(progress, pending, outcome, observer)
+        })
+    }
+
+    /// [`Run::run_steady`]'s generations, each handed over to `pending` as it is integrated.
+    fn steady_blocks<'scope>(
+        &mut self,
+        scope: &'scope Scope<'scope, '_>,
+        pool: Option<&'scope ThreadPool>,
+        progress: &mut Progress<G>,
+        pending: &mut Option<Pending<'scope, G>>,
+        observer: &mut dyn FnMut(&GenerationReport),
+    ) -> Result<(), RunError>
+    where
+        G: 'scope,
+        G::Limits: 'scope,
+    {
         let generations = self.config.ga.generations as u32;
+        // Whether the last generation was bred here and is not stored yet.
+        let mut fresh = false;
         if progress.next == 0 && generations > 0 {
-            self.generation(progress, 0, observer)?;
+            self.cancel.check()?;
+            let started = Instant::now();
+            let mut times = GenerationTimes::default();
+            let evaluations = self.breed(progress, 0, &mut times)?;
+            let evaluated = Evaluated {
+                generation: 0,
+                evaluations,
+                reused: None,
+                times,
+                started,
+                evaluated: started.elapsed().as_secs_f64(),
+            };
+            self.hand_over(scope, pool, progress, pending, evaluated, observer)?;
             progress.next = 1;
+            fresh = true;
         }
         let Some(last) = progress.next.checked_sub(1) else {
             return Ok(());
@@ -86,7 +132,9 @@ impl<G: Genome> Run<G> {
             };
             snapshots.insert(g, Arc::new(Snapshot::new(&evolution, population)));
         }
-        let lookup = self.stored_lookup(last)?.map(|l| Arc::new(RwLock::new(l)));
+        let lookup = self
+            .stored_lookup(last, &progress.population, fresh)?
+            .map(|l| Arc::new(RwLock::new(l)));
         let threads = rayon::current_num_threads().max(1);
         let mut standings = Standings::of(&progress.population);
         let cancel = self.cancel.clone();
@@ -102,17 +150,22 @@ impl<G: Genome> Run<G> {
             // A panic of this thread stops the births in flight at their next control step.
             let _stop = CancelOnUnwind(self.cancel.clone());
             let mut bred = integrated;
-            let mut stored = last;
+            // The last generation whose births are all integrated: births bred from it may
+            // start.
+            let mut ready = last;
+            let send = |bred: &mut u64, ready: u32, snapshots: &BTreeMap<u32, Arc<Snapshot<G>>>| {
+                while *bred < end && blocks.source(*bred) <= ready {
+                    let snapshot = snapshots[&blocks.source(*bred)].clone();
+                    // The workers hold the receiver until this function returns.
+                    let _ = orders.send((*bred, snapshot));
+                    *bred += 1;
+                }
+            };
             let mut waiting: BTreeMap<u64, Birth<G>> = BTreeMap::new();
             let mut block = Block::new();
             let outcome = (|| -> Result<(), RunError> {
                 while integrated < end {
-                    while bred < end && blocks.source(bred) <= stored {
-                        let snapshot = snapshots[&blocks.source(bred)].clone();
-                        // The workers hold the receiver until this function returns.
-                        let _ = orders.send((bred, snapshot));
-                        bred += 1;
-                    }
+                    send(&mut bred, ready, &snapshots);
                     let birth = match births.recv() {
                         Ok(Ok(birth)) => birth?,
                         Ok(Err(Panicked(message))) => return Err(RunError::Panicked(message)),
@@ -122,24 +175,30 @@ impl<G: Genome> Run<G> {
                     while let Some(birth) = waiting.remove(&integrated) {
                         self.integrate(progress, &mut standings, &mut block, birth);
                         integrated += 1;
-                        if integrated < blocks.end_of(stored + 1) {
+                        if integrated < blocks.end_of(ready + 1) {
                             continue;
                         }
-                        stored += 1;
+                        ready += 1;
                         let done = std::mem::replace(&mut block, Block::new());
-                        self.conclude_block(progress, stored, done, observer)?;
-                        // The next block's clock starts once this one is stored.
-                        block.started = Instant::now();
+                        let evaluated = done.started.elapsed().as_secs_f64();
+                        mark_survivors(progress, ready, &done.replaced);
+                        // The births bred from this generation go out before anything waits.
                         if let Some(lookup) = &lookup {
                             lookup
                                 .write()
                                 .unwrap_or_else(|poisoned| poisoned.into_inner())
-                                .add(stored, &progress.population);
+                                .add(ready, &progress.population);
                         }
                         let snapshot = Snapshot::new(&evolution, progress.population.clone());
-                        snapshots.insert(stored, Arc::new(snapshot));
+                        snapshots.insert(ready, Arc::new(snapshot));
+                        send(&mut bred, ready, &snapshots);
                         let needed = blocks.source(bred.min(end.saturating_sub(1)));
                         snapshots.retain(|&g, _| g >= needed);
+                        self.conclude_block(
+                            scope, pool, progress, pending, ready, done, evaluated, observer,
+                        )?;
+                        // The next block's clock starts once this one is handed over.
+                        block.started = Instant::now();
                     }
                 }
                 Ok(())
@@ -170,54 +229,89 @@ impl<G: Genome> Run<G> {
         }
     }
 
-    /// Stores generation `generation`, the population once `block`'s births are integrated.
-    fn conclude_block(
+    /// Hands generation `generation`, the population once `block`'s births are integrated
+    /// (in `evaluated` seconds), over to be stored ([`Run::hand_over`]), after the one
+    /// `pending` holds.
+    #[allow(clippy::too_many_arguments)]
+    fn conclude_block<'scope>(
         &mut self,
+        scope: &'scope Scope<'scope, '_>,
+        pool: Option<&'scope ThreadPool>,
         progress: &mut Progress<G>,
+        pending: &mut Option<Pending<'scope, G>>,
         generation: u32,
         block: Block,
+        evaluated: f64,
         observer: &mut dyn FnMut(&GenerationReport),
-    ) -> Result<(), RunError> {
+    ) -> Result<(), RunError>
+    where
+        G: 'scope,
+        G::Limits: 'scope,
+    {
+        if let Some(previous) = pending.take() {
+            self.conclude_pending(progress, previous, observer)?;
+        }
+        // The previous generation's best, replaced in this block, is not this one's elite.
         if let Some((p, _)) = progress.previous_best
             && block.replaced.contains(&(p as usize))
         {
             progress.previous_best = None;
         }
-        // As a generational run's elite, a member born before this block is stored as not
-        // reused (`reused` marks the births of this block that reused an evaluation: the
-        // generation's count of reused evaluations is the block's, kept or not), made by
-        // `elite` from itself, its own slot in the generation before.
-        for (slot, member) in progress.population.iter_mut().enumerate() {
-            if !block.replaced.contains(&slot) {
-                member.reused = false;
-                member.operator = Operator::Elite;
-                member.parents = vec![slot as u32];
-                member.parents_generation = generation.checked_sub(1);
-            }
-        }
         let births = block.walks.len() as u64;
         let times = GenerationTimes {
-            evaluating: block.started.elapsed().as_secs_f64(),
+            evaluating: evaluated,
             walks: block.walks,
             ..GenerationTimes::default()
         };
-        let counts = (births, Some(block.reused));
-        self.conclude(progress, generation, counts, times, block.started, observer)
+        let evaluated = Evaluated {
+            generation,
+            evaluations: births,
+            reused: Some(block.reused),
+            times,
+            started: block.started,
+            evaluated,
+        };
+        self.hand_over(scope, pool, progress, pending, evaluated, observer)
     }
 
-    /// The evaluations a steady-state birth may reuse: every member of the stored generations
-    /// up to `last` that this program's evaluator made, by key; `None` with the cache off.
-    fn stored_lookup(&self, last: u32) -> Result<Option<Lookup>, RunError> {
+    /// The evaluations a steady-state birth may reuse: every member of the generations up to
+    /// `last` (`population`; `fresh` when it was made here and is not stored yet) that this
+    /// program's evaluator made, by key; `None` with the cache off.
+    fn stored_lookup(
+        &self,
+        last: u32,
+        population: &[Individual<G>],
+        fresh: bool,
+    ) -> Result<Option<Lookup>, RunError> {
         if !self.config.cache {
             return Ok(None);
         }
         let current = self.store.evaluators()?;
         let mut lookup = Lookup::default();
         for g in 0..=last {
-            if current.contains(&(g, EVALUATOR_VERSION)) {
-                lookup.add(g, &self.population(g)?);
+            let made_here = fresh && g == last;
+            if made_here || current.contains(&(g, EVALUATOR_VERSION)) {
+                match g == last {
+                    true => lookup.add(g, population),
+                    false => lookup.add(g, &self.population(g)?),
+                }
             }
         }
         Ok(Some(lookup))
+    }
+}
+
+/// Marks the members of generation `generation` not `replaced` in its block as a
+/// generational run's elite are stored: not reused (`reused` marks the births of this block
+/// that reused an evaluation: the generation's count of reused evaluations is the block's,
+/// kept or not), made by `elite` from itself, its own slot in the generation before.
+fn mark_survivors<G>(progress: &mut Progress<G>, generation: u32, replaced: &BTreeSet<usize>) {
+    for (slot, member) in progress.population.iter_mut().enumerate() {
+        if !replaced.contains(&slot) {
+            member.reused = false;
+            member.operator = Operator::Elite;
+            member.parents = vec![slot as u32];
+            member.parents_generation = generation.checked_sub(1);
+        }
     }
 }
