@@ -38,13 +38,15 @@ pub struct GenerationProfile {
     /// ... in the evaluator's batch of walks (the part that runs in parallel over threads).
     pub evaluating: f64,
     /// ... waiting for the re-walk of the generation's best at the fine reference setting:
-    /// in a generational run it walks beside the next generation, so this is the part not
-    /// hidden behind that generation's work (0 when it is not re-walked, or its fine
-    /// evaluation was known); in a steady-state run's blocks, the re-walk itself.
+    /// it walks beside the run's next work (a generational run's next generation, a
+    /// steady-state run's next block of births), so this is the part not hidden behind that
+    /// work (0 when it is not re-walked, or its fine evaluation was known); where
+    /// `fine_walk` is `None`, the re-walk itself.
     pub fine: f64,
-    /// In a generational run, whose fine re-walk walks beside the next generation: the walk's
-    /// own seconds (0 when its figure was known without one). `None` where `fine` is the
-    /// walk itself: a steady-state run, and profiles written before the walk went beside.
+    /// The fine re-walk's own seconds when it walked beside the run's next work (0 when its
+    /// figure was known without one). `None` where `fine` is the walk itself: a run whose
+    /// system refused the re-walk a thread of its own, and profiles written before the walk
+    /// went beside.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fine_walk: Option<f64>,
     /// ... storing the generation and advancing the derived files.

@@ -1,9 +1,9 @@
 //! The fine reference re-walk of a generation's best, walked beside the run's next work: on a
 //! thread of its own (with a one-thread pool of its own, so that it takes nothing from the
 //! run's threads and never waits on them). A generation whose best needs the walk is set
-//! aside ([`Pending`]) and stored once its figure is in, before the next generation is; one
-//! whose figure is known (an elite copy of the previous best, the cache's, or none asked) is
-//! stored at once. Both algorithms use it: a generational run walks it beside the next
+//! aside ([`Pending`]) and stored when the next generation (or block of births) is evaluated,
+//! once its figure is in, before that one is; one whose figure is known (an elite copy of
+//! the previous best, the cache's, or none asked) is stored at once. Both algorithms use it: a generational run walks it beside the next
 //! generation's breeding and walks, a steady-state run beside the next block's births.
 //!
 //! The fine figure only reports, and it is a pure function of the genome and the task, so the
@@ -118,12 +118,19 @@ impl<G: Genome> Run<G> {
                 let limits = self.evolution.limits.clone();
                 let task = self.fine_task();
                 let cancel = self.cancel.clone();
-                let walking = scope.spawn(move || {
-                    let started = Instant::now();
-                    let fine =
-                        pool.install(|| fine_walk(&genome, &limits, develop_seed, &task, &cancel));
-                    (fine, started.elapsed())
-                });
+                let spawned = std::thread::Builder::new()
+                    .name("fine re-walk".to_string())
+                    .spawn_scoped(scope, move || {
+                        let started = Instant::now();
+                        let fine = pool
+                            .install(|| fine_walk(&genome, &limits, develop_seed, &task, &cancel));
+                        (fine, started.elapsed())
+                    });
+                let Ok(walking) = spawned else {
+                    // The system refused a thread: walked here, before it is stored.
+                    let counts = (evaluations, reused);
+                    return self.conclude(progress, generation, counts, times, started, observer);
+                };
                 (Some(best), Fine::Walking(walking))
             }
         };

@@ -95,7 +95,7 @@ impl<G: Genome> Run<G> {
         G::Limits: 'scope,
     {
         let generations = self.config.ga.generations as u32;
-        // Whether the last generation was bred here and is not stored yet.
+        // Whether the last generation was bred in this call (it may not be stored yet).
         let mut fresh = false;
         if progress.next == 0 && generations > 0 {
             self.cancel.check()?;
@@ -180,7 +180,6 @@ impl<G: Genome> Run<G> {
                         }
                         ready += 1;
                         let done = std::mem::replace(&mut block, Block::new());
-                        let evaluated = done.started.elapsed().as_secs_f64();
                         mark_survivors(progress, ready, &done.replaced);
                         // The births bred from this generation go out before anything waits.
                         if let Some(lookup) = &lookup {
@@ -194,6 +193,7 @@ impl<G: Genome> Run<G> {
                         send(&mut bred, ready, &snapshots);
                         let needed = blocks.source(bred.min(end.saturating_sub(1)));
                         snapshots.retain(|&g, _| g >= needed);
+                        let evaluated = done.started.elapsed().as_secs_f64();
                         self.conclude_block(
                             scope, pool, progress, pending, ready, done, evaluated, observer,
                         )?;
@@ -275,8 +275,9 @@ impl<G: Genome> Run<G> {
     }
 
     /// The evaluations a steady-state birth may reuse: every member of the generations up to
-    /// `last` (`population`; `fresh` when it was made here and is not stored yet) that this
-    /// program's evaluator made, by key; `None` with the cache off.
+    /// `last` (`population`, when `fresh`: bred in this call, perhaps not stored yet) that
+    /// this program's evaluator made, by key, as the store holds them; `None` with the cache
+    /// off.
     fn stored_lookup(
         &self,
         last: u32,
@@ -291,7 +292,7 @@ impl<G: Genome> Run<G> {
         for g in 0..=last {
             let made_here = fresh && g == last;
             if made_here || current.contains(&(g, EVALUATOR_VERSION)) {
-                match g == last {
+                match made_here {
                     true => lookup.add(g, population),
                     false => lookup.add(g, &self.population(g)?),
                 }
