@@ -252,6 +252,10 @@ impl<G: Genome> Evolution<G> {
         cancel: &Cancel,
         times: &mut GenerationTimes,
     ) -> Result<Vec<Individual<G>>, Interrupted> {
+        #[cfg(feature = "mpi")]
+        if super::remote::births_go_remote(self) {
+            return super::remote::evaluate_all(self, unborn, generation, cache, cancel, times);
+        }
         let fresh = self.task.trials.fresh;
         let started = Instant::now();
         let mut developed: Vec<Developed<G>> = unborn
