@@ -29,10 +29,14 @@ use super::{Batch, OWN_WALK_NANOS, REPLY, REQUEST, Setup, fail, process_cpu, rec
 use crate::creature::Creature;
 use crate::task::TaskSpec;
 
-/// The shortest and longest sleeps of rank 0's main thread between two looks for requests.
+/// The shortest and longest sleeps of rank 0's main thread between two looks for requests
+/// when one may come any time.
 const MIN_PAUSE: Duration = Duration::from_micros(20);
 const MAX_PAUSE: Duration = Duration::from_millis(50);
-/// The longest sleep before rank 0 knows how long a job of the batch takes.
+/// The longest sleep while a request is expected at a known time, or none can come (its
+/// threads wake it at the batch's end).
+const LONG_PAUSE: Duration = Duration::from_secs(1);
+/// The least of the longest sleeps (for jobs shorter than two of it).
 const FIRST_PAUSE: Duration = Duration::from_millis(1);
 
 /// Rank 0's view of a worker.
@@ -49,6 +53,13 @@ pub(super) struct Worker {
     task_version: u64,
     /// The version of the setup it has (0: none).
     setup_version: u64,
+    /// Whether its last answer held its last jobs of the batch.
+    last: bool,
+    /// When rank 0 last answered it.
+    answered: Option<Instant>,
+    /// How long a job of the current batch takes it, as its requests show (`None`: not
+    /// known yet).
+    length: Option<Duration>,
 }
 
 /// What rank 0 knows of the job between batches.
@@ -64,6 +75,9 @@ pub(super) struct Master {
     births: u64,
     /// Whether to count CPU time (`ONTOGENY_MPI_TIMING`).
     timing: bool,
+    /// How long one of this process's jobs took in the last batch of births developed and
+    /// of walks, on average.
+    job_length: [Option<Duration>; 2],
     /// What [`Master::report`] says.
     counts: Counts,
 }
@@ -139,6 +153,33 @@ impl<'a, 's> Outgoing<'a, 's> {
     }
 }
 
+/// The average of `jobs` lengths summing to `nanos` (`None` before the first).
+fn average(nanos: &AtomicUsize, jobs: &AtomicUsize) -> Option<Duration> {
+    match jobs.load(Ordering::SeqCst) {
+        0 => None,
+        jobs => Some(Duration::from_nanos(
+            (nanos.load(Ordering::SeqCst) / jobs) as u64,
+        )),
+    }
+}
+
+/// When `worker` will send its next request, for jobs of the length its requests showed or
+/// else of `length` (`None` where either is
+/// unknown), counted from rank 0's last answer: once it has done all it holds after its last jobs,
+/// otherwise once it holds one a thread; three quarters of that, since its threads may be
+/// faster than this process's. A worker that waits for an answer sends none.
+fn expected(worker: &Worker, length: Option<Duration>) -> Option<Instant> {
+    if worker.waiting || worker.in_flight == 0 {
+        return None;
+    }
+    let threads = worker.threads.max(1);
+    let before = worker
+        .in_flight
+        .saturating_sub(if worker.last { 0 } else { threads });
+    let length = worker.length.or(length)?;
+    Some(worker.answered? + length * (before as u32) * 3 / (4 * threads as u32))
+}
+
 /// `cpu` per evaluation of `evaluations`, in microseconds, as words.
 fn per_evaluation(cpu: Option<Duration>, evaluations: u64) -> String {
     match cpu {
@@ -161,6 +202,7 @@ impl Master {
             setup_version: 0,
             births: 0,
             timing,
+            job_length: [None, None],
             counts: Counts {
                 main_cpu: Some(Duration::ZERO),
                 process_joined: process_cpu(),
@@ -199,6 +241,9 @@ impl Master {
         }
         if batch.new_births {
             self.births += 1;
+        }
+        for worker in &mut self.workers {
+            worker.length = None;
         }
         let threads = rayon::current_num_threads();
         let mut dealt = vec![threads];
@@ -266,10 +311,10 @@ impl Master {
                     used: 0,
                     sending: Vec::new(),
                 };
+                let mut pause = MIN_PAUSE;
                 for rank in 1..world.size() {
                     self.answer_if_waiting(&mut outgoing, rank, task, batch, &queues, all_threads);
                 }
-                let mut pause = MIN_PAUSE;
                 while done.load(Ordering::SeqCst) < size {
                     outgoing.progress();
                     let Some(matched) = world
@@ -278,14 +323,22 @@ impl Master {
                     else {
                         std::thread::park_timeout(pause);
                         self.counts.wakes += 1;
-                        let longest = match local_jobs.load(Ordering::SeqCst) {
-                            0 => FIRST_PAUSE,
-                            jobs => Duration::from_nanos(
-                                (local_nanos.load(Ordering::SeqCst) / jobs / 2) as u64,
-                            )
-                            .clamp(FIRST_PAUSE, MAX_PAUSE),
+                        let length = average(&local_nanos, &local_jobs)
+                            .or(self.job_length[usize::from(!batch.new_births)]);
+                        let longest =
+                            length.map_or(MAX_PAUSE, |l| (l / 2).clamp(FIRST_PAUSE, MAX_PAUSE));
+                        // Asleep until the first request rank 0 expects (or, with none to
+                        // expect, until its threads wake it), then looking more and more
+                        // often.
+                        let now = Instant::now();
+                        let busy: Vec<&Worker> =
+                            self.workers.iter().filter(|w| !w.waiting).collect();
+                        let next = busy.iter().filter_map(|w| expected(w, length)).min();
+                        pause = match next {
+                            _ if busy.is_empty() => LONG_PAUSE,
+                            Some(due) if due > now + MIN_PAUSE => (due - now).min(LONG_PAUSE),
+                            _ => (pause * 2).min(longest),
                         };
-                        pause = (pause * 2).min(longest);
                         continue;
                     };
                     let (bytes, status) = matched.matched_receive_vec::<u8>();
@@ -297,6 +350,11 @@ impl Master {
                     let worker = &mut self.workers[rank as usize - 1];
                     worker.threads = request.threads.max(1) as usize;
                     worker.in_flight = worker.in_flight.saturating_sub(request.outcomes.len());
+                    if let (Some(answered), Ok(done @ 1..)) =
+                        (worker.answered, u32::try_from(request.outcomes.len()))
+                    {
+                        worker.length = Some(answered.elapsed() * worker.threads as u32 / done);
+                    }
                     worker.waiting = true;
                     for (index, outcome) in request.outcomes {
                         let fits = matches!(
@@ -322,6 +380,9 @@ impl Master {
             });
         });
         self.counts.batches += batch_started.elapsed();
+        if let Some(length) = average(&local_nanos, &local_jobs) {
+            self.job_length[usize::from(!batch.new_births)] = Some(length);
+        }
         if let Some(payload) = panicked.into_inner().unwrap_or_else(|p| p.into_inner()) {
             std::panic::resume_unwind(payload);
         }
@@ -394,6 +455,8 @@ impl Master {
                 .collect(),
             last: jobs.len() < wanted,
         };
+        worker.last = jobs.len() < wanted;
+        worker.answered = Some(Instant::now());
         let bytes = outgoing.send(rank, encode(&reply));
         worker.task_version = task_version;
         worker.setup_version = setup_version;
