@@ -19,8 +19,6 @@ pub mod mpi;
 pub mod operator;
 pub mod ranking;
 pub mod record;
-#[cfg(feature = "mpi")]
-mod remote;
 pub mod settings;
 pub mod steady;
 pub mod timing;

@@ -2,7 +2,7 @@
 //!
 //! Rank 0 runs the genetic algorithm and owns the run directory; every other rank is a
 //! worker that does the jobs rank 0 sends it and sends their outcomes back. A generation's
-//! births go in two phases ([`super::remote`]): rank 0 sends genomes with their development
+//! births go in two phases (`ga/remote.rs`): rank 0 sends genomes with their development
 //! seeds, and the ranks develop and key them, each holding the creatures it developed and
 //! sending back their keys and sizes; rank 0 de-duplicates against the cache and within the
 //! generation, then sends each holder the walks of its own creatures (an index and a unit, a
@@ -35,14 +35,15 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use rayon::prelude::*;
 
-pub(super) use super::remote::Setup;
 use crate::creature::Creature;
 use crate::task::{Evaluation, TaskSpec, Unit};
 
+mod grow;
 mod master;
 mod queue;
 mod wire;
 mod worker;
+pub(super) use grow::{Grown, Setup, Sizes};
 use master::{Master, Worker};
 pub(super) use wire::{Bytes, Outcome, Work, encode};
 use wire::{Reply, Request};

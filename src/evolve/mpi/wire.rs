@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::task::{Evaluation, Unit};
 
-use super::super::remote::Sizes;
+use super::grow::Sizes;
 
 /// Bytes already encoded (a genome, an encoding's limits), which MessagePack carries as one
 /// binary string rather than as an array of numbers.
@@ -127,7 +127,7 @@ mod tests {
     use super::*;
     use crate::creature::Creature;
     use crate::develop::{BuildOptions, grow};
-    use crate::evolve::remote::Setup;
+    use crate::evolve::mpi::Setup;
     use crate::lsystem::{DeriveOptions, LSystem};
     use crate::sim::WorldSpec;
     use crate::sim::world_spec::Slope;

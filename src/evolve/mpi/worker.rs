@@ -7,7 +7,7 @@ use std::sync::{Arc, Mutex, MutexGuard, mpsc};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 
-use super::super::remote::{Grower, Grown};
+use super::grow::{Grower, Grown};
 use super::{Outcome, REPLY, REQUEST, Reply, Request, Setup, Work, encode, fail, receive};
 use crate::creature::Creature;
 use crate::task::TaskSpec;
@@ -54,7 +54,7 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
                     task = Some(Arc::new(sent));
                 }
                 if let Some(setup) = setup {
-                    grower = Some(super::super::remote::grower(&setup)?);
+                    grower = Some(super::grow::grower(&setup)?);
                 }
                 if now != births {
                     births = now;
@@ -150,7 +150,7 @@ mod tests {
 
     use super::super::super::habitats::develop_with_seedlings;
     use super::super::super::key::KeyVersion;
-    use super::super::super::remote::{Grown, Setup, grower};
+    use super::super::grow::{Grown, Setup, grower};
     use super::super::{Bytes, Work, encode};
     use crate::creature::Creature;
     use crate::encoding::{
