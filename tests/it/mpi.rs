@@ -154,6 +154,9 @@ fn workers_develop_and_key_what_they_walk_and_a_growing_run_is_the_run_of_one_pr
     let _ = std::fs::remove_dir_all(dir);
 }
 
+/// A run's command, given its output directory.
+type Run<'a> = dyn Fn(&Path) -> Command + 'a;
+
 #[test]
 fn other_encodings_a_thrower_and_fresh_trials_over_two_ranks_are_the_run_of_one_process() {
     let dir = scratch("kinds");
@@ -171,7 +174,7 @@ fn other_encodings_a_thrower_and_fresh_trials_over_two_ranks_are_the_run_of_one_
             .unwrap()
             .contains("fresh = true")
     );
-    let runs: Vec<(&str, Box<dyn Fn(&Path) -> Command>)> = vec![
+    let runs: Vec<(&str, Box<Run<'_>>)> = vec![
         (
             "continuous",
             Box::new(|out| evolve("lsystem-continuous", out, "2", "0.5")),

@@ -362,8 +362,9 @@ impl Master {
                             (Outcome::Developed(_), true) | (Outcome::Evaluated(_), false)
                         );
                         let slot = slots.get(index as usize).filter(|_| fits);
-                        match slot.map(|slot| slot.set((rank as u32, outcome))) {
-                            Some(Ok(())) => {
+                        match slot {
+                            Some(slot) if slot.get().is_none() => {
+                                let _ = slot.set((rank as u32, outcome));
                                 done.fetch_add(1, Ordering::SeqCst);
                             }
                             _ => fail(
