@@ -23,6 +23,9 @@ use crate::creature::Creature;
 use crate::encoding::{Genome, Rng};
 use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
+#[cfg(feature = "mpi")]
+mod remote;
+
 pub use super::operator::{Fallbacks, Operator, schedule};
 pub use super::settings::{Algorithm, GaSettings, Preset, WwdCrossover};
 pub use super::walk_order::WalkOrder;
@@ -252,6 +255,10 @@ impl<G: Genome> Evolution<G> {
         cancel: &Cancel,
         times: &mut GenerationTimes,
     ) -> Result<Vec<Individual<G>>, Interrupted> {
+        #[cfg(feature = "mpi")]
+        if remote::births_go_remote(self) {
+            return remote::evaluate_all(self, unborn, generation, cache, cancel, times);
+        }
         let fresh = self.task.trials.fresh;
         let started = Instant::now();
         let mut developed: Vec<Developed<G>> = unborn

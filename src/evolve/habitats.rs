@@ -274,6 +274,9 @@ pub fn evaluate_genome<G: Genome>(
     generation: u32,
     cancel: &Cancel,
 ) -> Result<Evaluation, Interrupted> {
+    // Rank 0 of an MPI job counts this walk's CPU time as its own walks' (the fine re-walk).
+    #[cfg(feature = "mpi")]
+    let _own = super::mpi::OwnWalk::start();
     match develop_with_seedlings(genome, limits, seed, task) {
         Ok((creatures, seedlings)) => {
             let text = genome.to_text();

@@ -258,18 +258,29 @@ impl TaskSpec {
         evaluations: Vec<Evaluation>,
         creatures: &[Creature],
     ) -> Evaluation {
+        let sizes: Vec<(u32, u32)> = creatures
+            .iter()
+            .map(|c| (c.parts.len() as u32, c.joints.len() as u32))
+            .collect();
+        self.combine_sizes(units, evaluations, &sizes)
+    }
+
+    /// [`TaskSpec::combine`] for creatures known by their sizes alone: (parts, joints) per
+    /// habitat (what rank 0 of an MPI job knows of creatures its workers developed).
+    pub fn combine_sizes(
+        &self,
+        units: &[Unit],
+        evaluations: Vec<Evaluation>,
+        sizes: &[(u32, u32)],
+    ) -> Evaluation {
         let results: Vec<HabitatResult> = units
             .iter()
             .zip(evaluations)
             .map(|(unit, e)| HabitatResult {
                 name: self.habitat_name(unit.habitat as usize).to_string(),
                 trial: unit.trial,
-                parts: creatures
-                    .get(unit.habitat as usize)
-                    .map_or(0, |c| c.parts.len() as u32),
-                joints: creatures
-                    .get(unit.habitat as usize)
-                    .map_or(0, |c| c.joints.len() as u32),
+                parts: sizes.get(unit.habitat as usize).map_or(0, |s| s.0),
+                joints: sizes.get(unit.habitat as usize).map_or(0, |s| s.1),
                 fitness: e.fitness,
                 status: e.status,
                 terms: e.terms,

@@ -1,6 +1,9 @@
 //! One population evaluated over the ranks of an MPI job (the `mpi` feature; these tests run
 //! `mpirun` on this machine only): two and three ranks give the database of one process for
-//! two encodings, and two ranks for a run in habitats with noisy trials; a killed worker rank
+//! two encodings, two ranks for a run in habitats with noisy trials, and two and three for a
+//! run whose creatures grow during their walks, developed and keyed by the ranks that walk
+//! them; two ranks for continuous and direct genomes, a thrower's graph genomes and fresh
+//! trials; a killed worker rank
 //! ends the job with a message and a nonzero exit code and `evolve --resume` (one process or
 //! two ranks) then finishes the run to the result of an uninterrupted one, a rank 0 that
 //! refuses its input ends every rank, and a job launched from a host file, as on a cluster,
@@ -97,6 +100,118 @@ fn a_run_in_habitats_with_noisy_trials_over_two_ranks_is_the_run_of_one_process(
     let two = dir.join("two");
     succeeded(&under_mpirun(2, &run(&two)).output().unwrap());
     assert_eq!(contents(&one), contents(&two));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn workers_develop_and_key_what_they_walk_and_a_growing_run_is_the_run_of_one_process() {
+    let dir = scratch("growing");
+    // Creatures that go on growing during their walks: each rank develops its share of the
+    // births, walks what it holds, and takes over another's walk by developing it again.
+    let run = |out: &Path| {
+        let mut command = ontogeny_command();
+        command
+            .args(["evolve", "--config", "examples/evolve-while-growing.toml"])
+            .args([
+                "--pop",
+                "6",
+                "--gens",
+                "2",
+                "--seconds",
+                "0.5",
+                "--seed",
+                "3",
+            ])
+            .arg("--out")
+            .arg(out);
+        command
+    };
+    let one = dir.join("one");
+    succeeded(&run(&one).output().unwrap());
+    for ranks in [2, 3] {
+        let many = dir.join(format!("ranks-{ranks}"));
+        let mut command = under_mpirun(ranks, &run(&many));
+        let output = command.env("ONTOGENY_MPI_TIMING", "1").output().unwrap();
+        succeeded(&output);
+        assert_eq!(contents(&one), contents(&many), "{ranks} ranks");
+        // Rank 0's figures: the other ranks developed births and walked them.
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let line = stderr
+            .lines()
+            .find(|l| l.starts_with("MPI: "))
+            .unwrap_or_else(|| panic!("no MPI line: {stderr}"));
+        let count = |after: &str| -> u64 {
+            let words: Vec<&str> = line.split(' ').collect();
+            let at = words
+                .windows(after.split(' ').count())
+                .position(|w| w.join(" ") == after)
+                .unwrap_or_else(|| panic!("{after:?} not in {line}"));
+            words[at - 1].parse().unwrap()
+        };
+        assert!(count("births developed on other ranks,") > 0, "{line}");
+        assert!(count("walks on other ranks,") > 0, "{line}");
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// A run's command, given its output directory.
+type Run<'a> = dyn Fn(&Path) -> Command + 'a;
+
+#[test]
+fn other_encodings_a_thrower_and_fresh_trials_over_two_ranks_are_the_run_of_one_process() {
+    let dir = scratch("kinds");
+    // Fresh trials: the draws change every generation, and the cache reuses an evaluation
+    // only within it.
+    let habitats = std::fs::read_to_string("examples/habitats.toml").unwrap();
+    let fresh = dir.join("fresh.toml");
+    std::fs::write(
+        &fresh,
+        habitats.replace("[task.trials]\n", "[task.trials]\nfresh = true\n"),
+    )
+    .unwrap();
+    assert!(
+        std::fs::read_to_string(&fresh)
+            .unwrap()
+            .contains("fresh = true")
+    );
+    let runs: Vec<(&str, Box<Run<'_>>)> = vec![
+        (
+            "continuous",
+            Box::new(|out| evolve("lsystem-continuous", out, "2", "0.5")),
+        ),
+        ("direct", Box::new(|out| evolve("direct", out, "2", "0.5"))),
+        (
+            // Graph genomes of a thrower: their limits keep the root as an arm.
+            "catapult",
+            Box::new(|out| {
+                let mut command = ontogeny_command();
+                command
+                    .args(["evolve", "--config", "examples/evolve-catapult.toml"])
+                    .args(["--pop", "8", "--gens", "2", "--seed", "2", "--out"])
+                    .arg(out);
+                command
+            }),
+        ),
+        (
+            "fresh",
+            Box::new(|out| {
+                let mut command = ontogeny_command();
+                command
+                    .args(["evolve", "--config"])
+                    .arg(&fresh)
+                    .args(["--pop", "6", "--gens", "3", "--seconds", "0.5", "--out"])
+                    .arg(out);
+                command
+            }),
+        ),
+    ];
+    for (name, run) in runs {
+        let one = dir.join(format!("{name}-one"));
+        succeeded(&run(&one).output().unwrap());
+        let two = dir.join(format!("{name}-two"));
+        succeeded(&under_mpirun(2, &run(&two)).output().unwrap());
+        assert_eq!(contents(&one), contents(&two), "{name}");
+    }
     let _ = std::fs::remove_dir_all(dir);
 }
 

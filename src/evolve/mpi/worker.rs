@@ -1,0 +1,246 @@
+//! A worker rank's side of the job: it asks rank 0 for work, does it on its threads, holds
+//! the creatures it develops until rank 0 starts new births, and sends the outcomes back.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, MutexGuard, mpsc};
+
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::*;
+
+use super::grow::{Grower, Grown};
+use super::{Outcome, REPLY, REQUEST, Reply, Request, Setup, Work, encode, fail, receive};
+use crate::creature::Creature;
+use crate::task::TaskSpec;
+
+/// A worker's loop: asks rank 0 for work, does it on this process's threads, sends the
+/// outcomes back with the next request; ends when rank 0 says stop. It holds the creatures
+/// it develops until rank 0 starts new births. It asks again once it holds no more jobs than
+/// it has threads (and has finished one since it last asked), or, after its last jobs of a
+/// batch, once it has finished them all.
+pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
+    let threads = rayon::current_num_threads() as u32;
+    let master = world.process_at_rank(0);
+    let (finished, results) = mpsc::channel::<(u32, Result<Outcome, String>)>();
+    let mut task: Option<Arc<TaskSpec>> = None;
+    let mut grower: Option<Arc<dyn Grower>> = None;
+    let held: Arc<Mutex<HashMap<u32, Arc<Grown>>>> = Arc::default();
+    let mut births = 0u64;
+    let mut in_flight = 0usize;
+    let mut outcomes = Vec::new();
+    loop {
+        let request = Request {
+            threads,
+            outcomes: std::mem::take(&mut outcomes),
+        };
+        master.send_with_tag(&encode(&request)[..], REQUEST);
+        let (_, bytes) = receive(world, Some(0), REPLY);
+        let reply: Reply<Creature, TaskSpec, Setup> =
+            rmp_serde::from_slice(&bytes).unwrap_or_else(|e| {
+                fail(
+                    world,
+                    &format!("cannot decode a job: {e} (are all ranks the same ontogeny build?)"),
+                )
+            });
+        let (jobs, last) = match reply {
+            Reply::Stop => return Ok(()),
+            Reply::Work {
+                task: sent,
+                setup,
+                births: now,
+                jobs,
+                last,
+            } => {
+                if let Some(sent) = sent {
+                    task = Some(Arc::new(sent));
+                }
+                if let Some(setup) = setup {
+                    grower = Some(super::grow::grower(&setup)?);
+                }
+                if now != births {
+                    births = now;
+                    lock(&held).clear();
+                }
+                (jobs, last)
+            }
+        };
+        for (index, work) in jobs {
+            let task = task
+                .clone()
+                .ok_or_else(|| "a job came before its task".to_string())?;
+            let finished = finished.clone();
+            let grower = || {
+                grower
+                    .clone()
+                    .ok_or_else(|| "a genome came before its encoding".to_string())
+            };
+            in_flight += 1;
+            match work {
+                Work::Walk(creature, unit) => rayon::spawn(move || {
+                    let evaluation = task.evaluate_job_plainly(&creature, unit.as_ref());
+                    let _ = finished.send((index, Ok(Outcome::Evaluated(evaluation))));
+                }),
+                Work::Develop {
+                    genome,
+                    seed,
+                    key_version,
+                } => {
+                    let (grower, held) = (grower()?, held.clone());
+                    rayon::spawn(move || {
+                        let outcome = grower.grow(&genome.0, seed, key_version, &task).map(|g| {
+                            let sizes = g.sizes();
+                            lock(&held).insert(index, Arc::new(g));
+                            Outcome::Developed(sizes)
+                        });
+                        let _ = finished.send((index, outcome));
+                    })
+                }
+                Work::WalkHeld { birth, unit } => {
+                    let grown = lock(&held).get(&birth).cloned().ok_or_else(|| {
+                        format!("rank 0 asked for a walk of birth {birth}, which this rank does not hold")
+                    })?;
+                    rayon::spawn(move || {
+                        let evaluation = grown.walk(&task, unit);
+                        let _ = finished.send((index, Ok(Outcome::Evaluated(evaluation))));
+                    })
+                }
+                Work::GrowAndWalk {
+                    genome,
+                    seed,
+                    key_version,
+                    unit,
+                } => {
+                    let grower = grower()?;
+                    rayon::spawn(move || {
+                        let outcome = grower
+                            .grow(&genome.0, seed, key_version, &task)
+                            .map(|grown| Outcome::Evaluated(grown.walk(&task, unit)));
+                        let _ = finished.send((index, outcome));
+                    })
+                }
+            }
+        }
+        // Ask again with at least one outcome, once this rank holds no more jobs than it has
+        // threads (its threads have those to go on with while rank 0 answers), or, after its
+        // last jobs of the batch, once they are all done.
+        let enough = if last { 0 } else { threads as usize };
+        while in_flight > 0 && (in_flight > enough || outcomes.is_empty()) {
+            let (index, outcome) = results
+                .recv()
+                .map_err(|_| "an evaluation thread ended".to_string())?;
+            outcomes.push((index, outcome?));
+            in_flight -= 1;
+            for (index, outcome) in results.try_iter() {
+                outcomes.push((index, outcome?));
+                in_flight -= 1;
+            }
+        }
+    }
+}
+
+/// The map of held creatures, locked (a thread that panicked while holding it left it whole).
+fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
+    mutex
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::SeedableRng;
+
+    use super::super::super::habitats::develop_with_seedlings;
+    use super::super::super::key::KeyVersion;
+    use super::super::grow::{Grown, Setup, grower};
+    use super::super::{Bytes, Work, encode};
+    use crate::creature::Creature;
+    use crate::encoding::{
+        ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome, Purpose, Rng,
+    };
+    use crate::task::{TaskKind, TaskSpec};
+
+    #[test]
+    fn a_genome_travels_as_one_binary_string() {
+        // MessagePack's bin 8: 0xc4, the length, the bytes.
+        assert_eq!(encode(&Bytes(vec![1, 2, 200])), vec![0xc4, 3, 1, 2, 200]);
+        let sent: Work<&Creature> = Work::Develop {
+            genome: Bytes(vec![7, 0, 255]),
+            seed: u64::MAX,
+            key_version: 2,
+        };
+        let received: Work<Creature> = rmp_serde::from_slice(&encode(&sent)).unwrap();
+        assert_eq!(
+            received,
+            Work::Develop {
+                genome: Bytes(vec![7, 0, 255]),
+                seed: u64::MAX,
+                key_version: 2,
+            }
+        );
+    }
+
+    /// A worker that knows the encoding by name grows and keys a genome sent as MessagePack
+    /// into what rank 0 grows from the genome itself, for `task` (its limits adapted to it
+    /// as a run adapts them): the same sizes and key, of either key version; and the walk
+    /// of a creature a worker developed (its own birth, or another's taken over) is the walk
+    /// of the creature rank 0 develops.
+    fn grows_as_rank_0<G: Genome>(task: &TaskSpec) {
+        let mut limits = G::Limits::default();
+        let purpose = match task.task.throws() {
+            true => Purpose::Throwing,
+            false => Purpose::Locomotion,
+        };
+        G::adapt_limits(&mut limits, purpose);
+        let grower = grower(&Setup::of::<G>(&limits, task)).unwrap();
+        let mut developed = 0;
+        for seed in 0..8u64 {
+            let genome = G::random(&limits, &mut Rng::seed_from_u64(seed));
+            for (version, number) in [(KeyVersion::V1, 1), (KeyVersion::V2, 2)] {
+                let here = Grown::of(&genome, &limits, seed, task, version);
+                let there = grower.grow(&encode(&genome), seed, number, task).unwrap();
+                assert_eq!(there.sizes(), here.sizes(), "{} seed {seed}", G::NAME);
+                developed += usize::from(here.sizes().key.is_some());
+            }
+            if let Ok((creatures, _)) = develop_with_seedlings(&genome, &limits, seed, task) {
+                let there = grower.grow(&encode(&genome), seed, 2, task).unwrap();
+                let walked = there.walk(task, None);
+                assert_eq!(walked, task.evaluate_job_plainly(&creatures[0], None));
+                assert_eq!(
+                    walked.fitness.to_bits(),
+                    task.evaluate_job_plainly(&creatures[0], None)
+                        .fitness
+                        .to_bits()
+                );
+            }
+        }
+        assert!(developed > 0, "{}: no genome developed", G::NAME);
+        assert!(grower.grow(&[0xc1], 0, 2, task).is_err());
+        // A key version this build does not know is refused, not taken for another.
+        let genome = G::random(&limits, &mut Rng::seed_from_u64(0));
+        let refused = grower.grow(&encode(&genome), 0, 3, task).err().unwrap();
+        assert!(refused.contains("key version 3"), "{refused}");
+    }
+
+    /// A short walk of `kind`.
+    fn short(kind: TaskKind) -> TaskSpec {
+        let mut task = TaskSpec::new(kind);
+        *task.seconds_mut() = 0.25;
+        task
+    }
+
+    #[test]
+    fn a_worker_grows_and_keys_a_sent_genome_as_rank_0_does() {
+        let walker = short(TaskKind::Walker);
+        grows_as_rank_0::<LSystemGenome>(&walker);
+        grows_as_rank_0::<GraphGenome>(&walker);
+        grows_as_rank_0::<ContinuousGenome>(&walker);
+        grows_as_rank_0::<DirectGenome>(&walker);
+        // A thrower's graph genomes keep their root as an arm: limits serde does not carry.
+        grows_as_rank_0::<GraphGenome>(&short(TaskKind::Catapult));
+        let unknown = Setup {
+            encoding: "none".into(),
+            limits: Bytes(Vec::new()),
+            throwing: false,
+        };
+        assert!(grower(&unknown).is_err());
+    }
+}
