@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # Exact tests the results pages' scripts share: two-sided Mann-Whitney over every split,
-# Wilcoxon's signed-rank over every sign flip (ties at their mean rank), Spearman's
+# Wilcoxon's signed-rank over every sign flip (ties at their mean rank; counted by sums), Spearman's
 # correlation on mean ranks, and Holm's correction.
 import itertools, statistics
 
@@ -37,23 +37,27 @@ def spearman(x, y):
 
 def signed_rank(d):
     d = [x for x in d if x != 0]
-    # Ranks of |d|, ties given their mean rank; the exact distribution over every sign flip.
+    # Ranks of |d|, ties given their mean rank; the exact distribution over every sign flip,
+    # counted by the sums of twice the ranks (integers), so that 40 pairs take no longer than 6.
     order = sorted(range(len(d)), key=lambda i: abs(d[i]))
-    ranks, i = [0.0] * len(d), 0
+    twice, i = [0] * len(d), 0
     while i < len(d):
         j = i
         while j + 1 < len(d) and abs(d[order[j + 1]]) == abs(d[order[i]]):
             j += 1
         for k in range(i, j + 1):
-            ranks[order[k]] = (i + j) / 2 + 1
+            twice[order[k]] = i + j + 2
         i = j + 1
-    w = sum(r for r, x in zip(ranks, d) if x > 0)
-    mean = sum(ranks) / 2
-    extreme = total = 0
-    for signs in itertools.product([0, 1], repeat=len(d)):
-        total += 1
-        extreme += abs(sum(r for r, s in zip(ranks, signs) if s) - mean) >= abs(w - mean) - 1e-9
-    return w, extreme / total
+    counts = {0: 1}
+    for r in twice:
+        grown = dict(counts)
+        for total, n in counts.items():
+            grown[total + r] = grown.get(total + r, 0) + n
+        counts = grown
+    w2 = sum(r for r, x in zip(twice, d) if x > 0)
+    mean2 = sum(twice) / 2
+    extreme = sum(n for total, n in counts.items() if abs(total - mean2) >= abs(w2 - mean2) - 1e-9)
+    return w2 / 2, extreme / 2 ** len(d)
 
 def holm(ps):
     order = sorted(range(len(ps)), key=lambda i: ps[i])

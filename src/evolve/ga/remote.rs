@@ -232,6 +232,8 @@ pub(super) fn evaluate_all<G: Genome>(
         },
     );
     times.evaluating = started.elapsed().as_secs_f64();
+    // Told to stop while the walks went on: nothing of this generation is kept.
+    cancel.check()?;
     times.walks = Vec::new();
     let mut evaluations: Vec<Option<Evaluation>> = vec![None; walks.len()];
     for (&j, (rank, outcome)) in order.iter().zip(walked) {

@@ -334,9 +334,15 @@ impl Master {
                         let busy: Vec<&Worker> =
                             self.workers.iter().filter(|w| !w.waiting).collect();
                         let next = busy.iter().filter_map(|w| expected(w, length)).min();
+                        // A worker on its last jobs asks only when done, which a guess of
+                        // its pace may put late: look at least every `longest` then.
+                        let most = match busy.iter().any(|w| w.last) {
+                            true => longest,
+                            false => LONG_PAUSE,
+                        };
                         pause = match next {
                             _ if busy.is_empty() => LONG_PAUSE,
-                            Some(due) if due > now + MIN_PAUSE => (due - now).min(LONG_PAUSE),
+                            Some(due) if due > now + MIN_PAUSE => (due - now).min(most),
                             _ => (pause * 2).min(longest),
                         };
                         continue;
