@@ -44,6 +44,7 @@ mod queue;
 mod wire;
 mod worker;
 pub(super) use grow::{Grown, Setup, Sizes};
+pub use master::{BirthStream, Next, Order};
 use master::{Master, Worker};
 pub(super) use wire::{Bytes, Outcome, Work, encode};
 use wire::{Reply, Request};
@@ -246,7 +247,7 @@ pub fn evaluate(task: &TaskSpec, creatures: &[Job<'_>]) -> Vec<Evaluation> {
         .into_iter()
         .map(|(rank, outcome)| match outcome {
             Outcome::Evaluated(evaluation) => evaluation,
-            Outcome::Developed(_) => broken(&format!("rank {rank} developed a walk")),
+            _ => broken(&format!("rank {rank} developed a walk")),
         })
         .collect()
 }

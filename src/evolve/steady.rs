@@ -44,8 +44,10 @@ use super::ga::{Evolution, Individual, Operator, Ranked, Unborn, ranking};
 use super::key::EvaluationKey;
 use super::timing::WalkTime;
 use crate::cancel::{Cancel, Interrupted};
+use crate::creature::Creature;
+use crate::develop::Seedling;
 use crate::encoding::Genome;
-use crate::task::{Evaluation, Watch};
+use crate::task::{Evaluation, TaskSpec, Watch};
 
 /// The arithmetic of births and blocks: the population P, the block C and the evaluations in
 /// flight W.
@@ -195,15 +197,26 @@ pub struct Lookup {
 }
 
 impl Lookup {
-    /// Adds generation `generation`'s members (a key seen before keeps its first).
-    pub fn add<G>(&mut self, generation: u32, population: &[Individual<G>]) {
+    /// Adds generation `generation`'s members (a key seen before keeps its first); returns
+    /// the keys new to it.
+    pub fn add<G>(&mut self, generation: u32, population: &[Individual<G>]) -> Vec<EvaluationKey> {
+        let mut new = Vec::new();
         for i in population {
             if let Some(key) = i.key {
-                self.evaluations
-                    .entry(key)
-                    .or_insert_with(|| (generation, i.evaluation.clone()));
+                self.evaluations.entry(key).or_insert_with(|| {
+                    new.push(key);
+                    (generation, i.evaluation.clone())
+                });
             }
         }
+        new
+    }
+
+    /// Every key it holds, with the first generation that stored it, in no particular order.
+    pub fn entries(&self) -> impl Iterator<Item = (EvaluationKey, u32)> + '_ {
+        self.evaluations
+            .iter()
+            .map(|(key, (first, _))| (*key, *first))
     }
 
     /// The evaluation of `key`, if a generation up to `generation` stored it.
@@ -231,6 +244,25 @@ pub struct Birth<G> {
 }
 
 impl<G: Genome> Evolution<G> {
+    /// Birth `number` (≥ P) bred from `snapshot`, generation s(b), and not yet developed:
+    /// with the operator the encoding could not apply, if it fell back to mutation.
+    pub(super) fn breed_birth(
+        &self,
+        number: u64,
+        snapshot: &Snapshot<G>,
+    ) -> (Unborn<G>, Option<Operator>) {
+        let blocks = Blocks::of(&self.settings);
+        let (generation, place) = blocks.place(number);
+        let survivors = self.settings.survivors().min(snapshot.population.len());
+        let ranked = Ranked {
+            previous: &snapshot.population,
+            order: &snapshot.order,
+            survivors,
+        };
+        let children = blocks.children as usize;
+        self.child(&ranked, snapshot.rate, generation, place, children)
+    }
+
     /// Birth `number` (≥ P), bred from `snapshot`, generation s(b), developed, keyed and
     /// evaluated on this thread, or given the evaluation `lookup` holds for its key up to
     /// s(b) (`None`: the cache is off); `Interrupted` once `cancel` is set.
@@ -243,16 +275,9 @@ impl<G: Genome> Evolution<G> {
     ) -> Result<Birth<G>, Interrupted> {
         cancel.check()?;
         let blocks = Blocks::of(&self.settings);
-        let (generation, place) = blocks.place(number);
+        let (_, place) = blocks.place(number);
         let source = blocks.source(number);
-        let survivors = self.settings.survivors().min(snapshot.population.len());
-        let ranked = Ranked {
-            previous: &snapshot.population,
-            order: &snapshot.order,
-            survivors,
-        };
-        let children = blocks.children as usize;
-        let (unborn, fell_back) = self.child(&ranked, snapshot.rate, generation, place, children);
+        let (unborn, fell_back) = self.breed_birth(number, snapshot);
         let started = Instant::now();
         let mut developed = self.develop(unborn);
         self.key_developed(&mut developed);
@@ -267,15 +292,21 @@ impl<G: Genome> Evolution<G> {
         let simulated = stored.is_none();
         let evaluation = match stored {
             Some(e) => e,
-            None => self.evaluate_developed(&developed, cancel)?,
+            None => evaluate_birth(
+                &self.task,
+                &developed.creatures,
+                &developed.seedlings,
+                developed.key,
+                Some(cancel),
+            )?,
         };
-        let size = match developed.creatures.as_ref().map(|c| &c[0]) {
-            Ok(c) => (
+        let size = match developed.creatures.as_ref().map(|c| c.first()) {
+            Ok(Some(c)) => (
                 c.parts.len() as u32,
                 c.joints.len() as u32,
                 c.neuron_count() as u32,
             ),
-            Err(_) => (0, 0, 0),
+            _ => (0, 0, 0),
         };
         let walk = WalkTime {
             individual: place as u32,
@@ -284,79 +315,100 @@ impl<G: Genome> Evolution<G> {
             rank: 0,
             parts: size.0,
         };
-        let Unborn {
-            genome,
-            develop_seed,
-            parents,
-            operator,
-        } = developed.unborn;
         Ok(Birth {
             number,
-            individual: Individual {
-                genome,
-                develop_seed,
-                parents,
-                operator,
+            individual: developed.unborn.into_individual(
                 evaluation,
                 size,
-                key: developed.key,
-                reused: !simulated,
-                parents_generation: Some(source),
-            },
+                developed.key,
+                !simulated,
+                source,
+            ),
             simulated,
             fell_back,
             walk,
         })
     }
+}
 
-    /// The evaluation of a developed newborn, its walks (one per habitat and trial) one after
-    /// another on this thread, combined as the generational algorithm combines them.
-    fn evaluate_developed(
-        &self,
-        developed: &super::ga::Developed<G>,
-        cancel: &Cancel,
-    ) -> Result<Evaluation, Interrupted> {
-        let (Ok(creatures), Some(key)) = (&developed.creatures, developed.key) else {
-            let why = developed
-                .creatures
-                .as_ref()
-                .err()
-                .cloned()
-                .unwrap_or_default();
-            return Ok(Evaluation::invalid(
-                self.task.task.name(),
-                format!("development: {why}"),
-            ));
-        };
-        let walk = |job: super::evaluator::Job<'_>| {
-            let watch = Watch {
-                record: false,
-                progress: &mut |_| {},
-                cancel: Some(cancel),
-            };
-            job.evaluate(&self.task, watch)
-        };
-        if self.task.is_plain() {
-            return walk(super::evaluator::Job {
-                creature: &creatures[0],
-                unit: None,
-                seedling: developed.seedlings.first(),
-            });
+impl<G> Unborn<G> {
+    /// The newborn, evaluated: `size` its first creature's parts, joints and neurons, `reused`
+    /// whether its evaluation is a stored one, `source` the generation it was bred from.
+    pub(super) fn into_individual(
+        self,
+        evaluation: Evaluation,
+        size: (u32, u32, u32),
+        key: Option<EvaluationKey>,
+        reused: bool,
+        source: u32,
+    ) -> Individual<G> {
+        let Unborn {
+            genome,
+            develop_seed,
+            parents,
+            operator,
+        } = self;
+        Individual {
+            genome,
+            develop_seed,
+            parents,
+            operator,
+            evaluation,
+            size,
+            key,
+            reused,
+            parents_generation: Some(source),
         }
-        // Trials are never fresh in a steady-state run: the generation does not join them.
-        let units = self.task.units(key.0, 0);
-        let evaluations = units
-            .iter()
-            .map(|u| {
-                walk(super::evaluator::Job {
-                    creature: &creatures[u.habitat as usize],
-                    unit: Some(*u),
-                    seedling: developed.seedlings.get(u.habitat as usize),
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(self.task.combine(&units, evaluations, creatures))
     }
+}
+
+/// The evaluation of a steady-state newborn developed into `creatures` (one per habitat, or
+/// why it did not develop; `seedlings` what they grow from during their walks) and keyed
+/// `key`: its walks (one per habitat and trial) one after another on this thread, combined as
+/// the generational algorithm combines them; `Interrupted` once `cancel` is set. Rank 0 and
+/// the ranks of an MPI job evaluate a birth with this.
+pub(super) fn evaluate_birth(
+    task: &TaskSpec,
+    creatures: &Result<Vec<Creature>, String>,
+    seedlings: &[Seedling],
+    key: Option<EvaluationKey>,
+    cancel: Option<&Cancel>,
+) -> Result<Evaluation, Interrupted> {
+    let (Ok(creatures), Some(key)) = (creatures, key) else {
+        let why = creatures.as_ref().err().cloned().unwrap_or_default();
+        return Ok(Evaluation::invalid(
+            task.task.name(),
+            format!("development: {why}"),
+        ));
+    };
+    let walk = |job: super::evaluator::Job<'_>| {
+        let watch = Watch {
+            record: false,
+            progress: &mut |_| {},
+            cancel,
+        };
+        job.evaluate(task, watch)
+    };
+    if task.is_plain() {
+        return walk(super::evaluator::Job {
+            creature: &creatures[0],
+            unit: None,
+            seedling: seedlings.first(),
+        });
+    }
+    // Trials are never fresh in a steady-state run: the generation does not join them.
+    let units = task.units(key.0, 0);
+    let evaluations = units
+        .iter()
+        .map(|u| {
+            walk(super::evaluator::Job {
+                creature: &creatures[u.habitat as usize],
+                unit: Some(*u),
+                seedling: seedlings.get(u.habitat as usize),
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(task.combine(&units, evaluations, creatures))
 }
 
 #[cfg(test)]

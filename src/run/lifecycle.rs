@@ -20,7 +20,6 @@ use super::store::{GenerationRecord, RunRecord, RunStore};
 use crate::cancel::Cancel;
 use crate::encoding::{CheckedLimits, Genome, Purpose};
 use crate::evolve::cache::EvaluationCache;
-use crate::evolve::evaluator::Evaluator;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
 use crate::evolve::ga::{Algorithm, Evolution, Fallbacks, Individual, Operator, WalkOrder};
 use crate::evolve::key::{EvaluationKey, KeyVersion};
@@ -29,6 +28,7 @@ use crate::output;
 use crate::task::{Evaluation, TaskTables};
 
 mod beside;
+mod births;
 mod conclude;
 pub mod derived;
 mod error;
@@ -102,8 +102,7 @@ pub fn encoding_of_run(dir: &Path) -> Result<String, RunError> {
 }
 
 /// The run's settings and limits in range ([`check_settings`], [`CheckedLimits`]); the error
-/// names `name`, where they come from, and the key. Its algorithm must run on this process's
-/// evaluator ([`check_ranks`]): a start or resume is refused before anything is written.
+/// names `name`, where they come from, and the key.
 fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Result<(), RunError> {
     check_settings(&config.ga, &config.task, &[config.encoding.as_str()])
         .and_then(|()| config.limits.check_ranges())
@@ -112,22 +111,7 @@ fn checked_settings<L: CheckedLimits>(config: &RunConfig<L>, name: &str) -> Resu
                 DiagnosticKind::Semantic,
                 format!("{name}: {e}"),
             ))
-        })?;
-    check_ranks(config.ga.algorithm, Evaluator::current().ranks())
-}
-
-/// Whether `algorithm` runs over `ranks` processes: the steady-state algorithm runs on one
-/// process's threads only, so over several MPI ranks it is refused.
-pub fn check_ranks(algorithm: Algorithm, ranks: u32) -> Result<(), RunError> {
-    if algorithm.is_generational() || ranks <= 1 {
-        return Ok(());
-    }
-    Err(RunError::Config(Diagnostic::without_location(
-        DiagnosticKind::Semantic,
-        "algorithm \"steady-state\" runs on one process's threads: start it without an MPI \
-         launcher (over MPI ranks only \"generational\" runs)"
-            .to_string(),
-    )))
+        })
 }
 
 impl<G: Genome> Run<G> {

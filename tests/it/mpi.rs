@@ -135,22 +135,99 @@ fn workers_develop_and_key_what_they_walk_and_a_growing_run_is_the_run_of_one_pr
         succeeded(&output);
         assert_eq!(contents(&one), contents(&many), "{ranks} ranks");
         // Rank 0's figures: the other ranks developed births and walked them.
-        let stderr = String::from_utf8_lossy(&output.stderr);
-        let line = stderr
-            .lines()
-            .find(|l| l.starts_with("MPI: "))
-            .unwrap_or_else(|| panic!("no MPI line: {stderr}"));
-        let count = |after: &str| -> u64 {
-            let words: Vec<&str> = line.split(' ').collect();
-            let at = words
-                .windows(after.split(' ').count())
-                .position(|w| w.join(" ") == after)
-                .unwrap_or_else(|| panic!("{after:?} not in {line}"));
-            words[at - 1].parse().unwrap()
-        };
-        assert!(count("births developed on other ranks,") > 0, "{line}");
-        assert!(count("walks on other ranks,") > 0, "{line}");
+        let line = timing_line(&output);
+        assert!(
+            count(&line, "births developed on other ranks,") > 0,
+            "{line}"
+        );
+        assert!(count(&line, "walks on other ranks,") > 0, "{line}");
     }
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+/// Rank 0's line of figures (`ONTOGENY_MPI_TIMING`) in a job's `output`.
+fn timing_line(output: &Output) -> String {
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    stderr
+        .lines()
+        .find(|l| l.starts_with("MPI: "))
+        .unwrap_or_else(|| panic!("no MPI line: {stderr}"))
+        .to_string()
+}
+
+/// The number before the words `after` in rank 0's line of figures `line`.
+fn count(line: &str, after: &str) -> u64 {
+    let words: Vec<&str> = line.split(' ').collect();
+    let at = words
+        .windows(after.split(' ').count())
+        .position(|w| w.join(" ") == after)
+        .unwrap_or_else(|| panic!("{after:?} not in {line}"));
+    words[at - 1].trim_start_matches('(').parse().unwrap()
+}
+
+/// `command` as a steady-state run with `in_flight` births in flight.
+fn steady(mut command: Command, in_flight: &str) -> Command {
+    command.args(["--algorithm", "steady-state", "--in-flight", in_flight]);
+    command
+}
+
+#[test]
+fn a_steady_state_run_over_two_and_three_ranks_is_the_run_of_one_process() {
+    let dir = scratch("steady");
+    // Births streamed to the ranks as they fall free: L-system genomes (the cache lends stored
+    // creatures their evaluations; the workers skip walking those), creatures in habitats
+    // with noisy trials (each birth's walks combined on its rank), and creatures that grow
+    // during their walks.
+    let config_run = |config: &'static str, seed: &'static str| {
+        move |out: &Path| {
+            let mut command = ontogeny_command();
+            command
+                .args(["evolve", "--config", config])
+                .args(["--pop", "6", "--gens", "3", "--seconds", "0.5"])
+                .args(["--seed", seed, "--out"])
+                .arg(out);
+            steady(command, "4")
+        }
+    };
+    let runs: Vec<(&str, Box<Run<'_>>, &[usize])> = vec![
+        (
+            "lsystem",
+            Box::new(|out| steady(evolve("lsystem", out, "5", "0.5"), "3")),
+            &[2, 3],
+        ),
+        (
+            "habitats",
+            Box::new(config_run("examples/habitats.toml", "1")),
+            &[2],
+        ),
+        (
+            "growing",
+            Box::new(config_run("examples/evolve-while-growing.toml", "3")),
+            &[2],
+        ),
+    ];
+    let mut stored_elsewhere = 0;
+    for (name, run, ranks) in runs {
+        let one = dir.join(format!("{name}-one"));
+        succeeded(&run(&one).output().unwrap());
+        let plot = std::fs::read_to_string(one.join("fitness.svg")).unwrap();
+        assert!(plot.contains("steady-state ("), "{name}: {plot}");
+        for &ranks in ranks {
+            let many = dir.join(format!("{name}-{ranks}"));
+            let mut command = under_mpirun(ranks, &run(&many));
+            let output = command.env("ONTOGENY_MPI_TIMING", "1").output().unwrap();
+            succeeded(&output);
+            assert_eq!(contents(&one), contents(&many), "{name}, {ranks} ranks");
+            let line = timing_line(&output);
+            assert!(
+                count(&line, "steady-state births made on other ranks") > 0,
+                "{name}: {line}"
+            );
+            stored_elsewhere += count(&line, "of them found stored, not walked),");
+        }
+    }
+    // Among the L-system runs' stored creatures, some were bred on other ranks.
+    assert!(stored_elsewhere > 0);
     let _ = std::fs::remove_dir_all(dir);
 }
 

@@ -37,7 +37,7 @@ pub(super) fn births_go_remote<G: Genome>(evolution: &Evolution<G>) -> bool {
 }
 
 /// The key version's number, as [`Work::Develop`] carries it.
-fn version_number(version: KeyVersion) -> u8 {
+pub(in crate::evolve) fn version_number(version: KeyVersion) -> u8 {
     match version {
         KeyVersion::V1 => 1,
         KeyVersion::V2 => 2,
@@ -113,7 +113,7 @@ pub(super) fn evaluate_all<G: Genome>(
         .into_iter()
         .map(|(rank, outcome)| match outcome {
             Outcome::Developed(sizes) => (rank, sizes),
-            Outcome::Evaluated(_) => mpi::broken(&format!("rank {rank} walked a birth to develop")),
+            _ => mpi::broken(&format!("rank {rank} walked a birth to develop")),
         })
         .unzip();
     let keys: Vec<Option<EvaluationKey>> = sizes.iter().map(|s| s.key.map(EvaluationKey)).collect();
@@ -239,7 +239,7 @@ pub(super) fn evaluate_all<G: Genome>(
     for (&j, (rank, outcome)) in order.iter().zip(walked) {
         evaluations[j] = Some(match outcome {
             Outcome::Evaluated(evaluation) => evaluation,
-            Outcome::Developed(_) => mpi::broken(&format!("rank {rank} developed a walk")),
+            _ => mpi::broken(&format!("rank {rank} developed a walk")),
         });
     }
     let mut evaluations: Vec<Evaluation> = evaluations

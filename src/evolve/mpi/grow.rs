@@ -120,6 +120,21 @@ impl Grown {
     }
 }
 
+impl Grown {
+    /// Its evaluation as a steady-state run evaluates a birth
+    /// ([`super::super::steady::evaluate_birth`]: its walks one after another on this
+    /// thread).
+    pub(in crate::evolve) fn evaluate_as_birth(&self, task: &TaskSpec) -> Evaluation {
+        super::super::steady::evaluate_birth(task, &self.creatures, &self.seedlings, self.key, None)
+            .unwrap_or_else(|_| Evaluation::invalid(task.task.name(), "interrupted".to_string()))
+    }
+
+    /// Its key, if it developed.
+    pub(in crate::evolve) fn key(&self) -> Option<EvaluationKey> {
+        self.key
+    }
+}
+
 /// Develops genomes of one encoding from their MessagePack, for a worker that knows the
 /// encoding by its name alone.
 pub(in crate::evolve) trait Grower: Send + Sync {

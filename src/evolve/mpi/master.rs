@@ -23,6 +23,9 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use rayon::prelude::*;
 
+mod stream;
+pub use stream::{BirthStream, Next, Order};
+
 use super::queue::Queues;
 use super::wire::{Outcome, Reply, Request, encode};
 use super::{Batch, OWN_WALK_NANOS, REPLY, REQUEST, Setup, fail, process_cpu, receive, thread_cpu};
@@ -91,6 +94,11 @@ struct Counts {
     /// Births developed on other ranks and on this one.
     developed_remote: u64,
     developed_local: u64,
+    /// Steady-state births made on other ranks (and, of them, those found stored, not
+    /// walked) and on this one; each is counted as one walk too.
+    born_remote: u64,
+    stored_remote: u64,
+    born_local: u64,
     /// CPU time of rank 0's main thread in batches (`None`: unreadable).
     main_cpu: Option<Duration>,
     /// The process's CPU time when it joined.
@@ -404,8 +412,8 @@ impl Master {
         let counts = &mut self.counts;
         for (rank, outcome) in &outcomes {
             *match (outcome, *rank == 0) {
-                (Outcome::Evaluated(_), false) => &mut counts.remote,
-                (Outcome::Evaluated(_), true) => &mut counts.local,
+                (Outcome::Evaluated(_) | Outcome::Born { .. }, false) => &mut counts.remote,
+                (Outcome::Evaluated(_) | Outcome::Born { .. }, true) => &mut counts.local,
                 (Outcome::Developed(_), false) => &mut counts.developed_remote,
                 (Outcome::Developed(_), true) => &mut counts.developed_local,
             } += 1;
@@ -460,6 +468,7 @@ impl Master {
                 .iter()
                 .map(|&(i, stolen)| (i as u32, (batch.wire)(i, stolen)))
                 .collect(),
+            known: Vec::new(),
             last: jobs.len() < wanted,
         };
         worker.last = jobs.len() < wanted;
@@ -499,8 +508,15 @@ impl Master {
         let outside = c.joined.map_or(0.0, |joined| {
             (joined.elapsed().saturating_sub(c.batches)).as_secs_f64()
         });
+        let steady = match c.born_remote + c.born_local {
+            0 => String::new(),
+            _ => format!(
+                "; {} steady-state births made on other ranks ({} of them found stored, not walked), {} on rank 0",
+                c.born_remote, c.stored_remote, c.born_local
+            ),
+        };
         format!(
-            "MPI: {ranks} ranks; {} walks on other ranks, {} on rank 0; {} births developed on other ranks, {} on rank 0; {:.2} s of batches ({outside:.2} s outside them: breeding, the store); rank 0's CPU time per walk: {} on its main thread in batches, {} in the whole process less its own walks ({:.2} s of them, the fine re-walks among them); main thread woke {} times, {} requests in, {} replies out ({} bytes per reply)",
+            "MPI: {ranks} ranks; {} walks on other ranks, {} on rank 0; {} births developed on other ranks, {} on rank 0{steady}; {:.2} s of batches ({outside:.2} s outside them: breeding, the store); rank 0's CPU time per walk: {} on its main thread in batches, {} in the whole process less its own walks ({:.2} s of them, the fine re-walks among them); main thread woke {} times, {} requests in, {} replies out ({} bytes per reply)",
             c.remote,
             c.local,
             c.developed_remote,

@@ -74,6 +74,19 @@ pub(in crate::evolve) enum Work<C> {
         /// The unit (`None`: a plain task's one walk).
         unit: Option<Unit>,
     },
+    /// Develop and key this genome with this development seed, and evaluate it as a
+    /// steady-state run evaluates a birth (its walks one after another on one thread), unless
+    /// a generation up to `source` stored its key (then rank 0 gives it that evaluation).
+    Birth {
+        /// The genome, encoded.
+        genome: Bytes,
+        /// Its development seed.
+        seed: u64,
+        /// The version of its key (as in [`Work::Develop`]).
+        key_version: u8,
+        /// s(b): the generation it was bred from.
+        source: u32,
+    },
 }
 
 /// What a job gives.
@@ -83,6 +96,17 @@ pub(in crate::evolve) enum Outcome {
     Evaluated(Evaluation),
     /// A birth developed and keyed: what rank 0 needs of it.
     Developed(Sizes),
+    /// A steady-state birth developed, keyed and evaluated ([`Work::Birth`]).
+    Born {
+        /// What rank 0 needs of its creatures.
+        sizes: Sizes,
+        /// Its evaluation, or `None`: its key was stored up to its source generation.
+        evaluation: Option<Evaluation>,
+        /// The wall time of its development and walks, in seconds.
+        seconds: f64,
+        /// The worker's thread that made it.
+        thread: u32,
+    },
 }
 
 /// What a worker sends rank 0.
@@ -109,6 +133,10 @@ pub(super) enum Reply<C, T, S> {
         births: u64,
         /// The jobs, by index.
         jobs: Vec<(u32, Work<C>)>,
+        /// Keys stored since the last reply, each with the first generation that stored it,
+        /// for the worker's copy of a steady-state run's lookup ([`Work::Birth`]); a worker
+        /// forgets its copy when `births` changes.
+        known: Vec<([u8; 32], u32)>,
         /// Whether these are the worker's last jobs of the batch: it then sends its next
         /// request once it has done every job it holds, not when it runs low.
         last: bool,
@@ -178,6 +206,7 @@ mod tests {
             setup: None,
             births: 4,
             jobs: vec![(7, Work::Walk(&creature, Some(unit)))],
+            known: vec![([9; 32], 3)],
             last: true,
         };
         let bytes = encode(&sent);
@@ -186,12 +215,14 @@ mod tests {
             setup: None,
             births: 4,
             jobs,
+            known,
             last: true,
         } = rmp_serde::from_slice::<Reply<Creature, TaskSpec, Setup>>(&bytes).unwrap()
         else {
             panic!("not the work sent");
         };
         assert_eq!(jobs, vec![(7, Work::Walk(creature.clone(), Some(unit)))]);
+        assert_eq!(known, vec![([9; 32], 3)]);
         let Work::Walk(received, received_unit) = &jobs[0].1 else {
             panic!("not a walk");
         };

@@ -1,8 +1,11 @@
 //! A worker rank's side of the job: it asks rank 0 for work, does it on its threads, holds
 //! the creatures it develops until rank 0 starts new births, and sends the outcomes back.
+//! For a steady-state run it keeps a copy of the keys rank 0 has stored, each with the first
+//! generation that stored it, so that a birth whose creature is stored is not walked.
 
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex, MutexGuard, mpsc};
+use std::sync::{Arc, Mutex, MutexGuard, RwLock, mpsc};
+use std::time::Instant;
 
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -24,6 +27,7 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
     let mut task: Option<Arc<TaskSpec>> = None;
     let mut grower: Option<Arc<dyn Grower>> = None;
     let held: Arc<Mutex<HashMap<u32, Arc<Grown>>>> = Arc::default();
+    let stored: Arc<RwLock<HashMap<[u8; 32], u32>>> = Arc::default();
     let mut births = 0u64;
     let mut in_flight = 0usize;
     let mut outcomes = Vec::new();
@@ -48,6 +52,7 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
                 setup,
                 births: now,
                 jobs,
+                known,
                 last,
             } => {
                 if let Some(sent) = sent {
@@ -59,6 +64,13 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
                 if now != births {
                     births = now;
                     lock(&held).clear();
+                    write(&stored).clear();
+                }
+                if !known.is_empty() {
+                    let mut stored = write(&stored);
+                    for (key, generation) in known {
+                        stored.entry(key).or_insert(generation);
+                    }
                 }
                 (jobs, last)
             }
@@ -103,6 +115,32 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
                         let _ = finished.send((index, Ok(Outcome::Evaluated(evaluation))));
                     })
                 }
+                Work::Birth {
+                    genome,
+                    seed,
+                    key_version,
+                    source,
+                } => {
+                    let (grower, stored) = (grower()?, stored.clone());
+                    rayon::spawn(move || {
+                        let started = Instant::now();
+                        let outcome = grower.grow(&genome.0, seed, key_version, &task).map(|g| {
+                            let is_stored = g.key().is_some_and(|key| {
+                                read(&stored)
+                                    .get(&key.0)
+                                    .is_some_and(|&first| first <= source)
+                            });
+                            let evaluation = (!is_stored).then(|| g.evaluate_as_birth(&task));
+                            Outcome::Born {
+                                sizes: g.sizes(),
+                                evaluation,
+                                seconds: started.elapsed().as_secs_f64(),
+                                thread: rayon::current_thread_index().unwrap_or(0) as u32,
+                            }
+                        });
+                        let _ = finished.send((index, outcome));
+                    })
+                }
                 Work::GrowAndWalk {
                     genome,
                     seed,
@@ -141,6 +179,17 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
 fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
     mutex
         .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// The stored keys, to read (a thread that panicked while holding them left them whole).
+fn read<T>(lock: &RwLock<T>) -> std::sync::RwLockReadGuard<'_, T> {
+    lock.read().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// The stored keys, to add to.
+fn write<T>(lock: &RwLock<T>) -> std::sync::RwLockWriteGuard<'_, T> {
+    lock.write()
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 

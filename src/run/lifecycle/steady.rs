@@ -14,18 +14,16 @@ use std::time::Instant;
 use rayon::ThreadPool;
 
 use super::beside::{Evaluated, Pending, fine_pool};
-use super::pool::{Panicked, with_workers};
+use super::births::{Births, Order};
+use super::pool::with_workers;
 use super::progress::Progress;
 use super::{GenerationReport, Run, RunError};
-use crate::cancel::{Cancel, Interrupted};
+use crate::cancel::Cancel;
 use crate::encoding::Genome;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
 use crate::evolve::ga::{Individual, Operator};
 use crate::evolve::steady::{Birth, Blocks, Lookup, Snapshot, Standings};
 use crate::evolve::timing::{GenerationTimes, WalkTime};
-
-/// A birth to make: its number and the generation it is bred from.
-type Order<G> = (u64, Arc<Snapshot<G>>);
 
 /// Sets the run's cancellation token if the thread unwinds while it is held, so that the
 /// births in flight stop rather than run to their end.
@@ -139,6 +137,9 @@ impl<G: Genome> Run<G> {
         let mut standings = Standings::of(&progress.population);
         let cancel = self.cancel.clone();
         let work = |thread: usize, (number, snapshot): Order<G>| {
+            // On rank 0 of an MPI job, its own births count as its own walks.
+            #[cfg(feature = "mpi")]
+            let _own = crate::evolve::mpi::OwnWalk::start();
             evolution
                 .birth(number, &snapshot, lookup.as_deref(), &cancel)
                 .map(|mut b| {
@@ -146,18 +147,39 @@ impl<G: Genome> Run<G> {
                     b
                 })
         };
-        with_workers(threads, work, |orders, births| {
+        // On rank 0 of an MPI job, the other ranks make births too.
+        #[cfg(feature = "mpi")]
+        let stream = crate::evolve::mpi::BirthStream::start(
+            &evolution,
+            lookup.clone(),
+            threads,
+            self.cancel.clone(),
+        );
+        with_workers(threads, work, |orders, made| {
             // A panic of this thread stops the births in flight at their next control step.
             let _stop = CancelOnUnwind(self.cancel.clone());
+            #[cfg(feature = "mpi")]
+            let mut births = match stream {
+                Some(stream) => Births::Ranks {
+                    stream,
+                    orders,
+                    made,
+                },
+                None => Births::Here { orders, made },
+            };
+            #[cfg(not(feature = "mpi"))]
+            let mut births = Births::Here { orders, made };
             let mut bred = integrated;
             // The last generation whose births are all integrated: births bred from it may
             // start.
             let mut ready = last;
-            let send = |bred: &mut u64, ready: u32, snapshots: &BTreeMap<u32, Arc<Snapshot<G>>>| {
+            let send = |births: &mut Births<'_, G>,
+                        bred: &mut u64,
+                        ready: u32,
+                        snapshots: &BTreeMap<u32, Arc<Snapshot<G>>>| {
                 while *bred < end && blocks.source(*bred) <= ready {
                     let snapshot = snapshots[&blocks.source(*bred)].clone();
-                    // The workers hold the receiver until this function returns.
-                    let _ = orders.send((*bred, snapshot));
+                    births.offer((*bred, snapshot));
                     *bred += 1;
                 }
             };
@@ -165,12 +187,8 @@ impl<G: Genome> Run<G> {
             let mut block = Block::new();
             let outcome = (|| -> Result<(), RunError> {
                 while integrated < end {
-                    send(&mut bred, ready, &snapshots);
-                    let birth = match births.recv() {
-                        Ok(Ok(birth)) => birth?,
-                        Ok(Err(Panicked(message))) => return Err(RunError::Panicked(message)),
-                        Err(_) => return Err(RunError::Interrupted(Interrupted)),
-                    };
+                    send(&mut births, &mut bred, ready, &snapshots);
+                    let birth = births.next()?;
                     waiting.insert(birth.number, birth);
                     while let Some(birth) = waiting.remove(&integrated) {
                         self.integrate(progress, &mut standings, &mut block, birth);
@@ -183,14 +201,15 @@ impl<G: Genome> Run<G> {
                         mark_survivors(progress, ready, &done.replaced);
                         // The births bred from this generation go out before anything waits.
                         if let Some(lookup) = &lookup {
-                            lookup
+                            let new = lookup
                                 .write()
                                 .unwrap_or_else(|poisoned| poisoned.into_inner())
                                 .add(ready, &progress.population);
+                            births.stored(ready, new);
                         }
                         let snapshot = Snapshot::new(&evolution, progress.population.clone());
                         snapshots.insert(ready, Arc::new(snapshot));
-                        send(&mut bred, ready, &snapshots);
+                        send(&mut births, &mut bred, ready, &snapshots);
                         let needed = blocks.source(bred.min(end.saturating_sub(1)));
                         snapshots.retain(|&g, _| g >= needed);
                         let evaluated = done.started.elapsed().as_secs_f64();
@@ -292,10 +311,10 @@ impl<G: Genome> Run<G> {
         for g in 0..=last {
             let made_here = fresh && g == last;
             if made_here || current.contains(&(g, EVALUATOR_VERSION)) {
-                match made_here {
+                let _ = match made_here {
                     true => lookup.add(g, population),
                     false => lookup.add(g, &self.population(g)?),
-                }
+                };
             }
         }
         Ok(Some(lookup))

@@ -13,9 +13,9 @@ use ontogeny::cancel::Cancel;
 use ontogeny::encoding::{DirectGenome, Genome};
 use ontogeny::evolve::ga::{Algorithm, Evolution, Individual, Operator, individual_rng};
 use ontogeny::evolve::steady::{Blocks, Snapshot, replace_worst};
+use ontogeny::run::Run;
 use ontogeny::run::profile::read_profile;
 use ontogeny::run::store::RunStore;
-use ontogeny::run::{Run, check_ranks};
 use ontogeny::task::Evaluation;
 
 use super::{contents, scratch};
@@ -416,17 +416,6 @@ fn a_steady_runs_profile_counts_each_blocks_time_once_and_its_words_say_steady_s
     let plot = std::fs::read_to_string(out.join("fitness.svg")).unwrap();
     assert!(plot.contains("steady-state (3 in flight)"), "{plot}");
     let _ = std::fs::remove_dir_all(dir);
-}
-
-#[test]
-fn steady_state_is_refused_over_several_ranks_before_a_run_starts() {
-    // The check a start and a resume make before anything is written.
-    let refused = check_ranks(Algorithm::SteadyState, 2)
-        .unwrap_err()
-        .to_string();
-    assert!(refused.contains("without an MPI launcher"), "{refused}");
-    assert!(check_ranks(Algorithm::SteadyState, 1).is_ok());
-    assert!(check_ranks(Algorithm::Generational, 4).is_ok());
 }
 
 #[test]
