@@ -3,11 +3,12 @@
 //! two encodings, two ranks for a run in habitats with noisy trials, and two and three for a
 //! run whose creatures grow during their walks, developed and keyed by the ranks that walk
 //! them; two ranks for continuous and direct genomes, a thrower's graph genomes and fresh
-//! trials; a killed worker rank
+//! trials; a steady-state run over two and three ranks (births streamed to the ranks) for
+//! L-system genomes, habitats with noisy trials and growing creatures; a killed worker rank
 //! ends the job with a message and a nonzero exit code and `evolve --resume` (one process or
-//! two ranks) then finishes the run to the result of an uninterrupted one, a rank 0 that
-//! refuses its input ends every rank, and a job launched from a host file, as on a cluster,
-//! gives the run of one process.
+//! two ranks) then finishes the run, generational or steady-state, to the result of an
+//! uninterrupted one, a rank 0 that refuses its input ends every rank, and a job launched
+//! from a host file, as on a cluster, gives the run of one process.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -317,11 +318,23 @@ fn rank_process(out: &Path, rank: u32) -> Option<u32> {
 
 #[test]
 fn a_killed_worker_rank_ends_the_job_and_the_run_resumes_to_the_same_result() {
-    let dir = scratch("kill");
+    killed_and_resumed("kill", &long);
+}
+
+#[test]
+fn a_steady_state_run_killed_over_three_ranks_resumes_to_the_same_result() {
+    killed_and_resumed("kill-steady", &|out| steady(long(out), "3"));
+}
+
+/// `run` started over three ranks, its rank 2 killed while generation 2 is evaluated: the job
+/// ends with a message, and the run resumed by one process, or by two ranks, is the run
+/// uninterrupted.
+fn killed_and_resumed(name: &str, run: &Run<'_>) {
+    let dir = scratch(name);
     let whole = dir.join("whole");
-    succeeded(&long(&whole).output().unwrap());
+    succeeded(&run(&whole).output().unwrap());
     let killed = dir.join("killed");
-    let job = under_mpirun(3, &long(&killed))
+    let job = under_mpirun(3, &run(&killed))
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
