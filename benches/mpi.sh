@@ -9,6 +9,8 @@
 # best of each; 1 is perfect) and, from ONTOGENY_MPI_TIMING, each MPI run's line: how the
 # evaluations and births were shared and the CPU time rank 0's main thread used per
 # evaluation (CPU time, not wall time: the ranks share the cores), then the load average.
+# GENS (default 1) sets the generations and EXTRA adds flags to every run: a steady-state run,
+# say, GENS=4 EXTRA="--algorithm steady-state --in-flight 50" sh benches/mpi.sh 1
 # Needs Open MPI (mpirun) and the build with the feature. Run from the repository's root:
 #   sh benches/mpi.sh [ROUNDS]
 # The runs go to a temporary directory, removed at the end.
@@ -22,7 +24,7 @@ trap 'rm -rf "$work"' EXIT INT TERM
 # not bound to a core (as the single process is not: other load moves them both alike).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mpirun="mpirun --oversubscribe --bind-to none --mca mpi_yield_when_idle 1"
-run="evolve --config examples/evolve-walker.toml --pop 200 --gens 1"
+run="evolve --config examples/evolve-walker.toml --pop 200 --gens ${GENS:-1} ${EXTRA:-}"
 
 seconds() {
     # Wall seconds of "$@"; its final line (standard output) and the MPI line go to standard

@@ -68,7 +68,9 @@ pub enum Purpose {
 /// operator loops until a random draw happens to fit (an encoding may make a newborn again a
 /// bounded number of times, as the graph genome does when its parts interpenetrate). Development never panics: a genome that
 /// does not develop gives a [`DevelopError`].
-pub trait Genome: Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned {
+pub trait Genome:
+    Clone + std::fmt::Debug + Send + Sync + Serialize + DeserializeOwned + 'static
+{
     /// The encoding's limits and settings (serialisable: they are part of a run's config),
     /// each key within its documented range ([`CheckedLimits`]).
     type Limits: Clone

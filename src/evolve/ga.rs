@@ -24,7 +24,7 @@ use crate::encoding::{Genome, Rng};
 use crate::task::{Evaluation, Status, TaskSpec, TaskTables, Unit};
 
 #[cfg(feature = "mpi")]
-pub(super) mod remote;
+mod remote;
 
 pub use super::operator::{Fallbacks, Operator, schedule};
 pub use super::settings::{Algorithm, GaSettings, Preset, WwdCrossover};

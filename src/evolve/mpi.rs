@@ -25,7 +25,7 @@
 //! Set `ONTOGENY_MPI_TIMING=1` to have rank 0 say, at the end, how its work was shared, how
 //! much CPU time it spent per walk, and how often its main thread woke and messages crossed.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use std::time::Duration;
 
@@ -43,9 +43,9 @@ mod master;
 mod queue;
 mod wire;
 mod worker;
-pub(super) use grow::{Grown, Setup, Sizes};
-pub use master::{BirthStream, Next, Order};
-use master::{Master, Worker};
+pub(super) use grow::{Grown, Setup, Sizes, key_version_number};
+pub use master::Stream;
+use master::{Master, Worker, stored_keys};
 pub(super) use wire::{Bytes, Outcome, Work, encode};
 use wire::{Reply, Request};
 use worker::serve;
@@ -105,6 +105,23 @@ fn process_cpu() -> Option<Duration> {
     Some(Duration::from_millis(ticks * 10))
 }
 
+/// CPU time rank 0's threads spent breeding births for other ranks (a steady-state run's), in
+/// nanoseconds, counted with `ONTOGENY_MPI_TIMING` set.
+static BREEDING_NANOS: AtomicU64 = AtomicU64::new(0);
+
+/// `breed()`, its CPU time counted as rank 0's breeding for other ranks (with
+/// `ONTOGENY_MPI_TIMING` set, on rank 0 of a job of several ranks).
+pub(in crate::evolve) fn breeding<T>(breed: impl FnOnce() -> T) -> T {
+    let counting = std::env::var_os(TIMING_VARIABLE).is_some() && is_master();
+    let started = counting.then(thread_cpu).flatten();
+    let bred = breed();
+    if let (Some(started), Some(now)) = (started, thread_cpu()) {
+        let nanos = now.saturating_sub(started).as_nanos() as u64;
+        BREEDING_NANOS.fetch_add(nanos, Ordering::SeqCst);
+    }
+    bred
+}
+
 /// A walk rank 0 makes outside batches (the fine re-walk), counted as its own while this
 /// lives: [`OwnWalk::start`] it before the walk, drop it after.
 pub struct OwnWalk {
@@ -137,6 +154,10 @@ static MASTER: Mutex<Option<Master>> = Mutex::new(None);
 /// Whether this process is rank 0 of a job of several ranks (read without waiting for
 /// [`MASTER`], which a batch holds).
 static IS_MASTER: AtomicBool = AtomicBool::new(false);
+
+/// The ranks of the job this process is rank 0 of (1 when it is none's), read without
+/// waiting for [`MASTER`] (which a batch or a stream holds).
+static RANKS: AtomicU32 = AtomicU32::new(1);
 
 fn master() -> MutexGuard<'static, Option<Master>> {
     MASTER
@@ -197,6 +218,7 @@ pub fn join() -> Result<Option<Membership>, String> {
         }
         let timing = std::env::var_os(TIMING_VARIABLE).is_some();
         *master() = Some(Master::new(workers, timing));
+        RANKS.store(world.size() as u32, Ordering::SeqCst);
         IS_MASTER.store(true, Ordering::SeqCst);
     }
     Ok(Some(Membership {
@@ -210,6 +232,7 @@ impl Drop for Membership {
             return;
         };
         IS_MASTER.store(false, Ordering::SeqCst);
+        RANKS.store(1, Ordering::SeqCst);
         let world = SimpleCommunicator::world();
         state.stop(&world);
         if std::env::var_os(TIMING_VARIABLE).is_some() {
@@ -220,9 +243,7 @@ impl Drop for Membership {
 
 /// The number of ranks of the job this process is rank 0 of (1 when it is none's).
 pub fn ranks() -> u32 {
-    master()
-        .as_ref()
-        .map_or(1, |state| state.workers.len() as u32 + 1)
+    RANKS.load(Ordering::SeqCst)
 }
 
 /// The evaluations of `creatures` (with their units) on `task`, in order, over every rank of

@@ -38,6 +38,7 @@
 
 use std::cmp::Reverse;
 use std::collections::{BTreeSet, HashMap};
+use std::sync::Arc;
 use std::time::Instant;
 
 use super::ga::{Evolution, Individual, Operator, Ranked, Unborn, ranking};
@@ -48,6 +49,14 @@ use crate::creature::Creature;
 use crate::develop::Seedling;
 use crate::encoding::Genome;
 use crate::task::{Evaluation, TaskSpec, Watch};
+
+#[cfg(feature = "mpi")]
+mod ranks;
+#[cfg(feature = "mpi")]
+pub use ranks::{BirthStream, Next};
+
+/// A birth to make: its number and the generation it is bred from.
+pub type Order<G> = (u64, Arc<Snapshot<G>>);
 
 /// The arithmetic of births and blocks: the population P, the block C and the evaluations in
 /// flight W.
@@ -275,7 +284,6 @@ impl<G: Genome> Evolution<G> {
     ) -> Result<Birth<G>, Interrupted> {
         cancel.check()?;
         let blocks = Blocks::of(&self.settings);
-        let (_, place) = blocks.place(number);
         let source = blocks.source(number);
         let (unborn, fell_back) = self.breed_birth(number, snapshot);
         let started = Instant::now();
@@ -308,56 +316,79 @@ impl<G: Genome> Evolution<G> {
             ),
             _ => (0, 0, 0),
         };
-        let walk = WalkTime {
-            individual: place as u32,
+        let made = Made {
+            evaluation,
+            simulated,
+            size,
+            key: developed.key,
             seconds: started.elapsed().as_secs_f64(),
             thread: rayon::current_thread_index().unwrap_or(0) as u32,
             rank: 0,
-            parts: size.0,
         };
-        Ok(Birth {
+        Ok(Birth::of(
+            &blocks,
             number,
-            individual: developed.unborn.into_individual(
-                evaluation,
-                size,
-                developed.key,
-                !simulated,
-                source,
-            ),
-            simulated,
+            developed.unborn,
             fell_back,
-            walk,
-        })
+            made,
+        ))
     }
 }
 
-impl<G> Unborn<G> {
-    /// The newborn, evaluated: `size` its first creature's parts, joints and neurons, `reused`
-    /// whether its evaluation is a stored one, `source` the generation it was bred from.
-    pub(super) fn into_individual(
-        self,
-        evaluation: Evaluation,
-        size: (u32, u32, u32),
-        key: Option<EvaluationKey>,
-        reused: bool,
-        source: u32,
-    ) -> Individual<G> {
+/// What the making of a birth gave, wherever it was made.
+pub(super) struct Made {
+    /// Its evaluation, simulated or stored.
+    pub(super) evaluation: Evaluation,
+    /// Whether it was simulated (rather than reusing a stored evaluation).
+    pub(super) simulated: bool,
+    /// Its first creature's parts and joints and its neurons.
+    pub(super) size: (u32, u32, u32),
+    /// Its key (`None` when it did not develop).
+    pub(super) key: Option<EvaluationKey>,
+    /// The wall time of its development and walks, the thread and the rank that made it.
+    pub(super) seconds: f64,
+    pub(super) thread: u32,
+    pub(super) rank: u32,
+}
+
+impl<G> Birth<G> {
+    /// Birth `number` of a run of `blocks`, bred as `unborn` (falling back to mutation from
+    /// `fell_back`, if it did) and made as `made` says.
+    pub(super) fn of(
+        blocks: &Blocks,
+        number: u64,
+        unborn: Unborn<G>,
+        fell_back: Option<Operator>,
+        made: Made,
+    ) -> Birth<G> {
         let Unborn {
             genome,
             develop_seed,
             parents,
             operator,
-        } = self;
-        Individual {
-            genome,
-            develop_seed,
-            parents,
-            operator,
-            evaluation,
-            size,
-            key,
-            reused,
-            parents_generation: Some(source),
+        } = unborn;
+        Birth {
+            number,
+            individual: Individual {
+                genome,
+                develop_seed,
+                parents,
+                operator,
+                evaluation: made.evaluation,
+                size: made.size,
+                key: made.key,
+                reused: !made.simulated,
+                parents_generation: Some(blocks.source(number)),
+            },
+            simulated: made.simulated,
+            fell_back,
+            walk: WalkTime {
+                individual: blocks.place(number).1 as u32,
+                seconds: made.seconds,
+                thread: made.thread,
+                rank: made.rank,
+                parts: made.size.0,
+            },
         }
     }
 }

@@ -178,7 +178,8 @@ fn a_steady_state_run_over_two_and_three_ranks_is_the_run_of_one_process() {
     // Births streamed to the ranks as they fall free: L-system genomes (the cache lends stored
     // creatures their evaluations; the workers skip walking those), creatures in habitats
     // with noisy trials (each birth's walks combined on its rank), and creatures that grow
-    // during their walks.
+    // during their walks; those two write a profile as they go (rank 0 stores each
+    // generation while it streams the births).
     let config_run = |config: &'static str, seed: &'static str| {
         move |out: &Path| {
             let mut command = ontogeny_command();
@@ -186,7 +187,9 @@ fn a_steady_state_run_over_two_and_three_ranks_is_the_run_of_one_process() {
                 .args(["evolve", "--config", config])
                 .args(["--pop", "6", "--gens", "3", "--seconds", "0.5"])
                 .args(["--seed", seed, "--out"])
-                .arg(out);
+                .arg(out)
+                .arg("--profile")
+                .arg(out.with_extension("jsonl"));
             steady(command, "4")
         }
     };
@@ -224,7 +227,7 @@ fn a_steady_state_run_over_two_and_three_ranks_is_the_run_of_one_process() {
                 count(&line, "steady-state births made on other ranks") > 0,
                 "{name}: {line}"
             );
-            stored_elsewhere += count(&line, "of them found stored, not walked),");
+            stored_elsewhere += count(&line, "of them found stored, not walked;");
         }
     }
     // Among the L-system runs' stored creatures, some were bred on other ranks.

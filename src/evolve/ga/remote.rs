@@ -22,8 +22,10 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use super::super::cache::EvaluationCache;
-use super::super::key::{EvaluationKey, KeyVersion};
-use super::super::mpi::{self, Batch, Bytes, Grown, Outcome, Setup, Sizes, Work, encode};
+use super::super::key::EvaluationKey;
+use super::super::mpi::{
+    self, Batch, Bytes, Grown, Outcome, Setup, Sizes, Work, encode, key_version_number,
+};
 use super::super::timing::GenerationTimes;
 use super::{Evolution, Individual, Unborn};
 use crate::cancel::{Cancel, Interrupted};
@@ -34,14 +36,6 @@ use crate::task::{Evaluation, Unit};
 /// for a run whose keys hash no stored `[task]` tables.
 pub(super) fn births_go_remote<G: Genome>(evolution: &Evolution<G>) -> bool {
     mpi::is_master() && evolution.key_tables.is_none()
-}
-
-/// The key version's number, as [`Work::Develop`] carries it.
-pub(in crate::evolve) fn version_number(version: KeyVersion) -> u8 {
-    match version {
-        KeyVersion::V1 => 1,
-        KeyVersion::V2 => 2,
-    }
 }
 
 /// Where a birth's evaluation comes from.
@@ -82,7 +76,7 @@ pub(super) fn evaluate_all<G: Genome>(
     let wire = |i: usize, _| Work::Develop {
         genome: Bytes(encode(&unborn[i].genome)),
         seed: unborn[i].develop_seed,
-        key_version: version_number(version),
+        key_version: key_version_number(version),
     };
     let local = |i: usize, _| {
         let grown = Grown::of(
@@ -192,7 +186,7 @@ pub(super) fn evaluate_all<G: Genome>(
             true => Work::GrowAndWalk {
                 genome: Bytes(encode(&unborn.genome)),
                 seed: unborn.develop_seed,
-                key_version: version_number(version),
+                key_version: key_version_number(version),
                 unit: walk.unit,
             },
             false => Work::WalkHeld {
@@ -264,12 +258,7 @@ pub(super) fn evaluate_all<G: Genome>(
         if let (Some(key), false, false) = (keys[index], reused, fresh) {
             cache.insert(key, &evaluation);
         }
-        let size = match &s.creatures {
-            Ok(creatures) => creatures
-                .first()
-                .map_or((0, 0, 0), |c| (c.0, c.1, s.neurons)),
-            Err(_) => (0, 0, 0),
-        };
+        let size = s.size();
         born.push(Individual {
             genome: u.genome,
             develop_seed: u.develop_seed,

@@ -51,6 +51,19 @@ pub(in crate::evolve) struct Sizes {
     pub neurons: u32,
 }
 
+impl Sizes {
+    /// Its first creature's parts and joints and its neurons, as an individual records its
+    /// size (zeros when it did not develop).
+    pub(in crate::evolve) fn size(&self) -> (u32, u32, u32) {
+        match &self.creatures {
+            Ok(creatures) => creatures
+                .first()
+                .map_or((0, 0, 0), |c| (c.0, c.1, self.neurons)),
+            Err(_) => (0, 0, 0),
+        }
+    }
+}
+
 /// A birth developed and keyed, held by the rank that developed it.
 pub(in crate::evolve) struct Grown {
     /// Its creatures, one per habitat, or why it did not develop.
@@ -126,7 +139,7 @@ impl Grown {
     /// thread).
     pub(in crate::evolve) fn evaluate_as_birth(&self, task: &TaskSpec) -> Evaluation {
         super::super::steady::evaluate_birth(task, &self.creatures, &self.seedlings, self.key, None)
-            .unwrap_or_else(|_| Evaluation::invalid(task.task.name(), "interrupted".to_string()))
+            .expect("an evaluation without a cancellation token is never interrupted")
     }
 
     /// Its key, if it developed.
@@ -196,6 +209,15 @@ pub(in crate::evolve) fn grower(setup: &Setup) -> Result<Arc<dyn Grower>, String
         },
         |other| Err(format!("rank 0 sent genomes of an unknown encoding, {other}"))
     )
+}
+
+/// The number a key version travels as ([`super::Work::Develop`]), which
+/// [`key_version_of`] reads back.
+pub(in crate::evolve) fn key_version_number(version: KeyVersion) -> u8 {
+    match version {
+        KeyVersion::V1 => 1,
+        KeyVersion::V2 => 2,
+    }
 }
 
 /// The key version [`Work::Develop`] carries as `number`; the error names an unknown one.

@@ -24,11 +24,16 @@ use mpi::traits::*;
 use rayon::prelude::*;
 
 mod stream;
-pub use stream::{BirthStream, Next, Order};
+pub use stream::Stream;
+use stream::decode_request;
+pub(super) use stream::stored_keys;
 
 use super::queue::Queues;
-use super::wire::{Outcome, Reply, Request, encode};
-use super::{Batch, OWN_WALK_NANOS, REPLY, REQUEST, Setup, fail, process_cpu, receive, thread_cpu};
+use super::wire::{Bytes, Outcome, Reply, Work, encode};
+use super::{
+    BREEDING_NANOS, Batch, OWN_WALK_NANOS, REPLY, REQUEST, Setup, fail, process_cpu, receive,
+    thread_cpu,
+};
 use crate::creature::Creature;
 use crate::task::TaskSpec;
 
@@ -220,6 +225,15 @@ impl Master {
         }
     }
 
+    /// Makes `task` the one the next jobs are of (a new version when it differs).
+    pub(super) fn set_task(&mut self, task: &TaskSpec) {
+        let encoded = encode(task);
+        if encoded != self.task {
+            self.task = encoded;
+            self.task_version += 1;
+        }
+    }
+
     /// Makes `setup` the one the next batches' genomes need.
     pub(super) fn set_setup(&mut self, setup: Setup) {
         let encoded = encode(&setup);
@@ -242,11 +256,7 @@ impl Master {
         let main_started = thread_cpu();
         let size = batch.holders.len();
         let batch_started = Instant::now();
-        let encoded = encode(task);
-        if encoded != self.task {
-            self.task = encoded;
-            self.task_version += 1;
-        }
+        self.set_task(task);
         if batch.new_births {
             self.births += 1;
         }
@@ -358,9 +368,7 @@ impl Master {
                     let (bytes, status) = matched.matched_receive_vec::<u8>();
                     let rank = status.source_rank();
                     self.counts.requests += 1;
-                    let request: Request = rmp_serde::from_slice(&bytes).unwrap_or_else(|e| {
-                        fail(world, &format!("cannot decode a request from rank {rank}: {e} (are all ranks the same ontogeny build?)"))
-                    });
+                    let request = decode_request(world, rank, &bytes);
                     let worker = &mut self.workers[rank as usize - 1];
                     worker.threads = request.threads.max(1) as usize;
                     worker.in_flight = worker.in_flight.saturating_sub(request.outcomes.len());
@@ -438,9 +446,7 @@ impl Master {
         queues: &Queues,
         all_threads: usize,
     ) {
-        let (task_version, setup_version, births) =
-            (self.task_version, self.setup_version, self.births);
-        let worker = &mut self.workers[rank as usize - 1];
+        let worker = &self.workers[rank as usize - 1];
         if !worker.waiting {
             return;
         }
@@ -456,30 +462,14 @@ impl Master {
         if jobs.is_empty() && worker.in_flight == 0 {
             return;
         }
-        let reply: Reply<&Creature, &TaskSpec, &Setup> = Reply::Work {
-            task: (worker.task_version != task_version).then_some(task),
-            setup: self
-                .setup
-                .as_ref()
-                .filter(|_| worker.setup_version != setup_version)
-                .map(|(_, setup)| setup),
-            births,
-            jobs: jobs
-                .iter()
-                .map(|&(i, stolen)| (i as u32, (batch.wire)(i, stolen)))
-                .collect(),
-            known: Vec::new(),
-            last: jobs.len() < wanted,
-        };
-        worker.last = jobs.len() < wanted;
-        worker.answered = Some(Instant::now());
-        let bytes = outgoing.send(rank, encode(&reply));
-        worker.task_version = task_version;
-        worker.setup_version = setup_version;
-        worker.in_flight += jobs.len();
-        worker.waiting = false;
-        self.counts.replies += 1;
-        self.counts.bytes += bytes as u64;
+        let last = jobs.len() < wanted;
+        let jobs: Vec<(u32, Work<&Creature>)> = jobs
+            .iter()
+            .map(|&(i, stolen)| (i as u32, (batch.wire)(i, stolen)))
+            .collect();
+        self.reply_with(rank, task, jobs, Bytes::default(), last, |bytes| {
+            outgoing.send(rank, bytes)
+        });
     }
 
     /// Waits for every worker to ask for work, then tells each to stop.
@@ -511,8 +501,11 @@ impl Master {
         let steady = match c.born_remote + c.born_local {
             0 => String::new(),
             _ => format!(
-                "; {} steady-state births made on other ranks ({} of them found stored, not walked), {} on rank 0",
-                c.born_remote, c.stored_remote, c.born_local
+                "; {} steady-state births made on other ranks ({} of them found stored, not walked; {:.2} s of rank 0's CPU time breeding them), {} on rank 0",
+                c.born_remote,
+                c.stored_remote,
+                Duration::from_nanos(BREEDING_NANOS.load(Ordering::SeqCst)).as_secs_f64(),
+                c.born_local
             ),
         };
         format!(

@@ -134,9 +134,10 @@ pub(super) enum Reply<C, T, S> {
         /// The jobs, by index.
         jobs: Vec<(u32, Work<C>)>,
         /// Keys stored since the last reply, each with the first generation that stored it,
-        /// for the worker's copy of a steady-state run's lookup ([`Work::Birth`]); a worker
-        /// forgets its copy when `births` changes.
-        known: Vec<([u8; 32], u32)>,
+        /// for the worker's copy of a steady-state run's lookup ([`Work::Birth`]): 36 bytes
+        /// each, the key's 32 then the generation's 4, little-endian. A worker forgets its
+        /// copy when `births` changes.
+        known: Bytes,
         /// Whether these are the worker's last jobs of the batch: it then sends its next
         /// request once it has done every job it holds, not when it runs low.
         last: bool,
@@ -206,7 +207,7 @@ mod tests {
             setup: None,
             births: 4,
             jobs: vec![(7, Work::Walk(&creature, Some(unit)))],
-            known: vec![([9; 32], 3)],
+            known: Bytes(vec![9; 36]),
             last: true,
         };
         let bytes = encode(&sent);
@@ -222,7 +223,7 @@ mod tests {
             panic!("not the work sent");
         };
         assert_eq!(jobs, vec![(7, Work::Walk(creature.clone(), Some(unit)))]);
-        assert_eq!(known, vec![([9; 32], 3)]);
+        assert_eq!(known, Bytes(vec![9; 36]));
         let Work::Walk(received, received_unit) = &jobs[0].1 else {
             panic!("not a walk");
         };

@@ -66,9 +66,9 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
                     lock(&held).clear();
                     write(&stored).clear();
                 }
-                if !known.is_empty() {
+                if !known.0.is_empty() {
                     let mut stored = write(&stored);
-                    for (key, generation) in known {
+                    for (key, generation) in super::stored_keys(&known.0) {
                         stored.entry(key).or_insert(generation);
                     }
                 }
@@ -123,21 +123,9 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
                 } => {
                     let (grower, stored) = (grower()?, stored.clone());
                     rayon::spawn(move || {
-                        let started = Instant::now();
-                        let outcome = grower.grow(&genome.0, seed, key_version, &task).map(|g| {
-                            let is_stored = g.key().is_some_and(|key| {
-                                read(&stored)
-                                    .get(&key.0)
-                                    .is_some_and(|&first| first <= source)
-                            });
-                            let evaluation = (!is_stored).then(|| g.evaluate_as_birth(&task));
-                            Outcome::Born {
-                                sizes: g.sizes(),
-                                evaluation,
-                                seconds: started.elapsed().as_secs_f64(),
-                                thread: rayon::current_thread_index().unwrap_or(0) as u32,
-                            }
-                        });
+                        let first = |key: &[u8; 32]| read(&stored).get(key).copied();
+                        let birth = (&genome.0[..], seed, key_version, source);
+                        let outcome = make_birth(grower.as_ref(), birth, &task, first);
                         let _ = finished.send((index, outcome));
                     })
                 }
@@ -175,6 +163,30 @@ pub(super) fn serve(world: &SimpleCommunicator) -> Result<(), String> {
     }
 }
 
+/// A steady-state birth ([`Work::Birth`]): `genome` (encoded) developed with `seed`, keyed
+/// with keys of `key_version`, and evaluated on this thread unless `first` (the first
+/// generation that stored a key, if any did) says it was stored up to `source`.
+fn make_birth(
+    grower: &dyn Grower,
+    (genome, seed, key_version, source): (&[u8], u64, u8, u32),
+    task: &TaskSpec,
+    first: impl Fn(&[u8; 32]) -> Option<u32>,
+) -> Result<Outcome, String> {
+    let started = Instant::now();
+    let grown = grower.grow(genome, seed, key_version, task)?;
+    let stored = grown
+        .key()
+        .and_then(|key| first(&key.0))
+        .is_some_and(|generation| generation <= source);
+    let evaluation = (!stored).then(|| grown.evaluate_as_birth(task));
+    Ok(Outcome::Born {
+        sizes: grown.sizes(),
+        evaluation,
+        seconds: started.elapsed().as_secs_f64(),
+        thread: rayon::current_thread_index().unwrap_or(0) as u32,
+    })
+}
+
 /// The map of held creatures, locked (a thread that panicked while holding it left it whole).
 fn lock<T>(mutex: &Mutex<T>) -> MutexGuard<'_, T> {
     mutex
@@ -197,14 +209,23 @@ fn write<T>(lock: &RwLock<T>) -> std::sync::RwLockWriteGuard<'_, T> {
 mod tests {
     use rand::SeedableRng;
 
+    use std::collections::HashMap;
+
+    use super::super::super::ga::{Algorithm, Evolution, GaSettings, Individual, Operator, Preset};
     use super::super::super::habitats::develop_with_seedlings;
-    use super::super::super::key::KeyVersion;
+    use super::super::super::key::{EvaluationKey, KeyVersion};
+    use super::super::super::steady::{Blocks, Lookup, Snapshot};
     use super::super::grow::{Grown, Setup, grower};
-    use super::super::{Bytes, Work, encode};
+    use super::super::{Bytes, Outcome, Work, encode};
+    use super::make_birth;
+    use crate::cancel::Cancel;
     use crate::creature::Creature;
     use crate::encoding::{
         ContinuousGenome, DirectGenome, Genome, GraphGenome, LSystemGenome, Purpose, Rng,
     };
+    use crate::sim::WorldSpec;
+    use crate::sim::world_spec::Slope;
+    use crate::task::{Evaluation, Habitat};
     use crate::task::{TaskKind, TaskSpec};
 
     #[test]
@@ -274,6 +295,131 @@ mod tests {
         let mut task = TaskSpec::new(kind);
         *task.seconds_mut() = 0.25;
         task
+    }
+
+    /// A steady-state run of `G` on `task`: population 6, 3 generations, 2 births in flight.
+    fn steady<G: Genome>(task: TaskSpec) -> Evolution<G> {
+        let mut limits = G::Limits::default();
+        G::adapt_limits(&mut limits, Purpose::Locomotion);
+        Evolution {
+            settings: GaSettings {
+                population: 6,
+                generations: 3,
+                algorithm: Algorithm::SteadyState,
+                in_flight: Some(2),
+                ..GaSettings::preset(Preset::Chaumont)
+            },
+            limits,
+            task,
+            seed: 11,
+            init: None,
+            key_version: Default::default(),
+            key_tables: None,
+            walk_order: Default::default(),
+        }
+    }
+
+    /// Every birth of block 1 of `evolution`'s run, made by a worker from its genome sent as
+    /// rank 0 breeds it, is the birth rank 0 makes: the same evaluation to the bit, size and
+    /// key, and the same decision to reuse a stored evaluation — taken for a creature stored
+    /// up to the birth's source generation, not for one first stored after it. Returns how
+    /// many were found stored and how many walked.
+    fn makes_births_as_rank_0<G: Genome>(evolution: &Evolution<G>) -> (usize, usize) {
+        let mut rng = Rng::seed_from_u64(3);
+        let population: Vec<Individual<G>> = (0..6)
+            .map(|i| Individual {
+                genome: G::random(&evolution.limits, &mut rng),
+                develop_seed: i,
+                parents: Vec::new(),
+                operator: Operator::Random,
+                evaluation: Evaluation {
+                    fitness: i as f64,
+                    ..Evaluation::invalid("walker", String::new())
+                },
+                size: (0, 0, 0),
+                key: None,
+                reused: false,
+                parents_generation: None,
+            })
+            .collect();
+        let snapshot = Snapshot::new(evolution, population);
+        let blocks = Blocks::of(&evolution.settings);
+        let cancel = Cancel::default();
+        let births: Vec<u64> = (blocks.end_of(0)..blocks.end_of(1)).collect();
+        // Made once without a lookup, their creatures are then stored: the even ones by
+        // generation 0 (up to every birth's source), the odd ones by generation 1 (after it).
+        let fresh: Vec<_> = births
+            .iter()
+            .map(|&b| evolution.birth(b, &snapshot, None, &cancel).unwrap())
+            .collect();
+        let mut lookup = Lookup::default();
+        for (k, birth) in fresh.iter().enumerate() {
+            assert_eq!(blocks.source(birth.number), 0);
+            lookup.add((k % 2) as u32, std::slice::from_ref(&birth.individual));
+        }
+        let grower = grower(&Setup::of::<G>(&evolution.limits, &evolution.task)).unwrap();
+        let first: HashMap<[u8; 32], u32> = lookup.entries().map(|(k, g)| (k.0, g)).collect();
+        let lookup = std::sync::RwLock::new(lookup);
+        let (mut stored, mut walked) = (0, 0);
+        for &b in &births {
+            let here = evolution
+                .birth(b, &snapshot, Some(&lookup), &cancel)
+                .unwrap();
+            let (unborn, _) = evolution.breed_birth(b, &snapshot);
+            let sent = (&encode(&unborn.genome)[..], unborn.develop_seed, 2, 0);
+            let Ok(Outcome::Born {
+                sizes, evaluation, ..
+            }) = make_birth(grower.as_ref(), sent, &evolution.task, |k| {
+                first.get(k).copied()
+            })
+            else {
+                panic!("{}: birth {b} not made", G::NAME);
+            };
+            assert_eq!(sizes.size(), here.individual.size, "{} birth {b}", G::NAME);
+            assert_eq!(sizes.key.map(EvaluationKey), here.individual.key);
+            assert_eq!(evaluation.is_none(), here.individual.reused, "birth {b}");
+            match evaluation {
+                Some(evaluation) => {
+                    walked += 1;
+                    let made = &here.individual.evaluation;
+                    assert_eq!(&evaluation, made, "{} birth {b}", G::NAME);
+                    assert_eq!(evaluation.fitness.to_bits(), made.fitness.to_bits());
+                }
+                None => stored += 1,
+            }
+        }
+        (stored, walked)
+    }
+
+    #[test]
+    fn a_worker_makes_a_steady_state_birth_as_rank_0_does() {
+        let lsystem = makes_births_as_rank_0(&steady::<LSystemGenome>(short(TaskKind::Walker)));
+        let direct = makes_births_as_rank_0(&steady::<DirectGenome>(short(TaskKind::Walker)));
+        // In two habitats with two noisy trials each: each birth's walks combined on the
+        // worker.
+        let mut habitats = short(TaskKind::Walker);
+        habitats.habitats = ["flat", "hill"]
+            .into_iter()
+            .enumerate()
+            .map(|(i, name)| Habitat {
+                name: name.into(),
+                world: WorldSpec {
+                    slope: (i == 1).then_some(Slope {
+                        degrees: 5.0,
+                        direction: 0.0,
+                    }),
+                    ..WorldSpec::default()
+                },
+                environment: None,
+                trials: None,
+            })
+            .collect();
+        habitats.trials.count = 2;
+        habitats.trials.heading = 10.0;
+        let graph = makes_births_as_rank_0(&steady::<GraphGenome>(habitats));
+        for (stored, walked) in [lsystem, direct, graph] {
+            assert!(stored > 0 && walked > 0, "{stored} stored, {walked} walked");
+        }
     }
 
     #[test]

@@ -1,9 +1,8 @@
 //! Where a steady-state run's births are made: this process's worker threads
 //! ([`super::pool`]), or, on rank 0 of an MPI job of several ranks, those threads and every
-//! other rank ([`crate::evolve::mpi::BirthStream`], with the `mpi` feature). The run's driver
+//! other rank (`evolve::steady::BirthStream`, with the `mpi` feature). The run's driver
 //! offers births and takes them back made, in any order, the same either way.
 
-use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender};
 
 use super::RunError;
@@ -11,10 +10,7 @@ use super::pool::Panicked;
 use crate::cancel::Interrupted;
 use crate::encoding::Genome;
 use crate::evolve::key::EvaluationKey;
-use crate::evolve::steady::{Birth, Snapshot};
-
-/// A birth to make: its number and the generation it is bred from.
-pub(super) type Order<G> = (u64, Arc<Snapshot<G>>);
+use crate::evolve::steady::{Birth, Order};
 
 /// What a worker thread gives back for an order.
 pub(super) type Made<G> = Result<Result<Birth<G>, Interrupted>, Panicked>;
@@ -29,14 +25,15 @@ pub(super) enum Births<'a, G: Genome> {
     /// This process's threads and the other ranks of the MPI job.
     #[cfg(feature = "mpi")]
     Ranks {
-        stream: crate::evolve::mpi::BirthStream<'a, G>,
+        stream: crate::evolve::steady::BirthStream<G>,
         orders: &'a Sender<Order<G>>,
         made: &'a Receiver<Made<G>>,
     },
 }
 
 impl<G: Genome> Births<'_, G> {
-    /// Offers birth `order` to be made.
+    /// Offers birth `order` to be made (on other ranks, from the next
+    /// [`Births::dispatch`] on).
     pub(super) fn offer(&mut self, order: Order<G>) {
         match self {
             // The workers hold the receiver until the driver returns.
@@ -44,7 +41,16 @@ impl<G: Genome> Births<'_, G> {
                 let _ = orders.send(order);
             }
             #[cfg(feature = "mpi")]
-            Births::Ranks { stream, .. } => stream.offer(order.0, order.1),
+            Births::Ranks { stream, .. } => stream.offer(order),
+        }
+    }
+
+    /// Hands the births offered out to the ranks at once (nothing to do on this process's
+    /// threads alone: they take their orders as they are offered).
+    pub(super) fn dispatch(&mut self) {
+        #[cfg(feature = "mpi")]
+        if let Births::Ranks { stream, orders, .. } = self {
+            stream.dispatch(orders);
         }
     }
 
@@ -71,7 +77,7 @@ impl<G: Genome> Births<'_, G> {
                 orders,
                 made,
             } => {
-                use crate::evolve::mpi::Next;
+                use crate::evolve::steady::Next;
                 match stream.next(orders, made) {
                     Next::Local(made) => made,
                     Next::Remote(birth) => return Ok(birth),

@@ -14,7 +14,7 @@ use std::time::Instant;
 use rayon::ThreadPool;
 
 use super::beside::{Evaluated, Pending, fine_pool};
-use super::births::{Births, Order};
+use super::births::Births;
 use super::pool::with_workers;
 use super::progress::Progress;
 use super::{GenerationReport, Run, RunError};
@@ -22,7 +22,7 @@ use crate::cancel::Cancel;
 use crate::encoding::Genome;
 use crate::evolve::evaluator_version::EVALUATOR_VERSION;
 use crate::evolve::ga::{Individual, Operator};
-use crate::evolve::steady::{Birth, Blocks, Lookup, Snapshot, Standings};
+use crate::evolve::steady::{Birth, Blocks, Lookup, Order, Snapshot, Standings};
 use crate::evolve::timing::{GenerationTimes, WalkTime};
 
 /// Sets the run's cancellation token if the thread unwinds while it is held, so that the
@@ -149,15 +149,13 @@ impl<G: Genome> Run<G> {
         };
         // On rank 0 of an MPI job, the other ranks make births too.
         #[cfg(feature = "mpi")]
-        let stream = crate::evolve::mpi::BirthStream::start(
-            &evolution,
+        let stream = crate::evolve::steady::BirthStream::start(
+            evolution.clone(),
             lookup.clone(),
             threads,
             self.cancel.clone(),
         );
         with_workers(threads, work, |orders, made| {
-            // A panic of this thread stops the births in flight at their next control step.
-            let _stop = CancelOnUnwind(self.cancel.clone());
             #[cfg(feature = "mpi")]
             let mut births = match stream {
                 Some(stream) => Births::Ranks {
@@ -169,6 +167,9 @@ impl<G: Genome> Run<G> {
             };
             #[cfg(not(feature = "mpi"))]
             let mut births = Births::Here { orders, made };
+            // A panic of this thread stops the births in flight at their next control step
+            // (dropped before `births`, which waits for the births on other ranks).
+            let _stop = CancelOnUnwind(self.cancel.clone());
             let mut bred = integrated;
             // The last generation whose births are all integrated: births bred from it may
             // start.
@@ -182,6 +183,7 @@ impl<G: Genome> Run<G> {
                     births.offer((*bred, snapshot));
                     *bred += 1;
                 }
+                births.dispatch();
             };
             let mut waiting: BTreeMap<u64, Birth<G>> = BTreeMap::new();
             let mut block = Block::new();

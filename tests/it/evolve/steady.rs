@@ -11,7 +11,7 @@ use std::process::Command;
 
 use ontogeny::cancel::Cancel;
 use ontogeny::encoding::{DirectGenome, Genome};
-use ontogeny::evolve::ga::{Algorithm, Evolution, Individual, Operator, individual_rng};
+use ontogeny::evolve::ga::{Evolution, Individual, Operator, individual_rng};
 use ontogeny::evolve::steady::{Blocks, Snapshot, replace_worst};
 use ontogeny::run::Run;
 use ontogeny::run::profile::read_profile;
