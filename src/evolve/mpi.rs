@@ -44,7 +44,7 @@ mod queue;
 mod wire;
 mod worker;
 pub(super) use grow::{Grown, Setup, Sizes, key_version_number};
-pub use master::Stream;
+pub use master::{Clock, Stream};
 use master::{Master, Worker, stored_keys};
 pub(super) use wire::{Bytes, Outcome, Work, encode};
 use wire::{Reply, Request};
@@ -82,27 +82,19 @@ pub fn launched() -> bool {
         .any(|name| std::env::var_os(name).is_some())
 }
 
-/// The CPU time this thread has used, from Linux's `/proc/thread-self/schedstat` (`None`
-/// where it cannot be read).
+/// The CPU time this thread has used (`None` where the system cannot say).
 fn thread_cpu() -> Option<Duration> {
-    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    let nanoseconds: u64 = text.split_whitespace().next()?.parse().ok()?;
-    Some(Duration::from_nanos(nanoseconds))
+    cpu_time::ThreadTime::try_now()
+        .ok()
+        .map(|t| t.as_duration())
 }
 
-/// The CPU time this process has used, every thread's (ended ones too), user and system,
-/// from Linux's `/proc/self/stat` in its clock ticks of 10 ms (`None` where it cannot be
-/// read).
+/// The CPU time this process has used, every thread's (ended ones too), user and system
+/// (`None` where the system cannot say).
 fn process_cpu() -> Option<Duration> {
-    let text = std::fs::read_to_string("/proc/self/stat").ok()?;
-    // The fields after the command's name, which is in parentheses: utime and stime are the
-    // 12th and 13th of them.
-    let fields: Vec<&str> = text
-        .get(text.rfind(')')? + 1..)?
-        .split_whitespace()
-        .collect();
-    let ticks: u64 = fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?;
-    Some(Duration::from_millis(ticks * 10))
+    cpu_time::ProcessTime::try_now()
+        .ok()
+        .map(|t| t.as_duration())
 }
 
 /// CPU time rank 0's threads spent breeding births for other ranks (a steady-state run's), in

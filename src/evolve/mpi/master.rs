@@ -24,9 +24,9 @@ use mpi::traits::*;
 use rayon::prelude::*;
 
 mod stream;
-pub use stream::Stream;
 use stream::decode_request;
 pub(super) use stream::stored_keys;
+pub use stream::{Clock, Stream};
 
 use super::queue::Queues;
 use super::wire::{Bytes, Outcome, Reply, Work, encode};
@@ -200,7 +200,7 @@ fn per_evaluation(cpu: Option<Duration>, evaluations: u64) -> String {
             "{:.1} µs",
             cpu.as_secs_f64() * 1e6 / evaluations.max(1) as f64
         ),
-        None => "unknown (no /proc)".to_string(),
+        None => "unknown (no CPU clock)".to_string(),
     }
 }
 

@@ -15,7 +15,7 @@
 //! Rank 0's threads hold at most one birth more than they are; the workers are given births
 //! as they ask ([`Stream`]); births bred for the workers that none wants go back to rank 0's
 //! threads. Between looks for requests the main thread waits for its own threads' births, up
-//! to a pause that grows while nothing comes.
+//! to a pause set by the workers' pace.
 
 use std::collections::{HashMap, VecDeque};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
@@ -31,10 +31,12 @@ use super::{Birth, Blocks, Lookup, Made, Order};
 use crate::cancel::Cancel;
 use crate::encoding::Genome;
 
-/// The shortest wait for this process's births between two looks for requests.
-const SHORTEST: Duration = Duration::from_micros(100);
-/// The bounds of the longest wait, which is an eighth of a birth's length.
-const LONGEST: (Duration, Duration) = (Duration::from_micros(500), Duration::from_millis(20));
+/// The wait for this process's births between two looks for requests before the workers'
+/// pace is known.
+const FIRST: Duration = Duration::from_micros(500);
+/// The bounds of the wait once it is known: a quarter of a birth's length on a worker
+/// divided by its threads.
+const BOUNDS: (Duration, Duration) = (Duration::from_micros(500), Duration::from_millis(50));
 
 /// What [`BirthStream::next`] gives.
 pub enum Next<L, G> {
@@ -137,7 +139,7 @@ impl<G: Genome> BirthStream<G> {
             away: HashMap::new(),
             job: 0,
             made: VecDeque::new(),
-            pause: SHORTEST,
+            pause: FIRST,
             lengths: (0.0, 0),
         })
     }
@@ -159,6 +161,13 @@ impl<G: Genome> BirthStream<G> {
     /// more than they are), bred ahead for the workers, and sent to the workers that ask;
     /// takes the births the workers made.
     pub fn dispatch(&mut self, orders: &Sender<Order<G>>) {
+        let clock = self.stream.clock();
+        self.hand_out(orders);
+        self.stream.clocked(clock);
+    }
+
+    /// [`BirthStream::dispatch`], its time not counted.
+    fn hand_out(&mut self, orders: &Sender<Order<G>>) {
         self.feed(orders);
         // Enough bred ahead to fill every worker twice over.
         let ahead = 2 * self.stream.capacity();
@@ -172,9 +181,6 @@ impl<G: Genome> BirthStream<G> {
             self.bred.push_back(bred);
         }
         let outcomes = self.stream.receive();
-        if !outcomes.is_empty() {
-            self.pause = SHORTEST;
-        }
         for (job, rank, outcome) in outcomes {
             let birth = self.born(job, rank, outcome);
             self.made.push_back(birth);
@@ -306,8 +312,11 @@ impl<G: Genome> BirthStream<G> {
             if self.cancel.is_cancelled() {
                 return Next::Cancelled;
             }
-            self.dispatch(orders);
-            if let Some(birth) = self.made.pop_front() {
+            let clock = self.stream.clock();
+            self.hand_out(orders);
+            let birth = self.made.pop_front();
+            self.stream.clocked(clock);
+            if let Some(birth) = birth {
                 return Next::Remote(birth);
             }
             match results.recv_timeout(self.pause) {
@@ -319,20 +328,25 @@ impl<G: Genome> BirthStream<G> {
                 Err(RecvTimeoutError::Disconnected) => return Next::Closed,
                 Err(RecvTimeoutError::Timeout) => {
                     self.stream.woke();
-                    self.pause = (self.pause * 2).min(self.longest());
+                    self.pause = self.longest();
                 }
             }
         }
     }
 
-    /// The longest wait between looks for requests: an eighth of a birth's length as the
-    /// workers report it, so that a worker's free thread rarely waits long for its next
-    /// birth (it holds one ahead).
+    /// The wait between looks for requests: a quarter of the time between two births
+    /// finishing on the busiest worker, as the workers report their lengths. A worker asks as
+    /// soon as one of its threads takes its spare birth, so its threads idle only if rank 0
+    /// has not answered by the time the next one finishes.
     fn longest(&self) -> Duration {
         let (sum, count) = self.lengths;
         match count {
-            0 => LONGEST.0,
-            _ => Duration::from_secs_f64(sum / count as f64 / 8.0).clamp(LONGEST.0, LONGEST.1),
+            0 => FIRST,
+            _ => {
+                let threads = self.stream.most_threads().max(1) as f64;
+                Duration::from_secs_f64(sum / count as f64 / threads / 4.0)
+                    .clamp(BOUNDS.0, BOUNDS.1)
+            }
         }
     }
 }

@@ -40,11 +40,15 @@ pub struct Stream {
     /// of them it was sent.
     keys: Vec<([u8; 32], u32)>,
     keys_sent: Vec<usize>,
-    /// The main thread's CPU time and the wall clock when the stream started: its whole life
-    /// is counted as a batch (the driver's integration and storing among it).
+    /// The main thread's CPU time in the calls that dispatched jobs ([`Stream::clocked`]), and
+    /// when the stream started (its whole life is counted as a batch).
     cpu: Option<Duration>,
     started: Instant,
 }
+
+/// Where the main thread's CPU clock stood when a call that dispatches jobs began
+/// ([`Stream::clock`]).
+pub struct Clock(Option<Duration>);
 
 /// A stored key and its first generation as they travel: the key's 32 bytes, then the
 /// generation's 4, little-endian.
@@ -78,7 +82,7 @@ impl Stream {
             away: HashMap::new(),
             keys,
             keys_sent: vec![0; workers],
-            cpu: thread_cpu(),
+            cpu: Some(Duration::ZERO),
             started: Instant::now(),
         })
     }
@@ -96,6 +100,20 @@ impl Stream {
     ) {
         self.keys
             .extend(keys.into_iter().map(|key| (key, generation)));
+    }
+
+    /// The main thread's CPU clock now, as a call that dispatches jobs begins.
+    pub(in crate::evolve) fn clock(&self) -> Clock {
+        Clock(thread_cpu())
+    }
+
+    /// Counts the main thread's CPU time since `clock` as rank 0's dispatching
+    /// (`ONTOGENY_MPI_TIMING`'s "main thread in batches").
+    pub(in crate::evolve) fn clocked(&mut self, clock: Clock) {
+        self.cpu = match (self.cpu, clock.0, thread_cpu()) {
+            (Some(sum), Some(start), Some(end)) => Some(sum + end.saturating_sub(start)),
+            _ => None,
+        };
     }
 
     /// Counts births made: `remote` on other ranks (`stored` of them found stored, not
@@ -161,6 +179,12 @@ impl Stream {
             .filter(|(_, w)| w.waiting)
             .map(|(i, w)| (i as i32 + 1, (w.threads + 1).saturating_sub(w.in_flight)))
             .collect()
+    }
+
+    /// The most threads a worker has.
+    pub(in crate::evolve) fn most_threads(&self) -> usize {
+        let state = self.master.as_ref().expect("a stream has rank 0's state");
+        state.workers.iter().map(|w| w.threads).max().unwrap_or(1)
     }
 
     /// The most jobs the workers hold at once: one more than its threads each.
@@ -290,11 +314,11 @@ impl Drop for Stream {
             let (rank, bytes) = receive(&self.world, None, REQUEST);
             self.take_request(rank, &bytes);
         }
-        let (started, wall) = (self.cpu, self.started.elapsed());
+        let (cpu, wall) = (self.cpu, self.started.elapsed());
         let counts = &mut self.state().counts;
         counts.batches += wall;
-        counts.main_cpu = match (counts.main_cpu, started, thread_cpu()) {
-            (Some(sum), Some(start), Some(end)) => Some(sum + end.saturating_sub(start)),
+        counts.main_cpu = match (counts.main_cpu, cpu) {
+            (Some(sum), Some(cpu)) => Some(sum + cpu),
             _ => None,
         };
     }
