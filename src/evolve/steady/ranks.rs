@@ -43,7 +43,7 @@ pub enum Next<L, G> {
     /// A result of this process's threads, as they sent it.
     Local(L),
     /// A birth a worker made.
-    Remote(Birth<G>),
+    Remote(Box<Birth<G>>),
     /// This process's threads ended (they dropped their results' sender).
     Closed,
     /// The run was told to stop.
@@ -317,7 +317,7 @@ impl<G: Genome> BirthStream<G> {
             let birth = self.made.pop_front();
             self.stream.clocked(clock);
             if let Some(birth) = birth {
-                return Next::Remote(birth);
+                return Next::Remote(Box::new(birth));
             }
             match results.recv_timeout(self.pause) {
                 Ok(result) => {

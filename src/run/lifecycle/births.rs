@@ -25,7 +25,7 @@ pub(super) enum Births<'a, G: Genome> {
     /// This process's threads and the other ranks of the MPI job.
     #[cfg(feature = "mpi")]
     Ranks {
-        stream: crate::evolve::steady::BirthStream<G>,
+        stream: Box<crate::evolve::steady::BirthStream<G>>,
         orders: &'a Sender<Order<G>>,
         made: &'a Receiver<Made<G>>,
     },
@@ -80,7 +80,7 @@ impl<G: Genome> Births<'_, G> {
                 use crate::evolve::steady::Next;
                 match stream.next(orders, made) {
                     Next::Local(made) => made,
-                    Next::Remote(birth) => return Ok(birth),
+                    Next::Remote(birth) => return Ok(*birth),
                     Next::Closed | Next::Cancelled => return Err(Interrupted.into()),
                 }
             }

@@ -159,7 +159,7 @@ impl<G: Genome> Run<G> {
             #[cfg(feature = "mpi")]
             let mut births = match stream {
                 Some(stream) => Births::Ranks {
-                    stream,
+                    stream: Box::new(stream),
                     orders,
                     made,
                 },
