@@ -10,6 +10,13 @@
 //! that develops them itself) go too. The encoding and its limits are sent once per worker,
 //! the task once per worker and again when it changes.
 //!
+//! A steady-state run's births go as a stream instead ([`Stream`], driven by
+//! `evolve::steady::BirthStream`): rank 0 sends each birth's genome and development seed to a
+//! worker with room for it, and the worker develops, keys and evaluates it, skipping the walks
+//! of a creature the run stored up to the birth's source generation (rank 0 sends the keys it
+//! stores, each with the first generation that stored it). Its answers are sent and waited
+//! for, not left in flight.
+//!
 //! Work is handed out dynamically ([`master`]): rank 0's own threads take jobs one at a time
 //! while its main thread serves the workers in chunks. A job that walks a held creature goes
 //! to the rank that holds it, unless another rank has run out of its own jobs (it then

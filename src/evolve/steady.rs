@@ -58,6 +58,18 @@ pub use ranks::{BirthStream, Next};
 /// A birth to make: its number and the generation it is bred from.
 pub type Order<G> = (u64, Arc<Snapshot<G>>);
 
+/// The message of a panic's payload (a birth's, or its breeding's, on a thread of its own).
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    match (
+        payload.downcast_ref::<&str>(),
+        payload.downcast_ref::<String>(),
+    ) {
+        (Some(s), _) => s.to_string(),
+        (_, Some(s)) => s.clone(),
+        _ => "a panic without a message".to_string(),
+    }
+}
+
 /// The arithmetic of births and blocks: the population P, the block C and the evaluations in
 /// flight W.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

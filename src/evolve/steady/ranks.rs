@@ -27,7 +27,7 @@ use super::super::key::EvaluationKey;
 use super::super::mpi::{
     Bytes, Outcome, Setup, Stream, Work, breeding, encode, key_version_number,
 };
-use super::{Birth, Blocks, Lookup, Made, Order};
+use super::{Birth, Blocks, Lookup, Made, Order, panic_message};
 use crate::cancel::Cancel;
 use crate::encoding::Genome;
 
@@ -48,6 +48,8 @@ pub enum Next<L, G> {
     Closed,
     /// The run was told to stop.
     Cancelled,
+    /// Breeding a birth for the workers panicked: its message.
+    Panicked(String),
 }
 
 /// A birth bred for a worker, not yet sent.
@@ -79,8 +81,10 @@ pub struct BirthStream<G: Genome> {
     /// Births bred for the workers; how many are being bred; where the breeding sends them.
     bred: VecDeque<Bred<G>>,
     breeding: usize,
-    bred_sender: Sender<Bred<G>>,
-    bred_receiver: Receiver<Bred<G>>,
+    bred_sender: Sender<Result<Bred<G>, String>>,
+    bred_receiver: Receiver<Result<Bred<G>, String>>,
+    /// The message of a breeding that panicked.
+    panicked: Option<String>,
     /// This process's threads, and the births handed to them and not yet given back.
     threads: usize,
     here: usize,
@@ -134,6 +138,7 @@ impl<G: Genome> BirthStream<G> {
             breeding: 0,
             bred_sender,
             bred_receiver,
+            panicked: None,
             threads: threads.max(1),
             here: 0,
             away: HashMap::new(),
@@ -178,7 +183,12 @@ impl<G: Genome> BirthStream<G> {
         }
         while let Ok(bred) = self.bred_receiver.try_recv() {
             self.breeding -= 1;
-            self.bred.push_back(bred);
+            match bred {
+                Ok(bred) => self.bred.push_back(bred),
+                Err(message) => {
+                    self.panicked.get_or_insert(message);
+                }
+            }
         }
         let outcomes = self.stream.receive();
         for (job, rank, outcome) in outcomes {
@@ -247,14 +257,17 @@ impl<G: Genome> BirthStream<G> {
         let (evolution, sender) = (self.evolution.clone(), self.bred_sender.clone());
         self.breeding += 1;
         rayon::spawn(move || {
-            let (unborn, fell_back) = breeding(|| evolution.breed_birth(order.0, &order.1));
-            let genome = Bytes(encode(&unborn.genome));
-            let _ = sender.send(Bred {
-                order,
-                unborn,
-                fell_back,
-                genome,
-            });
+            let bred = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                let (unborn, fell_back) = breeding(|| evolution.breed_birth(order.0, &order.1));
+                let genome = Bytes(encode(&unborn.genome));
+                Bred {
+                    order,
+                    unborn,
+                    fell_back,
+                    genome,
+                }
+            }));
+            let _ = sender.send(bred.map_err(|payload| panic_message(payload.as_ref())));
         });
     }
 
@@ -316,6 +329,9 @@ impl<G: Genome> BirthStream<G> {
             self.hand_out(orders);
             let birth = self.made.pop_front();
             self.stream.clocked(clock);
+            if let Some(message) = self.panicked.take() {
+                return Next::Panicked(message);
+            }
             if let Some(birth) = birth {
                 return Next::Remote(Box::new(birth));
             }

@@ -82,6 +82,7 @@ impl<G: Genome> Births<'_, G> {
                     Next::Local(made) => made,
                     Next::Remote(birth) => return Ok(*birth),
                     Next::Closed | Next::Cancelled => return Err(Interrupted.into()),
+                    Next::Panicked(message) => return Err(RunError::Panicked(message)),
                 }
             }
         };

@@ -3,7 +3,6 @@
 //! work rather than leaving a thread waiting for ever: a worker's panic is sent back as a
 //! result, and the queue is dropped when the driving thread returns or unwinds.
 
-use std::any::Any;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::{Mutex, mpsc};
 
@@ -55,17 +54,7 @@ pub(super) fn with_workers<O: Send, R: Send, X>(
     })
 }
 
-/// The message of a panic's payload.
-pub(super) fn message(payload: &(dyn Any + Send)) -> String {
-    match (
-        payload.downcast_ref::<&str>(),
-        payload.downcast_ref::<String>(),
-    ) {
-        (Some(s), _) => s.to_string(),
-        (_, Some(s)) => s.clone(),
-        _ => "a panic without a message".to_string(),
-    }
-}
+pub(super) use crate::evolve::steady::panic_message as message;
 
 #[cfg(test)]
 mod tests {

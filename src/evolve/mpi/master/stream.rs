@@ -104,16 +104,19 @@ impl Stream {
 
     /// The main thread's CPU clock now, as a call that dispatches jobs begins.
     pub(in crate::evolve) fn clock(&self) -> Clock {
-        Clock(thread_cpu())
+        let timing = self.master.as_ref().is_some_and(|state| state.timing);
+        Clock(timing.then(thread_cpu).flatten())
     }
 
     /// Counts the main thread's CPU time since `clock` as rank 0's dispatching
     /// (`ONTOGENY_MPI_TIMING`'s "main thread in batches").
     pub(in crate::evolve) fn clocked(&mut self, clock: Clock) {
-        self.cpu = match (self.cpu, clock.0, thread_cpu()) {
-            (Some(sum), Some(start), Some(end)) => Some(sum + end.saturating_sub(start)),
-            _ => None,
-        };
+        if let Some(start) = clock.0 {
+            self.cpu = match (self.cpu, thread_cpu()) {
+                (Some(sum), Some(end)) => Some(sum + end.saturating_sub(start)),
+                _ => None,
+            };
+        }
     }
 
     /// Counts births made: `remote` on other ranks (`stored` of them found stored, not
@@ -221,15 +224,24 @@ impl Stream {
     }
 }
 
-/// A worker's stored keys as they travel, read back: each key with its first generation.
-pub(in crate::evolve::mpi) fn stored_keys(known: &[u8]) -> impl Iterator<Item = ([u8; 32], u32)> {
-    known.chunks_exact(KEY_ENTRY).map(|entry| {
+/// A worker's stored keys as they travel, read back: each key with its first generation; the
+/// error says they are cut short.
+pub(in crate::evolve::mpi) fn stored_keys(
+    known: &[u8],
+) -> Result<impl Iterator<Item = ([u8; 32], u32)>, String> {
+    if !known.len().is_multiple_of(KEY_ENTRY) {
+        return Err(format!(
+            "rank 0 sent {} bytes of stored keys, not a multiple of {KEY_ENTRY}",
+            known.len()
+        ));
+    }
+    Ok(known.chunks_exact(KEY_ENTRY).map(|entry| {
         let (key, generation) = entry.split_at(32);
         (
             key.try_into().expect("32 bytes"),
             u32::from_le_bytes(generation.try_into().expect("4 bytes")),
         )
-    })
+    }))
 }
 
 /// `rank`'s request `bytes`, decoded; a request that does not decode ends the job.
